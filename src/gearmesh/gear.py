@@ -1,0 +1,631 @@
+"""Gear pair data, the pair-file format, validation and basic cylindrical-gear geometry.
+
+Everything inside is SI (m, rad, kg, Pa). The pair file (``config/pairs/*.yaml``) uses
+engineering units with the unit in the key name; :func:`load_pair` converts once, here.
+
+Geometry follows ISO 21771:2007 (cylindrical involute gears and gear pairs, concepts and
+geometry) and DIN 3960; the equation of each quantity is given where it is computed.
+Index 0 is the pinion (the driver), index 1 the gear.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, fields, replace
+from pathlib import Path
+from typing import Any, Mapping
+
+import numpy as np
+import yaml
+from scipy.optimize import brentq
+
+from .errors import GearmeshInputError
+
+GEARS = ("pinion", "gear")
+
+
+def involute(alpha: np.ndarray | float) -> np.ndarray | float:
+    """Involute function inv(α) = tan α − α (ISO 21771 eq. 18), α in rad."""
+    return np.tan(alpha) - alpha
+
+
+def inverse_involute(value: float) -> float:
+    """The pressure angle α in [0, π/2) (rad) with inv(α) = ``value`` (value ≥ 0)."""
+    if value < 0:
+        raise ValueError(f"inverse involute of a negative value {value}")
+    if value == 0:
+        return 0.0
+    return brentq(lambda a: involute(a) - value, 0.0, math.pi / 2 - 1e-12, xtol=1e-15, rtol=1e-15)
+
+
+# --------------------------------------------------------------------------------------
+# Data classes (SI)
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Material:
+    """Isotropic elastic material: Young's modulus (Pa), Poisson ratio (-), density (kg/m³)."""
+
+    youngs_modulus: float
+    poisson_ratio: float
+    density: float
+
+    @property
+    def shear_modulus(self) -> float:
+        """G = E / (2(1 + ν)) in Pa."""
+        return self.youngs_modulus / (2.0 * (1.0 + self.poisson_ratio))
+
+
+@dataclass(frozen=True)
+class Modification:
+    """The six micro-geometry parameters of seed 000 for one gear (all in m).
+
+    ``root_relief`` y1 and ``tip_relief`` y2 are the maximum profile reliefs; the relief
+    lengths y3, y4 are roll lengths along the transverse path of contact, measured from the
+    start of active profile (root relief) and from the tip (tip relief); ``crowning`` y5 is
+    the lead relief at each face end outside the central ``unmodified_lead_length`` y6.
+    The depth function is :func:`gearmesh.surface.modification_depth`.
+    """
+
+    root_relief: float = 0.0
+    tip_relief: float = 0.0
+    root_relief_length: float = 0.0
+    tip_relief_length: float = 0.0
+    crowning: float = 0.0
+    unmodified_lead_length: float = 0.0
+
+    @property
+    def is_zero(self) -> bool:
+        return self.root_relief == 0 and self.tip_relief == 0 and self.crowning == 0
+
+
+@dataclass(frozen=True)
+class GearPair:
+    """A helical gear pair as designed (SI units; index 0 pinion, 1 gear).
+
+    ``profile_shift`` and ``center_distance`` may be None (not given); see
+    :func:`pair_geometry` for how the operating centre distance is resolved.
+    """
+
+    name: str
+    teeth: tuple[int, int]
+    normal_module: float
+    normal_pressure_angle: float
+    helix_angle: float
+    face_width: tuple[float, float]
+    profile_shift: tuple[float, float] | None = None
+    center_distance: float | None = None
+    addendum_coefficient: tuple[float, float] = (1.0, 1.0)
+    dedendum_coefficient: tuple[float, float] = (1.25, 1.25)
+    tool_tip_radius_coefficient: tuple[float, float] = (0.38, 0.38)
+    bore_radius: tuple[float, float] | None = None
+    material: Material | None = None
+    modification: tuple[Modification, Modification] = (Modification(), Modification())
+    helix_hand: str = "right"
+    source: str = ""
+
+    def with_changes(self, **changes: Any) -> "GearPair":
+        """A copy with some fields replaced (e.g. a helix-angle sweep)."""
+        return replace(self, **changes)
+
+
+# --------------------------------------------------------------------------------------
+# The pair file: engineering units -> SI, with schema-level checks
+# --------------------------------------------------------------------------------------
+
+_PAIR_KEYS = {
+    "name", "teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg",
+    "face_width_mm", "profile_shift", "center_distance_mm", "addendum_coefficient",
+    "dedendum_coefficient", "tool_tip_radius_coefficient", "bore_radius_mm", "material",
+    "modification", "helix_hand", "source",
+}
+_REQUIRED_KEYS = ("name", "teeth", "normal_module_mm", "normal_pressure_angle_deg",
+                  "helix_angle_deg", "face_width_mm")
+_MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3"}
+_MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
+    "root_relief_um": ("root_relief", 1e-6),
+    "tip_relief_um": ("tip_relief", 1e-6),
+    "root_relief_length_mm": ("root_relief_length", 1e-3),
+    "tip_relief_length_mm": ("tip_relief_length", 1e-3),
+    "crowning_um": ("crowning", 1e-6),
+    "unmodified_lead_length_mm": ("unmodified_lead_length", 1e-3),
+}
+
+
+def _number(field_name: str, value: Any) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise GearmeshInputError(field_name, value, "must be a finite number")
+    return float(value)
+
+
+def _positive(field_name: str, value: Any) -> float:
+    v = _number(field_name, value)
+    if v <= 0:
+        raise GearmeshInputError(field_name, value, "must be positive")
+    return v
+
+
+def _per_gear(field_name: str, value: Any, check) -> tuple[float, float]:
+    """One number for both gears, or a [pinion, gear] list of two."""
+    if isinstance(value, (list, tuple)):
+        if len(value) != 2:
+            raise GearmeshInputError(field_name, value, "must be one number or a [pinion, gear] pair")
+        return (check(f"{field_name}[0]", value[0]), check(f"{field_name}[1]", value[1]))
+    v = check(field_name, value)
+    return (v, v)
+
+
+def _mapping(field_name: str, value: Any, allowed: set[str]) -> Mapping[str, Any]:
+    if not isinstance(value, Mapping):
+        raise GearmeshInputError(field_name, value, "must be a mapping")
+    unknown = sorted(set(value) - allowed)
+    if unknown:
+        raise GearmeshInputError(f"{field_name}.{unknown[0]}", value[unknown[0]],
+                                 f"unknown key; allowed keys are {sorted(allowed)}")
+    return value
+
+
+def _teeth(value: Any) -> tuple[int, int]:
+    if not isinstance(value, (list, tuple)) or len(value) != 2:
+        raise GearmeshInputError("teeth", value, "must be a [pinion, gear] list of two integers")
+    out = []
+    for i, z in enumerate(value):
+        if isinstance(z, bool) or not isinstance(z, int):
+            raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer")
+        if z < 5:
+            raise GearmeshInputError(f"teeth[{i}]", z, "must be at least 5 (external gears)")
+        out.append(z)
+    return (out[0], out[1])
+
+
+def _modification(field_name: str, value: Any) -> Modification:
+    if value is None:
+        return Modification()
+    spec = _mapping(field_name, value, set(_MODIFICATION_KEYS))
+    kwargs = {}
+    for key, (attr, factor) in _MODIFICATION_KEYS.items():
+        if key in spec:
+            v = _number(f"{field_name}.{key}", spec[key])
+            if v < 0:
+                raise GearmeshInputError(f"{field_name}.{key}", spec[key], "must not be negative")
+            kwargs[attr] = v * factor
+    return Modification(**kwargs)
+
+
+def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
+    """Build a :class:`GearPair` (SI) from a pair-file mapping in engineering units.
+
+    Checks the form of the data (keys, types, signs, ranges); the physics of the pair
+    (contact ratio, interference, centre distance) is checked by :func:`pair_geometry`.
+    """
+    spec = _mapping("pair", data, _PAIR_KEYS)
+    for key in _REQUIRED_KEYS:
+        if key not in spec:
+            raise GearmeshInputError(key, None, "is required")
+    name = spec["name"]
+    if not isinstance(name, str) or not name:
+        raise GearmeshInputError("name", name, "must be a non-empty string")
+    alpha_n = _number("normal_pressure_angle_deg", spec["normal_pressure_angle_deg"])
+    if not 0 < alpha_n < 45:
+        raise GearmeshInputError("normal_pressure_angle_deg", alpha_n, "must lie in (0, 45) degrees")
+    beta = _number("helix_angle_deg", spec["helix_angle_deg"])
+    if not 0 <= beta < 60:
+        raise GearmeshInputError("helix_angle_deg", beta,
+                                 "must lie in [0, 60) degrees; give the hand with helix_hand")
+    hand = spec.get("helix_hand", "right")
+    if hand not in ("right", "left"):
+        raise GearmeshInputError("helix_hand", hand, "must be 'right' or 'left' (of the pinion)")
+
+    shift = None
+    if spec.get("profile_shift") is not None:
+        shift = _per_gear("profile_shift", spec["profile_shift"], _number)
+        for i, x in enumerate(shift):
+            if not -3 < x < 3:
+                raise GearmeshInputError(f"profile_shift[{i}]", x, "must lie in (-3, 3)")
+    center = None
+    if spec.get("center_distance_mm") is not None:
+        center = _positive("center_distance_mm", spec["center_distance_mm"]) * 1e-3
+
+    def nonneg(f, v):
+        x = _number(f, v)
+        if x < 0:
+            raise GearmeshInputError(f, v, "must not be negative")
+        return x
+
+    bore = None
+    if spec.get("bore_radius_mm") is not None:
+        bore = tuple(b * 1e-3 for b in _per_gear("bore_radius_mm", spec["bore_radius_mm"], nonneg))
+
+    material = None
+    if spec.get("material") is not None:
+        m = _mapping("material", spec["material"], _MATERIAL_KEYS)
+        for key in _MATERIAL_KEYS:
+            if key not in m:
+                raise GearmeshInputError(f"material.{key}", None, "is required")
+        nu = _number("material.poisson_ratio", m["poisson_ratio"])
+        if not 0 <= nu < 0.5:
+            raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
+        material = Material(
+            youngs_modulus=_positive("material.youngs_modulus_GPa", m["youngs_modulus_GPa"]) * 1e9,
+            poisson_ratio=nu,
+            density=_positive("material.density_kg_m3", m["density_kg_m3"]),
+        )
+
+    mods = (Modification(), Modification())
+    if spec.get("modification") is not None:
+        mm = _mapping("modification", spec["modification"], set(GEARS))
+        mods = (_modification("modification.pinion", mm.get("pinion")),
+                _modification("modification.gear", mm.get("gear")))
+
+    return GearPair(
+        name=name,
+        teeth=_teeth(spec["teeth"]),
+        normal_module=_positive("normal_module_mm", spec["normal_module_mm"]) * 1e-3,
+        normal_pressure_angle=math.radians(alpha_n),
+        helix_angle=math.radians(beta),
+        face_width=tuple(b * 1e-3 for b in _per_gear("face_width_mm", spec["face_width_mm"], _positive)),
+        profile_shift=shift,
+        center_distance=center,
+        addendum_coefficient=_per_gear("addendum_coefficient", spec.get("addendum_coefficient", 1.0), _positive),
+        dedendum_coefficient=_per_gear("dedendum_coefficient", spec.get("dedendum_coefficient", 1.25), _positive),
+        tool_tip_radius_coefficient=_per_gear(
+            "tool_tip_radius_coefficient", spec.get("tool_tip_radius_coefficient", 0.38), nonneg),
+        bore_radius=bore,
+        material=material,
+        modification=mods,
+        helix_hand=hand,
+        source=str(spec.get("source", source)),
+    )
+
+
+def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
+    """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`."""
+    if isinstance(path_or_data, Mapping):
+        return pair_from_dict(path_or_data)
+    path = Path(path_or_data)
+    try:
+        data = yaml.safe_load(path.read_text())
+    except OSError as exc:
+        raise GearmeshInputError("pair file", str(path), f"cannot be read ({exc.strerror})") from None
+    except yaml.YAMLError as exc:
+        raise GearmeshInputError("pair file", str(path), f"is not valid YAML ({exc})") from None
+    return pair_from_dict(data, source=str(path))
+
+
+def pair_to_dict(pair: GearPair) -> dict[str, Any]:
+    """The inverse of :func:`pair_from_dict`: a pair-file mapping in engineering units."""
+    out: dict[str, Any] = {
+        "name": pair.name,
+        "teeth": list(pair.teeth),
+        "normal_module_mm": pair.normal_module * 1e3,
+        "normal_pressure_angle_deg": math.degrees(pair.normal_pressure_angle),
+        "helix_angle_deg": math.degrees(pair.helix_angle),
+        "face_width_mm": [b * 1e3 for b in pair.face_width],
+        "addendum_coefficient": list(pair.addendum_coefficient),
+        "dedendum_coefficient": list(pair.dedendum_coefficient),
+        "tool_tip_radius_coefficient": list(pair.tool_tip_radius_coefficient),
+        "helix_hand": pair.helix_hand,
+    }
+    if pair.profile_shift is not None:
+        out["profile_shift"] = list(pair.profile_shift)
+    if pair.center_distance is not None:
+        out["center_distance_mm"] = pair.center_distance * 1e3
+    if pair.bore_radius is not None:
+        out["bore_radius_mm"] = [r * 1e3 for r in pair.bore_radius]
+    if pair.material is not None:
+        out["material"] = {
+            "youngs_modulus_GPa": pair.material.youngs_modulus * 1e-9,
+            "poisson_ratio": pair.material.poisson_ratio,
+            "density_kg_m3": pair.material.density,
+        }
+    if any(not m.is_zero for m in pair.modification):
+        out["modification"] = {
+            gear: {key: getattr(mod, attr) / factor for key, (attr, factor) in _MODIFICATION_KEYS.items()}
+            for gear, mod in zip(GEARS, pair.modification)
+        }
+    return out
+
+
+# --------------------------------------------------------------------------------------
+# Derived geometry
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class PairGeometry:
+    """Derived geometry of a working gear pair (SI; per-gear values as length-2 arrays).
+
+    Roll lengths ``rho`` are distances along the transverse line of action from each gear's
+    base-circle tangent point (ρ = √(r² − r_b²)); they are the common abscissa of the
+    contact lines, stiffness and transmission error (DESIGN.md).
+    """
+
+    pair: GearPair
+    profile_shift: np.ndarray  # (-) as used, given or inferred
+    shift_inferred: bool
+    transverse_module: float
+    transverse_pressure_angle: float  # αt
+    operating_pressure_angle: float  # αwt
+    base_helix_angle: float  # βb
+    center_distance: float  # a (operating)
+    zero_backlash_center_distance: float
+    reference_radius: np.ndarray
+    base_radius: np.ndarray
+    tip_radius: np.ndarray
+    root_radius: np.ndarray
+    operating_pitch_radius: np.ndarray
+    form_radius: np.ndarray  # true start of the involute (generated)
+    undercut: np.ndarray  # bool per gear
+    sap_radius: np.ndarray  # start of active profile
+    eap_radius: np.ndarray  # end of active profile (= tip radius)
+    rho_form: np.ndarray
+    rho_sap: np.ndarray
+    rho_eap: np.ndarray
+    face_width: float  # meshing face width (overlap)
+    transverse_base_pitch: float  # p_bt
+    normal_base_pitch: float  # p_bn
+    path_of_contact: float  # g_α
+    eps_alpha: float
+    eps_beta: float
+    transverse_thickness: np.ndarray  # s_t on the reference circle
+    normal_thickness: np.ndarray  # s_n on the reference circle
+    normal_tip_thickness: np.ndarray  # s_an
+    tip_clearance: np.ndarray  # c = a − r_a(other) − r_f
+    backlash_circumferential: float  # j_wt on the operating pitch circle
+    backlash_normal: float  # j_bn
+    mass: np.ndarray  # kg, nan without bore/material
+    inertia: np.ndarray  # kg m², nan without bore/material
+
+    @property
+    def eps_gamma(self) -> float:
+        return self.eps_alpha + self.eps_beta
+
+    @property
+    def gear_ratio(self) -> float:
+        return self.pair.teeth[1] / self.pair.teeth[0]
+
+    def scalars(self) -> dict[str, float | list[float]]:
+        """The headline numbers in engineering units (the CLI's ``geometry --json``)."""
+        mm = lambda v: [float(x) * 1e3 for x in v]  # noqa: E731
+        return {
+            "name": self.pair.name,
+            "eps_alpha": self.eps_alpha,
+            "eps_beta": self.eps_beta,
+            "eps_gamma": self.eps_gamma,
+            "transverse_pressure_angle_deg": math.degrees(self.transverse_pressure_angle),
+            "operating_pressure_angle_deg": math.degrees(self.operating_pressure_angle),
+            "base_helix_angle_deg": math.degrees(self.base_helix_angle),
+            "center_distance_mm": self.center_distance * 1e3,
+            "zero_backlash_center_distance_mm": self.zero_backlash_center_distance * 1e3,
+            "backlash_mm": self.backlash_normal * 1e3,
+            "circumferential_backlash_mm": self.backlash_circumferential * 1e3,
+            "profile_shift": [float(x) for x in self.profile_shift],
+            "profile_shift_inferred": self.shift_inferred,
+            "reference_radius_mm": mm(self.reference_radius),
+            "base_radius_mm": mm(self.base_radius),
+            "tip_radius_mm": mm(self.tip_radius),
+            "root_radius_mm": mm(self.root_radius),
+            "form_radius_mm": mm(self.form_radius),
+            "sap_radius_mm": mm(self.sap_radius),
+            "eap_radius_mm": mm(self.eap_radius),
+            "undercut": [bool(u) for u in self.undercut],
+            "normal_tip_thickness_mm": mm(self.normal_tip_thickness),
+            "transverse_base_pitch_mm": self.transverse_base_pitch * 1e3,
+            "face_width_mm": self.face_width * 1e3,
+            "mass_kg": [float(x) for x in self.mass],
+            "inertia_kg_m2": [float(x) for x in self.inertia],
+        }
+
+
+def _resolve_shift_and_center(pair: GearPair, alpha_t: float, r_sum: float):
+    """Profile shifts, operating centre distance and αwt (ISO 21771 §5.3, eqs. 57–59).
+
+    inv αwt = inv αt + 2 tan αn (x1 + x2)/(z1 + z2) is the zero-backlash condition, and
+    a cos αwt = (r1 + r2) cos αt ties αwt to the centre distance.
+    """
+    z_sum = sum(pair.teeth)
+    tan_an = math.tan(pair.normal_pressure_angle)
+    inferred = False
+    if pair.profile_shift is None and pair.center_distance is not None:
+        # Without shifts: the total shift that closes the backlash at this distance, split equally.
+        cos_awt = r_sum * math.cos(alpha_t) / pair.center_distance
+        if not 0 < cos_awt < 1:
+            raise GearmeshInputError("center_distance_mm", pair.center_distance * 1e3,
+                                     "is too small for any working pair of these teeth "
+                                     f"(the base circles need more than {r_sum * math.cos(alpha_t) * 1e3:.3f} mm)")
+        alpha_wt = math.acos(cos_awt)
+        x_sum = (involute(alpha_wt) - involute(alpha_t)) * z_sum / (2 * tan_an)
+        shift = np.array([x_sum / 2, x_sum / 2])
+        inferred = True
+    else:
+        shift = np.array(pair.profile_shift if pair.profile_shift is not None else (0.0, 0.0))
+    if inferred:
+        return shift, True, pair.center_distance, pair.center_distance, alpha_wt
+    inv_wt0 = involute(alpha_t) + 2 * tan_an * shift.sum() / z_sum
+    if inv_wt0 <= 0:
+        raise GearmeshInputError("profile_shift", [float(x) for x in shift],
+                                 "the sum of the shifts is so negative that no operating pressure angle exists")
+    alpha_wt0 = inverse_involute(inv_wt0)
+    a0 = r_sum * math.cos(alpha_t) / math.cos(alpha_wt0)
+    if pair.center_distance is None:
+        return shift, False, a0, a0, alpha_wt0
+    a = pair.center_distance
+    if a < a0 * (1 - 1e-9):
+        raise GearmeshInputError("center_distance_mm", a * 1e3,
+                                 f"is below the zero-backlash distance {a0 * 1e3:.4f} mm of these profile shifts "
+                                 "(the teeth would interpenetrate)")
+    alpha_wt = math.acos(min(1.0, r_sum * math.cos(alpha_t) / a))
+    return shift, inferred, a, a0, alpha_wt
+
+
+def form_roll_length(reference_radius, base_radius, alpha_t, normal_module, shift,
+                     dedendum_coefficient, tool_tip_radius_coefficient, alpha_n):
+    """Roll length ρ_F (m) of the generated form point, where the involute begins.
+
+    The basic rack (tool addendum h_aP0 = h_f*·m_n, tip radius ρ_aP0 = ρ*·m_n) ends its
+    straight flank at h_FfP = h_aP0 − ρ_aP0(1 − sin αn) below its datum line; with profile
+    shift x that point runs h_F = h_FfP − x·m_n below the rolling (reference) line, and the
+    flank generates the involute down to the point of the transverse line of action
+    h_F/sin αt below the pitch point: ρ_F = r sin αt − h_F / sin αt (ISO 21771:2007 §5.4,
+    DIN 3960 form circle). A negative value means the rack flank reaches below the base
+    tangent point: the tooth is undercut and the true form point is where the trochoid
+    fillet cuts the involute (:func:`gearmesh.profile.undercut_form_roll_length`).
+    """
+    h_ffp = normal_module * (dedendum_coefficient - tool_tip_radius_coefficient * (1 - np.sin(alpha_n)))
+    h_f = h_ffp - shift * normal_module
+    return reference_radius * np.sin(alpha_t) - h_f / np.sin(alpha_t)
+
+
+def gear_body_mass_inertia(reference_radius, bore_radius, face_width, density):
+    """Mass (kg) and polar moment (kg m²) of a solid disc of the reference (pitch) radius
+    minus the bore over the face width: m = ρπ(r² − r_i²)b, J = m(r² + r_i²)/2.
+
+    This is the body convention of seed 001 (Table 1: pair 1 gives 0.2165/0.6266 kg and
+    0.96/7.90 ·10⁻⁴ kg m²).
+    """
+    r, ri, b = np.asarray(reference_radius), np.asarray(bore_radius), np.asarray(face_width)
+    mass = density * np.pi * (r**2 - ri**2) * b
+    return mass, 0.5 * mass * (r**2 + ri**2)
+
+
+def pair_geometry(pair: GearPair) -> PairGeometry:
+    """Derived geometry of ``pair``, refusing any pair that cannot work.
+
+    Refusals (:class:`GearmeshInputError`, naming the field): centre distance below zero
+    backlash or below the base circles; non-positive dedendum space (root below bore);
+    pointed teeth (normal tip thickness ≤ 0); tip below the base circle; the mating tip
+    reaching below the form circle (interference with the fillet or the undercut);
+    negative tip clearance; transverse contact ratio εα < 1.
+    """
+    z = np.array(pair.teeth, dtype=float)
+    mn, an, beta = pair.normal_module, pair.normal_pressure_angle, pair.helix_angle
+    mt = mn / math.cos(beta)
+    alpha_t = math.atan(math.tan(an) / math.cos(beta))  # ISO 21771 eq. 9
+    beta_b = math.atan(math.tan(beta) * math.cos(alpha_t))  # eq. 21
+    r = z * mt / 2  # eq. 11
+    rb = r * math.cos(alpha_t)  # eq. 13
+    shift, inferred, a, a0, alpha_wt = _resolve_shift_and_center(pair, alpha_t, r.sum())
+    ha = np.array(pair.addendum_coefficient)
+    hf = np.array(pair.dedendum_coefficient)
+    rho_tool = np.array(pair.tool_tip_radius_coefficient)
+    ra = r + (ha + shift) * mn  # eq. 45, no tip shortening
+    rf = r - (hf - shift) * mn  # eq. 47
+    rw = rb / math.cos(alpha_wt)
+
+    gear_names = GEARS
+    for i in range(2):
+        if pair.bore_radius is not None and rf[i] <= pair.bore_radius[i]:
+            raise GearmeshInputError(f"bore_radius_mm[{i}]", pair.bore_radius[i] * 1e3,
+                                     f"must be below the {gear_names[i]} root radius {rf[i] * 1e3:.3f} mm")
+        if rf[i] <= 0:
+            raise GearmeshInputError(f"dedendum_coefficient[{i}]", float(hf[i]),
+                                     f"puts the {gear_names[i]} root circle at or below its axis")
+        if ra[i] <= rb[i]:
+            raise GearmeshInputError(f"addendum_coefficient[{i}]", float(ha[i]),
+                                     f"puts the {gear_names[i]} tip circle ({ra[i] * 1e3:.3f} mm) inside its base "
+                                     f"circle ({rb[i] * 1e3:.3f} mm): no involute flank")
+
+    # Tooth thickness on the reference circle and at the tip (ISO 21771 eqs. 64, 70).
+    st = mt * (np.pi / 2 + 2 * shift * math.tan(an))
+    sn = st * math.cos(beta)
+    alpha_at = np.arccos(rb / ra)
+    sat = 2 * ra * (st / (2 * r) + involute(alpha_t) - involute(alpha_at))
+    beta_a = np.arctan(np.tan(beta) * ra / r)
+    san = sat * np.cos(beta_a)
+    for i in range(2):
+        if san[i] <= 0:
+            raise GearmeshInputError(f"profile_shift[{i}]", float(shift[i]),
+                                     f"makes the {gear_names[i]} tooth pointed (normal tip thickness "
+                                     f"{san[i] * 1e3:.3f} mm <= 0); reduce the shift or the addendum")
+
+    # Roll lengths along the transverse line of action (ISO 21771 §5.4.1).
+    rho_a = np.sqrt(ra**2 - rb**2)
+    line_of_action = a * math.sin(alpha_wt)  # T1T2
+    rho_sap = line_of_action - rho_a[::-1]
+    rho_form = form_roll_length(r, rb, alpha_t, mn, shift, hf, rho_tool, an)
+    undercut = rho_form < 0
+    if undercut.any():
+        from .profile import undercut_form_roll_length  # the fillet geometry lives there
+
+        rho_form = np.array([
+            undercut_form_roll_length(pair, i, alpha_t) if undercut[i] else rho_form[i] for i in range(2)
+        ])
+    r_form = np.sqrt(rb**2 + rho_form**2)
+    for i in range(2):
+        other = 1 - i
+        if rho_sap[i] < 0:
+            raise GearmeshInputError(f"addendum_coefficient[{other}]", float(ha[other]),
+                                     f"the {gear_names[other]} tip reaches past the {gear_names[i]} base tangent "
+                                     "point of the line of action (involute interference)")
+        if rho_sap[i] < rho_form[i] - 1e-12:
+            raise GearmeshInputError(f"profile_shift[{i}]", float(shift[i]),
+                                     f"the {gear_names[other]} tip (start of active profile at roll length "
+                                     f"{rho_sap[i] * 1e3:.3f} mm) reaches below the {gear_names[i]} form circle "
+                                     f"(involute starts at {rho_form[i] * 1e3:.3f} mm{', undercut' if undercut[i] else ''}): "
+                                     "fillet interference")
+    clearance = a - ra[::-1] - rf
+    for i in range(2):
+        if clearance[i] < 0:
+            raise GearmeshInputError(f"addendum_coefficient[{1 - i}]", float(ha[1 - i]),
+                                     f"the {gear_names[1 - i]} tip circle cuts the {gear_names[i]} root circle "
+                                     f"(tip clearance {clearance[i] * 1e3:.3f} mm < 0)")
+
+    pbt = math.pi * mt * math.cos(alpha_t)
+    path = rho_a.sum() - line_of_action  # g_α, eq. 87
+    eps_alpha = path / pbt
+    if eps_alpha < 1:
+        raise GearmeshInputError("addendum_coefficient", [float(x) for x in ha],
+                                 f"gives a transverse contact ratio eps_alpha = {eps_alpha:.4f} < 1: "
+                                 "the mesh is not continuous")
+    b = min(pair.face_width)
+    eps_beta = b * math.sin(beta) / (math.pi * mn)  # eq. 91
+
+    # Backlash: thicknesses on the operating pitch circles (ISO 21771 §5.5; j = 0 at a0).
+    swt = 2 * rw * (st / (2 * r) + involute(alpha_t) - involute(alpha_wt))
+    j_wt = 2 * math.pi * rw[0] / z[0] - swt.sum()
+    j_bn = j_wt * math.cos(alpha_wt) * math.cos(beta_b)
+
+    if pair.bore_radius is not None and pair.material is not None:
+        mass, inertia = gear_body_mass_inertia(r, np.array(pair.bore_radius), np.array(pair.face_width),
+                                               pair.material.density)
+    else:
+        mass = inertia = np.full(2, np.nan)
+
+    geom = PairGeometry(
+        pair=pair, profile_shift=shift, shift_inferred=inferred, transverse_module=mt,
+        transverse_pressure_angle=alpha_t, operating_pressure_angle=alpha_wt, base_helix_angle=beta_b,
+        center_distance=a, zero_backlash_center_distance=a0, reference_radius=r, base_radius=rb,
+        tip_radius=ra, root_radius=rf, operating_pitch_radius=rw, form_radius=r_form, undercut=undercut,
+        sap_radius=np.sqrt(rb**2 + rho_sap**2), eap_radius=ra, rho_form=rho_form, rho_sap=rho_sap,
+        rho_eap=rho_a, face_width=b, transverse_base_pitch=pbt, normal_base_pitch=math.pi * mn * math.cos(an),
+        path_of_contact=path, eps_alpha=eps_alpha, eps_beta=eps_beta, transverse_thickness=st,
+        normal_thickness=sn, normal_tip_thickness=san, tip_clearance=clearance,
+        backlash_circumferential=j_wt, backlash_normal=j_bn, mass=mass, inertia=inertia,
+    )
+    validate_modifications(geom)
+    return geom
+
+
+def validate_modifications(geom: PairGeometry) -> None:
+    """Refuse relief lengths longer than the active flank and lead lengths beyond the face."""
+    for i, (gear, mod) in enumerate(zip(GEARS, geom.pair.modification)):
+        active = geom.rho_eap[i] - geom.rho_sap[i]
+        field_base = f"modification.{gear}"
+        if mod.root_relief_length + mod.tip_relief_length > active * (1 + 1e-9):
+            raise GearmeshInputError(
+                f"{field_base}.root_relief_length_mm + tip_relief_length_mm",
+                (mod.root_relief_length + mod.tip_relief_length) * 1e3,
+                f"exceeds the active roll length of the {gear} flank ({active * 1e3:.3f} mm)")
+        if (mod.root_relief > 0) != (mod.root_relief_length > 0):
+            raise GearmeshInputError(f"{field_base}.root_relief_length_mm", mod.root_relief_length * 1e3,
+                                     "root relief amount and length must both be zero or both positive")
+        if (mod.tip_relief > 0) != (mod.tip_relief_length > 0):
+            raise GearmeshInputError(f"{field_base}.tip_relief_length_mm", mod.tip_relief_length * 1e3,
+                                     "tip relief amount and length must both be zero or both positive")
+        if mod.unmodified_lead_length > geom.face_width * (1 + 1e-9):
+            raise GearmeshInputError(f"{field_base}.unmodified_lead_length_mm", mod.unmodified_lead_length * 1e3,
+                                     f"exceeds the face width {geom.face_width * 1e3:.3f} mm")
+        if mod.crowning > 0 and mod.unmodified_lead_length >= geom.face_width:
+            raise GearmeshInputError(f"{field_base}.unmodified_lead_length_mm", mod.unmodified_lead_length * 1e3,
+                                     "leaves no face width for the lead crowning")
