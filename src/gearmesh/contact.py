@@ -36,13 +36,13 @@ def hand_sign(geom: PairGeometry) -> int:
 def tooth_pair_indices(geom: PairGeometry) -> np.ndarray:
     """Indices j of every tooth pair that can be in the active zone during one base pitch.
 
-    With roll ∈ [0, p_bt) and z·tan βb ∈ [−b tan βb/2, b tan βb/2], s_j reaches the zone
-    [0, g_α] only for j from −⌈(g_α + b tan βb/2)/p_bt⌉ to ⌈b tan βb/(2 p_bt)⌉.
+    With roll ∈ [0, p_bt) and h·z·tan βb ∈ [−b tan βb/2, b tan βb/2], s_j ∈ [0, g_α] needs
+    j·p_bt ∈ (−p_bt − b tan βb/2, g_α + b tan βb/2].
     """
     half_axial = 0.5 * geom.face_width * math.tan(geom.base_helix_angle)
     pbt = geom.transverse_base_pitch
-    j_min = -math.ceil((geom.path_of_contact + half_axial) / pbt)
-    j_max = math.ceil(half_axial / pbt)
+    j_min = -math.ceil(half_axial / pbt) - 1
+    j_max = math.ceil((geom.path_of_contact + half_axial) / pbt)
     return np.arange(j_min, j_max + 1)
 
 
