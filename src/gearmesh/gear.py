@@ -492,6 +492,22 @@ def gear_body_mass_inertia(reference_radius, bore_radius, face_width, density):
 def pair_geometry(pair: GearPair) -> PairGeometry:
     """Derived geometry of ``pair``, refusing any pair that cannot work.
 
+    When the profile shifts were inferred from the centre distance, a refusal names
+    ``center_distance_mm`` (the value the user gave) and says which inferred shift failed.
+    """
+    try:
+        return _pair_geometry(pair)
+    except GearmeshInputError as exc:
+        if pair.profile_shift is None and pair.center_distance is not None and exc.field != "center_distance_mm":
+            raise GearmeshInputError(
+                "center_distance_mm", pair.center_distance * 1e3,
+                f"needs profile shifts for zero backlash that make no working pair: {exc}") from None
+        raise
+
+
+def _pair_geometry(pair: GearPair) -> PairGeometry:
+    """:func:`pair_geometry` without the re-labelling of refusals.
+
     Refusals (:class:`GearmeshInputError`, naming the field): centre distance below zero
     backlash or below the base circles; non-positive dedendum space (root below bore);
     pointed teeth (normal tip thickness ≤ 0); tip below the base circle; the mating tip

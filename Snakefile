@@ -1,0 +1,25 @@
+# gearmesh workflow: pair.yaml -> geometry -> contact_lines -> ... (see DESIGN.md).
+# Run the default study:   snakemake --cores 2
+# Run another study:       snakemake --cores 2 --configfile config/studies/NAME.yaml
+from snakemake.utils import min_version, validate
+
+min_version("8.0")
+
+
+configfile: "config/config.yaml"
+
+
+validate(config, "workflow/schemas/config.schema.yaml", set_default=True)
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/geometry.smk"
+include: "workflow/rules/contact_lines.smk"
+include: "workflow/rules/studies.smk"
+include: "workflow/rules/plots.smk"
+
+
+rule all:
+    input:
+        all_targets(),
+    default_target: True

@@ -1,0 +1,82 @@
+"""Speed benchmarks: one JSON line per benchmark.
+
+Each line: name, median seconds of >= 3 runs, and where a straightforward baseline is run
+in the same process, its median, the speed-up ratio and the largest relative difference of
+the results. Run by hand (``python benchmarks/run.py``), never by pytest.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import statistics
+import time
+from pathlib import Path
+
+import numpy as np
+
+from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
+from gearmesh.gear import load_pair, pair_geometry
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def median_seconds(func, repeats: int) -> tuple[float, object]:
+    times, result = [], None
+    for _ in range(repeats):
+        t0 = time.perf_counter()
+        result = func()
+        times.append(time.perf_counter() - t0)
+    return statistics.median(times), result
+
+
+def contact_length_pointwise(geom, roll, n_points: int = 200) -> np.ndarray:
+    """Seed 002's algorithm, written plainly: for every position and tooth pair, march across
+    the face in ``n_points`` slices, keep the slices whose contact lies in the active zone and
+    sum the distances between consecutive contact points (x, y, z)."""
+    tb = math.tan(geom.base_helix_angle)
+    h = 1 if geom.pair.helix_hand == "right" else -1
+    z = np.linspace(-geom.face_width / 2, geom.face_width / 2, n_points)
+    alpha = geom.operating_pressure_angle
+    total = np.zeros(len(roll))
+    for p, r in enumerate(roll):
+        for j in tooth_pair_indices(geom):
+            points = []
+            for zk in z:
+                s = r + j * geom.transverse_base_pitch + h * zk * tb
+                if 0 <= s <= geom.path_of_contact:
+                    rho = geom.rho_sap[0] + s
+                    points.append((geom.base_radius[0] * math.cos(alpha) + rho * math.sin(alpha),
+                                   -geom.base_radius[0] * math.sin(alpha) + rho * math.cos(alpha), zk))
+            for a, b in zip(points, points[1:]):
+                total[p] += math.dist(a, b)
+    return total
+
+
+def bench_contact_lines(repeats: int) -> dict:
+    geom = pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml"))
+    roll = mesh_cycle_rolls(geom, 360)
+    fast, result = median_seconds(lambda: contact_lines(geom, roll).total_length, repeats)
+    base, reference = median_seconds(lambda: contact_length_pointwise(geom, roll), max(3, repeats // 3))
+    # The pointwise sum misses the part of each line between the last slice and the zone edge,
+    # so the two agree to within about one slice length, not to round-off.
+    return {"name": "contact_lines_360_positions", "median_s": fast, "baseline": "seed 002 pointwise sum, 200 slices",
+            "baseline_median_s": base, "ratio": base / fast,
+            "max_rel_diff": float(np.max(np.abs(result - reference) / result))}
+
+
+BENCHMARKS = {"contact_lines": bench_contact_lines}
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("names", nargs="*", help=f"benchmarks to run (default all: {', '.join(BENCHMARKS)})")
+    parser.add_argument("--repeats", type=int, default=7)
+    args = parser.parse_args()
+    for name in args.names or BENCHMARKS:
+        print(json.dumps(BENCHMARKS[name](max(3, args.repeats))), flush=True)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,112 @@
+"""The ``gearmesh`` command line: validate inputs and print a stage's headline numbers.
+
+Bad input exits with code 2 and one line ``gearmesh: error: FIELD = VALUE: RULE`` on
+stderr; nothing is written.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from .config import read_yaml, study_pairs, validate_study
+from .contact import contact_length_closed_form, contact_lines, mesh_cycle_rolls
+from .errors import GearmeshInputError
+from .gear import load_pair, pair_geometry
+
+EXIT_BAD_INPUT = 2
+
+
+def _finite(obj: Any) -> Any:
+    """JSON-safe: NaN becomes null (JSON has no NaN)."""
+    if isinstance(obj, float) and not math.isfinite(obj):
+        return None
+    if isinstance(obj, Mapping):
+        return {k: _finite(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [_finite(v) for v in obj]
+    if hasattr(obj, "item"):
+        return _finite(obj.item())
+    return obj
+
+
+def _emit(result: Mapping[str, Any], as_json: bool) -> None:
+    if as_json:
+        print(json.dumps(_finite(result)))
+        return
+    width = max(len(k) for k in result)
+    for key, value in _finite(result).items():
+        if isinstance(value, float):
+            value = f"{value:.6g}"
+        elif isinstance(value, list):
+            value = ", ".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in value)
+        print(f"{key:<{width}}  {value}")
+
+
+def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
+    data = read_yaml(args.file, "file")
+    if isinstance(data, Mapping) and "study" in data:
+        config = validate_study(data)
+        pairs = study_pairs(config)
+        for pair in pairs.values():
+            pair_geometry(pair)
+        return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
+    pair = load_pair(args.file)
+    pair_geometry(pair)
+    return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
+
+
+def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
+    geom = pair_geometry(load_pair(args.pair))
+    result = geom.scalars()
+    total = contact_lines(geom, mesh_cycle_rolls(geom, args.positions)).total_length
+    mean_cf, min_cf, max_cf = contact_length_closed_form(geom)
+    result.update({
+        "mean_contact_length_mm": float(total.mean()) * 1e3,
+        "min_contact_length_mm": float(total.min()) * 1e3,
+        "max_contact_length_mm": float(total.max()) * 1e3,
+        "mean_contact_length_closed_form_mm": mean_cf * 1e3,
+        "min_contact_length_closed_form_mm": min_cf * 1e3,
+        "max_contact_length_closed_form_mm": max_cf * 1e3,
+        "contact_length_fluctuation": float(total.max() - total.min()) / geom.face_width,
+    })
+    return result
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = argparse.ArgumentParser(prog="gearmesh", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    p = sub.add_parser("validate", help="check a gear pair file or a study config (exit 0, or 2 with the reason)")
+    p.add_argument("file")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_validate)
+
+    p = sub.add_parser("geometry", help="contact ratios, radii, backlash, masses and contact-line lengths")
+    p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml)")
+    p.add_argument("--positions", type=int, default=720, help="rotation positions per mesh cycle (default 720)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_geometry)
+    return parser
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    parser = build_parser()
+    args = parser.parse_args(argv)
+    try:
+        if getattr(args, "positions", 1) < 1:
+            raise GearmeshInputError("--positions", args.positions, "must be at least 1")
+        result = args.func(args)
+    except GearmeshInputError as exc:
+        print(f"gearmesh: error: {exc}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    _emit(result, args.json)
+    return 0
+
+
+if __name__ == "__main__":  # pragma: no cover
+    sys.exit(main())

@@ -1,0 +1,94 @@
+"""Study configs: schema validation with defaults, and resolving pair names to pair files.
+
+The schema (``schemas/config.schema.yaml``, linked as ``workflow/schemas/``) is the one
+source of truth; Snakemake validates with it through ``snakemake.utils.validate`` and the
+CLI through :func:`validate_study`, both filling the defaults it declares.
+"""
+
+from __future__ import annotations
+
+import copy
+from importlib.resources import files
+from pathlib import Path
+from typing import Any, Mapping
+
+import jsonschema
+import yaml
+
+from .errors import GearmeshInputError
+from .gear import GearPair, load_pair
+
+SCHEMA_PATH = Path(str(files("gearmesh") / "schemas" / "config.schema.yaml"))
+
+
+def _with_defaults(validator_class):
+    """A validator that fills ``default`` values while it validates (jsonschema FAQ recipe)."""
+    validate_properties = validator_class.VALIDATORS["properties"]
+
+    def set_defaults(validator, properties, instance, schema):
+        if isinstance(instance, dict):
+            for name, sub in properties.items():
+                if "default" in sub and name not in instance:
+                    instance[name] = copy.deepcopy(sub["default"])
+        yield from validate_properties(validator, properties, instance, schema)
+
+    return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
+
+
+def load_schema() -> dict[str, Any]:
+    return yaml.safe_load(SCHEMA_PATH.read_text())
+
+
+def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
+    """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field."""
+    schema = load_schema()
+    data = copy.deepcopy(dict(config))
+    validator = _with_defaults(jsonschema.Draft202012Validator)(schema)
+    errors = sorted(validator.iter_errors(data), key=lambda e: (len(e.path), list(map(str, e.path))))
+    if errors:
+        err = errors[0]
+        field = ".".join(str(p) for p in err.path) or "config"
+        raise GearmeshInputError(field, err.instance if err.path else None, err.message)
+    # Fill defaults a second time: nested defaults of objects created by the first pass.
+    for _ in validator.iter_errors(data):
+        pass
+    return data
+
+
+def read_yaml(path: str | Path, what: str) -> Any:
+    path = Path(path)
+    try:
+        return yaml.safe_load(path.read_text())
+    except OSError as exc:
+        raise GearmeshInputError(what, str(path), f"cannot be read ({exc.strerror})") from None
+    except yaml.YAMLError as exc:
+        raise GearmeshInputError(what, str(path), f"is not valid YAML ({exc})") from None
+
+
+def load_study(path: str | Path) -> dict[str, Any]:
+    """Read and validate a study config file."""
+    data = read_yaml(path, "config file")
+    if not isinstance(data, Mapping):
+        raise GearmeshInputError("config file", str(path), "must be a YAML mapping")
+    return validate_study(data)
+
+
+def pair_path(config: Mapping[str, Any], name: str, root: str | Path = ".") -> Path:
+    return Path(root) / config.get("pairs_dir", "config/pairs") / f"{name}.yaml"
+
+
+def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, GearPair]:
+    """Every pair the study names (``pairs`` and the sweep/design lists), loaded and checked."""
+    names = list(config["pairs"])
+    for section in ("helix_sweep", "low_fluctuation_design"):
+        names += [n for n in config.get(section, {}).get("pairs", []) if n not in names]
+    out = {}
+    for name in names:
+        path = pair_path(config, name, root)
+        if not path.exists():
+            raise GearmeshInputError("pairs", name, f"has no pair file {path}")
+        pair = load_pair(path)
+        if pair.name != name:
+            raise GearmeshInputError(f"{path}: name", pair.name, f"must equal the file name {name!r}")
+        out[name] = pair
+    return out

@@ -1,0 +1,174 @@
+"""Stage results as xarray Datasets: one public function per workflow stage.
+
+Each function takes a :class:`~gearmesh.gear.GearPair` and the stage's settings, calls the
+physics modules and returns a Dataset in SI units whose every variable carries ``units``
+and ``long_name``; the workflow's scripts only add provenance and write it.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping
+
+import numpy as np
+import xarray as xr
+
+from .contact import contact_length_closed_form, contact_lines, mesh_cycle_rolls
+from .gear import GEARS, GearPair, PairGeometry, pair_geometry
+from .io import variable
+
+
+def _per_gear(values, units: str, long_name: str) -> xr.Variable:
+    return variable(("gear",), np.asarray(values, dtype=float), units, long_name)
+
+
+def _scalar(value, units: str, long_name: str) -> xr.Variable:
+    return variable((), float(value), units, long_name)
+
+
+def geometry_scalars(geom: PairGeometry) -> dict[str, xr.Variable]:
+    """The pair's derived geometry as 0-d and per-gear variables (SI)."""
+    return {
+        "eps_alpha": _scalar(geom.eps_alpha, "1", "transverse contact ratio"),
+        "eps_beta": _scalar(geom.eps_beta, "1", "overlap ratio"),
+        "eps_gamma": _scalar(geom.eps_gamma, "1", "total contact ratio"),
+        "normal_module": _scalar(geom.pair.normal_module, "m", "normal module"),
+        "normal_pressure_angle": _scalar(geom.pair.normal_pressure_angle, "rad", "normal pressure angle"),
+        "helix_angle": _scalar(geom.pair.helix_angle, "rad", "helix angle at the reference circle"),
+        "transverse_pressure_angle": _scalar(geom.transverse_pressure_angle, "rad", "transverse pressure angle"),
+        "operating_pressure_angle": _scalar(geom.operating_pressure_angle, "rad",
+                                            "operating transverse pressure angle"),
+        "base_helix_angle": _scalar(geom.base_helix_angle, "rad", "base helix angle"),
+        "center_distance": _scalar(geom.center_distance, "m", "operating centre distance"),
+        "zero_backlash_center_distance": _scalar(geom.zero_backlash_center_distance, "m",
+                                                 "zero-backlash centre distance of the profile shifts"),
+        "backlash_normal": _scalar(geom.backlash_normal, "m", "normal backlash j_bn"),
+        "backlash_circumferential": _scalar(geom.backlash_circumferential, "m",
+                                            "circumferential backlash on the operating pitch circle"),
+        "face_width": _scalar(geom.face_width, "m", "meshing face width (overlap of both gears)"),
+        "transverse_base_pitch": _scalar(geom.transverse_base_pitch, "m", "transverse base pitch (mesh cycle)"),
+        "path_of_contact": _scalar(geom.path_of_contact, "m", "length of the transverse path of contact"),
+        "teeth": variable(("gear",), np.asarray(geom.pair.teeth), "1", "number of teeth"),
+        "profile_shift": _per_gear(geom.profile_shift, "1", "profile shift coefficient"),
+        "reference_radius": _per_gear(geom.reference_radius, "m", "reference (pitch) radius"),
+        "base_radius": _per_gear(geom.base_radius, "m", "base radius"),
+        "tip_radius": _per_gear(geom.tip_radius, "m", "tip radius"),
+        "root_radius": _per_gear(geom.root_radius, "m", "root radius"),
+        "form_radius": _per_gear(geom.form_radius, "m", "form radius (true start of the involute)"),
+        "sap_radius": _per_gear(geom.sap_radius, "m", "radius of the start of active profile"),
+        "eap_radius": _per_gear(geom.eap_radius, "m", "radius of the end of active profile"),
+        "rho_sap": _per_gear(geom.rho_sap, "m", "roll length of the start of active profile"),
+        "rho_eap": _per_gear(geom.rho_eap, "m", "roll length of the end of active profile"),
+        "undercut": variable(("gear",), geom.undercut.astype(np.int8), "1", "tooth undercut (1) or not (0)"),
+        "normal_tip_thickness": _per_gear(geom.normal_tip_thickness, "m", "normal tooth thickness at the tip"),
+        "tip_clearance": _per_gear(geom.tip_clearance, "m", "tip clearance at this gear's root"),
+        "mass": _per_gear(geom.mass, "kg", "body mass (pitch cylinder minus bore, seed 001)"),
+        "inertia": _per_gear(geom.inertia, "kg m2", "polar moment of inertia of the body"),
+    }
+
+
+def _gear_coord() -> dict[str, xr.Variable]:
+    return {"gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair (pinion drives)")}
+
+
+def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:
+    """Contact lines and total length L(φ) over one mesh cycle (seed 002; seed 001 §1, §5).
+
+    Positions are pinion roll distances over one transverse base pitch; each line is given
+    by its clipped end points in the plane of action and its length, with the closed-form
+    mean/min/max beside the numeric ones.
+    """
+    geom = pair_geometry(pair)
+    roll = mesh_cycle_rolls(geom, positions)
+    lines = contact_lines(geom, roll)
+    mean_cf, min_cf, max_cf = contact_length_closed_form(geom)
+    total = lines.total_length
+    b = geom.face_width
+    ds = xr.Dataset(
+        data_vars={
+            "line_length": variable(("position", "line"), lines.length, "m", "length of each contact line"),
+            "s_start": variable(("position", "line"), lines.s_start, "m",
+                                "start of the line: distance from the start of active profile along the line of action"),
+            "s_end": variable(("position", "line"), lines.s_end, "m",
+                              "end of the line: distance from the start of active profile along the line of action"),
+            "z_start": variable(("position", "line"), lines.z_start, "m", "axial position of the line's start"),
+            "z_end": variable(("position", "line"), lines.z_end, "m", "axial position of the line's end"),
+            "total_length": variable(("position",), total, "m", "total contact-line length L(phi)"),
+            "mean_length": _scalar(total.mean(), "m", "mean total contact length over the mesh cycle"),
+            "min_length": _scalar(total.min(), "m", "minimum total contact length"),
+            "max_length": _scalar(total.max(), "m", "maximum total contact length"),
+            "mean_length_closed_form": _scalar(mean_cf, "m", "mean total contact length, l_mean = b eps_alpha / cos beta_b"),
+            "min_length_closed_form": _scalar(min_cf, "m", "minimum total contact length, closed form"),
+            "max_length_closed_form": _scalar(max_cf, "m", "maximum total contact length, closed form"),
+            "length_fluctuation": _scalar((total.max() - total.min()) / b, "1",
+                                          "contact-line fluctuation eps_l = (Lmax - Lmin)/b (seed 001)"),
+            "eps_alpha": _scalar(geom.eps_alpha, "1", "transverse contact ratio"),
+            "eps_beta": _scalar(geom.eps_beta, "1", "overlap ratio"),
+            "face_width": _scalar(b, "m", "meshing face width"),
+            "base_helix_angle": _scalar(geom.base_helix_angle, "rad", "base helix angle"),
+            "path_of_contact": _scalar(geom.path_of_contact, "m", "length of the transverse path of contact"),
+        },
+        coords={
+            "position": variable(("position",), roll, "m", "pinion roll distance r_b1 phi_1 over one mesh cycle"),
+            "pinion_angle": variable(("position",), roll / geom.base_radius[0], "rad", "pinion rotation angle phi_1"),
+            "line": variable(("line",), lines.pairs, "1", "tooth-pair index j along the line of action"),
+        },
+    )
+    return ds
+
+
+def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_deg: float,
+                        step_deg: float, positions: int = 360) -> xr.Dataset:
+    """Contact-length statistics against helix angle for each pair (seed 002; seed 001 §5).
+
+    Every helix angle is a full new pair geometry (α_t, ε_α change with β); angles whose
+    pair cannot work are kept as NaN with the reason in the ``refused`` attribute.
+    """
+    angles = np.arange(start_deg, stop_deg + 0.5 * step_deg, step_deg)
+    names = list(pairs)
+    shape = (len(names), len(angles))
+    out = {k: np.full(shape, np.nan) for k in
+           ("eps_alpha", "eps_beta", "mean", "min", "max", "mean_cf", "min_cf", "max_cf")}
+    refused = []
+    for i, name in enumerate(names):
+        for k, beta in enumerate(angles):
+            variant = pairs[name].with_changes(helix_angle=math.radians(beta), center_distance=None)
+            try:
+                geom = pair_geometry(variant)
+            except ValueError as exc:
+                refused.append(f"{name} at {beta:g} deg: {exc}")
+                continue
+            total = contact_lines(geom, mesh_cycle_rolls(geom, positions)).total_length
+            cf = contact_length_closed_form(geom)
+            out["eps_alpha"][i, k], out["eps_beta"][i, k] = geom.eps_alpha, geom.eps_beta
+            out["mean"][i, k], out["min"][i, k], out["max"][i, k] = total.mean(), total.min(), total.max()
+            out["mean_cf"][i, k], out["min_cf"][i, k], out["max_cf"][i, k] = cf
+    widths = np.array([[pairs[n].face_width[0], pairs[n].face_width[1]] for n in names]).min(axis=1)
+    dims = ("pair", "helix_angle")
+    ds = xr.Dataset(
+        data_vars={
+            "eps_alpha": variable(dims, out["eps_alpha"], "1", "transverse contact ratio"),
+            "eps_beta": variable(dims, out["eps_beta"], "1", "overlap ratio"),
+            "mean_length": variable(dims, out["mean"], "m", "mean total contact length"),
+            "min_length": variable(dims, out["min"], "m", "minimum total contact length"),
+            "max_length": variable(dims, out["max"], "m", "maximum total contact length"),
+            "mean_length_closed_form": variable(dims, out["mean_cf"], "m", "l_mean = b eps_alpha / cos beta_b"),
+            "min_length_closed_form": variable(dims, out["min_cf"], "m", "minimum total contact length, closed form"),
+            "max_length_closed_form": variable(dims, out["max_cf"], "m", "maximum total contact length, closed form"),
+            "length_fluctuation": variable(dims, (out["max"] - out["min"]) / widths[:, None], "1",
+                                           "contact-line fluctuation eps_l = (Lmax - Lmin)/b (seed 001)"),
+            "face_width": variable(("pair",), widths, "m", "meshing face width"),
+        },
+        coords={
+            "pair": variable(("pair",), np.array(names), "1", "gear pair"),
+            "helix_angle": variable(("helix_angle",), np.radians(angles), "rad", "helix angle"),
+            "helix_angle_deg": variable(("helix_angle",), angles, "degree", "helix angle"),
+        },
+    )
+    ds.attrs["refused"] = "; ".join(refused)
+    return ds
+
+
+def dataset_summary(ds: xr.Dataset) -> dict[str, Any]:
+    """0-d variables of a dataset as a plain dict (for logs and the CLI)."""
+    return {k: float(v) for k, v in ds.data_vars.items() if v.ndim == 0}

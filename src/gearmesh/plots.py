@@ -1,0 +1,105 @@
+"""Figures, each drawn from a stage's netCDF Dataset (never from in-memory model state)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+MM = 1e3
+
+
+def _save(fig, path: str | Path) -> Path:
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fig.savefig(path, dpi=130, bbox_inches="tight")
+    plt.close(fig)
+    return path
+
+
+def _title(ds: xr.Dataset, what: str) -> str:
+    return f"{ds.attrs.get('pair_name', '')} — {what}".strip(" —")
+
+
+def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
+    """Total contact-line length L(φ) over a mesh cycle with its closed-form mean/min/max."""
+    fig, ax = plt.subplots(figsize=(7, 4))
+    x = ds["position"].values * MM
+    ax.plot(x, ds["total_length"].values * MM, lw=1.6, label="L(φ), sum of clipped lines")
+    styles = {"mean": "-", "min": "--", "max": ":"}
+    for key, ls in styles.items():
+        ax.axhline(float(ds[f"{key}_length_closed_form"]) * MM, color="k", ls=ls, lw=0.9,
+                   label=f"{key}, closed form")
+    ax.set_xlabel("pinion roll distance r_b1·φ1 over one base pitch (mm)")
+    ax.set_ylabel("total contact-line length (mm)")
+    ax.set_title(_title(ds, f"εα = {float(ds.eps_alpha):.3f}, εβ = {float(ds.eps_beta):.3f}, "
+                            f"ε_l = {float(ds.length_fluctuation):.3f}"))
+    ax.legend(fontsize=8, loc="best")
+    ax.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_contact_lines(ds: xr.Dataset, path: str | Path, snapshots: int = 4) -> Path:
+    """Contact lines in the plane of action (s along the line of action, z across the face)."""
+    fig, ax = plt.subplots(figsize=(7, 4.5))
+    g = float(ds.path_of_contact) * MM
+    half_b = 0.5 * float(ds.face_width) * MM
+    ax.add_patch(plt.Rectangle((0, -half_b), g, 2 * half_b, fill=False, ec="0.4", lw=1.2))
+    n = ds.sizes["position"]
+    colors = plt.cm.viridis(np.linspace(0, 0.9, snapshots))
+    for color, k in zip(colors, np.linspace(0, n, snapshots, endpoint=False).astype(int)):
+        sel = ds.isel(position=k)
+        for j in range(ds.sizes["line"]):
+            if np.isnan(sel.s_start[j]):
+                continue
+            ax.plot([sel.s_start[j] * MM, sel.s_end[j] * MM], [sel.z_start[j] * MM, sel.z_end[j] * MM],
+                    color=color, lw=2)
+        ax.plot([], [], color=color, lw=2, label=f"roll {float(sel.position) * MM:.2f} mm, "
+                                                   f"L = {float(sel.total_length) * MM:.2f} mm")
+    ax.set_xlabel("s: distance along the line of action from the start of active profile (mm)")
+    ax.set_ylabel("z: axial position (mm)")
+    ax.set_title(_title(ds, "contact lines in the plane of action"))
+    ax.set_aspect("equal")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1))
+    return _save(fig, path)
+
+
+def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
+    """ε_l and mean contact length against helix angle for each pair (the V-curve, seed 001 §5)."""
+    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
+    for name in ds["pair"].values:
+        sel = ds.sel(pair=name)
+        beta = sel["helix_angle_deg"].values
+        line, = ax1.plot(beta, sel["length_fluctuation"].values, lw=1.5, label=str(name))
+        ax2.plot(beta, sel["mean_length"].values * MM, color=line.get_color(), lw=1.5)
+        ax2.fill_between(beta, sel["min_length"].values * MM, sel["max_length"].values * MM,
+                         color=line.get_color(), alpha=0.15)
+        eb = sel["eps_beta"].values
+        for n in range(1, int(np.nanmax(eb)) + 1 if np.isfinite(eb).any() else 1):
+            k = np.nanargmin(np.abs(eb - n))
+            if abs(eb[k] - n) < 0.05:
+                ax1.axvline(beta[k], color=line.get_color(), ls=":", lw=0.8)
+    ax1.set_ylabel("ε_l = (Lmax − Lmin)/b")
+    ax1.set_title("contact-line fluctuation against helix angle (dotted: integer εβ)")
+    ax1.legend(fontsize=8)
+    ax1.grid(alpha=0.3)
+    ax2.set_xlabel("helix angle β (deg)")
+    ax2.set_ylabel("contact length (mm): mean, band min–max")
+    ax2.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_pair_figures(smk) -> None:
+    """The per-pair figures of the workflow's ``plot_pair`` rule, from its netCDF inputs."""
+    from .io import read_dataset
+
+    geometry = read_dataset(smk.input.geometry)
+    lines = read_dataset(smk.input.contact_lines)
+    plot_tooth_profile(geometry, smk.output.tooth_profile)
+    plot_contact_length(lines, smk.output.contact_length)
+    plot_contact_lines(lines, smk.output.contact_lines)

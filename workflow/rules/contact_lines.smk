@@ -1,0 +1,15 @@
+rule contact_lines:
+    """Contact lines in the plane of action and L(phi) over one mesh cycle (contact_lines.nc)."""
+    input:
+        pair=pair_file,
+    output:
+        "results/{study}/{pair}/contact_lines.nc",
+    log:
+        "logs/{study}/{pair}/contact_lines.log",
+    params:
+        stage="contact_lines",
+        settings=lambda wildcards: config["contact_lines"],
+    conda:
+        ENV
+    script:
+        "../scripts/stage.py"

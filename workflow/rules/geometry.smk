@@ -1,0 +1,15 @@
+rule geometry:
+    """Radii, contact ratios, tooth profile with the hob fillet, flank surfaces (geometry.nc)."""
+    input:
+        pair=pair_file,
+    output:
+        "results/{study}/{pair}/geometry.nc",
+    log:
+        "logs/{study}/{pair}/geometry.log",
+    params:
+        stage="geometry",
+        settings=lambda wildcards: config["geometry"],
+    conda:
+        ENV
+    script:
+        "../scripts/stage.py"
