@@ -13,7 +13,8 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from .contact import contact_length_closed_form, contact_lines, mesh_cycle_rolls
+from .contact import contact_length_closed_form, contact_length_fluctuation, contact_lines, mesh_cycle_rolls
+from .design import integer_overlap_face_width, integer_overlap_helix_angle, overlap_fluctuation_curve
 from .gear import GEARS, GearPair, PairGeometry, pair_geometry
 from .io import variable
 
@@ -121,48 +122,91 @@ def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_de
                         step_deg: float, positions: int = 360) -> xr.Dataset:
     """Contact-length statistics against helix angle for each pair (seed 002; seed 001 §5).
 
-    Every helix angle is a full new pair geometry (α_t, ε_α change with β); angles whose
-    pair cannot work are kept as NaN with the reason in the ``refused`` attribute.
+    Each helix angle is a full new pair geometry at its zero-backlash centre distance
+    (:func:`gearmesh.design.overlap_fluctuation_curve`); angles whose pair cannot work are
+    NaN, with the reasons in the ``refused`` attribute.
     """
     angles = np.arange(start_deg, stop_deg + 0.5 * step_deg, step_deg)
     names = list(pairs)
-    shape = (len(names), len(angles))
-    out = {k: np.full(shape, np.nan) for k in
-           ("eps_alpha", "eps_beta", "mean", "min", "max", "mean_cf", "min_cf", "max_cf")}
-    refused = []
-    for i, name in enumerate(names):
-        for k, beta in enumerate(angles):
-            variant = pairs[name].with_changes(helix_angle=math.radians(beta), center_distance=None)
-            try:
-                geom = pair_geometry(variant)
-            except ValueError as exc:
-                refused.append(f"{name} at {beta:g} deg: {exc}")
-                continue
-            total = contact_lines(geom, mesh_cycle_rolls(geom, positions)).total_length
-            cf = contact_length_closed_form(geom)
-            out["eps_alpha"][i, k], out["eps_beta"][i, k] = geom.eps_alpha, geom.eps_beta
-            out["mean"][i, k], out["min"][i, k], out["max"][i, k] = total.mean(), total.min(), total.max()
-            out["mean_cf"][i, k], out["min_cf"][i, k], out["max_cf"][i, k] = cf
-    widths = np.array([[pairs[n].face_width[0], pairs[n].face_width[1]] for n in names]).min(axis=1)
+    curves = [overlap_fluctuation_curve(pairs[n], np.radians(angles), n_positions=positions) for n in names]
     dims = ("pair", "helix_angle")
+
+    def stack(attr: str) -> np.ndarray:
+        return np.stack([getattr(c, attr) for c in curves])
+
+    refused = [f"{n} at {b:g} deg: {r}" for n, c in zip(names, curves) for b, r in zip(angles, c.reasons) if r]
     ds = xr.Dataset(
         data_vars={
-            "eps_alpha": variable(dims, out["eps_alpha"], "1", "transverse contact ratio"),
-            "eps_beta": variable(dims, out["eps_beta"], "1", "overlap ratio"),
-            "mean_length": variable(dims, out["mean"], "m", "mean total contact length"),
-            "min_length": variable(dims, out["min"], "m", "minimum total contact length"),
-            "max_length": variable(dims, out["max"], "m", "maximum total contact length"),
-            "mean_length_closed_form": variable(dims, out["mean_cf"], "m", "l_mean = b eps_alpha / cos beta_b"),
-            "min_length_closed_form": variable(dims, out["min_cf"], "m", "minimum total contact length, closed form"),
-            "max_length_closed_form": variable(dims, out["max_cf"], "m", "maximum total contact length, closed form"),
-            "length_fluctuation": variable(dims, (out["max"] - out["min"]) / widths[:, None], "1",
-                                           "contact-line fluctuation eps_l = (Lmax - Lmin)/b (seed 001)"),
-            "face_width": variable(("pair",), widths, "m", "meshing face width"),
+            "eps_alpha": variable(dims, stack("eps_alpha"), "1", "transverse contact ratio"),
+            "eps_beta": variable(dims, stack("eps_beta"), "1", "overlap ratio"),
+            "mean_length": variable(dims, stack("l_mean"), "m", "mean total contact length, b eps_alpha / cos beta_b"),
+            "min_length": variable(dims, stack("l_min"), "m", "minimum total contact length (closed form)"),
+            "max_length": variable(dims, stack("l_max"), "m", "maximum total contact length (closed form)"),
+            "length_fluctuation": variable(dims, stack("eps_l"), "1",
+                                           "contact-line fluctuation eps_l = (Lmax - Lmin)/b, closed form (seed 001)"),
+            "length_fluctuation_numeric": variable(dims, stack("eps_l_numeric"), "1",
+                                                   "eps_l from the exactly clipped contact lines"),
+            "length_fluctuation_sampled": variable(dims, stack("eps_l_sampled"), "1",
+                                                   f"eps_l sampled at {positions} positions per mesh cycle"),
         },
         coords={
             "pair": variable(("pair",), np.array(names), "1", "gear pair"),
             "helix_angle": variable(("helix_angle",), np.radians(angles), "rad", "helix angle"),
             "helix_angle_deg": variable(("helix_angle",), angles, "degree", "helix angle"),
+        },
+    )
+    ds.attrs["refused"] = "; ".join(refused)
+    return ds
+
+
+DESIGN_ROUTES = {  # name -> (design function, direction)
+    "helix_angle_forward": (integer_overlap_helix_angle, "forward"),
+    "helix_angle_backward": (integer_overlap_helix_angle, "backward"),
+    "face_width_forward": (integer_overlap_face_width, "forward"),
+    "face_width_backward": (integer_overlap_face_width, "backward"),
+}
+
+
+def low_fluctuation_design_dataset(pairs: Mapping[str, GearPair]) -> xr.Dataset:
+    """Integer-overlap-ratio designs of each pair (seed 001 §1, §5): the original and its
+    helix-angle (forward/backward) and face-width (forward/backward) redesigns, with εα,
+    εβ and the contact-line fluctuation ε_l of each. Routes with no solution are NaN and
+    the reason is in the ``refused`` attribute."""
+    names = list(pairs)
+    routes = ["original", *DESIGN_ROUTES]
+    keys = ("helix_angle", "face_width", "eps_alpha", "eps_beta", "eps_l", "mean_length")
+    out = {k: np.full((len(names), len(routes)), np.nan) for k in keys}
+    refused = []
+    for i, name in enumerate(names):
+        for k, route in enumerate(routes):
+            try:
+                if route == "original":
+                    geom = pair_geometry(pairs[name])
+                else:
+                    function, direction = DESIGN_ROUTES[route]
+                    geom = function(pairs[name], direction).geometry
+            except ValueError as exc:
+                refused.append(f"{name} {route}: {exc}")
+                continue
+            out["helix_angle"][i, k] = geom.pair.helix_angle
+            out["face_width"][i, k] = geom.face_width
+            out["eps_alpha"][i, k], out["eps_beta"][i, k] = geom.eps_alpha, geom.eps_beta
+            out["eps_l"][i, k] = contact_length_fluctuation(geom)
+            out["mean_length"][i, k] = contact_length_closed_form(geom)[0]
+    dims = ("pair", "design")
+    ds = xr.Dataset(
+        data_vars={
+            "helix_angle": variable(dims, out["helix_angle"], "rad", "helix angle"),
+            "helix_angle_deg": variable(dims, np.degrees(out["helix_angle"]), "degree", "helix angle"),
+            "face_width": variable(dims, out["face_width"], "m", "meshing face width"),
+            "eps_alpha": variable(dims, out["eps_alpha"], "1", "transverse contact ratio"),
+            "eps_beta": variable(dims, out["eps_beta"], "1", "overlap ratio"),
+            "length_fluctuation": variable(dims, out["eps_l"], "1", "contact-line fluctuation eps_l = (Lmax - Lmin)/b"),
+            "mean_length": variable(dims, out["mean_length"], "m", "mean total contact length"),
+        },
+        coords={
+            "pair": variable(("pair",), np.array(names), "1", "gear pair"),
+            "design": variable(("design",), np.array(routes), "1", "design route to an integer overlap ratio"),
         },
     )
     ds.attrs["refused"] = "; ".join(refused)

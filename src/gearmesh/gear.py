@@ -279,6 +279,31 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
     )
 
 
+def validate_pair(pair: GearPair) -> None:
+    """Range checks on a :class:`GearPair` in SI, also for pairs built in code (sweeps,
+    designs); field names are the pair-file keys."""
+    for i, z in enumerate(pair.teeth):
+        if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 5:
+            raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer of at least 5 (external gears)")
+    checks = [
+        ("normal_module_mm", pair.normal_module * 1e3, pair.normal_module > 0, "must be positive"),
+        ("normal_pressure_angle_deg", math.degrees(pair.normal_pressure_angle),
+         0 < pair.normal_pressure_angle < math.radians(45), "must lie in (0, 45) degrees"),
+        ("helix_angle_deg", math.degrees(pair.helix_angle), 0 <= pair.helix_angle < math.radians(60),
+         "must lie in [0, 60) degrees; give the hand with helix_hand"),
+        ("helix_hand", pair.helix_hand, pair.helix_hand in ("right", "left"), "must be 'right' or 'left'"),
+    ]
+    checks += [(f"face_width_mm[{i}]", b * 1e3, b > 0, "must be positive") for i, b in enumerate(pair.face_width)]
+    if pair.profile_shift is not None:
+        checks += [(f"profile_shift[{i}]", x, -3 < x < 3, "must lie in (-3, 3)")
+                   for i, x in enumerate(pair.profile_shift)]
+    if pair.center_distance is not None:
+        checks.append(("center_distance_mm", pair.center_distance * 1e3, pair.center_distance > 0, "must be positive"))
+    for name, value, ok, rule in checks:
+        if not ok:
+            raise GearmeshInputError(name, value, rule)
+
+
 def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
     """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`."""
     if isinstance(path_or_data, Mapping):
@@ -514,6 +539,7 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     reaching below the form circle (interference with the fillet or the undercut);
     negative tip clearance; transverse contact ratio εα < 1.
     """
+    validate_pair(pair)
     z = np.array(pair.teeth, dtype=float)
     mn, an, beta = pair.normal_module, pair.normal_pressure_angle, pair.helix_angle
     mt = mn / math.cos(beta)

@@ -76,6 +76,7 @@ def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
         sel = ds.sel(pair=name)
         beta = sel["helix_angle_deg"].values
         line, = ax1.plot(beta, sel["length_fluctuation"].values, lw=1.5, label=str(name))
+        ax1.plot(beta, sel["length_fluctuation_sampled"].values, color=line.get_color(), lw=0.8, ls="--")
         ax2.plot(beta, sel["mean_length"].values * MM, color=line.get_color(), lw=1.5)
         ax2.fill_between(beta, sel["min_length"].values * MM, sel["max_length"].values * MM,
                          color=line.get_color(), alpha=0.15)
@@ -85,7 +86,7 @@ def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
             if abs(eb[k] - n) < 0.05:
                 ax1.axvline(beta[k], color=line.get_color(), ls=":", lw=0.8)
     ax1.set_ylabel("ε_l = (Lmax − Lmin)/b")
-    ax1.set_title("contact-line fluctuation against helix angle (dotted: integer εβ)")
+    ax1.set_title("contact-line fluctuation against helix angle\n(solid: closed form, dashed: sampled lines; dotted: integer εβ)")
     ax1.legend(fontsize=8)
     ax1.grid(alpha=0.3)
     ax2.set_xlabel("helix angle β (deg)")

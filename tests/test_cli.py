@@ -1,0 +1,58 @@
+"""The command line: JSON keys, exit code 2 with one message for bad input."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import pytest
+
+from gearmesh.cli import main
+
+GEOMETRY_KEYS = {
+    "eps_alpha", "eps_beta", "eps_gamma", "transverse_pressure_angle_deg", "operating_pressure_angle_deg",
+    "base_helix_angle_deg", "center_distance_mm", "backlash_mm", "base_radius_mm", "tip_radius_mm",
+    "root_radius_mm", "form_radius_mm", "mass_kg", "inertia_kg_m2", "mean_contact_length_mm",
+    "min_contact_length_mm", "max_contact_length_mm",
+}
+
+
+def test_geometry_json_has_the_documented_keys(root, capsys):
+    assert main(["geometry", str(root / "config/pairs/seed001_pair1.yaml"), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert GEOMETRY_KEYS <= set(out)
+    for key in ("base_radius_mm", "tip_radius_mm", "root_radius_mm", "form_radius_mm", "mass_kg", "inertia_kg_m2"):
+        assert len(out[key]) == 2
+    # radii order on each gear: root < base or not, but form < tip and root < tip always
+    for i in range(2):
+        assert out["root_radius_mm"][i] < out["form_radius_mm"][i] < out["tip_radius_mm"][i]
+    assert out["min_contact_length_mm"] <= out["mean_contact_length_mm"] <= out["max_contact_length_mm"]
+
+
+def test_validate_accepts_pairs_and_studies(root, monkeypatch, capsys):
+    monkeypatch.chdir(root)
+    assert main(["validate", "config/pairs/seed003_pair.yaml"]) == 0
+    assert main(["validate", "config/studies/low_fluctuation.yaml"]) == 0
+
+
+@pytest.mark.parametrize("text, field", [
+    ("name: x\nteeth: [29, 71]\nnormal_module_mm: 5\nnormal_pressure_angle_deg: 20\n"
+     "helix_angle_deg: 27.5\nface_width_mm: 42\ncenter_distance_mm: 261.0\n", "center_distance_mm"),
+    ("name: x\nteeth: [29, 49]\nnormal_module_mm: -1\nnormal_pressure_angle_deg: 20\n"
+     "helix_angle_deg: 10\nface_width_mm: 20\n", "normal_module_mm"),
+    ("name: x\nteeth: [29, 49]\nnormal_module_mm: 2\nnormal_pressure_angle_deg: 20\n"
+     "helix_angle_deg: 10\nface_width_mm: 20\ncolour: red\n", "pair.colour"),
+    ("study: s\npairs: [seed001_pair1]\ncontact_lines: {positions: 0}\n", "contact_lines.positions"),
+    ("[not, a, mapping", "file"),
+])
+def test_bad_input_exits_2_with_one_message(tmp_path, root, monkeypatch, text, field):
+    monkeypatch.chdir(root)
+    path = tmp_path / "bad.yaml"
+    path.write_text(text)
+    proc = subprocess.run([sys.executable, "-m", "gearmesh.cli", "validate", str(path)],
+                          capture_output=True, text=True)
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(f"gearmesh: error: {field}")
+    assert proc.stdout == ""
