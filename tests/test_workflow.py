@@ -18,7 +18,7 @@ pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snake
 def _scratch_workflow(root: Path, tmp: Path, config: dict) -> Path:
     for item in ("Snakefile", "workflow", "config"):
         src = root / item
-        (shutil.copytree(src, tmp / item, symlinks=True) if src.is_dir() else shutil.copy(src, tmp / item))
+        (shutil.copytree(src, tmp / item) if src.is_dir() else shutil.copy(src, tmp / item))
     (tmp / "test_config.yaml").write_text(yaml.safe_dump(config))
     return tmp
 

@@ -16,7 +16,7 @@ import jsonschema
 import yaml
 
 from .errors import GearmeshInputError
-from .gear import GearPair, load_pair
+from .gear import GearPair, load_pair, read_yaml
 
 SCHEMA_PATH = Path(str(files("gearmesh") / "schemas" / "config.schema.yaml"))
 
@@ -53,16 +53,6 @@ def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
     for _ in validator.iter_errors(data):
         pass
     return data
-
-
-def read_yaml(path: str | Path, what: str) -> Any:
-    path = Path(path)
-    try:
-        return yaml.safe_load(path.read_text())
-    except OSError as exc:
-        raise GearmeshInputError(what, str(path), f"cannot be read ({exc.strerror})") from None
-    except yaml.YAMLError as exc:
-        raise GearmeshInputError(what, str(path), f"is not valid YAML ({exc})") from None
 
 
 def load_study(path: str | Path) -> dict[str, Any]:

@@ -17,6 +17,8 @@ from .contact import contact_length_closed_form, contact_length_fluctuation, con
 from .design import integer_overlap_face_width, integer_overlap_helix_angle, overlap_fluctuation_curve
 from .gear import GEARS, GearPair, PairGeometry, pair_geometry
 from .io import variable
+from .profile import tooth_profile
+from .surface import tooth_surface
 
 
 def _per_gear(values, units: str, long_name: str) -> xr.Variable:
@@ -70,6 +72,47 @@ def geometry_scalars(geom: PairGeometry) -> dict[str, xr.Variable]:
 
 def _gear_coord() -> dict[str, xr.Variable]:
     return {"gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair (pinion drives)")}
+
+
+def geometry_dataset(pair: GearPair, involute_points: int = 120, fillet_points: int = 60,
+                     face_points: int = 21) -> xr.Dataset:
+    """The pair's geometry: scalars, the transverse tooth profile with its hob fillet, and the
+    (modified) flank surface of each gear on a (profile, face) grid, in each gear's body frame.
+
+    Profile and surface come from :mod:`gearmesh.profile` (rack-generated involute and
+    trochoid fillet, seed 003) and :mod:`gearmesh.surface` (involute helicoid, seed 002, with
+    the six-parameter modification of seed 000 along the normal).
+    """
+    geom = pair_geometry(pair)
+    profiles = [tooth_profile(geom, g, n_fillet=fillet_points, n_involute=involute_points) for g in range(2)]
+    surfaces = [tooth_surface(geom, g, n_profile=involute_points + fillet_points, n_face=face_points)
+                for g in range(2)]
+    pdims, sdims = ("gear", "profile_point"), ("gear", "u", "v")
+
+    def stack(items, attr):
+        return np.stack([getattr(item, attr) for item in items])
+
+    data = geometry_scalars(geom)
+    data.update({
+        "profile_x": variable(pdims, stack(profiles, "x"), "m",
+                              "transverse profile: half thickness (x) from the tooth centreline"),
+        "profile_y": variable(pdims, stack(profiles, "y"), "m", "transverse profile: height (y) along the centreline"),
+        "profile_radius": variable(pdims, stack(profiles, "radius"), "m", "transverse profile: radius"),
+        "profile_segment": variable(pdims, stack(profiles, "segment").astype(np.int8), "1",
+                                    "profile segment: 0 root fillet (hob trochoid), 1 involute"),
+        "profile_roll": variable(pdims, stack(profiles, "roll"), "m", "involute roll length (NaN on the fillet)"),
+        "surface_x": variable(sdims, stack(surfaces, "x"), "m", "flank surface x (gear body frame)"),
+        "surface_y": variable(sdims, stack(surfaces, "y"), "m", "flank surface y (gear body frame)"),
+        "surface_z": variable(sdims, stack(surfaces, "z"), "m", "flank surface z (axial)"),
+        "normal_x": variable(sdims, stack(surfaces, "nx"), "1", "outward unit normal x of the unmodified flank"),
+        "normal_y": variable(sdims, stack(surfaces, "ny"), "1", "outward unit normal y of the unmodified flank"),
+        "normal_z": variable(sdims, stack(surfaces, "nz"), "1", "outward unit normal z of the unmodified flank"),
+        "surface_roll": variable(sdims, stack(surfaces, "rho"), "m", "involute roll length (NaN on the fillet)"),
+        "modification_depth": variable(sdims, stack(surfaces, "depth"), "m",
+                                       "micro-geometry: material removed along the normal (seed 000)"),
+    })
+    ds = xr.Dataset(data_vars=data, coords=_gear_coord())
+    return ds
 
 
 def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:

@@ -98,7 +98,7 @@ class GearPair:
     center_distance: float | None = None
     addendum_coefficient: tuple[float, float] = (1.0, 1.0)
     dedendum_coefficient: tuple[float, float] = (1.25, 1.25)
-    tool_tip_radius_coefficient: tuple[float, float] = (0.38, 0.38)
+    tool_tip_radius_coefficient: tuple[float | None, float | None] = (None, None)
     bore_radius: tuple[float, float] | None = None
     material: Material | None = None
     modification: tuple[Modification, Modification] = (Modification(), Modification())
@@ -269,8 +269,9 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
         center_distance=center,
         addendum_coefficient=_per_gear("addendum_coefficient", spec.get("addendum_coefficient", 1.0), _positive),
         dedendum_coefficient=_per_gear("dedendum_coefficient", spec.get("dedendum_coefficient", 1.25), _positive),
-        tool_tip_radius_coefficient=_per_gear(
-            "tool_tip_radius_coefficient", spec.get("tool_tip_radius_coefficient", 0.38), nonneg),
+        tool_tip_radius_coefficient=(
+            _per_gear("tool_tip_radius_coefficient", spec["tool_tip_radius_coefficient"], nonneg)
+            if spec.get("tool_tip_radius_coefficient") is not None else (None, None)),
         bore_radius=bore,
         material=material,
         modification=mods,
@@ -304,18 +305,22 @@ def validate_pair(pair: GearPair) -> None:
             raise GearmeshInputError(name, value, rule)
 
 
+def read_yaml(path: str | Path, what: str) -> Any:
+    """Parse a YAML file; a missing or malformed file is a one-line :class:`GearmeshInputError`."""
+    path = Path(path)
+    try:
+        return yaml.safe_load(path.read_text())
+    except OSError as exc:
+        raise GearmeshInputError(what, str(path), f"cannot be read ({exc.strerror})") from None
+    except yaml.YAMLError as exc:
+        raise GearmeshInputError(what, str(path), "is not valid YAML: " + " ".join(str(exc).split())) from None
+
+
 def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
     """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`."""
     if isinstance(path_or_data, Mapping):
         return pair_from_dict(path_or_data)
-    path = Path(path_or_data)
-    try:
-        data = yaml.safe_load(path.read_text())
-    except OSError as exc:
-        raise GearmeshInputError("pair file", str(path), f"cannot be read ({exc.strerror})") from None
-    except yaml.YAMLError as exc:
-        raise GearmeshInputError("pair file", str(path), f"is not valid YAML ({exc})") from None
-    return pair_from_dict(data, source=str(path))
+    return pair_from_dict(read_yaml(path_or_data, "pair file"), source=str(path_or_data))
 
 
 def pair_to_dict(pair: GearPair) -> dict[str, Any]:
@@ -329,9 +334,10 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
         "face_width_mm": [b * 1e3 for b in pair.face_width],
         "addendum_coefficient": list(pair.addendum_coefficient),
         "dedendum_coefficient": list(pair.dedendum_coefficient),
-        "tool_tip_radius_coefficient": list(pair.tool_tip_radius_coefficient),
         "helix_hand": pair.helix_hand,
     }
+    if any(c is not None for c in pair.tool_tip_radius_coefficient):
+        out["tool_tip_radius_coefficient"] = list(pair.tool_tip_radius_coefficient)
     if pair.profile_shift is not None:
         out["profile_shift"] = list(pair.profile_shift)
     if pair.center_distance is not None:
@@ -484,22 +490,46 @@ def _resolve_shift_and_center(pair: GearPair, alpha_t: float, r_sum: float):
     return shift, inferred, a, a0, alpha_wt
 
 
-def form_roll_length(reference_radius, base_radius, alpha_t, normal_module, shift,
-                     dedendum_coefficient, tool_tip_radius_coefficient, alpha_n):
-    """Roll length ρ_F (m) of the generated form point, where the involute begins.
+DEFAULT_TOOL_TIP_RADIUS_COEFFICIENT = 0.38  # ISO 53:1998 basic rack profiles A and B: ρ_fP = 0.38 m_n
 
-    The basic rack (tool addendum h_aP0 = h_f*·m_n, tip radius ρ_aP0 = ρ*·m_n) ends its
-    straight flank at h_FfP = h_aP0 − ρ_aP0(1 − sin αn) below its datum line; with profile
-    shift x that point runs h_F = h_FfP − x·m_n below the rolling (reference) line, and the
-    flank generates the involute down to the point of the transverse line of action
-    h_F/sin αt below the pitch point: ρ_F = r sin αt − h_F / sin αt (ISO 21771:2007 §5.4,
-    DIN 3960 form circle). A negative value means the rack flank reaches below the base
-    tangent point: the tooth is undercut and the true form point is where the trochoid
-    fillet cuts the involute (:func:`gearmesh.profile.undercut_form_roll_length`).
+
+def max_tool_tip_radius(normal_module: float, tool_addendum: float, alpha_n: float) -> float:
+    """Largest tip rounding (m) of a basic rack that fits tangent to flank and tip line.
+
+    ρ_max = (π m_n/4 − h_aP0 tan αn)·cos αn/(1 − sin αn): the two roundings of one rack tooth
+    meet on its centreline (full-radius tip; ISO 53:1998, ρ_fP,max = 0.472 m_n for αn = 20°,
+    h_fP = 1.25 m_n). Negative when the rack tooth is pointed before its tip line.
+
+    Parameters: ``normal_module`` m_n (m), ``tool_addendum`` h_aP0 (m), ``alpha_n`` (rad).
     """
-    h_ffp = normal_module * (dedendum_coefficient - tool_tip_radius_coefficient * (1 - np.sin(alpha_n)))
-    h_f = h_ffp - shift * normal_module
-    return reference_radius * np.sin(alpha_t) - h_f / np.sin(alpha_t)
+    land = math.pi * normal_module / 4 - tool_addendum * math.tan(alpha_n)
+    return land * math.cos(alpha_n) / (1 - math.sin(alpha_n))
+
+
+def tool_tip_radius(pair: GearPair, gear: int) -> float:
+    """Tip rounding ρ_aP0 (m) of the rack (hob) that generates gear ``gear`` (0 pinion, 1 gear).
+
+    Given: ρ*·m_n, refused when it does not fit (> :func:`max_tool_tip_radius`). Not given:
+    the ISO 53 value 0.38 m_n, or the full-radius tip where 0.38 m_n does not fit (e.g. αn =
+    25° with h_aP0 = 1.25 m_n, seed 001: ρ_max = 0.318 m_n). A rack tooth pointed before
+    its tip line (π/4 ≤ h_f*·tan αn) is refused on ``dedendum_coefficient``.
+    """
+    mn, an = pair.normal_module, pair.normal_pressure_angle
+    rho_max = max_tool_tip_radius(mn, pair.dedendum_coefficient[gear] * mn, an)
+    if rho_max < 0:
+        raise GearmeshInputError(
+            f"dedendum_coefficient[{gear}]", pair.dedendum_coefficient[gear],
+            f"the {GEARS[gear]} generating rack tooth is pointed before its tip line "
+            f"(needs h_f* < π/(4 tan αn) = {math.pi / (4 * math.tan(an)):.4f})")
+    given = pair.tool_tip_radius_coefficient[gear]
+    if given is None:
+        return min(DEFAULT_TOOL_TIP_RADIUS_COEFFICIENT * mn, rho_max)
+    if given * mn > rho_max * (1 + 1e-9):
+        raise GearmeshInputError(
+            f"tool_tip_radius_coefficient[{gear}]", given,
+            f"the {GEARS[gear]} hob tip rounding does not fit its tooth: at most {rho_max / mn:.4f} "
+            "(full-radius tip) for this pressure angle and dedendum")
+    return given * mn
 
 
 def gear_body_mass_inertia(reference_radius, bore_radius, face_width, density):
@@ -550,7 +580,6 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     shift, inferred, a, a0, alpha_wt = _resolve_shift_and_center(pair, alpha_t, r.sum())
     ha = np.array(pair.addendum_coefficient)
     hf = np.array(pair.dedendum_coefficient)
-    rho_tool = np.array(pair.tool_tip_radius_coefficient)
     ra = r + (ha + shift) * mn  # eq. 45, no tip shortening
     rf = r - (hf - shift) * mn  # eq. 47
     rw = rb / math.cos(alpha_wt)
@@ -585,14 +614,9 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     rho_a = np.sqrt(ra**2 - rb**2)
     line_of_action = a * math.sin(alpha_wt)  # T1T2
     rho_sap = line_of_action - rho_a[::-1]
-    rho_form = form_roll_length(r, rb, alpha_t, mn, shift, hf, rho_tool, an)
-    undercut = rho_form < 0
-    if undercut.any():
-        from .profile import undercut_form_roll_length  # the fillet geometry lives there
+    from .profile import form_point  # the generated fillet lives there; profile imports gear
 
-        rho_form = np.array([
-            undercut_form_roll_length(pair, i, alpha_t) if undercut[i] else rho_form[i] for i in range(2)
-        ])
+    rho_form, undercut = (np.array(v) for v in zip(*(form_point(pair, i, shift[i]) for i in range(2))))
     r_form = np.sqrt(rb**2 + rho_form**2)
     for i in range(2):
         other = 1 - i

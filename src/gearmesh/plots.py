@@ -26,6 +26,36 @@ def _title(ds: xr.Dataset, what: str) -> str:
     return f"{ds.attrs.get('pair_name', '')} — {what}".strip(" —")
 
 
+def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
+    """One tooth of each gear in its transverse section: the hob-generated fillet (trochoid)
+    and the involute, with the root, base, form and tip circles."""
+    fig, axes = plt.subplots(1, 2, figsize=(10, 5))
+    for g, ax in enumerate(axes):
+        sel = ds.isel(gear=g)
+        x, y = sel["profile_x"].values * MM, sel["profile_y"].values * MM
+        seg = sel["profile_segment"].values
+        for side in (1, -1):
+            ax.plot(side * x[seg == 0], y[seg == 0], color="tab:red", lw=1.8,
+                    label="fillet (hob trochoid)" if side == 1 else None)
+            ax.plot(side * x[seg == 1], y[seg == 1], color="tab:blue", lw=1.8, label="involute" if side == 1 else None)
+        half = 1.3 * np.nanmax(np.abs(x))
+        angles = np.linspace(-half / np.nanmax(y), half / np.nanmax(y), 200)
+        for name, ls in (("root_radius", ":"), ("base_radius", "--"), ("form_radius", "-."), ("tip_radius", "-")):
+            r = float(sel[name]) * MM
+            ax.plot(r * np.sin(angles), r * np.cos(angles), color="0.5", ls=ls, lw=0.8,
+                    label=f"{name.replace('_', ' ')} {r:.3f} mm")
+        ax.set_aspect("equal")
+        ax.set_xlim(-half, half)
+        ax.set_ylim(float(sel["root_radius"]) * MM - 0.3 * half, float(sel["tip_radius"]) * MM + 0.2 * half)
+        ax.set_title(f"{str(sel.gear.values)}: z = {int(sel.teeth)}, x = {float(sel.profile_shift):.3f}"
+                     + (", undercut" if int(sel.undercut) else ""))
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("y (mm), gear centre at 0")
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
+    fig.suptitle(_title(ds, "transverse tooth profile"))
+    return _save(fig, path)
+
+
 def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
     """Total contact-line length L(φ) over a mesh cycle with its closed-form mean/min/max."""
     fig, ax = plt.subplots(figsize=(7, 4))
