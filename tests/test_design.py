@@ -23,7 +23,7 @@ from gearmesh.design import (
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import GearPair, pair_from_dict, pair_geometry
 
-STEEL = {"youngs_modulus_GPa": 210, "poisson_ratio": 0.3, "density_kg_m3": 7850}
+from pairs import STEEL
 
 
 def seed001(beta_deg=10.0, b_mm=20.0, **over):

@@ -23,16 +23,7 @@ from gearmesh.gear import (
     pair_to_dict,
 )
 
-STEEL = {"youngs_modulus_GPa": 210, "poisson_ratio": 0.3, "density_kg_m3": 7850}
-
-
-def seed001_pair1(**over):
-    """Seed 001 Table 1, gear pair 1 (no centre distance: the standard one)."""
-    d = dict(name="s001p1", teeth=[29, 49], normal_module_mm=1.75, normal_pressure_angle_deg=25,
-             helix_angle_deg=10, face_width_mm=20, addendum_coefficient=1.0, dedendum_coefficient=1.25,
-             bore_radius_mm=[15, 25], material=dict(STEEL))
-    d.update(over)
-    return d
+from pairs import STEEL, seed001_pair1
 
 
 def spur_20_40(**over):

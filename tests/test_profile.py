@@ -20,14 +20,12 @@ from gearmesh.profile import (
     form_point,
 )
 
-STEEL = {"youngs_modulus_GPa": 210, "poisson_ratio": 0.3, "density_kg_m3": 7850}
+from pairs import STEEL, seed001_pair1
 
 
 def pair(**changes):
-    data = dict(name="t", teeth=[29, 49], normal_module_mm=1.75, normal_pressure_angle_deg=20,
-                helix_angle_deg=10, face_width_mm=20, material=dict(STEEL))
-    data.update(changes)
-    return load_pair(data)
+    """Seed 001 pair 1 at a 20° pressure angle (the ISO 53 tip radius fits), no bore."""
+    return load_pair(seed001_pair1(**{"normal_pressure_angle_deg": 20, "bore_radius_mm": None, **changes}))
 
 
 # An undercut pinion that still works: z 12 (z_min ≈ 17 at 20°), gear tip shortened to 0.8 m_n.

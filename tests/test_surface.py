@@ -23,14 +23,11 @@ from gearmesh.surface import (
     tooth_surface,
 )
 
-STEEL = {"youngs_modulus_GPa": 210, "poisson_ratio": 0.3, "density_kg_m3": 7850}
+from pairs import STEEL, seed001_pair1
 
 
 def pair_dict(**changes):
-    data = dict(name="t", teeth=[29, 49], normal_module_mm=1.75, normal_pressure_angle_deg=25,
-                helix_angle_deg=10, face_width_mm=20, bore_radius_mm=[15, 25], material=dict(STEEL))
-    data.update(changes)
-    return data
+    return seed001_pair1(**{"name": "t", **changes})
 
 
 def geometry(**changes):
