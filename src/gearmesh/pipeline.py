@@ -1,13 +1,16 @@
 """The glue between a Snakemake job and the package: logging, provenance, atomic output.
 
-A workflow script is ``run_stage(snakemake, build)``: ``build(snakemake)`` returns the
-stage's Dataset (or a mapping of output name to Dataset); this module attaches provenance
-(the study config and the pair file as JSON with its sha256) and writes each file
-atomically, so a failing job leaves no output with its final name.
+Every rule names the one package function it runs in ``params.function``
+("module:function") and passes its settings in ``params.settings``; three generic scripts
+(``workflow/scripts/{pair_stage,study_stage,plot}.py``) call :func:`run_pair_stage`,
+:func:`run_study_stage` or :func:`run_plot`. Provenance (the study config and the pair data
+as JSON with its sha256) is attached here and each file is written atomically, so a failing
+job leaves no output with its final name.
 """
 
 from __future__ import annotations
 
+import importlib
 import logging
 import sys
 from pathlib import Path
@@ -15,8 +18,8 @@ from typing import Any, Callable, Mapping
 
 import xarray as xr
 
-from .gear import GearPair, pair_to_dict
-from .io import add_provenance, write_dataset
+from .gear import GearPair, load_pair, pair_to_dict
+from .io import add_provenance, read_dataset, write_dataset
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
@@ -38,64 +41,66 @@ def finish(ds: xr.Dataset, path: str | Path, study: Mapping[str, Any], pair: Gea
     return write_dataset(ds, path)
 
 
-def run_stage(smk: Any, build: Callable[[Any], Any]) -> None:
-    """Run one workflow job with its log file; exit non-zero with the reason on failure."""
+def resolve(spec: str) -> Callable[..., Any]:
+    """The function named by "package.module:function"."""
+    module, _, name = spec.partition(":")
+    return getattr(importlib.import_module(module), name)
+
+
+def _run(smk: Any, body: Callable[[Any], None]) -> None:
+    """Run one job with its log file; exit non-zero with the reason on failure."""
     log_path = Path(smk.log[0])
     log_path.parent.mkdir(parents=True, exist_ok=True)
     logging.basicConfig(filename=log_path, level=logging.INFO, filemode="w",
                         format="%(asctime)s %(levelname)s %(message)s", force=True)
     try:
-        build(smk)
+        body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
-        logging.exception("stage failed")
+        logging.exception("job failed")
         print(f"gearmesh: error: {exc}", file=sys.stderr)
         sys.exit(2 if isinstance(exc, ValueError) else 1)
     logging.info("done: %s", ", ".join(map(str, smk.output)))
 
 
-def _pair_stage(function: Callable[..., xr.Dataset], title: str):
-    def build(smk: Any) -> None:
-        from .gear import load_pair
+def _title(smk: Any) -> str:
+    return f"gearmesh {smk.rule}"
 
+
+def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
+    finish(ds, smk.output[0], smk.config, pair, _title(smk))
+    if "csv" in smk.output.keys():
+        ds.to_dataframe().to_csv(smk.output.csv)
+
+
+def run_pair_stage(smk: Any) -> None:
+    """A stage of one pair: ``function(pair, **settings, **upstream datasets)`` -> Dataset.
+
+    Named inputs other than ``pair`` are netCDF files of upstream stages, read and passed
+    by name.
+    """
+    def body(smk: Any) -> None:
         pair = load_pair(smk.input.pair)
-        finish(function(pair, **smk.params.settings), smk.output[0], smk.config, pair, title)
+        upstream = {k: read_dataset(v) for k, v in smk.input.items() if k != "pair"}
+        ds = resolve(smk.params.function)(pair, **dict(smk.params.settings), **upstream)
+        _write_outputs(smk, ds, pair)
 
-    return build
-
-
-def _helix_sweep(smk: Any) -> None:
-    from .datasets import helix_sweep_dataset
-    from .gear import load_pair
-
-    settings = dict(smk.params.settings)
-    pairs = {p.name: p for p in map(load_pair, smk.input.pairs)}
-    ds = helix_sweep_dataset(pairs, settings["start_deg"], settings["stop_deg"], settings["step_deg"],
-                             settings.get("positions", 360))
-    finish(ds, smk.output[0], smk.config, None, "gearmesh contact length against helix angle")
+    _run(smk, body)
 
 
-def _stage_builders() -> dict[str, Callable[[Any], None]]:
-    from . import datasets
+def run_study_stage(smk: Any) -> None:
+    """A stage over several pairs: ``function({name: pair}, **settings)`` -> Dataset."""
+    def body(smk: Any) -> None:
+        pairs = {p.name: p for p in map(load_pair, smk.input.pairs)}
+        settings = {k: v for k, v in dict(smk.params.settings).items() if k != "pairs"}
+        _write_outputs(smk, resolve(smk.params.function)(pairs, **settings), None)
 
-    return {
-        "geometry": _pair_stage(datasets.geometry_dataset, "gearmesh geometry"),
-        "contact_lines": _pair_stage(datasets.contact_lines_dataset, "gearmesh contact lines"),
-        "helix_sweep": _helix_sweep,
-        "low_fluctuation_design": _low_fluctuation_design,
-    }
-
-
-def _low_fluctuation_design(smk: Any) -> None:
-    from .datasets import low_fluctuation_design_dataset
-    from .gear import load_pair
-
-    pairs = {p.name: p for p in map(load_pair, smk.input.pairs)}
-    ds = low_fluctuation_design_dataset(pairs)
-    finish(ds, smk.output.nc, smk.config, None, "gearmesh low-fluctuation designs")
-    table = ds.to_dataframe()
-    table.to_csv(smk.output.csv)
+    _run(smk, body)
 
 
-def run_named_stage(smk: Any) -> None:
-    """Run the stage named by the rule's ``params.stage``."""
-    run_stage(smk, _stage_builders()[smk.params.stage])
+def run_plot(smk: Any) -> None:
+    """Figures: ``function({input name: Dataset}, {output name: path})`` writes the PNGs."""
+    def body(smk: Any) -> None:
+        inputs = {k: read_dataset(v) for k, v in smk.input.items()}
+        resolve(smk.params.function)(inputs, dict(smk.output.items()))
+
+    _run(smk, body)

@@ -28,6 +28,11 @@ def pair_file(wildcards):
     return str(pair_path(config, wildcards.pair))
 
 
+def study_pair_files(section):
+    """Input function: the pair files a study-level section names."""
+    return lambda wildcards: [str(pair_path(config, n)) for n in config[section]["pairs"]]
+
+
 def pair_results(name):
     """Files every pair of the study gets."""
     base = f"results/{STUDY}/{name}"

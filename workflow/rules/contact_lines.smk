@@ -7,9 +7,9 @@ rule contact_lines:
     log:
         "logs/{study}/{pair}/contact_lines.log",
     params:
-        stage="contact_lines",
+        function="gearmesh.datasets.geometry:contact_lines_dataset",
         settings=lambda wildcards: config["contact_lines"],
     conda:
         ENV
     script:
-        "../scripts/stage.py"
+        "../scripts/pair_stage.py"

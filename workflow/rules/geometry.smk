@@ -7,9 +7,9 @@ rule geometry:
     log:
         "logs/{study}/{pair}/geometry.log",
     params:
-        stage="geometry",
+        function="gearmesh.datasets.geometry:geometry_dataset",
         settings=lambda wildcards: config["geometry"],
     conda:
         ENV
     script:
-        "../scripts/stage.py"
+        "../scripts/pair_stage.py"

@@ -9,21 +9,25 @@ rule plot_pair:
         contact_lines="results/{study}/{pair}/plots/contact_lines.png",
     log:
         "logs/{study}/{pair}/plots.log",
+    params:
+        function="gearmesh.plots.geometry:pair_figures",
     conda:
         ENV
     script:
-        "../scripts/plot_pair.py"
+        "../scripts/plot.py"
 
 
 rule plot_helix_sweep:
     """The contact-line fluctuation V-curve against helix angle."""
     input:
-        "results/{study}/helix_sweep.nc",
+        helix_sweep="results/{study}/helix_sweep.nc",
     output:
-        "results/{study}/plots/helix_sweep.png",
+        helix_sweep="results/{study}/plots/helix_sweep.png",
     log:
         "logs/{study}/plots_helix_sweep.log",
+    params:
+        function="gearmesh.plots.geometry:helix_sweep_figures",
     conda:
         ENV
     script:
-        "../scripts/plot_helix_sweep.py"
+        "../scripts/plot.py"

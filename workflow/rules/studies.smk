@@ -4,33 +4,33 @@
 rule helix_sweep:
     """Contact-line length statistics against helix angle (seed 002; seed 001 V-curve)."""
     input:
-        pairs=lambda wildcards: [str(pair_path(config, n)) for n in config["helix_sweep"]["pairs"]],
+        pairs=study_pair_files("helix_sweep"),
     output:
         "results/{study}/helix_sweep.nc",
     log:
         "logs/{study}/helix_sweep.log",
     params:
-        stage="helix_sweep",
+        function="gearmesh.datasets.geometry:helix_sweep_dataset",
         settings=lambda wildcards: config["helix_sweep"],
     conda:
         ENV
     script:
-        "../scripts/stage.py"
+        "../scripts/study_stage.py"
 
 
 rule low_fluctuation_design:
     """Integer-overlap-ratio designs of each pair: helix angle forward/backward, face width."""
     input:
-        pairs=lambda wildcards: [str(pair_path(config, n)) for n in config["low_fluctuation_design"]["pairs"]],
+        pairs=study_pair_files("low_fluctuation_design"),
     output:
         nc="results/{study}/low_fluctuation_design.nc",
         csv="results/{study}/low_fluctuation_design.csv",
     log:
         "logs/{study}/low_fluctuation_design.log",
     params:
-        stage="low_fluctuation_design",
+        function="gearmesh.datasets.geometry:low_fluctuation_design_dataset",
         settings=lambda wildcards: config["low_fluctuation_design"],
     conda:
         ENV
     script:
-        "../scripts/stage.py"
+        "../scripts/study_stage.py"

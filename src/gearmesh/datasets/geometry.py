@@ -1,4 +1,4 @@
-"""Stage results as xarray Datasets: one public function per workflow stage.
+"""Geometry-stage datasets: pair geometry, contact lines, helix sweep, low-fluctuation designs.
 
 Each function takes a :class:`~gearmesh.gear.GearPair` and the stage's settings, calls the
 physics modules and returns a Dataset in SI units whose every variable carries ``units``
@@ -13,12 +13,12 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from .contact import contact_length_closed_form, contact_length_fluctuation, contact_lines, mesh_cycle_rolls
-from .design import integer_overlap_face_width, integer_overlap_helix_angle, overlap_fluctuation_curve
-from .gear import GEARS, GearPair, PairGeometry, pair_geometry
-from .io import variable
-from .profile import tooth_profile
-from .surface import tooth_surface
+from ..contact import contact_length_closed_form, contact_length_fluctuation, contact_lines, mesh_cycle_rolls
+from ..design import integer_overlap_face_width, integer_overlap_helix_angle, overlap_fluctuation_curve
+from ..gear import GEARS, GearPair, PairGeometry, pair_geometry
+from ..io import variable
+from ..profile import tooth_profile
+from ..surface import tooth_surface
 
 
 def _per_gear(values, units: str, long_name: str) -> xr.Variable:

@@ -1,29 +1,13 @@
-"""Figures, each drawn from a stage's netCDF Dataset (never from in-memory model state)."""
+"""Geometry-stage figures: tooth profile, contact lines, L(phi), the helix-angle V-curve."""
 
 from __future__ import annotations
 
 from pathlib import Path
 
-import matplotlib
+import numpy as np
+import xarray as xr
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-
-MM = 1e3
-
-
-def _save(fig, path: str | Path) -> Path:
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=130, bbox_inches="tight")
-    plt.close(fig)
-    return path
-
-
-def _title(ds: xr.Dataset, what: str) -> str:
-    return f"{ds.attrs.get('pair_name', '')} — {what}".strip(" —")
+from .common import MM, plt, save as _save, title as _title
 
 
 def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
@@ -125,12 +109,13 @@ def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
     return _save(fig, path)
 
 
-def plot_pair_figures(smk) -> None:
-    """The per-pair figures of the workflow's ``plot_pair`` rule, from its netCDF inputs."""
-    from .io import read_dataset
+def pair_figures(inputs, outputs) -> None:
+    """The per-pair figures of the ``plot_pair`` rule from its ``geometry`` and ``contact_lines`` datasets."""
+    plot_tooth_profile(inputs["geometry"], outputs["tooth_profile"])
+    plot_contact_length(inputs["contact_lines"], outputs["contact_length"])
+    plot_contact_lines(inputs["contact_lines"], outputs["contact_lines"])
 
-    geometry = read_dataset(smk.input.geometry)
-    lines = read_dataset(smk.input.contact_lines)
-    plot_tooth_profile(geometry, smk.output.tooth_profile)
-    plot_contact_length(lines, smk.output.contact_length)
-    plot_contact_lines(lines, smk.output.contact_lines)
+
+def helix_sweep_figures(inputs, outputs) -> None:
+    """The V-curve figure of the ``plot_helix_sweep`` rule."""
+    plot_helix_sweep(inputs["helix_sweep"], outputs["helix_sweep"])
