@@ -15,6 +15,8 @@ validate(config, "workflow/schemas/config.schema.yaml", set_default=True)
 include: "workflow/rules/common.smk"
 include: "workflow/rules/geometry.smk"
 include: "workflow/rules/contact_lines.smk"
+include: "workflow/rules/stiffness.smk"
+include: "workflow/rules/variants.smk"
 include: "workflow/rules/studies.smk"
 include: "workflow/rules/plots.smk"
 

@@ -77,6 +77,15 @@ def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
     return result
 
 
+def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
+    from .datasets.stiffness import stiffness_summary
+
+    if args.slices < 1:
+        raise GearmeshInputError("--slices", args.slices, "must be at least 1")
+    return stiffness_summary(load_pair(args.pair), method=args.method, slices=args.slices,
+                             positions=args.positions, torque_Nm=args.torque_Nm, torque_on=args.on)
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="gearmesh", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
@@ -91,6 +100,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--positions", type=int, default=720, help="rotation positions per mesh cycle (default 720)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_geometry)
+
+    p = sub.add_parser("stiffness", help="time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
+    p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml)")
+    p.add_argument("--method", choices=("traditional", "improved", "transition"), default="transition",
+                   help="cantilever model of the tooth (default transition: hob fillet, seed 003)")
+    p.add_argument("--slices", type=int, default=200, help="slices over the face width (default 200)")
+    p.add_argument("--positions", type=int, default=360, help="rotation positions per mesh cycle (default 360)")
+    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, help="torque for the LSTE (N m)")
+    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="which gear carries --torque-Nm")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_stiffness)
     return parser
 
 

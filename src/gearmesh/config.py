@@ -70,7 +70,7 @@ def pair_path(config: Mapping[str, Any], name: str, root: str | Path = ".") -> P
 def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, GearPair]:
     """Every pair the study names (``pairs`` and the sweep/design lists), loaded and checked."""
     names = list(config["pairs"])
-    for section in ("helix_sweep", "low_fluctuation_design"):
+    for section in ("helix_sweep", "low_fluctuation_design", "stiffness_table", "slice_convergence"):
         names += [n for n in config.get(section, {}).get("pairs", []) if n not in names]
     out = {}
     for name in names:
@@ -82,3 +82,15 @@ def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
             raise GearmeshInputError(f"{path}: name", pair.name, f"must equal the file name {name!r}")
         out[name] = pair
     return out
+
+
+def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearPair:
+    """``pair`` carrying the modification of micro-geometry ``variant`` (none for 'standard'
+    or a variant without one); the variant's modification replaces the pair file's."""
+    from .gear import pair_from_dict, pair_to_dict
+
+    data = pair_to_dict(pair)
+    data.pop("modification", None)
+    if spec.get("modification"):
+        data["modification"] = spec["modification"]
+    return pair_from_dict(data, source=pair.source)

@@ -183,28 +183,25 @@ def _eps_alpha_of_addendum(geom: PairGeometry, ha: float) -> float:
                  / geom.transverse_base_pitch)
 
 
-def integer_transverse_addendum(pair: GearPair, direction: str = "forward", n: int | None = None,
-                                keep_clearance: bool = True) -> DesignResult:
-    """Addendum coefficient h_a* (-, both gears) giving an integer ε_α = N (seed 001 §1).
+def transverse_ratio_addendum(pair: GearPair, eps_alpha: float, keep_clearance: bool = True) -> DesignResult:
+    """Addendum coefficient h_a* (-, both gears) giving the transverse contact ratio ``eps_alpha``.
 
-    ε_α grows monotonically with the addendum; N is the next integer above (forward) or
-    below (backward) the current ε_α. Solved by Brent's method on the closed form of
-    :func:`_eps_alpha_of_addendum` (profile shifts and centre distance kept, the shifts
+    ε_α grows monotonically with the addendum: solved by Brent's method on the closed form
+    of :func:`_eps_alpha_of_addendum` (profile shifts and centre distance kept, the shifts
     as given or inferred). ``keep_clearance`` raises the dedendum coefficient by the same
     amount as the addendum so the tip clearance is unchanged (a "high contact ratio"
     design; the deeper tool may undercut). The result is checked by :func:`pair_geometry`:
     long addenda soon give pointed teeth or interference and are refused there. Refuses
-    (field ``addendum_coefficient``) when no h_a* in (0, 3] reaches N.
+    (field ``addendum_coefficient``) when no h_a* in (0, 3] reaches ``eps_alpha``.
     """
     geom0 = pair_geometry(pair)
-    target = _target_integer(geom0.eps_alpha, direction, n, "addendum_coefficient", "eps_alpha")
     fixed_pair = pair.with_changes(profile_shift=tuple(float(v) for v in geom0.profile_shift),
                                    center_distance=geom0.center_distance)
     lo, hi = 1e-3, 3.0
-    f = lambda h: _eps_alpha_of_addendum(geom0, h) - target  # noqa: E731
+    f = lambda h: _eps_alpha_of_addendum(geom0, h) - eps_alpha  # noqa: E731
     if f(lo) > 0 or f(hi) < 0:
         raise GearmeshInputError("addendum_coefficient", list(pair.addendum_coefficient),
-                                 f"no addendum coefficient in (0, 3] gives eps_alpha = {target}")
+                                 f"no addendum coefficient in (0, 3] gives eps_alpha = {eps_alpha}")
     ha = brentq(f, lo, hi, xtol=1e-14, rtol=1e-14)
     changes = {"addendum_coefficient": (ha, ha)}
     if keep_clearance:
@@ -214,6 +211,31 @@ def integer_transverse_addendum(pair: GearPair, direction: str = "forward", n: i
         profile_shift=fixed_pair.profile_shift)).with_changes(**changes)
     geom = pair_geometry(new)
     return DesignResult(new, geom.eps_beta, geom.eps_alpha, geom)
+
+
+def integer_transverse_addendum(pair: GearPair, direction: str = "forward", n: int | None = None,
+                                keep_clearance: bool = True) -> DesignResult:
+    """Addendum coefficient giving an integer ε_α = N (seed 001 §1): N is the next integer
+    above (forward) or below (backward) the current ε_α; see :func:`transverse_ratio_addendum`."""
+    target = _target_integer(pair_geometry(pair).eps_alpha, direction, n, "addendum_coefficient", "eps_alpha")
+    return transverse_ratio_addendum(pair, target, keep_clearance)
+
+
+def pair_with_contact_ratios(pair: GearPair, eps_alpha: float | None = None,
+                             eps_beta: float | None = None) -> GearPair:
+    """``pair`` redesigned to the given contact ratios: ε_β by the face width
+    (b = π m_n ε_β / sin β, seed 001 §1), ε_α by the addendum at constant tip clearance
+    (:func:`transverse_ratio_addendum`); seed 003's contact-ratio study."""
+    if eps_beta is not None:
+        if pair.helix_angle == 0 or eps_beta <= 0:
+            raise GearmeshInputError("eps_beta", eps_beta, "needs a helical pair and a positive target")
+        pair = pair.with_changes(face_width=_face_width_change(
+            pair, math.pi * pair.normal_module * eps_beta / math.sin(pair.helix_angle)))
+    if eps_alpha is not None:
+        if eps_alpha < 1:
+            raise GearmeshInputError("eps_alpha", eps_alpha, "must be at least 1 for a continuous mesh")
+        pair = transverse_ratio_addendum(pair, eps_alpha).pair
+    return pair
 
 
 @dataclass(frozen=True)

@@ -104,3 +104,21 @@ def run_plot(smk: Any) -> None:
         resolve(smk.params.function)(inputs, dict(smk.output.items()))
 
     _run(smk, body)
+
+
+def run_variant_pair(smk: Any) -> None:
+    """Write the pair file of one micro-geometry variant (checked by pair_geometry first)."""
+    import yaml
+
+    from .config import variant_pair
+    from .gear import pair_geometry
+
+    def body(smk: Any) -> None:
+        pair = variant_pair(load_pair(smk.input.pair), smk.wildcards.variant, smk.params.spec)
+        pair_geometry(pair)
+        path = Path(smk.output[0])
+        tmp = path.with_name(f".{path.name}.tmp")
+        tmp.write_text(yaml.safe_dump(pair_to_dict(pair), sort_keys=False))
+        tmp.replace(path)
+
+    _run(smk, body)

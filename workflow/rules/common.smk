@@ -19,13 +19,22 @@ except GearmeshInputError as exc:
     sys.exit(2)
 
 
+VARIANTS = list(config["variants"])
+
+
 wildcard_constraints:
     study=STUDY,
     pair="|".join(PAIRS),
+    variant="|".join(VARIANTS),
 
 
 def pair_file(wildcards):
     return str(pair_path(config, wildcards.pair))
+
+
+def variant_pair_file(wildcards):
+    """The pair file of one micro-geometry variant (rule variant_pair)."""
+    return f"results/{wildcards.study}/{wildcards.pair}/{wildcards.variant}/pair.yaml"
 
 
 def study_pair_files(section):
@@ -39,6 +48,8 @@ def pair_results(name):
     return [
         f"{base}/geometry.nc",
         f"{base}/contact_lines.nc",
+        f"{base}/stiffness.nc",
+        f"{base}/plots/stiffness.png",
         f"{base}/plots/tooth_profile.png",
         f"{base}/plots/contact_length.png",
         f"{base}/plots/contact_lines.png",
@@ -49,6 +60,10 @@ def all_targets():
     targets = [f for name in config["pairs"] for f in pair_results(name)]
     if "helix_sweep" in config:
         targets += [f"results/{STUDY}/helix_sweep.nc", f"results/{STUDY}/plots/helix_sweep.png"]
+    for table in ("stiffness_table", "slice_convergence"):
+        if table in config:
+            targets += [f"results/{STUDY}/{table}.nc", f"results/{STUDY}/{table}.csv",
+                        f"results/{STUDY}/plots/{table}.png"]
     if "low_fluctuation_design" in config:
         targets += [f"results/{STUDY}/low_fluctuation_design.nc", f"results/{STUDY}/low_fluctuation_design.csv"]
     return targets

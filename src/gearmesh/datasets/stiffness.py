@@ -1,0 +1,222 @@
+"""Stiffness-stage datasets: K(φ) of a pair, comparison tables over pairs and methods, and
+the slice-count convergence study (seeds 001, 003, 004)."""
+
+from __future__ import annotations
+
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..design import pair_with_contact_ratios
+from ..errors import GearmeshInputError
+from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_to_dict
+from ..io import variable
+from ..stiffness import (
+    DEFAULT_RULE,
+    DEFAULT_SLICES,
+    fourier_fit,
+    iso6336_stiffness,
+    lste,
+    mesh_stiffness,
+    pair_slice_table,
+    slice_compliance_table,
+)
+
+METHODS = ("traditional", "improved", "transition")
+
+
+def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
+    """Pinion torque (N m) from a torque on the pinion or on the gear (ratio z1/z2, no loss)."""
+    if not np.isfinite(torque_Nm) or torque_Nm <= 0:
+        raise GearmeshInputError("torque_Nm", torque_Nm, "must be a positive finite number")
+    if on not in ("pinion", "gear"):
+        raise GearmeshInputError("torque_on", on, "must be 'pinion' or 'gear'")
+    return torque_Nm if on == "pinion" else torque_Nm * geom.pair.teeth[0] / geom.pair.teeth[1]
+
+
+def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
+                      positions: int = 360, fourier_order: int = 3, torque_Nm: float | None = None,
+                      torque_on: str = "gear") -> xr.Dataset:
+    """K(φ) of ``pair`` by the slice potential energy method (:func:`gearmesh.stiffness.mesh_stiffness`),
+    with its components, one tooth pair's k over its engagement, the Fourier series of K to
+    ``fourier_order`` (seed 004) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
+    torque the LSTE F/K(φ) (seed 001). Stiffness is along the transverse line of action
+    (force F = T1/r_b1); multiply by 1/cos²βb for the normal direction.
+    """
+    geom = pair_geometry(pair)
+    result = mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method)
+    fit = fourier_fit(result.K, fourier_order)
+    theta = 2 * np.pi * result.roll / geom.transverse_base_pitch
+    iso = iso6336_stiffness(geom)
+    names = list(result.components)
+    data = {
+        "mesh_stiffness": variable(("position",), result.K, "N m-1",
+                                   "total mesh stiffness K(phi) along the transverse line of action"),
+        "mesh_stiffness_fourier": variable(("position",), fit(theta), "N m-1",
+                                           f"Fourier series of K of order {fourier_order}"),
+        "component_stiffness": variable(("component", "position"), np.stack([result.components[n] for n in names]),
+                                        "N m-1", "series-equivalent stiffness of each component (1/K = sum 1/K_x)"),
+        "pair_stiffness": variable(("pair_position",), result.k_pair, "N m-1",
+                                   "stiffness of one tooth pair over its engagement"),
+        "mean_stiffness": variable((), result.mean, "N m-1", "mean mesh stiffness"),
+        "min_stiffness": variable((), result.min, "N m-1", "minimum mesh stiffness (samples and kinks)"),
+        "max_stiffness": variable((), result.max, "N m-1", "maximum mesh stiffness (samples and kinks)"),
+        "fluctuation": variable((), result.fluctuation, "1", "fluctuation eps_k = (Kmax - Kmin)/Kmin (seed 001)"),
+        "fourier_mean": variable((), fit.mean, "N m-1", "Fourier series: mean k_m"),
+        "fourier_cos": variable(("harmonic",), fit.a, "N m-1", "Fourier series: cosine coefficients a_j"),
+        "fourier_sin": variable(("harmonic",), fit.b, "N m-1", "Fourier series: sine coefficients b_j"),
+        "fourier_rms_error": variable((), fit.rms_error, "N m-1", "RMS of K minus its Fourier series"),
+        "iso6336_c_single": variable((), iso["c_prime"] * 1e9, "N m-2",
+                                     "ISO 6336-1 single stiffness c' (per unit face width)"),
+        "iso6336_c_gamma_alpha": variable((), iso["c_gamma_alpha"] * 1e9, "N m-2",
+                                          "ISO 6336-1 mesh stiffness c_gamma_alpha (per unit face width)"),
+        "iso6336_c_gamma_beta": variable((), iso["c_gamma_beta"] * 1e9, "N m-2",
+                                         "ISO 6336-1 mesh stiffness c_gamma_beta (per unit face width)"),
+        "iso6336_mesh_stiffness": variable((), iso["K_gamma_alpha"], "N m-1",
+                                           "ISO 6336-1 c_gamma_alpha times the face width"),
+        "eps_alpha": variable((), geom.eps_alpha, "1", "transverse contact ratio"),
+        "eps_beta": variable((), geom.eps_beta, "1", "overlap ratio"),
+    }
+    if torque_Nm is not None:
+        t1 = pinion_torque(geom, torque_Nm, torque_on)
+        e = lste(result, t1)
+        data.update({
+            "lste": variable(("position",), e, "m", "loaded static transmission error F/K(phi) along the line of action"),
+            "lste_mean": variable((), e.mean(), "m", "mean LSTE"),
+            "lste_peak_to_peak": variable((), e.max() - e.min(), "m", "peak-to-peak LSTE"),
+            "pinion_torque": variable((), t1, "N m", "pinion torque of the LSTE"),
+        })
+    ds = xr.Dataset(data, coords={
+        "position": variable(("position",), result.roll, "m", "pinion roll distance r_b1 phi_1 over one mesh cycle"),
+        "pair_position": variable(("pair_position",), result.pair_roll, "m",
+                                  "position of one tooth pair's mid-face contact on the line of action"),
+        "component": variable(("component",), np.array(names), "1", "stiffness component"),
+        "harmonic": variable(("harmonic",), np.arange(1, fourier_order + 1), "1", "harmonic of the mesh frequency"),
+    })
+    ds.attrs.update({"method": method, "slices": slices, "slice_rule": result.rule, "fourier_order": fourier_order})
+    return ds
+
+
+def stiffness_summary(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
+                      positions: int = 360, torque_Nm: float | None = None, torque_on: str = "gear") -> dict[str, Any]:
+    """Headline stiffness numbers in engineering units (the CLI's ``stiffness --json``)."""
+    ds = stiffness_dataset(pair, method, slices, positions, 3, torque_Nm, torque_on)
+    out = {
+        "name": pair.name, "method": method, "slices": slices,
+        "mean_mesh_stiffness_N_per_m": float(ds.mean_stiffness),
+        "min_mesh_stiffness_N_per_m": float(ds.min_stiffness),
+        "max_mesh_stiffness_N_per_m": float(ds.max_stiffness),
+        "fluctuation_percent": 100 * float(ds.fluctuation),
+        "iso6336_c_single_N_per_mm_um": float(ds.iso6336_c_single) * 1e-9,
+        "iso6336_c_gamma_alpha_N_per_mm_um": float(ds.iso6336_c_gamma_alpha) * 1e-9,
+        "iso6336_c_gamma_beta_N_per_mm_um": float(ds.iso6336_c_gamma_beta) * 1e-9,
+        "iso6336_mesh_stiffness_N_per_m": float(ds.iso6336_mesh_stiffness),
+        "fourier_mean_N_per_m": float(ds.fourier_mean),
+        "fourier_cos_N_per_m": ds.fourier_cos.values.tolist(),
+        "fourier_sin_N_per_m": ds.fourier_sin.values.tolist(),
+    }
+    if torque_Nm is not None:
+        out.update({"pinion_torque_Nm": float(ds.pinion_torque), "lste_mean_um": float(ds.lste_mean) * 1e6,
+                    "lste_peak_to_peak_um": float(ds.lste_peak_to_peak) * 1e6})
+    return out
+
+
+def apply_variant(pair: GearPair, name: str, overrides: Mapping[str, Any]) -> GearPair:
+    """``pair`` with some pair-file keys (engineering units) replaced, renamed ``PAIR-name``.
+
+    Two keys are design targets rather than pair-file keys: ``eps_alpha`` (reached by the
+    addendum) and ``eps_beta`` (by the face width), :func:`gearmesh.design.pair_with_contact_ratios`.
+    """
+    overrides = dict(overrides)
+    targets = {k: overrides.pop(k) for k in ("eps_alpha", "eps_beta") if k in overrides}
+    data = pair_to_dict(pair) | overrides
+    data["name"] = f"{pair.name}-{name}"
+    if "center_distance_mm" not in overrides and any(
+            k in overrides for k in ("normal_pressure_angle_deg", "helix_angle_deg", "normal_module_mm",
+                                     "teeth", "profile_shift")):
+        data.pop("center_distance_mm", None)  # a changed pair gets its own zero-backlash distance
+    return pair_with_contact_ratios(pair_from_dict(data), **targets)
+
+
+def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str] = ("transition",),
+                            variants: Mapping[str, Mapping[str, Any]] | None = None,
+                            slices: int = DEFAULT_SLICES, positions: int = 360, torque_Nm: float | None = None,
+                            torque_on: str = "gear") -> xr.Dataset:
+    """A comparison table over pairs (and pair-file variants of each) and cantilever methods:
+    mean/min/max K, ε_k, ISO 6336-1 mesh stiffness and, with a torque, LSTE mean and
+    peak-to-peak (seed 001 Table/§3, seed 003 parametric tables, seed 004 method table)."""
+    cases: dict[str, GearPair] = {}
+    for name, pair in pairs.items():
+        for vname, overrides in (variants or {"as_given": {}}).items():
+            cases[name if not variants else f"{name}-{vname}"] = (
+                apply_variant(pair, vname, overrides) if variants else pair)
+    keys = ("mean", "min", "max", "fluctuation", "iso", "lste_mean", "lste_p2p", "eps_alpha", "eps_beta",
+            "sap", "eap")
+    out = {k: np.full((len(cases), len(methods)), np.nan) for k in keys}
+    for i, (cname, pair) in enumerate(cases.items()):
+        geom = pair_geometry(pair)
+        t1 = pinion_torque(geom, torque_Nm, torque_on) if torque_Nm is not None else None
+        iso = iso6336_stiffness(geom)["K_gamma_alpha"]
+        for k, method in enumerate(methods):
+            r = mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method, components=False)
+            out["mean"][i, k], out["min"][i, k], out["max"][i, k] = r.mean, r.min, r.max
+            out["fluctuation"][i, k] = r.fluctuation
+            out["iso"][i, k] = iso
+            out["eps_alpha"][i, k], out["eps_beta"][i, k] = geom.eps_alpha, geom.eps_beta
+            out["sap"][i, k], out["eap"][i, k] = geom.rho_sap[0], geom.rho_eap[0]
+            if t1 is not None:
+                e = lste(r, t1)
+                out["lste_mean"][i, k], out["lste_p2p"][i, k] = e.mean(), e.max() - e.min()
+    dims = ("case", "model")  # not "method": that name is an argument of xarray's sel()
+    data = {
+        "mean_stiffness": variable(dims, out["mean"], "N m-1", "mean mesh stiffness"),
+        "min_stiffness": variable(dims, out["min"], "N m-1", "minimum mesh stiffness"),
+        "max_stiffness": variable(dims, out["max"], "N m-1", "maximum mesh stiffness"),
+        "fluctuation": variable(dims, out["fluctuation"], "1", "eps_k = (Kmax - Kmin)/Kmin"),
+        "iso6336_mesh_stiffness": variable(dims, out["iso"], "N m-1", "ISO 6336-1 c_gamma_alpha times face width"),
+        "eps_alpha": variable(dims, out["eps_alpha"], "1", "transverse contact ratio"),
+        "eps_beta": variable(dims, out["eps_beta"], "1", "overlap ratio"),
+        "pinion_sap_roll": variable(dims, out["sap"], "m", "pinion roll length of the start of active profile"),
+        "pinion_eap_roll": variable(dims, out["eap"], "m", "pinion roll length of the end of active profile"),
+    }
+    if torque_Nm is not None:
+        data["lste_mean"] = variable(dims, out["lste_mean"], "m", "mean LSTE F/K")
+        data["lste_peak_to_peak"] = variable(dims, out["lste_p2p"], "m", "peak-to-peak LSTE")
+    ds = xr.Dataset(data, coords={
+        "case": variable(("case",), np.array(list(cases)), "1", "pair (and variant)"),
+        "model": variable(("model",), np.array(list(methods)), "1", "cantilever model of the tooth (method)"),
+    })
+    ds.attrs.update({"slices": slices, "positions": positions,
+                     "torque": "" if torque_Nm is None else f"{torque_Nm} N m on the {torque_on}"})
+    return ds
+
+
+def slice_convergence_dataset(pairs: Mapping[str, GearPair], slices: Sequence[int] = (25, 50, 100, 200, 400, 1000),
+                              method: str = "transition", positions: int = 360) -> xr.Dataset:
+    """K statistics against the slice count for both slice rules (seed 004 argues N = 1000):
+    'centre' (whole slices, the documents' sampling) and 'clip' (end slices clipped), with
+    the relative difference of the mean to the finest 'clip' result."""
+    rules = ("centre", DEFAULT_RULE) if DEFAULT_RULE != "centre" else ("centre",)
+    shape = (len(pairs), len(rules), len(slices))
+    mean, lo, hi = (np.full(shape, np.nan) for _ in range(3))
+    for i, pair in enumerate(pairs.values()):
+        geom = pair_geometry(pair)
+        pt = pair_slice_table(geom, (slice_compliance_table(geom, 0, method), slice_compliance_table(geom, 1, method)))
+        for r, rule in enumerate(rules):
+            for k, n in enumerate(slices):
+                res = mesh_stiffness(geom, positions, n, method, components=False, pair_table=pt, rule=rule)
+                mean[i, r, k], lo[i, r, k], hi[i, r, k] = res.mean, res.min, res.max
+    reference = mean[:, -1:, -1:]
+    dims = ("pair", "rule", "slices")
+    return xr.Dataset({
+        "mean_stiffness": variable(dims, mean, "N m-1", "mean mesh stiffness"),
+        "min_stiffness": variable(dims, lo, "N m-1", "minimum mesh stiffness"),
+        "max_stiffness": variable(dims, hi, "N m-1", "maximum mesh stiffness"),
+        "mean_relative_difference": variable(dims, mean / reference - 1, "1",
+                                             "mean stiffness relative to the finest clipped-slice result"),
+    }, coords={
+        "pair": variable(("pair",), np.array(list(pairs)), "1", "gear pair"),
+        "rule": variable(("rule",), np.array(rules), "1", "slice rule: whole slices by centre, or clipped"),
+        "slices": variable(("slices",), np.array(slices), "1", "number of slices over the face width"),
+    })

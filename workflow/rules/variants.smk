@@ -1,0 +1,14 @@
+rule variant_pair:
+    """The pair file of one micro-geometry variant ('standard': unmodified), input of tca/ltca/impact/dynamics."""
+    input:
+        pair=pair_file,
+    output:
+        "results/{study}/{pair}/{variant}/pair.yaml",
+    log:
+        "logs/{study}/{pair}/{variant}/variant_pair.log",
+    params:
+        spec=lambda wildcards: config["variants"][wildcards.variant],
+    conda:
+        ENV
+    script:
+        "../scripts/variant_pair.py"
