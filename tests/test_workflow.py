@@ -33,6 +33,7 @@ def _snakemake(cwd: Path, *args: str) -> subprocess.CompletedProcess:
 def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     config = {"study": "e2e", "pairs": ["seed001_pair1"], "contact_lines": {"positions": 24},
               "geometry": {"involute_points": 20, "fillet_points": 10, "face_points": 5},
+              "stiffness": {"slices": 40, "positions": 24},
               "helix_sweep": {"pairs": ["seed001_pair1"], "start_deg": 8, "stop_deg": 16, "step_deg": 4,
                               "positions": 16}}
     work = _scratch_workflow(root, tmp_path, config)
@@ -44,7 +45,9 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     assert lines.attrs["config_sha256"] and "seed001_pair1" in lines.attrs["config_json"]
     geometry = read_dataset(base / "geometry.nc")
     assert abs(float(geometry["eps_alpha"]) - 1.4702) < 1e-3  # seed 001 Table 1: 1.470
-    for png in ("tooth_profile", "contact_length", "contact_lines"):
+    stiffness = read_dataset(base / "stiffness.nc")
+    assert stiffness.attrs["method"] == "transition" and float(stiffness.mean_stiffness) > 0
+    for png in ("tooth_profile", "contact_length", "contact_lines", "stiffness"):
         assert (base / "plots" / f"{png}.png").stat().st_size > 1000
     assert (work / "results/e2e/plots/helix_sweep.png").exists()
     again = _snakemake(work, "--dry-run")

@@ -1,0 +1,500 @@
+"""Unloaded tooth contact analysis (TCA) of a modified helical pair.
+
+Everything inside is SI (m, rad). Frames and the line of action are those of
+:mod:`gearmesh.contact`: the pinion centre at the origin, the gear centre at (a, 0), the
+transverse line of action from T1 = r_b1(cos αwt, −sin αwt) along d = (sin αwt, cos αwt);
+``s`` is the distance along it from the start of active profile A; tooth pair j in the
+transverse slice z touches (if it can) at s = roll + j·p_bt + h·z·tan βb.
+
+The displacement direction (one convention for TCA, LTCA, stiffness and impact)
+---------------------------------------------------------------------------------
+Every separation ("gap"), every transmission error and every approach is a **transverse
+displacement along the line of action, r_b1·Δφ1 with the gear held** — the convention of
+:mod:`gearmesh.stiffness` (δ_t = r_b1Δφ1 + r_b2Δφ2, F_bt = T1/r_b1), so an LTE can be set
+beside F/K(φ). A depth δ_n removed along the flank normal of a helicoid opens a transverse
+gap δ_n / cos βb (the unit normal of the plane of action has the transverse component
+cos βb along d; :func:`gearmesh.surface.plane_of_action_normal`). A lead slope error
+(fHβ-type) is taken as ISO 1328-1 measures helix deviations, in the transverse plane along
+the base tangent, so it adds to the transverse gap unchanged.
+
+Positive TE means the gear lags its conjugate position (the pinion has to turn further by
+TE/r_b1 before the flanks touch); as a gear angle it is TE/r_b2, and seed 000's
+θ_TE = φ2 − (N1/N2)φ1 equals −TE/r_b2 with φ2 counted in the gear's direction of travel.
+
+Candidate points
+----------------
+The points of a contact line are the centres z_k of N equal transverse slices over the
+face (the 'centre' rule of :func:`gearmesh.stiffness.slice_samples`: the same points, bit
+for bit, as :func:`gearmesh.contact.contact_roll_positions`). A point is a candidate when
+its s lies within the active zone [0, g_α] (flank-to-flank, region 1) or up to
+``extension`` beyond it, where load can bring a tip corner into contact before SAP or
+after EAP (seed 000, scenario 1):
+
+* region 2, s < 0 (approach): the gear's tip edge against the pinion flank below its SAP;
+* region 3, s > g_α (recess): the pinion's tip edge against the gear flank below its SAP.
+
+Their separation is the exact 2-D distance, per transverse slice, between the tip point
+of one gear (rotated to where it is at that roll) and the involute of the other:
+with inv(u) = u − arctan u, the involutes of a base circle r_b are parallel curves
+σ = θ + inv(u) = const (θ the polar angle of a point, u = √(r²/r_b² − 1)), a distance
+r_b·Δσ apart along their common normal, which is tangent to the base circle (Litvin &
+Fuentes, Gear Geometry and Applied Theory, 2nd ed. 2004, §10.3). So
+
+* approach: gap = r_b1·(σ1(P) − σ1,flank), exactly the pinion rotation (×r_b1) that brings
+  the pinion flank to the gear tip P with the gear held;
+* recess: the gear-normal distance r_b2·(σ2(P) − σ2,flank), converted to the pinion
+  rotation that closes it, × r_b1/|n2·(e_z × P)| (to first order in the gap; the
+  moment arm of the gear-flank normal n2 about the pinion axis is |n2·(e_z × P)|, which
+  equals r_b1 on the line of action).
+
+Both reduce continuously to the flank formula at s = 0 and s = g_α. The flank
+modifications add at the touched point (pinion at the roll length ρ_P = √(|P|² − r_b1²)
+of the involute through P, gear tip relief at the tip; the depth of the tip edge projected
+on the mating normal). Tip edges are sharp (no chamfer, no tip rounding); a point whose
+touched roll length falls below the form circle (the fillet) is not a candidate; the helix
+makes the real edge contact 3-D, which is approximated here slice by slice.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .contact import hand_sign, mesh_cycle_rolls
+from .errors import GearmeshInputError
+from .gear import GEARS, PairGeometry
+from .surface import modification_depth
+
+__all__ = [
+    "REGION_NONE", "REGION_FLANK", "REGION_APPROACH_TIP", "REGION_RECESS_TIP",
+    "CandidateGrid", "TCAResult", "check_modifications", "check_lead_slope", "point_centres",
+    "lead_deviation", "flank_separation", "approach_tip_separation", "recess_tip_separation",
+    "candidate_grid", "engagement_point", "tca",
+]
+
+REGION_NONE, REGION_FLANK, REGION_APPROACH_TIP, REGION_RECESS_TIP = 0, 1, 2, 3
+
+#: Default reach of the candidate points beyond the active zone, as a fraction of p_bt.
+DEFAULT_EXTENSION = 0.25
+
+
+# --------------------------------------------------------------------------------------
+# Input checks
+# --------------------------------------------------------------------------------------
+
+
+_MOD_FIELDS = (("root_relief", "root_relief_um", 1e6), ("tip_relief", "tip_relief_um", 1e6),
+               ("root_relief_length", "root_relief_length_mm", 1e3),
+               ("tip_relief_length", "tip_relief_length_mm", 1e3), ("crowning", "crowning_um", 1e6),
+               ("unmodified_lead_length", "unmodified_lead_length_mm", 1e3))
+
+
+def check_modifications(geom: PairGeometry) -> None:
+    """Refuse non-finite or negative modification parameters (also for pairs built in code).
+
+    Lengths against the flank and the face are checked by
+    :func:`gearmesh.gear.validate_modifications` (run by ``pair_geometry``); this adds the
+    sign and finiteness, naming the pair-file key (GearmeshInputError).
+    """
+    for gear, mod in zip(GEARS, geom.pair.modification):
+        for attr, key, scale in _MOD_FIELDS:
+            v = getattr(mod, attr)
+            if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) \
+                    or not math.isfinite(v):
+                raise GearmeshInputError(f"modification.{gear}.{key}", v, "must be a finite number")
+            if v < 0:
+                raise GearmeshInputError(f"modification.{gear}.{key}", v * scale, "must not be negative")
+
+
+def check_lead_slope(lead_slope_um) -> tuple[float, float]:
+    """The lead slope errors [pinion, gear] (µm over the face width) as two finite floats."""
+    if isinstance(lead_slope_um, (int, float)) and not isinstance(lead_slope_um, bool):
+        lead_slope_um = (lead_slope_um, 0.0)
+    try:
+        vals = [v for v in lead_slope_um]
+    except TypeError:
+        raise GearmeshInputError("lead_slope_um", lead_slope_um, "must be a [pinion, gear] list of two numbers") from None
+    if len(vals) != 2:
+        raise GearmeshInputError("lead_slope_um", lead_slope_um, "must be a [pinion, gear] list of two numbers")
+    out = []
+    for i, v in enumerate(vals):
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
+            raise GearmeshInputError(f"lead_slope_um[{i}]", v, "must be a finite number (µm over the face width)")
+        if abs(v) > 1000:
+            raise GearmeshInputError(f"lead_slope_um[{i}]", v, "must lie within ±1000 µm over the face width")
+        out.append(float(v))
+    return out[0], out[1]
+
+
+def _check_count(name: str, value, minimum: int, maximum: int) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not minimum <= value <= maximum:
+        raise GearmeshInputError(name, value, f"must be an integer in [{minimum}, {maximum}]")
+    return int(value)
+
+
+# --------------------------------------------------------------------------------------
+# Separations
+# --------------------------------------------------------------------------------------
+
+
+def point_centres(geom: PairGeometry, n_points: int) -> tuple[np.ndarray, float]:
+    """Centres z_k (m) of ``n_points`` equal transverse slices over [−b/2, b/2] and their width (m)
+    (as :func:`gearmesh.stiffness.slice_centres`)."""
+    dz = geom.face_width / n_points
+    return -0.5 * geom.face_width + dz * (np.arange(n_points) + 0.5), dz
+
+
+def lead_deviation(geom: PairGeometry, lead_slope: tuple[float, float], z) -> np.ndarray:
+    """Transverse gap (m) opened by lead slope errors of both gears at axial position z (m).
+
+    Each gear's helix slope deviation f (m over the face width b, signed) removes
+    f·z/b + |f|/2 ≥ 0 of material (zero at one face end, f at the other; ISO 1328-1 helix
+    slope deviation fHβ, measured in the transverse plane along the base tangent). Equal
+    and opposite f of pinion and gear cancel (an aligned pair with matching errors); the
+    sum f1 + f2 is the mesh misalignment.
+    """
+    z = np.asarray(z, dtype=float)
+    b = geom.face_width
+    out = np.zeros(z.shape)
+    for f in lead_slope:
+        if f:
+            out = out + f * z / b + 0.5 * abs(f)
+    return out
+
+
+def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)) -> np.ndarray:
+    """Flank-to-flank transverse gap (m) at s ∈ [0, g_α] (m) and z (m), region 1.
+
+    gap = (δ1(ρ1, z) + δ2(ρ2, z))/cos βb + lead deviation, ρ1 = ρ_SAP1 + s,
+    ρ2 = ρ_EAP2 − s, δ the normal depths of :func:`gearmesh.surface.modification_depth`
+    (module docstring for the /cos βb). Zero for an unmodified, aligned pair.
+    """
+    s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
+    cb = math.cos(geom.base_helix_angle)
+    d1 = modification_depth(geom, 0, geom.rho_sap[0] + s, z)
+    d2 = modification_depth(geom, 1, geom.rho_eap[1] - s, z)
+    return (d1 + d2) / cb + lead_deviation(geom, lead_slope, z)
+
+
+def _wrap(angle):
+    return (angle + np.pi) % (2.0 * np.pi) - np.pi
+
+
+def _inv(u):
+    """inv as a function of u = tan α: u − arctan u (= tan α − α)."""
+    return u - np.arctan(u)
+
+
+def _frame(geom: PairGeometry):
+    awt = geom.operating_pressure_angle
+    rb1 = float(geom.base_radius[0])
+    t1 = np.array([rb1 * math.cos(awt), -rb1 * math.sin(awt)])
+    d = np.array([math.sin(awt), math.cos(awt)])
+    return awt, t1, d
+
+
+def approach_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
+    """Gap (m) between the gear's tip edge and the pinion flank before the SAP (s < 0), region 2.
+
+    In the transverse slice the gear tip point reaches A = T1 + ρ_SAP1·d after the gear
+    turns on (clockwise) by −s/r_b2, so now it sits at P = O2 + R(−s/r_b2)(A − O2). The
+    pinion rotation that brings the pinion involute to P (gear held) is
+    σ1(P) − σ1,flank with σ1(P) = θ1(P) + inv(u_P), σ1,flank = −αwt + (ρ_SAP1 + s)/r_b1
+    (module docstring). Adds the pinion modification at ρ_P = r_b1·u_P and the gear tip
+    modification projected on the pinion normal (both /cos βb) and the lead deviation.
+
+    Returns (gap, rho_pinion): gap NaN where ρ_P falls below the pinion form circle.
+    """
+    s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
+    awt, t1, d = _frame(geom)
+    rb1, rb2 = (float(r) for r in geom.base_radius)
+    a = geom.center_distance
+    ax, ay = t1 + geom.rho_sap[0] * d
+    psi = -s / rb2
+    c, sn = np.cos(psi), np.sin(psi)
+    px = a + c * (ax - a) - sn * ay
+    py = sn * (ax - a) + c * ay
+    r2 = px * px + py * py
+    with np.errstate(invalid="ignore"):
+        u = np.sqrt(r2 / rb1**2 - 1.0)
+    theta = np.arctan2(py, px)
+    dist = rb1 * (_wrap(theta + awt) + _inv(u) - (geom.rho_sap[0] + s) / rb1)
+    rho_p = rb1 * u
+    # normals (transverse): pinion involute through P, gear involute at its tip
+    tau1 = theta - np.arctan(u)
+    theta2 = np.arctan2(py, px - a)
+    tau2 = theta2 - math.atan(geom.rho_eap[1] / rb2)
+    cosang = np.abs(np.cos(tau1 - tau2))
+    cb = math.cos(geom.base_helix_angle)
+    gap = (dist + (modification_depth(geom, 0, rho_p, z)
+                   + modification_depth(geom, 1, np.full(s.shape, geom.rho_eap[1]), z) * cosang) / cb
+           + lead_deviation(geom, lead_slope, z))
+    ok = np.isfinite(rho_p) & (rho_p >= geom.rho_form[0] - 1e-12)
+    return np.where(ok, gap, np.nan), np.where(ok, rho_p, np.nan)
+
+
+def recess_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
+    """Gap (m) between the pinion's tip edge and the gear flank after the EAP (s > g_α), region 3.
+
+    The pinion tip left E = T1 + ρ_EAP1·d a pinion turn (s − g_α)/r_b1 ago: P = R((s − g_α)/r_b1)·E.
+    Its distance from the gear flank along the gear involute normal n2 is
+    r_b2·(σ2(P) − σ2,flank), σ2 = θ2 + inv(u2) in the gear-centred polar angle,
+    σ2,flank = π − αwt + (ρ_EAP2 − s)/r_b2; the pinion rotation that closes it is that
+    distance over |n2·(e_z × P)| (the moment arm of n2 about the pinion axis), times r_b1
+    to give the transverse gap. Modifications as in :func:`approach_tip_separation`.
+
+    Returns (gap, rho_gear): NaN where the touched gear roll length falls below its form circle.
+    """
+    s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
+    awt, t1, d = _frame(geom)
+    rb1, rb2 = (float(r) for r in geom.base_radius)
+    a = geom.center_distance
+    g = geom.path_of_contact
+    ex, ey = t1 + geom.rho_eap[0] * d
+    psi = (s - g) / rb1
+    c, sn = np.cos(psi), np.sin(psi)
+    px = c * ex - sn * ey
+    py = sn * ex + c * ey
+    vx, vy = px - a, py
+    with np.errstate(invalid="ignore"):
+        u2 = np.sqrt((vx * vx + vy * vy) / rb2**2 - 1.0)
+    theta2 = np.arctan2(vy, vx)
+    dist = rb2 * (_wrap(theta2 - (math.pi - awt)) + _inv(u2) - (geom.rho_eap[1] - s) / rb2)
+    rho_g = rb2 * u2
+    tau2 = theta2 - np.arctan(u2)
+    n2x, n2y = -np.sin(tau2), np.cos(tau2)
+    arm = np.abs(-n2x * py + n2y * px)
+    tau1 = np.arctan2(py, px) - math.atan(geom.rho_eap[0] / rb1)
+    cosang = np.abs(np.cos(tau1 - tau2))
+    cb = math.cos(geom.base_helix_angle)
+    normal_gap = dist + (modification_depth(geom, 1, rho_g, z)
+                         + modification_depth(geom, 0, np.full(s.shape, geom.rho_eap[0]), z) * cosang) / cb
+    gap = normal_gap * rb1 / arm + lead_deviation(geom, lead_slope, z)
+    ok = np.isfinite(rho_g) & (rho_g >= geom.rho_form[1] - 1e-12)
+    return np.where(ok, gap, np.nan), np.where(ok, rho_g, np.nan)
+
+
+# --------------------------------------------------------------------------------------
+# The candidate grid
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class CandidateGrid:
+    """Every candidate contact point at every roll (SI); arrays (P, J, N) unless stated.
+
+    roll (P,) pinion roll distance r_b1·φ1 (m); pairs (J,) tooth-pair indices j; z (N,)
+    point (slice centre) positions across the face (m), dz their width (m); s position on
+    the line of action from A (m); region 0 none / 1 flank / 2 gear tip on pinion flank
+    (approach) / 3 pinion tip on gear flank (recess); rho_pinion, rho_gear the roll
+    lengths (m) of the touched points (the tip roll length for the tip edge); gap the
+    unloaded transverse separation (m), NaN where not a candidate.
+    """
+
+    roll: np.ndarray
+    pairs: np.ndarray
+    z: np.ndarray
+    dz: float
+    s: np.ndarray
+    region: np.ndarray
+    rho_pinion: np.ndarray
+    rho_gear: np.ndarray
+    gap: np.ndarray
+    extension: float
+
+    @property
+    def candidate(self) -> np.ndarray:
+        return self.region > 0
+
+
+def _pair_range(geom: PairGeometry, roll: np.ndarray, ext: float) -> np.ndarray:
+    half_axial = 0.5 * geom.face_width * math.tan(geom.base_helix_angle)
+    pbt = geom.transverse_base_pitch
+    j_min = math.floor((-ext - half_axial - float(roll.max())) / pbt)
+    j_max = math.ceil((geom.path_of_contact + ext + half_axial - float(roll.min())) / pbt)
+    return np.arange(j_min, j_max + 1)
+
+
+def candidate_grid(geom: PairGeometry, roll, n_points: int = 50, lead_slope=(0.0, 0.0),
+                   extension: float = DEFAULT_EXTENSION, pairs: np.ndarray | None = None) -> CandidateGrid:
+    """Candidate points and their unloaded separations at the pinion rolls ``roll`` (m).
+
+    ``n_points`` slice centres across the face; ``lead_slope`` (m over the face width,
+    [pinion, gear]); ``extension`` the reach beyond the active zone as a fraction of the
+    transverse base pitch (0: flank contact only). Tooth pairs that never have a candidate
+    are dropped unless ``pairs`` is given.
+    """
+    roll = np.atleast_1d(np.asarray(roll, dtype=float))
+    ext = float(extension) * geom.transverse_base_pitch
+    z, dz = point_centres(geom, n_points)
+    trim = pairs is None
+    if trim:
+        pairs = _pair_range(geom, roll, ext)
+    pairs = np.asarray(pairs)
+    g = geom.path_of_contact
+    s = (roll[:, None, None] + pairs[None, :, None] * geom.transverse_base_pitch
+         + hand_sign(geom) * z[None, None, :] * math.tan(geom.base_helix_angle))
+    zz = np.broadcast_to(z, s.shape)
+    region = np.zeros(s.shape, dtype=np.int8)
+    flank = (s >= 0) & (s <= g)
+    appr = (s < 0) & (s >= -ext)
+    rec = (s > g) & (s <= g + ext)
+    gap = np.full(s.shape, np.nan)
+    rho1 = np.full(s.shape, np.nan)
+    rho2 = np.full(s.shape, np.nan)
+    if flank.any():
+        gap[flank] = flank_separation(geom, s[flank], zz[flank], lead_slope)
+        rho1[flank] = geom.rho_sap[0] + s[flank]
+        rho2[flank] = geom.rho_eap[1] - s[flank]
+        region[flank] = REGION_FLANK
+    if appr.any():
+        ga, ra = approach_tip_separation(geom, s[appr], zz[appr], lead_slope)
+        gap[appr], rho1[appr], rho2[appr] = ga, ra, geom.rho_eap[1]
+        region[appr] = np.where(np.isfinite(ga), REGION_APPROACH_TIP, REGION_NONE)
+    if rec.any():
+        gr, rr = recess_tip_separation(geom, s[rec], zz[rec], lead_slope)
+        gap[rec], rho1[rec], rho2[rec] = gr, geom.rho_eap[0], rr
+        region[rec] = np.where(np.isfinite(gr), REGION_RECESS_TIP, REGION_NONE)
+    none = region == REGION_NONE
+    gap[none] = rho1[none] = rho2[none] = np.nan
+    if trim:
+        keep = (region > 0).any(axis=(0, 2))
+        if keep.any() and not keep.all():
+            idx = np.flatnonzero(keep)
+            sl = slice(idx[0], idx[-1] + 1)
+            pairs, s, region, rho1, rho2, gap = pairs[sl], s[:, sl], region[:, sl], rho1[:, sl], rho2[:, sl], gap[:, sl]
+    return CandidateGrid(roll=roll, pairs=pairs, z=z, dz=dz, s=s, region=region, rho_pinion=rho1,
+                         rho_gear=rho2, gap=gap, extension=ext)
+
+
+# --------------------------------------------------------------------------------------
+# The start of engagement
+# --------------------------------------------------------------------------------------
+
+
+def engagement_point(geom: PairGeometry) -> tuple[float, int, float]:
+    """The theoretical start of engagement φ1A of the next tooth pair within one mesh cycle.
+
+    The line of pair j first reaches the start of active profile (s = 0) at the face end
+    where h·z·tan βb is largest, z_A = h·b/2 (the corner of the entering tooth): at
+    roll_A + j·p_bt + (b/2)·tan βb = 0. Returns (roll_A in [0, p_bt) in m, the entering
+    pair index j_A, z_A in m). For β = 0 the whole line enters at once (z_A = 0).
+    """
+    pbt = geom.transverse_base_pitch
+    half_axial = 0.5 * geom.face_width * math.tan(geom.base_helix_angle)
+    roll_a = (-half_axial) % pbt
+    if roll_a >= pbt * (1 - 1e-12):
+        roll_a = 0.0
+    j_a = int(round(-(roll_a + half_axial) / pbt))
+    z_a = hand_sign(geom) * 0.5 * geom.face_width if half_axial > 0 else 0.0
+    return float(roll_a), j_a, float(z_a)
+
+
+# --------------------------------------------------------------------------------------
+# TCA
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class TCAResult:
+    """Unloaded TCA over one mesh cycle (SI, transverse displacements along the line of action).
+
+    grid : the :class:`CandidateGrid` (separations of every point).
+    te : (P,) unloaded transmission error, the smallest separation over all pairs (m).
+    te_pair : (P, J) each tooth pair's own TE curve, its smallest separation (m).
+    contact_s, contact_z, contact_rho_pinion, contact_rho_gear : (P, J) where each pair
+        touches first (the centre of its points within ``tolerance`` of its smallest
+        separation), m; NaN for a pair without candidates.
+    roll_engagement, pair_engagement, z_engagement : the start of engagement
+        (:func:`engagement_point`).
+    te_at_engagement : TE (m) of the whole mesh at φ1A.
+    te_next_pair_at_engagement : the entering pair's own separation (m) at φ1A — its TE
+        curve there (seed 000's TE(φ1A), compared with LTE(φ1A)).
+    lead_slope : (2,) lead slope errors (m over the face width).
+    """
+
+    grid: CandidateGrid
+    te: np.ndarray
+    te_pair: np.ndarray
+    contact_s: np.ndarray
+    contact_z: np.ndarray
+    contact_rho_pinion: np.ndarray
+    contact_rho_gear: np.ndarray
+    roll_engagement: float
+    pair_engagement: int
+    z_engagement: float
+    te_at_engagement: float
+    te_next_pair_at_engagement: float
+    lead_slope: tuple[float, float]
+
+    @property
+    def te_peak_to_peak(self) -> float:
+        return float(np.nanmax(self.te) - np.nanmin(self.te))
+
+
+def _first_contact(grid: CandidateGrid, te_pair: np.ndarray, tolerance: float):
+    near = np.isfinite(grid.gap) & (grid.gap <= te_pair[..., None] + tolerance)
+    cnt = near.sum(axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        def centre(a):
+            return np.where(cnt > 0, np.where(near, a, 0.0).sum(axis=-1) / cnt, np.nan)
+        zz = np.broadcast_to(grid.z, grid.s.shape)
+        return (centre(grid.s), centre(zz), centre(np.nan_to_num(grid.rho_pinion)),
+                centre(np.nan_to_num(grid.rho_gear)))
+
+
+def _nanmin(a, axis):
+    with np.errstate(invalid="ignore"):
+        fin = np.isfinite(a)
+        out = np.min(np.where(fin, a, np.inf), axis=axis)
+    return np.where(np.isinf(out), np.nan, out)
+
+
+def engagement_separation(geom: PairGeometry, n_points: int, lead_slope, extension: float) -> tuple[float, float]:
+    """(TE of the mesh, separation of the entering pair) at φ1A (m): the grid points at
+    roll_A and, exactly, the entering corner (s = 0, z = z_A)."""
+    roll_a, j_a, z_a = engagement_point(geom)
+    grid = candidate_grid(geom, np.array([roll_a]), n_points, lead_slope, extension)
+    corner = float(flank_separation(geom, 0.0, z_a, lead_slope))
+    per_pair = _nanmin(grid.gap[0], axis=-1)
+    k = np.flatnonzero(grid.pairs == j_a)
+    nxt = corner if k.size == 0 or not np.isfinite(per_pair[k[0]]) else min(corner, float(per_pair[k[0]]))
+    return float(min(np.nanmin(per_pair), nxt)), nxt
+
+
+def tca(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
+        extension: float = DEFAULT_EXTENSION, tolerance: float = 1e-9) -> TCAResult:
+    """Unloaded tooth contact analysis over one mesh cycle.
+
+    Parameters
+    ----------
+    geom : pair geometry (its pair carries the modifications of both gears).
+    positions : pinion roll positions evenly over one transverse base pitch.
+    points : points (slice centres) per contact line across the face width.
+    lead_slope : lead slope errors [pinion, gear] in m over the face width
+        (:func:`lead_deviation`).
+    extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
+    tolerance : separation (m) within which points count as the first contact of a pair.
+
+    The unloaded TE at each roll is the smallest separation of any candidate point (the
+    rotation, ×r_b1, that closes it: module docstring); an unmodified aligned pair has
+    zero TE to round-off because every flank point of the active zone has zero gap.
+    """
+    check_modifications(geom)
+    positions = _check_count("positions", positions, 1, 100000)
+    points = _check_count("points", points, 1, 100000)
+    if not (isinstance(extension, (int, float)) and math.isfinite(extension) and 0 <= extension <= 1):
+        raise GearmeshInputError("corner_extension", extension, "must lie in [0, 1] (fraction of the base pitch)")
+    lead_slope = tuple(float(v) for v in lead_slope)
+    roll = mesh_cycle_rolls(geom, positions)
+    grid = candidate_grid(geom, roll, points, lead_slope, extension)
+    te_pair = _nanmin(grid.gap, axis=-1)
+    te = _nanmin(te_pair, axis=-1)
+    cs, cz, c1, c2 = _first_contact(grid, te_pair, tolerance)
+    roll_a, j_a, z_a = engagement_point(geom)
+    te_a, next_a = engagement_separation(geom, points, lead_slope, extension)
+    return TCAResult(grid=grid, te=te, te_pair=te_pair, contact_s=cs, contact_z=cz, contact_rho_pinion=c1,
+                     contact_rho_gear=c2, roll_engagement=roll_a, pair_engagement=j_a, z_engagement=z_a,
+                     te_at_engagement=te_a, te_next_pair_at_engagement=next_a, lead_slope=lead_slope)

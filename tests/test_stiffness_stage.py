@@ -1,0 +1,99 @@
+"""The stiffness stage as a user meets it: dataset, tables, variants, CLI."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+from pairs import seed001_pair1
+
+from gearmesh.cli import main
+from gearmesh.datasets.stiffness import (
+    apply_variant,
+    slice_convergence_dataset,
+    stiffness_dataset,
+    stiffness_table_dataset,
+)
+from gearmesh.errors import GearmeshInputError
+from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.io import add_provenance, read_dataset, write_dataset
+
+
+@pytest.fixture(scope="module")
+def pair1():
+    return load_pair(seed001_pair1())
+
+
+def test_dataset_is_documented_and_consistent(pair1, tmp_path):
+    ds = stiffness_dataset(pair1, positions=90, torque_Nm=200, torque_on="gear")
+    back = read_dataset(write_dataset(add_provenance(ds, {}, "", "t"), tmp_path / "k.nc"))
+    k = back["mesh_stiffness"].values
+    # the Fourier mean is the mean of K; the LSTE is F/K with F = T1/r_b1, T1 = T2 z1/z2
+    assert float(back.fourier_mean) == pytest.approx(k.mean(), rel=1e-12)
+    geom = pair_geometry(pair1)
+    force = 200 * 29 / 49 / geom.base_radius[0]
+    np.testing.assert_allclose(back["lste"].values, force / k, rtol=1e-12)
+    assert float(back.min_stiffness) <= k.min() and float(back.max_stiffness) >= k.max()
+    # components in series give K back
+    inv = (1 / back["component_stiffness"].values).sum(axis=0)
+    np.testing.assert_allclose(1 / inv, k, rtol=1e-9)
+
+
+def test_integer_overlap_pairs_have_flat_stiffness(pair1):
+    """Seed 001 Table 1: pairs 2 (beta 15.95) and 3 (b 31.66) have eps_beta = 1 -> eps_k ~ 0."""
+    pairs = {"p1": pair1,
+             "p2": load_pair(seed001_pair1(helix_angle_deg=15.9554207)),
+             "p3": load_pair(seed001_pair1(face_width_mm=31.6604943))}
+    table = stiffness_table_dataset(pairs, positions=120, torque_Nm=200, torque_on="gear")
+    eps_k = table["fluctuation"].values[:, 0]
+    lste_pp = table["lste_peak_to_peak"].values[:, 0]
+    assert eps_k[0] > 0.2 and eps_k[1] < 1e-3 and eps_k[2] < 1e-3
+    assert lste_pp[1] < 0.01 * lste_pp[0] and lste_pp[2] < 0.01 * lste_pp[0]
+    # a wider face is stiffer: lower mean LSTE (seed 001 section 5)
+    assert table["lste_mean"].values[2, 0] < table["lste_mean"].values[0, 0]
+
+
+def test_contact_ratio_variants_reach_their_targets(pair1):
+    p = apply_variant(pair1, "r", {"eps_alpha": 1.6, "eps_beta": 2.0})
+    geom = pair_geometry(p)
+    assert geom.eps_alpha == pytest.approx(1.6, abs=1e-9) and geom.eps_beta == pytest.approx(2.0, abs=1e-9)
+    assert p.name == f"{pair1.name}-r"
+    with pytest.raises(GearmeshInputError) as info:
+        apply_variant(pair1, "bad", {"eps_alpha": 0.8})
+    assert info.value.field == "eps_alpha"
+
+
+def test_clipped_slices_converge_at_second_order(pair1):
+    ds = slice_convergence_dataset({"p1": pair1}, slices=(20, 40, 80, 640), positions=60)
+    err = np.abs(ds["mean_relative_difference"].sel(rule="clip").values[0, :3])
+    order = np.log2(err[:-1] / err[1:])
+    assert np.all(order > 1.7), order
+
+
+def test_cli_stiffness_json(root, capsys):
+    assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), "--torque-Nm", "200", "--on", "gear",
+                 "--positions", "90", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    for key in ("mean_mesh_stiffness_N_per_m", "min_mesh_stiffness_N_per_m", "max_mesh_stiffness_N_per_m",
+                "fluctuation_percent", "iso6336_c_single_N_per_mm_um", "iso6336_c_gamma_alpha_N_per_mm_um",
+                "lste_mean_um", "lste_peak_to_peak_um"):
+        assert key in out
+    assert out["min_mesh_stiffness_N_per_m"] < out["mean_mesh_stiffness_N_per_m"] < out["max_mesh_stiffness_N_per_m"]
+
+
+@pytest.mark.parametrize("args, field", [
+    (["--torque-Nm", "-5"], "torque_Nm"),
+    (["--slices", "0"], "--slices"),
+])
+def test_cli_stiffness_refuses_bad_options(root, capsys, args, field):
+    assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), *args]) == 2
+    assert capsys.readouterr().err.startswith(f"gearmesh: error: {field}")
+
+
+def test_cli_stiffness_refuses_missing_material(tmp_path, capsys):
+    path = tmp_path / "p.yaml"
+    path.write_text("name: p\nteeth: [29, 49]\nnormal_module_mm: 2\nnormal_pressure_angle_deg: 20\n"
+                    "helix_angle_deg: 10\nface_width_mm: 20\nbore_radius_mm: [10, 20]\n")
+    assert main(["stiffness", str(path)]) == 2
+    assert capsys.readouterr().err.startswith("gearmesh: error: material")
