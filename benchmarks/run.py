@@ -10,25 +10,14 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import statistics
-import time
-from pathlib import Path
 
 import numpy as np
 
+from bench_dynamics import bench_dynamics
+from bench_ltca import bench_ltca
+from common import ROOT, median_seconds
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
 from gearmesh.gear import load_pair, pair_geometry
-
-ROOT = Path(__file__).resolve().parents[1]
-
-
-def median_seconds(func, repeats: int) -> tuple[float, object]:
-    times, result = [], None
-    for _ in range(repeats):
-        t0 = time.perf_counter()
-        result = func()
-        times.append(time.perf_counter() - t0)
-    return statistics.median(times), result
 
 
 def contact_length_pointwise(geom, roll, n_points: int = 200) -> np.ndarray:
@@ -82,7 +71,8 @@ def bench_tvms(repeats: int) -> dict:
             "max_rel_diff": float(np.max(np.abs(check - ref) / ref))}
 
 
-BENCHMARKS = {"contact_lines": bench_contact_lines, "tvms": bench_tvms}
+BENCHMARKS = {"contact_lines": bench_contact_lines, "tvms": bench_tvms, "ltca": bench_ltca,
+              "dynamics": bench_dynamics}
 
 
 def main() -> None:

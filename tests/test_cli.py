@@ -56,3 +56,23 @@ def test_bad_input_exits_2_with_one_message(tmp_path, root, monkeypatch, text, f
     lines = proc.stderr.strip().splitlines()
     assert len(lines) == 1 and lines[0].startswith(f"gearmesh: error: {field}")
     assert proc.stdout == ""
+
+
+def test_dynamics_json_per_speed(root, capsys):
+    assert main(["dynamics", str(root / "config/pairs/seed001_pair1.yaml"), "--torque-Nm", "200",
+                 "--speeds", "4000:6000:1000", "--json"]) == 0
+    rows = json.loads(capsys.readouterr().out)["speeds"]
+    assert [r["speed_rpm"] for r in rows] == [4000.0, 5000.0, 6000.0]
+    for row in rows:
+        assert {"speed_rpm", "dte_rms_um", "mesh_force_mean_N", "mesh_force_max_N"} <= set(row)
+        assert row["mesh_force_max_N"] >= row["mesh_force_mean_N"] > 0
+
+
+@pytest.mark.parametrize("args, field", [
+    (["--torque-Nm", "0", "--speeds", "1000:2000:100"], "torque_Nm"),
+    (["--torque-Nm", "200", "--speeds", "2000:1000:100"], "speeds_rpm.stop"),
+    (["--torque-Nm", "200", "--speeds", "fast"], "speeds_rpm"),
+])
+def test_dynamics_refuses_bad_options(root, capsys, args, field):
+    assert main(["dynamics", str(root / "config/pairs/seed001_pair1.yaml"), *args]) == 2
+    assert capsys.readouterr().err.startswith(f"gearmesh: error: {field}")

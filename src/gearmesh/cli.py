@@ -39,6 +39,13 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
         print(json.dumps(_finite(result)))
         return
     width = max(len(k) for k in result)
+    rows = result.get("speeds") if isinstance(result.get("speeds"), list) else None
+    if rows:  # a table, one row per speed
+        keys = list(rows[0])
+        print("  ".join(f"{k:>18}" for k in keys))
+        for row in _finite(rows):
+            print("  ".join(f"{v:>18.6g}" if isinstance(v, float) else f"{v!s:>18}" for v in row.values()))
+        return
     for key, value in _finite(result).items():
         if isinstance(value, float):
             value = f"{value:.6g}"
@@ -86,6 +93,14 @@ def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
                              positions=args.positions, torque_Nm=args.torque_Nm, torque_on=args.on)
 
 
+def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
+    from .datasets.dynamics import dynamics_summary
+
+    rows = dynamics_summary(load_pair(args.pair), torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
+                            backlash_um=args.backlash_um)
+    return {"name": args.pair, "torque_Nm": args.torque_Nm, "torque_on": args.on, "speeds": rows}
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="gearmesh", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
@@ -111,6 +126,16 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="which gear carries --torque-Nm")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_stiffness)
+
+    p = sub.add_parser("dynamics", help="steady-state speed sweep of the 8-DOF helical pair (seed 001 model)")
+    p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml)")
+    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, required=True, help="torque (N m)")
+    p.add_argument("--on", choices=("pinion", "gear"), default="gear", help="which gear carries the torque")
+    p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
+    p.add_argument("--backlash-um", dest="backlash_um", type=float, default=60.0,
+                   help="total backlash 2b0 along the normal (µm, default 60)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_dynamics)
     return parser
 
 

@@ -48,12 +48,13 @@ What was changed from seed 001's printed equations, and why:
   is −2b0 < δ < 0 and back-side contact is δ < −2b0. The mesh damper acts only while the
   teeth touch (a viscous damper across an open gap would transmit force without contact).
 * Static transmission error e(t): seed 001 puts the loaded static TE e = F/K(t) into (1)
-  *and* keeps k_m(t) in (2). Then the quasi-static solution is δ = 2F/K(t): the stiffness
-  fluctuation is counted twice. The default here (``excitation='tvms'``) is the consistent
-  form: e(t) is the *unloaded* (kinematic) TE, zero for unmodified flanks, and the
-  fluctuation of k_m(t) is the excitation, whose quasi-static response is δ = F/K(t), the
-  LSTE of seed 001 §2. ``excitation='lste'`` reproduces the seed literally; a tabulated
-  unloaded TE (e.g. from LTCA) can be added with ``transmission_error``.
+  *and* keeps k_m(t) in (2). Then the quasi-static solution still has δ = F/K(t), but the
+  approach of the bodies, δ + e (what the rotations and bearings see), is 2F/K(t): the
+  stiffness fluctuation is counted twice. The default here (``excitation='tvms'``) is the
+  consistent form: e(t) is the *unloaded* (kinematic) TE, zero for unmodified flanks, and
+  the fluctuation of k_m(t) is the excitation, whose quasi-static response is an approach
+  δ = F/K(t), the LSTE of seed 001 §2. ``excitation='lste'`` reproduces the seed literally;
+  a tabulated unloaded TE (e.g. from LTCA) can be added with ``transmission_error``.
 
 Stiffness: k_m(t) is the stiffness along the normal, K_n = K/cos²βb, with K the transverse
 TVMS of :func:`gearmesh.stiffness.mesh_stiffness`, as a function of the pinion roll
@@ -506,7 +507,8 @@ class SweepResult:
 
     ``y_mean``, ``y_std`` (n, S) mean and standard deviation of each reduced coordinate
     (m), ``v_rms`` (n, S) RMS of its velocity (m/s); ``dte_*`` (m, S) of δ (m);
-    ``force_*`` (m, S) of F (N); ``gap_fraction``, ``back_fraction`` (m, S) fractions of
+    ``force_*`` (m, S) of F (N; min and max at the steps, as ``dte_min``, ``dte_max``);
+    ``gap_fraction``, ``back_fraction`` (m, S) fractions of
     the record window in contact loss (−2b0 < δ < 0) and back-side contact (δ < −2b0);
     ``steady_change`` (m, S) relative change of the DTE standard deviation between the
     two halves of the window; ``series`` optional per-speed time series.
@@ -523,6 +525,8 @@ class SweepResult:
     dte_mean: np.ndarray
     dte_std: np.ndarray
     dte_rms: np.ndarray
+    dte_min: np.ndarray
+    dte_max: np.ndarray
     force_mean: np.ndarray
     force_min: np.ndarray
     force_max: np.ndarray
@@ -608,6 +612,8 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     ys = model.static_state() if y0 is None else np.asarray(y0, dtype=float)
     Y = np.zeros((2 * n, S))
     Y[:n] = ys[:, None]
+    ys_col = ys[:, None]
+    d_ref = (model.G @ ys)[:, None]
 
     def force(Y, k, e, ed):
         d = G2 @ Y
@@ -637,6 +643,7 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     sd, sdd, sf, sff = z(nm, S), z(nm, S), z(nm, S), z(nm, S)
     sd_h, sdd_h = z(nm, S), z(nm, S)  # second half of the window
     fmin, fmax = np.full((nm, S), np.inf), np.full((nm, S), -np.inf)
+    dmin, dmax = np.full((nm, S), np.inf), np.full((nm, S), -np.inf)
     ngap, nback = z(nm, S), z(nm, S)
     rec_first = int(rec_start.min())
     store = [dict(t=[], delta=[], F=[], y=[], v=[]) for _ in range(S)] if series else None
@@ -667,19 +674,23 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
                 w = (step >= rec_start)
                 wf = w.astype(float)
                 wh = (step >= half_start).astype(float)
-                Yw = Y * wf
-                sy += Yw[:n]
-                syy += Yw[:n] * Y[:n]
-                svv += Yw[n:] * Y[n:]
-                dw = delta * wf
+                yc = Y[:n] - ys_col  # shifted by the static state: no cancellation in the variance
+                yw = yc * wf
+                sy += yw
+                syy += yw * yc
+                svv += Y[n:] * Y[n:] * wf
+                dc = delta - d_ref
+                dw = dc * wf
                 sd += dw
-                sdd += dw * delta
-                sd_h += delta * wh
-                sdd_h += delta * delta * wh
+                sdd += dw * dc
+                sd_h += dc * wh
+                sdd_h += dc * dc * wh
                 sf += F * wf
                 sff += F * F * wf
                 fmin = np.minimum(fmin, np.where(w, F, np.inf))
                 fmax = np.maximum(fmax, np.where(w, F, -np.inf))
+                dmin = np.minimum(dmin, np.where(w, delta, np.inf))
+                dmax = np.maximum(dmax, np.where(w, delta, -np.inf))
                 if not linear:
                     ngap += ((delta < 0) & (delta > -bl)) * wf
                     nback += (delta <= -bl) * wf
@@ -703,9 +714,11 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
             Y = Y + (h / 6.0) * (K1 + 2.0 * K2 + 2.0 * K3 + K4)
     N = (n_rec * m).astype(float)[None, :]
     Nh = N / 2
-    y_mean = sy / N
-    dte_mean = sd / N
-    dte_var = np.maximum(sdd / N - dte_mean**2, 0.0)
+    yc_mean = sy / N
+    y_mean = yc_mean + ys_col
+    dc_mean = sd / N
+    dte_mean = dc_mean + d_ref
+    dte_var = np.maximum(sdd / N - dc_mean**2, 0.0)
     m1 = (sd - sd_h) / Nh
     v1 = np.maximum((sdd - sdd_h) / Nh - m1**2, 0.0)
     m2 = sd_h / Nh
@@ -718,8 +731,9 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
         out_series = [{k: np.asarray(v) for k, v in st.items()} for st in store]
     return SweepResult(
         speed_rpm=speed_rpm, mesh_frequency=f_mesh, steps_per_cycle=m, transient_cycles=n_tr, dt=dt,
-        y_mean=y_mean, y_std=np.sqrt(np.maximum(syy / N - y_mean**2, 0.0)), v_rms=np.sqrt(svv / N),
-        dte_mean=dte_mean, dte_std=np.sqrt(dte_var), dte_rms=np.sqrt(sdd / N),
+        y_mean=y_mean, y_std=np.sqrt(np.maximum(syy / N - yc_mean**2, 0.0)), v_rms=np.sqrt(svv / N),
+        dte_mean=dte_mean, dte_std=np.sqrt(dte_var), dte_rms=np.sqrt(dte_var + dte_mean**2),
+        dte_min=dmin, dte_max=dmax,
         force_mean=f_mean, force_min=fmin, force_max=fmax, force_std=np.sqrt(np.maximum(sff / N - f_mean**2, 0.0)),
         gap_fraction=ngap / N, back_fraction=nback / N, steady_change=change, n_steps=n_steps,
         series=out_series)

@@ -30,8 +30,14 @@ its s lies within the active zone [0, g_α] (flank-to-flank, region 1) or up to
 ``extension`` beyond it, where load can bring a tip corner into contact before SAP or
 after EAP (seed 000, scenario 1):
 
-* region 2, s < 0 (approach): the gear's tip edge against the pinion flank below its SAP;
-* region 3, s > g_α (recess): the pinion's tip edge against the gear flank below its SAP.
+* region 2, s < 0 (approach): the gear's tip edge, not yet at the start of the path of
+  contact A, against the pinion flank;
+* region 3, s > g_α (recess): the pinion's tip edge, past the end of the path E, against
+  the gear flank.
+
+The tip edge moves on its tip circle, off the line of action, and touches the mating flank
+at a roll length slightly *above* that flank's SAP (the tip circle leaves A away from the
+mating centre): the extended path of contact of corner contact.
 
 Their separation is the exact 2-D distance, per transverse slice, between the tip point
 of one gear (rotated to where it is at that roll) and the involute of the other:
@@ -69,9 +75,9 @@ from .surface import modification_depth
 
 __all__ = [
     "REGION_NONE", "REGION_FLANK", "REGION_APPROACH_TIP", "REGION_RECESS_TIP",
-    "CandidateGrid", "TCAResult", "check_modifications", "check_lead_slope", "point_centres",
+    "CandidateGrid", "TCAResult", "check_modifications", "check_lead_slope", "check_extension", "point_centres",
     "lead_deviation", "flank_separation", "approach_tip_separation", "recess_tip_separation",
-    "candidate_grid", "engagement_point", "tca",
+    "candidate_grid", "engagement_point", "engagement_separation", "tca",
 ]
 
 REGION_NONE, REGION_FLANK, REGION_APPROACH_TIP, REGION_RECESS_TIP = 0, 1, 2, 3
@@ -91,14 +97,19 @@ _MOD_FIELDS = (("root_relief", "root_relief_um", 1e6), ("tip_relief", "tip_relie
                ("unmodified_lead_length", "unmodified_lead_length_mm", 1e3))
 
 
-def check_modifications(geom: PairGeometry) -> None:
+def check_modifications(pair_or_geom) -> None:
     """Refuse non-finite or negative modification parameters (also for pairs built in code).
 
-    Lengths against the flank and the face are checked by
-    :func:`gearmesh.gear.validate_modifications` (run by ``pair_geometry``); this adds the
-    sign and finiteness, naming the pair-file key (GearmeshInputError).
+    Accepts a :class:`~gearmesh.gear.GearPair` or a :class:`PairGeometry`. Lengths against
+    the flank and the face are checked by :func:`gearmesh.gear.validate_modifications`
+    (run by ``pair_geometry``); this adds the sign and finiteness, naming the pair-file key
+    (GearmeshInputError).
     """
-    for gear, mod in zip(GEARS, geom.pair.modification):
+    pair = getattr(pair_or_geom, "pair", pair_or_geom)
+    mods = getattr(pair, "modification", None)
+    if not isinstance(mods, (tuple, list)) or len(mods) != 2:
+        raise GearmeshInputError("modification", mods, "must hold one modification per gear [pinion, gear]")
+    for gear, mod in zip(GEARS, mods):
         for attr, key, scale in _MOD_FIELDS:
             v = getattr(mod, attr)
             if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) \
@@ -132,6 +143,14 @@ def _check_count(name: str, value, minimum: int, maximum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not minimum <= value <= maximum:
         raise GearmeshInputError(name, value, f"must be an integer in [{minimum}, {maximum}]")
     return int(value)
+
+
+def check_extension(extension) -> float:
+    """The reach of the tip-edge candidates (fraction of p_bt) as a float in [0, 1]."""
+    if isinstance(extension, bool) or not isinstance(extension, (int, float, np.floating, np.integer)) \
+            or not math.isfinite(extension) or not 0 <= extension <= 1:
+        raise GearmeshInputError("corner_extension", extension, "must lie in [0, 1] (fraction of the base pitch)")
+    return float(extension)
 
 
 # --------------------------------------------------------------------------------------
@@ -196,7 +215,7 @@ def _frame(geom: PairGeometry):
 
 
 def approach_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
-    """Gap (m) between the gear's tip edge and the pinion flank before the SAP (s < 0), region 2.
+    """Gap (m) between the gear's tip edge and the pinion flank before the gear tip reaches A (s < 0), region 2.
 
     In the transverse slice the gear tip point reaches A = T1 + ρ_SAP1·d after the gear
     turns on (clockwise) by −s/r_b2, so now it sits at P = O2 + R(−s/r_b2)(A − O2). The
@@ -236,7 +255,7 @@ def approach_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
 
 
 def recess_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
-    """Gap (m) between the pinion's tip edge and the gear flank after the EAP (s > g_α), region 3.
+    """Gap (m) between the pinion's tip edge and the gear flank after the pinion tip left E (s > g_α), region 3.
 
     The pinion tip left E = T1 + ρ_EAP1·d a pinion turn (s − g_α)/r_b1 ago: P = R((s − g_α)/r_b1)·E.
     Its distance from the gear flank along the gear involute normal n2 is
@@ -485,8 +504,7 @@ def tca(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0
     check_modifications(geom)
     positions = _check_count("positions", positions, 1, 100000)
     points = _check_count("points", points, 1, 100000)
-    if not (isinstance(extension, (int, float)) and math.isfinite(extension) and 0 <= extension <= 1):
-        raise GearmeshInputError("corner_extension", extension, "must lie in [0, 1] (fraction of the base pitch)")
+    extension = check_extension(extension)
     lead_slope = tuple(float(v) for v in lead_slope)
     roll = mesh_cycle_rolls(geom, positions)
     grid = candidate_grid(geom, roll, points, lead_slope, extension)

@@ -56,8 +56,24 @@ def pair_results(name):
     ]
 
 
+def variant_results(name, variant):
+    """Files every micro-geometry variant of a pair gets, by the stages the study configures."""
+    base = f"results/{STUDY}/{name}/{variant}"
+    out = []
+    if "tca" in config:
+        out += [f"{base}/tca.nc", f"{base}/plots/tca.png"]
+    if "ltca" in config:
+        out += [f"{base}/ltca.nc", f"{base}/plots/te_lte.png", f"{base}/plots/contact_pattern.png"]
+    if "dynamics" in config:
+        out += [f"{base}/dynamics.nc", f"{base}/plots/dynamics_rms.png", f"{base}/plots/dynamics_spectrum.png"]
+    if "train_dynamics" in config:
+        out += [f"{base}/train.nc", f"{base}/plots/train_spectrum.png"]
+    return out
+
+
 def all_targets():
     targets = [f for name in config["pairs"] for f in pair_results(name)]
+    targets += [f for name in config["pairs"] for v in VARIANTS for f in variant_results(name, v)]
     if "helix_sweep" in config:
         targets += [f"results/{STUDY}/helix_sweep.nc", f"results/{STUDY}/plots/helix_sweep.png"]
     for table in ("stiffness_table", "slice_convergence"):

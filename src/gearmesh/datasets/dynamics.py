@@ -1,0 +1,516 @@
+"""Dynamics-stage datasets: the speed sweep of the 8-DOF pair (seed 001 §4–5) and the 9-DOF
+plate–blanket–impression train (seed 004), from :mod:`gearmesh.dynamics`.
+
+Engineering units at the boundary (rpm, N·m, µm, N·s/m), SI inside and in the datasets. Every
+variable has ``units`` and ``long_name``. Statistics are over the steady-state record window
+(whole mesh periods, :func:`gearmesh.dynamics.simulate`): ``*_rms`` is sqrt(mean(x²)) with the
+mean included (as seed 001's RMS), ``*_std`` the fluctuation about the mean.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..dynamics import (
+    SEED001_BEARING,
+    TRAIN_GEARS,
+    GearModel,
+    SolverSettings,
+    SweepResult,
+    pair_model,
+    require_dynamics_data,
+    resonance_speeds,
+    simulate,
+    train_model,
+)
+from ..errors import GearmeshInputError
+from ..gear import GearPair, PairGeometry, pair_geometry
+from ..io import variable
+from ..stiffness import DEFAULT_SLICES, mesh_stiffness
+
+DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
+#: Seed 004: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
+SEED004_MESH_FREQUENCY_HZ = 249.4
+SEED004_STATIC_FORCE_N = 2832.0
+MAX_SPEEDS = 20000
+
+
+# --------------------------------------------------------------------------------------
+# Boundary checks and conversions
+# --------------------------------------------------------------------------------------
+
+
+def speed_grid(speeds: Mapping[str, float] | Sequence[float] | str | float) -> np.ndarray:
+    """Speeds (rpm) from {start, stop, step} (stop included), a list, 'START:STOP:STEP' or one number.
+
+    Refuses non-positive or non-finite speeds, stop < start, step <= 0 and more than
+    :data:`MAX_SPEEDS` speeds (GearmeshInputError naming ``speeds_rpm``).
+    """
+    if isinstance(speeds, str):
+        parts = speeds.split(":")
+        try:
+            vals = [float(p) for p in parts]
+        except ValueError:
+            raise GearmeshInputError("speeds_rpm", speeds, "must be START:STOP:STEP numbers") from None
+        if len(vals) == 1:
+            speeds = vals
+        elif len(vals) == 3:
+            speeds = dict(zip(("start", "stop", "step"), vals))
+        else:
+            raise GearmeshInputError("speeds_rpm", speeds, "must be START:STOP:STEP or one speed")
+    if isinstance(speeds, Mapping):
+        unknown = sorted(set(speeds) - {"start", "stop", "step"})
+        if unknown:
+            raise GearmeshInputError(f"speeds_rpm.{unknown[0]}", speeds[unknown[0]], "unknown key (start, stop, step)")
+        try:
+            start, stop, step = (float(speeds[k]) for k in ("start", "stop", "step"))
+        except KeyError as exc:
+            raise GearmeshInputError(f"speeds_rpm.{exc.args[0]}", None, "is required") from None
+        except (TypeError, ValueError):
+            raise GearmeshInputError("speeds_rpm", dict(speeds), "start, stop, step must be numbers") from None
+        if not all(map(math.isfinite, (start, stop, step))):
+            raise GearmeshInputError("speeds_rpm", dict(speeds), "start, stop, step must be finite")
+        if start <= 0:
+            raise GearmeshInputError("speeds_rpm.start", start, "must be positive")
+        if step <= 0:
+            raise GearmeshInputError("speeds_rpm.step", step, "must be positive")
+        if stop < start:
+            raise GearmeshInputError("speeds_rpm.stop", stop, f"must not be below start ({start})")
+        count = int(math.floor((stop - start) / step + 1e-9)) + 1
+        if count > MAX_SPEEDS:
+            raise GearmeshInputError("speeds_rpm", dict(speeds), f"gives {count} speeds; at most {MAX_SPEEDS}")
+        return start + step * np.arange(count)
+    arr = np.atleast_1d(np.asarray(speeds, dtype=float)) if not isinstance(speeds, (bool,)) else None
+    if arr is None or arr.ndim != 1 or arr.size == 0 or not np.all(np.isfinite(arr)) or np.any(arr <= 0):
+        raise GearmeshInputError("speeds_rpm", speeds, "must be positive finite speeds")
+    if arr.size > MAX_SPEEDS:
+        raise GearmeshInputError("speeds_rpm", f"{arr.size} speeds", f"at most {MAX_SPEEDS}")
+    return arr
+
+
+def _torque(name: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+        raise GearmeshInputError(name, value, "must be a positive finite number (N m)")
+    return float(value)
+
+
+def _bearing(k_radial_N_per_m, k_axial_N_per_m, c_radial_Ns_per_m, c_axial_Ns_per_m) -> dict[str, float]:
+    out = {}
+    for key, name, v, positive in (("k_radial", "bearing_k_radial_N_per_m", k_radial_N_per_m, True),
+                                   ("k_axial", "bearing_k_axial_N_per_m", k_axial_N_per_m, True),
+                                   ("c_radial", "bearing_c_radial_Ns_per_m", c_radial_Ns_per_m, False),
+                                   ("c_axial", "bearing_c_axial_Ns_per_m", c_axial_Ns_per_m, False)):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0 \
+                or (positive and v == 0):
+            raise GearmeshInputError(name, v, "must be a positive finite number" if positive
+                                     else "must be a non-negative finite number")
+        out[key] = float(v)
+    return out
+
+
+def _solver(courant, steps_per_cycle_min, transient_tau, record_cycles) -> SolverSettings:
+    if not (isinstance(courant, (int, float)) and 0 < courant <= 1.0):
+        raise GearmeshInputError("courant", courant, "must lie in (0, 1] (RK4 accuracy bound on omega_max dt)")
+    if not (isinstance(steps_per_cycle_min, int) and steps_per_cycle_min >= 8):
+        raise GearmeshInputError("steps_per_cycle_min", steps_per_cycle_min, "must be an integer >= 8")
+    if not (isinstance(transient_tau, (int, float)) and transient_tau >= 1):
+        raise GearmeshInputError("transient_tau", transient_tau, "must be >= 1 (time constants of the slowest mode)")
+    if not (isinstance(record_cycles, int) and record_cycles >= 2 and record_cycles % 2 == 0):
+        raise GearmeshInputError("record_cycles", record_cycles, "must be an even integer >= 2")
+    return SolverSettings(courant=float(courant), steps_per_cycle_min=steps_per_cycle_min,
+                          transient_tau=float(transient_tau), record_cycles=record_cycles)
+
+
+def _stiffness_curve(geom: PairGeometry, stiffness: xr.Dataset | None, method: str, slices: int,
+                     positions: int) -> np.ndarray:
+    """Transverse TVMS K (N/m) at evenly spaced rolls over one base pitch: from the upstream
+    stiffness dataset (``mesh_stiffness`` on ``position``) or computed here."""
+    if stiffness is not None:
+        if "mesh_stiffness" not in stiffness:
+            raise GearmeshInputError("stiffness", "dataset", "has no 'mesh_stiffness' variable")
+        return np.asarray(stiffness["mesh_stiffness"].values, dtype=float)
+    return mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method, components=False).K
+
+
+def _transmission_error(transmission_error_um, ltca: xr.Dataset | None, ltca_variable: str):
+    if transmission_error_um is not None and ltca is not None:
+        raise GearmeshInputError("transmission_error_um", "given", "give either a table or an ltca dataset, not both")
+    if ltca is not None:
+        if ltca_variable not in ltca:
+            raise GearmeshInputError("ltca_variable", ltca_variable, "is not a variable of the ltca dataset")
+        return np.asarray(ltca[ltca_variable].values, dtype=float).ravel()
+    if transmission_error_um is None:
+        return None
+    te = np.asarray(transmission_error_um, dtype=float)
+    if te.ndim != 1 or te.size < 2 or not np.all(np.isfinite(te)):
+        raise GearmeshInputError("transmission_error_um", transmission_error_um,
+                                 "must be a list of >= 2 finite values (µm) over one mesh cycle")
+    return te * 1e-6
+
+
+# --------------------------------------------------------------------------------------
+# Time series and spectra of chosen speeds
+# --------------------------------------------------------------------------------------
+
+
+def _series_arrays(res: SweepResult, points_per_cycle: int, max_order: int, n_rec: int):
+    """Resample each speed's record window on ``points_per_cycle`` points per mesh period;
+    amplitude spectra (one-sided, FFT of the full-resolution periodic window) up to
+    ``max_order`` mesh orders; peak-to-peak of y, ẏ and ÿ (central differences)."""
+    S = res.speed_rpm.size
+    n_s = n_rec * points_per_cycle
+    n_o = max_order * n_rec + 1
+    out = {k: [] for k in ("t", "delta", "F", "y", "v", "F_spec", "delta_spec", "y_pp", "v_pp", "a_pp")}
+    for s in range(S):
+        st = res.series[s]
+        t = st["t"]
+        T = n_rec / res.mesh_frequency[s]
+        tg = np.arange(n_s) * (T / n_s)
+        out["t"].append(tg)
+        for key in ("delta", "F", "y", "v"):
+            arr = st[key]
+            out[key].append(np.stack([np.interp(tg, t, arr[:, j], period=T) for j in range(arr.shape[1])], axis=1))
+        N = t.size
+        for key in ("F", "delta"):
+            X = np.fft.rfft(st[key], axis=0) / N
+            amp = np.abs(X[:n_o])
+            amp[1:] *= 2.0
+            out[f"{key}_spec"].append(amp)
+        dt = float(res.dt[s])
+        acc = (np.roll(st["v"], -1, axis=0) - np.roll(st["v"], 1, axis=0)) / (2 * dt)
+        out["y_pp"].append(np.ptp(st["y"], axis=0))
+        out["v_pp"].append(np.ptp(st["v"], axis=0))
+        out["a_pp"].append(np.ptp(acc, axis=0))
+    return {k: np.stack(v) for k, v in out.items()}
+
+
+# --------------------------------------------------------------------------------------
+# 8-DOF pair sweep (seed 001)
+# --------------------------------------------------------------------------------------
+
+_PAIR_GEARS = ("pinion", "gear")
+_PAIR_DIRS = ("x", "y", "z")
+
+
+def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear", backlash_um: float | None = 60.0,
+                     bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
+                     bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
+                     bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
+                     bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
+                     damping_ratio: float = 0.07, mesh_damping_Ns_per_m: float | None = None,
+                     stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str = "tvms",
+                     method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                     transmission_error_um=None, stiffness: xr.Dataset | None = None,
+                     ltca: xr.Dataset | None = None, ltca_variable: str = "transmission_error") -> GearModel:
+    """The 8-DOF model of ``pair`` from engineering-unit settings (:func:`dynamics_dataset`)."""
+    geom = pair_geometry(pair)
+    require_dynamics_data(geom)
+    torque = _torque("torque_Nm", torque_Nm)
+    if on not in _PAIR_GEARS:
+        raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torque_Nm acts)")
+    t_out = torque if on == "gear" else torque * geom.base_radius[1] / geom.base_radius[0]
+    if backlash_um is not None and (isinstance(backlash_um, bool) or not isinstance(backlash_um, (int, float))
+                                    or not math.isfinite(backlash_um) or backlash_um < 0):
+        raise GearmeshInputError("backlash_um", backlash_um, "must be a non-negative number (µm) or null (none)")
+    if not (isinstance(fourier_order, int) and 0 <= fourier_order <= 50):
+        raise GearmeshInputError("fourier_order", fourier_order, "must be an integer in [0, 50]")
+    if mesh_damping_Ns_per_m is not None and not (isinstance(mesh_damping_Ns_per_m, (int, float))
+                                                  and mesh_damping_Ns_per_m >= 0):
+        raise GearmeshInputError("mesh_damping_Ns_per_m", mesh_damping_Ns_per_m, "must be >= 0 or null")
+    K = _stiffness_curve(geom, stiffness, method, slices, positions)
+    te = _transmission_error(transmission_error_um, ltca, ltca_variable)
+    return pair_model(geom, t_out, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
+                                                         bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
+                      damping_ratio=damping_ratio, backlash=None if backlash_um is None else backlash_um * 1e-6,
+                      stiffness_form=stiffness_form, order=fourier_order, excitation=excitation,
+                      transmission_error=te, mesh_damping=mesh_damping_Ns_per_m)
+
+
+def _common_vars(model: GearModel, res: SweepResult, mesh_dim: bool) -> dict[str, xr.Variable]:
+    """Mesh statistics of a sweep: (speed,) for one mesh, (speed, mesh) otherwise."""
+    dims = ("speed", "mesh") if mesh_dim else ("speed",)
+
+    def v(a):
+        return a.T if mesh_dim else a[0]
+
+    fs = model.static_force[:, None]
+    return {
+        "mesh_frequency": variable(("speed",), res.mesh_frequency, "Hz", "mesh frequency"),
+        "dte_rms": variable(dims, v(res.dte_rms), "m", "RMS of the dynamic transmission error along the normal "
+                            "(mean included)"),
+        "dte_mean": variable(dims, v(res.dte_mean), "m", "mean dynamic transmission error along the normal"),
+        "dte_std": variable(dims, v(res.dte_std), "m", "standard deviation of the dynamic transmission error"),
+        "dte_min": variable(dims, v(res.dte_min), "m", "minimum dynamic transmission error (at the steps)"),
+        "dte_max": variable(dims, v(res.dte_max), "m", "maximum dynamic transmission error (at the steps)"),
+        "mesh_force_mean": variable(dims, v(res.force_mean), "N", "mean dynamic mesh force (normal)"),
+        "mesh_force_min": variable(dims, v(res.force_min), "N", "minimum dynamic mesh force (at the steps)"),
+        "mesh_force_max": variable(dims, v(res.force_max), "N", "maximum dynamic mesh force (at the steps)"),
+        "mesh_force_std": variable(dims, v(res.force_std), "N", "standard deviation of the dynamic mesh force"),
+        "dynamic_factor": variable(dims, v(res.force_max / fs), "1", "dynamic factor: maximum over static mesh force"),
+        "contact_loss_fraction": variable(dims, v(res.gap_fraction), "1",
+                                          "fraction of time with the teeth apart (inside the backlash)"),
+        "back_side_fraction": variable(dims, v(res.back_fraction), "1", "fraction of time in back-side contact"),
+        "steady_state_change": variable(dims, v(res.steady_change), "1",
+                                        "relative change of the DTE standard deviation between the halves of the "
+                                        "record window (steady-state check)"),
+        "steps_per_cycle": variable(("speed",), res.steps_per_cycle, "1", "RK4 steps per mesh period"),
+        "transient_cycles": variable(("speed",), res.transient_cycles, "1",
+                                     "mesh periods integrated and discarded before recording"),
+        "time_step": variable(("speed",), res.dt, "s", "RK4 time step"),
+        "static_mesh_force": variable(("mesh",) if mesh_dim else (), model.static_force if mesh_dim
+                                      else model.static_force[0], "N", "static mesh force (normal) of the torque"),
+        "mesh_stiffness_mean": variable(("mesh",) if mesh_dim else (),
+                                        np.array([ml.k_mean for ml in model.meshes]) if mesh_dim
+                                        else model.meshes[0].k_mean, "N m-1", "mean mesh stiffness along the normal"),
+        "mesh_damping": variable(("mesh",) if mesh_dim else (), model.damping if mesh_dim else model.damping[0],
+                                 "N s m-1", "mesh damping coefficient"),
+    }
+
+
+def _modal_vars(model: GearModel, harmonics=(1, 2, 3)) -> dict[str, xr.Variable]:
+    md = model.modes()
+    rs = resonance_speeds(model, harmonics)
+    return {
+        "natural_frequency": variable(("mode",), md["frequency_Hz"], "Hz",
+                                      "natural frequencies of the linearised model (mean stiffness, in contact)"),
+        "modal_damping_ratio": variable(("mode",), md["damping_ratio"], "1", "modal damping ratio"),
+        "resonance_speed": variable(("harmonic", "mode"), rs["speed_rpm"], "rpm",
+                                    "speed where harmonic j of the mesh frequency meets a natural frequency"),
+    }
+
+
+def _series_vars(res: SweepResult, arr, n_rec: int, max_order: int, ppc: int, gear_dims: tuple[str, str],
+                 trans_shape: tuple[int, int], mesh_dim: bool) -> dict[str, xr.Variable]:
+    nt = trans_shape[0] * trans_shape[1]
+    S = res.speed_rpm.size
+    ms = ("sample_speed", "sample", "mesh") if mesh_dim else ("sample_speed", "sample")
+    msp = ("sample_speed", "order", "mesh") if mesh_dim else ("sample_speed", "order")
+
+    def mv(a):
+        return a if mesh_dim else a[..., 0]
+
+    gd = ("sample_speed", "sample") + gear_dims
+    pd = ("sample_speed",) + gear_dims
+    y = arr["y"][:, :, :nt].reshape(S, -1, *trans_shape)
+    vv = arr["v"][:, :, :nt].reshape(S, -1, *trans_shape)
+    orders = np.arange(max_order * n_rec + 1) / n_rec
+    return {
+        "time": variable(("sample_speed", "sample"), arr["t"], "s", "time within the record window"),
+        "dte_series": variable(ms, mv(arr["delta"]), "m", "dynamic transmission error along the normal"),
+        "mesh_force_series": variable(ms, mv(arr["F"]), "N", "dynamic mesh force"),
+        "displacement_series": variable(gd, y, "m", "bearing-point displacement"),
+        "velocity_series": variable(gd, vv, "m s-1", "bearing-point velocity"),
+        "frequency": variable(("sample_speed", "order"), orders[None, :] * res.mesh_frequency[:, None], "Hz",
+                              "frequency of each spectral line"),
+        "mesh_force_spectrum": variable(msp, mv(arr["F_spec"]), "N", "one-sided amplitude spectrum of the mesh force"),
+        "dte_spectrum": variable(msp, mv(arr["delta_spec"]), "m", "one-sided amplitude spectrum of the DTE"),
+        "displacement_peak_to_peak": variable(pd, arr["y_pp"][:, :nt].reshape(S, *trans_shape), "m",
+                                              "peak-to-peak displacement"),
+        "velocity_peak_to_peak": variable(pd, arr["v_pp"][:, :nt].reshape(S, *trans_shape), "m s-1",
+                                          "peak-to-peak velocity"),
+        "acceleration_peak_to_peak": variable(pd, arr["a_pp"][:, :nt].reshape(S, *trans_shape), "m s-2",
+                                              "peak-to-peak acceleration (central differences of the velocity)"),
+    }
+
+
+def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
+                     speeds_rpm: Mapping[str, float] | Sequence[float] | str = DEFAULT_SPEEDS,
+                     backlash_um: float | None = 60.0,
+                     bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
+                     bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
+                     bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
+                     bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
+                     damping_ratio: float = 0.07, mesh_damping_Ns_per_m: float | None = None,
+                     stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str = "tvms",
+                     method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                     transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
+                     courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
+                     record_cycles: int = 8, points_per_cycle: int = 64, max_order: int = 10,
+                     stiffness: xr.Dataset | None = None, ltca: xr.Dataset | None = None,
+                     ltca_variable: str = "transmission_error") -> xr.Dataset:
+    """Speed sweep of the 8-DOF helical pair (seed 001 §4; model and solver in
+    :mod:`gearmesh.dynamics`).
+
+    Parameters (engineering units)
+    ------------------------------
+    torque_Nm : T (N·m) > 0, acting on ``on`` ('gear': T_out, seed 001's 200 N·m; 'pinion').
+    speeds_rpm : pinion speeds {start, stop, step} (stop included), a list or 'a:b:c'.
+    backlash_um : total backlash 2b0 (µm) along the normal (seed 001: 60); null = none.
+    bearing_* : bearing stiffness (N/m) and damping (N·s/m), radial (x, y) and axial (z),
+        seed 001 values by default.
+    damping_ratio : mesh damping ratio ζ (-), or ``mesh_damping_Ns_per_m`` directly.
+    stiffness_form : 'fourier' (order ``fourier_order``, seed 004) or 'table'.
+    excitation : 'tvms' (consistent: unloaded TE = 0 or ``transmission_error_um``) or
+        'lste' (seed 001 literal e = F/K(t)); see :mod:`gearmesh.dynamics`.
+    method, slices, positions : TVMS settings when no upstream ``stiffness`` dataset is given.
+    transmission_error_um : unloaded static TE (µm) along the transverse line of action at
+        evenly spaced rolls over one mesh cycle; or ``ltca`` (dataset) with ``ltca_variable``
+        (m, same meaning).
+    sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
+        the record window) and spectra (to ``max_order`` mesh orders) are kept.
+    courant, steps_per_cycle_min, transient_tau, record_cycles : solver rules
+        (:class:`gearmesh.dynamics.SolverSettings`).
+    """
+    speeds = speed_grid(speeds_rpm)
+    samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
+    model = build_pair_model(pair, torque_Nm, on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
+                             bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
+                             mesh_damping_Ns_per_m, stiffness_form, fourier_order, excitation, method, slices,
+                             positions, transmission_error_um, stiffness, ltca, ltca_variable)
+    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles)
+    res = simulate(model, speeds, settings)
+    nt = model.n_trans  # 6: x, y, z of pinion then gear
+    shape = (2, 3)
+    data = _common_vars(model, res, mesh_dim=False)
+    ym, ys = res.y_mean[:nt].T.reshape(-1, *shape), res.y_std[:nt].T.reshape(-1, *shape)
+    dims = ("speed", "gear", "direction")
+    data.update({
+        "displacement_rms": variable(dims, np.sqrt(ym**2 + ys**2), "m", "RMS displacement (mean included)"),
+        "displacement_mean": variable(dims, ym, "m", "mean displacement (static bearing deflection)"),
+        "displacement_std": variable(dims, ys, "m", "standard deviation of the displacement (vibration)"),
+        "velocity_rms": variable(dims, res.v_rms[:nt].T.reshape(-1, *shape), "m s-1", "RMS velocity"),
+        "torsional_std": variable(("speed",), res.y_std[nt], "m",
+                                  "standard deviation of the relative rotation r_b1 theta_p - r_b2 theta_g"),
+    })
+    data.update(_modal_vars(model))
+    coords = {
+        "speed": variable(("speed",), speeds, "rpm", "pinion speed"),
+        "gear": variable(("gear",), np.array(_PAIR_GEARS), "1", "gear of the pair"),
+        "direction": variable(("direction",), np.array(_PAIR_DIRS), "1",
+                              "direction: x along the centres, y across, z axial"),
+        "harmonic": variable(("harmonic",), np.array([1, 2, 3]), "1", "harmonic of the mesh frequency"),
+        "mode": variable(("mode",), np.arange(model.n), "1", "mode number, by frequency"),
+    }
+    if samples.size:
+        rs = simulate(model, samples, settings, series=True)
+        arr = _series_arrays(rs, points_per_cycle, max_order, settings.record_cycles)
+        data.update(_series_vars(rs, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
+                                 shape, mesh_dim=False))
+        coords["sample_speed"] = variable(("sample_speed",), samples, "rpm", "pinion speed of the kept time series")
+        coords["order"] = variable(("order",), np.arange(max_order * settings.record_cycles + 1)
+                                   / settings.record_cycles, "1", "spectral line in mesh orders (f / f_mesh)")
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update({
+        "model": "8-DOF bending-torsion-axial helical pair (seed 001 section 4, projections corrected; "
+                 "gearmesh.dynamics)",
+        "excitation": excitation, "stiffness_form": stiffness_form, "fourier_order": fourier_order,
+        "torque_Nm": float(torque_Nm), "torque_on": on, "backlash_um": "none" if backlash_um is None
+        else float(backlash_um), "damping_ratio": float(damping_ratio), "rk4_steps": res.n_steps,
+        "transient_criterion": f"{transient_tau} time constants 1/sigma_min of the slowest linearised mode, "
+                               f"then {record_cycles} mesh periods recorded",
+    })
+    return ds
+
+
+def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEFAULT_SPEEDS, on: str = "gear",
+                     **settings: Any) -> list[dict[str, float]]:
+    """Per speed: speed_rpm, mesh_frequency_Hz, dte_rms_um, dte_std_um, mesh_force_mean_N,
+    mesh_force_min_N, mesh_force_max_N, dynamic_factor, contact_loss_fraction (for the CLI)."""
+    model = build_pair_model(pair, torque_Nm, on, **{k: v for k, v in settings.items()
+                                                     if k not in _SOLVER_KEYS})
+    solver = _solver(*(settings.get(k, d) for k, d in _SOLVER_KEYS.items()))
+    res = simulate(model, speed_grid(speeds), solver)
+    fs = float(model.static_force[0])
+    return [{"speed_rpm": float(res.speed_rpm[i]), "mesh_frequency_Hz": float(res.mesh_frequency[i]),
+             "dte_rms_um": float(res.dte_rms[0, i]) * 1e6, "dte_std_um": float(res.dte_std[0, i]) * 1e6,
+             "mesh_force_mean_N": float(res.force_mean[0, i]), "mesh_force_min_N": float(res.force_min[0, i]),
+             "mesh_force_max_N": float(res.force_max[0, i]), "dynamic_factor": float(res.force_max[0, i]) / fs,
+             "contact_loss_fraction": float(res.gap_fraction[0, i])} for i in range(res.speed_rpm.size)]
+
+
+_SOLVER_KEYS = {"courant": 0.25, "steps_per_cycle_min": 32, "transient_tau": 10.0, "record_cycles": 8}
+
+
+# --------------------------------------------------------------------------------------
+# 9-DOF train (seed 004)
+# --------------------------------------------------------------------------------------
+
+
+def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_FORCE_N,
+                  torque_Nm: float | None = None, speeds_rpm: Any = None,
+                  mesh_frequency_Hz: float = SEED004_MESH_FREQUENCY_HZ, backlash_um: float | None = 60.0,
+                  bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
+                  bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
+                  bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
+                  bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
+                  damping_ratio: float = 0.07, mesh_damping_Ns_per_m: float | None = None,
+                  stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str = "tvms",
+                  method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                  phase_offsets_cycles: Sequence[float] = (0.0, 0.0), courant: float = 0.25,
+                  steps_per_cycle_min: int = 32, transient_tau: float = 10.0, record_cycles: int = 8,
+                  points_per_cycle: int = 64, max_order: int = 10,
+                  stiffness: xr.Dataset | None = None) -> xr.Dataset:
+    """The 9-DOF plate–blanket–impression train of seed 004 (:func:`gearmesh.dynamics.train_model`).
+
+    Assumptions (seed 004 gives neither torque nor speed nor bearings): the three gears are
+    the pair file's gear repeated (seed 004: alike, 88 teeth) with the pair's TVMS for both
+    meshes; the load is given as the static normal mesh force ``static_force_N`` (seed 004:
+    2832 N; T = F r_b cos βb) unless ``torque_Nm`` is given; the speed is the one whose mesh
+    frequency is ``mesh_frequency_Hz`` (seed 004: 249.4 Hz → 170.05 rpm) unless
+    ``speeds_rpm`` is given; bearings and backlash are seed 001's; meshes in phase.
+    Time series and spectra are kept at every speed (give few).
+    """
+    geom = pair_geometry(pair)
+    require_dynamics_data(geom)
+    rb, cb = float(geom.base_radius[1]), math.cos(geom.base_helix_angle)
+    if torque_Nm is not None:
+        torque = _torque("torque_Nm", torque_Nm)
+    elif static_force_N is not None:
+        torque = _torque("static_force_N", static_force_N) * rb * cb
+    else:
+        raise GearmeshInputError("torque_Nm", None, "give torque_Nm or static_force_N")
+    if speeds_rpm is None:
+        f = _torque("mesh_frequency_Hz", mesh_frequency_Hz)
+        speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
+    else:
+        speeds = speed_grid(speeds_rpm)
+    if len(speeds) > 50:
+        raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds", "at most 50 for the train (series are kept)")
+    K = _stiffness_curve(geom, stiffness, method, slices, positions)
+    model = train_model(geom, torque, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
+                                                          bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
+                        damping_ratio=damping_ratio, backlash=None if backlash_um is None else backlash_um * 1e-6,
+                        stiffness_form=stiffness_form, order=fourier_order, excitation=excitation,
+                        phase_offsets=tuple(phase_offsets_cycles), mesh_damping=mesh_damping_Ns_per_m)
+    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles)
+    res = simulate(model, speeds, settings, series=True)
+    nt = model.n_trans  # 6: y, z of plate, blanket, impression
+    shape = (3, 2)
+    data = _common_vars(model, res, mesh_dim=True)
+    ym, ys = res.y_mean[:nt].T.reshape(-1, *shape), res.y_std[:nt].T.reshape(-1, *shape)
+    dims = ("speed", "gear", "direction")
+    data.update({
+        "displacement_rms": variable(dims, np.sqrt(ym**2 + ys**2), "m", "RMS displacement (mean included)"),
+        "displacement_mean": variable(dims, ym, "m", "mean displacement (static bearing deflection)"),
+        "displacement_std": variable(dims, ys, "m", "standard deviation of the displacement (vibration)"),
+        "velocity_rms": variable(dims, res.v_rms[:nt].T.reshape(-1, *shape), "m s-1", "RMS velocity"),
+        "torque": variable((), torque, "N m", "torque on the plate gear (= load on the impression gear)"),
+    })
+    data.update(_modal_vars(model))
+    arr = _series_arrays(res, points_per_cycle, max_order, settings.record_cycles)
+    data.update(_series_vars(res, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
+                             shape, mesh_dim=True))
+    coords = {
+        "speed": variable(("speed",), speeds, "rpm", "speed of the gears"),
+        "sample_speed": variable(("sample_speed",), speeds, "rpm", "speed of the kept time series"),
+        "gear": variable(("gear",), np.array(TRAIN_GEARS), "1", "gear of the train"),
+        "direction": variable(("direction",), np.array(["y", "z"]), "1", "direction: y along the centres, z axial"),
+        "mesh": variable(("mesh",), np.array(["plate-blanket", "blanket-impression"]), "1", "mesh of the train"),
+        "harmonic": variable(("harmonic",), np.array([1, 2, 3]), "1", "harmonic of the mesh frequency"),
+        "mode": variable(("mode",), np.arange(model.n), "1", "mode number, by frequency"),
+        "order": variable(("order",), np.arange(max_order * settings.record_cycles + 1) / settings.record_cycles,
+                          "1", "spectral line in mesh orders (f / f_mesh)"),
+    }
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update({
+        "model": "9-DOF plate-blanket-impression helical train (seed 004, projections corrected; gearmesh.dynamics)",
+        "excitation": excitation, "stiffness_form": stiffness_form, "fourier_order": fourier_order,
+        "backlash_um": "none" if backlash_um is None else float(backlash_um),
+        "assumptions": "three alike gears (the pair file's gear); plate drives, impression loaded, blanket idles; "
+                       "seed 001 bearings; meshes in phase unless phase_offsets_cycles; centres on one line",
+    })
+    return ds

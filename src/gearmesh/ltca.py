@@ -1,0 +1,441 @@
+"""Loaded tooth contact analysis (LTCA) of a modified helical pair.
+
+Everything inside is SI (m, N, rad). Displacements, separations and loads follow the
+transverse line-of-action convention of :mod:`gearmesh.tca` and :mod:`gearmesh.stiffness`:
+a point's load q is the transverse force it carries (its moment about the pinion axis over
+r_b1), the applied force is F_bt = T1/r_b1, and the approach δ is the transverse rigid
+displacement r_b1·Δφ1 (gear held). The normal load per unit length of contact line of a
+point of width Δz is q/Δz (a slice carries a line Δz/cos βb long under the normal load
+q/cos βb), which is also its transverse load per unit face width.
+
+Model
+-----
+At every roll position the candidate points of :func:`gearmesh.tca.candidate_grid` (the
+slice centres of every tooth pair in or near the active zone, with their unloaded
+separations g_i) are loaded through independent transverse slices (Smith's slice theory,
+as :mod:`gearmesh.stiffness`): point i of width Δz deflects
+
+    δ − g_i = f_i(q_i) = c_i·q_i + δ_c(q_i),   c_i = (c_1(ρ1) + c_2(ρ2))/Δz,
+
+with c_1, c_2 the per-unit-width bending + shear + axial + fillet-foundation compliances of
+both teeth from :func:`gearmesh.stiffness.slice_compliance_table` resampled by
+:func:`gearmesh.stiffness.pair_slice_table` (Yang & Lin 1987, Tian 2004, Sainsot et al.
+2004; the tip-edge points of regions 2/3 take each tooth's compliance at its own touched
+roll length — the tip of one, ρ_P of the other — for a load along the line of action: the
+small inclination of an edge load off the line of action is neglected) and δ_c the local
+contact approach. The contact problem is
+
+    q_i ≥ 0,   Σ q_i = F,   δ − g_i = f_i(q_i) where q_i > 0,   q_i = 0 where g_i ≥ δ.
+
+Independent slices make the compliance matrix diagonal, so the complementarity problem is
+solved *exactly* by one monotone scalar equation per position: q_i(δ) = f_i⁻¹((δ − g_i)_+)
+is convex and increasing in δ, so Newton's method on S(δ) = Σ q_i(δ) − F from an upper
+bound converges monotonically (no active-set cycling, no tolerance on the contact set),
+with an inner Newton inversion of each f_i (concave, from an upper bound). This is the
+active-set/NNLS problem of DESIGN.md for a diagonal influence matrix; the tangent mesh
+stiffness dF/dδ = Σ_loaded 1/f_i'(q_i) follows exactly.
+
+Why independent slices: it is the model whose unloaded, linearised limit *is* the
+stiffness stage (K = Σ slices in parallel), so LTE = F/K(φ) holds to round-off and the
+two stages cannot drift apart; neighbouring-slice coupling (the tooth as a plate, e.g.
+Schmidt's/Seager's influence coefficients) spreads load across the face and softens
+edge peaks — left out, see the report.
+
+Local contact laws (``contact_law``)
+-----------------------------------
+* ``'palmgren'`` (default): Palmgren's line-contact approach of two steel bodies,
+  δ_n = 3.84·10⁻⁵ Q^0.9 / l^0.8 (mm, N, mm; Palmgren, Ball and Roller Bearing
+  Engineering, 1959; Harris & Kotzalas, Rolling Bearing Analysis, 5th ed., 2007, eq.
+  6.41). With Q = w·l it is δ_n = 3.84·10⁻⁵ w^0.9 l^0.1 (w in N/mm); the weak length
+  factor is taken at the full contact-line length l_ref = b/cos βb so that the law is
+  local (independent of how finely the line is sliced). For another material the load is
+  scaled by E'_steel/E' (E' = E/(1 − ν²), steel 207 GPa, 0.3). It gives F ∝ δ^(1/0.9),
+  n ≈ 1.11 — the exponent seed 000 reports for the fitted local stiffness (n ≈ 1.1).
+* ``'linear'``: the linear Hertz line-contact stiffness per unit length πE/(4(1−ν²)) of
+  the stiffness stage (DESIGN.md; :func:`gearmesh.stiffness.hertz_compliance_transverse`),
+  for the comparison LTE = F/K(φ).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .contact import mesh_cycle_rolls
+from .errors import GearmeshInputError
+from .gear import PairGeometry
+from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, _require, hertz_compliance_transverse,
+                        pair_slice_table, slice_compliance_table)
+from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
+                  _check_count, _first_contact, _nanmin, candidate_grid, check_extension, check_modifications,
+                  engagement_point, engagement_separation)
+
+__all__ = [
+    "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
+    "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "LTCAResult", "ltca",
+]
+
+CONTACT_LAWS = ("palmgren", "linear")
+PALMGREN_COEFFICIENT = 3.84e-5  # mm·N^-0.9·mm^0.8 (Palmgren 1959; Harris & Kotzalas 2007)
+PALMGREN_EXPONENT = 0.9
+_STEEL_E_PRIME = 207e9 / (1.0 - 0.3**2)
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """Local contact approach of one point of width ``dz`` (m): δ_c(q) = coefficient·q^exponent
+    (m, q in N, transverse), plus a linear compliance ``linear`` (m/N) added to the teeth."""
+
+    name: str
+    coefficient: float
+    exponent: float
+    linear: float
+    dz: float
+
+    @property
+    def force_exponent(self) -> float:
+        """n of F ∝ δ^n for the contact alone (1/exponent; 1 for the linear law)."""
+        return 1.0 / self.exponent if self.coefficient > 0 else 1.0
+
+
+def contact_law(geom: PairGeometry, dz: float, name: str = "palmgren") -> ContactLaw:
+    """The local contact law of a point of width ``dz`` (m) in transverse units (module docstring).
+
+    Palmgren: δ_n [mm] = 3.84e-5·(w·E'_steel/E')^0.9·l_ref^0.1 with w = q/Δz the normal load
+    per unit length (N/mm) and l_ref = b/cos βb (mm); transverse δ_t = δ_n/cos βb.
+    Linear: δ_t = c_h·q/Δz, c_h of :func:`gearmesh.stiffness.hertz_compliance_transverse`.
+    """
+    if name not in CONTACT_LAWS:
+        raise GearmeshInputError("contact_law", name, f"must be one of {list(CONTACT_LAWS)}")
+    _require(geom, need_bore=False)
+    if name == "linear":
+        return ContactLaw(name, 0.0, 1.0, hertz_compliance_transverse(geom) / dz, dz)
+    mat = geom.pair.material
+    cb = math.cos(geom.base_helix_angle)
+    scale = _STEEL_E_PRIME / (mat.youngs_modulus / (1.0 - mat.poisson_ratio**2))
+    l_ref_mm = geom.face_width / cb * 1e3
+    # δ_t [m] = 1e-3/cb · C · (q·scale/(Δz·1e3))^0.9 · l_ref_mm^0.1
+    coef = 1e-3 / cb * PALMGREN_COEFFICIENT * (scale / (dz * 1e3)) ** PALMGREN_EXPONENT * l_ref_mm**0.1
+    return ContactLaw(name, coef, PALMGREN_EXPONENT, 0.0, dz)
+
+
+# --------------------------------------------------------------------------------------
+# The exact solve of the diagonal contact problem
+# --------------------------------------------------------------------------------------
+
+
+def _invert(d, c, coef: float, m: float, q_start=None, tol: float = 1e-14, max_iter: int = 60):
+    """q ≥ 0 with c·q + coef·q^m = d for d ≥ 0 (elementwise), and dq/dd = 1/f'(q).
+
+    f is concave (m < 1), so Newton from an upper bound (q0 = min(d/c, (d/coef)^(1/m)), both
+    bounds) steps once below the root and then rises monotonically to it.
+    """
+    pos = d > 0
+    if coef == 0.0:
+        q = np.where(pos, d / c, 0.0)
+        return q, np.where(pos, 1.0 / c, 0.0)
+    dd = np.where(pos, d, 1.0)
+    q = np.minimum(dd / c, (dd / coef) ** (1.0 / m))
+    if q_start is not None:
+        q = np.minimum(q, np.where(q_start > 0, q_start, q))
+    for _ in range(max_iter):
+        qm1 = q ** (m - 1.0)
+        fp = c + coef * m * qm1
+        step = (c * q + coef * q * qm1 - dd) / fp
+        q = q - step
+        if np.all(np.abs(step) <= tol * q):
+            break
+    q = np.where(pos, q, 0.0)
+    fp = c + coef * m * np.where(pos, q, 1.0) ** (m - 1.0)
+    return q, np.where(pos, 1.0 / fp, 0.0)
+
+
+def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw,
+                  rtol: float = 1e-12, max_iter: int = 200):
+    """Loads, approach and tangent stiffness of independent contact points (exact LCP solve).
+
+    Parameters
+    ----------
+    gap : (B, M) unloaded separations (m); NaN or inf for points that cannot touch.
+    compliance : (B, M) linear compliance of each point (m/N): teeth (+ linear contact).
+    force : (B,) total transverse force (N), > 0.
+    law : the local contact law (:func:`contact_law`).
+
+    Returns
+    -------
+    loads (B, M) N, approach δ (B,) m, stiffness dF/dδ (B,) N/m, iterations used.
+    Complementarity holds exactly: q_i > 0 only where g_i < δ, and there
+    δ − g_i = c_i q_i + δ_c(q_i) to the inner tolerance; Σ q = F to ``rtol``.
+    """
+    g = np.where(np.isfinite(gap), gap, np.inf)
+    c = np.where(np.isfinite(gap), compliance, 1.0)
+    force = np.asarray(force, dtype=float)
+    coef, m = law.coefficient, law.exponent
+    c_eff = c + law.linear
+    i_min = np.argmin(g, axis=1)
+    rows = np.arange(g.shape[0])
+    g_min = g[rows, i_min]
+    if not np.all(np.isfinite(g_min)):
+        raise GearmeshInputError("positions", int(np.sum(~np.isfinite(g_min))),
+                                 "roll positions without any candidate contact point")
+    # upper bound: all of F on the point closest to contact
+    delta = g_min + c_eff[rows, i_min] * force + (coef * force**m if coef else 0.0)
+    q = None
+    it = 0
+    for it in range(1, max_iter + 1):
+        d = delta[:, None] - g
+        q, dq = _invert(np.where(np.isfinite(d), d, -1.0), c_eff, coef, m, q)
+        total = q.sum(axis=1)
+        slope = dq.sum(axis=1)
+        resid = total - force
+        if np.all(np.abs(resid) <= rtol * force):
+            break
+        # convex increasing S(δ): Newton from the right decreases monotonically to the root
+        delta = delta - resid / slope
+    d = delta[:, None] - g
+    q, dq = _invert(np.where(np.isfinite(d), d, -1.0), c_eff, coef, m, q)
+    if not np.all(np.abs(q.sum(axis=1) - force) <= 1e-9 * force):
+        raise RuntimeError("LTCA load solve did not converge (load sum differs from the applied force)")
+    return q, delta, dq.sum(axis=1), it
+
+
+# --------------------------------------------------------------------------------------
+# Model set-up (everything that does not depend on the load)
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class LTCAModel:
+    """The load-independent part of an LTCA: pair table, grid of points (incl. the start of
+    engagement as the last position), compliances and the contact law."""
+
+    geom: PairGeometry
+    grid: CandidateGrid  # positions = mesh cycle + [roll_A]
+    compliance: np.ndarray  # (P+1, J, N) linear compliance of each point (m/N)
+    law: ContactLaw
+    method: str
+    pair_table: PairSliceTable
+    lead_slope: tuple[float, float]
+
+
+def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
+               contact_law_name: str = "palmgren", method: str = "transition",
+               extension: float = DEFAULT_EXTENSION,
+               tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
+               n_nodes: int = 257) -> LTCAModel:
+    """Grid, separations and point compliances (module docstring) for :func:`ltca`.
+
+    Flank points (region 1) take the stiffness stage's pair table at their s, exactly as
+    :func:`gearmesh.stiffness.mesh_stiffness` interpolates it; tip-edge points take each
+    tooth's table at its own touched roll length (the tip of the one, ρ_P of the other,
+    both within the active flank). ``tables`` may be passed to reuse the per-gear
+    :class:`~gearmesh.stiffness.SliceComplianceTable` (same ``method``).
+    """
+    check_modifications(geom)
+    _require(geom)
+    if method not in METHODS:
+        raise GearmeshInputError("method", method, f"must be one of {list(METHODS)}")
+    positions = _check_count("positions", positions, 1, 100000)
+    points = _check_count("points", points, 1, 100000)
+    extension = check_extension(extension)
+    if tables is None:
+        tables = (slice_compliance_table(geom, 0, method, n_nodes), slice_compliance_table(geom, 1, method, n_nodes))
+    pair_table = pair_slice_table(geom, tables)
+    roll_a = engagement_point(geom)[0]
+    roll = np.append(mesh_cycle_rolls(geom, positions), roll_a)
+    grid = candidate_grid(geom, roll, points, tuple(lead_slope), extension)
+    law = contact_law(geom, grid.dz, contact_law_name)
+    # flank points: the pair table at s (linear interpolation, as the stiffness stage)
+    s = np.clip(np.nan_to_num(grid.s), 0.0, geom.path_of_contact)
+    n_int = pair_table.total.size - 1
+    t = s * (1.0 / pair_table.ds)
+    i = np.minimum(t.astype(np.intp), n_int - 1)
+    w = t - i
+    if contact_law_name == "linear":  # exactly the stiffness stage's slice compliance, Hertz included
+        per_width = np.take(pair_table.total, i) + w * np.take(pair_table.total_slope, i)
+        law = ContactLaw("linear", 0.0, 1.0, 0.0, grid.dz)
+    else:
+        tooth_rows = [k for k, name in enumerate(pair_table.columns) if name != "hertz"]
+        vals = pair_table.values[tooth_rows].sum(axis=0)
+        per_width = np.take(vals, i) + w * np.take(np.diff(vals), i)
+    # tip-edge points: each tooth at its own touched roll length
+    edge = (grid.region == REGION_APPROACH_TIP) | (grid.region == REGION_RECESS_TIP)
+    if edge.any():
+        rho1 = np.clip(grid.rho_pinion[edge], tables[0].rho[0], tables[0].rho[-1])
+        rho2 = np.clip(grid.rho_gear[edge], tables[1].rho[0], tables[1].rho[-1])
+        c_edge = tables[0].total(rho1) + tables[1].total(rho2)
+        if contact_law_name == "linear":
+            c_edge = c_edge + hertz_compliance_transverse(geom)
+        per_width = np.array(per_width)
+        per_width[edge] = c_edge
+    compliance = per_width / grid.dz
+    return LTCAModel(geom=geom, grid=grid, compliance=compliance, law=law, method=method, pair_table=pair_table,
+                     lead_slope=tuple(float(v) for v in lead_slope))
+
+
+# --------------------------------------------------------------------------------------
+# Torques
+# --------------------------------------------------------------------------------------
+
+
+def check_torques(torques, field: str = "torques_Nm") -> np.ndarray:
+    """Torques (N·m) as a 1-d float array; refuses empty, non-numeric, non-finite, non-positive."""
+    if isinstance(torques, (int, float, np.floating, np.integer)) and not isinstance(torques, bool):
+        torques = [torques]
+    try:
+        vals = list(torques)
+    except TypeError:
+        raise GearmeshInputError(field, torques, "must be a positive number or a list of them (N m)") from None
+    if not vals:
+        raise GearmeshInputError(field, torques, "must name at least one torque (N m)")
+    for k, v in enumerate(vals):
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
+            raise GearmeshInputError(f"{field}[{k}]", v, "must be a finite number (N m)")
+        if v <= 0:
+            raise GearmeshInputError(f"{field}[{k}]", v, "must be positive (N m); the pinion drives")
+    return np.asarray(vals, dtype=float)
+
+
+def pinion_torques(geom: PairGeometry, torques, on: str = "pinion", field: str = "torques_Nm") -> np.ndarray:
+    """Pinion torques T1 (N·m): as given, or from gear torques T2 by T1 = T2·z1/z2."""
+    t = check_torques(torques, field)
+    if on not in ("pinion", "gear"):
+        raise GearmeshInputError("on", on, "must be 'pinion' or 'gear'")
+    return t if on == "pinion" else t * geom.pair.teeth[0] / geom.pair.teeth[1]
+
+
+# --------------------------------------------------------------------------------------
+# LTCA
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class LTCAResult:
+    """LTCA over one mesh cycle at several torques (SI; transverse convention).
+
+    torque (T,) pinion torque T1 (N·m); force (T,) F_bt = T1/r_b1 (N);
+    load (T, P, J, N) transverse load of every point (N) — line load q/Δz (N/m);
+    lte (T, P) loaded transmission error = approach δ (m); stiffness (T, P) tangent mesh
+    stiffness dF/dδ (N/m); pairs_in_contact (T, P); corner_load (T, P) load on tip edges
+    (regions 2, 3) (N); lte_at_engagement, stiffness_at_engagement,
+    corner_load_at_engagement (T,) at φ1A; tca the unloaded :class:`~gearmesh.tca.TCAResult`
+    on the same grid; model the :class:`LTCAModel`; iterations the Newton steps used.
+    """
+
+    torque: np.ndarray
+    force: np.ndarray
+    load: np.ndarray
+    lte: np.ndarray
+    stiffness: np.ndarray
+    pairs_in_contact: np.ndarray
+    corner_load: np.ndarray
+    lte_at_engagement: np.ndarray
+    stiffness_at_engagement: np.ndarray
+    corner_load_at_engagement: np.ndarray
+    tca: TCAResult
+    model: LTCAModel
+    iterations: int
+
+    @property
+    def grid(self) -> CandidateGrid:
+        return self.tca.grid
+
+    @property
+    def line_load(self) -> np.ndarray:
+        """Normal load per unit contact-line length (N/m) = transverse load per unit width."""
+        return self.load / self.model.grid.dz
+
+    @property
+    def max_line_load(self) -> np.ndarray:
+        """(T, P) largest line load (N/m) at each position."""
+        return self.line_load.max(axis=(2, 3))
+
+
+def _tca_from_grid(model: LTCAModel, te_pair_full: np.ndarray, tol: float = 1e-9) -> TCAResult:
+    geom, g = model.geom, model.grid
+    p = g.roll.size - 1
+    grid = CandidateGrid(roll=g.roll[:p], pairs=g.pairs, z=g.z, dz=g.dz, s=g.s[:p], region=g.region[:p],
+                         rho_pinion=g.rho_pinion[:p], rho_gear=g.rho_gear[:p], gap=g.gap[:p], extension=g.extension)
+    te_pair = te_pair_full[:p]
+    cs, cz, c1, c2 = _first_contact(grid, te_pair, tol)
+    roll_a, j_a, z_a = engagement_point(geom)
+    te_a, next_a = engagement_separation(geom, g.z.size, model.lead_slope, g.extension / geom.transverse_base_pitch)
+    return TCAResult(grid=grid, te=_nanmin(te_pair, axis=-1), te_pair=te_pair, contact_s=cs, contact_z=cz,
+                     contact_rho_pinion=c1, contact_rho_gear=c2, roll_engagement=roll_a, pair_engagement=j_a,
+                     z_engagement=z_a, te_at_engagement=te_a, te_next_pair_at_engagement=next_a,
+                     lead_slope=model.lead_slope)
+
+
+def _solve(model: LTCAModel, force: np.ndarray):
+    """All torques and positions of ``model`` in one vectorised solve: loads (T, P+1, J, N),
+    approach (T, P+1), tangent stiffness (T, P+1), Newton iterations."""
+    g = model.grid
+    pp, jj, nn = g.gap.shape
+    nt = force.size
+    gap = np.broadcast_to(g.gap.reshape(1, pp, jj * nn), (nt, pp, jj * nn)).reshape(nt * pp, jj * nn)
+    comp = np.broadcast_to(model.compliance.reshape(1, pp, jj * nn), (nt, pp, jj * nn)).reshape(nt * pp, jj * nn)
+    q, delta, k, it = solve_contact(gap, comp, np.repeat(force, pp), model.law)
+    return q.reshape(nt, pp, jj, nn), delta.reshape(nt, pp), k.reshape(nt, pp), it
+
+
+def _reach_exceeded(model: LTCAModel, q: np.ndarray) -> bool:
+    """True when a loaded tip-edge point lies in the outer fifth of the candidate zone."""
+    g = model.grid
+    if g.extension <= 0:
+        return False
+    far = (((g.region == REGION_APPROACH_TIP) & (g.s < -0.8 * g.extension))
+           | ((g.region == REGION_RECESS_TIP) & (g.s > model.geom.path_of_contact + 0.8 * g.extension)))
+    return bool(np.any((q > 0) & far[None]))
+
+
+def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
+         on: str = "pinion", contact_law_name: str = "palmgren", method: str = "transition",
+         extension: float = DEFAULT_EXTENSION, model: LTCAModel | None = None) -> LTCAResult:
+    """Loaded TCA at each torque over one mesh cycle (and at the start of engagement φ1A).
+
+    Parameters
+    ----------
+    geom : pair geometry (needs material and bore radius; carries the modifications).
+    torques : torque(s) in N·m, on the pinion or, with ``on='gear'``, on the gear.
+    positions, points : roll positions per mesh cycle and points per contact line.
+    lead_slope : lead slope errors [pinion, gear] (m over the face width).
+    contact_law_name : 'palmgren' (default) or 'linear' (module docstring).
+    method : cantilever model of the slice compliance (:mod:`gearmesh.stiffness`).
+    extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
+    model : a prepared :class:`LTCAModel` to reuse (then the grid arguments are ignored).
+
+    When loaded tip edges reach the outer fifth of the candidate zone beyond the active
+    profile, the zone is doubled (up to one base pitch) and the LTCA repeated; with a given
+    ``model`` a RuntimeWarning is issued instead.
+    """
+    t1 = pinion_torques(geom, torques, on)
+    lead_slope = tuple(float(v) for v in lead_slope)
+    force = t1 / geom.base_radius[0]
+    own = model is None
+    while True:
+        if own:
+            model = ltca_model(geom, positions, points, lead_slope, contact_law_name, method, extension)
+        q, delta, k, it = _solve(model, force)
+        if not _reach_exceeded(model, q):
+            break
+        if not own or extension >= 1.0:
+            warnings.warn("LTCA: tip-edge contact reaches the end of the candidate zone beyond the active "
+                          "profile; raise corner_extension", RuntimeWarning, stacklevel=2)
+            break
+        extension = min(1.0, 2.0 * extension)  # the load reaches further than the candidates: widen
+    g = model.grid
+    pp = g.gap.shape[0]
+    pair_load = q.sum(axis=3)
+    in_contact = (pair_load > 1e-9 * force[:, None, None]).sum(axis=2)
+    corner = ((g.region == REGION_APPROACH_TIP) | (g.region == REGION_RECESS_TIP))
+    corner_load = np.where(corner[None], q, 0.0).sum(axis=(2, 3))
+    te_pair = _nanmin(g.gap, axis=-1)
+    tca_res = _tca_from_grid(model, te_pair)
+    p = pp - 1
+    return LTCAResult(torque=t1, force=force, load=q[:, :p], lte=delta[:, :p], stiffness=k[:, :p],
+                      pairs_in_contact=in_contact[:, :p], corner_load=corner_load[:, :p],
+                      lte_at_engagement=delta[:, p], stiffness_at_engagement=k[:, p],
+                      corner_load_at_engagement=corner_load[:, p], tca=tca_res, model=model, iterations=it)

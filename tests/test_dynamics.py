@@ -1,0 +1,228 @@
+"""Physics tests of the dynamics stage (issue 5): static limit, resonances against an independent
+eigen-solution, step halving, backlash, the train's torque balance, batch RK4 against solve_ivp."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+import scipy.linalg
+
+from gearmesh import dynamics as dy
+from gearmesh.datasets.dynamics import dynamics_dataset, dynamics_summary, speed_grid, train_dataset
+from gearmesh.errors import GearmeshInputError
+from gearmesh.gear import load_pair, pair_from_dict, pair_geometry
+from gearmesh.io import check_documented
+from gearmesh.stiffness import mesh_stiffness
+
+from pairs import seed001_pair1
+
+
+@pytest.fixture(scope="module")
+def geom():
+    return pair_geometry(pair_from_dict(seed001_pair1(center_distance_mm=69.30)))
+
+
+@pytest.fixture(scope="module")
+def K(geom):
+    return mesh_stiffness(geom, components=False).K
+
+
+@pytest.fixture(scope="module")
+def model(geom, K):
+    return dy.pair_model(geom, 200.0, K)
+
+
+FAST = dy.SolverSettings(transient_tau=8.0, record_cycles=4)
+
+
+def full_matrices(geom, k_normal: float, bearing=dy.SEED001_BEARING):
+    """The 8-DOF mass and stiffness matrices written out independently from the equations of
+    motion in the module docstring (x, y, z, θ per gear; meshes closed at k_normal)."""
+    a, bb = geom.operating_pressure_angle, geom.base_helix_angle
+    rb1, rb2 = geom.base_radius
+    h = 1.0 if geom.pair.helix_hand == "right" else -1.0
+    g = np.array([math.sin(a) * math.cos(bb), math.cos(a) * math.cos(bb), -h * math.sin(bb), rb1 * math.cos(bb),
+                  -math.sin(a) * math.cos(bb), -math.cos(a) * math.cos(bb), h * math.sin(bb), -rb2 * math.cos(bb)])
+    M = np.diag([geom.mass[0]] * 3 + [geom.inertia[0]] + [geom.mass[1]] * 3 + [geom.inertia[1]])
+    kr, ka = bearing["k_radial"], bearing["k_axial"]
+    Kmat = np.diag([kr, kr, ka, 0.0, kr, kr, ka, 0.0]) + k_normal * np.outer(g, g)
+    return M, Kmat, g
+
+
+def test_constant_stiffness_settles_to_static_deflection(geom, K):
+    """K constant, no TE: no vibration; δ = F/k_n, F = T_out/(r_b2 cos βb), bearings deflect F·n/k."""
+    kc = np.full(64, K.mean())
+    m = dy.pair_model(geom, 200.0, kc)
+    res = dy.simulate(m, [3000.0, 27000.0], FAST)
+    cb = math.cos(geom.base_helix_angle)
+    F = 200.0 / (geom.base_radius[1] * cb)
+    k_n = K.mean() / cb**2
+    np.testing.assert_allclose(res.force_mean[0], F, rtol=1e-10)
+    np.testing.assert_allclose(res.dte_mean[0], F / k_n, rtol=1e-10)
+    assert np.all(res.dte_std[0] < 1e-9 * F / k_n)
+    assert np.all(res.y_std < 1e-18)
+    _, _, g = full_matrices(geom, k_n)
+    expected = -F * g[[0, 1, 2, 4, 5, 6]] / np.array([1.5e8, 1.5e8, 1e7] * 2)
+    np.testing.assert_allclose(res.y_mean[:6, 0], expected, rtol=1e-9)
+    assert np.all(res.gap_fraction == 0)
+
+
+def test_mean_mesh_force_equals_static_force(model):
+    """⟨F⟩ cos βb r_b2 = T_out over whole periods at every speed (⟨q̈⟩ = 0 in steady state)."""
+    res = dy.simulate(model, np.arange(1000.0, 50001.0, 7000.0), FAST)
+    # exact for a periodic steady state; the residual transient (e^-8) leaves ~1e-6
+    np.testing.assert_allclose(res.force_mean[0], model.static_force[0], rtol=1e-5)
+
+
+def test_eigenfrequencies_match_independent_eig(geom, model):
+    """Reduced model (rigid mode removed) against scipy.linalg.eig of the full 8-DOF K, M."""
+    k_n = model.meshes[0].k_mean
+    M, Kmat, _ = full_matrices(geom, k_n)
+    w2 = np.sort(scipy.linalg.eig(Kmat, M)[0].real)
+    assert abs(w2[0]) < 1e-6 * w2[-1]  # the rigid-body rotation
+    f_full = np.sqrt(w2[1:]) / (2 * np.pi)
+    # undamped modes of the reduced model
+    Kr, _ = model.linear_matrices()
+    f_red = np.sort(np.sqrt(np.linalg.eigvals(Kr).real)) / (2 * np.pi)
+    np.testing.assert_allclose(f_red, f_full, rtol=1e-9)
+    assert len(f_full) == 7 and np.all(model.modes()["decay_rate"] > 0)  # no drift mode left
+
+
+def test_resonance_peaks_sit_at_eigenfrequencies(geom, model):
+    """Peaks of the sweep where mesh frequency (or 2×) meets an eigenfrequency of the full model."""
+    M, Kmat, g = full_matrices(geom, model.meshes[0].k_mean)
+    w2, vec = scipy.linalg.eigh(Kmat, M)
+    f = np.sqrt(np.clip(w2, 0, None)) / (2 * np.pi)
+    # mesh-dominated mode: largest share of strain energy in the mesh spring
+    share = model.meshes[0].k_mean * (g @ vec) ** 2 / np.einsum("im,ij,jm->m", vec, Kmat, vec).clip(1e-30)
+    mesh_mode = int(np.argmax(share[1:])) + 1
+    z1 = geom.pair.teeth[0]
+    n_mesh = 60 * f[mesh_mode] / z1
+    speeds = np.arange(0.8 * n_mesh, 1.2 * n_mesh, 0.005 * n_mesh)
+    res = dy.simulate(model, speeds, FAST)
+    peak = speeds[np.argmax(res.dte_std[0])]
+    assert abs(peak / n_mesh - 1) < 0.03, (peak, n_mesh)
+    # second mesh harmonic of the same mode: a local DTE maximum near n/2
+    speeds2 = np.arange(0.45 * n_mesh, 0.55 * n_mesh, 0.0025 * n_mesh)
+    res2 = dy.simulate(model, speeds2, FAST)
+    peak2 = speeds2[np.argmax(res2.dte_std[0])]
+    assert abs(peak2 / (n_mesh / 2) - 1) < 0.03, (peak2, n_mesh / 2)
+    # a bearing (lateral) mode with the largest pinion-y participation among the low modes,
+    # excited by the first mesh harmonic: the pinion y vibration peaks there
+    low = [i for i in range(1, 8) if f[i] < 0.5 * f[mesh_mode]]
+    lat = max(low, key=lambda i: abs(vec[1, i]) * np.sqrt(M[1, 1]) * abs(g @ vec[:, i]))
+    n_lat = 60 * f[lat] / z1
+    speeds3 = np.arange(0.9 * n_lat, 1.1 * n_lat, 0.005 * n_lat)
+    res3 = dy.simulate(model, speeds3, FAST)
+    peak3 = speeds3[np.argmax(res3.y_std[1])]
+    assert abs(peak3 / n_lat - 1) < 0.03, (peak3, n_lat)
+
+
+def test_halving_the_step_changes_rms_little(model):
+    """Tolerance: 1e-4 relative on the DTE, displacement and velocity RMS and the peak force."""
+    speeds = [2000.0, 13700.0, 27000.0, 45000.0]
+    a = dy.simulate(model, speeds, FAST)
+    b = dy.simulate(model, speeds, dy.SolverSettings(courant=FAST.courant / 2,
+                                                     steps_per_cycle_min=2 * FAST.steps_per_cycle_min,
+                                                     transient_tau=FAST.transient_tau,
+                                                     record_cycles=FAST.record_cycles))
+    for name in ("dte_std", "dte_rms", "y_std", "v_rms"):
+        np.testing.assert_allclose(getattr(a, name), getattr(b, name), rtol=1e-4, err_msg=name)
+    # the sampled maximum also moves with the sampling (32 vs 64 points per period)
+    np.testing.assert_allclose(a.force_max, b.force_max, rtol=5e-3)
+
+
+def test_contact_loss_only_where_the_linear_force_turns_negative(geom, K):
+    """An unloaded TE of 0.6 µm at 20 N·m: the backlash model loses contact exactly at the speeds
+    where the same model without backlash has δ < 0 (force < 0); elsewhere both coincide."""
+    te = 0.6e-6 * np.cos(2 * np.pi * np.arange(64) / 64)
+    speeds = np.arange(10000.0, 50001.0, 4000.0)
+    lin = dy.simulate(dy.pair_model(geom, 20.0, K, transmission_error=te, backlash=None), speeds, FAST)
+    nl = dy.simulate(dy.pair_model(geom, 20.0, K, transmission_error=te, backlash=60e-6), speeds, FAST)
+    would_separate = lin.dte_min[0] < 0
+    assert would_separate.any() and (~would_separate).any()
+    assert np.all(lin.force_min[0][would_separate] < 0)
+    np.testing.assert_array_equal(nl.gap_fraction[0] > 0, would_separate)
+    same = ~would_separate
+    np.testing.assert_allclose(nl.dte_std[0][same], lin.dte_std[0][same], rtol=1e-7)
+    assert np.all(nl.back_fraction == 0)
+
+
+def test_train_meshes_balance_the_torque():
+    pair = load_pair(_root() / "config/pairs/seed004_pair.yaml")
+    ds = train_dataset(pair, transient_tau=6.0, record_cycles=4, points_per_cycle=32, max_order=4)
+    check_documented(ds)
+    geom = pair_geometry(pair)
+    rb, cb = geom.base_radius[1], math.cos(geom.base_helix_angle)
+    F = ds.mesh_force_mean.values[0]
+    # plate: T = F1 r_b cos βb; blanket idles: F1 = F2; impression: F2 r_b cos βb = T
+    np.testing.assert_allclose(F * rb * cb, float(ds.torque), rtol=1e-6)
+    np.testing.assert_allclose(F, 2832.0, rtol=1e-6)
+    np.testing.assert_allclose(float(ds.mesh_frequency[0]), 249.4, rtol=1e-12)
+    # the radial mesh forces on the blanket cancel; plate and impression deflect oppositely
+    ym = ds.displacement_mean.sel(direction="y").values[0]
+    assert abs(ym[1]) < 1e-9 * abs(ym[0])
+    np.testing.assert_allclose(ym[0], -ym[2], rtol=1e-9)
+
+
+@pytest.mark.parametrize("speed", [13700.0, 27000.0])
+def test_batch_rk4_matches_solve_ivp(model, speed):
+    """Batch RK4 (reduced, rigid mode removed) against DOP853 rtol 1e-10 on the full 8-DOF
+    equations; 27000 rpm is the mesh resonance, 13700 rpm its second harmonic."""
+    res = dy.simulate(model, [speed], FAST)
+    ref = dy.reference_solution(model, speed, FAST, rtol=1e-9, atol=1e-13)
+    np.testing.assert_allclose(res.dte_std[:, 0], ref["dte_std"], rtol=2e-4)
+    np.testing.assert_allclose(res.dte_mean[:, 0], ref["dte_mean"], rtol=2e-5)
+    np.testing.assert_allclose(res.y_std[:, 0], ref["y_std"], rtol=2e-4)
+    np.testing.assert_allclose(res.v_rms[:, 0], ref["v_rms"], rtol=2e-4)
+
+
+def test_lste_excitation_counts_the_fluctuation_twice(geom, K):
+    """Quasi-static (mesh frequency ≪ lowest mode): with e = 0 the approach of the bodies
+    (r_b1 θ_p − r_b2 θ_g) cos βb is the LSTE F/K(t); seed 001's literal e = F/K(t) with k(t)
+    doubles it (module docstring), while δ = approach − e stays F/K(t) in both."""
+    s = dy.SolverSettings(courant=0.5, transient_tau=3.0, record_cycles=2, min_transient_cycles=1)
+    a = dy.simulate(dy.pair_model(geom, 200.0, K, excitation="tvms"), [60.0], s)
+    b = dy.simulate(dy.pair_model(geom, 200.0, K, excitation="lste"), [60.0], s)
+    model = dy.pair_model(geom, 200.0, K)
+    ph = np.linspace(0, 1, 4096, endpoint=False)
+    lste_n = model.static_force[0] / model.meshes[0].stiffness(ph)  # normal LSTE of the Fourier k
+    cb = math.cos(geom.base_helix_angle)
+    assert abs(a.dte_std[0, 0] / lste_n.std() - 1) < 0.02
+    assert abs(b.dte_std[0, 0] / lste_n.std() - 1) < 0.02
+    assert abs(a.y_std[-1, 0] * cb / lste_n.std() - 1) < 0.02
+    assert abs(b.y_std[-1, 0] / a.y_std[-1, 0] - 2) < 0.04
+
+
+def test_dataset_summary_and_inputs():
+    pair = pair_from_dict(seed001_pair1(center_distance_mm=69.30))
+    ds = dynamics_dataset(pair, speeds_rpm={"start": 20000, "stop": 30000, "step": 5000},
+                          sample_speeds_rpm=[27000], transient_tau=4.0, record_cycles=4, points_per_cycle=32,
+                          max_order=4)
+    check_documented(ds)
+    assert ds.sizes["speed"] == 3 and ds.displacement_rms.dims == ("speed", "gear", "direction")
+    spec = ds.mesh_force_spectrum.isel(sample_speed=0)
+    assert float(spec.sel(order=1.0)) > 10 * float(spec.sel(order=0.5))  # lines at mesh orders only
+    rows = dynamics_summary(pair, 200.0, "25000:27000:2000", transient_tau=4.0, record_cycles=4)
+    assert [r["speed_rpm"] for r in rows] == [25000.0, 27000.0]
+    assert {"speed_rpm", "dte_rms_um", "mesh_force_mean_N", "mesh_force_max_N"} <= set(rows[0])
+    with pytest.raises(GearmeshInputError, match="torque_Nm"):
+        dynamics_dataset(pair, torque_Nm=-5.0)
+    with pytest.raises(GearmeshInputError, match="speeds_rpm.stop"):
+        speed_grid({"start": 1000, "stop": 500, "step": 100})
+    with pytest.raises(GearmeshInputError, match="speeds_rpm.step"):
+        speed_grid({"start": 500, "stop": 1000, "step": 0})
+    with pytest.raises(GearmeshInputError, match="speeds_rpm.start"):
+        speed_grid("0:100:10")
+    with pytest.raises(GearmeshInputError, match="bore_radius_mm"):
+        dynamics_dataset(pair.with_changes(bore_radius=None))
+    with pytest.raises(GearmeshInputError, match="material"):
+        dynamics_dataset(pair.with_changes(material=None))
+
+
+def _root():
+    from pathlib import Path
+
+    return Path(__file__).resolve().parents[1]

@@ -1,0 +1,211 @@
+"""LTCA: equilibrium, exact complementarity, agreement with the stiffness stage, symmetry,
+convergence, the contact law and refusals."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+from pairs import seed001_pair1
+from scipy.optimize import brentq
+
+from gearmesh import stiffness as st
+from gearmesh.datasets.ltca import ltca_dataset, ltca_summary
+from gearmesh.errors import GearmeshInputError
+from gearmesh.gear import Modification, load_pair, pair_from_dict, pair_geometry
+from gearmesh.io import check_documented
+from gearmesh.ltca import PALMGREN_COEFFICIENT, contact_law, ltca, ltca_model, solve_contact
+
+ROOT = Path(__file__).resolve().parents[1]
+MOD = (Modification(tip_relief=20e-6, tip_relief_length=3e-3, crowning=10e-6), Modification())
+
+
+@pytest.fixture(scope="module")
+def seed000():
+    return load_pair(ROOT / "config/pairs/seed000_case.yaml")
+
+
+@pytest.fixture(scope="module")
+def modified(seed000):
+    return ltca(pair_geometry(seed000.with_changes(modification=MOD)), [400.0, 1000.0, 1600.0])
+
+
+def test_loads_sum_to_the_applied_force_and_complementarity_holds(modified):
+    res = modified
+    total = res.load.sum(axis=(2, 3))
+    assert np.allclose(total, res.force[:, None], rtol=1e-11, atol=0)
+    assert np.all(res.load >= 0)
+    g = res.grid.gap
+    law, comp = res.model.law, res.model.compliance[:-1]
+    for k in range(res.torque.size):
+        q = res.load[k]
+        delta = res.lte[k][:, None, None]
+        loaded = q > 0
+        # zero gap where loaded: δ − g = c q + A q^0.9
+        resid = delta - g - (comp * q + law.coefficient * q**law.exponent)
+        assert np.max(np.abs(resid[loaded])) < 1e-12 * float(res.lte[k].max()) + 1e-16
+        # open (or just closing) where unloaded: g ≥ δ
+        free = np.isfinite(g) & ~loaded
+        assert np.all((g - delta)[free] >= -1e-15)
+
+
+def test_lte_exceeds_te_and_grows_with_torque(modified):
+    assert np.all(modified.lte > modified.tca.te[None, :])
+    assert np.all(np.diff(modified.lte, axis=0) > 0)
+    # Palmgren's law hardens: the loaded mesh stiffness rises with torque
+    assert np.all(np.diff(modified.stiffness.mean(axis=1)) > 0)
+
+
+def test_linearised_lte_equals_F_over_K_of_the_stiffness_stage(seed000):
+    """Same compliances (the stiffness stage's pair table, Hertz linear, same slices and
+    positions, no tip-edge candidates): LTE = F/K(φ) to round-off and dF/dδ = K; against the
+    stage's default (200 clipped slices) within 1.5 % (the 50-point slice rule's O(Δz) ends)."""
+    geom = pair_geometry(seed000)
+    model = ltca_model(geom, positions=64, points=50, contact_law_name="linear", extension=0.0)
+    res = ltca(geom, [1000.0], model=model)
+    K = st.mesh_stiffness(geom, n_positions=64, n_slices=50, rule="centre", pair_table=model.pair_table)
+    assert np.allclose(res.lte[0], st.lste(K, 1000.0), rtol=1e-12, atol=0)
+    assert np.allclose(res.stiffness[0], K.K, rtol=1e-12)
+    K_default = st.mesh_stiffness(geom, n_positions=64)
+    assert np.max(np.abs(res.lte[0] / st.lste(K_default, 1000.0) - 1)) < 0.015
+
+
+def test_tangent_stiffness_is_dF_ddelta(seed000):
+    geom = pair_geometry(seed000.with_changes(modification=MOD))
+    model = ltca_model(geom, positions=8, points=30)
+    a, b = ltca(geom, [1000.0, 1000.0 * (1 + 1e-6)], model=model).lte
+    mid = ltca(geom, [1000.0 * (1 + 0.5e-6)], model=model)
+    fd = 1000.0e-6 / geom.base_radius[0] / (b - a)
+    assert np.allclose(mid.stiffness[0], fd, rtol=1e-4)
+
+
+def test_solver_against_bisection_reference():
+    """One position, random gaps and compliances, Palmgren law: δ from plain bisection with
+    each load by brentq, no Newton anywhere."""
+    rng = np.random.default_rng(7)
+    gap = rng.uniform(0, 20e-6, size=(1, 40))
+    gap[0, :5] = np.nan
+    comp = rng.uniform(2e-9, 6e-9, size=(1, 40))
+    pair = pair_from_dict(seed001_pair1())
+    law = contact_law(pair_geometry(pair), 0.4e-3)
+    force = np.array([3000.0])
+    q, delta, k, _ = solve_contact(gap, comp, force, law)
+
+    def loads(dl):
+        out = np.zeros(40)
+        for i in range(40):
+            d = dl - gap[0, i]
+            if np.isfinite(d) and d > 0:
+                out[i] = brentq(lambda x: comp[0, i] * x + law.coefficient * x**0.9 - d, 0, d / comp[0, i], xtol=1e-14)
+        return out
+
+    ref = brentq(lambda dl: loads(dl).sum() - force[0], np.nanmin(gap), np.nanmin(gap) + 1e-3, xtol=1e-17, rtol=1e-15)
+    assert delta[0] == pytest.approx(ref, rel=1e-10)
+    assert np.allclose(q[0], loads(ref), rtol=1e-7, atol=1e-9)
+
+
+def test_palmgren_law_matches_the_published_formula():
+    """δ_n = 3.84e-5 Q^0.9 / l^0.8 (mm, N) for a whole line of length l under Q, transverse /cos βb."""
+    geom = pair_geometry(pair_from_dict(seed001_pair1()))
+    cb = math.cos(geom.base_helix_angle)
+    dz = geom.face_width / 50
+    law = contact_law(geom, dz)
+    w = 150.0  # N/mm, normal load per unit contact length
+    q = w * 1e3 * dz  # transverse load of the point
+    l_mm = geom.face_width / cb * 1e3
+    e_scale = (207e9 / 0.91) / (geom.pair.material.youngs_modulus / (1 - geom.pair.material.poisson_ratio**2))
+    delta_n_mm = PALMGREN_COEFFICIENT * (w * e_scale * l_mm) ** 0.9 / l_mm**0.8
+    assert law.coefficient * q**law.exponent == pytest.approx(delta_n_mm * 1e-3 / cb, rel=1e-12)
+    assert law.force_exponent == pytest.approx(1 / 0.9)
+
+
+@pytest.mark.parametrize("beta", [0.0])
+def test_symmetric_crowning_gives_a_symmetric_pattern_for_spur(beta):
+    pair = pair_from_dict(seed001_pair1(helix_angle_deg=beta))
+    geom = pair_geometry(pair.with_changes(modification=(Modification(crowning=10e-6, unmodified_lead_length=4e-3),
+                                                         Modification(crowning=5e-6))))
+    res = ltca(geom, [150.0], positions=16, points=40)
+    load = res.load[0]
+    assert np.allclose(load, load[..., ::-1], rtol=1e-9, atol=1e-9 * load.max())
+    centre = load[..., 19:21].sum(axis=-1)
+    assert np.all(centre.max(axis=1) > load[..., :2].sum(axis=-1).max(axis=1))  # peaks at the centre
+
+
+def _asymmetry(beta):
+    pair = pair_from_dict(seed001_pair1(helix_angle_deg=beta))
+    geom = pair_geometry(pair.with_changes(modification=(Modification(crowning=10e-6), Modification())))
+    res = ltca(geom, [150.0], positions=16, points=40)
+    pattern = res.line_load[0].max(axis=(0, 1))  # envelope over the cycle at each z
+    return np.max(np.abs(pattern - pattern[::-1])) / pattern.max()
+
+
+def test_crowned_pattern_becomes_symmetric_as_beta_goes_to_zero():
+    a = [_asymmetry(b) for b in (8.0, 2.0, 0.5)]
+    assert a[0] > a[1] > a[2] and a[2] < 0.05
+
+
+def test_convergence_in_points_per_line(seed000):
+    geom = pair_geometry(seed000.with_changes(modification=MOD))
+    out = {}
+    for n in (25, 50, 100, 200):
+        res = ltca(geom, [1000.0], positions=16, points=n)
+        out[n] = (res.lte[0].mean(), res.max_line_load[0].max(), res.stiffness[0].mean())
+    for k in range(3):
+        d1 = abs(out[50][k] - out[25][k])
+        d3 = abs(out[200][k] - out[100][k])
+        assert d3 < d1
+        assert d3 / abs(out[200][k]) < 5e-3
+
+
+def test_gear_torque_is_converted_by_the_ratio(seed000):
+    geom = pair_geometry(seed000)
+    a = ltca(geom, [1000.0], positions=8, points=20)
+    b = ltca(geom, [1000.0 * 71 / 29], positions=8, points=20, on="gear")
+    assert np.allclose(a.lte, b.lte, rtol=1e-12) and b.torque[0] == pytest.approx(1000.0)
+
+
+def test_unmodified_pair_meets_with_an_edge_and_modification_delays_it(seed000):
+    std = ltca(pair_geometry(seed000), [400.0], positions=8, points=30)
+    assert std.lte_at_engagement[0] > std.tca.te_next_pair_at_engagement == 0.0
+    assert std.corner_load.max() > 0  # tip edges carry load outside the active zone
+    gear_relief = (Modification(), Modification(tip_relief=30e-6, tip_relief_length=4e-3))
+    mod = ltca(pair_geometry(seed000.with_changes(modification=gear_relief)), [400.0], positions=8, points=30)
+    assert mod.lte_at_engagement[0] < mod.tca.te_next_pair_at_engagement  # surface-to-surface entry
+
+
+def test_bad_torques_and_modifications_are_refused(seed000):
+    for bad in (0.0, -5.0, float("nan"), float("inf"), [], [100.0, -1.0], "100", True, None):
+        with pytest.raises(GearmeshInputError, match="torques_Nm"):
+            ltca_dataset(seed000, torques_Nm=bad, positions=4, points=5)
+    with pytest.raises(GearmeshInputError, match="torque_Nm"):
+        ltca_summary(seed000, -1.0)
+    with pytest.raises(GearmeshInputError, match="on"):
+        ltca_dataset(seed000, torques_Nm=[100.0], on="wheel", positions=4, points=5)
+    with pytest.raises(GearmeshInputError, match="corner_extension"):
+        ltca_dataset(seed000, torques_Nm=[100.0], corner_extension=-0.1, positions=4, points=5)
+    with pytest.raises(GearmeshInputError, match="points"):
+        ltca_dataset(seed000, torques_Nm=[100.0], positions=4, points=0)
+    with pytest.raises(GearmeshInputError, match="contact_law"):
+        ltca_dataset(seed000, torques_Nm=[100.0], contact_law="hertz", positions=4, points=5)
+    neg = seed000.with_changes(modification=(Modification(), Modification(root_relief=-1e-6, root_relief_length=1e-3)))
+    with pytest.raises(GearmeshInputError, match="modification.gear.root_relief_um"):
+        ltca_dataset(neg, torques_Nm=[100.0], positions=4, points=5)
+    crown = seed000.with_changes(modification=(Modification(crowning=5e-6, unmodified_lead_length=50e-3), Modification()))
+    with pytest.raises(GearmeshInputError, match="unmodified_lead_length_mm"):
+        ltca_dataset(crown, torques_Nm=[100.0], positions=4, points=5)
+
+
+def test_dataset_and_summary(seed000):
+    ds = ltca_dataset(seed000.with_changes(modification=MOD), torques_Nm=[500.0, 1000.0], positions=8, points=20)
+    check_documented(ds)
+    assert ds["load"].dims == ("torque", "position", "line", "point")
+    total, force = xr.broadcast(ds["load"].sum(("line", "point")), ds["force"])
+    assert np.allclose(total.values, force.values, rtol=1e-11)
+    summary = ltca_summary(seed000, 1000.0)
+    for key in ("te_peak_to_peak_um", "lte_mean_um", "lte_peak_to_peak_um", "max_line_load_N_per_mm",
+                "loaded_mesh_stiffness_mean_N_per_m"):
+        assert math.isfinite(summary[key])
+    assert summary["te_peak_to_peak_um"] == 0.0 and summary["lte_mean_um"] > 0

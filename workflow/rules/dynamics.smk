@@ -1,0 +1,74 @@
+# Dynamics stage (issue 5): the 8-DOF helical pair swept over speed (seed 001 §4-5) and the
+# 9-DOF plate-blanket-impression train (seed 004). No physics here: each rule names one
+# package function; the settings are the config sections "dynamics" and "train_dynamics".
+# The mesh stiffness comes from the stiffness stage (per pair: the slice model does not
+# depend on the micro-geometry).
+
+
+rule dynamics:
+    """Steady-state speed sweep of the 8-DOF pair: RMS of DTE, displacements, velocities; mesh force (dynamics.nc)."""
+    input:
+        pair=variant_pair_file,
+        stiffness="results/{study}/{pair}/stiffness.nc",
+    output:
+        "results/{study}/{pair}/{variant}/dynamics.nc",
+    log:
+        "logs/{study}/{pair}/{variant}/dynamics.log",
+    params:
+        function="gearmesh.datasets.dynamics:dynamics_dataset",
+        settings=lambda wildcards: config["dynamics"],
+    conda:
+        ENV
+    script:
+        "../scripts/pair_stage.py"
+
+
+rule train_dynamics:
+    """The 9-DOF three-gear train of seed 004 at its speed and load: both mesh forces, spectra, vibration (train.nc)."""
+    input:
+        pair=variant_pair_file,
+        stiffness="results/{study}/{pair}/stiffness.nc",
+    output:
+        "results/{study}/{pair}/{variant}/train.nc",
+    log:
+        "logs/{study}/{pair}/{variant}/train.log",
+    params:
+        function="gearmesh.datasets.dynamics:train_dataset",
+        settings=lambda wildcards: config["train_dynamics"],
+    conda:
+        ENV
+    script:
+        "../scripts/pair_stage.py"
+
+
+rule plot_dynamics:
+    """RMS against speed (DTE, x/y/z displacement and velocity, both gears) and mesh-force spectra."""
+    input:
+        dynamics="results/{study}/{pair}/{variant}/dynamics.nc",
+    output:
+        rms="results/{study}/{pair}/{variant}/plots/dynamics_rms.png",
+        spectrum="results/{study}/{pair}/{variant}/plots/dynamics_spectrum.png",
+    log:
+        "logs/{study}/{pair}/{variant}/plot_dynamics.log",
+    params:
+        function="gearmesh.plots.dynamics:dynamics_figures",
+    conda:
+        ENV
+    script:
+        "../scripts/plot.py"
+
+
+rule plot_train_dynamics:
+    """Mesh forces of both meshes of the train: time series and spectrum."""
+    input:
+        train="results/{study}/{pair}/{variant}/train.nc",
+    output:
+        spectrum="results/{study}/{pair}/{variant}/plots/train_spectrum.png",
+    log:
+        "logs/{study}/{pair}/{variant}/plot_train.log",
+    params:
+        function="gearmesh.plots.dynamics:train_figures",
+    conda:
+        ENV
+    script:
+        "../scripts/plot.py"
