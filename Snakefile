@@ -6,7 +6,12 @@ from snakemake.utils import min_version, validate
 min_version("8.0")
 
 
-configfile: "config/config.yaml"
+# The default study only when no --configfile is given: Snakemake merges a --configfile into
+# the configfile directive's config key by key, which would leak the default study's
+# sections (variants, dynamics, ...) into every other study. (--config overrides still apply.)
+if not workflow.overwrite_configfiles:
+
+    configfile: "config/config.yaml"
 
 
 validate(config, "workflow/schemas/config.schema.yaml", set_default=True)

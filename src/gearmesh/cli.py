@@ -93,6 +93,13 @@ def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
                              positions=args.positions, torque_Nm=args.torque_Nm, torque_on=args.on)
 
 
+def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
+    from .datasets.ltca import ltca_summary
+
+    return ltca_summary(load_pair(args.pair), args.torque_Nm, on=args.on, positions=args.positions,
+                        points=args.points, contact_law=args.contact_law)
+
+
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.dynamics import dynamics_summary
 
@@ -126,6 +133,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="which gear carries --torque-Nm")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_stiffness)
+
+    p = sub.add_parser("ltca", help="loaded tooth contact analysis at one torque: TE, LTE, line load, loaded stiffness")
+    p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml), with its modification if any")
+    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, required=True, help="torque (N m)")
+    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="which gear carries the torque")
+    p.add_argument("--positions", type=int, default=64, help="rotation positions per mesh cycle (default 64)")
+    p.add_argument("--points", type=int, default=50, help="points per contact line (default 50)")
+    p.add_argument("--contact-law", dest="contact_law", choices=("palmgren", "linear"), default="palmgren",
+                   help="local contact law (default palmgren, n = 1.11)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_ltca)
 
     p = sub.add_parser("dynamics", help="steady-state speed sweep of the 8-DOF helical pair (seed 001 model)")
     p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml)")

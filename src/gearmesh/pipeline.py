@@ -97,10 +97,21 @@ def run_study_stage(smk: Any) -> None:
     _run(smk, body)
 
 
+def run_collect(smk: Any) -> None:
+    """A study table from per-pair results: ``function(**{input name: [Dataset, ...]}, **settings)``."""
+    def body(smk: Any) -> None:
+        inputs = {k: [read_dataset(p) for p in (v if isinstance(v, list) else [v])] for k, v in smk.input.items()}
+        settings = dict(getattr(smk.params, "settings", None) or {})
+        _write_outputs(smk, resolve(smk.params.function)(**inputs, **settings), None)
+
+    _run(smk, body)
+
+
 def run_plot(smk: Any) -> None:
     """Figures: ``function({input name: Dataset}, {output name: path})`` writes the PNGs."""
     def body(smk: Any) -> None:
-        inputs = {k: read_dataset(v) for k, v in smk.input.items()}
+        inputs = {k: [read_dataset(p) for p in v] if isinstance(v, list) else read_dataset(v)
+                  for k, v in smk.input.items()}
         resolve(smk.params.function)(inputs, dict(smk.output.items()))
 
     _run(smk, body)

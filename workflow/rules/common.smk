@@ -80,6 +80,11 @@ def all_targets():
         if table in config:
             targets += [f"results/{STUDY}/{table}.nc", f"results/{STUDY}/{table}.csv",
                         f"results/{STUDY}/plots/{table}.png"]
+    if "ltca" in config and "standard" in VARIANTS and "torque_Nm" in config["stiffness"]:
+        targets += [f"results/{STUDY}/lste_comparison.nc", f"results/{STUDY}/lste_comparison.csv"]
+    if "dynamics_comparison" in config:
+        targets += [f"results/{STUDY}/dynamics_comparison.nc", f"results/{STUDY}/dynamics_comparison.csv",
+                    f"results/{STUDY}/plots/dynamics_comparison.png"]
     if "low_fluctuation_design" in config:
         targets += [f"results/{STUDY}/low_fluctuation_design.nc", f"results/{STUDY}/low_fluctuation_design.csv"]
     return targets

@@ -72,3 +72,36 @@ rule plot_train_dynamics:
         ENV
     script:
         "../scripts/plot.py"
+
+
+rule dynamics_comparison:
+    """RMS changes between the study's pairs (standard variant): DTE, lateral and axial vibration."""
+    input:
+        dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
+    output:
+        nc="results/{study}/dynamics_comparison.nc",
+        csv="results/{study}/dynamics_comparison.csv",
+    log:
+        "logs/{study}/dynamics_comparison.log",
+    params:
+        function="gearmesh.datasets.dynamics:dynamics_comparison_dataset",
+        settings=lambda wildcards: config.get("dynamics_comparison", {}),
+    conda:
+        ENV
+    script:
+        "../scripts/collect.py"
+
+
+rule plot_dynamics_comparison:
+    input:
+        dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
+    output:
+        dynamics_comparison="results/{study}/plots/dynamics_comparison.png",
+    log:
+        "logs/{study}/plot_dynamics_comparison.log",
+    params:
+        function="gearmesh.plots.dynamics:dynamics_comparison_figures",
+    conda:
+        ENV
+    script:
+        "../scripts/plot.py"

@@ -34,3 +34,21 @@ rule plot_ltca:
         ENV
     script:
         "../scripts/plot.py"
+
+
+rule lste_comparison:
+    """Seed 001's LSTE of every pair: LTCA (standard variant, first torque) next to F/K(phi)."""
+    input:
+        stiffness=expand("results/{{study}}/{pair}/stiffness.nc", pair=config["pairs"]),
+        ltca=expand("results/{{study}}/{pair}/standard/ltca.nc", pair=config["pairs"]),
+    output:
+        nc="results/{study}/lste_comparison.nc",
+        csv="results/{study}/lste_comparison.csv",
+    log:
+        "logs/{study}/lste_comparison.log",
+    params:
+        function="gearmesh.datasets.ltca:lste_comparison_dataset",
+    conda:
+        ENV
+    script:
+        "../scripts/collect.py"

@@ -514,3 +514,57 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                        "seed 001 bearings; meshes in phase unless phase_offsets_cycles; centres on one line",
     })
     return ds
+
+
+def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
+                                couples: Sequence[Sequence[str]] | None = None) -> xr.Dataset:
+    """RMS changes between pairs over a common speed sweep (seed 001 §4–5, its comparisons).
+
+    For each (pair, reference) couple: the mean over speeds of the relative change of the
+    DTE standard deviation, and for each gear and direction the mean relative change and the
+    change of the highest peak of the displacement standard deviation and velocity RMS
+    (seed 001 reports "across most speeds" and "at the resonance peaks"). Default couples:
+    every pair against the first.
+    """
+    by_name = {d.attrs.get("pair_name", str(i)): d for i, d in enumerate(dynamics)}
+    names = list(by_name)
+    couples = [tuple(c) for c in couples] if couples else [(n, names[0]) for n in names[1:]]
+    for pair, ref in couples:
+        for n in (pair, ref):
+            if n not in by_name:
+                raise GearmeshInputError("dynamics_comparison.couples", [pair, ref], f"{n} is not a pair of the study")
+        if not np.array_equal(by_name[pair]["speed"].values, by_name[ref]["speed"].values):
+            raise GearmeshInputError("dynamics.speeds_rpm", None, f"{pair} and {ref} were swept over different speeds")
+
+    def change(new, old):
+        return float(np.mean(new / old - 1)), float(new.max() / old.max() - 1)
+
+    rows = {"dte_mean": [], "dte_peak": []}
+    grid = {f"{q}_{k}": [] for q in ("displacement", "velocity") for k in ("mean", "peak")}
+    for pair, ref in couples:
+        new, old = by_name[pair], by_name[ref]
+        m, p = change(new["dte_std"].values, old["dte_std"].values)
+        rows["dte_mean"].append(m)
+        rows["dte_peak"].append(p)
+        for q, var in (("displacement", "displacement_std"), ("velocity", "velocity_rms")):
+            a, b = new[var].values, old[var].values  # (speed, gear, direction)
+            grid[f"{q}_mean"].append(np.mean(a / b - 1, axis=0))
+            grid[f"{q}_peak"].append(a.max(axis=0) / b.max(axis=0) - 1)
+    d1, d3 = ("couple",), ("couple", "gear", "direction")
+    first = dynamics[0]
+    return xr.Dataset({
+        "dte_std_change_mean": variable(d1, rows["dte_mean"], "1", "mean over speeds of the relative change of DTE std"),
+        "dte_std_change_peak": variable(d1, rows["dte_peak"], "1", "relative change of the highest DTE std peak"),
+        "displacement_change_mean": variable(d3, np.array(grid["displacement_mean"]), "1",
+                                             "mean over speeds of the relative change of displacement std"),
+        "displacement_change_peak": variable(d3, np.array(grid["displacement_peak"]), "1",
+                                             "relative change of the highest displacement std peak"),
+        "velocity_change_mean": variable(d3, np.array(grid["velocity_mean"]), "1",
+                                         "mean over speeds of the relative change of velocity RMS"),
+        "velocity_change_peak": variable(d3, np.array(grid["velocity_peak"]), "1",
+                                         "relative change of the highest velocity RMS peak"),
+    }, coords={
+        "couple": variable(d1, np.array([f"{p} vs {r}" for p, r in couples]), "1", "pair against its reference"),
+        "gear": variable(("gear",), first["gear"].values, "1", "gear of the pair"),
+        "direction": variable(("direction",), first["direction"].values, "1", "x, y lateral; z axial"),
+    })

@@ -8,7 +8,7 @@ TE/LTE means the gear lags its conjugate position.
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Sequence, Any
 
 import numpy as np
 import xarray as xr
@@ -213,3 +213,33 @@ def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int =
         "lte_at_engagement_um": float(res.lte_at_engagement[0]) * um,
         "edge_contact_at_engagement": bool(res.lte_at_engagement[0] > res.tca.te_next_pair_at_engagement),
     }
+
+
+def lste_comparison_dataset(stiffness: Sequence[xr.Dataset], ltca: Sequence[xr.Dataset]) -> xr.Dataset:
+    """LSTE of each pair by the LTCA next to F/K(φ) of the stiffness stage (seed 001 §3).
+
+    ``stiffness`` and ``ltca`` are the per-pair datasets in the same pair order; the LTCA's
+    first torque is compared with the stiffness stage's LSTE torque (they must agree).
+    """
+    names, rows = [], []
+    for k_ds, l_ds in zip(stiffness, ltca):
+        name = k_ds.attrs.get("pair_name", "")
+        if "lste" not in k_ds:
+            raise GearmeshInputError("stiffness.torque_Nm", None, f"is needed for the LSTE of {name}")
+        t_k, t_l = float(k_ds.pinion_torque), float(l_ds["torque"].values[0])  # both pinion torques
+        if abs(t_k - t_l) > 1e-9 * t_k:
+            raise GearmeshInputError("ltca.torques_Nm", t_l, f"first torque must equal the stiffness stage's "
+                                     f"LSTE torque ({t_k} N m on the pinion) for {name}")
+        lte = l_ds["lte"].values[0]
+        names.append(name)
+        rows.append([float(k_ds.lste_mean), float(k_ds.lste_peak_to_peak), float(np.mean(lte)), float(np.ptp(lte)),
+                     float(k_ds.fluctuation)])
+    v = np.array(rows)
+    dims = ("pair",)
+    return xr.Dataset({
+        "lste_stiffness_mean": variable(dims, v[:, 0], "m", "mean LSTE F/K(phi) of the stiffness stage"),
+        "lste_stiffness_peak_to_peak": variable(dims, v[:, 1], "m", "peak-to-peak LSTE F/K(phi)"),
+        "lte_ltca_mean": variable(dims, v[:, 2], "m", "mean loaded TE of the LTCA"),
+        "lte_ltca_peak_to_peak": variable(dims, v[:, 3], "m", "peak-to-peak loaded TE of the LTCA"),
+        "stiffness_fluctuation": variable(dims, v[:, 4], "1", "eps_k = (Kmax - Kmin)/Kmin"),
+    }, coords={"pair": variable(dims, np.array(names), "1", "gear pair")})

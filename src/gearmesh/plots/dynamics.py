@@ -102,3 +102,29 @@ def dynamics_figures(inputs, outputs) -> None:
 def train_figures(inputs, outputs) -> None:
     """The ``plot_train`` rule: output 'spectrum' (both meshes) from input 'train'."""
     plot_force_spectrum(inputs["train"], outputs["spectrum"])
+
+
+def plot_dynamics_comparison(datasets, path) -> None:
+    """DTE std and pinion lateral (y) and axial (z) velocity RMS against speed, all pairs."""
+    fig, axes = plt.subplots(3, 1, figsize=(8, 8.5), sharex=True)
+    for ds in datasets:
+        name = ds.attrs.get("pair_name", "")
+        speed = ds["speed"].values
+        axes[0].plot(speed, ds["dte_std"].values * UM, lw=1.2, label=name)
+        for ax, direction in zip(axes[1:], ("y", "z")):
+            ax.plot(speed, ds["velocity_rms"].sel(gear="pinion", direction=direction).values * 1e3, lw=1.2)
+    axes[0].set_ylabel("DTE std (µm)")
+    axes[1].set_ylabel("pinion y velocity RMS (mm/s)")
+    axes[2].set_ylabel("pinion z velocity RMS (mm/s)")
+    axes[2].set_xlabel("pinion speed (rpm)")
+    for ax in axes:
+        ax.set_yscale("log")
+        ax.grid(alpha=0.3, which="both")
+    axes[0].legend(fontsize=8)
+    axes[0].set_title("speed sweeps of the study's pairs (standard variant)")
+    _save(fig, path)
+
+
+def dynamics_comparison_figures(inputs, outputs) -> None:
+    """The ``plot_dynamics_comparison`` rule."""
+    plot_dynamics_comparison(inputs["dynamics"], outputs["dynamics_comparison"])
