@@ -108,52 +108,51 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     return {"name": args.pair, "torque_Nm": args.torque_Nm, "torque_on": args.on, "speeds": rows}
 
 
+def _command(sub, name: str, func, help: str, pair_help: str = "gear pair file (config/pairs/NAME.yaml)"):
+    """A subcommand with its input file and --json."""
+    p = sub.add_parser(name, help=help)
+    p.add_argument("pair" if name != "validate" else "file", help=pair_help)
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=func)
+    return p
+
+
+def _torque_options(p, required: bool, on_default: str) -> None:
+    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, required=required, help="torque (N m)")
+    p.add_argument("--on", choices=("pinion", "gear"), default=on_default, help="which gear carries the torque")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="gearmesh", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
 
-    p = sub.add_parser("validate", help="check a gear pair file or a study config (exit 0, or 2 with the reason)")
-    p.add_argument("file")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(func=cmd_validate)
+    _command(sub, "validate", cmd_validate, "check a gear pair file or a study config (exit 0, or 2 with the reason)",
+             "a pair file or a study config")
 
-    p = sub.add_parser("geometry", help="contact ratios, radii, backlash, masses and contact-line lengths")
-    p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml)")
+    p = _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
     p.add_argument("--positions", type=int, default=720, help="rotation positions per mesh cycle (default 720)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(func=cmd_geometry)
 
-    p = sub.add_parser("stiffness", help="time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
-    p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml)")
+    p = _command(sub, "stiffness", cmd_stiffness,
+                 "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
     p.add_argument("--method", choices=("traditional", "improved", "transition"), default="transition",
                    help="cantilever model of the tooth (default transition: hob fillet, seed 003)")
     p.add_argument("--slices", type=int, default=200, help="slices over the face width (default 200)")
     p.add_argument("--positions", type=int, default=360, help="rotation positions per mesh cycle (default 360)")
-    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, help="torque for the LSTE (N m)")
-    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="which gear carries --torque-Nm")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(func=cmd_stiffness)
+    _torque_options(p, required=False, on_default="pinion")
 
-    p = sub.add_parser("ltca", help="loaded tooth contact analysis at one torque: TE, LTE, line load, loaded stiffness")
-    p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml), with its modification if any")
-    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, required=True, help="torque (N m)")
-    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="which gear carries the torque")
+    p = _command(sub, "ltca", cmd_ltca, "loaded tooth contact analysis at one torque: TE, LTE, line load, stiffness",
+                 "gear pair file (config/pairs/NAME.yaml), with its modification if any")
+    _torque_options(p, required=True, on_default="pinion")
     p.add_argument("--positions", type=int, default=64, help="rotation positions per mesh cycle (default 64)")
     p.add_argument("--points", type=int, default=50, help="points per contact line (default 50)")
     p.add_argument("--contact-law", dest="contact_law", choices=("palmgren", "linear"), default="palmgren",
                    help="local contact law (default palmgren, n = 1.11)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(func=cmd_ltca)
 
-    p = sub.add_parser("dynamics", help="steady-state speed sweep of the 8-DOF helical pair (seed 001 model)")
-    p.add_argument("pair", help="gear pair file (config/pairs/NAME.yaml)")
-    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, required=True, help="torque (N m)")
-    p.add_argument("--on", choices=("pinion", "gear"), default="gear", help="which gear carries the torque")
+    p = _command(sub, "dynamics", cmd_dynamics, "steady-state speed sweep of the 8-DOF helical pair (seed 001 model)")
+    _torque_options(p, required=True, on_default="gear")
     p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
     p.add_argument("--backlash-um", dest="backlash_um", type=float, default=60.0,
                    help="total backlash 2b0 along the normal (µm, default 60)")
-    p.add_argument("--json", action="store_true", help="print one JSON object")
-    p.set_defaults(func=cmd_dynamics)
     return parser
 
 

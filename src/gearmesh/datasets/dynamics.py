@@ -271,6 +271,19 @@ def _common_vars(model: GearModel, res: SweepResult, mesh_dim: bool) -> dict[str
     }
 
 
+def _vibration_vars(res: SweepResult, n_trans: int, shape: tuple[int, int]) -> dict[str, xr.Variable]:
+    """Displacement RMS/mean/std and velocity RMS per speed, gear and direction (m, m/s)."""
+    ym = res.y_mean[:n_trans].T.reshape(-1, *shape)
+    ys = res.y_std[:n_trans].T.reshape(-1, *shape)
+    dims = ("speed", "gear", "direction")
+    return {
+        "displacement_rms": variable(dims, np.sqrt(ym**2 + ys**2), "m", "RMS displacement (mean included)"),
+        "displacement_mean": variable(dims, ym, "m", "mean displacement (static bearing deflection)"),
+        "displacement_std": variable(dims, ys, "m", "standard deviation of the displacement (vibration)"),
+        "velocity_rms": variable(dims, res.v_rms[:n_trans].T.reshape(-1, *shape), "m s-1", "RMS velocity"),
+    }
+
+
 def _modal_vars(model: GearModel, harmonics=(1, 2, 3)) -> dict[str, xr.Variable]:
     md = model.modes()
     rs = resonance_speeds(model, harmonics)
@@ -366,16 +379,9 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
     nt = model.n_trans  # 6: x, y, z of pinion then gear
     shape = (2, 3)
     data = _common_vars(model, res, mesh_dim=False)
-    ym, ys = res.y_mean[:nt].T.reshape(-1, *shape), res.y_std[:nt].T.reshape(-1, *shape)
-    dims = ("speed", "gear", "direction")
-    data.update({
-        "displacement_rms": variable(dims, np.sqrt(ym**2 + ys**2), "m", "RMS displacement (mean included)"),
-        "displacement_mean": variable(dims, ym, "m", "mean displacement (static bearing deflection)"),
-        "displacement_std": variable(dims, ys, "m", "standard deviation of the displacement (vibration)"),
-        "velocity_rms": variable(dims, res.v_rms[:nt].T.reshape(-1, *shape), "m s-1", "RMS velocity"),
-        "torsional_std": variable(("speed",), res.y_std[nt], "m",
-                                  "standard deviation of the relative rotation r_b1 theta_p - r_b2 theta_g"),
-    })
+    data.update(_vibration_vars(res, nt, shape))
+    data["torsional_std"] = variable(("speed",), res.y_std[nt], "m",
+                                     "standard deviation of the relative rotation r_b1 theta_p - r_b2 theta_g")
     data.update(_modal_vars(model))
     coords = {
         "speed": variable(("speed",), speeds, "rpm", "pinion speed"),
@@ -481,15 +487,8 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     nt = model.n_trans  # 6: y, z of plate, blanket, impression
     shape = (3, 2)
     data = _common_vars(model, res, mesh_dim=True)
-    ym, ys = res.y_mean[:nt].T.reshape(-1, *shape), res.y_std[:nt].T.reshape(-1, *shape)
-    dims = ("speed", "gear", "direction")
-    data.update({
-        "displacement_rms": variable(dims, np.sqrt(ym**2 + ys**2), "m", "RMS displacement (mean included)"),
-        "displacement_mean": variable(dims, ym, "m", "mean displacement (static bearing deflection)"),
-        "displacement_std": variable(dims, ys, "m", "standard deviation of the displacement (vibration)"),
-        "velocity_rms": variable(dims, res.v_rms[:nt].T.reshape(-1, *shape), "m s-1", "RMS velocity"),
-        "torque": variable((), torque, "N m", "torque on the plate gear (= load on the impression gear)"),
-    })
+    data.update(_vibration_vars(res, nt, shape))
+    data["torque"] = variable((), torque, "N m", "torque on the plate gear (= load on the impression gear)")
     data.update(_modal_vars(model))
     arr = _series_arrays(res, points_per_cycle, max_order, settings.record_cycles)
     data.update(_series_vars(res, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
