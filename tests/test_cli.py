@@ -76,3 +76,52 @@ def test_dynamics_json_per_speed(root, capsys):
 def test_dynamics_refuses_bad_options(root, capsys, args, field):
     assert main(["dynamics", str(root / "config/pairs/seed001_pair1.yaml"), *args]) == 2
     assert capsys.readouterr().err.startswith(f"gearmesh: error: {field}")
+
+
+PAIR_TEXT = ("name: x\nteeth: [29, 49]\nnormal_module_mm: 1.75\nnormal_pressure_angle_deg: 25\n"
+             "helix_angle_deg: 10\nface_width_mm: 20\nbore_radius_mm: [15, 25]\n"
+             "material: {youngs_modulus_GPa: 210, poisson_ratio: 0.3, density_kg_m3: 7850}\n")
+
+
+@pytest.mark.parametrize("content, field, words", [
+    (b"\xff\xfe\x00binary", "file", "UTF-8"),
+    (PAIR_TEXT.replace("teeth: [29, 49]\n", "teeth: [29, 49]\nteeth: [20, 40]\n").encode(), "teeth", "twice"),
+    (PAIR_TEXT.replace("normal_module_mm: 1.75", "normal_module_mm: 1e6").encode(), "normal_module_mm", "1.0e+6"),
+    (PAIR_TEXT.replace("bore_radius_mm: [15, 25]", "bore_radius_mm: [24, 25]").encode(), "bore_radius_mm[0]",
+     "root radius"),
+])
+def test_malformed_files_get_one_clear_message(tmp_path, capsys, content, field, words):
+    path = tmp_path / "bad.yaml"
+    path.write_bytes(content)
+    assert main(["validate", str(path)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"gearmesh: error: {field}") and words in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("extra, field", [
+    ("variants: {v: {modification: {pinion: {tip_relief_um: 5}}}}\n", "modification.pinion.tip_relief_length_mm"),
+    ("stiffness_table: {pairs: [p], variants: {a: {eps_alpha: 0.5}}}\n", "stiffness_table.variants.a.eps_alpha"),
+    ("stiffness_table: {pairs: [p], variants: {a: {colour: 1}}}\n", "stiffness_table.variants.a.pair.colour"),
+    ("helix_sweep: {pairs: [p], start_deg: 40, stop_deg: 10, step_deg: 1}\n", "helix_sweep.stop_deg"),
+])
+def test_study_validation_builds_every_variant(tmp_path, capsys, extra, field):
+    (tmp_path / "pairs").mkdir()
+    (tmp_path / "pairs/p.yaml").write_text(PAIR_TEXT.replace("name: x", "name: p"))
+    study = tmp_path / "study.yaml"
+    study.write_text(f"study: s\npairs: [p]\npairs_dir: {tmp_path / 'pairs'}\n" + extra)
+    assert main(["validate", str(study)]) == 2
+    assert capsys.readouterr().err.startswith(f"gearmesh: error: {field}")
+
+
+def test_study_pair_without_material_is_refused_up_front(tmp_path, capsys):
+    (tmp_path / "pairs").mkdir()
+    (tmp_path / "pairs/p.yaml").write_text(PAIR_TEXT.replace("name: x", "name: p").split("material")[0])
+    study = tmp_path / "study.yaml"
+    study.write_text(f"study: s\npairs: [p]\npairs_dir: {tmp_path / 'pairs'}\n")
+    assert main(["validate", str(study)]) == 2
+    assert capsys.readouterr().err.startswith("gearmesh: error: material")
+
+
+def test_cli_bounds_grid_sizes(root, capsys):
+    assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), "--slices", "100000000"]) == 2
+    assert capsys.readouterr().err.startswith("gearmesh: error: --slices")

@@ -13,8 +13,9 @@ import sys
 from collections.abc import Mapping, Sequence
 from typing import Any
 
-from .config import read_yaml, study_pairs, validate_study
-from .contact import contact_length_closed_form, contact_lines, mesh_cycle_rolls
+from .config import check_study, validate_study
+from .gear import read_yaml
+from .contact import contact_length_summary
 from .errors import GearmeshInputError
 from .gear import load_pair, pair_geometry
 
@@ -57,10 +58,7 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
 def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     data = read_yaml(args.file, "file")
     if isinstance(data, Mapping) and "study" in data:
-        config = validate_study(data)
-        pairs = study_pairs(config)
-        for pair in pairs.values():
-            pair_geometry(pair)
+        pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
     pair = load_pair(args.file)
     pair_geometry(pair)
@@ -70,16 +68,15 @@ def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
     geom = pair_geometry(load_pair(args.pair))
     result = geom.scalars()
-    total = contact_lines(geom, mesh_cycle_rolls(geom, args.positions)).total_length
-    mean_cf, min_cf, max_cf = contact_length_closed_form(geom)
+    summary = contact_length_summary(geom)
     result.update({
-        "mean_contact_length_mm": float(total.mean()) * 1e3,
-        "min_contact_length_mm": float(total.min()) * 1e3,
-        "max_contact_length_mm": float(total.max()) * 1e3,
-        "mean_contact_length_closed_form_mm": mean_cf * 1e3,
-        "min_contact_length_closed_form_mm": min_cf * 1e3,
-        "max_contact_length_closed_form_mm": max_cf * 1e3,
-        "contact_length_fluctuation": float(total.max() - total.min()) / geom.face_width,
+        "mean_contact_length_mm": summary.numeric_mean * 1e3,
+        "min_contact_length_mm": summary.numeric_min * 1e3,
+        "max_contact_length_mm": summary.numeric_max * 1e3,
+        "mean_contact_length_closed_form_mm": summary.mean * 1e3,
+        "min_contact_length_closed_form_mm": summary.min * 1e3,
+        "max_contact_length_closed_form_mm": summary.max * 1e3,
+        "contact_length_fluctuation": summary.numeric_eps_l,
     })
     return result
 
@@ -129,8 +126,7 @@ def build_parser() -> argparse.ArgumentParser:
     _command(sub, "validate", cmd_validate, "check a gear pair file or a study config (exit 0, or 2 with the reason)",
              "a pair file or a study config")
 
-    p = _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
-    p.add_argument("--positions", type=int, default=720, help="rotation positions per mesh cycle (default 720)")
+    _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 
     p = _command(sub, "stiffness", cmd_stiffness,
                  "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
@@ -160,8 +156,10 @@ def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
     try:
-        if getattr(args, "positions", 1) < 1:
-            raise GearmeshInputError("--positions", args.positions, "must be at least 1")
+        for option, low, high in (("positions", 8, 100_000), ("slices", 1, 20_000), ("points", 2, 2000)):
+            value = getattr(args, option, None)
+            if value is not None and not low <= value <= high:
+                raise GearmeshInputError(f"--{option}", value, f"must lie in [{low}, {high}]")
         result = args.func(args)
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)

@@ -94,3 +94,36 @@ def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearP
     if spec.get("modification"):
         data["modification"] = spec["modification"]
     return pair_from_dict(data, source=pair.source)
+
+
+def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, GearPair]:
+    """Everything a study will need, checked before any job runs (one error, naming the field):
+    every pair loads and works, has the material and bore the always-run stiffness stage
+    needs, every micro-geometry variant and every stiffness-table variant gives a working
+    pair, and sweep ranges are not empty. Returns the pairs."""
+    from .datasets.stiffness import apply_variant
+    from .gear import pair_geometry
+    from .stiffness import require_stiffness_data
+
+    pairs = study_pairs(config, root)
+    for name, pair in pairs.items():
+        geom = pair_geometry(pair)
+        if name in config["pairs"]:
+            require_stiffness_data(geom)
+        for variant, spec in config.get("variants", {}).items():
+            pair_geometry(variant_pair(pair, variant, spec))
+    table = config.get("stiffness_table", {})
+    for name in table.get("pairs", []):
+        for variant, overrides in (table.get("variants") or {}).items():
+            try:
+                pair_geometry(apply_variant(pairs[name], variant, overrides))
+            except (TypeError, ValueError) as exc:
+                if isinstance(exc, GearmeshInputError):
+                    raise GearmeshInputError(f"stiffness_table.variants.{variant}.{exc.field}", exc.value,
+                                             exc.rule) from None
+                raise GearmeshInputError(f"stiffness_table.variants.{variant}", dict(overrides), str(exc)) from None
+    sweep = config.get("helix_sweep")
+    if sweep and sweep["stop_deg"] < sweep["start_deg"]:
+        raise GearmeshInputError("helix_sweep.stop_deg", sweep["stop_deg"],
+                                 f"must not be below start_deg ({sweep['start_deg']})")
+    return pairs

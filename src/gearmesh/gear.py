@@ -135,7 +135,14 @@ _MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
 
 def _number(field_name: str, value: Any) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise GearmeshInputError(field_name, value, "must be a finite number")
+        rule = "must be a finite number"
+        try:
+            float(value)
+            if isinstance(value, str):  # YAML 1.1 reads 1e6 (no dot, no sign) as text
+                rule += " (YAML reads it as text: write e.g. 1.0e+6)"
+        except (TypeError, ValueError):
+            pass
+        raise GearmeshInputError(field_name, value, rule)
     return float(value)
 
 
@@ -305,13 +312,31 @@ def validate_pair(pair: GearPair) -> None:
             raise GearmeshInputError(name, value, rule)
 
 
+class _UniqueKeyLoader(yaml.SafeLoader):
+    """A safe YAML loader that refuses a mapping with the same key twice (PyYAML keeps the last)."""
+
+
+def _unique_mapping(loader: _UniqueKeyLoader, node: yaml.MappingNode, deep: bool = False):
+    keys = [loader.construct_object(k, deep=deep) for k, _ in node.value]
+    duplicates = sorted({str(k) for k in keys if keys.count(k) > 1})
+    if duplicates:
+        raise GearmeshInputError(duplicates[0], None, f"is given twice in one mapping (line {node.start_mark.line + 1})")
+    return loader.construct_mapping(node, deep=deep)
+
+
+_UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _unique_mapping)
+
+
 def read_yaml(path: str | Path, what: str) -> Any:
-    """Parse a YAML file; a missing or malformed file is a one-line :class:`GearmeshInputError`."""
+    """Parse a YAML file; a missing, unreadable or malformed file, or a key given twice, is a
+    one-line :class:`GearmeshInputError`."""
     path = Path(path)
     try:
-        return yaml.safe_load(path.read_text())
+        return yaml.load(path.read_text(encoding="utf-8"), Loader=_UniqueKeyLoader)
     except OSError as exc:
         raise GearmeshInputError(what, str(path), f"cannot be read ({exc.strerror})") from None
+    except UnicodeDecodeError:
+        raise GearmeshInputError(what, str(path), "is not UTF-8 text") from None
     except yaml.YAMLError as exc:
         raise GearmeshInputError(what, str(path), "is not valid YAML: " + " ".join(str(exc).split())) from None
 
@@ -547,13 +572,15 @@ def gear_body_mass_inertia(reference_radius, bore_radius, face_width, density):
 def pair_geometry(pair: GearPair) -> PairGeometry:
     """Derived geometry of ``pair``, refusing any pair that cannot work.
 
-    When the profile shifts were inferred from the centre distance, a refusal names
-    ``center_distance_mm`` (the value the user gave) and says which inferred shift failed.
+    When the profile shifts were inferred from the centre distance, a refusal caused by
+    them (shift or tip geometry) names ``center_distance_mm`` (the value the user gave) and
+    says which inferred shift failed; other refusals keep their own field.
     """
     try:
         return _pair_geometry(pair)
     except GearmeshInputError as exc:
-        if pair.profile_shift is None and pair.center_distance is not None and exc.field != "center_distance_mm":
+        caused_by_shift = exc.field.startswith(("profile_shift", "addendum_coefficient"))
+        if pair.profile_shift is None and pair.center_distance is not None and caused_by_shift:
             raise GearmeshInputError(
                 "center_distance_mm", pair.center_distance * 1e3,
                 f"needs profile shifts for zero backlash that make no working pair: {exc}") from None

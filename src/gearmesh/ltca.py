@@ -67,8 +67,8 @@ import numpy as np
 from .contact import mesh_cycle_rolls
 from .errors import GearmeshInputError
 from .gear import PairGeometry
-from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, _require, hertz_compliance_transverse,
-                        pair_slice_table, slice_compliance_table)
+from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
+                        pair_slice_table, require_stiffness_data, slice_compliance_table)
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
                   _check_count, _first_contact, _nanmin, candidate_grid, check_extension, check_modifications,
                   engagement_point, engagement_separation)
@@ -110,7 +110,7 @@ def contact_law(geom: PairGeometry, dz: float, name: str = "palmgren") -> Contac
     """
     if name not in CONTACT_LAWS:
         raise GearmeshInputError("contact_law", name, f"must be one of {list(CONTACT_LAWS)}")
-    _require(geom, need_bore=False)
+    require_stiffness_data(geom, need_bore=False)
     if name == "linear":
         return ContactLaw(name, 0.0, 1.0, hertz_compliance_transverse(geom) / dz, dz)
     mat = geom.pair.material
@@ -235,7 +235,7 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     :class:`~gearmesh.stiffness.SliceComplianceTable` (same ``method``).
     """
     check_modifications(geom)
-    _require(geom)
+    require_stiffness_data(geom)
     if method not in METHODS:
         raise GearmeshInputError("method", method, f"must be one of {list(METHODS)}")
     positions = _check_count("positions", positions, 1, 100000)

@@ -139,7 +139,7 @@ SAINSOT_COEFFICIENTS = np.array([
 # --------------------------------------------------------------------------------------
 
 
-def _require(geom: PairGeometry, need_bore: bool = True) -> None:
+def require_stiffness_data(geom: PairGeometry, need_bore: bool = True) -> None:
     """Refuse a pair without the data the stiffness needs (GearmeshInputError naming the field)."""
     pair = geom.pair
     if pair.material is None:
@@ -302,7 +302,7 @@ def tooth_model(geom: PairGeometry, gear: int, method: str = "transition", profi
         (computed when None).
     """
     _check_method(method)
-    _require(geom)
+    require_stiffness_data(geom)
     mat = geom.pair.material
     rb = float(geom.base_radius[gear])
     rf = float(geom.root_radius[gear])
@@ -558,7 +558,7 @@ def hertz_compliance_transverse(geom: PairGeometry) -> float:
     the transverse line of action its stiffness is k_h0·Δz·cos βb (module docstring), so
     c_h = 1/(k_h0 cos βb) with k_h0 = πE/(4(1−ν²)).
     """
-    _require(geom, need_bore=False)
+    require_stiffness_data(geom, need_bore=False)
     mat = geom.pair.material
     return 1.0 / (hertz_stiffness_per_width(mat.youngs_modulus, mat.poisson_ratio)
                   * math.cos(geom.base_helix_angle))
@@ -846,7 +846,7 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
         zone, error O(Δz²)) or 'centre' (whole slices by their centre, error O(Δz)).
     """
     _check_method(method)
-    _require(geom)
+    require_stiffness_data(geom)
     if n_positions < 1:
         raise GearmeshInputError("n_positions", n_positions, "must be at least 1")
     if tables is not None and any(tab.method != method for tab in tables):
@@ -888,7 +888,7 @@ def mesh_stiffness_reference(geom: PairGeometry, n_positions: int, n_slices: int
     for tests and benchmark baselines on small grids (about 5 ms per slice and position).
     """
     _check_method(method)
-    _require(geom)
+    require_stiffness_data(geom)
     models = (tooth_model(geom, 0, method), tooth_model(geom, 1, method))
     moments = tuple(fixed_moments_quad(m) for m in models)
     ch = hertz_compliance_transverse(geom)

@@ -1,19 +1,16 @@
 # Config loading and helpers shared by every rule. No physics here.
 import sys
 
-from gearmesh.config import pair_path, study_pairs
+from gearmesh.config import check_study, pair_path
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import pair_geometry
 
 STUDY = config["study"]
 ENV = "../envs/gearmesh.yaml"
 
-# Every pair of the study is loaded and checked before any job runs, so a bad pair stops the
-# workflow with one message and no partial output.
+# Every pair and variant of the study is loaded and checked before any job runs, so a bad
+# input stops the workflow with one message and no partial output.
 try:
-    PAIRS = study_pairs(config)
-    for _pair in PAIRS.values():
-        pair_geometry(_pair)
+    PAIRS = check_study(config)
 except GearmeshInputError as exc:
     print(f"gearmesh: error: {exc}", file=sys.stderr)
     sys.exit(2)

@@ -13,8 +13,16 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
-from ..contact import contact_length_closed_form, contact_length_fluctuation, contact_lines, mesh_cycle_rolls
+from ..contact import (
+    contact_length_closed_form,
+    contact_length_fluctuation,
+    contact_length_summary,
+    contact_line_end_points,
+    contact_lines,
+    mesh_cycle_rolls,
+)
 from ..design import integer_overlap_face_width, integer_overlap_helix_angle, overlap_fluctuation_curve
+from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, PairGeometry, pair_geometry
 from ..io import variable
 from ..profile import tooth_profile
@@ -118,33 +126,41 @@ def geometry_dataset(pair: GearPair, involute_points: int = 120, fillet_points: 
 def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:
     """Contact lines and total length L(φ) over one mesh cycle (seed 002; seed 001 §1, §5).
 
-    Positions are pinion roll distances over one transverse base pitch; each line is given
-    by its clipped end points in the plane of action and its length, with the closed-form
-    mean/min/max beside the numeric ones.
+    Positions are pinion roll distances over one transverse base pitch. Each line is given
+    by its clipped end points in the plane of action (s, z) and in 3-D, in the fixed frame
+    and on the pinion flank (pinion body frame, tooth j rotated onto tooth 0), with its
+    length. Mean/min/max of L are exact (L is piecewise linear: evaluated at its kinks,
+    :func:`gearmesh.contact.contact_length_summary`) beside the closed forms.
     """
     geom = pair_geometry(pair)
     roll = mesh_cycle_rolls(geom, positions)
     lines = contact_lines(geom, roll)
-    mean_cf, min_cf, max_cf = contact_length_closed_form(geom)
-    total = lines.total_length
+    ends = contact_line_end_points(geom, lines).points
+    summary = contact_length_summary(geom)
     b = geom.face_width
+    pl, ple, plex = ("position", "line"), ("position", "line", "end"), ("position", "line", "end", "xyz")
     ds = xr.Dataset(
         data_vars={
-            "line_length": variable(("position", "line"), lines.length, "m", "length of each contact line"),
-            "s_start": variable(("position", "line"), lines.s_start, "m",
+            "line_length": variable(pl, lines.length, "m", "length of each contact line"),
+            "s_start": variable(pl, lines.s_start, "m",
                                 "start of the line: distance from the start of active profile along the line of action"),
-            "s_end": variable(("position", "line"), lines.s_end, "m",
+            "s_end": variable(pl, lines.s_end, "m",
                               "end of the line: distance from the start of active profile along the line of action"),
-            "z_start": variable(("position", "line"), lines.z_start, "m", "axial position of the line's start"),
-            "z_end": variable(("position", "line"), lines.z_end, "m", "axial position of the line's end"),
-            "total_length": variable(("position",), total, "m", "total contact-line length L(phi)"),
-            "mean_length": _scalar(total.mean(), "m", "mean total contact length over the mesh cycle"),
-            "min_length": _scalar(total.min(), "m", "minimum total contact length"),
-            "max_length": _scalar(total.max(), "m", "maximum total contact length"),
-            "mean_length_closed_form": _scalar(mean_cf, "m", "mean total contact length, l_mean = b eps_alpha / cos beta_b"),
-            "min_length_closed_form": _scalar(min_cf, "m", "minimum total contact length, closed form"),
-            "max_length_closed_form": _scalar(max_cf, "m", "maximum total contact length, closed form"),
-            "length_fluctuation": _scalar((total.max() - total.min()) / b, "1",
+            "z_start": variable(pl, lines.z_start, "m", "axial position of the line's start"),
+            "z_end": variable(pl, lines.z_end, "m", "axial position of the line's end"),
+            "end_fixed": variable(plex, ends.fixed, "m", "line end points in the fixed frame (pinion axis = z)"),
+            "end_pinion": variable(plex, ends.pinion_tooth, "m",
+                                   "line end points on the pinion flank (pinion body frame, tooth 0)"),
+            "end_rho_pinion": variable(ple, ends.rho_pinion, "m", "pinion roll length at the line ends"),
+            "end_rho_gear": variable(ple, ends.rho_gear, "m", "gear roll length at the line ends"),
+            "total_length": variable(("position",), lines.total_length, "m", "total contact-line length L(phi)"),
+            "mean_length": _scalar(summary.numeric_mean, "m", "mean total contact length over the mesh cycle (exact)"),
+            "min_length": _scalar(summary.numeric_min, "m", "minimum total contact length (exact)"),
+            "max_length": _scalar(summary.numeric_max, "m", "maximum total contact length (exact)"),
+            "mean_length_closed_form": _scalar(summary.mean, "m", "mean total contact length, l_mean = b eps_alpha / cos beta_b"),
+            "min_length_closed_form": _scalar(summary.min, "m", "minimum total contact length, closed form"),
+            "max_length_closed_form": _scalar(summary.max, "m", "maximum total contact length, closed form"),
+            "length_fluctuation": _scalar(summary.numeric_eps_l, "1",
                                           "contact-line fluctuation eps_l = (Lmax - Lmin)/b (seed 001)"),
             "eps_alpha": _scalar(geom.eps_alpha, "1", "transverse contact ratio"),
             "eps_beta": _scalar(geom.eps_beta, "1", "overlap ratio"),
@@ -156,6 +172,8 @@ def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:
             "position": variable(("position",), roll, "m", "pinion roll distance r_b1 phi_1 over one mesh cycle"),
             "pinion_angle": variable(("position",), roll / geom.base_radius[0], "rad", "pinion rotation angle phi_1"),
             "line": variable(("line",), lines.pairs, "1", "tooth-pair index j along the line of action"),
+            "end": variable(("end",), np.array(["start", "end"]), "1", "line end: smaller z, larger z"),
+            "xyz": variable(("xyz",), np.array(["x", "y", "z"]), "1", "Cartesian component"),
         },
     )
     return ds
@@ -228,7 +246,7 @@ def low_fluctuation_design_dataset(pairs: Mapping[str, GearPair]) -> xr.Dataset:
                 else:
                     function, direction = DESIGN_ROUTES[route]
                     geom = function(pairs[name], direction).geometry
-            except ValueError as exc:
+            except GearmeshInputError as exc:
                 refused.append(f"{name} {route}: {exc}")
                 continue
             out["helix_angle"][i, k] = geom.pair.helix_angle
