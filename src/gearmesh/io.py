@@ -9,8 +9,10 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+from contextlib import contextmanager
+from functools import lru_cache
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Iterator, Mapping
 
 import numpy as np
 import xarray as xr
@@ -39,13 +41,42 @@ def variable(dims, data, units: str, long_name: str, **attrs) -> xr.Variable:
     return xr.Variable(dims, np.asarray(data), attrs={"units": units, "long_name": long_name, **attrs})
 
 
+@contextmanager
+def atomic_output(path: str | Path) -> Iterator[Path]:
+    """Yield a temporary path beside ``path``; rename it to ``path`` only if the block succeeds,
+    so no partial file ever carries the final name (DESIGN.md)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
+    try:
+        yield tmp
+        os.replace(tmp, path)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+
+
+@lru_cache(maxsize=1)
+def source_digest() -> str:
+    """sha256 of the package's own source files (.py and .yaml, sorted by path): ties a result
+    to the exact code that made it, with or without git."""
+    package = Path(__file__).resolve().parent
+    h = hashlib.sha256()
+    for f in sorted(p for p in package.rglob("*") if p.suffix in (".py", ".yaml") and "__pycache__" not in p.parts):
+        h.update(str(f.relative_to(package)).encode())
+        h.update(f.read_bytes())
+    return h.hexdigest()
+
+
 def add_provenance(ds: xr.Dataset, config: Mapping[str, Any], source: str, title: str) -> xr.Dataset:
-    """Attach the global provenance attributes (version, full config JSON and its sha256, source)."""
+    """Attach the global provenance attributes (version, source digest, full config JSON and its
+    sha256, source reference)."""
     text, digest = config_digest(config)
     ds.attrs.update({
         "title": title,
         "Conventions": "CF-1.8",
         "gearmesh_version": __version__,
+        "gearmesh_source_sha256": source_digest(),
         "config_json": text,
         "config_sha256": digest,
         "source_reference": source,
@@ -67,18 +98,11 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     for attr in ("gearmesh_version", "config_sha256"):
         if attr not in ds.attrs:
             raise ValueError(f"dataset lacks the provenance attribute {attr!r}")
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp.nc")
     encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars
                 if ds[name].dtype.kind in "fiu" and ds[name].ndim > 0}
-    try:
+    with atomic_output(path) as tmp:
         ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
-        os.replace(tmp, path)
-    finally:
-        if tmp.exists():
-            tmp.unlink()
-    return path
+    return Path(path)
 
 
 def read_dataset(path: str | Path) -> xr.Dataset:

@@ -19,7 +19,7 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .gear import GearPair, load_pair, pair_to_dict
-from .io import add_provenance, read_dataset, write_dataset
+from .io import add_provenance, atomic_output, read_dataset, write_dataset
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
@@ -69,7 +69,8 @@ def _title(smk: Any) -> str:
 def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
     finish(ds, smk.output[0], smk.config, pair, _title(smk))
     if "csv" in smk.output.keys():
-        ds.to_dataframe().to_csv(smk.output.csv)
+        with atomic_output(smk.output.csv) as tmp:
+            ds.to_dataframe().to_csv(tmp)
 
 
 def run_pair_stage(smk: Any) -> None:
@@ -127,9 +128,7 @@ def run_variant_pair(smk: Any) -> None:
     def body(smk: Any) -> None:
         pair = variant_pair(load_pair(smk.input.pair), smk.wildcards.variant, smk.params.spec)
         pair_geometry(pair)
-        path = Path(smk.output[0])
-        tmp = path.with_name(f".{path.name}.tmp")
-        tmp.write_text(yaml.safe_dump(pair_to_dict(pair), sort_keys=False))
-        tmp.replace(path)
+        with atomic_output(smk.output[0]) as tmp:
+            tmp.write_text(yaml.safe_dump(pair_to_dict(pair), sort_keys=False))
 
     _run(smk, body)

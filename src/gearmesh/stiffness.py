@@ -985,6 +985,13 @@ def iso6336_stiffness(geom: PairGeometry) -> dict[str, float]:
     Returns c_prime_th, c_prime, c_gamma_alpha, c_gamma_beta in N/(mm·µm), the
     factors, and K_gamma_alpha = cγα·b, K_gamma_beta = cγβ·b in N/m (mean transverse mesh
     stiffness of the face width b, comparable to :attr:`MeshStiffness.mean`).
+
+    Known difference from the slice model: the slices are transverse sections (seeds
+    003/004), whose profile thickens with β, while ISO scales by cos β on the virtual spur
+    gear. The ratio PEM/ISO therefore grows with β: 1.18, 1.21, 1.29, 1.42, 1.62 at β =
+    0, 10, 20, 30, 40° for 29/49 teeth, m_n 1.75, αn 20°. The CB formula is also used
+    here outside the usual basic-rack range (seed 003's 2.2 m_n deep hobs give CB 0.57);
+    both are reported as computed, not corrected.
     """
     pair = geom.pair
     beta, beta_b = pair.helix_angle, geom.base_helix_angle

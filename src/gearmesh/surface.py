@@ -264,11 +264,11 @@ class ToothSurface:
 
 
 def tooth_surface(geom: PairGeometry, gear: int, n_profile: int = 90, n_face: int = 21,
-                  modified: bool = True, tooth: int = 0) -> ToothSurface:
+                  modified: bool = True, tooth: int = 0, n_fillet: int | None = None) -> ToothSurface:
     """The contacting flank (fillet + involute) of tooth ``tooth`` of gear ``gear`` (0/1).
 
     The transverse profile of :func:`gearmesh.profile.tooth_profile` (``n_profile`` points,
-    a third on the fillet), mirrored to the x < 0 side, is swept helically over
+    ``n_fillet`` of them on the fillet, default a third), mirrored to the x < 0 side, is swept helically over
     z ∈ [−b/2, b/2] (``n_face`` slices): slice z turned CCW by z·k/r_b (module docstring).
     For a profile M(τ) and twist w = k/r_b the outward normal is ∝ (−M_y', M_x', −w M·M'),
     rotated with the slice (normal of a screw surface, Litvin & Fuentes §10.4); on the
@@ -278,7 +278,9 @@ def tooth_surface(geom: PairGeometry, gear: int, n_profile: int = 90, n_face: in
     """
     if n_profile < 6 or n_face < 1:
         raise ValueError("n_profile must be at least 6 and n_face at least 1")
-    n_fil = max(2, n_profile // 3)
+    n_fil = max(2, n_profile // 3) if n_fillet is None else n_fillet
+    if not 2 <= n_fil <= n_profile - 2:
+        raise ValueError("n_fillet must leave at least 2 points on each of fillet and involute")
     prof = tooth_profile(geom, gear, n_fillet=n_fil, n_involute=n_profile - n_fil)
     mx, my = -prof.x, prof.y  # mirrored: the CCW-side flank
     tx, ty = -prof.tangent_x, prof.tangent_y

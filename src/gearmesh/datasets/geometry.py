@@ -93,8 +93,8 @@ def geometry_dataset(pair: GearPair, involute_points: int = 120, fillet_points: 
     """
     geom = pair_geometry(pair)
     profiles = [tooth_profile(geom, g, n_fillet=fillet_points, n_involute=involute_points) for g in range(2)]
-    surfaces = [tooth_surface(geom, g, n_profile=involute_points + fillet_points, n_face=face_points)
-                for g in range(2)]
+    surfaces = [tooth_surface(geom, g, n_profile=involute_points + fillet_points, n_face=face_points,
+                              n_fillet=fillet_points) for g in range(2)]
     pdims, sdims = ("gear", "profile_point"), ("gear", "u", "v")
 
     def stack(items, attr):

@@ -37,7 +37,7 @@ def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
 
 def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
                       positions: int = 360, fourier_order: int = 3, torque_Nm: float | None = None,
-                      torque_on: str = "gear") -> xr.Dataset:
+                      torque_on: str = "pinion") -> xr.Dataset:
     """K(φ) of ``pair`` by the slice potential energy method (:func:`gearmesh.stiffness.mesh_stiffness`),
     with its components, one tooth pair's k over its engagement, the Fourier series of K to
     ``fourier_order`` (seed 004) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
@@ -99,7 +99,7 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
 
 
 def stiffness_summary(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
-                      positions: int = 360, torque_Nm: float | None = None, torque_on: str = "gear") -> dict[str, Any]:
+                      positions: int = 360, torque_Nm: float | None = None, torque_on: str = "pinion") -> dict[str, Any]:
     """Headline stiffness numbers in engineering units (the CLI's ``stiffness --json``)."""
     ds = stiffness_dataset(pair, method, slices, positions, 3, torque_Nm, torque_on)
     out = {
@@ -142,7 +142,7 @@ def apply_variant(pair: GearPair, name: str, overrides: Mapping[str, Any]) -> Ge
 def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str] = ("transition",),
                             variants: Mapping[str, Mapping[str, Any]] | None = None,
                             slices: int = DEFAULT_SLICES, positions: int = 360, torque_Nm: float | None = None,
-                            torque_on: str = "gear") -> xr.Dataset:
+                            torque_on: str = "pinion") -> xr.Dataset:
     """A comparison table over pairs (and pair-file variants of each) and cantilever methods:
     mean/min/max K, ε_k, ISO 6336-1 mesh stiffness and, with a torque, LSTE mean and
     peak-to-peak (seed 001 Table/§3, seed 003 parametric tables, seed 004 method table)."""

@@ -10,6 +10,8 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 import xarray as xr  # noqa: E402
 
+from ..io import atomic_output  # noqa: E402
+
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
@@ -17,12 +19,13 @@ __all__ = ["MM", "UM", "plt", "save", "title"]
 
 
 def save(fig, path: str | Path) -> Path:
-    """Write ``fig`` as PNG (parent folders created) and close it."""
-    path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=130, bbox_inches="tight")
-    plt.close(fig)
-    return path
+    """Write ``fig`` as PNG atomically (parent folders created) and close it."""
+    try:
+        with atomic_output(path) as tmp:
+            fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png")
+    finally:
+        plt.close(fig)
+    return Path(path)
 
 
 def title(ds: xr.Dataset, what: str) -> str:

@@ -10,7 +10,7 @@ import xarray as xr
 
 from .common import MM, UM, plt, save, title
 
-MN = 1e-6  # N/m -> N/µm
+N_PER_UM = 1e-6  # N/m -> N/µm
 
 
 def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
@@ -19,10 +19,10 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
     fig, axes = plt.subplots(n, 1, figsize=(7.5, 2.8 * n), sharex=False)
     ax = axes[0]
     x = ds["position"].values * MM
-    ax.plot(x, ds["mesh_stiffness"].values * MN, lw=1.8, label="K(φ), slice PEM")
-    ax.plot(x, ds["mesh_stiffness_fourier"].values * MN, "--", lw=1.2,
+    ax.plot(x, ds["mesh_stiffness"].values * N_PER_UM, lw=1.8, label="K(φ), slice PEM")
+    ax.plot(x, ds["mesh_stiffness_fourier"].values * N_PER_UM, "--", lw=1.2,
             label=f"Fourier, order {ds.attrs.get('fourier_order', '')}")
-    ax.axhline(float(ds["iso6336_mesh_stiffness"]) * MN, color="k", ls=":", lw=1, label="ISO 6336-1 cγα·b")
+    ax.axhline(float(ds["iso6336_mesh_stiffness"]) * N_PER_UM, color="k", ls=":", lw=1, label="ISO 6336-1 cγα·b")
     ax.set_ylabel("K (N/µm)")
     ax.set_xlabel("pinion roll distance over one base pitch (mm)")
     ax.set_title(title(ds, f"mesh stiffness, {ds.attrs.get('method', '')} method, {ds.attrs.get('slices', '')} "
@@ -30,7 +30,7 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     ax = axes[1]
-    ax.plot(ds["pair_position"].values * MM, ds["pair_stiffness"].values * MN, lw=1.5, color="tab:green")
+    ax.plot(ds["pair_position"].values * MM, ds["pair_stiffness"].values * N_PER_UM, lw=1.5, color="tab:green")
     ax.set_xlabel("one tooth pair: mid-face contact position on the line of action (mm)")
     ax.set_ylabel("k pair (N/µm)")
     ax.grid(alpha=0.3)
@@ -54,10 +54,10 @@ def plot_stiffness_table(ds: xr.Dataset, path: str | Path) -> Path:
     idx = np.arange(len(cases))
     for k, m in enumerate(methods):
         sel = ds.sel(model=m)
-        mean = sel["mean_stiffness"].values * MN
-        err = np.stack([mean - sel["min_stiffness"].values * MN, sel["max_stiffness"].values * MN - mean])
+        mean = sel["mean_stiffness"].values * N_PER_UM
+        err = np.stack([mean - sel["min_stiffness"].values * N_PER_UM, sel["max_stiffness"].values * N_PER_UM - mean])
         ax.bar(idx + (k - (len(methods) - 1) / 2) * width, mean, width, yerr=err, capsize=3, label=str(m))
-    ax.scatter(idx, ds["iso6336_mesh_stiffness"].isel(model=0).values * MN, marker="_", s=600, color="k",
+    ax.scatter(idx, ds["iso6336_mesh_stiffness"].isel(model=0).values * N_PER_UM, marker="_", s=600, color="k",
                zorder=5, label="ISO 6336-1 cγα·b")
     ax.set_xticks(idx, [str(c) for c in cases], rotation=20, ha="right", fontsize=8)
     ax.set_ylabel("mesh stiffness (N/µm): mean, whiskers min–max")
