@@ -206,7 +206,11 @@ def test_small_helix_angle_tends_to_spur_step_function(spur):
         assert differ.mean() <= 2 * width / geom.transverse_base_pitch + 2 / 500 + 1e-12
         assert np.abs(L - L0).max() <= b * (1 + 1e-6)
         mean, lo, hi = contact_length_closed_form(geom)
-        assert lo == pytest.approx(n * b, rel=1e-3) and hi == pytest.approx((n + 1) * b, rel=1e-3)
+        fa, fb = geom.eps_alpha % 1, geom.eps_beta % 1
+        if fb <= fa <= 1 - fb:  # the step is resolved: both plateaus exist
+            assert lo == pytest.approx(n * b, rel=1e-3) and hi == pytest.approx((n + 1) * b, rel=1e-3)
+        else:  # frac(εα) within εβ of an integer: the ramps overlap and cut a plateau short
+            assert n * b * (1 - 1e-3) <= lo <= hi <= (n + 1) * b * (1 + 1e-3)
 
 
 def test_seed001_pair1_numbers():
