@@ -7,6 +7,7 @@ import subprocess
 import sys
 from pathlib import Path
 
+import numpy as np
 import pytest
 import yaml
 
@@ -33,7 +34,13 @@ def _snakemake(cwd: Path, *args: str) -> subprocess.CompletedProcess:
 def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     config = {"study": "e2e", "pairs": ["seed001_pair1"], "contact_lines": {"positions": 24},
               "geometry": {"involute_points": 20, "fillet_points": 10, "face_points": 5},
-              "stiffness": {"slices": 40, "positions": 24},
+              "stiffness": {"slices": 40, "positions": 24, "torque_Nm": 100, "torque_on": "pinion"},
+              "variants": {"standard": {}, "relief": {"modification": {
+                  "gear": {"tip_relief_um": 10, "tip_relief_length_mm": 1}}}},
+              "tca": {"positions": 8, "points": 6},
+              "ltca": {"torques_Nm": [100], "positions": 8, "points": 6},
+              "dynamics": {"torque_Nm": 100, "on": "pinion", "speeds_rpm": {"start": 2000, "stop": 4000, "step": 1000},
+                           "sample_speeds_rpm": [3000], "record_cycles": 4},
               "helix_sweep": {"pairs": ["seed001_pair1"], "start_deg": 8, "stop_deg": 16, "step_deg": 4,
                               "positions": 16}}
     work = _scratch_workflow(root, tmp_path, config)
@@ -50,6 +57,16 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     for png in ("tooth_profile", "contact_length", "contact_lines", "stiffness"):
         assert (base / "plots" / f"{png}.png").stat().st_size > 1000
     assert (work / "results/e2e/plots/helix_sweep.png").exists()
+    for variant in ("standard", "relief"):
+        ltca = read_dataset(base / variant / "ltca.nc")
+        assert ltca.sizes["position"] == 8
+        # the loads carry the applied force at every position
+        total = ltca["load"].sum(dim=[d for d in ltca["load"].dims if d not in ("torque", "position")])
+        np.testing.assert_allclose(total.values, np.broadcast_to(ltca["force"].values[:, None], total.shape), rtol=1e-9)
+        dyn = read_dataset(base / variant / "dynamics.nc")
+        np.testing.assert_allclose(dyn["mesh_force_mean"].values, float(dyn.static_mesh_force), rtol=1e-4)
+    comparison = read_dataset(work / "results/e2e/lste_comparison.nc")
+    assert comparison.sizes["pair"] == 1
     again = _snakemake(work, "--dry-run")
     assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr
 

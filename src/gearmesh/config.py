@@ -122,8 +122,25 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                     raise GearmeshInputError(f"stiffness_table.variants.{variant}.{exc.field}", exc.value,
                                              exc.rule) from None
                 raise GearmeshInputError(f"stiffness_table.variants.{variant}", dict(overrides), str(exc)) from None
+    if lste_comparison_wanted(config):
+        stiffness, ltca = config["stiffness"], config["ltca"]
+        for name in config["pairs"]:
+            ratio = pairs[name].teeth[0] / pairs[name].teeth[1]
+            to_pinion = {"pinion": 1.0, "gear": ratio}
+            t_k = stiffness["torque_Nm"] * to_pinion[stiffness.get("torque_on", "pinion")]
+            t_l = [t * to_pinion[ltca.get("on", "pinion")] for t in ltca["torques_Nm"]]
+            if not any(abs(t - t_k) <= 1e-9 * t_k for t in t_l):
+                raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
+                                         f"must include the stiffness LSTE torque ({stiffness['torque_Nm']} N m on "
+                                         f"the {stiffness.get('torque_on', 'pinion')}) for the LSTE comparison")
     sweep = config.get("helix_sweep")
     if sweep and sweep["stop_deg"] < sweep["start_deg"]:
         raise GearmeshInputError("helix_sweep.stop_deg", sweep["stop_deg"],
                                  f"must not be below start_deg ({sweep['start_deg']})")
     return pairs
+
+
+def lste_comparison_wanted(config: Mapping[str, Any]) -> bool:
+    """The study compares the LTCA with F/K: it runs the LTCA on the standard variant and the
+    stiffness stage has an LSTE torque."""
+    return "ltca" in config and "standard" in config.get("variants", {}) and "torque_Nm" in config.get("stiffness", {})

@@ -1,7 +1,7 @@
 # Config loading and helpers shared by every rule. No physics here.
 import sys
 
-from gearmesh.config import check_study, pair_path
+from gearmesh.config import check_study, lste_comparison_wanted, pair_path
 from gearmesh.errors import GearmeshInputError
 
 STUDY = config["study"]
@@ -77,7 +77,7 @@ def all_targets():
         if table in config:
             targets += [f"results/{STUDY}/{table}.nc", f"results/{STUDY}/{table}.csv",
                         f"results/{STUDY}/plots/{table}.png"]
-    if "ltca" in config and "standard" in VARIANTS and "torque_Nm" in config["stiffness"]:
+    if lste_comparison_wanted(config):
         targets += [f"results/{STUDY}/lste_comparison.nc", f"results/{STUDY}/lste_comparison.csv"]
     if "dynamics_comparison" in config:
         targets += [f"results/{STUDY}/dynamics_comparison.nc", f"results/{STUDY}/dynamics_comparison.csv",
