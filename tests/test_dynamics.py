@@ -167,6 +167,49 @@ def test_train_meshes_balance_the_torque():
     np.testing.assert_allclose(ym[0], -ym[2], rtol=1e-9)
 
 
+def _train_model():
+    geom4 = pair_geometry(load_pair(_root() / "config/pairs/seed004_pair.yaml"))
+    return geom4, dy.train_model(geom4, 400.0, mesh_stiffness(geom4, components=False).K)
+
+
+@pytest.mark.parametrize("hand", ["right", "left"])
+@pytest.mark.parametrize("which", ["pair", "train"])
+def test_screw_motion_of_any_gear_changes_no_mesh_deflection(K, hand, which):
+    """A helical gear slid by dz and turned by dθ = h tan βb dz / r_b maps its flank onto itself
+    (h = ±1 the pinion's/plate's hand; each θ positive in its gear's own turning sense, in
+    which gears of opposite hand and opposite rotation have the same screw sense): every δ is
+    unchanged (the rule behind every axial term of both models)."""
+    if which == "pair":
+        g = pair_geometry(pair_from_dict(seed001_pair1(helix_hand=hand)))
+        mdl = dy.pair_model(g, 200.0, K)
+        radii = dict(zip(("pinion", "gear"), g.base_radius))
+    else:
+        g, _ = _train_model()
+        g = pair_geometry(g.pair.with_changes(helix_hand=hand))
+        mdl = dy.train_model(g, 400.0, np.full(16, 1e9))
+        radii = {name: g.base_radius[1] for name in dy.TRAIN_GEARS}
+    names, G = mdl.full["names"], mdl.full["G"]
+    tan_bb = math.tan(g.base_helix_angle) * (1 if hand == "right" else -1)
+    for gear, rb in radii.items():
+        dz = 1e-6
+        d = np.zeros(len(names))
+        d[names.index(f"z_{gear}")] = dz
+        d[names.index(f"theta_{gear}")] = tan_bb * dz / rb
+        np.testing.assert_allclose(G @ d, 0.0, atol=1e-12 * dz)
+
+
+def test_the_idler_of_the_train_carries_no_net_thrust():
+    _, mdl = _train_model()
+    names, G = mdl.full["names"], mdl.full["G"]
+    axial = {gear: -G[:, names.index(f"z_{gear}")] @ mdl.static_force for gear in dy.TRAIN_GEARS}
+    f_axial = mdl.static_force[0] * math.sin(math.atan(abs(G[0, names.index("z_plate")]) /
+                                                        math.sqrt(1 - G[0, names.index("z_plate")] ** 2)))
+    assert abs(axial["blanket"]) < 1e-9 * mdl.static_force[0]
+    # plate and impression carry equal and opposite thrust F sin βb
+    assert axial["plate"] == pytest.approx(-axial["impression"], rel=1e-12)
+    assert abs(axial["plate"]) == pytest.approx(f_axial, rel=1e-9)
+
+
 @pytest.mark.parametrize("speed", [13700.0, 27000.0])
 def test_batch_rk4_matches_solve_ivp(model, speed):
     """Batch RK4 (reduced, rigid mode removed) against DOP853 rtol 1e-10 on the full 8-DOF

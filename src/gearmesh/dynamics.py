@@ -77,9 +77,15 @@ the line of centres (the seed's "radial" direction), the three centres on one li
 (P→B) and mesh 2 (B→I) have::
 
     δ_1 = cos βb [(y_P − y_B) sin αwt + r_b θ_P − r_b θ_B] − h (z_P − z_B) sin βb − e_1(t)
-    δ_2 = cos βb [(y_B − y_I) sin αwt + r_b θ_B − r_b θ_I] + h (z_B − z_I) sin βb − e_2(t)
+    δ_2 = cos βb [(y_B − y_I) sin αwt + r_b θ_B − r_b θ_I] − h (z_B − z_I) sin βb − e_2(t)
 
-(the blanket gear has the other hand). Seed 004 prints δ_1 = (y_P − y_B) cos βb +
+with each θ positive in the direction its gear turns. The axial terms follow from one rule:
+a screw motion of a helical gear (axial slide dz with the turn dθ = tan βb dz / r_b, its
+helicoid mapped onto itself) changes no δ. The blanket has the other hand *and* turns the
+other way, so in its own coordinates its screw has the same sense as the plate's and the
+impression's, and its two meshes load it on opposite sides: the idler carries no net
+thrust (its two axial forces cancel), plate and impression carry ±F sin βb. Seed 004
+prints δ_1 = (y_P − y_B) cos βb +
 (z_P − z_B) sin βb + r_bP θ_P − r_bB θ_B − e_1: its y term has no pressure-angle projection
 and its rotation term no cos βb, which do not follow from one normal direction; the form
 above does, and it gives the seed's observations (radial forces on B cancel, P and I move in
@@ -466,7 +472,7 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray, *, 
     sa = math.sin(a)
     G = np.zeros((2, 9))
     G[0, [0, 1, 2, 3, 4, 5]] = [cb * sa, -h * sb, cb * rb, -cb * sa, h * sb, -cb * rb]
-    G[1, [3, 4, 5, 6, 7, 8]] = [cb * sa, h * sb, cb * rb, -cb * sa, -h * sb, -cb * rb]
+    G[1, [3, 4, 5, 6, 7, 8]] = [cb * sa, -h * sb, cb * rb, -cb * sa, h * sb, -cb * rb]
     tau = np.zeros(9)
     tau[2], tau[8] = torque, -torque
     R = np.array([[rb, -rb, 0.0], [0.0, rb, -rb]])
