@@ -133,6 +133,15 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                 raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                          f"must include the stiffness LSTE torque ({stiffness['torque_Nm']} N m on "
                                          f"the {stiffness.get('torque_on', 'pinion')}) for the LSTE comparison")
+    if "dynamics" in config and "ltca" in config:
+        dyn, ltca = config["dynamics"], config["ltca"]
+        for name in config["pairs"]:
+            to_pinion = {"pinion": 1.0, "gear": pairs[name].teeth[0] / pairs[name].teeth[1]}
+            t_d = dyn.get("torque_Nm", 200.0) * to_pinion[dyn.get("on", "gear")]
+            if not any(abs(t * to_pinion[ltca.get("on", "pinion")] - t_d) <= 1e-9 * t_d for t in ltca["torques_Nm"]):
+                raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
+                                         f"must include the dynamics torque ({dyn.get('torque_Nm', 200.0)} N m on "
+                                         f"the {dyn.get('on', 'gear')}): the LTCA excites the dynamics")
     sweep = config.get("helix_sweep")
     if sweep and sweep["stop_deg"] < sweep["start_deg"]:
         raise GearmeshInputError("helix_sweep.stop_deg", sweep["stop_deg"],

@@ -34,6 +34,16 @@ def variant_pair_file(wildcards):
     return f"results/{wildcards.study}/{wildcards.pair}/{wildcards.variant}/pair.yaml"
 
 
+def dynamics_inputs(wildcards):
+    """The pair stage inputs of the dynamics: the variant's pair, the stiffness and, when the
+    study runs the LTCA, the variant's LTCA (its excitation)."""
+    base = f"results/{wildcards.study}/{wildcards.pair}"
+    out = {"pair": variant_pair_file(wildcards), "stiffness": f"{base}/stiffness.nc"}
+    if "ltca" in config:
+        out["ltca"] = f"{base}/{wildcards.variant}/ltca.nc"
+    return out
+
+
 def study_pair_files(section):
     """Input function: the pair files a study-level section names."""
     return lambda wildcards: [str(pair_path(config, n)) for n in config[section]["pairs"]]

@@ -6,10 +6,10 @@
 
 
 rule dynamics:
-    """Steady-state speed sweep of the 8-DOF pair: RMS of DTE, displacements, velocities; mesh force (dynamics.nc)."""
+    """Steady-state speed sweep of the 8-DOF pair: RMS of DTE, displacements, velocities; mesh force (dynamics.nc).
+    With an LTCA in the study, its loaded stiffness and loaded TE of the same variant excite the model."""
     input:
-        pair=variant_pair_file,
-        stiffness="results/{study}/{pair}/stiffness.nc",
+        unpack(dynamics_inputs),
     output:
         "results/{study}/{pair}/{variant}/dynamics.nc",
     log:

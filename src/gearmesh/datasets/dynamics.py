@@ -136,13 +136,8 @@ def _stiffness_curve(geom: PairGeometry, stiffness: xr.Dataset | None, method: s
     return mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method, components=False).K
 
 
-def _transmission_error(transmission_error_um, ltca: xr.Dataset | None, ltca_variable: str):
-    if transmission_error_um is not None and ltca is not None:
-        raise GearmeshInputError("transmission_error_um", "given", "give either a table or an ltca dataset, not both")
-    if ltca is not None:
-        if ltca_variable not in ltca:
-            raise GearmeshInputError("ltca_variable", ltca_variable, "is not a variable of the ltca dataset")
-        return np.asarray(ltca[ltca_variable].values, dtype=float).ravel()
+def _transmission_error(transmission_error_um) -> np.ndarray | None:
+    """A tabulated unloaded TE (µm, transverse, evenly over one mesh cycle) in m."""
     if transmission_error_um is None:
         return None
     te = np.asarray(transmission_error_um, dtype=float)
@@ -150,6 +145,26 @@ def _transmission_error(transmission_error_um, ltca: xr.Dataset | None, ltca_var
         raise GearmeshInputError("transmission_error_um", transmission_error_um,
                                  "must be a list of >= 2 finite values (µm) over one mesh cycle")
     return te * 1e-6
+
+
+def ltca_excitation(geom: PairGeometry, ltca: xr.Dataset, pinion_torque: float) -> tuple[np.ndarray, np.ndarray]:
+    """Mesh stiffness and equivalent error (both transverse, over one mesh cycle) from the LTCA.
+
+    At the LTCA torque equal to ``pinion_torque`` (N m): k(t) = the loaded tangent mesh
+    stiffness k_L and e(t) = LTE(t) − F/k_L(t), F = T1/r_b1, so that the static solution of
+    F = k(δ − e) is δ = LTE: the quasi-static excitation of Velex & Ajmi (2006, J. Sound Vib.
+    290:882) built from the loaded TE. Micro-geometry, edge contact and the nonlinear contact
+    law thus enter the dynamics through the LTCA of each variant.
+    """
+    torques = np.asarray(ltca["torque"].values, dtype=float)
+    match = np.flatnonzero(np.abs(torques - pinion_torque) <= 1e-9 * pinion_torque)
+    if not match.size:
+        raise GearmeshInputError("ltca.torques_Nm", torques.tolist(),
+                                 f"must include the dynamics torque ({pinion_torque:.6g} N m on the pinion)")
+    k_l = np.asarray(ltca["loaded_mesh_stiffness"].values[match[0]], dtype=float)
+    lte = np.asarray(ltca["lte"].values[match[0]], dtype=float)
+    force = pinion_torque / float(geom.base_radius[0])
+    return k_l, lte - force / k_l
 
 
 # --------------------------------------------------------------------------------------
@@ -205,8 +220,13 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
                      stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str = "tvms",
                      method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
                      transmission_error_um=None, stiffness: xr.Dataset | None = None,
-                     ltca: xr.Dataset | None = None, ltca_variable: str = "transmission_error") -> GearModel:
-    """The 8-DOF model of ``pair`` from engineering-unit settings (:func:`dynamics_dataset`)."""
+                     ltca: xr.Dataset | None = None) -> GearModel:
+    """The 8-DOF model of ``pair`` from engineering-unit settings (:func:`dynamics_dataset`).
+
+    Excitation: with an ``ltca`` dataset, the loaded stiffness and equivalent error of
+    :func:`ltca_excitation` (the variant's micro-geometry included); otherwise the slice
+    stiffness (``stiffness`` dataset or computed) with ``transmission_error_um`` (or none).
+    """
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
     torque = _torque("torque_Nm", torque_Nm)
@@ -221,8 +241,13 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
     if mesh_damping_Ns_per_m is not None and not (isinstance(mesh_damping_Ns_per_m, (int, float))
                                                   and mesh_damping_Ns_per_m >= 0):
         raise GearmeshInputError("mesh_damping_Ns_per_m", mesh_damping_Ns_per_m, "must be >= 0 or null")
-    K = _stiffness_curve(geom, stiffness, method, slices, positions)
-    te = _transmission_error(transmission_error_um, ltca, ltca_variable)
+    if ltca is not None:
+        if transmission_error_um is not None:
+            raise GearmeshInputError("transmission_error_um", "given", "give either a table or an ltca dataset")
+        K, te = ltca_excitation(geom, ltca, t_out * geom.pair.teeth[0] / geom.pair.teeth[1])
+    else:
+        K = _stiffness_curve(geom, stiffness, method, slices, positions)
+        te = _transmission_error(transmission_error_um)
     return pair_model(geom, t_out, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                                          bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
                       damping_ratio=damping_ratio, backlash=None if backlash_um is None else backlash_um * 1e-6,
@@ -343,8 +368,7 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
                      transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
                      courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
                      record_cycles: int = 8, points_per_cycle: int = 64, max_order: int = 10,
-                     stiffness: xr.Dataset | None = None, ltca: xr.Dataset | None = None,
-                     ltca_variable: str = "transmission_error") -> xr.Dataset:
+                     stiffness: xr.Dataset | None = None, ltca: xr.Dataset | None = None) -> xr.Dataset:
     """Speed sweep of the 8-DOF helical pair (seed 001 §4; model and solver in
     :mod:`gearmesh.dynamics`).
 
@@ -361,7 +385,7 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
         'lste' (seed 001 literal e = F/K(t)); see :mod:`gearmesh.dynamics`.
     method, slices, positions : TVMS settings when no upstream ``stiffness`` dataset is given.
     transmission_error_um : unloaded static TE (µm) along the transverse line of action at
-        evenly spaced rolls over one mesh cycle; or ``ltca`` (dataset) with ``ltca_variable``
+        evenly spaced rolls over one mesh cycle; or ``ltca`` (dataset): see :func:`ltca_excitation`
         (m, same meaning).
     sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
         the record window) and spectra (to ``max_order`` mesh orders) are kept.
@@ -373,7 +397,7 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
     model = build_pair_model(pair, torque_Nm, on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                              bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
                              mesh_damping_Ns_per_m, stiffness_form, fourier_order, excitation, method, slices,
-                             positions, transmission_error_um, stiffness, ltca, ltca_variable)
+                             positions, transmission_error_um, stiffness, ltca)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles)
     res = simulate(model, speeds, settings)
     nt = model.n_trans  # 6: x, y, z of pinion then gear
