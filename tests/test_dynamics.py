@@ -52,21 +52,23 @@ def full_matrices(geom, k_normal: float, bearing=dy.SEED001_BEARING):
 
 
 def test_constant_stiffness_settles_to_static_deflection(geom, K):
-    """K constant, no TE: no vibration; δ = F/k_n, F = T_out/(r_b2 cos βb), bearings deflect F·n/k."""
+    """K constant, no TE, started from rest (not from the static state): the transient decays
+    by e^(−n_τ) and the response settles to δ = F/k_n, F = T_out/(r_b2 cos βb), with the
+    bearings deflected by F·n/k. No backlash: from rest the teeth first close the gap."""
     kc = np.full(64, K.mean())
-    m = dy.pair_model(geom, 200.0, kc)
-    res = dy.simulate(m, [3000.0, 27000.0], FAST)
+    m = dy.pair_model(geom, 200.0, kc, backlash=None)
+    settings = dy.SolverSettings(transient_tau=12.0, record_cycles=4)
+    res = dy.simulate(m, [3000.0, 27000.0], settings, y0=np.zeros(m.n))
     cb = math.cos(geom.base_helix_angle)
     F = 200.0 / (geom.base_radius[1] * cb)
     k_n = K.mean() / cb**2
-    np.testing.assert_allclose(res.force_mean[0], F, rtol=1e-10)
-    np.testing.assert_allclose(res.dte_mean[0], F / k_n, rtol=1e-10)
-    assert np.all(res.dte_std[0] < 1e-9 * F / k_n)
-    assert np.all(res.y_std < 1e-18)
+    tol = 10 * math.exp(-12.0)  # the slowest transient after n_τ = 12 decay times
+    np.testing.assert_allclose(res.force_mean[0], F, rtol=tol)
+    np.testing.assert_allclose(res.dte_mean[0], F / k_n, rtol=tol)
+    assert np.all(res.dte_std[0] < tol * F / k_n)
     _, _, g = full_matrices(geom, k_n)
     expected = -F * g[[0, 1, 2, 4, 5, 6]] / np.array([1.5e8, 1.5e8, 1e7] * 2)
-    np.testing.assert_allclose(res.y_mean[:6, 0], expected, rtol=1e-9)
-    assert np.all(res.gap_fraction == 0)
+    np.testing.assert_allclose(res.y_mean[:6, 0], expected, rtol=tol)
 
 
 def test_mean_mesh_force_equals_static_force(model):

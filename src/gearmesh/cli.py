@@ -100,9 +100,10 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.dynamics import dynamics_summary
 
-    rows = dynamics_summary(load_pair(args.pair), torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
+    pair = load_pair(args.pair)
+    rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
                             backlash_um=args.backlash_um)
-    return {"name": args.pair, "torque_Nm": args.torque_Nm, "torque_on": args.on, "speeds": rows}
+    return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on, "speeds": rows}
 
 
 def _command(sub, name: str, func, help: str, pair_help: str = "gear pair file (config/pairs/NAME.yaml)"):

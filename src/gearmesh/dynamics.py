@@ -544,6 +544,11 @@ class SweepResult:
     series: list | None = None
 
 
+#: Cap on RK4 steps at one speed (a very low speed would otherwise run for hours: the
+#: transient lasts a fixed physical time while the step is bounded by the highest mode).
+MAX_STEPS_PER_SPEED = 2_000_000
+
+
 def step_plan(model: GearModel, speed_rpm: np.ndarray, settings: SolverSettings = SolverSettings()):
     """Per speed: mesh frequency (Hz), steps per mesh period m_i, transient periods, Δt (s).
 
@@ -557,10 +562,20 @@ def step_plan(model: GearModel, speed_rpm: np.ndarray, settings: SolverSettings 
     f_mesh = speed_rpm * model.mesh_frequency_per_rpm
     t_mesh = 1.0 / f_mesh
     dt_max = settings.courant / w_max
-    m = np.maximum(settings.steps_per_cycle_min, np.ceil(t_mesh / dt_max)).astype(np.int64)
+    if not (math.isfinite(settings.transient_tau) and settings.transient_tau > 0):
+        raise GearmeshInputError("transient_tau", settings.transient_tau, "must be a positive finite number")
+    steps_per_cycle = np.maximum(settings.steps_per_cycle_min, np.ceil(t_mesh / dt_max))
+    cycles = np.maximum(settings.min_transient_cycles, np.ceil(settings.transient_tau / sigma / t_mesh))
+    total = steps_per_cycle * (cycles + settings.record_cycles)
+    if np.max(total) > MAX_STEPS_PER_SPEED:
+        worst = int(np.argmax(total))
+        raise GearmeshInputError(
+            "speeds_rpm", float(speed_rpm[worst]),
+            f"needs {total[worst]:.3g} time steps at this speed (limit {MAX_STEPS_PER_SPEED:.0e}): the transient "
+            f"lasts {settings.transient_tau / sigma:.3g} s and a step is at most {dt_max:.3g} s; raise the speed")
+    m = steps_per_cycle.astype(np.int64)
     m += m % 2  # even, so that half steps fall on the tabulated grid of 2m points
-    n_tr = np.maximum(settings.min_transient_cycles, np.ceil(settings.transient_tau / sigma / t_mesh)).astype(np.int64)
-    return f_mesh, m, n_tr, t_mesh / m
+    return f_mesh, m, cycles.astype(np.int64), t_mesh / m
 
 
 def _phase_tables(model: GearModel, m: np.ndarray):

@@ -70,7 +70,7 @@ from .gear import PairGeometry
 from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
                         pair_slice_table, require_stiffness_data, slice_compliance_table)
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
-                  _check_count, _first_contact, _nanmin, candidate_grid, check_extension, check_modifications,
+                  check_count, first_contact, nanmin, candidate_grid, check_extension, check_modifications,
                   engagement_point, engagement_separation)
 
 __all__ = [
@@ -238,8 +238,8 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     require_stiffness_data(geom)
     if method not in METHODS:
         raise GearmeshInputError("method", method, f"must be one of {list(METHODS)}")
-    positions = _check_count("positions", positions, 1, 100000)
-    points = _check_count("points", points, 1, 100000)
+    positions = check_count("positions", positions, 1, 100000)
+    points = check_count("points", points, 1, 100000)
     extension = check_extension(extension)
     if tables is None:
         tables = (slice_compliance_table(geom, 0, method, n_nodes), slice_compliance_table(geom, 1, method, n_nodes))
@@ -360,10 +360,10 @@ def _tca_from_grid(model: LTCAModel, te_pair_full: np.ndarray, tol: float = 1e-9
     grid = CandidateGrid(roll=g.roll[:p], pairs=g.pairs, z=g.z, dz=g.dz, s=g.s[:p], region=g.region[:p],
                          rho_pinion=g.rho_pinion[:p], rho_gear=g.rho_gear[:p], gap=g.gap[:p], extension=g.extension)
     te_pair = te_pair_full[:p]
-    cs, cz, c1, c2 = _first_contact(grid, te_pair, tol)
+    cs, cz, c1, c2 = first_contact(grid, te_pair, tol)
     roll_a, j_a, z_a = engagement_point(geom)
     te_a, next_a = engagement_separation(geom, g.z.size, model.lead_slope, g.extension / geom.transverse_base_pitch)
-    return TCAResult(grid=grid, te=_nanmin(te_pair, axis=-1), te_pair=te_pair, contact_s=cs, contact_z=cz,
+    return TCAResult(grid=grid, te=nanmin(te_pair, axis=-1), te_pair=te_pair, contact_s=cs, contact_z=cz,
                      contact_rho_pinion=c1, contact_rho_gear=c2, roll_engagement=roll_a, pair_engagement=j_a,
                      z_engagement=z_a, te_at_engagement=te_a, te_next_pair_at_engagement=next_a,
                      lead_slope=model.lead_slope)
@@ -432,7 +432,7 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     in_contact = (pair_load > 1e-9 * force[:, None, None]).sum(axis=2)
     corner = ((g.region == REGION_APPROACH_TIP) | (g.region == REGION_RECESS_TIP))
     corner_load = np.where(corner[None], q, 0.0).sum(axis=(2, 3))
-    te_pair = _nanmin(g.gap, axis=-1)
+    te_pair = nanmin(g.gap, axis=-1)
     tca_res = _tca_from_grid(model, te_pair)
     p = pp - 1
     return LTCAResult(torque=t1, force=force, load=q[:, :p], lte=delta[:, :p], stiffness=k[:, :p],

@@ -139,7 +139,7 @@ def check_lead_slope(lead_slope_um) -> tuple[float, float]:
     return out[0], out[1]
 
 
-def _check_count(name: str, value, minimum: int, maximum: int) -> int:
+def check_count(name: str, value, minimum: int, maximum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not minimum <= value <= maximum:
         raise GearmeshInputError(name, value, f"must be an integer in [{minimum}, {maximum}]")
     return int(value)
@@ -453,7 +453,7 @@ class TCAResult:
         return float(np.nanmax(self.te) - np.nanmin(self.te))
 
 
-def _first_contact(grid: CandidateGrid, te_pair: np.ndarray, tolerance: float):
+def first_contact(grid: CandidateGrid, te_pair: np.ndarray, tolerance: float):
     near = np.isfinite(grid.gap) & (grid.gap <= te_pair[..., None] + tolerance)
     cnt = near.sum(axis=-1)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -464,7 +464,7 @@ def _first_contact(grid: CandidateGrid, te_pair: np.ndarray, tolerance: float):
                 centre(np.nan_to_num(grid.rho_gear)))
 
 
-def _nanmin(a, axis):
+def nanmin(a, axis):
     with np.errstate(invalid="ignore"):
         fin = np.isfinite(a)
         out = np.min(np.where(fin, a, np.inf), axis=axis)
@@ -477,7 +477,7 @@ def engagement_separation(geom: PairGeometry, n_points: int, lead_slope, extensi
     roll_a, j_a, z_a = engagement_point(geom)
     grid = candidate_grid(geom, np.array([roll_a]), n_points, lead_slope, extension)
     corner = float(flank_separation(geom, 0.0, z_a, lead_slope))
-    per_pair = _nanmin(grid.gap[0], axis=-1)
+    per_pair = nanmin(grid.gap[0], axis=-1)
     k = np.flatnonzero(grid.pairs == j_a)
     nxt = corner if k.size == 0 or not np.isfinite(per_pair[k[0]]) else min(corner, float(per_pair[k[0]]))
     return float(min(np.nanmin(per_pair), nxt)), nxt
@@ -502,15 +502,15 @@ def tca(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0
     zero TE to round-off because every flank point of the active zone has zero gap.
     """
     check_modifications(geom)
-    positions = _check_count("positions", positions, 1, 100000)
-    points = _check_count("points", points, 1, 100000)
+    positions = check_count("positions", positions, 1, 100000)
+    points = check_count("points", points, 1, 100000)
     extension = check_extension(extension)
     lead_slope = tuple(float(v) for v in lead_slope)
     roll = mesh_cycle_rolls(geom, positions)
     grid = candidate_grid(geom, roll, points, lead_slope, extension)
-    te_pair = _nanmin(grid.gap, axis=-1)
-    te = _nanmin(te_pair, axis=-1)
-    cs, cz, c1, c2 = _first_contact(grid, te_pair, tolerance)
+    te_pair = nanmin(grid.gap, axis=-1)
+    te = nanmin(te_pair, axis=-1)
+    cs, cz, c1, c2 = first_contact(grid, te_pair, tolerance)
     roll_a, j_a, z_a = engagement_point(geom)
     te_a, next_a = engagement_separation(geom, points, lead_slope, extension)
     return TCAResult(grid=grid, te=te, te_pair=te_pair, contact_s=cs, contact_z=cz, contact_rho_pinion=c1,
