@@ -298,4 +298,8 @@ def test_ltca_excitation_reproduces_the_loaded_te_and_sees_the_modification():
         np.testing.assert_allclose(approach, ltca["lte"].values[0] * math.cos(g.base_helix_angle), rtol=1e-6)
         res = dy.simulate(mdl, np.array([6000.0]), FAST)
         std.append(float(res.dte_std[0, 0]))
+        # the default smooth (Fourier) form keeps the periodic mean force = static force
+        smooth = build_pair_model(pair, 200.0, "gear", ltca=ltca)
+        fast = dy.simulate(smooth, np.array([50000.0]), FAST)
+        np.testing.assert_allclose(fast.force_mean[0], smooth.static_force[0], rtol=1e-5)
     assert abs(std[1] / std[0] - 1) > 0.05

@@ -278,6 +278,10 @@ def require_dynamics_data(geom: PairGeometry) -> None:
                                  "inertias, seed 001 Table 1 convention)")
 
 
+#: Points of the fine table that holds a Fourier-represented error e(phase).
+FOURIER_TABLE_POINTS = 1024
+
+
 def mesh_law(geom: PairGeometry, K_transverse: np.ndarray, torque: float, stiffness_form: str = "fourier",
              order: int = 3, excitation: str = "tvms", transmission_error=None, phase_offset: float = 0.0,
              roll: np.ndarray | None = None) -> MeshLaw:
@@ -293,7 +297,8 @@ def mesh_law(geom: PairGeometry, K_transverse: np.ndarray, torque: float, stiffn
     excitation : 'tvms' (e = 0 unless ``transmission_error``) or 'lste' (seed 001 literal:
         e = F_bt/K(t) along the transverse line of action, times cos βb along the normal).
     transmission_error : optional (Q,) unloaded static TE (m) along the *transverse* line of
-        action at evenly spaced rolls over one base pitch (e.g. LTCA), added to e.
+        action at evenly spaced rolls over one base pitch (e.g. LTCA), added to e; with
+        ``stiffness_form='fourier'`` it is represented by its Fourier series of ``order`` too.
     phase_offset : mesh-cycle fraction (-) added to this mesh's phase.
     """
     from .stiffness import fourier_fit
@@ -330,6 +335,12 @@ def mesh_law(geom: PairGeometry, K_transverse: np.ndarray, torque: float, stiffn
         if te.ndim != 1 or te.size < 2 or not np.all(np.isfinite(te)):
             raise GearmeshInputError("transmission_error", "array", "must be a finite 1-D array of >= 2 values (m)")
         te_phase = np.arange(te.size) / te.size
+        if stiffness_form == "fourier":
+            # the same smooth representation as k: the Fourier series of the same order,
+            # tabulated finely (a piecewise-linear e has kinks that cost RK4 its order)
+            fit_e = fourier_fit(te, min(order, (te.size - 1) // 2))
+            te_phase = np.arange(FOURIER_TABLE_POINTS) / FOURIER_TABLE_POINTS
+            te = fit_e(2 * np.pi * te_phase)
         if e is None:
             e, e_phase = te * cb, te_phase
         else:
