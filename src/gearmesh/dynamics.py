@@ -390,6 +390,17 @@ def _reduce(name, M, Kb, Cb, Gfull, tau, rot_idx, R, meshes, damping, backlash, 
                      teeth_driver=teeth, full=full)
 
 
+def _bearing_settings(bearing: Mapping[str, float] | None) -> dict[str, float]:
+    """Seed 001's bearing values overridden by ``bearing``: known keys, stiffness > 0 (an
+    unsupported direction would leave a rigid-body mode), damping ≥ 0."""
+    out = {**SEED001_BEARING, **(bearing or {})}
+    for key, v in out.items():
+        if key not in SEED001_BEARING:
+            raise GearmeshInputError(f"bearing.{key}", v, f"unknown key; allowed {sorted(SEED001_BEARING)}")
+        (_check_positive if key.startswith("k_") else _check_nonneg)(f"bearing.{key}", v)
+    return out
+
+
 def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray, *, bearing: Mapping[str, float]
                | None = None, damping_ratio: float = DEFAULT_DAMPING_RATIO, backlash: float | None = 60e-6,
                stiffness_form: str = "fourier", order: int = 3, excitation: str = "tvms",
@@ -411,13 +422,7 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray, 
     """
     require_dynamics_data(geom)
     torque_out = _check_positive("torque_Nm", torque_out)
-    bearing = {**SEED001_BEARING, **(bearing or {})}
-    for key, v in bearing.items():
-        if key not in SEED001_BEARING:
-            raise GearmeshInputError(f"bearing.{key}", v, f"unknown key; allowed {sorted(SEED001_BEARING)}")
-        _check_nonneg(f"bearing.{key}", v)
-    for key in ("k_radial", "k_axial"):
-        _check_positive(f"bearing.{key}", bearing[key])
+    bearing = _bearing_settings(bearing)
     damping_ratio = _check_nonneg("damping_ratio", damping_ratio)
     rb1, rb2 = (float(r) for r in geom.base_radius)
     torque_in = torque_out * rb1 / rb2
@@ -461,13 +466,9 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray, *, 
     """
     require_dynamics_data(geom)
     torque = _check_positive("torque_Nm", torque)
-    bearing = {**SEED001_BEARING, **(bearing or {})}
-    for key, v in bearing.items():
-        if key not in SEED001_BEARING:
-            raise GearmeshInputError(f"bearing.{key}", v, f"unknown key; allowed {sorted(SEED001_BEARING)}")
-        _check_nonneg(f"bearing.{key}", v)
-    if len(phase_offsets) != 2:
-        raise GearmeshInputError("phase_offsets", phase_offsets, "must give two mesh-cycle offsets")
+    bearing = _bearing_settings(bearing)
+    if len(phase_offsets) != 2 or not all(math.isfinite(float(p)) for p in phase_offsets):
+        raise GearmeshInputError("phase_offsets", phase_offsets, "must give two finite mesh-cycle offsets")
     rb = float(geom.base_radius[1])
     m_, j_ = float(geom.mass[1]), float(geom.inertia[1])
     a, bb = geom.operating_pressure_angle, geom.base_helix_angle
