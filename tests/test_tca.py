@@ -171,7 +171,9 @@ def test_lead_slope_errors_of_both_gears_cancel_and_add():
     b = geom.face_width
     opposite = candidate_grid(geom, np.array([0.3e-3]), 20, (10e-6, -10e-6), 0.0)
     flank = opposite.region == REGION_FLANK
-    assert np.ptp(opposite.gap[flank]) < 1e-15  # matching errors: a uniform offset, no misalignment
+    assert np.all(np.abs(opposite.gap[flank]) < 1e-15)  # matching errors cancel: no gap, no TE
+    aligned = tca(geom, positions=8, points=21, lead_slope=(10e-6, -10e-6))
+    assert np.all(np.abs(aligned.te) < 1e-15)
     one = candidate_grid(geom, np.array([0.3e-3]), 20, (10e-6, 0.0), 0.0)
     z = one.z
     slope = np.polyfit(z, one.gap[0, np.flatnonzero((one.region[0] > 0).any(axis=1))[0]], 1)[0]

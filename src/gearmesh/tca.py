@@ -168,19 +168,15 @@ def point_centres(geom: PairGeometry, n_points: int) -> tuple[np.ndarray, float]
 def lead_deviation(geom: PairGeometry, lead_slope: tuple[float, float], z) -> np.ndarray:
     """Transverse gap (m) opened by lead slope errors of both gears at axial position z (m).
 
-    Each gear's helix slope deviation f (m over the face width b, signed) removes
-    f·z/b + |f|/2 ≥ 0 of material (zero at one face end, f at the other; ISO 1328-1 helix
-    slope deviation fHβ, measured in the transverse plane along the base tangent). Equal
-    and opposite f of pinion and gear cancel (an aligned pair with matching errors); the
-    sum f1 + f2 is the mesh misalignment.
+    Each gear's helix slope deviation f (m over the face width b, signed; ISO 1328-1 helix
+    slope deviation fHβ, measured in the transverse plane along the base tangent) tilts its
+    flank by f·z/b; the mesh sees their sum, the misalignment f1 + f2, as the gap
+    (f1 + f2)·z/b + |f1 + f2|/2 ≥ 0 (zero at one face end). Equal and opposite errors of
+    pinion and gear cancel exactly: an aligned pair with matching errors has zero TE.
     """
     z = np.asarray(z, dtype=float)
-    b = geom.face_width
-    out = np.zeros(z.shape)
-    for f in lead_slope:
-        if f:
-            out = out + f * z / b + 0.5 * abs(f)
-    return out
+    f = float(sum(lead_slope))
+    return f * z / geom.face_width + 0.5 * abs(f)
 
 
 def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)) -> np.ndarray:
