@@ -16,7 +16,7 @@ import jsonschema
 import yaml
 
 from .errors import GearmeshInputError
-from .gear import GearPair, load_pair, read_yaml
+from .gear import GearPair, load_pair, pinion_torque, read_yaml
 
 SCHEMA_PATH = Path(str(files("gearmesh") / "schemas" / "config.schema.yaml"))
 
@@ -125,20 +125,16 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     if lste_comparison_wanted(config):
         stiffness, ltca = config["stiffness"], config["ltca"]
         for name in config["pairs"]:
-            ratio = pairs[name].teeth[0] / pairs[name].teeth[1]
-            to_pinion = {"pinion": 1.0, "gear": ratio}
-            t_k = stiffness["torque_Nm"] * to_pinion[stiffness.get("torque_on", "pinion")]
-            t_l = [t * to_pinion[ltca.get("on", "pinion")] for t in ltca["torques_Nm"]]
-            if not any(abs(t - t_k) <= 1e-9 * t_k for t in t_l):
+            t_k = pinion_torque(pairs[name], stiffness["torque_Nm"], stiffness.get("torque_on", "pinion"))
+            if not _among(t_k, pairs[name], ltca):
                 raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                          f"must include the stiffness LSTE torque ({stiffness['torque_Nm']} N m on "
                                          f"the {stiffness.get('torque_on', 'pinion')}) for the LSTE comparison")
     if "dynamics" in config and "ltca" in config:
         dyn, ltca = config["dynamics"], config["ltca"]
         for name in config["pairs"]:
-            to_pinion = {"pinion": 1.0, "gear": pairs[name].teeth[0] / pairs[name].teeth[1]}
-            t_d = dyn.get("torque_Nm", 200.0) * to_pinion[dyn.get("on", "gear")]
-            if not any(abs(t * to_pinion[ltca.get("on", "pinion")] - t_d) <= 1e-9 * t_d for t in ltca["torques_Nm"]):
+            t_d = pinion_torque(pairs[name], dyn.get("torque_Nm", 200.0), dyn.get("on", "gear"))
+            if not _among(t_d, pairs[name], ltca):
                 raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                          f"must include the dynamics torque ({dyn.get('torque_Nm', 200.0)} N m on "
                                          f"the {dyn.get('on', 'gear')}): the LTCA excites the dynamics")
@@ -147,6 +143,11 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
         raise GearmeshInputError("helix_sweep.stop_deg", sweep["stop_deg"],
                                  f"must not be below start_deg ({sweep['start_deg']})")
     return pairs
+
+
+def _among(t1: float, pair: GearPair, ltca: Mapping[str, Any]) -> bool:
+    """Whether pinion torque ``t1`` is one of the LTCA's torques (as pinion torques)."""
+    return any(abs(pinion_torque(pair, t, ltca.get("on", "pinion")) - t1) <= 1e-9 * t1 for t in ltca["torques_Nm"])
 
 
 def lste_comparison_wanted(config: Mapping[str, Any]) -> bool:

@@ -11,7 +11,7 @@ Index 0 is the pinion (the driver), index 1 the gear.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -555,6 +555,15 @@ def tool_tip_radius(pair: GearPair, gear: int) -> float:
             f"the {GEARS[gear]} hob tip rounding does not fit its tooth: at most {rho_max / mn:.4f} "
             "(full-radius tip) for this pressure angle and dedendum")
     return given * mn
+
+
+def pinion_torque(pair: GearPair, torque, on: str):
+    """Pinion torque T1 (N m) of a torque given on the pinion or on the gear: T1 = T2·z1/z2
+    (torque balance of a lossless mesh, the base radii being proportional to the teeth).
+    Works on scalars and arrays; ``on`` is 'pinion' or 'gear'."""
+    if on not in GEARS:
+        raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where the torque acts)")
+    return torque if on == "pinion" else torque * (pair.teeth[0] / pair.teeth[1])
 
 
 def gear_body_mass_inertia(reference_radius, bore_radius, face_width, density):

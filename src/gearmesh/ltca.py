@@ -66,7 +66,7 @@ import numpy as np
 
 from .contact import mesh_cycle_rolls
 from .errors import GearmeshInputError
-from .gear import PairGeometry
+from .gear import PairGeometry, pinion_torque
 from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
                         pair_slice_table, require_stiffness_data, slice_compliance_table)
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
@@ -301,10 +301,7 @@ def check_torques(torques, field: str = "torques_Nm") -> np.ndarray:
 
 def pinion_torques(geom: PairGeometry, torques, on: str = "pinion", field: str = "torques_Nm") -> np.ndarray:
     """Pinion torques T1 (N·m): as given, or from gear torques T2 by T1 = T2·z1/z2."""
-    t = check_torques(torques, field)
-    if on not in ("pinion", "gear"):
-        raise GearmeshInputError("on", on, "must be 'pinion' or 'gear'")
-    return t if on == "pinion" else t * geom.pair.teeth[0] / geom.pair.teeth[1]
+    return pinion_torque(geom.pair, check_torques(torques, field), on)
 
 
 # --------------------------------------------------------------------------------------

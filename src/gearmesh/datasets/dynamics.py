@@ -28,7 +28,7 @@ from ..dynamics import (
     train_model,
 )
 from ..errors import GearmeshInputError
-from ..gear import GearPair, PairGeometry, pair_geometry
+from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import variable
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
 
@@ -244,7 +244,7 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
     if ltca is not None:
         if transmission_error_um is not None:
             raise GearmeshInputError("transmission_error_um", "given", "give either a table or an ltca dataset")
-        K, te = ltca_excitation(geom, ltca, t_out * geom.pair.teeth[0] / geom.pair.teeth[1])
+        K, te = ltca_excitation(geom, ltca, pinion_torque(pair, t_out, "gear"))
     else:
         K = _stiffness_curve(geom, stiffness, method, slices, positions)
         te = _transmission_error(transmission_error_um)

@@ -7,7 +7,6 @@ and ``long_name``; the workflow's scripts only add provenance and write it.
 
 from __future__ import annotations
 
-import math
 from typing import Any, Mapping
 
 import numpy as np

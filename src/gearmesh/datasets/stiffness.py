@@ -11,6 +11,7 @@ import xarray as xr
 from ..design import pair_with_contact_ratios
 from ..errors import GearmeshInputError
 from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_to_dict
+from ..gear import pinion_torque as gear_pinion_torque
 from ..io import variable
 from ..stiffness import (
     DEFAULT_RULE,
@@ -32,7 +33,7 @@ def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be a positive finite number")
     if on not in ("pinion", "gear"):
         raise GearmeshInputError("torque_on", on, "must be 'pinion' or 'gear'")
-    return torque_Nm if on == "pinion" else torque_Nm * geom.pair.teeth[0] / geom.pair.teeth[1]
+    return gear_pinion_torque(geom.pair, torque_Nm, on)
 
 
 def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,

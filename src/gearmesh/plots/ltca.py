@@ -48,7 +48,6 @@ def _pattern(ds: xr.Dataset, k: int, bins: int = 80):
     rho = ds["rho_pinion"].values
     # tip-edge points of the recess touch the pinion at its tip: plot them there
     load = sel["line_load"].values * 1e-3
-    zz = np.broadcast_to(ds["point"].values, load.shape)
     rho_sap, rho_eap = (float(v) for v in (ds["rho_sap"][0], ds["rho_eap"][0]))
     lo = min(rho_sap, np.nanmin(rho)) if np.isfinite(rho).any() else rho_sap
     edges = np.linspace(lo, rho_eap, bins + 1)
