@@ -46,6 +46,9 @@ __all__ = [
     "plane_of_action_normal",
     "pinion_contact_point",
     "gear_contact_point",
+    "MODIFICATION_FIELDS",
+    "modification_parameters",
+    "relief_depth",
     "modification_depth",
     "ToothSurface",
     "tooth_surface",
@@ -199,6 +202,41 @@ def gear_contact_point(geom: PairGeometry, rho1, z, phi1) -> np.ndarray:
 # --------------------------------------------------------------------------------------
 
 
+MODIFICATION_FIELDS = ("root_relief", "tip_relief", "root_relief_length", "tip_relief_length", "crowning",
+                       "unmodified_lead_length")
+
+
+def modification_parameters(geom: PairGeometry) -> np.ndarray:
+    """Seed 000's six parameters y1..y6 of both gears as a (2, 6) array (m), in the order of
+    :data:`MODIFICATION_FIELDS` (pinion row 0, gear row 1)."""
+    return np.array([[float(getattr(mod, f)) for f in MODIFICATION_FIELDS] for mod in geom.pair.modification])
+
+
+def relief_depth(params, rho_sap: float, rho_eap: float, face_width: float, rho, z) -> np.ndarray:
+    """Material removed (m) by seed 000's six parameters ``params`` (last axis y1..y6, m, in the
+    order of :data:`MODIFICATION_FIELDS`) at roll length ρ and axial position z (m).
+
+    The formulas of :func:`modification_depth`, vectorised over modifications: the leading
+    axes of ``params`` broadcast against ``rho`` and ``z`` (a batch of candidate
+    modifications, e.g. a GA population of shape (C, 1, 6) against points (1, M)). A zero
+    amount or zero length is no relief; ρ = NaN gives 0.
+    """
+    p = np.moveaxis(np.asarray(params, dtype=float), -1, 0)
+    y1, y2, y3, y4, y5, y6 = p
+    rho = np.asarray(rho, dtype=float)
+    z = np.asarray(z, dtype=float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        tip = np.where((y2 > 0) & (y4 > 0) & (rho > rho_eap - y4),
+                       y2 * ((rho - (rho_eap - y4)) / np.where(y4 > 0, y4, 1.0)) ** 2, 0.0)
+        root = np.where((y1 > 0) & (y3 > 0) & (rho < rho_sap + y3),
+                        y1 * ((rho_sap + y3 - rho) / np.where(y3 > 0, y3, 1.0)) ** 2, 0.0)
+        half = 0.5 * y6
+        span = np.where(face_width > y6, 0.5 * (face_width - y6), 1.0)
+        az = np.abs(z)
+        crown = np.where((y5 > 0) & (az > half), y5 * ((az - half) / span) ** 2, 0.0)
+    return np.where(np.isnan(rho), 0.0, tip + root + crown)
+
+
 def modification_depth(geom: PairGeometry, gear: int, rho, z) -> np.ndarray:
     """Material removed (m, ≥ 0, along the surface normal) at roll length ρ (m) and z (m).
 
@@ -216,24 +254,12 @@ def modification_depth(geom: PairGeometry, gear: int, rho, z) -> np.ndarray:
     the tip), and δ_l = y5(1 − (2|w|/(B − L_w))²), which falls towards the face ends; both
     contradict "tip relief", "root relief" and "crowning" and are replaced here. Below the
     SAP the root parabola continues (non-active flank). ρ = NaN (the fillet, not ground)
-    gives 0. ``rho`` and ``z`` broadcast.
+    gives 0. ``rho`` and ``z`` broadcast. (:func:`relief_depth` is the same for a batch of
+    parameter sets.)
     """
-    mod = geom.pair.modification[gear]
     rho, z = np.broadcast_arrays(np.asarray(rho, dtype=float), np.asarray(z, dtype=float))
-    depth = np.zeros(rho.shape)
-    with np.errstate(invalid="ignore"):
-        if mod.tip_relief > 0 and mod.tip_relief_length > 0:
-            start = geom.rho_eap[gear] - mod.tip_relief_length
-            depth += np.where(rho > start, mod.tip_relief * ((rho - start) / mod.tip_relief_length) ** 2, 0.0)
-        if mod.root_relief > 0 and mod.root_relief_length > 0:
-            end = geom.rho_sap[gear] + mod.root_relief_length
-            depth += np.where(rho < end, mod.root_relief * ((end - rho) / mod.root_relief_length) ** 2, 0.0)
-        if mod.crowning > 0:
-            half = 0.5 * mod.unmodified_lead_length
-            span = 0.5 * (geom.face_width - mod.unmodified_lead_length)
-            az = np.abs(z)
-            depth += np.where(az > half, mod.crowning * ((az - half) / span) ** 2, 0.0)
-    return np.where(np.isnan(rho), 0.0, depth)
+    return relief_depth(modification_parameters(geom)[gear], float(geom.rho_sap[gear]), float(geom.rho_eap[gear]),
+                        geom.face_width, rho, z)
 
 
 # --------------------------------------------------------------------------------------

@@ -64,18 +64,19 @@ makes the real edge contact 3-D, which is approximated here slice by slice.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 
 import numpy as np
 
 from .contact import hand_sign, mesh_cycle_rolls
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
-from .surface import modification_depth
+from .surface import modification_parameters, relief_depth
 
 __all__ = [
     "REGION_NONE", "REGION_FLANK", "REGION_APPROACH_TIP", "REGION_RECESS_TIP",
     "CandidateGrid", "TCAResult", "check_modifications", "check_lead_slope", "check_extension", "point_centres",
+    "SeparationBasis", "separation_basis", "basis_gap", "approach_tip_point", "recess_tip_point",
     "lead_deviation", "flank_separation", "approach_tip_separation", "recess_tip_separation",
     "candidate_grid", "engagement_point", "engagement_separation", "tca",
 ]
@@ -179,18 +180,27 @@ def lead_deviation(geom: PairGeometry, lead_slope: tuple[float, float], z) -> np
     return f * z / geom.face_width + 0.5 * abs(f)
 
 
-def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)) -> np.ndarray:
-    """Flank-to-flank transverse gap (m) at s ∈ [0, g_α] (m) and z (m), region 1.
+@dataclass(frozen=True)
+class SeparationBasis:
+    """Unloaded separations of candidate points, split into what the micro-geometry cannot
+    change and the weights of both flanks' modification depths (arrays of one shape, SI):
 
-    gap = (δ1(ρ1, z) + δ2(ρ2, z))/cos βb + lead deviation, ρ1 = ρ_SAP1 + s,
-    ρ2 = ρ_EAP2 − s, δ the normal depths of :func:`gearmesh.surface.modification_depth`
-    (module docstring for the /cos βb). Zero for an unmodified, aligned pair.
+        gap = base + w_pinion·δ1(ρ_pinion, z) + w_gear·δ2(ρ_gear, z) + lead(z)
+
+    ``region`` 0 none / 1 flank / 2 approach tip edge / 3 recess tip edge; ``base`` the
+    separation of the unmodified flanks (0 on the flank, the exact tip-edge distance
+    outside the active zone; NaN for no candidate); ``w_pinion``, ``w_gear`` the transverse
+    gap one metre of normal depth of each flank opens at the touched point; ``rho_pinion``,
+    ``rho_gear`` the touched roll lengths (m). A GA re-evaluates ``gap`` for every candidate
+    modification without recomputing the geometry (:func:`basis_gap`).
     """
-    s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
-    cb = math.cos(geom.base_helix_angle)
-    d1 = modification_depth(geom, 0, geom.rho_sap[0] + s, z)
-    d2 = modification_depth(geom, 1, geom.rho_eap[1] - s, z)
-    return (d1 + d2) / cb + lead_deviation(geom, lead_slope, z)
+
+    region: np.ndarray
+    base: np.ndarray
+    w_pinion: np.ndarray
+    w_gear: np.ndarray
+    rho_pinion: np.ndarray
+    rho_gear: np.ndarray
 
 
 def _wrap(angle):
@@ -210,6 +220,131 @@ def _frame(geom: PairGeometry):
     return awt, t1, d
 
 
+def approach_tip_point(geom: PairGeometry, s) -> tuple[np.ndarray, np.ndarray]:
+    """Fixed-frame transverse position (x, y) (m) of the gear tip point that reaches the start of
+    the path of contact A after the gear turns on by −s/r_b2 (s < 0): P = O2 + R(−s/r_b2)(A − O2)."""
+    s = np.asarray(s, float)
+    _, t1, d = _frame(geom)
+    a = geom.center_distance
+    ax, ay = t1 + geom.rho_sap[0] * d
+    psi = -s / float(geom.base_radius[1])
+    c, sn = np.cos(psi), np.sin(psi)
+    return a + c * (ax - a) - sn * ay, sn * (ax - a) + c * ay
+
+
+def recess_tip_point(geom: PairGeometry, s) -> tuple[np.ndarray, np.ndarray]:
+    """Fixed-frame transverse position (x, y) (m) of the pinion tip point that left the end of the
+    path of contact E a pinion turn (s − g_α)/r_b1 ago (s > g_α): P = R((s − g_α)/r_b1)·E."""
+    s = np.asarray(s, float)
+    _, t1, d = _frame(geom)
+    ex, ey = t1 + geom.rho_eap[0] * d
+    psi = (s - geom.path_of_contact) / float(geom.base_radius[0])
+    c, sn = np.cos(psi), np.sin(psi)
+    return c * ex - sn * ey, sn * ex + c * ey
+
+
+def _approach_basis(geom: PairGeometry, s):
+    """(base distance, ρ_P, weight of the gear tip relief) of approach tip-edge points (module docstring)."""
+    awt = geom.operating_pressure_angle
+    rb1, rb2 = (float(r) for r in geom.base_radius)
+    px, py = approach_tip_point(geom, s)
+    with np.errstate(invalid="ignore"):
+        u = np.sqrt((px * px + py * py) / rb1**2 - 1.0)
+    theta = np.arctan2(py, px)
+    dist = rb1 * (_wrap(theta + awt) + _inv(u) - (geom.rho_sap[0] + s) / rb1)
+    # normals (transverse): pinion involute through P, gear involute at its tip
+    tau1 = theta - np.arctan(u)
+    tau2 = np.arctan2(py, px - geom.center_distance) - math.atan(geom.rho_eap[1] / rb2)
+    return dist, rb1 * u, np.abs(np.cos(tau1 - tau2))
+
+
+def _recess_basis(geom: PairGeometry, s):
+    """(base distance, ρ_gear, weight of the pinion tip relief, rotation factor r_b1/arm) of recess
+    tip-edge points (module docstring); the gap is (dist + modifications)·r_b1/arm."""
+    awt = geom.operating_pressure_angle
+    rb1, rb2 = (float(r) for r in geom.base_radius)
+    px, py = recess_tip_point(geom, s)
+    vx, vy = px - geom.center_distance, py
+    with np.errstate(invalid="ignore"):
+        u2 = np.sqrt((vx * vx + vy * vy) / rb2**2 - 1.0)
+    theta2 = np.arctan2(vy, vx)
+    dist = rb2 * (_wrap(theta2 - (math.pi - awt)) + _inv(u2) - (geom.rho_eap[1] - s) / rb2)
+    tau2 = theta2 - np.arctan(u2)
+    n2x, n2y = -np.sin(tau2), np.cos(tau2)
+    arm = np.abs(-n2x * py + n2y * px)
+    tau1 = np.arctan2(py, px) - math.atan(geom.rho_eap[0] / rb1)
+    return dist, rb2 * u2, np.abs(np.cos(tau1 - tau2)), rb1 / arm
+
+
+def separation_basis(geom: PairGeometry, s, extension: float = np.inf) -> SeparationBasis:
+    """The :class:`SeparationBasis` of points at line-of-action positions ``s`` (m, any shape):
+    flank points for s ∈ [0, g_α], tip-edge points up to ``extension`` (m) beyond it (region
+    2 before A, region 3 after E; module docstring), no candidate elsewhere or where the
+    touched roll length falls below the mating form circle."""
+    s = np.asarray(s, dtype=float)
+    g = geom.path_of_contact
+    cb = math.cos(geom.base_helix_angle)
+    region = np.zeros(s.shape, dtype=np.int8)
+    nan = np.full(s.shape, np.nan)
+    base, w1, w2, rho1, rho2 = nan.copy(), nan.copy(), nan.copy(), nan.copy(), nan.copy()
+    flank = (s >= 0) & (s <= g)
+    appr = (s < 0) & (s >= -extension)
+    rec = (s > g) & (s <= g + extension)
+    if flank.any():
+        base[flank], w1[flank], w2[flank] = 0.0, 1.0 / cb, 1.0 / cb
+        rho1[flank] = geom.rho_sap[0] + s[flank]
+        rho2[flank] = geom.rho_eap[1] - s[flank]
+        region[flank] = REGION_FLANK
+    if appr.any():
+        dist, rho_p, cosang = _approach_basis(geom, s[appr])
+        ok = np.isfinite(rho_p) & (rho_p >= geom.rho_form[0] - 1e-12)
+        base[appr] = np.where(ok, dist, np.nan)
+        w1[appr], w2[appr] = 1.0 / cb, cosang / cb
+        rho1[appr], rho2[appr] = rho_p, geom.rho_eap[1]
+        region[appr] = np.where(ok, REGION_APPROACH_TIP, REGION_NONE)
+    if rec.any():
+        dist, rho_g, cosang, factor = _recess_basis(geom, s[rec])
+        ok = np.isfinite(rho_g) & (rho_g >= geom.rho_form[1] - 1e-12)
+        base[rec] = np.where(ok, dist * factor, np.nan)
+        w1[rec], w2[rec] = cosang * factor / cb, factor / cb
+        rho1[rec], rho2[rec] = geom.rho_eap[0], rho_g
+        region[rec] = np.where(ok, REGION_RECESS_TIP, REGION_NONE)
+    none = region == REGION_NONE
+    for arr in (base, w1, w2, rho1, rho2):
+        arr[none] = np.nan
+    return SeparationBasis(region=region, base=base, w_pinion=w1, w_gear=w2, rho_pinion=rho1, rho_gear=rho2)
+
+
+def basis_gap(geom: PairGeometry, basis: SeparationBasis, z, lead_slope=(0.0, 0.0), params=None) -> np.ndarray:
+    """Transverse gaps (m) of the points of ``basis`` at axial positions ``z`` (m, broadcast).
+
+    ``params``: the modification parameters of both gears, (..., 2, 6) in m in the order of
+    :data:`gearmesh.surface.MODIFICATION_FIELDS` (leading axes broadcast against the
+    points, e.g. (C, 1, 1, 2, 6) for C candidates); default the pair's own. NaN where the
+    basis has no candidate.
+    """
+    if params is None:
+        params = modification_parameters(geom)
+    params = np.asarray(params, dtype=float)
+    d1 = relief_depth(params[..., 0, :], float(geom.rho_sap[0]), float(geom.rho_eap[0]), geom.face_width,
+                      np.nan_to_num(basis.rho_pinion), z)
+    d2 = relief_depth(params[..., 1, :], float(geom.rho_sap[1]), float(geom.rho_eap[1]), geom.face_width,
+                      np.nan_to_num(basis.rho_gear), z)
+    return basis.base + basis.w_pinion * d1 + basis.w_gear * d2 + lead_deviation(geom, lead_slope, z)
+
+
+def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)) -> np.ndarray:
+    """Flank-to-flank transverse gap (m) at s ∈ [0, g_α] (m) and z (m), region 1.
+
+    gap = (δ1(ρ1, z) + δ2(ρ2, z))/cos βb + lead deviation, ρ1 = ρ_SAP1 + s,
+    ρ2 = ρ_EAP2 − s, δ the normal depths of :func:`gearmesh.surface.modification_depth`
+    (module docstring for the /cos βb). Zero for an unmodified, aligned pair.
+    """
+    s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
+    s = np.clip(s, 0.0, geom.path_of_contact)
+    return basis_gap(geom, separation_basis(geom, s, 0.0), z, lead_slope)
+
+
 def approach_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
     """Gap (m) between the gear's tip edge and the pinion flank before the gear tip reaches A (s < 0), region 2.
 
@@ -223,31 +358,9 @@ def approach_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
     Returns (gap, rho_pinion): gap NaN where ρ_P falls below the pinion form circle.
     """
     s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
-    awt, t1, d = _frame(geom)
-    rb1, rb2 = (float(r) for r in geom.base_radius)
-    a = geom.center_distance
-    ax, ay = t1 + geom.rho_sap[0] * d
-    psi = -s / rb2
-    c, sn = np.cos(psi), np.sin(psi)
-    px = a + c * (ax - a) - sn * ay
-    py = sn * (ax - a) + c * ay
-    r2 = px * px + py * py
-    with np.errstate(invalid="ignore"):
-        u = np.sqrt(r2 / rb1**2 - 1.0)
-    theta = np.arctan2(py, px)
-    dist = rb1 * (_wrap(theta + awt) + _inv(u) - (geom.rho_sap[0] + s) / rb1)
-    rho_p = rb1 * u
-    # normals (transverse): pinion involute through P, gear involute at its tip
-    tau1 = theta - np.arctan(u)
-    theta2 = np.arctan2(py, px - a)
-    tau2 = theta2 - math.atan(geom.rho_eap[1] / rb2)
-    cosang = np.abs(np.cos(tau1 - tau2))
-    cb = math.cos(geom.base_helix_angle)
-    gap = (dist + (modification_depth(geom, 0, rho_p, z)
-                   + modification_depth(geom, 1, np.full(s.shape, geom.rho_eap[1]), z) * cosang) / cb
-           + lead_deviation(geom, lead_slope, z))
-    ok = np.isfinite(rho_p) & (rho_p >= geom.rho_form[0] - 1e-12)
-    return np.where(ok, gap, np.nan), np.where(ok, rho_p, np.nan)
+    basis = separation_basis(geom, np.minimum(s, -0.0), np.inf)
+    basis = _only(basis, REGION_APPROACH_TIP)
+    return basis_gap(geom, basis, z, lead_slope), basis.rho_pinion
 
 
 def recess_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
@@ -263,32 +376,20 @@ def recess_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
     Returns (gap, rho_gear): NaN where the touched gear roll length falls below its form circle.
     """
     s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
-    awt, t1, d = _frame(geom)
-    rb1, rb2 = (float(r) for r in geom.base_radius)
-    a = geom.center_distance
-    g = geom.path_of_contact
-    ex, ey = t1 + geom.rho_eap[0] * d
-    psi = (s - g) / rb1
-    c, sn = np.cos(psi), np.sin(psi)
-    px = c * ex - sn * ey
-    py = sn * ex + c * ey
-    vx, vy = px - a, py
-    with np.errstate(invalid="ignore"):
-        u2 = np.sqrt((vx * vx + vy * vy) / rb2**2 - 1.0)
-    theta2 = np.arctan2(vy, vx)
-    dist = rb2 * (_wrap(theta2 - (math.pi - awt)) + _inv(u2) - (geom.rho_eap[1] - s) / rb2)
-    rho_g = rb2 * u2
-    tau2 = theta2 - np.arctan(u2)
-    n2x, n2y = -np.sin(tau2), np.cos(tau2)
-    arm = np.abs(-n2x * py + n2y * px)
-    tau1 = np.arctan2(py, px) - math.atan(geom.rho_eap[0] / rb1)
-    cosang = np.abs(np.cos(tau1 - tau2))
-    cb = math.cos(geom.base_helix_angle)
-    normal_gap = dist + (modification_depth(geom, 1, rho_g, z)
-                         + modification_depth(geom, 0, np.full(s.shape, geom.rho_eap[0]), z) * cosang) / cb
-    gap = normal_gap * rb1 / arm + lead_deviation(geom, lead_slope, z)
-    ok = np.isfinite(rho_g) & (rho_g >= geom.rho_form[1] - 1e-12)
-    return np.where(ok, gap, np.nan), np.where(ok, rho_g, np.nan)
+    basis = _only(separation_basis(geom, s, np.inf), REGION_RECESS_TIP)
+    return basis_gap(geom, basis, z, lead_slope), basis.rho_gear
+
+
+def _only(basis: SeparationBasis, region: int) -> SeparationBasis:
+    """``basis`` with every point outside ``region`` made a non-candidate (NaN)."""
+    keep = basis.region == region
+
+    def mask(a):
+        return np.where(keep, a, np.nan)
+
+    return SeparationBasis(region=np.where(keep, basis.region, REGION_NONE).astype(np.int8), base=mask(basis.base),
+                           w_pinion=mask(basis.w_pinion), w_gear=mask(basis.w_gear),
+                           rho_pinion=mask(basis.rho_pinion), rho_gear=mask(basis.rho_gear))
 
 
 # --------------------------------------------------------------------------------------
@@ -305,7 +406,8 @@ class CandidateGrid:
     the line of action from A (m); region 0 none / 1 flank / 2 gear tip on pinion flank
     (approach) / 3 pinion tip on gear flank (recess); rho_pinion, rho_gear the roll
     lengths (m) of the touched points (the tip roll length for the tip edge); gap the
-    unloaded transverse separation (m), NaN where not a candidate.
+    unloaded transverse separation (m), NaN where not a candidate; basis its
+    :class:`SeparationBasis` (gaps of other modifications without new geometry), when known.
     """
 
     roll: np.ndarray
@@ -318,6 +420,7 @@ class CandidateGrid:
     rho_gear: np.ndarray
     gap: np.ndarray
     extension: float
+    basis: SeparationBasis | None = None
 
     @property
     def candidate(self) -> np.ndarray:
@@ -348,40 +451,23 @@ def candidate_grid(geom: PairGeometry, roll, n_points: int = 50, lead_slope=(0.0
     if trim:
         pairs = _pair_range(geom, roll, ext)
     pairs = np.asarray(pairs)
-    g = geom.path_of_contact
     s = (roll[:, None, None] + pairs[None, :, None] * geom.transverse_base_pitch
          + hand_sign(geom) * z[None, None, :] * math.tan(geom.base_helix_angle))
     zz = np.broadcast_to(z, s.shape)
-    region = np.zeros(s.shape, dtype=np.int8)
-    flank = (s >= 0) & (s <= g)
-    appr = (s < 0) & (s >= -ext)
-    rec = (s > g) & (s <= g + ext)
-    gap = np.full(s.shape, np.nan)
-    rho1 = np.full(s.shape, np.nan)
-    rho2 = np.full(s.shape, np.nan)
-    if flank.any():
-        gap[flank] = flank_separation(geom, s[flank], zz[flank], lead_slope)
-        rho1[flank] = geom.rho_sap[0] + s[flank]
-        rho2[flank] = geom.rho_eap[1] - s[flank]
-        region[flank] = REGION_FLANK
-    if appr.any():
-        ga, ra = approach_tip_separation(geom, s[appr], zz[appr], lead_slope)
-        gap[appr], rho1[appr], rho2[appr] = ga, ra, geom.rho_eap[1]
-        region[appr] = np.where(np.isfinite(ga), REGION_APPROACH_TIP, REGION_NONE)
-    if rec.any():
-        gr, rr = recess_tip_separation(geom, s[rec], zz[rec], lead_slope)
-        gap[rec], rho1[rec], rho2[rec] = gr, geom.rho_eap[0], rr
-        region[rec] = np.where(np.isfinite(gr), REGION_RECESS_TIP, REGION_NONE)
-    none = region == REGION_NONE
-    gap[none] = rho1[none] = rho2[none] = np.nan
+    basis = separation_basis(geom, s, ext)
+    region = basis.region
+    gap = basis_gap(geom, basis, zz, lead_slope)
+    rho1, rho2 = basis.rho_pinion, basis.rho_gear
     if trim:
         keep = (region > 0).any(axis=(0, 2))
         if keep.any() and not keep.all():
             idx = np.flatnonzero(keep)
             sl = slice(idx[0], idx[-1] + 1)
-            pairs, s, region, rho1, rho2, gap = pairs[sl], s[:, sl], region[:, sl], rho1[:, sl], rho2[:, sl], gap[:, sl]
+            pairs, s, gap = pairs[sl], s[:, sl], gap[:, sl]
+            basis = SeparationBasis(*(getattr(basis, f.name)[:, sl] for f in fields(SeparationBasis)))
+            region, rho1, rho2 = basis.region, basis.rho_pinion, basis.rho_gear
     return CandidateGrid(roll=roll, pairs=pairs, z=z, dz=dz, s=s, region=region, rho_pinion=rho1,
-                         rho_gear=rho2, gap=gap, extension=ext)
+                         rho_gear=rho2, gap=gap, extension=ext, basis=basis)
 
 
 # --------------------------------------------------------------------------------------
