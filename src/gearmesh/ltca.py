@@ -75,7 +75,7 @@ from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, Can
 
 __all__ = [
     "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
-    "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "LTCAResult", "ltca",
+    "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "LTCAResult", "ltca",
 ]
 
 CONTACT_LAWS = ("palmgren", "linear")
@@ -207,10 +207,45 @@ def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, la
 # --------------------------------------------------------------------------------------
 
 
+def point_compliance(geom: PairGeometry, pair_table: PairSliceTable,
+                     tables: tuple[SliceComplianceTable, SliceComplianceTable], s, region, rho_pinion, rho_gear,
+                     with_hertz: bool = False) -> np.ndarray:
+    """Per-unit-width compliance (m²/N: m of transverse deflection per N/m of load) of candidate
+    points at line-of-action positions ``s`` (m) of ``region`` (arrays of one shape).
+
+    Flank points take the pair table at s by linear interpolation, exactly as the stiffness
+    stage (:func:`gearmesh.stiffness.mesh_stiffness`); tip-edge points take each tooth's
+    table at its own touched roll length (the tip of one, ρ_P of the other). Bending,
+    shear, axial compression and fillet foundation of both teeth; with ``with_hertz`` the
+    linear Hertz line-contact compliance as well (the stiffness stage's slice sum).
+    """
+    s = np.clip(np.nan_to_num(np.asarray(s, dtype=float)), 0.0, geom.path_of_contact)
+    n_int = pair_table.total.size - 1
+    t = s * (1.0 / pair_table.ds)
+    i = np.minimum(t.astype(np.intp), n_int - 1)
+    w = t - i
+    if with_hertz:
+        per_width = np.take(pair_table.total, i) + w * np.take(pair_table.total_slope, i)
+    else:
+        tooth_rows = [k for k, name in enumerate(pair_table.columns) if name != "hertz"]
+        vals = pair_table.values[tooth_rows].sum(axis=0)
+        per_width = np.take(vals, i) + w * np.take(np.diff(vals), i)
+    edge = (region == REGION_APPROACH_TIP) | (region == REGION_RECESS_TIP)
+    if np.any(edge):
+        rho1 = np.clip(rho_pinion[edge], tables[0].rho[0], tables[0].rho[-1])
+        rho2 = np.clip(rho_gear[edge], tables[1].rho[0], tables[1].rho[-1])
+        c_edge = tables[0].total(rho1) + tables[1].total(rho2)
+        if with_hertz:
+            c_edge = c_edge + hertz_compliance_transverse(geom)
+        per_width = np.array(per_width)
+        per_width[edge] = c_edge
+    return per_width
+
+
 @dataclass(frozen=True)
 class LTCAModel:
-    """The load-independent part of an LTCA: pair table, grid of points (incl. the start of
-    engagement as the last position), compliances and the contact law."""
+    """The load-independent part of an LTCA: per-gear slice tables and their pair table, grid of
+    points (incl. the start of engagement as the last position), compliances and the contact law."""
 
     geom: PairGeometry
     grid: CandidateGrid  # positions = mesh cycle + [roll_A]
@@ -219,6 +254,7 @@ class LTCAModel:
     method: str
     pair_table: PairSliceTable
     lead_slope: tuple[float, float]
+    tables: tuple[SliceComplianceTable, SliceComplianceTable]
 
 
 def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
@@ -248,32 +284,13 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     roll = np.append(mesh_cycle_rolls(geom, positions), roll_a)
     grid = candidate_grid(geom, roll, points, tuple(lead_slope), extension)
     law = contact_law(geom, grid.dz, contact_law_name)
-    # flank points: the pair table at s (linear interpolation, as the stiffness stage)
-    s = np.clip(np.nan_to_num(grid.s), 0.0, geom.path_of_contact)
-    n_int = pair_table.total.size - 1
-    t = s * (1.0 / pair_table.ds)
-    i = np.minimum(t.astype(np.intp), n_int - 1)
-    w = t - i
-    if contact_law_name == "linear":  # exactly the stiffness stage's slice compliance, Hertz included
-        per_width = np.take(pair_table.total, i) + w * np.take(pair_table.total_slope, i)
+    if contact_law_name == "linear":  # the Hertz part sits in the tooth compliance, as the stiffness stage
         law = ContactLaw("linear", 0.0, 1.0, 0.0, grid.dz)
-    else:
-        tooth_rows = [k for k, name in enumerate(pair_table.columns) if name != "hertz"]
-        vals = pair_table.values[tooth_rows].sum(axis=0)
-        per_width = np.take(vals, i) + w * np.take(np.diff(vals), i)
-    # tip-edge points: each tooth at its own touched roll length
-    edge = (grid.region == REGION_APPROACH_TIP) | (grid.region == REGION_RECESS_TIP)
-    if edge.any():
-        rho1 = np.clip(grid.rho_pinion[edge], tables[0].rho[0], tables[0].rho[-1])
-        rho2 = np.clip(grid.rho_gear[edge], tables[1].rho[0], tables[1].rho[-1])
-        c_edge = tables[0].total(rho1) + tables[1].total(rho2)
-        if contact_law_name == "linear":
-            c_edge = c_edge + hertz_compliance_transverse(geom)
-        per_width = np.array(per_width)
-        per_width[edge] = c_edge
+    per_width = point_compliance(geom, pair_table, tables, grid.s, grid.region, grid.rho_pinion, grid.rho_gear,
+                                 with_hertz=contact_law_name == "linear")
     compliance = per_width / grid.dz
     return LTCAModel(geom=geom, grid=grid, compliance=compliance, law=law, method=method, pair_table=pair_table,
-                     lead_slope=tuple(float(v) for v in lead_slope))
+                     lead_slope=tuple(float(v) for v in lead_slope), tables=tables)
 
 
 # --------------------------------------------------------------------------------------
