@@ -1,0 +1,719 @@
+"""Mesh-in impact of a modified helical pair (seed 000): mesh-in point, impact velocity,
+local stiffness and the energy-method impact force — in the TCA/LTCA framework.
+
+Everything inside is SI (m, N, s, rad, kg). Displacements, separations and forces follow the
+transverse line-of-action convention of :mod:`gearmesh.tca` and :mod:`gearmesh.ltca`
+(transverse displacement r_b1·Δφ1 with the gear held, force F_bt = T1/r_b1).
+
+The event
+---------
+Under load the pairs already in mesh are compressed by their approach δ(roll) (the LTE);
+the entering tooth pair still has its unloaded separation g(roll, z) — flank points in the
+active zone and the mating tip edge outside it (:func:`gearmesh.tca.separation_basis`),
+with both gears' modifications and lead slope errors. The entering pair first touches at
+the first roll where
+
+    min_z g(roll, z) = δ_others(roll),
+
+δ_others the approach of the other pairs alone (the entering pair carries nothing before it
+touches). This is seed 000's TE(φ)/LTE(φ) intersection, solved in roll by a bracketing
+root-finder (a grid over a window from the outer end of the tip-edge candidates to one
+base pitch past the theoretical start of engagement φ1A, then Illinois regula falsi with
+the exact separation and a final Newton step on the exact δ). The point of the entering pair
+where it happens is the mesh-in point M; seed 000's two scenarios are where M lies:
+``edge`` — a tip edge outside the active zone (seed 000 scenario 1: "tip point to tooth
+surface") — or ``surface`` — two (modified) flanks inside it (scenario 2). One formulation,
+no separate code paths.
+
+Driver
+------
+With the pinion driving the roll grows in time and pairs enter at the start of the path
+of contact A (the gear's tip edge meets the pinion flank). With the gear driving (a speed
+increaser), the same flanks carry the same static loads (reverse every rotation of a
+pinion-driven mesh: the gear now pushes the pinion), so the LTCA is unchanged and time runs
+backwards along the path: pairs enter at its end E, the pinion's tip edge meeting the gear
+flank. ``tau`` below is the time-like roll σ·(roll − roll_engagement), σ = +1 / −1.
+
+Impact velocity
+---------------
+The closing rate of g − δ at the touch, v_t = −d(g − δ)/dτ · r_b1·ω1, is the relative
+velocity in the transverse line-of-action coordinate — the coordinate of the equivalent mass
+m_eq = J1·J2/(J1·r_b2² + J2·r_b1²) (seed 000). Independently, :func:`vector_velocity`
+evaluates seed 000's v = (ω1 − ω2) × r − E × ω2 at the true closest points of the two exact
+(modified) transverse profiles with their common normal. In the edge case they are the same
+quantity exactly (the pinion flank's normal is tangent to its base circle, so the pinion
+point's normal velocity is r_b1·ω1 and the gap of the tip edge closes at v·n); in the
+surface case they agree to first order in the relief slopes (the true closest points lie off
+the line of action by slope/curvature). The 3-D normal velocity is v·n with the helicoid
+normal, smaller by cos βb; seed 000 puts it into E_k = ½·m_eq·v², which mixes a normal
+velocity with a transverse mass: the consistent form is v_t (default,
+``energy_velocity='transverse'``), the seed's literal form is kept as ``'normal'``.
+
+Local stiffness and force
+-------------------------
+Seed 000 loads the entering pair alone, quasi-statically, with its points' separations
+relative to M at the touch instant: here exactly that, with the LTCA's point compliances
+(:func:`gearmesh.ltca.point_compliance`) and contact law, giving the F–δ curve of the
+impact. The energy balance ½·m_eq·v² = ∫F dδ is solved on that curve (piecewise power-law
+integration, exact for a pure power law), and F = K_s·δ^n is fitted (log-log least squares
+on 24 points evenly spaced in δ over [δ_s/24, δ_s], the range the impact reaches) for seed
+000's closed form F_s = ((n+1)/2·m_eq·v²)^(n/(n+1))·K_s^(1/(n+1)). Both are reported.
+:func:`simulate_engagement` checks the energy method against a direct time integration of
+the same event.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from .errors import GearmeshInputError
+from .gear import PairGeometry
+from .ltca import LTCAModel, ContactLaw, ltca_model, point_compliance, solve_contact, _invert
+from .surface import body_rotation, flank_point, modification_parameters, relief_depth
+from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, basis_gap, candidate_grid,
+                  engagement_point, point_centres, separation_basis)
+from .contact import hand_sign
+
+__all__ = [
+    "SCENARIOS", "DRIVERS", "seed000_inertia", "equivalent_mass", "ImpactModel", "impact_model",
+    "ImpactStatic", "impact_static", "ImpactResponse", "impact_response", "closed_form_force",
+    "energy_balance", "fit_power_law", "vector_velocity", "seed_edge_roll", "simulate_engagement",
+    "check_speeds", "ltca_metrics",
+]
+
+SCENARIOS = ("none", "surface", "edge")
+SCENARIO_NONE, SCENARIO_SURFACE, SCENARIO_EDGE = 0, 1, 2
+DRIVERS = ("pinion", "gear")
+ENERGY_VELOCITIES = ("transverse", "normal")
+_FIT_POINTS = 24
+
+
+# --------------------------------------------------------------------------------------
+# Inertia and equivalent mass (seed 000)
+# --------------------------------------------------------------------------------------
+
+
+def seed000_inertia(geom: PairGeometry) -> np.ndarray:
+    """Polar moments (kg m²) of both gears by seed 000: J_i = πρB_i(r_bi⁴ − r_hi⁴)/2 — a solid
+    disc of the base radius r_b over the face width B, less the hub bore r_h."""
+    pair = geom.pair
+    if pair.material is None or pair.bore_radius is None:
+        raise GearmeshInputError("material" if pair.material is None else "bore_radius_mm", None,
+                                 "is required for the gear inertias of the impact model (seed 000)")
+    rb, rh, b = geom.base_radius, np.asarray(pair.bore_radius), np.asarray(pair.face_width)
+    return math.pi * pair.material.density * b * (rb**4 - rh**4) / 2.0
+
+
+def equivalent_mass(geom: PairGeometry, inertia) -> float:
+    """m_eq = J1·J2/(J1·r_b2² + J2·r_b1²) (kg): the mass of the relative coordinate
+    r_b1·θ1 + r_b2·θ2 along the transverse line of action (seed 000)."""
+    j1, j2 = (float(v) for v in inertia)
+    rb1, rb2 = (float(v) for v in geom.base_radius)
+    return j1 * j2 / (j1 * rb2**2 + j2 * rb1**2)
+
+
+def check_speeds(speeds_rpm, field: str = "speeds_rpm") -> np.ndarray:
+    """Pinion speeds (rpm) as a 1-d float array; refuses empty, non-finite, non-positive."""
+    if isinstance(speeds_rpm, (int, float, np.floating, np.integer)) and not isinstance(speeds_rpm, bool):
+        speeds_rpm = [speeds_rpm]
+    try:
+        vals = list(speeds_rpm)
+    except TypeError:
+        raise GearmeshInputError(field, speeds_rpm, "must be a positive number or a list of them (rpm)") from None
+    if not vals:
+        raise GearmeshInputError(field, speeds_rpm, "must name at least one speed (rpm)")
+    for k, v in enumerate(vals):
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
+            raise GearmeshInputError(f"{field}[{k}]", v, "must be a finite number (rpm)")
+        if not 0 < v <= 1e6:
+            raise GearmeshInputError(f"{field}[{k}]", v, "must lie in (0, 1e6] rpm")
+    return np.asarray(vals, dtype=float)
+
+
+# --------------------------------------------------------------------------------------
+# The load-, speed- and modification-independent model
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ImpactModel:
+    """Everything the impact objective reuses between torques, speeds and modifications (SI).
+
+    ``ltca`` the LTCA model (slice tables, pair table, contact law); ``driver`` 'pinion' or
+    'gear' and ``sigma`` ±1 (module docstring); ``roll_engagement`` the roll at which the
+    entering corner reaches the end of the active zone it enters by, ``pair_enter`` its
+    tooth-pair index, ``z_corner`` that corner. The search window: ``tau`` (R,) time-like
+    rolls, ``window_basis`` / ``window_z`` / ``window_compliance`` (R, J, N) the other pairs'
+    points (entering pair's column has NaN base: excluded), ``enter_fine_*`` (R, Nz) the
+    entering pair on ``z_fine`` (Nz,) points over the face. ``points`` the LTCA points per
+    line (the local-stiffness discretisation); ``inertia`` (2,) kg m², ``equivalent_mass`` kg.
+    """
+
+    geom: PairGeometry
+    ltca: LTCAModel
+    driver: str
+    sigma: int
+    roll_engagement: float
+    pair_enter: int
+    z_corner: float
+    extension: float
+    tau: np.ndarray
+    window_basis: object
+    window_z: np.ndarray
+    window_compliance: np.ndarray
+    window_enter_column: int
+    window_all_basis: object
+    window_all_compliance: np.ndarray
+    z_fine: np.ndarray
+    enter_fine_basis: object
+    points: int
+    inertia: np.ndarray
+    equivalent_mass: float
+    lead_slope: tuple[float, float]
+
+    def roll(self, tau):
+        """Pinion roll (m) of time-like roll ``tau`` (m)."""
+        return self.roll_engagement + self.sigma * np.asarray(tau, dtype=float)
+
+    def s_enter(self, tau, z):
+        """Line-of-action position (m) of the entering pair's point at axial ``z`` (m)."""
+        g = self.geom
+        return (self.roll(tau) + self.pair_enter * g.transverse_base_pitch
+                + hand_sign(g) * np.asarray(z, dtype=float) * math.tan(g.base_helix_angle))
+
+    def params(self, params=None) -> np.ndarray:
+        """Modification parameters as (C, 2, 6) (m); default the pair's own (C = 1)."""
+        if params is None:
+            return modification_parameters(self.geom)[None]
+        p = np.asarray(params, dtype=float)
+        if p.ndim == 2:
+            p = p[None]
+        if p.ndim != 3 or p.shape[1:] != (2, 6) or not np.all(np.isfinite(p)) or np.any(p < 0):
+            raise GearmeshInputError("modification", p.shape, "must be finite, non-negative (C, 2, 6) parameters (m)")
+        return p
+
+
+def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
+    """(roll, pair index, corner z) at which the entering pair's leading corner reaches the end
+    of the active zone it enters by: A (s = 0) with the pinion driving, E (s = g_α) with the
+    gear driving (roll in [0, p_bt))."""
+    if driver == "pinion":
+        return engagement_point(geom)
+    pbt = geom.transverse_base_pitch
+    half_axial = 0.5 * geom.face_width * math.tan(geom.base_helix_angle)
+    # the corner with the smallest s, z = −h·b/2, reaches s = g_α
+    roll_e = (geom.path_of_contact + half_axial) % pbt
+    if roll_e >= pbt * (1 - 1e-12):
+        roll_e = 0.0
+    j_e = int(round((geom.path_of_contact + half_axial - roll_e) / pbt))
+    z_e = -hand_sign(geom) * 0.5 * geom.face_width if half_axial > 0 else 0.0
+    return float(roll_e), j_e, float(z_e)
+
+
+def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), contact_law_name: str = "palmgren",
+                 method: str = "transition", extension: float = 0.25, driver: str = "pinion",
+                 added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 64, face_samples: int = 257,
+                 cycle_positions: int = 32, ltca: LTCAModel | None = None) -> ImpactModel:
+    """Prepare the impact objective of ``geom`` (its modification is only the default).
+
+    Parameters
+    ----------
+    points : LTCA points per contact line (the other pairs and the local stiffness).
+    lead_slope : lead slope errors [pinion, gear] (m over the face width).
+    contact_law_name, method : local contact law and cantilever model (:mod:`gearmesh.ltca`).
+    extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
+    driver : 'pinion' or 'gear' (module docstring).
+    added_inertia_kg_m2 : inertia (kg m²) of what hangs on each shaft, added to seed 000's discs.
+    window_positions : grid rolls over the search window (−extension … +1 base pitch).
+    face_samples : samples of the entering line over the face for min_z (refined by a parabola).
+    cycle_positions : rolls per mesh cycle of the LTCA grid kept for :func:`ltca_metrics`.
+    ltca : a prepared LTCA model (its grid is the one :func:`ltca_metrics` uses).
+    """
+    if driver not in DRIVERS:
+        raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")
+    added = np.asarray(added_inertia_kg_m2, dtype=float)
+    if added.shape != (2,) or not np.all(np.isfinite(added)) or np.any(added < 0):
+        raise GearmeshInputError("added_inertia_kg_m2", list(np.atleast_1d(added)),
+                                 "must be two finite, non-negative inertias [pinion, gear] (kg m²)")
+    for name, value, low, high in (("window_positions", window_positions, 8, 10000),
+                                   ("face_samples", face_samples, 9, 100000)):
+        if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
+            raise GearmeshInputError(name, value, f"must be an integer in [{low}, {high}]")
+    if ltca is None:
+        ltca = ltca_model(geom, positions=cycle_positions, points=points, lead_slope=lead_slope, contact_law_name=contact_law_name,
+                          method=method, extension=extension)
+    inertia = seed000_inertia(geom) + added
+    pbt = geom.transverse_base_pitch
+    ext = float(extension) * pbt
+    sigma = 1 if driver == "pinion" else -1
+    roll_e, j_e, z_c = _engagement(geom, driver)
+    # window: from the outer end of the entering corner's tip-edge candidates to one base pitch in
+    tau = np.linspace(-ext, pbt, int(window_positions))
+    tau = np.unique(np.append(tau, 0.0))
+    roll = roll_e + sigma * tau
+    grid = candidate_grid(geom, roll, points, tuple(lead_slope), extension)
+    col = np.flatnonzero(grid.pairs == j_e)
+    if col.size == 0:
+        raise RuntimeError("the entering tooth pair is not among the candidate pairs of the window")
+    col = int(col[0])
+    basis_all = grid.basis
+    comp_all = point_compliance(geom, ltca.pair_table, ltca.tables, grid.s, grid.region, grid.rho_pinion,
+                                grid.rho_gear, with_hertz=ltca.law.name == "linear") / grid.dz
+    basis_others = _without_column(basis_all, col)  # the pairs already in mesh
+    z_fine = np.linspace(-0.5 * geom.face_width, 0.5 * geom.face_width, int(face_samples))
+    s_fine = (roll[:, None] + j_e * pbt + hand_sign(geom) * z_fine[None, :] * math.tan(geom.base_helix_angle))
+    fine = separation_basis(geom, s_fine, np.inf)
+    return ImpactModel(geom=geom, ltca=ltca, driver=driver, sigma=sigma, roll_engagement=roll_e, pair_enter=j_e,
+                       z_corner=z_c, extension=ext, tau=tau, window_basis=basis_others,
+                       window_z=np.broadcast_to(grid.z, grid.s.shape), window_compliance=comp_all,
+                       window_enter_column=col, window_all_basis=basis_all, window_all_compliance=comp_all,
+                       z_fine=z_fine, enter_fine_basis=fine, points=int(points), inertia=inertia,
+                       equivalent_mass=equivalent_mass(geom, inertia), lead_slope=tuple(float(v) for v in lead_slope))
+
+
+# --------------------------------------------------------------------------------------
+# The entering pair: separation against roll, refined minimum over the face
+# --------------------------------------------------------------------------------------
+
+
+def _parabolic_min(values: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Minimum over the last axis of samples ``values`` at equally spaced ``x``, refined by the
+    parabola through the smallest sample and its neighbours (interior minima only).
+    Returns (minimum, its x); NaN where every sample is NaN."""
+    v = np.where(np.isfinite(values), values, np.inf)
+    k = np.argmin(v, axis=-1)
+    vk = np.take_along_axis(v, k[..., None], -1)[..., 0]
+    n = v.shape[-1]
+    km, kp = np.clip(k - 1, 0, n - 1), np.clip(k + 1, 0, n - 1)
+    vm = np.take_along_axis(v, km[..., None], -1)[..., 0]
+    vp = np.take_along_axis(v, kp[..., None], -1)[..., 0]
+    h = x[1] - x[0]
+    interior = (k > 0) & (k < n - 1) & np.isfinite(vm) & np.isfinite(vp)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        curv = vm - 2 * vk + vp
+        off = np.where(interior & (curv > 0), 0.5 * (vm - vp) / np.where(curv > 0, curv, 1.0), 0.0)
+        off = np.clip(off, -0.5, 0.5)
+        vmin = vk - 0.25 * (vm - vp) * off
+    vmin = np.where(np.isinf(vk), np.nan, vmin)
+    return vmin, x[k] + off * h
+
+
+def _enter_gap(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
+    """Smallest separation of the entering pair over the face (m) and where (z), at time-like
+    rolls ``tau`` of shape (C, ...) for the C parameter sets ``params`` (C, 2, 6)."""
+    g = model.geom
+    tau = np.asarray(tau, dtype=float)
+    s = model.s_enter(tau[..., None], model.z_fine)
+    basis = separation_basis(g, s, np.inf)
+    p = params.reshape(params.shape[:1] + (1,) * (tau.ndim - 1) + (1, 2, 6))
+    gap = basis_gap(g, basis, model.z_fine, model.lead_slope, p)
+    return _parabolic_min(gap, model.z_fine)
+
+
+def _enter_gap_window(model: ImpactModel, params: np.ndarray):
+    """The same on the window grid (C, R), reusing the window's entering-line basis."""
+    p = params[:, None, None, :, :]
+    gap = basis_gap(model.geom, model.enter_fine_basis, model.z_fine, model.lead_slope, p)
+    return _parabolic_min(gap, model.z_fine)
+
+
+def _solve_rows(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw) -> np.ndarray:
+    """Approach δ (m) of each row (NaN for a row without any candidate point)."""
+    ok = np.isfinite(gap).any(axis=1)
+    delta = np.full(gap.shape[0], np.nan)
+    if ok.any():
+        _, d, _, _ = solve_contact(gap[ok], compliance[ok], force[ok], law)
+        delta[ok] = d
+    return delta
+
+
+def _approach_window(model: ImpactModel, params: np.ndarray, force: np.ndarray, basis, compliance) -> np.ndarray:
+    """Approach (C, T, R) of the pairs of ``basis`` at every window roll, every parameter set
+    and force."""
+    nc, nt = params.shape[0], force.size
+    gap = basis_gap(model.geom, basis, model.window_z, model.lead_slope, params[:, None, None, None, :, :])
+    r, m = gap.shape[1], gap.shape[2] * gap.shape[3]
+    gap = np.broadcast_to(gap.reshape(nc, 1, r, m), (nc, nt, r, m)).reshape(-1, m)
+    comp = np.broadcast_to(compliance.reshape(1, 1, r, m), (nc, nt, r, m)).reshape(-1, m)
+    f = np.broadcast_to(force.reshape(1, nt, 1), (nc, nt, r)).reshape(-1)
+    return _solve_rows(gap, comp, f, model.ltca.law).reshape(nc, nt, r)
+
+
+# --------------------------------------------------------------------------------------
+# The static (speed-independent) part: mesh-in point, slope, F–δ curve
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ImpactStatic:
+    """Speed-independent impact quantities for C modifications × T torques (SI).
+
+    ``torque`` (T,) pinion torque, ``force`` (T,) F_bt; per (C, T): ``scenario`` 0 none /
+    1 surface / 2 edge; ``tau`` time-like roll of the touch (m, negative = before the
+    theoretical engagement), ``roll`` the pinion roll there; ``approach`` δ_others at the
+    touch (m); ``slope`` −d(g − δ)/dτ at the touch (the closing rate per unit roll, -);
+    ``s``, ``z``, ``rho_pinion``, ``rho_gear`` where M lies (m); ``region`` its candidate
+    region; ``te_engagement`` the entering pair's separation at the theoretical engagement
+    (m; seed 000's TE(φ1A)), ``lte_engagement`` the approach of all pairs there (LTE(φ1A));
+    ``curve_force`` / ``curve_approach`` (C, T, K) the F–δ curve of the entering pair alone
+    from M (N, m; F = 0 at δ = 0 implied).
+    """
+
+    torque: np.ndarray
+    force: np.ndarray
+    scenario: np.ndarray
+    tau: np.ndarray
+    roll: np.ndarray
+    approach: np.ndarray
+    slope: np.ndarray
+    s: np.ndarray
+    z: np.ndarray
+    rho_pinion: np.ndarray
+    rho_gear: np.ndarray
+    region: np.ndarray
+    te_engagement: np.ndarray
+    lte_engagement: np.ndarray
+    curve_force: np.ndarray
+    curve_approach: np.ndarray
+    params: np.ndarray
+
+
+def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
+    """Touch roll τ*, approach there and the point M for every (C, T) (module docstring)."""
+    nc, nt = params.shape[0], force.size
+    g_win, _ = _enter_gap_window(model, params)  # (C, R)
+    d_win = _approach_window(model, params, force, model.window_basis, model.window_compliance)  # (C, T, R)
+    h = g_win[:, None, :] - d_win
+    tau = model.tau
+    below = np.isfinite(h) & (h <= 0)
+    found = below.any(axis=-1)
+    k = np.argmax(below, axis=-1)  # first roll at or past the touch
+    at_start = found & (k == 0)
+    k = np.clip(k, 1, tau.size - 1)
+    lo, hi = tau[k - 1], tau[k]
+    d_lo = np.take_along_axis(d_win, (k - 1)[..., None], -1)[..., 0]
+    d_hi = np.take_along_axis(d_win, k[..., None], -1)[..., 0]
+    pc = np.broadcast_to(params[:, None], (nc, nt, 2, 6))
+
+    def delta_lin(t):
+        w = (t - lo) / (hi - lo)
+        return d_lo + w * (d_hi - d_lo)
+
+    def hfun(t):
+        return _enter_gap(model, pc.reshape(-1, 2, 6), t.reshape(-1))[0].reshape(nc, nt) - delta_lin(t)
+
+    # Illinois regula falsi on [lo, hi] (h > 0 at lo, h ≤ 0 at hi), vectorised
+    a, b = lo.copy(), hi.copy()
+    fa, fb = hfun(a), hfun(b)
+    ok = found & np.isfinite(fa) & np.isfinite(fb) & (fa > 0) & (fb <= 0)
+    fa, fb = np.where(ok, fa, 1.0), np.where(ok, fb, 0.0)
+    tol = 1e-13 * model.geom.transverse_base_pitch
+    for _ in range(80):
+        denom = fb - fa
+        c = np.where(denom != 0, b - fb * (b - a) / np.where(denom != 0, denom, 1.0), b)
+        fc = np.where(ok, hfun(c), 0.0)
+        flip = fc * fb < 0
+        a, fa = np.where(flip, b, a), np.where(flip, fb, 0.5 * fa)
+        b, fb = c, fc
+        if np.all((np.abs(b - a) <= tol) | (fc == 0)):
+            break
+    t_star = np.where(found, b, np.nan)
+    t_star = np.where(at_start, tau[0], t_star)
+    return t_star, found, at_start
+
+
+def _enter_points(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
+    """Gaps (C, T, N) and compliances of the entering pair's LTCA points at ``tau`` (C, T)."""
+    g = model.geom
+    z, dz = point_centres(g, model.points)
+    s = model.s_enter(tau[..., None], z)
+    basis = separation_basis(g, s, np.inf)
+    gap = basis_gap(g, basis, z, model.lead_slope, params[:, None, None, :, :])
+    comp = point_compliance(g, model.ltca.pair_table, model.ltca.tables, s, basis.region, basis.rho_pinion,
+                            basis.rho_gear, with_hertz=model.ltca.law.name == "linear") / dz
+    return gap, comp
+
+
+def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 40,
+                  curve_force_max=None) -> ImpactStatic:
+    """The speed-independent part of the impact for pinion torques ``torques`` (N m) and
+    modification parameter sets ``params`` ((C, 2, 6) m; default the pair's own).
+
+    ``curve_levels`` loads of the entering pair's F–δ curve, geometric up to
+    ``curve_force_max`` (N, (C, T) or scalar; default 4·F_bt) — :func:`impact_response`
+    extends it where an impact needs more.
+    """
+    from .ltca import check_torques
+
+    g = model.geom
+    params = model.params(params)
+    t1 = check_torques(torques)
+    force = t1 / float(g.base_radius[0])
+    nc, nt = params.shape[0], force.size
+    t_star, found, at_start = _crossing(model, params, force)
+    if np.any(at_start):
+        import warnings
+        warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
+                      "raise corner_extension", RuntimeWarning, stacklevel=2)
+    tt = np.where(found, t_star, 0.0)
+    pc = np.broadcast_to(params[:, None], (nc, nt, 2, 6)).reshape(-1, 2, 6)
+    gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
+    # exact approach of the other pairs at the touch, and one Newton step on h = g − δ
+    delta = _approach_at(model, params, force, tt, others=True)
+    eps = 1e-6 * g.transverse_base_pitch
+    gp = _enter_gap(model, pc, (tt + eps).reshape(-1))[0].reshape(nc, nt)
+    gm = _enter_gap(model, pc, (tt - eps).reshape(-1))[0].reshape(nc, nt)
+    dp = _approach_at(model, params, force, tt + eps, others=True)
+    dm = _approach_at(model, params, force, tt - eps, others=True)
+    dh = ((gp - dp) - (gm - dm)) / (2 * eps)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        step = np.where(found & (dh < 0), (gap_m - delta) / dh, 0.0)
+    step = np.clip(step, -eps * 1e3, eps * 1e3)
+    tt = tt - step
+    gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
+    delta = _approach_at(model, params, force, tt, others=True)
+    slope = -dh
+    s_m = model.s_enter(tt, z_m)
+    bm = separation_basis(g, s_m, np.inf)
+    region = np.where(found, bm.region, 0).astype(np.int8)
+    scenario = np.where(~found, SCENARIO_NONE,
+                        np.where((region == REGION_APPROACH_TIP) | (region == REGION_RECESS_TIP), SCENARIO_EDGE,
+                                 SCENARIO_SURFACE)).astype(np.int8)
+    # TE and LTE at the theoretical engagement (τ = 0, a window roll)
+    k0 = int(np.flatnonzero(model.tau == 0.0)[0])
+    te0 = _enter_gap_window(model, params)[0][:, k0]
+    lte0 = _approach_at(model, params, force, np.zeros((nc, nt)), others=False)
+    # F–δ curve of the entering pair alone from M
+    gaps, comp = _enter_points(model, params, tt)
+    rel = np.maximum(gaps - gap_m[..., None], 0.0)
+    fmax = 4.0 * force[None, :] * np.ones((nc, 1)) if curve_force_max is None else \
+        np.broadcast_to(np.asarray(curve_force_max, dtype=float), (nc, nt))
+    cf, ca = _force_curve(model, rel, comp, fmax, curve_levels)
+    nan = ~found
+    for arr in (delta, slope, s_m, z_m):
+        arr[nan] = np.nan
+    cf[nan], ca[nan] = np.nan, np.nan
+    return ImpactStatic(torque=t1, force=force, scenario=scenario, tau=np.where(found, tt, np.nan),
+                        roll=np.where(found, model.roll(tt), np.nan), approach=delta, slope=slope, s=s_m, z=z_m,
+                        rho_pinion=np.where(found, bm.rho_pinion, np.nan), rho_gear=np.where(found, bm.rho_gear, np.nan),
+                        region=region, te_engagement=np.broadcast_to(te0[:, None], (nc, nt)).copy(),
+                        lte_engagement=lte0, curve_force=cf, curve_approach=ca, params=params)
+
+
+def _without_column(basis: SeparationBasis, column: int) -> SeparationBasis:
+    """``basis`` (..., J, N) with tooth pair ``column`` made a non-candidate (the entering pair)."""
+    base = np.array(basis.base)
+    base[..., column, :] = np.nan
+    return replace(basis, base=base)
+
+
+def _approach_at(model: ImpactModel, params: np.ndarray, force: np.ndarray, tau: np.ndarray,
+                 others: bool) -> np.ndarray:
+    """Approach δ (C, T) of the other pairs (``others``) or of all pairs at time-like rolls
+    ``tau`` (C, T), by an exact solve on a candidate grid at those rolls."""
+    g, law = model.geom, model.ltca.law
+    nc, nt = tau.shape
+    roll = model.roll(tau).reshape(-1)
+    grid = candidate_grid(g, roll, model.points, model.lead_slope, model.extension / g.transverse_base_pitch,
+                          pairs=_window_pairs(model))
+    b = grid.basis
+    if others:
+        b = _without_column(b, model.window_enter_column)
+    p = np.broadcast_to(params[:, None], (nc, nt, 2, 6)).reshape(-1, 1, 1, 2, 6)
+    gap = basis_gap(g, b, np.broadcast_to(grid.z, grid.s.shape), model.lead_slope, p).reshape(nc * nt, -1)
+    comp = (point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid.s, grid.region, grid.rho_pinion,
+                             grid.rho_gear, with_hertz=law.name == "linear") / grid.dz).reshape(nc * nt, -1)
+    f = np.broadcast_to(force[None, :], (nc, nt)).reshape(-1)
+    return _solve_rows(gap, comp, f, law).reshape(nc, nt)
+
+
+def _window_pairs(model: ImpactModel) -> np.ndarray:
+    """The tooth-pair indices of the window grid (same columns at every roll)."""
+    n = model.window_all_compliance.shape[1]
+    return model.pair_enter - model.window_enter_column + np.arange(n)
+
+
+def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, fmax: np.ndarray, levels: int):
+    """F–δ of the entering pair alone: loads (C, T, K) geometric from 1e-4·fmax to fmax and the
+    approaches they cause from the touch (separations ``rel`` relative to M)."""
+    nc, nt, n = rel.shape
+    frac = np.geomspace(1e-4, 1.0, int(levels))
+    f = fmax[..., None] * frac  # (C, T, K)
+    gap = np.broadcast_to(rel[:, :, None, :], (nc, nt, frac.size, n)).reshape(-1, n)
+    cmp_ = np.broadcast_to(comp[:, :, None, :], (nc, nt, frac.size, n)).reshape(-1, n)
+    ff = np.where(np.isfinite(f), f, 1.0).reshape(-1)
+    gap = np.where(np.isfinite(gap), gap, np.inf)
+    ok = np.isfinite(gap).any(axis=1)
+    d = np.full(ff.shape, np.nan)
+    if ok.any():
+        _, dd, _, _ = solve_contact(gap[ok], np.where(np.isfinite(cmp_[ok]), cmp_[ok], 1.0), ff[ok], model.ltca.law)
+        d[ok] = dd
+    return f, d.reshape(nc, nt, frac.size)
+
+
+# --------------------------------------------------------------------------------------
+# Energy method
+# --------------------------------------------------------------------------------------
+
+
+def closed_form_force(mass, velocity, k_s, n):
+    """Seed 000's energy-method peak force F_s = ((n+1)/2·m·v²)^(n/(n+1))·K_s^(1/(n+1)) (N),
+    from ½·m·v² = ∫₀^δs K_s·δ^n dδ; m (kg), v (m/s), K_s (N/m^n), n (-)."""
+    n = np.asarray(n, dtype=float)
+    return ((n + 1) / 2 * mass * np.asarray(velocity) ** 2) ** (n / (n + 1)) * np.asarray(k_s) ** (1 / (n + 1))
+
+
+def energy_balance(curve_approach, curve_force, energy):
+    """Peak force and approach where ∫₀^δ F dδ = ``energy`` on a tabulated F–δ curve.
+
+    ``curve_approach``, ``curve_force`` (..., K) increasing, with (0, 0) implied before the
+    first node; between nodes F is the power law through them (exact for a pure power law,
+    so the closed form and this agree to round-off on F = K·δ^n). ``energy`` (...,) or
+    broadcastable with an extra speed axis last: (..., S). Returns (force, approach), NaN
+    where the curve does not reach the energy (extend it).
+    """
+    d = np.asarray(curve_approach, dtype=float)
+    f = np.asarray(curve_force, dtype=float)
+    e = np.asarray(energy, dtype=float)
+    # segment exponents p_i = ln(F_i+1/F_i)/ln(δ_i+1/δ_i); the first segment continues to 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        p = np.log(f[..., 1:] / f[..., :-1]) / np.log(d[..., 1:] / d[..., :-1])
+    p = np.concatenate([p[..., :1], p], axis=-1)  # segment k ends at node k
+    d_prev = np.concatenate([np.zeros_like(d[..., :1]), d[..., :-1]], axis=-1)
+    f_prev = np.concatenate([np.zeros_like(f[..., :1]), f[..., :-1]], axis=-1)
+    seg = (d * f - d_prev * f_prev) / (p + 1)
+    cum = np.cumsum(seg, axis=-1)  # energy at node k
+    # locate the segment for every energy (last axis of e is extra)
+    cum_e = cum[..., None, :]
+    k = np.sum(cum_e < e[..., None], axis=-1)  # first node with cum ≥ e
+    kk = np.clip(k, 0, d.shape[-1] - 1)
+    take = lambda a: np.take_along_axis(np.broadcast_to(a[..., None, :], e.shape + a.shape[-1:]), kk[..., None], -1)[..., 0]  # noqa: E731
+    ck, pk, dk, fk = take(cum), take(p), take(d), take(f)
+    # within segment k: E(δ) = E_k − (δ_k F_k − δ F(δ))/(p+1), F(δ) = F_k (δ/δ_k)^p
+    rest = (ck - e) * (pk + 1)  # = δ_k F_k − δ F(δ) ≥ 0
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = ((dk * fk - rest) / (dk * fk)) ** (1.0 / (pk + 1))  # (δ/δ_k)
+        approach = dk * ratio
+        force = fk * ratio**pk
+    bad = (k >= d.shape[-1]) | ~np.isfinite(force)
+    return np.where(bad, np.nan, force), np.where(bad, np.nan, approach)
+
+
+def fit_power_law(curve_approach, curve_force, approach_max, n_points: int = _FIT_POINTS):
+    """Least-squares fit F = K_s·δ^n (log-log) to the F–δ curve over [δ_s/n_points, δ_s] at
+    ``n_points`` approaches evenly spaced in δ (the range an impact of peak approach δ_s
+    reaches). ``approach_max`` (..., S). Returns (K_s in N/m^n, n, RMS relative error of F)."""
+    d = np.asarray(curve_approach, dtype=float)
+    f = np.asarray(curve_force, dtype=float)
+    dm = np.asarray(approach_max, dtype=float)
+    x = dm[..., None] * (np.arange(1, n_points + 1) / n_points)  # (..., S, P)
+    # log-log interpolation of the curve (consistent with the energy balance), (0,0) implied
+    ld, lf = np.log(d), np.log(f)
+    lx = np.log(x)
+    idx = np.clip(np.sum(ld[..., None, None, :] < lx[..., None], axis=-1), 1, d.shape[-1] - 1)
+
+    def at(a, i):
+        return np.take_along_axis(np.broadcast_to(a[..., None, None, :], lx.shape + a.shape[-1:]), i[..., None], -1)[..., 0]
+
+    d0, d1, f0, f1 = at(ld, idx - 1), at(ld, idx), at(lf, idx - 1), at(lf, idx)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        ly = f0 + (lx - d0) * (f1 - f0) / (d1 - d0)
+    xm, ym = lx.mean(axis=-1), ly.mean(axis=-1)
+    n = ((lx - xm[..., None]) * (ly - ym[..., None])).sum(-1) / ((lx - xm[..., None]) ** 2).sum(-1)
+    logk = ym - n * xm
+    k_s = np.exp(logk)
+    pred = np.exp(logk[..., None] + n[..., None] * lx)
+    err = np.sqrt(np.mean((pred / np.exp(ly) - 1.0) ** 2, axis=-1))
+    return k_s, n, err
+
+
+@dataclass(frozen=True)
+class ImpactResponse:
+    """Speed-dependent impact quantities (C, T, S) for the speeds ``speed_rpm`` (S,) (SI).
+
+    ``velocity_transverse`` v_t (m/s, the closing rate of g − δ); ``velocity_normal`` v_t·cos βb
+    (the 3-D normal velocity of the helicoid normal); ``kinetic_energy`` ½·m_eq·v² of the
+    velocity selected by ``energy_velocity``; ``force_energy_balance`` and
+    ``approach_energy_balance`` from the computed F–δ curve; ``stiffness_coefficient`` K_s
+    (N/m^n), ``stiffness_exponent`` n and ``fit_error`` of F = K_s·δ^n over that range;
+    ``force`` seed 000's closed form with them (N).
+    """
+
+    speed_rpm: np.ndarray
+    velocity_transverse: np.ndarray
+    velocity_normal: np.ndarray
+    kinetic_energy: np.ndarray
+    force: np.ndarray
+    force_energy_balance: np.ndarray
+    approach_energy_balance: np.ndarray
+    stiffness_coefficient: np.ndarray
+    stiffness_exponent: np.ndarray
+    fit_error: np.ndarray
+    energy_velocity: str
+
+
+def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
+                    energy_velocity: str = "transverse") -> tuple[ImpactStatic, ImpactResponse]:
+    """Impact velocity, energy, peak force and fitted local stiffness at pinion speeds
+    ``speeds_rpm`` for every (C, T) of ``static``; the F–δ curve is extended (and the static
+    part returned anew) where an impact reaches beyond it."""
+    if energy_velocity not in ENERGY_VELOCITIES:
+        raise GearmeshInputError("energy_velocity", energy_velocity, f"must be one of {list(ENERGY_VELOCITIES)}")
+    speeds = check_speeds(speeds_rpm)
+    omega1 = speeds * (2 * math.pi / 60.0)
+    rb1 = float(model.geom.base_radius[0])
+    vt = np.maximum(static.slope, 0.0)[..., None] * rb1 * omega1  # (C, T, S)
+    vn = vt * math.cos(model.geom.base_helix_angle)
+    m = model.equivalent_mass
+    ek = 0.5 * m * (vt if energy_velocity == "transverse" else vn) ** 2
+    for _ in range(8):
+        f_eb, d_eb = energy_balance(static.curve_approach, static.curve_force, ek)
+        short = np.isnan(f_eb) & (ek > 0) & np.isfinite(static.slope)[..., None]
+        if not short.any():
+            break
+        fmax = static.curve_force[..., -1] * np.where(short.any(axis=-1), 8.0, 1.0)
+        static = impact_static(model, static.torque, static.params, static.curve_force.shape[-1], fmax)
+    zero = ek <= 0
+    f_eb = np.where(zero, 0.0, f_eb)
+    d_eb = np.where(zero, 0.0, d_eb)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        k_s, n, err = fit_power_law(static.curve_approach, static.curve_force, np.where(zero, np.nan, d_eb))
+        force = np.where(zero, 0.0, closed_form_force(m, vt if energy_velocity == "transverse" else vn, k_s, n))
+    return static, ImpactResponse(speed_rpm=speeds, velocity_transverse=vt, velocity_normal=vn, kinetic_energy=ek,
+                                  force=force, force_energy_balance=f_eb, approach_energy_balance=d_eb,
+                                  stiffness_coefficient=k_s, stiffness_exponent=n, fit_error=err,
+                                  energy_velocity=energy_velocity)
+
+
+# --------------------------------------------------------------------------------------
+# What else a modification changes: LTE and line load over the mesh cycle
+# --------------------------------------------------------------------------------------
+
+
+def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, np.ndarray]:
+    """Peak-to-peak LTE (m) and largest line load (N/m) over one mesh cycle, (C, T), for
+    modification parameter sets ``params`` ((C, 2, 6) m) at pinion torques ``torques`` (N m):
+    the LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from
+    its separation basis (no new geometry)."""
+    from .ltca import check_torques
+
+    g, lt = model.geom, model.ltca
+    params = model.params(params)
+    force = check_torques(torques) / float(g.base_radius[0])
+    grid = lt.grid
+    p = grid.gap.shape[0] - 1  # the last row is φ1A
+    basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
+    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lt.lead_slope,
+                    params[:, None, None, None, :, :])  # (C, P, J, N)
+    nc, nt = params.shape[0], force.size
+    m = gap.shape[2] * gap.shape[3]
+    gap = np.broadcast_to(gap.reshape(nc, 1, p, m), (nc, nt, p, m)).reshape(-1, m)
+    comp = np.broadcast_to(lt.compliance[:p].reshape(1, 1, p, m), (nc, nt, p, m)).reshape(-1, m)
+    f = np.broadcast_to(force.reshape(1, nt, 1), (nc, nt, p)).reshape(-1)
+    q, delta, _, _ = solve_contact(gap, comp, f, lt.law)
+    delta = delta.reshape(nc, nt, p)
+    line = (q.max(axis=1) / grid.dz).reshape(nc, nt, p)
+    return np.ptp(delta, axis=-1), line.max(axis=-1)
