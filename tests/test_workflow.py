@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import shutil
 import subprocess
 import sys
@@ -24,11 +25,54 @@ def _scratch_workflow(root: Path, tmp: Path, config: dict) -> Path:
     return tmp
 
 
-def _snakemake(cwd: Path, *args: str) -> subprocess.CompletedProcess:
+def _snakemake(cwd: Path, *args: str, env: dict | None = None) -> subprocess.CompletedProcess:
     bin_dir = Path(sys.executable).parent
     exe = shutil.which("snakemake", path=str(bin_dir)) or "snakemake"
     return subprocess.run([exe, "--cores", "2", "--configfile", "test_config.yaml", *args],
-                          cwd=cwd, capture_output=True, text=True, timeout=600)
+                          cwd=cwd, capture_output=True, text=True, timeout=600, env=env)
+
+
+def _planned_jobs(proc: subprocess.CompletedProcess) -> dict[str, int]:
+    """{rule: count} from the "Job stats" table of a dry run."""
+    jobs, table = {}, False
+    for line in (proc.stdout + proc.stderr).splitlines():
+        parts = line.split()
+        if parts[:2] == ["job", "count"]:
+            table = True
+        elif table and len(parts) == 2 and parts[1].isdigit():
+            if parts[0] == "total":
+                break
+            jobs[parts[0]] = int(parts[1])
+    return jobs
+
+
+def _check_report(work: Path) -> None:
+    """`snakemake --report` holds every figure and table of the run, with their captions."""
+    proc = _snakemake(work, "--report", "report.html")
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    html = (work / "report.html").read_text()
+    wanted = sorted(str(p.relative_to(work)) for p in (work / "results").rglob("*")
+                    if p.suffix in (".png", ".csv"))
+    assert len(wanted) >= 12
+    missing = [p for p in wanted if p not in html]
+    assert not missing, f"not in the report: {missing}"
+    assert "Where our results differ from the source document" in html  # the workflow page
+    assert "<strong>relief</strong>" in html  # captions rendered with the job's wildcards
+    assert '"seed001_pair1 / relief"' in html  # subcategory per pair and variant
+
+
+def _check_code_change_reruns(root: Path, work: Path, tmp: Path) -> None:
+    """Results follow the code: with a changed copy of one package module first on the path,
+    a dry run plans exactly the jobs whose functions can run that module."""
+    package = tmp / "package"
+    shutil.copytree(root / "src" / "gearmesh", package / "gearmesh",
+                    ignore=shutil.ignore_patterns("__pycache__"))
+    module = package / "gearmesh" / "plots" / "ltca.py"
+    module.write_text(module.read_text() + "\n# a change\n")
+    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(package), os.environ.get("PYTHONPATH", "")])}
+    proc = _snakemake(work, "--dry-run", env=env)
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert _planned_jobs(proc) == {"plot_tca": 2, "plot_ltca": 2, "all": 1}, proc.stdout[-3000:]
 
 
 def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
@@ -69,6 +113,8 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     assert comparison.sizes["pair"] == 1
     again = _snakemake(work, "--dry-run")
     assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr
+    _check_report(work)
+    _check_code_change_reruns(root, work, tmp_path)
 
 
 def test_workflow_refuses_a_bad_pair_before_writing_anything(root, tmp_path):

@@ -42,8 +42,9 @@ def finish(ds: xr.Dataset, path: str | Path, study: Mapping[str, Any], pair: Gea
 
 
 def resolve(spec: str) -> Callable[..., Any]:
-    """The function named by "package.module:function"."""
-    module, _, name = spec.partition(":")
+    """The function named by "package.module:function", with or without the "@digest" that
+    :func:`gearmesh.codeversion.versioned` appends."""
+    module, _, name = spec.partition("@")[0].partition(":")
     return getattr(importlib.import_module(module), name)
 
 

@@ -2,6 +2,7 @@
 import sys
 
 from gearmesh.config import check_study, lste_comparison_wanted, pair_path
+from gearmesh.codeversion import versioned
 from gearmesh.errors import GearmeshInputError
 
 STUDY = config["study"]
@@ -95,3 +96,18 @@ def all_targets():
     if "low_fluctuation_design" in config:
         targets += [f"results/{STUDY}/low_fluctuation_design.nc", f"results/{STUDY}/low_fluctuation_design.csv"]
     return targets
+
+
+# Results follow the code: a rule names its package function as versioned("module:function"),
+# which appends the digest of the package modules that function can run; Snakemake reruns a
+# job whose params changed, so a code change reruns exactly the jobs it can affect.
+# `snakemake --report report.html`: every figure and table is marked with report_item(path,
+# CAPTION, CATEGORY, SUBCATEGORY): caption workflow/report/CAPTION.rst (Jinja: snakemake.wildcards,
+# snakemake.config), category = the stage, subcategory = the pair, pair / variant, or study tables.
+BY_PAIR = "{pair}"
+BY_VARIANT = "{pair} / {variant}"
+STUDY_TABLES = "study tables"
+
+
+def report_item(path, caption, category, subcategory=BY_PAIR):
+    return report(path, caption=f"../report/{caption}.rst", category=category, subcategory=subcategory)

@@ -7,7 +7,7 @@ rule contact_lines:
     log:
         "logs/{study}/{pair}/contact_lines.log",
     params:
-        function="gearmesh.datasets.geometry:contact_lines_dataset",
+        function=versioned("gearmesh.datasets.geometry:contact_lines_dataset"),
         settings=lambda wildcards: config["contact_lines"],
     conda:
         ENV

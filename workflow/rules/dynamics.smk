@@ -15,7 +15,7 @@ rule dynamics:
     log:
         "logs/{study}/{pair}/{variant}/dynamics.log",
     params:
-        function="gearmesh.datasets.dynamics:dynamics_dataset",
+        function=versioned("gearmesh.datasets.dynamics:dynamics_dataset"),
         settings=lambda wildcards: config["dynamics"],
     conda:
         ENV
@@ -33,7 +33,7 @@ rule train_dynamics:
     log:
         "logs/{study}/{pair}/{variant}/train.log",
     params:
-        function="gearmesh.datasets.dynamics:train_dataset",
+        function=versioned("gearmesh.datasets.dynamics:train_dataset"),
         settings=lambda wildcards: config["train_dynamics"],
     conda:
         ENV
@@ -46,12 +46,14 @@ rule plot_dynamics:
     input:
         dynamics="results/{study}/{pair}/{variant}/dynamics.nc",
     output:
-        rms="results/{study}/{pair}/{variant}/plots/dynamics_rms.png",
-        spectrum="results/{study}/{pair}/{variant}/plots/dynamics_spectrum.png",
+        rms=report_item("results/{study}/{pair}/{variant}/plots/dynamics_rms.png", "dynamics_rms", "Dynamics",
+                        BY_VARIANT),
+        spectrum=report_item("results/{study}/{pair}/{variant}/plots/dynamics_spectrum.png", "dynamics_spectrum",
+                             "Dynamics", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/plot_dynamics.log",
     params:
-        function="gearmesh.plots.dynamics:dynamics_figures",
+        function=versioned("gearmesh.plots.dynamics:dynamics_figures"),
     conda:
         ENV
     script:
@@ -63,11 +65,12 @@ rule plot_train_dynamics:
     input:
         train="results/{study}/{pair}/{variant}/train.nc",
     output:
-        spectrum="results/{study}/{pair}/{variant}/plots/train_spectrum.png",
+        spectrum=report_item("results/{study}/{pair}/{variant}/plots/train_spectrum.png", "train_spectrum", "Dynamics",
+                             BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/plot_train.log",
     params:
-        function="gearmesh.plots.dynamics:train_figures",
+        function=versioned("gearmesh.plots.dynamics:train_figures"),
     conda:
         ENV
     script:
@@ -80,11 +83,11 @@ rule dynamics_comparison:
         dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
     output:
         nc="results/{study}/dynamics_comparison.nc",
-        csv="results/{study}/dynamics_comparison.csv",
+        csv=report_item("results/{study}/dynamics_comparison.csv", "dynamics_comparison", "Dynamics", STUDY_TABLES),
     log:
         "logs/{study}/dynamics_comparison.log",
     params:
-        function="gearmesh.datasets.dynamics:dynamics_comparison_dataset",
+        function=versioned("gearmesh.datasets.dynamics:dynamics_comparison_dataset"),
         settings=lambda wildcards: config.get("dynamics_comparison", {}),
     conda:
         ENV
@@ -96,11 +99,12 @@ rule plot_dynamics_comparison:
     input:
         dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
     output:
-        dynamics_comparison="results/{study}/plots/dynamics_comparison.png",
+        dynamics_comparison=report_item("results/{study}/plots/dynamics_comparison.png", "dynamics_comparison",
+                                        "Dynamics", STUDY_TABLES),
     log:
         "logs/{study}/plot_dynamics_comparison.log",
     params:
-        function="gearmesh.plots.dynamics:dynamics_comparison_figures",
+        function=versioned("gearmesh.plots.dynamics:dynamics_comparison_figures"),
     conda:
         ENV
     script:

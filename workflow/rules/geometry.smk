@@ -7,7 +7,7 @@ rule geometry:
     log:
         "logs/{study}/{pair}/geometry.log",
     params:
-        function="gearmesh.datasets.geometry:geometry_dataset",
+        function=versioned("gearmesh.datasets.geometry:geometry_dataset"),
         settings=lambda wildcards: config["geometry"],
     conda:
         ENV

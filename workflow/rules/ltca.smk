@@ -11,7 +11,7 @@ rule ltca:
     log:
         "logs/{study}/{pair}/{variant}/ltca.log",
     params:
-        function="gearmesh.datasets.ltca:ltca_dataset",
+        function=versioned("gearmesh.datasets.ltca:ltca_dataset"),
         settings=lambda wildcards: config["ltca"],
     conda:
         ENV
@@ -24,12 +24,13 @@ rule plot_ltca:
     input:
         ltca="results/{study}/{pair}/{variant}/ltca.nc",
     output:
-        te_lte="results/{study}/{pair}/{variant}/plots/te_lte.png",
-        contact_pattern="results/{study}/{pair}/{variant}/plots/contact_pattern.png",
+        te_lte=report_item("results/{study}/{pair}/{variant}/plots/te_lte.png", "te_lte", "LTCA", BY_VARIANT),
+        contact_pattern=report_item("results/{study}/{pair}/{variant}/plots/contact_pattern.png", "contact_pattern",
+                                    "LTCA", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/plot_ltca.log",
     params:
-        function="gearmesh.plots.ltca:ltca_figures",
+        function=versioned("gearmesh.plots.ltca:ltca_figures"),
     conda:
         ENV
     script:
@@ -43,11 +44,11 @@ rule lste_comparison:
         ltca=expand("results/{{study}}/{pair}/standard/ltca.nc", pair=config["pairs"]),
     output:
         nc="results/{study}/lste_comparison.nc",
-        csv="results/{study}/lste_comparison.csv",
+        csv=report_item("results/{study}/lste_comparison.csv", "lste_comparison", "LTCA", STUDY_TABLES),
     log:
         "logs/{study}/lste_comparison.log",
     params:
-        function="gearmesh.datasets.ltca:lste_comparison_dataset",
+        function=versioned("gearmesh.datasets.ltca:lste_comparison_dataset"),
     conda:
         ENV
     script:

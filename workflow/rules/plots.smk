@@ -4,13 +4,13 @@ rule plot_pair:
         geometry="results/{study}/{pair}/geometry.nc",
         contact_lines="results/{study}/{pair}/contact_lines.nc",
     output:
-        tooth_profile="results/{study}/{pair}/plots/tooth_profile.png",
-        contact_length="results/{study}/{pair}/plots/contact_length.png",
-        contact_lines="results/{study}/{pair}/plots/contact_lines.png",
+        tooth_profile=report_item("results/{study}/{pair}/plots/tooth_profile.png", "tooth_profile", "Geometry"),
+        contact_length=report_item("results/{study}/{pair}/plots/contact_length.png", "contact_length", "Contact lines"),
+        contact_lines=report_item("results/{study}/{pair}/plots/contact_lines.png", "contact_lines", "Contact lines"),
     log:
         "logs/{study}/{pair}/plots.log",
     params:
-        function="gearmesh.plots.geometry:pair_figures",
+        function=versioned("gearmesh.plots.geometry:pair_figures"),
     conda:
         ENV
     script:
@@ -22,11 +22,11 @@ rule plot_helix_sweep:
     input:
         helix_sweep="results/{study}/helix_sweep.nc",
     output:
-        helix_sweep="results/{study}/plots/helix_sweep.png",
+        helix_sweep=report_item("results/{study}/plots/helix_sweep.png", "helix_sweep", "Contact lines", STUDY_TABLES),
     log:
         "logs/{study}/plots_helix_sweep.log",
     params:
-        function="gearmesh.plots.geometry:helix_sweep_figures",
+        function=versioned("gearmesh.plots.geometry:helix_sweep_figures"),
     conda:
         ENV
     script:

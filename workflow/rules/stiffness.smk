@@ -7,7 +7,7 @@ rule stiffness:
     log:
         "logs/{study}/{pair}/stiffness.log",
     params:
-        function="gearmesh.datasets.stiffness:stiffness_dataset",
+        function=versioned("gearmesh.datasets.stiffness:stiffness_dataset"),
         settings=lambda wildcards: config["stiffness"],
     conda:
         ENV
@@ -21,11 +21,11 @@ rule stiffness_table:
         pairs=study_pair_files("stiffness_table"),
     output:
         nc="results/{study}/stiffness_table.nc",
-        csv="results/{study}/stiffness_table.csv",
+        csv=report_item("results/{study}/stiffness_table.csv", "stiffness_table", "Stiffness", STUDY_TABLES),
     log:
         "logs/{study}/stiffness_table.log",
     params:
-        function="gearmesh.datasets.stiffness:stiffness_table_dataset",
+        function=versioned("gearmesh.datasets.stiffness:stiffness_table_dataset"),
         settings=lambda wildcards: config["stiffness_table"],
     conda:
         ENV
@@ -39,11 +39,11 @@ rule slice_convergence:
         pairs=study_pair_files("slice_convergence"),
     output:
         nc="results/{study}/slice_convergence.nc",
-        csv="results/{study}/slice_convergence.csv",
+        csv=report_item("results/{study}/slice_convergence.csv", "slice_convergence", "Stiffness", STUDY_TABLES),
     log:
         "logs/{study}/slice_convergence.log",
     params:
-        function="gearmesh.datasets.stiffness:slice_convergence_dataset",
+        function=versioned("gearmesh.datasets.stiffness:slice_convergence_dataset"),
         settings=lambda wildcards: config["slice_convergence"],
     conda:
         ENV
@@ -56,11 +56,11 @@ rule plot_stiffness:
     input:
         stiffness="results/{study}/{pair}/stiffness.nc",
     output:
-        stiffness="results/{study}/{pair}/plots/stiffness.png",
+        stiffness=report_item("results/{study}/{pair}/plots/stiffness.png", "stiffness", "Stiffness"),
     log:
         "logs/{study}/{pair}/plot_stiffness.log",
     params:
-        function="gearmesh.plots.stiffness:stiffness_figures",
+        function=versioned("gearmesh.plots.stiffness:stiffness_figures"),
     conda:
         ENV
     script:
@@ -71,11 +71,12 @@ rule plot_stiffness_table:
     input:
         stiffness_table="results/{study}/stiffness_table.nc",
     output:
-        stiffness_table="results/{study}/plots/stiffness_table.png",
+        stiffness_table=report_item("results/{study}/plots/stiffness_table.png", "stiffness_table", "Stiffness",
+                                    STUDY_TABLES),
     log:
         "logs/{study}/plot_stiffness_table.log",
     params:
-        function="gearmesh.plots.stiffness:stiffness_table_figures",
+        function=versioned("gearmesh.plots.stiffness:stiffness_table_figures"),
     conda:
         ENV
     script:
@@ -86,11 +87,12 @@ rule plot_slice_convergence:
     input:
         slice_convergence="results/{study}/slice_convergence.nc",
     output:
-        slice_convergence="results/{study}/plots/slice_convergence.png",
+        slice_convergence=report_item("results/{study}/plots/slice_convergence.png", "slice_convergence", "Stiffness",
+                                      STUDY_TABLES),
     log:
         "logs/{study}/plot_slice_convergence.log",
     params:
-        function="gearmesh.plots.stiffness:slice_convergence_figures",
+        function=versioned("gearmesh.plots.stiffness:slice_convergence_figures"),
     conda:
         ENV
     script:

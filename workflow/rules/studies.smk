@@ -10,7 +10,7 @@ rule helix_sweep:
     log:
         "logs/{study}/helix_sweep.log",
     params:
-        function="gearmesh.datasets.geometry:helix_sweep_dataset",
+        function=versioned("gearmesh.datasets.geometry:helix_sweep_dataset"),
         settings=lambda wildcards: config["helix_sweep"],
     conda:
         ENV
@@ -24,11 +24,11 @@ rule low_fluctuation_design:
         pairs=study_pair_files("low_fluctuation_design"),
     output:
         nc="results/{study}/low_fluctuation_design.nc",
-        csv="results/{study}/low_fluctuation_design.csv",
+        csv=report_item("results/{study}/low_fluctuation_design.csv", "low_fluctuation_design", "Geometry", STUDY_TABLES),
     log:
         "logs/{study}/low_fluctuation_design.log",
     params:
-        function="gearmesh.datasets.geometry:low_fluctuation_design_dataset",
+        function=versioned("gearmesh.datasets.geometry:low_fluctuation_design_dataset"),
         settings=lambda wildcards: config["low_fluctuation_design"],
     conda:
         ENV

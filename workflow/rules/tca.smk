@@ -10,7 +10,7 @@ rule tca:
     log:
         "logs/{study}/{pair}/{variant}/tca.log",
     params:
-        function="gearmesh.datasets.ltca:tca_dataset",
+        function=versioned("gearmesh.datasets.ltca:tca_dataset"),
         settings=lambda wildcards: config["tca"],
     conda:
         ENV
@@ -23,11 +23,11 @@ rule plot_tca:
     input:
         tca="results/{study}/{pair}/{variant}/tca.nc",
     output:
-        tca="results/{study}/{pair}/{variant}/plots/tca.png",
+        tca=report_item("results/{study}/{pair}/{variant}/plots/tca.png", "tca", "TCA", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/plot_tca.log",
     params:
-        function="gearmesh.plots.ltca:tca_figures",
+        function=versioned("gearmesh.plots.ltca:tca_figures"),
     conda:
         ENV
     script:

@@ -7,6 +7,7 @@ rule variant_pair:
     log:
         "logs/{study}/{pair}/{variant}/variant_pair.log",
     params:
+        function=versioned("gearmesh.pipeline:run_variant_pair"),
         spec=lambda wildcards: config["variants"][wildcards.variant],
     conda:
         ENV

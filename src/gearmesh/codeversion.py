@@ -1,0 +1,119 @@
+"""Results follow the code: the digest of the package modules a rule's function can run.
+
+A rule names the package function it runs in ``params.function``. The workflow writes it as
+:func:`versioned` ``("gearmesh.datasets.ltca:ltca_dataset")``, which appends the sha256 of the
+source of every gearmesh module that function's module imports, directly or through other
+gearmesh modules (imports inside functions included), plus :mod:`gearmesh.pipeline` (the glue
+that writes every file). Snakemake reruns a job when its params change (its ``params`` rerun
+trigger, on by default), so editing a module reruns exactly the jobs whose functions can
+execute it, and nothing else. :func:`gearmesh.pipeline.resolve` drops the ``@…`` suffix.
+
+The import graph is read from the source (``ast``), not by importing, so the digest of a
+module that fails to import is still defined and the check costs a few milliseconds.
+"""
+
+from __future__ import annotations
+
+import ast
+import hashlib
+from functools import lru_cache
+from pathlib import Path
+
+PACKAGE = "gearmesh"
+#: Every job goes through these (provenance, logging, writing).
+GLUE = ("gearmesh.pipeline",)
+PACKAGE_ROOT = Path(__file__).resolve().parent
+
+
+def module_file(module: str, root: Path = PACKAGE_ROOT) -> Path | None:
+    """The source file of a gearmesh module under ``root`` (the package directory), or None."""
+    parts = module.split(".")
+    if parts[0] != PACKAGE:
+        return None
+    base = root.joinpath(*parts[1:])
+    for candidate in (base.with_suffix(".py"), base / "__init__.py"):
+        if candidate.is_file():
+            return candidate
+    return None
+
+
+def _import_nodes(tree: ast.Module, nested: bool):
+    """Import statements of a module: all of them, or only those run at import time."""
+    if nested:
+        return ast.walk(tree)
+    return (n for stmt in tree.body if not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
+            for n in ast.walk(stmt))
+
+
+@lru_cache(maxsize=None)
+def _parsed_imports(module: str, path: Path, stamp: tuple[int, int], nested: bool) -> frozenset[str]:
+    """gearmesh modules named by the import statements of one file (cached per file version)."""
+    is_package = path.name == "__init__.py"
+    package = module if is_package else module.rpartition(".")[0]
+    out: set[str] = set()
+    for node in _import_nodes(ast.parse(path.read_text(encoding="utf-8")), nested):
+        if isinstance(node, ast.Import):
+            out.update(a.name for a in node.names if a.name.split(".")[0] == PACKAGE)
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                anchor = package.split(".")
+                anchor = anchor[: len(anchor) - (node.level - 1)]
+                base = ".".join(anchor + ([node.module] if node.module else []))
+            else:
+                base = node.module or ""
+            if base.split(".")[0] != PACKAGE:
+                continue
+            out.add(base)
+            out.update(f"{base}.{a.name}" for a in node.names)  # "from . import io" names a module
+    return frozenset(out)
+
+
+def _imports(module: str, path: Path, nested: bool = True) -> frozenset[str]:
+    st = path.stat()
+    return _parsed_imports(module, path, (st.st_mtime_ns, st.st_size), nested)
+
+
+def module_closure(module: str, root: Path = PACKAGE_ROOT, shallow: tuple[str, ...] = ()) -> dict[str, Path]:
+    """``module`` and every gearmesh module it imports, transitively, with their parent
+    packages' ``__init__`` files: {module name: source file}. Modules in ``shallow``
+    contribute only the imports they run at import time (not those inside functions)."""
+    found: dict[str, Path] = {}
+    todo = [module]
+    while todo:
+        name = todo.pop()
+        if name in found:
+            continue
+        path = module_file(name, root)
+        if path is None:  # a name imported from a module, not a module
+            continue
+        found[name] = path
+        todo.extend(_imports(name, path, nested=name not in shallow))
+        parts = name.split(".")
+        todo.extend(".".join(parts[:i]) for i in range(1, len(parts)))
+    return found
+
+
+def _digest(module: str, root: Path) -> str:
+    # the glue's own helpers (e.g. pipeline.run_variant_pair) import more inside functions:
+    # those count for the rule that names them, not for every job
+    files = module_closure(module, root)
+    for glue in GLUE:
+        files.update(module_closure(glue, root, shallow=(glue,)))
+    h = hashlib.sha256()
+    for name in sorted(files):
+        h.update(name.encode())
+        h.update(files[name].read_bytes())
+    return h.hexdigest()
+
+
+def function_digest(spec: str, root: Path = PACKAGE_ROOT) -> str:
+    """sha256 of the sources that the function ``spec`` ("gearmesh.module:function") can run."""
+    module = spec.partition("@")[0].partition(":")[0]
+    if module_file(module, root) is None:
+        raise ValueError(f"{spec!r} does not name a module of the {PACKAGE} package under {root}")
+    return _digest(module, Path(root))
+
+
+def versioned(spec: str, root: Path = PACKAGE_ROOT) -> str:
+    """``spec`` with the first 16 hex digits of :func:`function_digest` appended after '@'."""
+    return f"{spec}@{function_digest(spec, root)[:16]}"
