@@ -65,6 +65,7 @@ the same event.
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -354,7 +355,8 @@ class ImpactStatic:
     ``torque`` (T,) pinion torque, ``force`` (T,) F_bt; per (C, T): ``scenario`` 0 none /
     1 surface / 2 edge; ``tau`` time-like roll of the touch (m, negative = before the
     theoretical engagement), ``roll`` the pinion roll there; ``approach`` δ_others at the
-    touch (m); ``slope`` −d(g − δ)/dτ at the touch (the closing rate per unit roll, -);
+    touch (m); ``gap_rate`` −dg/dτ and ``approach_rate`` dδ/dτ there (-): the closing rate of
+    g − δ per unit roll is their sum (:attr:`slope`);
     ``s``, ``z``, ``rho_pinion``, ``rho_gear`` where M lies (m); ``region`` its candidate
     region; ``te_engagement`` the entering pair's separation at the theoretical engagement
     (m; seed 000's TE(φ1A)), ``lte_engagement`` the approach of all pairs there (LTE(φ1A));
@@ -368,7 +370,8 @@ class ImpactStatic:
     tau: np.ndarray
     roll: np.ndarray
     approach: np.ndarray
-    slope: np.ndarray
+    gap_rate: np.ndarray
+    approach_rate: np.ndarray
     s: np.ndarray
     z: np.ndarray
     rho_pinion: np.ndarray
@@ -379,6 +382,11 @@ class ImpactStatic:
     curve_force: np.ndarray
     curve_approach: np.ndarray
     params: np.ndarray
+
+    @property
+    def slope(self) -> np.ndarray:
+        """−d(g − δ)/dτ at the touch (-): the closing rate of the entering pair per unit roll."""
+        return self.gap_rate + self.approach_rate
 
 
 def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
@@ -461,21 +469,24 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     tt = np.where(found, t_star, 0.0)
     pc = np.broadcast_to(params[:, None], (nc, nt, 2, 6)).reshape(-1, 2, 6)
     gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
-    # exact approach of the other pairs at the touch, and one Newton step on h = g − δ
-    delta = _approach_at(model, params, force, tt, others=True)
+    # exact approach of the other pairs at the touch; Newton steps on h = g − δ with the exact δ
     eps = 1e-6 * g.transverse_base_pitch
-    gp = _enter_gap(model, pc, (tt + eps).reshape(-1))[0].reshape(nc, nt)
-    gm = _enter_gap(model, pc, (tt - eps).reshape(-1))[0].reshape(nc, nt)
-    dp = _approach_at(model, params, force, tt + eps, others=True)
-    dm = _approach_at(model, params, force, tt - eps, others=True)
-    dh = ((gp - dp) - (gm - dm)) / (2 * eps)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        step = np.where(found & (dh < 0), (gap_m - delta) / dh, 0.0)
-    step = np.clip(step, -eps * 1e3, eps * 1e3)
-    tt = tt - step
-    gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
-    delta = _approach_at(model, params, force, tt, others=True)
-    slope = -dh
+    for _ in range(4):
+        gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
+        delta = _approach_at(model, params, force, tt, others=True)
+        gp = _enter_gap(model, pc, (tt + eps).reshape(-1))[0].reshape(nc, nt)
+        gm = _enter_gap(model, pc, (tt - eps).reshape(-1))[0].reshape(nc, nt)
+        dp = _approach_at(model, params, force, tt + eps, others=True)
+        dm = _approach_at(model, params, force, tt - eps, others=True)
+        dh = ((gp - dp) - (gm - dm)) / (2 * eps)
+        resid = gap_m - delta
+        with np.errstate(invalid="ignore", divide="ignore"):
+            step = np.where(found & (dh < 0) & np.isfinite(resid), resid / dh, 0.0)
+        if np.all(np.abs(resid[found]) <= 1e-13):
+            break
+        tt = tt - np.clip(step, -eps * 1e3, eps * 1e3)
+    gap_rate = -(gp - gm) / (2 * eps)
+    approach_rate = (dp - dm) / (2 * eps)
     s_m = model.s_enter(tt, z_m)
     bm = separation_basis(g, s_m, np.inf)
     region = np.where(found, bm.region, 0).astype(np.int8)
@@ -493,11 +504,12 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
         np.broadcast_to(np.asarray(curve_force_max, dtype=float), (nc, nt))
     cf, ca = _force_curve(model, rel, comp, fmax, curve_levels)
     nan = ~found
-    for arr in (delta, slope, s_m, z_m):
+    for arr in (delta, gap_rate, approach_rate, s_m, z_m):
         arr[nan] = np.nan
     cf[nan], ca[nan] = np.nan, np.nan
     return ImpactStatic(torque=t1, force=force, scenario=scenario, tau=np.where(found, tt, np.nan),
-                        roll=np.where(found, model.roll(tt), np.nan), approach=delta, slope=slope, s=s_m, z=z_m,
+                        roll=np.where(found, model.roll(tt), np.nan), approach=delta, gap_rate=gap_rate,
+                        approach_rate=approach_rate, s=s_m, z=z_m,
                         rho_pinion=np.where(found, bm.rho_pinion, np.nan), rho_gear=np.where(found, bm.rho_gear, np.nan),
                         region=region, te_engagement=np.broadcast_to(te0[:, None], (nc, nt)).copy(),
                         lte_engagement=lte0, curve_force=cf, curve_approach=ca, params=params)
@@ -717,3 +729,277 @@ def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, 
     delta = delta.reshape(nc, nt, p)
     line = (q.max(axis=1) / grid.dz).reshape(nc, nt, p)
     return np.ptp(delta, axis=-1), line.max(axis=-1)
+
+
+# --------------------------------------------------------------------------------------
+# The mesh-in point in 3-D, and the independent checks
+# --------------------------------------------------------------------------------------
+
+
+def _omegas(model: ImpactModel, speed_rpm: float, approach_rate: float = 0.0) -> tuple[float, float]:
+    """Signed angular velocities (rad/s, +z CCW) of pinion and gear: the pinion drives CCW, or
+    the whole motion reversed when the gear drives (module docstring); the pinion's real speed
+    adds the rate of the loaded approach, dδ/dt / r_b1 = (dδ/dτ)·Ω1 (gear held, as δ)."""
+    w1 = speed_rpm * 2 * math.pi / 60.0
+    w2 = w1 * model.geom.pair.teeth[0] / model.geom.pair.teeth[1]
+    return (model.sigma * w1 + approach_rate * w1, -model.sigma * w2)
+
+
+def mesh_in_point(model: ImpactModel, static: ImpactStatic, c: int = 0, t: int = 0) -> dict[str, np.ndarray | float]:
+    """M of candidate ``c`` at torque ``t`` in 3-D: fixed-frame point at the touch (m), the same
+    point in the pinion body frame (m; :mod:`gearmesh.surface` frames), pinion radius and roll
+    length, face position, and the unit common normal of the unmodified flanks (fixed frame,
+    out of the pinion flank; the mating flank's for a pinion tip edge)."""
+    g = model.geom
+    if static.scenario[c, t] == SCENARIO_NONE:
+        nan3 = np.full(3, np.nan)
+        return {"point": nan3, "point_pinion": nan3, "normal": nan3, "pinion_radius": np.nan,
+                "rho_pinion": np.nan, "face_position": np.nan}
+    from .tca import approach_tip_point, recess_tip_point
+    from .surface import plane_of_action_point
+
+    s, z, region = float(static.s[c, t]), float(static.z[c, t]), int(static.region[c, t])
+    phi1 = float(static.roll[c, t]) / float(g.base_radius[0])
+    j = model.pair_enter
+    if region == REGION_APPROACH_TIP:
+        x, y = approach_tip_point(g, s)
+        p = np.array([float(x), float(y), z])
+    elif region == REGION_RECESS_TIP:
+        x, y = recess_tip_point(g, s)
+        p = np.array([float(x), float(y), z])
+    else:
+        p = plane_of_action_point(g, g.rho_sap[0] + s, z)
+    rot1 = float(body_rotation(g, 0, phi1))
+    if region == REGION_RECESS_TIP:  # the gear flank's normal, turned to point into the pinion's side
+        _, n_body = flank_point(g, 1, float(static.rho_gear[c, t]), z, tooth=-j)
+        normal = -_rotate(n_body, float(body_rotation(g, 1, phi1)))
+    else:
+        _, n_body = flank_point(g, 0, float(static.rho_pinion[c, t]), z, tooth=j)
+        normal = _rotate(n_body, rot1)
+    rho1 = float(static.rho_pinion[c, t])
+    return {"point": p, "point_pinion": _rotate(p, -rot1), "normal": normal,
+            "pinion_radius": math.hypot(float(g.base_radius[0]), rho1), "rho_pinion": rho1, "face_position": z}
+
+
+def _rotate(v: np.ndarray, angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    v = np.asarray(v, dtype=float)
+    return np.array([c * v[0] - s * v[1], s * v[0] + c * v[1], v[2]])
+
+
+def _profile(model: ImpactModel, params: np.ndarray, gear: int, rho, z: float, phi1: float) -> np.ndarray:
+    """Fixed-frame transverse points (…, 2) of the modified flank of the entering pair's tooth of
+    ``gear`` in slice z at pinion rotation φ1 (conjugate, unloaded): the helicoid section moved
+    inward by δ/cos βb along its transverse normal (the section of a surface offset by δ
+    along its normal; :mod:`gearmesh.tca`)."""
+    g = model.geom
+    tooth = model.pair_enter if gear == 0 else -model.pair_enter
+    rho = np.asarray(rho, dtype=float)
+    pts, nrm = flank_point(g, gear, rho, z, tooth=tooth)
+    nt = nrm[..., :2] / np.linalg.norm(nrm[..., :2], axis=-1, keepdims=True)
+    depth = relief_depth(params[gear], float(g.rho_sap[gear]), float(g.rho_eap[gear]), g.face_width, rho, z)
+    xy = pts[..., :2] - (depth / math.cos(g.base_helix_angle))[..., None] * nt
+    ang = float(body_rotation(g, gear, phi1))
+    c, s = math.cos(ang), math.sin(ang)
+    out = np.stack([c * xy[..., 0] - s * xy[..., 1], s * xy[..., 0] + c * xy[..., 1]], axis=-1)
+    if gear == 1:
+        out[..., 0] += g.center_distance
+    return out
+
+
+def vector_velocity(model: ImpactModel, static: ImpactStatic, speed_rpm: float, c: int = 0,
+                    t: int = 0) -> dict[str, float]:
+    """Seed 000's impact velocity v = ((ω1 − ω2) × r − E × ω2)·n, computed independently of the
+    separation functions: the true closest points of the two exact modified transverse profiles
+    in the slice of M at the touch roll (a tip edge against a flank, or flank against flank),
+    their common normal n, and the relative velocity of the two material points along it.
+
+    Returns ``normal_transverse`` (m/s, along the transverse common normal, + closing),
+    ``normal_3d`` (× cos βb: the helicoid's 3-D normal; the axial velocity is zero),
+    ``transverse_equivalent`` (the same closing expressed in the transverse line-of-action
+    coordinate, × r_b1/arm, arm the normal's moment arm about the pinion axis; = 1 for a
+    pinion involute normal), ``distance`` the closest distance (m; = the separation at the
+    touch) and the closest points.
+    """
+    from scipy.optimize import brentq, fsolve
+
+    g = model.geom
+    params = static.params[c]
+    region = int(static.region[c, t])
+    z = float(static.z[c, t])
+    phi1 = float(static.roll[c, t]) / float(g.base_radius[0])
+    r1, r2 = float(static.rho_pinion[c, t]), float(static.rho_gear[c, t])
+    eps = 1e-7 * g.pair.normal_module
+
+    def p1(r):
+        return _profile(model, params, 0, r, z, phi1)
+
+    def p2(r):
+        return _profile(model, params, 1, r, z, phi1)
+
+    def tangent(f, r):
+        return (f(r + eps) - f(r - eps)) / (2 * eps)
+
+    def along(f_move, r_fixed_point, r):
+        return float(np.dot(f_move(r) - r_fixed_point, tangent(f_move, r)))
+
+    if region == REGION_APPROACH_TIP:  # the gear tip edge against the pinion flank
+        q2 = p2(g.rho_eap[1])
+        span = 0.05 * g.transverse_base_pitch
+        r1 = brentq(lambda r: along(p1, q2, r), max(g.rho_form[0], r1 - span), min(g.rho_eap[0], r1 + span),
+                    xtol=1e-15)
+        q1 = p1(r1)
+    elif region == REGION_RECESS_TIP:  # the pinion tip edge against the gear flank
+        q1 = p1(g.rho_eap[0])
+        span = 0.05 * g.transverse_base_pitch
+        r2 = brentq(lambda r: along(p2, q1, r), max(g.rho_form[1], r2 - span), min(g.rho_eap[1], r2 + span),
+                    xtol=1e-15)
+        q2 = p2(r2)
+    else:  # flank against flank: the difference is normal to both tangents
+        def stationary(x):
+            d = p1(x[0] * 1e-3) - p2(x[1] * 1e-3)
+            return [np.dot(d, tangent(p1, x[0] * 1e-3)) * 1e6, np.dot(d, tangent(p2, x[1] * 1e-3)) * 1e6]
+
+        with warnings.catch_warnings():  # fsolve reports slow progress once at the round-off floor
+            warnings.simplefilter("ignore", RuntimeWarning)
+            sol = fsolve(stationary, [r1 * 1e3, r2 * 1e3], xtol=1e-10)
+        r1, r2 = sol[0] * 1e-3, sol[1] * 1e-3
+        q1, q2 = p1(r1), p2(r2)
+    d = q2 - q1
+    dist = float(np.linalg.norm(d))
+    n = d / dist  # from the pinion flank to the gear flank
+    w1, w2 = _omegas(model, speed_rpm, float(static.approach_rate[c, t]))
+    v1 = w1 * np.array([-q1[1], q1[0]])
+    v2 = w2 * np.array([-q2[1], q2[0] - g.center_distance])
+    vn = float(np.dot(v1 - v2, n))
+    arm = abs(q1[0] * n[1] - q1[1] * n[0])
+    return {"normal_transverse": vn, "normal_3d": vn * math.cos(g.base_helix_angle),
+            "transverse_equivalent": vn * float(g.base_radius[0]) / arm, "distance": dist,
+            "pinion_point_x": float(q1[0]), "pinion_point_y": float(q1[1]), "gear_point_x": float(q2[0]),
+            "gear_point_y": float(q2[1])}
+
+
+def seed_edge_roll(geom: PairGeometry, approach: float) -> float:
+    """Seed 000's 'reverse rotation' solution for an unmodified pair, pinion driving: the pinion
+    roll (m) before the theoretical start of engagement at which the gear's tip corner meets the
+    pinion flank when the pairs in mesh are compressed by ``approach`` δ (m).
+
+    Seed 000: arcsin(r_a2 sin(γ2 + LTE0 + Δφk2)/r_O1D) − Δφk2/i − arcsin(r_a2 sin γ2/r_O1E)
+    = inv(arccos(r_b1/r_O1D)) − inv(arccos(r_b1/r_O1E')), r_O1D² = a² + r_a2² −
+    2·a·r_a2·cos(γ2 + LTE0 + Δφk2), with γ2 the angle at O2 between the centre line and the
+    start of engagement A (= E = E', the gear tip on the line of action) and LTE0 = δ/r_b2 the
+    gear's lag. It states that the tip point D, turned back by LTE0 + Δφk2, lies on the pinion
+    involute through A turned back by the pinion angle of Δφk2. That angle is Δφk2·z2/z1, so
+    the printed "Δφk2/i" holds only with i = z1/z2; with the usual ratio i = z2/z1 it must read
+    Δφk2·i (corrected here). Returns r_b2·(LTE0 + Δφk2), seed 000's total deviation Δφ as
+    roll, which :func:`impact_static` must reproduce for an unmodified pair (the same event).
+    """
+    from scipy.optimize import brentq
+    from .gear import involute
+
+    a = geom.center_distance
+    rb1, rb2 = (float(r) for r in geom.base_radius)
+    ra2 = float(geom.tip_radius[1])
+    awt = geom.operating_pressure_angle
+    ax = rb1 * math.cos(awt) + geom.rho_sap[0] * math.sin(awt)
+    ay = -rb1 * math.sin(awt) + geom.rho_sap[0] * math.cos(awt)
+    gamma2 = math.atan2(-ay, a - ax)
+    r_o1e = math.hypot(ax, ay)
+    lte0 = approach / rb2
+    ratio = geom.pair.teeth[1] / geom.pair.teeth[0]
+
+    def residual(dphi):
+        gd = gamma2 + lte0 + dphi
+        r_o1d = math.sqrt(a * a + ra2 * ra2 - 2 * a * ra2 * math.cos(gd))
+        lhs = (math.asin(ra2 * math.sin(gd) / r_o1d) - dphi * ratio - math.asin(ra2 * math.sin(gamma2) / r_o1e))
+        return lhs - (involute(math.acos(rb1 / r_o1d)) - involute(math.acos(rb1 / r_o1e)))
+
+    hi = 0.5 * geom.transverse_base_pitch / rb2
+    dphi = brentq(residual, -lte0, hi, xtol=1e-16, rtol=1e-15)
+    return rb2 * (lte0 + dphi)
+
+
+def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, params=None, samples: int = 600,
+                        cycles_after: float = 4.0) -> dict[str, np.ndarray | float]:
+    """Direct time integration of the mesh-in event, to check the energy method.
+
+    The two-inertia torsional system in its relative coordinate x (transverse approach along
+    the line of action, gear held): m_eq·ẍ = F_bt − F_mesh(x, τ(t)), τ advancing at r_b1·Ω1,
+    F_mesh the LTCA contact force of every point of every pair (the entering one included) at
+    approach x (:func:`gearmesh.ltca.solve_contact`'s point laws, inverted directly). No
+    damping: the energy method is conservative. It starts in static equilibrium a little before
+    the touch (x = δ, ẋ = dδ/dt), integrates (scipy solve_ivp, RK45) through the touch for
+    ``cycles_after`` periods of the mesh's natural frequency √(k/m_eq), and reports the peak
+    of the mesh force above the static force F_bt, and the entering pair's own peak force.
+    The energy method's premise — all of ½·m_eq·v² goes into the entering pair — ignores the
+    pairs already in mesh, which unload as x rebounds; the ratio measures that.
+    """
+    from scipy.integrate import solve_ivp
+
+    g, law = model.geom, model.ltca.law
+    params = model.params(params)[:1]
+    st = impact_static(model, [torque], params)
+    if st.scenario[0, 0] == SCENARIO_NONE:
+        raise GearmeshInputError("torque_Nm", torque, "gives no mesh-in contact in the search window")
+    speed = float(check_speeds([speed_rpm], "speed_rpm")[0])
+    f_bt = float(st.force[0])
+    t_star = float(st.tau[0, 0])
+    m = model.equivalent_mass
+    # tangent mesh stiffness at the touch (all pairs) for the time scale
+    grid0 = candidate_grid(g, np.array([float(st.roll[0, 0])]), model.points, model.lead_slope,
+                           model.extension / g.transverse_base_pitch, pairs=_window_pairs(model))
+    gap0 = basis_gap(g, grid0.basis, np.broadcast_to(grid0.z, grid0.s.shape), model.lead_slope, params[0])
+    comp0 = point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid0.s, grid0.region, grid0.rho_pinion,
+                             grid0.rho_gear, with_hertz=law.name == "linear") / grid0.dz
+    _, _, k0, _ = solve_contact(gap0.reshape(1, -1), comp0.reshape(1, -1), np.array([f_bt]), law)
+    period = 2 * math.pi * math.sqrt(m / float(k0[0]))
+    rate = float(g.base_radius[0]) * speed * 2 * math.pi / 60.0  # dτ/dt (m/s)
+    tau0 = t_star - max(0.02 * g.transverse_base_pitch, 0.5 * period * rate)
+    tau1 = t_star + cycles_after * period * rate
+    taus = np.linspace(tau0, tau1, int(samples))
+    grid = candidate_grid(g, model.roll(taus), model.points, model.lead_slope, model.extension / g.transverse_base_pitch,
+                          pairs=_window_pairs(model))
+    gaps = basis_gap(g, grid.basis, np.broadcast_to(grid.z, grid.s.shape), model.lead_slope, params[0])
+    comps = point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid.s, grid.region, grid.rho_pinion,
+                             grid.rho_gear, with_hertz=law.name == "linear") / grid.dz
+    nr = taus.size
+    gaps = np.where(np.isfinite(gaps), gaps, np.inf).reshape(nr, -1)
+    comps = np.where(np.isfinite(comps), comps, 1.0).reshape(nr, -1)
+    enter = np.zeros(gaps.shape[1], dtype=bool).reshape(grid.s.shape[1:])
+    enter[model.window_enter_column] = True
+    enter = enter.reshape(-1)
+    c_eff = comps + law.linear
+
+    def at(tau):
+        u = (tau - tau0) / (taus[1] - taus[0])
+        i = int(min(max(math.floor(u), 0), nr - 2))
+        w = u - i
+        with np.errstate(invalid="ignore"):
+            gg = gaps[i] + w * (gaps[i + 1] - gaps[i])
+        return np.where(np.isfinite(gg), gg, np.inf), c_eff[i] + w * (c_eff[i + 1] - c_eff[i])
+
+    def loads(x, tau):
+        gg, cc = at(tau)
+        d = x - gg
+        q, _ = _invert(np.where(np.isfinite(d), d, -1.0)[None], cc[None], law.coefficient, law.exponent)
+        return q[0]
+
+    def rhs(t, y):
+        return [y[1], (f_bt - loads(y[0], tau0 + rate * t).sum()) / m]
+
+    # static start: approach of all pairs at τ0 and its rate
+    h = 1e-7 * g.transverse_base_pitch
+    d_lo, d0, d_hi = _approach_at(model, params, st.force, np.array([[tau0 - h, tau0, tau0 + h]]).T,
+                                  others=False)[:, 0]
+    v0 = (d_hi - d_lo) / (2 * h) * rate
+    t_end = (tau1 - tau0) / rate
+    sol = solve_ivp(rhs, (0.0, t_end), [d0, v0], method="RK45", rtol=1e-7, atol=1e-12, max_step=period / 40,
+                    dense_output=True)
+    t = np.linspace(0.0, t_end, int(samples))
+    x = sol.sol(t)[0]
+    q = np.array([loads(xi, tau0 + rate * ti) for xi, ti in zip(x, t)])
+    total = q.sum(axis=1)
+    entering = q[:, enter].sum(axis=1)
+    return {"time": t, "tau": tau0 + rate * t, "approach": x, "mesh_force": total, "entering_force": entering,
+            "static_force": f_bt, "peak_above_static": float(total.max() - f_bt),
+            "entering_peak": float(entering.max()), "period": period, "touch_time": (t_star - tau0) / rate}
