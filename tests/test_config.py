@@ -17,12 +17,12 @@ def test_defaults_are_filled():
 
 
 @pytest.mark.parametrize("config, field", [
-    ({"pairs": ["p"]}, "config"),
+    ({"pairs": ["p"]}, "study"),
     ({"study": "s", "pairs": []}, "pairs"),
     ({"study": "s", "pairs": ["p"], "contact_lines": {"positions": 2}}, "contact_lines.positions"),
     ({"study": "s", "pairs": ["p"], "geometry": {"face_points": "many"}}, "geometry.face_points"),
     ({"study": "bad name", "pairs": ["p"]}, "study"),
-    ({"study": "s", "pairs": ["p"], "helix_sweep": {"pairs": ["p"], "start_deg": 1}}, "helix_sweep"),
+    ({"study": "s", "pairs": ["p"], "helix_sweep": {"pairs": ["p"], "start_deg": 1}}, "helix_sweep.stop_deg"),
 ])
 def test_bad_config_names_the_field(config, field):
     with pytest.raises(GearmeshInputError) as info:

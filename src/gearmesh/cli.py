@@ -9,15 +9,16 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import re
 import sys
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 from .config import check_study, validate_study
-from .gear import read_yaml
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
-from .gear import load_pair, pair_geometry
+from .gear import check_pair_name, load_pair, pair_from_dict, pair_geometry, pinion_torque, read_yaml
+from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_load
 
 EXIT_BAD_INPUT = 2
 
@@ -55,18 +56,29 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
         print(f"{key:<{width}}  {value}")
 
 
+def _pair(path: str, args: argparse.Namespace | None = None):
+    """The pair file at ``path`` (name = file name) and its geometry; with ``args``, its
+    ``--torque-Nm`` checked against the load limits of :func:`gearmesh.limits.check_load`."""
+    pair = load_pair(path)
+    geom = pair_geometry(pair)
+    check_pair_name(pair, path)
+    if args is not None and args.torque_Nm is not None and args.torque_Nm > 0:
+        check_load(geom, pinion_torque(pair, args.torque_Nm, args.on), "--torque-Nm", args.torque_Nm)
+    return pair, geom
+
+
 def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     data = read_yaml(args.file, "file")
-    if isinstance(data, Mapping) and "study" in data:
+    if isinstance(data, Mapping) and ("study" in data or "pairs" in data):  # a pair file has neither key
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
-    pair = load_pair(args.file)
-    pair_geometry(pair)
+    pair = pair_from_dict(data, source=args.file)
+    _pair(args.file)
     return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
-    geom = pair_geometry(load_pair(args.pair))
+    geom = _pair(args.pair)[1]
     result = geom.scalars()
     summary = contact_length_summary(geom)
     result.update({
@@ -84,23 +96,26 @@ def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
 def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.stiffness import stiffness_summary
 
-    if args.slices < 1:
-        raise GearmeshInputError("--slices", args.slices, "must be at least 1")
-    return stiffness_summary(load_pair(args.pair), method=args.method, slices=args.slices,
+    check_grid("--slices", args.slices, args.slices * args.positions, MAX_STIFFNESS_POINTS, "slice-positions")
+    return stiffness_summary(_pair(args.pair, args)[0], method=args.method, slices=args.slices,
                              positions=args.positions, torque_Nm=args.torque_Nm, torque_on=args.on)
 
 
 def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.ltca import ltca_summary
 
-    return ltca_summary(load_pair(args.pair), args.torque_Nm, on=args.on, positions=args.positions,
+    check_grid("--points", args.points, (args.positions + 1) * args.points, MAX_CONTACT_POINTS,
+               "contact candidates per line")
+    return ltca_summary(_pair(args.pair, args)[0], args.torque_Nm, on=args.on, positions=args.positions,
                         points=args.points, contact_law=args.contact_law)
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
-    from .datasets.dynamics import dynamics_summary
+    from .datasets.dynamics import check_dynamics_settings, dynamics_summary
 
-    pair = load_pair(args.pair)
+    pair = _pair(args.pair, args)[0]
+    check_dynamics_settings(pair, {"torque_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
+                                   "backlash_um": args.backlash_um, "sample_speeds_rpm": []})
     rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
                             backlash_um=args.backlash_um)
     return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on, "speeds": rows}
@@ -120,8 +135,21 @@ def _torque_options(p, required: bool, on_default: str) -> None:
     p.add_argument("--on", choices=("pinion", "gear"), default=on_default, help="which gear carries the torque")
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with its refusals as the one line ``gearmesh: error: ARGUMENT = VALUE: RULE``
+    (exit 2), not the usage text."""
+
+    def error(self, message: str):
+        match = re.fullmatch(r"argument ([^:]+): (.*?)(?:: '(.*)')?", message, flags=re.S)
+        if match:
+            exc = GearmeshInputError(match[1], match[3], match[2])
+        else:
+            exc = GearmeshInputError("arguments", None, message)
+        self.exit(EXIT_BAD_INPUT, f"gearmesh: error: {exc}\n")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(prog="gearmesh", description=__doc__.splitlines()[0])
+    parser = _Parser(prog="gearmesh", description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="command", required=True)
 
     _command(sub, "validate", cmd_validate, "check a gear pair file or a study config (exit 0, or 2 with the reason)",
@@ -161,6 +189,10 @@ def main(argv: Sequence[str] | None = None) -> int:
             value = getattr(args, option, None)
             if value is not None and not low <= value <= high:
                 raise GearmeshInputError(f"--{option}", value, f"must lie in [{low}, {high}]")
+        for option in ("torque_Nm", "backlash_um"):  # signs: the stages' own checks
+            value = getattr(args, option, None)
+            if value is not None and not math.isfinite(value):
+                raise GearmeshInputError(option, value, "must be a finite number")
         result = args.func(args)
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)

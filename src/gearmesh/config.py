@@ -8,15 +8,17 @@ CLI through :func:`validate_study`, both filling the defaults it declares.
 from __future__ import annotations
 
 import copy
+import math
+from contextlib import contextmanager
 from importlib.resources import files
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Iterator, Mapping
 
 import jsonschema
 import yaml
 
 from .errors import GearmeshInputError
-from .gear import GearPair, load_pair, pinion_torque, read_yaml
+from .gear import GearPair, load_named_pair, pinion_torque, read_yaml
 
 SCHEMA_PATH = Path(str(files("gearmesh") / "schemas" / "config.schema.yaml"))
 
@@ -39,16 +41,55 @@ def load_schema() -> dict[str, Any]:
     return yaml.safe_load(SCHEMA_PATH.read_text())
 
 
+def _schema_error(err: jsonschema.ValidationError) -> GearmeshInputError:
+    """One schema error as the field it is about: an unknown or missing key is named itself,
+    and the message loses its leading repr of the value (the error shows an excerpt)."""
+    path = [str(p) for p in err.path]
+    instance = err.instance
+    if err.validator == "additionalProperties" and err.validator_value is False and isinstance(instance, Mapping):
+        extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
+        if extra:
+            allowed = sorted(err.schema.get("properties", {}))
+            return GearmeshInputError(".".join(path + [str(extra[0])]), instance[extra[0]],
+                                      f"unknown key; allowed keys are {allowed}")
+    if err.validator == "required" and isinstance(instance, Mapping):
+        missing = [k for k in err.validator_value if k not in instance]
+        if missing:
+            return GearmeshInputError(".".join(path + [missing[0]]), None, "is required")
+    message = err.message
+    head = repr(instance)
+    if message.startswith(head):
+        message = message[len(head):].strip()
+    return GearmeshInputError(".".join(path) or "config", instance if path else None, message)
+
+
+def _first_non_finite(data: Any, path: str = "") -> tuple[str, float] | None:
+    """The path and value of the first NaN or infinite number in a nested config (JSON schema
+    numbers accept both; no setting of a study may be either)."""
+    stack = [(path, data)]
+    while stack:
+        where, value = stack.pop()
+        if isinstance(value, float) and not math.isfinite(value):
+            return where or "config", value
+        if isinstance(value, Mapping):
+            stack += [(f"{where}.{k}" if where else str(k), v) for k, v in reversed(list(value.items()))]
+        elif isinstance(value, (list, tuple)):
+            stack += [(f"{where}[{i}]", v) for i, v in reversed(list(enumerate(value)))]
+    return None
+
+
 def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
-    """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field."""
+    """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field
+    (a NaN or infinite number anywhere, then the schema's first error)."""
+    bad = _first_non_finite(config)
+    if bad:
+        raise GearmeshInputError(bad[0], bad[1], "must be a finite number")
     schema = load_schema()
     data = copy.deepcopy(dict(config))
     validator = _with_defaults(jsonschema.Draft202012Validator)(schema)
     errors = sorted(validator.iter_errors(data), key=lambda e: (len(e.path), list(map(str, e.path))))
     if errors:
-        err = errors[0]
-        field = ".".join(str(p) for p in err.path) or "config"
-        raise GearmeshInputError(field, err.instance if err.path else None, err.message)
+        raise _schema_error(errors[0])
     # Fill defaults a second time: nested defaults of objects created by the first pass.
     for _ in validator.iter_errors(data):
         pass
@@ -77,10 +118,7 @@ def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
         path = pair_path(config, name, root)
         if not path.exists():
             raise GearmeshInputError("pairs", name, f"has no pair file {path}")
-        pair = load_pair(path)
-        if pair.name != name:
-            raise GearmeshInputError(f"{path}: name", pair.name, f"must equal the file name {name!r}")
-        out[name] = pair
+        out[name] = load_named_pair(path)
     return out
 
 
@@ -138,11 +176,94 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                 raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                          f"must include the dynamics torque ({dyn.get('torque_Nm', 200.0)} N m on "
                                          f"the {dyn.get('on', 'gear')}): the LTCA excites the dynamics")
+    _check_impact(config.get("impact"))
     sweep = config.get("helix_sweep")
     if sweep and sweep["stop_deg"] < sweep["start_deg"]:
         raise GearmeshInputError("helix_sweep.stop_deg", sweep["stop_deg"],
                                  f"must not be below start_deg ({sweep['start_deg']})")
+    check_stages(config, pairs)
     return pairs
+
+
+@contextmanager
+def _section(prefix: str) -> Iterator[None]:
+    """Re-raise a GearmeshInputError of a stage's own check under the config section's name."""
+    try:
+        yield
+    except GearmeshInputError as exc:
+        if exc.field.startswith(prefix + "."):
+            raise
+        raise GearmeshInputError(f"{prefix}.{exc.field}", exc.value, exc.rule) from None
+
+
+def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> None:
+    """The stage settings the schema cannot judge, checked with each stage's own boundary
+    checks and work limits (:mod:`gearmesh.limits`) before any job runs: grid sizes, lead
+    slopes, every torque against the contact-stress and deflection limits of every pair it
+    loads, helix-sweep size, dynamics comparison couples and the full dynamics and train
+    settings with their work estimate (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`)."""
+    from .datasets.dynamics import check_dynamics_settings
+    from .gear import pair_geometry
+    from .limits import (MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, MAX_SWEEP_ANGLES, check_grid,
+                         check_load)
+    from .tca import check_lead_slope
+
+    geoms = {name: pair_geometry(pair) for name, pair in pairs.items()}
+
+    def loads(section: str, key: str, on: str, names: Any) -> None:
+        values = config[section][key]
+        for k, value in enumerate(values if isinstance(values, list) else [values]):
+            field = f"{section}.{key}" + (f"[{k}]" if isinstance(values, list) else "")
+            for name in names:
+                check_load(geoms[name], pinion_torque(pairs[name], value, on), field, value)
+
+    for section in ("stiffness", "stiffness_table", "slice_convergence"):
+        if section in config:
+            sec = config[section]
+            slices = max(sec["slices"]) if isinstance(sec["slices"], list) else sec["slices"]
+            check_grid(f"{section}.slices", sec["slices"], slices * sec["positions"], MAX_STIFFNESS_POINTS,
+                       "slice-positions")
+            if sec.get("torque_Nm") is not None:
+                loads(section, "torque_Nm", sec["torque_on"], sec.get("pairs", config["pairs"]))
+    for section in ("tca", "ltca"):
+        if section in config:
+            sec = config[section]
+            with _section(section):
+                check_lead_slope(sec["lead_slope_um"])
+            check_grid(f"{section}.points", sec["points"], (sec["positions"] + 1) * sec["points"],
+                       MAX_CONTACT_POINTS, "contact candidates per line")
+    if "ltca" in config:
+        loads("ltca", "torques_Nm", config["ltca"]["on"], config["pairs"])
+    if sweep := config.get("helix_sweep"):
+        count = int((sweep["stop_deg"] - sweep["start_deg"]) / sweep["step_deg"]) + 1
+        check_grid("helix_sweep.step_deg", sweep["step_deg"], count, MAX_SWEEP_ANGLES, "helix angles per pair")
+    for k, couple in enumerate(config.get("dynamics_comparison", {}).get("couples") or []):
+        for name in couple:
+            if name not in config["pairs"]:
+                raise GearmeshInputError(f"dynamics_comparison.couples[{k}]", couple, f"{name!r} is not a pair of "
+                                         "the study's pairs")
+    for section, train in (("dynamics", False), ("train_dynamics", True)):
+        if section in config:
+            sec = config[section]
+            if sec.get("torque_Nm") is not None:
+                loads(section, "torque_Nm", sec.get("on", "gear"), config["pairs"])
+            for name in config["pairs"]:
+                with _section(section):
+                    check_dynamics_settings(pairs[name], sec, train=train)
+
+
+def _check_impact(impact: Mapping[str, Any] | None) -> None:
+    """The impact map's design speed is one of its speeds and its simulated torques are among its torques."""
+    if not impact:
+        return
+    speeds = impact.get("speeds_rpm", [5000])
+    if not any(abs(v - impact.get("design_speed_rpm", 5000)) <= 1e-9 * v for v in speeds):
+        raise GearmeshInputError("impact.design_speed_rpm", impact.get("design_speed_rpm", 5000),
+                                 f"must be one of impact.speeds_rpm {speeds}")
+    torques = impact.get("torques_Nm", [400, 1000, 1600])
+    for k, t in enumerate(impact.get("simulate_torques_Nm", [])):
+        if not any(abs(v - t) <= 1e-9 * v for v in torques):
+            raise GearmeshInputError(f"impact.simulate_torques_Nm[{k}]", t, f"must be one of impact.torques_Nm {torques}")
 
 
 def _among(t1: float, pair: GearPair, ltca: Mapping[str, Any]) -> bool:

@@ -2,16 +2,39 @@
 
 from __future__ import annotations
 
+import reprlib
+
+#: Longest excerpt of a value, a field name or a rule in the one-line message (characters):
+#: a terminal line, so that a hostile value of megabytes never reaches stderr in full.
+MAX_EXCERPT = 120
+
+_repr = reprlib.Repr()
+_repr.maxlevel, _repr.maxlist, _repr.maxtuple, _repr.maxdict = 3, 8, 8, 4
+_repr.maxstring = _repr.maxother = _repr.maxlong = MAX_EXCERPT
+
+
+def excerpt(text: str, limit: int = MAX_EXCERPT) -> str:
+    """``text`` cut to ``limit`` characters, the cut marked with an ellipsis."""
+    return text if len(text) <= limit else text[:limit - 1] + "…"
+
+
+def short_repr(value: object) -> str:
+    """repr of ``value`` in bounded time and length (reprlib: nested levels, items and long
+    strings are elided), so that the error path never formats a huge input in full."""
+    return excerpt(_repr.repr(value))
+
 
 class GearmeshInputError(ValueError):
     """A config or gear pair that is malformed, out of range or physically impossible.
 
     The CLI turns it into one line on stderr and exit code 2; the workflow's scripts let
-    it propagate before any output file is written.
+    it propagate before any output file is written. The message shows an excerpt of the
+    value (:func:`short_repr`) and of the field and rule, never a whole huge input.
     """
 
     def __init__(self, field: str, value: object, rule: str):
         self.field = field
         self.value = value
         self.rule = rule
-        super().__init__(f"{field} = {value!r}: {rule}")
+        text = f"{excerpt(str(field))} = {short_repr(value)}: {excerpt(' '.join(str(rule).split()), 4 * MAX_EXCERPT)}"
+        super().__init__(text)

@@ -11,6 +11,7 @@ Index 0 is the pinion (the driver), index 1 the gear.
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, Mapping
@@ -211,8 +212,9 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
         if key not in spec:
             raise GearmeshInputError(key, None, "is required")
     name = spec["name"]
-    if not isinstance(name, str) or not name:
-        raise GearmeshInputError("name", name, "must be a non-empty string")
+    if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name):
+        raise GearmeshInputError("name", name, "must be 1 to 160 letters, digits, '_', '-' or '.' (not "
+                                 "first): a file name, no path characters")
     alpha_n = _number("normal_pressure_angle_deg", spec["normal_pressure_angle_deg"])
     if not 0 < alpha_n < 45:
         raise GearmeshInputError("normal_pressure_angle_deg", alpha_n, "must lie in (0, 45) degrees")
@@ -287,14 +289,36 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
     )
 
 
+#: Normal modules (m) the models are valid for. ISO 54:1996 standardises 1–50 mm; fine-pitch
+#: instrument gears go down to about 0.1 mm and the largest mill gears to about 100 mm. The
+#: slice and contact models are scale-free, but material data, ISO 6336 stiffness factors and
+#: tolerances (ISO 1328-1 covers 0.5–70 mm) have no meaning far outside that range.
+MODULE_RANGE = (0.1e-3, 100e-3)
+#: Face width against the normal module, b/m_n >= 1: the slice models and ISO 6336-1 treat a
+#: tooth slice in plane strain (E/(1 − ν²)); a face narrower than one module is a plate in
+#: plane stress (the tooth is 2.25 m_n high), about 10 % softer than either model says.
+MIN_FACE_WIDTH_TO_MODULE = 1.0
+#: Face width against the pinion reference diameter, b/d1 <= 2: AGMA 2001-D04 (empirical
+#: load-distribution factor) and ISO 6336-1's load distribution assume no wider face; beyond
+#: it shaft bending and torsion shift the load to one end, which no model here includes.
+MAX_FACE_WIDTH_TO_DIAMETER = 2.0
+#: Name of a pair: usable as a file name (letters, digits, '_', '-' and '.', not first; no
+#: path characters), short enough to stay far below the 255-byte limit of one path component
+#: (Linux NAME_MAX) with any suffix. Study configs restrict the names they use further (schema).
+NAME_PATTERN = re.compile(r"[A-Za-z0-9_-][A-Za-z0-9_.-]{0,159}")
+
+
 def validate_pair(pair: GearPair) -> None:
     """Range checks on a :class:`GearPair` in SI, also for pairs built in code (sweeps,
-    designs); field names are the pair-file keys."""
+    designs); field names are the pair-file keys. The ranges are :data:`MODULE_RANGE`,
+    :data:`MIN_FACE_WIDTH_TO_MODULE` and :data:`MAX_FACE_WIDTH_TO_DIAMETER`."""
     for i, z in enumerate(pair.teeth):
         if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 5:
             raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer of at least 5 (external gears)")
+    mn, (m_lo, m_hi) = pair.normal_module, MODULE_RANGE
     checks = [
-        ("normal_module_mm", pair.normal_module * 1e3, pair.normal_module > 0, "must be positive"),
+        ("normal_module_mm", mn * 1e3, m_lo <= mn <= m_hi,
+         f"must lie in [{m_lo * 1e3:g}, {m_hi * 1e3:g}] mm (ISO 54 modules, with margins)"),
         ("normal_pressure_angle_deg", math.degrees(pair.normal_pressure_angle),
          0 < pair.normal_pressure_angle < math.radians(45), "must lie in (0, 45) degrees"),
         ("helix_angle_deg", math.degrees(pair.helix_angle), 0 <= pair.helix_angle < math.radians(60),
@@ -302,6 +326,13 @@ def validate_pair(pair: GearPair) -> None:
         ("helix_hand", pair.helix_hand, pair.helix_hand in ("right", "left"), "must be 'right' or 'left'"),
     ]
     checks += [(f"face_width_mm[{i}]", b * 1e3, b > 0, "must be positive") for i, b in enumerate(pair.face_width)]
+    d1 = pair.teeth[0] * mn / math.cos(pair.helix_angle)
+    checks += [(f"face_width_mm[{i}]", b * 1e3, b >= MIN_FACE_WIDTH_TO_MODULE * mn,
+                f"must be at least {MIN_FACE_WIDTH_TO_MODULE:g} normal module ({mn * 1e3:g} mm): "
+                "narrower, the tooth is a plate in plane stress") for i, b in enumerate(pair.face_width)]
+    checks += [(f"face_width_mm[{i}]", b * 1e3, b <= MAX_FACE_WIDTH_TO_DIAMETER * d1,
+                f"must be at most {MAX_FACE_WIDTH_TO_DIAMETER:g} pinion reference diameters ({d1 * 1e3:.4g} mm; "
+                "AGMA 2001 / ISO 6336-1 load distribution)") for i, b in enumerate(pair.face_width)]
     if pair.profile_shift is not None:
         checks += [(f"profile_shift[{i}]", x, -3 < x < 3, "must lie in (-3, 3)")
                    for i, x in enumerate(pair.profile_shift)]
@@ -312,33 +343,97 @@ def validate_pair(pair: GearPair) -> None:
             raise GearmeshInputError(name, value, rule)
 
 
+#: Largest input document read (bytes). The largest shipped study config is about 3 kB and a
+#: pair file under 2 kB; 256 kB leaves a factor of ~100 for comments, yet keeps the pure-Python
+#: YAML parse of the worst such file under about a second and ~100 MB.
+MAX_INPUT_BYTES = 256 * 1024
+#: Most YAML nodes (scalars, lists, mappings) and deepest nesting of an input document: a study
+#: has a few hundred nodes nested at most ~6 deep; more is not a pair or a study.
+MAX_INPUT_NODES = 20_000
+MAX_INPUT_DEPTH = 20
+
+
+class _InputRefused(yaml.YAMLError):
+    """Raised by the loader for a document that cannot be a gearmesh input (reason as text)."""
+
+
 class _UniqueKeyLoader(yaml.SafeLoader):
-    """A safe YAML loader that refuses a mapping with the same key twice (PyYAML keeps the last)."""
+    """A safe YAML loader for small input documents: refuses a mapping with the same key twice
+    (PyYAML keeps the last), aliases (``*name``: a "billion laughs" document expands
+    exponentially when walked), more than :data:`MAX_INPUT_NODES` nodes and nesting deeper
+    than :data:`MAX_INPUT_DEPTH`."""
+
+    _nodes = 0
+    _depth = 0
+
+    def compose_node(self, parent, index):
+        if self.check_event(yaml.AliasEvent):
+            mark = self.peek_event().start_mark
+            raise _InputRefused(f"uses a YAML alias (line {mark.line + 1}); write the value out")
+        self._nodes += 1
+        if self._nodes > MAX_INPUT_NODES:
+            raise _InputRefused(f"has more than {MAX_INPUT_NODES} YAML nodes")
+        self._depth += 1
+        try:
+            if self._depth > MAX_INPUT_DEPTH:
+                raise _InputRefused(f"nests deeper than {MAX_INPUT_DEPTH} levels")
+            return super().compose_node(parent, index)
+        finally:
+            self._depth -= 1
 
 
 def _unique_mapping(loader: _UniqueKeyLoader, node: yaml.MappingNode, deep: bool = False):
     keys = [loader.construct_object(k, deep=deep) for k, _ in node.value]
-    duplicates = sorted({str(k) for k in keys if keys.count(k) > 1})
+    seen, duplicates = set(), set()
+    for key in keys:
+        try:
+            (duplicates if key in seen else seen).add(key)
+        except TypeError:  # an unhashable key: construct_mapping refuses it below
+            pass
     if duplicates:
-        raise GearmeshInputError(duplicates[0], None, f"is given twice in one mapping (line {node.start_mark.line + 1})")
+        raise GearmeshInputError(min(map(str, duplicates)), None,
+                                 f"is given twice in one mapping (line {node.start_mark.line + 1})")
     return loader.construct_mapping(node, deep=deep)
 
 
 _UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _unique_mapping)
 
 
-def read_yaml(path: str | Path, what: str) -> Any:
-    """Parse a YAML file; a missing, unreadable or malformed file, or a key given twice, is a
-    one-line :class:`GearmeshInputError`."""
+def read_input_text(path: str | Path, what: str) -> str:
+    """The text of a small input file, read bounded: refuses anything but a regular file (a
+    directory, FIFO or device such as /dev/zero, checked before opening), more than
+    :data:`MAX_INPUT_BYTES` and non-UTF-8 bytes, each as one :class:`GearmeshInputError`."""
+    import stat
+
     path = Path(path)
     try:
-        return yaml.load(path.read_text(encoding="utf-8"), Loader=_UniqueKeyLoader)
+        mode = path.stat().st_mode
+        if not stat.S_ISREG(mode):
+            raise GearmeshInputError(what, str(path), "is not a regular file")
+        with path.open("rb") as f:
+            data = f.read(MAX_INPUT_BYTES + 1)
     except OSError as exc:
         raise GearmeshInputError(what, str(path), f"cannot be read ({exc.strerror})") from None
+    if len(data) > MAX_INPUT_BYTES:
+        raise GearmeshInputError(what, str(path), f"is larger than {MAX_INPUT_BYTES // 1024} kB: not a gearmesh input")
+    try:
+        return data.decode("utf-8")
     except UnicodeDecodeError:
         raise GearmeshInputError(what, str(path), "is not UTF-8 text") from None
+
+
+def read_yaml(path: str | Path, what: str) -> Any:
+    """Parse a small YAML input file (:func:`read_input_text`); a malformed file, a key given
+    twice, an alias or an oversized document is a one-line :class:`GearmeshInputError`."""
+    text = read_input_text(path, what)
+    try:
+        return yaml.load(text, Loader=_UniqueKeyLoader)
+    except _InputRefused as exc:
+        raise GearmeshInputError(what, str(path), str(exc)) from None
     except yaml.YAMLError as exc:
         raise GearmeshInputError(what, str(path), "is not valid YAML: " + " ".join(str(exc).split())) from None
+    except RecursionError:  # pragma: no cover - MAX_INPUT_DEPTH refuses first
+        raise GearmeshInputError(what, str(path), "nests too deep") from None
 
 
 def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
@@ -346,6 +441,19 @@ def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
     if isinstance(path_or_data, Mapping):
         return pair_from_dict(path_or_data)
     return pair_from_dict(read_yaml(path_or_data, "pair file"), source=str(path_or_data))
+
+
+def check_pair_name(pair: GearPair, path: str | Path) -> GearPair:
+    """Refuse a pair whose ``name`` differs from the name of its file ``path``
+    (``config/pairs/NAME.yaml``), as the workflow and the CLI require: results are filed under it."""
+    if pair.name != Path(path).stem:
+        raise GearmeshInputError("name", pair.name, f"must equal the file name {Path(path).stem!r} of {path}")
+    return pair
+
+
+def load_named_pair(path: str | Path) -> GearPair:
+    """Read a pair file whose ``name`` equals its file name (:func:`check_pair_name`)."""
+    return check_pair_name(load_pair(path), path)
 
 
 def pair_to_dict(pair: GearPair) -> dict[str, Any]:
@@ -709,11 +817,27 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     return geom
 
 
+#: Deepest profile relief or crowning, as a fraction of the normal module. Modifications are
+#: sized to the mesh deflection, F/(b c_γ) ≈ 1000 N/mm / 20 N/(mm µm) = 50 µm at the heaviest
+#: ISO 6336 line loads, i.e. about 0.01 m_n at m_n = 5 mm; the TCA/LTCA add the depth as a gap
+#: along the normal of the unmodified involute, a first-order model that holds while the depth
+#: is small against the tooth (normal tip thickness ≈ 0.4–1 m_n). 0.1 m_n allows ten times the
+#: usual depth and refuses what would reshape the tooth (e.g. 5 mm of crowning on 1.75 mm).
+MAX_MODIFICATION_TO_MODULE = 0.1
+
+
 def validate_modifications(geom: PairGeometry) -> None:
-    """Refuse relief lengths longer than the active flank and lead lengths beyond the face."""
+    """Refuse relief lengths longer than the active flank, lead lengths beyond the face and
+    depths beyond :data:`MAX_MODIFICATION_TO_MODULE` normal modules."""
+    depth_limit = MAX_MODIFICATION_TO_MODULE * geom.pair.normal_module
     for i, (gear, mod) in enumerate(zip(GEARS, geom.pair.modification)):
         active = geom.rho_eap[i] - geom.rho_sap[i]
         field_base = f"modification.{gear}"
+        for attr in ("root_relief", "tip_relief", "crowning"):
+            if getattr(mod, attr) > depth_limit:
+                raise GearmeshInputError(f"{field_base}.{attr}_um", getattr(mod, attr) * 1e6,
+                                         f"must be at most {MAX_MODIFICATION_TO_MODULE:g} normal module "
+                                         f"({depth_limit * 1e6:.4g} µm): deeper reshapes the tooth")
         if mod.root_relief_length + mod.tip_relief_length > active * (1 + 1e-9):
             raise GearmeshInputError(
                 f"{field_base}.root_relief_length_mm + tip_relief_length_mm",

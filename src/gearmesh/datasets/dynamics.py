@@ -126,6 +126,80 @@ def _solver(courant, steps_per_cycle_min, transient_tau, record_cycles) -> Solve
                           transient_tau=float(transient_tau), record_cycles=record_cycles)
 
 
+#: Work limits of one dynamics job, checked before any job runs (:func:`check_dynamics_settings`).
+#: RK4 speed-steps (steps of the longest speed × speeds, one vectorised batch): measured about
+#: 5e6 per second (seed 001 pair, 496 speeds × 17664 steps in 2 s), so 1e9 is a few minutes.
+MAX_SPEED_STEPS = 1_000_000_000
+#: Bytes of the k, e, de/dt phase tables of :func:`gearmesh.dynamics.simulate` (3 × meshes ×
+#: speeds × 2·max steps per period × 8 B), the largest array of a sweep.
+MAX_TABLE_BYTES = 1 << 30
+#: Coarse slice grid of the stiffness used only to estimate the step size (ω_max) up front.
+_ESTIMATE_SLICES, _ESTIMATE_POSITIONS = 16, 24
+
+
+def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: bool = False) -> None:
+    """Check every setting of :func:`dynamics_dataset` (or :func:`train_dataset` with
+    ``train``) for ``pair`` without simulating, and refuse a sweep whose work exceeds
+    :data:`MAX_SPEED_STEPS` or whose tables exceed :data:`MAX_TABLE_BYTES`.
+
+    The model is built on a coarse slice stiffness (the step size depends on the maximum
+    stiffness only; an LTCA excitation is of the same order), then
+    :func:`gearmesh.dynamics.step_plan` gives the steps per speed (and refuses > 2e6).
+    GearmeshInputError names the setting (as in the config section).
+    """
+    import inspect
+
+    from ..dynamics import step_plan
+
+    s = dict(settings)
+    solver = _solver(*(s.get(k, d) for k, d in _SOLVER_KEYS.items()))
+    if not train:
+        speeds = speed_grid(s.get("speeds_rpm", DEFAULT_SPEEDS))
+        try:
+            speed_grid(list(s.get("sample_speeds_rpm", ())) or 1.0)
+        except GearmeshInputError as exc:
+            raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
+        known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca"}
+        model = build_pair_model(pair, **{k: v for k, v in s.items() if k in known},
+                                 slices=_ESTIMATE_SLICES, positions=_ESTIMATE_POSITIONS)
+    else:
+        geom = pair_geometry(pair)
+        require_dynamics_data(geom)
+        if s.get("speeds_rpm") is None:
+            speeds = np.array([_torque("mesh_frequency_Hz", s.get("mesh_frequency_Hz", SEED004_MESH_FREQUENCY_HZ))
+                               * 60.0 / pair.teeth[1]])
+        else:
+            speeds = speed_grid(s["speeds_rpm"])
+        if s.get("torque_Nm") is not None:
+            torque = _torque("torque_Nm", s["torque_Nm"])
+        else:
+            torque = _torque("static_force_N", s.get("static_force_N", SEED004_STATIC_FORCE_N)) \
+                * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
+        backlash = s.get("backlash_um", 60.0)
+        K = mesh_stiffness(geom, n_positions=_ESTIMATE_POSITIONS, n_slices=_ESTIMATE_SLICES, components=False).K
+        bearing = _bearing(*(s.get(f"bearing_{key}_{unit}", SEED001_BEARING[key]) for key, unit in (
+            ("k_radial", "N_per_m"), ("k_axial", "N_per_m"), ("c_radial", "Ns_per_m"), ("c_axial", "Ns_per_m"))))
+        model = train_model(geom, torque, K, bearing=bearing,
+                            damping_ratio=s.get("damping_ratio", DEFAULT_DAMPING_RATIO),
+                            backlash=None if backlash is None else backlash * 1e-6,
+                            stiffness_form=s.get("stiffness_form", "fourier"), order=s.get("fourier_order", 3),
+                            excitation=s.get("excitation", "tvms"),
+                            phase_offsets=tuple(s.get("phase_offsets_cycles", (0.0, 0.0))),
+                            mesh_damping=s.get("mesh_damping_Ns_per_m"))
+    _, m, n_tr, _ = step_plan(model, speeds, solver)
+    steps = int(((n_tr + solver.record_cycles) * m).max())
+    if steps * speeds.size > MAX_SPEED_STEPS:
+        raise GearmeshInputError("speeds_rpm", s.get("speeds_rpm"),
+                                 f"needs {speeds.size} speeds × {steps} RK4 steps = {steps * speeds.size:.3g} "
+                                 f"speed-steps; at most {MAX_SPEED_STEPS:.0e} (fewer or faster speeds)")
+    table = 3 * model.m * speeds.size * 2 * int(m.max()) * 8
+    if table > MAX_TABLE_BYTES:
+        raise GearmeshInputError("speeds_rpm", s.get("speeds_rpm"),
+                                 f"needs {table / 2**30:.3g} GiB of stiffness and error tables; at most "
+                                 f"{MAX_TABLE_BYTES / 2**30:g} GiB (fewer or faster speeds, or a lower "
+                                 "steps_per_cycle_min)")
+
+
 def _stiffness_curve(geom: PairGeometry, stiffness: xr.Dataset | None, method: str, slices: int,
                      positions: int) -> np.ndarray:
     """Transverse TVMS K (N/m) at evenly spaced rolls over one base pitch: from the upstream
