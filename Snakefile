@@ -1,7 +1,12 @@
 # gearmesh workflow: pair.yaml -> geometry -> contact_lines -> ... (see DESIGN.md).
 # Run the default study:   snakemake --cores 2
 # Run another study:       snakemake --cores 2 --configfile config/studies/NAME.yaml
-from snakemake.utils import min_version, validate
+import sys
+
+from snakemake.utils import min_version
+
+from gearmesh.config import workflow_config
+from gearmesh.errors import GearmeshInputError
 
 min_version("8.0")
 
@@ -14,7 +19,14 @@ if not workflow.overwrite_configfiles:
     configfile: "config/config.yaml"
 
 
-validate(config, "workflow/schemas/config.schema.yaml", set_default=True)
+# The config as `gearmesh validate` judges it (its files re-read bounded and strictly, schema
+# defaults filled): a bad config stops here with one line and exit code 2. A file Snakemake's
+# own loader cannot parse (binary, endless) fails in Snakemake before this line, exit 1.
+try:
+    config.update(workflow_config(config, workflow.configfiles))
+except GearmeshInputError as exc:
+    print(f"gearmesh: error: {exc}", file=sys.stderr)
+    sys.exit(2)
 
 
 # `snakemake --report report.html` (after a run): this page, then every figure and table.
@@ -26,6 +38,7 @@ include: "workflow/rules/geometry.smk"
 include: "workflow/rules/contact_lines.smk"
 include: "workflow/rules/stiffness.smk"
 include: "workflow/rules/variants.smk"
+include: "workflow/rules/optimise.smk"
 include: "workflow/rules/tca.smk"
 include: "workflow/rules/ltca.smk"
 include: "workflow/rules/dynamics.smk"

@@ -104,6 +104,17 @@ def load_study(path: str | Path) -> dict[str, Any]:
     return validate_study(data)
 
 
+def workflow_config(config: Mapping[str, Any], configfiles: list[str | Path]) -> dict[str, Any]:
+    """The config Snakemake built, judged as ``gearmesh validate`` judges a study: each of its
+    files re-read with :func:`read_yaml` (bounded; refuses aliases and duplicated keys, which
+    Snakemake's loader lets through), then the merged config validated with its defaults
+    filled (:func:`validate_study`). The Snakefile calls it before anything else."""
+    for path in configfiles:
+        if not isinstance(read_yaml(path, "config file"), Mapping):
+            raise GearmeshInputError("config file", str(path), "must be a YAML mapping")
+    return validate_study(config)
+
+
 def pair_path(config: Mapping[str, Any], name: str, root: str | Path = ".") -> Path:
     return Path(root) / config.get("pairs_dir", "config/pairs") / f"{name}.yaml"
 

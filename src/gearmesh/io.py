@@ -9,6 +9,7 @@ from __future__ import annotations
 import hashlib
 import json
 import os
+import re
 from contextlib import contextmanager
 from functools import lru_cache
 from pathlib import Path
@@ -41,10 +42,15 @@ def variable(dims, data, units: str, long_name: str, **attrs) -> xr.Variable:
     return xr.Variable(dims, np.asarray(data), attrs={"units": units, "long_name": long_name, **attrs})
 
 
+#: Name of a temporary file of :func:`atomic_output`: ``.NAME.PID.tmp.SUFFIX`` beside the target.
+TEMPORARY_NAME = re.compile(r"\..+\.\d+\.tmp(\.[A-Za-z0-9]+)?")
+
+
 @contextmanager
 def atomic_output(path: str | Path) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it to ``path`` only if the block succeeds,
-    so no partial file ever carries the final name (DESIGN.md)."""
+    so no partial file ever carries the final name (DESIGN.md). A process killed outright
+    (SIGKILL skips the cleanup) leaves the temporary file: :func:`remove_stale_temporaries`."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
@@ -54,6 +60,18 @@ def atomic_output(path: str | Path) -> Iterator[Path]:
     finally:
         if tmp.exists():
             tmp.unlink()
+
+
+def remove_stale_temporaries(root: str | Path) -> list[Path]:
+    """Delete every temporary file of :func:`atomic_output` under ``root`` (the debris of
+    killed writers) and return their paths. Only safe while nothing writes under ``root``:
+    the workflow calls it on start, before any job, under Snakemake's directory lock."""
+    root = Path(root)
+    stale = [p for p in root.rglob(".*.tmp*") if p.is_file() and TEMPORARY_NAME.fullmatch(p.name)] \
+        if root.is_dir() else []
+    for p in stale:
+        p.unlink(missing_ok=True)
+    return stale
 
 
 @lru_cache(maxsize=1)

@@ -4,6 +4,7 @@ import sys
 from gearmesh.config import check_study, lste_comparison_wanted, pair_path
 from gearmesh.codeversion import versioned
 from gearmesh.errors import GearmeshInputError
+from gearmesh.io import remove_stale_temporaries
 
 STUDY = config["study"]
 ENV = "../envs/gearmesh.yaml"
@@ -111,3 +112,9 @@ STUDY_TABLES = "study tables"
 
 def report_item(path, caption, category, subcategory=BY_PAIR):
     return report(path, caption=f"../report/{caption}.rst", category=category, subcategory=subcategory)
+
+
+# A job killed outright (kill -9, a lost node) skips the cleanup of its atomic write and leaves
+# .NAME.PID.tmp.* beside its target: remove them before any job of this run starts.
+onstart:
+    remove_stale_temporaries("results")
