@@ -135,9 +135,13 @@ def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
 
 def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearPair:
     """``pair`` carrying the modification of micro-geometry ``variant`` (none for 'standard'
-    or a variant without one); the variant's modification replaces the pair file's."""
+    or a variant without one); the variant's modification replaces the pair file's. A variant
+    ``{from: optimise}`` is ``pair`` as given: the optimiser's pair file, its optimum (rule
+    variants.smk takes that file as the input)."""
     from .gear import pair_from_dict, pair_to_dict
 
+    if spec.get("from"):
+        return pair
     data = pair_to_dict(pair)
     data.pop("modification", None)
     if spec.get("modification"):
@@ -150,6 +154,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     every pair loads and works, has the material and bore the always-run stiffness stage
     needs, every micro-geometry variant and every stiffness-table variant gives a working
     pair, and sweep ranges are not empty. Returns the pairs."""
+    from .datasets.optimise import check_optimise
     from .datasets.stiffness import apply_variant
     from .gear import pair_geometry
     from .stiffness import require_stiffness_data
@@ -193,6 +198,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
         raise GearmeshInputError("helix_sweep.stop_deg", sweep["stop_deg"],
                                  f"must not be below start_deg ({sweep['start_deg']})")
     check_stages(config, pairs)
+    check_optimise(config, pairs)
     return pairs
 
 

@@ -119,17 +119,37 @@ def run_plot(smk: Any) -> None:
     _run(smk, body)
 
 
-def run_variant_pair(smk: Any) -> None:
-    """Write the pair file of one micro-geometry variant (checked by pair_geometry first)."""
+def write_pair(pair: GearPair, path: str | Path) -> Path:
+    """Write ``pair`` as a pair file (YAML, engineering units), checked by pair_geometry first."""
     import yaml
 
-    from .config import variant_pair
     from .gear import pair_geometry
 
+    pair_geometry(pair)
+    with atomic_output(path) as tmp:
+        tmp.write_text(yaml.safe_dump(pair_to_dict(pair), sort_keys=False))
+    return Path(path)
+
+
+def run_variant_pair(smk: Any) -> None:
+    """Write the pair file of one micro-geometry variant."""
+    from .config import variant_pair
+
     def body(smk: Any) -> None:
-        pair = variant_pair(load_pair(smk.input.pair), smk.wildcards.variant, smk.params.spec)
-        pair_geometry(pair)
-        with atomic_output(smk.output[0]) as tmp:
-            tmp.write_text(yaml.safe_dump(pair_to_dict(pair), sort_keys=False))
+        write_pair(variant_pair(load_pair(smk.input.pair), smk.wildcards.variant, smk.params.spec), smk.output[0])
+
+    _run(smk, body)
+
+
+def run_optimise(smk: Any) -> None:
+    """The optimiser of one pair: ``function(pair, **settings)`` -> ga.nc (first output) and the
+    optimum as a pair file (``output.pair``), the input of a variant ``{from: optimise}``."""
+    from .datasets.optimise import optimum_pair
+
+    def body(smk: Any) -> None:
+        pair = load_pair(smk.input.pair)
+        ds = resolve(smk.params.function)(pair, **dict(smk.params.settings))
+        _write_outputs(smk, ds, pair)
+        write_pair(optimum_pair(pair, ds), smk.output.pair)
 
     _run(smk, body)

@@ -36,6 +36,14 @@ def variant_pair_file(wildcards):
     return f"results/{wildcards.study}/{wildcards.pair}/{wildcards.variant}/pair.yaml"
 
 
+def variant_source_pair(wildcards):
+    """What rule variant_pair starts from: the pair file, or for a variant {from: optimise} the
+    optimiser's pair file (its optimum, rule optimise)."""
+    if config["variants"][wildcards.variant].get("from") == "optimise":
+        return f"results/{wildcards.study}/{wildcards.pair}/optimise/pair.yaml"
+    return pair_file(wildcards)
+
+
 def dynamics_inputs(wildcards):
     """The pair stage inputs of the dynamics: the variant's pair, the stiffness and, when the
     study runs the LTCA, the variant's LTCA (its excitation)."""
@@ -83,6 +91,13 @@ def variant_results(name, variant):
 def all_targets():
     targets = [f for name in config["pairs"] for f in pair_results(name)]
     targets += [f for name in config["pairs"] for v in VARIANTS for f in variant_results(name, v)]
+    if "optimise" in config:
+        for name in config["pairs"]:
+            base = f"results/{STUDY}/{name}/optimise"
+            targets += [f"{base}/ga.nc", f"{base}/pair.yaml", f"{base}/plots/convergence.png",
+                        f"{base}/plots/modification.png"]
+            if config["optimise"]["method"] == "nsga2":
+                targets.append(f"{base}/plots/pareto.png")
     if "helix_sweep" in config:
         targets += [f"results/{STUDY}/helix_sweep.nc", f"results/{STUDY}/plots/helix_sweep.png"]
     for table in ("stiffness_table", "slice_convergence"):

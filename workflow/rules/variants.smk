@@ -1,7 +1,7 @@
 rule variant_pair:
     """The pair file of one micro-geometry variant ('standard': unmodified), input of tca/ltca/impact/dynamics."""
     input:
-        pair=pair_file,
+        pair=variant_source_pair,
     output:
         "results/{study}/{pair}/{variant}/pair.yaml",
     log:

@@ -17,11 +17,12 @@ from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
 from ..io import variable
 from ..ltca import pinion_torques
-from ..optimise import GENE_SYMBOLS, OptimisationResult, check_settings, optimise, problem
+from ..optimise import GENE_SYMBOLS, OptimisationResult, Problem, check_settings, gene_table, optimise, problem
 from ..surface import MODIFICATION_FIELDS
 from .ltca import _geometry
 
-__all__ = ["optimise_dataset", "optimum_pair", "optimise_summary", "run_settings"]
+__all__ = ["optimise_dataset", "result_dataset", "optimum_pair", "optimise_summary", "run_settings", "run_problem",
+           "check_optimise"]
 
 _TO_SI = {"um": 1e-6, "mm": 1e-3}
 
@@ -34,8 +35,9 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                  random_baseline: bool = True, mutation_probability: float = 0.2, keep_elitism: int = 2,
                  points: int = 50, window_positions: int = 64, face_samples: int = 257, cycle_positions: int = 32,
                  contact_law: str = "palmgren", corner_extension: float = 0.25):
-    """The checked problem of ``pair`` (the config's ``optimise:`` section as keywords):
-    (Problem, settings as given). Torques are given on ``on`` and converted to the pinion."""
+    """Check the config's ``optimise:`` section (as keywords) for ``pair``: (geometry, settings,
+    gene keywords, impact-model keywords). Torques are given on ``on`` (converted to the
+    pinion). Refuses a bad value with GearmeshInputError naming the field."""
     geom = _geometry(pair)
     constraints = dict(constraints or {})
     unknown = set(constraints) - {"lte_factor", "line_load_factor", "penalty"}
@@ -51,10 +53,42 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                               line_load_factor=constraints.get("line_load_factor"),
                               penalty=constraints.get("penalty", 10.0), mutation_probability=mutation_probability,
                               keep_elitism=keep_elitism, random_baseline=random_baseline)
-    model = impact_model(geom, points=points, contact_law_name=contact_law, extension=corner_extension,
-                         window_positions=window_positions, face_samples=face_samples,
-                         cycle_positions=cycle_positions)
-    return problem(model, settings, modify, bounds, fixed)
+    genes = {"modify": modify, "bounds": bounds, "fixed": fixed}
+    gene_table(geom, **genes)
+    model = {"points": points, "contact_law_name": contact_law, "extension": corner_extension,
+             "window_positions": window_positions, "face_samples": face_samples, "cycle_positions": cycle_positions}
+    return geom, settings, genes, model
+
+
+def run_problem(pair: GearPair, **settings) -> Problem:
+    """The optimisation problem of ``pair`` (settings: :func:`run_settings`), its impact model
+    built once and its standard gear evaluated."""
+    geom, checked, genes, model = run_settings(pair, **settings)
+    return problem(impact_model(geom, **model), checked, **genes)
+
+
+def check_optimise(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> None:
+    """Before any job runs: the study's ``optimise:`` section for every pair (fields named
+    ``optimise.…``), and every variant taking the optimiser's pair (``{from: optimise}``)
+    has the section and no modification of its own."""
+    for variant, spec in (config.get("variants") or {}).items():
+        if spec.get("from") is None:
+            continue
+        if "optimise" not in config:
+            raise GearmeshInputError(f"variants.{variant}.from", spec["from"], "needs an 'optimise:' section in the study")
+        if spec.get("modification"):
+            raise GearmeshInputError(f"variants.{variant}.modification", spec["modification"],
+                                     "cannot be given with 'from': the variant takes the optimiser's modification")
+    if "optimise" in (config.get("variants") or {}):
+        raise GearmeshInputError("variants.optimise", config["variants"]["optimise"],
+                                 "is reserved (results/{study}/{pair}/optimise/ holds the optimiser's files)")
+    if "optimise" not in config:
+        return
+    for name in config["pairs"]:
+        try:
+            run_settings(pairs[name], **config["optimise"])
+        except GearmeshInputError as exc:
+            raise GearmeshInputError(f"optimise.{exc.field}", exc.value, exc.rule) from None
 
 
 def _si(result: OptimisationResult, values: np.ndarray) -> np.ndarray:
@@ -109,8 +143,7 @@ def optimise_dataset(pair: GearPair, **settings) -> xr.Dataset:
     generation's population, objective, F_s, scenario and best; the random-search baseline
     of the same budget; the optimum genes and parameters; the standard gear and the optimum
     at the objective torques; NSGA-II's Pareto front; method, seed, evaluations, wall time."""
-    prob = run_settings(pair, **settings)
-    return result_dataset(optimise(prob), settings)
+    return result_dataset(optimise(run_problem(pair, **settings)), settings)
 
 
 def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | None = None) -> xr.Dataset:
@@ -201,8 +234,8 @@ def optimise_summary(pair: GearPair, torque_Nm: float, speed_rpm: float, on: str
     """Headline numbers of one optimisation (the CLI's ``optimise --json``): the optimum genes
     named with units, F_s of the optimum and of the standard gear, the reduction, the
     optimum's scenario at the design point, evaluations and wall time."""
-    prob = run_settings(pair, method=method, seed=seed, population=population, generations=generations,
-                        torque_Nm=torque_Nm, on=on, speed_rpm=speed_rpm, modify=modify, random_baseline=False)
+    prob = run_problem(pair, method=method, seed=seed, population=population, generations=generations,
+                       torque_Nm=torque_Nm, on=on, speed_rpm=speed_rpm, modify=modify, random_baseline=False)
     res = optimise(prob)
     opt, std = res.optimum_evaluation, prob.standard
     return {

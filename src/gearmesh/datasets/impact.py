@@ -1,0 +1,273 @@
+"""Mesh-in impact datasets (impact.nc, impact_table.nc) and the CLI summary of one impact.
+
+Engineering units at the boundary (N·m, rpm), SI inside every Dataset; every variable
+carries ``units`` and ``long_name``. Physics: :mod:`gearmesh.impact`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..errors import GearmeshInputError
+from ..gear import GEARS, GearPair, pair_geometry
+from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, check_speeds, impact_model,
+                      impact_response, impact_static, mesh_in_point, seed_edge_roll, simulate_engagement,
+                      vector_velocity)
+from ..io import variable
+from ..ltca import check_torques, pinion_torques
+from ..tca import check_lead_slope, check_modifications
+
+UM = 1e-6
+
+__all__ = ["impact_dataset", "impact_table_dataset", "impact_summary"]
+
+
+def _model(pair: GearPair, points: int, lead_slope_um, contact_law: str, method: str, corner_extension: float,
+           driver: str, added_inertia_kg_m2) -> ImpactModel:
+    if not isinstance(pair, GearPair):
+        raise GearmeshInputError("pair", type(pair).__name__, "must be a GearPair")
+    check_modifications(pair)
+    geom = pair_geometry(pair)
+    lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
+    return impact_model(geom, points=points, lead_slope=lead, contact_law_name=contact_law, method=method,
+                        extension=corner_extension, driver=driver, added_inertia_kg_m2=added_inertia_kg_m2)
+
+
+def _scenario_var(dims, scenario) -> xr.Variable:
+    return variable(dims, np.asarray(scenario, dtype=np.int8), "1",
+                    "mesh-in scenario: 0 none, 1 surface (modified flanks, seed 000 scenario 2), "
+                    "2 edge (tip edge on the mating flank, seed 000 scenario 1)",
+                    flag_values=np.array([0, 1, 2], dtype=np.int8), flag_meanings=" ".join(SCENARIOS))
+
+
+def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rpm=(5000.0,), on: str = "pinion",
+                   design_speed_rpm: float = 5000.0, driver: str = "pinion", points: int = 50,
+                   energy_velocity: str = "transverse", added_inertia_kg_m2=(0.0, 0.0), lead_slope_um=(0.0, 0.0),
+                   contact_law: str = "palmgren", method: str = "transition", corner_extension: float = 0.25,
+                   simulate_torques_Nm=(), variant: str = "") -> xr.Dataset:
+    """Mesh-in impact over a torque × speed grid (dims torque, speed): scenario, mesh-in point
+    M (3-D, profile and face position, common normal), impact velocity (closing rate and seed
+    000's vector form), local stiffness fit, kinetic energy, impact force (closed form and
+    exact energy balance), the F–δ curve of each torque, and — at ``design_speed_rpm`` for
+    the torques in ``simulate_torques_Nm`` — the direct time integration of the engagement.
+
+    Torques (N·m) on the ``on`` gear, speeds (rpm) of the pinion; ``driver`` which gear drives;
+    ``variant`` the micro-geometry variant's name (recorded for the study table).
+    """
+    model = _model(pair, points, lead_slope_um, contact_law, method, corner_extension, driver, added_inertia_kg_m2)
+    geom = model.geom
+    given = check_torques(torques_Nm)
+    t1 = pinion_torques(geom, given, on)
+    speeds = check_speeds(speeds_rpm)
+    design = float(check_speeds([design_speed_rpm], "design_speed_rpm")[0])
+    sim_given = check_torques(simulate_torques_Nm, "simulate_torques_Nm") if len(simulate_torques_Nm) else np.array([])
+    for k, t in enumerate(sim_given):
+        if not np.any(np.abs(given - t) <= 1e-9 * t):
+            raise GearmeshInputError(f"simulate_torques_Nm[{k}]", float(t), "must be one of torques_Nm")
+    static = impact_static(model, t1)
+    static, resp = impact_response(model, static, speeds, energy_velocity)
+    nt = t1.size
+    points_ = [mesh_in_point(model, static, 0, k) for k in range(nt)]
+    vec = np.full((nt, speeds.size), np.nan)
+    for k in range(nt):  # v is linear in the speed at fixed geometry: one evaluation per torque
+        if static.scenario[0, k]:
+            vec[k] = vector_velocity(model, static, float(speeds[0]), 0, k)["transverse_equivalent"] * speeds / speeds[0]
+    seed_roll = np.full(nt, np.nan)
+    unmodified = not np.any(static.params[0])
+    if unmodified and driver == "pinion":
+        for k in range(nt):
+            if static.scenario[0, k] == 2:
+                seed_roll[k] = seed_edge_roll(geom, float(static.approach[0, k]))
+    ds = xr.Dataset(data_vars=_variables(model, static, resp, points_, vec, seed_roll),
+                    coords={"torque": variable(("torque",), t1, "N m", "pinion torque T1"),
+                            "speed": variable(("speed",), speeds, "rpm", "pinion speed"),
+                            "level": variable(("level",), np.arange(static.curve_force.shape[-1]), "1",
+                                              "load step of the entering pair's force-approach curve"),
+                            "xyz": variable(("xyz",), np.array(["x", "y", "z"]), "1", "Cartesian component"),
+                            "gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair")})
+    ds["torque_input"] = variable(("torque",), given, "N m", f"torque as given, on the {on}")
+    _add_simulation(ds, model, given, t1, sim_given, design)
+    ds.attrs.update({"variant": variant, "driver": driver, "torque_on": on, "energy_velocity": energy_velocity,
+                     "contact_law": model.ltca.law.name, "stiffness_method": model.ltca.method,
+                     "design_speed_rpm": design,
+                     "displacement_convention": ("transverse along the line of action, r_b1 * dphi_1 with the gear "
+                                                 "held; forces transverse (F_bt = T1/r_b1)")})
+    return ds
+
+
+def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, vec, seed_roll) -> dict:
+    t, ts, tl, tx = ("torque",), ("torque", "speed"), ("torque", "level"), ("torque", "xyz")
+    c = 0
+    geom = model.geom
+    return {
+        "scenario": _scenario_var(t, st.scenario[c]),
+        "roll_before_engagement": variable(t, -st.tau[c], "m",
+                                           "pinion roll distance before the theoretical start of engagement at which "
+                                           "the entering pair touches (negative: after it)"),
+        "roll_before_engagement_seed_equation": variable(
+            t, seed_roll, "m", "the same by seed 000's reverse-rotation equation (corrected; unmodified pairs with "
+                               "edge contact only, else NaN)"),
+        "approach_at_mesh_in": variable(t, st.approach[c], "m",
+                                        "loaded approach of the pairs in mesh when the entering pair touches"),
+        "te_at_engagement": variable(t, st.te_engagement[c], "m",
+                                     "entering pair's unloaded separation at phi_1A (seed 000 TE(phi_1A))"),
+        "lte_at_engagement": variable(t, st.lte_engagement[c], "m", "loaded TE of the mesh at phi_1A (LTE(phi_1A))"),
+        "gap_rate": variable(t, st.gap_rate[c], "1", "closing rate of the entering pair's separation per unit roll"),
+        "approach_rate": variable(t, st.approach_rate[c], "1", "rate of the loaded approach per unit roll"),
+        "mesh_in_s": variable(t, st.s[c], "m", "mesh-in point M: position on the transverse line of action from A"),
+        "mesh_in_point": variable(tx, np.array([p["point"] for p in pts]), "m",
+                                  "mesh-in point M in the fixed frame at the touch (pinion centre at 0, gear at +x)"),
+        "mesh_in_point_pinion": variable(tx, np.array([p["point_pinion"] for p in pts]), "m",
+                                         "mesh-in point M in the pinion body frame (tooth centreline on +y)"),
+        "mesh_in_normal": variable(tx, np.array([p["normal"] for p in pts]), "1",
+                                   "unit common normal at M (fixed frame, out of the pinion flank)"),
+        "mesh_in_pinion_radius": variable(t, np.array([p["pinion_radius"] for p in pts]), "m",
+                                          "pinion radius of M (profile position)"),
+        "mesh_in_rho_pinion": variable(t, st.rho_pinion[c], "m", "pinion roll length of M"),
+        "mesh_in_rho_gear": variable(t, st.rho_gear[c], "m", "gear roll length of M"),
+        "mesh_in_face_position": variable(t, st.z[c], "m", "axial position of M (face centre at 0)"),
+        "velocity_transverse": variable(ts, rs.velocity_transverse[c], "m s-1",
+                                        "impact velocity: closing rate of the entering pair's separation, transverse "
+                                        "line of action"),
+        "velocity_normal": variable(ts, rs.velocity_normal[c], "m s-1",
+                                    "impact velocity along the 3-D common normal (transverse x cos beta_b)"),
+        "velocity_vector_form": variable(ts, vec, "m s-1",
+                                         "seed 000's (w1 - w2) x r - E x w2 on the common normal at the exact closest "
+                                         "points of the modified profiles, in the transverse line-of-action coordinate"),
+        "kinetic_energy": variable(ts, rs.kinetic_energy[c], "J", "kinetic energy 1/2 m_eq v^2 of the impact"),
+        "impact_force": variable(ts, rs.force[c], "N",
+                                 "mesh-in impact force F_s, seed 000 closed form with the fitted K_s, n (transverse)"),
+        "impact_force_energy_balance": variable(ts, rs.force_energy_balance[c], "N",
+                                                "mesh-in impact force by the energy balance on the computed "
+                                                "force-approach curve (transverse)"),
+        "impact_approach": variable(ts, rs.approach_energy_balance[c], "m", "peak approach of the entering pair"),
+        "stiffness_coefficient": variable(ts, rs.stiffness_coefficient[c], "N m-n",
+                                          "K_s of F = K_s delta^n at M (transverse, SI)"),
+        "stiffness_exponent": variable(ts, rs.stiffness_exponent[c], "1", "n of F = K_s delta^n at M"),
+        "stiffness_fit_rel_error": variable(ts, rs.fit_error[c], "1", "RMS relative error of the power-law fit"),
+        "curve_force": variable(tl, st.curve_force[c], "N", "entering pair alone from M: transverse force"),
+        "curve_approach": variable(tl, st.curve_approach[c], "m", "entering pair alone from M: approach"),
+        "equivalent_mass": variable((), model.equivalent_mass, "kg", "m_eq = J1 J2/(J1 r_b2^2 + J2 r_b1^2)"),
+        "inertia": variable(("gear",), model.inertia, "kg m2", "polar moment (seed 000 disc of r_b less the bore, "
+                                                                 "plus added inertia)"),
+        "base_radius": variable(("gear",), geom.base_radius, "m", "base radius"),
+        "rho_sap": variable(("gear",), geom.rho_sap, "m", "roll length of the start of active profile"),
+        "rho_eap": variable(("gear",), geom.rho_eap, "m", "roll length of the end of active profile"),
+        "face_width": variable((), geom.face_width, "m", "meshing face width"),
+    }
+
+
+def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, design: float) -> None:
+    nt = t1.size
+    peak, enter = np.full(nt, np.nan), np.full(nt, np.nan)
+    series = None
+    for t in sim_given:
+        k = int(np.flatnonzero(np.abs(given - t) <= 1e-9 * t)[0])
+        r = simulate_engagement(model, float(t1[k]), design)
+        peak[k], enter[k] = r["peak_above_static"], r["entering_peak"]
+        if series is None:
+            series = (k, r)
+    ds["simulated_peak_above_static"] = variable(("torque",), peak, "N",
+                                                 "direct time integration at the design speed: mesh force peak "
+                                                 "above the static force from the touch to the entering pair's first maximum "
+                                                 "(NaN: not run)")
+    ds["simulated_entering_peak"] = variable(("torque",), enter, "N",
+                                             "direct time integration: the entering pair's force at its first "
+                                             "maximum after the touch")
+    if series is not None:
+        k, r = series
+        dims = ("sim_time",)
+        ds.coords["sim_time"] = variable(dims, r["time"], "s", "time from the start of the simulation")
+        ds["sim_mesh_force"] = variable(dims, r["mesh_force"], "N", "simulated transverse mesh force (all pairs)")
+        ds["sim_entering_force"] = variable(dims, r["entering_force"], "N", "simulated force of the entering pair")
+        ds["sim_approach"] = variable(dims, r["approach"], "m", "simulated approach (relative coordinate)")
+        ds["sim_static_force"] = variable((), r["static_force"], "N", "static transverse force F_bt")
+        ds["sim_touch_time"] = variable((), r["touch_time"], "s", "time of the quasi-static touch")
+        ds["sim_period"] = variable((), r["period"], "s", "natural period 2 pi sqrt(m_eq/k) of the loaded mesh")
+        ds["sim_peak_time"] = variable((), r["peak_time"], "s", "time of the entering pair's first force maximum")
+        ds["sim_torque"] = variable((), float(t1[k]), "N m", "pinion torque of the simulated time series")
+
+
+def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
+    """Seed 000 Table 4's shape: impact force of every variant at every torque at the design
+    speed, with the scenario and the reduction against the ``standard`` variant (%)."""
+    names = [ds.attrs.get("variant", f"variant{k}") for k, ds in enumerate(impact)]
+    torque = impact[0]["torque"].values
+    for ds in impact[1:]:
+        if not np.array_equal(ds["torque"].values, torque):
+            raise GearmeshInputError("impact.torques_Nm", None, "must be the same for every variant")
+    rows = []
+    for ds in impact:
+        design = float(ds.attrs["design_speed_rpm"])
+        sel = ds.sel(speed=design)
+        rows.append((sel["impact_force"].values, sel["impact_force_energy_balance"].values, ds["scenario"].values,
+                     sel["velocity_transverse"].values))
+    force = np.array([r[0] for r in rows])
+    ref = force[names.index("standard")] if "standard" in names else np.full(torque.size, np.nan)
+    dims = ("variant", "torque")
+    return xr.Dataset({
+        "impact_force": variable(dims, force, "N", "mesh-in impact force F_s at the design speed (closed form)"),
+        "impact_force_energy_balance": variable(dims, np.array([r[1] for r in rows]), "N",
+                                                "impact force by the energy balance at the design speed"),
+        "scenario": _scenario_var(dims, np.array([r[2] for r in rows])),
+        "velocity_transverse": variable(dims, np.array([r[3] for r in rows]), "m s-1", "impact velocity (transverse)"),
+        "reduction_percent": variable(dims, 100.0 * (1.0 - force / ref[None, :]), "%",
+                                      "reduction of F_s against the standard variant"),
+    }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+               "torque": variable(("torque",), torque, "N m", "pinion torque T1")})
+
+
+def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", driver: str = "pinion",
+                   points: int = 50, simulate: bool = False, energy_velocity: str = "transverse") -> dict[str, Any]:
+    """Headline numbers of one impact in engineering units (the CLI's ``impact --json``)."""
+    for name, value in (("torque_Nm", torque_Nm), ("speed_rpm", speed_rpm)):
+        if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
+            raise GearmeshInputError(name, value, "must be one positive number")
+    if driver not in DRIVERS:
+        raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")
+    model = _model(pair, points, (0.0, 0.0), "palmgren", "transition", 0.25, driver, (0.0, 0.0))
+    geom = model.geom
+    t1 = pinion_torques(geom, [torque_Nm], on, field="torque_Nm")
+    speed = check_speeds([speed_rpm], "speed_rpm")
+    static = impact_static(model, t1)
+    static, resp = impact_response(model, static, speed, energy_velocity)
+    um, mm = 1e6, 1e3
+    scen = SCENARIOS[int(static.scenario[0, 0])]
+    out: dict[str, Any] = {
+        "name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "pinion_torque_Nm": float(t1[0]),
+        "speed_rpm": float(speed[0]), "driver": driver, "scenario": scen,
+        "impact_force_N": float(resp.force[0, 0, 0]),
+        "impact_force_energy_balance_N": float(resp.force_energy_balance[0, 0, 0]),
+        "impact_velocity_m_per_s": float(resp.velocity_normal[0, 0, 0]),
+        "impact_velocity_transverse_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
+        "impact_velocity_closing_rate_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
+        "approach_at_mesh_in_um": float(static.approach[0, 0]) * um,
+        "te_at_engagement_um": float(static.te_engagement[0, 0]) * um,
+        "lte_at_engagement_um": float(static.lte_engagement[0, 0]) * um,
+        "stiffness_coefficient": float(resp.stiffness_coefficient[0, 0, 0]),
+        "stiffness_exponent": float(resp.stiffness_exponent[0, 0, 0]),
+        "stiffness_fit_rel_error": float(resp.fit_error[0, 0, 0]),
+        "equivalent_mass_kg": model.equivalent_mass,
+        "kinetic_energy_J": float(resp.kinetic_energy[0, 0, 0]),
+        "roll_before_engagement_mm": -float(static.tau[0, 0]) * mm,
+    }
+    if scen != "none":
+        vec = vector_velocity(model, static, float(speed[0]))
+        out["impact_velocity_vector_form_m_per_s"] = vec["transverse_equivalent"]
+        p = mesh_in_point(model, static)
+        x, y, z = (float(v) * mm for v in p["point_pinion"])
+        out["mesh_in_point"] = {"x_mm": x, "y_mm": y, "z_mm": z, "pinion_radius_mm": p["pinion_radius"] * mm,
+                                "face_position_mm": p["face_position"] * mm}
+        out["common_normal"] = [float(v) for v in p["normal"]]
+    if simulate:
+        if scen == "none":
+            raise GearmeshInputError("torque_Nm", torque_Nm, "gives no mesh-in contact to simulate")
+        r = simulate_engagement(model, float(t1[0]), float(speed[0]))
+        out["simulated_peak_force_N"] = r["peak_above_static"]
+        out["simulated_entering_peak_force_N"] = r["entering_peak"]
+        out["static_force_N"] = r["static_force"]
+    return out

@@ -1,0 +1,140 @@
+"""Mesh-in impact figures: impact force against speed and torque (all variants on one axis),
+the trajectory of the mesh-in point M on the pinion flank as the load rises (seed 000 Table
+3), and the direct simulation of the engagement beside the energy-method force."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..impact import SCENARIOS
+from .common import MM, plt, save as _save, title as _title
+
+__all__ = ["impact_figures", "impact_study_figures"]
+
+_COLORS = {"none": "0.6", "surface": "tab:green", "edge": "tab:red"}
+
+
+def plot_force_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
+    """F_s (closed form, solid; energy balance, dashed) against pinion speed, one line per torque."""
+    fig, ax = plt.subplots(figsize=(7, 4.4))
+    colors = plt.cm.viridis(np.linspace(0.1, 0.85, ds.sizes["torque"]))
+    for color, k in zip(colors, range(ds.sizes["torque"])):
+        sel = ds.isel(torque=k)
+        scen = SCENARIOS[int(sel["scenario"])]
+        ax.plot(ds["speed"], sel["impact_force"] * 1e-3, "o-", color=color, ms=3,
+                label=f"T1 = {float(sel.torque):g} N m ({scen})")
+        ax.plot(ds["speed"], sel["impact_force_energy_balance"] * 1e-3, "--", color=color, lw=0.9)
+    ax.set_xlabel("pinion speed (rpm)")
+    ax.set_ylabel("mesh-in impact force F_s, transverse (kN)")
+    ax.set_title(_title(ds, f"impact force against speed — {ds.attrs.get('variant', '')} "
+                            "(solid: closed form, dashed: energy balance)"), fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def plot_mesh_in_trajectory(ds: xr.Dataset, path: str | Path) -> Path:
+    """Where M lies on the pinion flank (face position against roll length) for every torque,
+    coloured by scenario, with SAP, tip and face ends (seed 000 Table 3)."""
+    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    b = float(ds["face_width"]) * MM
+    sap, eap = float(ds["rho_sap"][0]) * MM, float(ds["rho_eap"][0]) * MM
+    ax.add_patch(plt.Rectangle((-b / 2, sap), b, eap - sap, fc="0.94", ec="0.5", lw=0.8))
+    z = ds["mesh_in_face_position"].values * MM
+    rho = ds["mesh_in_rho_pinion"].values * MM
+    ax.plot(z, rho, "-", color="0.5", lw=0.8)
+    for k in range(ds.sizes["torque"]):
+        scen = SCENARIOS[int(ds["scenario"][k])]
+        ax.plot(z[k], rho[k], "o", color=_COLORS[scen], ms=7)
+        ax.annotate(f"{float(ds.torque[k]):g} N m", (z[k], rho[k]), textcoords="offset points",
+                    xytext=(-10 - 45 * (k % 3), 4), fontsize=7, ha="right",
+                    arrowprops={"arrowstyle": "-", "color": "0.6", "lw": 0.5})
+    for scen, color in _COLORS.items():
+        if scen != "none":
+            ax.plot([], [], "o", color=color, label=f"{scen} contact")
+    ax.set_xlabel("face position z (mm)")
+    ax.set_ylabel("pinion roll length ρ1 (mm); SAP and tip dashed/solid")
+    ax.axhline(sap, color="tab:cyan", ls="--", lw=0.8)
+    ax.axhline(eap, color="tab:cyan", lw=0.8)
+    pad = 0.08 * b
+    ax.set_xlim(-b / 2 - pad, b / 2 + pad)
+    lo = min(sap, np.nanmin(rho)) if np.isfinite(rho).any() else sap
+    ax.set_ylim(lo - 0.05 * (eap - sap), eap + 0.05 * (eap - sap))
+    ax.set_title(_title(ds, f"mesh-in point M on the pinion flank — {ds.attrs.get('variant', '')}"), fontsize=9)
+    ax.legend(fontsize=7, loc="lower left")
+    ax.grid(alpha=0.3)
+    return _save(fig, path)
+
+
+def plot_simulation(ds: xr.Dataset, path: str | Path) -> Path:
+    """The direct time integration at the design speed: total mesh force and the entering pair's
+    force against time, with the static force and the energy-method F_s (and F_s above static)."""
+    fig, ax = plt.subplots(figsize=(7, 4.4))
+    if "sim_time" not in ds.coords:
+        ax.text(0.5, 0.5, "no simulation in this study (impact.simulate_torques_Nm empty)", ha="center",
+                transform=ax.transAxes)
+        ax.set_axis_off()
+        return _save(fig, path)
+    t = ds["sim_time"].values * 1e3
+    f0 = float(ds["sim_static_force"])
+    k = int(np.flatnonzero(np.isclose(ds["torque"].values, float(ds["sim_torque"])))[0])
+    fs = float(ds["impact_force"].sel(speed=float(ds.attrs["design_speed_rpm"]))[k])
+    ax.plot(t, ds["sim_mesh_force"] * 1e-3, color="k", lw=1.3, label="mesh force, all pairs (simulated)")
+    ax.plot(t, ds["sim_entering_force"] * 1e-3, color="tab:red", lw=1.2, label="entering pair (simulated)")
+    ax.axhline(f0 * 1e-3, color="0.4", ls=":", lw=1, label=f"static force F_bt = {f0 * 1e-3:.2f} kN")
+    ax.axhline(fs * 1e-3, color="tab:blue", ls="--", lw=1, label=f"energy method F_s = {fs * 1e-3:.2f} kN")
+    ax.axhline((f0 + fs) * 1e-3, color="tab:blue", ls=":", lw=1, label="F_bt + F_s")
+    t0 = float(ds["sim_touch_time"]) * 1e3
+    ax.axvline(t0, color="0.6", lw=0.8, label="quasi-static touch")
+    ax.axvspan(t0, float(ds["sim_peak_time"]) * 1e3, color="0.9", zorder=0,
+               label="impact: touch to the entering pair's first maximum")
+    ax.set_xlabel("time (ms)")
+    ax.set_ylabel("transverse force (kN)")
+    ax.set_title(_title(ds, f"engagement at {float(ds['sim_torque']):g} N m, "
+                            f"{float(ds.attrs['design_speed_rpm']):g} rpm — {ds.attrs.get('variant', '')}"), fontsize=9)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7)
+    return _save(fig, path)
+
+
+def impact_figures(inputs: Mapping[str, xr.Dataset], outputs: Mapping[str, str]) -> None:
+    """Per-variant figures of ``impact.nc``."""
+    ds = inputs["impact"]
+    plot_force_against_speed(ds, outputs["force_speed"])
+    plot_mesh_in_trajectory(ds, outputs["trajectory"])
+    plot_simulation(ds, outputs["simulation"])
+
+
+def impact_study_figures(inputs: Mapping[str, Sequence[xr.Dataset]], outputs: Mapping[str, str]) -> None:
+    """All variants on one axis: F_s against torque at every speed, and against speed at every torque."""
+    sets = inputs["impact"]
+    sets = sets if isinstance(sets, (list, tuple)) else [sets]
+    styles = ["-", "--", "-.", ":"]
+    ref = sets[0]
+    speeds, torques = ref["speed"].values, ref["torque"].values
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.6))
+    cs = plt.cm.viridis(np.linspace(0.1, 0.85, speeds.size))
+    ct = plt.cm.plasma(np.linspace(0.1, 0.85, torques.size))
+    for v, ds in enumerate(sets):
+        ls = styles[v % len(styles)]
+        name = ds.attrs.get("variant", f"variant {v}")
+        for i, color in enumerate(cs):
+            axes[0].plot(torques, ds["impact_force"].isel(speed=i) * 1e-3, ls, marker="o", ms=3, color=color,
+                         label=f"{name}, {speeds[i]:g} rpm")
+        for k, color in enumerate(ct):
+            axes[1].plot(speeds, ds["impact_force"].isel(torque=k) * 1e-3, ls, marker="o", ms=3, color=color,
+                         label=f"{name}, {torques[k]:g} N m")
+    axes[0].set_xlabel("pinion torque T1 (N m)")
+    axes[1].set_xlabel("pinion speed (rpm)")
+    for ax in axes:
+        ax.set_ylabel("mesh-in impact force F_s, transverse (kN)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=6, ncol=2)
+    axes[0].set_title("against torque (line style: variant; colour: speed)", fontsize=9)
+    axes[1].set_title("against speed (line style: variant; colour: torque)", fontsize=9)
+    fig.suptitle(_title(ref, "mesh-in impact force, all variants"), fontsize=10)
+    _save(fig, outputs["impact_force"])

@@ -1,0 +1,75 @@
+# Mesh-in impact (seed 000) of one micro-geometry variant of a pair over a torque x speed grid,
+# and the variants side by side (seed 000 Table 4). No physics here: each rule names one
+# package function; the settings are the config section "impact".
+
+
+rule impact:
+    """Mesh-in point, impact velocity, local stiffness and energy-method impact force over the
+    torque x speed grid, and the direct simulation of the engagement at the design speed (impact.nc)."""
+    input:
+        pair=variant_pair_file,
+    output:
+        "results/{study}/{pair}/{variant}/impact.nc",
+    log:
+        "logs/{study}/{pair}/{variant}/impact.log",
+    params:
+        function=versioned("gearmesh.datasets.impact:impact_dataset"),
+        settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant},
+    conda:
+        ENV
+    script:
+        "../scripts/pair_stage.py"
+
+
+rule plot_impact:
+    """Impact force against speed per torque, the trajectory of M on the flank, the simulated engagement."""
+    input:
+        impact="results/{study}/{pair}/{variant}/impact.nc",
+    output:
+        force_speed=report_item("results/{study}/{pair}/{variant}/plots/impact_speed.png", "impact_speed",
+                                "impact", BY_VARIANT),
+        trajectory=report_item("results/{study}/{pair}/{variant}/plots/mesh_in_trajectory.png",
+                               "mesh_in_trajectory", "impact", BY_VARIANT),
+        simulation=report_item("results/{study}/{pair}/{variant}/plots/impact_simulation.png",
+                               "impact_simulation", "impact", BY_VARIANT),
+    log:
+        "logs/{study}/{pair}/{variant}/plot_impact.log",
+    params:
+        function=versioned("gearmesh.plots.impact:impact_figures"),
+    conda:
+        ENV
+    script:
+        "../scripts/plot.py"
+
+
+rule impact_table:
+    """Impact force of every variant at every torque at the design speed, with the reduction against standard."""
+    input:
+        impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
+    output:
+        nc="results/{study}/{pair}/impact_table.nc",
+        csv=report_item("results/{study}/{pair}/impact_table.csv", "impact_table", "impact", BY_PAIR),
+    log:
+        "logs/{study}/{pair}/impact_table.log",
+    params:
+        function=versioned("gearmesh.datasets.impact:impact_table_dataset"),
+    conda:
+        ENV
+    script:
+        "../scripts/collect.py"
+
+
+rule plot_impact_variants:
+    """All variants on one axis: impact force against torque and against speed."""
+    input:
+        impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
+    output:
+        impact_force=report_item("results/{study}/{pair}/plots/impact_force.png", "impact_force", "impact", BY_PAIR),
+    log:
+        "logs/{study}/{pair}/plot_impact_variants.log",
+    params:
+        function=versioned("gearmesh.plots.impact:impact_study_figures"),
+    conda:
+        ENV
+    script:
+        "../scripts/plot.py"
