@@ -121,6 +121,14 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on, "speeds": rows}
 
 
+def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
+    from .datasets.optimise import optimise_summary
+
+    return optimise_summary(load_pair(args.pair), args.torque_Nm, args.speed_rpm, on=args.on, modify=args.modify,
+                            method=args.method, seed=args.seed, population=args.population,
+                            generations=args.generations)
+
+
 def _command(sub, name: str, func, help: str, pair_help: str = "gear pair file (config/pairs/NAME.yaml)"):
     """A subcommand with its input file and --json."""
     p = sub.add_parser(name, help=help)
@@ -178,6 +186,17 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
     p.add_argument("--backlash-um", dest="backlash_um", type=float, default=60.0,
                    help="total backlash 2b0 along the normal (µm, default 60)")
+
+    p = _command(sub, "optimise", cmd_optimise, "GA optimisation of seed 000's six modification parameters against "
+                 "the mesh-in impact force at one torque and speed")
+    _torque_options(p, required=True, on_default="pinion")
+    p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True, help="pinion speed (rpm)")
+    p.add_argument("--modify", choices=("pinion", "gear"), nargs="+", default=["pinion"],
+                   help="the gear(s) whose six parameters are optimised (default pinion)")
+    p.add_argument("--method", choices=("ga", "random", "nsga2"), default="ga", help="GA, random search or NSGA-II")
+    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    p.add_argument("--population", type=int, default=40, help="candidates per generation (default 40)")
+    p.add_argument("--generations", type=int, default=30, help="generations (default 30)")
     return parser
 
 
