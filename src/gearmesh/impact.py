@@ -499,7 +499,9 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     lte0 = _approach_at(model, params, force, np.zeros((nc, nt)), others=False)
     # F–δ curve of the entering pair alone from M
     gaps, comp = _enter_points(model, params, tt)
-    rel = np.maximum(gaps - gap_m[..., None], 0.0)
+    # separations from the first point to touch (the LTCA point nearest M; → M as points → ∞)
+    with np.errstate(invalid="ignore"):
+        rel = gaps - np.nanmin(np.where(np.isfinite(gaps), gaps, np.nan), axis=-1, keepdims=True)
     fmax = 4.0 * force[None, :] * np.ones((nc, 1)) if curve_force_max is None else \
         np.broadcast_to(np.asarray(curve_force_max, dtype=float), (nc, nt))
     cf, ca = _force_curve(model, rel, comp, fmax, curve_levels)
@@ -633,13 +635,16 @@ def fit_power_law(curve_approach, curve_force, approach_max, n_points: int = _FI
     d0, d1, f0, f1 = at(ld, idx - 1), at(ld, idx), at(lf, idx - 1), at(lf, idx)
     with np.errstate(invalid="ignore", divide="ignore"):
         ly = f0 + (lx - d0) * (f1 - f0) / (d1 - d0)
+    ok = np.isfinite(lx).all(axis=-1, keepdims=True)
+    lx, ly = np.where(ok, lx, 0.0), np.where(ok, ly, 0.0)  # no impact: no fit (NaN below)
     xm, ym = lx.mean(axis=-1), ly.mean(axis=-1)
     n = ((lx - xm[..., None]) * (ly - ym[..., None])).sum(-1) / ((lx - xm[..., None]) ** 2).sum(-1)
     logk = ym - n * xm
     k_s = np.exp(logk)
     pred = np.exp(logk[..., None] + n[..., None] * lx)
     err = np.sqrt(np.mean((pred / np.exp(ly) - 1.0) ** 2, axis=-1))
-    return k_s, n, err
+    bad = ~ok[..., 0]
+    return np.where(bad, np.nan, k_s), np.where(bad, np.nan, n), np.where(bad, np.nan, err)
 
 
 @dataclass(frozen=True)

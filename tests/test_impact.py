@@ -1,0 +1,193 @@
+"""Mesh-in impact (seed 000): the crossing, the two velocity formulations, the reverse-rotation
+equation, the energy method and its limits, the scenarios, convergence and refusals."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+from gearmesh.cli import main
+from gearmesh.errors import GearmeshInputError
+from gearmesh.gear import Modification, load_pair, pair_geometry
+from gearmesh.impact import (SCENARIOS, closed_form_force, energy_balance, fit_power_law, impact_model,
+                             impact_response, impact_static, seed_edge_roll, simulate_engagement, vector_velocity)
+from gearmesh.io import write_dataset, add_provenance
+
+from conftest import ROOT
+from pairs import seed001_pair1
+
+ROOT_PAIR = "config/pairs/seed000_case.yaml"
+POINTS = 24
+
+
+@pytest.fixture(scope="module")
+def case():
+    return pair_geometry(load_pair(ROOT / ROOT_PAIR))
+
+
+@pytest.fixture(scope="module")
+def case_model(case):
+    return impact_model(case, points=POINTS, window_positions=40, face_samples=129)
+
+
+def _relieved(geom, tip_um=20.0, length_mm=3.0, crown_um=10.0):
+    pair = geom.pair.with_changes(modification=(
+        Modification(crowning=crown_um * 1e-6), Modification(tip_relief=tip_um * 1e-6, tip_relief_length=length_mm * 1e-3)))
+    return pair_geometry(pair)
+
+
+def _scenario(st, k=0):
+    return SCENARIOS[int(st.scenario[0, k])]
+
+
+def test_crossing_agrees_with_seed_reverse_rotation_equation(case, case_model, root):
+    """Unmodified pairs: the grid crossing and seed 000's (corrected) equation are the same event."""
+    st = impact_static(case_model, [100, 400, 1000, 1600])
+    for k in range(4):
+        assert _scenario(st, k) == "edge"
+        ours = -float(st.tau[0, k])
+        seed = seed_edge_roll(case, float(st.approach[0, k]))
+        assert ours == pytest.approx(seed, rel=1e-7, abs=1e-12)
+    other = pair_geometry(load_pair(seed001_pair1()))
+    st = impact_static(impact_model(other, points=POINTS, window_positions=40, face_samples=129), [150])
+    assert -float(st.tau[0, 0]) == pytest.approx(seed_edge_roll(other, float(st.approach[0, 0])), rel=1e-7)
+
+
+@pytest.mark.parametrize("driver", ["pinion", "gear"])
+def test_vector_form_equals_closing_rate_for_edge_contact(case, driver):
+    model = impact_model(case, points=POINTS, window_positions=40, face_samples=129, driver=driver)
+    st = impact_static(model, [300, 1200])
+    st, rs = impact_response(model, st, [4000])
+    for k in range(2):
+        assert _scenario(st, k) == "edge"
+        vec = vector_velocity(model, st, 4000.0, 0, k)
+        # pinion tip edge (gear driving): the recess separation converts the normal distance to a pinion
+        # rotation by the moment arm, exact to first order in the gap (tca module docstring)
+        rel = 1e-4 if driver == "pinion" else 3e-2
+        assert vec["transverse_equivalent"] == pytest.approx(float(rs.velocity_transverse[0, k, 0]), rel=rel)
+        to_transverse = vec["transverse_equivalent"] / vec["normal_transverse"]  # r_b1/arm, 1 for a pinion involute
+        assert vec["distance"] * to_transverse == pytest.approx(float(st.approach[0, k]), rel=rel / 10)
+
+
+def test_vector_form_agrees_with_closing_rate_to_first_order_in_the_relief_slope(case):
+    """Surface contact: the exact closest points lie off the line of action by slope/curvature,
+    so the two velocities differ at second order — the relative difference halves with the relief."""
+    diffs = []
+    for amount in (4.0, 2.0):
+        geom = _relieved(case, tip_um=amount, length_mm=4.0, crown_um=0.0)
+        model = impact_model(geom, points=POINTS, window_positions=40, face_samples=129)
+        st = impact_static(model, [10])
+        st, rs = impact_response(model, st, [5000])
+        assert _scenario(st) == "surface"
+        vec = vector_velocity(model, st, 5000.0)
+        vt = float(rs.velocity_transverse[0, 0, 0])
+        diffs.append(abs(vec["transverse_equivalent"] - vt) / vt)
+    assert diffs[0] < 0.2 and diffs[1] < 0.6 * diffs[0]
+
+
+def test_no_impact_without_load_and_velocity_grows_like_root_of_approach(case_model):
+    st = impact_static(case_model, [0.01, 1.0, 100.0])
+    st, rs = impact_response(case_model, st, [5000])
+    v = rs.velocity_transverse[0, :, 0]
+    assert v[0] < 0.02 * v[2]
+    # unmodified tip edge: gap ∝ s², so v ∝ √δ
+    ratio = (v[2] / v[1]) / math.sqrt(st.approach[0, 2] / st.approach[0, 1])
+    assert ratio == pytest.approx(1.0, abs=0.05)
+
+
+def test_standard_force_rises_with_torque(case_model):
+    st = impact_static(case_model, [200, 400, 700, 1000, 1300, 1600])
+    st, rs = impact_response(case_model, st, [5000])
+    assert np.all(np.diff(rs.force[0, :, 0]) > 0)
+    assert np.all(np.diff(rs.force_energy_balance[0, :, 0]) > 0)
+
+
+def test_closed_form_speed_scaling_is_exact():
+    m, v, k_s, n = 2.5, 0.8, 3.0e10, 1.37
+    assert closed_form_force(m, 2 * v, k_s, n) / closed_form_force(m, v, k_s, n) == pytest.approx(
+        2 ** (2 * n / (n + 1)), rel=1e-13)
+
+
+def test_energy_balance_equals_closed_form_on_a_pure_power_law():
+    k_s, n, m = 4.0e9, 1.6, 2.0
+    d = np.geomspace(1e-8, 1e-3, 30)
+    f = k_s * d**n
+    v = np.array([0.1, 0.5, 1.3])
+    force, approach = energy_balance(d, f, 0.5 * m * v**2)
+    np.testing.assert_allclose(force, closed_form_force(m, v, k_s, n), rtol=1e-10)
+    kk, nn, err = fit_power_law(d, f, approach)
+    np.testing.assert_allclose(nn, n, rtol=1e-10)
+    np.testing.assert_allclose(kk, k_s, rtol=1e-8)
+    assert np.all(err < 1e-10)
+
+
+def test_relief_turns_edge_into_surface_at_light_load_and_heavy_load_turns_it_back(case):
+    model = impact_model(_relieved(case), points=POINTS, window_positions=40, face_samples=129)
+    st = impact_static(model, [400, 1600])
+    assert [_scenario(st, 0), _scenario(st, 1)] == ["surface", "edge"]
+    assert st.lte_engagement[0, 0] < st.te_engagement[0, 0] < st.lte_engagement[0, 1]
+    standard = impact_static(impact_model(case, points=POINTS, window_positions=40, face_samples=129), [400])
+    assert _scenario(standard) == "edge"
+
+
+def test_batch_over_modifications_equals_one_by_one(case, case_model):
+    geoms = [_relieved(case, 10.0, 2.0, 5.0), _relieved(case, 25.0, 4.0, 0.0), case]
+    params = np.array([[[getattr(m, f) for f in ("root_relief", "tip_relief", "root_relief_length",
+                                                 "tip_relief_length", "crowning", "unmodified_lead_length")]
+                        for m in g.pair.modification] for g in geoms])
+    batch = impact_static(case_model, [800], params)
+    for c, g in enumerate(geoms):
+        one = impact_static(impact_model(g, points=POINTS, window_positions=40, face_samples=129), [800])
+        assert batch.tau[c, 0] == pytest.approx(float(one.tau[0, 0]), rel=1e-9, abs=1e-13)
+        assert batch.slope[c, 0] == pytest.approx(float(one.slope[0, 0]), rel=1e-6)
+
+
+def test_convergence_in_points_per_line(case):
+    forces = []
+    for points in (12, 24, 48, 96):
+        model = impact_model(case, points=points, window_positions=40, face_samples=129)
+        st, rs = impact_response(model, impact_static(model, [1000]), [5000])
+        forces.append(float(rs.force_energy_balance[0, 0, 0]))
+    steps = np.abs(np.diff(forces))
+    assert steps[2] < steps[0] and steps[2] < 0.03 * forces[-1]
+
+
+def test_simulation_starts_in_equilibrium_and_the_entering_pair_takes_load(case_model):
+    r = simulate_engagement(case_model, 1000.0, 5000.0, samples=300)
+    assert r["mesh_force"][0] == pytest.approx(r["static_force"], rel=2e-3)
+    assert np.all(r["entering_force"][r["time"] < r["touch_time"] * 0.99] == 0)
+    assert r["entering_peak"] > 0.2 * r["static_force"]
+
+
+def test_bad_torques_speeds_and_settings_are_refused(case, case_model):
+    with pytest.raises(GearmeshInputError, match="torques_Nm"):
+        impact_static(case_model, [float("nan")])
+    with pytest.raises(GearmeshInputError, match="speeds_rpm"):
+        impact_response(case_model, impact_static(case_model, [100]), [-5])
+    with pytest.raises(GearmeshInputError, match="driver"):
+        impact_model(case, driver="both")
+    with pytest.raises(GearmeshInputError, match="added_inertia_kg_m2"):
+        impact_model(case, added_inertia_kg_m2=(0.0, -1.0))
+
+
+@pytest.mark.parametrize("args, field", [(["--torque-Nm", "0", "--speed-rpm", "5000"], "torque_Nm"),
+                                         (["--torque-Nm", "100", "--speed-rpm", "inf"], "speed_rpm"),
+                                         (["--torque-Nm", "100", "--speed-rpm", "-1"], "speed_rpm")])
+def test_cli_refuses_bad_torque_and_speed(root, capsys, args, field):
+    assert main(["impact", str(root / ROOT_PAIR), *args]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and field in err[0]
+
+
+def test_dataset_is_documented(root, tmp_path):
+    from gearmesh.datasets.impact import impact_dataset, impact_table_dataset
+
+    pair = load_pair(root / ROOT_PAIR)
+    ds = impact_dataset(pair, [400, 1000], [2500, 5000], points=16, simulate_torques_Nm=[1000], variant="standard")
+    add_provenance(ds, {"test": True}, "", "test")
+    write_dataset(ds, tmp_path / "impact.nc")
+    assert set(ds["scenario"].values) == {2}
+    table = impact_table_dataset([ds])
+    np.testing.assert_allclose(table["reduction_percent"].values, 0.0)
