@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from bench_dynamics import bench_dynamics
+from bench_impact import bench_impact
 from bench_ltca import bench_ltca
 from common import ROOT, median_seconds
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
@@ -72,7 +73,7 @@ def bench_tvms(repeats: int) -> dict:
 
 
 BENCHMARKS = {"contact_lines": bench_contact_lines, "tvms": bench_tvms, "ltca": bench_ltca,
-              "dynamics": bench_dynamics}
+              "dynamics": bench_dynamics, "impact": bench_impact}
 
 
 def main() -> None:

@@ -64,7 +64,8 @@ def test_dynamics_json_per_speed(root, capsys):
     rows = json.loads(capsys.readouterr().out)["speeds"]
     assert [r["speed_rpm"] for r in rows] == [4000.0, 5000.0, 6000.0]
     for row in rows:
-        assert {"speed_rpm", "dte_rms_um", "mesh_force_mean_N", "mesh_force_max_N"} <= set(row)
+        assert {"speed_rpm", "dynamic_te_mean_um", "dynamic_te_std_um", "mesh_deflection_mean_um",
+                "mesh_force_mean_N", "mesh_force_max_N"} <= set(row)
         assert row["mesh_force_max_N"] >= row["mesh_force_mean_N"] > 0
 
 
@@ -99,7 +100,7 @@ def test_malformed_files_get_one_clear_message(tmp_path, capsys, content, field,
 
 
 @pytest.mark.parametrize("extra, field", [
-    ("variants: {v: {modification: {pinion: {tip_relief_um: 5}}}}\n", "modification.pinion.tip_relief_length_mm"),
+    ("variants: {v: {modification: {pinion: {tip_relief_um: 5}}}}\n", "variants.v.modification.pinion.tip_relief_length_mm"),
     ("stiffness_table: {pairs: [p], variants: {a: {eps_alpha: 0.5}}}\n", "stiffness_table.variants.a.eps_alpha"),
     ("stiffness_table: {pairs: [p], variants: {a: {colour: 1}}}\n", "stiffness_table.variants.a.pair.colour"),
     ("helix_sweep: {pairs: [p], start_deg: 40, stop_deg: 10, step_deg: 1}\n", "helix_sweep.stop_deg"),
@@ -125,3 +126,19 @@ def test_study_pair_without_material_is_refused_up_front(tmp_path, capsys):
 def test_cli_bounds_grid_sizes(root, capsys):
     assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), "--slices", "100000000"]) == 2
     assert capsys.readouterr().err.startswith("gearmesh: error: --slices")
+
+
+def test_validate_json_reports_invalid_input(tmp_path, capsys):
+    bad = tmp_path / "bad.yaml"
+    bad.write_text("name: bad\nteeth: [29, 71]\nnormal_module_mm: -5\nnormal_pressure_angle_deg: 20\n"
+                   "helix_angle_deg: 10\nface_width_mm: 20\n")
+    assert main(["validate", str(bad), "--json"]) == 2
+    out = json.loads(capsys.readouterr().out)
+    assert out["valid"] is False and len(out["errors"]) == 1 and "normal_module_mm" in out["errors"][0]
+
+
+def test_help_shows_the_defaults(capsys):
+    with pytest.raises(SystemExit):
+        main(["stiffness", "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    assert "(default: 200)" in text and "(default: transition)" in text

@@ -247,12 +247,13 @@ def test_dataset_summary_and_inputs():
                           sample_speeds_rpm=[27000], transient_tau=4.0, record_cycles=4, points_per_cycle=32,
                           max_order=4)
     check_documented(ds)
-    assert ds.sizes["speed"] == 3 and ds.displacement_rms.dims == ("speed", "gear", "direction")
+    assert int(ds.on_grid.sum()) == 3 and ds.displacement_rms.dims == ("speed", "gear", "direction")
     spec = ds.mesh_force_spectrum.isel(sample_speed=0)
     assert float(spec.sel(order=1.0)) > 10 * float(spec.sel(order=0.5))  # lines at mesh orders only
     rows = dynamics_summary(pair, 200.0, "25000:27000:2000", transient_tau=4.0, record_cycles=4)
     assert [r["speed_rpm"] for r in rows] == [25000.0, 27000.0]
-    assert {"speed_rpm", "dte_rms_um", "mesh_force_mean_N", "mesh_force_max_N"} <= set(rows[0])
+    assert {"speed_rpm", "dynamic_te_mean_um", "dynamic_te_std_um", "mesh_deflection_mean_um", "mesh_force_mean_N",
+            "mesh_force_max_N"} <= set(rows[0])
     with pytest.raises(GearmeshInputError, match="torque_Nm"):
         dynamics_dataset(pair, torque_Nm=-5.0)
     with pytest.raises(GearmeshInputError, match="speeds_rpm.stop"):
@@ -303,3 +304,43 @@ def test_ltca_excitation_reproduces_the_loaded_te_and_sees_the_modification():
         fast = dy.simulate(smooth, np.array([50000.0]), FAST)
         np.testing.assert_allclose(fast.force_mean[0], smooth.static_force[0], rtol=1e-5)
     assert abs(std[1] / std[0] - 1) > 0.05
+
+
+def test_low_speed_dynamic_te_is_the_mean_lte_and_mesh_deflection_is_f_over_k():
+    """Two displacements, two definitions (issue 10): at a speed far below the first mode the
+    dynamic TE (approach of the bodies along the transverse line of action) of an LTCA-excited
+    variant averages to the LTCA's mean loaded TE, the mesh deflection to the mean of F_bt/k_L
+    (F_bt = T1/r_b1, k_L the LTCA's loaded stiffness) — both taken from the LTCA dataset, not
+    from the model; the dataset records the LTCA as its excitation."""
+    from gearmesh.datasets.ltca import ltca_dataset
+
+    pair = pair_from_dict(seed001_pair1(modification={"gear": {"tip_relief_um": 15, "tip_relief_length_mm": 1.0}}))
+    ltca = ltca_dataset(pair, torques_Nm=[200], on="gear", positions=32, points=12)
+    ds = dynamics_dataset(pair, 200.0, "gear", speeds_rpm=[40.0], sample_speeds_rpm=[], stiffness_form="table",
+                          refine_resonances=False, transient_tau=6.0, record_cycles=2, ltca=ltca)
+    check_documented(ds)
+    assert ds.attrs["excitation"].startswith("ltca")
+    lte = ltca["lte"].values[0]
+    f_bt = float(ltca["torque"].values[0]) / float(pair_geometry(pair).base_radius[0])
+    np.testing.assert_allclose(float(ds.dynamic_te_mean[0]), lte.mean(), rtol=2e-3)
+    np.testing.assert_allclose(float(ds.mesh_deflection_mean[0]),
+                               np.mean(f_bt / ltca["loaded_mesh_stiffness"].values[0]), rtol=2e-3)
+    assert float(ds.dynamic_te_mean[0]) > float(ds.mesh_deflection_mean[0]) * 1.05  # the relief: e > 0
+    assert "transverse line of action" in ds.dynamic_te_mean.attrs["long_name"]
+
+
+def test_sweep_adds_speeds_around_predicted_resonances(model):
+    from gearmesh.datasets.dynamics import RESONANCE_OFFSETS, resonance_refined
+
+    grid = speed_grid("2000:30000:1000")
+    speeds = resonance_refined(grid, model)
+    assert set(grid) <= set(speeds) and speeds.size > grid.size and np.all(np.diff(speeds) > 0)
+    first = dy.resonance_speeds(model)["speed_rpm"][0]
+    zeta = np.clip(model.modes()["damping_ratio"], 0.005, 0.2)
+    checked = 0
+    for n, z in zip(first, zeta):  # each predicted resonance and its half-power band are sampled
+        band = n * (1 + np.array(RESONANCE_OFFSETS) * z)
+        if grid[0] < band.min() and band.max() < grid[-1]:
+            assert np.all(np.min(np.abs(speeds[:, None] - band[None, :]), axis=0) < 1e-9 * n)
+            checked += 1
+    assert checked >= 3

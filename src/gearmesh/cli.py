@@ -116,9 +116,28 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     pair = _pair(args.pair, args)[0]
     check_dynamics_settings(pair, {"torque_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
                                    "backlash_um": args.backlash_um, "sample_speeds_rpm": []})
+    excitation = {}
+    if args.excitation == "ltca":  # the loaded TE and stiffness of this pair at this torque excite the model
+        from .datasets.ltca import ltca_dataset
+        from .gear import pinion_torque
+
+        torque_1 = pinion_torque(pair, args.torque_Nm, args.on)
+        excitation = {"ltca": ltca_dataset(pair, torques_Nm=[torque_1], on="pinion", positions=64, points=30)}
     rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
-                            backlash_um=args.backlash_um)
-    return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on, "speeds": rows}
+                            backlash_um=args.backlash_um, progress=_progress(), **excitation)
+    return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on, "excitation": args.excitation,
+            "speeds": rows}
+
+
+def _progress():
+    """A progress printer on stderr for long commands when stderr is a terminal, else None."""
+    if not sys.stderr.isatty():
+        return None
+
+    def report(done: float) -> None:
+        print(f"\r  {100 * done:5.1f} %", end="\n" if done >= 1 else "", file=sys.stderr, flush=True)
+
+    return report
 
 
 def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
@@ -131,7 +150,7 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
 
 def _command(sub, name: str, func, help: str, pair_help: str = "gear pair file (config/pairs/NAME.yaml)"):
     """A subcommand with its input file and --json."""
-    p = sub.add_parser(name, help=help)
+    p = sub.add_parser(name, help=help, formatter_class=argparse.ArgumentDefaultsHelpFormatter)
     p.add_argument("pair" if name != "validate" else "file", help=pair_help)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=func)
@@ -169,15 +188,15 @@ def build_parser() -> argparse.ArgumentParser:
                  "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
     p.add_argument("--method", choices=("traditional", "improved", "transition"), default="transition",
                    help="cantilever model of the tooth (default transition: hob fillet, seed 003)")
-    p.add_argument("--slices", type=int, default=200, help="slices over the face width (default 200)")
-    p.add_argument("--positions", type=int, default=360, help="rotation positions per mesh cycle (default 360)")
+    p.add_argument("--slices", type=int, default=200, help="slices over the face width")
+    p.add_argument("--positions", type=int, default=360, help="rotation positions per mesh cycle")
     _torque_options(p, required=False, on_default="pinion")
 
     p = _command(sub, "ltca", cmd_ltca, "loaded tooth contact analysis at one torque: TE, LTE, line load, stiffness",
                  "gear pair file (config/pairs/NAME.yaml), with its modification if any")
     _torque_options(p, required=True, on_default="pinion")
-    p.add_argument("--positions", type=int, default=64, help="rotation positions per mesh cycle (default 64)")
-    p.add_argument("--points", type=int, default=50, help="points per contact line (default 50)")
+    p.add_argument("--positions", type=int, default=64, help="rotation positions per mesh cycle")
+    p.add_argument("--points", type=int, default=50, help="points per contact line")
     p.add_argument("--contact-law", dest="contact_law", choices=("palmgren", "linear"), default="palmgren",
                    help="local contact law (default palmgren, n = 1.11)")
 
@@ -185,7 +204,10 @@ def build_parser() -> argparse.ArgumentParser:
     _torque_options(p, required=True, on_default="gear")
     p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
     p.add_argument("--backlash-um", dest="backlash_um", type=float, default=60.0,
-                   help="total backlash 2b0 along the normal (µm, default 60)")
+                   help="total backlash 2b0 along the normal (µm)")
+    p.add_argument("--excitation", choices=("tvms", "ltca"), default="tvms",
+                   help="tvms: slice-model stiffness K(t), unloaded TE zero; ltca: loaded stiffness and loaded TE "
+                        "of an LTCA at this torque (64 positions, 30 points per line)")
 
     p = _command(sub, "optimise", cmd_optimise, "GA optimisation of seed 000's six modification parameters against "
                  "the mesh-in impact force at one torque and speed")
@@ -215,6 +237,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         result = args.func(args)
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)
+        if args.command == "validate" and args.json:
+            print(json.dumps({"file": args.file, "valid": False, "errors": [str(exc)]}))
         return EXIT_BAD_INPUT
     _emit(result, args.json)
     return 0

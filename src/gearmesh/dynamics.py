@@ -525,7 +525,10 @@ class SweepResult:
     """Steady-state statistics per speed (arrays (S,) or (n, S) / (m, S)), SI units.
 
     ``y_mean``, ``y_std`` (n, S) mean and standard deviation of each reduced coordinate
-    (m), ``v_rms`` (n, S) RMS of its velocity (m/s); ``dte_*`` (m, S) of δ (m);
+    (m), ``v_rms`` (n, S) RMS of its velocity (m/s); ``dte_*`` (m, S) of the mesh deflection
+    δ (m, along the normal, eq. 1: the elastic approach, statically F/k; seed 001 calls it the
+    DTE); ``approach_mean``, ``approach_std`` (m, S) of the gear bodies' approach along the
+    normal, G·y = δ + e (statically the loaded TE × cos βb: the dynamic transmission error);
     ``force_*`` (m, S) of F (N; min and max at the steps, as ``dte_min``, ``dte_max``);
     ``gap_fraction``, ``back_fraction`` (m, S) fractions of
     the record window in contact loss (−2b0 < δ < 0) and back-side contact (δ < −2b0);
@@ -546,6 +549,8 @@ class SweepResult:
     dte_rms: np.ndarray
     dte_min: np.ndarray
     dte_max: np.ndarray
+    approach_mean: np.ndarray
+    approach_std: np.ndarray
     force_mean: np.ndarray
     force_min: np.ndarray
     force_max: np.ndarray
@@ -608,11 +613,12 @@ def _phase_tables(model: GearModel, m: np.ndarray):
 
 
 def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSettings(),
-             series: bool = False, y0: np.ndarray | None = None) -> SweepResult:
+             series: bool = False, y0: np.ndarray | None = None, progress=None) -> SweepResult:
     """Steady-state response of ``model`` at every speed (rpm), one RK4 batch (module docstring).
 
     ``series=True`` also returns, per speed, the record window sampled at every step:
     time (s), δ (m, meshes), F (N), y (n) and ẏ (n). Keep it for a few speeds only.
+    ``progress`` (optional) is called with the fraction of steps done, about every 5 %.
     """
     speed_rpm = np.atleast_1d(np.asarray(speed_rpm, dtype=float))
     if speed_rpm.size == 0 or not np.all(np.isfinite(speed_rpm)) or np.any(speed_rpm <= 0):
@@ -676,13 +682,17 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     sy, syy, svv = z(n, S), z(n, S), z(n, S)
     sd, sdd, sf, sff = z(nm, S), z(nm, S), z(nm, S), z(nm, S)
     sd_h, sdd_h = z(nm, S), z(nm, S)  # second half of the window
+    sa, saa = z(nm, S), z(nm, S)  # approach δ + e of the bodies
     fmin, fmax = np.full((nm, S), np.inf), np.full((nm, S), -np.inf)
     dmin, dmax = np.full((nm, S), np.inf), np.full((nm, S), -np.inf)
     ngap, nback = z(nm, S), z(nm, S)
     rec_first = int(rec_start.min())
     store = [dict(t=[], delta=[], F=[], y=[], v=[]) for _ in range(S)] if series else None
     dt_s = dt[None, :]
+    report_every = max(1, n_steps // 20)
     for b0 in range(0, n_steps, settings.block):
+        if progress is not None and b0 // report_every != (b0 + settings.block) // report_every:
+            progress(b0 / n_steps)
         nb = min(settings.block, n_steps - b0)
         steps = np.arange(b0, b0 + nb)
         local = steps[:, None] - start[None, :]  # (nb, S) step index within each speed's run
@@ -719,6 +729,9 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
                 sdd += dw * dc
                 sd_h += dc * wh
                 sdd_h += dc * dc * wh
+                ac = dc + e0[:, j] if has_e else dc
+                sa += ac * wf
+                saa += ac * ac * wf
                 sf += F * wf
                 sff += F * F * wf
                 fmin = np.minimum(fmin, np.where(w, F, np.inf))
@@ -746,6 +759,8 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
             ej = (e2[:, j], d2[:, j]) if has_e else (None, None)
             K4 = deriv(Yt, force(Yt, k2[:, j], *ej)[1])
             Y = Y + (h / 6.0) * (K1 + 2.0 * K2 + 2.0 * K3 + K4)
+    if progress is not None:
+        progress(1.0)
     N = (n_rec * m).astype(float)[None, :]
     Nh = N / 2
     yc_mean = sy / N
@@ -759,6 +774,7 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     v2 = np.maximum(sdd_h / Nh - m2**2, 0.0)
     with np.errstate(invalid="ignore", divide="ignore"):
         change = np.abs(np.sqrt(v2) - np.sqrt(v1)) / np.maximum(np.sqrt(dte_var), 1e-300)
+    ac_mean = sa / N
     f_mean = sf / N
     out_series = None
     if series:
@@ -767,7 +783,8 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
         speed_rpm=speed_rpm, mesh_frequency=f_mesh, steps_per_cycle=m, transient_cycles=n_tr, dt=dt,
         y_mean=y_mean, y_std=np.sqrt(np.maximum(syy / N - yc_mean**2, 0.0)), v_rms=np.sqrt(svv / N),
         dte_mean=dte_mean, dte_std=np.sqrt(dte_var), dte_rms=np.sqrt(dte_var + dte_mean**2),
-        dte_min=dmin, dte_max=dmax,
+        dte_min=dmin, dte_max=dmax, approach_mean=ac_mean + d_ref,
+        approach_std=np.sqrt(np.maximum(saa / N - ac_mean**2, 0.0)),
         force_mean=f_mean, force_min=fmin, force_max=fmax, force_std=np.sqrt(np.maximum(sff / N - f_mean**2, 0.0)),
         gap_fraction=ngap / N, back_fraction=nback / N, steady_change=change, n_steps=n_steps,
         series=out_series)

@@ -470,21 +470,27 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     pc = np.broadcast_to(params[:, None], (nc, nt, 2, 6)).reshape(-1, 2, 6)
     gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
     # exact approach of the other pairs at the touch; Newton steps on h = g − δ with the exact δ
+    # (the Newton slope once at the regula-falsi root; the rates again at the converged touch,
+    # since δ_others may have a kink nearby where a point of the pairs in mesh unloads)
     eps = 1e-6 * g.transverse_base_pitch
-    for _ in range(4):
+    gp = _enter_gap(model, pc, (tt + eps).reshape(-1))[0].reshape(nc, nt)
+    gm = _enter_gap(model, pc, (tt - eps).reshape(-1))[0].reshape(nc, nt)
+    dp = _approach_at(model, params, force, tt + eps, others=True)
+    dm = _approach_at(model, params, force, tt - eps, others=True)
+    dh = ((gp - dp) - (gm - dm)) / (2 * eps)
+    for _ in range(6):
         gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
         delta = _approach_at(model, params, force, tt, others=True)
-        gp = _enter_gap(model, pc, (tt + eps).reshape(-1))[0].reshape(nc, nt)
-        gm = _enter_gap(model, pc, (tt - eps).reshape(-1))[0].reshape(nc, nt)
-        dp = _approach_at(model, params, force, tt + eps, others=True)
-        dm = _approach_at(model, params, force, tt - eps, others=True)
-        dh = ((gp - dp) - (gm - dm)) / (2 * eps)
         resid = gap_m - delta
+        if np.all(~found | (np.abs(resid) <= 1e-13)):
+            break
         with np.errstate(invalid="ignore", divide="ignore"):
             step = np.where(found & (dh < 0) & np.isfinite(resid), resid / dh, 0.0)
-        if np.all(np.abs(resid[found]) <= 1e-13):
-            break
         tt = tt - np.clip(step, -eps * 1e3, eps * 1e3)
+    gp = _enter_gap(model, pc, (tt + eps).reshape(-1))[0].reshape(nc, nt)
+    gm = _enter_gap(model, pc, (tt - eps).reshape(-1))[0].reshape(nc, nt)
+    dp = _approach_at(model, params, force, tt + eps, others=True)
+    dm = _approach_at(model, params, force, tt - eps, others=True)
     gap_rate = -(gp - gm) / (2 * eps)
     approach_rate = (dp - dm) / (2 * eps)
     s_m = model.s_enter(tt, z_m)

@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import importlib
 import logging
+import resource
 import sys
+import time
 from pathlib import Path
 from typing import Any, Callable, Mapping
 
@@ -54,13 +56,17 @@ def _run(smk: Any, body: Callable[[Any], None]) -> None:
     log_path.parent.mkdir(parents=True, exist_ok=True)
     logging.basicConfig(filename=log_path, level=logging.INFO, filemode="w",
                         format="%(asctime)s %(levelname)s %(message)s", force=True)
+    start = time.perf_counter()
     try:
         body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
         logging.exception("job failed")
         print(f"gearmesh: error: {exc}", file=sys.stderr)
         sys.exit(2 if isinstance(exc, ValueError) else 1)
-    logging.info("done: %s", ", ".join(map(str, smk.output)))
+    # wall time and peak memory of every job, the measurements behind the profiles' resources
+    peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # Linux: kB
+    logging.info("done in %.1f s, peak RSS %.0f MB (threads %s): %s", time.perf_counter() - start, peak_mb,
+                 getattr(smk, "threads", 1), ", ".join(map(str, smk.output)))
 
 
 def _title(smk: Any) -> str:

@@ -9,6 +9,7 @@ mean included (as seed 001's RMS), ``*_std`` the fluctuation about the mean.
 
 from __future__ import annotations
 
+import logging
 import math
 from typing import Any, Mapping, Sequence
 
@@ -278,6 +279,50 @@ def _series_arrays(res: SweepResult, points_per_cycle: int, max_order: int, n_re
     return {k: np.stack(v) for k, v in out.items()}
 
 
+def excitation_used(ltca: xr.Dataset | None, excitation: str, transmission_error_um) -> str:
+    """What excited the model, for the ``excitation`` attribute of the dataset."""
+    if ltca is not None:
+        return ("ltca: loaded mesh stiffness k_L(t) and equivalent error e = LTE - F/k_L of the variant's "
+                f"LTCA ({ltca.attrs.get('contact_law', 'palmgren')} contact)")
+    if excitation == "lste":
+        return "lste: slice-model stiffness K(t) and seed 001's e = F/K(t)"
+    te = " and the tabulated unloaded TE" if transmission_error_um is not None else " (unloaded TE zero)"
+    return f"tvms: slice-model stiffness K(t){te}"
+
+
+#: Relative offsets of the speeds added around each predicted resonance speed n_r, in units of
+#: the mode's damping ratio ζ (the half-power band of a resonance is about n_r(1 ± ζ)).
+RESONANCE_OFFSETS = (-1.0, -0.5, -0.25, 0.0, 0.25, 0.5, 1.0)
+
+
+def resonance_refined(grid: np.ndarray, model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> np.ndarray:
+    """``grid`` plus speeds around every resonance speed inside it: n_r(1 + c ζ_r) for c in
+    :data:`RESONANCE_OFFSETS`, n_r = f_r/(j f_mesh per rpm) of the linearised model at the mean
+    stiffness (:func:`gearmesh.dynamics.resonance_speeds`), ζ_r its modal damping ratio
+    (clipped to [0.005, 0.2]: overdamped modes have no peak to resolve), so a peak is resolved rather than caught by two points of the grid. Sorted, unique;
+    at most :data:`MAX_SPEEDS`."""
+    res = resonance_speeds(model, harmonics)
+    zeta = np.clip(np.nan_to_num(model.modes()["damping_ratio"], nan=0.0), 0.005, 0.2)
+    lo, hi = float(grid.min()), float(grid.max())
+    extra = [n * (1 + c * z) for row in res["speed_rpm"] for n, z in zip(row, zeta) for c in RESONANCE_OFFSETS]
+    extra = np.array([n for n in extra if np.isfinite(n) and lo < n < hi])
+    out = np.unique(np.concatenate([grid, extra]))
+    if out.size > MAX_SPEEDS:
+        raise GearmeshInputError("speeds_rpm", f"{out.size} speeds with the resonance points",
+                                 f"at most {MAX_SPEEDS} (refine_resonances: false, or a coarser grid)")
+    return out
+
+
+def _log_progress(done: float) -> None:
+    """Progress of a sweep into the job's log (the workflow's rule log)."""
+    logging.info("speed sweep: %.0f %% of the RK4 steps", 100 * done)
+
+
+def _grid(ds: xr.Dataset) -> xr.Dataset:
+    """The speeds of the configured grid (without the added resonance speeds)."""
+    return ds.isel(speed=ds["on_grid"].values.astype(bool)) if "on_grid" in ds else ds
+
+
 # --------------------------------------------------------------------------------------
 # 8-DOF pair sweep (seed 001)
 # --------------------------------------------------------------------------------------
@@ -330,8 +375,21 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
                       transmission_error=te, mesh_damping=mesh_damping_Ns_per_m)
 
 
-def _common_vars(model: GearModel, res: SweepResult, mesh_dim: bool) -> dict[str, xr.Variable]:
-    """Mesh statistics of a sweep: (speed,) for one mesh, (speed, mesh) otherwise."""
+#: The two displacements of the mesh, both along the transverse line of action (normal values
+#: of :mod:`gearmesh.dynamics` divided by cos βb), named so they cannot be mixed up.
+DYNAMIC_TE = ("dynamic transmission error along the transverse line of action: relative displacement of the "
+              "two gear bodies at the mesh (r_b1 theta_p - r_b2 theta_g plus the centre and axial motions "
+              "projected on the line of action; what encoders on both gears measure when the bearings are "
+              "rigid); statically the loaded TE (LTCA excitation) or F/K (stiffness excitation)")
+MESH_DEFLECTION = ("mesh deflection delta_m along the transverse line of action: elastic approach of the flanks "
+                   "(dynamic TE minus the excitation error e), statically F_bt/k with k the transverse mesh "
+                   "stiffness (seed 001 calls it the DTE)")
+
+
+def _common_vars(model: GearModel, res: SweepResult, mesh_dim: bool, cos_beta_b: float) -> dict[str, xr.Variable]:
+    """Mesh statistics of a sweep: (speed,) for one mesh, (speed, mesh) otherwise. The dynamic
+    TE and the mesh deflection are converted from the model's normal direction to the
+    transverse line of action (÷ cos βb), the direction of the LTCA's ``lte``."""
     dims = ("speed", "mesh") if mesh_dim else ("speed",)
 
     def v(a):
@@ -340,12 +398,18 @@ def _common_vars(model: GearModel, res: SweepResult, mesh_dim: bool) -> dict[str
     fs = model.static_force[:, None]
     return {
         "mesh_frequency": variable(("speed",), res.mesh_frequency, "Hz", "mesh frequency"),
-        "dte_rms": variable(dims, v(res.dte_rms), "m", "RMS of the dynamic transmission error along the normal "
-                            "(mean included)"),
-        "dte_mean": variable(dims, v(res.dte_mean), "m", "mean dynamic transmission error along the normal"),
-        "dte_std": variable(dims, v(res.dte_std), "m", "standard deviation of the dynamic transmission error"),
-        "dte_min": variable(dims, v(res.dte_min), "m", "minimum dynamic transmission error (at the steps)"),
-        "dte_max": variable(dims, v(res.dte_max), "m", "maximum dynamic transmission error (at the steps)"),
+        "dynamic_te_mean": variable(dims, v(res.approach_mean) / cos_beta_b, "m", f"mean of the {DYNAMIC_TE}"),
+        "dynamic_te_std": variable(dims, v(res.approach_std) / cos_beta_b, "m",
+                                   f"standard deviation of the {DYNAMIC_TE}"),
+        "mesh_deflection_mean": variable(dims, v(res.dte_mean) / cos_beta_b, "m", f"mean of the {MESH_DEFLECTION}"),
+        "mesh_deflection_std": variable(dims, v(res.dte_std) / cos_beta_b, "m",
+                                        f"standard deviation of the {MESH_DEFLECTION}"),
+        "mesh_deflection_rms": variable(dims, v(res.dte_rms) / cos_beta_b, "m",
+                                        f"RMS (mean included) of the {MESH_DEFLECTION}"),
+        "mesh_deflection_min": variable(dims, v(res.dte_min) / cos_beta_b, "m",
+                                        f"minimum (at the steps) of the {MESH_DEFLECTION}; below 0: teeth apart"),
+        "mesh_deflection_max": variable(dims, v(res.dte_max) / cos_beta_b, "m",
+                                        f"maximum (at the steps) of the {MESH_DEFLECTION}"),
         "mesh_force_mean": variable(dims, v(res.force_mean), "N", "mean dynamic mesh force (normal)"),
         "mesh_force_min": variable(dims, v(res.force_min), "N", "minimum dynamic mesh force (at the steps)"),
         "mesh_force_max": variable(dims, v(res.force_max), "N", "maximum dynamic mesh force (at the steps)"),
@@ -355,8 +419,8 @@ def _common_vars(model: GearModel, res: SweepResult, mesh_dim: bool) -> dict[str
                                           "fraction of time with the teeth apart (inside the backlash)"),
         "back_side_fraction": variable(dims, v(res.back_fraction), "1", "fraction of time in back-side contact"),
         "steady_state_change": variable(dims, v(res.steady_change), "1",
-                                        "relative change of the DTE standard deviation between the halves of the "
-                                        "record window (steady-state check)"),
+                                        "relative change of the mesh-deflection standard deviation between the "
+                                        "halves of the record window (steady-state check)"),
         "steps_per_cycle": variable(("speed",), res.steps_per_cycle, "1", "RK4 steps per mesh period"),
         "transient_cycles": variable(("speed",), res.transient_cycles, "1",
                                      "mesh periods integrated and discarded before recording"),
@@ -397,7 +461,7 @@ def _modal_vars(model: GearModel, harmonics=(1, 2, 3)) -> dict[str, xr.Variable]
 
 
 def _series_vars(res: SweepResult, arr, n_rec: int, max_order: int, ppc: int, gear_dims: tuple[str, str],
-                 trans_shape: tuple[int, int], mesh_dim: bool) -> dict[str, xr.Variable]:
+                 trans_shape: tuple[int, int], mesh_dim: bool, cos_beta_b: float) -> dict[str, xr.Variable]:
     nt = trans_shape[0] * trans_shape[1]
     S = res.speed_rpm.size
     ms = ("sample_speed", "sample", "mesh") if mesh_dim else ("sample_speed", "sample")
@@ -413,14 +477,16 @@ def _series_vars(res: SweepResult, arr, n_rec: int, max_order: int, ppc: int, ge
     orders = np.arange(max_order * n_rec + 1) / n_rec
     return {
         "time": variable(("sample_speed", "sample"), arr["t"], "s", "time within the record window"),
-        "dte_series": variable(ms, mv(arr["delta"]), "m", "dynamic transmission error along the normal"),
-        "mesh_force_series": variable(ms, mv(arr["F"]), "N", "dynamic mesh force"),
+        "mesh_deflection_series": variable(ms, mv(arr["delta"]) / cos_beta_b, "m", MESH_DEFLECTION),
+        "mesh_force_series": variable(ms, mv(arr["F"]), "N", "dynamic mesh force, normal to the flanks"),
         "displacement_series": variable(gd, y, "m", "bearing-point displacement"),
         "velocity_series": variable(gd, vv, "m s-1", "bearing-point velocity"),
         "frequency": variable(("sample_speed", "order"), orders[None, :] * res.mesh_frequency[:, None], "Hz",
                               "frequency of each spectral line"),
-        "mesh_force_spectrum": variable(msp, mv(arr["F_spec"]), "N", "one-sided amplitude spectrum of the mesh force"),
-        "dte_spectrum": variable(msp, mv(arr["delta_spec"]), "m", "one-sided amplitude spectrum of the DTE"),
+        "mesh_force_spectrum": variable(msp, mv(arr["F_spec"]), "N",
+                                        "one-sided amplitude spectrum of the mesh force (normal)"),
+        "mesh_deflection_spectrum": variable(msp, mv(arr["delta_spec"]) / cos_beta_b, "m",
+                                             f"one-sided amplitude spectrum of the {MESH_DEFLECTION}"),
         "displacement_peak_to_peak": variable(pd, arr["y_pp"][:, :nt].reshape(S, *trans_shape), "m",
                                               "peak-to-peak displacement"),
         "velocity_peak_to_peak": variable(pd, arr["v_pp"][:, :nt].reshape(S, *trans_shape), "m s-1",
@@ -443,6 +509,7 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
                      transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
                      courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
                      record_cycles: int = 8, points_per_cycle: int = 64, max_order: int = 10,
+                     refine_resonances: bool = True,
                      stiffness: xr.Dataset | None = None, ltca: xr.Dataset | None = None) -> xr.Dataset:
     """Speed sweep of the 8-DOF helical pair (seed 001 §4; model and solver in
     :mod:`gearmesh.dynamics`).
@@ -466,21 +533,34 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
         the record window) and spectra (to ``max_order`` mesh orders) are kept.
     courant, steps_per_cycle_min, transient_tau, record_cycles : solver rules
         (:class:`gearmesh.dynamics.SolverSettings`).
+    refine_resonances : add speeds around the resonance speeds the linearised model predicts
+        (:func:`resonance_refined`; ``on_grid`` marks the configured speeds).
+
+    Two displacements of the mesh are reported, both along the transverse line of action
+    (the direction of the LTCA's ``lte``): the dynamic transmission error ``dynamic_te_*``
+    (the approach of the gear bodies, δ + e, statically the loaded TE) and the mesh deflection
+    ``mesh_deflection_*`` (δ, statically F/k). ``torsional_std`` is the relative rotation
+    alone, what encoders read when the gear centres move too.
     """
-    speeds = speed_grid(speeds_rpm)
+    grid = speed_grid(speeds_rpm)
     samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
     model = build_pair_model(pair, torque_Nm, on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                              bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
                              mesh_damping_Ns_per_m, stiffness_form, fourier_order, excitation, method, slices,
                              positions, transmission_error_um, stiffness, ltca)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles)
-    res = simulate(model, speeds, settings)
+    speeds = resonance_refined(grid, model) if refine_resonances else grid
+    res = simulate(model, speeds, settings, progress=_log_progress)
     nt = model.n_trans  # 6: x, y, z of pinion then gear
     shape = (2, 3)
-    data = _common_vars(model, res, mesh_dim=False)
+    cb = math.cos(pair_geometry(pair).base_helix_angle)
+    data = _common_vars(model, res, mesh_dim=False, cos_beta_b=cb)
     data.update(_vibration_vars(res, nt, shape))
     data["torsional_std"] = variable(("speed",), res.y_std[nt], "m",
-                                     "standard deviation of the relative rotation r_b1 theta_p - r_b2 theta_g")
+                                     "standard deviation of the relative rotation r_b1 theta_p - r_b2 theta_g "
+                                     "alone (transverse line of action; encoders on compliant bearings)")
+    data["on_grid"] = variable(("speed",), np.isin(speeds, grid).astype(np.int8), "1",
+                               "1: a speed of the configured grid; 0: added around a predicted resonance")
     data.update(_modal_vars(model))
     coords = {
         "speed": variable(("speed",), speeds, "rpm", "pinion speed"),
@@ -494,7 +574,7 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
         rs = simulate(model, samples, settings, series=True)
         arr = _series_arrays(rs, points_per_cycle, max_order, settings.record_cycles)
         data.update(_series_vars(rs, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
-                                 shape, mesh_dim=False))
+                                 shape, mesh_dim=False, cos_beta_b=cb))
         coords["sample_speed"] = variable(("sample_speed",), samples, "rpm", "pinion speed of the kept time series")
         coords["order"] = variable(("order",), np.arange(max_order * settings.record_cycles + 1)
                                    / settings.record_cycles, "1", "spectral line in mesh orders (f / f_mesh)")
@@ -502,7 +582,8 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
     ds.attrs.update({
         "model": "8-DOF bending-torsion-axial helical pair (seed 001 section 4, projections corrected; "
                  "gearmesh.dynamics)",
-        "excitation": excitation, "stiffness_form": stiffness_form, "fourier_order": fourier_order,
+        "excitation": excitation_used(ltca, excitation, transmission_error_um),
+        "resonance_refinement": "on" if refine_resonances else "off", "stiffness_form": stiffness_form, "fourier_order": fourier_order,
         "torque_Nm": float(torque_Nm), "torque_on": on, "backlash_um": "none" if backlash_um is None
         else float(backlash_um), "damping_ratio": float(damping_ratio), "rk4_steps": res.n_steps,
         "transient_criterion": f"{transient_tau} time constants 1/sigma_min of the slowest linearised mode, "
@@ -512,16 +593,21 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
 
 
 def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEFAULT_SPEEDS, on: str = "gear",
-                     **settings: Any) -> list[dict[str, float]]:
-    """Per speed: speed_rpm, mesh_frequency_Hz, dte_rms_um, dte_std_um, mesh_force_mean_N,
-    mesh_force_min_N, mesh_force_max_N, dynamic_factor, contact_loss_fraction (for the CLI)."""
+                     progress=None, **settings: Any) -> list[dict[str, float]]:
+    """Per speed (for the CLI): speed_rpm, mesh_frequency_Hz, dynamic_te_mean_um, dynamic_te_std_um,
+    mesh_deflection_mean_um (all three along the transverse line of action, as the LTCA's
+    lte_mean_um; :func:`dynamics_dataset`), mesh_force_mean_N, mesh_force_min_N, mesh_force_max_N
+    (normal force), dynamic_factor, contact_loss_fraction."""
     model = build_pair_model(pair, torque_Nm, on, **{k: v for k, v in settings.items()
                                                      if k not in _SOLVER_KEYS})
     solver = _solver(*(settings.get(k, d) for k, d in _SOLVER_KEYS.items()))
-    res = simulate(model, speed_grid(speeds), solver)
+    res = simulate(model, speed_grid(speeds), solver, progress=progress)
     fs = float(model.static_force[0])
+    um = 1e6 / math.cos(pair_geometry(pair).base_helix_angle)  # normal (m) -> transverse (µm)
     return [{"speed_rpm": float(res.speed_rpm[i]), "mesh_frequency_Hz": float(res.mesh_frequency[i]),
-             "dte_rms_um": float(res.dte_rms[0, i]) * 1e6, "dte_std_um": float(res.dte_std[0, i]) * 1e6,
+             "dynamic_te_mean_um": float(res.approach_mean[0, i]) * um,
+             "dynamic_te_std_um": float(res.approach_std[0, i]) * um,
+             "mesh_deflection_mean_um": float(res.dte_mean[0, i]) * um,
              "mesh_force_mean_N": float(res.force_mean[0, i]), "mesh_force_min_N": float(res.force_min[0, i]),
              "mesh_force_max_N": float(res.force_max[0, i]), "dynamic_factor": float(res.force_max[0, i]) / fs,
              "contact_loss_fraction": float(res.gap_fraction[0, i])} for i in range(res.speed_rpm.size)]
@@ -585,13 +671,14 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     res = simulate(model, speeds, settings, series=True)
     nt = model.n_trans  # 6: y, z of plate, blanket, impression
     shape = (3, 2)
-    data = _common_vars(model, res, mesh_dim=True)
+    cb = math.cos(geom.base_helix_angle)
+    data = _common_vars(model, res, mesh_dim=True, cos_beta_b=cb)
     data.update(_vibration_vars(res, nt, shape))
     data["torque"] = variable((), torque, "N m", "torque on the plate gear (= load on the impression gear)")
     data.update(_modal_vars(model))
     arr = _series_arrays(res, points_per_cycle, max_order, settings.record_cycles)
     data.update(_series_vars(res, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
-                             shape, mesh_dim=True))
+                             shape, mesh_dim=True, cos_beta_b=cb))
     coords = {
         "speed": variable(("speed",), speeds, "rpm", "speed of the gears"),
         "sample_speed": variable(("sample_speed",), speeds, "rpm", "speed of the kept time series"),
@@ -606,7 +693,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({
         "model": "9-DOF plate-blanket-impression helical train (seed 004, projections corrected; gearmesh.dynamics)",
-        "excitation": excitation, "stiffness_form": stiffness_form, "fourier_order": fourier_order,
+        "excitation": excitation_used(None, excitation, None), "stiffness_form": stiffness_form, "fourier_order": fourier_order,
         "backlash_um": "none" if backlash_um is None else float(backlash_um),
         "assumptions": "three alike gears (the pair file's gear); plate drives, impression loaded, blanket idles; "
                        "seed 001 bearings; meshes in phase unless phase_offsets_cycles; centres on one line",
@@ -618,8 +705,9 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
                                 couples: Sequence[Sequence[str]] | None = None) -> xr.Dataset:
     """RMS changes between pairs over a common speed sweep (seed 001 §4–5, its comparisons).
 
-    For each (pair, reference) couple: the mean over speeds of the relative change of the
-    DTE standard deviation, and for each gear and direction the mean relative change and the
+    Over the configured speeds (``on_grid``; each pair's added resonance speeds differ). For
+    each (pair, reference) couple: the mean over speeds of the relative change of the
+    mesh-deflection standard deviation (seed 001's "DTE"), and for each gear and direction the mean relative change and the
     change of the highest peak of the displacement standard deviation and velocity RMS
     (seed 001 reports "across most speeds" and "at the resonance peaks"). Default couples:
     every pair against the first.
@@ -631,7 +719,7 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
         for n in (pair, ref):
             if n not in by_name:
                 raise GearmeshInputError("dynamics_comparison.couples", [pair, ref], f"{n} is not a pair of the study")
-        if not np.array_equal(by_name[pair]["speed"].values, by_name[ref]["speed"].values):
+        if not np.array_equal(_grid(by_name[pair])["speed"].values, _grid(by_name[ref])["speed"].values):
             raise GearmeshInputError("dynamics.speeds_rpm", None, f"{pair} and {ref} were swept over different speeds")
 
     def change(new, old):
@@ -640,8 +728,8 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
     rows = {"dte_mean": [], "dte_peak": []}
     grid = {f"{q}_{k}": [] for q in ("displacement", "velocity") for k in ("mean", "peak")}
     for pair, ref in couples:
-        new, old = by_name[pair], by_name[ref]
-        m, p = change(new["dte_std"].values, old["dte_std"].values)
+        new, old = _grid(by_name[pair]), _grid(by_name[ref])
+        m, p = change(new["mesh_deflection_std"].values, old["mesh_deflection_std"].values)
         rows["dte_mean"].append(m)
         rows["dte_peak"].append(p)
         for q, var in (("displacement", "displacement_std"), ("velocity", "velocity_rms")):
@@ -651,8 +739,11 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
     d1, d3 = ("couple",), ("couple", "gear", "direction")
     first = dynamics[0]
     return xr.Dataset({
-        "dte_std_change_mean": variable(d1, rows["dte_mean"], "1", "mean over speeds of the relative change of DTE std"),
-        "dte_std_change_peak": variable(d1, rows["dte_peak"], "1", "relative change of the highest DTE std peak"),
+        "mesh_deflection_std_change_mean": variable(d1, rows["dte_mean"], "1",
+                                                    "mean over speeds of the relative change of the mesh-deflection "
+                                                    "std (seed 001's DTE)"),
+        "mesh_deflection_std_change_peak": variable(d1, rows["dte_peak"], "1",
+                                                    "relative change of the highest mesh-deflection std peak"),
         "displacement_change_mean": variable(d3, np.array(grid["displacement_mean"]), "1",
                                              "mean over speeds of the relative change of displacement std"),
         "displacement_change_peak": variable(d3, np.array(grid["displacement_peak"]), "1",
