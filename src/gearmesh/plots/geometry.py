@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .common import MM, plt, save as _save, title as _title
+from .common import MM, plain_axis, plt, save as _save, title as _title
 
 
 def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
@@ -35,7 +35,7 @@ def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
                      + (", undercut" if int(sel.undercut) else ""))
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm), gear centre at 0")
-        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.12), ncol=2)
+        ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)  # below the x label
     fig.suptitle(_title(ds, "transverse tooth profile"))
     return _save(fig, path)
 
@@ -55,6 +55,7 @@ def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
                             f"ε_l = {float(ds.length_fluctuation):.3f}"))
     ax.legend(fontsize=8, loc="best")
     ax.grid(alpha=0.3)
+    plain_axis(ax, ds["total_length"].values * MM, "mm", "L(φ)")
     return _save(fig, path)
 
 

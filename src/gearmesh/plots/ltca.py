@@ -90,19 +90,31 @@ def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
     path of each pair's first-contact point on the pinion flank (z, ρ1)."""
     fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
     x = _angle_mrad(ds)
+    ax1.plot(x, ds["te"].values * UM, color="0.75", lw=4.0, label="TE of the mesh", zorder=1)
+    # a tooth pair whose whole contact line touches at once (perfect flanks) has no single
+    # first-contact point: those positions are left out of the path instead of an arbitrary point
+    sep = ds["separation"].values
+    finite = np.isfinite(sep)
+    spread = np.where(finite, sep, -np.inf).max(axis=2) - np.where(finite, sep, np.inf).min(axis=2)
+    whole_line = (finite.sum(axis=2) >= 2) & (spread < 1e-9)  # (position, line)
+    styles = ("--", "-.", ":", (0, (5, 1, 1, 1)))
     for j in range(ds.sizes["line"]):
-        ax1.plot(x, ds["te_pair"].isel(line=j).values * UM, lw=0.9, ls="--",
+        te_j = ds["te_pair"].isel(line=j).values * UM
+        note = " (0 over the cycle)" if np.nanmax(np.abs(te_j)) == 0 else ""
+        ax1.plot(x, te_j, lw=1.3, ls=styles[j % len(styles)], label=f"pair j = {int(ds.line[j])}{note}", zorder=2)
+        z = np.where(whole_line[:, j], np.nan, ds["contact_z"].isel(line=j).values) * MM
+        ax2.plot(z, ds["contact_rho_pinion"].isel(line=j).values * MM, ".-", ms=3, lw=0.8,
                  label=f"pair j = {int(ds.line[j])}")
-        ax2.plot(ds["contact_z"].isel(line=j).values * MM, ds["contact_rho_pinion"].isel(line=j).values * MM,
-                 ".-", ms=3, lw=0.8, label=f"pair j = {int(ds.line[j])}")
-    ax1.plot(x, ds["te"].values * UM, color="k", lw=1.8, label="TE of the mesh")
     ax1.axvline(float(ds["pinion_angle_engagement"]) * 1e3, color="0.4", ls=":", lw=1.0, label="φ1A")
-    top = float(np.nanmax(ds["te"].values)) * UM
-    ax1.set_ylim(-0.05 * max(top, 1.0), 3.0 * max(top, 1.0))
+    ax1.set_yscale("symlog", linthresh=1.0)  # the µm TE and the 100 µm separations of the other pairs
+    ax1.set_ylim(bottom=-0.05)
     ax1.set_xlabel("pinion rotation φ1 over one mesh cycle (mrad)")
-    ax1.set_ylabel("unloaded separation / TE (µm)")
+    ax1.set_ylabel("unloaded separation / TE (µm),\nlinear to 1 µm, logarithmic above")
     ax1.grid(alpha=0.3)
     ax1.legend(fontsize=7)
+    if whole_line.any():
+        ax2.text(0.02, 0.02, "whole line touching at once (perfect flanks): no single point, not drawn",
+                 transform=ax2.transAxes, fontsize=7, color="0.3")
     half = 0.5 * float(ds["face_width"]) * MM
     ax2.add_patch(plt.Rectangle((-half, float(ds.rho_sap[0]) * MM), 2 * half,
                                 float(ds.rho_eap[0] - ds.rho_sap[0]) * MM, fill=False, ec="0.4"))

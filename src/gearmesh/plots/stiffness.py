@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .common import MM, UM, plt, save, title
+from .common import MM, UM, plain_axis, plt, save, title
 
 N_PER_UM = 1e-6  # N/m -> N/µm
 
@@ -29,6 +29,7 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
                            f"slices; εk = {100 * float(ds.fluctuation):.1f} %"))
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
+    plain_axis(ax, ds["mesh_stiffness"].values * N_PER_UM, "N/µm", "K(φ)")
     ax = axes[1]
     ax.plot(ds["pair_position"].values * MM, ds["pair_stiffness"].values * N_PER_UM, lw=1.5, color="tab:green")
     ax.set_xlabel("one tooth pair: mid-face contact position on the line of action (mm)")
@@ -42,6 +43,7 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
         ax.set_title(f"pinion torque {float(ds.pinion_torque):.1f} N m: mean {float(ds.lste_mean) * UM:.2f} µm, "
                      f"peak-to-peak {float(ds.lste_peak_to_peak) * UM:.2f} µm", fontsize=9)
         ax.grid(alpha=0.3)
+        plain_axis(ax, ds["lste"].values * UM, "µm", "LSTE")
     fig.tight_layout()
     return save(fig, path)
 
