@@ -42,9 +42,12 @@ Methods
 ``ga``: pygad's GA as its authors intend — three-argument fitness returning −J (pygad
 maximises), one batch per generation (``fitness_batch_size`` = population), per-gene
 ``gene_space`` {low, high}, ``random_seed``, ``on_generation`` recording the history.
+Mutation is Gaussian (:func:`_gaussian_mutation`, a pygad user-defined mutation), crossover
+scattered (uniform), parents by 3-tournament, the best ``keep_elitism`` kept.
 ``nsga2``: pygad's NSGA-II on (F_s, LTE p-p) at the design torque, with the Pareto front of
 every evaluated candidate. ``random``: uniform random search with the GA's nominal budget
-(population × (generations + 1) evaluations, the same seed handling). Candidates already
+(population × (generations + 1) evaluations, the same seed handling); as the baseline of a GA
+run it gets exactly the GA's number of distinct evaluations. Candidates already
 evaluated are not evaluated again (a cache keyed by the genes), so ``evaluations`` counts
 distinct candidates. Same settings and seed → bit-identical history and optimum.
 """
@@ -65,7 +68,7 @@ from .surface import MODIFICATION_FIELDS
 
 __all__ = [
     "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "FAILURE_FACTOR", "Gene",
-    "OptimiseSettings", "check_settings", "seed000_bounds", "gene_table", "decode", "Problem", "problem",
+    "OptimiseSettings", "check_settings", "check_positive", "seed000_bounds", "gene_table", "decode", "Problem", "problem",
     "Evaluation", "evaluate", "History", "OptimisationResult", "optimise", "random_search", "pareto_mask",
 ]
 
@@ -105,7 +108,8 @@ class OptimiseSettings:
     lte_factor: float | None = None
     line_load_factor: float | None = None
     penalty: float = 10.0
-    mutation_probability: float = 0.2
+    mutation_probability: float = 0.3
+    mutation_scale: float = 0.1
     keep_elitism: int = 2
     random_baseline: bool = True
 
@@ -130,7 +134,8 @@ def _integer(field_name: str, value: Any, low: int, high: int) -> int:
     return int(value)
 
 
-def _positive(field_name: str, value: Any, allow_none: bool = False, at_least: float = 0.0) -> float | None:
+def check_positive(field_name: str, value: Any, allow_none: bool = False, at_least: float = 0.0) -> float | None:
+    """``value`` as a float above ``at_least`` (or None when allowed); GearmeshInputError otherwise."""
     if value is None and allow_none:
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
@@ -148,8 +153,8 @@ def _choice(field_name: str, value: Any, allowed) -> str:
 def check_settings(method: str = "ga", objective: str = "force", population: int = 40, generations: int = 30,
                    seed: int = 0, torque: float = 1000.0, torques=(400.0, 1000.0, 1600.0), weights=None,
                    statistic: str = "max", speed_rpm: float = 5000.0, lte_factor=None, line_load_factor=None,
-                   penalty: float = 10.0, mutation_probability: float = 0.2, keep_elitism: int = 2,
-                   random_baseline: bool = True) -> OptimiseSettings:
+                   penalty: float = 10.0, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
+                   keep_elitism: int = 2, random_baseline: bool = True) -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
     the field). Torques here are pinion torques (N m)."""
     from .ltca import check_torques
@@ -159,7 +164,7 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
     population = _integer("population", population, 4, 100_000)
     generations = _integer("generations", generations, 1, 100_000)
     seed = _integer("seed", seed, 0, 2**32 - 1)
-    torque = _positive("torque_Nm", torque)
+    torque = check_positive("torque_Nm", torque)
     torques = tuple(float(t) for t in check_torques(torques, "torques_Nm"))
     statistic = _choice("statistic", statistic, STATISTICS)
     if weights is not None:
@@ -175,21 +180,23 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
             raise GearmeshInputError("weights", weights, "apply to statistic 'mean' only")
     if method == "nsga2" and objective != "force":
         raise GearmeshInputError("objective", objective, "must be 'force' with method nsga2 (F_s against LTE p-p)")
-    speed_rpm = _positive("speed_rpm", speed_rpm)
+    speed_rpm = check_positive("speed_rpm", speed_rpm)
     if speed_rpm > 1e6:
         raise GearmeshInputError("speed_rpm", speed_rpm, "must lie in (0, 1e6] rpm")
-    lte_factor = _positive("constraints.lte_factor", lte_factor, allow_none=True)
-    line_load_factor = _positive("constraints.line_load_factor", line_load_factor, allow_none=True)
-    penalty = _positive("constraints.penalty", penalty)
+    lte_factor = check_positive("constraints.lte_factor", lte_factor, allow_none=True)
+    line_load_factor = check_positive("constraints.line_load_factor", line_load_factor, allow_none=True)
+    penalty = check_positive("constraints.penalty", penalty)
     if isinstance(mutation_probability, bool) or not isinstance(mutation_probability, (int, float)) \
             or not 0 < mutation_probability <= 1:
         raise GearmeshInputError("mutation_probability", mutation_probability, "must lie in (0, 1]")
+    if isinstance(mutation_scale, bool) or not isinstance(mutation_scale, (int, float)) or not 0 < mutation_scale <= 1:
+        raise GearmeshInputError("mutation_scale", mutation_scale, "must lie in (0, 1] (of each gene's range)")
     keep_elitism = _integer("keep_elitism", keep_elitism, 0, population - 1)
     if not isinstance(random_baseline, bool):
         raise GearmeshInputError("random_baseline", random_baseline, "must be true or false")
     return OptimiseSettings(method, objective, population, generations, seed, torque, torques, weights, statistic,
                             speed_rpm, lte_factor, line_load_factor, penalty, float(mutation_probability),
-                            keep_elitism, random_baseline)
+                            float(mutation_scale), keep_elitism, random_baseline)
 
 
 # --------------------------------------------------------------------------------------
@@ -501,18 +508,44 @@ def _gene_space(genes: tuple[Gene, ...]) -> list[dict[str, float]]:
     return [{"low": g.low, "high": g.high} for g in genes]
 
 
-def random_search(prob: Problem) -> OptimisationResult:
-    """Uniform random search over the gene bounds with the GA's nominal budget: generations + 1
-    batches of ``population`` candidates from numpy's PCG64 seeded with the settings' seed."""
+def random_search(prob: Problem, evaluations: int | None = None) -> OptimisationResult:
+    """Uniform random search over the gene bounds: ``evaluations`` candidates (default the GA's
+    nominal budget, population × (generations + 1)) from numpy's PCG64 seeded with the
+    settings' seed, in generations + 1 batches (the last ones padded by repeating candidates
+    when the budget is smaller, so the history keeps the GA's shape)."""
     s = prob.settings
+    budget = s.budget if evaluations is None else int(evaluations)
     t0 = time.perf_counter()
     rng = np.random.default_rng(s.seed)
     low = np.array([g.low for g in prob.genes])
     high = np.array([g.high for g in prob.genes])
+    draws = low + (high - low) * rng.random((budget, low.size))
+    # batch g holds draws [g·P, (g+1)·P) clipped to the budget; a short batch repeats its last draw
+    index = np.minimum(np.arange(s.budget).reshape(s.generations + 1, s.population), budget - 1)
     ev, history = _Evaluator(prob), History()
-    for _ in range(s.generations + 1):
-        ev.record(history, low + (high - low) * rng.random((s.population, low.size)))
+    for rows in index:
+        ev.record(history, draws[rows])
     return _finish(prob, "random", history, ev, time.perf_counter() - t0)
+
+
+def _gaussian_mutation(genes: tuple[Gene, ...], scale: float):
+    """pygad user-defined mutation (``mutation_type`` callable(offspring, ga)): each gene of each
+    offspring, with the GA's ``mutation_probability``, moves by a normal step of standard
+    deviation ``scale`` × its range and is clipped to its bounds — the Gaussian mutation of
+    real-coded GAs (Bäck & Schwefel 1993, Evolutionary Computation 1(1); Deb 2001, Multi-Objective
+    Optimization using Evolutionary Algorithms, §4.2). pygad's own random mutation redraws a gene
+    over its whole gene_space, a global jump that never refines a good candidate. Draws come from
+    the GA's seeded generator (reproducible)."""
+    low = np.array([g.low for g in genes])
+    high = np.array([g.high for g in genes])
+
+    def mutation(offspring, ga):
+        rng = ga.numpy_random_generator
+        mask = rng.random(offspring.shape) < ga.mutation_probability
+        step = rng.normal(0.0, scale, offspring.shape) * (high - low)
+        return np.clip(offspring + mask * step, low, high)
+
+    return mutation
 
 
 def _run_pygad(prob: Problem) -> OptimisationResult:
@@ -538,8 +571,8 @@ def _run_pygad(prob: Problem) -> OptimisationResult:
                   sol_per_pop=s.population, num_genes=len(prob.genes), gene_space=_gene_space(prob.genes),
                   gene_type=float, fitness_func=fitness_func, fitness_batch_size=s.population,
                   parent_selection_type="nsga2" if nsga2 else "tournament", K_tournament=3,
-                  crossover_type="scattered", mutation_type="random", mutation_probability=s.mutation_probability,
-                  mutation_by_replacement=True, keep_elitism=s.keep_elitism, random_seed=s.seed,
+                  crossover_type="scattered", mutation_type=_gaussian_mutation(prob.genes, s.mutation_scale),
+                  mutation_probability=s.mutation_probability, keep_elitism=s.keep_elitism, random_seed=s.seed,
                   on_generation=on_generation, suppress_warnings=True, save_solutions=False)
     ga.run()
     return _finish(prob, s.method, history, ev, time.perf_counter() - t0)
@@ -587,5 +620,5 @@ def optimise(prob: Problem) -> OptimisationResult:
     if s.random_baseline:
         from dataclasses import replace
 
-        result = replace(result, baseline=random_search(prob))
+        result = replace(result, baseline=random_search(prob, result.evaluations))
     return result

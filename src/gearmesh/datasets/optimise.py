@@ -17,7 +17,8 @@ from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
 from ..io import variable
 from ..ltca import pinion_torques
-from ..optimise import GENE_SYMBOLS, OptimisationResult, Problem, check_settings, gene_table, optimise, problem
+from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, gene_table, optimise,
+                        problem)
 from ..surface import MODIFICATION_FIELDS
 from .ltca import _geometry
 
@@ -32,8 +33,8 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                  speed_rpm: float = 5000.0, torques_Nm=(400.0, 1000.0, 1600.0), statistic: str = "max",
                  weights=None, modify=("pinion",), bounds: Mapping[str, Any] | None = None,
                  fixed: Mapping[str, Any] | None = None, constraints: Mapping[str, Any] | None = None,
-                 random_baseline: bool = True, mutation_probability: float = 0.2, keep_elitism: int = 2,
-                 points: int = 50, window_positions: int = 64, face_samples: int = 257, cycle_positions: int = 32,
+                 random_baseline: bool = True, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
+                 keep_elitism: int = 2, points: int = 50, window_positions: int = 64, face_samples: int = 257, cycle_positions: int = 32,
                  contact_law: str = "palmgren", corner_extension: float = 0.25):
     """Check the config's ``optimise:`` section (as keywords) for ``pair``: (geometry, settings,
     gene keywords, impact-model keywords). Torques are given on ``on`` (converted to the
@@ -45,14 +46,14 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
         key = sorted(unknown)[0]
         raise GearmeshInputError(f"constraints.{key}", constraints[key],
                                  "is not a constraint; use lte_factor, line_load_factor, penalty")
-    design = float(pinion_torques(geom, [torque_Nm], on, field="torque_Nm")[0])
+    design = float(pinion_torques(geom, [check_positive("torque_Nm", torque_Nm)], on, field="torque_Nm")[0])
     robust = tuple(float(t) for t in pinion_torques(geom, torques_Nm, on, field="torques_Nm"))
     settings = check_settings(method=method, objective=objective, population=population, generations=generations,
                               seed=seed, torque=design, torques=robust, weights=weights, statistic=statistic,
                               speed_rpm=speed_rpm, lte_factor=constraints.get("lte_factor"),
                               line_load_factor=constraints.get("line_load_factor"),
                               penalty=constraints.get("penalty", 10.0), mutation_probability=mutation_probability,
-                              keep_elitism=keep_elitism, random_baseline=random_baseline)
+                              mutation_scale=mutation_scale, keep_elitism=keep_elitism, random_baseline=random_baseline)
     genes = {"modify": modify, "bounds": bounds, "fixed": fixed}
     gene_table(geom, **genes)
     model = {"points": points, "contact_law_name": contact_law, "extension": corner_extension,

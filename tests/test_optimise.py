@@ -1,0 +1,190 @@
+"""GA optimisation of the micro-geometry: determinism, bounds and validity, better than the
+standard gear and than random search, the dataset and figures, NSGA-II, refusals.
+
+A coarse impact model (16 points per line, 24 window rolls, 65 face samples) keeps the
+runs small: it exercises the optimiser, not the converged physics."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from gearmesh import impact as im
+from gearmesh import optimise as op
+from gearmesh.cli import main as cli_main
+from gearmesh.config import check_study, validate_study
+from gearmesh.datasets.optimise import optimum_pair, result_dataset, run_settings
+from gearmesh.errors import GearmeshInputError
+from gearmesh.gear import Modification, load_pair, pair_geometry, validate_modifications
+from gearmesh.io import check_documented
+from gearmesh.plots.optimise import plot_convergence, plot_modification, plot_pareto
+from gearmesh.surface import MODIFICATION_FIELDS
+
+ROOT = Path(__file__).resolve().parents[1]
+COARSE = {"points": 16, "window_positions": 24, "face_samples": 65}
+
+
+@pytest.fixture(scope="module")
+def pair():
+    return load_pair(ROOT / "config/pairs/seed000_case.yaml")
+
+
+@pytest.fixture(scope="module")
+def model(pair):
+    return im.impact_model(pair_geometry(pair), **COARSE)
+
+
+def _run(model, **settings):
+    settings = {"population": 10, "generations": 6, **settings}
+    return op.optimise(op.problem(model, op.check_settings(**settings)))
+
+
+@pytest.fixture(scope="module")
+def ga(model):
+    return _run(model, seed=3)
+
+
+def _with_modification(pair, params):
+    mods = tuple(Modification(**{f: float(params[g, k]) for k, f in enumerate(MODIFICATION_FIELDS)}) for g in range(2))
+    return pair.with_changes(modification=mods)
+
+
+def test_same_seed_gives_a_bit_identical_history_and_optimum(model, ga):
+    again = _run(model, seed=3)
+    for name, value in ga.history.arrays().items():
+        assert np.array_equal(value, again.history.arrays()[name], equal_nan=True), name
+    assert np.array_equal(ga.optimum_genes, again.optimum_genes)
+    assert np.array_equal(ga.optimum, again.optimum)
+    assert ga.evaluations == again.evaluations
+    other = _run(model, seed=4, random_baseline=False)
+    assert not np.array_equal(other.history.arrays()["genes"], ga.history.arrays()["genes"])
+
+
+def test_genes_stay_in_bounds_and_every_candidate_is_a_valid_modification(pair, model, ga):
+    genes = ga.history.arrays()["genes"].reshape(-1, len(ga.problem.genes))
+    low = np.array([g.low for g in ga.problem.genes])
+    high = np.array([g.high for g in ga.problem.genes])
+    assert np.all(genes >= low) and np.all(genes <= high)
+    # seed 000's bounds in mn = 5 mm and B = 42 mm
+    np.testing.assert_allclose(low, [5, 5, 0.5, 0.5, 5, 0])
+    np.testing.assert_allclose(high, [75, 75, 4, 4, 75, 21])
+    for params in ga.problem.decode(genes[::7]):
+        validate_modifications(pair_geometry(_with_modification(pair, params)))
+    # relief lengths that cannot fit the active flank together are scaled to fit it
+    geom = model.geom
+    active_mm = float(geom.rho_eap[0] - geom.rho_sap[0]) * 1e3
+    genes_, base = op.gene_table(geom, bounds={"root_relief_length_mm": [0.9 * active_mm, active_mm],
+                                                 "tip_relief_length_mm": [0.9 * active_mm, active_mm]})
+    p = op.decode(geom, genes_, base, [[50, 50, active_mm, active_mm, 20, 10]])[0]
+    assert p[0, 2] + p[0, 3] <= active_mm * 1e-3 and p[0, 2] == pytest.approx(p[0, 3])
+    validate_modifications(pair_geometry(_with_modification(pair, p)))
+
+
+def test_optimum_beats_the_standard_gear_at_the_design_point(ga):
+    opt, std = ga.optimum_evaluation, ga.problem.standard
+    assert not opt.failed[0]
+    assert opt.force[0, 0] < 0.5 * std.force[0, 0]
+    assert opt.objective[0] == pytest.approx(np.min(ga.history.arrays()["objective"]))
+    assert ga.history.best[-1] <= ga.history.best[0]
+    assert np.all(np.diff(ga.history.best) <= 0)
+
+
+def test_ga_beats_random_search_with_the_same_budget_over_seeds(model):
+    ga_best, random_best = [], []
+    for seed in range(7):
+        res = _run(model, seed=seed, generations=12)
+        assert res.baseline.evaluations == res.evaluations
+        ga_best.append(res.history.best[-1])
+        random_best.append(res.baseline.history.best[-1])
+    assert np.median(ga_best) < np.median(random_best)
+
+
+def test_fixed_genes_robust_objective_and_constraints(model):
+    res = _run(model, objective="robust", torques=(400.0, 1600.0), generations=2, random_baseline=False,
+               lte_factor=1.2, seed=1)
+    prob = res.problem
+    assert len(prob.genes) == 6
+    ev = op.evaluate(prob, res.optimum[None])
+    expected = ev.force.max(axis=1) + prob.settings.penalty * prob.standard.objective * ev.violation
+    np.testing.assert_allclose(ev.objective, expected, rtol=1e-12)
+    assert ev.force.shape == (1, 2)
+    fixed = op.problem(model, op.check_settings(population=4, generations=1),
+                       fixed={"crowning_um": 0, "unmodified_lead_length_mm": 0})
+    assert [g.name for g in fixed.genes] == [f"pinion.{k}" for k in op.GENE_KEYS[:4]]
+    both = op.problem(model, op.check_settings(population=4, generations=1), modify=["pinion", "gear"])
+    assert len(both.genes) == 12 and {g.gear for g in both.genes} == {0, 1}
+    # a tight LTE factor penalises a candidate in proportion to its excess
+    strict = op.problem(model, op.check_settings(population=4, generations=1, lte_factor=1e-3))
+    ev = op.evaluate(strict, strict.decode([[40, 40, 2, 2, 20, 10]]))
+    assert ev.violation[0] > 1 and ev.objective[0] > ev.force[0, 0]
+
+
+def test_nsga2_front_is_non_dominated_and_the_dataset_documents_it(model, tmp_path):
+    res = _run(model, method="nsga2", seed=2, random_baseline=False)
+    genes, f, lte = res.pareto
+    assert len(f) >= 1 and np.all(np.diff(f) >= 0)
+    pts = np.column_stack([f, lte])
+    assert op.pareto_mask(pts).all()
+    ds = result_dataset(res)
+    ds.attrs["pair_name"] = "seed000_case"
+    check_documented(ds)
+    assert plot_pareto(ds, tmp_path / "pareto.png").stat().st_size > 1000
+
+
+def test_dataset_figures_and_the_optimum_as_a_pair(pair, ga, tmp_path):
+    ds = result_dataset(ga, {"population": 10})
+    check_documented(ds)
+    assert ds.sizes["generation"] == 7 and ds.sizes["candidate"] == 10 and ds.sizes["gene"] == 6
+    assert ds.attrs["method"] == "ga" and ds.attrs["seed"] == 3
+    assert int(ds["evaluations"]) == ga.evaluations and int(ds["random_evaluations"]) == ga.evaluations
+    assert ds["optimum_genes"].attrs["units"] == "m"
+    assert float(ds["reduction"]) > 50
+    best = pair_geometry(optimum_pair(pair, ds))
+    np.testing.assert_allclose([getattr(best.pair.modification[0], f) for f in MODIFICATION_FIELDS], ga.optimum[0])
+    ds.attrs["pair_name"] = "seed000_case"
+    for plot, name in ((plot_convergence, "convergence"), (plot_modification, "modification")):
+        assert plot(ds, tmp_path / f"{name}.png").stat().st_size > 1000
+
+
+@pytest.mark.parametrize("settings, field", [
+    ({"population": 1}, "population"),
+    ({"generations": 0}, "generations"),
+    ({"method": "pso"}, "method"),
+    ({"objective": "noise"}, "objective"),
+    ({"seed": -1}, "seed"),
+    ({"speed_rpm": 0}, "speed_rpm"),
+    ({"torque_Nm": -5}, "torque_Nm"),
+    ({"torques_Nm": []}, "torques_Nm"),
+    ({"weights": [1, 2]}, "weights"),
+    ({"method": "nsga2", "objective": "velocity"}, "objective"),
+    ({"constraints": {"lte": 2}}, "constraints.lte"),
+    ({"constraints": {"lte_factor": 0}}, "constraints.lte_factor"),
+    ({"bounds": {"root_relief_um": [50, 10]}}, "bounds.root_relief_um"),
+    ({"bounds": {"crowning_um": [0, 900]}}, "bounds.crowning_um"),
+    ({"bounds": {"tooth_count": [0, 1]}}, "bounds.tooth_count"),
+    ({"fixed": {"crowning_um": -1}}, "fixed.crowning_um"),
+    ({"modify": ["wheel"]}, "modify"),
+    ({"keep_elitism": 40}, "keep_elitism"),
+])
+def test_bad_settings_are_refused_with_the_field_named(pair, settings, field):
+    with pytest.raises(GearmeshInputError) as err:
+        run_settings(pair, **settings)
+    assert err.value.field == field
+
+
+def test_bad_study_settings_and_variants_are_refused_before_any_job(capsys):
+    base = {"study": "s", "pairs": ["seed000_case"], "variants": {"standard": {}, "optimised": {"from": "optimise"}}}
+    with pytest.raises(GearmeshInputError, match="needs an 'optimise:' section"):
+        check_study(validate_study(base), ROOT)
+    bad = {**base, "optimise": {"bounds": {"root_relief_um": [10, 5]}}}
+    with pytest.raises(GearmeshInputError) as err:
+        check_study(validate_study(bad), ROOT)
+    assert err.value.field == "optimise.bounds.root_relief_um"
+    with pytest.raises(GearmeshInputError) as err:
+        validate_study({**base, "optimise": {"population": 2}})
+    assert err.value.field.startswith("optimise.population")
+    assert cli_main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000",
+                     "--speed-rpm", "5000", "--population", "2"]) == 2
+    assert capsys.readouterr().err.strip() == "gearmesh: error: population = 2: must be an integer in [4, 100000]"
