@@ -22,6 +22,7 @@ import xarray as xr
 
 from .gear import GearPair, load_pair, pair_to_dict
 from .io import add_provenance, atomic_output, read_dataset, write_dataset
+from .tables import write_csv
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
@@ -77,7 +78,7 @@ def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
     finish(ds, smk.output[0], smk.config, pair, _title(smk))
     if "csv" in smk.output.keys():
         with atomic_output(smk.output.csv) as tmp:
-            ds.to_dataframe().to_csv(tmp)
+            write_csv(ds, tmp)
 
 
 def run_pair_stage(smk: Any) -> None:
