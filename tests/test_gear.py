@@ -367,4 +367,6 @@ def test_modification_refusals():
 
 def test_involute_function():
     assert float(involute(math.radians(20))) == pytest.approx(0.0149044, abs=1e-7)  # table value
-    assert isinstance(pair_from_dict(seed001_pair1()), GearPair)
+    pair = pair_from_dict(seed001_pair1())
+    assert pair.teeth == (29, 49) and pair.normal_module == pytest.approx(1.75e-3)
+    assert pair.face_width == pytest.approx((20e-3, 20e-3)) and pair.material.density == 7850

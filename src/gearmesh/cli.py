@@ -167,9 +167,15 @@ class _Parser(argparse.ArgumentParser):
     (exit 2), not the usage text."""
 
     def error(self, message: str):
-        match = re.fullmatch(r"argument ([^:]+): (.*?)(?:: '(.*)')?", message, flags=re.S)
-        if match:
-            exc = GearmeshInputError(match[1], match[3], match[2])
+        choice = re.fullmatch(r"argument ([^:]+): invalid choice: '(.*)' \(choose from (.*)\)", message, flags=re.S)
+        value = re.fullmatch(r"argument ([^:]+): (.*?): '(.*)'", message, flags=re.S)
+        required = re.fullmatch(r"the following arguments are required: (.*)", message, flags=re.S)
+        if choice:
+            exc = GearmeshInputError(choice[1], choice[2], f"must be one of {choice[3]}")
+        elif value:
+            exc = GearmeshInputError(value[1], value[3], value[2])
+        elif required:
+            exc = GearmeshInputError(required[1], None, "is required")
         else:
             exc = GearmeshInputError("arguments", None, message)
         self.exit(EXIT_BAD_INPUT, f"gearmesh: error: {exc}\n")

@@ -110,8 +110,8 @@ def workflow_config(config: Mapping[str, Any], configfiles: list[str | Path]) ->
     Snakemake's loader lets through), then the merged config validated with its defaults
     filled (:func:`validate_study`). The Snakefile calls it before anything else."""
     for path in configfiles:
-        if not isinstance(read_yaml(path, "config file"), Mapping):
-            raise GearmeshInputError("config file", str(path), "must be a YAML mapping")
+        if not isinstance(read_yaml(path, "file"), Mapping):
+            raise GearmeshInputError("file", str(path), "must be a YAML mapping")
     return validate_study(config)
 
 
@@ -165,7 +165,8 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
         if name in config["pairs"]:
             require_stiffness_data(geom)
         for variant, spec in config.get("variants", {}).items():
-            pair_geometry(variant_pair(pair, variant, spec))
+            with _section(f"variants.{variant}"):
+                pair_geometry(variant_pair(pair, variant, spec))
     table = config.get("stiffness_table", {})
     for name in table.get("pairs", []):
         for variant, overrides in (table.get("variants") or {}).items():
@@ -264,6 +265,12 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
             sec = config[section]
             if sec.get("torque_Nm") is not None:
                 loads(section, "torque_Nm", sec.get("on", "gear"), config["pairs"])
+            elif train and sec.get("static_force_N") is not None:  # normal force -> gear torque F r_b2 cos βb
+                force = sec["static_force_N"]
+                for name in config["pairs"]:
+                    g = geoms[name]
+                    t2 = force * float(g.base_radius[1]) * math.cos(g.base_helix_angle)
+                    check_load(g, pinion_torque(pairs[name], t2, "gear"), f"{section}.static_force_N", force)
             for name in config["pairs"]:
                 with _section(section):
                     check_dynamics_settings(pairs[name], sec, train=train)
