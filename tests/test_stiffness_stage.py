@@ -75,11 +75,11 @@ def test_cli_stiffness_json(root, capsys):
     assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), "--torque-Nm", "200", "--on", "gear",
                  "--positions", "90", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    for key in ("mean_mesh_stiffness_N_per_m", "min_mesh_stiffness_N_per_m", "max_mesh_stiffness_N_per_m",
+    for key in ("mean_mesh_stiffness_N_per_um", "min_mesh_stiffness_N_per_um", "max_mesh_stiffness_N_per_um",
                 "fluctuation_percent", "iso6336_c_single_N_per_mm_um", "iso6336_c_gamma_alpha_N_per_mm_um",
                 "lste_mean_um", "lste_peak_to_peak_um"):
         assert key in out
-    assert out["min_mesh_stiffness_N_per_m"] < out["mean_mesh_stiffness_N_per_m"] < out["max_mesh_stiffness_N_per_m"]
+    assert out["min_mesh_stiffness_N_per_um"] < out["mean_mesh_stiffness_N_per_um"] < out["max_mesh_stiffness_N_per_um"]
 
 
 @pytest.mark.parametrize("args, field", [

@@ -101,21 +101,22 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
 
 def stiffness_summary(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
                       positions: int = 360, torque_Nm: float | None = None, torque_on: str = "pinion") -> dict[str, Any]:
-    """Headline stiffness numbers in engineering units (the CLI's ``stiffness --json``)."""
+    """Headline stiffness numbers in one unit family, N, mm, µm, the unit in every key (the CLI's
+    ``stiffness --json``); stiffnesses along the transverse line of action."""
     ds = stiffness_dataset(pair, method, slices, positions, 3, torque_Nm, torque_on)
     out = {
         "name": pair.name, "method": method, "slices": slices,
-        "mean_mesh_stiffness_N_per_m": float(ds.mean_stiffness),
-        "min_mesh_stiffness_N_per_m": float(ds.min_stiffness),
-        "max_mesh_stiffness_N_per_m": float(ds.max_stiffness),
+        "mean_mesh_stiffness_N_per_um": float(ds.mean_stiffness) * 1e-6,
+        "min_mesh_stiffness_N_per_um": float(ds.min_stiffness) * 1e-6,
+        "max_mesh_stiffness_N_per_um": float(ds.max_stiffness) * 1e-6,
         "fluctuation_percent": 100 * float(ds.fluctuation),
         "iso6336_c_single_N_per_mm_um": float(ds.iso6336_c_single) * 1e-9,
         "iso6336_c_gamma_alpha_N_per_mm_um": float(ds.iso6336_c_gamma_alpha) * 1e-9,
         "iso6336_c_gamma_beta_N_per_mm_um": float(ds.iso6336_c_gamma_beta) * 1e-9,
-        "iso6336_mesh_stiffness_N_per_m": float(ds.iso6336_mesh_stiffness),
-        "fourier_mean_N_per_m": float(ds.fourier_mean),
-        "fourier_cos_N_per_m": ds.fourier_cos.values.tolist(),
-        "fourier_sin_N_per_m": ds.fourier_sin.values.tolist(),
+        "iso6336_mesh_stiffness_N_per_um": float(ds.iso6336_mesh_stiffness) * 1e-6,
+        "fourier_mean_N_per_um": float(ds.fourier_mean) * 1e-6,
+        "fourier_cos_N_per_um": (ds.fourier_cos.values * 1e-6).tolist(),
+        "fourier_sin_N_per_um": (ds.fourier_sin.values * 1e-6).tolist(),
     }
     if torque_Nm is not None:
         out.update({"pinion_torque_Nm": float(ds.pinion_torque), "lste_mean_um": float(ds.lste_mean) * 1e6,
