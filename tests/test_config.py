@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import pytest
 
-from gearmesh.config import load_study, study_pairs, validate_study
+from gearmesh.config import check_study, load_study, study_pairs, validate_study
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_geometry
 
@@ -38,12 +38,16 @@ def test_unknown_pair_is_refused(root, monkeypatch):
 
 
 @pytest.mark.parametrize("name", ["config/config.yaml", "config/studies/contact_lines.yaml",
-                                  "config/studies/low_fluctuation.yaml"])
+                                  "config/studies/low_fluctuation.yaml", "config/studies/printing_train.yaml",
+                                  "config/studies/transition_curve.yaml"])
 def test_shipped_studies_and_their_pairs_are_valid(root, monkeypatch, name):
     monkeypatch.chdir(root)
     config = load_study(root / name)
-    for pair in study_pairs(config).values():
-        pair_geometry(pair)
+    pairs = check_study(config)  # every stage setting, variant and load checked up front
+    assert set(config["pairs"]) <= set(pairs)
+    for name_, pair in pairs.items():
+        assert pair.name == name_
+        assert pair_geometry(pair).eps_alpha >= 1
 
 
 def test_every_pair_file_is_a_working_pair(root):

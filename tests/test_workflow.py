@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import hashlib
 import os
 import shutil
 import subprocess
@@ -93,7 +94,8 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     base = work / "results/e2e/seed001_pair1"
     lines = read_dataset(base / "contact_lines.nc")
     assert lines.sizes["position"] == 24
-    assert lines.attrs["config_sha256"] and "seed001_pair1" in lines.attrs["config_json"]
+    assert lines.attrs["config_sha256"] == hashlib.sha256(lines.attrs["config_json"].encode()).hexdigest()
+    assert "seed001_pair1" in lines.attrs["config_json"]
     geometry = read_dataset(base / "geometry.nc")
     assert abs(float(geometry["eps_alpha"]) - 1.4702) < 1e-3  # seed 001 Table 1: 1.470
     stiffness = read_dataset(base / "stiffness.nc")
