@@ -216,7 +216,7 @@ def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
 
 def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), contact_law_name: str = "palmgren",
                  method: str = "transition", extension: float = 0.25, driver: str = "pinion",
-                 added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 64, face_samples: int = 257,
+                 added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 32, face_samples: int = 257,
                  cycle_positions: int = 32, ltca: LTCAModel | None = None) -> ImpactModel:
     """Prepare the impact objective of ``geom`` (its modification is only the default).
 
@@ -321,12 +321,14 @@ def _enter_gap_window(model: ImpactModel, params: np.ndarray):
     return _parabolic_min(gap, model.z_fine)
 
 
-def _solve_rows(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw) -> np.ndarray:
-    """Approach δ (m) of each row (NaN for a row without any candidate point)."""
+def _solve_rows(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw,
+                rtol: float = 1e-12) -> np.ndarray:
+    """Approach δ (m) of each row (NaN for a row without any candidate point); ``rtol`` of the
+    load sum (and 100× finer for each point's inversion)."""
     ok = np.isfinite(gap).any(axis=1)
     delta = np.full(gap.shape[0], np.nan)
     if ok.any():
-        _, d, _, _ = solve_contact(gap[ok], compliance[ok], force[ok], law)
+        _, d, _, _ = solve_contact(gap[ok], compliance[ok], force[ok], law, rtol=rtol, inner_tol=min(1e-14, rtol / 100))
         delta[ok] = d
     return delta
 
@@ -340,7 +342,8 @@ def _approach_window(model: ImpactModel, params: np.ndarray, force: np.ndarray, 
     gap = np.broadcast_to(gap.reshape(nc, 1, r, m), (nc, nt, r, m)).reshape(-1, m)
     comp = np.broadcast_to(compliance.reshape(1, 1, r, m), (nc, nt, r, m)).reshape(-1, m)
     f = np.broadcast_to(force.reshape(1, nt, 1), (nc, nt, r)).reshape(-1)
-    return _solve_rows(gap, comp, f, model.ltca.law).reshape(nc, nt, r)
+    # only a bracket of the touch comes from here (the exact solve polishes it): 1e-9 is plenty
+    return _solve_rows(gap, comp, f, model.ltca.law, rtol=1e-9).reshape(nc, nt, r)
 
 
 # --------------------------------------------------------------------------------------
@@ -390,9 +393,11 @@ class ImpactStatic:
 
 
 def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
-    """Touch roll τ*, approach there and the point M for every (C, T) (module docstring)."""
+    """Touch roll τ* for every (C, T) (module docstring), whether found and whether at the window
+    start, and the entering pair's separation at the theoretical engagement (C,)."""
     nc, nt = params.shape[0], force.size
     g_win, _ = _enter_gap_window(model, params)  # (C, R)
+    k0 = int(np.flatnonzero(model.tau == 0.0)[0])
     d_win = _approach_window(model, params, force, model.window_basis, model.window_compliance)  # (C, T, R)
     h = g_win[:, None, :] - d_win
     tau = model.tau
@@ -418,7 +423,7 @@ def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
     fa, fb = hfun(a), hfun(b)
     ok = found & np.isfinite(fa) & np.isfinite(fb) & (fa > 0) & (fb <= 0)
     fa, fb = np.where(ok, fa, 1.0), np.where(ok, fb, 0.0)
-    tol = 1e-13 * model.geom.transverse_base_pitch
+    tol = 1e-7 * model.geom.transverse_base_pitch  # the exact Newton polish follows
     for _ in range(80):
         denom = fb - fa
         c = np.where(denom != 0, b - fb * (b - a) / np.where(denom != 0, denom, 1.0), b)
@@ -430,7 +435,7 @@ def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
             break
     t_star = np.where(found, b, np.nan)
     t_star = np.where(at_start, tau[0], t_star)
-    return t_star, found, at_start
+    return t_star, found, at_start, g_win[:, k0]
 
 
 def _enter_points(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
@@ -461,38 +466,33 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     t1 = check_torques(torques)
     force = t1 / float(g.base_radius[0])
     nc, nt = params.shape[0], force.size
-    t_star, found, at_start = _crossing(model, params, force)
+    t_star, found, at_start, te0 = _crossing(model, params, force)
     if np.any(at_start):
         import warnings
         warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
                       "raise corner_extension", RuntimeWarning, stacklevel=2)
     tt = np.where(found, t_star, 0.0)
     pc = np.broadcast_to(params[:, None], (nc, nt, 2, 6)).reshape(-1, 2, 6)
-    gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
-    # exact approach of the other pairs at the touch; Newton steps on h = g − δ with the exact δ
-    # (the Newton slope once at the regula-falsi root; the rates again at the converged touch,
-    # since δ_others may have a kink nearby where a point of the pairs in mesh unloads)
+    # Newton on h = g − δ with the exact δ of the other pairs, h and its slope from one stacked
+    # evaluation at τ − ε, τ, τ + ε; the rates are those at the converged touch (δ_others may
+    # have a kink nearby, where a point of the pairs in mesh unloads)
     eps = 1e-6 * g.transverse_base_pitch
-    gp = _enter_gap(model, pc, (tt + eps).reshape(-1))[0].reshape(nc, nt)
-    gm = _enter_gap(model, pc, (tt - eps).reshape(-1))[0].reshape(nc, nt)
-    dp = _approach_at(model, params, force, tt + eps, others=True)
-    dm = _approach_at(model, params, force, tt - eps, others=True)
-    dh = ((gp - dp) - (gm - dm)) / (2 * eps)
+    offsets = np.array([-eps, 0.0, eps])[:, None, None]
+    pcs = np.broadcast_to(pc, (3,) + pc.shape).reshape(-1, 2, 6)
     for _ in range(6):
-        gap_m, z_m = (v.reshape(nc, nt) for v in _enter_gap(model, pc, tt.reshape(-1)))
-        delta = _approach_at(model, params, force, tt, others=True)
-        resid = gap_m - delta
+        stack = tt[None] + offsets
+        gap3, z3 = (v.reshape(3, nc, nt) for v in _enter_gap(model, pcs, stack.reshape(-1)))
+        d3 = _approach_at(model, params, force[None, :], stack, others=True)
+        resid = gap3[1] - d3[1]
+        dh = ((gap3[2] - d3[2]) - (gap3[0] - d3[0])) / (2 * eps)
         if np.all(~found | (np.abs(resid) <= 1e-13)):
             break
         with np.errstate(invalid="ignore", divide="ignore"):
             step = np.where(found & (dh < 0) & np.isfinite(resid), resid / dh, 0.0)
         tt = tt - np.clip(step, -eps * 1e3, eps * 1e3)
-    gp = _enter_gap(model, pc, (tt + eps).reshape(-1))[0].reshape(nc, nt)
-    gm = _enter_gap(model, pc, (tt - eps).reshape(-1))[0].reshape(nc, nt)
-    dp = _approach_at(model, params, force, tt + eps, others=True)
-    dm = _approach_at(model, params, force, tt - eps, others=True)
-    gap_rate = -(gp - gm) / (2 * eps)
-    approach_rate = (dp - dm) / (2 * eps)
+    gap_m, z_m, delta = gap3[1], z3[1], d3[1]
+    gap_rate = -(gap3[2] - gap3[0]) / (2 * eps)
+    approach_rate = (d3[2] - d3[0]) / (2 * eps)
     s_m = model.s_enter(tt, z_m)
     bm = separation_basis(g, s_m, np.inf)
     region = np.where(found, bm.region, 0).astype(np.int8)
@@ -500,9 +500,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
                         np.where((region == REGION_APPROACH_TIP) | (region == REGION_RECESS_TIP), SCENARIO_EDGE,
                                  SCENARIO_SURFACE)).astype(np.int8)
     # TE and LTE at the theoretical engagement (τ = 0, a window roll)
-    k0 = int(np.flatnonzero(model.tau == 0.0)[0])
-    te0 = _enter_gap_window(model, params)[0][:, k0]
-    lte0 = _approach_at(model, params, force, np.zeros((nc, nt)), others=False)
+    lte0 = _approach_at(model, params, force[None, :], np.zeros((1, nc, nt)), others=False)[0]
     # F–δ curve of the entering pair alone from M
     gaps, comp = _enter_points(model, params, tt)
     # separations from the first point to touch (the LTCA point nearest M; → M as points → ∞)
@@ -532,22 +530,22 @@ def _without_column(basis: SeparationBasis, column: int) -> SeparationBasis:
 
 def _approach_at(model: ImpactModel, params: np.ndarray, force: np.ndarray, tau: np.ndarray,
                  others: bool) -> np.ndarray:
-    """Approach δ (C, T) of the other pairs (``others``) or of all pairs at time-like rolls
-    ``tau`` (C, T), by an exact solve on a candidate grid at those rolls."""
+    """Approach δ of the other pairs (``others``) or of all pairs at time-like rolls ``tau``
+    (..., C, T) — leading axes stack several rolls per (C, T) — by one exact solve on a
+    candidate grid at those rolls."""
     g, law = model.geom, model.ltca.law
-    nc, nt = tau.shape
+    shape = tau.shape
+    nc, nt = shape[-2:]
     roll = model.roll(tau).reshape(-1)
     grid = candidate_grid(g, roll, model.points, model.lead_slope, model.extension / g.transverse_base_pitch,
                           pairs=_window_pairs(model))
-    b = grid.basis
-    if others:
-        b = _without_column(b, model.window_enter_column)
-    p = np.broadcast_to(params[:, None], (nc, nt, 2, 6)).reshape(-1, 1, 1, 2, 6)
-    gap = basis_gap(g, b, np.broadcast_to(grid.z, grid.s.shape), model.lead_slope, p).reshape(nc * nt, -1)
+    b = _without_column(grid.basis, model.window_enter_column) if others else grid.basis
+    p = np.broadcast_to(params[:, None], shape + (2, 6)).reshape(-1, 1, 1, 2, 6)
+    gap = basis_gap(g, b, np.broadcast_to(grid.z, grid.s.shape), model.lead_slope, p).reshape(roll.size, -1)
     comp = (point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid.s, grid.region, grid.rho_pinion,
-                             grid.rho_gear, with_hertz=law.name == "linear") / grid.dz).reshape(nc * nt, -1)
-    f = np.broadcast_to(force[None, :], (nc, nt)).reshape(-1)
-    return _solve_rows(gap, comp, f, law).reshape(nc, nt)
+                             grid.rho_gear, with_hertz=law.name == "linear") / grid.dz).reshape(roll.size, -1)
+    f = np.broadcast_to(force, shape).reshape(-1)
+    return _solve_rows(gap, comp, f, law).reshape(shape)
 
 
 def _window_pairs(model: ImpactModel) -> np.ndarray:
@@ -1003,8 +1001,8 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
 
     # static start: approach of all pairs at τ0 and its rate
     h = 1e-7 * g.transverse_base_pitch
-    d_lo, d0, d_hi = _approach_at(model, params, st.force, np.array([[tau0 - h, tau0, tau0 + h]]).T,
-                                  others=False)[:, 0]
+    d_lo, d0, d_hi = _approach_at(model, params, st.force, np.array([tau0 - h, tau0, tau0 + h])[:, None, None],
+                                  others=False)[:, 0, 0]
     v0 = (d_hi - d_lo) / (2 * h) * rate
     t_end = (tau1 - tau0) / rate
     sol = solve_ivp(rhs, (0.0, t_end), [d0, v0], method="RK45", rtol=1e-7, atol=1e-12, max_step=period / 40,
