@@ -101,6 +101,13 @@ def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
                              positions=args.positions, torque_Nm=args.torque_Nm, torque_on=args.on)
 
 
+def cmd_impact(args: argparse.Namespace) -> dict[str, Any]:
+    from .datasets.impact import impact_summary
+
+    return impact_summary(load_pair(args.pair), args.torque_Nm, args.speed_rpm, on=args.on, driver=args.driver,
+                          points=args.points, simulate=args.simulate, energy_velocity=args.energy_velocity)
+
+
 def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.ltca import ltca_summary
 
@@ -205,6 +212,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--points", type=int, default=50, help="points per contact line")
     p.add_argument("--contact-law", dest="contact_law", choices=("palmgren", "linear"), default="palmgren",
                    help="local contact law (default palmgren, n = 1.11)")
+
+    p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
+                 "velocity, local stiffness, impact force (seed 000)",
+                 "gear pair file (config/pairs/NAME.yaml), with its modification if any")
+    _torque_options(p, required=True, on_default="pinion")
+    p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True, help="pinion speed (rpm)")
+    p.add_argument("--driver", choices=("pinion", "gear"), default="pinion", help="which gear drives")
+    p.add_argument("--points", type=int, default=50, help="points per contact line")
+    p.add_argument("--energy-velocity", dest="energy_velocity", choices=("transverse", "normal"),
+                   default="transverse", help="velocity in 1/2 m_eq v^2: transverse (consistent) or normal (seed 000)")
+    p.add_argument("--simulate", action="store_true",
+                   help="also integrate the engagement in time and print the simulated peak force")
 
     p = _command(sub, "dynamics", cmd_dynamics, "steady-state speed sweep of the 8-DOF helical pair (seed 001 model)")
     _torque_options(p, required=True, on_default="gear")

@@ -85,12 +85,19 @@ def variant_results(name, variant):
         out += [f"{base}/dynamics.nc", f"{base}/plots/dynamics_rms.png", f"{base}/plots/dynamics_spectrum.png"]
     if "train_dynamics" in config:
         out += [f"{base}/train.nc", f"{base}/plots/train_spectrum.png"]
+    if "impact" in config:
+        out += [f"{base}/impact.nc", f"{base}/plots/impact_speed.png", f"{base}/plots/mesh_in_trajectory.png",
+                f"{base}/plots/impact_simulation.png"]
     return out
 
 
 def all_targets():
     targets = [f for name in config["pairs"] for f in pair_results(name)]
     targets += [f for name in config["pairs"] for v in VARIANTS for f in variant_results(name, v)]
+    if "impact" in config:
+        for name in config["pairs"]:
+            targets += [f"results/{STUDY}/{name}/impact_table.nc", f"results/{STUDY}/{name}/impact_table.csv",
+                        f"results/{STUDY}/{name}/plots/impact_force.png"]
     if "optimise" in config:
         for name in config["pairs"]:
             base = f"results/{STUDY}/{name}/optimise"
