@@ -344,3 +344,15 @@ def test_sweep_adds_speeds_around_predicted_resonances(model):
             assert np.all(np.min(np.abs(speeds[:, None] - band[None, :]), axis=0) < 1e-9 * n)
             checked += 1
     assert checked >= 3
+
+
+def test_encoder_rotation_adds_the_static_bearing_deflection(geom, K):
+    """Statically, the relative rotation r_b1 θ_p − r_b2 θ_g (what shaft encoders read) exceeds
+    the dynamic TE (the bodies' approach along the transverse line of action) by the bearing
+    deflection 2 F_bt (1/k_radial + tan²βb/k_axial), written out from the bearing balance."""
+    model = dy.pair_model(geom, 200.0, K)
+    y = model.static_state()
+    cb, tb = math.cos(geom.base_helix_angle), math.tan(geom.base_helix_angle)
+    f_bt = float(model.static_force[0]) * cb
+    bearing = 2 * f_bt * (1 / dy.SEED001_BEARING["k_radial"] + tb**2 / dy.SEED001_BEARING["k_axial"])
+    np.testing.assert_allclose(y[model.n_trans] - (model.G @ y)[0] / cb, bearing, rtol=1e-9)
