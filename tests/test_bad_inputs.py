@@ -187,6 +187,11 @@ BAD_STUDIES = [
     ("variant name with slash", _study(variants={"a/b": {}}), "variants"),
     ("variant crowning 5 mm", _study(variants={"v": {"modification": {"pinion": {"crowning_um": 5000}}}}),
      "variants.v.modification.pinion.crowning_um"),
+    ("impact torque 1e12", _study(impact={"torques_Nm": [1.0e12]}), "impact.torques_Nm[0]"),
+    ("impact lead slope 1e6", _study(impact={"torques_Nm": [100], "lead_slope_um": [0, 1.0e6]}),
+     "impact.lead_slope_um[1]"),
+    ("optimise torque 1e30", _study(optimise={"torque_Nm": 1.0e30}), "optimise.torque_Nm"),
+    ("optimise torque nan", _study(optimise={"torque_Nm": float("nan")}), "optimise.torque_Nm"),
     ("comparison couple unknown", _study(dynamics={"speeds_rpm": SPEEDS}, dynamics_comparison={"couples": [["p", "q"]]}),
      "dynamics_comparison.couples[0]"),
 ]
@@ -213,6 +218,8 @@ BAD_ARGS = [
     ("speeds huge string", ["dynamics", "--torque-Nm", "200", "--speeds", "1:" * 50_000], "speeds_rpm"),
     ("backlash nan", ["dynamics", "--torque-Nm", "200", "--speeds", "1000", "--backlash-um", "nan"], "backlash_um"),
     ("on idler", ["ltca", "--torque-Nm", "100", "--on", "idler"], "--on"),
+    ("impact torque 1e12", ["impact", "--torque-Nm", "1e12", "--speed-rpm", "5000"], "--torque-Nm"),
+    ("optimise torque 1e30", ["optimise", "--torque-Nm", "1e30", "--speed-rpm", "5000"], "--torque-Nm"),
     ("unknown command", None, "command"),
     ("unknown option", ["stiffness", "--colour", "red"], "arguments"),
 ]

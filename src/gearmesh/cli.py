@@ -104,7 +104,7 @@ def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
 def cmd_impact(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.impact import impact_summary
 
-    return impact_summary(load_pair(args.pair), args.torque_Nm, args.speed_rpm, on=args.on, driver=args.driver,
+    return impact_summary(_pair(args.pair, args)[0], args.torque_Nm, args.speed_rpm, on=args.on, driver=args.driver,
                           points=args.points, simulate=args.simulate, energy_velocity=args.energy_velocity)
 
 
@@ -150,7 +150,7 @@ def _progress():
 def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.optimise import optimise_summary
 
-    return optimise_summary(load_pair(args.pair), args.torque_Nm, args.speed_rpm, on=args.on, modify=args.modify,
+    return optimise_summary(_pair(args.pair, args)[0], args.torque_Nm, args.speed_rpm, on=args.on, modify=args.modify,
                             method=args.method, seed=args.seed, population=args.population,
                             generations=args.generations)
 

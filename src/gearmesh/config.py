@@ -252,6 +252,13 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
                        MAX_CONTACT_POINTS, "contact candidates per line")
     if "ltca" in config:
         loads("ltca", "torques_Nm", config["ltca"]["on"], config["pairs"])
+    if "impact" in config:
+        loads("impact", "torques_Nm", config["impact"]["on"], config["pairs"])
+        with _section("impact"):
+            check_lead_slope(config["impact"]["lead_slope_um"])
+    if "optimise" in config:
+        for key in ("torque_Nm", "torques_Nm"):
+            loads("optimise", key, config["optimise"]["on"], config["pairs"])
     if sweep := config.get("helix_sweep"):
         count = int((sweep["stop_deg"] - sweep["start_deg"]) / sweep["step_deg"]) + 1
         check_grid("helix_sweep.step_deg", sweep["step_deg"], count, MAX_SWEEP_ANGLES, "helix angles per pair")
