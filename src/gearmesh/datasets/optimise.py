@@ -34,8 +34,8 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                  weights=None, modify=("pinion",), bounds: Mapping[str, Any] | None = None,
                  fixed: Mapping[str, Any] | None = None, constraints: Mapping[str, Any] | None = None,
                  random_baseline: bool = True, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
-                 keep_elitism: int = 2, points: int = 50, window_positions: int = 64, face_samples: int = 257, cycle_positions: int = 32,
-                 contact_law: str = "palmgren", corner_extension: float = 0.25):
+                 keep_elitism: int = 2, points: int = 50, window_positions: int = 64, face_samples: int = 257,
+                 cycle_positions: int = 32, contact_law: str = "palmgren", corner_extension: float = 0.25):
     """Check the config's ``optimise:`` section (as keywords) for ``pair``: (geometry, settings,
     gene keywords, impact-model keywords). Torques are given on ``on`` (converted to the
     pinion). Refuses a bad value with GearmeshInputError naming the field."""
