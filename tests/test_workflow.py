@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import hashlib
+import importlib.util
 import os
 import shutil
 import subprocess
@@ -76,6 +77,15 @@ def _check_code_change_reruns(root: Path, work: Path, tmp: Path) -> None:
     assert _planned_jobs(proc) == {"plot_tca": 2, "plot_ltca": 2, "all": 1}, proc.stdout[-3000:]
 
 
+def _check_slurm_profile_dry_run(work: Path) -> None:
+    """The SLURM profile plans the study (needs snakemake-executor-plugin-slurm: the 'slurm' extra)."""
+    if importlib.util.find_spec("snakemake_executor_plugin_slurm") is None:
+        return
+    proc = _snakemake(work, "--profile", "workflow/profiles/slurm", "--dry-run", "--forceall")
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert _planned_jobs(proc).get("dynamics", 0) >= 2
+
+
 def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     config = {"study": "e2e", "pairs": ["seed001_pair1"], "contact_lines": {"positions": 24},
               "geometry": {"involute_points": 20, "fillet_points": 10, "face_points": 5},
@@ -117,6 +127,7 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     assert again.returncode == 0 and "Nothing to be done" in again.stdout + again.stderr
     _check_report(work)
     _check_code_change_reruns(root, work, tmp_path)
+    _check_slurm_profile_dry_run(work)
 
 
 def test_workflow_refuses_a_bad_pair_before_writing_anything(root, tmp_path):
