@@ -131,26 +131,34 @@ def _invert(d, c, coef: float, m: float, q_start=None, tol: float = 1e-14, max_i
     """q ≥ 0 with c·q + coef·q^m = d for d ≥ 0 (elementwise), and dq/dd = 1/f'(q).
 
     f is concave (m < 1), so Newton from an upper bound (q0 = min(d/c, (d/coef)^(1/m)), both
-    bounds) steps once below the root and then rises monotonically to it.
+    bounds) steps once below the root and then rises monotonically to it. Only the points
+    with d > 0 are iterated (most candidate points of a contact problem carry nothing).
     """
+    d = np.asarray(d, dtype=float)
+    c = np.broadcast_to(c, d.shape)
     pos = d > 0
+    q_out = np.zeros(d.shape)
+    dq_out = np.zeros(d.shape)
+    if not pos.any():
+        return q_out, dq_out
+    dd, cc = d[pos], c[pos]
     if coef == 0.0:
-        q = np.where(pos, d / c, 0.0)
-        return q, np.where(pos, 1.0 / c, 0.0)
-    dd = np.where(pos, d, 1.0)
-    q = np.minimum(dd / c, (dd / coef) ** (1.0 / m))
+        q_out[pos], dq_out[pos] = dd / cc, 1.0 / cc
+        return q_out, dq_out
+    q = np.minimum(dd / cc, (dd / coef) ** (1.0 / m))
     if q_start is not None:
-        q = np.minimum(q, np.where(q_start > 0, q_start, q))
+        qs = np.broadcast_to(q_start, d.shape)[pos]
+        q = np.minimum(q, np.where(qs > 0, qs, q))
     for _ in range(max_iter):
         qm1 = q ** (m - 1.0)
-        fp = c + coef * m * qm1
-        step = (c * q + coef * q * qm1 - dd) / fp
+        fp = cc + coef * m * qm1
+        step = (cc * q + coef * q * qm1 - dd) / fp
         q = q - step
         if np.all(np.abs(step) <= tol * q):
             break
-    q = np.where(pos, q, 0.0)
-    fp = c + coef * m * np.where(pos, q, 1.0) ** (m - 1.0)
-    return q, np.where(pos, 1.0 / fp, 0.0)
+    q_out[pos] = q
+    dq_out[pos] = 1.0 / (cc + coef * m * q ** (m - 1.0))
+    return q_out, dq_out
 
 
 def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw,
