@@ -115,6 +115,10 @@ def test_fixed_genes_robust_objective_and_constraints(model):
     assert [g.name for g in fixed.genes] == [f"pinion.{k}" for k in op.GENE_KEYS[:4]]
     both = op.problem(model, op.check_settings(population=4, generations=1), modify=["pinion", "gear"])
     assert len(both.genes) == 12 and {g.gear for g in both.genes} == {0, 1}
+    # seed 000's alternative objective, |v_n| at the design point
+    slow = op.problem(model, op.check_settings(population=4, generations=1, objective="velocity"))
+    ev = op.evaluate(slow, slow.decode([[40, 40, 2, 2, 20, 10]]))
+    assert ev.objective[0] == ev.velocity[0, 0] > 0
     # a tight LTE factor penalises a candidate in proportion to its excess
     strict = op.problem(model, op.check_settings(population=4, generations=1, lte_factor=1e-3))
     ev = op.evaluate(strict, strict.decode([[40, 40, 2, 2, 20, 10]]))

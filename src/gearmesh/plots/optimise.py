@@ -17,7 +17,7 @@ __all__ = ["plot_convergence", "plot_modification", "plot_pareto", "optimise_fig
 def _scale(ds: xr.Dataset) -> tuple[float, str]:
     """Factor and label of the objective axis."""
     units = ds["objective"].attrs.get("units", "")
-    return (1e-3, "kN") if units == "N" else (1.0, units.replace(" s-1", "/s"))
+    return (1.0, "N") if units == "N" else (1.0, units.replace(" s-1", "/s"))
 
 
 def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
@@ -91,16 +91,16 @@ def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
     (failed ones left out), the Pareto front and the standard gear."""
     fig, ax = plt.subplots(figsize=(6.5, 4.5))
     ok = ds["failed"].values == 0
-    f = ds["objective"].values[ok] * 1e-3
+    f = ds["objective"].values[ok]
     lte = ds["lte_peak_to_peak"].values[ok] * UM
     ax.scatter(lte, f, s=6, color="0.7", label="evaluated candidates")
-    ax.plot(ds["pareto_lte_peak_to_peak"].values * UM, ds["pareto_objective"].values * 1e-3, "o-", color="tab:red",
+    ax.plot(ds["pareto_lte_peak_to_peak"].values * UM, ds["pareto_objective"].values, "o-", color="tab:red",
             ms=4, lw=1.2, label=f"Pareto front ({ds.sizes['front']} points)")
-    ax.plot([float(ds["standard_lte_peak_to_peak"]) * UM], [float(ds["standard_objective"]) * 1e-3], "ks", ms=6,
+    ax.plot([float(ds["standard_lte_peak_to_peak"]) * UM], [float(ds["standard_objective"])], "ks", ms=6,
             label="standard (unmodified) gear")
     ax.set_yscale("log")
     ax.set_xlabel(f"peak-to-peak LTE at {float(ds['design_torque']):g} N m (µm)")
-    ax.set_ylabel(f"mesh-in impact force F_s at {float(ds['speed']):g} rpm (kN)")
+    ax.set_ylabel(f"mesh-in impact force F_s at {float(ds['speed']):g} rpm (N)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
     ax.set_title(_title(ds, "NSGA-II: impact force against LTE"), fontsize=9)
