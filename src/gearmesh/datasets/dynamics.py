@@ -315,7 +315,7 @@ def resonance_refined(grid: np.ndarray, model: GearModel, harmonics: Sequence[in
 
 def _log_progress(done: float) -> None:
     """Progress of a sweep into the job's log (the workflow's rule log)."""
-    logging.info("speed sweep: %.0f %% of the RK4 steps", 100 * done)
+    logging.info("speed sweep: %d %% of the RK4 steps", int(100 * done))
 
 
 def _grid(ds: xr.Dataset) -> xr.Dataset:

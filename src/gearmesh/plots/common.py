@@ -35,7 +35,7 @@ def title(ds: xr.Dataset, what: str) -> str:
 
 
 #: A curve whose peak-to-peak is below this fraction of its mean is drawn flat, with a note.
-FLAT = 1e-3
+FLAT = 1e-4
 
 
 def plain_axis(ax, values, unit: str, what: str = "") -> None:

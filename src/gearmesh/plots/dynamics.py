@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .common import UM, plt, save as _save, title as _title
+from .common import UM, plain_axis, plt, save as _save, title as _title
 
 
 def _resonances(ax, ds: xr.Dataset) -> None:
@@ -56,7 +56,7 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     for ax in axes:
         _resonances(ax, ds)
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=7, loc="upper left", framealpha=0.9)
+    axes[0].legend(fontsize=7, loc="best", framealpha=0.9)
     axes[-1].set_xlabel("pinion speed (rpm)")
     axes[0].set_title(_title(ds, "steady-state RMS against speed"))
     return _save(fig, path)
@@ -89,6 +89,7 @@ def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
         axes[i, 0].axhline(float(np.atleast_1d(ds.static_mesh_force.values)[0]), color="k", lw=0.8, ls="--",
                            label="static force")
         axes[i, 0].set_ylabel("normal mesh force (N)")
+        plain_axis(axes[i, 0], ds.mesh_force_series.isel(sample_speed=i).values, "N", "force")
         axes[i, 0].set_title(f"{float(sel.sample_speed):g} rpm, mesh frequency {f_mesh:.1f} Hz", fontsize=9)
         axes[i, 1].set_ylabel("amplitude, normal force (N)")
         axes[i, 1].set_yscale("log")
