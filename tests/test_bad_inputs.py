@@ -187,6 +187,19 @@ BAD_STUDIES = [
     ("variant name with slash", _study(variants={"a/b": {}}), "variants"),
     ("variant crowning 5 mm", _study(variants={"v": {"modification": {"pinion": {"crowning_um": 5000}}}}),
      "variants.v.modification.pinion.crowning_um"),
+    ("comparison without dynamics", _study(dynamics_comparison={}), "dynamics_comparison"),
+    ("stiffness Fourier order 30 of 8 positions", _study(stiffness={"positions": 8, "fourier_order": 30}),
+     "stiffness.fourier_order"),
+    ("dynamics Fourier order 30 of 24 positions", _study(stiffness={"positions": 24},
+                                                         dynamics={"fourier_order": 30, "speeds_rpm": SPEEDS}),
+     "dynamics.fourier_order"),
+    ("dynamics TE table and LTCA", _study(ltca={"torques_Nm": [100], "on": "gear"}, dynamics={"torque_Nm": 100,
+        "transmission_error_um": [0, 1, 0, 1, 0, 1, 0, 1], "speeds_rpm": SPEEDS}), "dynamics.transmission_error_um"),
+    ("dynamics TE table too short", _study(dynamics={"transmission_error_um": [0, 1, 0], "speeds_rpm": SPEEDS}),
+     "dynamics.fourier_order"),
+    ("train 101 speeds", _study(train_dynamics={"speeds_rpm": {"start": 1000, "stop": 2000, "step": 10}}),
+     "train_dynamics.speeds_rpm"),
+    ("YAML on as true", "study: s\npairs: [p]\nltca: {on: gear}\n", "ltca.True"),
     ("impact torque 1e12", _study(impact={"torques_Nm": [1.0e12]}), "impact.torques_Nm[0]"),
     ("impact lead slope 1e6", _study(impact={"torques_Nm": [100], "lead_slope_um": [0, 1.0e6]}),
      "impact.lead_slope_um[1]"),
@@ -290,7 +303,8 @@ def study_dir(tmp_path, monkeypatch):
 
 @pytest.mark.parametrize("config, field", [c[1:] for c in BAD_STUDIES], ids=[c[0] for c in BAD_STUDIES])
 def test_bad_study_config_is_refused(study_dir, capsys, config, field):
-    path = _write(study_dir / "study.yaml", {**config, "pairs_dir": "pairs"})
+    path = _write(study_dir / "study.yaml", config + "pairs_dir: pairs\n" if isinstance(config, str)
+                  else {**config, "pairs_dir": "pairs"})
     _refused(["validate", str(path)], capsys, study_dir, field)
 
 
@@ -359,6 +373,7 @@ SNAKEMAKE_CASES = [  # (file name, content, field): a handful, each Snakemake st
     ("twice.yaml", "study: s\nstudy: t\npairs: [seed001_pair1]\n", "study"),
     ("long.yaml", f"study: {'s' * 300}\npairs: [seed001_pair1]\n", "study"),
     ("nostudy.yaml", "pairs: [seed001_pair1]\n", "study"),
+    ("comparison.yaml", "study: s\npairs: [seed001_pair1]\ndynamics_comparison: {}\n", "dynamics_comparison"),
     ("bomb.yaml", "study: s\npairs: [seed001_pair1]\n" + ALIAS_BOMB.replace("name: p\n", ""), "file"),
 ]
 

@@ -50,8 +50,10 @@ def _schema_error(err: jsonschema.ValidationError) -> GearmeshInputError:
         extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
         if extra:
             allowed = sorted(err.schema.get("properties", {}))
+            hint = " (YAML 1.1 reads on/off/yes/no as true/false: quote the key, e.g. \"on\")" \
+                if isinstance(extra[0], bool) else ""
             return GearmeshInputError(".".join(path + [str(extra[0])]), instance[extra[0]],
-                                      f"unknown key; allowed keys are {allowed}")
+                                      f"unknown key{hint}; allowed keys are {allowed}")
     if err.validator == "required" and isinstance(instance, Mapping):
         missing = [k for k in err.validator_value if k not in instance]
         if missing:
@@ -235,6 +237,10 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
             for name in names:
                 check_load(geoms[name], pinion_torque(pairs[name], value, on), field, value)
 
+    stiffness = config["stiffness"]
+    if not 2 * stiffness["fourier_order"] < stiffness["positions"]:
+        raise GearmeshInputError("stiffness.fourier_order", stiffness["fourier_order"],
+                                 f"needs more than twice as many positions ({stiffness['positions']})")
     for section in ("stiffness", "stiffness_table", "slice_convergence"):
         if section in config:
             sec = config[section]
@@ -267,9 +273,17 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
             if name not in config["pairs"]:
                 raise GearmeshInputError(f"dynamics_comparison.couples[{k}]", couple, f"{name!r} is not a pair of "
                                          "the study's pairs")
+    if "dynamics_comparison" in config and "dynamics" not in config:
+        raise GearmeshInputError("dynamics_comparison", config["dynamics_comparison"],
+                                 "needs a dynamics section: it compares the pairs' speed sweeps")
+    if "ltca" in config and config.get("dynamics", {}).get("transmission_error_um") is not None:
+        raise GearmeshInputError("dynamics.transmission_error_um", config["dynamics"]["transmission_error_um"],
+                                 "must be null when the study runs the LTCA: the LTCA excites the dynamics")
     for section, train in (("dynamics", False), ("train_dynamics", True)):
         if section in config:
             sec = config[section]
+            points = config["ltca"]["positions"] if section == "dynamics" and "ltca" in config \
+                else config["stiffness"]["positions"]
             if sec.get("torque_Nm") is not None:
                 loads(section, "torque_Nm", sec.get("on", "gear"), config["pairs"])
             elif train and sec.get("static_force_N") is not None:  # normal force -> gear torque F r_b2 cos βb
@@ -280,7 +294,7 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
                     check_load(g, pinion_torque(pairs[name], t2, "gear"), f"{section}.static_force_N", force)
             for name in config["pairs"]:
                 with _section(section):
-                    check_dynamics_settings(pairs[name], sec, train=train)
+                    check_dynamics_settings(pairs[name], sec, train=train, excitation_points=points)
 
 
 def _check_impact(impact: Mapping[str, Any] | None) -> None:

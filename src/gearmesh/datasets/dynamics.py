@@ -134,11 +134,14 @@ MAX_SPEED_STEPS = 1_000_000_000
 #: Bytes of the k, e, de/dt phase tables of :func:`gearmesh.dynamics.simulate` (3 × meshes ×
 #: speeds × 2·max steps per period × 8 B), the largest array of a sweep.
 MAX_TABLE_BYTES = 1 << 30
+#: Most speeds of the 9-DOF train: it keeps the time series and spectra of every speed.
+MAX_TRAIN_SPEEDS = 50
 #: Coarse slice grid of the stiffness used only to estimate the step size (ω_max) up front.
 _ESTIMATE_SLICES, _ESTIMATE_POSITIONS = 16, 24
 
 
-def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: bool = False) -> None:
+def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: bool = False,
+                            excitation_points: int | None = None) -> None:
     """Check every setting of :func:`dynamics_dataset` (or :func:`train_dataset` with
     ``train``) for ``pair`` without simulating, and refuse a sweep whose work exceeds
     :data:`MAX_SPEED_STEPS` or whose tables exceed :data:`MAX_TABLE_BYTES`.
@@ -146,7 +149,9 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
     The model is built on a coarse slice stiffness (the step size depends on the maximum
     stiffness only; an LTCA excitation is of the same order), then
     :func:`gearmesh.dynamics.step_plan` gives the steps per speed (and refuses > 2e6).
-    GearmeshInputError names the setting (as in the config section).
+    ``excitation_points``: samples of k(t) over a mesh cycle the job will get (the stiffness
+    or LTCA positions); a Fourier form needs more than twice its order. GearmeshInputError
+    names the setting (as in the config section).
     """
     import inspect
 
@@ -154,6 +159,14 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
 
     s = dict(settings)
     solver = _solver(*(s.get(k, d) for k, d in _SOLVER_KEYS.items()))
+    order = s.get("fourier_order", 3)
+    if s.get("stiffness_form", "fourier") == "fourier" and isinstance(order, int):
+        for what, points in (("the excitation k(t)", excitation_points),
+                             ("transmission_error_um", len(s.get("transmission_error_um") or []) or None)):
+            if points is not None and not 2 * order < points:
+                raise GearmeshInputError("fourier_order", order, f"needs more than {2 * order} samples of {what} "
+                                         f"over a mesh cycle; it has {points}")
+    coarse = max(_ESTIMATE_POSITIONS, 2 * order + 2) if isinstance(order, int) else _ESTIMATE_POSITIONS
     if not train:
         speeds = speed_grid(s.get("speeds_rpm", DEFAULT_SPEEDS))
         try:
@@ -162,7 +175,7 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
             raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
         known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca"}
         model = build_pair_model(pair, **{k: v for k, v in s.items() if k in known},
-                                 slices=_ESTIMATE_SLICES, positions=_ESTIMATE_POSITIONS)
+                                 slices=_ESTIMATE_SLICES, positions=coarse)
     else:
         geom = pair_geometry(pair)
         require_dynamics_data(geom)
@@ -177,7 +190,10 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
             torque = _torque("static_force_N", s.get("static_force_N", SEED004_STATIC_FORCE_N)) \
                 * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
         backlash = s.get("backlash_um", 60.0)
-        K = mesh_stiffness(geom, n_positions=_ESTIMATE_POSITIONS, n_slices=_ESTIMATE_SLICES, components=False).K
+        if speeds.size > MAX_TRAIN_SPEEDS:
+            raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",
+                                     f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
+        K = mesh_stiffness(geom, n_positions=coarse, n_slices=_ESTIMATE_SLICES, components=False).K
         bearing = _bearing(*(s.get(f"bearing_{key}_{unit}", SEED001_BEARING[key]) for key, unit in (
             ("k_radial", "N_per_m"), ("k_axial", "N_per_m"), ("c_radial", "Ns_per_m"), ("c_axial", "Ns_per_m"))))
         model = train_model(geom, torque, K, bearing=bearing,
@@ -659,8 +675,9 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
         speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
     else:
         speeds = speed_grid(speeds_rpm)
-    if len(speeds) > 50:
-        raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds", "at most 50 for the train (series are kept)")
+    if len(speeds) > MAX_TRAIN_SPEEDS:
+        raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds",
+                                 f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
     K = _stiffness_curve(geom, stiffness, method, slices, positions)
     model = train_model(geom, torque, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                                           bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
