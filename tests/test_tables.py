@@ -18,3 +18,10 @@ def test_units_in_headers_and_reasons_for_blank_rows():
     assert list(df.columns) == ["beta [rad]", NOTE]
     assert df.loc[("p1", "backward"), NOTE] == "p1 backward: eps_beta < 1: none below it (impossible; design forward)"
     assert df.loc[("p2", "backward"), NOTE] == "" and df.loc[("p1", "forward"), "beta [rad]"] == 0.2
+
+
+def test_one_dimensional_table():
+    ds = xr.Dataset({"k": variable(("pair",), [1.0, 2.0], "N m-1", "stiffness")},
+                    coords={"pair": variable(("pair",), ["a", "b"], "1", "pair")})
+    df = table(ds)
+    assert list(df.columns) == ["k [N m-1]"] and list(df.index) == ["a", "b"] and df.index.name == "pair"

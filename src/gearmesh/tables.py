@@ -35,7 +35,7 @@ def table(ds: xr.Dataset) -> pd.DataFrame:
     if any(notes):
         df[NOTE] = notes
     df = df.rename(columns={c: _header(c, ds[c]) for c in df.columns if c in ds.variables})
-    df.index = df.index.rename([_header(n, ds[n]) if n in ds.variables else n for n in df.index.names])
+    df.index = df.index.set_names([_header(n, ds[n]) if n in ds.variables else n for n in df.index.names])
     return df
 
 
