@@ -191,3 +191,34 @@ def test_dataset_is_documented(root, tmp_path):
     assert set(ds["scenario"].values) == {2}
     table = impact_table_dataset([ds])
     np.testing.assert_allclose(table["reduction_percent"].values, 0.0)
+
+
+def test_random_modifications_give_a_resolved_impact_with_a_closing_velocity(case_model, case):
+    """Invariant over seed 000's design space: every crossing found is pinned down (h = 0) and
+    approached from above (closing rate > 0), its force finite and positive."""
+    rng = np.random.default_rng(7)
+    mn, b = case.pair.normal_module, case.face_width
+    n = 24
+    params = np.zeros((n, 2, 6))
+    params[:, 0] = np.column_stack([rng.uniform(0.001, 0.015, n) * mn, rng.uniform(0.001, 0.015, n) * mn,
+                                    rng.uniform(0.1, 0.8, n) * mn, rng.uniform(0.1, 0.8, n) * mn,
+                                    rng.uniform(0.001, 0.015, n) * mn, rng.uniform(0.01, 0.5, n) * b])
+    st = impact_static(case_model, [400, 1600], params)
+    st, rs = impact_response(case_model, st, [5000])
+    found = st.scenario > 0
+    assert found.mean() > 0.9
+    assert np.all(st.slope[found] > 0)
+    assert np.all(np.isfinite(rs.force[found]) & (rs.force[found] > 0))
+    assert np.all(rs.fit_error[found] < 0.3)
+
+
+def test_convergence_in_local_slices(case):
+    """The F–δ curve of the entering pair converges as its slices are refined."""
+    forces = []
+    for local in (150, 300, 600, 1200):
+        model = impact_model(case, points=POINTS, window_positions=40, face_samples=129, local_points=local,
+                             local_keep=local)
+        st, rs = impact_response(model, impact_static(model, [400]), [5000])
+        forces.append(float(rs.force_energy_balance[0, 0, 0]))
+    steps = np.abs(np.diff(forces))
+    assert steps[-1] < 0.6 * steps[0] and steps[-1] < 0.02 * forces[-1]

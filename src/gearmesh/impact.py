@@ -72,7 +72,7 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import PairGeometry
-from .ltca import LTCAModel, ContactLaw, ltca_model, point_compliance, solve_contact, _invert
+from .ltca import LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance, solve_contact, _invert
 from .surface import body_rotation, flank_point, modification_parameters, relief_depth
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, basis_gap, candidate_grid,
                   engagement_point, point_centres, separation_basis)
@@ -171,6 +171,9 @@ class ImpactModel:
     z_fine: np.ndarray
     enter_fine_basis: object
     points: int
+    local_points: int
+    local_keep: int
+    local_law: ContactLaw
     inertia: np.ndarray
     equivalent_mass: float
     lead_slope: tuple[float, float]
@@ -217,7 +220,8 @@ def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
 def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), contact_law_name: str = "palmgren",
                  method: str = "transition", extension: float = 0.25, driver: str = "pinion",
                  added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 32, face_samples: int = 257,
-                 cycle_positions: int = 32, ltca: LTCAModel | None = None) -> ImpactModel:
+                 cycle_positions: int = 32, local_points: int = 600, local_keep: int = 600,
+                 ltca: LTCAModel | None = None) -> ImpactModel:
     """Prepare the impact objective of ``geom`` (its modification is only the default).
 
     Parameters
@@ -231,6 +235,11 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
     window_positions : grid rolls over the search window (−extension … +1 base pitch).
     face_samples : samples of the entering line over the face for min_z (refined by a parabola).
     cycle_positions : rolls per mesh cycle of the LTCA grid kept for :func:`ltca_metrics`.
+    local_points, local_keep : slices of the entering line for its local stiffness, and how
+        many of them (those closest to contact) are loaded. The F–δ curve of an edge contact
+        spreads along the line (separations growing like |z − z_M|), and converges only when a
+        slice's separation step is small against the impact's approach: hundreds of slices,
+        more than the LTCA's ``points`` (test ``test_convergence_in_local_slices``).
     ltca : a prepared LTCA model (its grid is the one :func:`ltca_metrics` uses).
     """
     if driver not in DRIVERS:
@@ -240,7 +249,8 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
         raise GearmeshInputError("added_inertia_kg_m2", list(np.atleast_1d(added)),
                                  "must be two finite, non-negative inertias [pinion, gear] (kg m²)")
     for name, value, low, high in (("window_positions", window_positions, 8, 10000),
-                                   ("face_samples", face_samples, 9, 100000)):
+                                   ("face_samples", face_samples, 9, 100000), ("local_points", local_points, 2, 100000),
+                                   ("local_keep", local_keep, 2, 100000)):
         if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
             raise GearmeshInputError(name, value, f"must be an integer in [{low}, {high}]")
     if ltca is None:
@@ -271,7 +281,10 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
                        z_corner=z_c, extension=ext, tau=tau, window_basis=basis_others,
                        window_z=np.broadcast_to(grid.z, grid.s.shape), window_compliance=comp_all,
                        window_enter_column=col, window_all_basis=basis_all, window_all_compliance=comp_all,
-                       z_fine=z_fine, enter_fine_basis=fine, points=int(points), inertia=inertia,
+                       z_fine=z_fine, enter_fine_basis=fine, points=int(points), local_points=int(local_points),
+                       local_keep=int(local_keep),
+                       local_law=contact_law(geom, geom.face_width / local_points, ltca.law.name) if ltca.law.name != "linear"
+                       else ContactLaw("linear", 0.0, 1.0, 0.0, geom.face_width / local_points), inertia=inertia,
                        equivalent_mass=equivalent_mass(geom, inertia), lead_slope=tuple(float(v) for v in lead_slope))
 
 
@@ -282,24 +295,30 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
 
 def _parabolic_min(values: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Minimum over the last axis of samples ``values`` at equally spaced ``x``, refined by the
-    parabola through the smallest sample and its neighbours (interior minima only).
-    Returns (minimum, its x); NaN where every sample is NaN."""
+    parabola through the three samples centred on the smallest one (the end triple at either
+    end, so the refined minimum does not jump when the smallest sample reaches an end); the
+    vertex is used when it lies within that triple, else the smallest sample. Returns
+    (minimum, its x); NaN where every sample is NaN."""
     v = np.where(np.isfinite(values), values, np.inf)
+    n = v.shape[-1]
     k = np.argmin(v, axis=-1)
     vk = np.take_along_axis(v, k[..., None], -1)[..., 0]
-    n = v.shape[-1]
-    km, kp = np.clip(k - 1, 0, n - 1), np.clip(k + 1, 0, n - 1)
-    vm = np.take_along_axis(v, km[..., None], -1)[..., 0]
-    vp = np.take_along_axis(v, kp[..., None], -1)[..., 0]
+    kc = np.clip(k, 1, n - 2)
+
+    def at(i):
+        return np.take_along_axis(v, i[..., None], -1)[..., 0]
+
+    vm, v0, vp = at(kc - 1), at(kc), at(kc + 1)
     h = x[1] - x[0]
-    interior = (k > 0) & (k < n - 1) & np.isfinite(vm) & np.isfinite(vp)
     with np.errstate(invalid="ignore", divide="ignore"):
-        curv = vm - 2 * vk + vp
-        off = np.where(interior & (curv > 0), 0.5 * (vm - vp) / np.where(curv > 0, curv, 1.0), 0.0)
-        off = np.clip(off, -0.5, 0.5)
-        vmin = vk - 0.25 * (vm - vp) * off
-    vmin = np.where(np.isinf(vk), np.nan, vmin)
-    return vmin, x[k] + off * h
+        curv = vm - 2 * v0 + vp
+        off = 0.5 * (vm - vp) / np.where(curv > 0, curv, 1.0)
+        inside = np.isfinite(vm + v0 + vp) & (curv > 0) & (np.abs(off) <= 1.0)
+        vertex = v0 - 0.25 * (vm - vp) * off
+    use = inside & (vertex < vk)
+    vmin = np.where(use, vertex, vk)
+    xmin = np.where(use, x[kc] + off * h, x[k])
+    return np.where(np.isinf(vk), np.nan, vmin), xmin
 
 
 def _enter_gap(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
@@ -364,7 +383,8 @@ class ImpactStatic:
     region; ``te_engagement`` the entering pair's separation at the theoretical engagement
     (m; seed 000's TE(φ1A)), ``lte_engagement`` the approach of all pairs there (LTE(φ1A));
     ``curve_force`` / ``curve_approach`` (C, T, K) the F–δ curve of the entering pair alone
-    from M (N, m; F = 0 at δ = 0 implied).
+    from M (N, m; F = 0 at δ = 0 implied), from the separations and compliances of its
+    slices ``curve_separation`` / ``curve_compliance`` (C, T, L).
     """
 
     torque: np.ndarray
@@ -385,6 +405,8 @@ class ImpactStatic:
     curve_force: np.ndarray
     curve_approach: np.ndarray
     params: np.ndarray
+    curve_separation: np.ndarray
+    curve_compliance: np.ndarray
 
     @property
     def slope(self) -> np.ndarray:
@@ -439,15 +461,26 @@ def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
 
 
 def _enter_points(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
-    """Gaps (C, T, N) and compliances of the entering pair's LTCA points at ``tau`` (C, T)."""
+    """The entering pair's line at the touch ``tau`` (C, T), discretised for its local stiffness:
+    ``local_points`` equal slices over the face, of which the ``local_keep`` with the smallest
+    separation from the first to touch are kept (the others cannot load within the curve,
+    checked by :func:`impact_response`). Returns separations relative to the first point to touch
+    (C, T, K) and compliances (m/N) of those slices."""
     g = model.geom
-    z, dz = point_centres(g, model.points)
+    z, dz = point_centres(g, model.local_points)
     s = model.s_enter(tau[..., None], z)
     basis = separation_basis(g, s, np.inf)
     gap = basis_gap(g, basis, z, model.lead_slope, params[:, None, None, :, :])
     comp = point_compliance(g, model.ltca.pair_table, model.ltca.tables, s, basis.region, basis.rho_pinion,
                             basis.rho_gear, with_hertz=model.ltca.law.name == "linear") / dz
-    return gap, comp
+    gap = np.where(np.isfinite(gap), gap, np.inf)
+    keep = min(model.local_keep, gap.shape[-1])
+    idx = np.argpartition(gap, keep - 1, axis=-1)[..., :keep]
+    gap_k = np.take_along_axis(gap, idx, -1)
+    comp_k = np.take_along_axis(comp, idx, -1)
+    with np.errstate(invalid="ignore"):
+        rel = gap_k - gap_k.min(axis=-1, keepdims=True)
+    return rel, comp_k
 
 
 def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 40,
@@ -468,31 +501,38 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     nc, nt = params.shape[0], force.size
     t_star, found, at_start, te0 = _crossing(model, params, force)
     if np.any(at_start):
-        import warnings
         warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
                       "raise corner_extension", RuntimeWarning, stacklevel=2)
     tt = np.where(found, t_star, 0.0)
     pc = np.broadcast_to(params[:, None], (nc, nt, 2, 6)).reshape(-1, 2, 6)
-    # Newton on h = g − δ with the exact δ of the other pairs, h and its slope from one stacked
-    # evaluation at τ − ε, τ, τ + ε; the rates are those at the converged touch (δ_others may
-    # have a kink nearby, where a point of the pairs in mesh unloads)
+    # Newton on h = g − δ with the exact δ of the other pairs; h and its rate from one stacked
+    # evaluation at τ − 2ε, τ − ε, τ: the one-sided (second-order) difference from the approach
+    # side is the closing rate just before the touch, positive at any crossing from above even
+    # where min_z g or δ_others has a kink (a point of the pairs in mesh unloading, the
+    # minimum jumping along the face)
     eps = 1e-6 * g.transverse_base_pitch
-    offsets = np.array([-eps, 0.0, eps])[:, None, None]
+    offsets = np.array([-2 * eps, -eps, 0.0])[:, None, None]
     pcs = np.broadcast_to(pc, (3,) + pc.shape).reshape(-1, 2, 6)
+
+    def back(a):
+        return (3 * a[2] - 4 * a[1] + a[0]) / (2 * eps)
+
     for _ in range(6):
         stack = tt[None] + offsets
         gap3, z3 = (v.reshape(3, nc, nt) for v in _enter_gap(model, pcs, stack.reshape(-1)))
         d3 = _approach_at(model, params, force[None, :], stack, others=True)
-        resid = gap3[1] - d3[1]
-        dh = ((gap3[2] - d3[2]) - (gap3[0] - d3[0])) / (2 * eps)
-        if np.all(~found | (np.abs(resid) <= 1e-13)):
+        resid = gap3[2] - d3[2]
+        dh = back(gap3 - d3)
+        converged = np.abs(resid) <= 1e-13
+        if np.all(~found | converged):
             break
         with np.errstate(invalid="ignore", divide="ignore"):
             step = np.where(found & (dh < 0) & np.isfinite(resid), resid / dh, 0.0)
         tt = tt - np.clip(step, -eps * 1e3, eps * 1e3)
-    gap_m, z_m, delta = gap3[1], z3[1], d3[1]
-    gap_rate = -(gap3[2] - gap3[0]) / (2 * eps)
-    approach_rate = (d3[2] - d3[0]) / (2 * eps)
+    found = found & (np.abs(resid) <= 1e-12)  # a crossing Newton could not pin down is no impact
+    gap_m, z_m, delta = gap3[2], z3[2], d3[2]
+    gap_rate = -back(gap3)
+    approach_rate = back(d3)
     s_m = model.s_enter(tt, z_m)
     bm = separation_basis(g, s_m, np.inf)
     region = np.where(found, bm.region, 0).astype(np.int8)
@@ -502,10 +542,8 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     # TE and LTE at the theoretical engagement (τ = 0, a window roll)
     lte0 = _approach_at(model, params, force[None, :], np.zeros((1, nc, nt)), others=False)[0]
     # F–δ curve of the entering pair alone from M
-    gaps, comp = _enter_points(model, params, tt)
-    # separations from the first point to touch (the LTCA point nearest M; → M as points → ∞)
-    with np.errstate(invalid="ignore"):
-        rel = gaps - np.nanmin(np.where(np.isfinite(gaps), gaps, np.nan), axis=-1, keepdims=True)
+    # separations from the first slice to touch (→ M as local_points → ∞)
+    rel, comp = _enter_points(model, params, tt)
     fmax = 4.0 * force[None, :] * np.ones((nc, 1)) if curve_force_max is None else \
         np.broadcast_to(np.asarray(curve_force_max, dtype=float), (nc, nt))
     cf, ca = _force_curve(model, rel, comp, fmax, curve_levels)
@@ -518,7 +556,8 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
                         approach_rate=approach_rate, s=s_m, z=z_m,
                         rho_pinion=np.where(found, bm.rho_pinion, np.nan), rho_gear=np.where(found, bm.rho_gear, np.nan),
                         region=region, te_engagement=np.broadcast_to(te0[:, None], (nc, nt)).copy(),
-                        lte_engagement=lte0, curve_force=cf, curve_approach=ca, params=params)
+                        lte_engagement=lte0, curve_force=cf, curve_approach=ca, params=params,
+                        curve_separation=rel, curve_compliance=comp)
 
 
 def _without_column(basis: SeparationBasis, column: int) -> SeparationBasis:
@@ -567,7 +606,7 @@ def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, fmax: np
     ok = np.isfinite(gap).any(axis=1)
     d = np.full(ff.shape, np.nan)
     if ok.any():
-        _, dd, _, _ = solve_contact(gap[ok], np.where(np.isfinite(cmp_[ok]), cmp_[ok], 1.0), ff[ok], model.ltca.law)
+        _, dd, _, _ = solve_contact(gap[ok], np.where(np.isfinite(cmp_[ok]), cmp_[ok], 1.0), ff[ok], model.local_law)
         d[ok] = dd
     return f, d.reshape(nc, nt, frac.size)
 
@@ -692,11 +731,19 @@ def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
     ek = 0.5 * m * (vt if energy_velocity == "transverse" else vn) ** 2
     for _ in range(8):
         f_eb, d_eb = energy_balance(static.curve_approach, static.curve_force, ek)
-        short = np.isnan(f_eb) & (ek > 0) & np.isfinite(static.slope)[..., None]
+        short = (np.isnan(f_eb) & (ek > 0) & np.isfinite(static.slope)[..., None]).any(axis=-1)
         if not short.any():
             break
-        fmax = static.curve_force[..., -1] * np.where(short.any(axis=-1), 8.0, 1.0)
-        static = impact_static(model, static.torque, static.params, static.curve_force.shape[-1], fmax)
+        # extend the F–δ curve of the rows that do not reach the impact's energy (8× the load)
+        cf, ca = np.array(static.curve_force), np.array(static.curve_approach)
+        f_new, d_new = _force_curve(model, static.curve_separation[short][None], static.curve_compliance[short][None],
+                                    8.0 * cf[short][None, :, -1], cf.shape[-1])
+        cf[short], ca[short] = f_new[0], d_new[0]
+        static = replace(static, curve_force=cf, curve_approach=ca)
+    reach = np.nanmax(np.where(np.isfinite(static.curve_separation), static.curve_separation, np.nan), axis=-1)
+    if np.any(d_eb > reach[..., None]):
+        warnings.warn("impact: the impact's approach reaches beyond the slices kept for the local stiffness; "
+                      "raise local_keep", RuntimeWarning, stacklevel=2)
     zero = ek <= 0
     f_eb = np.where(zero, 0.0, f_eb)
     d_eb = np.where(zero, 0.0, d_eb)
