@@ -7,16 +7,19 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
 
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import Modification, load_pair, pair_geometry
+from gearmesh.gear import Material, Modification, load_pair, pair_geometry
 from gearmesh.impact import (SCENARIOS, closed_form_force, energy_balance, fit_power_law, impact_model,
                              impact_response, impact_static, seed_edge_roll, simulate_engagement, vector_velocity)
 from gearmesh.io import write_dataset, add_provenance
 
 from conftest import ROOT
 from pairs import seed001_pair1
+from test_contact import geometry_or_skip, valid_pairs
 
 ROOT_PAIR = "config/pairs/seed000_case.yaml"
 POINTS = 24
@@ -222,3 +225,23 @@ def test_convergence_in_local_slices(case):
         forces.append(float(rs.force_energy_balance[0, 0, 0]))
     steps = np.abs(np.diff(forces))
     assert steps[-1] < 0.6 * steps[0] and steps[-1] < 0.02 * forces[-1]
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
+@given(valid_pairs(), st.floats(0.05, 1.0))
+def test_random_pairs_crossing_equals_seed_equation_and_velocities_agree(pair, load):
+    """Over random valid unmodified pairs: the crossing is seed 000's (corrected) reverse-rotation
+    solution, the scenario is an edge, and the vector form equals the closing rate."""
+    r = np.array(pair.teeth) * pair.normal_module / (2 * math.cos(pair.helix_angle))
+    pair = pair.with_changes(bore_radius=tuple(0.3 * r), material=Material(210e9, 0.3, 7850.0))
+    geom = geometry_or_skip(pair)
+    model = impact_model(geom, points=12, window_positions=24, face_samples=65, local_points=60, local_keep=60)
+    # a torque giving a line load of `load` × 300 N/mm
+    torque = load * 300e3 * geom.face_width * float(geom.base_radius[0])
+    st_ = impact_static(model, [torque])
+    assume(st_.scenario[0, 0] > 0)
+    assert SCENARIOS[int(st_.scenario[0, 0])] == "edge"
+    assert -float(st_.tau[0, 0]) == pytest.approx(seed_edge_roll(geom, float(st_.approach[0, 0])), rel=1e-6, abs=1e-11)
+    st_, rs = impact_response(model, st_, [3000])
+    vec = vector_velocity(model, st_, 3000.0)
+    assert vec["transverse_equivalent"] == pytest.approx(float(rs.velocity_transverse[0, 0, 0]), rel=1e-3)

@@ -741,7 +741,7 @@ def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
         cf[short], ca[short] = f_new[0], d_new[0]
         static = replace(static, curve_force=cf, curve_approach=ca)
     reach = np.nanmax(np.where(np.isfinite(static.curve_separation), static.curve_separation, np.nan), axis=-1)
-    if np.any(d_eb > reach[..., None]):
+    if static.curve_separation.shape[-1] < model.local_points and np.any(d_eb > reach[..., None]):
         warnings.warn("impact: the impact's approach reaches beyond the slices kept for the local stiffness; "
                       "raise local_keep", RuntimeWarning, stacklevel=2)
     zero = ek <= 0
