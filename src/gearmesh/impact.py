@@ -220,7 +220,7 @@ def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
 def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), contact_law_name: str = "palmgren",
                  method: str = "transition", extension: float = 0.25, driver: str = "pinion",
                  added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 32, face_samples: int = 257,
-                 cycle_positions: int = 32, local_points: int = 600, local_keep: int = 600,
+                 cycle_positions: int = 32, local_points: int = 400, local_keep: int = 400,
                  ltca: LTCAModel | None = None) -> ImpactModel:
     """Prepare the impact objective of ``geom`` (its modification is only the default).
 
@@ -483,14 +483,14 @@ def _enter_points(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
     return rel, comp_k
 
 
-def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 40,
-                  curve_force_max=None) -> ImpactStatic:
+def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 48,
+                  curve_force_min=None) -> ImpactStatic:
     """The speed-independent part of the impact for pinion torques ``torques`` (N m) and
     modification parameter sets ``params`` ((C, 2, 6) m; default the pair's own).
 
-    ``curve_levels`` loads of the entering pair's F–δ curve, geometric up to
-    ``curve_force_max`` (N, (C, T) or scalar; default 4·F_bt) — :func:`impact_response`
-    extends it where an impact needs more.
+    ``curve_levels`` approaches of the entering pair's F–δ curve, geometric up to one at which
+    it carries at least ``curve_force_min`` (N, (C, T) or scalar; default 4·F_bt) —
+    :func:`impact_response` extends it where an impact needs more.
     """
     from .ltca import check_torques
 
@@ -544,9 +544,9 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     # F–δ curve of the entering pair alone from M
     # separations from the first slice to touch (→ M as local_points → ∞)
     rel, comp = _enter_points(model, params, tt)
-    fmax = 4.0 * force[None, :] * np.ones((nc, 1)) if curve_force_max is None else \
-        np.broadcast_to(np.asarray(curve_force_max, dtype=float), (nc, nt))
-    cf, ca = _force_curve(model, rel, comp, fmax, curve_levels)
+    fmin = 4.0 * force[None, :] * np.ones((nc, 1)) if curve_force_min is None else \
+        np.broadcast_to(np.asarray(curve_force_min, dtype=float), (nc, nt))
+    cf, ca = _force_curve(model, rel, comp, _curve_reach(model, comp, fmin), curve_levels)
     nan = ~found
     for arr in (delta, gap_rate, approach_rate, s_m, z_m):
         arr[nan] = np.nan
@@ -593,22 +593,26 @@ def _window_pairs(model: ImpactModel) -> np.ndarray:
     return model.pair_enter - model.window_enter_column + np.arange(n)
 
 
-def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, fmax: np.ndarray, levels: int):
-    """F–δ of the entering pair alone: loads (C, T, K) geometric from 1e-4·fmax to fmax and the
-    approaches they cause from the touch (separations ``rel`` relative to M)."""
-    nc, nt, n = rel.shape
-    frac = np.geomspace(1e-4, 1.0, int(levels))
-    f = fmax[..., None] * frac  # (C, T, K)
-    gap = np.broadcast_to(rel[:, :, None, :], (nc, nt, frac.size, n)).reshape(-1, n)
-    cmp_ = np.broadcast_to(comp[:, :, None, :], (nc, nt, frac.size, n)).reshape(-1, n)
-    ff = np.where(np.isfinite(f), f, 1.0).reshape(-1)
-    gap = np.where(np.isfinite(gap), gap, np.inf)
-    ok = np.isfinite(gap).any(axis=1)
-    d = np.full(ff.shape, np.nan)
-    if ok.any():
-        _, dd, _, _ = solve_contact(gap[ok], np.where(np.isfinite(cmp_[ok]), cmp_[ok], 1.0), ff[ok], model.local_law)
-        d[ok] = dd
-    return f, d.reshape(nc, nt, frac.size)
+def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, dmax: np.ndarray, levels: int):
+    """F–δ of the entering pair alone: approaches (C, T, K) geometric from 1e-5·dmax to dmax and
+    the force each causes, F(δ) = Σ q_i(δ − e_i) with every slice's own law inverted directly
+    (separations ``rel`` e_i from the first slice to touch; no load solve needed this way round)."""
+    law = model.local_law
+    frac = np.geomspace(1e-5, 1.0, int(levels))
+    d = dmax[..., None] * frac  # (C, T, K)
+    x = d[..., None] - rel[..., None, :]  # (C, T, K, L)
+    c = np.where(np.isfinite(comp), comp, 1.0)[..., None, :] + law.linear
+    x = np.where(np.isfinite(x), x, -1.0)
+    q, _ = _invert(x, np.broadcast_to(c, x.shape), law.coefficient, law.exponent)
+    return q.sum(axis=-1), d
+
+
+def _curve_reach(model: ImpactModel, comp: np.ndarray, force: np.ndarray) -> np.ndarray:
+    """An approach (m) at which the entering pair carries at least ``force`` (N): the first
+    slice alone carrying all of it (the bound :func:`gearmesh.ltca.solve_contact` starts from)."""
+    law = model.local_law
+    c0 = np.nanmin(np.where(np.isfinite(comp), comp, np.inf), axis=-1) + law.linear
+    return c0 * force + (law.coefficient * force**law.exponent if law.coefficient else 0.0)
 
 
 # --------------------------------------------------------------------------------------
@@ -734,10 +738,10 @@ def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
         short = (np.isnan(f_eb) & (ek > 0) & np.isfinite(static.slope)[..., None]).any(axis=-1)
         if not short.any():
             break
-        # extend the F–δ curve of the rows that do not reach the impact's energy (8× the load)
+        # extend the F–δ curve of the rows that do not reach the impact's energy (4× the approach)
         cf, ca = np.array(static.curve_force), np.array(static.curve_approach)
         f_new, d_new = _force_curve(model, static.curve_separation[short][None], static.curve_compliance[short][None],
-                                    8.0 * cf[short][None, :, -1], cf.shape[-1])
+                                    4.0 * ca[short][None, :, -1], cf.shape[-1])
         cf[short], ca[short] = f_new[0], d_new[0]
         static = replace(static, curve_force=cf, curve_approach=ca)
     reach = np.nanmax(np.where(np.isfinite(static.curve_separation), static.curve_separation, np.nan), axis=-1)
