@@ -1,4 +1,4 @@
-# gearmesh workflow: pair.yaml -> geometry -> contact_lines -> ... (see DESIGN.md).
+# gearmesh workflow: pair.yaml -> geometry -> contact_lines -> ... (see docs/architecture.md).
 # Run the default study:   snakemake --cores 2
 # Run another study:       snakemake --cores 2 --configfile config/studies/NAME.yaml
 import sys

@@ -1,7 +1,7 @@
 """Contact lines in the plane of action (gearmesh.contact): physics invariants.
 
 The numeric total length (exactly clipped lines summed) is checked against independent
-closed forms (l_mean = b εα / cos βb, DESIGN.md; min/max of seed 001 §1) over random valid
+closed forms (l_mean = b εα / cos βb, docs/modelling.md; min/max of seed 001 §1) over random valid
 pairs; the 3-D end points are checked against the involute-helicoid equations (seed 002).
 """
 
@@ -76,7 +76,7 @@ def test_total_length_mean_min_max_match_closed_form(pair):
     geom = geometry_or_skip(pair)
     mean, lo, hi = contact_length_closed_form(geom)
     b = geom.face_width
-    # l_mean = b εα / cos βb (DESIGN.md), independent of εβ
+    # l_mean = b εα / cos βb (docs/modelling.md), independent of εβ
     assert mean == pytest.approx(b * geom.eps_alpha / math.cos(geom.base_helix_angle), rel=1e-12)
     # Exact numeric extremes: L is piecewise linear, evaluated at every slope change.
     s = contact_length_summary(geom, n_positions=2000)

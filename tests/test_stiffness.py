@@ -57,7 +57,7 @@ def test_hertz_in_the_transverse_convention_is_projected_by_cos_beta_b(p1):
 
 def test_sainsot_coefficients_match_the_table_by_hand():
     hf, th = 1.57, 0.11
-    # L* by hand from the DESIGN.md row
+    # L* by hand from the docs/modelling.md row
     l_hand = -5.574e-5 / th**2 - 1.9986e-3 * hf**2 - 2.3015e-4 * hf / th + 4.7702e-3 / th + 0.0271 * hf + 6.8045
     m_hand = 60.111e-5 / th**2 + 28.100e-3 * hf**2 - 83.431e-4 * hf / th - 9.9256e-3 / th + 0.1624 * hf + 0.9086
     p_hand = -50.952e-5 / th**2 + 185.50e-3 * hf**2 + 0.0538e-4 * hf / th + 53.300e-3 / th + 0.2895 * hf + 0.9236
@@ -275,7 +275,7 @@ def test_clip_rule_sums_contact_length_exactly_for_random_pairs(beta, b, z1, han
     target = contact_lines(geom, roll).total_length * math.cos(geom.base_helix_angle)
     got = st.line_slice_sum(geom, roll, n, np.ones_like, rule="clip").sum(axis=1)
     assert np.allclose(got, target, rtol=1e-11, atol=1e-14)
-    # the mean total length is b·εα/cos βb (DESIGN.md), in the transverse width b·εα
+    # the mean total length is b·εα/cos βb (docs/modelling.md), in the transverse width b·εα
     fine = mesh_cycle_rolls(geom, 4096)
     mean = st.line_slice_sum(geom, fine, n, np.ones_like, rule="clip").sum(axis=1).mean()
     assert mean == pytest.approx(geom.face_width * geom.eps_alpha, rel=2e-3 if beta < 1 else 1e-6)

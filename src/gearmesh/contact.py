@@ -162,7 +162,7 @@ def contact_length_closed_form(geom: PairGeometry) -> tuple[float, float, float]
     window of length f_α with a periodic set of duty f_β, ranges over
     [max(0, f_α + f_β − 1), min(f_α, f_β)] (derivation in docs of seed 001 §1, written out
     here because the document only names the piecewise phases). The mean is exactly
-    l_mean = b ε_α / cos βb (DESIGN.md). For β = 0: L ∈ {⌊ε_α⌋b, ⌈ε_α⌉b}.
+    l_mean = b ε_α / cos βb (docs/modelling.md). For β = 0: L ∈ {⌊ε_α⌋b, ⌈ε_α⌉b}.
     """
     ea, eb = geom.eps_alpha, geom.eps_beta
     b = geom.face_width

@@ -98,7 +98,7 @@ Solver
 speed: m_i steps per mesh period, m_i = max(m_min, ⌈T_mesh/Δt_max⌉), Δt_max = c/ω_max
 (ω_max the highest natural frequency of the linearised model at the maximum stiffness,
 c = 0.25 by default), so the mesh phase of every step is exact and k, e are tabulated once
-per speed. Transients are discarded by physical time (DESIGN.md): the run starts from the
+per speed. Transients are discarded by physical time (docs/modelling.md): the run starts from the
 static equilibrium at the mean stiffness, integrates ⌈n_τ/(σ_min T_mesh)⌉ mesh periods with
 σ_min = min(−Re λ) over the modes of the linearised model (n_τ = 10, i.e. transients decay
 to e^-10 of their start), then records n_rec whole mesh periods (8). Speeds with fewer

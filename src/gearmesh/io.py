@@ -1,4 +1,4 @@
-"""netCDF output with CF-style attributes, provenance and atomic writes (DESIGN.md).
+"""netCDF output with CF-style attributes, provenance and atomic writes (docs/modelling.md).
 
 Every variable must carry ``units`` and ``long_name``; :func:`write_dataset` refuses a
 dataset that does not, so no stage can write an undocumented number.

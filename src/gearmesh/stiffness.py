@@ -22,7 +22,7 @@ thesis, U. Alberta; Chaari, Fakhfakh & Haddar 2009, Eur. J. Mech. A 28:461)::
 from the cantilever root y_root to y_P; the moment arm x_P is the real half-thickness
 at the contact point. The fillet-foundation (body) compliance is Sainsot, Velex &
 Duverger (2004, J. Mech. Des. 126:748) per unit width, and the local (Hertz) contact
-is πE/(4(1−ν²)) per unit length of contact line (DESIGN.md; seed 003).
+is πE/(4(1−ν²)) per unit length of contact line (docs/modelling.md; seed 003).
 
 The three cantilever models (``method``):
 
@@ -87,7 +87,7 @@ contact_roll_positions; the line ends are rounded to whole slices, error O(Δz))
 'clip' (default) clips the end slices to the active zone (error O(Δz²); then 200 slices
 are within 1e-6 of the limit for seed 001 pair 1, where 'centre' needs ~1000 for 1e-3).
 
-Speed (DESIGN.md): each gear's slice compliance is evaluated by Gauss–Legendre at a few
+Speed (docs/modelling.md): each gear's slice compliance is evaluated by Gauss–Legendre at a few
 hundred roll lengths once (:func:`slice_compliance_table`), resampled as one pair table on
 a fine uniform grid of s (:func:`pair_slice_table`); the mesh is then interpolation and
 sums over the runs of slices in contact (:func:`mesh_stiffness`). The straightforward
@@ -125,7 +125,7 @@ COMPONENTS = ("bending", "shear", "axial", "fillet")
 SHEAR_FACTOR = 1.2  # Timoshenko shear coefficient of a rectangular section (Yang & Lin 1987)
 
 #: Sainsot, Velex & Duverger (2004) Table: rows L*, M*, P*, Q*; columns A…F of
-#: X* = A/θf² + B·hf² + C·hf/θf + D/θf + E·hf + F (DESIGN.md).
+#: X* = A/θf² + B·hf² + C·hf/θf + D/θf + E·hf + F (docs/modelling.md).
 SAINSOT_COEFFICIENTS = np.array([
     [-5.574e-5, -1.9986e-3, -2.3015e-4, 4.7702e-3, 0.0271, 6.8045],
     [60.111e-5, 28.100e-3, -83.431e-4, -9.9256e-3, 0.1624, 0.9086],
@@ -171,7 +171,7 @@ def _check_method(method: str) -> str:
 def hertz_stiffness_per_width(youngs_modulus: float, poisson_ratio: float) -> float:
     """Hertzian line-contact stiffness per unit contact-line length, k_h0 = πE/(4(1−ν²)).
 
-    Yang & Sun (1985); DESIGN.md and seed 003 (two bodies of the same material).
+    Yang & Sun (1985); docs/modelling.md and seed 003 (two bodies of the same material).
 
     Parameters
     ----------
@@ -188,7 +188,7 @@ def hertz_stiffness_per_width(youngs_modulus: float, poisson_ratio: float) -> fl
 def sainsot_coefficients(h_f: float, theta_f: float) -> np.ndarray:
     """The four coefficients (L*, M*, P*, Q*) of Sainsot, Velex & Duverger (2004).
 
-    X* = A/θf² + B·hf² + C·hf/θf + D/θf + E·hf + F with the table of DESIGN.md (seed 003
+    X* = A/θf² + B·hf² + C·hf/θf + D/θf + E·hf + F with Sainsot's table (:data:`SAINSOT_COEFFICIENTS`; seed 003
     prints A·θf² and D·θf, a typo: the fitted variables are 1/θf² and 1/θf).
 
     Parameters
@@ -206,7 +206,7 @@ def fillet_foundation_compliance(load_angle, u_f, s_f: float, theta_f: float, h_
 
         c_f = cos²α_m / E · [L*(u_f/S_f)² + M*(u_f/S_f) + P*(1 + Q*·tan²α_m)]
 
-    (DESIGN.md with the width L = 1: the compliance of a slice of width Δz is c_f/Δz.)
+    (docs/modelling.md with the width L = 1: the compliance of a slice of width Δz is c_f/Δz.)
 
     Parameters
     ----------
@@ -974,7 +974,7 @@ def fourier_fit(values, order: int = 3) -> FourierFit:
 
 
 def iso6336_stiffness(geom: PairGeometry) -> dict[str, float]:
-    """ISO 6336-1 (method B) single and mesh stiffness (DESIGN.md formulas).
+    """ISO 6336-1 (method B) single and mesh stiffness (docs/modelling.md formulas).
 
     q' = 0.04723 + 0.15551/zn1 + 0.25791/zn2 − 0.00635x1 − 0.11654x1/zn1 − 0.00193x2
          − 0.24188x2/zn2 + 0.00529x1² + 0.00182x2²   (mm·µm/N),  c'th = 1/q',
