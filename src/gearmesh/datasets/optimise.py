@@ -7,6 +7,7 @@ variable carries ``units`` and ``long_name``. The optimisation: :mod:`gearmesh.o
 from __future__ import annotations
 
 import json
+import warnings
 from typing import Any, Mapping
 
 import numpy as np
@@ -108,6 +109,13 @@ def _objective_units(result: OptimisationResult) -> tuple[str, str]:
     return "N", "mesh-in impact force F_s at the design torque and speed"
 
 
+def _nanmedian(values: np.ndarray) -> np.ndarray:
+    """Median of each generation over the evaluated candidates (NaN: padding of a short batch)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # an all-padding generation gives NaN
+        return np.nanmedian(values, axis=1)
+
+
 def _history_variables(result: OptimisationResult, prefix: str, label: str) -> dict[str, xr.Variable]:
     h = result.history.arrays()
     units, what = _objective_units(result)
@@ -117,13 +125,13 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
         f"{prefix}objective": variable(gc, obj, units, f"{label}: objective J of each candidate ({what}; "
                                                        "penalties included, failed candidates at the failure value)"),
         f"{prefix}best_objective": variable(g, result.history.best, units, f"{label}: best objective so far"),
-        f"{prefix}median_objective": variable(g, np.median(obj, axis=1), units,
+        f"{prefix}median_objective": variable(g, _nanmedian(obj), units,
                                               f"{label}: median objective of the generation's candidates"),
         f"{prefix}impact_force": variable(gc, h["force"], "N", f"{label}: F_s of each candidate at the design torque "
                                                                "(the first objective torque)"),
         f"{prefix}scenario": variable(gc, h["scenario"].astype(np.int8), "1",
                                       f"{label}: mesh-in scenario at the design torque: "
-                                      + ", ".join(f"{k} {n}" for k, n in enumerate(SCENARIOS))),
+                                      + ", ".join(f"{k} {n}" for k, n in enumerate(SCENARIOS)) + ", -1 not evaluated"),
         f"{prefix}failed": variable(gc, h["failed"].astype(np.int8), "1",
                                     f"{label}: 1 when no impact was found (failed candidate)"),
         f"{prefix}cumulative_evaluations": variable(g, h["evaluations"], "1",

@@ -45,7 +45,7 @@ def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     ax.legend(fontsize=7, loc="upper right")
     red = float(ds["reduction"])
     ax.set_title(_title(ds, f"{ds.attrs.get('objective', '')} objective, seed {ds.attrs.get('seed', '')}: "
-                            f"optimum {float(ds['optimum_objective']) * k:.3g} {unit} ({red:+.1f} % vs standard)"),
+                            f"optimum {float(ds['optimum_objective']) * k:.4g} {unit} ({red:+.1f} % vs standard)"),
                  fontsize=9)
     return _save(fig, path)
 
