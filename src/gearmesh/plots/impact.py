@@ -110,31 +110,44 @@ def impact_figures(inputs: Mapping[str, xr.Dataset], outputs: Mapping[str, str])
 
 
 def impact_study_figures(inputs: Mapping[str, Sequence[xr.Dataset]], outputs: Mapping[str, str]) -> None:
-    """All variants on one axis: F_s against torque at every speed, and against speed at every torque."""
+    """All variants on one axis (colour = variant): F_s against torque, one line per speed, and
+    against speed, one line per torque; the design speed / the middle torque bold, the others thin
+    and labelled at their ends."""
     sets = inputs["impact"]
     sets = sets if isinstance(sets, (list, tuple)) else [sets]
-    styles = ["-", "--", "-.", ":"]
     ref = sets[0]
     speeds, torques = ref["speed"].values, ref["torque"].values
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.6))
-    cs = plt.cm.viridis(np.linspace(0.1, 0.85, speeds.size))
-    ct = plt.cm.plasma(np.linspace(0.1, 0.85, torques.size))
-    for v, ds in enumerate(sets):
-        ls = styles[v % len(styles)]
-        name = ds.attrs.get("variant", f"variant {v}")
-        for i, color in enumerate(cs):
-            axes[0].plot(torques, ds["impact_force"].isel(speed=i) * 1e-3, ls, marker="o", ms=3, color=color,
-                         label=f"{name}, {speeds[i]:g} rpm")
-        for k, color in enumerate(ct):
-            axes[1].plot(speeds, ds["impact_force"].isel(torque=k) * 1e-3, ls, marker="o", ms=3, color=color,
-                         label=f"{name}, {torques[k]:g} N m")
+    design = float(ref.attrs.get("design_speed_rpm", speeds[0]))
+    t_bold = torques[len(torques) // 2]
+    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
+    colors = plt.cm.tab10(np.arange(len(sets)))
+    for color, ds in zip(colors, sets):
+        name = ds.attrs.get("variant", "")
+        for i, n in enumerate(speeds):
+            bold = np.isclose(n, design)
+            y = ds["impact_force"].isel(speed=i).values * 1e-3
+            axes[0].plot(torques, y, "-o", color=color, lw=2.2 if bold else 0.8, ms=4 if bold else 2,
+                         alpha=1.0 if bold else 0.55, label=f"{name} ({n:g} rpm)" if bold else None)
+            if ds is ref:
+                axes[0].annotate(f"{n:g} rpm", (torques[-1], y[-1]), xytext=(3, 0), textcoords="offset points",
+                                 fontsize=6, color="0.3", va="center")
+        for k, t in enumerate(torques):
+            bold = np.isclose(t, t_bold)
+            y = ds["impact_force"].isel(torque=k).values * 1e-3
+            axes[1].plot(speeds, y, "-o", color=color, lw=2.2 if bold else 0.8, ms=4 if bold else 2,
+                         alpha=1.0 if bold else 0.55, label=f"{name} ({t:g} N m)" if bold else None)
+            if ds is ref:
+                axes[1].annotate(f"{t:g} N m", (speeds[-1], y[-1]), xytext=(3, 0), textcoords="offset points",
+                                 fontsize=6, color="0.3", va="center")
     axes[0].set_xlabel("pinion torque T1 (N m)")
     axes[1].set_xlabel("pinion speed (rpm)")
+    axes[0].set_title(f"against torque: one line per speed (bold: {design:g} rpm; labels: {ref.attrs.get('variant', '')})",
+                      fontsize=8)
+    axes[1].set_title(f"against speed: one line per torque (bold: {t_bold:g} N m)", fontsize=8)
     for ax in axes:
         ax.set_ylabel("mesh-in impact force F_s, transverse (kN)")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=6, ncol=2)
-    axes[0].set_title("against torque (line style: variant; colour: speed)", fontsize=9)
-    axes[1].set_title("against speed (line style: variant; colour: torque)", fontsize=9)
+        ax.legend(fontsize=7, title="variant (colour)", title_fontsize=7)
+        ax.margins(x=0.12)
     fig.suptitle(_title(ref, "mesh-in impact force, all variants"), fontsize=10)
     _save(fig, outputs["impact_force"])
