@@ -74,7 +74,7 @@ def _check_code_change_reruns(root: Path, work: Path, tmp: Path) -> None:
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(package), os.environ.get("PYTHONPATH", "")])}
     proc = _snakemake(work, "--dry-run", env=env)
     assert proc.returncode == 0, proc.stderr[-3000:]
-    assert _planned_jobs(proc) == {"plot_tca": 2, "plot_ltca": 2, "all": 1}, proc.stdout[-3000:]
+    assert _planned_jobs(proc) == {"plot_tca": 3, "plot_ltca": 3, "all": 1}, proc.stdout[-3000:]
 
 
 def _check_slurm_profile_dry_run(work: Path) -> None:
@@ -91,7 +91,9 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
               "geometry": {"involute_points": 20, "fillet_points": 10, "face_points": 5},
               "stiffness": {"slices": 40, "positions": 24, "torque_Nm": 100, "torque_on": "pinion"},
               "variants": {"standard": {}, "relief": {"modification": {
-                  "gear": {"tip_relief_um": 10, "tip_relief_length_mm": 1}}}},
+                  "gear": {"tip_relief_um": 10, "tip_relief_length_mm": 1}}}, "optimised": {"from": "optimise"}},
+              "optimise": {"population": 4, "generations": 2, "torque_Nm": 100, "torques_Nm": [100], "speed_rpm": 3000,
+                           "points": 10, "window_positions": 16, "face_samples": 33, "cycle_positions": 8},
               "tca": {"positions": 8, "points": 6},
               "ltca": {"torques_Nm": [100], "positions": 8, "points": 6},
               "dynamics": {"torque_Nm": 100, "on": "pinion", "speeds_rpm": {"start": 2000, "stop": 4000, "step": 1000},
@@ -113,7 +115,10 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     for png in ("tooth_profile", "contact_length", "contact_lines", "stiffness"):
         assert (base / "plots" / f"{png}.png").stat().st_size > 1000
     assert (work / "results/e2e/plots/helix_sweep.png").exists()
-    for variant in ("standard", "relief"):
+    # the GA's optimum runs through the same rules as any variant
+    assert read_dataset(base / "optimise/ga.nc").sizes["generation"] == 3
+    assert (base / "optimised/pair.yaml").read_text() == (base / "optimise/pair.yaml").read_text()
+    for variant in ("standard", "relief", "optimised"):
         ltca = read_dataset(base / variant / "ltca.nc")
         assert ltca.sizes["position"] == 8
         # the loads carry the applied force at every position
