@@ -341,13 +341,15 @@ def _enter_gap_window(model: ImpactModel, params: np.ndarray):
 
 
 def _solve_rows(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw,
-                rtol: float = 1e-12) -> np.ndarray:
+                rtol: float = 1e-12, delta_start=None) -> np.ndarray:
     """Approach δ (m) of each row (NaN for a row without any candidate point); ``rtol`` of the
     load sum (and 100× finer for each point's inversion)."""
     ok = np.isfinite(gap).any(axis=1)
     delta = np.full(gap.shape[0], np.nan)
     if ok.any():
-        _, d, _, _ = solve_contact(gap[ok], compliance[ok], force[ok], law, rtol=rtol, inner_tol=min(1e-14, rtol / 100))
+        start = None if delta_start is None else np.asarray(delta_start, dtype=float).reshape(-1)[ok]
+        _, d, _, _ = solve_contact(gap[ok], compliance[ok], force[ok], law, rtol=rtol, inner_tol=min(1e-14, rtol / 100),
+                                   delta_start=start)
         delta[ok] = d
     return delta
 
@@ -416,7 +418,8 @@ class ImpactStatic:
 
 def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
     """Touch roll τ* for every (C, T) (module docstring), whether found and whether at the window
-    start, and the entering pair's separation at the theoretical engagement (C,)."""
+    start, the entering pair's separation at the theoretical engagement (C,), and the window's
+    interpolated approach at τ* (a warm start for the exact solves)."""
     nc, nt = params.shape[0], force.size
     g_win, _ = _enter_gap_window(model, params)  # (C, R)
     k0 = int(np.flatnonzero(model.tau == 0.0)[0])
@@ -457,7 +460,7 @@ def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
             break
     t_star = np.where(found, b, np.nan)
     t_star = np.where(at_start, tau[0], t_star)
-    return t_star, found, at_start, g_win[:, k0]
+    return t_star, found, at_start, g_win[:, k0], delta_lin(np.where(found, t_star, lo))
 
 
 def _enter_points(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
@@ -499,7 +502,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     t1 = check_torques(torques)
     force = t1 / float(g.base_radius[0])
     nc, nt = params.shape[0], force.size
-    t_star, found, at_start, te0 = _crossing(model, params, force)
+    t_star, found, at_start, te0, d_guess = _crossing(model, params, force)
     if np.any(at_start):
         warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
                       "raise corner_extension", RuntimeWarning, stacklevel=2)
@@ -520,7 +523,9 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     for _ in range(6):
         stack = tt[None] + offsets
         gap3, z3 = (v.reshape(3, nc, nt) for v in _enter_gap(model, pcs, stack.reshape(-1)))
-        d3 = _approach_at(model, params, force[None, :], stack, others=True)
+        # warm start a little above the last approach (an upper bound is checked by the solver)
+        d3 = _approach_at(model, params, force[None, :], stack, others=True,
+                          delta_start=np.broadcast_to(d_guess * (1 + 1e-3) + 1e-10, stack.shape))
         resid = gap3[2] - d3[2]
         dh = back(gap3 - d3)
         converged = np.abs(resid) <= 1e-13
@@ -529,6 +534,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
         with np.errstate(invalid="ignore", divide="ignore"):
             step = np.where(found & (dh < 0) & np.isfinite(resid), resid / dh, 0.0)
         tt = tt - np.clip(step, -eps * 1e3, eps * 1e3)
+        d_guess = np.where(np.isfinite(d3[2]), d3[2], d_guess)
     found = found & (np.abs(resid) <= 1e-12)  # a crossing Newton could not pin down is no impact
     gap_m, z_m, delta = gap3[2], z3[2], d3[2]
     gap_rate = -back(gap3)
@@ -568,7 +574,7 @@ def _without_column(basis: SeparationBasis, column: int) -> SeparationBasis:
 
 
 def _approach_at(model: ImpactModel, params: np.ndarray, force: np.ndarray, tau: np.ndarray,
-                 others: bool) -> np.ndarray:
+                 others: bool, delta_start=None) -> np.ndarray:
     """Approach δ of the other pairs (``others``) or of all pairs at time-like rolls ``tau``
     (..., C, T) — leading axes stack several rolls per (C, T) — by one exact solve on a
     candidate grid at those rolls."""
@@ -584,7 +590,8 @@ def _approach_at(model: ImpactModel, params: np.ndarray, force: np.ndarray, tau:
     comp = (point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid.s, grid.region, grid.rho_pinion,
                              grid.rho_gear, with_hertz=law.name == "linear") / grid.dz).reshape(roll.size, -1)
     f = np.broadcast_to(force, shape).reshape(-1)
-    return _solve_rows(gap, comp, f, law).reshape(shape)
+    start = None if delta_start is None else np.broadcast_to(delta_start, shape)
+    return _solve_rows(gap, comp, f, law, delta_start=start).reshape(shape)
 
 
 def _window_pairs(model: ImpactModel) -> np.ndarray:

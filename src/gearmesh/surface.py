@@ -225,16 +225,21 @@ def relief_depth(params, rho_sap: float, rho_eap: float, face_width: float, rho,
     y1, y2, y3, y4, y5, y6 = p
     rho = np.asarray(rho, dtype=float)
     z = np.asarray(z, dtype=float)
+    shape = np.broadcast_shapes(y1.shape, rho.shape, z.shape)
+    depth = np.zeros(shape)
     with np.errstate(invalid="ignore", divide="ignore"):
-        tip = np.where((y2 > 0) & (y4 > 0) & (rho > rho_eap - y4),
-                       y2 * ((rho - (rho_eap - y4)) / np.where(y4 > 0, y4, 1.0)) ** 2, 0.0)
-        root = np.where((y1 > 0) & (y3 > 0) & (rho < rho_sap + y3),
-                        y1 * ((rho_sap + y3 - rho) / np.where(y3 > 0, y3, 1.0)) ** 2, 0.0)
-        half = 0.5 * y6
-        span = np.where(face_width > y6, 0.5 * (face_width - y6), 1.0)
-        az = np.abs(z)
-        crown = np.where((y5 > 0) & (az > half), y5 * ((az - half) / span) ** 2, 0.0)
-    return np.where(np.isnan(rho), 0.0, tip + root + crown)
+        if np.any((y2 > 0) & (y4 > 0)):  # tip relief (skipped where no set has one: the common case)
+            depth = depth + np.where((y2 > 0) & (y4 > 0) & (rho > rho_eap - y4),
+                                     y2 * ((rho - (rho_eap - y4)) / np.where(y4 > 0, y4, 1.0)) ** 2, 0.0)
+        if np.any((y1 > 0) & (y3 > 0)):  # root relief
+            depth = depth + np.where((y1 > 0) & (y3 > 0) & (rho < rho_sap + y3),
+                                     y1 * ((rho_sap + y3 - rho) / np.where(y3 > 0, y3, 1.0)) ** 2, 0.0)
+        if np.any(y5 > 0):  # crowning
+            half = 0.5 * y6
+            span = np.where(face_width > y6, 0.5 * (face_width - y6), 1.0)
+            az = np.abs(z)
+            depth = depth + np.where((y5 > 0) & (az > half), y5 * ((az - half) / span) ** 2, 0.0)
+    return np.where(np.isnan(rho), 0.0, depth)
 
 
 def modification_depth(geom: PairGeometry, gear: int, rho, z) -> np.ndarray:
