@@ -419,7 +419,7 @@ class ImpactStatic:
 def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
     """Touch roll τ* for every (C, T) (module docstring), whether found and whether at the window
     start, the entering pair's separation at the theoretical engagement (C,), and the window's
-    interpolated approach at τ* (a warm start for the exact solves)."""
+    interpolated approach at τ* and the other pairs' approach at φ1A (warm starts of the exact solves)."""
     nc, nt = params.shape[0], force.size
     g_win, _ = _enter_gap_window(model, params)  # (C, R)
     k0 = int(np.flatnonzero(model.tau == 0.0)[0])
@@ -460,7 +460,7 @@ def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
             break
     t_star = np.where(found, b, np.nan)
     t_star = np.where(at_start, tau[0], t_star)
-    return t_star, found, at_start, g_win[:, k0], delta_lin(np.where(found, t_star, lo))
+    return t_star, found, at_start, g_win[:, k0], delta_lin(np.where(found, t_star, lo)), d_win[..., k0]
 
 
 def _enter_points(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
@@ -502,7 +502,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     t1 = check_torques(torques)
     force = t1 / float(g.base_radius[0])
     nc, nt = params.shape[0], force.size
-    t_star, found, at_start, te0, d_guess = _crossing(model, params, force)
+    t_star, found, at_start, te0, d_guess, d_others0 = _crossing(model, params, force)
     if np.any(at_start):
         warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
                       "raise corner_extension", RuntimeWarning, stacklevel=2)
@@ -546,7 +546,9 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
                         np.where((region == REGION_APPROACH_TIP) | (region == REGION_RECESS_TIP), SCENARIO_EDGE,
                                  SCENARIO_SURFACE)).astype(np.int8)
     # TE and LTE at the theoretical engagement (τ = 0, a window roll)
-    lte0 = _approach_at(model, params, force[None, :], np.zeros((1, nc, nt)), others=False)[0]
+    # all pairs at φ1A: one more pair than the others, so δ_others(φ1A) bounds it from above
+    lte0 = _approach_at(model, params, force[None, :], np.zeros((1, nc, nt)), others=False,
+                        delta_start=(d_others0 * (1 + 1e-9))[None])[0]
     # F–δ curve of the entering pair alone from M
     # separations from the first slice to touch (→ M as local_points → ∞)
     rel, comp = _enter_points(model, params, tt)
