@@ -72,7 +72,8 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import PairGeometry
-from .ltca import LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance, solve_contact, _invert
+from .ltca import (LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance, positive_values, solve_contact,
+                   _invert)
 from .surface import body_rotation, flank_point, modification_parameters, relief_depth
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, basis_gap, candidate_grid,
                   engagement_point, point_centres, separation_basis)
@@ -116,22 +117,14 @@ def equivalent_mass(geom: PairGeometry, inertia) -> float:
     return j1 * j2 / (j1 * rb2**2 + j2 * rb1**2)
 
 
+#: Highest pinion speed accepted (rpm): beyond any gear drive (turbo gears run at up to ~1e5 rpm).
+MAX_SPEED_RPM = 1e6
+
+
 def check_speeds(speeds_rpm, field: str = "speeds_rpm") -> np.ndarray:
-    """Pinion speeds (rpm) as a 1-d float array; refuses empty, non-finite, non-positive."""
-    if isinstance(speeds_rpm, (int, float, np.floating, np.integer)) and not isinstance(speeds_rpm, bool):
-        speeds_rpm = [speeds_rpm]
-    try:
-        vals = list(speeds_rpm)
-    except TypeError:
-        raise GearmeshInputError(field, speeds_rpm, "must be a positive number or a list of them (rpm)") from None
-    if not vals:
-        raise GearmeshInputError(field, speeds_rpm, "must name at least one speed (rpm)")
-    for k, v in enumerate(vals):
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
-            raise GearmeshInputError(f"{field}[{k}]", v, "must be a finite number (rpm)")
-        if not 0 < v <= 1e6:
-            raise GearmeshInputError(f"{field}[{k}]", v, "must lie in (0, 1e6] rpm")
-    return np.asarray(vals, dtype=float)
+    """Pinion speeds (rpm) as a 1-d float array; refuses empty, non-finite, non-positive and
+    above :data:`MAX_SPEED_RPM`."""
+    return positive_values(speeds_rpm, field, "rpm", MAX_SPEED_RPM)
 
 
 # --------------------------------------------------------------------------------------
@@ -912,18 +905,19 @@ def vector_velocity(model: ImpactModel, static: ImpactStatic, speed_rpm: float, 
     def along(f_move, r_fixed_point, r):
         return float(np.dot(f_move(r) - r_fixed_point, tangent(f_move, r)))
 
+    def foot(curve, point, r0, gear):
+        """The point of ``curve`` (a flank of ``gear``) whose tangent is normal to point − curve(r)."""
+        span = 0.05 * g.transverse_base_pitch
+        r = brentq(lambda x: along(curve, point, x), max(g.rho_form[gear], r0 - span),
+                   min(g.rho_eap[gear], r0 + span), xtol=1e-15)
+        return r, curve(r)
+
     if region == REGION_APPROACH_TIP:  # the gear tip edge against the pinion flank
         q2 = p2(g.rho_eap[1])
-        span = 0.05 * g.transverse_base_pitch
-        r1 = brentq(lambda r: along(p1, q2, r), max(g.rho_form[0], r1 - span), min(g.rho_eap[0], r1 + span),
-                    xtol=1e-15)
-        q1 = p1(r1)
+        r1, q1 = foot(p1, q2, r1, 0)
     elif region == REGION_RECESS_TIP:  # the pinion tip edge against the gear flank
         q1 = p1(g.rho_eap[0])
-        span = 0.05 * g.transverse_base_pitch
-        r2 = brentq(lambda r: along(p2, q1, r), max(g.rho_form[1], r2 - span), min(g.rho_eap[1], r2 + span),
-                    xtol=1e-15)
-        q2 = p2(r2)
+        r2, q2 = foot(p2, q1, r2, 1)
     else:  # flank against flank: the difference is normal to both tangents
         def stationary(x):
             d = p1(x[0] * 1e-3) - p2(x[1] * 1e-3)

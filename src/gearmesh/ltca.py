@@ -317,22 +317,31 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
 # --------------------------------------------------------------------------------------
 
 
-def check_torques(torques, field: str = "torques_Nm") -> np.ndarray:
-    """Torques (N·m) as a 1-d float array; refuses empty, non-numeric, non-finite, non-positive."""
-    if isinstance(torques, (int, float, np.floating, np.integer)) and not isinstance(torques, bool):
-        torques = [torques]
+def positive_values(values, field: str, unit: str, maximum: float = math.inf, note: str = "") -> np.ndarray:
+    """A positive number or a list of them as a 1-d float array; refuses empty, non-numeric,
+    non-finite, non-positive and (if given) values above ``maximum``, naming ``field`` and the
+    ``unit`` (GearmeshInputError); ``note`` is added to the rule of a non-positive value."""
+    if isinstance(values, (int, float, np.floating, np.integer)) and not isinstance(values, bool):
+        values = [values]
     try:
-        vals = list(torques)
+        vals = list(values)
     except TypeError:
-        raise GearmeshInputError(field, torques, "must be a positive number or a list of them (N m)") from None
+        raise GearmeshInputError(field, values, f"must be a positive number or a list of them ({unit})") from None
     if not vals:
-        raise GearmeshInputError(field, torques, "must name at least one torque (N m)")
+        raise GearmeshInputError(field, values, f"must name at least one value ({unit})")
     for k, v in enumerate(vals):
         if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
-            raise GearmeshInputError(f"{field}[{k}]", v, "must be a finite number (N m)")
+            raise GearmeshInputError(f"{field}[{k}]", v, f"must be a finite number ({unit})")
         if v <= 0:
-            raise GearmeshInputError(f"{field}[{k}]", v, "must be positive (N m); the pinion drives")
+            raise GearmeshInputError(f"{field}[{k}]", v, f"must be positive ({unit}){note}")
+        if v > maximum:
+            raise GearmeshInputError(f"{field}[{k}]", v, f"must lie in (0, {maximum:g}] {unit}")
     return np.asarray(vals, dtype=float)
+
+
+def check_torques(torques, field: str = "torques_Nm") -> np.ndarray:
+    """Torques (N·m) as a 1-d float array; refuses empty, non-numeric, non-finite, non-positive."""
+    return positive_values(torques, field, "N m", note="; the pinion drives")
 
 
 def pinion_torques(geom: PairGeometry, torques, on: str = "pinion", field: str = "torques_Nm") -> np.ndarray:

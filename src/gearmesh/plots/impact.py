@@ -109,6 +109,18 @@ def impact_figures(inputs: Mapping[str, xr.Dataset], outputs: Mapping[str, str])
     plot_simulation(ds, outputs["simulation"])
 
 
+def _family(ax, x, lines, values, bold_value, color, name: str, unit: str, label_ends: bool) -> None:
+    """One line per value (rows of ``lines``, N → kN) in ``color``; the ``bold_value`` line bold
+    and in the legend, the others thin and (``label_ends``) labelled at their right end."""
+    for y, v in zip(lines * 1e-3, values):
+        bold = bool(np.isclose(v, bold_value))
+        ax.plot(x, y, "-o", color=color, lw=2.2 if bold else 0.8, ms=4 if bold else 2, alpha=1.0 if bold else 0.55,
+                label=f"{name} ({v:g} {unit})" if bold else None)
+        if label_ends:
+            ax.annotate(f"{v:g} {unit}", (x[-1], y[-1]), xytext=(3, 0), textcoords="offset points", fontsize=6,
+                        color="0.3", va="center")
+
+
 def impact_study_figures(inputs: Mapping[str, Sequence[xr.Dataset]], outputs: Mapping[str, str]) -> None:
     """All variants on one axis (colour = variant): F_s against torque, one line per speed, and
     against speed, one line per torque; the design speed / the middle torque bold, the others thin
@@ -123,22 +135,8 @@ def impact_study_figures(inputs: Mapping[str, Sequence[xr.Dataset]], outputs: Ma
     colors = plt.cm.tab10(np.arange(len(sets)))
     for color, ds in zip(colors, sets):
         name = ds.attrs.get("variant", "")
-        for i, n in enumerate(speeds):
-            bold = np.isclose(n, design)
-            y = ds["impact_force"].isel(speed=i).values * 1e-3
-            axes[0].plot(torques, y, "-o", color=color, lw=2.2 if bold else 0.8, ms=4 if bold else 2,
-                         alpha=1.0 if bold else 0.55, label=f"{name} ({n:g} rpm)" if bold else None)
-            if ds is ref:
-                axes[0].annotate(f"{n:g} rpm", (torques[-1], y[-1]), xytext=(3, 0), textcoords="offset points",
-                                 fontsize=6, color="0.3", va="center")
-        for k, t in enumerate(torques):
-            bold = np.isclose(t, t_bold)
-            y = ds["impact_force"].isel(torque=k).values * 1e-3
-            axes[1].plot(speeds, y, "-o", color=color, lw=2.2 if bold else 0.8, ms=4 if bold else 2,
-                         alpha=1.0 if bold else 0.55, label=f"{name} ({t:g} N m)" if bold else None)
-            if ds is ref:
-                axes[1].annotate(f"{t:g} N m", (speeds[-1], y[-1]), xytext=(3, 0), textcoords="offset points",
-                                 fontsize=6, color="0.3", va="center")
+        _family(axes[0], torques, ds["impact_force"].values.T, speeds, design, color, name, "rpm", ds is ref)
+        _family(axes[1], speeds, ds["impact_force"].values, torques, t_bold, color, name, "N m", ds is ref)
     axes[0].set_xlabel("pinion torque T1 (N m)")
     axes[1].set_xlabel("pinion speed (rpm)")
     axes[0].set_title(f"against torque: one line per speed (bold: {design:g} rpm; labels: {ref.attrs.get('variant', '')})",
