@@ -111,7 +111,9 @@ from .contact import contact_length_breakpoints, contact_roll_positions, hand_si
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry, involute
 
-METHODS = ("traditional", "improved", "transition")
+#: the potential-energy cantilever models; 'fe' is the finite-element tooth of :mod:`gearmesh.fe`
+PEM_METHODS = ("traditional", "improved", "transition")
+METHODS = PEM_METHODS + ("fe",)
 
 
 @lru_cache(maxsize=16)
@@ -301,7 +303,8 @@ def tooth_model(geom: PairGeometry, gear: int, method: str = "transition", profi
     profile : for 'transition', a tooth profile from :func:`gearmesh.profile.tooth_profile`
         (computed when None).
     """
-    _check_method(method)
+    if method not in PEM_METHODS:
+        raise GearmeshInputError("method", method, f"must be one of {list(PEM_METHODS)} for a cantilever model")
     require_stiffness_data(geom)
     mat = geom.pair.material
     rb = float(geom.base_radius[gear])
@@ -541,7 +544,14 @@ def slice_compliance_table(geom: PairGeometry, gear: int, method: str = "transit
     n_nodes : number of equally spaced roll-length nodes on [ρ_SAP, ρ_EAP] (m).
     n_gauss : Gauss–Legendre nodes on the involute segment.
     profile : optional tooth profile for 'transition'.
+
+    ``method='fe'``: the finite-element tooth (:func:`gearmesh.fe.fe_slice_compliance_table`,
+    its own roll nodes and mesh; ``n_nodes`` and ``n_gauss`` do not apply).
     """
+    if _check_method(method) == "fe":
+        from .fe import fe_slice_compliance_table
+
+        return fe_slice_compliance_table(geom, gear, profile=profile)
     model = tooth_model(geom, gear, method, profile)
     rho = np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], n_nodes)
     vals = tooth_slice_compliance(model, rho, n_gauss=n_gauss)
@@ -864,7 +874,8 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
     comps: dict[str, np.ndarray] = {}
     if components:
         for name, row in zip(pair_table.columns, sums):
-            comps[name] = K**2 / row
+            with np.errstate(divide="ignore"):  # a component without compliance ('fe': shear, axial): inf
+                comps[name] = K**2 / row
     roll_bp = contact_length_breakpoints(geom)
     K_bp = _sum_slices(geom, pair_table, roll_bp, n_slices, pairs, rule, False)[0].sum(axis=1)
     # one pair over its engagement: u = roll + j·p_bt, ordered by j then roll

@@ -1,0 +1,513 @@
+"""Finite-element tooth compliance of the hob-generated tooth (2-D linear elasticity, scikit-fem).
+
+A fourth way to the per-unit-width slice compliance of :mod:`gearmesh.stiffness`, and the
+project's own check of its potential-energy (PEM) cantilever models.
+
+Model
+-----
+* Domain: a sector of the gear — the loaded tooth, ``neighbours`` teeth on each side, and
+  the rim down to the bore — bounded by the project's own transverse profile
+  (:func:`gearmesh.profile.tooth_profile`: root circle, trochoid fillet, involute, tip
+  circle), mirrored for the left flank and repeated at the pitch angle 2π/z. The bore arc
+  is clamped; the two radial cuts through the outermost root spaces are free.
+* Linear elasticity in plane strain (default) or plane stress, per unit face width
+  (thickness 1 m), with the Lamé constants λ = Eν/((1+ν)(1−2ν)) (plane strain) or
+  λ* = Eν/(1−ν²) (plane stress), μ = E/(2(1+ν)) (Timoshenko & Goodier, Theory of
+  Elasticity, 3rd ed., 1970, §§8, 16). Plane strain is the state of a transverse slice
+  inside a face many modules wide (its neighbours hold it axially; Kiekbusch, Sappok,
+  Sauer & Howard 2011, Strojniški vestnik 57:491, find 2-D plane strain close to 3-D for
+  wide spur teeth); plane stress suits a thin disc, b ≲ m_n. The PEM cantilever formulas use
+  E and G, i.e. plane stress; compare them in plane stress.
+* Discretisation: quality triangles (Shewchuk's Triangle through the ``triangle`` package,
+  minimum angle 30°), quadratic (P2) displacement elements, element edge ``size``·m_n on
+  the loaded tooth, 2× on the neighbours, 4× on the bore; one sparse LU factorisation per
+  gear serves every load position.
+* Load: a unit force per unit width at the contact point P of roll length ρ on the involute,
+  along the line of action into the tooth, n = (−cos α1, −sin α1) in the tooth frame of
+  :mod:`gearmesh.stiffness` (α1 the load angle of :func:`gearmesh.stiffness.contact_point`).
+* Local contact part removed as Weber (1949, "Formänderung und Profilrücknahme bei gerad-
+  und schrägverzahnten Rädern", Schriftenreihe Antriebstechnik 11) and Cornell (1981, J.
+  Mech. Des. 103:447) split the tooth deflection: the tooth deflection is the displacement,
+  along n, of the point C where the line of action crosses the tooth centre line; the
+  approach of P towards C (the flattening under the load, log-singular for a point load in
+  2-D) is the local contact part, which the slice model carries in its Hertz term
+  (:func:`gearmesh.stiffness.hertz_compliance_transverse`). So c_FE = n·u(C)/F replaces
+  exactly c_b + c_s + c_a + c_f of the PEM tables.
+* Split of c_FE into body and tooth (for the table's components): the rigid motion of the
+  root section — the chord y = y_root of the transition cantilever, between the points
+  where the fillet meets the root circle — fitted to the FE displacements in least squares
+  (mean translation and mean rotation of a plane section, Timoshenko's section kinematics),
+  carried to C, is the fillet-foundation part (Sainsot, Velex & Duverger 2004, J. Mech.
+  Des. 126:748: the tooth a beam on the elastic body at the root circle); the rest is the
+  tooth's own bending + shear + axial deflection (not separable in a 2-D continuum; the
+  table carries it as 'bending', with 'shear' and 'axial' zero).
+
+No factor is fitted: the only inputs are the profile, E, ν and the bore radius.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.interpolate import CubicSpline
+from scipy.sparse.linalg import splu
+
+from .errors import GearmeshInputError
+from .gear import PairGeometry, pair_to_dict
+
+__all__ = [
+    "PLANES", "DEFAULT_SIZE", "DEFAULT_NEIGHBOURS", "DEFAULT_PLANE", "DEFAULT_ROLL_NODES",
+    "lame_parameters", "triangulate", "ElasticSolver", "elastic_solver", "point_load_matrix",
+    "probe_displacements", "section_rigid_motion", "resample_polyline", "sector_outline",
+    "GearSector", "gear_sector", "ToothCompliance", "tooth_compliance", "fe_slice_compliance_table",
+]
+
+PLANES = ("strain", "stress")
+DEFAULT_PLANE = "strain"
+#: element edge on the loaded tooth in normal modules; the mesh convergence study
+#: (tests/test_fe.py, docs) puts the table within 0.5 % of the extrapolated limit here
+DEFAULT_SIZE = 0.08
+#: None = the whole gear. A sector with free radial cuts converges slowly with the number of
+#: teeth it keeps (seed 001 pair 1's pinion, load at the SAP: 3 teeth +150 %, 7 teeth +0.4 %
+#: against the whole gear), and the whole gear costs under a second.
+DEFAULT_NEIGHBOURS = None
+DEFAULT_ROLL_NODES = 17
+#: largest triangle area as a multiple of (4·size·m_n)²: graded meshes, 0.03 % from a uniform one
+AREA_FACTOR = 4.0
+
+
+# --------------------------------------------------------------------------------------
+# Generic 2-D elasticity: mesh, assembly, solve, read-out
+# --------------------------------------------------------------------------------------
+
+
+def lame_parameters(youngs_modulus: float, poisson_ratio: float, plane: str = DEFAULT_PLANE) -> tuple[float, float]:
+    """Lamé constants (λ, μ) in Pa of plane strain or plane stress (Timoshenko & Goodier §§8, 16).
+
+    Plane strain λ = Eν/((1+ν)(1−2ν)); plane stress λ* = 2λμ/(λ+2μ) = Eν/(1−ν²); μ = E/(2(1+ν)).
+    """
+    if plane not in PLANES:
+        raise GearmeshInputError("plane", plane, f"must be one of {list(PLANES)}")
+    e, nu = float(youngs_modulus), float(poisson_ratio)
+    mu = e / (2.0 * (1.0 + nu))
+    lam = e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)) if plane == "strain" else e * nu / (1.0 - nu**2)
+    return lam, mu
+
+
+def triangulate(vertices: np.ndarray, segments: np.ndarray, max_area: float, min_angle: float = 30.0,
+                holes: np.ndarray | None = None):
+    """Quality triangulation (skfem ``MeshTri``) of a planar straight-line graph.
+
+    ``vertices`` (N, 2) in m, ``segments`` (S, 2) vertex index pairs; Triangle's ``p``
+    (respect the segments), ``q`` (minimum angle) and ``a`` (maximum area, m²) switches. The
+    input vertices keep their indices in the mesh (checked), so a load can be put on one.
+    ``holes`` (H, 2): a point inside each hole.
+    """
+    import triangle
+    from skfem import MeshTri
+
+    pslg = {"vertices": np.asarray(vertices, float), "segments": np.asarray(segments)}
+    if holes is not None and len(holes):
+        pslg["holes"] = np.asarray(holes, float)
+    area = np.format_float_positional(float(max_area), precision=6, unique=False, fractional=False)
+    out = triangle.triangulate(pslg, f"pq{min_angle:g}a{area}")  # Triangle reads no exponent
+    p = out["vertices"]
+    if not np.array_equal(p[:len(vertices)], vertices):
+        raise RuntimeError("Triangle renumbered the input vertices")
+    return MeshTri(np.ascontiguousarray(p.T), np.ascontiguousarray(out["triangles"].T))
+
+
+@dataclass(frozen=True, eq=False)
+class ElasticSolver:
+    """A factorised linear-elastic problem: ``basis`` (P2 vector), free dofs and the LU of K_ff."""
+
+    basis: object
+    free: np.ndarray
+    lu: object
+
+    def solve(self, loads: np.ndarray) -> np.ndarray:
+        """Displacements (N, m) in m for nodal loads (N, m) in N (per m of width), clamped dofs zero."""
+        loads = np.asarray(loads, dtype=float)
+        u = np.zeros_like(loads)
+        u[self.free] = self.lu.solve(np.ascontiguousarray(loads[self.free]))
+        return u
+
+
+def elastic_solver(mesh, youngs_modulus: float, poisson_ratio: float, plane: str, clamped) -> ElasticSolver:
+    """Assemble ∫ σ(u):ε(v) dA with P2 triangles and factorise it, the facets where
+    ``clamped(x)`` (x: (2, n) facet midpoints → bool) held at zero displacement."""
+    from skfem import Basis, ElementTriP2, ElementVector, asm
+    from skfem.models.elasticity import linear_elasticity
+
+    basis = Basis(mesh, ElementVector(ElementTriP2()), intorder=4)
+    lam, mu = lame_parameters(youngs_modulus, poisson_ratio, plane)
+    k = asm(linear_elasticity(lam, mu), basis)
+    fixed = basis.get_dofs(lambda x: clamped(x)).all()
+    if fixed.size == 0:
+        raise RuntimeError("no clamped facet: the elastic problem is singular")
+    free = np.setdiff1d(np.arange(basis.N), fixed)
+    lu = splu(k[free][:, free].tocsc())
+    return ElasticSolver(basis=basis, free=free, lu=lu)
+
+
+def point_load_matrix(solver: ElasticSolver, vertices: np.ndarray, directions: np.ndarray) -> np.ndarray:
+    """Nodal load vectors (N, m): a unit force (N per m of width) along ``directions`` (m, 2)
+    at mesh vertices ``vertices`` (m,)."""
+    dofs = solver.basis.nodal_dofs[:, np.asarray(vertices)]  # (2, m)
+    f = np.zeros((solver.basis.N, len(vertices)))
+    cols = np.arange(len(vertices))
+    f[dofs[0], cols] = directions[:, 0]
+    f[dofs[1], cols] = directions[:, 1]
+    return f
+
+
+def probe_displacements(solver: ElasticSolver, u: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """Displacements (2, n, m) in m at ``points`` (2, n) of the solutions ``u`` (N, m)."""
+    n = points.shape[1]
+    v = solver.basis.probes(np.asarray(points, dtype=float)) @ u  # rows: x of all points, then y
+    return np.stack([v[:n], v[n:]])
+
+
+def section_rigid_motion(solver: ElasticSolver, u: np.ndarray, a, b, n: int = 201):
+    """Least-squares rigid motion of the straight section from ``a`` to ``b`` (m): the
+    translation t (2, m) of its midpoint M and its rotation ω (m,) (rad, counter-clockwise),
+    so that a point X attached to the section moves by t + ω ẑ×(X − M).
+
+    Along the section (unit direction e, coordinate s from M) the mean of u·e and of u·e⊥
+    give t and ∫s u·e⊥ ds/∫s² ds gives ω: the mean displacement and rotation of a plane
+    section of Timoshenko's beam kinematics (``n`` midpoint samples, equal weights).
+    """
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    s = (np.arange(n) + 0.5) / n - 0.5  # midpoint rule: the ends may sit on a curved boundary
+    m = 0.5 * (a + b)
+    pts = m[:, None] + np.outer(b - a, s)
+    d = probe_displacements(solver, u, pts)  # (2, n, m)
+    length = float(np.hypot(*(b - a)))
+    e = (b - a) / length
+    ep = np.array([-e[1], e[0]])
+    ue = np.einsum("i,inm->nm", e, d)
+    up = np.einsum("i,inm->nm", ep, d)
+    sl = s * length
+    omega = (sl @ up) / (sl @ sl)
+    t = np.outer(e, ue.mean(axis=0)) + np.outer(ep, up.mean(axis=0))
+    return t, omega
+
+
+def rigid_displacement(t: np.ndarray, omega: np.ndarray, centre, point) -> np.ndarray:
+    """Displacement (2, m) of ``point`` under the rigid motion (t, ω) about ``centre`` (m)."""
+    d = np.asarray(point, float) - np.asarray(centre, float)
+    return t + np.outer(np.array([-d[1], d[0]]), omega)
+
+
+def resample_polyline(points: np.ndarray, spacing: float) -> np.ndarray:
+    """Points (k, 2) equally spaced by arc length (at most ``spacing`` apart, m) along the
+    dense polyline ``points`` (n, 2), both ends kept."""
+    seg = np.hypot(*np.diff(points, axis=0).T)
+    s = np.concatenate([[0.0], np.cumsum(seg)])
+    k = max(int(math.ceil(s[-1] / spacing)), 1)
+    t = np.linspace(0.0, s[-1], k + 1)
+    return np.column_stack([np.interp(t, s, points[:, 0]), np.interp(t, s, points[:, 1])])
+
+
+# --------------------------------------------------------------------------------------
+# The gear sector
+# --------------------------------------------------------------------------------------
+
+
+def _rotate(xy: np.ndarray, theta: float) -> np.ndarray:
+    """Rotate points (n, 2) so that the +y axis goes to polar angle θ (rad, towards +x)."""
+    c, s = math.cos(theta), math.sin(theta)
+    return np.column_stack([xy[:, 0] * c + xy[:, 1] * s, -xy[:, 0] * s + xy[:, 1] * c])
+
+
+def _right_flank(profile, load_rolls: np.ndarray, spacing: float) -> tuple[np.ndarray, np.ndarray]:
+    """Right flank (n, 2) from the middle of the root space to the tip, at most ``spacing``
+    apart, with the involute points of ``load_rolls`` (m) among its vertices; and their indices."""
+    from .profile import rack_flank_envelope
+
+    fil = profile.segment == 0
+    fillet = resample_polyline(np.column_stack([profile.x[fil], profile.y[fil]]), spacing)
+    rack, rb = profile.rack, profile.base_radius
+    # involute arc length from the base circle is ρ²/(2 r_b): points uniform in arc length
+    s0, s1 = profile.form_roll**2 / (2 * rb), float(np.nanmax(profile.roll)) ** 2 / (2 * rb)
+    k = max(int(math.ceil((s1 - s0) / spacing)), 1)
+    grid = np.sqrt(2 * rb * np.linspace(s0, s1, k + 1))
+    arc = grid**2 / (2 * rb)
+    load_arc = np.asarray(load_rolls) ** 2 / (2 * rb)
+    near = np.min(np.abs(arc[:, None] - load_arc[None, :]), axis=1) < 0.3 * spacing if load_arc.size else \
+        np.zeros(arc.size, bool)
+    near[0] = False  # keep the form point
+    rho = np.unique(np.concatenate([grid[~near], load_rolls]))
+    x, y, _, _ = rack_flank_envelope(rack, rho)
+    flank = np.vstack([fillet[:-1], np.column_stack([x, y])])
+    idx = fillet.shape[0] - 1 + np.searchsorted(rho, load_rolls)
+    return flank, idx
+
+
+@dataclass(frozen=True, eq=False)
+class GearSector:
+    """The outline of a gear sector and the load points of its loaded tooth (tooth 0, centred on +y).
+
+    ``vertices`` (N, 2) in m and ``segments`` (S, 2) index pairs: a closed polygon over the
+    teeth, the radial cuts and the bore arc; for the whole gear (``full``) the tooth ring and
+    the bore circle, with a hole at the centre. ``right_loads``/``left_loads``: vertex
+    indices of the load points on the loaded tooth's flanks.
+    """
+
+    vertices: np.ndarray
+    segments: np.ndarray
+    holes: np.ndarray
+    right_loads: np.ndarray
+    left_loads: np.ndarray
+    bore_radius: float
+    full: bool
+    sizes: tuple[float, float, float]  # element edge on the loaded tooth, the next teeth, elsewhere (m)
+
+
+def _tooth_outline(profile, load_rolls: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
+    """One tooth from the left root-space middle over the tip to the right one (n, 2), and its
+    right-flank load points (k, 2)."""
+    flank, idx = _right_flank(profile, load_rolls, h)
+    left = flank * np.array([-1.0, 1.0])
+    corner = flank[-1]
+    ra = float(np.hypot(*corner))
+    half_tip = math.atan2(corner[0], corner[1])
+    k = max(int(math.ceil(2 * ra * half_tip / h)), 1)
+    th = np.linspace(-half_tip, half_tip, k + 1)[1:-1]
+    tip = np.column_stack([ra * np.sin(th), ra * np.cos(th)])
+    return np.vstack([left, tip, flank[::-1]]), flank[idx]
+
+
+def _closed(start: int, n: int) -> np.ndarray:
+    i = np.arange(start, start + n)
+    return np.column_stack([i, np.roll(i, -1)])
+
+
+def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarray, size: float,
+                   neighbours: int | None = DEFAULT_NEIGHBOURS) -> GearSector:
+    """Outline of the loaded tooth, ``neighbours`` teeth each side and the rim to the bore;
+    the whole gear when ``neighbours`` is None or the sector would close.
+
+    ``size`` (m): boundary spacing on the loaded tooth, 2× on the teeth next to it, 4×
+    elsewhere (other teeth, cuts, bore). The load rolls (m) become vertices on both flanks
+    of the loaded tooth.
+    """
+    pitch = 2 * math.pi / teeth
+    sizes = (size, 2 * size, 4 * size)
+    full = neighbours is None or 2 * neighbours + 1 >= teeth
+    js = range(-(teeth // 2), teeth - teeth // 2) if full else range(-neighbours, neighbours + 1)
+    pieces = []
+    for j in js:
+        tooth, loads_j = _tooth_outline(profile, load_rolls if j == 0 else np.array([]), sizes[min(abs(j), 2)])
+        if j == 0:
+            loads = loads_j
+        keep_first = not full and j == js[0]  # otherwise the previous tooth ends at this root-space middle
+        pieces.append(_rotate(tooth if keep_first else tooth[1:], j * pitch))
+    outer = np.vstack(pieces)  # over the tips, ending at the right-most root-space middle
+    rf = float(np.hypot(*outer[-1]))
+    kb = max(int(math.ceil(2 * math.pi * bore_radius / sizes[2])), 64)  # the wind-up field grows as 1/r³
+    if full:
+        th = np.linspace(0, 2 * math.pi, kb + 1)[:-1]
+        bore = np.column_stack([bore_radius * np.sin(th), bore_radius * np.cos(th)])
+        verts = np.vstack([outer, bore])
+        segments = np.vstack([_closed(0, len(outer)), _closed(len(outer), len(bore))])
+        holes = np.zeros((1, 2))
+    else:
+        half = len(js) * math.pi / teeth
+        kr = max(int(math.ceil((rf - bore_radius) / sizes[2])), 1)
+        r = np.linspace(rf, bore_radius, kr + 1)[1:]
+        right_cut = np.column_stack([r * math.sin(half), r * math.cos(half)])
+        th = np.linspace(half, -half, max(int(kb * half / math.pi), 2) + 1)[1:]
+        bore = np.column_stack([bore_radius * np.sin(th), bore_radius * np.cos(th)])
+        left_cut = np.column_stack([r[::-1][1:] * math.sin(-half), r[::-1][1:] * math.cos(-half)])
+        verts = np.vstack([outer, right_cut, bore, left_cut])
+        segments = _closed(0, len(verts))
+        holes = np.zeros((0, 2))
+
+    def find(points):
+        d = np.hypot(verts[:, None, 0] - points[None, :, 0], verts[:, None, 1] - points[None, :, 1])
+        i = np.argmin(d, axis=0)
+        if not np.all(d[i, np.arange(points.shape[0])] < 1e-9 * rf):
+            raise RuntimeError("a load point is not a vertex of the outline")
+        return i
+
+    return GearSector(vertices=verts, segments=segments, holes=holes, right_loads=find(loads),
+                      left_loads=find(loads * np.array([-1.0, 1.0])), bore_radius=bore_radius, full=full,
+                      sizes=sizes)
+
+
+def gear_sector(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAULT_SIZE,
+                neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None):
+    """(profile, sector) of gear ``gear`` (0 pinion, 1 gear): the profile of
+    :func:`gearmesh.profile.tooth_profile` and the sector outline with the load rolls (m)
+    as vertices; ``size`` in normal modules; ``bore_radius`` (m) defaults to the pair's."""
+    from .profile import tooth_profile
+    from .stiffness import require_stiffness_data
+
+    require_stiffness_data(geom)
+    if not size > 0:
+        raise GearmeshInputError("size", size, "must be positive (element edge in normal modules)")
+    if neighbours is not None and (int(neighbours) != neighbours or neighbours < 0):
+        raise GearmeshInputError("neighbours", neighbours, "must be a whole number >= 0, or None (whole gear)")
+    profile = tooth_profile(geom, gear, n_fillet=400, n_involute=50)
+    r_int = float(geom.pair.bore_radius[gear] if bore_radius is None else bore_radius)
+    if not 0 < r_int < profile.root_radius:
+        raise GearmeshInputError("bore_radius_mm", r_int * 1e3, "must lie between 0 and the root radius")
+    rho = np.atleast_1d(np.asarray(load_rolls, dtype=float))
+    if np.any(rho < profile.form_roll - 1e-12) or np.any(rho > np.nanmax(profile.roll) + 1e-12):
+        raise GearmeshInputError("rho", rho.tolist(), "load rolls must lie on the involute (form point to tip)")
+    sector = sector_outline(profile, geom.pair.teeth[gear], r_int, rho, size * geom.pair.normal_module,
+                            None if neighbours is None else int(neighbours))
+    return profile, sector
+
+
+@dataclass(frozen=True, eq=False)
+class ToothCompliance:
+    """FE per-unit-width compliances (m²/N) of one tooth at roll lengths ``rho`` (m).
+
+    ``total`` = n·u(C)/F (the tooth deflection without the local contact part, module
+    docstring), ``body`` its part carried by the rigid motion of the root section
+    (fillet foundation), ``tooth`` = total − body; ``total_left`` the same load mirrored
+    onto the left flank (equal to ``total`` by symmetry, up to the mesh). ``wind_up``: the
+    part of ``total`` carried by the mean rotation of the circle of radius ``wind_up_radius``
+    (m, just inside the root circle) — the torsional wind-up of the body between bore and
+    root circle, the n = 0 Fourier mode of the annulus (Lamé/Michell: r_b²/(4πG)·(1/r_int² −
+    1/r²) per unit width); ``ring_shift`` the part carried by that circle's mean translation
+    (n = 1 mode: the net tooth force moving the body on its bore, growing as log(r_f/r_int)
+    as the bore shrinks, the 2-D Kelvin solution); ``local`` = total − wind_up − ring_shift,
+    the tooth and its foundation relative to the rigid motion of the body at the root
+    circle, which converges as the rim thickens. The three: whole gear only, NaN for a
+    sector. ``load_angle`` α1
+    (rad). Mesh: ``n_elements`` P2 triangles, ``n_dofs`` unknowns.
+    """
+
+    rho: np.ndarray
+    total: np.ndarray
+    body: np.ndarray
+    tooth: np.ndarray
+    total_left: np.ndarray
+    wind_up: np.ndarray
+    ring_shift: np.ndarray
+    local: np.ndarray
+    wind_up_radius: float
+    load_angle: np.ndarray
+    plane: str
+    size: float
+    neighbours: int
+    n_elements: int
+    n_dofs: int
+
+
+def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
+                     neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None) -> ToothCompliance:
+    """FE compliance of one tooth of gear ``gear`` under a unit load along the line of action
+    at roll lengths ``rho`` (m), on either flank (module docstring for model and read-out).
+
+    Parameters: ``plane`` 'strain' or 'stress'; ``size`` element edge on the loaded tooth in
+    normal modules; ``neighbours`` teeth modelled on each side (None: the whole gear, no
+    cuts); ``bore_radius`` (m) to
+    override the pair's (rim-thickness studies).
+    """
+    from .stiffness import contact_point, tooth_model
+
+    lame_parameters(1.0, 0.3, plane)  # refuse an unknown plane before meshing
+    rho = np.atleast_1d(np.asarray(rho, dtype=float))
+    profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius)
+    model = tooth_model(geom, gear, "transition", profile)
+    mat = geom.pair.material
+    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[2] ** 2,
+                       holes=sector.holes)
+    r_int = sector.bore_radius
+    solver = elastic_solver(mesh, mat.youngs_modulus, mat.poisson_ratio, plane,
+                            clamped=lambda x: np.hypot(x[0], x[1]) <= r_int * (1 + 1e-9))
+    x_p, y_p, alpha1, _ = contact_point(model, rho)
+    ca, sa = np.cos(alpha1), np.sin(alpha1)
+    n_right = np.column_stack([-ca, -sa])
+    n_left = np.column_stack([ca, -sa])
+    m = rho.size
+    u = solver.solve(point_load_matrix(solver, np.concatenate([sector.right_loads, sector.left_loads]),
+                                       np.vstack([n_right, n_left])))
+    c = np.vstack([np.zeros(m), y_p - x_p * np.tan(alpha1)])  # where the load line crosses the centre line
+    cols = np.arange(m)
+    u_c = probe_displacements(solver, u, c)  # (2, m points, 2m cases)
+    total = np.einsum("ik,ik->k", n_right.T, u_c[:, cols, cols])
+    total_left = np.einsum("ik,ik->k", n_left.T, u_c[:, cols, m + cols])
+    # fillet foundation: rigid motion of the root section carried to C
+    rf, th = model.root_radius, model.theta_f
+    a, b = np.array([-rf * math.sin(th), model.y_root]), np.array([rf * math.sin(th), model.y_root])
+    t, omega = section_rigid_motion(solver, u[:, :m], a, b)
+    d = c - (0.5 * (a + b))[:, None]
+    u_body = t + np.vstack([-d[1], d[0]]) * omega
+    body = np.einsum("ik,ik->k", n_right.T, u_body)
+    wind, shift = np.full(m, np.nan), np.full(m, np.nan)
+    if sector.full:  # the body's torsional wind-up: mean rotation of a circle just inside the root circle
+        r_ref = model.root_radius - 0.01 * geom.pair.normal_module
+        phi = np.linspace(0.0, 2 * math.pi, 721)[:-1]
+        ring = r_ref * np.vstack([np.sin(phi), np.cos(phi)])
+        d = probe_displacements(solver, u[:, :m], ring)
+        omega = np.mean(-ring[1][:, None] * d[0] + ring[0][:, None] * d[1], axis=0) / r_ref**2
+        wind = omega * np.einsum("ik,ik->k", n_right.T, np.vstack([-c[1], c[0]]))
+        shift = np.einsum("ki,ik->k", n_right, d.mean(axis=1))  # n = 1 mode: mean translation
+    return ToothCompliance(rho=rho, total=total, body=body, tooth=total - body, total_left=total_left,
+                           wind_up=wind, ring_shift=shift, local=total - wind - shift, wind_up_radius=r_ref if sector.full else math.nan,
+                           load_angle=alpha1, plane=plane, size=float(size), neighbours=-1 if sector.full else int(neighbours),
+                           n_elements=int(mesh.t.shape[1]), n_dofs=int(solver.basis.N))
+
+
+# --------------------------------------------------------------------------------------
+# The slice compliance table of the stiffness stage
+# --------------------------------------------------------------------------------------
+
+
+def _cache_key(geom: PairGeometry, gear: int, settings: tuple) -> str:
+    """Everything the FE table depends on: the pair (profile, bore, material) and the settings."""
+    return json.dumps([pair_to_dict(geom.pair), gear, settings], sort_keys=True, default=str)
+
+
+_CACHE: dict[str, ToothCompliance] = {}
+_CACHE_SIZE = 32
+
+
+def fe_tooth_compliance_cached(geom: PairGeometry, gear: int, n_roll: int = DEFAULT_ROLL_NODES,
+                               plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
+                               neighbours: int | None = DEFAULT_NEIGHBOURS) -> ToothCompliance:
+    """:func:`tooth_compliance` at ``n_roll`` equally spaced roll lengths over [ρ_SAP, ρ_EAP],
+    kept in an in-process LRU cache keyed by the pair data and the settings, so that the
+    stages of one process (stiffness, LTCA, impact, the GA's candidates of one pair) mesh
+    and solve each gear once."""
+    if int(n_roll) != n_roll or n_roll < 4:
+        raise GearmeshInputError("n_roll", n_roll, "must be a whole number >= 4 (cubic spline)")
+    settings = (int(n_roll), plane, float(size), neighbours)
+    key = _cache_key(geom, gear, settings)
+    rho = np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], int(n_roll))
+    hit = _CACHE.get(key)
+    if hit is None:
+        hit = tooth_compliance(geom, gear, rho, plane, size, neighbours)
+        if len(_CACHE) >= _CACHE_SIZE:
+            _CACHE.pop(next(iter(_CACHE)))  # oldest first
+        _CACHE[key] = hit
+    return hit
+
+
+def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAULT_ROLL_NODES,
+                              plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
+                              neighbours: int | None = DEFAULT_NEIGHBOURS, profile=None):
+    """The :class:`gearmesh.stiffness.SliceComplianceTable` of ``method='fe'`` (the same
+    object the potential-energy methods build, so the stiffness stage, the LTCA, the impact
+    and the dynamics use it unchanged).
+
+    Components: 'bending' the tooth's own deflection (bending + shear + axial of the 2-D
+    continuum), 'fillet' the body part (root-section rigid motion), 'shear' and 'axial'
+    zero (module docstring); cubic splines over ``n_roll`` FE roll positions.
+    """
+    from .stiffness import SliceComplianceTable, tooth_model
+
+    res = fe_tooth_compliance_cached(geom, gear, n_roll, plane, size, neighbours)
+    zero = np.zeros_like(res.rho)
+    values = {"bending": res.tooth, "shear": zero, "axial": zero.copy(), "fillet": res.body}
+    splines = {k: CubicSpline(res.rho, v) for k, v in values.items()}
+    return SliceComplianceTable(gear=gear, method="fe", model=tooth_model(geom, gear, "transition", profile),
+                                rho=res.rho, values=values, load_angle=res.load_angle, _splines=splines)
