@@ -24,14 +24,23 @@ def _scratch_workflow(root: Path, tmp: Path, config: dict) -> Path:
         src = root / item
         (shutil.copytree(src, tmp / item) if src.is_dir() else shutil.copy(src, tmp / item))
     (tmp / "test_config.yaml").write_text(yaml.safe_dump(config))
+    # the package as it is now, first on the jobs' path: rules carry the digest of the code they
+    # run, so a checkout edited while the test runs must not change it between run and dry run
+    shutil.copytree(root / "src" / "gearmesh", tmp / "package" / "gearmesh",
+                    ignore=shutil.ignore_patterns("__pycache__"))
     return tmp
+
+
+def _package_env(package: Path) -> dict:
+    return {**os.environ, "PYTHONPATH": os.pathsep.join([str(package), os.environ.get("PYTHONPATH", "")])}
 
 
 def _snakemake(cwd: Path, *args: str, env: dict | None = None) -> subprocess.CompletedProcess:
     bin_dir = Path(sys.executable).parent
     exe = shutil.which("snakemake", path=str(bin_dir)) or "snakemake"
     return subprocess.run([exe, "--cores", "2", "--configfile", "test_config.yaml", *args],
-                          cwd=cwd, capture_output=True, text=True, timeout=600, env=env)
+                          cwd=cwd, capture_output=True, text=True, timeout=600,
+                          env=env or _package_env(cwd / "package"))
 
 
 def _planned_jobs(proc: subprocess.CompletedProcess) -> dict[str, int]:
@@ -66,13 +75,11 @@ def _check_report(work: Path) -> None:
 def _check_code_change_reruns(root: Path, work: Path, tmp: Path) -> None:
     """Results follow the code: with a changed copy of one package module first on the path,
     a dry run plans exactly the jobs whose functions can run that module."""
-    package = tmp / "package"
-    shutil.copytree(root / "src" / "gearmesh", package / "gearmesh",
-                    ignore=shutil.ignore_patterns("__pycache__"))
+    package = tmp / "changed"
+    shutil.copytree(work / "package", package)
     module = package / "gearmesh" / "plots" / "ltca.py"
     module.write_text(module.read_text() + "\n# a change\n")
-    env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(package), os.environ.get("PYTHONPATH", "")])}
-    proc = _snakemake(work, "--dry-run", env=env)
+    proc = _snakemake(work, "--dry-run", env=_package_env(package))
     assert proc.returncode == 0, proc.stderr[-3000:]
     assert _planned_jobs(proc) == {"plot_tca": 3, "plot_ltca": 3, "all": 1}, proc.stdout[-3000:]
 
