@@ -37,7 +37,7 @@ def variant_pair_file(wildcards):
 
 
 def variant_source_pair(wildcards):
-    """What rule variant_pair starts from: the pair file, or for a variant {from: optimise} the
+    """The input of the variant_pair job: the pair file, or for a variant {from: optimise} the
     optimiser's pair file (its optimum, rule optimise)."""
     if config["variants"][wildcards.variant].get("from") == "optimise":
         return f"results/{wildcards.study}/{wildcards.pair}/optimise/pair.yaml"
@@ -121,7 +121,7 @@ def all_targets():
     return targets
 
 
-# Results follow the code: a rule names its package function as versioned("module:function"),
+# Results follow the code: each rule's params.function is versioned("module:function"),
 # which appends the digest of the package modules that function can run; Snakemake reruns a
 # job whose params changed, so a code change reruns exactly the jobs it can affect.
 # `snakemake --report report.html`: every figure and table is marked with report_item(path,
