@@ -395,7 +395,9 @@ def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), 
     force, vel, scen, lte, line = _raw(model, settings, zero, metrics)
     f = _reduce(settings, force, vel)
     if not np.all(np.isfinite(f)) or np.any(scen == SCENARIO_NONE):
-        raise RuntimeError("the standard gear has no mesh-in impact at the objective torques: nothing to reduce")
+        raise GearmeshInputError("torques_Nm" if settings.objective == "robust" else "torque_Nm",
+                                 list(settings.objective_torques),
+                                 "gives the standard (unmodified) gear no mesh-in impact: nothing to reduce")
     standard = Evaluation(f, force, vel, scen, np.zeros(1, bool), lte, line, np.zeros(1))
     return Problem(model, genes, base, settings, standard)
 
