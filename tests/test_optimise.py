@@ -194,3 +194,14 @@ def test_bad_study_settings_and_variants_are_refused_before_any_job(capsys):
     assert cli_main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000",
                      "--speed-rpm", "5000", "--population", "2"]) == 2
     assert capsys.readouterr().err.strip() == "gearmesh: error: population = 2: must be an integer in [4, 100000]"
+
+
+def test_the_impact_model_is_the_studys_impact_section(pair):
+    impact = {"points": 20, "energy_velocity": "normal", "lead_slope_um": [1.0, 0.0], "driver": "gear"}
+    _, settings, _, model = run_settings(pair, impact=impact)
+    assert model["points"] == 20 and model["driver"] == "gear" and model["lead_slope"] == (1e-6, 0.0)
+    assert settings.energy_velocity == "normal"
+    _, _, _, model = run_settings(pair, points=16, impact=impact)
+    assert model["points"] == 16
+    _, settings, _, model = run_settings(pair)
+    assert model["points"] == 50 and settings.energy_velocity == "transverse"

@@ -112,6 +112,7 @@ class OptimiseSettings:
     mutation_scale: float = 0.1
     keep_elitism: int = 2
     random_baseline: bool = True
+    energy_velocity: str = "transverse"
 
     @property
     def budget(self) -> int:
@@ -154,7 +155,8 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    seed: int = 0, torque: float = 1000.0, torques=(400.0, 1000.0, 1600.0), weights=None,
                    statistic: str = "max", speed_rpm: float = 5000.0, lte_factor=None, line_load_factor=None,
                    penalty: float = 10.0, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
-                   keep_elitism: int = 2, random_baseline: bool = True) -> OptimiseSettings:
+                   keep_elitism: int = 2, random_baseline: bool = True,
+                   energy_velocity: str = "transverse") -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
     the field). Torques here are pinion torques (N m)."""
     from .ltca import check_torques
@@ -192,11 +194,12 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
     if isinstance(mutation_scale, bool) or not isinstance(mutation_scale, (int, float)) or not 0 < mutation_scale <= 1:
         raise GearmeshInputError("mutation_scale", mutation_scale, "must lie in (0, 1] (of each gene's range)")
     keep_elitism = _integer("keep_elitism", keep_elitism, 0, population - 1)
+    energy_velocity = _choice("energy_velocity", energy_velocity, ("transverse", "normal"))
     if not isinstance(random_baseline, bool):
         raise GearmeshInputError("random_baseline", random_baseline, "must be true or false")
     return OptimiseSettings(method, objective, population, generations, seed, torque, torques, weights, statistic,
                             speed_rpm, lte_factor, line_load_factor, penalty, float(mutation_probability),
-                            float(mutation_scale), keep_elitism, random_baseline)
+                            float(mutation_scale), keep_elitism, random_baseline, energy_velocity)
 
 
 # --------------------------------------------------------------------------------------
@@ -347,7 +350,7 @@ class Evaluation:
 def _raw(model: ImpactModel, s: OptimiseSettings, params: np.ndarray, metrics: bool):
     """F_s, |v_n|, scenario (C, T) at the objective torques; LTE p-p and line load (C,)."""
     static = impact_static(model, list(s.objective_torques), params)
-    static, resp = impact_response(model, static, [s.speed_rpm])
+    static, resp = impact_response(model, static, [s.speed_rpm], energy_velocity=s.energy_velocity)
     force, vel = resp.force[..., 0], resp.velocity_normal[..., 0]
     nc = params.shape[0]
     if metrics:

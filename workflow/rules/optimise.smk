@@ -16,7 +16,8 @@ rule optimise:
         "logs/{study}/{pair}/optimise.log",
     params:
         function=versioned("gearmesh.datasets.optimise:optimise_dataset"),
-        settings=lambda wildcards: config["optimise"],
+        # the impact model is the study's (impact: section), so the optimum is optimal for the impact stage
+        settings=lambda wildcards: {**config["optimise"], "impact": config.get("impact")},
     conda:
         ENV
     script:

@@ -35,12 +35,22 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                  weights=None, modify=("pinion",), bounds: Mapping[str, Any] | None = None,
                  fixed: Mapping[str, Any] | None = None, constraints: Mapping[str, Any] | None = None,
                  random_baseline: bool = True, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
-                 keep_elitism: int = 2, points: int = 50, window_positions: int = 64, face_samples: int = 257,
-                 cycle_positions: int = 32, contact_law: str = "palmgren", corner_extension: float = 0.25):
+                 keep_elitism: int = 2, points: int | None = None, window_positions: int = 64, face_samples: int = 257,
+                 cycle_positions: int = 32, contact_law: str | None = None, corner_extension: float | None = None,
+                 impact: Mapping[str, Any] | None = None):
     """Check the config's ``optimise:`` section (as keywords) for ``pair``: (geometry, settings,
     gene keywords, impact-model keywords). Torques are given on ``on`` (converted to the
-    pinion). Refuses a bad value with GearmeshInputError naming the field."""
+    pinion). Refuses a bad value with GearmeshInputError naming the field.
+
+    The impact model is the study's: ``impact`` is its ``impact:`` section (driver, points, lead
+    slopes, contact law, slice method, corner extension, added inertia, energy velocity), so
+    the optimum is optimal for the model the impact stage evaluates it with; ``points``,
+    ``contact_law`` and ``corner_extension`` given here override it (None: the section's, or
+    the package defaults without one)."""
+    from ..tca import check_lead_slope
+
     geom = _geometry(pair)
+    imp = dict(impact or {})
     constraints = dict(constraints or {})
     unknown = set(constraints) - {"lte_factor", "line_load_factor", "penalty"}
     if unknown:
@@ -54,10 +64,17 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                               speed_rpm=speed_rpm, lte_factor=constraints.get("lte_factor"),
                               line_load_factor=constraints.get("line_load_factor"),
                               penalty=constraints.get("penalty", 10.0), mutation_probability=mutation_probability,
-                              mutation_scale=mutation_scale, keep_elitism=keep_elitism, random_baseline=random_baseline)
+                              mutation_scale=mutation_scale, keep_elitism=keep_elitism,
+                              random_baseline=random_baseline,
+                              energy_velocity=imp.get("energy_velocity", "transverse"))
     genes = {"modify": modify, "bounds": bounds, "fixed": fixed}
     gene_table(geom, **genes)
-    model = {"points": points, "contact_law_name": contact_law, "extension": corner_extension,
+    lead = tuple(v * 1e-6 for v in check_lead_slope(imp.get("lead_slope_um", (0.0, 0.0))))
+    model = {"points": imp.get("points", 50) if points is None else points,
+             "contact_law_name": imp.get("contact_law", "palmgren") if contact_law is None else contact_law,
+             "extension": imp.get("corner_extension", 0.25) if corner_extension is None else corner_extension,
+             "method": imp.get("method", "transition"), "driver": imp.get("driver", "pinion"), "lead_slope": lead,
+             "added_inertia_kg_m2": imp.get("added_inertia_kg_m2", (0.0, 0.0)),
              "window_positions": window_positions, "face_samples": face_samples, "cycle_positions": cycle_positions}
     return geom, settings, genes, model
 
@@ -88,7 +105,7 @@ def check_optimise(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> 
         return
     for name in config["pairs"]:
         try:
-            run_settings(pairs[name], **config["optimise"])
+            run_settings(pairs[name], **config["optimise"], impact=config.get("impact"))
         except GearmeshInputError as exc:
             raise GearmeshInputError(f"optimise.{exc.field}", exc.value, exc.rule) from None
 
