@@ -150,7 +150,7 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
                                       f"{label}: mesh-in scenario at the design torque: "
                                       + ", ".join(f"{k} {n}" for k, n in enumerate(SCENARIOS)) + ", -1 not evaluated"),
         f"{prefix}failed": variable(gc, h["failed"].astype(np.int8), "1",
-                                    f"{label}: 1 when no impact was found (failed candidate)"),
+                                    f"{label}: 1 for a failed candidate (no impact found, a non-finite force or no closing velocity)"),
         f"{prefix}cumulative_evaluations": variable(g, h["evaluations"], "1",
                                                     f"{label}: distinct candidates evaluated so far"),
         f"{prefix}population": variable(("generation", "candidate", "gene"), _si(result, h["genes"]), "m",

@@ -42,7 +42,7 @@ def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
             "robust": f"F_s over the torques ({ds.attrs.get('objective_statistic', '')})"}
     ax.set_ylabel(f"objective: {what.get(ds.attrs.get('objective'), '')} ({unit})")
     ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7, loc="upper right")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
     red = float(ds["reduction"])
     ax.set_title(_title(ds, f"{ds.attrs.get('objective', '')} objective, seed {ds.attrs.get('seed', '')}: "
                             f"optimum {float(ds['optimum_objective']) * k:.4g} {unit} ({red:+.1f} % vs standard)"),
