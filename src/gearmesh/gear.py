@@ -502,7 +502,7 @@ class PairGeometry:
 
     Roll lengths ``rho`` are distances along the transverse line of action from each gear's
     base-circle tangent point (ρ = √(r² − r_b²)); they are the common abscissa of the
-    contact lines, stiffness and transmission error (DESIGN.md).
+    contact lines, stiffness and transmission error (docs/modelling.md).
     """
 
     pair: GearPair

@@ -49,7 +49,7 @@ TEMPORARY_NAME = re.compile(r"\..+\.\d+\.tmp(\.[A-Za-z0-9]+)?")
 @contextmanager
 def atomic_output(path: str | Path) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it to ``path`` only if the block succeeds,
-    so no partial file ever carries the final name (DESIGN.md). A process killed outright
+    so no partial file ever carries the final name (docs/architecture.md). A process killed outright
     (SIGKILL skips the cleanup) leaves the temporary file: :func:`remove_stale_temporaries`."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)

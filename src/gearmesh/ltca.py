@@ -32,7 +32,7 @@ solved *exactly* by one monotone scalar equation per position: q_i(δ) = f_i⁻�
 is convex and increasing in δ, so Newton's method on S(δ) = Σ q_i(δ) − F from an upper
 bound converges monotonically (no active-set cycling, no tolerance on the contact set),
 with an inner Newton inversion of each f_i (concave, from an upper bound). This is the
-active-set/NNLS problem of DESIGN.md for a diagonal influence matrix; the tangent mesh
+active-set/NNLS problem (docs/modelling.md) for a diagonal influence matrix; the tangent mesh
 stiffness dF/dδ = Σ_loaded 1/f_i'(q_i) follows exactly.
 
 Why independent slices: it is the model whose unloaded, linearised limit *is* the
@@ -52,7 +52,7 @@ Local contact laws (``contact_law``)
   scaled by E'_steel/E' (E' = E/(1 − ν²), steel 207 GPa, 0.3). It gives F ∝ δ^(1/0.9),
   n ≈ 1.11 — the exponent seed 000 reports for the fitted local stiffness (n ≈ 1.1).
 * ``'linear'``: the linear Hertz line-contact stiffness per unit length πE/(4(1−ν²)) of
-  the stiffness stage (DESIGN.md; :func:`gearmesh.stiffness.hertz_compliance_transverse`),
+  the stiffness stage (:func:`gearmesh.stiffness.hertz_compliance_transverse`),
   for the comparison LTE = F/K(φ).
 """
 
