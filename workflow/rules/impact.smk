@@ -27,11 +27,11 @@ rule plot_impact:
         impact="results/{study}/{pair}/{variant}/impact.nc",
     output:
         force_speed=report_item("results/{study}/{pair}/{variant}/plots/impact_speed.png", "impact_speed",
-                                "impact", BY_VARIANT),
+                                "Impact", BY_VARIANT),
         trajectory=report_item("results/{study}/{pair}/{variant}/plots/mesh_in_trajectory.png",
-                               "mesh_in_trajectory", "impact", BY_VARIANT),
+                               "mesh_in_trajectory", "Impact", BY_VARIANT),
         simulation=report_item("results/{study}/{pair}/{variant}/plots/impact_simulation.png",
-                               "impact_simulation", "impact", BY_VARIANT),
+                               "impact_simulation", "Impact", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/plot_impact.log",
     params:
@@ -48,7 +48,7 @@ rule impact_table:
         impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
     output:
         nc="results/{study}/{pair}/impact_table.nc",
-        csv=report_item("results/{study}/{pair}/impact_table.csv", "impact_table", "impact", BY_PAIR),
+        csv=report_item("results/{study}/{pair}/impact_table.csv", "impact_table", "Impact", BY_PAIR),
     log:
         "logs/{study}/{pair}/impact_table.log",
     params:
@@ -64,7 +64,7 @@ rule plot_impact_variants:
     input:
         impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
     output:
-        impact_force=report_item("results/{study}/{pair}/plots/impact_force.png", "impact_force", "impact", BY_PAIR),
+        impact_force=report_item("results/{study}/{pair}/plots/impact_force.png", "impact_force", "Impact", BY_PAIR),
     log:
         "logs/{study}/{pair}/plot_impact_variants.log",
     params:
