@@ -20,8 +20,8 @@ Model
   E and G, i.e. plane stress; compare them in plane stress.
 * Discretisation: quality triangles (Shewchuk's Triangle through the ``triangle`` package,
   minimum angle 30°), quadratic (P2) displacement elements, element edge ``size``·m_n on
-  the loaded tooth, 2× on the neighbours, 4× on the bore; one sparse LU factorisation per
-  gear serves every load position.
+  the loaded tooth, 2×, 4× on the next teeth, 8× on the others and the bore
+  (:data:`GRADING`); one sparse LU factorisation per gear serves every load position.
 * Load: a unit force per unit width at the contact point P of roll length ρ on the involute,
   along the line of action into the tooth, n = (−cos α1, −sin α1) in the tooth frame of
   :mod:`gearmesh.stiffness` (α1 the load angle of :func:`gearmesh.stiffness.contact_point`).
@@ -67,16 +67,19 @@ __all__ = [
 
 PLANES = ("strain", "stress")
 DEFAULT_PLANE = "strain"
-#: element edge on the loaded tooth in normal modules; the mesh convergence study
-#: (tests/test_fe.py, docs) puts the table within 0.5 % of the extrapolated limit here
-DEFAULT_SIZE = 0.08
+#: element edge on the loaded tooth in normal modules: the 17-node table within 0.42 % (max)
+#: of a mesh 4× finer (0.0125 m_n) for seeds 001/003/004, under a second per gear (docs)
+DEFAULT_SIZE = 0.05
 #: None = the whole gear. A sector with free radial cuts converges slowly with the number of
 #: teeth it keeps (seed 001 pair 1's pinion, load at the SAP: 3 teeth +150 %, 7 teeth +0.4 %
 #: against the whole gear), and the whole gear costs under a second.
 DEFAULT_NEIGHBOURS = None
 DEFAULT_ROLL_NODES = 17
-#: largest triangle area as a multiple of (4·size·m_n)²: graded meshes, 0.03 % from a uniform one
-AREA_FACTOR = 4.0
+#: largest triangle area as a multiple of (the coarsest spacing)²: the rim interior 4× coarser
+#: than the bore; 0.07 % from a mesh 4× finer there (seed 004)
+AREA_FACTOR = 16.0
+#: boundary spacing on the loaded tooth, the next, ... in units of ``size`` (the last: all others)
+GRADING = (1, 2, 4, 8)
 
 
 # --------------------------------------------------------------------------------------
@@ -149,7 +152,9 @@ def elastic_solver(mesh, youngs_modulus: float, poisson_ratio: float, plane: str
     if fixed.size == 0:
         raise RuntimeError("no clamped facet: the elastic problem is singular")
     free = np.setdiff1d(np.arange(basis.N), fixed)
-    lu = splu(k[free][:, free].tocsc())
+    # symmetric positive definite: minimum degree on A+Aᵀ and diagonal pivots keep the fill small
+    lu = splu(k[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options={"SymmetricMode": True})
     return ElasticSolver(basis=basis, free=free, lu=lu)
 
 
@@ -264,7 +269,7 @@ class GearSector:
     left_loads: np.ndarray
     bore_radius: float
     full: bool
-    sizes: tuple[float, float, float]  # element edge on the loaded tooth, the next teeth, elsewhere (m)
+    sizes: tuple[float, ...]  # boundary spacing (m) on tooth |j| = 0, 1, 2, ... (last: the rest, cuts, bore)
 
 
 def _tooth_outline(profile, load_rolls: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
@@ -291,24 +296,24 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
     """Outline of the loaded tooth, ``neighbours`` teeth each side and the rim to the bore;
     the whole gear when ``neighbours`` is None or the sector would close.
 
-    ``size`` (m): boundary spacing on the loaded tooth, 2× on the teeth next to it, 4×
-    elsewhere (other teeth, cuts, bore). The load rolls (m) become vertices on both flanks
-    of the loaded tooth.
+    ``size`` (m): boundary spacing on the loaded tooth, then :data:`GRADING` times it on
+    the teeth next to it (the last factor on all others, the cuts and the bore). The load
+    rolls (m) become vertices on both flanks of the loaded tooth.
     """
     pitch = 2 * math.pi / teeth
-    sizes = (size, 2 * size, 4 * size)
+    sizes = tuple(size * GRADING[k] for k in range(len(GRADING)))
     full = neighbours is None or 2 * neighbours + 1 >= teeth
     js = range(-(teeth // 2), teeth - teeth // 2) if full else range(-neighbours, neighbours + 1)
     pieces = []
     for j in js:
-        tooth, loads_j = _tooth_outline(profile, load_rolls if j == 0 else np.array([]), sizes[min(abs(j), 2)])
+        tooth, loads_j = _tooth_outline(profile, load_rolls if j == 0 else np.array([]), sizes[min(abs(j), len(sizes) - 1)])
         if j == 0:
             loads = loads_j
         keep_first = not full and j == js[0]  # otherwise the previous tooth ends at this root-space middle
         pieces.append(_rotate(tooth if keep_first else tooth[1:], j * pitch))
     outer = np.vstack(pieces)  # over the tips, ending at the right-most root-space middle
     rf = float(np.hypot(*outer[-1]))
-    kb = max(int(math.ceil(2 * math.pi * bore_radius / sizes[2])), 64)  # the wind-up field grows as 1/r³
+    kb = max(int(math.ceil(2 * math.pi * bore_radius / sizes[-1])), 64)  # the wind-up field grows as 1/r³
     if full:
         th = np.linspace(0, 2 * math.pi, kb + 1)[:-1]
         bore = np.column_stack([bore_radius * np.sin(th), bore_radius * np.cos(th)])
@@ -317,7 +322,7 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
         holes = np.zeros((1, 2))
     else:
         half = len(js) * math.pi / teeth
-        kr = max(int(math.ceil((rf - bore_radius) / sizes[2])), 1)
+        kr = max(int(math.ceil((rf - bore_radius) / sizes[-1])), 1)
         r = np.linspace(rf, bore_radius, kr + 1)[1:]
         right_cut = np.column_stack([r * math.sin(half), r * math.cos(half)])
         th = np.linspace(half, -half, max(int(kb * half / math.pi), 2) + 1)[1:]
@@ -418,7 +423,7 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
     profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius)
     model = tooth_model(geom, gear, "transition", profile)
     mat = geom.pair.material
-    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[2] ** 2,
+    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
                        holes=sector.holes)
     r_int = sector.bore_radius
     solver = elastic_solver(mesh, mat.youngs_modulus, mat.poisson_ratio, plane,
