@@ -39,7 +39,7 @@ def test_unknown_pair_is_refused(root, monkeypatch):
 
 @pytest.mark.parametrize("name", ["config/config.yaml", "config/studies/contact_lines.yaml",
                                   "config/studies/low_fluctuation.yaml", "config/studies/printing_train.yaml",
-                                  "config/studies/transition_curve.yaml"])
+                                  "config/studies/transition_curve.yaml", "config/studies/stiffness_methods.yaml"])
 def test_shipped_studies_and_their_pairs_are_valid(root, monkeypatch, name):
     monkeypatch.chdir(root)
     config = load_study(root / name)

@@ -193,3 +193,20 @@ def test_refusals(p1):
         fe.tooth_compliance(p1, 0, [p1.rho_eap[0]], size=0)
     with pytest.raises(GearmeshInputError):
         st.tooth_model(p1, 0, "fe")  # no cantilever behind the FE method
+
+
+def test_fe_compliance_dataset(tmp_path):
+    """The workflow's fe_compliance.nc: every variable with units and long_name; the FE column
+    equals tooth_compliance; plane strain stiffer than plane stress; the figure is drawn."""
+    from gearmesh.datasets.fe import fe_compliance_dataset
+    from gearmesh.plots.fe import plot_fe_compliance
+
+    pair = load_pair(seed001_pair1())
+    ds = fe_compliance_dataset(pair, size=0.3, roll_nodes=5)
+    for name in ds.variables:
+        assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
+    geom = pair_geometry(pair)
+    direct = fe.tooth_compliance(geom, 1, ds["roll"].values[1], size=0.3)
+    assert np.allclose(ds["fe_compliance"].values[1], direct.total, rtol=1e-12)
+    assert np.all(ds["fe_compliance"].values < ds["fe_compliance_plane_stress"].values)
+    assert plot_fe_compliance(ds, tmp_path / "fe.png").stat().st_size > 10_000

@@ -107,6 +107,9 @@ def all_targets():
                 targets.append(f"{base}/plots/pareto.png")
     if "helix_sweep" in config:
         targets += [f"results/{STUDY}/helix_sweep.nc", f"results/{STUDY}/plots/helix_sweep.png"]
+    if "fe_compliance" in config:
+        targets += [f"results/{STUDY}/{name}/{f}" for name in config["pairs"]
+                    for f in ("fe_compliance.nc", "plots/fe_compliance.png")]
     for table in ("stiffness_table", "slice_convergence"):
         if table in config:
             targets += [f"results/{STUDY}/{table}.nc", f"results/{STUDY}/{table}.csv",

@@ -19,7 +19,7 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
     fig, axes = plt.subplots(n, 1, figsize=(7.5, 2.8 * n), sharex=False)
     ax = axes[0]
     x = ds["position"].values * MM
-    ax.plot(x, ds["mesh_stiffness"].values * N_PER_UM, lw=1.8, label="K(φ), slice PEM")
+    ax.plot(x, ds["mesh_stiffness"].values * N_PER_UM, lw=1.8, label="K(φ), slice model")
     ax.plot(x, ds["mesh_stiffness_fourier"].values * N_PER_UM, "--", lw=1.2,
             label=f"Fourier, order {ds.attrs.get('fourier_order', '')}")
     ax.axhline(float(ds["iso6336_mesh_stiffness"]) * N_PER_UM, color="k", ls=":", lw=1, label="ISO 6336-1 cγα·b")

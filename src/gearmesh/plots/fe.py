@@ -1,0 +1,58 @@
+"""FE-compliance figure: the finite-element tooth compliance of both gears along the active
+profile, beside the three potential-energy cantilevers (from ``fe_compliance.nc``)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import xarray as xr
+
+from .common import MM, plt, save, title
+
+#: m²/N -> µm per N/mm (deflection in µm under 1 N per mm of face width)
+UM_MM_PER_N = 1e9
+
+STYLE = {"traditional": ("tab:orange", ":"), "improved": ("tab:green", "-."), "transition": ("tab:blue", "--")}
+
+
+def plot_fe_compliance(ds: xr.Dataset, path: str | Path) -> Path:
+    """Top: total tooth compliance (no contact part) against roll length, FE in its plane and
+    in plane stress, and the PEMs. Bottom: the body part, FE (root-section rigid motion)
+    against Sainsot's fillet foundation of each PEM."""
+    fig, axes = plt.subplots(2, 2, figsize=(10, 6.4), sharex="col")
+    for g, gear in enumerate(ds["gear"].values):
+        x = ds["roll"].values[g] * MM
+        ax = axes[0, g]
+        ax.plot(x, ds["fe_compliance"].values[g] * UM_MM_PER_N, "k-", lw=2, label=f"FE, plane {ds.attrs['plane']}")
+        if ds.attrs["plane"] != "stress":
+            ax.plot(x, ds["fe_compliance_plane_stress"].values[g] * UM_MM_PER_N, "-", color="0.55", lw=1.5,
+                    label="FE, plane stress")
+        for m in ds["model"].values:
+            c, ls = STYLE.get(str(m), ("tab:red", "-"))
+            ax.plot(x, ds["pem_compliance"].sel(model=m).values[g] * UM_MM_PER_N, ls=ls, color=c, lw=1.4,
+                    label=f"PEM {m}")
+        ax.set_title(f"{gear}: bending + shear + axial + foundation", fontsize=9)
+        ax.set_ylabel("compliance (µm per N/mm)")
+        ax.grid(alpha=0.3)
+        ax = axes[1, g]
+        ax.plot(x, ds["fe_body"].values[g] * UM_MM_PER_N, "k-", lw=2, label="FE body (root-section rigid motion)")
+        ax.plot(x, ds["fe_wind_up"].values[g] * UM_MM_PER_N, "k:", lw=1.2, label="FE body wind-up (torsion)")
+        for m in ds["model"].values:
+            c, ls = STYLE.get(str(m), ("tab:red", "-"))
+            ax.plot(x, ds["pem_fillet"].sel(model=m).values[g] * UM_MM_PER_N, ls=ls, color=c, lw=1.4,
+                    label=f"Sainsot, {m} root")
+        ax.set_title(f"{gear}: fillet foundation", fontsize=9)
+        ax.set_xlabel("roll length of the load point (mm), SAP to EAP")
+        ax.set_ylabel("compliance (µm per N/mm)")
+        ax.grid(alpha=0.3)
+    axes[0, 0].legend(fontsize=7)
+    axes[1, 0].legend(fontsize=7)
+    fig.suptitle(title(ds, f"tooth compliance per unit width, FE (element {ds.attrs['size_normal_modules']} m_n) "
+                           "and potential-energy cantilevers"), fontsize=10)
+    fig.tight_layout()
+    return save(fig, path)
+
+
+def fe_compliance_figures(inputs, outputs) -> None:
+    """The ``plot_fe_compliance`` rule."""
+    plot_fe_compliance(inputs["fe_compliance"], outputs["fe_compliance"])
