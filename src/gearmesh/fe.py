@@ -467,9 +467,17 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
 # --------------------------------------------------------------------------------------
 
 
+#: pair-file keys the transverse section does not depend on (a renamed variant, another face
+#: width or hand shares the mesh); modifications are not in pair_to_dict (they are gaps, not shape)
+_NOT_IN_SECTION = ("name", "face_width_mm", "helix_hand")
+
+
 def _cache_key(geom: PairGeometry, gear: int, settings: tuple) -> str:
-    """Everything the FE table depends on: the pair (profile, bore, material) and the settings."""
-    return json.dumps([pair_to_dict(geom.pair), gear, settings], sort_keys=True, default=str)
+    """Everything the FE table depends on: the pair's section data (profile, shifts, bore,
+    material) and the settings."""
+    data = {k: v for k, v in pair_to_dict(geom.pair).items() if k not in _NOT_IN_SECTION}
+    data["profile_shift"] = [float(x) for x in geom.profile_shift]  # as resolved (centre distance)
+    return json.dumps([data, gear, settings], sort_keys=True, default=str)
 
 
 _CACHE: dict[str, ToothCompliance] = {}
