@@ -89,7 +89,11 @@ def test_total_length_mean_min_max_match_closed_form(pair):
     tol = 2 * (hi - lo) / 2000 + 1e-12
     assert L.mean() == pytest.approx(mean, abs=tol + 1e-9 * mean)
     assert L.min() >= lo - 1e-12 and L.max() <= hi + 1e-12
-    assert L.min() <= lo + tol + (hi - lo) * 2e-3 and L.max() >= hi - tol - (hi - lo) * 2e-3
+    frac = geom.eps_alpha % 1.0
+    if geom.base_helix_angle > 0 or min(frac, 1.0 - frac) > 2 / 2000:
+        # a spur pair's L is piecewise constant: an even grid reaches a plateau only if it is
+        # wider than the grid spacing (εα = 1.9998 leaves a single-pair window of 2e-4 p_bt)
+        assert L.min() <= lo + tol + (hi - lo) * 2e-3 and L.max() >= hi - tol - (hi - lo) * 2e-3
     assert contact_length_fluctuation(geom) == pytest.approx((hi - lo) / b)
 
 
