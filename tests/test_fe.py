@@ -45,7 +45,7 @@ def _cantilever_tip(length: float, depth: float, size: float, plane: str = "stre
     @LinearForm
     def shear(w, p):  # τ = 3F/(2h)·(1 − (2η/h)²), η from the axis: resultant F = 1 N per m
         eta = p.x[1] - 0.5 * depth
-        return 1.5 / depth * (1 - (2 * eta / depth) ** 2) * w.value[1]
+        return 1.5 / depth * (1 - (2 * eta / depth) ** 2) * w[1]
 
     end = mesh.facets_satisfying(lambda x: np.isclose(x[0], length))
     f = asm(shear, FacetBasis(mesh, solver.basis.elem, facets=end))
