@@ -141,9 +141,11 @@ class ImpactModel:
     entering corner reaches the end of the active zone it enters by, ``pair_enter`` its
     tooth-pair index, ``z_corner`` that corner. The search window: ``tau`` (R,) time-like
     rolls, ``window_basis`` / ``window_z`` / ``window_compliance`` (R, J, N) the other pairs'
-    points (entering pair's column has NaN base: excluded), ``enter_fine_*`` (R, Nz) the
-    entering pair on ``z_fine`` (Nz,) points over the face. ``points`` the LTCA points per
-    line (the local-stiffness discretisation); ``inertia`` (2,) kg m², ``equivalent_mass`` kg.
+    points (the entering pair's column ``window_enter_column`` of the tooth pairs
+    ``window_pairs`` made a non-candidate), ``enter_fine_basis`` (R, Nz) the entering pair on
+    ``z_fine`` (Nz,) points over the face. ``points`` the LTCA points per line (the other
+    pairs), ``local_points`` / ``local_keep`` / ``local_law`` the entering line's own slicing
+    for its local stiffness; ``inertia`` (2,) kg m², ``equivalent_mass`` kg.
     """
 
     geom: PairGeometry
@@ -155,14 +157,13 @@ class ImpactModel:
     z_corner: float
     extension: float
     tau: np.ndarray
-    window_basis: object
+    window_basis: SeparationBasis
     window_z: np.ndarray
     window_compliance: np.ndarray
     window_enter_column: int
-    window_all_basis: object
-    window_all_compliance: np.ndarray
+    window_pairs: np.ndarray
     z_fine: np.ndarray
-    enter_fine_basis: object
+    enter_fine_basis: SeparationBasis
     points: int
     local_points: int
     local_keep: int
@@ -263,17 +264,16 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
     if col.size == 0:
         raise RuntimeError("the entering tooth pair is not among the candidate pairs of the window")
     col = int(col[0])
-    basis_all = grid.basis
-    comp_all = point_compliance(geom, ltca.pair_table, ltca.tables, grid.s, grid.region, grid.rho_pinion,
-                                grid.rho_gear, with_hertz=ltca.law.name == "linear") / grid.dz
-    basis_others = _without_column(basis_all, col)  # the pairs already in mesh
+    compliance = point_compliance(geom, ltca.pair_table, ltca.tables, grid.s, grid.region, grid.rho_pinion,
+                                  grid.rho_gear, with_hertz=ltca.law.name == "linear") / grid.dz
+    basis_others = _without_column(grid.basis, col)  # the pairs already in mesh
     z_fine = np.linspace(-0.5 * geom.face_width, 0.5 * geom.face_width, int(face_samples))
     s_fine = (roll[:, None] + j_e * pbt + hand_sign(geom) * z_fine[None, :] * math.tan(geom.base_helix_angle))
     fine = separation_basis(geom, s_fine, np.inf)
     return ImpactModel(geom=geom, ltca=ltca, driver=driver, sigma=sigma, roll_engagement=roll_e, pair_enter=j_e,
                        z_corner=z_c, extension=ext, tau=tau, window_basis=basis_others,
-                       window_z=np.broadcast_to(grid.z, grid.s.shape), window_compliance=comp_all,
-                       window_enter_column=col, window_all_basis=basis_all, window_all_compliance=comp_all,
+                       window_z=np.broadcast_to(grid.z, grid.s.shape), window_compliance=compliance,
+                       window_enter_column=col, window_pairs=np.asarray(grid.pairs),
                        z_fine=z_fine, enter_fine_basis=fine, points=int(points), local_points=int(local_points),
                        local_keep=int(local_keep),
                        local_law=contact_law(geom, geom.face_width / local_points, ltca.law.name) if ltca.law.name != "linear"
@@ -529,7 +529,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
         tt = tt - np.clip(step, -eps * 1e3, eps * 1e3)
         d_guess = np.where(np.isfinite(d3[2]), d3[2], d_guess)
     found = found & (np.abs(resid) <= 1e-12)  # a crossing Newton could not pin down is no impact
-    gap_m, z_m, delta = gap3[2], z3[2], d3[2]
+    z_m, delta = z3[2], d3[2]
     gap_rate = -back(gap3)
     approach_rate = back(d3)
     s_m = model.s_enter(tt, z_m)
@@ -578,7 +578,7 @@ def _approach_at(model: ImpactModel, params: np.ndarray, force: np.ndarray, tau:
     nc, nt = shape[-2:]
     roll = model.roll(tau).reshape(-1)
     grid = candidate_grid(g, roll, model.points, model.lead_slope, model.extension / g.transverse_base_pitch,
-                          pairs=_window_pairs(model))
+                          pairs=model.window_pairs)
     b = _without_column(grid.basis, model.window_enter_column) if others else grid.basis
     p = np.broadcast_to(params[:, None], shape + (2, 6)).reshape(-1, 1, 1, 2, 6)
     gap = basis_gap(g, b, np.broadcast_to(grid.z, grid.s.shape), model.lead_slope, p).reshape(roll.size, -1)
@@ -587,12 +587,6 @@ def _approach_at(model: ImpactModel, params: np.ndarray, force: np.ndarray, tau:
     f = np.broadcast_to(force, shape).reshape(-1)
     start = None if delta_start is None else np.broadcast_to(delta_start, shape)
     return _solve_rows(gap, comp, f, law, delta_start=start).reshape(shape)
-
-
-def _window_pairs(model: ImpactModel) -> np.ndarray:
-    """The tooth-pair indices of the window grid (same columns at every roll)."""
-    n = model.window_all_compliance.shape[1]
-    return model.pair_enter - model.window_enter_column + np.arange(n)
 
 
 def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, dmax: np.ndarray, levels: int):
@@ -1013,7 +1007,7 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     m = model.equivalent_mass
     # tangent mesh stiffness at the touch (all pairs) for the time scale
     grid0 = candidate_grid(g, np.array([float(st.roll[0, 0])]), model.points, model.lead_slope,
-                           model.extension / g.transverse_base_pitch, pairs=_window_pairs(model))
+                           model.extension / g.transverse_base_pitch, pairs=model.window_pairs)
     gap0 = basis_gap(g, grid0.basis, np.broadcast_to(grid0.z, grid0.s.shape), model.lead_slope, params[0])
     comp0 = point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid0.s, grid0.region, grid0.rho_pinion,
                              grid0.rho_gear, with_hertz=law.name == "linear") / grid0.dz
@@ -1024,7 +1018,7 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     tau1 = t_star + cycles_after * period * rate
     taus = np.linspace(tau0, tau1, int(samples))
     grid = candidate_grid(g, model.roll(taus), model.points, model.lead_slope, model.extension / g.transverse_base_pitch,
-                          pairs=_window_pairs(model))
+                          pairs=model.window_pairs)
     gaps = basis_gap(g, grid.basis, np.broadcast_to(grid.z, grid.s.shape), model.lead_slope, params[0])
     comps = point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid.s, grid.region, grid.rho_pinion,
                              grid.rho_gear, with_hertz=law.name == "linear") / grid.dz

@@ -6,7 +6,6 @@ carries ``units`` and ``long_name``. Physics: :mod:`gearmesh.impact`.
 
 from __future__ import annotations
 
-import math
 from typing import Any, Sequence
 
 import numpy as np
