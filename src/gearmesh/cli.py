@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import logging
 import math
 import re
 import sys
@@ -149,6 +150,13 @@ def _progress():
 
 def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.optimise import optimise_summary
+    from .optimise import LOG
+
+    if sys.stderr.isatty():  # one line per generation on the terminal
+        handler = logging.StreamHandler(sys.stderr)
+        handler.setFormatter(logging.Formatter("  %(message)s"))
+        LOG.addHandler(handler)
+        LOG.setLevel(logging.INFO)
 
     return optimise_summary(_pair(args.pair, args)[0], args.torque_Nm, args.speed_rpm, on=args.on, modify=args.modify,
                             method=args.method, seed=args.seed, population=args.population,

@@ -54,6 +54,7 @@ distinct candidates. Same settings and seed → bit-identical history and optimu
 
 from __future__ import annotations
 
+import logging
 import math
 import time
 from dataclasses import dataclass, field
@@ -65,6 +66,10 @@ from .errors import GearmeshInputError
 from .gear import GEARS, MAX_MODIFICATION_TO_MODULE, PairGeometry
 from .impact import SCENARIO_NONE, ImpactModel, impact_response, impact_static, ltca_metrics
 from .surface import MODIFICATION_FIELDS
+
+#: Progress of a run, one line per generation: the rule's log records it, and the CLI shows it
+#: on stderr in a terminal.
+LOG = logging.getLogger(__name__)
 
 __all__ = [
     "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "FAILURE_FACTOR", "Gene",
@@ -534,6 +539,7 @@ def random_search(prob: Problem, evaluations: int | None = None) -> Optimisation
     ev, history = _Evaluator(prob), History()
     for g in range(s.generations + 1):
         ev.record(history, draws[g * s.population:(g + 1) * s.population], s.population)
+        LOG.info("random search batch %d/%d done", g, s.generations)
     return _finish(prob, "random", history, ev, time.perf_counter() - t0)
 
 
@@ -574,6 +580,8 @@ def _run_pygad(prob: Problem) -> OptimisationResult:
         if not history.genes:  # generation 0: the initial population and its fitness
             ev.record(history, ga.initial_population)
         ev.record(history, ga.population)
+        LOG.info("%s generation %d/%d done, %d evaluations", s.method, ga.generations_completed, s.generations,
+                 ev.count)
 
     t0 = time.perf_counter()
     ga = pygad.GA(num_generations=s.generations, num_parents_mating=max(2, s.population // 2),
