@@ -211,3 +211,30 @@ def test_fe_compliance_dataset(tmp_path):
     assert np.allclose(ds["fe_compliance"].values[1], direct.total, rtol=1e-12)
     assert np.all(ds["fe_compliance"].values < ds["fe_compliance_plane_stress"].values)
     assert plot_fe_compliance(ds, tmp_path / "fe.png").stat().st_size > 10_000
+
+
+def test_workflow_tables_are_read_not_recomputed(monkeypatch):
+    """A stage handed its pair's fe_compliance.nc takes the FE tables from it (no meshing) and
+    they equal the file's columns; a file of another geometry is refused."""
+    from gearmesh.datasets.fe import fe_compliance_dataset
+    from gearmesh.datasets.stiffness import stiffness_dataset
+
+    pair = load_pair(seed001_pair1())
+    geom = pair_geometry(pair)
+    ds = fe_compliance_dataset(pair, size=0.3, roll_nodes=5)
+    monkeypatch.setattr(fe, "_CACHE", {})
+    monkeypatch.setattr(fe, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
+    fe.seed_cache(ds, geom)
+    for gear in (0, 1):
+        table = fe.fe_slice_compliance_table(geom, gear, n_roll=5, size=0.3)
+        np.testing.assert_array_equal(table.values["bending"] + table.values["fillet"], ds["fe_compliance"].values[gear])
+    other = pair_geometry(load_pair(seed001_pair1(teeth=[31, 49])))
+    with pytest.raises(GearmeshInputError, match="fe_compliance"):
+        fe.seed_cache(ds, other)
+    # through a stage: the default settings' file, then stiffness_dataset(method='fe') reads it
+    monkeypatch.undo()
+    full = fe_compliance_dataset(pair)
+    monkeypatch.setattr(fe, "_CACHE", {})
+    monkeypatch.setattr(fe, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
+    out = stiffness_dataset(pair, method="fe", slices=20, positions=24, fe_compliance=full)
+    assert float(out["mean_stiffness"]) > 0

@@ -56,7 +56,7 @@ from scipy.interpolate import CubicSpline
 from scipy.sparse.linalg import splu
 
 from .errors import GearmeshInputError
-from .gear import PairGeometry, pair_to_dict
+from .gear import GEARS, PairGeometry, pair_to_dict
 
 __all__ = [
     "PLANES", "DEFAULT_SIZE", "DEFAULT_NEIGHBOURS", "DEFAULT_PLANE", "DEFAULT_ROLL_NODES",
@@ -503,6 +503,37 @@ def fe_tooth_compliance_cached(geom: PairGeometry, gear: int, n_roll: int = DEFA
             _CACHE.pop(next(iter(_CACHE)))  # oldest first
         _CACHE[key] = hit
     return hit
+
+
+def seed_cache(ds, geom: PairGeometry) -> None:
+    """Put the FE tooth compliances of a ``fe_compliance.nc`` (rule ``fe_compliance``,
+    :func:`gearmesh.datasets.fe.fe_compliance_dataset` of the same pair) into the in-process
+    cache under the settings they were computed with, so a stage of the same pair with the
+    same settings reads them instead of meshing again: the table is computed once per gear
+    geometry in the workflow, and every stage using ``method: fe`` takes it from the file."""
+    settings = (int(ds.attrs["roll_nodes"]), str(ds.attrs["plane"]), float(ds.attrs["size_normal_modules"]),
+                DEFAULT_NEIGHBOURS)
+    for gear, name in enumerate(GEARS):
+        def var(key):
+            return np.asarray(ds[key].values[gear], dtype=float)
+
+        rho = var("roll")
+        if not np.allclose(rho, np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], settings[0]), rtol=0, atol=1e-12):
+            raise GearmeshInputError("fe_compliance", ds.attrs.get("pair_name", ""),
+                                     f"was computed for another {name} geometry than this pair's")
+        total = var("fe_compliance")
+        _CACHE[_cache_key(geom, gear, settings)] = ToothCompliance(
+            rho=rho, total=total, body=var("fe_body"), tooth=var("fe_tooth"), total_left=total,
+            wind_up=var("fe_wind_up"), ring_shift=var("fe_ring_shift"), local=var("fe_local"),
+            wind_up_radius=float("nan"), load_angle=var("load_angle"), plane=settings[1], size=settings[2],
+            neighbours=DEFAULT_NEIGHBOURS, n_elements=int(ds.attrs.get(f"{name}_elements", 0)),
+            n_dofs=int(ds.attrs.get(f"{name}_dofs", 0)))
+
+
+def use_fe_tables(ds, geom: PairGeometry) -> None:
+    """:func:`seed_cache` when a stage was handed its pair's ``fe_compliance.nc`` (else nothing)."""
+    if ds is not None:
+        seed_cache(ds, geom)
 
 
 def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAULT_ROLL_NODES,

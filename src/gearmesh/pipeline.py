@@ -155,7 +155,8 @@ def run_optimise(smk: Any) -> None:
 
     def body(smk: Any) -> None:
         pair = load_pair(smk.input.pair)
-        ds = resolve(smk.params.function)(pair, **dict(smk.params.settings))
+        upstream = {k: read_dataset(v) for k, v in smk.input.items() if k != "pair"}
+        ds = resolve(smk.params.function)(pair, **dict(smk.params.settings), **upstream)
         _write_outputs(smk, ds, pair)
         write_pair(optimum_pair(pair, ds), smk.output.pair)
 

@@ -27,6 +27,18 @@ wildcard_constraints:
     variant="|".join(VARIANTS),
 
 
+def fe_tables(section):
+    """Input function: the pair's FE tooth tables (rule fe_compliance) when the stage of
+    ``section`` uses the stiffness method 'fe' — computed once per pair, read by every stage."""
+
+    def inputs(wildcards):
+        if config.get(section, {}).get("method") == "fe":
+            return {"fe_compliance": f"results/{wildcards.study}/{wildcards.pair}/fe_compliance.nc"}
+        return {}
+
+    return inputs
+
+
 def pair_file(wildcards):
     return str(pair_path(config, wildcards.pair))
 

@@ -1,6 +1,7 @@
 # Finite-element tooth compliance (issue 12): per pair, both gears along the active profile,
-# beside the three potential-energy cantilevers. The stiffness method 'fe' itself runs in the
-# stiffness, LTCA, impact and dynamics stages (gearmesh.fe, cached per process; < 2 s a gear).
+# beside the three potential-energy cantilevers. It is computed once per pair here; the stages
+# whose section says method: fe (stiffness, ltca, impact, optimise) take their tables from this
+# file (common.smk fe_tables, gearmesh.fe.seed_cache) instead of meshing again.
 
 
 rule fe_compliance:

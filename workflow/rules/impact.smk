@@ -7,6 +7,7 @@ rule impact:
     """Mesh-in point, impact velocity, local stiffness and energy-method impact force over the
     torque x speed grid, and the direct simulation of the engagement at the design speed (impact.nc)."""
     input:
+        unpack(fe_tables("impact")),
         pair=variant_pair_file,
     output:
         "results/{study}/{pair}/{variant}/impact.nc",

@@ -5,6 +5,7 @@ rule ltca:
     """LTCA at every torque over one mesh cycle: LTE, load per point (contact pattern), loaded mesh
     stiffness, pairs in contact, LTE at the start of engagement (ltca.nc)."""
     input:
+        unpack(fe_tables("ltca")),
         pair=variant_pair_file,
     output:
         "results/{study}/{pair}/{variant}/ltca.nc",

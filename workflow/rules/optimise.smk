@@ -8,6 +8,7 @@ rule optimise:
     """GA (or NSGA-II, or random search) over seed 000's six modification parameters: every
     generation, the optimum and the random-search baseline (ga.nc), and the optimum as a pair file."""
     input:
+        unpack(fe_tables("impact")),  # the optimiser runs the study's impact model
         pair=pair_file,
     output:
         nc="results/{study}/{pair}/optimise/ga.nc",

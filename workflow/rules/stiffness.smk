@@ -1,6 +1,7 @@
 rule stiffness:
     """Time-varying mesh stiffness K(phi), components, Fourier series, ISO 6336-1, LSTE (stiffness.nc)."""
     input:
+        unpack(fe_tables("stiffness")),
         pair=pair_file,
     output:
         "results/{study}/{pair}/stiffness.nc",

@@ -11,6 +11,7 @@ from typing import Any, Sequence
 import numpy as np
 import xarray as xr
 
+from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, check_speeds, impact_model,
@@ -47,7 +48,7 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
                    design_speed_rpm: float = 5000.0, driver: str = "pinion", points: int = 50,
                    energy_velocity: str = "transverse", added_inertia_kg_m2=(0.0, 0.0), lead_slope_um=(0.0, 0.0),
                    contact_law: str = "palmgren", method: str = "transition", corner_extension: float = 0.25,
-                   simulate_torques_Nm=(), variant: str = "") -> xr.Dataset:
+                   simulate_torques_Nm=(), variant: str = "", fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """Mesh-in impact over a torque × speed grid (dims torque, speed): scenario, mesh-in point
     M (3-D, profile and face position, common normal), impact velocity (closing rate and seed
     000's vector form), local stiffness fit, kinetic energy, impact force (closed form and
@@ -55,8 +56,10 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
     the torques in ``simulate_torques_Nm`` — the direct time integration of the engagement.
 
     Torques (N·m) on the ``on`` gear, speeds (rpm) of the pinion; ``driver`` which gear drives;
-    ``variant`` the micro-geometry variant's name (recorded for the study table).
+    ``variant`` the micro-geometry variant's name (recorded for the study table); with
+    ``method='fe'``, ``fe_compliance`` supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
     """
+    use_fe_tables(fe_compliance, pair_geometry(pair))
     model = _model(pair, points, lead_slope_um, contact_law, method, corner_extension, driver, added_inertia_kg_m2)
     geom = model.geom
     given = check_torques(torques_Nm)

@@ -13,6 +13,7 @@ from typing import Sequence, Any
 import numpy as np
 import xarray as xr
 
+from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
@@ -108,7 +109,8 @@ def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slop
 
 def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: int = 64, points: int = 50,
                  lead_slope_um=(0.0, 0.0), on: str = "pinion", contact_law: str = "palmgren",
-                 method: str = "transition", corner_extension: float = DEFAULT_EXTENSION) -> xr.Dataset:
+                 method: str = "transition", corner_extension: float = DEFAULT_EXTENSION,
+                 fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """LTCA at each torque over one mesh cycle (dims torque, position, line, point).
 
     Loaded TE, load and line load of every point (the contact pattern), load per tooth
@@ -118,9 +120,11 @@ def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: 
     TCA variables of :func:`tca_dataset` on the same grid.
 
     ``torques_Nm`` torques (N·m) on the pinion, or on the gear with ``on='gear'`` (then
-    T1 = T2·z1/z2); ``contact_law`` 'palmgren' or 'linear'; ``method`` the slice model.
+    T1 = T2·z1/z2); ``contact_law`` 'palmgren' or 'linear'; ``method`` the slice model
+    (with 'fe', ``fe_compliance`` supplies the FE tables: :func:`gearmesh.fe.seed_cache`).
     """
     geom = _geometry(pair)
+    use_fe_tables(fe_compliance, geom)
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
     given = check_torques(torques_Nm)
     t1 = pinion_torques(geom, given, on)

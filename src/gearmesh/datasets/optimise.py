@@ -13,6 +13,7 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
+from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
@@ -164,11 +165,15 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
     return out
 
 
-def optimise_dataset(pair: GearPair, **settings) -> xr.Dataset:
+def optimise_dataset(pair: GearPair, fe_compliance: xr.Dataset | None = None, **settings) -> xr.Dataset:
     """Run the optimiser on ``pair`` (settings: :func:`run_settings`) and return ga.nc: every
     generation's population, objective, F_s, scenario and best; the random-search baseline
     of the same budget; the optimum genes and parameters; the standard gear and the optimum
-    at the objective torques; NSGA-II's Pareto front; method, seed, evaluations, wall time."""
+    at the objective torques; NSGA-II's Pareto front; method, seed, evaluations, wall time.
+    With an impact model of ``method: fe``, ``fe_compliance`` supplies the FE tables."""
+    from ..gear import pair_geometry
+
+    use_fe_tables(fe_compliance, pair_geometry(pair))
     return result_dataset(optimise(run_problem(pair, **settings)), settings)
 
 

@@ -8,6 +8,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import xarray as xr
 
+from ..fe import use_fe_tables
 from ..design import pair_with_contact_ratios
 from ..errors import GearmeshInputError
 from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_to_dict
@@ -38,14 +39,16 @@ def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
 
 def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
                       positions: int = 360, fourier_order: int = 3, torque_Nm: float | None = None,
-                      torque_on: str = "pinion") -> xr.Dataset:
+                      torque_on: str = "pinion", fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """K(φ) of ``pair`` by the slice potential energy method (:func:`gearmesh.stiffness.mesh_stiffness`),
     with its components, one tooth pair's k over its engagement, the Fourier series of K to
     ``fourier_order`` (seed 004) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
     torque the LSTE F/K(φ) (seed 001). Stiffness is along the transverse line of action
-    (force F = T1/r_b1); multiply by 1/cos²βb for the normal direction.
+    (force F = T1/r_b1); multiply by 1/cos²βb for the normal direction. With ``method='fe'``,
+    ``fe_compliance`` (the pair's fe_compliance.nc) supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
     """
     geom = pair_geometry(pair)
+    use_fe_tables(fe_compliance, geom)
     result = mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method)
     fit = fourier_fit(result.K, fourier_order)
     theta = 2 * np.pi * result.roll / geom.transverse_base_pitch
