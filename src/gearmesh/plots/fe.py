@@ -15,6 +15,13 @@ UM_MM_PER_N = 1e9
 STYLE = {"traditional": ("tab:orange", ":"), "improved": ("tab:green", "-."), "transition": ("tab:blue", "--")}
 
 
+
+def _pem_lines(ax, x, ds, name: str, gear: int, label: str) -> None:
+    """One line per potential-energy model of variable ``name`` (m²/N → µm per N/mm) of ``gear``."""
+    for m in ds["model"].values:
+        c, ls = STYLE.get(str(m), ("tab:red", "-"))
+        ax.plot(x, ds[name].sel(model=m).values[gear] * UM_MM_PER_N, ls=ls, color=c, lw=1.4, label=label.format(m))
+
 def plot_fe_compliance(ds: xr.Dataset, path: str | Path) -> Path:
     """Top: total tooth compliance (no contact part) against roll length, FE in its plane and
     in plane stress, and the PEMs. Bottom: the body part, FE (root-section rigid motion)
@@ -27,20 +34,14 @@ def plot_fe_compliance(ds: xr.Dataset, path: str | Path) -> Path:
         if ds.attrs["plane"] != "stress":
             ax.plot(x, ds["fe_compliance_plane_stress"].values[g] * UM_MM_PER_N, "-", color="0.55", lw=1.5,
                     label="FE, plane stress")
-        for m in ds["model"].values:
-            c, ls = STYLE.get(str(m), ("tab:red", "-"))
-            ax.plot(x, ds["pem_compliance"].sel(model=m).values[g] * UM_MM_PER_N, ls=ls, color=c, lw=1.4,
-                    label=f"PEM {m}")
+        _pem_lines(ax, x, ds, "pem_compliance", g, "PEM {}")
         ax.set_title(f"{gear}: bending + shear + axial + foundation", fontsize=9)
         ax.set_ylabel("compliance (µm per N/mm)")
         ax.grid(alpha=0.3)
         ax = axes[1, g]
         ax.plot(x, ds["fe_body"].values[g] * UM_MM_PER_N, "k-", lw=2, label="FE body (root-section rigid motion)")
         ax.plot(x, ds["fe_wind_up"].values[g] * UM_MM_PER_N, "k:", lw=1.2, label="FE body wind-up (torsion)")
-        for m in ds["model"].values:
-            c, ls = STYLE.get(str(m), ("tab:red", "-"))
-            ax.plot(x, ds["pem_fillet"].sel(model=m).values[g] * UM_MM_PER_N, ls=ls, color=c, lw=1.4,
-                    label=f"Sainsot, {m} root")
+        _pem_lines(ax, x, ds, "pem_fillet", g, "Sainsot, {} root")
         ax.set_title(f"{gear}: fillet foundation", fontsize=9)
         ax.set_xlabel("roll length of the load point (mm), SAP to EAP")
         ax.set_ylabel("compliance (µm per N/mm)")
