@@ -48,10 +48,10 @@ Fuentes, Gear Geometry and Applied Theory, 2nd ed. 2004, §10.3). So
 
 * approach: gap = r_b1·(σ1(P) − σ1,flank), exactly the pinion rotation (×r_b1) that brings
   the pinion flank to the gear tip P with the gear held;
-* recess: the gear-normal distance r_b2·(σ2(P) − σ2,flank), converted to the pinion
-  rotation that closes it, × r_b1/|n2·(e_z × P)| (to first order in the gap; the
-  moment arm of the gear-flank normal n2 about the pinion axis is |n2·(e_z × P)|, which
-  equals r_b1 on the line of action).
+* recess: the pinion rotation ψ (× r_b1) that carries the pinion tip point P onto the gear
+  involute, σ2(R(ψ)P) = σ2,flank, solved by Newton's method from the first-order estimate
+  r_b2·(σ2(P) − σ2,flank)/|n2·(e_z × P)| (the gear-normal distance over the moment arm of
+  the gear-flank normal n2 about the pinion axis, which equals r_b1 on the line of action).
 
 Both reduce continuously to the flank formula at s = 0 and s = g_α. The flank
 modifications add at the touched point (pinion at the roll length ρ_P = √(|P|² − r_b1²)
@@ -259,21 +259,48 @@ def _approach_basis(geom: PairGeometry, s):
 
 
 def _recess_basis(geom: PairGeometry, s):
-    """(base distance, ρ_gear, weight of the pinion tip relief, rotation factor r_b1/arm) of recess
-    tip-edge points (module docstring); the gap is (dist + modifications)·r_b1/arm."""
+    """(unmodified gap, ρ_gear, weight of the pinion tip relief, factor r_b1/arm) of recess
+    tip-edge points (module docstring).
+
+    The gap of the unmodified flanks is exact: the pinion rotation ψ (gear held) that carries
+    the pinion tip point P onto the gear involute, σ2(R(ψ)P) = σ2,flank, by Newton's method
+    from the first-order estimate (normal distance)/arm, times r_b1. The modifications add to
+    first order through r_b1/arm (the moment arm of the gear-flank normal about the pinion axis).
+    """
     awt = geom.operating_pressure_angle
     rb1, rb2 = (float(r) for r in geom.base_radius)
+    a = geom.center_distance
     px, py = recess_tip_point(geom, s)
-    vx, vy = px - geom.center_distance, py
-    with np.errstate(invalid="ignore"):
-        u2 = np.sqrt((vx * vx + vy * vy) / rb2**2 - 1.0)
-    theta2 = np.arctan2(vy, vx)
-    dist = rb2 * (_wrap(theta2 - (math.pi - awt)) + _inv(u2) - (geom.rho_eap[1] - s) / rb2)
-    tau2 = theta2 - np.arctan(u2)
+    flank = (geom.rho_eap[1] - s) / rb2
+
+    def sigma_gap(x, y):
+        """σ2 of the gear involute through (x, y) less the flank's (rad); rb2× it is the normal distance."""
+        with np.errstate(invalid="ignore"):
+            u2 = np.sqrt(((x - a) ** 2 + y * y) / rb2**2 - 1.0)
+        return _wrap(np.arctan2(y, x - a) - (math.pi - awt)) + _inv(u2) - flank, u2
+
+    f0, u2 = sigma_gap(px, py)
+    dist = rb2 * f0
+    tau2 = np.arctan2(py, px - a) - np.arctan(u2)
     n2x, n2y = -np.sin(tau2), np.cos(tau2)
     arm = np.abs(-n2x * py + n2y * px)
+    psi = dist / arm  # first order
+    h = 1e-7
+    for _ in range(4):  # Newton on the pinion rotation; converged to round-off in 2–3 steps
+        c, sn = np.cos(psi), np.sin(psi)
+        f, _ = sigma_gap(c * px - sn * py, sn * px + c * py)
+        cp, sp = np.cos(psi + h), np.sin(psi + h)
+        cm, sm = np.cos(psi - h), np.sin(psi - h)
+        fp, _ = sigma_gap(cp * px - sp * py, sp * px + cp * py)
+        fm, _ = sigma_gap(cm * px - sm * py, sm * px + cm * py)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            psi = psi - f / ((fp - fm) / (2 * h))
+    c, sn = np.cos(psi), np.sin(psi)
+    f, _ = sigma_gap(c * px - sn * py, sn * px + c * py)
+    # far from the flank (no nearby involute point to rotate onto) there is no candidate
+    psi = np.where(np.abs(f) <= 1e-12, psi, np.nan)
     tau1 = np.arctan2(py, px) - math.atan(geom.rho_eap[0] / rb1)
-    return dist, rb2 * u2, np.abs(np.cos(tau1 - tau2)), rb1 / arm
+    return rb1 * psi, rb2 * u2, np.abs(np.cos(tau1 - tau2)), rb1 / arm
 
 
 def separation_basis(geom: PairGeometry, s, extension: float = np.inf) -> SeparationBasis:
@@ -303,9 +330,9 @@ def separation_basis(geom: PairGeometry, s, extension: float = np.inf) -> Separa
         rho1[appr], rho2[appr] = rho_p, geom.rho_eap[1]
         region[appr] = np.where(ok, REGION_APPROACH_TIP, REGION_NONE)
     if rec.any():
-        dist, rho_g, cosang, factor = _recess_basis(geom, s[rec])
-        ok = np.isfinite(rho_g) & (rho_g >= geom.rho_form[1] - 1e-12)
-        base[rec] = np.where(ok, dist * factor, np.nan)
+        gap0, rho_g, cosang, factor = _recess_basis(geom, s[rec])
+        ok = np.isfinite(rho_g) & np.isfinite(gap0) & (rho_g >= geom.rho_form[1] - 1e-12)
+        base[rec] = np.where(ok, gap0, np.nan)
         w1[rec], w2[rec] = cosang * factor / cb, factor / cb
         rho1[rec], rho2[rec] = geom.rho_eap[0], rho_g
         region[rec] = np.where(ok, REGION_RECESS_TIP, REGION_NONE)
@@ -367,11 +394,11 @@ def recess_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
     """Gap (m) between the pinion's tip edge and the gear flank after the pinion tip left E (s > g_α), region 3.
 
     The pinion tip left E = T1 + ρ_EAP1·d a pinion turn (s − g_α)/r_b1 ago: P = R((s − g_α)/r_b1)·E.
-    Its distance from the gear flank along the gear involute normal n2 is
-    r_b2·(σ2(P) − σ2,flank), σ2 = θ2 + inv(u2) in the gear-centred polar angle,
-    σ2,flank = π − αwt + (ρ_EAP2 − s)/r_b2; the pinion rotation that closes it is that
-    distance over |n2·(e_z × P)| (the moment arm of n2 about the pinion axis), times r_b1
-    to give the transverse gap. Modifications as in :func:`approach_tip_separation`.
+    With σ2 = θ2 + inv(u2) in the gear-centred polar angle and σ2,flank = π − αwt +
+    (ρ_EAP2 − s)/r_b2, the gap is the pinion rotation ψ that brings P onto the flank,
+    σ2(R(ψ)P) = σ2,flank, times r_b1 (:func:`_recess_basis`); the modifications enter through
+    r_b1/|n2·(e_z × P)| (the moment arm of the flank normal n2 about the pinion axis), as in
+    :func:`approach_tip_separation`.
 
     Returns (gap, rho_gear): NaN where the touched gear roll length falls below its form circle.
     """
