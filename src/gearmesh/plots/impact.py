@@ -39,34 +39,44 @@ def plot_force_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_mesh_in_trajectory(ds: xr.Dataset, path: str | Path) -> Path:
     """Where M lies on the pinion flank (face position against roll length) for every torque,
-    coloured by scenario, with SAP, tip and face ends (seed 000 Table 3)."""
-    fig, ax = plt.subplots(figsize=(6.4, 4.6))
+    coloured by scenario, with SAP, tip and face ends (seed 000 Table 3): the whole flank on
+    the left, a close-up around the points (labelled with their torque) on the right."""
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1, 1.3]})
     b = float(ds["face_width"]) * MM
     sap, eap = float(ds["rho_sap"][0]) * MM, float(ds["rho_eap"][0]) * MM
-    ax.add_patch(plt.Rectangle((-b / 2, sap), b, eap - sap, fc="0.94", ec="0.5", lw=0.8))
     z = ds["mesh_in_face_position"].values * MM
     rho = ds["mesh_in_rho_pinion"].values * MM
-    ax.plot(z, rho, "-", color="0.5", lw=0.8)
-    for k in range(ds.sizes["torque"]):
-        scen = SCENARIOS[int(ds["scenario"][k])]
-        ax.plot(z[k], rho[k], "o", color=_COLORS[scen], ms=7)
-        ax.annotate(f"{float(ds.torque[k]):g} N m", (z[k], rho[k]), textcoords="offset points",
-                    xytext=(-10 - 45 * (k % 3), 4), fontsize=7, ha="right",
-                    arrowprops={"arrowstyle": "-", "color": "0.6", "lw": 0.5})
+    found = np.isfinite(z) & np.isfinite(rho)
+    for ax in axes:
+        ax.add_patch(plt.Rectangle((-b / 2, sap), b, eap - sap, fc="0.94", ec="0.5", lw=0.8))
+        ax.axhline(sap, color="tab:cyan", ls="--", lw=0.8)
+        ax.axhline(eap, color="tab:cyan", lw=0.8)
+        ax.plot(z, rho, "-", color="0.5", lw=0.8)
+        for k in np.flatnonzero(found):
+            ax.plot(z[k], rho[k], "o", color=_COLORS[SCENARIOS[int(ds["scenario"][k])]], ms=7)
+        ax.set_xlabel("face position z (mm)")
+        ax.grid(alpha=0.3)
     for scen, color in _COLORS.items():
         if scen != "none":
-            ax.plot([], [], "o", color=color, label=f"{scen} contact")
-    ax.set_xlabel("face position z (mm)")
-    ax.set_ylabel("pinion roll length ρ1 (mm); SAP and tip dashed/solid")
-    ax.axhline(sap, color="tab:cyan", ls="--", lw=0.8)
-    ax.axhline(eap, color="tab:cyan", lw=0.8)
+            axes[0].plot([], [], "o", color=color, label=f"{scen} contact")
     pad = 0.08 * b
-    ax.set_xlim(-b / 2 - pad, b / 2 + pad)
-    lo = min(sap, np.nanmin(rho)) if np.isfinite(rho).any() else sap
-    ax.set_ylim(lo - 0.05 * (eap - sap), eap + 0.05 * (eap - sap))
-    ax.set_title(_title(ds, f"mesh-in point M on the pinion flank — {ds.attrs.get('variant', '')}"), fontsize=9)
-    ax.legend(fontsize=7, loc="lower left")
-    ax.grid(alpha=0.3)
+    axes[0].set_xlim(-b / 2 - pad, b / 2 + pad)
+    lo = min(sap, np.nanmin(rho)) if found.any() else sap
+    axes[0].set_ylim(lo - 0.05 * (eap - sap), eap + 0.05 * (eap - sap))
+    axes[0].set_ylabel("pinion roll length ρ1 (mm); SAP dashed, tip solid")
+    axes[0].set_title("whole flank", fontsize=9)
+    axes[0].legend(fontsize=7, loc="upper left")
+    if found.any():  # close-up: at least 5 % of the face and of the active flank around the points
+        zc, rc = 0.5 * (np.max(z[found]) + np.min(z[found])), 0.5 * (np.max(rho[found]) + np.min(rho[found]))
+        hz = max(0.6 * np.ptp(z[found]), 0.05 * b)
+        hr = max(0.6 * np.ptp(rho[found]), 0.05 * (eap - sap))
+        axes[1].set_xlim(zc - hz, zc + hz)
+        axes[1].set_ylim(rc - hr, rc + hr)
+        for i, k in enumerate(np.flatnonzero(found)):
+            axes[1].annotate(f"{float(ds.torque[k]):g} N m", (z[k], rho[k]), textcoords="offset points",
+                             xytext=(8, 10 - 9 * (i % 3)), fontsize=7)
+    axes[1].set_title("close-up around the mesh-in points", fontsize=9)
+    fig.suptitle(_title(ds, f"mesh-in point M on the pinion flank — {ds.attrs.get('variant', '')}"), fontsize=10)
     return _save(fig, path)
 
 
