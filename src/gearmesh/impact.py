@@ -71,12 +71,12 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from .errors import GearmeshInputError
-from .gear import PairGeometry
-from .ltca import (LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance, positive_values, solve_contact,
-                   _invert)
-from .surface import body_rotation, flank_point, modification_parameters, relief_depth
-from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, basis_gap, candidate_grid,
-                  engagement_point, point_centres, separation_basis)
+from .gear import PairGeometry, involute
+from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, ltca_model, point_compliance,
+                   positive_values, solve_contact)
+from .surface import body_rotation, flank_point, modification_parameters, plane_of_action_point, relief_depth
+from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, approach_tip_point, basis_gap,
+                  candidate_grid, engagement_point, point_centres, recess_tip_point, separation_basis)
 from .contact import hand_sign
 
 __all__ = [
@@ -488,7 +488,6 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     it carries at least ``curve_force_min`` (N, (C, T) or scalar; default 4·F_bt) —
     :func:`impact_response` extends it where an impact needs more.
     """
-    from .ltca import check_torques
 
     g = model.geom
     params = model.params(params)
@@ -766,7 +765,6 @@ def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, 
     modification parameter sets ``params`` ((C, 2, 6) m) at pinion torques ``torques`` (N m):
     the LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from
     its separation basis (no new geometry)."""
-    from .ltca import check_torques
 
     g, lt = model.geom, model.ltca
     params = model.params(params)
@@ -811,9 +809,6 @@ def mesh_in_point(model: ImpactModel, static: ImpactStatic, c: int = 0, t: int =
         nan3 = np.full(3, np.nan)
         return {"point": nan3, "point_pinion": nan3, "normal": nan3, "pinion_radius": np.nan,
                 "rho_pinion": np.nan, "face_position": np.nan}
-    from .tca import approach_tip_point, recess_tip_point
-    from .surface import plane_of_action_point
-
     s, z, region = float(static.s[c, t]), float(static.z[c, t]), int(static.region[c, t])
     phi1 = float(static.roll[c, t]) / float(g.base_radius[0])
     j = model.pair_enter
@@ -952,7 +947,6 @@ def seed_edge_roll(geom: PairGeometry, approach: float) -> float:
     roll, which :func:`impact_static` must reproduce for an unmodified pair (the same event).
     """
     from scipy.optimize import brentq
-    from .gear import involute
 
     a = geom.center_distance
     rb1, rb2 = (float(r) for r in geom.base_radius)

@@ -59,7 +59,8 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
     ``variant`` the micro-geometry variant's name (recorded for the study table); with
     ``method='fe'``, ``fe_compliance`` supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
     """
-    use_fe_tables(fe_compliance, pair_geometry(pair))
+    if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
+        use_fe_tables(fe_compliance, pair_geometry(pair))
     model = _model(pair, points, lead_slope_um, contact_law, method, corner_extension, driver, added_inertia_kg_m2)
     geom = model.geom
     given = check_torques(torques_Nm)

@@ -173,7 +173,8 @@ def optimise_dataset(pair: GearPair, fe_compliance: xr.Dataset | None = None, **
     With an impact model of ``method: fe``, ``fe_compliance`` supplies the FE tables."""
     from ..gear import pair_geometry
 
-    use_fe_tables(fe_compliance, pair_geometry(pair))
+    if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
+        use_fe_tables(fe_compliance, pair_geometry(pair))
     return result_dataset(optimise(run_problem(pair, **settings)), settings)
 
 
