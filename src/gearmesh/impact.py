@@ -718,7 +718,8 @@ def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
                     energy_velocity: str = "transverse") -> tuple[ImpactStatic, ImpactResponse]:
     """Impact velocity, energy, peak force and fitted local stiffness at pinion speeds
     ``speeds_rpm`` for every (C, T) of ``static``; the F–δ curve is extended (and the static
-    part returned anew) where an impact reaches beyond it."""
+    part returned anew) where an impact reaches beyond it; a RuntimeWarning says when the
+    impact's approach reaches slices that ``local_keep`` left out."""
     if energy_velocity not in ENERGY_VELOCITIES:
         raise GearmeshInputError("energy_velocity", energy_velocity, f"must be one of {list(ENERGY_VELOCITIES)}")
     speeds = check_speeds(speeds_rpm)
