@@ -247,15 +247,16 @@ def test_dataset_summary_and_inputs():
                           sample_speeds_rpm=[27000], transient_tau=4.0, record_cycles=4, points_per_cycle=32,
                           max_order=4)
     check_documented(ds)
-    assert int(ds.on_grid.sum()) == 3 and ds.displacement_rms.dims == ("speed", "gear", "direction")
-    spec = ds.mesh_force_spectrum.isel(sample_speed=0)
+    assert int(ds.on_grid.sum()) == 3 and ds.displacement_rms.dims == ("torque", "speed", "gear", "direction")
+    assert ds.attrs["torque_on"] == "pinion" and float(ds.torque[0]) == 200.0  # the torque and its gear, stated
+    spec = ds.mesh_force_spectrum.isel(torque=0, sample_speed=0)
     assert float(spec.sel(order=1.0)) > 10 * float(spec.sel(order=0.5))  # lines at mesh orders only
     rows = dynamics_summary(pair, 200.0, "25000:27000:2000", transient_tau=4.0, record_cycles=4)
     assert [r["speed_rpm"] for r in rows] == [25000.0, 27000.0]
     assert {"speed_rpm", "dynamic_te_mean_um", "dynamic_te_std_um", "mesh_deflection_mean_um", "mesh_force_mean_N",
             "mesh_force_max_N"} <= set(rows[0])
-    with pytest.raises(GearmeshInputError, match="torque_Nm"):
-        dynamics_dataset(pair, torque_Nm=-5.0)
+    with pytest.raises(GearmeshInputError, match="torques_Nm"):
+        dynamics_dataset(pair, torques_Nm=-5.0)
     with pytest.raises(GearmeshInputError, match="speeds_rpm.stop"):
         speed_grid({"start": 1000, "stop": 500, "step": 100})
     with pytest.raises(GearmeshInputError, match="speeds_rpm.step"):
@@ -322,10 +323,10 @@ def test_low_speed_dynamic_te_is_the_mean_lte_and_mesh_deflection_is_f_over_k():
     assert ds.attrs["excitation"].startswith("ltca")
     lte = ltca["lte"].values[0]
     f_bt = float(ltca["torque"].values[0]) / float(pair_geometry(pair).base_radius[0])
-    np.testing.assert_allclose(float(ds.dynamic_te_mean[0]), lte.mean(), rtol=2e-3)
-    np.testing.assert_allclose(float(ds.mesh_deflection_mean[0]),
+    np.testing.assert_allclose(float(ds.dynamic_te_mean[0, 0]), lte.mean(), rtol=2e-3)
+    np.testing.assert_allclose(float(ds.mesh_deflection_mean[0, 0]),
                                np.mean(f_bt / ltca["loaded_mesh_stiffness"].values[0]), rtol=2e-3)
-    assert float(ds.dynamic_te_mean[0]) > float(ds.mesh_deflection_mean[0]) * 1.05  # the relief: e > 0
+    assert float(ds.dynamic_te_mean[0, 0]) > float(ds.mesh_deflection_mean[0, 0]) * 1.05  # the relief: e > 0
     assert "transverse line of action" in ds.dynamic_te_mean.attrs["long_name"]
 
 

@@ -121,20 +121,36 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.dynamics import check_dynamics_settings, dynamics_summary
 
-    pair = _pair(args.pair, args)[0]
-    check_dynamics_settings(pair, {"torque_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
-                                   "backlash_um": args.backlash_um, "sample_speeds_rpm": []})
-    excitation = {}
+    pair, geom = _pair(args.pair, args)
+    check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
+                                   "backlash_um": args.backlash_um, "sample_speeds_rpm": [],
+                                   "excitation": args.excitation})
+    excitation = {"excitation": args.excitation}
     if args.excitation == "ltca":  # the loaded TE and stiffness of this pair at this torque excite the model
         from .datasets.ltca import ltca_dataset
-        from .gear import pinion_torque
 
         torque_1 = pinion_torque(pair, args.torque_Nm, args.on)
-        excitation = {"ltca": ltca_dataset(pair, torques_Nm=[torque_1], on="pinion", positions=64, points=30)}
+        excitation["ltca"] = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion", positions=64, points=30)
     rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
                             backlash_um=args.backlash_um, progress=_progress(), **excitation)
-    return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on, "excitation": args.excitation,
+    backlash = geom.backlash_normal * 1e6 if args.backlash_um == "pair" else args.backlash_um
+    return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on,
+            "pinion_torque_Nm": float(pinion_torque(pair, args.torque_Nm, args.on)), "excitation": args.excitation,
+            "backlash_um": backlash, "backlash_source": "pair" if args.backlash_um == "pair" else "given",
             "speeds": rows}
+
+
+def _backlash_option(text: str):
+    """--backlash-um: 'pair' (the pair's own backlash) or a finite number of µm."""
+    if text == "pair":
+        return text
+    try:
+        value = float(text)
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"{text!r} is neither 'pair' nor a number of µm") from None
+    if not math.isfinite(value) or value < 0:
+        raise argparse.ArgumentTypeError(f"{text!r} must be a non-negative finite number of µm")
+    return value
 
 
 def _progress():
@@ -234,13 +250,15 @@ def build_parser() -> argparse.ArgumentParser:
                    help="also integrate the engagement in time and print the simulated peak force")
 
     p = _command(sub, "dynamics", cmd_dynamics, "steady-state speed sweep of the 8-DOF helical pair (seed 001 model)")
-    _torque_options(p, required=True, on_default="gear")
+    _torque_options(p, required=True, on_default="pinion")
     p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
-    p.add_argument("--backlash-um", dest="backlash_um", type=float, default=60.0,
-                   help="total backlash 2b0 along the normal (µm)")
-    p.add_argument("--excitation", choices=("tvms", "ltca"), default="tvms",
+    p.add_argument("--backlash-um", dest="backlash_um", type=_backlash_option, default="pair",
+                   help="total backlash 2b0 along the normal (µm), or 'pair': the pair's own from its centre "
+                        "distance and shifts")
+    p.add_argument("--excitation", choices=("tvms", "ltca", "contact"), default="tvms",
                    help="tvms: slice-model stiffness K(t), unloaded TE zero; ltca: loaded stiffness and loaded TE "
-                        "of an LTCA at this torque (64 positions, 30 points per line)")
+                        "of an LTCA at this torque (64 positions, 30 points per line); contact: the mesh force of "
+                        "the real tooth contact of every tooth pair, the mesh-in impact included")
 
     p = _command(sub, "optimise", cmd_optimise, "GA optimisation of seed 000's six modification parameters against "
                  "the mesh-in impact force at one torque and speed")
@@ -263,7 +281,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             value = getattr(args, option, None)
             if value is not None and not low <= value <= high:
                 raise GearmeshInputError(f"--{option}", value, f"must lie in [{low}, {high}]")
-        for option in ("torque_Nm", "backlash_um"):  # signs: the stages' own checks
+        for option in ("torque_Nm",):  # signs: the stages' own checks
             value = getattr(args, option, None)
             if value is not None and not math.isfinite(value):
                 raise GearmeshInputError(option, value, "must be a finite number")

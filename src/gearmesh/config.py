@@ -187,14 +187,19 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                 raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                          f"must include the stiffness LSTE torque ({stiffness['torque_Nm']} N m on "
                                          f"the {stiffness.get('torque_on', 'pinion')}) for the LSTE comparison")
-    if "dynamics" in config and "ltca" in config:
-        dyn, ltca = config["dynamics"], config["ltca"]
+    dyn = config.get("dynamics", {})
+    if "dynamics" in config and "ltca" in config and dyn.get("excitation") in (None, "ltca"):
+        ltca = config["ltca"]
+        torques = dyn.get("torques_Nm", 200.0)
         for name in config["pairs"]:
-            t_d = pinion_torque(pairs[name], dyn.get("torque_Nm", 200.0), dyn.get("on", "gear"))
-            if not _among(t_d, pairs[name], ltca):
-                raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
-                                         f"must include the dynamics torque ({dyn.get('torque_Nm', 200.0)} N m on "
-                                         f"the {dyn.get('on', 'gear')}): the LTCA excites the dynamics")
+            for t in torques if isinstance(torques, list) else [torques]:
+                t_d = pinion_torque(pairs[name], t, dyn.get("on", "pinion"))
+                if not _among(t_d, pairs[name], ltca):
+                    raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
+                                             f"must include the dynamics torque ({t} N m on the "
+                                             f"{dyn.get('on', 'pinion')}): the LTCA excites the dynamics")
+    if "dynamics" in config and dyn.get("excitation") == "ltca" and "ltca" not in config:
+        raise GearmeshInputError("dynamics.excitation", "ltca", "needs an ltca section in the study")
     _check_impact(config.get("impact"))
     sweep = config.get("helix_sweep")
     if sweep and sweep["stop_deg"] < sweep["start_deg"]:
@@ -284,8 +289,9 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
             sec = config[section]
             points = config["ltca"]["positions"] if section == "dynamics" and "ltca" in config \
                 else config["stiffness"]["positions"]
-            if sec.get("torque_Nm") is not None:
-                loads(section, "torque_Nm", sec.get("on", "gear"), config["pairs"])
+            key = "torque_Nm" if train else "torques_Nm"
+            if sec.get(key) is not None:
+                loads(section, key, sec.get("on", "pinion"), config["pairs"])
             elif train and sec.get("static_force_N") is not None:  # normal force -> gear torque F r_b2 cos βb
                 force = sec["static_force_N"]
                 for name in config["pairs"]:

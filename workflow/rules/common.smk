@@ -56,13 +56,20 @@ def variant_source_pair(wildcards):
     return pair_file(wildcards)
 
 
+def dynamics_contact():
+    """Whether the study's dynamics is driven by the real tooth contact (excitation: contact)."""
+    return config.get("dynamics", {}).get("excitation") == "contact"
+
+
 def dynamics_inputs(wildcards):
-    """The pair stage inputs of the dynamics: the variant's pair, the stiffness and, when the
-    study runs the LTCA, the variant's LTCA (its excitation)."""
+    """The pair stage inputs of the dynamics: the variant's pair, the stiffness, the variant's
+    LTCA when it excites the model (excitation ltca, or unset in a study that runs the LTCA) and
+    the FE tooth tables when the contact table uses method fe."""
     base = f"results/{wildcards.study}/{wildcards.pair}"
     out = {"pair": variant_pair_file(wildcards), "stiffness": f"{base}/stiffness.nc"}
-    if "ltca" in config:
+    if "ltca" in config and config["dynamics"].get("excitation") in (None, "ltca"):
         out["ltca"] = f"{base}/{wildcards.variant}/ltca.nc"
+    out.update(fe_tables("dynamics")(wildcards))
     return out
 
 
@@ -95,6 +102,8 @@ def variant_results(name, variant):
         out += [f"{base}/ltca.nc", f"{base}/plots/te_lte.png", f"{base}/plots/contact_pattern.png"]
     if "dynamics" in config:
         out += [f"{base}/dynamics.nc", f"{base}/plots/dynamics_rms.png", f"{base}/plots/dynamics_spectrum.png"]
+        if dynamics_contact():
+            out.append(f"{base}/plots/dynamics_engagement.png")
     if "train_dynamics" in config:
         out += [f"{base}/train.nc", f"{base}/plots/train_spectrum.png"]
     if "impact" in config:
@@ -117,6 +126,8 @@ def all_targets():
                         f"{base}/plots/modification.png"]
             if config["optimise"]["method"] == "nsga2":
                 targets.append(f"{base}/plots/pareto.png")
+    if "dynamics" in config:
+        targets += [f"results/{STUDY}/{name}/plots/dynamics_variants.png" for name in config["pairs"]]
     if "helix_sweep" in config:
         targets += [f"results/{STUDY}/helix_sweep.nc", f"results/{STUDY}/plots/helix_sweep.png"]
     if "fe_compliance" in config:

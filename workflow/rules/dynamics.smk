@@ -6,8 +6,8 @@
 
 
 rule dynamics:
-    """Steady-state speed sweep of the 8-DOF pair: RMS of DTE, displacements, velocities; mesh force (dynamics.nc).
-    With an LTCA in the study, its loaded stiffness and loaded TE of the same variant excite the model."""
+    """Steady-state speed sweeps of the 8-DOF pair at the study's torques: RMS of DTE, displacements, velocities;
+    mesh force; with excitation: contact the entering pair's force, mesh-in point and dynamic impact (dynamics.nc)."""
     input:
         unpack(dynamics_inputs),
     output:
@@ -16,7 +16,7 @@ rule dynamics:
         "logs/{study}/{pair}/{variant}/dynamics.log",
     params:
         function=versioned("gearmesh.datasets.dynamics:dynamics_dataset"),
-        settings=lambda wildcards: config["dynamics"],
+        settings=lambda wildcards: {**config["dynamics"], "variant": wildcards.variant},
     conda:
         ENV
     script:
@@ -26,6 +26,7 @@ rule dynamics:
 rule train_dynamics:
     """The 9-DOF three-gear train of seed 004 at its speed and load: both mesh forces, spectra, vibration (train.nc)."""
     input:
+        unpack(fe_tables("train_dynamics")),
         pair=variant_pair_file,
         stiffness="results/{study}/{pair}/stiffness.nc",
     output:
@@ -42,7 +43,8 @@ rule train_dynamics:
 
 
 rule plot_dynamics:
-    """RMS against speed (DTE, x/y/z displacement and velocity, both gears) and mesh-force spectra."""
+    """RMS against speed (DTE, x/y/z displacement and velocity, both gears), mesh-force spectra and, with the
+    contact excitation, the mesh force and the entering pair's force over two mesh cycles."""
     input:
         dynamics="results/{study}/{pair}/{variant}/dynamics.nc",
     output:
@@ -50,6 +52,8 @@ rule plot_dynamics:
                         BY_VARIANT),
         spectrum=report_item("results/{study}/{pair}/{variant}/plots/dynamics_spectrum.png", "dynamics_spectrum",
                              "Dynamics", BY_VARIANT),
+        **({"engagement": report_item("results/{study}/{pair}/{variant}/plots/dynamics_engagement.png",
+                                      "dynamics_engagement", "Dynamics", BY_VARIANT)} if dynamics_contact() else {}),
     log:
         "logs/{study}/{pair}/{variant}/plot_dynamics.log",
     params:
@@ -105,6 +109,23 @@ rule plot_dynamics_comparison:
         "logs/{study}/plot_dynamics_comparison.log",
     params:
         function=versioned("gearmesh.plots.dynamics:dynamics_comparison_figures"),
+    conda:
+        ENV
+    script:
+        "../scripts/plot.py"
+
+
+rule plot_dynamics_variants:
+    """Peak dynamic mesh force against speed, every variant of a pair on one axis, one panel per torque."""
+    input:
+        dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
+    output:
+        dynamics_variants=report_item("results/{study}/{pair}/plots/dynamics_variants.png", "dynamics_variants",
+                                      "Dynamics"),
+    log:
+        "logs/{study}/{pair}/plot_dynamics_variants.log",
+    params:
+        function=versioned("gearmesh.plots.dynamics:dynamics_variants_figures"),
     conda:
         ENV
     script:

@@ -18,6 +18,7 @@ import xarray as xr
 
 from ..dynamics import (
     DEFAULT_DAMPING_RATIO,
+    FIRST_PART_AFTER_A,
     SEED001_BEARING,
     TRAIN_GEARS,
     GearModel,
@@ -30,9 +31,14 @@ from ..dynamics import (
     train_model,
 )
 from ..errors import GearmeshInputError
+from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import variable
+from ..ltca import CONTACT_LAWS, positive_values
+from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable,
+                         mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
+from ..tca import check_count, check_lead_slope
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
 #: Seed 004: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
@@ -114,7 +120,7 @@ def _bearing(k_radial_N_per_m, k_axial_N_per_m, c_radial_Ns_per_m, c_axial_Ns_pe
     return out
 
 
-def _solver(courant, steps_per_cycle_min, transient_tau, record_cycles) -> SolverSettings:
+def _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state="shooting") -> SolverSettings:
     if not (isinstance(courant, (int, float)) and 0 < courant <= 1.0):
         raise GearmeshInputError("courant", courant, "must lie in (0, 1] (RK4 accuracy bound on omega_max dt)")
     if not (isinstance(steps_per_cycle_min, int) and steps_per_cycle_min >= 8):
@@ -123,17 +129,26 @@ def _solver(courant, steps_per_cycle_min, transient_tau, record_cycles) -> Solve
         raise GearmeshInputError("transient_tau", transient_tau, "must be >= 1 (time constants of the slowest mode)")
     if not (isinstance(record_cycles, int) and record_cycles >= 2 and record_cycles % 2 == 0):
         raise GearmeshInputError("record_cycles", record_cycles, "must be an even integer >= 2")
+    if steady_state not in STEADY_STATES:
+        raise GearmeshInputError("steady_state", steady_state, f"must be one of {list(STEADY_STATES)}")
     return SolverSettings(courant=float(courant), steps_per_cycle_min=steps_per_cycle_min,
-                          transient_tau=float(transient_tau), record_cycles=record_cycles)
+                          transient_tau=float(transient_tau), record_cycles=record_cycles, steady_state=steady_state)
+
+
+#: How each speed reaches its steady state (:class:`gearmesh.dynamics.SolverSettings`).
+STEADY_STATES = ("shooting", "transient")
+#: Excitations of the pair model; None (the default) is 'ltca' when an LTCA dataset is given, else 'tvms'.
+PAIR_EXCITATIONS = ("tvms", "lste", "ltca", "contact")
 
 
 #: Work limits of one dynamics job, checked before any job runs (:func:`check_dynamics_settings`).
 #: RK4 speed-steps (steps of the longest speed × speeds, one vectorised batch): measured about
 #: 5e6 per second (seed 001 pair, 496 speeds × 17664 steps in 2 s), so 1e9 is a few minutes.
 MAX_SPEED_STEPS = 1_000_000_000
-#: Bytes of the k, e, de/dt phase tables of :func:`gearmesh.dynamics.simulate` (3 × meshes ×
-#: speeds × 2·max steps per period × 8 B), the largest array of a sweep.
-MAX_TABLE_BYTES = 1 << 30
+#: Most (window positions × approaches × points per line) of a contact table: its build costs
+#: about 0.4 s per 10⁶ (256 × 96 × 50 with the default pair's 4–5 tooth pairs: 0.4 s, measured),
+#: so the limit is about a minute and ~130 MB for the table (chunked build).
+MAX_TABLE_POINTS = 200_000_000
 #: Most speeds of the 9-DOF train: it keeps the time series and spectra of every speed.
 MAX_TRAIN_SPEEDS = 50
 #: Coarse slice grid of the stiffness used only to estimate the step size (ω_max) up front.
@@ -144,11 +159,12 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
                             excitation_points: int | None = None) -> None:
     """Check every setting of :func:`dynamics_dataset` (or :func:`train_dataset` with
     ``train``) for ``pair`` without simulating, and refuse a sweep whose work exceeds
-    :data:`MAX_SPEED_STEPS` or whose tables exceed :data:`MAX_TABLE_BYTES`.
+    :data:`MAX_SPEED_STEPS` or a contact table larger than :data:`MAX_TABLE_POINTS`.
 
-    The model is built on a coarse slice stiffness (the step size depends on the maximum
-    stiffness only; an LTCA excitation is of the same order), then
-    :func:`gearmesh.dynamics.step_plan` gives the steps per speed (and refuses > 2e6).
+    The model is built on a coarse slice stiffness at each torque (the step size depends on the
+    maximum stiffness only; an LTCA or contact excitation is of the same order), then
+    :func:`gearmesh.dynamics.step_plan` gives the steps per speed (and refuses > 2e6) of the
+    physical-time transient, the bound of a sweep whose shooting does not converge.
     ``excitation_points``: samples of k(t) over a mesh cycle the job will get (the stiffness
     or LTCA positions); a Fourier form needs more than twice its order. GearmeshInputError
     names the setting (as in the config section).
@@ -160,7 +176,12 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
     s = dict(settings)
     solver = _solver(*(s.get(k, d) for k, d in _SOLVER_KEYS.items()))
     order = s.get("fourier_order", 3)
-    if s.get("stiffness_form", "fourier") == "fourier" and isinstance(order, int):
+    excitation = s.get("excitation")
+    if excitation is not None and excitation not in PAIR_EXCITATIONS:
+        raise GearmeshInputError("excitation", excitation, f"must be one of {list(PAIR_EXCITATIONS)} or null")
+    if excitation == "contact":
+        _table_settings(**{k: s[k] for k in _TABLE_KEYS if k in s})
+    if s.get("stiffness_form", "fourier") == "fourier" and isinstance(order, int) and excitation != "contact":
         for what, points in (("the excitation k(t)", excitation_points),
                              ("transmission_error_um", len(s.get("transmission_error_um") or []) or None)):
             if points is not None and not 2 * order < points:
@@ -173,9 +194,12 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
             speed_grid(list(s.get("sample_speeds_rpm", ())) or 1.0)
         except GearmeshInputError as exc:
             raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
-        known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca"}
-        model = build_pair_model(pair, **{k: v for k, v in s.items() if k in known},
-                                 slices=_ESTIMATE_SLICES, positions=coarse)
+        known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca", "table",
+                                                                       "torque_Nm", "excitation"}
+        models = [build_pair_model(pair, float(t), **{k: v for k, v in s.items() if k in known},
+                                   excitation="tvms" if excitation in ("ltca", "contact") else excitation,
+                                   slices=_ESTIMATE_SLICES, positions=coarse)
+                  for t in positive_values(s.get("torques_Nm", 200.0), "torques_Nm", "N m")]
     else:
         geom = pair_geometry(pair)
         require_dynamics_data(geom)
@@ -189,32 +213,28 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
         else:
             torque = _torque("static_force_N", s.get("static_force_N", SEED004_STATIC_FORCE_N)) \
                 * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
-        backlash = s.get("backlash_um", 60.0)
         if speeds.size > MAX_TRAIN_SPEEDS:
             raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",
                                      f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
         K = mesh_stiffness(geom, n_positions=coarse, n_slices=_ESTIMATE_SLICES, components=False).K
         bearing = _bearing(*(s.get(f"bearing_{key}_{unit}", SEED001_BEARING[key]) for key, unit in (
             ("k_radial", "N_per_m"), ("k_axial", "N_per_m"), ("c_radial", "Ns_per_m"), ("c_axial", "Ns_per_m"))))
-        model = train_model(geom, torque, K, bearing=bearing,
-                            damping_ratio=s.get("damping_ratio", DEFAULT_DAMPING_RATIO),
-                            backlash=None if backlash is None else backlash * 1e-6,
-                            stiffness_form=s.get("stiffness_form", "fourier"), order=s.get("fourier_order", 3),
-                            excitation=s.get("excitation", "tvms"),
-                            phase_offsets=tuple(s.get("phase_offsets_cycles", (0.0, 0.0))),
-                            mesh_damping=s.get("mesh_damping_Ns_per_m"))
-    _, m, n_tr, _ = step_plan(model, speeds, solver)
-    steps = int(((n_tr + solver.record_cycles) * m).max())
-    if steps * speeds.size > MAX_SPEED_STEPS:
+        models = [train_model(geom, torque, K, bearing=bearing,
+                              damping_ratio=s.get("damping_ratio", DEFAULT_DAMPING_RATIO),
+                              backlash=_backlash(geom, s.get("backlash_um", "pair")),
+                              stiffness_form=s.get("stiffness_form", "fourier"), order=s.get("fourier_order", 3),
+                              excitation="tvms" if excitation in (None, "contact") else excitation,
+                              phase_offsets=tuple(s.get("phase_offsets_cycles", (0.0, 0.0))),
+                              mesh_damping=s.get("mesh_damping_Ns_per_m"))]
+    steps = 0
+    for model in models:
+        _, m, n_tr, _ = step_plan(model, speeds, solver)
+        steps = max(steps, int(((n_tr + solver.record_cycles) * m).max()))
+    if steps * speeds.size * len(models) > MAX_SPEED_STEPS:
         raise GearmeshInputError("speeds_rpm", s.get("speeds_rpm"),
-                                 f"needs {speeds.size} speeds × {steps} RK4 steps = {steps * speeds.size:.3g} "
-                                 f"speed-steps; at most {MAX_SPEED_STEPS:.0e} (fewer or faster speeds)")
-    table = 3 * model.m * speeds.size * 2 * int(m.max()) * 8
-    if table > MAX_TABLE_BYTES:
-        raise GearmeshInputError("speeds_rpm", s.get("speeds_rpm"),
-                                 f"needs {table / 2**30:.3g} GiB of stiffness and error tables; at most "
-                                 f"{MAX_TABLE_BYTES / 2**30:g} GiB (fewer or faster speeds, or a lower "
-                                 "steps_per_cycle_min)")
+                                 f"needs {len(models)} torques × {speeds.size} speeds × {steps} RK4 steps = "
+                                 f"{steps * speeds.size * len(models):.3g} speed-steps; at most {MAX_SPEED_STEPS:.0e} "
+                                 "(fewer or faster speeds)")
 
 
 def _stiffness_curve(geom: PairGeometry, stiffness: xr.Dataset | None, method: str, slices: int,
@@ -271,14 +291,14 @@ def _series_arrays(res: SweepResult, points_per_cycle: int, max_order: int, n_re
     S = res.speed_rpm.size
     n_s = n_rec * points_per_cycle
     n_o = max_order * n_rec + 1
-    out = {k: [] for k in ("t", "delta", "F", "y", "v", "F_spec", "delta_spec", "y_pp", "v_pp", "a_pp")}
+    out = {k: [] for k in ("t", "delta", "F", "Fe", "y", "v", "F_spec", "delta_spec", "y_pp", "v_pp", "a_pp")}
     for s in range(S):
         st = res.series[s]
         t = st["t"]
         T = n_rec / res.mesh_frequency[s]
         tg = np.arange(n_s) * (T / n_s)
         out["t"].append(tg)
-        for key in ("delta", "F", "y", "v"):
+        for key in ("delta", "F", "Fe", "y", "v"):
             arr = st[key]
             out[key].append(np.stack([np.interp(tg, t, arr[:, j], period=T) for j in range(arr.shape[1])], axis=1))
         N = t.size
@@ -295,15 +315,29 @@ def _series_arrays(res: SweepResult, points_per_cycle: int, max_order: int, n_re
     return {k: np.stack(v) for k, v in out.items()}
 
 
-def excitation_used(ltca: xr.Dataset | None, excitation: str, transmission_error_um) -> str:
+def excitation_used(excitation: str, ltca: xr.Dataset | None = None, transmission_error_um=None,
+                    table: MeshForceTable | None = None) -> str:
     """What excited the model, for the ``excitation`` attribute of the dataset."""
-    if ltca is not None:
+    if excitation == "contact":
+        return ("contact: the mesh force of the real tooth contact F(x, w) of every tooth pair (flanks and tip edges, "
+                f"modifications and lead slopes; gearmesh.meshforce, {table.positions} positions x "
+                f"{table.approach.size} approaches per mesh cycle)" if table is not None else "contact")
+    if excitation == "ltca":
         return ("ltca: loaded mesh stiffness k_L(t) and equivalent error e = LTE - F/k_L of the variant's "
-                f"LTCA ({ltca.attrs.get('contact_law', 'palmgren')} contact)")
+                f"LTCA ({ltca.attrs.get('contact_law', 'palmgren') if ltca is not None else 'palmgren'} contact)")
     if excitation == "lste":
         return "lste: slice-model stiffness K(t) and seed 001's e = F/K(t)"
     te = " and the tabulated unloaded TE" if transmission_error_um is not None else " (unloaded TE zero)"
     return f"tvms: slice-model stiffness K(t){te}"
+
+
+def resolve_excitation(excitation: str | None, ltca: xr.Dataset | None) -> str:
+    """The excitation to run: as given, or (None) 'ltca' when an LTCA dataset is at hand, else 'tvms'."""
+    if excitation is None:
+        return "ltca" if ltca is not None else "tvms"
+    if excitation not in PAIR_EXCITATIONS:
+        raise GearmeshInputError("excitation", excitation, f"must be one of {list(PAIR_EXCITATIONS)} or null")
+    return excitation
 
 
 #: Relative offsets of the speeds added around each predicted resonance speed n_r, in units of
@@ -335,7 +369,9 @@ def _log_progress(done: float) -> None:
 
 
 def _grid(ds: xr.Dataset) -> xr.Dataset:
-    """The speeds of the configured grid (without the added resonance speeds)."""
+    """The speeds of the configured grid (without the added resonance speeds), at the sweep's
+    first torque."""
+    ds = ds.isel(torque=0) if "torque" in ds.dims else ds
     return ds.isel(speed=ds["on_grid"].values.astype(bool)) if "on_grid" in ds else ds
 
 
@@ -347,21 +383,71 @@ _PAIR_GEARS = ("pinion", "gear")
 _PAIR_DIRS = ("x", "y", "z")
 
 
-def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear", backlash_um: float | None = 60.0,
+def _backlash(geom: PairGeometry, backlash_um) -> float | None:
+    """Total backlash 2b0 (m) along the normal: 'pair' the pair's own (its centre distance and
+    shifts), a number (µm), or None (no backlash: contact never lost)."""
+    if backlash_um == "pair":
+        return float(geom.backlash_normal)
+    if backlash_um is not None and (isinstance(backlash_um, bool) or not isinstance(backlash_um, (int, float))
+                                    or not math.isfinite(backlash_um) or backlash_um < 0):
+        raise GearmeshInputError("backlash_um", backlash_um, "must be 'pair', a non-negative number (µm) or null (none)")
+    return None if backlash_um is None else float(backlash_um) * 1e-6
+
+
+#: Settings of the contact table (:func:`contact_table`), with their defaults.
+_TABLE_KEYS = {"contact_law": "palmgren", "points": DEFAULT_TABLE_POINTS, "lead_slope_um": (0.0, 0.0),
+               "table_positions": DEFAULT_TABLE_POSITIONS, "table_approaches": DEFAULT_TABLE_APPROACHES,
+               "table_force_factor": 4.0}
+
+
+def _table_settings(contact_law="palmgren", points=DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
+                    table_positions=DEFAULT_TABLE_POSITIONS, table_approaches=DEFAULT_TABLE_APPROACHES,
+                    table_force_factor=4.0) -> dict[str, Any]:
+    """The contact-table settings checked (GearmeshInputError naming the key)."""
+    if contact_law not in CONTACT_LAWS:
+        raise GearmeshInputError("contact_law", contact_law, f"must be one of {list(CONTACT_LAWS)}")
+    points = check_count("points", points, 2, 100000)
+    positions = check_count("table_positions", table_positions, 16, 100000)
+    approaches = check_count("table_approaches", table_approaches, 8, 100000)
+    if positions * approaches * points > MAX_TABLE_POINTS:
+        raise GearmeshInputError("table_positions", positions, f"× table_approaches {approaches} × points {points} "
+                                 f"must be at most {MAX_TABLE_POINTS:.0e} (the table's build time and memory)")
+    if isinstance(table_force_factor, bool) or not isinstance(table_force_factor, (int, float)) \
+            or not 1.0 < table_force_factor <= 100.0:
+        raise GearmeshInputError("table_force_factor", table_force_factor,
+                                 "must lie in (1, 100]: the table reaches this many times the largest static force")
+    return {"contact_law_name": contact_law, "points": points, "lead_slope": tuple(v * 1e-6 for v in
+                                                                                    check_lead_slope(lead_slope_um)),
+            "positions": positions, "approaches": approaches, "factor": float(table_force_factor)}
+
+
+def contact_table(geom: PairGeometry, pinion_torques, method: str = "transition", **settings) -> MeshForceTable:
+    """The mesh force table of ``geom`` (its micro-geometry) for the ``contact`` excitation:
+    every row reaches ``table_force_factor`` times the largest static force F_bt = T1/r_b1 of
+    ``pinion_torques`` (N m); ``settings`` as :data:`_TABLE_KEYS` (:mod:`gearmesh.meshforce`)."""
+    t = _table_settings(**settings)
+    force = t["factor"] * float(np.max(pinion_torques)) / float(geom.base_radius[0])
+    return mesh_force_table(geom, force, t["positions"], t["approaches"], t["points"], t["lead_slope"],
+                            t["contact_law_name"], method)
+
+
+def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion", backlash_um="pair",
                      bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
                      bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
                      bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
                      bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
-                     stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str = "tvms",
+                     stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
                      method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
                      transmission_error_um=None, stiffness: xr.Dataset | None = None,
-                     ltca: xr.Dataset | None = None) -> GearModel:
-    """The 8-DOF model of ``pair`` from engineering-unit settings (:func:`dynamics_dataset`).
+                     ltca: xr.Dataset | None = None, table: MeshForceTable | None = None) -> GearModel:
+    """The 8-DOF model of ``pair`` at one torque from engineering-unit settings (:func:`dynamics_dataset`).
 
-    Excitation: with an ``ltca`` dataset, the loaded stiffness and equivalent error of
-    :func:`ltca_excitation` (the variant's micro-geometry included); otherwise the slice
-    stiffness (``stiffness`` dataset or computed) with ``transmission_error_um`` (or none).
+    Excitation (:func:`resolve_excitation`): 'contact' the mesh force ``table`` (built here
+    with the default table settings when not given); 'ltca' the loaded stiffness and equivalent
+    error of the ``ltca`` dataset (:func:`ltca_excitation`, the variant's micro-geometry
+    included); 'tvms' / 'lste' the slice stiffness (``stiffness`` dataset or computed) with
+    ``transmission_error_um`` (or none).
     """
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
@@ -369,15 +455,23 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
     if on not in _PAIR_GEARS:
         raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torque_Nm acts)")
     t_out = torque if on == "gear" else torque * geom.base_radius[1] / geom.base_radius[0]
-    if backlash_um is not None and (isinstance(backlash_um, bool) or not isinstance(backlash_um, (int, float))
-                                    or not math.isfinite(backlash_um) or backlash_um < 0):
-        raise GearmeshInputError("backlash_um", backlash_um, "must be a non-negative number (µm) or null (none)")
+    backlash = _backlash(geom, backlash_um)
     if not (isinstance(fourier_order, int) and 0 <= fourier_order <= 50):
         raise GearmeshInputError("fourier_order", fourier_order, "must be an integer in [0, 50]")
     if mesh_damping_Ns_per_m is not None and not (isinstance(mesh_damping_Ns_per_m, (int, float))
                                                   and mesh_damping_Ns_per_m >= 0):
         raise GearmeshInputError("mesh_damping_Ns_per_m", mesh_damping_Ns_per_m, "must be >= 0 or null")
-    if ltca is not None:
+    exc = resolve_excitation(excitation, ltca)
+    K = te = None
+    if exc == "contact":
+        if transmission_error_um is not None:
+            raise GearmeshInputError("transmission_error_um", "given", "the contact excitation has the "
+                                     "micro-geometry in its table; give no tabulated TE")
+        if table is None:
+            table = contact_table(geom, [pinion_torque(pair, t_out, "gear")], method)
+    elif exc == "ltca":
+        if ltca is None:
+            raise GearmeshInputError("excitation", "ltca", "needs the variant's LTCA dataset (ltca.nc)")
         if transmission_error_um is not None:
             raise GearmeshInputError("transmission_error_um", "given", "give either a table or an ltca dataset")
         K, te = ltca_excitation(geom, ltca, pinion_torque(pair, t_out, "gear"))
@@ -386,9 +480,9 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
         te = _transmission_error(transmission_error_um)
     return pair_model(geom, t_out, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                                          bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
-                      damping_ratio=damping_ratio, backlash=None if backlash_um is None else backlash_um * 1e-6,
-                      stiffness_form=stiffness_form, order=fourier_order, excitation=excitation,
-                      transmission_error=te, mesh_damping=mesh_damping_Ns_per_m)
+                      damping_ratio=damping_ratio, backlash=backlash, stiffness_form=stiffness_form,
+                      order=fourier_order, excitation="lste" if exc == "lste" else "tvms", transmission_error=te,
+                      mesh_damping=mesh_damping_Ns_per_m, contact=table if exc == "contact" else None)
 
 
 #: The two displacements of the mesh, both along the transverse line of action (normal values
@@ -464,10 +558,29 @@ def _vibration_vars(res: SweepResult, n_trans: int, shape: tuple[int, int]) -> d
     }
 
 
+def mesh_energy_fraction(model: GearModel, shapes: np.ndarray) -> np.ndarray:
+    """Fraction (-) of each mode's strain energy in the meshes (mean stiffness): k (G φ)² over
+    Σ k_b,i φ_i² + k (G φ)², φ the displacement part of the mode shape (columns of ``shapes``,
+    made real by removing its phase). A mode with little energy in the mesh is barely driven by
+    the mesh excitation."""
+    k = np.array([ml.k_mean for ml in model.meshes])
+    trans = [i for i in range(model.full["M"].shape[0]) if i not in model.full["rotations"]]
+    kb = np.diag(model.full["K_bearing"])[trans]
+    out = np.zeros(shapes.shape[1])
+    for j in range(shapes.shape[1]):
+        v = shapes[:, j]
+        v = np.real(v * np.exp(-1j * np.angle(v[np.argmax(np.abs(v))])))
+        mesh = float(np.sum(k * (model.G @ v) ** 2))
+        out[j] = mesh / (float(np.sum(kb * v[:model.n_trans] ** 2)) + mesh)
+    return out
+
+
 def _modal_vars(model: GearModel, harmonics=(1, 2, 3)) -> dict[str, xr.Variable]:
     md = model.modes()
     rs = resonance_speeds(model, harmonics)
     return {
+        "mesh_energy_fraction": variable(("mode",), mesh_energy_fraction(model, md["shapes"]), "1",
+                                         "fraction of the mode's strain energy in the mesh (mean stiffness)"),
         "natural_frequency": variable(("mode",), md["frequency_Hz"], "Hz",
                                       "natural frequencies of the linearised model (mean stiffness, in contact)"),
         "modal_damping_ratio": variable(("mode",), md["damping_ratio"], "1", "modal damping ratio"),
@@ -512,64 +625,46 @@ def _series_vars(res: SweepResult, arr, n_rec: int, max_order: int, ppc: int, ge
     }
 
 
-def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
-                     speeds_rpm: Mapping[str, float] | Sequence[float] | str = DEFAULT_SPEEDS,
-                     backlash_um: float | None = 60.0,
-                     bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
-                     bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
-                     bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
-                     bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
-                     damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
-                     stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str = "tvms",
-                     method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
-                     transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
-                     courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
-                     record_cycles: int = 8, points_per_cycle: int = 64, max_order: int = 10,
-                     refine_resonances: bool = True,
-                     stiffness: xr.Dataset | None = None, ltca: xr.Dataset | None = None) -> xr.Dataset:
-    """Speed sweep of the 8-DOF helical pair (seed 001 §4; model and solver in
-    :mod:`gearmesh.dynamics`).
+def _contact_vars(res: SweepResult, model: GearModel, table: MeshForceTable) -> dict[str, xr.Variable]:
+    """The entering pair in the steady state (``contact`` excitation): its largest force and its
+    dynamic impact over the first part of its engagement, and the roll before A at which it first
+    carries load, per speed; the same quasi-static (the table's own static solution)."""
+    cb = model.cos_beta_b
+    force_t = float(model.static_force[0]) * cb
+    x_s, _ = table.static_approach(force_t)
+    part = f"from p_bt/2 before A to {FIRST_PART_AFTER_A:g} p_bt after A"
+    return {
+        "entering_pair_force_max": variable(("speed",), res.enter_force_max[0], "N",
+                                            f"largest force (normal) of the entering tooth pair over the first part "
+                                            f"of its engagement ({part})"),
+        "dynamic_impact_force": variable(("speed",), res.impact_force[0], "N",
+                                         "dynamic impact: largest excess of the entering pair's force (normal) over "
+                                         f"its quasi-static force at the same mesh position ({part})"),
+        "mesh_in_roll_before_A": variable(("speed",), res.touch_roll_before_A[0], "m",
+                                          "roll along the transverse line of action before A at which the entering "
+                                          "pair first carries load (earliest over the recorded mesh cycles; 0 at or "
+                                          "after A): the dynamic mesh-in point"),
+        "table_overrun_fraction": variable(("speed",), res.table_overrun[0], "1",
+                                           "fraction of the record window with the approach beyond the contact "
+                                           "table (force extrapolated with its tangent)"),
+        "static_mesh_in_roll_before_A": variable((), table.static_touch(force_t), "m",
+                                                 "roll before A at which the entering pair first touches in the "
+                                                 "quasi-static mesh (the table's static solution)"),
+        "static_entering_pair_force_max": variable(
+            (), float(np.max(table.entering(x_s, table.window)[table.window <= (0.5 + FIRST_PART_AFTER_A)
+                                                                * table.pitch])) / cb, "N",
+            f"largest quasi-static force (normal) of the entering pair over the same window ({part})"),
+    }
 
-    Parameters (engineering units)
-    ------------------------------
-    torque_Nm : T (N·m) > 0, acting on ``on`` ('gear': T_out, seed 001's 200 N·m; 'pinion').
-    speeds_rpm : pinion speeds {start, stop, step} (stop included), a list or 'a:b:c'.
-    backlash_um : total backlash 2b0 (µm) along the normal (seed 001: 60); null = none.
-    bearing_* : bearing stiffness (N/m) and damping (N·s/m), radial (x, y) and axial (z),
-        seed 001 values by default.
-    damping_ratio : mesh damping ratio ζ (-), or ``mesh_damping_Ns_per_m`` directly.
-    stiffness_form : 'fourier' (order ``fourier_order``, seed 004) or 'table'.
-    excitation : 'tvms' (consistent: unloaded TE = 0 or ``transmission_error_um``) or
-        'lste' (seed 001 literal e = F/K(t)); see :mod:`gearmesh.dynamics`.
-    method, slices, positions : TVMS settings when no upstream ``stiffness`` dataset is given.
-    transmission_error_um : unloaded static TE (µm) along the transverse line of action at
-        evenly spaced rolls over one mesh cycle; or ``ltca`` (dataset): see :func:`ltca_excitation`
-        (m, same meaning).
-    sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
-        the record window) and spectra (to ``max_order`` mesh orders) are kept.
-    courant, steps_per_cycle_min, transient_tau, record_cycles : solver rules
-        (:class:`gearmesh.dynamics.SolverSettings`).
-    refine_resonances : add speeds around the resonance speeds the linearised model predicts
-        (:func:`resonance_refined`; ``on_grid`` marks the configured speeds).
 
-    Two displacements of the mesh are reported, both along the transverse line of action
-    (the direction of the LTCA's ``lte``): the dynamic transmission error ``dynamic_te_*``
-    (the approach of the gear bodies, δ + e, statically the loaded TE) and the mesh deflection
-    ``mesh_deflection_*`` (δ, statically F/k). ``torsional_std`` is the relative rotation
-    alone, what encoders read when the gear centres move too.
-    """
-    grid = speed_grid(speeds_rpm)
-    samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
-    model = build_pair_model(pair, torque_Nm, on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
-                             bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
-                             mesh_damping_Ns_per_m, stiffness_form, fourier_order, excitation, method, slices,
-                             positions, transmission_error_um, stiffness, ltca)
-    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles)
-    speeds = resonance_refined(grid, model) if refine_resonances else grid
+def _pair_sweep(pair: GearPair, model: GearModel, speeds: np.ndarray, grid: np.ndarray, samples: np.ndarray,
+                settings: SolverSettings, points_per_cycle: int, max_order: int,
+                table: MeshForceTable | None) -> xr.Dataset:
+    """One torque of :func:`dynamics_dataset`: the sweep and the kept series as a Dataset."""
     res = simulate(model, speeds, settings, progress=_log_progress)
     nt = model.n_trans  # 6: x, y, z of pinion then gear
     shape = (2, 3)
-    cb = math.cos(pair_geometry(pair).base_helix_angle)
+    cb = model.cos_beta_b
     data = _common_vars(model, res, mesh_dim=False, cos_beta_b=cb)
     data.update(_vibration_vars(res, nt, shape))
     data["torsional_std"] = variable(("speed",), res.y_std[nt], "m",
@@ -577,59 +672,194 @@ def dynamics_dataset(pair: GearPair, torque_Nm: float = 200.0, on: str = "gear",
                                      "alone (transverse line of action; encoders on compliant bearings)")
     data["on_grid"] = variable(("speed",), np.isin(speeds, grid).astype(np.int8), "1",
                                "1: a speed of the configured grid; 0: added around a predicted resonance")
+    data["shooting_iterations"] = variable(("speed",), res.shooting_iterations, "1",
+                                           "Newton steps of the periodic steady state (-1: physical-time transient)")
     data.update(_modal_vars(model))
-    coords = {
-        "speed": variable(("speed",), speeds, "rpm", "pinion speed"),
-        "gear": variable(("gear",), np.array(_PAIR_GEARS), "1", "gear of the pair"),
-        "direction": variable(("direction",), np.array(_PAIR_DIRS), "1",
-                              "direction: x along the centres, y across, z axial"),
-        "harmonic": variable(("harmonic",), np.array([1, 2, 3]), "1", "harmonic of the mesh frequency"),
-        "mode": variable(("mode",), np.arange(model.n), "1", "mode number, by frequency"),
-    }
+    if table is not None:
+        data.update(_contact_vars(res, model, table))
     if samples.size:
         rs = simulate(model, samples, settings, series=True)
         arr = _series_arrays(rs, points_per_cycle, max_order, settings.record_cycles)
         data.update(_series_vars(rs, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
                                  shape, mesh_dim=False, cos_beta_b=cb))
+        if table is not None:
+            data["entering_pair_force_series"] = variable(("sample_speed", "sample"), arr["Fe"][..., 0], "N",
+                                                          "force (normal) of the tooth pair entering the mesh in "
+                                                          "each mesh cycle")
+    return xr.Dataset(data)
+
+
+#: Variables of a sweep that do not depend on the torque (no torque dimension).
+_TORQUE_FREE = ("mesh_frequency", "on_grid", "frequency", "time")
+
+
+def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
+                     speeds_rpm: Mapping[str, float] | Sequence[float] | str = DEFAULT_SPEEDS,
+                     backlash_um="pair",
+                     bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
+                     bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
+                     bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
+                     bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
+                     damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
+                     stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
+                     method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                     transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
+                     courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
+                     record_cycles: int = 8, steady_state: str = "shooting", points_per_cycle: int = 64,
+                     max_order: int = 10, refine_resonances: bool = True, contact_law: str = "palmgren",
+                     points: int = DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
+                     table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
+                     table_force_factor: float = 4.0, variant: str = "", stiffness: xr.Dataset | None = None,
+                     ltca: xr.Dataset | None = None, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+    """Speed sweeps of the 8-DOF helical pair at one or more torques (seed 001 §4; model and
+    solver in :mod:`gearmesh.dynamics`). Dimensions (torque, speed) and, for the kept series,
+    (torque, sample_speed, sample).
+
+    Parameters (engineering units)
+    ------------------------------
+    torques_Nm : T (N·m) > 0, one or a list, acting on ``on`` ('pinion' or 'gear').
+    speeds_rpm : pinion speeds {start, stop, step} (stop included), a list or 'a:b:c'.
+    backlash_um : total backlash 2b0 (µm) along the normal; 'pair' the pair's own (from its
+        centre distance and shifts; the dataset says which); null = none.
+    bearing_* : bearing stiffness (N/m) and damping (N·s/m), radial (x, y) and axial (z),
+        seed 001 values by default.
+    damping_ratio : mesh damping ratio ζ (-), or ``mesh_damping_Ns_per_m`` directly.
+    stiffness_form : 'fourier' (order ``fourier_order``, seed 004) or 'table'.
+    excitation : 'contact' (the real tooth contact, :mod:`gearmesh.meshforce`: the table is built
+        once for all torques from ``method``, ``contact_law``, ``points``, ``lead_slope_um``,
+        ``table_positions``, ``table_approaches`` and ``table_force_factor`` × the largest static
+        force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error at each torque),
+        'tvms' (the slice stiffness with ``transmission_error_um`` or none), 'lste' (seed 001
+        literal); null: 'ltca' with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
+    method, slices, positions : slice model (and the TVMS grid when no upstream ``stiffness``).
+    sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
+        the record window) and spectra (to ``max_order`` mesh orders) are kept.
+    courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state : solver rules
+        (:class:`gearmesh.dynamics.SolverSettings`).
+    refine_resonances : add speeds around the resonance speeds the linearised model predicts
+        at each torque (:func:`resonance_refined`; ``on_grid`` marks the configured speeds).
+
+    Two displacements of the mesh are reported, both along the transverse line of action
+    (the direction of the LTCA's ``lte``): the dynamic transmission error ``dynamic_te_*``
+    (the approach of the gear bodies, δ + e, statically the loaded TE) and the mesh deflection
+    ``mesh_deflection_*`` (δ, statically F/k; with ``contact`` the approach beyond the first
+    touch). ``torsional_std`` is the relative rotation alone, what encoders read when the gear
+    centres move too. With ``contact``, the entering pair: ``entering_pair_force_max``,
+    ``dynamic_impact_force``, ``mesh_in_roll_before_A`` (:func:`_contact_vars`).
+    """
+    geom = pair_geometry(pair)
+    require_dynamics_data(geom)
+    use_fe_tables(fe_compliance, geom)
+    given = positive_values(torques_Nm, "torques_Nm", "N m")
+    if on not in _PAIR_GEARS:
+        raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torques_Nm act)")
+    t1 = pinion_torque(pair, given, on)
+    grid = speed_grid(speeds_rpm)
+    samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
+    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
+    exc = resolve_excitation(excitation, ltca)
+    table = None
+    if exc == "contact":
+        table = contact_table(geom, t1, method, contact_law=contact_law, points=points, lead_slope_um=lead_slope_um,
+                              table_positions=table_positions, table_approaches=table_approaches,
+                              table_force_factor=table_force_factor)
+    models = [build_pair_model(pair, float(t), on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
+                               bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
+                               mesh_damping_Ns_per_m, stiffness_form, fourier_order, exc, method, slices, positions,
+                               transmission_error_um, stiffness, ltca, table) for t in given]
+    speeds = np.unique(np.concatenate([resonance_refined(grid, m) for m in models])) if refine_resonances else grid
+    if speeds.size > MAX_SPEEDS:
+        raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds with the resonance points of every torque",
+                                 f"at most {MAX_SPEEDS} (refine_resonances: false, or a coarser grid)")
+    parts = []
+    for k, model in enumerate(models):
+        logging.info("torque %d of %d: %.6g N m on the %s", k + 1, len(models), given[k], on)
+        parts.append(_pair_sweep(pair, model, speeds, grid, samples, settings, points_per_cycle, max_order, table))
+    per_torque = [v for v in parts[0].data_vars if v not in _TORQUE_FREE]
+    ds = xr.concat(parts, dim="torque", data_vars=per_torque, coords="minimal", compat="equals", join="exact")
+    order_coord = np.arange(max_order * settings.record_cycles + 1) / settings.record_cycles
+    coords = {
+        "torque": variable(("torque",), given, "N m", f"torque on the {on}"),
+        "speed": variable(("speed",), speeds, "rpm", "pinion speed"),
+        "gear": variable(("gear",), np.array(_PAIR_GEARS), "1", "gear of the pair"),
+        "direction": variable(("direction",), np.array(_PAIR_DIRS), "1",
+                              "direction: x along the centres, y across, z axial"),
+        "harmonic": variable(("harmonic",), np.array([1, 2, 3]), "1", "harmonic of the mesh frequency"),
+        "mode": variable(("mode",), np.arange(models[0].n), "1", "mode number, by frequency"),
+    }
+    if samples.size:
         coords["sample_speed"] = variable(("sample_speed",), samples, "rpm", "pinion speed of the kept time series")
-        coords["order"] = variable(("order",), np.arange(max_order * settings.record_cycles + 1)
-                                   / settings.record_cycles, "1", "spectral line in mesh orders (f / f_mesh)")
-    ds = xr.Dataset(data, coords=coords)
+        coords["order"] = variable(("order",), order_coord, "1", "spectral line in mesh orders (f / f_mesh)")
+    ds = ds.assign_coords(coords)
+    ds["pinion_torque"] = variable(("torque",), t1, "N m", "pinion torque T1")
+    ds["backlash"] = variable((), float(models[0].backlash) if math.isfinite(models[0].backlash) else np.nan, "m",
+                              "total backlash 2b0 along the normal (NaN: none, contact never lost)")
+    ds["transverse_base_pitch"] = variable((), geom.transverse_base_pitch, "m", "transverse base pitch (mesh cycle)")
+    ds["roll_engagement"] = variable((), float(table.roll_engagement) if table is not None else
+                                     float(_engagement_roll(geom)), "m",
+                                     "pinion roll of the theoretical start of engagement A (mesh phase x p_bt)")
     ds.attrs.update({
         "model": "8-DOF bending-torsion-axial helical pair (seed 001 section 4, projections corrected; "
                  "gearmesh.dynamics)",
-        "excitation": excitation_used(ltca, excitation, transmission_error_um),
-        "resonance_refinement": "on" if refine_resonances else "off", "stiffness_form": stiffness_form, "fourier_order": fourier_order,
-        "torque_Nm": float(torque_Nm), "torque_on": on, "backlash_um": "none" if backlash_um is None
-        else float(backlash_um), "damping_ratio": float(damping_ratio), "rk4_steps": res.n_steps,
-        "transient_criterion": f"{transient_tau} time constants 1/sigma_min of the slowest linearised mode, "
-                               f"then {record_cycles} mesh periods recorded",
+        "excitation": excitation_used(exc, ltca, transmission_error_um, table), "excitation_name": exc,
+        "resonance_refinement": "on" if refine_resonances else "off", "stiffness_form": stiffness_form,
+        "fourier_order": fourier_order, "torque_on": on, "variant": variant,
+        "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
+        else ("none" if backlash_um is None else "given"),
+        "damping_ratio": float(damping_ratio),
+        "steady_state": (f"periodic steady state by shooting (Newton on the one-period map), then "
+                         f"{settings.settle_cycles} periods, then {record_cycles} recorded; the physical-time "
+                         f"transient ({transient_tau} time constants of the slowest mode) where shooting does not "
+                         "converge to a stable orbit") if steady_state == "shooting" else
+                        (f"{transient_tau} time constants 1/sigma_min of the slowest linearised mode, then "
+                         f"{record_cycles} mesh periods recorded"),
     })
     return ds
 
 
-def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEFAULT_SPEEDS, on: str = "gear",
+def _engagement_roll(geom: PairGeometry) -> float:
+    from ..tca import engagement_point
+
+    return engagement_point(geom)[0]
+
+
+def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEFAULT_SPEEDS, on: str = "pinion",
                      progress=None, **settings: Any) -> list[dict[str, float]]:
     """Per speed (for the CLI): speed_rpm, mesh_frequency_Hz, dynamic_te_mean_um, dynamic_te_std_um,
     mesh_deflection_mean_um (all three along the transverse line of action, as the LTCA's
     lte_mean_um; :func:`dynamics_dataset`), mesh_force_mean_N, mesh_force_min_N, mesh_force_max_N
-    (normal force), dynamic_factor, contact_loss_fraction."""
-    model = build_pair_model(pair, torque_Nm, on, **{k: v for k, v in settings.items()
-                                                     if k not in _SOLVER_KEYS})
+    (normal force), dynamic_factor, contact_loss_fraction; with the ``contact`` excitation also
+    entering_pair_force_max_N, dynamic_impact_force_N (normal) and mesh_in_roll_before_A_mm."""
+    model_settings = {k: v for k, v in settings.items() if k not in _SOLVER_KEYS and k not in _TABLE_KEYS}
+    if resolve_excitation(settings.get("excitation"), settings.get("ltca")) == "contact":
+        geom = pair_geometry(pair)
+        t1 = pinion_torque(pair, _torque("torque_Nm", torque_Nm), on)
+        model_settings["table"] = contact_table(geom, [t1], settings.get("method", "transition"),
+                                                **{k: v for k, v in settings.items() if k in _TABLE_KEYS})
+    model = build_pair_model(pair, torque_Nm, on, **model_settings)
     solver = _solver(*(settings.get(k, d) for k, d in _SOLVER_KEYS.items()))
     res = simulate(model, speed_grid(speeds), solver, progress=progress)
     fs = float(model.static_force[0])
-    um = 1e6 / math.cos(pair_geometry(pair).base_helix_angle)  # normal (m) -> transverse (µm)
-    return [{"speed_rpm": float(res.speed_rpm[i]), "mesh_frequency_Hz": float(res.mesh_frequency[i]),
-             "dynamic_te_mean_um": float(res.approach_mean[0, i]) * um,
-             "dynamic_te_std_um": float(res.approach_std[0, i]) * um,
-             "mesh_deflection_mean_um": float(res.dte_mean[0, i]) * um,
-             "mesh_force_mean_N": float(res.force_mean[0, i]), "mesh_force_min_N": float(res.force_min[0, i]),
-             "mesh_force_max_N": float(res.force_max[0, i]), "dynamic_factor": float(res.force_max[0, i]) / fs,
-             "contact_loss_fraction": float(res.gap_fraction[0, i])} for i in range(res.speed_rpm.size)]
+    um = 1e6 / model.cos_beta_b  # normal (m) -> transverse (µm)
+    rows = []
+    for i in range(res.speed_rpm.size):
+        row = {"speed_rpm": float(res.speed_rpm[i]), "mesh_frequency_Hz": float(res.mesh_frequency[i]),
+               "dynamic_te_mean_um": float(res.approach_mean[0, i]) * um,
+               "dynamic_te_std_um": float(res.approach_std[0, i]) * um,
+               "mesh_deflection_mean_um": float(res.dte_mean[0, i]) * um,
+               "mesh_force_mean_N": float(res.force_mean[0, i]), "mesh_force_min_N": float(res.force_min[0, i]),
+               "mesh_force_max_N": float(res.force_max[0, i]), "dynamic_factor": float(res.force_max[0, i]) / fs,
+               "contact_loss_fraction": float(res.gap_fraction[0, i])}
+        if model.meshes[0].contact is not None:
+            row.update({"entering_pair_force_max_N": float(res.enter_force_max[0, i]),
+                        "dynamic_impact_force_N": float(res.impact_force[0, i]),
+                        "mesh_in_roll_before_A_mm": float(res.touch_roll_before_A[0, i]) * 1e3})
+        rows.append(row)
+    return rows
 
 
-_SOLVER_KEYS = {"courant": 0.25, "steps_per_cycle_min": 32, "transient_tau": 10.0, "record_cycles": 8}
+_SOLVER_KEYS = {"courant": 0.25, "steps_per_cycle_min": 32, "transient_tau": 10.0, "record_cycles": 8,
+                "steady_state": "shooting"}
 
 
 # --------------------------------------------------------------------------------------
@@ -639,18 +869,21 @@ _SOLVER_KEYS = {"courant": 0.25, "steps_per_cycle_min": 32, "transient_tau": 10.
 
 def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_FORCE_N,
                   torque_Nm: float | None = None, speeds_rpm: Any = None,
-                  mesh_frequency_Hz: float = SEED004_MESH_FREQUENCY_HZ, backlash_um: float | None = 60.0,
+                  mesh_frequency_Hz: float = SEED004_MESH_FREQUENCY_HZ, backlash_um="pair",
                   bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
                   bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
                   bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
                   bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                   damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
-                  stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str = "tvms",
+                  stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
                   method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
                   phase_offsets_cycles: Sequence[float] = (0.0, 0.0), courant: float = 0.25,
                   steps_per_cycle_min: int = 32, transient_tau: float = 10.0, record_cycles: int = 8,
-                  points_per_cycle: int = 64, max_order: int = 10,
-                  stiffness: xr.Dataset | None = None) -> xr.Dataset:
+                  steady_state: str = "shooting", points_per_cycle: int = 64, max_order: int = 10,
+                  contact_law: str = "palmgren", points: int = DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
+                  table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
+                  table_force_factor: float = 4.0, stiffness: xr.Dataset | None = None,
+                  fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """The 9-DOF plate–blanket–impression train of seed 004 (:func:`gearmesh.dynamics.train_model`).
 
     Assumptions (seed 004 gives neither torque nor speed nor bearings): the three gears are
@@ -658,7 +891,9 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     meshes; the load is given as the static normal mesh force ``static_force_N`` (seed 004:
     2832 N; T = F r_b cos βb) unless ``torque_Nm`` is given; the speed is the one whose mesh
     frequency is ``mesh_frequency_Hz`` (seed 004: 249.4 Hz → 170.05 rpm) unless
-    ``speeds_rpm`` is given; bearings and backlash are seed 001's; meshes in phase.
+    ``speeds_rpm`` is given; bearings are seed 001's, the backlash the pair's own unless
+    given; meshes in phase. ``excitation`` 'tvms' (default), 'lste' or 'contact' (both meshes
+    driven by the pair's mesh force table, settings as :func:`dynamics_dataset`).
     Time series and spectra are kept at every speed (give few).
     """
     geom = pair_geometry(pair)
@@ -678,13 +913,25 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     if len(speeds) > MAX_TRAIN_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds",
                                  f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
-    K = _stiffness_curve(geom, stiffness, method, slices, positions)
+    use_fe_tables(fe_compliance, geom)
+    exc = "tvms" if excitation is None else excitation
+    if exc not in ("tvms", "lste", "contact"):
+        raise GearmeshInputError("excitation", excitation, "must be 'tvms', 'lste', 'contact' or null for the train")
+    table = None
+    if exc == "contact":
+        table = contact_table(geom, [torque * float(geom.base_radius[0]) / rb], method, contact_law=contact_law,
+                              points=points, lead_slope_um=lead_slope_um, table_positions=table_positions,
+                              table_approaches=table_approaches, table_force_factor=table_force_factor)
+        K = None
+    else:
+        K = _stiffness_curve(geom, stiffness, method, slices, positions)
     model = train_model(geom, torque, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                                           bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
-                        damping_ratio=damping_ratio, backlash=None if backlash_um is None else backlash_um * 1e-6,
-                        stiffness_form=stiffness_form, order=fourier_order, excitation=excitation,
+                        damping_ratio=damping_ratio, backlash=_backlash(geom, backlash_um),
+                        stiffness_form=stiffness_form, order=fourier_order,
+                        excitation="lste" if exc == "lste" else "tvms", contact=table,
                         phase_offsets=tuple(phase_offsets_cycles), mesh_damping=mesh_damping_Ns_per_m)
-    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles)
+    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
     res = simulate(model, speeds, settings, series=True)
     nt = model.n_trans  # 6: y, z of plate, blanket, impression
     shape = (3, 2)
@@ -692,6 +939,8 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     data = _common_vars(model, res, mesh_dim=True, cos_beta_b=cb)
     data.update(_vibration_vars(res, nt, shape))
     data["torque"] = variable((), torque, "N m", "torque on the plate gear (= load on the impression gear)")
+    data["backlash"] = variable((), float(model.backlash) if math.isfinite(model.backlash) else np.nan, "m",
+                                "total backlash 2b0 along the normal (NaN: none, contact never lost)")
     data.update(_modal_vars(model))
     arr = _series_arrays(res, points_per_cycle, max_order, settings.record_cycles)
     data.update(_series_vars(res, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
@@ -710,8 +959,10 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({
         "model": "9-DOF plate-blanket-impression helical train (seed 004, projections corrected; gearmesh.dynamics)",
-        "excitation": excitation_used(None, excitation, None), "stiffness_form": stiffness_form, "fourier_order": fourier_order,
-        "backlash_um": "none" if backlash_um is None else float(backlash_um),
+        "excitation": excitation_used(exc, None, None, table), "excitation_name": exc,
+        "stiffness_form": stiffness_form, "fourier_order": fourier_order,
+        "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
+        else ("none" if backlash_um is None else "given"),
         "assumptions": "three alike gears (the pair file's gear); plate drives, impression loaded, blanket idles; "
                        "seed 001 bearings; meshes in phase unless phase_offsets_cycles; centres on one line",
     })
@@ -722,7 +973,8 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
                                 couples: Sequence[Sequence[str]] | None = None) -> xr.Dataset:
     """RMS changes between pairs over a common speed sweep (seed 001 §4–5, its comparisons).
 
-    Over the configured speeds (``on_grid``; each pair's added resonance speeds differ). For
+    Over the configured speeds (``on_grid``; each pair's added resonance speeds differ), at each
+    sweep's first torque. For
     each (pair, reference) couple: the mean over speeds of the relative change of the
     mesh-deflection standard deviation (seed 001's "DTE"), and for each gear and direction the mean relative change and the
     change of the highest peak of the displacement standard deviation and velocity RMS

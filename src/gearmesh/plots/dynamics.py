@@ -1,4 +1,5 @@
-"""Dynamics-stage figures: RMS against speed, mesh-force time series and spectra."""
+"""Dynamics-stage figures: RMS against speed, mesh-force time series and spectra, the entering
+pair's engagement (contact excitation) and the variants' peak mesh force against speed."""
 
 from __future__ import annotations
 
@@ -7,19 +8,40 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .common import UM, plain_axis, plt, save as _save, title as _title
+from .common import MM, UM, plain_axis, plt, save as _save, title as _title
+
+
+def _at_torque(ds: xr.Dataset, k: int | None = None) -> xr.Dataset:
+    """The sweep at one torque (the middle one by default) of a dataset with a torque dimension."""
+    if "torque" not in ds.dims:
+        return ds
+    return ds.isel(torque=ds.sizes["torque"] // 2 if k is None else k)
+
+
+def _torque_label(ds: xr.Dataset) -> str:
+    if "torque" not in ds.coords or ds["torque"].ndim:
+        return ""
+    return f"{float(ds['torque']):g} N m on the {ds.attrs.get('torque_on', 'pinion')}"
+
+
+#: Modes drawn as resonance lines: at least this fraction of their strain energy in the mesh (the
+#: mesh excitation drives a mode through the mesh deflection; bearing modes with little of it barely respond).
+MESH_ENERGY_MIN = 0.05
 
 
 def _resonances(ax, ds: xr.Dataset) -> None:
-    """Faint vertical lines where mesh harmonics meet natural frequencies (in the speed range),
-    one legend entry per harmonic."""
+    """Faint vertical lines where mesh harmonics meet natural frequencies (in the speed range) of
+    the modes with at least :data:`MESH_ENERGY_MIN` of their strain energy in the mesh, one legend
+    entry per harmonic."""
     if "resonance_speed" not in ds:
         return
     lo, hi = float(ds.speed.min()), float(ds.speed.max())
     styles = {1: ":", 2: "--", 3: "-."}
+    keep = ds["mesh_energy_fraction"].values >= MESH_ENERGY_MIN if "mesh_energy_fraction" in ds \
+        else np.ones(ds.sizes["mode"], dtype=bool)
     for j, row in zip(ds.harmonic.values, ds.resonance_speed.values):
-        label = f"{int(j)}× mesh frequency = natural frequency"
-        for n in row:
+        label = f"{int(j)}× mesh frequency = natural frequency (modes ≥ {MESH_ENERGY_MIN:.0%} mesh energy)"
+        for n in row[keep]:
             if lo <= n <= hi:
                 ax.axvline(n, color="0.55", lw=0.8, ls=styles.get(int(j), ":"), label=label)
                 label = None
@@ -36,25 +58,39 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     speed = ds.speed.values
     fig, axes = plt.subplots(3, 1, figsize=(9, 10.5), sharex=True)
     ax = axes[0]
-    ax.plot(speed, ds.dynamic_te_std.values * UM, lw=1.3, label="dynamic TE (bodies' approach δ + e)")
-    ax.plot(speed, ds.mesh_deflection_std.values * UM, lw=1.3, ls="--", label="mesh deflection δ_m")
+    torques = range(ds.sizes["torque"]) if "torque" in ds.dims else [None]
+    colors = plt.cm.viridis(np.linspace(0.1, 0.85, len(torques)))
+    for k, color in zip(torques, colors):
+        d = _at_torque(ds, k)
+        tl = f", {_torque_label(d)}" if k is not None else ""
+        ax.plot(speed, d.dynamic_te_std.values * UM, lw=1.3, color=color,
+                label=f"dynamic TE (bodies' approach δ + e){tl}")
+        ax.plot(speed, d.mesh_deflection_std.values * UM, lw=1.0, ls="--", color=color,
+                label=f"mesh deflection δ_m{tl}")
+    mid = _at_torque(ds)
     if "on_grid" in ds:
         added = ds.on_grid.values == 0
-        ax.plot(speed[added], ds.dynamic_te_std.values[added] * UM, "k.", ms=2.5,
+        ax.plot(speed[added], mid.dynamic_te_std.values[added] * UM, "k.", ms=2.5,
                 label="speeds added around predicted resonances")
+    top = float(np.nanmax(ds.dynamic_te_std.values)) * UM
+    if top < 1e-3:  # below a nanometre the slice discretisation and round-off decide, not the gear
+        ax.text(0.5, 0.5, f"largest fluctuation {top * 1e3:.2g} nm: below the model's resolution (slice\n"
+                "discretisation, Fourier fit); read it as no excitation", transform=ax.transAxes, ha="center",
+                fontsize=8, color="0.25", bbox={"facecolor": "white", "edgecolor": "0.7", "alpha": 0.9})
     ax.set_ylabel("standard deviation along the\ntransverse line of action (µm)")
-    colors = {"x": "tab:blue", "y": "tab:orange", "z": "tab:green"}
+    dir_colors = {"x": "tab:blue", "y": "tab:orange", "z": "tab:green"}
+    at = f" at {_torque_label(mid)}" if _torque_label(mid) else ""
     for ax, var, unit, scale, label in ((axes[1], "displacement_std", "µm", UM, "displacement (std)"),
                                         (axes[2], "velocity_rms", "mm/s", 1e3, "velocity RMS")):
         for g, ls in zip(ds.gear.values, ("-", "--")):
             for d in ds.direction.values:
-                ax.plot(speed, ds[var].sel(gear=g, direction=d).values * scale, color=colors.get(str(d), None),
+                ax.plot(speed, mid[var].sel(gear=g, direction=d).values * scale, color=dir_colors.get(str(d), None),
                         ls=ls, lw=1.1, label=f"{g} {d}")
-        ax.set_ylabel(f"{label} ({unit})")
+        ax.set_ylabel(f"{label}{at} ({unit})" if not at else f"{label} ({unit})\n{at.strip()}")
         ax.set_yscale("log")
         ax.legend(fontsize=7, ncol=2)
     for ax in axes:
-        _resonances(ax, ds)
+        _resonances(ax, mid)
         ax.grid(alpha=0.3)
     axes[0].legend(fontsize=7, loc="best", framealpha=0.9)
     axes[-1].set_xlabel("pinion speed (rpm)")
@@ -63,7 +99,9 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
-    """Mesh-force time series (two mesh periods) and amplitude spectrum at the kept speeds."""
+    """Mesh-force time series (two mesh periods) and amplitude spectrum at the kept speeds (at
+    the middle torque of a sweep over several)."""
+    ds = _at_torque(ds)
     n = ds.sizes.get("sample_speed", 0)
     fig, axes = plt.subplots(max(n, 1), 2, figsize=(11, 1.0 + 2.6 * max(n, 1)), squeeze=False, layout="constrained")
     meshes = list(ds.mesh.values) if "mesh" in ds.dims else [None]
@@ -101,17 +139,108 @@ def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
             ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time (ms)")
     axes[-1, 1].set_xlabel("frequency (Hz)")
-    fig.suptitle(_title(ds, "dynamic mesh force normal to the flanks: time series and spectrum (DC removed)"))
+    at = f", {_torque_label(ds)}" if _torque_label(ds) else ""
+    fig.suptitle(_title(ds, f"dynamic mesh force normal to the flanks{at}: time series and spectrum (DC removed)"))
+    return _save(fig, path)
+
+
+def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
+    """The engagement in the steady state (``contact`` excitation): per kept speed (rows) and
+    torque (columns), the mesh force and the force of the tooth pair entering in each cycle over
+    the first two recorded mesh cycles (normal, kN), with A (the theoretical start of
+    engagement, solid), the quasi-static mesh-in point (dotted) and the dynamic one (dashed)."""
+    n_s = ds.sizes.get("sample_speed", 0)
+    torques = list(range(ds.sizes["torque"])) if "torque" in ds.dims else [None]
+    fig, axes = plt.subplots(max(n_s, 1), len(torques), figsize=(4.2 * len(torques), 1.2 + 2.6 * max(n_s, 1)),
+                             squeeze=False, sharex=True, layout="constrained")
+    pitch, roll_a = float(ds.transverse_base_pitch), float(ds.roll_engagement)
+    for c, k in enumerate(torques):
+        d = _at_torque(ds, k)
+        for r in range(n_s):
+            ax = axes[r, c]
+            sel = d.isel(sample_speed=r)
+            f_mesh = float(sel.frequency.values[np.flatnonzero(sel.order.values == 1)[0]])
+            cyc = sel.time.values * f_mesh  # mesh cycles from the start of the record (phase 0 = roll 0)
+            keep = cyc <= 2.0
+            ax.plot(cyc[keep], sel.mesh_force_series.values[keep] * 1e-3, lw=1.2, color="tab:blue",
+                    label="mesh force (all pairs)")
+            # the entering pair is followed from p_bt/2 before A to p_bt/2 after it; break the line
+            # where the next pair takes its place instead of drawing a drop
+            fe = sel.entering_pair_force_series.values[keep] * 1e-3
+            window = np.mod(cyc[keep] * pitch - roll_a + 0.5 * pitch, pitch)
+            wrap = np.concatenate([[False], np.diff(window) < 0])
+            fe = np.where(wrap | np.roll(wrap, -1), np.nan, fe)  # the samples on both sides of the switch
+            ax.plot(cyc[keep], fe, lw=1.2, color="tab:red", label="entering pair (±½ base pitch about A)")
+            i_s = int(np.argmin(np.abs(d.speed.values - float(sel.sample_speed))))
+            marks = ((0.0, "k", "-", "A (theoretical start of engagement)"),
+                     (float(d.static_mesh_in_roll_before_A), "0.3", ":", "quasi-static mesh-in point"),
+                     (float(d.mesh_in_roll_before_A.values[i_s]), "tab:red", "--", "dynamic mesh-in point"))
+            for before, color, ls, label in marks:
+                for cycle in (0, 1, 2):
+                    x = (roll_a - before) / pitch + cycle
+                    if 0 <= x <= 2:
+                        ax.axvline(x, color=color, ls=ls, lw=0.9, label=label)
+                        label = None
+            ax.set_title(f"{float(sel.sample_speed):g} rpm, {_torque_label(d)}: mesh-in "
+                         f"{float(d.mesh_in_roll_before_A.values[i_s]) * MM:.2f} mm before A "
+                         f"(quasi-static {float(d.static_mesh_in_roll_before_A) * MM:.2f})", fontsize=7)
+            ax.grid(alpha=0.3)
+            if c == 0:
+                ax.set_ylabel("normal force (kN)")
+    axes[0, 0].legend(fontsize=6, loc="upper left", framealpha=0.9)
+    for ax in axes[-1]:
+        ax.set_xlabel("mesh cycles (pinion roll / transverse base pitch)")
+    fig.suptitle(_title(ds, "engagement in the steady state, driven by the real tooth contact"), fontsize=10)
     return _save(fig, path)
 
 
 def dynamics_figures(inputs, outputs) -> None:
-    """The ``plot_dynamics`` rule: outputs 'rms' and 'spectrum' from input 'dynamics'."""
+    """The ``plot_dynamics`` rule: outputs 'rms', 'spectrum' and (contact) 'engagement' from input 'dynamics'."""
     ds = inputs["dynamics"]
     if "rms" in outputs:
         plot_rms_against_speed(ds, outputs["rms"])
     if "spectrum" in outputs:
         plot_force_spectrum(ds, outputs["spectrum"])
+    if "engagement" in outputs:
+        plot_engagement(ds, outputs["engagement"])
+
+
+def plot_variants_peak_force(datasets, path: str | Path) -> Path:
+    """Peak dynamic mesh force (normal) against speed, every variant on one axis (colour), one
+    panel per torque; the static force as a dashed line; with the contact excitation a second
+    row: the entering pair's dynamic impact (its force above its quasi-static force)."""
+    ref = datasets[0]
+    torques = list(range(ref.sizes["torque"])) if "torque" in ref.dims else [None]
+    contact = all("dynamic_impact_force" in d for d in datasets)
+    rows = 2 if contact else 1
+    fig, axes = plt.subplots(rows, len(torques), figsize=(4.3 * len(torques), 3.6 * rows), squeeze=False,
+                             layout="constrained")
+    colors = plt.cm.tab10(np.arange(len(datasets)))
+    for c, k in enumerate(torques):
+        for color, ds in zip(colors, datasets):
+            d = _at_torque(ds, k)
+            name = ds.attrs.get("variant", "")
+            axes[0, c].plot(d.speed.values, d.mesh_force_max.values * 1e-3, lw=1.3, color=color, label=name)
+            if contact:
+                axes[1, c].plot(d.speed.values, d.dynamic_impact_force.values * 1e-3, lw=1.3, color=color, label=name)
+        d0 = _at_torque(ref, k)
+        axes[0, c].axhline(float(d0.static_mesh_force) * 1e-3, color="k", ls="--", lw=0.8, label="static force")
+        axes[0, c].set_title(_torque_label(d0), fontsize=9)
+        axes[0, c].set_ylabel("peak dynamic mesh force, normal (kN)")
+        if contact:
+            axes[1, c].set_ylabel("entering pair: dynamic impact,\nforce above quasi-static (kN)")
+        for ax in axes[:, c]:
+            ax.grid(alpha=0.3)
+            ax.set_xlabel("pinion speed (rpm)")
+    axes[0, 0].legend(fontsize=7, title="variant", title_fontsize=7)
+    fig.suptitle(_title(ref, "peak dynamic mesh force against speed, all variants"), fontsize=10)
+    return _save(fig, path)
+
+
+def dynamics_variants_figures(inputs, outputs) -> None:
+    """The ``plot_dynamics_variants`` rule."""
+    sets = inputs["dynamics"]
+    plot_variants_peak_force(sets if isinstance(sets, (list, tuple)) else [sets], outputs["dynamics_variants"])
 
 
 def train_figures(inputs, outputs) -> None:

@@ -1,0 +1,291 @@
+"""The linear multi-body gear models with nonlinear meshes: the 8-DOF helical pair (seed 001 §4)
+and the 9-DOF plate–blanket–impression train (seed 004); equations and the corrections made to
+the documents in the package docstring (:mod:`gearmesh.dynamics`)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+
+from ..errors import GearmeshInputError
+from ..gear import PairGeometry
+from ..meshforce import MeshForceTable
+from .excitation import MeshLaw, contact_mesh_law, mesh_law
+
+#: Seed 001 §4 bearing values: k_x = k_y = 1.5e8 N/m, k_z = 1e7 N/m, c = 1000 N·s/m.
+SEED001_BEARING = {"k_radial": 1.5e8, "k_axial": 1.0e7, "c_radial": 1.0e3, "c_axial": 1.0e3}
+#: Mesh damping ratio ζ: a mid value of the 0.03–0.17 range of gear-pair models (package docstring).
+DEFAULT_DAMPING_RATIO = 0.07
+
+@dataclass(frozen=True)
+class GearModel:
+    """A linear multi-body gear model with nonlinear meshes, rigid-body rotation removed.
+
+    Reduced coordinates y = (translations u, relative mesh rotations q), n of them; the
+    equations are ÿ = −Kr y − Cr ẏ − B F + f0 with the mesh forces F (m,) of (2) and
+    δ = G y − e(t). ``names`` label y; ``gears``, ``directions`` give each translation's
+    gear and direction; ``full`` keeps the unreduced matrices for checks (M, K_b, C_b,
+    G_full, forces) in the coordinates ``full_names``.
+    """
+
+    name: str
+    names: tuple[str, ...]
+    n_trans: int
+    Kr: np.ndarray
+    Cr: np.ndarray
+    B: np.ndarray
+    G: np.ndarray
+    f0: np.ndarray
+    meshes: tuple[MeshLaw, ...]
+    damping: np.ndarray  # (m,) c_m in N·s/m
+    backlash: float  # 2b0 (m); inf = no backlash (linear contact)
+    static_force: np.ndarray  # (m,) normal mesh force of the torque balance (N)
+    mesh_frequency_per_rpm: float  # Hz per rpm of the reference speed
+    teeth_driver: int
+    full: Mapping[str, Any] = field(default_factory=dict, repr=False)
+    cos_beta_b: float = 1.0  # normal = cos βb × transverse (mesh coordinates)
+
+    @property
+    def n(self) -> int:
+        return len(self.names)
+
+    @property
+    def m(self) -> int:
+        return len(self.meshes)
+
+    def linear_matrices(self, k: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray]:
+        """Stiffness and damping matrices (s⁻², s⁻¹) of the reduced model with the meshes
+        closed at stiffness ``k`` (N/m; default the mean)."""
+        k = np.array([ml.k_mean for ml in self.meshes]) if k is None else np.asarray(k)
+        return self.Kr + self.B @ (k[:, None] * self.G), self.Cr + self.B @ (self.damping[:, None] * self.G)
+
+    def modes(self, k: np.ndarray | None = None) -> dict[str, np.ndarray]:
+        """Modes of the linearised model (meshes in contact at stiffness ``k``).
+
+        Returns natural frequencies ``frequency_Hz`` = |λ|/2π (undamped-equivalent),
+        ``damped_Hz`` = Im λ/2π, ``damping_ratio`` = −Re λ/|λ|, ``decay_rate`` = −Re λ (s⁻¹),
+        sorted by frequency, one per conjugate pair, and ``shapes`` (n, modes).
+        """
+        import scipy.linalg
+
+        K, C = self.linear_matrices(k)
+        n = self.n
+        A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]])
+        lam, vec = scipy.linalg.eig(A)
+        keep = lam.imag > 0
+        over = (lam.imag == 0)  # overdamped modes: real eigenvalues
+        lam_k, vec_k = lam[keep], vec[:n, keep]
+        if over.any():
+            lam_k = np.concatenate([lam_k, lam[over]])
+            vec_k = np.concatenate([vec_k, vec[:n, over]], axis=1)
+        order = np.argsort(np.abs(lam_k))
+        lam_k, vec_k = lam_k[order], vec_k[:, order]
+        return {"eigenvalue": lam_k, "frequency_Hz": np.abs(lam_k) / (2 * np.pi),
+                "damped_Hz": lam_k.imag / (2 * np.pi), "damping_ratio": -lam_k.real / np.abs(lam_k),
+                "decay_rate": -lam_k.real, "shapes": vec_k}
+
+    def static_state(self) -> np.ndarray:
+        """Static equilibrium y (n,) with the meshes at mean stiffness and mean e (m, rad→m)."""
+        K, _ = self.linear_matrices()
+        k = np.array([ml.k_mean for ml in self.meshes])
+        e_mean = np.array([float(np.mean(ml.error(np.linspace(0, 1, 512, endpoint=False))[0]))
+                           for ml in self.meshes])
+        return np.linalg.solve(K, self.f0 + self.B @ (k * e_mean))
+
+
+def _check_positive(name: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) \
+            or not math.isfinite(value) or value <= 0:
+        raise GearmeshInputError(name, value, "must be a positive finite number")
+    return float(value)
+
+
+def _check_nonneg(name: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)) \
+            or not math.isfinite(value) or value < 0:
+        raise GearmeshInputError(name, value, "must be a non-negative finite number")
+    return float(value)
+
+
+def require_dynamics_data(geom: PairGeometry) -> None:
+    """Refuse a pair without the bore radius or material the masses and inertias need."""
+    if geom.pair.material is None:
+        raise GearmeshInputError("material", None, "is required for the dynamics (density for the masses, "
+                                 "Young's modulus for the mesh stiffness)")
+    if geom.pair.bore_radius is None:
+        raise GearmeshInputError("bore_radius_mm", None, "is required for the dynamics (gear body masses and "
+                                 "inertias, seed 001 Table 1 convention)")
+
+
+#: Points of the fine table that holds a Fourier-represented error e(phase).
+
+def _equivalent_mass(cb: float, rb, inertia) -> float:
+    """Equivalent mass (kg) along the normal δ of one mesh: 1/[cos²βb Σ r_b²/I]."""
+    return 1.0 / (cb**2 * sum(r**2 / j for r, j in zip(rb, inertia)))
+
+
+def _reduce(name, M, Kb, Cb, Gfull, tau, rot_idx, R, meshes, damping, backlash, static_force, fmesh_per_rpm,
+            teeth, names_full, cos_beta_b):
+    """Reduced model from full matrices: translations kept, rotations → q = R θ."""
+    n_full = M.shape[0]
+    trans = [i for i in range(n_full) if i not in rot_idx]
+    J = M[np.ix_(rot_idx, rot_idx)]
+    Jinv = np.linalg.inv(J)
+    Mu = M[np.ix_(trans, trans)]
+    Muinv = np.linalg.inv(Mu)
+    nt, m = len(trans), R.shape[0]
+    n = nt + m
+    Kr = np.zeros((n, n))
+    Cr = np.zeros((n, n))
+    Kr[:nt, :nt] = Muinv @ Kb[np.ix_(trans, trans)]
+    Cr[:nt, :nt] = Muinv @ Cb[np.ix_(trans, trans)]
+    # δ = G_u u + G_θ θ with G_θ = G_q R  ⇒  G_q = G_θ R⁺ (exact: rows of G_θ lie in R's row space)
+    Gu = Gfull[:, trans]
+    Gth = Gfull[:, rot_idx]
+    Gq = Gth @ np.linalg.pinv(R)
+    if not np.allclose(Gq @ R, Gth, rtol=1e-12, atol=1e-15):
+        raise ValueError("mesh rotations are not functions of the relative coordinates")
+    G = np.hstack([Gu, Gq])
+    B = np.zeros((n, m))
+    B[:nt] = Muinv @ Gu.T
+    B[nt:] = R @ Jinv @ R.T @ Gq.T
+    f0 = np.zeros(n)
+    f0[nt:] = R @ Jinv @ tau[rot_idx]
+    names = tuple([names_full[i] for i in trans] + [f"q{i + 1}" for i in range(m)])
+    full = {"M": M, "K_bearing": Kb, "C_bearing": Cb, "G": Gfull, "forces": tau, "names": tuple(names_full),
+            "R": R, "rotations": tuple(rot_idx)}
+    return GearModel(name=name, names=names, n_trans=nt, Kr=Kr, Cr=Cr, B=B, G=G, f0=f0, meshes=tuple(meshes),
+                     damping=np.asarray(damping, dtype=float), backlash=backlash,
+                     static_force=np.asarray(static_force, dtype=float), mesh_frequency_per_rpm=fmesh_per_rpm,
+                     teeth_driver=teeth, full=full, cos_beta_b=float(cos_beta_b))
+
+
+def _bearing_settings(bearing: Mapping[str, float] | None) -> dict[str, float]:
+    """Seed 001's bearing values overridden by ``bearing``: known keys, stiffness > 0 (an
+    unsupported direction would leave a rigid-body mode), damping ≥ 0."""
+    out = {**SEED001_BEARING, **(bearing or {})}
+    for key, v in out.items():
+        if key not in SEED001_BEARING:
+            raise GearmeshInputError(f"bearing.{key}", v, f"unknown key; allowed {sorted(SEED001_BEARING)}")
+        (_check_positive if key.startswith("k_") else _check_nonneg)(f"bearing.{key}", v)
+    return out
+
+
+def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray | None, *,
+               bearing: Mapping[str, float] | None = None, damping_ratio: float = DEFAULT_DAMPING_RATIO,
+               backlash: float | None = 60e-6, stiffness_form: str = "fourier", order: int = 3,
+               excitation: str = "tvms", transmission_error=None, mesh_damping: float | None = None,
+               contact: MeshForceTable | None = None) -> GearModel:
+    """The 8-DOF bending–torsion–axial helical pair of seed 001 §4 (package docstring, eqs. 1–2).
+
+    Parameters
+    ----------
+    geom : pair geometry with bore radius and material (masses, inertias).
+    torque_out : output (gear) torque T_out (N·m), > 0; T_in = T_out r_b1/r_b2.
+    K_transverse : (P,) transverse TVMS K (N/m) evenly over one base pitch.
+    bearing : k_radial, k_axial (N/m), c_radial, c_axial (N·s/m), same for both gears
+        (default seed 001: 1.5e8, 1e7, 1000, 1000).
+    damping_ratio : mesh damping ratio ζ (-) on the mean normal stiffness and the equivalent
+        mass (ignored when ``mesh_damping`` (N·s/m) is given).
+    backlash : total backlash 2b0 (m) along the normal; None = no backlash (contact never
+        lost: f(δ) = δ, a linear time-varying model).
+    stiffness_form, order, excitation, transmission_error : see :func:`mesh_law`.
+    contact : the mesh force table of the pair (:func:`gearmesh.meshforce.mesh_force_table`):
+        the ``contact`` excitation (then ``K_transverse`` and the four above are unused).
+    """
+    require_dynamics_data(geom)
+    torque_out = _check_positive("torque_Nm", torque_out)
+    bearing = _bearing_settings(bearing)
+    damping_ratio = _check_nonneg("damping_ratio", damping_ratio)
+    rb1, rb2 = (float(r) for r in geom.base_radius)
+    torque_in = torque_out * rb1 / rb2
+    if contact is not None:
+        law = contact_mesh_law(geom, contact, torque_in)
+    else:
+        law = mesh_law(geom, K_transverse, torque_in, stiffness_form, order, excitation, transmission_error)
+    a, bb = geom.operating_pressure_angle, geom.base_helix_angle
+    cb, sb = math.cos(bb), math.sin(bb)
+    h = 1.0 if geom.pair.helix_hand == "right" else -1.0
+    mp, mg = (float(x) for x in geom.mass)
+    ip, ig = (float(x) for x in geom.inertia)
+    names = ("x_pinion", "y_pinion", "z_pinion", "theta_pinion", "x_gear", "y_gear", "z_gear", "theta_gear")
+    M = np.diag([mp, mp, mp, ip, mg, mg, mg, ig])
+    kr, ka, cr, ca = bearing["k_radial"], bearing["k_axial"], bearing["c_radial"], bearing["c_axial"]
+    Kb = np.diag([kr, kr, ka, 0, kr, kr, ka, 0])
+    Cb = np.diag([cr, cr, ca, 0, cr, cr, ca, 0])
+    g = np.array([[cb * math.sin(a), cb * math.cos(a), -h * sb, cb * rb1,
+                   -cb * math.sin(a), -cb * math.cos(a), h * sb, -cb * rb2]])
+    tau = np.array([0, 0, 0, torque_in, 0, 0, 0, -torque_out])
+    R = np.array([[rb1, -rb2]])
+    me = _equivalent_mass(cb, (rb1, rb2), (ip, ig))
+    c_m = mesh_damping if mesh_damping is not None else 2 * damping_ratio * math.sqrt(law.k_mean * me)
+    f_static = torque_out / (rb2 * cb)
+    return _reduce(geom.pair.name, M, Kb, Cb, g, tau, [3, 7], R, [law], [c_m],
+                   math.inf if backlash is None else _check_nonneg("backlash_um", backlash),
+                   [f_static], geom.pair.teeth[0] / 60.0, geom.pair.teeth[0], names, cb)
+
+
+TRAIN_GEARS = ("plate", "blanket", "impression")
+
+
+def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | None, *, bearing=None,
+                damping_ratio: float = DEFAULT_DAMPING_RATIO, backlash: float | None = 60e-6,
+                stiffness_form: str = "fourier", order: int = 3, excitation: str = "tvms",
+                phase_offsets: Sequence[float] = (0.0, 0.0), mesh_damping: float | None = None,
+                contact: MeshForceTable | None = None) -> GearModel:
+    """The 9-DOF plate–blanket–impression train of seed 004 (package docstring).
+
+    The three gears are the pair file's gear (index 1) repeated, the pair's TVMS serving both
+    meshes (assumption: seed 004's gears are alike, 88 teeth each), the plate driven by
+    ``torque`` (N·m) and the impression loaded by it; y along the line of centres, bearing
+    'k_radial' for y, 'k_axial' for z. ``phase_offsets`` (mesh cycles) shift each mesh's
+    TVMS (default in phase: seed 004 finds the two mesh forces nearly identical). With
+    ``contact`` (the pair's mesh force table) both meshes are driven by the real contact.
+    """
+    require_dynamics_data(geom)
+    torque = _check_positive("torque_Nm", torque)
+    bearing = _bearing_settings(bearing)
+    if len(phase_offsets) != 2 or not all(math.isfinite(float(p)) for p in phase_offsets):
+        raise GearmeshInputError("phase_offsets", phase_offsets, "must give two finite mesh-cycle offsets")
+    rb = float(geom.base_radius[1])
+    m_, j_ = float(geom.mass[1]), float(geom.inertia[1])
+    a, bb = geom.operating_pressure_angle, geom.base_helix_angle
+    cb, sb = math.cos(bb), math.sin(bb)
+    h = 1.0 if geom.pair.helix_hand == "right" else -1.0
+    torque_pinion = torque * float(geom.base_radius[0]) / rb  # the same transverse force on the pair's table
+    if contact is not None:
+        laws = [contact_mesh_law(geom, contact, torque_pinion, float(p)) for p in phase_offsets]
+    else:
+        laws = [mesh_law(geom, K_transverse, torque_pinion, stiffness_form, order, excitation, None, float(p))
+                for p in phase_offsets]
+    names = tuple(f"{d}_{g}" for g in TRAIN_GEARS for d in ("y", "z", "theta"))
+    M = np.diag([m_, m_, j_] * 3)
+    kr, ka, cr, ca = bearing["k_radial"], bearing["k_axial"], bearing["c_radial"], bearing["c_axial"]
+    Kb = np.diag([kr, ka, 0] * 3)
+    Cb = np.diag([cr, ca, 0] * 3)
+    sa = math.sin(a)
+    G = np.zeros((2, 9))
+    G[0, [0, 1, 2, 3, 4, 5]] = [cb * sa, -h * sb, cb * rb, -cb * sa, h * sb, -cb * rb]
+    G[1, [3, 4, 5, 6, 7, 8]] = [cb * sa, -h * sb, cb * rb, -cb * sa, h * sb, -cb * rb]
+    tau = np.zeros(9)
+    tau[2], tau[8] = torque, -torque
+    R = np.array([[rb, -rb, 0.0], [0.0, rb, -rb]])
+    me = _equivalent_mass(cb, (rb, rb), (j_, j_))
+    c_m = [mesh_damping if mesh_damping is not None else 2 * damping_ratio * math.sqrt(ml.k_mean * me)
+           for ml in laws]
+    f_static = torque / (rb * cb)
+    return _reduce("train", M, Kb, Cb, G, tau, [2, 5, 8], R, laws, c_m,
+                   math.inf if backlash is None else _check_nonneg("backlash_um", backlash),
+                   [f_static, f_static], geom.pair.teeth[1] / 60.0, geom.pair.teeth[1], names, cb)
+
+
+def resonance_speeds(model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> dict[str, np.ndarray]:
+    """Speeds (rpm) where harmonic j of the mesh frequency meets a natural frequency of the
+    linearised model: n = f_n/(j·z_drv/60). Returns 'frequency_Hz' (modes) and 'speed_rpm'
+    (harmonic, mode)."""
+    fn = model.modes()["frequency_Hz"]
+    h = np.asarray(harmonics, dtype=float)
+    return {"frequency_Hz": fn, "speed_rpm": fn[None, :] / (h[:, None] * model.mesh_frequency_per_rpm)}

@@ -1,0 +1,299 @@
+"""The mesh force of the real tooth contact as a function of the bodies' approach and the
+mesh position: F(x, τ), tabulated once per pair and micro-geometry for the dynamics.
+
+Everything inside is SI. The convention is the LTCA's (:mod:`gearmesh.ltca`): x is the
+transverse approach of the gear bodies along the line of action (r_b1·Δφ1 with the gear held),
+the force the transverse load F_bt it transmits (the moment about the pinion axis over r_b1).
+
+Model
+-----
+At a pinion roll r the candidate contact points i of every tooth pair in and around the active
+zone — flank points and the tip edges before A and after E, both gears' modifications and lead
+slope errors — have unloaded separations g_i(r) (:func:`gearmesh.tca.candidate_grid`, the
+separation basis shared with the LTCA and the impact model) and linear compliances c_i
+(:func:`gearmesh.ltca.point_compliance`: bending, shear, axial compression and fillet
+foundation of both teeth) in series with the local contact law δ_c(q) (Palmgren's line contact
+or linear Hertz, :func:`gearmesh.ltca.contact_law`). With independent slices each point's load
+at an approach x is its own law inverted,
+
+    q_i(x, r) = f_i⁻¹((x − g_i(r))₊),   f_i(q) = c_i·q + δ_c(q),
+
+and the mesh force is their sum F(x, r) = Σ_i q_i. For a given force its inverse is the LTCA
+(:func:`gearmesh.ltca.solve_contact` solves Σ q_i(x) = F for x), so the quasi-static limit of
+a simulation driven by F(x, r) is the LTCA's loaded TE, and its tangent dF/dx at the static
+approach is the LTCA's loaded mesh stiffness. What the table adds is everything away from the
+static state: an entering tooth pair whose tip edge touches *before* A when the pairs in mesh
+are deflected further than their static approach (the mesh-in impact of seed 000), a pair that
+lets go earlier when the approach drops, and contact loss when x falls below every separation.
+This is the "mesh force from the instantaneous contact of all tooth pairs" formulation of the
+gear-dynamics literature (Velex & Maatar 1996, J. Sound Vib. 191:629 — the time-varying
+contact of discretised contact lines inside the equations of motion; Eritenel & Parker 2012,
+Mech. Mach. Theory 56:28 for helical gears; Parker, Vijayakar & Imajo 2000, J. Sound Vib.
+237:435 with an FE contact model), here with the project's own slice model of the contact.
+
+What it leaves out: the slices are independent (no plate coupling of a tooth along the face,
+so a face-end corner is too stiff locally); every load acts along the transverse line of action
+(an edge load's normal lies off it by a small angle, taken to first order in the separations
+of :mod:`gearmesh.tca`); the mesh position advances with the nominal speed (the vibration does
+not shift the contact lines, the usual assumption); friction is absent.
+
+The table
+---------
+Rows are the position within the *engagement window* w ∈ [0, p_bt], the pinion roll
+r = r_A − p_bt/2 + w with r_A the theoretical start of engagement of the entering pair
+(:func:`gearmesh.tca.engagement_point`): the entering pair reaches A at w = p_bt/2. The total
+force is periodic in w (row P repeats row 0); the *entering pair* — the tooth pair that reaches
+A during the window — is followed over the whole window by its own index, so its load, its
+first touch before A and its dynamic impact are read from the same table (``enter_force``,
+``enter_gap``). Columns are the approach beyond the first touch, u = x − g_min(r) ≥ 0, on a
+uniform grid up to the approach at which every row carries at least ``force_max``; F is
+interpolated bilinearly in (w, u) and extrapolated linearly in u (its tangent) above the grid.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass
+
+import numpy as np
+
+from .errors import GearmeshInputError
+from .gear import PairGeometry
+from .ltca import ContactLaw, _invert, ltca_model, point_compliance, solve_contact
+from .stiffness import SliceComplianceTable
+from .tca import REGION_APPROACH_TIP, REGION_RECESS_TIP, candidate_grid, check_count, engagement_point
+
+__all__ = ["MeshForceTable", "mesh_force_table", "DEFAULT_TABLE_POSITIONS", "DEFAULT_TABLE_APPROACHES",
+           "DEFAULT_TABLE_EXTENSION"]
+
+#: Rows (window positions per mesh cycle) and columns (approaches) of the default table; the
+#: convergence of the dynamics in both is tested (tests/test_meshforce.py, test_dynamics_contact.py).
+DEFAULT_TABLE_POSITIONS = 256
+DEFAULT_TABLE_APPROACHES = 96
+#: Reach of the tip-edge candidates beyond the active zone (fraction of p_bt): half a base pitch,
+#: the whole half-window before A in which the entering pair is followed.
+DEFAULT_TABLE_EXTENSION = 0.5
+#: Points (slices) per contact line. More than the LTCA's 50: a helical pair enters at the corner
+#: at the face end, and slice centres put the first point half a slice inside it, delaying the
+#: entering pair's first touch by (b/2N)·tan βb of roll — 0.2 mm at 50 points on the default pair,
+#: 0.05 mm at 200, converging as 1/N to the exact corner of :func:`gearmesh.impact.impact_static`
+#: (tests/test_dynamics_contact.py); the table costs about 1 s at 200.
+DEFAULT_TABLE_POINTS = 200
+#: Most candidate points evaluated at once while building the table (memory bound, ~100 MB).
+_CHUNK_ELEMENTS = 2_000_000
+
+
+@dataclass(frozen=True)
+class MeshForceTable:
+    """F(x, w) of one pair and micro-geometry over one mesh cycle (module docstring), SI.
+
+    ``pitch`` p_bt (m); ``roll_engagement`` r_A (m, in [0, p_bt)); ``window`` (P+1,) window
+    positions w (m, 0 … p_bt); ``roll`` (P+1,) the pinion rolls r = r_A − p_bt/2 + w;
+    ``approach`` (U,) u (m, 0 … u_max); ``gap_min`` (P+1,) the smallest separation of all
+    candidates (m: the first touch, contact lost below it); ``force`` / ``stiffness`` (P+1, U)
+    F (N) and dF/dx (N/m) at x = g_min + u; ``enter_gap`` (P+1,) the entering pair's smallest
+    separation (m, inf without candidates); ``enter_force`` (P+1, U) its load (N) at the same
+    approaches; ``force_max`` the force (N) every row reaches within the grid.
+    """
+
+    pitch: float
+    roll_engagement: float
+    window: np.ndarray
+    roll: np.ndarray
+    approach: np.ndarray
+    gap_min: np.ndarray
+    force: np.ndarray
+    stiffness: np.ndarray
+    enter_gap: np.ndarray
+    enter_force: np.ndarray
+    force_max: float
+
+    @property
+    def positions(self) -> int:
+        """P, rows per mesh cycle."""
+        return self.window.size - 1
+
+    def window_position(self, roll) -> np.ndarray:
+        """w (m) of pinion rolls ``roll`` (m): (r − r_A + p_bt/2) mod p_bt."""
+        return np.mod(np.asarray(roll, dtype=float) - self.roll_engagement + 0.5 * self.pitch, self.pitch)
+
+    def _cell(self, w, u):
+        """Row index, row weight, column index and column offset (m) of (w, u), both arrays."""
+        dw = self.pitch / self.positions
+        t = np.asarray(w, dtype=float) / dw
+        i = np.clip(t.astype(np.intp), 0, self.positions - 1)
+        du = self.approach[1] - self.approach[0]
+        j = np.clip((np.asarray(u, dtype=float) / du).astype(np.intp), 0, self.approach.size - 2)
+        return i, t - i, j, u - self.approach[j]
+
+    def _bilinear(self, table, i, a, j, du_off):
+        """Bilinear in (w, u), linear extrapolation in u beyond the grid (from the last cell)."""
+        du = self.approach[1] - self.approach[0]
+        b = du_off / du
+
+        def row(k):
+            f0, f1 = table[k, j], table[k, j + 1]
+            return f0 + b * (f1 - f0)
+
+        return (1 - a) * row(i) + a * row(i + 1)
+
+    def gap(self, w) -> np.ndarray:
+        """g_min (m) at window positions ``w`` (m), linear between rows."""
+        return np.interp(w, self.window, self.gap_min)
+
+    def evaluate(self, x, w):
+        """Mesh force F (N) and its tangent dF/dx (N/m) at approach ``x`` (m) and window position
+        ``w`` (m) (arrays of one shape); zero where x ≤ g_min(w)."""
+        x, w = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(w, dtype=float))
+        u = x - self.gap(w)
+        i, a, j, off = self._cell(w, np.maximum(u, 0.0))
+        f = self._bilinear(self.force, i, a, j, off)
+        k = self._bilinear(self.stiffness, i, a, j, off)
+        touch = u > 0
+        return np.where(touch, np.maximum(f, 0.0), 0.0), np.where(touch, k, 0.0)
+
+    def entering(self, x, w) -> np.ndarray:
+        """Load (N) of the entering pair at approach ``x`` (m) and window position ``w`` (m)."""
+        x, w = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(w, dtype=float))
+        u = x - self.gap(w)
+        i, a, j, off = self._cell(w, np.maximum(u, 0.0))
+        f = self._bilinear(self.enter_force, i, a, j, off)
+        return np.where(u > 0, np.maximum(f, 0.0), 0.0)
+
+    def static_approach(self, force: float) -> tuple[np.ndarray, np.ndarray]:
+        """Approach x (m) and tangent stiffness dF/dx (N/m) at every row where F(x) = ``force``
+        (N): the table's own quasi-static solution (rows monotone in u; linear between columns,
+        linear extrapolation above the grid)."""
+        f = self.force
+        u = np.empty(f.shape[0])
+        for k in range(f.shape[0]):
+            row = f[k]
+            j = int(np.searchsorted(row, force))
+            j = min(max(j, 1), row.size - 1)
+            u[k] = self.approach[j - 1] + (force - row[j - 1]) * (self.approach[j] - self.approach[j - 1]) \
+                / (row[j] - row[j - 1])
+        i = np.arange(f.shape[0])
+        du = self.approach[1] - self.approach[0]
+        j = np.clip((u / du).astype(np.intp), 0, self.approach.size - 2)
+        b = (u - self.approach[j]) / du
+        k = self.stiffness[i, j] + b * (self.stiffness[i, j + 1] - self.stiffness[i, j])
+        return self.gap_min + u, k
+
+    def static_touch(self, force: float) -> float:
+        """The roll (m) before A at which the entering pair first touches in the quasi-static
+        mesh under ``force`` (N): the first window position where the static approach reaches its
+        separation, between rows by linear interpolation of x_s − g_enter; 0 at or after A."""
+        x_s, _ = self.static_approach(force)
+        h = np.where(np.isfinite(self.enter_gap), x_s - self.enter_gap, -np.inf)
+        hit = np.flatnonzero(h > 0)
+        if not hit.size:
+            return 0.0
+        k = int(hit[0])
+        if k == 0:
+            w = 0.0
+        else:
+            h0 = h[k - 1] if np.isfinite(h[k - 1]) else -1.0
+            w = self.window[k - 1] + (self.window[k] - self.window[k - 1]) * (-h0) / (h[k] - h0) \
+                if np.isfinite(h[k - 1]) else self.window[k]
+        return float(max(0.5 * self.pitch - w, 0.0))
+
+
+def _enter_columns(pairs: np.ndarray, j_enter: int, roll: np.ndarray, window: np.ndarray, roll_a: float,
+                   pitch: float) -> np.ndarray:
+    """Column of the entering pair in each row (−1 where it has no candidate column): the pair
+    with index j_A at r_A keeps its identity over the window, so at a roll k pitches earlier it
+    is pair j_A + k (:func:`gearmesh.tca.candidate_grid`: s = r + j·p_bt + …)."""
+    unwrapped = roll_a - 0.5 * pitch + window
+    shift = np.rint((unwrapped - roll) / pitch).astype(int)
+    want = j_enter + shift
+    col = np.full(roll.size, -1)
+    for k, j in enumerate(want):
+        hit = np.flatnonzero(pairs == j)
+        if hit.size:
+            col[k] = int(hit[0])
+    return col
+
+
+def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFAULT_TABLE_POSITIONS,
+                     approaches: int = DEFAULT_TABLE_APPROACHES, points: int = DEFAULT_TABLE_POINTS,
+                     lead_slope=(0.0, 0.0), contact_law_name: str = "palmgren", method: str = "transition",
+                     extension: float = DEFAULT_TABLE_EXTENSION,
+                     tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None) -> MeshForceTable:
+    """Tabulate the mesh force F(x, w) of ``geom`` (its modifications) over one mesh cycle.
+
+    Parameters
+    ----------
+    force_max : every row reaches at least this transverse force (N) on the grid (give a few
+        times the largest static force F_bt a simulation will see; above it F is extrapolated
+        with its tangent).
+    positions, approaches : rows per mesh cycle and columns (module docstring).
+    points : candidate points (slices) per contact line, as the LTCA's ``points``.
+    lead_slope : lead slope errors [pinion, gear] (m over the face width).
+    contact_law_name, method : local contact law and cantilever model (:mod:`gearmesh.ltca`).
+    extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt, at
+        most 0.5: the entering pair is followed over half a pitch before A).
+    tables : per-gear slice compliance tables to reuse (same ``method``).
+    """
+    positions = check_count("table_positions", positions, 16, 100000)
+    approaches = check_count("table_approaches", approaches, 8, 100000)
+    if not (isinstance(force_max, (int, float)) and math.isfinite(force_max) and force_max > 0):
+        raise GearmeshInputError("force_max", force_max, "must be a positive finite force (N)")
+    if not (isinstance(extension, (int, float)) and 0 < extension <= 0.5):
+        raise GearmeshInputError("table_extension", extension, "must lie in (0, 0.5] (fraction of the base pitch)")
+    # the load-independent LTCA model: slice tables, pair table, contact law (its own grid unused)
+    base = ltca_model(geom, positions=1, points=points, lead_slope=lead_slope, contact_law_name=contact_law_name,
+                      method=method, extension=extension, tables=tables)
+    law: ContactLaw = base.law
+    pitch = geom.transverse_base_pitch
+    roll_a, j_a, _ = engagement_point(geom)
+    window = np.arange(positions + 1) * (pitch / positions)
+    roll = np.mod(roll_a - 0.5 * pitch + window, pitch)
+    grid = candidate_grid(geom, roll, points, tuple(lead_slope), extension)
+    comp = point_compliance(geom, base.pair_table, base.tables, grid.s, grid.region, grid.rho_pinion,
+                            grid.rho_gear, with_hertz=law.name == "linear") / grid.dz
+    rows, m = roll.size, grid.gap[0].size
+    gap = np.where(np.isfinite(grid.gap), grid.gap, np.inf).reshape(rows, m)
+    comp = np.where(np.isfinite(grid.gap), comp, 1.0).reshape(rows, m) + law.linear
+    gap_min = gap.min(axis=1)
+    if not np.all(np.isfinite(gap_min)):
+        raise GearmeshInputError("positions", int(np.sum(~np.isfinite(gap_min))), "rows without a candidate point")
+    col = _enter_columns(np.asarray(grid.pairs), j_a, roll, window, roll_a, pitch)
+    n_line = grid.gap.shape[2]
+    enter_mask = np.zeros((rows, m), dtype=bool)
+    for k, c in enumerate(col):
+        if c >= 0:
+            enter_mask[k, c * n_line:(c + 1) * n_line] = True
+    enter_gap = np.where(enter_mask, gap, np.inf).min(axis=1)
+    # the approach range: every row carries force_max
+    _, delta_max, _, _ = solve_contact(gap, comp - law.linear, np.full(rows, float(force_max)), law)
+    u_max = float(np.max(delta_max - gap_min))
+    u = np.linspace(0.0, u_max, approaches)
+    force = np.empty((rows, approaches))
+    stiff = np.empty((rows, approaches))
+    enter = np.empty((rows, approaches))
+    step = max(1, _CHUNK_ELEMENTS // (approaches * m))
+    for k0 in range(0, rows, step):
+        sl = slice(k0, min(rows, k0 + step))
+        d = gap_min[sl, None, None] + u[None, :, None] - gap[sl, None, :]
+        q, dq = _invert(np.where(np.isfinite(d), d, -1.0), np.broadcast_to(comp[sl, None, :], d.shape),
+                        law.coefficient, law.exponent)
+        force[sl] = q.sum(axis=2)
+        stiff[sl] = dq.sum(axis=2)
+        enter[sl] = np.where(enter_mask[sl, None, :], q, 0.0).sum(axis=2)
+    _warn_reach(grid, gap, gap_min[:, None] + u_max, extension * pitch, geom.path_of_contact)
+    return MeshForceTable(pitch=pitch, roll_engagement=float(roll_a), window=window, roll=roll, approach=u,
+                          gap_min=gap_min, force=force, stiffness=stiff, enter_gap=enter_gap, enter_force=enter,
+                          force_max=float(force_max))
+
+
+def _warn_reach(grid, gap: np.ndarray, x_max: np.ndarray, ext: float, path: float) -> None:
+    """Warn when tip-edge candidates in the outer fifth of the candidate zone carry load at the
+    largest approach of the table (the zone would be too short for that approach)."""
+    s = grid.s.reshape(gap.shape)
+    region = grid.region.reshape(gap.shape)
+    far = (((region == REGION_APPROACH_TIP) & (s < -0.8 * ext)) | ((region == REGION_RECESS_TIP)
+                                                                   & (s > path + 0.8 * ext)))
+    if np.any(far & (gap < x_max)):
+        warnings.warn("mesh force table: tip edges reach the end of the candidate zone at the largest approach "
+                      "of the table; lower force_max or widen the extension", RuntimeWarning, stacklevel=3)
