@@ -22,8 +22,10 @@ SPECS = {
 
 def test_closure_follows_relative_and_nested_imports():
     closure = module_closure("gearmesh.datasets.dynamics")
-    assert {"gearmesh.dynamics", "gearmesh.stiffness", "gearmesh.gear", "gearmesh.io"} <= set(closure)
-    assert "gearmesh.ltca" not in closure and "gearmesh.plots.ltca" not in closure
+    assert {"gearmesh.dynamics", "gearmesh.dynamics.integrate", "gearmesh.stiffness", "gearmesh.gear",
+            "gearmesh.io"} <= set(closure)
+    # the contact excitation drives the dynamics with the LTCA's contact model: a change to it reruns the dynamics
+    assert {"gearmesh.meshforce", "gearmesh.ltca"} <= set(closure) and "gearmesh.plots.ltca" not in closure
     # run_variant_pair imports config and gear inside the function body
     assert {"gearmesh.config", "gearmesh.gear"} <= set(module_closure("gearmesh.pipeline"))
 
@@ -38,8 +40,9 @@ def test_versioned_spec_resolves_to_the_same_function():
 
 @pytest.mark.parametrize("module, changed", [
     ("stiffness.py", {"stiffness", "dynamics", "ltca"}),   # ltca builds on the slice tables
+    ("ltca.py", {"dynamics", "ltca"}),                      # the contact table is the LTCA's contact model
     ("plots/ltca.py", {"plot_ltca"}),
-    ("dynamics.py", {"dynamics"}),
+    ("dynamics/integrate.py", {"dynamics"}),
     ("pipeline.py", set(SPECS)),                            # the glue every job runs
 ])
 def test_a_module_change_reaches_exactly_its_importers(tmp_path: Path, module: str, changed: set[str]):

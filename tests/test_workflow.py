@@ -103,7 +103,7 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
                            "points": 10, "window_positions": 16, "face_samples": 33, "cycle_positions": 8},
               "tca": {"positions": 8, "points": 6},
               "ltca": {"torques_Nm": [100], "positions": 8, "points": 6},
-              "dynamics": {"torque_Nm": 100, "on": "pinion", "speeds_rpm": {"start": 2000, "stop": 4000, "step": 1000},
+              "dynamics": {"torques_Nm": 100, "on": "pinion", "speeds_rpm": {"start": 2000, "stop": 4000, "step": 1000},
                            "sample_speeds_rpm": [3000], "record_cycles": 4},
               "helix_sweep": {"pairs": ["seed001_pair1"], "start_deg": 8, "stop_deg": 16, "step_deg": 4,
                               "positions": 16}}

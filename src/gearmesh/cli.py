@@ -119,8 +119,9 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
-    from .datasets.dynamics import check_dynamics_settings, dynamics_summary
+    from .datasets.dynamics import check_dynamics_settings, dynamics_summary, positive_torque
 
+    positive_torque("torque_Nm", args.torque_Nm)
     pair, geom = _pair(args.pair, args)
     check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
                                    "backlash_um": args.backlash_um, "sample_speeds_rpm": [],
@@ -141,16 +142,13 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def _backlash_option(text: str):
-    """--backlash-um: 'pair' (the pair's own backlash) or a finite number of µm."""
+    """--backlash-um: 'pair' (the pair's own backlash) or a number of µm (its range is the stage's check)."""
     if text == "pair":
         return text
     try:
-        value = float(text)
+        return float(text)
     except ValueError:
         raise argparse.ArgumentTypeError(f"{text!r} is neither 'pair' nor a number of µm") from None
-    if not math.isfinite(value) or value < 0:
-        raise argparse.ArgumentTypeError(f"{text!r} must be a non-negative finite number of µm")
-    return value
 
 
 def _progress():

@@ -981,11 +981,14 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     approach x (:func:`gearmesh.ltca.solve_contact`'s point laws, inverted directly). No
     damping: the energy method is conservative. It starts in static equilibrium a little before
     the touch (x = δ, ẋ = dδ/dt), integrates (scipy solve_ivp, RK45) through the touch for
-    ``cycles_after`` periods of the mesh's natural frequency √(k/m_eq), and reports the peak
-    of the entering pair's force at its first maximum after the touch (the maximum compression of
-    the impact, what the energy method predicts) and the largest mesh force above the static
-    force F_bt up to then (later the undamped mesh keeps ringing under its own stiffness
-    fluctuation, which is not the impact).
+    ``cycles_after`` periods of the mesh's natural frequency √(k/m_eq), and reports over the
+    impact window — from the touch to one natural period after it (compression and rebound of
+    the impact; later the undamped mesh keeps ringing under its own stiffness fluctuation, which
+    is not the impact) — the entering pair's largest force (``entering_peak``), its largest
+    excess over its quasi-static force at the same mesh position (``entering_excess``: the
+    dynamic impact, the quantity the dynamics reports), and the largest mesh force above the
+    static force F_bt (``peak_above_static``). (A window that closed at the entering pair's first
+    local maximum could close a few µs after a grazing touch, on a wiggle of a few newtons.)
     The energy method's premise — all of ½·m_eq·v² goes into the entering pair — ignores the
     pairs already in mesh, which unload as x rebounds; the ratio measures that.
     """
@@ -1056,10 +1059,15 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     total = q.sum(axis=1)
     entering = q[:, enter].sum(axis=1)
     t_touch = (t_star - tau0) / rate
-    rising = np.flatnonzero((t[1:-1] > t_touch) & (entering[1:-1] > 0) & (entering[1:-1] >= entering[:-2])
-                            & (entering[1:-1] > entering[2:])) + 1
-    i_peak = int(rising[0]) if rising.size else t.size - 1
+    # the entering pair's quasi-static load at every sampled mesh position (the LTCA at F_bt)
+    q_static, _, _, _ = solve_contact(gaps, comps, np.full(nr, f_bt), law)
+    entering_static = np.interp(tau0 + rate * t, taus, q_static[:, enter].sum(axis=1))
+    window = (t >= t_touch) & (t <= t_touch + period)
+    excess = entering - entering_static
+    i_peak = int(np.flatnonzero(window)[np.argmax(excess[window])]) if window.any() else t.size - 1
     return {"time": t, "tau": tau0 + rate * t, "approach": x, "mesh_force": total, "entering_force": entering,
-            "static_force": f_bt, "peak_above_static": float(total[: i_peak + 1].max() - f_bt),
-            "entering_peak": float(entering[i_peak]), "peak_time": float(t[i_peak]), "period": period,
+            "entering_static": entering_static, "static_force": f_bt,
+            "peak_above_static": float(total[window].max() - f_bt) if window.any() else np.nan,
+            "entering_peak": float(entering[window].max()) if window.any() else np.nan,
+            "entering_excess": float(excess[i_peak]), "peak_time": float(t[i_peak]), "period": period,
             "touch_time": t_touch}

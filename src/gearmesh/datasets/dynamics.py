@@ -100,7 +100,7 @@ def speed_grid(speeds: Mapping[str, float] | Sequence[float] | str | float) -> n
     return arr
 
 
-def _torque(name: str, value) -> float:
+def positive_torque(name: str, value) -> float:
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
         raise GearmeshInputError(name, value, "must be a positive finite number (N m)")
     return float(value)
@@ -204,14 +204,14 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
         geom = pair_geometry(pair)
         require_dynamics_data(geom)
         if s.get("speeds_rpm") is None:
-            speeds = np.array([_torque("mesh_frequency_Hz", s.get("mesh_frequency_Hz", SEED004_MESH_FREQUENCY_HZ))
+            speeds = np.array([positive_torque("mesh_frequency_Hz", s.get("mesh_frequency_Hz", SEED004_MESH_FREQUENCY_HZ))
                                * 60.0 / pair.teeth[1]])
         else:
             speeds = speed_grid(s["speeds_rpm"])
         if s.get("torque_Nm") is not None:
-            torque = _torque("torque_Nm", s["torque_Nm"])
+            torque = positive_torque("torque_Nm", s["torque_Nm"])
         else:
-            torque = _torque("static_force_N", s.get("static_force_N", SEED004_STATIC_FORCE_N)) \
+            torque = positive_torque("static_force_N", s.get("static_force_N", SEED004_STATIC_FORCE_N)) \
                 * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
         if speeds.size > MAX_TRAIN_SPEEDS:
             raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",
@@ -451,7 +451,7 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
     """
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
-    torque = _torque("torque_Nm", torque_Nm)
+    torque = positive_torque("torque_Nm", torque_Nm)
     if on not in _PAIR_GEARS:
         raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torque_Nm acts)")
     t_out = torque if on == "gear" else torque * geom.base_radius[1] / geom.base_radius[0]
@@ -833,7 +833,7 @@ def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEF
     model_settings = {k: v for k, v in settings.items() if k not in _SOLVER_KEYS and k not in _TABLE_KEYS}
     if resolve_excitation(settings.get("excitation"), settings.get("ltca")) == "contact":
         geom = pair_geometry(pair)
-        t1 = pinion_torque(pair, _torque("torque_Nm", torque_Nm), on)
+        t1 = pinion_torque(pair, positive_torque("torque_Nm", torque_Nm), on)
         model_settings["table"] = contact_table(geom, [t1], settings.get("method", "transition"),
                                                 **{k: v for k, v in settings.items() if k in _TABLE_KEYS})
     model = build_pair_model(pair, torque_Nm, on, **model_settings)
@@ -900,13 +900,13 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     require_dynamics_data(geom)
     rb, cb = float(geom.base_radius[1]), math.cos(geom.base_helix_angle)
     if torque_Nm is not None:
-        torque = _torque("torque_Nm", torque_Nm)
+        torque = positive_torque("torque_Nm", torque_Nm)
     elif static_force_N is not None:
-        torque = _torque("static_force_N", static_force_N) * rb * cb
+        torque = positive_torque("static_force_N", static_force_N) * rb * cb
     else:
         raise GearmeshInputError("torque_Nm", None, "give torque_Nm or static_force_N")
     if speeds_rpm is None:
-        f = _torque("mesh_frequency_Hz", mesh_frequency_Hz)
+        f = positive_torque("mesh_frequency_Hz", mesh_frequency_Hz)
         speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
     else:
         speeds = speed_grid(speeds_rpm)

@@ -166,21 +166,23 @@ def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, ve
 
 def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, design: float) -> None:
     nt = t1.size
-    peak, enter = np.full(nt, np.nan), np.full(nt, np.nan)
+    peak, enter, excess = np.full(nt, np.nan), np.full(nt, np.nan), np.full(nt, np.nan)
     series = None
     for t in sim_given:
         k = int(np.flatnonzero(np.abs(given - t) <= 1e-9 * t)[0])
         r = simulate_engagement(model, float(t1[k]), design)
-        peak[k], enter[k] = r["peak_above_static"], r["entering_peak"]
+        peak[k], enter[k], excess[k] = r["peak_above_static"], r["entering_peak"], r["entering_excess"]
         if series is None:
             series = (k, r)
+    window = "from the touch to one natural period of the mesh after it"
     ds["simulated_peak_above_static"] = variable(("torque",), peak, "N",
                                                  "direct time integration at the design speed: mesh force peak "
-                                                 "above the static force from the touch to the entering pair's first maximum "
-                                                 "(NaN: not run)")
+                                                 f"above the static force {window} (NaN: not run)")
     ds["simulated_entering_peak"] = variable(("torque",), enter, "N",
-                                             "direct time integration: the entering pair's force at its first "
-                                             "maximum after the touch")
+                                             f"direct time integration: the entering pair's largest force {window}")
+    ds["simulated_entering_excess"] = variable(("torque",), excess, "N",
+                                               "direct time integration: the entering pair's largest excess over its "
+                                               f"quasi-static force {window} (the dynamic impact)")
     if series is not None:
         k, r = series
         dims = ("sim_time",)
@@ -191,7 +193,10 @@ def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, de
         ds["sim_static_force"] = variable((), r["static_force"], "N", "static transverse force F_bt")
         ds["sim_touch_time"] = variable((), r["touch_time"], "s", "time of the quasi-static touch")
         ds["sim_period"] = variable((), r["period"], "s", "natural period 2 pi sqrt(m_eq/k) of the loaded mesh")
-        ds["sim_peak_time"] = variable((), r["peak_time"], "s", "time of the entering pair's first force maximum")
+        ds["sim_peak_time"] = variable((), r["peak_time"], "s", "time of the entering pair's largest excess over "
+                                       "its quasi-static force")
+        ds["sim_entering_static"] = variable(dims, r["entering_static"], "N",
+                                             "quasi-static force of the entering pair at the same mesh position")
         ds["sim_torque"] = variable((), float(t1[k]), "N m", "pinion torque of the simulated time series")
 
 
@@ -272,5 +277,6 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", dri
         r = simulate_engagement(model, float(t1[0]), float(speed[0]))
         out["simulated_peak_force_N"] = r["peak_above_static"]
         out["simulated_entering_peak_force_N"] = r["entering_peak"]
+        out["simulated_entering_impact_force_N"] = r["entering_excess"]
         out["static_force_N"] = r["static_force"]
     return out

@@ -95,13 +95,18 @@ def plot_simulation(ds: xr.Dataset, path: str | Path) -> Path:
     fs = float(ds["impact_force"].sel(speed=float(ds.attrs["design_speed_rpm"]))[k])
     ax.plot(t, ds["sim_mesh_force"] * 1e-3, color="k", lw=1.3, label="mesh force, all pairs (simulated)")
     ax.plot(t, ds["sim_entering_force"] * 1e-3, color="tab:red", lw=1.2, label="entering pair (simulated)")
+    if "sim_entering_static" in ds:
+        ax.plot(t, ds["sim_entering_static"] * 1e-3, color="tab:red", lw=0.9, ls=":",
+                label="entering pair, quasi-static")
     ax.axhline(f0 * 1e-3, color="0.4", ls=":", lw=1, label=f"static force F_bt = {f0 * 1e-3:.2f} kN")
     ax.axhline(fs * 1e-3, color="tab:blue", ls="--", lw=1, label=f"energy method F_s = {fs * 1e-3:.2f} kN")
     ax.axhline((f0 + fs) * 1e-3, color="tab:blue", ls=":", lw=1, label="F_bt + F_s")
     t0 = float(ds["sim_touch_time"]) * 1e3
     ax.axvline(t0, color="0.6", lw=0.8, label="quasi-static touch")
-    ax.axvspan(t0, float(ds["sim_peak_time"]) * 1e3, color="0.9", zorder=0,
-               label="impact: touch to the entering pair's first maximum")
+    ax.axvspan(t0, t0 + float(ds["sim_period"]) * 1e3, color="0.9", zorder=0,
+               label="impact window: one natural period from the touch")
+    ax.axvline(float(ds["sim_peak_time"]) * 1e3, color="tab:red", lw=0.8, ls="--",
+               label="largest excess of the entering pair over quasi-static")
     ax.set_xlabel("time (ms)")
     ax.set_ylabel("transverse force (kN)")
     ax.set_title(_title(ds, f"engagement at {float(ds['sim_torque']):g} N m, "
