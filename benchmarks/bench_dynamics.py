@@ -1,10 +1,20 @@
-"""Benchmark of the dynamics stage: the 496-speed sweep of seed 001 pair 1 (500:50000:100 rpm,
-T_out = 200 N·m, backlash 60 µm) as one RK4 batch, against a per-speed solve_ivp loop.
+"""Benchmarks of the dynamics stage: the compiled step loop with shooting against the numpy batch
+RK4 it replaced and against solve_ivp, for the three excitations, in one run.
 
-The baseline integrates the full 8-DOF equations (:func:`gearmesh.dynamics.reference_solution`,
-DOP853, rtol 1e-6 — about the accuracy of the batch) at ``subset`` speeds spread over the
-sweep, over the same transient and record window, and its time is scaled to 496 speeds.
-Run by hand: ``python benchmarks/bench_dynamics.py`` (or from benchmarks/run.py).
+* ``dynamics_default_sweep_<excitation>``: the default study's sweep (seed 000 case pair,
+  1000 N·m on the pinion, 1000:15000:500 rpm plus the speeds the sweep adds around the predicted
+  resonances, seed 001 bearings, backlash 60 µm) excited by ``tvms`` (slice stiffness), ``ltca``
+  (the LTCA's loaded stiffness and error) or ``contact`` (the mesh-force table). Baselines in
+  the same process: the numpy batch kernel :func:`gearmesh.dynamics.simulate_numpy` (today's
+  kernel until issue 17; not for ``contact``) over the same speeds, and solve_ivp (DOP853,
+  rtol 1e-6) on the full equations over the same physical-time transient at ``subset`` speeds,
+  scaled to all. The model (stiffness, LTCA, table) is built once, outside the timing.
+* ``dynamics_sweep_496_speeds``: seed 001 pair 1, 500:50000:100 rpm, new loop against the numpy
+  batch (where the batch amortised numpy's overhead best).
+* ``dynamics_contact_over_ltca``: the contact sweep's time over the ltca sweep's (issue 15: ≤ 1.5).
+
+Run by hand: ``python benchmarks/bench_dynamics.py`` (a few minutes: solve_ivp is slow), or
+``python benchmarks/run.py dynamics``.
 """
 
 from __future__ import annotations
@@ -12,39 +22,78 @@ from __future__ import annotations
 import json
 
 import numpy as np
+import xarray as xr
 
 from gearmesh import dynamics as dy
+from gearmesh.datasets.dynamics import build_pair_model, contact_table, resonance_refined, speed_grid
+from gearmesh.datasets.ltca import ltca_dataset
 from gearmesh.gear import load_pair, pair_geometry
 from gearmesh.stiffness import mesh_stiffness
 
 from common import ROOT, median_seconds
 
 
-def bench_dynamics(repeats: int = 3, subset: int = 6, baseline_rtol: float = 1e-6) -> dict:
-    """Median time of the whole sweep (stiffness + model + batch RK4) and the scaled baseline."""
+def _default_models() -> dict[str, dy.GearModel]:
+    pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    geom = pair_geometry(pair)
+    ltca: xr.Dataset = ltca_dataset(pair, torques_Nm=[1000.0], positions=64, points=50)
+    table = contact_table(geom, [1000.0, 1600.0])
+    common = {"backlash_um": 60.0}
+    return {"tvms": build_pair_model(pair, 1000.0, "pinion", excitation="tvms", **common),
+            "ltca": build_pair_model(pair, 1000.0, "pinion", excitation="ltca", ltca=ltca, **common),
+            "contact": build_pair_model(pair, 1000.0, "pinion", excitation="contact", table=table, **common)}
+
+
+def _diff(a: dy.SweepResult, b, keys=("force_max", "approach_std")) -> float:
+    return max(float(np.max(np.abs(getattr(a, k) / getattr(b, k) - 1))) for k in keys)
+
+
+def bench_default_sweep(repeats: int = 3, subset: int = 2) -> list[dict]:
+    models = _default_models()
+    grid = speed_grid({"start": 1000, "stop": 15000, "step": 500})
+    speeds = resonance_refined(grid, models["ltca"])
+    rows, times = [], {}
+    for name, model in models.items():
+        dy.simulate(model, speeds[:1])  # the compiled loop is cached on disk; load it outside the timing
+        fast, res = median_seconds(lambda: dy.simulate(model, speeds), repeats)
+        times[name] = fast
+        row = {"name": f"dynamics_default_sweep_{name}", "median_s": fast, "speeds": int(speeds.size),
+               "shooting_failures": int(np.sum(res.shooting_iterations < 0))}
+        if name != "contact":
+            old, ref = median_seconds(lambda: dy.simulate_numpy(model, speeds), max(1, repeats // 2))
+            row.update({"baseline": "numpy batch RK4 (the kernel before issue 17), same speeds, physical-time "
+                                    "transient", "baseline_median_s": old, "ratio": old / fast,
+                        "max_rel_diff": _diff(res, ref)})
+        pick = np.unique(np.linspace(0, speeds.size - 1, subset).round().astype(int))
+        ivp, refs = median_seconds(lambda: [dy.reference_solution(model, float(speeds[i]), rtol=1e-6, atol=1e-13)
+                                            for i in pick], 1)
+        row.update({"solve_ivp_scaled_s": ivp * speeds.size / pick.size,
+                    "solve_ivp_ratio": ivp * speeds.size / pick.size / fast,
+                    "solve_ivp_max_rel_diff": max(abs(float(res.approach_std[0, i]) / float(r["approach_std"][0]) - 1)
+                                                  for i, r in zip(pick, refs))})
+        rows.append(row)
+    rows.append({"name": "dynamics_contact_over_ltca", "median_s": times["contact"],
+                 "baseline": "the ltca sweep, same speeds, same run", "baseline_median_s": times["ltca"],
+                 "ratio": times["contact"] / times["ltca"]})
+    return rows
+
+
+def bench_dynamics(repeats: int = 3) -> dict:
+    """The 496-speed sweep of seed 001 pair 1: the compiled loop against the numpy batch."""
     pair = load_pair(ROOT / "config/pairs/seed001_pair1.yaml")
     speeds = np.arange(500.0, 50000.0 + 1.0, 100.0)
-
-    def sweep():
-        geom = pair_geometry(pair)
-        model = dy.pair_model(geom, 200.0, mesh_stiffness(geom, components=False).K)
-        return model, dy.simulate(model, speeds)
-
-    fast, (model, result) = median_seconds(sweep, repeats)
-    pick = np.unique(np.linspace(0, speeds.size - 1, subset).round().astype(int))
-
-    def baseline():
-        return [dy.reference_solution(model, float(speeds[i]), rtol=baseline_rtol, atol=1e-13) for i in pick]
-
-    base, refs = median_seconds(baseline, 1)
-    base_scaled = base * speeds.size / pick.size
-    diff = max(abs(float(result.dte_std[0, i]) / float(r["dte_std"][0]) - 1) for i, r in zip(pick, refs))
+    geom = pair_geometry(pair)
+    model = dy.pair_model(geom, 200.0, mesh_stiffness(geom, components=False).K)
+    dy.simulate(model, speeds[:1])
+    fast, result = median_seconds(lambda: dy.simulate(model, speeds), repeats)
+    base, ref = median_seconds(lambda: dy.simulate_numpy(model, speeds), max(1, repeats // 2))
     return {"name": "dynamics_sweep_496_speeds", "median_s": fast,
-            "baseline": f"per-speed solve_ivp (DOP853, rtol {baseline_rtol:g}) on {pick.size} speeds, scaled to "
-                        f"{speeds.size}",
-            "baseline_median_s": base_scaled, "ratio": base_scaled / fast,
-            "max_rel_diff": diff, "rk4_steps": int(result.n_steps)}
+            "baseline": "numpy batch RK4 over all 496 speeds (the kernel before issue 17)",
+            "baseline_median_s": base, "ratio": base / fast, "max_rel_diff": _diff(result, ref),
+            "shooting_failures": int(np.sum(result.shooting_iterations < 0))}
 
 
 if __name__ == "__main__":
+    for row in bench_default_sweep():
+        print(json.dumps(row), flush=True)
     print(json.dumps(bench_dynamics()), flush=True)

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from bench_dynamics import bench_dynamics
+from bench_dynamics import bench_default_sweep, bench_dynamics
 from bench_impact import bench_impact
 from bench_ltca import bench_ltca
 from bench_optimise import bench_optimise
@@ -74,7 +74,8 @@ def bench_tvms(repeats: int) -> dict:
 
 
 BENCHMARKS = {"contact_lines": bench_contact_lines, "tvms": bench_tvms, "ltca": bench_ltca,
-              "dynamics": bench_dynamics, "impact": bench_impact,
+              "dynamics": bench_dynamics, "dynamics_default": lambda repeats: bench_default_sweep(min(repeats, 3)),
+              "impact": bench_impact,
               "optimise": lambda repeats: bench_optimise(min(repeats, 5))}
 
 
@@ -84,7 +85,9 @@ def main() -> None:
     parser.add_argument("--repeats", type=int, default=7)
     args = parser.parse_args()
     for name in args.names or BENCHMARKS:
-        print(json.dumps(BENCHMARKS[name](max(3, args.repeats))), flush=True)
+        result = BENCHMARKS[name](max(3, args.repeats))
+        for row in result if isinstance(result, list) else [result]:
+            print(json.dumps(row), flush=True)
 
 
 if __name__ == "__main__":

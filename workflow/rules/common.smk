@@ -128,6 +128,9 @@ def all_targets():
                 targets.append(f"{base}/plots/pareto.png")
     if "dynamics" in config:
         targets += [f"results/{STUDY}/{name}/plots/dynamics_variants.png" for name in config["pairs"]]
+        if dynamics_contact() and "impact" in config:
+            targets += [f"results/{STUDY}/{name}/engagement_table.{ext}" for name in config["pairs"]
+                        for ext in ("nc", "csv")]
     if "helix_sweep" in config:
         targets += [f"results/{STUDY}/helix_sweep.nc", f"results/{STUDY}/plots/helix_sweep.png"]
     if "fe_compliance" in config:

@@ -130,3 +130,21 @@ rule plot_dynamics_variants:
         ENV
     script:
         "../scripts/plot.py"
+
+
+rule engagement_table:
+    """The energy method's F_s beside the contact-driven dynamics, per variant and torque at the design speed."""
+    input:
+        impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
+        dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
+    output:
+        nc="results/{study}/{pair}/engagement_table.nc",
+        csv=report_item("results/{study}/{pair}/engagement_table.csv", "engagement_table", "Dynamics", BY_PAIR),
+    log:
+        "logs/{study}/{pair}/engagement_table.log",
+    params:
+        function=versioned("gearmesh.datasets.dynamics:engagement_table_dataset"),
+    conda:
+        ENV
+    script:
+        "../scripts/collect.py"

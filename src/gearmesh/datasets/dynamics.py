@@ -1026,3 +1026,91 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
         "gear": variable(("gear",), first["gear"].values, "1", "gear of the pair"),
         "direction": variable(("direction",), first["direction"].values, "1", "x, y lateral; z axial"),
     })
+
+
+def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr.Dataset]) -> xr.Dataset:
+    """The energy method beside the dynamics driven by the real contact, per variant and torque at
+    the impact stage's design speed (issue 15): does F_s rank the variants as the dynamics does?
+
+    From ``impact.nc``: F_s (closed form and energy balance), the quasi-static mesh-in roll, and
+    the undamped engagement simulation's largest excess of the entering pair over its
+    quasi-static load where it was run; from ``dynamics.nc`` (``contact`` excitation) at the
+    speed of its grid nearest the design speed: the entering pair's dynamic impact, its largest
+    force, the dynamic mesh-in roll, the peak mesh force, and the peak mesh force over the whole
+    sweep. Every force transverse (the impact stage's direction: normal × cos βb), so F_s and
+    the dynamics stand in one unit. Torques are those both stages ran (pinion torques).
+    """
+    names = [ds.attrs.get("variant", f"variant{k}") for k, ds in enumerate(impact)]
+    by_name = {d.attrs.get("variant", f"variant{k}"): d for k, d in enumerate(dynamics)}
+    if set(by_name) != set(names):
+        raise GearmeshInputError("variants", sorted(by_name), f"impact and dynamics must cover the same variants "
+                                 f"({sorted(names)})")
+    for d in dynamics:
+        if d.attrs.get("excitation_name") != "contact":
+            raise GearmeshInputError("dynamics.excitation", d.attrs.get("excitation_name"),
+                                     "must be 'contact' for the engagement table")
+    ref = dynamics[0]
+    t_dyn = np.asarray(ref["pinion_torque"].values, dtype=float)
+    t_imp = np.asarray(impact[0]["torque"].values, dtype=float)
+    torques = np.array([t for t in t_dyn if np.any(np.abs(t_imp - t) <= 1e-9 * t)])
+    if not torques.size:
+        raise GearmeshInputError("dynamics.torques_Nm", t_dyn.tolist(), f"share no torque with impact.torques_Nm "
+                                 f"{t_imp.tolist()} (pinion torques)")
+    design = float(impact[0].attrs["design_speed_rpm"])
+    cols = {k: np.full((len(names), torques.size), np.nan) for k in (
+        "fs", "fs_eb", "sim", "static_roll", "impact", "enter", "roll", "peak", "peak_all")}
+    speed_used = np.nan
+    for v, name in enumerate(names):
+        imp, dyn = impact[v], by_name[name]
+        # normal -> transverse: cos βb = F_bt / F_normal of the static mesh force (F_bt = T1/r_b1)
+        c = float(dyn["pinion_torque"].values[0]) / float(imp["base_radius"].values[0]) \
+            / float(dyn["static_mesh_force"].values[0])
+        grid = dyn["speed"].values[dyn["on_grid"].values.astype(bool)]
+        speed_used = float(grid[np.argmin(np.abs(grid - design))])
+        for k, t in enumerate(torques):
+            i = int(np.flatnonzero(np.abs(imp["torque"].values - t) <= 1e-9 * t)[0])
+            j = int(np.flatnonzero(np.abs(dyn["pinion_torque"].values - t) <= 1e-9 * t)[0])
+            at = imp.sel(speed=design)
+            cols["fs"][v, k] = float(at["impact_force"].values[i])
+            cols["fs_eb"][v, k] = float(at["impact_force_energy_balance"].values[i])
+            if "simulated_entering_excess" in imp:
+                cols["sim"][v, k] = float(imp["simulated_entering_excess"].values[i])
+            cols["static_roll"][v, k] = float(imp["roll_before_engagement"].values[i])
+            d = dyn.isel(torque=j).sel(speed=speed_used)
+            cols["impact"][v, k] = float(d["dynamic_impact_force"]) * c
+            cols["enter"][v, k] = float(d["entering_pair_force_max"]) * c
+            cols["roll"][v, k] = float(d["mesh_in_roll_before_A"])
+            cols["peak"][v, k] = float(d["mesh_force_max"]) * c
+            cols["peak_all"][v, k] = float(dyn.isel(torque=j)["mesh_force_max"].max()) * c
+    dims = ("variant", "torque")
+    ds = xr.Dataset({
+        "impact_force": variable(dims, cols["fs"], "N", "energy method F_s at the design speed (closed form)"),
+        "impact_force_energy_balance": variable(dims, cols["fs_eb"], "N",
+                                                "energy method by the energy balance at the design speed"),
+        "simulated_entering_excess": variable(dims, cols["sim"], "N",
+                                              "undamped engagement simulation: the entering pair's largest excess "
+                                              "over its quasi-static load (NaN: not simulated)"),
+        "dynamic_impact_force": variable(dims, cols["impact"], "N",
+                                         "steady-state dynamics (contact excitation) at the speed nearest the design "
+                                         "speed: the entering pair's largest excess over its quasi-static force "
+                                         "(transverse)"),
+        "entering_pair_force_max": variable(dims, cols["enter"], "N",
+                                            "steady-state dynamics: the entering pair's largest force in the first "
+                                            "part of its engagement (transverse)"),
+        "static_mesh_in_roll_before_A": variable(dims, cols["static_roll"], "m",
+                                                 "impact model: roll before A at which the entering pair first "
+                                                 "touches in the quasi-static mesh"),
+        "mesh_in_roll_before_A": variable(dims, cols["roll"], "m",
+                                          "steady-state dynamics: roll before A at which the entering pair first "
+                                          "carries load"),
+        "peak_mesh_force": variable(dims, cols["peak"], "N",
+                                    "steady-state dynamics: peak mesh force at the speed nearest the design speed "
+                                    "(transverse)"),
+        "peak_mesh_force_sweep": variable(dims, cols["peak_all"], "N",
+                                          "steady-state dynamics: peak mesh force over the whole speed sweep "
+                                          "(transverse)"),
+    }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+               "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
+    ds.attrs.update({"design_speed_rpm": design, "dynamics_speed_rpm": speed_used,
+                     "force_direction": "transverse (F_bt convention of the LTCA and the impact model)"})
+    return ds

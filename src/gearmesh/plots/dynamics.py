@@ -24,23 +24,26 @@ def _torque_label(ds: xr.Dataset) -> str:
     return f"{float(ds['torque']):g} N m on the {ds.attrs.get('torque_on', 'pinion')}"
 
 
-#: Modes drawn as resonance lines: at least this fraction of their strain energy in the mesh (the
-#: mesh excitation drives a mode through the mesh deflection; bearing modes with little of it barely respond).
+#: Harmonics 2 and 3 are drawn only for modes with at least this fraction of their strain energy in
+#: the mesh (the higher mesh harmonics are weak; a bearing mode they would meet barely responds),
+#: harmonic 1 for every mode — so a sweep over a wide speed range is not crowded with lines.
 MESH_ENERGY_MIN = 0.05
 
 
 def _resonances(ax, ds: xr.Dataset) -> None:
-    """Faint vertical lines where mesh harmonics meet natural frequencies (in the speed range) of
-    the modes with at least :data:`MESH_ENERGY_MIN` of their strain energy in the mesh, one legend
-    entry per harmonic."""
+    """Faint vertical lines where mesh harmonics meet natural frequencies (in the speed range):
+    harmonic 1 for every mode, harmonics 2 and 3 for modes with at least :data:`MESH_ENERGY_MIN`
+    of their strain energy in the mesh; one legend entry per harmonic."""
     if "resonance_speed" not in ds:
         return
     lo, hi = float(ds.speed.min()), float(ds.speed.max())
     styles = {1: ":", 2: "--", 3: "-."}
-    keep = ds["mesh_energy_fraction"].values >= MESH_ENERGY_MIN if "mesh_energy_fraction" in ds \
+    mesh_modes = ds["mesh_energy_fraction"].values >= MESH_ENERGY_MIN if "mesh_energy_fraction" in ds \
         else np.ones(ds.sizes["mode"], dtype=bool)
     for j, row in zip(ds.harmonic.values, ds.resonance_speed.values):
-        label = f"{int(j)}× mesh frequency = natural frequency (modes ≥ {MESH_ENERGY_MIN:.0%} mesh energy)"
+        keep = np.ones(row.size, dtype=bool) if int(j) == 1 else mesh_modes
+        label = f"{int(j)}× mesh frequency = natural frequency" + \
+            ("" if int(j) == 1 else f" (modes ≥ {MESH_ENERGY_MIN:.0%} mesh energy)")
         for n in row[keep]:
             if lo <= n <= hi:
                 ax.axvline(n, color="0.55", lw=0.8, ls=styles.get(int(j), ":"), label=label)
