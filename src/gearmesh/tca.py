@@ -174,10 +174,13 @@ def lead_deviation(geom: PairGeometry, lead_slope: tuple[float, float], z) -> np
     flank by f·z/b; the mesh sees their sum, the misalignment f1 + f2, as the gap
     (f1 + f2)·z/b + |f1 + f2|/2 ≥ 0 (zero at one face end). Equal and opposite errors of
     pinion and gear cancel exactly: an aligned pair with matching errors has zero TE.
+
+    ``lead_slope`` is a pair (f1, f2) or an array (..., 2) of pairs whose leading axes
+    broadcast against ``z`` (one pair per row of a batch: tolerance samples of the impact model).
     """
     z = np.asarray(z, dtype=float)
-    f = float(sum(lead_slope))
-    return f * z / geom.face_width + 0.5 * abs(f)
+    f = np.sum(np.asarray(lead_slope, dtype=float), axis=-1)
+    return f * z / geom.face_width + 0.5 * np.abs(f)
 
 
 @dataclass(frozen=True)
