@@ -83,7 +83,7 @@ __all__ = [
     "SCENARIOS", "DRIVERS", "seed000_inertia", "equivalent_mass", "ImpactModel", "impact_model",
     "ImpactStatic", "impact_static", "ImpactResponse", "impact_response", "closed_form_force",
     "energy_balance", "fit_power_law", "vector_velocity", "seed_edge_roll", "simulate_engagement",
-    "check_speeds", "ltca_metrics",
+    "check_speeds", "ltca_metrics", "load_grid", "load_window",
 ]
 
 SCENARIOS = ("none", "surface", "edge")
@@ -936,6 +936,36 @@ def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
                                   force=force, force_energy_balance=f_eb, approach_energy_balance=d_eb,
                                   stiffness_coefficient=k_s, stiffness_exponent=n, fit_error=err,
                                   energy_velocity=energy_velocity)
+
+
+# --------------------------------------------------------------------------------------
+# Load window: F_s against torque beside a reference
+# --------------------------------------------------------------------------------------
+
+
+def load_grid(torques, step: float, top: float | None = None) -> np.ndarray:
+    """Torques (N m) of the load window: every multiple of ``step`` up to ``top`` (default 1.25 ×
+    the largest of ``torques``), and the ``torques`` themselves (sorted, unique)."""
+    top = 1.25 * max(torques) if top is None else top
+    grid = step * np.arange(1, int(math.floor(top / step + 1e-9)) + 1)
+    return np.unique(np.concatenate([grid, np.asarray(torques, dtype=float)]))
+
+
+def load_window(grid: np.ndarray, force: np.ndarray, standard: np.ndarray, design: float) -> tuple[float, float]:
+    """[low, high] (N m) of the contiguous run of ``grid`` torques around ``design`` where
+    ``force`` is below ``standard`` (NaN, NaN when it is not at the design torque; the ends are
+    grid torques, so a window reaching a grid end may extend further)."""
+    beats = np.asarray(force) < np.asarray(standard)
+    k = int(np.argmin(np.abs(grid - design)))
+    if not beats[k]:
+        return math.nan, math.nan
+    lo = k
+    while lo > 0 and beats[lo - 1]:
+        lo -= 1
+    hi = k
+    while hi < grid.size - 1 and beats[hi + 1]:
+        hi += 1
+    return float(grid[lo]), float(grid[hi])
 
 
 # --------------------------------------------------------------------------------------

@@ -240,6 +240,25 @@ def relief_depth(params, rho_sap: float, rho_eap: float, face_width: float, rho,
     return np.where(nan, 0.0, depth) if nan.any() else depth
 
 
+def fit_modifications(geom: PairGeometry, params) -> np.ndarray:
+    """Parameter sets (C, 2, 6) (m) made valid modifications of ``geom``'s flanks (a copy): relief
+    lengths whose sum exceeds the active roll length scaled down to fit it, an amount without a
+    length (or the reverse) no relief, the unmodified lead length inside the face — so
+    :func:`gearmesh.gear.validate_modifications` accepts every set (GA candidates, tolerance samples)."""
+    p = np.array(params, dtype=float, ndmin=3)
+    for gear in range(2):
+        active = float(geom.rho_eap[gear] - geom.rho_sap[gear]) * (1 - 1e-9)
+        total = p[:, gear, 2] + p[:, gear, 3]
+        scale = np.where(total > active, active / np.where(total > 0, total, 1.0), 1.0)
+        p[:, gear, 2:4] *= scale[:, None]
+        for amount, length in ((0, 2), (1, 3)):
+            none = (p[:, gear, amount] <= 0) | (p[:, gear, length] <= 0)
+            p[none, gear, amount] = 0.0
+            p[none, gear, length] = 0.0
+        p[:, gear, 5] = np.minimum(p[:, gear, 5], geom.face_width * (1 - 1e-6))
+    return p
+
+
 def modification_depth(geom: PairGeometry, gear: int, rho, z) -> np.ndarray:
     """Material removed (m, ≥ 0, along the surface normal) at roll length ρ (m) and z (m).
 

@@ -15,7 +15,9 @@ rule impact:
         "logs/{study}/{pair}/{variant}/impact.log",
     params:
         function=versioned("gearmesh.datasets.impact:impact_dataset"),
-        settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant},
+        # the study's manufacturing tolerances give each variant's tolerance spread
+        settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant,
+                                    "tolerances": config.get("tolerances")},
     conda:
         ENV
     script:
