@@ -367,15 +367,37 @@ def _rows(a: np.ndarray, ndim: int) -> np.ndarray:
     return a.reshape(a.shape[:1] + (1,) * ndim + a.shape[1:])
 
 
-def _enter_gap(model: ImpactModel, params: np.ndarray, tau: np.ndarray, lead: np.ndarray):
+#: Face samples either side of the previous minimum that :func:`_enter_gap` searches when told
+#: where the minimum was (a touch iteration moves the roll by micrometres).
+_NEAR_SAMPLES = 6
+
+
+def _enter_gap(model: ImpactModel, params: np.ndarray, tau: np.ndarray, lead: np.ndarray, near=None):
     """Smallest separation of the entering pair over the face (m) and where (z), at time-like
     rolls ``tau`` (N,), one parameter set ``params`` (N, 2, 6) and lead-slope pair ``lead`` (N, 2)
-    per roll."""
+    per roll. With ``near`` (N,) face positions of a minimum found at a neighbouring roll, only the
+    :data:`_NEAR_SAMPLES` face samples either side of it are searched; a row whose minimum falls on
+    the edge of that block (and not at a face end) is searched over the whole face."""
     g = model.geom
-    s = model.s_enter(np.asarray(tau, dtype=float)[:, None], model.z_fine)
-    basis = separation_basis(g, s, np.inf)
-    gap = basis_gap(g, basis, model.z_fine, _rows(lead, 1), _rows(params, 1))
-    return _parabolic_min(gap, model.z_fine)
+    tau = np.asarray(tau, dtype=float)
+    z = model.z_fine
+    if near is None:
+        s = model.s_enter(tau[:, None], z)
+        gap = basis_gap(g, separation_basis(g, s, np.inf), z, _rows(lead, 1), _rows(params, 1))
+        return _parabolic_min(gap, z)
+    h, n = z[1] - z[0], 2 * _NEAR_SAMPLES + 1
+    first = np.clip(np.rint((np.asarray(near) - z[0]) / h).astype(np.intp) - _NEAR_SAMPLES, 0, z.size - n)
+    zz = z[first[:, None] + np.arange(n)]
+    s = model.s_enter(tau[:, None], zz)
+    gap = basis_gap(g, separation_basis(g, s, np.inf), zz, _rows(lead, 1), _rows(params, 1))
+    local = np.arange(n) * h
+    gmin, x = _parabolic_min(gap, local)
+    k = np.argmin(np.where(np.isfinite(gap), gap, np.inf), axis=1)
+    inside = ((k > 0) | (first == 0)) & ((k < n - 1) | (first == z.size - n)) & np.isfinite(gmin)
+    zmin = zz[:, 0] + x
+    if not inside.all():
+        gmin[~inside], zmin[~inside] = _enter_gap(model, params[~inside], tau[~inside], lead[~inside])
+    return gmin, zmin
 
 
 def _enter_gap_window(model: ImpactModel, params: np.ndarray, lead: np.ndarray):
@@ -422,12 +444,12 @@ def _others_at(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau: np
     return gap.reshape(n, -1), comp.reshape(n, -1)
 
 
-def _touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau: np.ndarray):
+def _touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau: np.ndarray, near=None):
     """The force F*(τ) at which the entering pair touches at time-like roll τ, exactly, for rows
     (N,): the force the pairs already in mesh carry when they are compressed to the entering
     pair's smallest separation g(τ), F* = Σ_i q_i(g(τ) − g_i(τ)). Returns F* (N), the tangent
-    stiffness ΣdF/dδ there (N/m), g (m) and its face position z (m)."""
-    gap_e, z_e = _enter_gap(model, params, tau, lead)
+    stiffness ΣdF/dδ there (N/m), g (m) and its face position z (m); ``near`` as :func:`_enter_gap`."""
+    gap_e, z_e = _enter_gap(model, params, tau, lead, near)
     gap_o, comp = _others_at(model, params, lead, tau)
     q, dq = _point_loads(model, gap_e[:, None], gap_o, comp)
     return q.sum(axis=1), dq.sum(axis=1), gap_e, z_e
@@ -492,27 +514,24 @@ _TOUCH_TOLERANCE = 1e-12
 
 
 def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: np.ndarray):
-    """Touch roll τ* for every (C, T) (module docstring), whether found and whether at the window
-    start, and the entering pair's separation at the theoretical engagement (C,).
+    """Touch roll τ*, the entering pair's smallest separation there and its face position for
+    every (C, T) (module docstring; NaN where the touch fell on a window roll), whether found and
+    whether at the window start, and the entering pair's separation at the theoretical engagement (C,).
 
     The touch condition g(τ) = δ_others(τ) is solved as F*(τ) = F_bt (:func:`_touch_force`):
     since the other pairs' force grows with their approach, g > δ_others exactly where
     F*(τ) > F_bt. F* needs one inversion per point and no load iteration, and does not depend
     on the torque: one pass over the window grid brackets every torque's touch (the first
-    roll with F* ≤ F_bt), then Illinois regula falsi with exact evaluations of F* pins it down
-    inside its cell."""
+    roll with F* ≤ F_bt; :func:`_window_touch_force`), then a secant iteration with exact
+    evaluations of F* pins it down inside its cell."""
     nc, nt = params.shape[0], force.size
-    g_win, _ = _enter_gap_window(model, params, lead)  # (C, R)
-    w = model.window
-    gap_o = basis_gap(model.geom, w.basis, w.z, _rows(lead, 1), _rows(params, 1))  # (C, K)
-    q, _ = _point_loads(model, g_win[:, w.roll_index], gap_o, w.compliance)
-    f_win = np.where(np.isfinite(g_win), w.per_roll_sum(q), np.nan)  # F*(c, τ_k)
     k0 = int(np.flatnonzero(model.tau == 0.0)[0])
+    f_win, g_win = _window_touch_force(model, params, lead, float(force.min()), k0)
     below = f_win[:, None, :] <= force[None, :, None]  # NaN: not below
     found = below.any(axis=-1)
     k = np.argmax(below, axis=-1)  # first roll at or past the touch
     at_start = found & (k == 0)
-    t_star = np.full((nc, nt), np.nan)
+    t_star, g_star, z_star = (np.full((nc, nt), np.nan) for _ in range(3))
     cc, tt = np.nonzero(found & ~at_start)
     if cc.size:
         kk = k[cc, tt]
@@ -521,14 +540,15 @@ def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: n
         # secant iteration from the cubic estimate (its slope for the first step), kept inside the
         # bracket (bisection when a step would leave it); every evaluation exact
         x_last, slope = _inverse_cubic(model.tau, f_win[cc], kk, force[tt], a, b, fa, fb)
-        f_last = np.full(cc.size, np.nan)
+        f_last, g_last, z_last = (np.full(cc.size, np.nan) for _ in range(3))
         active = np.flatnonzero(fb != 0.0)
         x_next = x_last.copy()
         for _ in range(_MAX_TOUCH_ITERATIONS):
             if not active.size:
                 break
             c = x_next[active]
-            f_c, k_c, _, _ = _touch_force(model, params[cc[active]], lead[cc[active]], c)
+            f_c, k_c, g_c, z_c = _touch_force(model, params[cc[active]], lead[cc[active]], c)
+            g_last[active], z_last[active] = g_c, z_c
             fc = f_c - force[tt[active]]
             up = fc > 0
             a[active] = np.where(up, c, a[active])
@@ -547,7 +567,54 @@ def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: n
             stop = (np.abs(fc) <= 0.5 * _TOUCH_TOLERANCE * k_c) | (bi - ai <= 1e-15)
             active = active[~stop]
         t_star[cc, tt] = np.where(np.isfinite(f_last), x_last, b)
-    return t_star, found & ~at_start, at_start, g_win[:, k0]
+        g_star[cc, tt], z_star[cc, tt] = g_last, z_last
+    return t_star, g_star, z_star, found & ~at_start, at_start, g_win[:, k0]
+
+
+#: Window rolls evaluated per pass of :func:`_window_touch_force`.
+_WINDOW_CHUNK = 8
+
+
+def _window_touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force_min: float, k0: int):
+    """F*(c, τ_k) and the entering pair's smallest separation g(c, τ_k) on the window rolls (C, R).
+
+    The rolls are taken in passes of :data:`_WINDOW_CHUNK` from the window's start: a row is done
+    once its F* has fallen to the smallest force ``force_min`` and the roll after that crossing is
+    known (the first crossing of every larger force comes no later, since F* ≤ F_bt,min implies
+    F* ≤ F_bt), so the rolls after it are left NaN. Roll ``k0`` (the theoretical engagement) is
+    always evaluated."""
+    w, g = model.window, model.geom
+    nc, r = params.shape[0], model.tau.size
+    f_win, g_win = np.full((nc, r), np.nan), np.full((nc, r), np.nan)
+    ends = np.append(w.starts, w.roll_index.size)
+    ends[:-1][w.counts == 0] = w.starts[w.counts == 0]
+    active, lo = np.arange(nc), 0
+    while active.size and lo < r:
+        hi = min(r, lo + _WINDOW_CHUNK)
+        pr, lr = params[active], lead[active]
+        basis = SeparationBasis(*(getattr(model.enter_fine_basis, f)[lo:hi] for f in SeparationBasis.__dataclass_fields__))
+        gap_e, _ = _parabolic_min(basis_gap(g, basis, model.z_fine, _rows(lr, 2), _rows(pr, 2)), model.z_fine)
+        pts = slice(int(w.starts[lo]), int(ends[hi]) if hi < r else w.roll_index.size)
+        sub = SeparationBasis(*(getattr(w.basis, f)[pts] for f in SeparationBasis.__dataclass_fields__))
+        gap_o = basis_gap(g, sub, w.z[pts], _rows(lr, 1), _rows(pr, 1))
+        q, _ = _point_loads(model, gap_e[:, w.roll_index[pts] - lo], gap_o, w.compliance[pts])
+        f = np.zeros((active.size, hi - lo))
+        some = w.counts[lo:hi] > 0
+        if some.any():
+            f[:, some] = np.add.reduceat(q, w.starts[lo:hi][some] - w.starts[lo], axis=-1)
+        f_win[active, lo:hi] = np.where(np.isfinite(gap_e), f, np.nan)
+        g_win[active, lo:hi] = gap_e
+        below = f_win[active, :hi] <= force_min
+        k = np.argmax(below, axis=1)
+        done = (below.any(axis=1) & (k + 1 < hi)) | (hi == r)
+        active, lo = active[~done], hi
+    missing = np.isnan(g_win[:, k0])
+    if missing.any():  # rows done before the engagement roll: its separation still
+        basis = SeparationBasis(*(getattr(model.enter_fine_basis, f)[k0:k0 + 1]
+                                  for f in SeparationBasis.__dataclass_fields__))
+        g_win[missing, k0] = _parabolic_min(basis_gap(g, basis, model.z_fine, _rows(lead[missing], 2),
+                                                      _rows(params[missing], 2)), model.z_fine)[0][:, 0]
+    return f_win, g_win
 
 
 def _inverse_cubic(tau: np.ndarray, f: np.ndarray, k: np.ndarray, target: np.ndarray, a, b, fa, fb) -> np.ndarray:
@@ -635,7 +702,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     t1 = check_torques(torques)
     force = t1 / float(g.base_radius[0])
     nt = force.size
-    t_star, found, at_start, te0 = _crossing(model, params, lead, force)
+    t_star, g_star, z_star, found, at_start, te0 = _crossing(model, params, lead, force)
     if np.any(at_start):
         warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
                       "raise corner_extension", RuntimeWarning, stacklevel=2)
@@ -643,17 +710,25 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     # at the touch, the rates from one stacked exact evaluation at τ − 2ε, τ − ε, τ: the one-sided
     # (second-order) difference from the approach side is the closing rate just before the touch,
     # positive at any crossing from above even where min_z g or a point's separation has a kink
-    # (a point of the pairs in mesh unloading, the minimum jumping along the face)
+    # (a point of the pairs in mesh unloading, the minimum jumping along the face or following a kink)
     eps = 1e-6 * g.transverse_base_pitch
     offsets = np.array([-2 * eps, -eps, 0.0])
     rows_c = np.broadcast_to(np.arange(nc)[:, None], (nc, nt)).reshape(-1)
     stack = (tt.reshape(-1)[None, :] + offsets[:, None]).reshape(-1)
     p3, l3 = np.tile(params[rows_c], (3, 1, 1)), np.tile(lead[rows_c], (3, 1))
-    gap3, z3 = (v.reshape(3, nc * nt) for v in _enter_gap(model, p3, stack, l3))
+    # the smallest separation at τ* from the touch iteration (the whole face; searched anew where the
+    # touch fell on a window roll), the two earlier rolls near its face position
+    gap_min, z_min = g_star.reshape(-1).copy(), z_star.reshape(-1).copy()
+    redo = ~np.isfinite(gap_min)
+    if redo.any():
+        gap_min[redo], z_min[redo] = _enter_gap(model, params[rows_c[redo]], tt.reshape(-1)[redo], lead[rows_c[redo]])
+    n2 = 2 * nc * nt
+    gap2, _ = (v.reshape(2, nc * nt) for v in _enter_gap(model, p3[:n2], stack[:n2], l3[:n2], np.tile(z_min, 2)))
+    gap3 = np.concatenate([gap2, gap_min[None]])
     gap_o, comp = _others_at(model, p3, l3, stack)
     m = gap_o.shape[-1]
     gap_o, comp = gap_o.reshape(3, nc * nt, m), comp.reshape(3, nc * nt, m)
-    q, dq = _point_loads(model, gap3[2][:, None], gap_o[2], comp[2])
+    q, dq = _point_loads(model, gap_min[:, None], gap_o[2], comp[2])
     stiff = dq.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         resid = (q.sum(axis=1) - np.tile(force, nc)) / stiff  # g − δ_others at τ* (one Newton step)
@@ -662,9 +737,9 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
         rate_o = (3 * (gap_o[2] + comp[2] * q) - 4 * (gap_o[1] + comp[1] * q) + gap_o[0] + comp[0] * q) / (2 * eps)
         approach_rate = np.sum(np.where(dq > 0, dq * rate_o, 0.0), axis=1) / stiff
     gap_rate = -(3 * gap3[2] - 4 * gap3[1] + gap3[0]) / (2 * eps)
-    delta = gap3[2] - resid
+    delta = gap_min - resid
     found = found & (np.abs(resid).reshape(nc, nt) <= _TOUCH_TOLERANCE)  # a crossing not pinned down is no impact
-    delta, gap_rate, approach_rate, z_m = (v.reshape(nc, nt) for v in (delta, gap_rate, approach_rate, z3[2]))
+    delta, gap_rate, approach_rate, z_m = (v.reshape(nc, nt) for v in (delta, gap_rate, approach_rate, z_min))
     s_m = model.s_enter(tt, z_m)
     bm = separation_basis(g, s_m, np.inf)
     region = np.where(found, bm.region, 0).astype(np.int8)

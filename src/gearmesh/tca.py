@@ -356,11 +356,17 @@ def basis_gap(geom: PairGeometry, basis: SeparationBasis, z, lead_slope=(0.0, 0.
     if params is None:
         params = modification_parameters(geom)
     params = np.asarray(params, dtype=float)
-    d1 = relief_depth(params[..., 0, :], float(geom.rho_sap[0]), float(geom.rho_eap[0]), geom.face_width,
-                      np.nan_to_num(basis.rho_pinion), z)
-    d2 = relief_depth(params[..., 1, :], float(geom.rho_sap[1]), float(geom.rho_eap[1]), geom.face_width,
-                      np.nan_to_num(basis.rho_gear), z)
-    return basis.base + basis.w_pinion * d1 + basis.w_gear * d2 + lead_deviation(geom, lead_slope, z)
+    lead = np.asarray(lead_slope, dtype=float)
+    shape = np.broadcast_shapes(basis.base.shape, params.shape[:-2], np.shape(z), lead.shape[:-1])
+    gap = basis.base
+    for gear, (w, rho) in enumerate(((basis.w_pinion, basis.rho_pinion), (basis.w_gear, basis.rho_gear))):
+        p = params[..., gear, :]
+        if np.any(p):  # an unmodified flank adds nothing (the common case for one of the gears)
+            gap = gap + w * relief_depth(p, float(geom.rho_sap[gear]), float(geom.rho_eap[gear]), geom.face_width,
+                                         np.nan_to_num(rho), z)
+    if np.any(lead):
+        gap = gap + lead_deviation(geom, lead, z)
+    return gap if gap.shape == shape else np.array(np.broadcast_to(gap, shape))
 
 
 def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)) -> np.ndarray:

@@ -112,7 +112,7 @@ def all_targets():
     if "impact" in config:
         for name in config["pairs"]:
             targets += [f"results/{STUDY}/{name}/impact_table.nc", f"results/{STUDY}/{name}/impact_table.csv",
-                        f"results/{STUDY}/{name}/plots/impact_force.png"]
+                        f"results/{STUDY}/{name}/plots/impact_force.png", f"results/{STUDY}/{name}/plots/robustness.png"]
     for run, section in (config.get("optimise") or {}).items():
         for name in config["pairs"]:
             base = f"results/{STUDY}/{name}/optimise/{run}"
