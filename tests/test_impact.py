@@ -248,3 +248,50 @@ def test_random_pairs_crossing_equals_seed_equation_and_velocities_agree(pair, l
     st_, rs = impact_response(model, st_, [3000])
     vec = vector_velocity(model, st_, 3000.0)
     assert vec["transverse_equivalent"] == pytest.approx(float(rs.velocity_transverse[0, 0, 0]), rel=1e-3)
+
+
+def test_tabulated_law_inverse_equals_newton_inversion():
+    """The universal table of the Palmgren inverse (one per exponent) against the exact Newton
+    inversion over nine decades of approach and three of compliance."""
+    from gearmesh.ltca import _invert, invert_tabulated
+
+    rng = np.random.default_rng(3)
+    c = 10 ** rng.uniform(-9, -5, 20000)
+    d = 10 ** rng.uniform(-13, -3, 20000)
+    for coef, m in ((4e-7, 0.9), (2e-6, 0.8)):
+        q, dq = invert_tabulated(d, c, coef, m)
+        q0, dq0 = _invert(d, c, coef, m)
+        np.testing.assert_allclose(q, q0, rtol=1e-12)
+        np.testing.assert_allclose(dq, dq0, rtol=1e-12)
+        np.testing.assert_allclose(c * q + coef * q**m, d, rtol=1e-12)
+    q, _ = invert_tabulated(np.array([-1.0, 0.0]), 1e-7, 4e-7, 0.9)
+    assert np.all(q == 0)
+
+
+def test_lead_slopes_per_row_equal_models_built_with_them(case, case_model):
+    """Tolerance samples: a lead slope per parameter set in one batch gives what a model built
+    with that lead slope gives (the lead deviation is additive to the separations)."""
+    params = np.zeros((3, 2, 6))
+    params[:, 0] = [0, 20e-6, 0, 2e-3, 8e-6, 10e-3]
+    lead = np.array([[0.0, 0.0], [6e-6, -2e-6], [-9e-6, 0.0]])
+    batch = impact_static(case_model, [700, 1300], params, lead_slope=lead, engagement=False)
+    for c in range(3):
+        one = impact_static(impact_model(case, points=POINTS, window_positions=40, face_samples=129,
+                                         lead_slope=tuple(lead[c])), [700, 1300], params[c:c + 1])
+        np.testing.assert_allclose(batch.tau[c], one.tau[0], rtol=1e-9, atol=1e-13)
+        np.testing.assert_allclose(batch.slope[c], one.slope[0], rtol=1e-6)
+        assert np.array_equal(batch.scenario[c], one.scenario[0])
+    assert not np.allclose(batch.tau[1], batch.tau[0])  # the tilt moves the touch
+
+
+def test_touch_is_where_the_separation_meets_the_solved_approach(case_model):
+    """The crossing solved as F*(τ) = F_bt (one inversion per point, no load iteration) against an
+    independent exact load solve of the pairs in mesh at the touch roll: the same approach."""
+    from gearmesh.impact import _approach_at
+
+    params = np.zeros((2, 2, 6))
+    params[1, 1] = [0, 20e-6, 0, 3e-3, 0, 0]
+    st = impact_static(case_model, [400, 1600], params, engagement=False)
+    lead = np.zeros((2, 2))
+    solved = _approach_at(case_model, params, lead, st.force[None, :], st.tau[None], others=True)[0]
+    np.testing.assert_allclose(st.approach, solved, rtol=1e-9, atol=1e-13)

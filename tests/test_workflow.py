@@ -98,9 +98,12 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
               "geometry": {"involute_points": 20, "fillet_points": 10, "face_points": 5},
               "stiffness": {"slices": 40, "positions": 24, "torque_Nm": 100, "torque_on": "pinion"},
               "variants": {"standard": {}, "relief": {"modification": {
-                  "gear": {"tip_relief_um": 10, "tip_relief_length_mm": 1}}}, "optimised": {"from": "optimise"}},
-              "optimise": {"population": 4, "generations": 2, "torque_Nm": 100, "torques_Nm": [100], "speed_rpm": 3000,
-                           "points": 10, "window_positions": 16, "face_samples": 33, "cycle_positions": 8},
+                  "gear": {"tip_relief_um": 10, "tip_relief_length_mm": 1}}}, "optimised": {"from": "optimise.robust"}},
+              "tolerances": {"grade": 6, "modification": {"tip_relief_um": 2}, "samples": 2},
+              "optimise": {"robust": {"population": 4, "generations": 2, "torque_Nm": 100, "torques_Nm": [50, 100],
+                                      "objective": "robust", "tolerance_statistic": "max", "speed_rpm": 3000,
+                                      "points": 10, "window_positions": 16, "face_samples": 33, "cycle_positions": 8,
+                                      "load_window_step_Nm": 25}},
               "tca": {"positions": 8, "points": 6},
               "ltca": {"torques_Nm": [100], "positions": 8, "points": 6},
               "dynamics": {"torques_Nm": 100, "on": "pinion", "speeds_rpm": {"start": 2000, "stop": 4000, "step": 1000},
@@ -123,8 +126,9 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
         assert (base / "plots" / f"{png}.png").stat().st_size > 1000
     assert (work / "results/e2e/plots/helix_sweep.png").exists()
     # the GA's optimum runs through the same rules as any variant
-    assert read_dataset(base / "optimise/ga.nc").sizes["generation"] == 3
-    assert (base / "optimised/pair.yaml").read_text() == (base / "optimise/pair.yaml").read_text()
+    ga = read_dataset(base / "optimise/robust/ga.nc")
+    assert ga.sizes["generation"] == 3 and ga.sizes["tolerance_sample"] == 3 and ga.sizes["objective_torque"] == 2
+    assert (base / "optimised/pair.yaml").read_text() == (base / "optimise/robust/pair.yaml").read_text()
     for variant in ("standard", "relief", "optimised"):
         ltca = read_dataset(base / variant / "ltca.nc")
         assert ltca.sizes["position"] == 8

@@ -162,19 +162,79 @@ def _progress():
     return report
 
 
-def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
-    from .datasets.optimise import optimise_summary
-    from .optimise import LOG
+def _numbers(option: str, text: str | None) -> list[float] | None:
+    """A comma-separated list of numbers (``--torques-Nm 400,1000,1600``), or None."""
+    if text is None:
+        return None
+    try:
+        values = [float(v) for v in text.split(",")]
+    except ValueError:
+        raise GearmeshInputError(option, text, "must be comma-separated numbers, e.g. 400,1000,1600") from None
+    for v in values:
+        if not math.isfinite(v):
+            raise GearmeshInputError(option, text, "must be finite numbers")
+    return values
 
+
+def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
+    from .datasets.optimise import optimise_summary, optimum_pair
+    from .optimise import LOG
+    from .pipeline import write_pair
+
+    torques = _numbers("--torques-Nm", args.torques_Nm)
+    weights = _numbers("--weights", args.weights)
+    if args.torque_Nm is None and torques is None:
+        raise GearmeshInputError("--torque-Nm", None, "or --torques-Nm is required")
+    # the design torque: given, or the middle torque of the spectrum (the lower of two middles)
+    design = args.torque_Nm if args.torque_Nm is not None else sorted(torques)[(len(torques) - 1) // 2]
+    out = _output_pair_path(args.write_pair)
+    pair = _pair(args.pair, args)[0]
+    if torques is not None:
+        from .ltca import check_torques
+
+        for t in check_torques(torques, "torques_Nm"):
+            check_load(pair_geometry(pair), pinion_torque(pair, t, args.on), "--torques-Nm", t)
     if sys.stderr.isatty():  # one line per generation on the terminal
         handler = logging.StreamHandler(sys.stderr)
         handler.setFormatter(logging.Formatter("  %(message)s"))
         LOG.addHandler(handler)
         LOG.setLevel(logging.INFO)
+    samples = args.tolerance_samples
+    tolerances = {"grade": args.grade, "samples": samples, "sampling": args.sampling}
+    if args.amount_tolerance_um:
+        tolerances["modification"] = {k: args.amount_tolerance_um for k in ("root_relief_um", "tip_relief_um",
+                                                                            "crowning_um")}
+    statistic = args.tolerance_statistic if samples else None
+    summary, ds = optimise_summary(pair, objective=args.objective, torque_Nm=design, torques_Nm=torques,
+                                   weights=weights, statistic="mean" if weights else args.statistic, on=args.on,
+                                   speed_rpm=args.speed_rpm, modify=args.modify, method=args.method, seed=args.seed,
+                                   population=args.population, generations=args.generations,
+                                   tolerance_statistic=statistic, tolerance_level_percent=args.tolerance_level,
+                                   tolerances=tolerances)
+    if out is not None:
+        write_pair(optimum_pair(pair, ds, name=out.stem), out)
+        summary["pair_file"] = str(out)
+    return summary
 
-    return optimise_summary(_pair(args.pair, args)[0], args.torque_Nm, args.speed_rpm, on=args.on, modify=args.modify,
-                            method=args.method, seed=args.seed, population=args.population,
-                            generations=args.generations)
+
+def _output_pair_path(path: str | None):
+    """The ``--write-pair`` target: a .yaml file in an existing folder whose stem is a valid pair
+    name (the name the written pair carries)."""
+    from pathlib import Path
+
+    if path is None:
+        return None
+    out = Path(path)
+    if out.suffix not in (".yaml", ".yml"):
+        raise GearmeshInputError("--write-pair", path, "must be a .yaml file")
+    if not out.parent.is_dir():
+        raise GearmeshInputError("--write-pair", path, "must be in an existing folder")
+    if out.exists() and not out.is_file():
+        raise GearmeshInputError("--write-pair", path, "is not a regular file")
+    if not re.fullmatch(r"[A-Za-z0-9_.-]{1,64}", out.stem):
+        raise GearmeshInputError("--write-pair", path, "must have a pair name as its stem (letters, digits, _ - ., "
+                                                       "at most 64)")
+    return out
 
 
 def _command(sub, name: str, func, help: str, pair_help: str = "gear pair file (config/pairs/NAME.yaml)"):
@@ -259,15 +319,39 @@ def build_parser() -> argparse.ArgumentParser:
                         "the real tooth contact of every tooth pair, the mesh-in impact included")
 
     p = _command(sub, "optimise", cmd_optimise, "GA optimisation of seed 000's six modification parameters against "
-                 "the mesh-in impact force at one torque and speed")
-    _torque_options(p, required=True, on_default="pinion")
-    p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True, help="pinion speed (rpm)")
+                 "the mesh-in impact over a load spectrum and the manufacturing tolerances")
+    p.add_argument("--objective", choices=("force", "velocity", "robust", "dynamic"), default="force",
+                   help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
+                        "dynamic: peak dynamic mesh force (not available yet)")
+    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, default=None,
+                   help="design torque (N m; default the middle of --torques-Nm)")
+    p.add_argument("--torques-Nm", dest="torques_Nm", default=None,
+                   help="load spectrum, comma-separated (N m; default the design torque alone)")
+    p.add_argument("--weights", default=None, help="time shares of --torques-Nm, comma-separated (duty-cycle mean); "
+                                                  "without: the worst case over the spectrum")
+    p.add_argument("--statistic", choices=("max", "mean"), default="max", help="over the load spectrum")
+    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="which gear carries the torques")
+    p.add_argument("--speed-rpm", dest="speed_rpm", type=float, default=5000.0, help="pinion speed (rpm)")
+    p.add_argument("--tolerance-samples", dest="tolerance_samples", type=int, default=0,
+                   help="manufactured samples evaluated with the nominal (0: nominal only)")
+    p.add_argument("--grade", type=int, default=None,
+                   help="ISO 1328-1:2013 flank tolerance class 1-11: lead slope within +-f_Hbeta on both gears")
+    p.add_argument("--amount-tolerance-um", dest="amount_tolerance_um", type=float, default=0.0,
+                   help="+- on every relief and crowning amount (um)")
+    p.add_argument("--sampling", choices=("lhs", "corners"), default="lhs",
+                   help="seeded Latin hypercube or corners of the tolerance box")
+    p.add_argument("--tolerance-statistic", dest="tolerance_statistic", choices=("max", "mean", "percentile", "cvar"),
+                   default="max", help="over the nominal and the samples")
+    p.add_argument("--tolerance-level", dest="tolerance_level", type=float, default=90.0,
+                   help="level (%%) of percentile and cvar")
     p.add_argument("--modify", choices=("pinion", "gear"), nargs="+", default=["pinion"],
-                   help="the gear(s) whose six parameters are optimised (default pinion)")
+                   help="the gear(s) whose six parameters are optimised")
     p.add_argument("--method", choices=("ga", "random", "nsga2"), default="ga", help="GA, random search or NSGA-II")
-    p.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
-    p.add_argument("--population", type=int, default=40, help="candidates per generation (default 40)")
-    p.add_argument("--generations", type=int, default=30, help="generations (default 30)")
+    p.add_argument("--seed", type=int, default=0, help="random seed (GA and tolerance samples)")
+    p.add_argument("--population", type=int, default=40, help="candidates per generation")
+    p.add_argument("--generations", type=int, default=30, help="generations")
+    p.add_argument("--write-pair", dest="write_pair", default=None,
+                   help="write the optimum as a pair file OUT.yaml (its name: OUT), readable by every subcommand")
     return parser
 
 

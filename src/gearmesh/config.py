@@ -138,8 +138,8 @@ def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
 def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearPair:
     """``pair`` carrying the modification of micro-geometry ``variant`` (none for 'standard'
     or a variant without one); the variant's modification replaces the pair file's. A variant
-    ``{from: optimise}`` is ``pair`` as given: the optimiser's pair file, its optimum (rule
-    variants.smk takes that file as the input)."""
+    ``{from: optimise.NAME}`` is ``pair`` as given: the optimisation's pair file, its optimum
+    (rule variants.smk takes that file as the input)."""
     from .gear import pair_from_dict, pair_to_dict
 
     if spec.get("from"):
@@ -267,9 +267,13 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
         loads("impact", "torques_Nm", config["impact"]["on"], config["pairs"])
         with _section("impact"):
             check_lead_slope(config["impact"]["lead_slope_um"])
-    if "optimise" in config:
+    for run, section in (config.get("optimise") or {}).items():
         for key in ("torque_Nm", "torques_Nm"):
-            loads("optimise", key, config["optimise"]["on"], config["pairs"])
+            values = section.get(key)
+            for k, value in enumerate(values if isinstance(values, list) else [] if values is None else [values]):
+                field = f"optimise.{run}.{key}" + (f"[{k}]" if isinstance(values, list) else "")
+                for name in config["pairs"]:
+                    check_load(geoms[name], pinion_torque(pairs[name], value, section["on"]), field, value)
     if sweep := config.get("helix_sweep"):
         count = int((sweep["stop_deg"] - sweep["start_deg"]) / sweep["step_deg"]) + 1
         check_grid("helix_sweep.step_deg", sweep["step_deg"], count, MAX_SWEEP_ANGLES, "helix angles per pair")
@@ -304,7 +308,8 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
 
 
 def _check_impact(impact: Mapping[str, Any] | None) -> None:
-    """The impact map's design speed is one of its speeds and its simulated torques are among its torques."""
+    """The impact map's design speed is one of its speeds, its design torque and its simulated torques are
+    among its torques."""
     if not impact:
         return
     speeds = impact.get("speeds_rpm", [5000])
@@ -312,6 +317,9 @@ def _check_impact(impact: Mapping[str, Any] | None) -> None:
         raise GearmeshInputError("impact.design_speed_rpm", impact.get("design_speed_rpm", 5000),
                                  f"must be one of impact.speeds_rpm {speeds}")
     torques = impact.get("torques_Nm", [400, 1000, 1600])
+    design = impact.get("design_torque_Nm")
+    if design is not None and not any(abs(v - design) <= 1e-9 * v for v in torques):
+        raise GearmeshInputError("impact.design_torque_Nm", design, f"must be one of impact.torques_Nm {torques}")
     for k, t in enumerate(impact.get("simulate_torques_Nm", [])):
         if not any(abs(v - t) <= 1e-9 * v for v in torques):
             raise GearmeshInputError(f"impact.simulate_torques_Nm[{k}]", t, f"must be one of impact.torques_Nm {torques}")

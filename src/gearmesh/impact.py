@@ -72,8 +72,8 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import PairGeometry, involute
-from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, ltca_model, point_compliance,
-                   positive_values, solve_contact)
+from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, law_scales, log_universal_inverse,
+                   ltca_model, point_compliance, positive_values, solve_contact)
 from .surface import body_rotation, flank_point, modification_parameters, plane_of_action_point, relief_depth
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, approach_tip_point, basis_gap,
                   candidate_grid, engagement_point, point_centres, recess_tip_point, separation_basis)
@@ -83,7 +83,7 @@ __all__ = [
     "SCENARIOS", "DRIVERS", "seed000_inertia", "equivalent_mass", "ImpactModel", "impact_model",
     "ImpactStatic", "impact_static", "ImpactResponse", "impact_response", "closed_form_force",
     "energy_balance", "fit_power_law", "vector_velocity", "seed_edge_roll", "simulate_engagement",
-    "check_speeds", "ltca_metrics",
+    "check_speeds", "ltca_metrics", "load_grid", "load_window",
 ]
 
 SCENARIOS = ("none", "surface", "edge")
@@ -140,9 +140,9 @@ class ImpactModel:
     'gear' and ``sigma`` ±1 (module docstring); ``roll_engagement`` the roll at which the
     entering corner reaches the end of the active zone it enters by, ``pair_enter`` its
     tooth-pair index, ``z_corner`` that corner. The search window: ``tau`` (R,) time-like
-    rolls, ``window_basis`` / ``window_z`` / ``window_compliance`` (R, J, N) the other pairs'
-    points (the entering pair's column ``window_enter_column`` of the tooth pairs
-    ``window_pairs`` made a non-candidate), ``enter_fine_basis`` (R, Nz) the entering pair on
+    rolls, ``window`` the other pairs' candidate points at those rolls, flattened
+    (:class:`WindowPoints`; the entering pair is column ``window_enter_column`` of the tooth
+    pairs ``window_pairs``), ``enter_fine_basis`` (R, Nz) the entering pair on
     ``z_fine`` (Nz,) points over the face. ``points`` the LTCA points per line (the other
     pairs), ``local_points`` / ``local_keep`` / ``local_law`` the entering line's own slicing
     for its local stiffness; ``inertia`` (2,) kg m², ``equivalent_mass`` kg.
@@ -157,9 +157,7 @@ class ImpactModel:
     z_corner: float
     extension: float
     tau: np.ndarray
-    window_basis: SeparationBasis
-    window_z: np.ndarray
-    window_compliance: np.ndarray
+    window: "WindowPoints"
     window_enter_column: int
     window_pairs: np.ndarray
     z_fine: np.ndarray
@@ -192,6 +190,56 @@ class ImpactModel:
         if p.ndim != 3 or p.shape[1:] != (2, 6) or not np.all(np.isfinite(p)) or np.any(p < 0):
             raise GearmeshInputError("modification", p.shape, "must be finite, non-negative (C, 2, 6) parameters (m)")
         return p
+
+    def lead_slopes(self, lead_slope, rows: int) -> np.ndarray:
+        """Lead slope errors as (C, 2) (m over the face width): one [pinion, gear] pair per
+        parameter set, default the model's own for every set."""
+        if lead_slope is None:
+            return np.broadcast_to(np.asarray(self.lead_slope, dtype=float), (rows, 2))
+        f = np.asarray(lead_slope, dtype=float)
+        if f.ndim == 1:
+            f = f[None]
+        if f.shape != (rows, 2) or not np.all(np.isfinite(f)):
+            raise GearmeshInputError("lead_slope", f.shape, f"must be finite [pinion, gear] pairs, one per parameter "
+                                                            f"set ({rows}, 2) (m)")
+        return f
+
+
+@dataclass(frozen=True)
+class WindowPoints:
+    """The candidate points of the pairs already in mesh at the rolls of the search window,
+    flattened to K points in roll order (only real candidates kept): ``roll_index`` (K,) the
+    window roll of each point, ``starts`` (R,) the first point of each roll (a roll without
+    any point has none: ``counts`` 0), ``basis`` their separation basis, ``z`` (K,) their face
+    positions, ``compliance`` (K,) their linear compliance (m/N, the law's linear part added).
+    Everything here is independent of the modification, the lead slope and the load."""
+
+    roll_index: np.ndarray
+    starts: np.ndarray
+    counts: np.ndarray
+    basis: SeparationBasis
+    z: np.ndarray
+    compliance: np.ndarray
+
+    def per_roll_sum(self, values: np.ndarray) -> np.ndarray:
+        """Sum of ``values`` (..., K) over the points of each roll: (..., R)."""
+        out = np.zeros(values.shape[:-1] + self.counts.shape)
+        some = self.counts > 0
+        if some.any():
+            out[..., some] = np.add.reduceat(values, self.starts[some], axis=-1)
+        return out
+
+
+def _window_points(basis: SeparationBasis, z: np.ndarray, compliance: np.ndarray) -> WindowPoints:
+    """:class:`WindowPoints` of the (R, J, N) window arrays (non-candidates dropped)."""
+    keep = np.isfinite(basis.base)
+    r = basis.base.shape[0]
+    roll_index = np.nonzero(keep)[0]
+    counts = keep.reshape(r, -1).sum(axis=1)
+    starts = np.concatenate([[0], np.cumsum(counts)[:-1]]).astype(np.intp)
+    flat = SeparationBasis(*(getattr(basis, f)[keep] for f in SeparationBasis.__dataclass_fields__))
+    return WindowPoints(roll_index=roll_index, starts=starts, counts=counts, basis=flat, z=np.asarray(z)[keep],
+                        compliance=compliance[keep])
 
 
 def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
@@ -265,15 +313,14 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
         raise RuntimeError("the entering tooth pair is not among the candidate pairs of the window")
     col = int(col[0])
     compliance = point_compliance(geom, ltca.pair_table, ltca.tables, grid.s, grid.region, grid.rho_pinion,
-                                  grid.rho_gear, with_hertz=ltca.law.name == "linear") / grid.dz
-    basis_others = _without_column(grid.basis, col)  # the pairs already in mesh
+                                  grid.rho_gear, with_hertz=ltca.law.name == "linear") / grid.dz + ltca.law.linear
+    # the pairs already in mesh, flattened to their candidate points
+    window = _window_points(_without_column(grid.basis, col), np.broadcast_to(grid.z, grid.s.shape), compliance)
     z_fine = np.linspace(-0.5 * geom.face_width, 0.5 * geom.face_width, int(face_samples))
     s_fine = (roll[:, None] + j_e * pbt + hand_sign(geom) * z_fine[None, :] * math.tan(geom.base_helix_angle))
     fine = separation_basis(geom, s_fine, np.inf)
     return ImpactModel(geom=geom, ltca=ltca, driver=driver, sigma=sigma, roll_engagement=roll_e, pair_enter=j_e,
-                       z_corner=z_c, extension=ext, tau=tau, window_basis=basis_others,
-                       window_z=np.broadcast_to(grid.z, grid.s.shape), window_compliance=compliance,
-                       window_enter_column=col, window_pairs=np.asarray(grid.pairs),
+                       z_corner=z_c, extension=ext, tau=tau, window=window, window_enter_column=col, window_pairs=np.asarray(grid.pairs),
                        z_fine=z_fine, enter_fine_basis=fine, points=int(points), local_points=int(local_points),
                        local_keep=int(local_keep),
                        local_law=contact_law(geom, geom.face_width / local_points, ltca.law.name) if ltca.law.name != "linear"
@@ -314,22 +361,48 @@ def _parabolic_min(values: np.ndarray, x: np.ndarray) -> tuple[np.ndarray, np.nd
     return np.where(np.isinf(vk), np.nan, vmin), xmin
 
 
-def _enter_gap(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
+def _rows(a: np.ndarray, ndim: int) -> np.ndarray:
+    """Per-row arrays (C, ...) with ``ndim`` unit axes inserted after the row axis (to broadcast
+    one parameter set or lead-slope pair per row against points)."""
+    return a.reshape(a.shape[:1] + (1,) * ndim + a.shape[1:])
+
+
+#: Face samples either side of the previous minimum that :func:`_enter_gap` searches when told
+#: where the minimum was (a touch iteration moves the roll by micrometres).
+_NEAR_SAMPLES = 6
+
+
+def _enter_gap(model: ImpactModel, params: np.ndarray, tau: np.ndarray, lead: np.ndarray, near=None):
     """Smallest separation of the entering pair over the face (m) and where (z), at time-like
-    rolls ``tau`` of shape (C, ...) for the C parameter sets ``params`` (C, 2, 6)."""
+    rolls ``tau`` (N,), one parameter set ``params`` (N, 2, 6) and lead-slope pair ``lead`` (N, 2)
+    per roll. With ``near`` (N,) face positions of a minimum found at a neighbouring roll, only the
+    :data:`_NEAR_SAMPLES` face samples either side of it are searched; a row whose minimum falls on
+    the edge of that block (and not at a face end) is searched over the whole face."""
     g = model.geom
     tau = np.asarray(tau, dtype=float)
-    s = model.s_enter(tau[..., None], model.z_fine)
-    basis = separation_basis(g, s, np.inf)
-    p = params.reshape(params.shape[:1] + (1,) * (tau.ndim - 1) + (1, 2, 6))
-    gap = basis_gap(g, basis, model.z_fine, model.lead_slope, p)
-    return _parabolic_min(gap, model.z_fine)
+    z = model.z_fine
+    if near is None:
+        s = model.s_enter(tau[:, None], z)
+        gap = basis_gap(g, separation_basis(g, s, np.inf), z, _rows(lead, 1), _rows(params, 1))
+        return _parabolic_min(gap, z)
+    h, n = z[1] - z[0], 2 * _NEAR_SAMPLES + 1
+    first = np.clip(np.rint((np.asarray(near) - z[0]) / h).astype(np.intp) - _NEAR_SAMPLES, 0, z.size - n)
+    zz = z[first[:, None] + np.arange(n)]
+    s = model.s_enter(tau[:, None], zz)
+    gap = basis_gap(g, separation_basis(g, s, np.inf), zz, _rows(lead, 1), _rows(params, 1))
+    local = np.arange(n) * h
+    gmin, x = _parabolic_min(gap, local)
+    k = np.argmin(np.where(np.isfinite(gap), gap, np.inf), axis=1)
+    inside = ((k > 0) | (first == 0)) & ((k < n - 1) | (first == z.size - n)) & np.isfinite(gmin)
+    zmin = zz[:, 0] + x
+    if not inside.all():
+        gmin[~inside], zmin[~inside] = _enter_gap(model, params[~inside], tau[~inside], lead[~inside])
+    return gmin, zmin
 
 
-def _enter_gap_window(model: ImpactModel, params: np.ndarray):
+def _enter_gap_window(model: ImpactModel, params: np.ndarray, lead: np.ndarray):
     """The same on the window grid (C, R), reusing the window's entering-line basis."""
-    p = params[:, None, None, :, :]
-    gap = basis_gap(model.geom, model.enter_fine_basis, model.z_fine, model.lead_slope, p)
+    gap = basis_gap(model.geom, model.enter_fine_basis, model.z_fine, _rows(lead, 2), _rows(params, 2))
     return _parabolic_min(gap, model.z_fine)
 
 
@@ -347,17 +420,39 @@ def _solve_rows(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law:
     return delta
 
 
-def _approach_window(model: ImpactModel, params: np.ndarray, force: np.ndarray, basis, compliance) -> np.ndarray:
-    """Approach (C, T, R) of the pairs of ``basis`` at every window roll, every parameter set
-    and force."""
-    nc, nt = params.shape[0], force.size
-    gap = basis_gap(model.geom, basis, model.window_z, model.lead_slope, params[:, None, None, None, :, :])
-    r, m = gap.shape[1], gap.shape[2] * gap.shape[3]
-    gap = np.broadcast_to(gap.reshape(nc, 1, r, m), (nc, nt, r, m)).reshape(-1, m)
-    comp = np.broadcast_to(compliance.reshape(1, 1, r, m), (nc, nt, r, m)).reshape(-1, m)
-    f = np.broadcast_to(force.reshape(1, nt, 1), (nc, nt, r)).reshape(-1)
-    # only a bracket of the touch comes from here (the exact solve polishes it): 1e-9 is plenty
-    return _solve_rows(gap, comp, f, model.ltca.law, rtol=1e-9).reshape(nc, nt, r)
+def _point_loads(model: ImpactModel, approach: np.ndarray, gap: np.ndarray, compliance: np.ndarray):
+    """Loads q (N) and tangent stiffnesses dq/dδ (N/m) of points of separation ``gap`` at the
+    approach ``approach`` (broadcast): each point's law inverted directly (NaN gap: no point)."""
+    law = model.ltca.law
+    d = approach - gap
+    return _invert(np.where(np.isfinite(d), d, -1.0), compliance, law.coefficient, law.exponent)
+
+
+def _others_at(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau: np.ndarray):
+    """Separations (N, M) and compliances (N, M) (m/N, law's linear part added) of the pairs
+    already in mesh at time-like rolls ``tau`` (N,), one parameter set and lead pair per roll:
+    the exact candidate points of the window's tooth pairs at those rolls (no interpolation)."""
+    g = model.geom
+    z, dz = point_centres(g, model.points)
+    s = (model.roll(tau)[:, None, None] + model.window_pairs[None, :, None] * g.transverse_base_pitch
+         + hand_sign(g) * z[None, None, :] * math.tan(g.base_helix_angle))
+    basis = _without_column(separation_basis(g, s, model.extension), model.window_enter_column)
+    gap = basis_gap(g, basis, z, _rows(lead, 2), _rows(params, 2))
+    comp = point_compliance(g, model.ltca.pair_table, model.ltca.tables, s, basis.region, basis.rho_pinion,
+                            basis.rho_gear, with_hertz=model.ltca.law.name == "linear") / dz + model.ltca.law.linear
+    n = gap.shape[0]
+    return gap.reshape(n, -1), comp.reshape(n, -1)
+
+
+def _touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau: np.ndarray, near=None):
+    """The force F*(τ) at which the entering pair touches at time-like roll τ, exactly, for rows
+    (N,): the force the pairs already in mesh carry when they are compressed to the entering
+    pair's smallest separation g(τ), F* = Σ_i q_i(g(τ) − g_i(τ)). Returns F* (N), the tangent
+    stiffness ΣdF/dδ there (N/m), g (m) and its face position z (m); ``near`` as :func:`_enter_gap`."""
+    gap_e, z_e = _enter_gap(model, params, tau, lead, near)
+    gap_o, comp = _others_at(model, params, lead, tau)
+    q, dq = _point_loads(model, gap_e[:, None], gap_o, comp)
+    return q.sum(axis=1), dq.sum(axis=1), gap_e, z_e
 
 
 # --------------------------------------------------------------------------------------
@@ -376,10 +471,11 @@ class ImpactStatic:
     g − δ per unit roll is their sum (:attr:`slope`);
     ``s``, ``z``, ``rho_pinion``, ``rho_gear`` where M lies (m); ``region`` its candidate
     region; ``te_engagement`` the entering pair's separation at the theoretical engagement
-    (m; seed 000's TE(φ1A)), ``lte_engagement`` the approach of all pairs there (LTE(φ1A));
-    ``curve_force`` / ``curve_approach`` (C, T, K) the F–δ curve of the entering pair alone
-    from M (N, m; F = 0 at δ = 0 implied), from the separations and compliances of its
-    slices ``curve_separation`` / ``curve_compliance`` (C, T, L).
+    (m; seed 000's TE(φ1A)), ``lte_engagement`` the approach of all pairs there (LTE(φ1A);
+    NaN unless asked for); ``curve_force`` / ``curve_approach`` (C, T, K) the F–δ curve of the
+    entering pair alone from M (N, m; F = 0 at δ = 0 implied), from the separations and
+    compliances of its slices ``curve_separation`` / ``curve_compliance`` (C, T, L);
+    ``params`` (C, 2, 6) and ``lead_slope`` (C, 2) the micro-geometry of each row (m).
     """
 
     torque: np.ndarray
@@ -402,6 +498,7 @@ class ImpactStatic:
     params: np.ndarray
     curve_separation: np.ndarray
     curve_compliance: np.ndarray
+    lead_slope: np.ndarray
 
     @property
     def slope(self) -> np.ndarray:
@@ -409,54 +506,157 @@ class ImpactStatic:
         return self.gap_rate + self.approach_rate
 
 
-def _crossing(model: ImpactModel, params: np.ndarray, force: np.ndarray):
-    """Touch roll τ* for every (C, T) (module docstring), whether found and whether at the window
-    start, the entering pair's separation at the theoretical engagement (C,), and the window's
-    interpolated approach at τ* and the other pairs' approach at φ1A (warm starts of the exact solves)."""
+#: Illinois iterations of the touch roll within its window cell (each an exact evaluation).
+_MAX_TOUCH_ITERATIONS = 60
+#: The touch is pinned down when the entering pair's separation and the loaded approach differ
+#: by at most this (m) — the criterion of an "impact found".
+_TOUCH_TOLERANCE = 1e-12
+
+
+def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: np.ndarray):
+    """Touch roll τ*, the entering pair's smallest separation there and its face position for
+    every (C, T) (module docstring; NaN where the touch fell on a window roll), whether found and
+    whether at the window start, and the entering pair's separation at the theoretical engagement (C,).
+
+    The touch condition g(τ) = δ_others(τ) is solved as F*(τ) = F_bt (:func:`_touch_force`):
+    since the other pairs' force grows with their approach, g > δ_others exactly where
+    F*(τ) > F_bt. F* needs one inversion per point and no load iteration, and does not depend
+    on the torque: one pass over the window grid brackets every torque's touch (the first
+    roll with F* ≤ F_bt; :func:`_window_touch_force`), then a secant iteration with exact
+    evaluations of F* pins it down inside its cell."""
     nc, nt = params.shape[0], force.size
-    g_win, _ = _enter_gap_window(model, params)  # (C, R)
     k0 = int(np.flatnonzero(model.tau == 0.0)[0])
-    d_win = _approach_window(model, params, force, model.window_basis, model.window_compliance)  # (C, T, R)
-    h = g_win[:, None, :] - d_win
-    tau = model.tau
-    below = np.isfinite(h) & (h <= 0)
+    f_win, g_win = _window_touch_force(model, params, lead, float(force.min()), k0)
+    below = f_win[:, None, :] <= force[None, :, None]  # NaN: not below
     found = below.any(axis=-1)
     k = np.argmax(below, axis=-1)  # first roll at or past the touch
     at_start = found & (k == 0)
-    k = np.clip(k, 1, tau.size - 1)
-    lo, hi = tau[k - 1], tau[k]
-    d_lo = np.take_along_axis(d_win, (k - 1)[..., None], -1)[..., 0]
-    d_hi = np.take_along_axis(d_win, k[..., None], -1)[..., 0]
-    pc = np.broadcast_to(params[:, None], (nc, nt, 2, 6))
+    t_star, g_star, z_star = (np.full((nc, nt), np.nan) for _ in range(3))
+    cc, tt = np.nonzero(found & ~at_start)
+    if cc.size:
+        kk = k[cc, tt]
+        a, b = model.tau[kk - 1], model.tau[kk]
+        fa, fb = f_win[cc, kk - 1] - force[tt], f_win[cc, kk] - force[tt]  # fa > 0 ≥ fb: the bracket
+        # secant iteration from the cubic estimate (its slope for the first step), kept inside the
+        # bracket (bisection when a step would leave it); every evaluation exact
+        x_last, slope = _inverse_cubic(model.tau, f_win[cc], kk, force[tt], a, b, fa, fb)
+        f_last, g_last, z_last = (np.full(cc.size, np.nan) for _ in range(3))
+        active = np.flatnonzero(fb != 0.0)
+        x_next = x_last.copy()
+        for _ in range(_MAX_TOUCH_ITERATIONS):
+            if not active.size:
+                break
+            c = x_next[active]
+            f_c, k_c, g_c, z_c = _touch_force(model, params[cc[active]], lead[cc[active]], c)
+            g_last[active], z_last[active] = g_c, z_c
+            fc = f_c - force[tt[active]]
+            up = fc > 0
+            a[active] = np.where(up, c, a[active])
+            fa[active] = np.where(up, fc, fa[active])
+            b[active] = np.where(up, b[active], c)
+            fb[active] = np.where(up, fb[active], fc)
+            with np.errstate(invalid="ignore", divide="ignore"):
+                prev_x, prev_f = x_last[active], f_last[active]
+                step = np.where(np.isfinite(prev_f), fc * (c - prev_x) / (fc - prev_f), fc / slope[active])
+                nxt = c - step
+            ai, bi = a[active], b[active]
+            nxt = np.where(np.isfinite(nxt) & (nxt > ai) & (nxt < bi), nxt, 0.5 * (ai + bi))
+            x_last[active], f_last[active] = c, fc
+            x_next[active] = nxt
+            # pinned down: |g − δ| ≈ |F* − F_bt|/K below the touch tolerance, or the cell collapsed
+            stop = (np.abs(fc) <= 0.5 * _TOUCH_TOLERANCE * k_c) | (bi - ai <= 1e-15)
+            active = active[~stop]
+        t_star[cc, tt] = np.where(np.isfinite(f_last), x_last, b)
+        g_star[cc, tt], z_star[cc, tt] = g_last, z_last
+    return t_star, g_star, z_star, found & ~at_start, at_start, g_win[:, k0]
 
-    def delta_lin(t):
-        w = (t - lo) / (hi - lo)
-        return d_lo + w * (d_hi - d_lo)
 
-    def hfun(t):
-        return _enter_gap(model, pc.reshape(-1, 2, 6), t.reshape(-1))[0].reshape(nc, nt) - delta_lin(t)
-
-    # Illinois regula falsi on [lo, hi] (h > 0 at lo, h ≤ 0 at hi), vectorised
-    a, b = lo.copy(), hi.copy()
-    fa, fb = hfun(a), hfun(b)
-    ok = found & np.isfinite(fa) & np.isfinite(fb) & (fa > 0) & (fb <= 0)
-    fa, fb = np.where(ok, fa, 1.0), np.where(ok, fb, 0.0)
-    tol = 1e-7 * model.geom.transverse_base_pitch  # the exact Newton polish follows
-    for _ in range(80):
-        denom = fb - fa
-        c = np.where(denom != 0, b - fb * (b - a) / np.where(denom != 0, denom, 1.0), b)
-        fc = np.where(ok, hfun(c), 0.0)
-        flip = fc * fb < 0
-        a, fa = np.where(flip, b, a), np.where(flip, fb, 0.5 * fa)
-        b, fb = c, fc
-        if np.all((np.abs(b - a) <= tol) | (fc == 0)):
-            break
-    t_star = np.where(found, b, np.nan)
-    t_star = np.where(at_start, tau[0], t_star)
-    return t_star, found, at_start, g_win[:, k0], delta_lin(np.where(found, t_star, lo)), d_win[..., k0]
+#: Window rolls evaluated per pass of :func:`_window_touch_force`.
+_WINDOW_CHUNK = 8
 
 
-def _enter_points(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
+def _window_touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force_min: float, k0: int):
+    """F*(c, τ_k) and the entering pair's smallest separation g(c, τ_k) on the window rolls (C, R).
+
+    The rolls are taken in passes of :data:`_WINDOW_CHUNK` from the window's start: a row is done
+    once its F* has fallen to the smallest force ``force_min`` and the roll after that crossing is
+    known (the first crossing of every larger force comes no later, since F* ≤ F_bt,min implies
+    F* ≤ F_bt), so the rolls after it are left NaN. Roll ``k0`` (the theoretical engagement) is
+    always evaluated."""
+    w, g = model.window, model.geom
+    nc, r = params.shape[0], model.tau.size
+    f_win, g_win = np.full((nc, r), np.nan), np.full((nc, r), np.nan)
+    ends = np.append(w.starts, w.roll_index.size)
+    ends[:-1][w.counts == 0] = w.starts[w.counts == 0]
+    active, lo = np.arange(nc), 0
+    while active.size and lo < r:
+        hi = min(r, lo + _WINDOW_CHUNK)
+        pr, lr = params[active], lead[active]
+        basis = SeparationBasis(*(getattr(model.enter_fine_basis, f)[lo:hi] for f in SeparationBasis.__dataclass_fields__))
+        gap_e, _ = _parabolic_min(basis_gap(g, basis, model.z_fine, _rows(lr, 2), _rows(pr, 2)), model.z_fine)
+        pts = slice(int(w.starts[lo]), int(ends[hi]) if hi < r else w.roll_index.size)
+        sub = SeparationBasis(*(getattr(w.basis, f)[pts] for f in SeparationBasis.__dataclass_fields__))
+        gap_o = basis_gap(g, sub, w.z[pts], _rows(lr, 1), _rows(pr, 1))
+        q, _ = _point_loads(model, gap_e[:, w.roll_index[pts] - lo], gap_o, w.compliance[pts])
+        f = np.zeros((active.size, hi - lo))
+        some = w.counts[lo:hi] > 0
+        if some.any():
+            f[:, some] = np.add.reduceat(q, w.starts[lo:hi][some] - w.starts[lo], axis=-1)
+        f_win[active, lo:hi] = np.where(np.isfinite(gap_e), f, np.nan)
+        g_win[active, lo:hi] = gap_e
+        below = f_win[active, :hi] <= force_min
+        k = np.argmax(below, axis=1)
+        done = (below.any(axis=1) & (k + 1 < hi)) | (hi == r)
+        active, lo = active[~done], hi
+    missing = np.isnan(g_win[:, k0])
+    if missing.any():  # rows done before the engagement roll: its separation still
+        basis = SeparationBasis(*(getattr(model.enter_fine_basis, f)[k0:k0 + 1]
+                                  for f in SeparationBasis.__dataclass_fields__))
+        g_win[missing, k0] = _parabolic_min(basis_gap(g, basis, model.z_fine, _rows(lead[missing], 2),
+                                                      _rows(params[missing], 2)), model.z_fine)[0][:, 0]
+    return f_win, g_win
+
+
+def _inverse_cubic(tau: np.ndarray, f: np.ndarray, k: np.ndarray, target: np.ndarray, a, b, fa, fb) -> np.ndarray:
+    """A first estimate of the roll where F* = ``target`` inside window cell [τ_(k−1), τ_k] and the
+    slope dF*/dτ there: the cubic through F* at the four nodes k−2 … k+1 as a function of τ, solved
+    by two Newton steps from the linear estimate; the linear estimate and the chord's slope where
+    the cubic leaves the cell or does not fall (rows (N,), ``f`` (N, R) F* on the window)."""
+    r = tau.size
+    lin = b - fb * (b - a) / (fb - fa)
+    kk = np.clip(k, 2, r - 2)
+    nodes = kk[:, None] + np.arange(-2, 2)[None, :]
+    x = tau[nodes]
+    y = np.take_along_axis(f, nodes, 1) - target[:, None]
+    t = lin.copy()
+    with np.errstate(invalid="ignore", divide="ignore"):
+        for _ in range(2):
+            val, der = np.zeros_like(t), np.zeros_like(t)
+            for i in range(4):  # Lagrange basis and its derivative
+                li, dli = np.ones_like(t), np.zeros_like(t)
+                for j in range(4):
+                    if j != i:
+                        w = 1.0 / (x[:, i] - x[:, j])
+                        dli = dli * (t - x[:, j]) * w + li * w
+                        li = li * (t - x[:, j]) * w
+                val += y[:, i] * li
+                der += y[:, i] * dli
+            t = t - val / der
+        # the cubic's slope at the estimate (for the first secant step)
+        der = np.zeros_like(t)
+        for i in range(4):
+            li, dli = np.ones_like(t), np.zeros_like(t)
+            for j in range(4):
+                if j != i:
+                    w = 1.0 / (x[:, i] - x[:, j])
+                    dli = dli * (t - x[:, j]) * w + li * w
+                    li = li * (t - x[:, j]) * w
+            der += y[:, i] * dli
+    ok = np.isfinite(t) & (t > a) & (t < b) & (der < 0)
+    return np.where(ok, t, lin), np.where(ok, der, (fb - fa) / (b - a))
+
+
+def _enter_points(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau: np.ndarray):
     """The entering pair's line at the touch ``tau`` (C, T), discretised for its local stiffness:
     ``local_points`` equal slices over the face, of which the ``local_keep`` with the smallest
     separation from the first to touch are kept (the others cannot load within the curve,
@@ -466,87 +666,95 @@ def _enter_points(model: ImpactModel, params: np.ndarray, tau: np.ndarray):
     z, dz = point_centres(g, model.local_points)
     s = model.s_enter(tau[..., None], z)
     basis = separation_basis(g, s, np.inf)
-    gap = basis_gap(g, basis, z, model.lead_slope, params[:, None, None, :, :])
+    gap = basis_gap(g, basis, z, _rows(lead, 2), _rows(params, 2))
     comp = point_compliance(g, model.ltca.pair_table, model.ltca.tables, s, basis.region, basis.rho_pinion,
                             basis.rho_gear, with_hertz=model.ltca.law.name == "linear") / dz
     gap = np.where(np.isfinite(gap), gap, np.inf)
     keep = min(model.local_keep, gap.shape[-1])
-    idx = np.argpartition(gap, keep - 1, axis=-1)[..., :keep]
-    gap_k = np.take_along_axis(gap, idx, -1)
-    comp_k = np.take_along_axis(comp, idx, -1)
+    if keep < gap.shape[-1]:
+        idx = np.argpartition(gap, keep - 1, axis=-1)[..., :keep]
+        gap = np.take_along_axis(gap, idx, -1)
+        comp = np.take_along_axis(comp, idx, -1)
     with np.errstate(invalid="ignore"):
-        rel = gap_k - gap_k.min(axis=-1, keepdims=True)
-    return rel, comp_k
+        rel = gap - gap.min(axis=-1, keepdims=True)
+    return rel, comp
 
 
 def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 48,
-                  curve_force_min=None) -> ImpactStatic:
+                  curve_force_min=None, lead_slope=None, engagement: bool = True) -> ImpactStatic:
     """The speed-independent part of the impact for pinion torques ``torques`` (N m) and
     modification parameter sets ``params`` ((C, 2, 6) m; default the pair's own).
 
+    ``lead_slope`` (C, 2) the lead slope errors [pinion, gear] of each set (m over the face
+    width; default the model's for all): additive to the separations
+    (:func:`gearmesh.tca.lead_deviation`), so a tolerance sample costs no new geometry.
     ``curve_levels`` approaches of the entering pair's F–δ curve, geometric up to one at which
     it carries at least ``curve_force_min`` (N, (C, T) or scalar; default 4·F_bt) —
-    :func:`impact_response` extends it where an impact needs more.
+    :func:`impact_response` extends it where an impact needs more. ``engagement``: also the
+    loaded TE of all pairs at the theoretical engagement (``lte_engagement``, one more load
+    solve per row; NaN without).
     """
 
     g = model.geom
     params = model.params(params)
+    nc = params.shape[0]
+    lead = model.lead_slopes(lead_slope, nc)
     t1 = check_torques(torques)
     force = t1 / float(g.base_radius[0])
-    nc, nt = params.shape[0], force.size
-    t_star, found, at_start, te0, d_guess, d_others0 = _crossing(model, params, force)
+    nt = force.size
+    t_star, g_star, z_star, found, at_start, te0 = _crossing(model, params, lead, force)
     if np.any(at_start):
         warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
                       "raise corner_extension", RuntimeWarning, stacklevel=2)
     tt = np.where(found, t_star, 0.0)
-    pc = np.broadcast_to(params[:, None], (nc, nt, 2, 6)).reshape(-1, 2, 6)
-    # Newton on h = g − δ with the exact δ of the other pairs; h and its rate from one stacked
-    # evaluation at τ − 2ε, τ − ε, τ: the one-sided (second-order) difference from the approach
-    # side is the closing rate just before the touch, positive at any crossing from above even
-    # where min_z g or δ_others has a kink (a point of the pairs in mesh unloading, the
-    # minimum jumping along the face)
+    # at the touch, the rates from one stacked exact evaluation at τ − 2ε, τ − ε, τ: the one-sided
+    # (second-order) difference from the approach side is the closing rate just before the touch,
+    # positive at any crossing from above even where min_z g or a point's separation has a kink
+    # (a point of the pairs in mesh unloading, the minimum jumping along the face or following a kink)
     eps = 1e-6 * g.transverse_base_pitch
-    offsets = np.array([-2 * eps, -eps, 0.0])[:, None, None]
-    pcs = np.broadcast_to(pc, (3,) + pc.shape).reshape(-1, 2, 6)
-
-    def back(a):
-        return (3 * a[2] - 4 * a[1] + a[0]) / (2 * eps)
-
-    for _ in range(6):
-        stack = tt[None] + offsets
-        gap3, z3 = (v.reshape(3, nc, nt) for v in _enter_gap(model, pcs, stack.reshape(-1)))
-        # warm start a little above the last approach (an upper bound is checked by the solver)
-        d3 = _approach_at(model, params, force[None, :], stack, others=True,
-                          delta_start=np.broadcast_to(d_guess * (1 + 1e-3) + 1e-10, stack.shape))
-        resid = gap3[2] - d3[2]
-        dh = back(gap3 - d3)
-        converged = np.abs(resid) <= 1e-13
-        if np.all(~found | converged):
-            break
-        with np.errstate(invalid="ignore", divide="ignore"):
-            step = np.where(found & (dh < 0) & np.isfinite(resid), resid / dh, 0.0)
-        tt = tt - np.clip(step, -eps * 1e3, eps * 1e3)
-        d_guess = np.where(np.isfinite(d3[2]), d3[2], d_guess)
-    found = found & (np.abs(resid) <= 1e-12)  # a crossing Newton could not pin down is no impact
-    z_m, delta = z3[2], d3[2]
-    gap_rate = -back(gap3)
-    approach_rate = back(d3)
+    offsets = np.array([-2 * eps, -eps, 0.0])
+    rows_c = np.broadcast_to(np.arange(nc)[:, None], (nc, nt)).reshape(-1)
+    stack = (tt.reshape(-1)[None, :] + offsets[:, None]).reshape(-1)
+    p3, l3 = np.tile(params[rows_c], (3, 1, 1)), np.tile(lead[rows_c], (3, 1))
+    # the smallest separation at τ* from the touch iteration (the whole face; searched anew where the
+    # touch fell on a window roll), the two earlier rolls near its face position
+    gap_min, z_min = g_star.reshape(-1).copy(), z_star.reshape(-1).copy()
+    redo = ~np.isfinite(gap_min)
+    if redo.any():
+        gap_min[redo], z_min[redo] = _enter_gap(model, params[rows_c[redo]], tt.reshape(-1)[redo], lead[rows_c[redo]])
+    n2 = 2 * nc * nt
+    gap2, _ = (v.reshape(2, nc * nt) for v in _enter_gap(model, p3[:n2], stack[:n2], l3[:n2], np.tile(z_min, 2)))
+    gap3 = np.concatenate([gap2, gap_min[None]])
+    gap_o, comp = _others_at(model, p3, l3, stack)
+    m = gap_o.shape[-1]
+    gap_o, comp = gap_o.reshape(3, nc * nt, m), comp.reshape(3, nc * nt, m)
+    q, dq = _point_loads(model, gap_min[:, None], gap_o[2], comp[2])
+    stiff = dq.sum(axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        resid = (q.sum(axis=1) - np.tile(force, nc)) / stiff  # g − δ_others at τ* (one Newton step)
+        # δ − g_i = c_i(τ)·q_i + δ_c(q_i) at fixed Σq_i = F_bt: dδ/dτ = Σk_i·(g_i' + c_i'·q_i)/Σk_i
+        # (k_i = dq_i/dδ; the compliance changes as the points move along the profile)
+        rate_o = (3 * (gap_o[2] + comp[2] * q) - 4 * (gap_o[1] + comp[1] * q) + gap_o[0] + comp[0] * q) / (2 * eps)
+        approach_rate = np.sum(np.where(dq > 0, dq * rate_o, 0.0), axis=1) / stiff
+    gap_rate = -(3 * gap3[2] - 4 * gap3[1] + gap3[0]) / (2 * eps)
+    delta = gap_min - resid
+    found = found & (np.abs(resid).reshape(nc, nt) <= _TOUCH_TOLERANCE)  # a crossing not pinned down is no impact
+    delta, gap_rate, approach_rate, z_m = (v.reshape(nc, nt) for v in (delta, gap_rate, approach_rate, z_min))
     s_m = model.s_enter(tt, z_m)
     bm = separation_basis(g, s_m, np.inf)
     region = np.where(found, bm.region, 0).astype(np.int8)
     scenario = np.where(~found, SCENARIO_NONE,
                         np.where((region == REGION_APPROACH_TIP) | (region == REGION_RECESS_TIP), SCENARIO_EDGE,
                                  SCENARIO_SURFACE)).astype(np.int8)
-    # TE and LTE at the theoretical engagement (τ = 0, a window roll)
-    # all pairs at φ1A: one more pair than the others, so δ_others(φ1A) bounds it from above
-    lte0 = _approach_at(model, params, force[None, :], np.zeros((1, nc, nt)), others=False,
-                        delta_start=(d_others0 * (1 + 1e-9))[None])[0]
+    # TE and LTE at the theoretical engagement (τ = 0, a window roll): all pairs at φ1A
+    lte0 = (_approach_at(model, params, lead, force[None, :], np.zeros((1, nc, nt)), others=False)[0]
+            if engagement else np.full((nc, nt), np.nan))
     # F–δ curve of the entering pair alone from M
     # separations from the first slice to touch (→ M as local_points → ∞)
-    rel, comp = _enter_points(model, params, tt)
+    rel, comp = _enter_points(model, params, lead, tt)
     fmin = 4.0 * force[None, :] * np.ones((nc, 1)) if curve_force_min is None else \
         np.broadcast_to(np.asarray(curve_force_min, dtype=float), (nc, nt))
-    cf, ca = _force_curve(model, rel, comp, _curve_reach(model, comp, fmin), curve_levels)
+    cf, ca = _force_curve(model, rel, comp, _curve_reach(model, rel, comp, fmin), curve_levels)
     nan = ~found
     for arr in (delta, gap_rate, approach_rate, s_m, z_m):
         arr[nan] = np.nan
@@ -557,7 +765,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
                         rho_pinion=np.where(found, bm.rho_pinion, np.nan), rho_gear=np.where(found, bm.rho_gear, np.nan),
                         region=region, te_engagement=np.broadcast_to(te0[:, None], (nc, nt)).copy(),
                         lte_engagement=lte0, curve_force=cf, curve_approach=ca, params=params,
-                        curve_separation=rel, curve_compliance=comp)
+                        curve_separation=rel, curve_compliance=comp, lead_slope=np.array(lead))
 
 
 def _without_column(basis: SeparationBasis, column: int) -> SeparationBasis:
@@ -567,20 +775,20 @@ def _without_column(basis: SeparationBasis, column: int) -> SeparationBasis:
     return replace(basis, base=base)
 
 
-def _approach_at(model: ImpactModel, params: np.ndarray, force: np.ndarray, tau: np.ndarray,
+def _approach_at(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: np.ndarray, tau: np.ndarray,
                  others: bool, delta_start=None) -> np.ndarray:
     """Approach δ of the other pairs (``others``) or of all pairs at time-like rolls ``tau``
     (..., C, T) — leading axes stack several rolls per (C, T) — by one exact solve on a
-    candidate grid at those rolls."""
+    candidate grid at those rolls; ``lead`` (C, 2) the lead slopes of each parameter set."""
     g, law = model.geom, model.ltca.law
     shape = tau.shape
-    nc, nt = shape[-2:]
     roll = model.roll(tau).reshape(-1)
-    grid = candidate_grid(g, roll, model.points, model.lead_slope, model.extension / g.transverse_base_pitch,
+    grid = candidate_grid(g, roll, model.points, (0.0, 0.0), model.extension / g.transverse_base_pitch,
                           pairs=model.window_pairs)
     b = _without_column(grid.basis, model.window_enter_column) if others else grid.basis
     p = np.broadcast_to(params[:, None], shape + (2, 6)).reshape(-1, 1, 1, 2, 6)
-    gap = basis_gap(g, b, np.broadcast_to(grid.z, grid.s.shape), model.lead_slope, p).reshape(roll.size, -1)
+    f = np.broadcast_to(lead[:, None], shape + (2,)).reshape(-1, 1, 1, 2)
+    gap = basis_gap(g, b, np.broadcast_to(grid.z, grid.s.shape), f, p).reshape(roll.size, -1)
     comp = (point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid.s, grid.region, grid.rho_pinion,
                              grid.rho_gear, with_hertz=law.name == "linear") / grid.dz).reshape(roll.size, -1)
     f = np.broadcast_to(force, shape).reshape(-1)
@@ -588,26 +796,75 @@ def _approach_at(model: ImpactModel, params: np.ndarray, force: np.ndarray, tau:
     return _solve_rows(gap, comp, f, law, delta_start=start).reshape(shape)
 
 
+def _sorted_slices(model: ImpactModel, rel: np.ndarray, comp: np.ndarray):
+    """The entering line's slices of every row (R, L), in order of separation from the first to
+    touch: separations (non-candidates at 1 m, out of reach) and compliances (m/N, the local
+    law's linear part added)."""
+    law = model.local_law
+    length = rel.shape[-1]
+    e = np.where(np.isfinite(rel), rel, 1.0).reshape(-1, length)
+    c = (np.where(np.isfinite(comp), comp, 1.0) + law.linear).reshape(-1, length)
+    order = np.argsort(e, axis=1, kind="stable")
+    return np.take_along_axis(e, order, 1), np.take_along_axis(c, order, 1)
+
+
 def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, dmax: np.ndarray, levels: int):
     """F–δ of the entering pair alone: approaches (C, T, K) geometric from 1e-5·dmax to dmax and
     the force each causes, F(δ) = Σ q_i(δ − e_i) with every slice's own law inverted directly
-    (separations ``rel`` e_i from the first slice to touch; no load solve needed this way round)."""
+    (separations ``rel`` e_i from the first slice to touch; no load solve needed this way round).
+
+    Only the loaded (slice, level) pairs are formed: with the slices in order of separation, the
+    slices loaded at level k are the first n_k of them (e_i < δ_k)."""
     law = model.local_law
+    e, c = _sorted_slices(model, rel, comp)
+    rows, length = e.shape
     frac = np.geomspace(1e-5, 1.0, int(levels))
-    d = dmax[..., None] * frac  # (C, T, K)
-    x = d[..., None] - rel[..., None, :]  # (C, T, K, L)
-    c = np.where(np.isfinite(comp), comp, 1.0)[..., None, :] + law.linear
-    x = np.where(np.isfinite(x), x, -1.0)
-    q, _ = _invert(x, np.broadcast_to(c, x.shape), law.coefficient, law.exponent)
-    return q.sum(axis=-1), d
+    dm = np.broadcast_to(np.asarray(dmax, dtype=float), rel.shape[:-1]).reshape(-1)
+    d = dm[:, None] * frac  # (R, K)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        first = np.searchsorted(frac, e / dm[:, None], side="right")  # first level with δ_k > e_i
+    # the ratio test can differ from δ_k > e_i by one ulp: settle it on δ_k itself
+    lower = np.maximum(first - 1, 0)
+    first = np.where((first > 0) & (np.take_along_axis(d, np.minimum(lower, levels - 1), 1) > e), lower, first)
+    hist = np.zeros((rows, levels + 1), dtype=np.intp)
+    np.add.at(hist, (np.arange(rows)[:, None], first), 1)
+    n = np.cumsum(hist[:, :levels], axis=1).reshape(-1)  # slices loaded at each (row, level)
+    rk = np.repeat(np.arange(rows * levels), n)
+    j = np.arange(rk.size) - np.repeat(np.cumsum(n) - n, n)
+    flat = (rk // levels) * length + j
+    x = d.reshape(-1)[rk] - e.reshape(-1)[flat]  # > 0 by construction
+    if law.coefficient:
+        # the universal inverse of :func:`gearmesh.ltca.invert_tabulated`, with each slice's
+        # scales taken once per slice rather than once per (slice, level)
+        log_q, log_cq = law_scales(c, law.coefficient, law.exponent)
+        v = log_universal_inverse(np.log(x) - log_cq.reshape(-1)[flat], law.exponent)
+        q = np.exp(log_q.reshape(-1)[flat] + v)
+        outside = np.isnan(v)
+        if outside.any():
+            q[outside] = _invert(x[outside], c.reshape(-1)[flat[outside]], law.coefficient, law.exponent)[0]
+    else:
+        q = x / c.reshape(-1)[flat]
+    force = np.bincount(rk, weights=q, minlength=rows * levels).reshape(rel.shape[:-1] + (levels,))
+    return force, d.reshape(rel.shape[:-1] + (levels,))
 
 
-def _curve_reach(model: ImpactModel, comp: np.ndarray, force: np.ndarray) -> np.ndarray:
-    """An approach (m) at which the entering pair carries at least ``force`` (N): the first
-    slice alone carrying all of it (the bound :func:`gearmesh.ltca.solve_contact` starts from)."""
+def _curve_reach(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, force: np.ndarray) -> np.ndarray:
+    """An approach (m) at which the entering pair carries at least ``force`` (N), close to the
+    least one: δ_lin + coef·q_max^m, δ_lin the approach of the slices with their linear
+    compliances alone (exact, from prefix sums over the slices in order of separation) and q_max
+    the largest slice load there. An upper bound: at it every loaded slice's law gives at least
+    its linear load, since q_i ≤ q_max adds at most coef·q_max^m to its approach."""
     law = model.local_law
-    c0 = np.nanmin(np.where(np.isfinite(comp), comp, np.inf), axis=-1) + law.linear
-    return c0 * force + (law.coefficient * force**law.exponent if law.coefficient else 0.0)
+    e, c = _sorted_slices(model, rel, comp)
+    f = np.broadcast_to(np.asarray(force, dtype=float), rel.shape[:-1]).reshape(-1, 1)
+    k = 1.0 / c
+    s, t = np.cumsum(k, axis=1), np.cumsum(e * k, axis=1)
+    carried = e[:, 1:] * s[:, :-1] - t[:, :-1]  # force when the approach reaches the next slice
+    j = np.sum(carried < f, axis=1, keepdims=True)
+    delta = (f + np.take_along_axis(t, j, 1)) / np.take_along_axis(s, j, 1)
+    q_max = np.max(np.where(np.arange(e.shape[1]) <= j, (delta - e) * k, 0.0), axis=1, keepdims=True)
+    reach = delta + (law.coefficient * q_max**law.exponent if law.coefficient else 0.0)
+    return reach.reshape(rel.shape[:-1])
 
 
 # --------------------------------------------------------------------------------------
@@ -754,6 +1011,36 @@ def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
                                   force=force, force_energy_balance=f_eb, approach_energy_balance=d_eb,
                                   stiffness_coefficient=k_s, stiffness_exponent=n, fit_error=err,
                                   energy_velocity=energy_velocity)
+
+
+# --------------------------------------------------------------------------------------
+# Load window: F_s against torque beside a reference
+# --------------------------------------------------------------------------------------
+
+
+def load_grid(torques, step: float, top: float | None = None) -> np.ndarray:
+    """Torques (N m) of the load window: every multiple of ``step`` up to ``top`` (default 1.25 ×
+    the largest of ``torques``), and the ``torques`` themselves (sorted, unique)."""
+    top = 1.25 * max(torques) if top is None else top
+    grid = step * np.arange(1, int(math.floor(top / step + 1e-9)) + 1)
+    return np.unique(np.concatenate([grid, np.asarray(torques, dtype=float)]))
+
+
+def load_window(grid: np.ndarray, force: np.ndarray, standard: np.ndarray, design: float) -> tuple[float, float]:
+    """[low, high] (N m) of the contiguous run of ``grid`` torques around ``design`` where
+    ``force`` is below ``standard`` (NaN, NaN when it is not at the design torque; the ends are
+    grid torques, so a window reaching a grid end may extend further)."""
+    beats = np.asarray(force) < np.asarray(standard)
+    k = int(np.argmin(np.abs(grid - design)))
+    if not beats[k]:
+        return math.nan, math.nan
+    lo = k
+    while lo > 0 and beats[lo - 1]:
+        lo -= 1
+    hi = k
+    while hi < grid.size - 1 and beats[hi + 1]:
+        hi += 1
+    return float(grid[lo]), float(grid[hi])
 
 
 # --------------------------------------------------------------------------------------
@@ -1047,7 +1334,7 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
 
     # static start: approach of all pairs at τ0 and its rate
     h = 1e-7 * g.transverse_base_pitch
-    d_lo, d0, d_hi = _approach_at(model, params, st.force, np.array([tau0 - h, tau0, tau0 + h])[:, None, None],
+    d_lo, d0, d_hi = _approach_at(model, params, model.lead_slopes(None, 1), st.force, np.array([tau0 - h, tau0, tau0 + h])[:, None, None],
                                   others=False)[:, 0, 0]
     v0 = (d_hi - d_lo) / (2 * h) * rate
     t_end = (tau1 - tau0) / rate

@@ -58,6 +58,7 @@ Local contact laws (``contact_law``)
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass
@@ -158,6 +159,82 @@ def _invert(d, c, coef: float, m: float, q_start=None, tol: float = 1e-14, max_i
             break
     q_out[pos] = q
     dq_out[pos] = 1.0 / (cc + coef * m * q ** (m - 1.0))
+    return q_out, dq_out
+
+
+#: Range and step of ln y of the tabulated universal inverse (:func:`invert_tabulated`).
+_TABLE_LOG_Y = (-80.0, 80.0, 1.0 / 32.0)
+
+
+@functools.lru_cache(maxsize=4)
+def _universal_inverse(m: float) -> tuple[np.ndarray, np.ndarray]:
+    """ln X and d ln X/d ln y on the grid of ln y (:data:`_TABLE_LOG_Y`), X(y) the root of
+    X + X^m = y, solved by Newton in ln X to round-off (each node independently)."""
+    lo, hi, h = _TABLE_LOG_Y
+    u = np.arange(lo, hi + 0.5 * h, h)
+    v = np.minimum(u, u / m)  # the larger-term asymptote, an upper bound of ln X
+    for _ in range(200):
+        x, xm = np.exp(v), np.exp(m * v)
+        step = (np.log(x + xm) - u) * (x + xm) / (x + m * xm)  # Newton on ln(X + X^m) = u in ln X
+        v = v - step
+        if np.all(np.abs(step) <= 1e-15 * np.maximum(1.0, np.abs(v))):
+            break
+    x, xm = np.exp(v), np.exp(m * v)
+    return v, (x + xm) / (x + m * xm)
+
+
+def law_scales(c, coef: float, m: float) -> tuple[np.ndarray, np.ndarray]:
+    """ln Q and ln(c·Q) of points of compliance ``c`` (m/N) under the law c·q + coef·q^m:
+    Q = (coef/c)^(1/(1−m)) is the load at which both terms are equal (:func:`invert_tabulated`)."""
+    log_c = np.log(c)
+    log_q = (math.log(coef) - log_c) / (1.0 - m)
+    return log_q, log_c + log_q
+
+
+def log_universal_inverse(u: np.ndarray, m: float) -> np.ndarray:
+    """ln X of the root X of X + X^m = y for ln y = ``u`` (array), from the table of
+    :func:`_universal_inverse` by cubic Hermite interpolation; NaN outside the table."""
+    lo, hi, h = _TABLE_LOG_Y
+    v_tab, s_tab = _universal_inverse(float(m))
+    t = (u - lo) * (1.0 / h)
+    inside = (t >= 0.0) & (t < v_tab.size - 1)
+    i = np.where(inside, t, 0.0).astype(np.intp)
+    t = t - i
+    t2 = t * t
+    h00, h01 = (2 * t - 3) * t2 + 1, (3 - 2 * t) * t2
+    h10, h11 = ((t - 2) * t + 1) * t * h, (t - 1) * t2 * h
+    v = h00 * v_tab[i] + h10 * s_tab[i] + h01 * v_tab[i + 1] + h11 * s_tab[i + 1]
+    return np.where(inside, v, np.nan) if not inside.all() else v
+
+
+def invert_tabulated(d, c, coef: float, m: float):
+    """q ≥ 0 with c·q + coef·q^m = d (elementwise; 0 where d ≤ 0) and dq/dd, from one universal
+    table instead of a Newton iteration per point: with Q = (coef/c)^(1/(1−m)) (the load at which
+    both terms are equal) q = Q·X(d/(c·Q)), X the root of X + X^m = y, tabulated once in
+    ln X against ln y and read by cubic Hermite interpolation (values and slopes at the nodes;
+    relative error of q about 1e-13 over the table, checked by test). dq/dd = X/(c·(X + m·(y − X)))
+    needs no power (X^m = y − X). Outside the table (|ln y| > 80) the exact :func:`_invert`.
+    For ``coef`` = 0 (linear law) q = d/c exactly."""
+    d = np.asarray(d, dtype=float)
+    c = np.broadcast_to(np.asarray(c, dtype=float), d.shape)
+    pos = d > 0
+    q_out, dq_out = np.zeros(d.shape), np.zeros(d.shape)
+    if not pos.any():
+        return q_out, dq_out
+    dd, cc = d[pos], c[pos]
+    if coef == 0.0:
+        q_out[pos], dq_out[pos] = dd / cc, 1.0 / cc
+        return q_out, dq_out
+    log_q, log_cq = law_scales(cc, coef, m)
+    u = np.log(dd) - log_cq
+    v = log_universal_inverse(u, m)
+    x, y = np.exp(v), np.exp(u)
+    q = np.exp(log_q + v)
+    dq = x / (cc * (x + m * (y - x)))
+    outside = np.isnan(v)
+    if outside.any():
+        q[outside], dq[outside] = _invert(dd[outside], cc[outside], coef, m)
+    q_out[pos], dq_out[pos] = q, dq
     return q_out, dq_out
 
 

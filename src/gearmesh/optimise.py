@@ -1,4 +1,5 @@
-"""Micro-geometry optimisation against the mesh-in impact force (seed 000), with pygad.
+"""Micro-geometry optimisation against the mesh-in impact (seed 000) over a load spectrum and the
+manufacturing tolerances, with pygad.
 
 Genes
 -----
@@ -10,22 +11,38 @@ pair-file keys). Seed 000's bounds, in terms of the normal module m_n and the fa
     0.001 m_n ≤ y1, y2, y5 ≤ 0.015 m_n,   0.1 m_n ≤ y3, y4 ≤ 0.8 m_n,   0 < y6 ≤ 0.5 B,
 
 each overridable; any gene can be fixed instead. Every decoded candidate is a valid
-modification by construction (:func:`decode`): relief lengths whose sum exceeds the active
-roll length of the flank are scaled down to fit it, an amount without a length (or the
-reverse) is no relief, and the unmodified lead length stays inside the face — so
+modification by construction (:func:`gearmesh.surface.fit_modifications`): relief lengths whose
+sum exceeds the active roll length of the flank are scaled down to fit it, an amount without a
+length (or the reverse) is no relief, and the unmodified lead length stays inside the face — so
 :func:`gearmesh.gear.validate_modifications` accepts every candidate and a run never
 stops on one.
 
 Objective
 ---------
-``force``: seed 000's F_s^max (:func:`gearmesh.impact.impact_response`, closed form) at the
-design torque and speed; ``velocity``: the impact velocity |v_n| there (seed 000's
-alternative); ``robust``: the maximum, or a weighted mean, of F_s over a list of torques
-(seed 000, Discussion 4: the duty cycle). A candidate whose entering pair never touches in
-the search window (scenario 'none') or whose force is not finite is *failed*: its objective
-is :data:`FAILURE_FACTOR` times the standard gear's, and failures are counted. So is a
-candidate whose touch has no closing velocity (a crossing the impact model did not resolve:
-its zero force would be an artefact the GA would exploit).
+A quantity per (torque, manufactured sample) — ``force``: seed 000's F_s^max
+(:func:`gearmesh.impact.impact_response`, closed form) at the pinion speed ``speed_rpm``;
+``velocity``: the impact velocity |v_n| (seed 000's alternative); ``robust``: F_s like
+``force``, the name for its load-spectrum and tolerance form (refused without either);
+``dynamic``: the peak dynamic mesh force (not available yet: one function, added to
+:data:`OBJECTIVE_VALUES`) — reduced in two steps:
+
+1. over the **load spectrum** ``torques`` (pinion torques; default the design torque alone):
+   the worst case (``statistic: max``) or the duty-cycle mean (``mean`` with ``weights`` the
+   time shares) — one number per manufactured gear;
+2. over the **manufactured population** (:mod:`gearmesh.tolerance`: the nominal and the
+   tolerance samples, drawn once per run): ``tolerance_statistic`` max, mean, percentile or
+   CVaR at ``tolerance_level`` %; None evaluates the nominal alone.
+
+Every gear of the population is scored over the whole spectrum first, because a gear is made
+once and then runs the whole duty cycle. Seed 000 asks for the modification that minimises the
+impact "across a specified operational load range" and warns that a single-load optimum
+degrades off-design; a single-torque nominal objective finds grazing touches (zero closing
+velocity at exactly one load) that are worse elsewhere. A candidate whose entering pair never
+touches in the search window (scenario 'none') or whose value is not finite, at any torque
+and sample evaluated, is *failed*: its objective is :data:`FAILURE_FACTOR` times the standard
+gear's, and failures are counted. So is a candidate whose touch has no closing velocity (a
+crossing the impact model did not resolve: its zero force would be an artefact the GA would
+exploit).
 
 Constraints (optional) are an exterior static penalty (Homaifar, Qi & Lai 1994, Simulation
 62(4); Coello Coello 2002, Comput. Methods Appl. Mech. Engrg. 191, §3.1): with m_k the
@@ -37,17 +54,23 @@ peak-to-peak LTE or the largest line load at the design torque
 so a candidate that spoils the LTE or the line load by more than ``factor_k`` pays in
 proportion to the excess, in units of the standard gear's objective f_std.
 
+Diagnostics of every optimum (:func:`diagnose`): its **load window** — the contiguous range of
+torques around the design torque over which its F_s beats the standard gear's, on a grid of
+``load_window_step`` finer than the spectrum (:func:`load_grid`) — its F_s under every
+tolerance sample at each spectrum torque (the **spread**), and the scenario at each torque.
+
 Methods
 -------
 ``ga``: pygad's GA as its authors intend — three-argument fitness returning −J (pygad
-maximises), one batch per generation (``fitness_batch_size`` = population), per-gene
-``gene_space`` {low, high}, ``random_seed``, ``on_generation`` recording the history.
+maximises), one batch per generation (``fitness_batch_size`` = population; the batch is every
+candidate × torque × sample in one impact evaluation), per-gene ``gene_space`` {low, high},
+``random_seed``, ``on_generation`` recording the history.
 Mutation is Gaussian (:func:`_gaussian_mutation`, a pygad user-defined mutation), crossover
 scattered (uniform), parents by 3-tournament, the best ``keep_elitism`` kept.
 ``nsga2``: pygad's NSGA-II on (F_s, LTE p-p) at the design torque, with the Pareto front of
 every evaluated candidate. ``random``: uniform random search with the GA's nominal budget
 (population × (generations + 1) evaluations, the same seed handling); as the baseline of a GA
-run it gets exactly the GA's number of distinct evaluations. Candidates already
+run (``random_baseline``) it gets exactly the GA's number of distinct evaluations. Candidates already
 evaluated are not evaluated again (a cache keyed by the genes), so ``evaluations`` counts
 distinct candidates. Same settings and seed → bit-identical history and optimum.
 """
@@ -57,24 +80,27 @@ from __future__ import annotations
 import logging
 import math
 import time
-from dataclasses import dataclass, field
-from typing import Any, Mapping
+from dataclasses import dataclass, field, replace
+from typing import Any, Callable, Mapping
 
 import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import GEARS, MAX_MODIFICATION_TO_MODULE, PairGeometry
-from .impact import SCENARIO_NONE, ImpactModel, impact_response, impact_static, ltca_metrics
-from .surface import MODIFICATION_FIELDS
+from .impact import SCENARIO_NONE, ImpactModel, impact_response, impact_static, load_grid, load_window, ltca_metrics
+from .surface import MODIFICATION_FIELDS, fit_modifications
+from .tolerance import (SAMPLINGS, ToleranceModel, apply_deviations, check_statistic, sample_statistic,
+                        unit_deviations)
 
 #: Progress of a run, one line per generation: the rule's log records it, and the CLI shows it
 #: on stderr in a terminal.
 LOG = logging.getLogger(__name__)
 
 __all__ = [
-    "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "FAILURE_FACTOR", "Gene",
-    "OptimiseSettings", "check_settings", "check_positive", "seed000_bounds", "gene_table", "decode", "Problem", "problem",
-    "Evaluation", "evaluate", "History", "OptimisationResult", "optimise", "random_search", "pareto_mask",
+    "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "OBJECTIVE_VALUES", "FAILURE_FACTOR", "Gene",
+    "OptimiseSettings", "check_settings", "check_positive", "seed000_bounds", "gene_table", "decode", "Problem",
+    "problem", "Evaluation", "evaluate", "load_statistic", "load_grid", "load_window", "Diagnostics", "diagnose",
+    "History", "OptimisationResult", "optimise", "random_search", "pareto_mask", "ImpactValues", "impact_values",
 ]
 
 #: Pair-file keys of y1..y6, in the order of :data:`gearmesh.surface.MODIFICATION_FIELDS`.
@@ -83,10 +109,9 @@ GENE_KEYS = ("root_relief_um", "tip_relief_um", "root_relief_length_mm", "tip_re
 GENE_SYMBOLS = ("y1", "y2", "y3", "y4", "y5", "y6")
 GENE_UNITS = ("um", "um", "mm", "mm", "um", "mm")
 _TO_SI = np.array([1e-6, 1e-6, 1e-3, 1e-3, 1e-6, 1e-3])
-_AMOUNT, _LENGTH = (0, 1, 4), (2, 3)
 METHODS = ("ga", "random", "nsga2")
-OBJECTIVES = ("force", "velocity", "robust")
-STATISTICS = ("max", "mean")
+OBJECTIVES = ("force", "velocity", "robust", "dynamic")
+LOAD_STATISTICS = ("max", "mean")
 #: A failed candidate's objective, in units of the standard gear's.
 FAILURE_FACTOR = 10.0
 
@@ -98,7 +123,14 @@ FAILURE_FACTOR = 10.0
 
 @dataclass(frozen=True)
 class OptimiseSettings:
-    """Checked optimiser settings (torques are pinion torques, N m; speed rpm)."""
+    """Checked optimiser settings: ``torque`` the design torque and ``torques`` the load spectrum
+    (pinion torques, N m; the design torque is one of them), ``weights`` their time shares
+    (statistic 'mean'), ``speed_rpm`` the pinion speed, ``tolerance_samples`` / ``sampling`` /
+    ``tolerance_seed`` the manufactured population (:mod:`gearmesh.tolerance`; 0 nominal only;
+    the seed defaults to the run's), ``tolerance_statistic``
+    its statistic in the objective (None: the nominal alone) at ``tolerance_level`` %,
+    ``load_window_step`` (N m) the grid of the load window, up to ``load_window_top`` (N m;
+    None: 1.25 × the largest spectrum torque)."""
 
     method: str = "ga"
     objective: str = "force"
@@ -106,18 +138,25 @@ class OptimiseSettings:
     generations: int = 30
     seed: int = 0
     torque: float = 1000.0
-    torques: tuple[float, ...] = (400.0, 1000.0, 1600.0)
+    torques: tuple[float, ...] = (1000.0,)
     weights: tuple[float, ...] | None = None
     statistic: str = "max"
     speed_rpm: float = 5000.0
+    tolerance_samples: int = 0
+    sampling: str = "lhs"
+    tolerance_seed: int = 0
+    tolerance_statistic: str | None = None
+    tolerance_level: float = 90.0
     lte_factor: float | None = None
     line_load_factor: float | None = None
     penalty: float = 10.0
     mutation_probability: float = 0.3
     mutation_scale: float = 0.1
     keep_elitism: int = 2
-    random_baseline: bool = True
+    random_baseline: bool = False
     energy_velocity: str = "transverse"
+    load_window_step: float = 50.0
+    load_window_top: float | None = None
 
     @property
     def budget(self) -> int:
@@ -130,8 +169,13 @@ class OptimiseSettings:
 
     @property
     def objective_torques(self) -> tuple[float, ...]:
-        """The torques the objective is evaluated at (the design torque first)."""
-        return self.torques if self.objective == "robust" else (self.torque,)
+        """The torques the objective is evaluated at (the load spectrum)."""
+        return self.torques
+
+    @property
+    def design_index(self) -> int:
+        """Index of the design torque among the objective torques."""
+        return int(np.argmin(np.abs(np.asarray(self.torques) - self.torque)))
 
 
 def _integer(field_name: str, value: Any, low: int, high: int) -> int:
@@ -156,36 +200,62 @@ def _choice(field_name: str, value: Any, allowed) -> str:
     return value
 
 
+def _weights(weights, torques: tuple[float, ...], statistic: str):
+    if weights is None:
+        return None
+    if not isinstance(weights, (list, tuple)) or len(weights) != len(torques):
+        raise GearmeshInputError("weights", weights, f"must be a list of {len(torques)} numbers, one per torque")
+    for k, w in enumerate(weights):
+        if isinstance(w, bool) or not isinstance(w, (int, float)) or not math.isfinite(w) or w < 0:
+            raise GearmeshInputError(f"weights[{k}]", w, "must be a finite number >= 0 (a time share)")
+    if sum(weights) <= 0:
+        raise GearmeshInputError("weights", weights, "must not all be zero")
+    if statistic != "mean":
+        raise GearmeshInputError("weights", weights, "apply to statistic 'mean' only (the duty-cycle mean)")
+    return tuple(float(w) for w in weights)
+
+
 def check_settings(method: str = "ga", objective: str = "force", population: int = 40, generations: int = 30,
-                   seed: int = 0, torque: float = 1000.0, torques=(400.0, 1000.0, 1600.0), weights=None,
-                   statistic: str = "max", speed_rpm: float = 5000.0, lte_factor=None, line_load_factor=None,
-                   penalty: float = 10.0, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
-                   keep_elitism: int = 2, random_baseline: bool = True,
-                   energy_velocity: str = "transverse") -> OptimiseSettings:
+                   seed: int = 0, torque: float = 1000.0, torques=None, weights=None,
+                   statistic: str = "max", speed_rpm: float = 5000.0, tolerance_samples: int = 0,
+                   sampling: str = "lhs", tolerance_seed: int | None = None,
+                   tolerance_statistic: str | None = None, tolerance_level: float = 90.0,
+                   lte_factor=None, line_load_factor=None, penalty: float = 10.0, mutation_probability: float = 0.3,
+                   mutation_scale: float = 0.1, keep_elitism: int = 2, random_baseline: bool = False,
+                   energy_velocity: str = "transverse", load_window_step: float = 50.0,
+                   load_window_top: float | None = None) -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
-    the field). Torques here are pinion torques (N m)."""
+    the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone."""
     from .ltca import check_torques
 
     method = _choice("method", method, METHODS)
     objective = _choice("objective", objective, OBJECTIVES)
+    if objective not in OBJECTIVE_VALUES:
+        raise GearmeshInputError("objective", objective, "is not available yet (the peak dynamic mesh force needs "
+                                                         "the contact-driven dynamics)")
     population = _integer("population", population, 4, 100_000)
     generations = _integer("generations", generations, 1, 100_000)
     seed = _integer("seed", seed, 0, 2**32 - 1)
     torque = check_positive("torque_Nm", torque)
-    torques = tuple(float(t) for t in check_torques(torques, "torques_Nm"))
-    statistic = _choice("statistic", statistic, STATISTICS)
-    if weights is not None:
-        if not isinstance(weights, (list, tuple)) or len(weights) != len(torques):
-            raise GearmeshInputError("weights", weights, f"must be a list of {len(torques)} numbers, one per torque")
-        for k, w in enumerate(weights):
-            if isinstance(w, bool) or not isinstance(w, (int, float)) or not math.isfinite(w) or w < 0:
-                raise GearmeshInputError(f"weights[{k}]", w, "must be a finite number >= 0")
-        if sum(weights) <= 0:
-            raise GearmeshInputError("weights", weights, "must not all be zero")
-        weights = tuple(float(w) for w in weights)
-        if statistic != "mean":
-            raise GearmeshInputError("weights", weights, "apply to statistic 'mean' only")
-    if method == "nsga2" and objective != "force":
+    torques = (torque,) if torques is None else tuple(float(t) for t in check_torques(torques, "torques_Nm"))
+    if len(set(torques)) != len(torques):
+        raise GearmeshInputError("torques_Nm", list(torques), "must not repeat a torque")
+    if not any(abs(t - torque) <= 1e-9 * torque for t in torques):
+        raise GearmeshInputError("torque_Nm", torque, f"must be one of torques_Nm {list(torques)} (the design torque "
+                                                      "of the load spectrum)")
+    statistic = _choice("statistic", statistic, LOAD_STATISTICS)
+    weights = _weights(weights, torques, statistic)
+    tolerance_samples = _integer("tolerance_samples", tolerance_samples, 0, 4096)
+    sampling = _choice("sampling", sampling, SAMPLINGS)
+    tolerance_seed = seed if tolerance_seed is None else _integer("tolerances.seed", tolerance_seed, 0, 2**32 - 1)
+    check_statistic(tolerance_statistic, tolerance_level, "tolerance_statistic")
+    if tolerance_statistic is not None and tolerance_samples == 0:
+        raise GearmeshInputError("tolerance_statistic", tolerance_statistic, "needs tolerance samples "
+                                                                             "(tolerance_samples > 0)")
+    if objective == "robust" and len(torques) < 2 and tolerance_statistic is None:
+        raise GearmeshInputError("objective", objective, "needs a load spectrum (two or more torques_Nm) or tolerance "
+                                                         "samples with a tolerance_statistic; use 'force' for one point")
+    if method == "nsga2" and objective not in ("force", "robust"):
         raise GearmeshInputError("objective", objective, "must be 'force' with method nsga2 (F_s against LTE p-p)")
     speed_rpm = check_positive("speed_rpm", speed_rpm)
     if speed_rpm > 1e6:
@@ -202,9 +272,21 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
     energy_velocity = _choice("energy_velocity", energy_velocity, ("transverse", "normal"))
     if not isinstance(random_baseline, bool):
         raise GearmeshInputError("random_baseline", random_baseline, "must be true or false")
+    load_window_step = check_positive("load_window_step_Nm", load_window_step)
+    spacing = np.diff(sorted(torques))
+    if spacing.size and load_window_step >= spacing.min():
+        raise GearmeshInputError("load_window_step_Nm", load_window_step, "must be finer than the spacing of "
+                                                                          f"torques_Nm ({spacing.min():g} N m)")
+    top = 1.25 * max(torques) if load_window_top is None else check_positive("load_window_top_Nm", load_window_top)
+    if top < max(torques):
+        raise GearmeshInputError("load_window_top_Nm", top, f"must reach the largest torque {max(torques):g} N m")
+    if top / load_window_step > 2000:
+        raise GearmeshInputError("load_window_step_Nm", load_window_step, "gives more than 2000 window torques")
     return OptimiseSettings(method, objective, population, generations, seed, torque, torques, weights, statistic,
-                            speed_rpm, lte_factor, line_load_factor, penalty, float(mutation_probability),
-                            float(mutation_scale), keep_elitism, random_baseline, energy_velocity)
+                            speed_rpm, tolerance_samples, sampling, tolerance_seed, tolerance_statistic,
+                            float(tolerance_level), lte_factor, line_load_factor, penalty,
+                            float(mutation_probability), float(mutation_scale), keep_elitism, random_baseline,
+                            energy_velocity, load_window_step, top)
 
 
 # --------------------------------------------------------------------------------------
@@ -309,40 +391,72 @@ def gene_table(geom: PairGeometry, modify=("pinion",), bounds: Mapping[str, Any]
 
 
 def decode(geom: PairGeometry, genes: tuple[Gene, ...], base: np.ndarray, values) -> np.ndarray:
-    """Modification parameters (C, 2, 6) in m of gene values (C, G) (µm / mm), repaired so that
-    every candidate is a valid modification (module docstring): relief lengths scaled to fit
-    the active roll length, amount and length zero together, y6 below the face width."""
+    """Modification parameters (C, 2, 6) in m of gene values (C, G) (µm / mm), made valid
+    modifications by :func:`gearmesh.surface.fit_modifications` (module docstring)."""
     values = np.atleast_2d(np.asarray(values, dtype=float))
     p = np.broadcast_to(base, (values.shape[0], 2, 6)).copy()
     for k, gene in enumerate(genes):
         p[:, gene.gear, gene.field] = values[:, k] * _TO_SI[gene.field]
-    for gear in range(2):
-        active = float(geom.rho_eap[gear] - geom.rho_sap[gear]) * (1 - 1e-9)
-        total = p[:, gear, 2] + p[:, gear, 3]
-        scale = np.where(total > active, active / np.where(total > 0, total, 1.0), 1.0)
-        p[:, gear, 2:4] *= scale[:, None]
-        for amount, length in ((0, 2), (1, 3)):
-            none = (p[:, gear, amount] <= 0) | (p[:, gear, length] <= 0)
-            p[none, gear, amount] = 0.0
-            p[none, gear, length] = 0.0
-        p[:, gear, 5] = np.minimum(p[:, gear, 5], geom.face_width * (1 - 1e-6))
-    return p
+    return fit_modifications(geom, p)
 
 
 # --------------------------------------------------------------------------------------
-# The objective, for a whole population at once
+# The objective, for a whole population × load spectrum × manufactured population at once
 # --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ImpactValues:
+    """The impact of N micro-geometries (rows) at T torques and the objective speed (SI): ``force``
+    F_s closed form, ``force_energy_balance``, ``velocity`` |v_n|, ``scenario`` (N, T)."""
+
+    force: np.ndarray
+    force_energy_balance: np.ndarray
+    velocity: np.ndarray
+    scenario: np.ndarray
+
+
+def impact_values(model: ImpactModel, settings: OptimiseSettings, params: np.ndarray, lead: np.ndarray,
+                  torques) -> ImpactValues:
+    """F_s, |v_n| and scenario of parameter sets ``params`` (N, 2, 6) with lead slopes ``lead``
+    (N, 2) at pinion ``torques`` and the settings' speed: one batch of the impact model."""
+    static = impact_static(model, list(torques), params, lead_slope=lead, engagement=False)
+    static, resp = impact_response(model, static, [settings.speed_rpm], energy_velocity=settings.energy_velocity)
+    return ImpactValues(resp.force[..., 0], resp.force_energy_balance[..., 0], resp.velocity_normal[..., 0],
+                        static.scenario)
+
+
+#: The objective quantity per (row, torque) of each objective: f(problem, params (N, 2, 6), lead
+#: (N, 2), impact values) -> (N, T). 'dynamic' (the peak dynamic mesh force over the speed range,
+#: from the contact-driven dynamics) is added here when it exists; until then it is refused.
+OBJECTIVE_VALUES: dict[str, Callable[["Problem", np.ndarray, np.ndarray, ImpactValues], np.ndarray]] = {
+    "force": lambda prob, params, lead, iv: iv.force,
+    "velocity": lambda prob, params, lead, iv: iv.velocity,
+    "robust": lambda prob, params, lead, iv: iv.force,
+}
+
+
+def load_statistic(values: np.ndarray, statistic: str, weights=None) -> np.ndarray:
+    """The load-spectrum statistic over the last axis (torques): the largest value (``max``) or the
+    duty-cycle mean (``mean``) with ``weights`` the time shares (equal shares without)."""
+    values = np.asarray(values, dtype=float)
+    if statistic == "max":
+        return values.max(axis=-1)
+    w = np.ones(values.shape[-1]) if weights is None else np.asarray(weights, dtype=float)
+    return values @ (w / w.sum())
 
 
 @dataclass(frozen=True)
 class Evaluation:
     """Objective and diagnostics of C candidates (SI): ``objective`` J (C,) (N, or m/s for
-    'velocity', penalties included), ``force`` F_s (C, T) at the objective torques,
-    ``velocity`` |v_n| (C, T), ``scenario`` (C, T), ``failed`` (C,), ``lte_peak_to_peak`` (C,) m
+    'velocity', penalties included); per (C, S, T) — S the manufactured population evaluated
+    (sample 0 the nominal), T the objective torques — ``value`` the objective quantity,
+    ``force`` F_s, ``velocity`` |v_n|, ``scenario``; ``failed`` (C,), ``lte_peak_to_peak`` (C,) m
     and ``max_line_load`` (C,) N/m at the design torque (NaN when not needed), ``violation``
     (C,) the summed relative constraint excess."""
 
     objective: np.ndarray
+    value: np.ndarray
     force: np.ndarray
     velocity: np.ndarray
     scenario: np.ndarray
@@ -352,39 +466,19 @@ class Evaluation:
     violation: np.ndarray
 
 
-def _raw(model: ImpactModel, s: OptimiseSettings, params: np.ndarray, metrics: bool):
-    """F_s, |v_n|, scenario (C, T) at the objective torques; LTE p-p and line load (C,)."""
-    static = impact_static(model, list(s.objective_torques), params)
-    static, resp = impact_response(model, static, [s.speed_rpm], energy_velocity=s.energy_velocity)
-    force, vel = resp.force[..., 0], resp.velocity_normal[..., 0]
-    nc = params.shape[0]
-    if metrics:
-        lte, line = (v[:, 0] for v in ltca_metrics(model, [s.torque], params))
-    else:
-        lte = line = np.full(nc, np.nan)
-    return force, vel, static.scenario, lte, line
-
-
-def _reduce(s: OptimiseSettings, force: np.ndarray, vel: np.ndarray) -> np.ndarray:
-    """The unpenalised objective f (C,) from F_s and |v_n| (C, T)."""
-    if s.objective == "velocity":
-        return vel[:, 0]
-    if s.objective == "force" or s.statistic == "max":
-        return force.max(axis=1)
-    w = np.ones(force.shape[1]) if s.weights is None else np.asarray(s.weights)
-    return force @ (w / w.sum())
-
-
 @dataclass(frozen=True)
 class Problem:
     """Everything an evaluation needs: the impact model, the genes, the base parameters, the
-    settings and the standard (unmodified) gear's objective and metrics."""
+    settings, the tolerance model with its unit deviations (S, k) (drawn once), and the
+    standard (unmodified) gear's evaluation."""
 
     model: ImpactModel
     genes: tuple[Gene, ...]
     base: np.ndarray
     settings: OptimiseSettings
-    standard: Evaluation
+    tolerance: ToleranceModel
+    deviations: np.ndarray
+    standard: Evaluation | None
 
     @property
     def geom(self) -> PairGeometry:
@@ -393,44 +487,128 @@ class Problem:
     def decode(self, values) -> np.ndarray:
         return decode(self.geom, self.genes, self.base, values)
 
+    @property
+    def population_deviations(self) -> np.ndarray:
+        """The deviations the objective sees: all samples, or none for a nominal objective."""
+        d = self.deviations
+        return d if self.settings.tolerance_statistic is not None else d[:0]
+
+
+def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) -> Evaluation:
+    """:func:`evaluate`, against the ``standard`` evaluation (None: evaluating the standard itself)."""
+    s, model = prob.settings, prob.model
+    deviations = prob.population_deviations
+    nc = params.shape[0]
+    ns = deviations.shape[0] + 1
+    rows, lead = _manufactured_rows(model, prob.tolerance, params, deviations)
+    iv = impact_values(model, s, rows, lead, s.objective_torques)
+    value = OBJECTIVE_VALUES[s.objective](prob, rows, lead, iv)
+    shape = (nc, ns, len(s.objective_torques))
+    value, force, vel, scen = (a.reshape(shape) for a in (value, iv.force, iv.velocity, iv.scenario))
+    per_gear = load_statistic(value, s.statistic, s.weights)  # (C, S): each manufactured gear over the spectrum
+    f = per_gear[:, 0] if s.tolerance_statistic is None else sample_statistic(per_gear, s.tolerance_statistic,
+                                                                              s.tolerance_level)
+    metrics = s.constrained or s.method == "nsga2"
+    if metrics:
+        lte, line = (v[:, 0] for v in ltca_metrics(model, [s.torque], params))
+    else:
+        lte = line = np.full(nc, np.nan)
+    # failed: no impact found, a non-finite value, or a touch without a closing velocity (a
+    # crossing the impact model did not resolve: zero force would be an artefact, not an optimum)
+    failed = (~np.isfinite(f) | np.any(scen == SCENARIO_NONE, axis=(1, 2)) | ~np.all(np.isfinite(value), axis=(1, 2))
+              | np.any(~(vel > 0), axis=(1, 2)))
+    if standard is None:
+        return Evaluation(f, value, force, vel, scen, failed, lte, line, np.zeros(nc))
+    violation = np.zeros(nc)
+    for factor, m, ref in ((s.lte_factor, lte, standard.lte_peak_to_peak), (s.line_load_factor, line,
+                                                                              standard.max_line_load)):
+        if factor is not None:
+            with np.errstate(invalid="ignore"):
+                violation += np.maximum(0.0, m / (factor * ref[0]) - 1.0)
+    failed |= ~np.isfinite(violation)
+    j = f + s.penalty * standard.objective[0] * violation
+    j = np.where(failed, FAILURE_FACTOR * standard.objective[0], j)
+    if s.method == "nsga2":
+        lte = np.where(failed, FAILURE_FACTOR * standard.lte_peak_to_peak[0], lte)
+    return Evaluation(j, value, force, vel, scen, failed, lte, line, np.where(failed, np.nan, violation))
+
+
+def _manufactured_rows(model: ImpactModel, tolerance: ToleranceModel, params: np.ndarray, deviations: np.ndarray):
+    """Rows (C·S, 2, 6) and lead slopes (C·S, 2) of the manufactured population of each candidate
+    (sample 0 the nominal), made valid modifications."""
+    p, lead = apply_deviations(tolerance, params, model.lead_slope, deviations)
+    return fit_modifications(model.geom, p.reshape(-1, 2, 6)), lead.reshape(-1, 2)
+
 
 def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), bounds=None,
-            fixed=None) -> Problem:
-    """Set up the optimisation of ``model``'s pair (its standard gear evaluated once)."""
+            fixed=None, tolerance: ToleranceModel | None = None) -> Problem:
+    """Set up the optimisation of ``model``'s pair: genes, the manufactured population's unit
+    deviations (``settings.tolerance_samples`` of ``tolerance``, seeded by the settings' seed),
+    and the standard (unmodified) gear evaluated once, with the same population."""
     genes, base = gene_table(model.geom, modify, bounds, fixed)
-    zero = np.zeros((1, 2, 6))
-    metrics = settings.constrained or settings.method == "nsga2"
-    force, vel, scen, lte, line = _raw(model, settings, zero, metrics)
-    f = _reduce(settings, force, vel)
-    if not np.all(np.isfinite(f)) or np.any(scen == SCENARIO_NONE):
-        raise GearmeshInputError("torques_Nm" if settings.objective == "robust" else "torque_Nm",
+    tolerance = tolerance or ToleranceModel(np.zeros((2, 6)), np.zeros(2))
+    deviations = unit_deviations(len(tolerance.dimensions), settings.tolerance_samples, settings.sampling,
+                                 settings.tolerance_seed)
+    if settings.tolerance_statistic is not None and deviations.shape[0] == 0:
+        raise GearmeshInputError("tolerances", None, "define no deviation (no lead grade, no modification "
+                                                     "tolerance): the tolerance statistic has nothing to sample")
+    prob = Problem(model, genes, base, settings, tolerance, deviations, None)
+    standard = _evaluate(prob, np.zeros((1, 2, 6)), None)
+    if not np.all(np.isfinite(standard.objective)) or np.any(standard.scenario == SCENARIO_NONE):
+        raise GearmeshInputError("torques_Nm" if len(settings.objective_torques) > 1 else "torque_Nm",
                                  list(settings.objective_torques),
                                  "gives the standard (unmodified) gear no mesh-in impact: nothing to reduce")
-    standard = Evaluation(f, force, vel, scen, np.zeros(1, bool), lte, line, np.zeros(1))
-    return Problem(model, genes, base, settings, standard)
+    return replace(prob, standard=standard)
 
 
 def evaluate(prob: Problem, params: np.ndarray) -> Evaluation:
-    """The objective of candidates ``params`` (C, 2, 6) m in one batch (module docstring)."""
-    s, std = prob.settings, prob.standard
-    metrics = s.constrained or s.method == "nsga2"
-    force, vel, scen, lte, line = _raw(prob.model, s, params, metrics)
-    f = _reduce(s, force, vel)
-    # failed: no impact found, a non-finite force, or a touch without a closing velocity (a
-    # crossing the impact model did not resolve: zero force would be an artefact, not an optimum)
-    failed = (~np.isfinite(f) | np.any(scen == SCENARIO_NONE, axis=1) | ~np.all(np.isfinite(force), axis=1)
-              | np.any(~(vel > 0), axis=1))
-    violation = np.zeros(params.shape[0])
-    for factor, value, ref in ((s.lte_factor, lte, std.lte_peak_to_peak), (s.line_load_factor, line, std.max_line_load)):
-        if factor is not None:
-            with np.errstate(invalid="ignore"):
-                violation += np.maximum(0.0, value / (factor * ref[0]) - 1.0)
-    failed |= ~np.isfinite(violation)
-    j = f + s.penalty * std.objective[0] * violation
-    j = np.where(failed, FAILURE_FACTOR * std.objective[0], j)
-    if s.method == "nsga2":
-        lte = np.where(failed, FAILURE_FACTOR * std.lte_peak_to_peak[0], lte)
-    return Evaluation(j, force, vel, scen, failed, lte, line, np.where(failed, np.nan, violation))
+    """The objective of candidates ``params`` (C, 2, 6) m: every candidate × torque × manufactured
+    sample in one batch of the impact model (module docstring)."""
+    return _evaluate(prob, params, prob.standard)
+
+
+# --------------------------------------------------------------------------------------
+# Diagnostics of an optimum: load window, tolerance spread, scenario per torque
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Diagnostics:
+    """An optimum against the standard gear (SI): ``window_torque`` (W,) the load-window grid
+    (pinion, N m), ``window_force`` / ``window_standard`` (W,) their nominal F_s there,
+    ``window_scenario`` / ``window_standard_scenario`` (W,), ``load_window`` (low, high) N m;
+    ``spread_force`` / ``spread_standard`` (S, T) F_s of every manufactured sample (0 the nominal)
+    at the objective torques, ``spread_scenario`` (S, T)."""
+
+    window_torque: np.ndarray
+    window_force: np.ndarray
+    window_standard: np.ndarray
+    window_scenario: np.ndarray
+    window_standard_scenario: np.ndarray
+    load_window: tuple[float, float]
+    spread_force: np.ndarray
+    spread_standard: np.ndarray
+    spread_scenario: np.ndarray
+    spread_standard_scenario: np.ndarray
+
+
+def diagnose(prob: Problem, params: np.ndarray) -> Diagnostics:
+    """Load window, tolerance spread and scenarios of the micro-geometry ``params`` (2, 6) against
+    the standard gear (module docstring): two batches of the impact model."""
+    s, model = prob.settings, prob.model
+    both = np.stack([np.asarray(params, dtype=float), np.zeros((2, 6))])
+    grid = load_grid(s.objective_torques, s.load_window_step, s.load_window_top)
+    lead = np.broadcast_to(np.asarray(model.lead_slope, dtype=float), (2, 2))
+    w = impact_values(model, s, both, lead, grid)
+    rows, rows_lead = _manufactured_rows(model, prob.tolerance, both, prob.deviations)
+    sp = impact_values(model, s, rows, rows_lead, s.objective_torques)
+    shape = (2, prob.deviations.shape[0] + 1, len(s.objective_torques))
+    force, scen = sp.force.reshape(shape), sp.scenario.reshape(shape)
+    return Diagnostics(window_torque=grid, window_force=w.force[0], window_standard=w.force[1],
+                       window_scenario=w.scenario[0], window_standard_scenario=w.scenario[1],
+                       load_window=load_window(grid, w.force[0], w.force[1], s.torque),
+                       spread_force=force[0], spread_standard=force[1], spread_scenario=scen[0],
+                       spread_standard_scenario=scen[1])
 
 
 # --------------------------------------------------------------------------------------
@@ -441,8 +619,8 @@ def evaluate(prob: Problem, params: np.ndarray) -> Evaluation:
 @dataclass
 class History:
     """Per generation g = 0..G (0 the initial population): ``genes`` (G+1, P, n) in µm / mm,
-    ``objective`` (G+1, P) J, ``force`` (G+1, P) F_s at the design torque (the first objective
-    torque), ``scenario`` (G+1, P) there, ``failed`` (G+1, P), ``lte`` (G+1, P) (NaN unless
+    ``objective`` (G+1, P) J, ``force`` (G+1, P) nominal F_s at the design torque, ``scenario``
+    (G+1, P) there, ``failed`` (G+1, P), ``lte`` (G+1, P) (NaN unless
     computed), ``evaluations`` (G+1,) distinct evaluations so far."""
 
     genes: list = field(default_factory=list)
@@ -482,8 +660,9 @@ class _Evaluator:
                 seen.add(key)
         if new:
             ev = evaluate(self.prob, self.prob.decode(values[new]))
+            d = self.prob.settings.design_index
             for i, k in enumerate(new):
-                self.cache[keys[k]] = (float(ev.objective[i]), float(ev.force[i, 0]), int(ev.scenario[i, 0]),
+                self.cache[keys[k]] = (float(ev.objective[i]), float(ev.force[i, 0, d]), int(ev.scenario[i, 0, d]),
                                        bool(ev.failed[i]), float(ev.lte_peak_to_peak[i]))
             self.count += len(new)
         return [self.cache[key] for key in keys]
@@ -506,7 +685,8 @@ class OptimisationResult:
     """A run: its ``history``, the ``optimum`` genes (µm / mm) and parameters (2, 6) m, the
     evaluation of the optimum and of the standard gear, ``evaluations`` (distinct candidates),
     ``wall_s``; ``baseline`` the random search of the same budget (or None); ``pareto``
-    (genes (K, n), F_s (K,), LTE p-p (K,)) for NSGA-II."""
+    (genes (K, n), F_s (K,), LTE p-p (K,)) for NSGA-II; ``diagnostics`` the optimum's load
+    window, tolerance spread and scenarios (:func:`diagnose`)."""
 
     problem: Problem
     method: str
@@ -518,6 +698,7 @@ class OptimisationResult:
     wall_s: float
     baseline: "OptimisationResult | None" = None
     pareto: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+    diagnostics: Diagnostics | None = None
 
 
 def _gene_space(genes: tuple[Gene, ...]) -> list[dict[str, float]]:
@@ -624,7 +805,7 @@ def _finish(prob: Problem, method: str, history: History, ev: _Evaluator, wall: 
     optimum_genes = genes[best]
     optimum = prob.decode(optimum_genes)[0]
     return OptimisationResult(prob, method, history, optimum_genes, optimum, evaluate(prob, optimum[None]),
-                              ev.count, wall, None, pareto)
+                              ev.count, wall, None, pareto, diagnose(prob, optimum))
 
 
 def optimise(prob: Problem) -> OptimisationResult:
@@ -635,7 +816,5 @@ def optimise(prob: Problem) -> OptimisationResult:
         return random_search(prob)
     result = _run_pygad(prob)
     if s.random_baseline:
-        from dataclasses import replace
-
         result = replace(result, baseline=random_search(prob, result.evaluations))
     return result

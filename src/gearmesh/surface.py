@@ -221,25 +221,42 @@ def relief_depth(params, rho_sap: float, rho_eap: float, face_width: float, rho,
     modifications, e.g. a GA population of shape (C, 1, 6) against points (1, M)). A zero
     amount or zero length is no relief; ρ = NaN gives 0.
     """
-    p = np.moveaxis(np.asarray(params, dtype=float), -1, 0)
-    y1, y2, y3, y4, y5, y6 = p
+    y1, y2, y3, y4, y5, y6 = np.moveaxis(np.asarray(params, dtype=float), -1, 0)
     rho = np.asarray(rho, dtype=float)
     z = np.asarray(z, dtype=float)
-    shape = np.broadcast_shapes(y1.shape, rho.shape, z.shape)
-    depth = np.zeros(shape)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        if np.any((y2 > 0) & (y4 > 0)):  # tip relief (skipped where no set has one: the common case)
-            depth = depth + np.where((y2 > 0) & (y4 > 0) & (rho > rho_eap - y4),
-                                     y2 * ((rho - (rho_eap - y4)) / np.where(y4 > 0, y4, 1.0)) ** 2, 0.0)
-        if np.any((y1 > 0) & (y3 > 0)):  # root relief
-            depth = depth + np.where((y1 > 0) & (y3 > 0) & (rho < rho_sap + y3),
-                                     y1 * ((rho_sap + y3 - rho) / np.where(y3 > 0, y3, 1.0)) ** 2, 0.0)
-        if np.any(y5 > 0):  # crowning
-            half = 0.5 * y6
-            span = np.where(face_width > y6, 0.5 * (face_width - y6), 1.0)
-            az = np.abs(z)
-            depth = depth + np.where((y5 > 0) & (az > half), y5 * ((az - half) / span) ** 2, 0.0)
-    return np.where(np.isnan(rho), 0.0, depth)
+    depth = np.zeros(np.broadcast_shapes(y1.shape, rho.shape, z.shape))
+    # each relief as amount·(max(0, distance into its zone)/length)², amount and reciprocal length
+    # taken zero where either is zero — on the small parameter arrays, not on the points
+    with np.errstate(invalid="ignore"):  # ρ = NaN propagates, set to 0 below
+        for amount, length, into in ((y2, y4, rho - (rho_eap - y4)), (y1, y3, (rho_sap + y3) - rho)):
+            on = (amount > 0) & (length > 0)
+            if np.any(on):  # skipped where no set has this relief (the common case)
+                r = np.maximum(into, 0.0) * np.where(on, 1.0 / np.where(on, length, 1.0), 0.0)
+                depth = depth + np.where(on, amount, 0.0) * (r * r)
+    if np.any(y5 > 0):  # crowning
+        r = np.maximum(np.abs(z) - 0.5 * y6, 0.0) / np.where(face_width > y6, 0.5 * (face_width - y6), 1.0)
+        depth = depth + np.where(y5 > 0, y5, 0.0) * (r * r)
+    nan = np.isnan(rho)
+    return np.where(nan, 0.0, depth) if nan.any() else depth
+
+
+def fit_modifications(geom: PairGeometry, params) -> np.ndarray:
+    """Parameter sets (C, 2, 6) (m) made valid modifications of ``geom``'s flanks (a copy): relief
+    lengths whose sum exceeds the active roll length scaled down to fit it, an amount without a
+    length (or the reverse) no relief, the unmodified lead length inside the face — so
+    :func:`gearmesh.gear.validate_modifications` accepts every set (GA candidates, tolerance samples)."""
+    p = np.array(params, dtype=float, ndmin=3)
+    for gear in range(2):
+        active = float(geom.rho_eap[gear] - geom.rho_sap[gear]) * (1 - 1e-9)
+        total = p[:, gear, 2] + p[:, gear, 3]
+        scale = np.where(total > active, active / np.where(total > 0, total, 1.0), 1.0)
+        p[:, gear, 2:4] *= scale[:, None]
+        for amount, length in ((0, 2), (1, 3)):
+            none = (p[:, gear, amount] <= 0) | (p[:, gear, length] <= 0)
+            p[none, gear, amount] = 0.0
+            p[none, gear, length] = 0.0
+        p[:, gear, 5] = np.minimum(p[:, gear, 5], geom.face_width * (1 - 1e-6))
+    return p
 
 
 def modification_depth(geom: PairGeometry, gear: int, rho, z) -> np.ndarray:

@@ -174,10 +174,13 @@ def lead_deviation(geom: PairGeometry, lead_slope: tuple[float, float], z) -> np
     flank by f·z/b; the mesh sees their sum, the misalignment f1 + f2, as the gap
     (f1 + f2)·z/b + |f1 + f2|/2 ≥ 0 (zero at one face end). Equal and opposite errors of
     pinion and gear cancel exactly: an aligned pair with matching errors has zero TE.
+
+    ``lead_slope`` is a pair (f1, f2) or an array (..., 2) of pairs whose leading axes
+    broadcast against ``z`` (one pair per row of a batch: tolerance samples of the impact model).
     """
     z = np.asarray(z, dtype=float)
-    f = float(sum(lead_slope))
-    return f * z / geom.face_width + 0.5 * abs(f)
+    f = np.sum(np.asarray(lead_slope, dtype=float), axis=-1)
+    return f * z / geom.face_width + 0.5 * np.abs(f)
 
 
 @dataclass(frozen=True)
@@ -353,11 +356,17 @@ def basis_gap(geom: PairGeometry, basis: SeparationBasis, z, lead_slope=(0.0, 0.
     if params is None:
         params = modification_parameters(geom)
     params = np.asarray(params, dtype=float)
-    d1 = relief_depth(params[..., 0, :], float(geom.rho_sap[0]), float(geom.rho_eap[0]), geom.face_width,
-                      np.nan_to_num(basis.rho_pinion), z)
-    d2 = relief_depth(params[..., 1, :], float(geom.rho_sap[1]), float(geom.rho_eap[1]), geom.face_width,
-                      np.nan_to_num(basis.rho_gear), z)
-    return basis.base + basis.w_pinion * d1 + basis.w_gear * d2 + lead_deviation(geom, lead_slope, z)
+    lead = np.asarray(lead_slope, dtype=float)
+    shape = np.broadcast_shapes(basis.base.shape, params.shape[:-2], np.shape(z), lead.shape[:-1])
+    gap = basis.base
+    for gear, (w, rho) in enumerate(((basis.w_pinion, basis.rho_pinion), (basis.w_gear, basis.rho_gear))):
+        p = params[..., gear, :]
+        if np.any(p):  # an unmodified flank adds nothing (the common case for one of the gears)
+            gap = gap + w * relief_depth(p, float(geom.rho_sap[gear]), float(geom.rho_eap[gear]), geom.face_width,
+                                         np.nan_to_num(rho), z)
+    if np.any(lead):
+        gap = gap + lead_deviation(geom, lead, z)
+    return gap if gap.shape == shape else np.array(np.broadcast_to(gap, shape))
 
 
 def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)) -> np.ndarray:

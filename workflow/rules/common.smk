@@ -19,12 +19,14 @@ except GearmeshInputError as exc:
 
 
 VARIANTS = list(config["variants"])
+RUNS = list(config.get("optimise") or {})
 
 
 wildcard_constraints:
     study=STUDY,
     pair="|".join(PAIRS),
     variant="|".join(VARIANTS),
+    run="|".join(RUNS) or "^$",
 
 
 def fe_tables(section):
@@ -49,10 +51,11 @@ def variant_pair_file(wildcards):
 
 
 def variant_source_pair(wildcards):
-    """The input of the variant_pair job: the pair file, or for a variant {from: optimise} the
-    optimiser's pair file (its optimum, rule optimise)."""
-    if config["variants"][wildcards.variant].get("from") == "optimise":
-        return f"results/{wildcards.study}/{wildcards.pair}/optimise/pair.yaml"
+    """The input of the variant_pair job: the pair file, or for a variant {from: optimise.NAME}
+    that optimisation's pair file (its optimum, rule optimise)."""
+    source = config["variants"][wildcards.variant].get("from")
+    if source:
+        return f"results/{wildcards.study}/{wildcards.pair}/optimise/{source.split('.', 1)[1]}/pair.yaml"
     return pair_file(wildcards)
 
 
@@ -118,13 +121,13 @@ def all_targets():
     if "impact" in config:
         for name in config["pairs"]:
             targets += [f"results/{STUDY}/{name}/impact_table.nc", f"results/{STUDY}/{name}/impact_table.csv",
-                        f"results/{STUDY}/{name}/plots/impact_force.png"]
-    if "optimise" in config:
+                        f"results/{STUDY}/{name}/plots/impact_force.png", f"results/{STUDY}/{name}/plots/robustness.png"]
+    for run, section in (config.get("optimise") or {}).items():
         for name in config["pairs"]:
-            base = f"results/{STUDY}/{name}/optimise"
+            base = f"results/{STUDY}/{name}/optimise/{run}"
             targets += [f"{base}/ga.nc", f"{base}/pair.yaml", f"{base}/plots/convergence.png",
                         f"{base}/plots/modification.png"]
-            if config["optimise"]["method"] == "nsga2":
+            if section["method"] == "nsga2":
                 targets.append(f"{base}/plots/pareto.png")
     if "dynamics" in config:
         targets += [f"results/{STUDY}/{name}/plots/dynamics_variants.png" for name in config["pairs"]]
@@ -158,6 +161,7 @@ def all_targets():
 # snakemake.config), category = the stage, subcategory = the pair, pair / variant, or study tables.
 BY_PAIR = "{pair}"
 BY_VARIANT = "{pair} / {variant}"
+BY_RUN = "{pair} / {run}"
 STUDY_TABLES = "study tables"
 
 

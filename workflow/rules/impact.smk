@@ -15,7 +15,9 @@ rule impact:
         "logs/{study}/{pair}/{variant}/impact.log",
     params:
         function=versioned("gearmesh.datasets.impact:impact_dataset"),
-        settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant},
+        # the study's manufacturing tolerances give each variant's tolerance spread
+        settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant,
+                                    "tolerances": config.get("tolerances")},
     conda:
         ENV
     script:
@@ -61,11 +63,13 @@ rule impact_table:
 
 
 rule plot_impact_variants:
-    """All variants on one axis: impact force against torque and against speed."""
+    """All variants on one axis: impact force against torque and against speed; and off the design point,
+    their load windows and tolerance spreads side by side (the robustness page)."""
     input:
         impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
     output:
         impact_force=report_item("results/{study}/{pair}/plots/impact_force.png", "impact_force", "Impact", BY_PAIR),
+        robustness=report_item("results/{study}/{pair}/plots/robustness.png", "robustness", "Impact", BY_PAIR),
     log:
         "logs/{study}/{pair}/plot_impact_variants.log",
     params:

@@ -15,11 +15,13 @@ from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, check_speeds, impact_model,
-                      impact_response, impact_static, mesh_in_point, seed_edge_roll, simulate_engagement,
-                      vector_velocity)
+                      impact_response, impact_static, load_grid, load_window, mesh_in_point, seed_edge_roll,
+                      simulate_engagement, vector_velocity)
 from ..io import variable
 from ..ltca import check_torques, pinion_torques
+from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
+from ..tolerance import apply_deviations, study_tolerances, unit_deviations
 
 UM = 1e-6
 
@@ -27,14 +29,15 @@ __all__ = ["impact_dataset", "impact_table_dataset", "impact_summary"]
 
 
 def _model(pair: GearPair, points: int, lead_slope_um, contact_law: str, method: str, corner_extension: float,
-           driver: str, added_inertia_kg_m2) -> ImpactModel:
+           driver: str, added_inertia_kg_m2, window_positions: int = 32, face_samples: int = 257) -> ImpactModel:
     if not isinstance(pair, GearPair):
         raise GearmeshInputError("pair", type(pair).__name__, "must be a GearPair")
     check_modifications(pair)
     geom = pair_geometry(pair)
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
     return impact_model(geom, points=points, lead_slope=lead, contact_law_name=contact_law, method=method,
-                        extension=corner_extension, driver=driver, added_inertia_kg_m2=added_inertia_kg_m2)
+                        extension=corner_extension, driver=driver, added_inertia_kg_m2=added_inertia_kg_m2,
+                        window_positions=window_positions, face_samples=face_samples)
 
 
 def _scenario_var(dims, scenario) -> xr.Variable:
@@ -48,7 +51,10 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
                    design_speed_rpm: float = 5000.0, driver: str = "pinion", points: int = 50,
                    energy_velocity: str = "transverse", added_inertia_kg_m2=(0.0, 0.0), lead_slope_um=(0.0, 0.0),
                    contact_law: str = "palmgren", method: str = "transition", corner_extension: float = 0.25,
-                   simulate_torques_Nm=(), variant: str = "", fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+                   simulate_torques_Nm=(), variant: str = "", fe_compliance: xr.Dataset | None = None,
+                   window_positions: int = 32, face_samples: int = 257, design_torque_Nm: float | None = None,
+                   load_window_step_Nm: float | None = None,
+                   tolerances: dict[str, Any] | None = None) -> xr.Dataset:
     """Mesh-in impact over a torque × speed grid (dims torque, speed): scenario, mesh-in point
     M (3-D, profile and face position, common normal), impact velocity (closing rate and seed
     000's vector form), local stiffness fit, kinetic energy, impact force (closed form and
@@ -58,13 +64,23 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
     Torques (N·m) on the ``on`` gear, speeds (rpm) of the pinion; ``driver`` which gear drives;
     ``variant`` the micro-geometry variant's name (recorded for the study table); with
     ``method='fe'``, ``fe_compliance`` supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
+    ``window_positions``, ``face_samples``: the search window's rolls and the entering line's
+    face samples (:func:`gearmesh.impact.impact_model`).
+
+    At the design speed, with ``load_window_step_Nm`` also F_s on a torque grid of that step up
+    to 1.25 × the largest torque (:func:`gearmesh.impact.load_grid`; the impact table's load
+    windows, anchored at ``design_torque_Nm``, default the middle torque), and with the study's
+    ``tolerances`` (:func:`gearmesh.tolerance.study_tolerances`) F_s of the nominal and
+    every tolerance sample at each torque (the tolerance spread).
     """
     if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
         use_fe_tables(fe_compliance, pair_geometry(pair))
-    model = _model(pair, points, lead_slope_um, contact_law, method, corner_extension, driver, added_inertia_kg_m2)
+    model = _model(pair, points, lead_slope_um, contact_law, method, corner_extension, driver, added_inertia_kg_m2,
+                   window_positions, face_samples)
     geom = model.geom
     given = check_torques(torques_Nm)
     t1 = pinion_torques(geom, given, on)
+    anchor = _design_torque(given, design_torque_Nm)
     speeds = check_speeds(speeds_rpm)
     design = float(check_speeds([design_speed_rpm], "design_speed_rpm")[0])
     sim_given = check_torques(simulate_torques_Nm, "simulate_torques_Nm") if len(simulate_torques_Nm) else np.array([])
@@ -93,7 +109,13 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
                             "xyz": variable(("xyz",), np.array(["x", "y", "z"]), "1", "Cartesian component"),
                             "gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair")})
     ds["torque_input"] = variable(("torque",), given, "N m", f"torque as given, on the {on}")
+    ds["design_torque"] = variable((), float(pinion_torques(geom, [anchor], on)[0]), "N m",
+                                   "pinion torque the load window is anchored at")
     _add_simulation(ds, model, given, t1, sim_given, design)
+    if load_window_step_Nm is not None:
+        _add_load_grid(ds, model, t1, float(pinion_torques(geom, [load_window_step_Nm], on, "load_window_step_Nm")[0]),
+                       design, energy_velocity)
+    _add_tolerance_spread(ds, model, t1, tolerances, design, energy_velocity)
     ds.attrs.update({"variant": variant, "driver": driver, "torque_on": on, "energy_velocity": energy_velocity,
                      "contact_law": model.ltca.law.name, "stiffness_method": model.ltca.method,
                      "design_speed_rpm": design,
@@ -164,6 +186,58 @@ def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, ve
     }
 
 
+def _design_torque(given: np.ndarray, design_torque_Nm: float | None) -> float:
+    """The anchor of the load window: ``design_torque_Nm`` (one of the torques), or the middle torque."""
+    if design_torque_Nm is None:
+        return float(np.sort(given)[(given.size - 1) // 2])
+    if not np.any(np.abs(given - design_torque_Nm) <= 1e-9 * abs(design_torque_Nm)):
+        raise GearmeshInputError("design_torque_Nm", design_torque_Nm, "must be one of torques_Nm")
+    return float(design_torque_Nm)
+
+
+def _design_response(model: ImpactModel, torques, params, lead, speed: float, energy_velocity: str):
+    """F_s (closed form, energy balance) and scenario (C, T) at one speed."""
+    static = impact_static(model, torques, params, lead_slope=lead, engagement=False)
+    static, resp = impact_response(model, static, [speed], energy_velocity)
+    return resp.force[..., 0], resp.force_energy_balance[..., 0], static.scenario
+
+
+def _add_load_grid(ds: xr.Dataset, model: ImpactModel, t1, step: float, design: float, energy_velocity: str) -> None:
+    if not step > 0 or not np.isfinite(step) or 1.25 * t1.max() / step > 2000:
+        raise GearmeshInputError("load_window_step_Nm", step, "must be a positive step giving at most 2000 torques")
+    grid = load_grid(t1, step)
+    force, force_eb, scen = _design_response(model, grid, None, None, design, energy_velocity)
+    w = ("window_torque",)
+    ds.coords["window_torque"] = variable(w, grid, "N m", "pinion torques of the load-window grid")
+    ds["window_impact_force"] = variable(w, force[0], "N", "F_s (closed form) on the load-window grid at the design "
+                                                           "speed")
+    ds["window_impact_force_energy_balance"] = variable(w, force_eb[0], "N", "F_s (energy balance) on the load-window "
+                                                                             "grid at the design speed")
+    ds["window_scenario"] = _scenario_var(w, scen[0])
+
+
+def _add_tolerance_spread(ds: xr.Dataset, model: ImpactModel, t1, tolerances, design: float,
+                          energy_velocity: str) -> None:
+    tol, samples, sampling, seed = study_tolerances(model.geom, tolerances)
+    units = unit_deviations(len(tol.dimensions), samples, sampling, seed)
+    if units.shape[0] == 0:
+        return
+    params, lead = apply_deviations(tol, model.params(), model.lead_slope, units)
+    params = fit_modifications(model.geom, params[0])
+    force, force_eb, scen = _design_response(model, t1, params, lead[0], design, energy_velocity)
+    st = ("tolerance_sample", "torque")
+    ds.coords["tolerance_sample"] = variable(("tolerance_sample",), np.arange(units.shape[0] + 1), "1",
+                                             "manufactured sample (0: the nominal)")
+    ds["tolerance_impact_force"] = variable(st, force, "N", "F_s (closed form) of the nominal (sample 0) and each "
+                                                            "tolerance sample at the design speed")
+    ds["tolerance_impact_force_energy_balance"] = variable(st, force_eb, "N", "F_s (energy balance) of each "
+                                                                              "tolerance sample")
+    ds["tolerance_scenario"] = _scenario_var(st, scen)
+    ds.attrs.update({"tolerance_samples": int(units.shape[0]), "tolerance_sampling": sampling,
+                     "lead_grade_iso1328": -1 if tol.grade is None else tol.grade,
+                     "toleranced": ", ".join(tol.labels())})
+
+
 def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, design: float) -> None:
     nt = t1.size
     peak, enter, excess = np.full(nt, np.nan), np.full(nt, np.nan), np.full(nt, np.nan)
@@ -202,7 +276,9 @@ def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, de
 
 def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     """Seed 000 Table 4's shape: impact force of every variant at every torque at the design
-    speed, with the scenario and the reduction against the ``standard`` variant (%)."""
+    speed, with the scenario and the reduction against the ``standard`` variant (%); and, where
+    the impact stage computed them, each variant's load window against ``standard`` and the range
+    of F_s under the study's tolerance samples."""
     names = [ds.attrs.get("variant", f"variant{k}") for k, ds in enumerate(impact)]
     torque = impact[0]["torque"].values
     for ds in impact[1:]:
@@ -217,7 +293,8 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     force = np.array([r[0] for r in rows])
     ref = force[names.index("standard")] if "standard" in names else np.full(torque.size, np.nan)
     dims = ("variant", "torque")
-    return xr.Dataset({
+    extra = _table_windows(impact, names) | _table_spread(impact, names)
+    return xr.Dataset(extra | {
         "impact_force": variable(dims, force, "N", "mesh-in impact force F_s at the design speed (closed form)"),
         "impact_force_energy_balance": variable(dims, np.array([r[1] for r in rows]), "N",
                                                 "impact force by the energy balance at the design speed"),
@@ -227,6 +304,38 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
                                       "reduction of F_s against the standard variant"),
     }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
                "torque": variable(("torque",), torque, "N m", "pinion torque T1")})
+
+
+def _table_windows(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, xr.Variable]:
+    """Each variant's load window against ``standard`` (when the variants have the load-window grid)."""
+    if "standard" not in names or not all("window_impact_force" in ds for ds in impact):
+        return {}
+    std = impact[names.index("standard")]
+    bounds = []
+    for ds in impact:
+        if not np.array_equal(ds["window_torque"].values, std["window_torque"].values):
+            raise GearmeshInputError("impact.load_window_step_Nm", None, "must give the same grid for every variant")
+        bounds.append(load_window(ds["window_torque"].values, ds["window_impact_force"].values,
+                                  std["window_impact_force"].values, float(ds["design_torque"])))
+    bounds = np.array(bounds)
+    what = ("the contiguous pinion-torque range around the design torque where the variant's F_s (closed form, design "
+            "speed) is below the standard's (grid ends; NaN: not at the design torque; standard: none)")
+    return {"load_window_low": variable(("variant",), bounds[:, 0], "N m", f"load window, low end: {what}"),
+            "load_window_high": variable(("variant",), bounds[:, 1], "N m", f"load window, high end: {what}")}
+
+
+def _table_spread(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, xr.Variable]:
+    """F_s of each variant under the tolerance samples: smallest, largest and nominal at each torque."""
+    if not all("tolerance_impact_force" in ds for ds in impact):
+        return {}
+    dims = ("variant", "torque")
+    spread = np.array([ds["tolerance_impact_force"].values for ds in impact])  # (V, S, T)
+    return {
+        "tolerance_min_impact_force": variable(dims, spread.min(axis=1), "N",
+                                               "smallest F_s over the nominal and the tolerance samples"),
+        "tolerance_max_impact_force": variable(dims, spread.max(axis=1), "N",
+                                               "largest F_s over the nominal and the tolerance samples"),
+    }
 
 
 def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", driver: str = "pinion",

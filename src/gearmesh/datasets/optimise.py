@@ -1,13 +1,21 @@
 """The optimiser's dataset (ga.nc), the optimum as a pair, and the CLI summary.
 
 Engineering units at the boundary (N·m, rpm, µm / mm genes), SI inside the Dataset; every
-variable carries ``units`` and ``long_name``. The optimisation: :mod:`gearmesh.optimise`.
+variable carries ``units`` and ``long_name``. The optimisation: :mod:`gearmesh.optimise`; the
+manufacturing tolerances: :mod:`gearmesh.tolerance`.
+
+A study names its optimisations (``optimise: {NAME: {...}}``); each runs once per pair into
+``results/{study}/{pair}/optimise/NAME/`` and a variant ``{from: optimise.NAME}`` takes its
+optimum. The study's ``tolerances:`` section (ISO 1328-1 grade of the lead, modification
+tolerances, samples) is the manufactured population every run and the impact stage share.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import warnings
+from dataclasses import replace
 from typing import Any, Mapping
 
 import numpy as np
@@ -18,36 +26,56 @@ from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
 from ..io import variable
+from ..limits import check_load
 from ..ltca import pinion_torques
 from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, gene_table, optimise,
                         problem)
 from ..surface import MODIFICATION_FIELDS
+from ..tolerance import study_tolerances
 from .ltca import _geometry
 
 __all__ = ["optimise_dataset", "result_dataset", "optimum_pair", "optimise_summary", "run_settings", "run_problem",
-           "check_optimise"]
+           "check_optimise", "OPTIMISE_SOURCE"]
 
 _TO_SI = {"um": 1e-6, "mm": 1e-3}
+#: A variant that takes an optimum names its run: ``{from: optimise.NAME}``.
+OPTIMISE_SOURCE = "optimise."
+
+
+def _window_top(geom, torques: tuple[float, ...]) -> float:
+    """1.25 × the largest spectrum torque, lowered (in 5 % steps) to what the load limits allow."""
+    top = 1.25 * max(torques)
+    while top > max(torques):
+        try:
+            check_load(geom, top, "load_window_top_Nm", top)
+            return top
+        except GearmeshInputError:
+            top = max(max(torques), top - 0.05 * max(torques))
+    return top
 
 
 def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", population: int = 40,
                  generations: int = 30, seed: int = 0, torque_Nm: float = 1000.0, on: str = "pinion",
-                 speed_rpm: float = 5000.0, torques_Nm=(400.0, 1000.0, 1600.0), statistic: str = "max",
-                 weights=None, modify=("pinion",), bounds: Mapping[str, Any] | None = None,
+                 speed_rpm: float = 5000.0, torques_Nm=None, statistic: str = "max",
+                 weights=None, tolerance_statistic: str | None = None, tolerance_level_percent: float = 90.0,
+                 load_window_step_Nm: float = 50.0, modify=("pinion",), bounds: Mapping[str, Any] | None = None,
                  fixed: Mapping[str, Any] | None = None, constraints: Mapping[str, Any] | None = None,
-                 random_baseline: bool = True, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
-                 keep_elitism: int = 2, points: int | None = None, window_positions: int = 64, face_samples: int = 257,
-                 cycle_positions: int = 32, contact_law: str | None = None, corner_extension: float | None = None,
-                 impact: Mapping[str, Any] | None = None):
-    """Check the config's ``optimise:`` section (as keywords) for ``pair``: (geometry, settings,
-    gene keywords, impact-model keywords). Torques are given on ``on`` (converted to the
-    pinion). Refuses a bad value with GearmeshInputError naming the field.
+                 random_baseline: bool = False, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
+                 keep_elitism: int = 2, points: int | None = None, window_positions: int | None = None,
+                 face_samples: int | None = None, cycle_positions: int = 32, contact_law: str | None = None,
+                 corner_extension: float | None = None, impact: Mapping[str, Any] | None = None,
+                 tolerances: Mapping[str, Any] | None = None):
+    """Check one optimisation's settings (the config's ``optimise.NAME`` section, as keywords) for
+    ``pair``: (geometry, settings, gene keywords, impact-model keywords, tolerance model). Torques
+    are given on ``on`` (converted to the pinion); ``torques_Nm`` the load spectrum (None: the
+    design torque alone). Refuses a bad value with GearmeshInputError naming the field.
 
     The impact model is the study's: ``impact`` is its ``impact:`` section (driver, points, lead
-    slopes, contact law, slice method, corner extension, added inertia, energy velocity), so
-    the optimum is optimal for the model the impact stage evaluates it with; ``points``,
-    ``contact_law`` and ``corner_extension`` given here override it (None: the section's, or
-    the package defaults without one)."""
+    slopes, contact law, slice method, corner extension, window and face sampling, added inertia,
+    energy velocity), so the optimum is optimal for the model the impact stage evaluates it
+    with; ``points``, ``contact_law``, ``corner_extension``, ``window_positions`` and
+    ``face_samples`` given here override it (None: the section's, or the package defaults
+    without one). ``tolerances`` is the study's ``tolerances:`` section (:func:`gearmesh.tolerance.study_tolerances`)."""
     from ..tca import check_lead_slope
 
     geom = _geometry(pair)
@@ -59,56 +87,76 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
         raise GearmeshInputError(f"constraints.{key}", constraints[key],
                                  "is not a constraint; use lte_factor, line_load_factor, penalty")
     design = float(pinion_torques(geom, [check_positive("torque_Nm", torque_Nm)], on, field="torque_Nm")[0])
-    robust = tuple(float(t) for t in pinion_torques(geom, torques_Nm, on, field="torques_Nm"))
+    spectrum = None if torques_Nm is None else \
+        tuple(float(t) for t in pinion_torques(geom, torques_Nm, on, field="torques_Nm"))
+    tol_model, samples, sampling, tol_seed = study_tolerances(geom, tolerances)
+    step = check_positive("load_window_step_Nm", load_window_step_Nm)
+    step = float(pinion_torques(geom, [step], on, field="load_window_step_Nm")[0])
     settings = check_settings(method=method, objective=objective, population=population, generations=generations,
-                              seed=seed, torque=design, torques=robust, weights=weights, statistic=statistic,
-                              speed_rpm=speed_rpm, lte_factor=constraints.get("lte_factor"),
+                              seed=seed, torque=design, torques=spectrum, weights=weights, statistic=statistic,
+                              speed_rpm=speed_rpm, tolerance_samples=samples, sampling=sampling,
+                              tolerance_seed=tol_seed,
+                              tolerance_statistic=tolerance_statistic, tolerance_level=tolerance_level_percent,
+                              lte_factor=constraints.get("lte_factor"),
                               line_load_factor=constraints.get("line_load_factor"),
                               penalty=constraints.get("penalty", 10.0), mutation_probability=mutation_probability,
                               mutation_scale=mutation_scale, keep_elitism=keep_elitism,
                               random_baseline=random_baseline,
-                              energy_velocity=imp.get("energy_velocity", "transverse"))
+                              energy_velocity=imp.get("energy_velocity", "transverse"), load_window_step=step)
+    settings = replace(settings, load_window_top=_window_top(geom, settings.torques))
+    if settings.tolerance_statistic is not None and not tol_model.dimensions:
+        raise GearmeshInputError("tolerance_statistic", settings.tolerance_statistic,
+                                 "needs tolerances (tolerances.grade or tolerances.modification): nothing deviates")
     genes = {"modify": modify, "bounds": bounds, "fixed": fixed}
     gene_table(geom, **genes)
     lead = tuple(v * 1e-6 for v in check_lead_slope(imp.get("lead_slope_um", (0.0, 0.0))))
-    model = {"points": imp.get("points", 50) if points is None else points,
-             "contact_law_name": imp.get("contact_law", "palmgren") if contact_law is None else contact_law,
-             "extension": imp.get("corner_extension", 0.25) if corner_extension is None else corner_extension,
+
+    def pick(own, key, default):
+        return imp.get(key, default) if own is None else own
+
+    model = {"points": pick(points, "points", 50), "contact_law_name": pick(contact_law, "contact_law", "palmgren"),
+             "extension": pick(corner_extension, "corner_extension", 0.25),
              "method": imp.get("method", "transition"), "driver": imp.get("driver", "pinion"), "lead_slope": lead,
              "added_inertia_kg_m2": imp.get("added_inertia_kg_m2", (0.0, 0.0)),
-             "window_positions": window_positions, "face_samples": face_samples, "cycle_positions": cycle_positions}
-    return geom, settings, genes, model
+             "window_positions": pick(window_positions, "window_positions", 32),
+             "face_samples": pick(face_samples, "face_samples", 257), "cycle_positions": cycle_positions}
+    return geom, settings, genes, model, tol_model
 
 
 def run_problem(pair: GearPair, **settings) -> Problem:
     """The optimisation problem of ``pair`` (settings: :func:`run_settings`), its impact model
     built once and its standard gear evaluated."""
-    geom, checked, genes, model = run_settings(pair, **settings)
-    return problem(impact_model(geom, **model), checked, **genes)
+    geom, checked, genes, model, tol = run_settings(pair, **settings)
+    return problem(impact_model(geom, **model), checked, tolerance=tol, **genes)
 
 
 def check_optimise(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> None:
-    """Before any job runs: the study's ``optimise:`` section for every pair (fields named
-    ``optimise.…``), and every variant taking the optimiser's pair (``{from: optimise}``)
-    has the section and no modification of its own."""
+    """Before any job runs: every named optimisation of the study's ``optimise:`` section for every
+    pair (fields named ``optimise.NAME.…``; the shared ``tolerances.…`` under their own name), and
+    every variant taking an optimum (``{from: optimise.NAME}``) names a run and has no
+    modification of its own."""
+    runs = config.get("optimise") or {}
     for variant, spec in (config.get("variants") or {}).items():
-        if spec.get("from") is None:
+        source = spec.get("from")
+        if source is None:
             continue
-        if "optimise" not in config:
-            raise GearmeshInputError(f"variants.{variant}.from", spec["from"], "needs an 'optimise:' section in the study")
+        name = source[len(OPTIMISE_SOURCE):] if source.startswith(OPTIMISE_SOURCE) else None
+        if name not in runs:
+            raise GearmeshInputError(f"variants.{variant}.from", source,
+                                     f"must be optimise.NAME with NAME one of the study's optimisations {sorted(runs)}")
         if spec.get("modification"):
             raise GearmeshInputError(f"variants.{variant}.modification", spec["modification"],
                                      "cannot be given with 'from': the variant takes the optimiser's modification")
     if "optimise" in (config.get("variants") or {}):
         raise GearmeshInputError("variants.optimise", config["variants"]["optimise"],
                                  "is reserved (results/{study}/{pair}/optimise/ holds the optimiser's files)")
-    if "optimise" not in config:
-        return
-    for name in config["pairs"]:
-        try:
-            run_settings(pairs[name], **config["optimise"], impact=config.get("impact"))
-        except GearmeshInputError as exc:
-            raise GearmeshInputError(f"optimise.{exc.field}", exc.value, exc.rule) from None
+    for run, section in runs.items():
+        for name in config["pairs"]:
+            try:
+                run_settings(pairs[name], **section, impact=config.get("impact"), tolerances=config.get("tolerances"))
+            except GearmeshInputError as exc:
+                field = exc.field if exc.field.startswith("tolerances") else f"optimise.{run}.{exc.field}"
+                raise GearmeshInputError(field, exc.value, exc.rule) from None
 
 
 def _si(result: OptimisationResult, values: np.ndarray) -> np.ndarray:
@@ -119,12 +167,16 @@ def _si(result: OptimisationResult, values: np.ndarray) -> np.ndarray:
 
 def _objective_units(result: OptimisationResult) -> tuple[str, str]:
     s = result.problem.settings
-    if s.objective == "velocity":
-        return "m s-1", "impact velocity |v_n| at the design torque and speed"
-    if s.objective == "robust":
-        what = "largest" if s.statistic == "max" else "weighted mean"
-        return "N", f"{what} mesh-in impact force F_s over the objective torques"
-    return "N", "mesh-in impact force F_s at the design torque and speed"
+    what = "impact velocity |v_n|" if s.objective == "velocity" else "mesh-in impact force F_s"
+    units = "m s-1" if s.objective == "velocity" else "N"
+    if len(s.objective_torques) > 1:
+        what = ("largest " if s.statistic == "max" else "duty-cycle mean ") + what + " over the load spectrum"
+    else:
+        what += " at the design torque"
+    if s.tolerance_statistic is not None:
+        level = f" {s.tolerance_level:g} %" if s.tolerance_statistic in ("percentile", "cvar") else ""
+        what += f", {s.tolerance_statistic}{level} over the nominal and {s.tolerance_samples} tolerance samples"
+    return units, what
 
 
 def _nanmedian(values: np.ndarray) -> np.ndarray:
@@ -132,6 +184,11 @@ def _nanmedian(values: np.ndarray) -> np.ndarray:
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # an all-padding generation gives NaN
         return np.nanmedian(values, axis=1)
+
+
+def _scenario_variable(dims, values, what: str) -> xr.Variable:
+    return variable(dims, np.asarray(values).astype(np.int8), "1", f"{what}: "
+                    + ", ".join(f"{k} {n}" for k, n in enumerate(SCENARIOS)) + ", -1 not evaluated")
 
 
 def _history_variables(result: OptimisationResult, prefix: str, label: str) -> dict[str, xr.Variable]:
@@ -145,13 +202,13 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
         f"{prefix}best_objective": variable(g, result.history.best, units, f"{label}: best objective so far"),
         f"{prefix}median_objective": variable(g, _nanmedian(obj), units,
                                               f"{label}: median objective of the generation's candidates"),
-        f"{prefix}impact_force": variable(gc, h["force"], "N", f"{label}: F_s of each candidate at the design torque "
-                                                               "(the first objective torque)"),
-        f"{prefix}scenario": variable(gc, h["scenario"].astype(np.int8), "1",
-                                      f"{label}: mesh-in scenario at the design torque: "
-                                      + ", ".join(f"{k} {n}" for k, n in enumerate(SCENARIOS)) + ", -1 not evaluated"),
+        f"{prefix}impact_force": variable(gc, h["force"], "N", f"{label}: nominal F_s of each candidate at the design "
+                                                               "torque"),
+        f"{prefix}scenario": _scenario_variable(gc, h["scenario"], f"{label}: nominal mesh-in scenario at the design "
+                                                                   "torque"),
         f"{prefix}failed": variable(gc, h["failed"].astype(np.int8), "1",
-                                    f"{label}: 1 for a failed candidate (no impact found, a non-finite force or no closing velocity)"),
+                                    f"{label}: 1 for a failed candidate (no impact found, a non-finite value or no "
+                                    "closing velocity, at any torque or sample)"),
         f"{prefix}cumulative_evaluations": variable(g, h["evaluations"], "1",
                                                     f"{label}: distinct candidates evaluated so far"),
         f"{prefix}population": variable(("generation", "candidate", "gene"), _si(result, h["genes"]), "m",
@@ -168,14 +225,48 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
 def optimise_dataset(pair: GearPair, fe_compliance: xr.Dataset | None = None, **settings) -> xr.Dataset:
     """Run the optimiser on ``pair`` (settings: :func:`run_settings`) and return ga.nc: every
     generation's population, objective, F_s, scenario and best; the random-search baseline
-    of the same budget; the optimum genes and parameters; the standard gear and the optimum
-    at the objective torques; NSGA-II's Pareto front; method, seed, evaluations, wall time.
-    With an impact model of ``method: fe``, ``fe_compliance`` supplies the FE tables."""
-    from ..gear import pair_geometry
-
+    (when asked for); the optimum genes and parameters; the standard gear and the optimum at the
+    spectrum torques under every tolerance sample; the load window; NSGA-II's Pareto front;
+    method, seed, evaluations, wall time. With an impact model of ``method: fe``,
+    ``fe_compliance`` supplies the FE tables."""
     if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
         use_fe_tables(fe_compliance, pair_geometry(pair))
     return result_dataset(optimise(run_problem(pair, **settings)), settings)
+
+
+def _diagnostic_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
+    d, prob = result.diagnostics, result.problem
+    t, w, st = ("objective_torque",), ("window_torque",), ("tolerance_sample", "objective_torque")
+    low, high = d.load_window
+    data = {
+        "window_impact_force": variable(w, d.window_force, "N", "optimum: nominal F_s on the load-window grid"),
+        "window_standard_impact_force": variable(w, d.window_standard, "N",
+                                                 "standard gear: nominal F_s on the load-window grid"),
+        "window_scenario": _scenario_variable(w, d.window_scenario, "optimum: scenario on the load-window grid"),
+        "window_standard_scenario": _scenario_variable(w, d.window_standard_scenario,
+                                                       "standard gear: scenario on the load-window grid"),
+        "load_window": variable(("bound",), np.array([low, high]), "N m",
+                                "load window: the contiguous pinion-torque range around the design torque where the "
+                                "optimum's F_s is below the standard gear's (grid ends; NaN: not at the design torque)"),
+        "tolerance_impact_force": variable(st, d.spread_force, "N",
+                                           "optimum: F_s of the nominal (sample 0) and each tolerance sample"),
+        "tolerance_standard_impact_force": variable(st, d.spread_standard, "N",
+                                                    "standard gear: F_s of the nominal (sample 0) and each tolerance "
+                                                    "sample"),
+        "tolerance_scenario": _scenario_variable(st, d.spread_scenario, "optimum: scenario of each tolerance sample"),
+        "tolerance_deviation": variable(("tolerance_sample", "toleranced"), np.vstack(
+            [np.zeros((1, prob.deviations.shape[1])), prob.deviations * _half_widths(prob)]), "m",
+            "deviation of each toleranced quantity in each sample (sample 0 the nominal); lead slopes over the "
+            "meshing face width"),
+        "tolerance_half_width": variable(("toleranced",), _half_widths(prob), "m",
+                                         "half-width of each toleranced quantity (ISO 1328-1 f_Hbeta for lead slopes)"),
+    }
+    return data
+
+
+def _half_widths(prob: Problem) -> np.ndarray:
+    tol = prob.tolerance
+    return np.array([tol.lead[g] if kind == "lead" else tol.modification[g, k] for kind, g, k in tol.dimensions])
 
 
 def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | None = None) -> xr.Dataset:
@@ -198,21 +289,26 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "optimum_objective": variable((), float(opt.objective[0]), units, f"optimum: {what}"),
         "standard_objective": variable((), float(std.objective[0]), units, f"standard (unmodified) gear: {what}"),
         "reduction": variable((), 100.0 * (1.0 - float(opt.objective[0]) / float(std.objective[0])), "percent",
-                              "reduction of the objective against the standard gear"),
-        "optimum_impact_force": variable(t, opt.force[0], "N", "optimum: mesh-in impact force F_s"),
-        "standard_impact_force": variable(t, std.force[0], "N", "standard gear: mesh-in impact force F_s"),
-        "optimum_impact_velocity": variable(t, opt.velocity[0], "m s-1", "optimum: impact velocity |v_n|"),
-        "standard_impact_velocity": variable(t, std.velocity[0], "m s-1", "standard gear: impact velocity |v_n|"),
-        "optimum_scenario": variable(t, opt.scenario[0].astype(np.int8), "1", "optimum: mesh-in scenario "
-                                     + ", ".join(f"{k} {n}" for k, n in enumerate(SCENARIOS))),
-        "standard_scenario": variable(t, std.scenario[0].astype(np.int8), "1", "standard gear: mesh-in scenario"),
+                              "reduction of the objective against the standard gear (positive: lower)"),
+        "optimum_impact_force": variable(t, opt.force[0, 0], "N", "optimum: nominal mesh-in impact force F_s"),
+        "standard_impact_force": variable(t, std.force[0, 0], "N", "standard gear: nominal mesh-in impact force F_s"),
+        "optimum_impact_velocity": variable(t, opt.velocity[0, 0], "m s-1", "optimum: nominal impact velocity |v_n|"),
+        "standard_impact_velocity": variable(t, std.velocity[0, 0], "m s-1",
+                                             "standard gear: nominal impact velocity |v_n|"),
+        "optimum_scenario": _scenario_variable(t, opt.scenario[0, 0], "optimum: nominal mesh-in scenario"),
+        "standard_scenario": _scenario_variable(t, std.scenario[0, 0], "standard gear: nominal mesh-in scenario"),
         "rho_sap": variable(("gear",), geom.rho_sap, "m", "roll length of the start of active profile"),
         "rho_eap": variable(("gear",), geom.rho_eap, "m", "roll length of the end of active profile"),
         "face_width": variable((), geom.face_width, "m", "meshing face width"),
         "normal_module": variable((), geom.pair.normal_module, "m", "normal module"),
         "speed": variable((), s.speed_rpm, "rpm", "pinion speed of the objective"),
-        "design_torque": variable((), s.torque, "N m", "design pinion torque (LTE and line-load constraints, NSGA-II)"),
+        "design_torque": variable((), s.torque, "N m", "design pinion torque (LTE and line-load constraints, NSGA-II, "
+                                                       "the load window's anchor)"),
+        "torque_weight": variable(t, np.asarray(s.weights if s.weights else [np.nan] * len(s.torques)), "1",
+                                  "time share of each spectrum torque (statistic mean; NaN: equal shares or max)"),
     })
+    if result.diagnostics is not None:
+        data.update(_diagnostic_variables(result))
     if np.isfinite(std.lte_peak_to_peak).all():
         data.update({
             "optimum_lte_peak_to_peak": variable((), float(opt.lte_peak_to_peak[0]), "m",
@@ -239,11 +335,24 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "gear": variable(("gear",), np.array(GEARS), "1", "gear"),
         "parameter": variable(("parameter",), np.array(MODIFICATION_FIELDS), "1", "seed 000's parameters y1..y6"),
         "parameter_symbol": variable(("parameter",), np.array(GENE_SYMBOLS), "1", "seed 000's symbols"),
-        "objective_torque": variable(t, np.array(s.objective_torques), "N m", "pinion torques of the objective"),
+        "objective_torque": variable(t, np.array(s.objective_torques), "N m", "pinion torques of the load spectrum"),
     }
+    if result.diagnostics is not None:
+        coords.update({
+            "window_torque": variable(("window_torque",), result.diagnostics.window_torque, "N m",
+                                      "pinion torques of the load-window grid"),
+            "tolerance_sample": variable(("tolerance_sample",), np.arange(prob.deviations.shape[0] + 1), "1",
+                                         "manufactured sample (0: the nominal)"),
+            "toleranced": variable(("toleranced",), np.array(prob.tolerance.labels(), dtype=str), "1",
+                                   "toleranced quantity: gear.pair-file key, or gear.lead_slope_um (ISO 1328-1 f_Hbeta)"),
+            "bound": variable(("bound",), np.array(["low", "high"]), "1", "ends of the load window"),
+        })
     ds = xr.Dataset(data_vars=data, coords=coords)
     ds.attrs.update({
         "method": s.method, "seed": s.seed, "objective": s.objective, "objective_statistic": s.statistic,
+        "tolerance_statistic": s.tolerance_statistic or "none (nominal)", "tolerance_level_percent": s.tolerance_level,
+        "tolerance_samples": int(prob.deviations.shape[0]), "tolerance_sampling": s.sampling,
+        "lead_grade_iso1328": -1 if prob.tolerance.grade is None else prob.tolerance.grade,
         "population_size": s.population, "generations": s.generations,
         "failure_factor": "a failed candidate's objective is FAILURE_FACTOR x the standard gear's",
         "settings_json": json.dumps(dict(settings or {}), sort_keys=True, default=str),
@@ -251,38 +360,67 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
     return ds
 
 
-def optimum_pair(pair: GearPair, ds: xr.Dataset) -> GearPair:
-    """``pair`` carrying the optimum modification of ga.nc (both gears, as applied)."""
+def optimum_pair(pair: GearPair, ds: xr.Dataset, name: str | None = None) -> GearPair:
+    """``pair`` carrying the optimum modification of ga.nc (both gears, as applied); ``name`` a new
+    pair name (a pair file's name is its file name)."""
     p = ds["optimum_modification"].values
     mods = tuple(Modification(**{f: float(p[g, k]) for k, f in enumerate(MODIFICATION_FIELDS)}) for g in range(2))
-    out = pair.with_changes(modification=mods)
+    out = pair.with_changes(modification=mods, **({"name": name} if name else {}))
     pair_geometry(out)  # validity (lengths, depths) by construction; checked here once more
     return out
 
 
-def optimise_summary(pair: GearPair, torque_Nm: float, speed_rpm: float, on: str = "pinion",
-                     modify=("pinion",), method: str = "ga", seed: int = 0, population: int = 40,
-                     generations: int = 30) -> dict[str, Any]:
-    """Headline numbers of one optimisation (the CLI's ``optimise --json``): the optimum genes
-    named with units, F_s of the optimum and of the standard gear, the reduction, the
-    optimum's scenario at the design point, evaluations and wall time."""
-    prob = run_problem(pair, method=method, seed=seed, population=population, generations=generations,
-                       torque_Nm=torque_Nm, on=on, speed_rpm=speed_rpm, modify=modify, random_baseline=False)
+def _finite(value: float) -> float | None:
+    return float(value) if math.isfinite(value) else None
+
+
+def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dataset]:
+    """Headline numbers of one optimisation (the CLI's ``optimise --json``) and its ga.nc Dataset:
+    the optimum genes named with units, objective, F_s of the optimum and of the standard gear at
+    the design torque, the reduction, ``by_torque`` (F_s, the standard's and the scenario at each
+    spectrum torque, with the spread under the tolerance samples), ``load_window_Nm``,
+    evaluations and wall time. Torques in the JSON are on the gear ``on``, as given."""
+    on = settings.get("on", "pinion")
+    prob = run_problem(pair, **settings)
     res = optimise(prob)
+    s, d = prob.settings, res.diagnostics
     opt, std = res.optimum_evaluation, prob.standard
-    return {
+    to_given = 1.0 if on == "pinion" else pair.teeth[1] / pair.teeth[0]
+    k = s.design_index
+    by_torque = []
+    for i, t in enumerate(s.objective_torques):
+        row = {"torque_Nm": t * to_given, "impact_force_N": float(opt.force[0, 0, i]),
+               "standard_impact_force_N": float(std.force[0, 0, i]), "scenario": SCENARIOS[int(opt.scenario[0, 0, i])]}
+        if prob.deviations.shape[0]:
+            row.update({"impact_force_tolerance_min_N": float(d.spread_force[:, i].min()),
+                        "impact_force_tolerance_max_N": float(d.spread_force[:, i].max()),
+                        "standard_impact_force_tolerance_min_N": float(d.spread_standard[:, i].min())})
+        by_torque.append(row)
+    low, high = d.load_window
+    summary = {
         "name": pair.name,
-        "method": method,
-        "seed": seed,
-        "torque_Nm": float(torque_Nm),
+        "method": s.method,
+        "objective": s.objective,
+        "statistic": s.statistic,
+        "tolerance_statistic": s.tolerance_statistic,
+        "tolerance_samples": int(prob.deviations.shape[0]),
+        "lead_grade": prob.tolerance.grade,
+        "seed": s.seed,
+        "torque_Nm": s.torque * to_given,
+        "torques_Nm": [t * to_given for t in s.objective_torques],
         "torque_on": on,
-        "speed_rpm": float(speed_rpm),
+        "speed_rpm": s.speed_rpm,
         "genes": {g.name: float(v) for g, v in zip(prob.genes, res.optimum_genes)},
-        "impact_force_N": float(opt.force[0, 0]),
-        "standard_impact_force_N": float(std.force[0, 0]),
-        "reduction_percent": 100.0 * (1.0 - float(opt.force[0, 0]) / float(std.force[0, 0])),
-        "scenario": SCENARIOS[int(opt.scenario[0, 0])],
-        "standard_scenario": SCENARIOS[int(std.scenario[0, 0])],
+        "objective_value": float(opt.objective[0]),
+        "standard_objective_value": float(std.objective[0]),
+        "impact_force_N": float(opt.force[0, 0, k]),
+        "standard_impact_force_N": float(std.force[0, 0, k]),
+        "reduction_percent": 100.0 * (1.0 - float(opt.force[0, 0, k]) / float(std.force[0, 0, k])),
+        "scenario": SCENARIOS[int(opt.scenario[0, 0, k])],
+        "standard_scenario": SCENARIOS[int(std.scenario[0, 0, k])],
+        "by_torque": by_torque,
+        "load_window_Nm": [_finite(low * to_given), _finite(high * to_given)],
         "evaluations": res.evaluations,
         "wall_s": res.wall_s,
     }
+    return summary, result_dataset(res, settings)

@@ -13,7 +13,7 @@ import xarray as xr
 from ..impact import SCENARIOS
 from .common import MM, plt, save as _save, title as _title
 
-__all__ = ["impact_figures", "impact_study_figures"]
+__all__ = ["impact_figures", "impact_study_figures", "plot_robustness"]
 
 _COLORS = {"none": "0.6", "surface": "tab:green", "edge": "tab:red"}
 
@@ -164,3 +164,83 @@ def impact_study_figures(inputs: Mapping[str, Sequence[xr.Dataset]], outputs: Ma
         ax.margins(x=0.12)
     fig.suptitle(_title(ref, "mesh-in impact force, all variants"), fontsize=10)
     _save(fig, outputs["impact_force"])
+    if "robustness" in outputs:
+        plot_robustness(sets, outputs["robustness"])
+
+
+def _load_windows(ax, sets, colors) -> None:
+    """F_s (closed form) against torque on the load-window grid at the design speed, one line per
+    variant, the design torque marked; each variant's load window against ``standard`` as a bar
+    under the curves, its ends in the legend."""
+    from ..impact import load_window
+
+    names = [ds.attrs.get("variant", "") for ds in sets]
+    std = sets[names.index("standard")] if "standard" in names else None
+    design = float(sets[0]["design_torque"]) if "design_torque" in sets[0] else None
+    for k, (color, ds) in enumerate(zip(colors, sets)):
+        t, f = ds["window_torque"].values, ds["window_impact_force"].values
+        label = ds.attrs.get("variant", "")
+        if std is not None and ds is not std:
+            low, high = load_window(t, f, std["window_impact_force"].values, design)
+            label += f": beats standard {low:g}–{high:g} N m" if np.isfinite(low) else ": not at the design torque"
+            if np.isfinite(low):
+                ax.plot([low, high], [0.06 + 0.035 * k] * 2, transform=ax.get_xaxis_transform(), color=color, lw=4,
+                        solid_capstyle="butt")
+        ax.plot(t, f * 1e-3, "-", color=color, lw=1.6, label=label)
+        ax.plot(ds["torque"].values, ds["impact_force"].sel(speed=float(ds.attrs["design_speed_rpm"])).values * 1e-3,
+                "o", color=color, ms=4)
+    if design is not None:
+        ax.axvline(design, color="0.4", lw=0.8, ls=":")
+    ax.set_yscale("log")
+    ax.set_xlabel("pinion torque T1 (N m)")
+    ax.set_ylabel("F_s, closed form, transverse (kN)")
+    ax.set_title(f"F_s against torque at {float(sets[0].attrs['design_speed_rpm']):g} rpm (dots: the study torques; "
+                 "bars: load windows)", fontsize=8)
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7, loc="upper left")
+
+
+def _tolerance_spread(ax, sets, colors) -> None:
+    """At each study torque, per variant: the range of F_s over the nominal and the tolerance
+    samples (bar) and the nominal (dot)."""
+    torques = sets[0]["torque"].values
+    width = 0.8 / len(sets)
+    x = np.arange(torques.size)
+    for k, (color, ds) in enumerate(zip(colors, sets)):
+        f = ds["tolerance_impact_force"].values * 1e-3
+        pos = x - 0.4 + width * (k + 0.5)
+        ax.vlines(pos, f.min(axis=0), f.max(axis=0), color=color, lw=5, alpha=0.55,
+                  label=f"{ds.attrs.get('variant', '')}: nominal and {f.shape[0] - 1} samples")
+        ax.plot(pos, f[0], "o", color=color, ms=3, mec="k", mew=0.4)
+    ax.set_xticks(x, [f"{t:g}" for t in torques])
+    ax.set_yscale("log")
+    ax.set_xlabel("pinion torque T1 (N m)")
+    ax.set_ylabel("F_s, closed form, transverse (kN)")
+    grade = sets[0].attrs.get("lead_grade_iso1328", -1)
+    what = f"lead ISO 1328-1 class {grade}" if grade and grade > 0 else "no lead tolerance"
+    ax.set_title(f"tolerance spread ({what}; {sets[0].attrs.get('toleranced', '')})", fontsize=7)
+    ax.grid(alpha=0.3, which="both", axis="y")
+    ax.legend(fontsize=7, loc="upper left")
+
+
+#: The panels of the robustness page, each drawn when every variant's impact.nc has its data:
+#: (variable needed, panel). A panel of the peak dynamic mesh force joins here when the
+#: dynamics provide it.
+ROBUSTNESS_PANELS = (("window_impact_force", _load_windows), ("tolerance_impact_force", _tolerance_spread))
+
+
+def plot_robustness(sets: Sequence[xr.Dataset], path) -> None:
+    """The variants side by side off the design point: F_s against torque on a fine grid with each
+    variant's load window, and the spread of F_s under the manufacturing tolerance samples at each
+    study torque (the panels of :data:`ROBUSTNESS_PANELS` whose data the variants have)."""
+    panels = [draw for need, draw in ROBUSTNESS_PANELS if all(need in ds for ds in sets)]
+    fig, axes = plt.subplots(1, max(len(panels), 1), figsize=(6.4 * max(len(panels), 1), 5.0), squeeze=False)
+    colors = plt.cm.tab10(np.arange(len(sets)))
+    for ax, draw in zip(axes[0], panels):
+        draw(ax, sets, colors)
+    if not panels:
+        axes[0, 0].text(0.5, 0.5, "no load-window grid and no tolerance samples in this study", ha="center",
+                        va="center", transform=axes[0, 0].transAxes)
+        axes[0, 0].set_axis_off()
+    fig.suptitle(_title(sets[0], "off the design point: load windows and manufacturing tolerances"), fontsize=10)
+    _save(fig, path)

@@ -7,6 +7,7 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from matplotlib.ticker import MaxNLocator
 
 from ..surface import relief_depth
 from .common import MM, UM, plt, save as _save, title as _title
@@ -20,9 +21,15 @@ def _scale(ds: xr.Dataset) -> tuple[float, str]:
     return (1.0, "N") if units == "N" else (1.0, units.replace(" s-1", "/s"))
 
 
+def _change(optimum: float, standard: float) -> str:
+    """'x % below the standard gear' (or above), never a signed percentage."""
+    change = 100.0 * (1.0 - optimum / standard)
+    return f"{abs(change):.1f} % {'below' if change >= 0 else 'above'} the standard gear"
+
+
 def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
-    """Best objective so far and the population median against generation, for the run and for
-    the random search of the same budget, with the standard gear's objective for reference."""
+    """Best objective so far and the population median against generation, for the run and (when
+    it ran) the random search of the same budget, with the standard gear's objective."""
     fig, ax = plt.subplots(figsize=(7.5, 4.5))
     k, unit = _scale(ds)
     gen = ds["generation"].values
@@ -38,19 +45,28 @@ def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     ax.axhline(float(ds["standard_objective"]) * k, color="k", lw=1.0, ls=":", label="standard (unmodified) gear")
     ax.set_yscale("log")
     ax.set_xlabel("generation (0: initial population)")
-    what = {"force": "F_s at the design point", "velocity": "|v_n| at the design point",
-            "robust": f"F_s over the torques ({ds.attrs.get('objective_statistic', '')})"}
-    ax.set_ylabel(f"objective: {what.get(ds.attrs.get('objective'), '')} ({unit})")
+    torques = ds["objective_torque"].values
+    where = f"{torques[0]:g} N m" if torques.size == 1 else \
+        f"{ds.attrs.get('objective_statistic', 'max')} over {', '.join(f'{t:g}' for t in torques)} N m"
+    tol = ds.attrs.get("tolerance_statistic", "none (nominal)")
+    if not tol.startswith("none"):
+        where += f", {tol} over nominal + {ds.attrs.get('tolerance_samples', 0)} tolerance samples"
+    quantity = "|v_n|" if ds.attrs.get("objective") == "velocity" else "F_s"
+    ax.set_ylabel(f"objective: {quantity} ({unit})")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
-    red = float(ds["reduction"])
-    ax.set_title(_title(ds, f"{ds.attrs.get('objective', '')} objective, seed {ds.attrs.get('seed', '')}: "
-                            f"optimum {float(ds['optimum_objective']) * k:.4g} {unit} ({red:+.1f} % vs standard)"),
-                 fontsize=9)
+    opt, std = float(ds["optimum_objective"]) * k, float(ds["standard_objective"]) * k
+
+    def value(v: float) -> str:
+        return f"{v:.0f}" if abs(v) >= 100 else f"{v:.3g}"
+
+    ax.set_title(_title(ds, f"{ds.attrs.get('objective', '')} objective ({quantity}, {where}), seed "
+                            f"{ds.attrs.get('seed', '')}\noptimum {value(opt)} {unit}, {_change(opt, std)} "
+                            f"({value(std)} {unit})"), fontsize=9)
     return _save(fig, path)
 
 
-def _depth_map(ds: xr.Dataset, gear: int, n_profile: int = 121, n_face: int = 81):
+def _depth_map(ds: xr.Dataset, gear: int, n_profile: int = 161, n_face: int = 121):
     """Roll lengths (m), face positions (m) and the removed depth δ (m) on gear ``gear``'s flank."""
     rho = np.linspace(float(ds["rho_sap"][gear]), float(ds["rho_eap"][gear]), n_profile)
     half = 0.5 * float(ds["face_width"])
@@ -60,29 +76,61 @@ def _depth_map(ds: xr.Dataset, gear: int, n_profile: int = 121, n_face: int = 81
     return rho, z, depth
 
 
+#: Seed 000's six parameters in words, with their symbols (the subtitle of the map).
+_PARAMETERS = ("y1 root relief", "y2 tip relief", "y3 root relief length", "y4 tip relief length",
+               "y5 lead crowning", "y6 unmodified lead length")
+
+
 def plot_modification(ds: xr.Dataset, path: str | Path) -> Path:
-    """The optimum's material removal δ (µm) against axial position z and roll length ρ on the
-    active flank of the pinion and of the gear where it is modified (seed 000's parabolic tip
-    and root reliefs and lead crowning, :func:`gearmesh.surface.modification_depth`)."""
+    """The optimum's material removal δ (µm) on the active flank of the pinion and of the gear
+    where it is modified: the map against axial position z and roll length ρ (filled levels, the
+    levels marked on the colour bar), the profile δ(ρ) at the face centre and at a face end beside
+    it, the lead δ(z) at the tip and at mid-profile below it, and the six parameters in words
+    (seed 000's parabolic tip and root reliefs and lead crowning,
+    :func:`gearmesh.surface.modification_depth`)."""
     p = ds["optimum_modification"].values
     gears = [g for g in range(2) if g == 0 or np.any(p[g] > 0)]
-    fig, axes = plt.subplots(1, len(gears), figsize=(5.2 * len(gears), 4.6), squeeze=False)
-    symbols = ds["parameter_symbol"].values
-    for ax, g in zip(axes[0], gears):
+    fig = plt.figure(figsize=(7.2 * len(gears), 7.4))
+    grid = fig.add_gridspec(2, 3 * len(gears), width_ratios=[4, 1.6, 0.25] * len(gears), height_ratios=[4, 1.5],
+                            wspace=0.35, hspace=0.3)
+    notes = []
+    for n, g in enumerate(gears):
         rho, z, depth = _depth_map(ds, g)
-        mesh = ax.pcolormesh(z * MM, rho * MM, depth * UM, cmap="viridis", shading="auto")
-        levels = np.linspace(0, max(float(depth.max()), 1e-9), 8)[1:] * UM
-        if depth.max() > 0:
-            cs = ax.contour(z * MM, rho * MM, depth * UM, levels=levels, colors="w", linewidths=0.6)
-            ax.clabel(cs, fmt="%.0f", fontsize=6)
-        fig.colorbar(mesh, ax=ax, label="material removed δ (µm)")
+        ax = fig.add_subplot(grid[0, 3 * n])
+        side = fig.add_subplot(grid[0, 3 * n + 1], sharey=ax)
+        below = fig.add_subplot(grid[1, 3 * n], sharex=ax)
+        cax = fig.add_subplot(grid[0, 3 * n + 2])
+        top = max(float(depth.max()) * UM, 1e-3)
+        levels = MaxNLocator(nbins=10).tick_values(0.0, top)
+        levels = levels[levels >= 0]
+        filled = ax.contourf(z * MM, rho * MM, depth * UM, levels=levels, cmap="viridis")
+        lines = ax.contour(z * MM, rho * MM, depth * UM, levels=levels[1:-1], colors="w", linewidths=0.5)
+        bar = fig.colorbar(filled, cax=cax)
+        bar.add_lines(lines)
+        bar.set_label("material removed δ (µm)")
         name = str(ds["gear"].values[g])
-        text = ", ".join(f"{s} {v * (UM if k in (0, 1, 4) else MM):.3g}{' µm' if k in (0, 1, 4) else ' mm'}"
-                         for k, (s, v) in enumerate(zip(symbols, p[g])))
-        ax.set_title(f"{name} flank\n{text}", fontsize=7)
-        ax.set_xlabel("z across the face (mm)")
-        ax.set_ylabel(f"{name} roll length ρ (mm), SAP to tip")
-    fig.suptitle(_title(ds, "optimum micro-geometry δ(profile, face)"), y=1.02)
+        ax.set_ylabel(f"{name} roll length ρ (mm), SAP (bottom) to tip")
+        ax.tick_params(labelbottom=False)
+        mid = z.size // 2
+        side.plot(depth[:, mid] * UM, rho * MM, color="tab:blue", label="face centre")
+        side.plot(depth[:, -1] * UM, rho * MM, color="tab:red", ls="--", label="face end")
+        side.set_xlabel("δ (µm)")
+        side.tick_params(labelleft=False)
+        side.grid(alpha=0.3)
+        side.legend(fontsize=7, loc="upper right")
+        side.set_title("profile", fontsize=8)
+        below.plot(z * MM, depth[-1] * UM, color="tab:purple", label="at the tip")
+        below.plot(z * MM, depth[rho.size // 2] * UM, color="tab:green", ls="--", label="mid-profile")
+        below.set_xlabel("z across the face (mm)")
+        below.set_ylabel("δ (µm)")
+        below.grid(alpha=0.3)
+        below.legend(fontsize=7, ncol=2)
+        words = [f"{label} {v * (UM if k in (0, 1, 4) else MM):.3g} {'µm' if k in (0, 1, 4) else 'mm'}"
+                 for k, (label, v) in enumerate(zip(_PARAMETERS, p[g]))]
+        ax.set_title(f"{name} flank", fontsize=9)
+        notes.append(f"{name}: {', '.join(words[:3])},\n{', '.join(words[3:])}")
+    fig.suptitle(_title(ds, "optimum micro-geometry δ(profile, face)") + "\n" + "\n".join(notes), y=1.02,
+                 fontsize=9)
     return _save(fig, path)
 
 
