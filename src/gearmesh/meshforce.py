@@ -60,11 +60,11 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import PairGeometry
-from .ltca import ContactLaw, _invert, ltca_model, point_compliance, solve_contact
+from .ltca import ContactLaw, invert_tabulated, ltca_model, point_compliance, solve_contact
 from .stiffness import SliceComplianceTable
-from .tca import REGION_APPROACH_TIP, REGION_RECESS_TIP, candidate_grid, check_count, engagement_point
+from .tca import REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point
 
-__all__ = ["MeshForceTable", "mesh_force_table", "DEFAULT_TABLE_POSITIONS", "DEFAULT_TABLE_APPROACHES",
+__all__ = ["MeshForceTable", "mesh_force_table", "TableLayout", "table_layout", "tabulate", "DEFAULT_TABLE_POSITIONS", "DEFAULT_TABLE_APPROACHES",
            "DEFAULT_TABLE_EXTENSION"]
 
 #: Rows (window positions per mesh cycle) and columns (approaches) of the default table; the
@@ -215,6 +215,110 @@ def _enter_columns(pairs: np.ndarray, j_enter: int, roll: np.ndarray, window: np
     return col
 
 
+@dataclass(frozen=True)
+class TableLayout:
+    """What the table of a pair needs that no micro-geometry changes (SI): the contact ``law``,
+    the window positions ``window`` (P+1,) and pinion rolls ``roll`` (P+1,), the candidate
+    ``grid`` (its separation basis gives the gaps of any modification), the points' compliances
+    ``compliance`` (P+1, M) (m/N per unit face width, the contact law's linear part included),
+    the entering pair's points ``enter_mask`` (P+1, M), and r_A ``roll_engagement``."""
+
+    geom: PairGeometry
+    law: ContactLaw
+    pitch: float
+    roll_engagement: float
+    window: np.ndarray
+    roll: np.ndarray
+    grid: object
+    compliance: np.ndarray
+    enter_mask: np.ndarray
+
+    def gaps(self, params=None, lead_slope=(0.0, 0.0)) -> np.ndarray:
+        """Unloaded separations (m) of every point, (..., P+1, M), inf where no candidate, for
+        modification parameters ``params`` (..., 2, 6) m (default the pair's own) and lead slopes
+        ``lead_slope`` (..., 2) m (:func:`gearmesh.tca.basis_gap`: no new geometry)."""
+        grid = self.grid
+        rows = self.roll.size
+        if params is None:
+            gap = basis_gap(self.geom, grid.basis, np.broadcast_to(grid.z, grid.s.shape), lead_slope)
+            lead_shape = np.shape(lead_slope)[:-1]
+            gap = gap.reshape(lead_shape + (rows, -1))
+        else:
+            params = np.asarray(params, dtype=float)
+            lead = np.broadcast_to(np.asarray(lead_slope, dtype=float), params.shape[:-2] + (2,))
+            lead_ax = lead[..., None, None, None, :]
+            gap = basis_gap(self.geom, grid.basis, grid.z, lead_ax, params[..., None, None, None, :, :])
+            gap = gap.reshape(params.shape[:-2] + (rows, -1))
+        return np.where(np.isfinite(gap), gap, np.inf)
+
+
+def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, points: int = DEFAULT_TABLE_POINTS,
+                 contact_law_name: str = "palmgren", method: str = "transition",
+                 extension: float = DEFAULT_TABLE_EXTENSION,
+                 tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None) -> TableLayout:
+    """The micro-geometry-independent part of :func:`mesh_force_table` (its parameters)."""
+    positions = check_count("table_positions", positions, 16, 100000)
+    if not (isinstance(extension, (int, float)) and 0 < extension <= 0.5):
+        raise GearmeshInputError("table_extension", extension, "must lie in (0, 0.5] (fraction of the base pitch)")
+    # the load-independent LTCA model: slice tables, pair table, contact law (its own grid unused)
+    base = ltca_model(geom, positions=1, points=points, contact_law_name=contact_law_name, method=method,
+                      extension=extension, tables=tables)
+    law: ContactLaw = base.law
+    pitch = geom.transverse_base_pitch
+    roll_a, j_a, _ = engagement_point(geom)
+    window = np.arange(positions + 1) * (pitch / positions)
+    roll = np.mod(roll_a - 0.5 * pitch + window, pitch)
+    grid = candidate_grid(geom, roll, points, (0.0, 0.0), extension)
+    comp = point_compliance(geom, base.pair_table, base.tables, grid.s, grid.region, grid.rho_pinion,
+                            grid.rho_gear, with_hertz=law.name == "linear") / grid.dz
+    rows = roll.size
+    comp = np.where(np.isfinite(grid.gap), comp, 1.0).reshape(rows, -1) + law.linear
+    col = _enter_columns(np.asarray(grid.pairs), j_a, roll, window, roll_a, pitch)
+    n_line = grid.gap.shape[2]
+    enter_mask = np.zeros(comp.shape, dtype=bool)
+    for k, c in enumerate(col):
+        if c >= 0:
+            enter_mask[k, c * n_line:(c + 1) * n_line] = True
+    return TableLayout(geom=geom, law=law, pitch=pitch, roll_engagement=float(roll_a), window=window, roll=roll,
+                       grid=grid, compliance=comp, enter_mask=enter_mask)
+
+
+def tabulate(layout: TableLayout, gap: np.ndarray, force_max: float,
+             approaches: int = DEFAULT_TABLE_APPROACHES) -> MeshForceTable:
+    """The :class:`MeshForceTable` of one micro-geometry with separations ``gap`` (P+1, M) m
+    (:meth:`TableLayout.gaps`) up to ``force_max`` (N)."""
+    approaches = check_count("table_approaches", approaches, 8, 100000)
+    if not (isinstance(force_max, (int, float)) and math.isfinite(force_max) and force_max > 0):
+        raise GearmeshInputError("force_max", force_max, "must be a positive finite force (N)")
+    law, comp, enter_mask = layout.law, layout.compliance, layout.enter_mask
+    rows, m = gap.shape
+    gap_min = gap.min(axis=1)
+    if not np.all(np.isfinite(gap_min)):
+        raise GearmeshInputError("positions", int(np.sum(~np.isfinite(gap_min))), "rows without a candidate point")
+    enter_gap = np.where(enter_mask, gap, np.inf).min(axis=1)
+    # the approach range: every row carries force_max
+    _, delta_max, _, _ = solve_contact(gap, comp - law.linear, np.full(rows, float(force_max)), law)
+    u_max = float(np.max(delta_max - gap_min))
+    u = np.linspace(0.0, u_max, approaches)
+    force = np.empty((rows, approaches))
+    stiff = np.empty((rows, approaches))
+    enter = np.empty((rows, approaches))
+    step = max(1, _CHUNK_ELEMENTS // (approaches * m))
+    for k0 in range(0, rows, step):
+        sl = slice(k0, min(rows, k0 + step))
+        d = gap_min[sl, None, None] + u[None, :, None] - gap[sl, None, :]
+        q, dq = invert_tabulated(np.where(np.isfinite(d), d, -1.0), np.broadcast_to(comp[sl, None, :], d.shape),
+                        law.coefficient, law.exponent)
+        force[sl] = q.sum(axis=2)
+        stiff[sl] = dq.sum(axis=2)
+        enter[sl] = np.where(enter_mask[sl, None, :], q, 0.0).sum(axis=2)
+    geom = layout.geom
+    _warn_reach(layout.grid, gap, gap_min[:, None] + u_max, layout.grid.extension, geom.path_of_contact)
+    return MeshForceTable(pitch=layout.pitch, roll_engagement=layout.roll_engagement, window=layout.window,
+                          roll=layout.roll, approach=u, gap_min=gap_min, force=force, stiffness=stiff,
+                          enter_gap=enter_gap, enter_force=enter, force_max=float(force_max))
+
+
 def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFAULT_TABLE_POSITIONS,
                      approaches: int = DEFAULT_TABLE_APPROACHES, points: int = DEFAULT_TABLE_POINTS,
                      lead_slope=(0.0, 0.0), contact_law_name: str = "palmgren", method: str = "transition",
@@ -234,57 +338,12 @@ def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFA
     extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt, at
         most 0.5: the entering pair is followed over half a pitch before A).
     tables : per-gear slice compliance tables to reuse (same ``method``).
+
+    Several micro-geometries of one pair: :func:`table_layout` once, then :func:`tabulate` of
+    :meth:`TableLayout.gaps` for each.
     """
-    positions = check_count("table_positions", positions, 16, 100000)
-    approaches = check_count("table_approaches", approaches, 8, 100000)
-    if not (isinstance(force_max, (int, float)) and math.isfinite(force_max) and force_max > 0):
-        raise GearmeshInputError("force_max", force_max, "must be a positive finite force (N)")
-    if not (isinstance(extension, (int, float)) and 0 < extension <= 0.5):
-        raise GearmeshInputError("table_extension", extension, "must lie in (0, 0.5] (fraction of the base pitch)")
-    # the load-independent LTCA model: slice tables, pair table, contact law (its own grid unused)
-    base = ltca_model(geom, positions=1, points=points, lead_slope=lead_slope, contact_law_name=contact_law_name,
-                      method=method, extension=extension, tables=tables)
-    law: ContactLaw = base.law
-    pitch = geom.transverse_base_pitch
-    roll_a, j_a, _ = engagement_point(geom)
-    window = np.arange(positions + 1) * (pitch / positions)
-    roll = np.mod(roll_a - 0.5 * pitch + window, pitch)
-    grid = candidate_grid(geom, roll, points, tuple(lead_slope), extension)
-    comp = point_compliance(geom, base.pair_table, base.tables, grid.s, grid.region, grid.rho_pinion,
-                            grid.rho_gear, with_hertz=law.name == "linear") / grid.dz
-    rows, m = roll.size, grid.gap[0].size
-    gap = np.where(np.isfinite(grid.gap), grid.gap, np.inf).reshape(rows, m)
-    comp = np.where(np.isfinite(grid.gap), comp, 1.0).reshape(rows, m) + law.linear
-    gap_min = gap.min(axis=1)
-    if not np.all(np.isfinite(gap_min)):
-        raise GearmeshInputError("positions", int(np.sum(~np.isfinite(gap_min))), "rows without a candidate point")
-    col = _enter_columns(np.asarray(grid.pairs), j_a, roll, window, roll_a, pitch)
-    n_line = grid.gap.shape[2]
-    enter_mask = np.zeros((rows, m), dtype=bool)
-    for k, c in enumerate(col):
-        if c >= 0:
-            enter_mask[k, c * n_line:(c + 1) * n_line] = True
-    enter_gap = np.where(enter_mask, gap, np.inf).min(axis=1)
-    # the approach range: every row carries force_max
-    _, delta_max, _, _ = solve_contact(gap, comp - law.linear, np.full(rows, float(force_max)), law)
-    u_max = float(np.max(delta_max - gap_min))
-    u = np.linspace(0.0, u_max, approaches)
-    force = np.empty((rows, approaches))
-    stiff = np.empty((rows, approaches))
-    enter = np.empty((rows, approaches))
-    step = max(1, _CHUNK_ELEMENTS // (approaches * m))
-    for k0 in range(0, rows, step):
-        sl = slice(k0, min(rows, k0 + step))
-        d = gap_min[sl, None, None] + u[None, :, None] - gap[sl, None, :]
-        q, dq = _invert(np.where(np.isfinite(d), d, -1.0), np.broadcast_to(comp[sl, None, :], d.shape),
-                        law.coefficient, law.exponent)
-        force[sl] = q.sum(axis=2)
-        stiff[sl] = dq.sum(axis=2)
-        enter[sl] = np.where(enter_mask[sl, None, :], q, 0.0).sum(axis=2)
-    _warn_reach(grid, gap, gap_min[:, None] + u_max, extension * pitch, geom.path_of_contact)
-    return MeshForceTable(pitch=pitch, roll_engagement=float(roll_a), window=window, roll=roll, approach=u,
-                          gap_min=gap_min, force=force, stiffness=stiff, enter_gap=enter_gap, enter_force=enter,
-                          force_max=float(force_max))
+    layout = table_layout(geom, positions, points, contact_law_name, method, extension, tables)
+    return tabulate(layout, layout.gaps(lead_slope=tuple(lead_slope)), force_max, approaches)
 
 
 def _warn_reach(grid, gap: np.ndarray, x_max: np.ndarray, ext: float, path: float) -> None:
