@@ -331,7 +331,8 @@ def test_low_speed_dynamic_te_is_the_mean_lte_and_mesh_deflection_is_f_over_k():
 
 
 def test_sweep_adds_speeds_around_predicted_resonances(model):
-    from gearmesh.datasets.dynamics import RESONANCE_OFFSETS, resonance_refined
+    from gearmesh.datasets.dynamics import resonance_refined
+    from gearmesh.dynamics import RESONANCE_OFFSETS
 
     grid = speed_grid("2000:30000:1000")
     speeds = resonance_refined(grid, model)

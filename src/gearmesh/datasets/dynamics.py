@@ -26,6 +26,8 @@ from ..dynamics import (
     SweepResult,
     pair_model,
     require_dynamics_data,
+    mesh_energy_fraction,
+    resonance_band,
     resonance_speeds,
     simulate,
     train_model,
@@ -340,22 +342,11 @@ def resolve_excitation(excitation: str | None, ltca: xr.Dataset | None) -> str:
     return excitation
 
 
-#: Relative offsets of the speeds added around each predicted resonance speed n_r, in units of
-#: the mode's damping ratio ζ (the half-power band of a resonance is about n_r(1 ± ζ)).
-RESONANCE_OFFSETS = (-1.0, -0.5, -0.25, 0.0, 0.25, 0.5, 1.0)
-
-
 def resonance_refined(grid: np.ndarray, model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> np.ndarray:
-    """``grid`` plus speeds around every resonance speed inside it: n_r(1 + c ζ_r) for c in
-    :data:`RESONANCE_OFFSETS`, n_r = f_r/(j f_mesh per rpm) of the linearised model at the mean
-    stiffness (:func:`gearmesh.dynamics.resonance_speeds`), ζ_r its modal damping ratio
-    (clipped to [0.005, 0.2]: overdamped modes have no peak to resolve), so a peak is resolved rather than caught by two points of the grid. Sorted, unique;
-    at most :data:`MAX_SPEEDS`."""
-    res = resonance_speeds(model, harmonics)
-    zeta = np.clip(np.nan_to_num(model.modes()["damping_ratio"], nan=0.0), 0.005, 0.2)
-    lo, hi = float(grid.min()), float(grid.max())
-    extra = [n * (1 + c * z) for row in res["speed_rpm"] for n, z in zip(row, zeta) for c in RESONANCE_OFFSETS]
-    extra = np.array([n for n in extra if np.isfinite(n) and lo < n < hi])
+    """``grid`` plus the speeds around every resonance speed inside it
+    (:func:`gearmesh.dynamics.resonance_band`), so a peak is resolved rather than caught by two
+    points of the grid. Sorted, unique; at most :data:`MAX_SPEEDS`."""
+    extra = resonance_band(model, float(grid.min()), float(grid.max()), harmonics)
     out = np.unique(np.concatenate([grid, extra]))
     if out.size > MAX_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{out.size} speeds with the resonance points",
@@ -556,23 +547,6 @@ def _vibration_vars(res: SweepResult, n_trans: int, shape: tuple[int, int]) -> d
         "displacement_std": variable(dims, ys, "m", "standard deviation of the displacement (vibration)"),
         "velocity_rms": variable(dims, res.v_rms[:n_trans].T.reshape(-1, *shape), "m s-1", "RMS velocity"),
     }
-
-
-def mesh_energy_fraction(model: GearModel, shapes: np.ndarray) -> np.ndarray:
-    """Fraction (-) of each mode's strain energy in the meshes (mean stiffness): k (G φ)² over
-    Σ k_b,i φ_i² + k (G φ)², φ the displacement part of the mode shape (columns of ``shapes``,
-    made real by removing its phase). A mode with little energy in the mesh is barely driven by
-    the mesh excitation."""
-    k = np.array([ml.k_mean for ml in model.meshes])
-    trans = [i for i in range(model.full["M"].shape[0]) if i not in model.full["rotations"]]
-    kb = np.diag(model.full["K_bearing"])[trans]
-    out = np.zeros(shapes.shape[1])
-    for j in range(shapes.shape[1]):
-        v = shapes[:, j]
-        v = np.real(v * np.exp(-1j * np.angle(v[np.argmax(np.abs(v))])))
-        mesh = float(np.sum(k * (model.G @ v) ** 2))
-        out[j] = mesh / (float(np.sum(kb * v[:model.n_trans] ** 2)) + mesh)
-    return out
 
 
 def _modal_vars(model: GearModel, harmonics=(1, 2, 3)) -> dict[str, xr.Variable]:

@@ -289,3 +289,40 @@ def resonance_speeds(model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> 
     fn = model.modes()["frequency_Hz"]
     h = np.asarray(harmonics, dtype=float)
     return {"frequency_Hz": fn, "speed_rpm": fn[None, :] / (h[:, None] * model.mesh_frequency_per_rpm)}
+
+
+#: Relative offsets of the speeds around each predicted resonance speed n_r, in units of the
+#: mode's damping ratio ζ (the half-power band of a resonance is about n_r(1 ± ζ)).
+RESONANCE_OFFSETS = (-1.0, -0.5, -0.25, 0.0, 0.25, 0.5, 1.0)
+
+
+def resonance_band(model: GearModel, low: float, high: float, harmonics: Sequence[int] = (1, 2, 3),
+                   offsets: Sequence[float] = RESONANCE_OFFSETS, min_mesh_energy: float = 0.0) -> np.ndarray:
+    """Speeds (rpm) strictly inside (``low``, ``high``) around every resonance speed n_r of
+    :func:`resonance_speeds`: n_r(1 + c ζ_r) for c in ``offsets``, ζ_r the mode's damping ratio
+    clipped to [0.005, 0.2] (overdamped modes have no peak to resolve), of the modes with at least
+    ``min_mesh_energy`` of their strain energy in the meshes (:func:`mesh_energy_fraction`). Unsorted."""
+    res = resonance_speeds(model, harmonics)
+    md = model.modes()
+    zeta = np.clip(np.nan_to_num(md["damping_ratio"], nan=0.0), 0.005, 0.2)
+    driven = mesh_energy_fraction(model, md["shapes"]) >= min_mesh_energy if min_mesh_energy > 0 \
+        else np.ones(zeta.size, dtype=bool)
+    extra = [n * (1 + c * z) for row in res["speed_rpm"] for n, z, d in zip(row, zeta, driven) if d for c in offsets]
+    return np.array([n for n in extra if np.isfinite(n) and low < n < high])
+
+
+def mesh_energy_fraction(model: GearModel, shapes: np.ndarray) -> np.ndarray:
+    """Fraction (-) of each mode's strain energy in the meshes (mean stiffness): k (G φ)² over
+    Σ k_b,i φ_i² + k (G φ)², φ the displacement part of the mode shape (columns of ``shapes``,
+    made real by removing its phase). A mode with little energy in the mesh is barely driven by
+    the mesh excitation."""
+    k = np.array([ml.k_mean for ml in model.meshes])
+    trans = [i for i in range(model.full["M"].shape[0]) if i not in model.full["rotations"]]
+    kb = np.diag(model.full["K_bearing"])[trans]
+    out = np.zeros(shapes.shape[1])
+    for j in range(shapes.shape[1]):
+        v = shapes[:, j]
+        v = np.real(v * np.exp(-1j * np.angle(v[np.argmax(np.abs(v))])))
+        mesh = float(np.sum(k * (model.G @ v) ** 2))
+        out[j] = mesh / (float(np.sum(kb * v[:model.n_trans] ** 2)) + mesh)
+    return out
