@@ -175,7 +175,7 @@ def test_dataset_figures_and_the_optimum_as_a_pair(pair, ga, tmp_path):
     ({"torques_Nm": [1000, 1000]}, "torques_Nm"),
     ({"weights": [1, 2]}, "weights"),
     ({"torques_Nm": [400, 1000], "weights": [1, 2]}, "weights"),
-    ({"objective": "dynamic"}, "objective"),
+    ({"objective": "dynamic", "dynamic_speeds_rpm": [5000]}, "dynamic_speeds_rpm"),
     ({"objective": "robust"}, "objective"),
     ({"tolerance_statistic": "max"}, "tolerance_statistic"),
     ({"tolerance_statistic": "max", "tolerances": {"grade": 6, "samples": 0}}, "tolerance_statistic"),

@@ -210,7 +210,11 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
                                    speed_rpm=args.speed_rpm, modify=args.modify, method=args.method, seed=args.seed,
                                    population=args.population, generations=args.generations,
                                    tolerance_statistic=statistic, tolerance_level_percent=args.tolerance_level,
-                                   tolerances=tolerances)
+                                   tolerances=tolerances, dynamic_speeds_rpm=_numbers("--dynamic-speeds-rpm",
+                                                                                      args.dynamic_speeds_rpm),
+                                   backlash_um=args.backlash_um,
+                                   constraints={"dynamic_factor": args.dynamic_factor}
+                                   if args.dynamic_factor is not None else None)
     if out is not None:
         write_pair(optimum_pair(pair, ds, name=out.stem), out)
         summary["pair_file"] = str(out)
@@ -322,7 +326,16 @@ def build_parser() -> argparse.ArgumentParser:
                  "the mesh-in impact over a load spectrum and the manufacturing tolerances")
     p.add_argument("--objective", choices=("force", "velocity", "robust", "dynamic"), default="force",
                    help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
-                        "dynamic: peak dynamic mesh force (not available yet)")
+                        "dynamic: the dynamic factor (peak over static mesh force) of the contact-driven 8-DOF pair "
+                        "over the speed range")
+    p.add_argument("--dynamic-factor", dest="dynamic_factor", type=float, default=None,
+                   help="constraint: the dynamic factor at every torque at most this times the unmodified pair's "
+                        "(e.g. 1.0: never worse than unmodified in the dynamics)")
+    p.add_argument("--dynamic-speeds-rpm", dest="dynamic_speeds_rpm", default=None,
+                   help="speeds of the dynamic objective/constraint, comma-separated (rpm; default 0.2, 1 and 3 times "
+                        "--speed-rpm), resonances within their range added per candidate")
+    p.add_argument("--backlash-um", dest="backlash_um", type=_backlash_option, default="pair",
+                   help="backlash of the candidates' dynamics (um, or 'pair': the pair's own)")
     p.add_argument("--torque-Nm", dest="torque_Nm", type=float, default=None,
                    help="design torque (N m; default the middle of --torques-Nm)")
     p.add_argument("--torques-Nm", dest="torques_Nm", default=None,

@@ -87,6 +87,7 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import GEARS, MAX_MODIFICATION_TO_MODULE, PairGeometry
+from .dynamics.population import PopulationDynamics, dynamic_factors, population_dynamics
 from .impact import SCENARIO_NONE, ImpactModel, impact_response, impact_static, load_grid, load_window, ltca_metrics
 from .surface import MODIFICATION_FIELDS, fit_modifications
 from .tolerance import (SAMPLINGS, ToleranceModel, apply_deviations, check_statistic, sample_statistic,
@@ -157,6 +158,9 @@ class OptimiseSettings:
     energy_velocity: str = "transverse"
     load_window_step: float = 50.0
     load_window_top: float | None = None
+    dynamic_speeds: tuple[float, ...] | None = None
+    dynamic_factor: float | None = None
+    backlash: float | None = None
 
     @property
     def budget(self) -> int:
@@ -166,6 +170,17 @@ class OptimiseSettings:
     @property
     def constrained(self) -> bool:
         return self.lte_factor is not None or self.line_load_factor is not None
+
+    @property
+    def uses_dynamics(self) -> bool:
+        """The contact-driven dynamics of every candidate is needed (objective or constraint)."""
+        return self.objective == "dynamic" or self.dynamic_factor is not None
+
+    @property
+    def dynamic_speed_grid(self) -> tuple[float, ...]:
+        """The speeds (rpm) of the dynamic objective/constraint: given, or 0.2, 1 and 3 times the
+        objective speed (its range bounds the resonance speeds added per candidate)."""
+        return self.dynamic_speeds or tuple(f * self.speed_rpm for f in (0.2, 1.0, 3.0))
 
     @property
     def objective_torques(self) -> tuple[float, ...]:
@@ -223,16 +238,14 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    lte_factor=None, line_load_factor=None, penalty: float = 10.0, mutation_probability: float = 0.3,
                    mutation_scale: float = 0.1, keep_elitism: int = 2, random_baseline: bool = False,
                    energy_velocity: str = "transverse", load_window_step: float = 50.0,
-                   load_window_top: float | None = None) -> OptimiseSettings:
+                   load_window_top: float | None = None, dynamic_speeds=None, dynamic_factor=None,
+                   backlash=None) -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
     the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone."""
     from .ltca import check_torques
 
     method = _choice("method", method, METHODS)
     objective = _choice("objective", objective, OBJECTIVES)
-    if objective not in OBJECTIVE_VALUES:
-        raise GearmeshInputError("objective", objective, "is not available yet (the peak dynamic mesh force needs "
-                                                         "the contact-driven dynamics)")
     population = _integer("population", population, 4, 100_000)
     generations = _integer("generations", generations, 1, 100_000)
     seed = _integer("seed", seed, 0, 2**32 - 1)
@@ -282,11 +295,23 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
         raise GearmeshInputError("load_window_top_Nm", top, f"must reach the largest torque {max(torques):g} N m")
     if top / load_window_step > 2000:
         raise GearmeshInputError("load_window_step_Nm", load_window_step, "gives more than 2000 window torques")
+    if dynamic_speeds is not None:
+        if not isinstance(dynamic_speeds, (list, tuple)) or len(dynamic_speeds) < 2:
+            raise GearmeshInputError("dynamic_speeds_rpm", dynamic_speeds, "must list two or more speeds (rpm)")
+        dynamic_speeds = tuple(sorted(check_positive(f"dynamic_speeds_rpm[{k}]", v) for k, v in
+                                      enumerate(dynamic_speeds)))
+        if dynamic_speeds[-1] > 1e6:
+            raise GearmeshInputError("dynamic_speeds_rpm", list(dynamic_speeds), "must lie in (0, 1e6] rpm")
+    dynamic_factor = check_positive("constraints.dynamic_factor", dynamic_factor, allow_none=True)
+    if backlash is not None:
+        backlash = float(backlash)
+        if not (math.isfinite(backlash) and 0 <= backlash <= 1e-3):
+            raise GearmeshInputError("backlash_um", backlash * 1e6, "must lie in [0, 1000] µm")
     return OptimiseSettings(method, objective, population, generations, seed, torque, torques, weights, statistic,
                             speed_rpm, tolerance_samples, sampling, tolerance_seed, tolerance_statistic,
                             float(tolerance_level), lte_factor, line_load_factor, penalty,
                             float(mutation_probability), float(mutation_scale), keep_elitism, random_baseline,
-                            energy_velocity, load_window_step, top)
+                            energy_velocity, load_window_step, top, dynamic_speeds, dynamic_factor, backlash)
 
 
 # --------------------------------------------------------------------------------------
@@ -427,12 +452,13 @@ def impact_values(model: ImpactModel, settings: OptimiseSettings, params: np.nda
 
 
 #: The objective quantity per (row, torque) of each objective: f(problem, params (N, 2, 6), lead
-#: (N, 2), impact values) -> (N, T). 'dynamic' (the peak dynamic mesh force over the speed range,
-#: from the contact-driven dynamics) is added here when it exists; until then it is refused.
+#: (N, 2), impact values) -> (N, T). 'dynamic': the dynamic factor K_v of the contact-driven 8-DOF
+#: pair over the speed range (:func:`gearmesh.dynamics.population.dynamic_factors`).
 OBJECTIVE_VALUES: dict[str, Callable[["Problem", np.ndarray, np.ndarray, ImpactValues], np.ndarray]] = {
     "force": lambda prob, params, lead, iv: iv.force,
     "velocity": lambda prob, params, lead, iv: iv.velocity,
     "robust": lambda prob, params, lead, iv: iv.force,
+    "dynamic": lambda prob, params, lead, iv: dynamic_factors(prob.dynamics, params, lead),
 }
 
 
@@ -452,8 +478,9 @@ class Evaluation:
     'velocity', penalties included); per (C, S, T) — S the manufactured population evaluated
     (sample 0 the nominal), T the objective torques — ``value`` the objective quantity,
     ``force`` F_s, ``velocity`` |v_n|, ``scenario``; ``failed`` (C,), ``lte_peak_to_peak`` (C,) m
-    and ``max_line_load`` (C,) N/m at the design torque (NaN when not needed), ``violation``
-    (C,) the summed relative constraint excess."""
+    and ``max_line_load`` (C,) N/m at the design torque (NaN when not needed), ``dynamic_factor``
+    (C, T) K_v of the nominal gear at the objective torques (NaN when no dynamic constraint),
+    ``violation`` (C,) the summed relative constraint excess."""
 
     objective: np.ndarray
     value: np.ndarray
@@ -463,14 +490,16 @@ class Evaluation:
     failed: np.ndarray
     lte_peak_to_peak: np.ndarray
     max_line_load: np.ndarray
+    dynamic_factor: np.ndarray
     violation: np.ndarray
 
 
 @dataclass(frozen=True)
 class Problem:
     """Everything an evaluation needs: the impact model, the genes, the base parameters, the
-    settings, the tolerance model with its unit deviations (S, k) (drawn once), and the
-    standard (unmodified) gear's evaluation."""
+    settings, the tolerance model with its unit deviations (S, k) (drawn once), the standard
+    (unmodified) gear's evaluation, and the shared set-up of the candidates' dynamics (when the
+    objective or a constraint needs it)."""
 
     model: ImpactModel
     genes: tuple[Gene, ...]
@@ -479,6 +508,7 @@ class Problem:
     tolerance: ToleranceModel
     deviations: np.ndarray
     standard: Evaluation | None
+    dynamics: PopulationDynamics | None = None
 
     @property
     def geom(self) -> PairGeometry:
@@ -513,24 +543,33 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
         lte, line = (v[:, 0] for v in ltca_metrics(model, [s.torque], params))
     else:
         lte = line = np.full(nc, np.nan)
+    if s.dynamic_factor is None:
+        kv = np.full((nc, len(s.objective_torques)), np.nan)
+    elif s.objective == "dynamic":  # the nominal gear is sample 0 of the objective's rows
+        kv = value[:, 0]
+    else:
+        kv = dynamic_factors(prob.dynamics, params, np.broadcast_to(np.asarray(model.lead_slope, float), (nc, 2)))
     # failed: no impact found, a non-finite value, or a touch without a closing velocity (a
     # crossing the impact model did not resolve: zero force would be an artefact, not an optimum)
     failed = (~np.isfinite(f) | np.any(scen == SCENARIO_NONE, axis=(1, 2)) | ~np.all(np.isfinite(value), axis=(1, 2))
               | np.any(~(vel > 0), axis=(1, 2)))
     if standard is None:
-        return Evaluation(f, value, force, vel, scen, failed, lte, line, np.zeros(nc))
+        return Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc))
     violation = np.zeros(nc)
-    for factor, m, ref in ((s.lte_factor, lte, standard.lte_peak_to_peak), (s.line_load_factor, line,
-                                                                              standard.max_line_load)):
+    with np.errstate(invalid="ignore", divide="ignore"):
+        # the dynamic factor against the standard gear's at the same torque, the worst torque
+        kv_ratio = np.max(kv / standard.dynamic_factor[0], axis=1)
+    for factor, m, ref in ((s.lte_factor, lte, standard.lte_peak_to_peak[0]),
+                           (s.line_load_factor, line, standard.max_line_load[0]), (s.dynamic_factor, kv_ratio, 1.0)):
         if factor is not None:
             with np.errstate(invalid="ignore"):
-                violation += np.maximum(0.0, m / (factor * ref[0]) - 1.0)
+                violation += np.maximum(0.0, m / (factor * ref) - 1.0)
     failed |= ~np.isfinite(violation)
     j = f + s.penalty * standard.objective[0] * violation
     j = np.where(failed, FAILURE_FACTOR * standard.objective[0], j)
     if s.method == "nsga2":
         lte = np.where(failed, FAILURE_FACTOR * standard.lte_peak_to_peak[0], lte)
-    return Evaluation(j, value, force, vel, scen, failed, lte, line, np.where(failed, np.nan, violation))
+    return Evaluation(j, value, force, vel, scen, failed, lte, line, kv, np.where(failed, np.nan, violation))
 
 
 def _manufactured_rows(model: ImpactModel, tolerance: ToleranceModel, params: np.ndarray, deviations: np.ndarray):
@@ -552,7 +591,10 @@ def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), 
     if settings.tolerance_statistic is not None and deviations.shape[0] == 0:
         raise GearmeshInputError("tolerances", None, "define no deviation (no lead grade, no modification "
                                                      "tolerance): the tolerance statistic has nothing to sample")
-    prob = Problem(model, genes, base, settings, tolerance, deviations, None)
+    dynamics = population_dynamics(model.geom, settings.objective_torques, settings.dynamic_speed_grid,
+                                   backlash=settings.backlash, tables=model.ltca.tables,
+                                   contact_law_name=model.ltca.law.name) if settings.uses_dynamics else None
+    prob = Problem(model, genes, base, settings, tolerance, deviations, None, dynamics)
     standard = _evaluate(prob, np.zeros((1, 2, 6)), None)
     if not np.all(np.isfinite(standard.objective)) or np.any(standard.scenario == SCENARIO_NONE):
         raise GearmeshInputError("torques_Nm" if len(settings.objective_torques) > 1 else "torque_Nm",

@@ -64,7 +64,7 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                  keep_elitism: int = 2, points: int | None = None, window_positions: int | None = None,
                  face_samples: int | None = None, cycle_positions: int = 32, contact_law: str | None = None,
                  corner_extension: float | None = None, impact: Mapping[str, Any] | None = None,
-                 tolerances: Mapping[str, Any] | None = None):
+                 tolerances: Mapping[str, Any] | None = None, dynamic_speeds_rpm=None, backlash_um="pair"):
     """Check one optimisation's settings (the config's ``optimise.NAME`` section, as keywords) for
     ``pair``: (geometry, settings, gene keywords, impact-model keywords, tolerance model). Torques
     are given on ``on`` (converted to the pinion); ``torques_Nm`` the load spectrum (None: the
@@ -75,17 +75,26 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
     energy velocity), so the optimum is optimal for the model the impact stage evaluates it
     with; ``points``, ``contact_law``, ``corner_extension``, ``window_positions`` and
     ``face_samples`` given here override it (None: the section's, or the package defaults
-    without one). ``tolerances`` is the study's ``tolerances:`` section (:func:`gearmesh.tolerance.study_tolerances`)."""
+    without one). ``tolerances`` is the study's ``tolerances:`` section (:func:`gearmesh.tolerance.study_tolerances`).
+    ``dynamic_speeds_rpm`` and ``backlash_um`` ('pair': the pair's own, or µm) set the candidates'
+    contact-driven dynamics of objective 'dynamic' and constraint ``dynamic_factor``
+    (:mod:`gearmesh.dynamics.population`)."""
     from ..tca import check_lead_slope
 
     geom = _geometry(pair)
     imp = dict(impact or {})
     constraints = dict(constraints or {})
-    unknown = set(constraints) - {"lte_factor", "line_load_factor", "penalty"}
+    unknown = set(constraints) - {"lte_factor", "line_load_factor", "dynamic_factor", "penalty"}
     if unknown:
         key = sorted(unknown)[0]
         raise GearmeshInputError(f"constraints.{key}", constraints[key],
-                                 "is not a constraint; use lte_factor, line_load_factor, penalty")
+                                 "is not a constraint; use lte_factor, line_load_factor, dynamic_factor, penalty")
+    if backlash_um == "pair":
+        backlash = None
+    elif isinstance(backlash_um, (int, float)) and not isinstance(backlash_um, bool):
+        backlash = float(backlash_um) * 1e-6
+    else:
+        raise GearmeshInputError("backlash_um", backlash_um, "must be 'pair' (the pair's own) or a number (µm)")
     design = float(pinion_torques(geom, [check_positive("torque_Nm", torque_Nm)], on, field="torque_Nm")[0])
     spectrum = None if torques_Nm is None else \
         tuple(float(t) for t in pinion_torques(geom, torques_Nm, on, field="torques_Nm"))
@@ -102,7 +111,9 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                               penalty=constraints.get("penalty", 10.0), mutation_probability=mutation_probability,
                               mutation_scale=mutation_scale, keep_elitism=keep_elitism,
                               random_baseline=random_baseline,
-                              energy_velocity=imp.get("energy_velocity", "transverse"), load_window_step=step)
+                              energy_velocity=imp.get("energy_velocity", "transverse"), load_window_step=step,
+                              dynamic_speeds=dynamic_speeds_rpm, dynamic_factor=constraints.get("dynamic_factor"),
+                              backlash=backlash)
     settings = replace(settings, load_window_top=_window_top(geom, settings.torques))
     if settings.tolerance_statistic is not None and not tol_model.dimensions:
         raise GearmeshInputError("tolerance_statistic", settings.tolerance_statistic,
@@ -261,6 +272,12 @@ def _diagnostic_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
         "tolerance_half_width": variable(("toleranced",), _half_widths(prob), "m",
                                          "half-width of each toleranced quantity (ISO 1328-1 f_Hbeta for lead slopes)"),
     }
+    opt, std = result.optimum_evaluation, prob.standard
+    if np.all(np.isfinite(opt.dynamic_factor)):
+        data["dynamic_factor"] = variable(t, opt.dynamic_factor[0], "1", "optimum: dynamic factor (peak over static "
+                                          "mesh force of the contact-driven 8-DOF pair over the speed range)")
+        data["standard_dynamic_factor"] = variable(t, std.dynamic_factor[0], "1", "standard gear: dynamic factor "
+                                                   "(peak over static mesh force over the speed range)")
     return data
 
 
@@ -395,6 +412,9 @@ def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dat
             row.update({"impact_force_tolerance_min_N": float(d.spread_force[:, i].min()),
                         "impact_force_tolerance_max_N": float(d.spread_force[:, i].max()),
                         "standard_impact_force_tolerance_min_N": float(d.spread_standard[:, i].min())})
+        if np.isfinite(opt.dynamic_factor[0, i]):
+            row.update({"dynamic_factor": float(opt.dynamic_factor[0, i]),
+                        "standard_dynamic_factor": float(std.dynamic_factor[0, i])})
         by_torque.append(row)
     low, high = d.load_window
     summary = {
