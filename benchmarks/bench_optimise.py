@@ -16,10 +16,11 @@ import sys
 
 import numpy as np
 
+from gearmesh.dynamics.population import dynamic_factors, population_dynamics
 from gearmesh.gear import Modification, load_pair, pair_geometry
 from gearmesh.impact import impact_model, impact_response, impact_static
 from gearmesh.optimise import check_settings, evaluate, optimise, problem
-from gearmesh.surface import MODIFICATION_FIELDS
+from gearmesh.surface import MODIFICATION_FIELDS, modification_parameters
 
 from common import ROOT, median_seconds
 
@@ -59,5 +60,40 @@ def bench_optimise(repeats: int = 5, full_repeats: int = 1) -> dict:
             "standard_force_N": float(prob.standard.force[0, 0])}
 
 
+DYNAMIC_TORQUES, DYNAMIC_SPEEDS = (400.0, 1000.0, 1600.0), (1000.0, 5000.0, 15000.0)
+
+
+def _dynamic_one_by_one(pair, params: np.ndarray, setup) -> np.ndarray:
+    """K_v of each candidate with nothing shared: its pair, geometry, table and models built anew."""
+    geoms = []
+    for p in params:
+        mods = tuple(Modification(**{f: float(p[g, i]) for i, f in enumerate(MODIFICATION_FIELDS)}) for g in range(2))
+        geoms.append(pair_geometry(pair.with_changes(modification=mods)))
+    return np.vstack([dynamic_factors(population_dynamics(g, DYNAMIC_TORQUES, DYNAMIC_SPEEDS, backlash=setup.backlash),
+                                      np.asarray(modification_parameters(g))[None], np.zeros((1, 2)))
+                      for g in geoms])
+
+
+def bench_dynamic_objective(repeats: int = 3) -> dict:
+    """One generation of 40 candidates of the dynamic factor (3 torques, nominal gears; the default
+    study's constraint) from one shared table layout, against the same candidates one by one."""
+    pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    geom = pair_geometry(pair)
+    model = impact_model(geom)
+    prob = problem(model, check_settings(population=40, generations=30, seed=0, torque=TORQUE, speed_rpm=SPEED))
+    rng = np.random.default_rng(0)
+    low = np.array([g.low for g in prob.genes])
+    high = np.array([g.high for g in prob.genes])
+    params = prob.decode(low + (high - low) * rng.random((40, low.size)))
+    setup = population_dynamics(geom, DYNAMIC_TORQUES, DYNAMIC_SPEEDS, backlash=60e-6)
+    batch, kv = median_seconds(lambda: dynamic_factors(setup, params, np.zeros((40, 2))), repeats)
+    base, reference = median_seconds(lambda: _dynamic_one_by_one(pair, params, setup), 1)
+    return {"name": "dynamic_objective_generation_40_candidates", "median_s": batch,
+            "baseline": "the same 40 candidates one by one, pair, table layout and models built per candidate",
+            "baseline_median_s": base, "ratio": base / batch,
+            "max_rel_diff": float(np.max(np.abs(kv - reference) / reference))}
+
+
 if __name__ == "__main__":
     print(json.dumps(bench_optimise(int(sys.argv[1]) if len(sys.argv) > 1 else 5)), flush=True)
+    print(json.dumps(bench_dynamic_objective()), flush=True)

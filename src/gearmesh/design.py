@@ -29,7 +29,6 @@ from dataclasses import dataclass
 from typing import NamedTuple, Sequence
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .contact import contact_length_closed_form, contact_length_summary
 from .errors import GearmeshInputError
@@ -202,6 +201,7 @@ def transverse_ratio_addendum(pair: GearPair, eps_alpha: float, keep_clearance: 
     if f(lo) > 0 or f(hi) < 0:
         raise GearmeshInputError("addendum_coefficient", list(pair.addendum_coefficient),
                                  f"no addendum coefficient in (0, 3] gives eps_alpha = {eps_alpha}")
+    from scipy.optimize import brentq  # imported here: scipy.optimize costs ~0.7 s of start-up
     ha = brentq(f, lo, hi, xtol=1e-14, rtol=1e-14)
     changes = {"addendum_coefficient": (ha, ha)}
     if keep_clearance:

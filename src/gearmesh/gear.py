@@ -18,7 +18,6 @@ from typing import Any, Mapping
 
 import numpy as np
 import yaml
-from scipy.optimize import brentq
 
 from .errors import GearmeshInputError
 
@@ -36,6 +35,7 @@ def inverse_involute(value: float) -> float:
         raise ValueError(f"inverse involute of a negative value {value}")
     if value == 0:
         return 0.0
+    from scipy.optimize import brentq  # imported here: scipy.optimize costs ~0.7 s of start-up
     return brentq(lambda a: involute(a) - value, 0.0, math.pi / 2 - 1e-12, xtol=1e-15, rtol=1e-15)
 
 

@@ -48,7 +48,6 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.optimize import brentq
 
 from .errors import GearmeshInputError
 from .gear import DEFAULT_TOOL_TIP_RADIUS_COEFFICIENT, GEARS, GearPair, PairGeometry, involute, tool_tip_radius
@@ -236,6 +235,7 @@ def _undercut_crossing(rack: GeneratingRack, n: int = 4001) -> tuple[float, floa
         elif gv[i + 1] == 0:
             ti = t[i + 1]
         else:
+            from scipy.optimize import brentq  # imported here: scipy.optimize costs ~0.7 s of start-up
             ti = brentq(lambda v: float(g(np.array([v]))[0]), t[i], t[i + 1], xtol=1e-15, rtol=1e-15)
         X, Y, _, _ = rack_rounding_envelope(rack, np.array([ti]))
         R = float(np.hypot(X, Y)[0])

@@ -194,7 +194,7 @@ def _load_windows(ax, sets, colors) -> None:
     ax.set_yscale("log")
     ax.set_xlabel("pinion torque T1 (N m)")
     ax.set_ylabel("F_s, closed form, transverse (kN)")
-    ax.set_title(f"F_s against torque at {float(sets[0].attrs['design_speed_rpm']):g} rpm (dots: the study torques; "
+    ax.set_title(f"F_s against torque at {float(sets[0].attrs['design_speed_rpm']):g} rpm\n(dots: the study torques; "
                  "bars: load windows)", fontsize=8)
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, loc="upper left")
@@ -218,7 +218,9 @@ def _tolerance_spread(ax, sets, colors) -> None:
     ax.set_ylabel("F_s, closed form, transverse (kN)")
     grade = sets[0].attrs.get("lead_grade_iso1328", -1)
     what = f"lead ISO 1328-1 class {grade}" if grade and grade > 0 else "no lead tolerance"
-    ax.set_title(f"tolerance spread ({what}; {sets[0].attrs.get('toleranced', '')})", fontsize=7)
+    toleranced = sorted({name.split(".")[-1].replace("_um", "") for name in
+                         str(sets[0].attrs.get("toleranced", "")).replace(",", " ").split()})
+    ax.set_title(f"tolerance spread: {what};\nwithin their tolerances: {', '.join(toleranced) or 'nothing'}", fontsize=8)
     ax.grid(alpha=0.3, which="both", axis="y")
     ax.legend(fontsize=7, loc="upper left")
 
