@@ -16,7 +16,7 @@ import numpy as np
 from bench_dynamics import bench_default_sweep, bench_dynamics
 from bench_impact import bench_impact
 from bench_ltca import bench_ltca
-from bench_optimise import bench_optimise
+from bench_optimise import bench_dynamic_objective, bench_optimise
 from common import ROOT, median_seconds
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
 from gearmesh.gear import load_pair, pair_geometry
@@ -76,7 +76,8 @@ def bench_tvms(repeats: int) -> dict:
 BENCHMARKS = {"contact_lines": bench_contact_lines, "tvms": bench_tvms, "ltca": bench_ltca,
               "dynamics": bench_dynamics, "dynamics_default": lambda repeats: bench_default_sweep(min(repeats, 3)),
               "impact": bench_impact,
-              "optimise": lambda repeats: bench_optimise(min(repeats, 5))}
+              "optimise": lambda repeats: bench_optimise(min(repeats, 5)),
+              "dynamic_objective": lambda repeats: bench_dynamic_objective(min(repeats, 3))}
 
 
 def main() -> None:
