@@ -617,6 +617,22 @@ def _window_touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray
     return f_win, g_win
 
 
+def _lagrange_cubic(x: np.ndarray, y: np.ndarray, t: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Value and derivative at ``t`` (R,) of the cubic through the four points (``x``, ``y``) (R, 4)
+    of each row (Lagrange basis and its derivative)."""
+    val, der = np.zeros_like(t), np.zeros_like(t)
+    for i in range(4):
+        li, dli = np.ones_like(t), np.zeros_like(t)
+        for j in range(4):
+            if j != i:
+                w = 1.0 / (x[:, i] - x[:, j])
+                dli = dli * (t - x[:, j]) * w + li * w
+                li = li * (t - x[:, j]) * w
+        val += y[:, i] * li
+        der += y[:, i] * dli
+    return val, der
+
+
 def _inverse_cubic(tau: np.ndarray, f: np.ndarray, k: np.ndarray, target: np.ndarray, a, b, fa, fb) -> np.ndarray:
     """A first estimate of the roll where F* = ``target`` inside window cell [τ_(k−1), τ_k] and the
     slope dF*/dτ there: the cubic through F* at the four nodes k−2 … k+1 as a function of τ, solved
@@ -631,27 +647,9 @@ def _inverse_cubic(tau: np.ndarray, f: np.ndarray, k: np.ndarray, target: np.nda
     t = lin.copy()
     with np.errstate(invalid="ignore", divide="ignore"):
         for _ in range(2):
-            val, der = np.zeros_like(t), np.zeros_like(t)
-            for i in range(4):  # Lagrange basis and its derivative
-                li, dli = np.ones_like(t), np.zeros_like(t)
-                for j in range(4):
-                    if j != i:
-                        w = 1.0 / (x[:, i] - x[:, j])
-                        dli = dli * (t - x[:, j]) * w + li * w
-                        li = li * (t - x[:, j]) * w
-                val += y[:, i] * li
-                der += y[:, i] * dli
+            val, der = _lagrange_cubic(x, y, t)
             t = t - val / der
-        # the cubic's slope at the estimate (for the first secant step)
-        der = np.zeros_like(t)
-        for i in range(4):
-            li, dli = np.ones_like(t), np.zeros_like(t)
-            for j in range(4):
-                if j != i:
-                    w = 1.0 / (x[:, i] - x[:, j])
-                    dli = dli * (t - x[:, j]) * w + li * w
-                    li = li * (t - x[:, j]) * w
-            der += y[:, i] * dli
+        _, der = _lagrange_cubic(x, y, t)  # the cubic's slope at the estimate (for the first secant step)
     ok = np.isfinite(t) & (t > a) & (t < b) & (der < 0)
     return np.where(ok, t, lin), np.where(ok, der, (fb - fa) / (b - a))
 
