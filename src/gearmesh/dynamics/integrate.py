@@ -224,240 +224,226 @@ def _stage_tables(model: GearModel, m: int, f_mesh: float) -> np.ndarray:
 _D_SUM, _D_SQ, _DH_SUM, _DH_SQ, _A_SUM, _A_SQ, _F_SUM, _F_SQ, _F_MIN, _F_MAX, _D_MIN, _D_MAX, _N_GAP, _N_BACK, \
     _E_MAX, _IMPACT, _TOUCH, _OVERRUN = range(18)
 _NQ = 18
-# per-mesh state of a stage: force, deflection statistic, contact loss, back contact, transverse
-# approach x, column, column weight, above the table
-_S_F, _S_D, _S_GAP, _S_BACK, _S_X, _S_COL, _S_B, _S_OVER = range(8)
 
 
-@njit(cache=True)
-def _mesh_forces(Y, j, G, kind, tab, c_force, du, cb, c_m, bl, st):
-    """Normal mesh forces at state Y and stage phase index j (the stage tables ``tab``), into
-    st[i, :] (the _S_* quantities of mesh i)."""
+@njit(cache=True, inline="always")
+def _mesh_force(Y, j, i, G, kind, tab, c_force, du, cb, c_m, bl):
+    """Normal force of mesh i at state Y and stage phase index j (the stage tables ``tab``), and
+    what the statistics need: (F (N), deflection statistic (m), in contact loss (0/1), on the back
+    flanks (0/1), transverse approach x (m), table column, column weight, above the table (0/1)).
+    Inlined where only F is used, so the rest costs nothing there."""
     n = G.shape[1]
-    for i in range(G.shape[0]):
-        delta = 0.0
-        ddot = 0.0
-        for q in range(n):
-            delta += G[i, q] * Y[q]
-            ddot += G[i, q] * Y[n + q]
-        st[i, _S_GAP] = 0.0
-        st[i, _S_BACK] = 0.0
-        st[i, _S_OVER] = 0.0
-        if kind[i] == 0:
-            d = delta - tab[1, i, j]
-            dd = ddot - tab[2, i, j]
-            k = tab[0, i, j]
-            st[i, _S_D] = d
-            if d > 0.0 or bl == np.inf:
-                st[i, _S_F] = k * d + c_m[i] * dd
-            elif d < -bl:
-                st[i, _S_F] = k * (d + bl) + c_m[i] * dd
-                st[i, _S_BACK] = 1.0
-            else:
-                st[i, _S_F] = 0.0
-                st[i, _S_GAP] = 1.0
-            continue
-        # contact: bilinear in (row, approach beyond the first touch), transverse force
-        r = int(tab[0, i, j])
-        a = tab[1, i, j]
-        g0 = tab[2, i, j]
-        x = delta / cb
-        u = x - g0
-        st[i, _S_X] = x
-        st[i, _S_D] = u * cb
-        side = 1.0
+    delta = 0.0
+    ddot = 0.0
+    for q in range(n):
+        delta += G[i, q] * Y[q]
+        ddot += G[i, q] * Y[n + q]
+    if kind[i] == _LINEAR:
+        d = delta - tab[1, i, j]
+        dd = ddot - tab[2, i, j]
+        k = tab[0, i, j]
+        if d > 0.0 or bl == np.inf:
+            return k * d + c_m[i] * dd, d, 0.0, 0.0, 0.0, 0, 0.0, 0.0
+        if d < -bl:
+            return k * (d + bl) + c_m[i] * dd, d, 0.0, 1.0, 0.0, 0, 0.0, 0.0
+        return 0.0, d, 1.0, 0.0, 0.0, 0, 0.0, 0.0
+    # contact: bilinear in (row, approach beyond the first touch), transverse force
+    r = int(tab[0, i, j])
+    a = tab[1, i, j]
+    g0 = tab[2, i, j]
+    x = delta / cb
+    u = x - g0
+    stat = u * cb
+    side = 1.0
+    back = 0.0
+    if u <= 0.0:
+        u = -x - bl / cb - g0  # back flanks (mirror images of the drive flanks) across the backlash
+        side = -1.0
         if u <= 0.0:
-            u = -x - bl / cb - g0  # back flanks (mirror images of the drive flanks) across the backlash
-            side = -1.0
-            if u <= 0.0:
-                st[i, _S_F] = 0.0
-                st[i, _S_GAP] = 1.0
-                st[i, _S_COL] = 0.0
-                st[i, _S_B] = 0.0
-                continue
-            st[i, _S_BACK] = 1.0
-        U = c_force.shape[2]
-        sc = u / du[i]
-        c = int(sc)
-        if c > U - 2:
-            c = U - 2
-            st[i, _S_OVER] = 1.0
-        b = sc - c
-        f0 = c_force[i, r, c] + b * (c_force[i, r, c + 1] - c_force[i, r, c])
-        f1 = c_force[i, r + 1, c] + b * (c_force[i, r + 1, c + 1] - c_force[i, r + 1, c])
-        f = f0 + a * (f1 - f0)
-        if f < 0.0:
-            f = 0.0
-        st[i, _S_COL] = c
-        st[i, _S_B] = b
-        st[i, _S_F] = side * f / cb + c_m[i] * (ddot - side * tab[3, i, j] * cb)
+            return 0.0, stat, 1.0, 0.0, x, 0, 0.0, 0.0
+        back = 1.0
+    U = c_force.shape[2]
+    sc = u / du[i]
+    c = int(sc)
+    over = 0.0
+    if c > U - 2:
+        c = U - 2
+        over = 1.0
+    b = sc - c
+    f0 = c_force[i, r, c] + b * (c_force[i, r, c + 1] - c_force[i, r, c])
+    f1 = c_force[i, r + 1, c] + b * (c_force[i, r + 1, c + 1] - c_force[i, r + 1, c])
+    f = f0 + a * (f1 - f0)
+    if f < 0.0:
+        f = 0.0
+    return side * f / cb + c_m[i] * (ddot - side * tab[3, i, j] * cb), stat, 0.0, back, x, c, b, over
 
 
 @njit(cache=True)
-def _deriv(Y, st, Kr, Cr, B, f0, dY):
-    n = Kr.shape[0]
-    for p in range(n):
-        dY[p] = Y[n + p]
-        acc = f0[p]
-        for q in range(n):
-            acc -= Kr[p, q] * Y[q] + Cr[p, q] * Y[n + q]
-        for i in range(B.shape[1]):
-            acc -= B[p, i] * st[i, _S_F]
-        dY[n + p] = acc
+def _advance(Ys, cycles, n_rec, kr, cr, B, G, f0, kind, tab, c_force, c_enter, c_egap, c_estat, c_geom, cb, c_m, bl,
+             m, h, ys, d_ref, first_part, acc_y, acc_m, series, ser_t, ser_d, ser_f, ser_y, ser_v, ser_e):
+    """Each row of Ys (K, 2n) advanced in place by ``cycles`` mesh periods of m RK4 steps of h (s)
+    from mesh phase 0; the statistics of the last ``n_rec`` periods (0: none) into acc_y (3, n)
+    and acc_m (_NQ, meshes), summed over the rows; with ``series`` every recorded step of the
+    rows into the ser_* arrays.
 
-
-@njit(cache=True)
-def _rk4_step(Y, j0, j2, h, Kr, Cr, B, G, f0, kind, tab, c_force, du, cb, c_m, bl, st, Yt, K1, K2, K3, K4):
-    """One classical RK4 step of h (s) from stage phase index j0 (stages at j0, j0 + 1 twice,
-    j2 = j0 + 2 of the 2m half steps), Y updated in place."""
-    n = Kr.shape[0]
-    _mesh_forces(Y, j0, G, kind, tab, c_force, du, cb, c_m, bl, st)
-    _deriv(Y, st, Kr, Cr, B, f0, K1)
-    for p in range(2 * n):
-        Yt[p] = Y[p] + 0.5 * h * K1[p]
-    _mesh_forces(Yt, j0 + 1, G, kind, tab, c_force, du, cb, c_m, bl, st)
-    _deriv(Yt, st, Kr, Cr, B, f0, K2)
-    for p in range(2 * n):
-        Yt[p] = Y[p] + 0.5 * h * K2[p]
-    _mesh_forces(Yt, j0 + 1, G, kind, tab, c_force, du, cb, c_m, bl, st)
-    _deriv(Yt, st, Kr, Cr, B, f0, K3)
-    for p in range(2 * n):
-        Yt[p] = Y[p] + h * K3[p]
-    _mesh_forces(Yt, j2, G, kind, tab, c_force, du, cb, c_m, bl, st)
-    _deriv(Yt, st, Kr, Cr, B, f0, K4)
-    for p in range(2 * n):
-        Y[p] = Y[p] + (h / 6.0) * (K1[p] + 2.0 * K2[p] + 2.0 * K3[p] + K4[p])
-
-
-@njit(cache=True)
-def _periods(Ys, cycles, Kr, Cr, B, G, f0, kind, tab, c_force, c_geom, cb, c_m, bl, m, h):
-    """Each row of Ys (K, 2n) advanced in place by ``cycles`` mesh periods of m steps from phase 0."""
-    n = Kr.shape[0]
+    The reduced bearing matrices are diagonal (``kr``, ``cr``: every model's bearings act along
+    their own coordinates and the relative rotations have none), so ÿ_p = f0_p − kr_p y_p −
+    cr_p ẏ_p − Σ_i B_pi F_i. The RK4 step is written out here, once: numba does not inline a
+    function taking arrays well enough for a step of ~10² flops (a separate step function is
+    1.5–4× slower)."""
+    n = kr.shape[0]
+    n2 = 2 * n
     nm = G.shape[0]
     du = c_geom[:, 3]
-    st = np.zeros((nm, 8))
-    Yt = np.empty(2 * n)
-    K1 = np.empty(2 * n)
-    K2 = np.empty(2 * n)
-    K3 = np.empty(2 * n)
-    K4 = np.empty(2 * n)
-    for k in range(Ys.shape[0]):
-        Y = Ys[k]
-        for step in range(cycles * m):
+    F = np.empty(nm)
+    Yt = np.empty(n2)
+    K = np.empty((4, n2))
+    prev_h = np.zeros(nm)
+    prev_w = np.zeros(nm)
+    prev_ok = np.zeros(nm, dtype=np.bool_)
+    total = cycles * m
+    rec0 = (cycles - n_rec) * m
+    half0 = (cycles - n_rec // 2) * m
+    if n_rec > 0:
+        for i in range(nm):
+            acc_m[_F_MIN, i] = np.inf
+            acc_m[_F_MAX, i] = -np.inf
+            acc_m[_D_MIN, i] = np.inf
+            acc_m[_D_MAX, i] = -np.inf
+            acc_m[_TOUCH, i] = np.inf
+            acc_m[_IMPACT, i] = -np.inf
+    k_ser = 0
+    for row in range(Ys.shape[0]):
+        Y = Ys[row]
+        for step in range(total):
             j0 = 2 * (step % m)
             j2 = j0 + 2
             if j2 == 2 * m:
                 j2 = 0
-            _rk4_step(Y, j0, j2, h, Kr, Cr, B, G, f0, kind, tab, c_force, du, cb, c_m, bl, st, Yt, K1, K2, K3, K4)
-
-
-@njit(cache=True)
-def _speed_kernel(Kr, Cr, B, G, f0, Y, ys, d_ref, kind, tab, c_force, c_enter, c_egap, c_estat, c_geom, cb, c_m, bl,
-                  m, n_tr, n_rec, h, first_part, acc_y, acc_m, series, ser_t, ser_d, ser_f, ser_y, ser_v, ser_e):
-    """RK4 at one speed: n_tr + n_rec mesh periods of m steps of h (s) from the state Y (2n,),
-    updated in place; the statistics of the last n_rec periods into acc_y (3, n) and acc_m
-    (_NQ, meshes); with ``series`` every recorded step into the ser_* arrays."""
-    n = Kr.shape[0]
-    nm = G.shape[0]
-    du = c_geom[:, 3]
-    Yt = np.empty(2 * n)
-    K1 = np.empty(2 * n)
-    K2 = np.empty(2 * n)
-    K3 = np.empty(2 * n)
-    K4 = np.empty(2 * n)
-    st = np.zeros((nm, 8))
-    prev_h = np.zeros(nm)
-    prev_w = np.zeros(nm)
-    prev_ok = np.zeros(nm, dtype=np.bool_)
-    total = (n_tr + n_rec) * m
-    rec0 = n_tr * m
-    half0 = (n_tr + n_rec // 2) * m
-    for i in range(nm):
-        acc_m[_F_MIN, i] = np.inf
-        acc_m[_F_MAX, i] = -np.inf
-        acc_m[_D_MIN, i] = np.inf
-        acc_m[_D_MAX, i] = -np.inf
-        acc_m[_TOUCH, i] = np.inf
-        acc_m[_IMPACT, i] = -np.inf
-    k_ser = 0
-    for step in range(total):
-        j0 = 2 * (step % m)
-        j2 = j0 + 2
-        if j2 == 2 * m:
-            j2 = 0
-        if step >= rec0:
-            _mesh_forces(Y, j0, G, kind, tab, c_force, du, cb, c_m, bl, st)
-            second = step >= half0
-            for p in range(n):
-                yc = Y[p] - ys[p]
-                acc_y[0, p] += yc
-                acc_y[1, p] += yc * yc
-                acc_y[2, p] += Y[n + p] * Y[n + p]
-            for i in range(nm):
-                dc = st[i, _S_D] - d_ref[i]
-                app = 0.0
-                for q in range(n):
-                    app += G[i, q] * Y[q]
-                ac = app - d_ref[i]
-                F = st[i, _S_F]
-                acc_m[_D_SUM, i] += dc
-                acc_m[_D_SQ, i] += dc * dc
-                if second:
-                    acc_m[_DH_SUM, i] += dc
-                    acc_m[_DH_SQ, i] += dc * dc
-                acc_m[_A_SUM, i] += ac
-                acc_m[_A_SQ, i] += ac * ac
-                acc_m[_F_SUM, i] += F
-                acc_m[_F_SQ, i] += F * F
-                acc_m[_F_MIN, i] = min(acc_m[_F_MIN, i], F)
-                acc_m[_F_MAX, i] = max(acc_m[_F_MAX, i], F)
-                acc_m[_D_MIN, i] = min(acc_m[_D_MIN, i], st[i, _S_D])
-                acc_m[_D_MAX, i] = max(acc_m[_D_MAX, i], st[i, _S_D])
-                acc_m[_N_GAP, i] += st[i, _S_GAP]
-                acc_m[_N_BACK, i] += st[i, _S_BACK]
-                acc_m[_OVERRUN, i] += st[i, _S_OVER]
-                fe = 0.0
-                if kind[i] == 1:
-                    pitch, dw = c_geom[i, 0], c_geom[i, 2]
-                    r = int(tab[0, i, j0])
-                    a = tab[1, i, j0]
-                    w = (r + a) * dw
-                    x = st[i, _S_X]
-                    if st[i, _S_GAP] == 0.0 and st[i, _S_BACK] == 0.0:
-                        c = int(st[i, _S_COL])
-                        b = st[i, _S_B]
-                        e0 = c_enter[i, r, c] + b * (c_enter[i, r, c + 1] - c_enter[i, r, c])
-                        e1 = c_enter[i, r + 1, c] + b * (c_enter[i, r + 1, c + 1] - c_enter[i, r + 1, c])
-                        fe = max(0.0, e0 + a * (e1 - e0)) / cb
-                    eg0 = c_egap[i, r]
-                    eg1 = c_egap[i, r + 1]
-                    hh = -np.inf
-                    if eg0 < np.inf and eg1 < np.inf:
-                        hh = x - (eg0 + a * (eg1 - eg0))
-                    if prev_ok[i] and w >= prev_w[i]:
-                        if prev_h[i] <= 0.0 and hh > 0.0:
-                            wt = prev_w[i] + (w - prev_w[i]) * (-prev_h[i]) / (hh - prev_h[i])
-                            acc_m[_TOUCH, i] = min(acc_m[_TOUCH, i], wt)
-                    elif hh > 0.0:  # a new window that starts in contact
-                        acc_m[_TOUCH, i] = min(acc_m[_TOUCH, i], w)
-                    prev_h[i] = hh
-                    prev_w[i] = w
-                    prev_ok[i] = True
-                    if w <= (0.5 + first_part) * pitch:
-                        quasi = (c_estat[i, r] + a * (c_estat[i, r + 1] - c_estat[i, r])) / cb
-                        acc_m[_E_MAX, i] = max(acc_m[_E_MAX, i], fe)
-                        acc_m[_IMPACT, i] = max(acc_m[_IMPACT, i], fe - quasi)
-                if series:
-                    ser_d[k_ser, i] = st[i, _S_D]
-                    ser_f[k_ser, i] = F
-                    ser_e[k_ser, i] = fe
-            if series:
-                ser_t[k_ser] = (step - rec0) * h
+            if n_rec > 0 and step >= rec0:
+                second = step >= half0
                 for p in range(n):
-                    ser_y[k_ser, p] = Y[p]
-                    ser_v[k_ser, p] = Y[n + p]
-                k_ser += 1
-        _rk4_step(Y, j0, j2, h, Kr, Cr, B, G, f0, kind, tab, c_force, du, cb, c_m, bl, st, Yt, K1, K2, K3, K4)
+                    yc = Y[p] - ys[p]
+                    acc_y[0, p] += yc
+                    acc_y[1, p] += yc * yc
+                    acc_y[2, p] += Y[n + p] * Y[n + p]
+                for i in range(nm):
+                    Fi, d_i, gap_i, back_i, x, col, cw, over = _mesh_force(Y, j0, i, G, kind, tab, c_force, du, cb,
+                                                                           c_m, bl)
+                    dc = d_i - d_ref[i]
+                    app = 0.0
+                    for q in range(n):
+                        app += G[i, q] * Y[q]
+                    ac = app - d_ref[i]
+                    acc_m[_D_SUM, i] += dc
+                    acc_m[_D_SQ, i] += dc * dc
+                    if second:
+                        acc_m[_DH_SUM, i] += dc
+                        acc_m[_DH_SQ, i] += dc * dc
+                    acc_m[_A_SUM, i] += ac
+                    acc_m[_A_SQ, i] += ac * ac
+                    acc_m[_F_SUM, i] += Fi
+                    acc_m[_F_SQ, i] += Fi * Fi
+                    acc_m[_F_MIN, i] = min(acc_m[_F_MIN, i], Fi)
+                    acc_m[_F_MAX, i] = max(acc_m[_F_MAX, i], Fi)
+                    acc_m[_D_MIN, i] = min(acc_m[_D_MIN, i], d_i)
+                    acc_m[_D_MAX, i] = max(acc_m[_D_MAX, i], d_i)
+                    acc_m[_N_GAP, i] += gap_i
+                    acc_m[_N_BACK, i] += back_i
+                    acc_m[_OVERRUN, i] += over
+                    fe = 0.0
+                    if kind[i] == _CONTACT:
+                        pitch, dw = c_geom[i, 0], c_geom[i, 2]
+                        r = int(tab[0, i, j0])
+                        a = tab[1, i, j0]
+                        w = (r + a) * dw
+                        if gap_i == 0.0 and back_i == 0.0:
+                            e0 = c_enter[i, r, col] + cw * (c_enter[i, r, col + 1] - c_enter[i, r, col])
+                            e1 = c_enter[i, r + 1, col] + cw * (c_enter[i, r + 1, col + 1] - c_enter[i, r + 1, col])
+                            fe = max(0.0, e0 + a * (e1 - e0)) / cb
+                        eg0 = c_egap[i, r]
+                        eg1 = c_egap[i, r + 1]
+                        hh = -np.inf
+                        if eg0 < np.inf and eg1 < np.inf:
+                            hh = x - (eg0 + a * (eg1 - eg0))
+                        if prev_ok[i] and w >= prev_w[i]:
+                            if prev_h[i] <= 0.0 and hh > 0.0:
+                                wt = prev_w[i] + (w - prev_w[i]) * (-prev_h[i]) / (hh - prev_h[i])
+                                acc_m[_TOUCH, i] = min(acc_m[_TOUCH, i], wt)
+                        elif hh > 0.0:  # a new window that starts in contact
+                            acc_m[_TOUCH, i] = min(acc_m[_TOUCH, i], w)
+                        prev_h[i] = hh
+                        prev_w[i] = w
+                        prev_ok[i] = True
+                        if w <= (0.5 + first_part) * pitch:
+                            quasi = (c_estat[i, r] + a * (c_estat[i, r + 1] - c_estat[i, r])) / cb
+                            acc_m[_E_MAX, i] = max(acc_m[_E_MAX, i], fe)
+                            acc_m[_IMPACT, i] = max(acc_m[_IMPACT, i], fe - quasi)
+                    if series:
+                        ser_d[k_ser, i] = d_i
+                        ser_f[k_ser, i] = Fi
+                        ser_e[k_ser, i] = fe
+                if series:
+                    ser_t[k_ser] = (step - rec0) * h
+                    for p in range(n):
+                        ser_y[k_ser, p] = Y[p]
+                        ser_v[k_ser, p] = Y[n + p]
+                    k_ser += 1
+            # one classical RK4 step: stages at the half-step phase indices j0, j0 + 1 (twice), j2
+            for s in range(4):
+                if s == 0:
+                    j = j0
+                    for p in range(n2):
+                        Yt[p] = Y[p]
+                elif s == 3:
+                    j = j2
+                    for p in range(n2):
+                        Yt[p] = Y[p] + h * K[2, p]
+                else:
+                    j = j0 + 1
+                    for p in range(n2):
+                        Yt[p] = Y[p] + 0.5 * h * K[s - 1, p]
+                for i in range(nm):
+                    F[i] = _mesh_force(Yt, j, i, G, kind, tab, c_force, du, cb, c_m, bl)[0]
+                for p in range(n):
+                    K[s, p] = Yt[n + p]
+                    acc = f0[p] - (kr[p] * Yt[p] + cr[p] * Yt[n + p])
+                    for i in range(nm):
+                        acc -= B[p, i] * F[i]
+                    K[s, n + p] = acc
+            for p in range(n2):
+                Y[p] = Y[p] + (h / 6.0) * (K[0, p] + 2.0 * K[1, p] + 2.0 * K[2, p] + K[3, p])
+
+
+class _Speed:
+    """The compiled loop's view of one model at one speed: its arguments after (Ys, cycles,
+    n_rec), and empty recording buffers for runs that record nothing (one signature: compiled once)."""
+
+    def __init__(self, model: GearModel, kind, ct: _Contact, m: int, f_mesh: float, dt: float):
+        kr, cr = np.diag(model.Kr).copy(), np.diag(model.Cr).copy()
+        if np.any(model.Kr != np.diag(kr)) or np.any(model.Cr != np.diag(cr)):
+            raise ValueError("the compiled loop needs diagonal reduced bearing matrices Kr, Cr")
+        self.n, self.nm = model.n, model.m
+        self._idle = (np.zeros(model.n), np.zeros(model.m), np.zeros((3, model.n)), np.zeros((_NQ, model.m)))
+        self.args = (kr, cr, model.B, model.G, model.f0, kind, _stage_tables(model, m, f_mesh), ct.force, ct.enter,
+                     ct.enter_gap, ct.enter_static, ct.geom, model.cos_beta_b, np.asarray(model.damping, dtype=float),
+                     float(model.backlash), int(m), float(dt))
+
+    def run(self, Ys: np.ndarray, cycles: int, n_rec: int = 0, ys=None, d_ref=None, acc_y=None, acc_m=None,
+            series=None) -> None:
+        """Advance the rows of Ys (K, 2n) in place by ``cycles`` mesh periods; record the last
+        ``n_rec`` into acc_y, acc_m (and the ``series`` buffers) when given."""
+        if n_rec == 0:
+            ys, d_ref, acc_y, acc_m = self._idle
+        ser = series if series is not None else _series_buffers(0, self.n, self.nm)
+        _advance(Ys, int(cycles), int(n_rec), *self.args, ys, d_ref, FIRST_PART_AFTER_A, acc_y, acc_m,
+                 series is not None, *ser)
+
+
+def _series_buffers(k: int, n: int, nm: int) -> tuple:
+    """Time series buffers of k recorded steps: t, δ, F, y, ẏ, Fe."""
+    return np.zeros(k), np.zeros((k, nm)), np.zeros((k, nm)), np.zeros((k, n)), np.zeros((k, n)), np.zeros((k, nm))
+
 
 def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSettings(), series: bool = False,
              y0: np.ndarray | None = None, progress=None) -> SweepResult:
@@ -483,8 +469,6 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     d_ref = model.G @ model.static_state()
     acc_y = np.zeros((S, 3, n))
     acc_m = np.zeros((S, _NQ, nm))
-    damping = np.asarray(model.damping, dtype=float)
-    bl, cb = float(model.backlash), model.cos_beta_b
     work = ((n_tr + n_rec) * m).astype(float)
     cum = np.cumsum(work) / work.sum()
     report_next = 0.05
@@ -496,22 +480,17 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     for s in range(S):
         Y = np.zeros(2 * n)
         Y[:n] = ys
-        tab = _stage_tables(model, int(m[s]), float(f_mesh[s]))
-        common = (model.Kr, model.Cr, model.B, model.G, model.f0, kind, tab, ct.force, ct.geom, cb, damping, bl,
-                  int(m[s]), float(dt[s]))
+        speed = _Speed(model, kind, ct, int(m[s]), float(f_mesh[s]), float(dt[s]))
         iterations[s] = -1
         if settings.steady_state == "shooting":
-            Ys, it, ok = periodic_state(Y, common, scale * (2 * np.pi * f_mesh[s]) ** np.repeat([0, 1], n),
+            Ys, it, ok = periodic_state(Y, speed, scale * (2 * np.pi * f_mesh[s]) ** np.repeat([0, 1], n),
                                         settings.shooting_tolerance, settings.shooting_iterations)
             if ok:
                 Y, iterations[s], cycles_before[s] = Ys, it, settings.settle_cycles
                 periodic[s] = Ys
-        k = int(n_rec * m[s]) if series else 0
-        ser = (np.zeros(k), np.zeros((k, nm)), np.zeros((k, nm)), np.zeros((k, n)), np.zeros((k, n)),
-               np.zeros((k, nm)))
-        _speed_kernel(model.Kr, model.Cr, model.B, model.G, model.f0, Y, ys, d_ref, kind, tab, ct.force, ct.enter,
-                      ct.enter_gap, ct.enter_static, ct.geom, cb, damping, bl, int(m[s]), int(cycles_before[s]), n_rec,
-                      float(dt[s]), FIRST_PART_AFTER_A, acc_y[s], acc_m[s], series, *ser)
+        ser = _series_buffers(int(n_rec * m[s]) if series else 0, n, nm)
+        speed.run(Y[None], int(cycles_before[s]) + n_rec, n_rec, ys, d_ref, acc_y[s], acc_m[s],
+                  ser if series else None)
         if series:
             out_series.append(dict(zip(("t", "delta", "F", "y", "v", "Fe"), ser)))
         if progress is not None and cum[s] >= report_next:
@@ -532,7 +511,7 @@ def _state_scale(model: GearModel, ys: np.ndarray) -> np.ndarray:
     return np.full(2 * model.n, length)
 
 
-def periodic_state(Y0: np.ndarray, common: tuple, scale: np.ndarray, tol: float, max_iter: int):
+def periodic_state(Y0: np.ndarray, speed: _Speed, scale: np.ndarray, tol: float, max_iter: int):
     """The periodic steady state of one speed by shooting: the state Y with P(Y) = Y, P the map
     over one mesh period (RK4, the same steps as the sweep), by Newton's method from ``Y0``.
 
@@ -550,7 +529,7 @@ def periodic_state(Y0: np.ndarray, common: tuple, scale: np.ndarray, tol: float,
     last = np.inf
     for it in range(max_iter + 1):
         P = Y[None].copy()
-        _periods(P, 1, *common)
+        speed.run(P, 1)
         r = P[0] - Y
         err = float(np.max(np.abs(r) / scale))
         if not np.isfinite(err):
@@ -564,7 +543,7 @@ def periodic_state(Y0: np.ndarray, common: tuple, scale: np.ndarray, tol: float,
         if J is None or err > 0.5 * last:
             eps = 1e-6 * scale
             Ys = Y[None] + np.diag(eps)
-            _periods(Ys, 1, *common)
+            speed.run(Ys, 1)
             J = (Ys - P[0]).T / eps
         try:
             Y = Y - np.linalg.solve(J - np.eye(Y.size), r)
