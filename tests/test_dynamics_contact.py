@@ -186,6 +186,37 @@ def test_shooting_equals_the_physical_transient(geom):
         np.testing.assert_allclose(getattr(a, key), getattr(b, key), rtol=1e-6, err_msg=key)
 
 
+@pytest.mark.parametrize("speed", [1000.0, 6500.0])
+def test_period_map_jacobian_is_its_forward_difference(geom, speed):
+    """The monodromy matrix the shooting integrates beside the period (variational equations of
+    the RK4 stages) is the derivative of the period map: equal to its central difference, column
+    by column, on an orbit with contact loss and back-flank contact (large excitation)."""
+    from gearmesh.dynamics.integrate import _contact_tables, _kinds, _Speed, step_plan
+
+    force = 1000.0 / float(geom.base_radius[0])
+    tab = mesh_force_table(geom, 4 * force, positions=64, approaches=32, points=30)
+    model = _model(geom, tab, 1000.0)
+    f_mesh, m, _, dt = step_plan(model, np.array([speed]))
+    run = _Speed(model, _kinds(model), _contact_tables(model), int(m[0]), float(f_mesh[0]), float(dt[0]))
+    y = np.concatenate([model.static_state(), np.zeros(model.n)])
+    y[model.n:] = 0.3 * np.abs(y[:model.n]).max() * 2 * np.pi * f_mesh[0]  # far from the orbit: gaps open
+    tangent = np.eye(y.size)[None].copy()
+    end = y[None].copy()
+    run.run(end, 1, tangent=tangent)
+    plain = y[None].copy()
+    run.run(plain, 1)
+    assert np.array_equal(end, plain)  # the tangent leaves the trajectory untouched
+    scale = np.abs(y).reshape(2, -1).max(axis=1).repeat(model.n)
+    eps = 1e-7 * scale
+    fd = np.empty_like(tangent[0])
+    for k in range(y.size):
+        pm = np.stack([y, y]) + np.outer([1.0, -1.0], np.eye(y.size)[k] * eps[k])
+        run.run(pm, 1)
+        fd[:, k] = (pm[0] - pm[1]) / (2 * eps[k])
+    np.testing.assert_allclose(tangent[0] * scale[None, :], fd * scale[None, :], rtol=0,
+                               atol=1e-5 * np.abs(fd * scale[None, :]).max())
+
+
 @pytest.mark.parametrize("excitation", ["tvms", "ltca"])
 def test_compiled_loop_equals_the_numpy_kernel(excitation):
     """The compiled step loop evaluates the same mesh laws at the same phases as the numpy batch
