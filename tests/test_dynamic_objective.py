@@ -13,7 +13,7 @@ import pytest
 from gearmesh import impact as im
 from gearmesh import optimise as op
 from gearmesh.cli import main as cli_main
-from gearmesh.dynamics import SolverSettings, pair_model, resonance_band, simulate
+from gearmesh.dynamics import pair_model, resonance_band, simulate
 from gearmesh.dynamics.population import (POPULATION_HARMONICS, POPULATION_MESH_ENERGY, POPULATION_OFFSETS,
                                           POPULATION_TABLE, dynamic_factors, population_dynamics)
 from gearmesh.gear import Modification, load_pair, pair_geometry
@@ -62,7 +62,7 @@ def test_population_member_equals_the_pair_with_that_modification_run_alone(pair
         model = pair_model(geom, torque * rb2 / rb1, None, contact=table, backlash=60e-6)
         speeds = np.unique(np.concatenate([SPEEDS, resonance_band(model, SPEEDS[0], SPEEDS[-1], POPULATION_HARMONICS,
                                                                   POPULATION_OFFSETS, POPULATION_MESH_ENERGY)]))
-        res = simulate(model, speeds, SolverSettings(record_cycles=4))
+        res = simulate(model, speeds, setup.settings)
         assert kv[0, t] == pytest.approx(res.force_max[0].max() / model.static_force[0], rel=1e-12)
 
 

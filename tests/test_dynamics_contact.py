@@ -186,6 +186,24 @@ def test_shooting_equals_the_physical_transient(geom):
         np.testing.assert_allclose(getattr(a, key), getattr(b, key), rtol=1e-6, err_msg=key)
 
 
+def test_two_periods_of_the_periodic_orbit_give_the_statistics_of_eight(geom):
+    """From the shooting's fixed point every period repeats the first: two recorded periods and
+    none to settle (the population's solver) give the statistics of the default eight after two,
+    to the shooting tolerance; the modes and static state the step plan reuses are the model's."""
+    force = 1000.0 / float(geom.base_radius[0])
+    tab = mesh_force_table(geom, 4 * force, positions=64, approaches=32, points=30)
+    model = _model(geom, tab, 1000.0)
+    speeds = [2500.0, 5200.0, 6500.0, 12000.0]
+    a = dy.simulate(model, speeds)
+    b = dy.simulate(model, speeds, dy.SolverSettings(settle_cycles=0, periodic_record_cycles=2))
+    assert np.all(a.shooting_iterations >= 1) and np.all(b.shooting_iterations >= 1)
+    for key in ("force_max", "force_min", "force_mean", "approach_std", "impact_force", "enter_force_max"):
+        np.testing.assert_allclose(getattr(b, key), getattr(a, key), rtol=1e-6, err_msg=key)
+    assert np.all(b.n_steps < a.n_steps)
+    fresh = model.modes(np.array([ml.k_mean for ml in model.meshes]))
+    np.testing.assert_array_equal(model.modes()["eigenvalue"], fresh["eigenvalue"])
+
+
 @pytest.mark.parametrize("speed", [1000.0, 6500.0])
 def test_period_map_jacobian_is_its_forward_difference(geom, speed):
     """The monodromy matrix the shooting integrates beside the period (variational equations of

@@ -168,14 +168,10 @@ class MeshForceTable:
         (N): the table's own quasi-static solution (rows monotone in u; linear between columns,
         linear extrapolation above the grid)."""
         f = self.force
-        u = np.empty(f.shape[0])
-        for k in range(f.shape[0]):
-            row = f[k]
-            j = int(np.searchsorted(row, force))
-            j = min(max(j, 1), row.size - 1)
-            u[k] = self.approach[j - 1] + (force - row[j - 1]) * (self.approach[j] - self.approach[j - 1]) \
-                / (row[j] - row[j - 1])
         i = np.arange(f.shape[0])
+        j = np.clip(np.sum(f < force, axis=1), 1, f.shape[1] - 1)  # searchsorted (left) of each monotone row
+        u = self.approach[j - 1] + (force - f[i, j - 1]) * (self.approach[j] - self.approach[j - 1]) \
+            / (f[i, j] - f[i, j - 1])
         du = self.approach[1] - self.approach[0]
         j = np.clip((u / du).astype(np.intp), 0, self.approach.size - 2)
         b = (u - self.approach[j]) / du

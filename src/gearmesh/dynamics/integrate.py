@@ -47,7 +47,12 @@ class SolverSettings:
     map, :func:`periodic_state`, then ``settle_cycles`` periods before recording; the
     physical-time transient where it does not converge to a stable orbit) or 'transient'
     (always the physical-time transient); shooting_tolerance : the fixed point's residual
-    relative to the state's scale; shooting_iterations : at most this many Newton steps.
+    relative to the state's scale; shooting_iterations : at most this many Newton steps;
+    periodic_record_cycles : the mesh periods recorded where the shooting found a stable
+    periodic orbit (even; None: ``record_cycles``). From a fixed point of the one-period map
+    every period repeats the first to the shooting tolerance, so two periods give every
+    statistic to that tolerance; ``record_cycles`` stays for the physical-time transient,
+    whose response need not repeat.
     """
 
     courant: float = 0.25
@@ -60,6 +65,7 @@ class SolverSettings:
     settle_cycles: int = 2
     shooting_tolerance: float = 1e-9
     shooting_iterations: int = 12
+    periodic_record_cycles: int | None = None
 
 
 @dataclass
@@ -473,6 +479,47 @@ def _advance(Ys, Js, cycles, n_rec, kr, cr, B, G, f0, kind, tab, c_force, c_ente
                         J[p, c] += (h / 6.0) * (dK[0, p, c] + 2.0 * dK[1, p, c] + 2.0 * dK[2, p, c] + dK[3, p, c])
 
 
+@njit(cache=True)
+def _shoot(Y0, scale, tol, max_iter, no_tangent, *loop):
+    """Newton's method on the one-period map from Y0 (:func:`periodic_state`), compiled: ``loop``
+    the arguments of :func:`_advance` after (Ys, Js, cycles, n_rec), recording idle. Returns (Y,
+    iterations, status, J): status 1 converged with the monodromy matrix J of the last Newton
+    step (stability to check), 0 converged at Y0 without a step, −1 not converged (Y0 returned)."""
+    n2 = Y0.size
+    Y = Y0.copy()
+    J = np.zeros((n2, n2))
+    eye = np.eye(n2)
+    P = np.empty((1, n2))
+    T = np.empty((1, n2, n2))
+    have_j = False
+    last = np.inf
+    for it in range(max_iter + 1):
+        P[0] = Y
+        _advance(P, no_tangent, 1, 0, *loop)
+        r = P[0] - Y
+        err = 0.0
+        for p in range(n2):
+            err = max(err, abs(r[p]) / scale[p])
+        if not np.isfinite(err):
+            return Y0.copy(), it, -1, J
+        if err <= tol:
+            return Y, it, 1 if have_j else 0, J
+        if it == max_iter:
+            break
+        if not have_j or err > 0.5 * last:
+            T[0] = eye
+            P[0] = Y
+            _advance(P, T, 1, 0, *loop)
+            J[:] = T[0]
+            have_j = True
+        A = J - eye
+        if not np.all(np.isfinite(A)) or abs(np.linalg.det(A)) == 0.0:
+            return Y0.copy(), it, -1, J
+        Y = Y - np.linalg.solve(A, r)
+        last = err
+    return Y0.copy(), max_iter, -1, J
+
+
 class _Speed:
     """The compiled loop's view of one model at one speed: its arguments after (Ys, cycles,
     n_rec), and empty recording buffers for runs that record nothing (one signature: compiled once)."""
@@ -487,6 +534,12 @@ class _Speed:
         self.args = (kr, cr, model.B, model.G, model.f0, kind, _stage_tables(model, m, f_mesh), ct.force, ct.enter,
                      ct.enter_gap, ct.enter_static, ct.geom, model.cos_beta_b, np.asarray(model.damping, dtype=float),
                      float(model.backlash), int(m), float(dt))
+
+    def shoot(self, Y0: np.ndarray, scale: np.ndarray, tol: float, max_iter: int):
+        """:func:`_shoot` at this speed."""
+        ys, d_ref, acc_y, acc_m = self._idle
+        return _shoot(np.asarray(Y0, dtype=float), scale, float(tol), int(max_iter), self._no_tangent, *self.args, ys,
+                      d_ref, FIRST_PART_AFTER_A, acc_y, acc_m, False, *_series_buffers(0, self.n, self.nm))
 
     def run(self, Ys: np.ndarray, cycles: int, n_rec: int = 0, ys=None, d_ref=None, acc_y=None, acc_m=None,
             series=None, tangent: np.ndarray | None = None) -> None:
@@ -510,7 +563,8 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     """Steady-state response of ``model`` at every speed (rpm) (package docstring, "Solver").
 
     Each speed starts from the static state (or ``y0``, reduced coordinates, at rest), runs its
-    transient and records ``settings.record_cycles`` mesh periods. ``series=True`` also returns,
+    transient and records ``settings.record_cycles`` mesh periods (``periodic_record_cycles``
+    from a periodic orbit found by shooting, when set). ``series=True`` also returns,
     per speed, the record window sampled at every step: time (s), δ (m, meshes), F (N), y (n),
     ẏ (n) and, for ``contact`` meshes, the entering pair's force Fe (N). Keep it for a few speeds
     only. ``progress`` (optional) is called with the fraction of steps done, about every 5 %.
@@ -518,11 +572,14 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     speed_rpm = np.atleast_1d(np.asarray(speed_rpm, dtype=float))
     if speed_rpm.size == 0 or not np.all(np.isfinite(speed_rpm)) or np.any(speed_rpm <= 0):
         raise GearmeshInputError("speed_rpm", speed_rpm.tolist(), "must be positive finite speeds")
-    if settings.record_cycles < 2 or settings.record_cycles % 2:
-        raise GearmeshInputError("record_cycles", settings.record_cycles, "must be an even number >= 2")
+    for name in ("record_cycles", "periodic_record_cycles"):
+        value = getattr(settings, name)
+        if name == "record_cycles" or value is not None:
+            if value < 2 or value % 2:
+                raise GearmeshInputError(name, value, "must be an even number >= 2")
     f_mesh, m, n_tr, dt = step_plan(model, speed_rpm, settings)
     S, n, nm = speed_rpm.size, model.n, model.m
-    n_rec = settings.record_cycles
+    n_rec = np.full(S, settings.record_cycles, dtype=np.int64)
     kind = _kinds(model)
     ct = _contact_tables(model)
     ys = model.static_state() if y0 is None else np.asarray(y0, dtype=float)
@@ -548,8 +605,9 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
             if ok:
                 Y, iterations[s], cycles_before[s] = Ys, it, settings.settle_cycles
                 periodic[s] = Ys
-        ser = _series_buffers(int(n_rec * m[s]) if series else 0, n, nm)
-        speed.run(Y[None], int(cycles_before[s]) + n_rec, n_rec, ys, d_ref, acc_y[s], acc_m[s],
+                n_rec[s] = settings.periodic_record_cycles or settings.record_cycles
+        ser = _series_buffers(int(n_rec[s] * m[s]) if series else 0, n, nm)
+        speed.run(Y[None], int(cycles_before[s] + n_rec[s]), int(n_rec[s]), ys, d_ref, acc_y[s], acc_m[s],
                   ser if series else None)
         if series:
             out_series.append(dict(zip(("t", "delta", "F", "y", "v", "Fe"), ser)))
@@ -580,37 +638,16 @@ def periodic_state(Y0: np.ndarray, speed: _Speed, scale: np.ndarray, tol: float,
     the 14 states of the 8-DOF pair, against 14 periods by forward differences), and kept while
     the residual falls at least twofold per step (chord iterations); for the linear-in-state
     models (stiffness and LTCA excitations without contact loss) P is affine and one Newton step
-    is exact. Returns (Y, iterations, ok): ok when ‖(P(Y) − Y)/scale‖∞ ≤ ``tol`` and the orbit is
-    stable (every eigenvalue of the monodromy matrix inside the unit circle); otherwise the
-    caller runs the physical-time transient. Shooting for periodic responses of gear models: e.g.
-    Kahraman & Blankenship 1997 (J. Appl. Mech. 64:217); Parker et al. 2000 (J. Sound Vib. 237:435).
+    is exact. The iteration is compiled (:func:`_shoot`). Returns (Y, iterations, ok): ok when
+    ‖(P(Y) − Y)/scale‖∞ ≤ ``tol`` and the orbit is stable (every eigenvalue of the monodromy
+    matrix inside the unit circle); otherwise the caller runs the physical-time transient.
+    Shooting for periodic responses of gear models: e.g. Kahraman & Blankenship 1997 (J. Appl.
+    Mech. 64:217); Parker et al. 2000 (J. Sound Vib. 237:435).
     """
-    Y = np.array(Y0, dtype=float)
-    J = None
-    last = np.inf
-    for it in range(max_iter + 1):
-        P = Y[None].copy()
-        speed.run(P, 1)
-        r = P[0] - Y
-        err = float(np.max(np.abs(r) / scale))
-        if not np.isfinite(err):
-            return Y0, it, False
-        if err <= tol:
-            if J is None:
-                return Y, it, True
-            return Y, it, bool(np.max(np.abs(np.linalg.eigvals(J))) < 1.0)
-        if it == max_iter:
-            break
-        if J is None or err > 0.5 * last:
-            T = np.eye(Y.size)[None].copy()
-            speed.run(Y[None].copy(), 1, tangent=T)
-            J = T[0]
-        try:
-            Y = Y - np.linalg.solve(J - np.eye(Y.size), r)
-        except np.linalg.LinAlgError:
-            return Y0, it, False
-        last = err
-    return Y0, max_iter, False
+    Y, it, status, J = speed.shoot(Y0, scale, tol, max_iter)
+    if status < 0:
+        return np.array(Y0, dtype=float), it, False
+    return Y, it, status == 0 or bool(np.max(np.abs(np.linalg.eigvals(J))) < 1.0)
 
 
 def _result(speed_rpm, f_mesh, m, n_tr, dt, n_rec, acc_y, acc_m, ys, d_ref, kind, pitch, out_series, n_steps):

@@ -47,6 +47,7 @@ class GearModel:
     teeth_driver: int
     full: Mapping[str, Any] = field(default_factory=dict, repr=False)
     cos_beta_b: float = 1.0  # normal = cos βb × transverse (mesh coordinates)
+    _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)  # modes(), static_state()
 
     @property
     def n(self) -> int:
@@ -67,8 +68,16 @@ class GearModel:
 
         Returns natural frequencies ``frequency_Hz`` = |λ|/2π (undamped-equivalent),
         ``damped_Hz`` = Im λ/2π, ``damping_ratio`` = −Re λ/|λ|, ``decay_rate`` = −Re λ (s⁻¹),
-        sorted by frequency, one per conjugate pair, and ``shapes`` (n, modes).
+        sorted by frequency, one per conjugate pair, and ``shapes`` (n, modes). Those at the mean
+        stiffness are computed once per model (the step plan and the resonance speeds ask again).
         """
+        if k is None:
+            if "modes" not in self._cache:
+                self._cache["modes"] = _read_only(self._eigen(None))
+            return dict(self._cache["modes"])
+        return self._eigen(k)
+
+    def _eigen(self, k: np.ndarray | None) -> dict[str, np.ndarray]:
         import scipy.linalg
 
         K, C = self.linear_matrices(k)
@@ -89,11 +98,23 @@ class GearModel:
 
     def static_state(self) -> np.ndarray:
         """Static equilibrium y (n,) with the meshes at mean stiffness and mean e (m, rad→m)."""
+        if "static" not in self._cache:
+            self._cache["static"] = _read_only({"y": self._static_state()})
+        return self._cache["static"]["y"].copy()
+
+    def _static_state(self) -> np.ndarray:
         K, _ = self.linear_matrices()
         k = np.array([ml.k_mean for ml in self.meshes])
         e_mean = np.array([float(np.mean(ml.error(np.linspace(0, 1, 512, endpoint=False))[0]))
                            for ml in self.meshes])
         return np.linalg.solve(K, self.f0 + self.B @ (k * e_mean))
+
+
+def _read_only(arrays: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
+    """``arrays`` with each array made read-only (a cached result shared by its callers)."""
+    for a in arrays.values():
+        a.flags.writeable = False
+    return arrays
 
 
 def _check_positive(name: str, value) -> float:

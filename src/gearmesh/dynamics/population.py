@@ -51,6 +51,15 @@ POPULATION_OFFSETS = (-0.5, 0.0, 0.5)
 POPULATION_MESH_ENERGY = 0.05
 #: The table reaches this many times the largest static transverse force (as the study's table).
 POPULATION_FORCE_FACTOR = 4.0
+#: The solver of a population member: from a periodic orbit found by shooting, two recorded
+#: periods and none to settle (every period repeats the first to the shooting tolerance, so K_v
+#: is the same to it as over more); four periods after the physical-time transient, where the
+#: shooting finds no stable periodic orbit and the response need not repeat. Up to 20 Newton
+#: steps: near a resonance the chord iteration can take 13–14 (3 of 1080 speeds of 40 random
+#: candidates of the default study), and each speed it gives up on costs the physical-time
+#: transient, ~10³ periods, for the same orbit.
+POPULATION_SOLVER = SolverSettings(record_cycles=4, settle_cycles=0, periodic_record_cycles=2,
+                                   shooting_iterations=20)
 
 
 @dataclass(frozen=True)
@@ -80,7 +89,7 @@ def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash
                         positions: int = POPULATION_TABLE["positions"],
                         approaches: int = POPULATION_TABLE["approaches"],
                         points: int = POPULATION_TABLE["points"], contact_law_name: str = "palmgren",
-                        settings: SolverSettings = SolverSettings(record_cycles=4), tables=None) -> PopulationDynamics:
+                        settings: SolverSettings = POPULATION_SOLVER, tables=None) -> PopulationDynamics:
     """Set up :func:`dynamic_factors` for ``geom`` at pinion torques ``pinion_torques`` (N·m) over
     the speed grid ``speeds_rpm`` (rpm, ≥ 2 speeds: its range bounds the resonance speeds added);
     ``backlash`` 2b0 (m; default the pair's own normal backlash j_bn); ``tables`` the per-gear slice
