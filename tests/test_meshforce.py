@@ -1,6 +1,6 @@
-"""The mesh force table (gearmesh.meshforce): the compiled tabulation against each point's contact
-law inverted on its own by Newton's method, for both contact laws, and its fallback beyond the
-universal inverse's table."""
+"""The mesh force table (gearmesh.meshforce) and the compiled load sums it is made of
+(gearmesh.ltca.load_sums): against each point's contact law inverted on its own by Newton's
+method, for both contact laws, and beyond the universal inverse's table."""
 
 from __future__ import annotations
 
@@ -10,8 +10,8 @@ import numpy as np
 import pytest
 
 from gearmesh.gear import load_pair, pair_geometry
-from gearmesh.ltca import _TABLE_LOG_Y, _invert, _universal_inverse
-from gearmesh.meshforce import _tabulate_rows, table_layout, tabulate
+from gearmesh.ltca import ContactLaw, _invert, load_sums
+from gearmesh.meshforce import table_layout, tabulate
 
 PAIR = Path(__file__).resolve().parents[1] / "config" / "pairs" / "seed000_case.yaml"
 
@@ -40,20 +40,19 @@ def test_table_is_the_sum_of_each_points_own_inversion(geom, law):
     assert np.all(table.force[:, -1] >= force * (1 - 1e-12))  # every row reaches force_max
 
 
-def test_points_beyond_the_universal_table_are_flagged():
-    """A point whose y = d/(c·Q) lies below the universal table (ln y < −80) is not summed but its
-    row flagged, for the exact inversion."""
-    m, coef = 1 / 1.11, 1e-9
-    v_tab, s_tab = _universal_inverse(m)
-    lo, _, h = _TABLE_LOG_Y
+def test_points_beyond_the_universal_table_are_inverted_exactly():
+    """A point whose y = d/(c·Q) lies below the universal table (ln y < −80) sends its row to the
+    exact inversion: the sums equal each point's own Newton root, with and without the mask."""
+    law = ContactLaw("palmgren", 1e-9, 1 / 1.11, 0.0, 1e-3)
     c = 1e-10
-    big_q = (coef / c) ** (1 / (1 - m))
-    gap = np.array([[0.0, 1e-3], [0.0, 1.0]])
-    u = np.array([0.0, 1e-40 * c * big_q, 1e-6])  # the middle column: y = 1e-40 on point 0 (ln y ≈ −92)
-    out = [np.zeros((2, 3)) for _ in range(3)]
-    outside = np.zeros(2, dtype=bool)
-    _tabulate_rows(gap, np.full((2, 2), c), np.zeros((2, 2), dtype=bool), gap.min(axis=1), u, coef, m, v_tab, s_tab,
-                   lo, h, *out, outside)
-    assert outside.tolist() == [True, True]
-    q, _ = _invert(np.array([1e-6]), c, coef, m)
-    np.testing.assert_allclose(out[0][:, 2], q[0], rtol=1e-12)  # the points inside the table are summed
+    big_q = (law.coefficient / c) ** (1 / (1 - law.exponent))
+    gap = np.array([[0.0, 1e-7], [0.0, np.inf]])
+    x = np.array([[1e-40 * c * big_q, 1e-6, 2e-6], [1e-9, 1e-6, 2e-6]])  # row 0, column 0: ln y ≈ −92
+    mask = np.array([[True, False], [False, False]])
+    force, stiff, masked = load_sums(gap, np.full((2, 2), c), x, law, mask)
+    d = x[:, :, None] - gap[:, None, :]
+    q, dq = _invert(np.where(np.isfinite(d), d, -1.0), c, law.coefficient, law.exponent)
+    np.testing.assert_allclose(force, q.sum(axis=2), rtol=1e-12)
+    np.testing.assert_allclose(stiff, dq.sum(axis=2), rtol=1e-12)
+    np.testing.assert_allclose(masked, np.where(mask[:, None, :], q, 0.0).sum(axis=2), rtol=1e-12)
+    assert force[0, 0] > 0

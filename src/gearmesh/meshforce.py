@@ -57,12 +57,10 @@ import warnings
 from dataclasses import dataclass
 
 import numpy as np
-from numba import njit
 
 from .errors import GearmeshInputError
 from .gear import PairGeometry
-from .ltca import (_TABLE_LOG_Y, ContactLaw, _universal_inverse, invert_tabulated, ltca_model, point_compliance,
-                   solve_contact)
+from .ltca import ContactLaw, load_sums, ltca_model, point_compliance, solve_contact
 from .stiffness import SliceComplianceTable
 from .tca import REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point
 
@@ -82,8 +80,6 @@ DEFAULT_TABLE_EXTENSION = 0.5
 #: 0.05 mm at 200, converging as 1/N to the exact corner of :func:`gearmesh.impact.impact_static`
 #: (tests/test_dynamics_contact.py); the table costs about 1 s at 200.
 DEFAULT_TABLE_POINTS = 200
-#: Most candidate points evaluated at once while building the table (memory bound, ~100 MB).
-_CHUNK_ELEMENTS = 2_000_000
 
 
 @dataclass(frozen=True)
@@ -281,63 +277,6 @@ def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, p
                        grid=grid, compliance=comp, enter_mask=enter_mask)
 
 
-@njit(cache=True)
-def _tabulate_rows(gap, comp, enter_mask, gap_min, u, coef, m, v_tab, s_tab, lo, h, force, stiff, enter, outside):
-    """The table's sums over the points of each row: F = Σ q_i, dF/dx = Σ dq_i/dd and the entering
-    pair's Σ q_i at x = g_min + u_j, q_i the root of c_i·q + coef·q^m = x − g_i (0 where x ≤ g_i).
-
-    Each root by :func:`gearmesh.ltca.invert_tabulated`'s method — q = Q·X(y), Q = (coef/c)^(1/(1−m))
-    the load at which both terms are equal, y = d/(c·Q), X the root of X + X^m = y read from its
-    universal table in ln y by cubic Hermite interpolation, dq/dd = X/(c·(X + m·(y − X))) — with Q
-    and c·Q once per point rather than once per (point, approach), and only the points a column
-    reaches. A row with a point beyond the universal table is flagged in ``outside`` (left for
-    the caller's exact inversion); the linear law (coef = 0) is q = d/c."""
-    rows, npts = gap.shape
-    nu = u.size
-    last = v_tab.size - 1
-    inv_h = 1.0 / h
-    for k in range(rows):
-        for i in range(npts):
-            base = gap_min[k] - gap[k, i]
-            if not base + u[nu - 1] > 0.0:  # never touches within the table (or no candidate: inf)
-                continue
-            c = comp[k, i]
-            if coef == 0.0:
-                for j in range(nu):
-                    d = base + u[j]
-                    if d > 0.0:
-                        force[k, j] += d / c
-                        stiff[k, j] += 1.0 / c
-                        if enter_mask[k, i]:
-                            enter[k, j] += d / c
-                continue
-            log_c = math.log(c)
-            log_q = (math.log(coef) - log_c) / (1.0 - m)
-            big_q = math.exp(log_q)
-            log_cq = log_c + log_q
-            cq = c * big_q
-            for j in range(nu):
-                d = base + u[j]
-                if d <= 0.0:
-                    continue
-                t = (math.log(d) - log_cq - lo) * inv_h
-                if not (t >= 0.0 and t < last):
-                    outside[k] = True
-                    continue
-                ti = int(t)
-                t -= ti
-                t2 = t * t
-                v = (((2 * t - 3) * t2 + 1) * v_tab[ti] + ((t - 2) * t + 1) * t * h * s_tab[ti]
-                     + (3 - 2 * t) * t2 * v_tab[ti + 1] + (t - 1) * t2 * h * s_tab[ti + 1])
-                x = math.exp(v)
-                y = d / cq
-                q = big_q * x
-                force[k, j] += q
-                stiff[k, j] += x / (c * (x + m * (y - x)))
-                if enter_mask[k, i]:
-                    enter[k, j] += q
-
-
 def tabulate(layout: TableLayout, gap: np.ndarray, force_max: float,
              approaches: int = DEFAULT_TABLE_APPROACHES) -> MeshForceTable:
     """The :class:`MeshForceTable` of one micro-geometry with separations ``gap`` (P+1, M) m
@@ -355,24 +294,7 @@ def tabulate(layout: TableLayout, gap: np.ndarray, force_max: float,
     _, delta_max, _, _ = solve_contact(gap, comp - law.linear, np.full(rows, float(force_max)), law)
     u_max = float(np.max(delta_max - gap_min))
     u = np.linspace(0.0, u_max, approaches)
-    force = np.zeros((rows, approaches))
-    stiff = np.zeros((rows, approaches))
-    enter = np.zeros((rows, approaches))
-    outside = np.zeros(rows, dtype=np.bool_)
-    lo, hi, h = _TABLE_LOG_Y
-    v_tab, s_tab = _universal_inverse(float(law.exponent))
-    _tabulate_rows(gap, comp, enter_mask, gap_min, u, float(law.coefficient), float(law.exponent), v_tab, s_tab, lo,
-                   h, force, stiff, enter, outside)
-    rest = np.flatnonzero(outside)  # rows with a point beyond the universal table: Newton per point
-    step = max(1, _CHUNK_ELEMENTS // (approaches * m))
-    for k0 in range(0, rest.size, step):
-        sl = rest[k0:k0 + step]
-        d = gap_min[sl, None, None] + u[None, :, None] - gap[sl, None, :]
-        q, dq = invert_tabulated(np.where(np.isfinite(d), d, -1.0), np.broadcast_to(comp[sl, None, :], d.shape),
-                                 law.coefficient, law.exponent)
-        force[sl] = q.sum(axis=2)
-        stiff[sl] = dq.sum(axis=2)
-        enter[sl] = np.where(enter_mask[sl, None, :], q, 0.0).sum(axis=2)
+    force, stiff, enter = load_sums(gap, comp, gap_min[:, None] + u[None, :], law, enter_mask)
     geom = layout.geom
     _warn_reach(layout.grid, gap, gap_min[:, None] + u_max, layout.grid.extension, geom.path_of_contact)
     return MeshForceTable(pitch=layout.pitch, roll_engagement=layout.roll_engagement, window=layout.window,
