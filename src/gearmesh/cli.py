@@ -18,7 +18,7 @@ from typing import Any
 from .config import check_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
-from .gear import check_pair_name, load_pair, pair_from_dict, pair_geometry, pinion_torque, read_yaml
+from .gear import load_pair, pair_geometry, pinion_torque, read_yaml
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_load
 
 EXIT_BAD_INPUT = 2
@@ -58,11 +58,11 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
 
 
 def _pair(path: str, args: argparse.Namespace | None = None):
-    """The pair file at ``path`` (name = file name) and its geometry; with ``args``, its
-    ``--torque-Nm`` checked against the load limits of :func:`gearmesh.limits.check_load`."""
+    """The pair file at ``path`` (its ``name``, or its file stem without one) and its geometry;
+    with ``args``, its ``--torque-Nm`` checked against the load limits of
+    :func:`gearmesh.limits.check_load`."""
     pair = load_pair(path)
     geom = pair_geometry(pair)
-    check_pair_name(pair, path)
     if args is not None and args.torque_Nm is not None and args.torque_Nm > 0:
         check_load(geom, pinion_torque(pair, args.torque_Nm, args.on), "--torque-Nm", args.torque_Nm)
     return pair, geom
@@ -73,8 +73,7 @@ def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     if isinstance(data, Mapping) and ("study" in data or "pairs" in data):  # a pair file has neither key
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
-    pair = pair_from_dict(data, source=args.file)
-    _pair(args.file)
+    pair = _pair(args.file)[0]
     return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
 
 

@@ -121,8 +121,7 @@ _PAIR_KEYS = {
     "dedendum_coefficient", "tool_tip_radius_coefficient", "bore_radius_mm", "material",
     "modification", "helix_hand", "source",
 }
-_REQUIRED_KEYS = ("name", "teeth", "normal_module_mm", "normal_pressure_angle_deg",
-                  "helix_angle_deg", "face_width_mm")
+_REQUIRED_KEYS = ("teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg", "face_width_mm")
 _MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3"}
 _MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
     "root_relief_um": ("root_relief", 1e-6),
@@ -187,6 +186,21 @@ def _teeth(value: Any) -> tuple[int, int]:
     return (out[0], out[1])
 
 
+def _pair_name(given: Any, default_name: str | None) -> str:
+    """The pair's name: as given, else ``default_name`` (the file stem); either must be a
+    :data:`NAME_PATTERN` name."""
+    rule = "1 to 160 letters, digits, '_', '-' or '.' (not first): a file name, no path characters"
+    if given is None:
+        if default_name is None:
+            raise GearmeshInputError("name", None, "is required")
+        if not NAME_PATTERN.fullmatch(default_name):
+            raise GearmeshInputError("name", None, f"is required: the file name {default_name!r} cannot be one ({rule})")
+        return default_name
+    if not isinstance(given, str) or not NAME_PATTERN.fullmatch(given):
+        raise GearmeshInputError("name", given, f"must be {rule}")
+    return given
+
+
 def _modification(field_name: str, value: Any) -> Modification:
     if value is None:
         return Modification()
@@ -201,20 +215,18 @@ def _modification(field_name: str, value: Any) -> Modification:
     return Modification(**kwargs)
 
 
-def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
+def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str | None = None) -> GearPair:
     """Build a :class:`GearPair` (SI) from a pair-file mapping in engineering units.
 
     Checks the form of the data (keys, types, signs, ranges); the physics of the pair
     (contact ratio, interference, centre distance) is checked by :func:`pair_geometry`.
+    ``name`` may be left out when ``default_name`` is given (a file's stem, :func:`load_pair`).
     """
     spec = _mapping("pair", data, _PAIR_KEYS)
     for key in _REQUIRED_KEYS:
         if key not in spec:
             raise GearmeshInputError(key, None, "is required")
-    name = spec["name"]
-    if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name):
-        raise GearmeshInputError("name", name, "must be 1 to 160 letters, digits, '_', '-' or '.' (not "
-                                 "first): a file name, no path characters")
+    name = _pair_name(spec.get("name"), default_name)
     alpha_n = _number("normal_pressure_angle_deg", spec["normal_pressure_angle_deg"])
     if not 0 < alpha_n < 45:
         raise GearmeshInputError("normal_pressure_angle_deg", alpha_n, "must lie in (0, 45) degrees")
@@ -437,15 +449,19 @@ def read_yaml(path: str | Path, what: str) -> Any:
 
 
 def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
-    """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`."""
+    """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`; a file
+    without ``name`` is named after its stem (``my_pair.yaml``: ``my_pair``), a different
+    ``name`` is kept as given."""
     if isinstance(path_or_data, Mapping):
         return pair_from_dict(path_or_data)
-    return pair_from_dict(read_yaml(path_or_data, "pair file"), source=str(path_or_data))
+    return pair_from_dict(read_yaml(path_or_data, "pair file"), source=str(path_or_data),
+                          default_name=Path(path_or_data).stem)
 
 
 def check_pair_name(pair: GearPair, path: str | Path) -> GearPair:
-    """Refuse a pair whose ``name`` differs from the name of its file ``path``
-    (``config/pairs/NAME.yaml``), as the workflow and the CLI require: results are filed under it."""
+    """Refuse a pair whose ``name`` differs from the name of its file ``path``: the rule of
+    a study's pair library (``pairs_dir/NAME.yaml``), whose results are filed under the name.
+    The command line has no such rule (:func:`load_pair`)."""
     if pair.name != Path(path).stem:
         raise GearmeshInputError("name", pair.name, f"must equal the file name {Path(path).stem!r} of {path}")
     return pair
