@@ -4,12 +4,13 @@ defaults and centre distances printed to a few decimals."""
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 import yaml
 
 from gearmesh.cli import main
-from gearmesh.gear import load_pair
+from gearmesh.gear import Material, load_pair, pair_from_dict, pair_notes, pair_to_dict
 
 from pairs import seed001_pair1
 
@@ -57,3 +58,48 @@ def test_the_study_library_keeps_name_equal_to_file(tmp_path, capsys):
     study.write_text(f"study: s\npairs: [p]\npairs_dir: {tmp_path / 'pairs'}\n")
     assert main(["validate", str(study)]) == 2
     assert capsys.readouterr().err.startswith("gearmesh: error: name = 'other': must equal the file name 'p'")
+
+
+# --------------------------------------------------------------------------------------
+# Material: steel when not given (stated), explicit values override key by key
+# --------------------------------------------------------------------------------------
+
+
+def test_missing_material_is_steel_and_stated(tmp_path, capsys):
+    data = seed001_pair1()
+    del data["material"]
+    pair = pair_from_dict(data)
+    assert (pair.material.youngs_modulus, pair.material.poisson_ratio, pair.material.density) == (206e9, 0.3, 7850)
+    assert len(pair_notes(pair)) == 1 and "material not given" in pair_notes(pair)[0]
+    assert main(["geometry", _write(tmp_path / "p.yaml", data), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["material"] == {"youngs_modulus_GPa": 206.0, "poisson_ratio": 0.3, "density_kg_m3": 7850.0}
+    assert "youngs_modulus_GPa = 206" in out["notes"][0]
+    # the mass follows the default density: ρπ(r² − r_i²)b of the pinion, r = 25.7665 mm, r_i = 15 mm
+    assert out["mass_kg"][0] == pytest.approx(7850 * math.pi * (25.76651e-3**2 - 15e-3**2) * 20e-3, rel=1e-5)
+
+
+def test_explicit_material_values_override_key_by_key():
+    pair = pair_from_dict(seed001_pair1(material={"density_kg_m3": 7800}))
+    assert (pair.material.youngs_modulus, pair.material.density) == (206e9, 7800)
+    note = pair_notes(pair)[0]
+    assert "youngs_modulus_GPa" in note and "poisson_ratio" in note and "density" not in note.split("(")[0]
+    assert pair_notes(pair_from_dict(seed001_pair1())) == []
+    # written back: only what was given, so reading it fills (and states) the same defaults
+    assert pair_to_dict(pair)["material"] == {"density_kg_m3": 7800}
+    assert pair_from_dict(pair_to_dict(pair)) == pair
+    # a material set in code replaces the defaults: nothing is left out or claimed
+    steel = pair.with_changes(material=Material(210e9, 0.29, 7850.0))
+    assert pair_notes(steel) == [] and len(pair_to_dict(steel)["material"]) == 3
+
+
+def test_dataset_attrs_state_the_material_defaults(tmp_path):
+    from gearmesh.datasets.geometry import geometry_dataset
+    from gearmesh.io import read_dataset
+    from gearmesh.pipeline import finish
+
+    data = seed001_pair1()
+    del data["material"]
+    pair = pair_from_dict(data)
+    path = finish(geometry_dataset(pair), tmp_path / "geometry.nc", {"study": "s"}, pair, "geometry")
+    assert "material not given" in read_dataset(path).attrs["pair_notes"]

@@ -18,7 +18,7 @@ from typing import Any
 from .config import check_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
-from .gear import load_pair, pair_geometry, pinion_torque, read_yaml
+from .gear import load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_load
 
 EXIT_BAD_INPUT = 2
@@ -41,7 +41,7 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
     if as_json:
         print(json.dumps(_finite(result)))
         return
-    width = max(len(k) for k in result)
+    width = max(len(k) for k in _flat(result))
     rows = result.get("speeds") if isinstance(result.get("speeds"), list) else None
     if rows:  # a table, one row per speed
         keys = list(rows[0])
@@ -49,7 +49,7 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
         for row in _finite(rows):
             print("  ".join(f"{v:>18.6g}" if isinstance(v, float) else f"{v!s:>18}" for v in row.values()))
         return
-    for key, value in _finite(result).items():
+    for key, value in _flat(_finite(result)).items():
         if isinstance(value, float):
             value = f"{value:.6g}"
         elif isinstance(value, list):
@@ -57,14 +57,27 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
         print(f"{key:<{width}}  {value}")
 
 
-def _pair(path: str, args: argparse.Namespace | None = None):
-    """The pair file at ``path`` (its ``name``, or its file stem without one) and its geometry;
-    with ``args``, its ``--torque-Nm`` checked against the load limits of
-    :func:`gearmesh.limits.check_load`."""
-    pair = load_pair(path)
+def _flat(result: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """Nested mappings as dotted keys (``material.poisson_ratio``), for the text output."""
+    out: dict[str, Any] = {}
+    for key, value in result.items():
+        if isinstance(value, Mapping):
+            out.update(_flat(value, f"{prefix}{key}."))
+        else:
+            out[f"{prefix}{key}"] = value
+    return out
+
+
+def _pair(args: argparse.Namespace, path: str | None = None):
+    """The pair file of the command (``path``, else ``args.pair``; its ``name``, or its file
+    stem without one) and its geometry, a ``--torque-Nm`` checked against the load limits of
+    :func:`gearmesh.limits.check_load`. Kept on ``args`` for the notes :func:`main` prints."""
+    pair = load_pair(path or args.pair)
     geom = pair_geometry(pair)
-    if args is not None and args.torque_Nm is not None and args.torque_Nm > 0:
-        check_load(geom, pinion_torque(pair, args.torque_Nm, args.on), "--torque-Nm", args.torque_Nm)
+    torque = getattr(args, "torque_Nm", None)
+    if torque is not None and torque > 0:
+        check_load(geom, pinion_torque(pair, torque, args.on), "--torque-Nm", torque)
+    args.loaded_pair = pair
     return pair, geom
 
 
@@ -73,12 +86,12 @@ def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     if isinstance(data, Mapping) and ("study" in data or "pairs" in data):  # a pair file has neither key
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
-    pair = _pair(args.file)[0]
+    pair = _pair(args, args.file)[0]
     return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
-    geom = _pair(args.pair)[1]
+    geom = _pair(args)[1]
     result = geom.scalars()
     summary = contact_length_summary(geom)
     result.update({
@@ -97,14 +110,14 @@ def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.stiffness import stiffness_summary
 
     check_grid("--slices", args.slices, args.slices * args.positions, MAX_STIFFNESS_POINTS, "slice-positions")
-    return stiffness_summary(_pair(args.pair, args)[0], method=args.method, slices=args.slices,
+    return stiffness_summary(_pair(args)[0], method=args.method, slices=args.slices,
                              positions=args.positions, torque_Nm=args.torque_Nm, torque_on=args.on)
 
 
 def cmd_impact(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.impact import impact_summary
 
-    return impact_summary(_pair(args.pair, args)[0], args.torque_Nm, args.speed_rpm, on=args.on, driver=args.driver,
+    return impact_summary(_pair(args)[0], args.torque_Nm, args.speed_rpm, on=args.on, driver=args.driver,
                           points=args.points, simulate=args.simulate, energy_velocity=args.energy_velocity)
 
 
@@ -113,7 +126,7 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 
     check_grid("--points", args.points, (args.positions + 1) * args.points, MAX_CONTACT_POINTS,
                "contact candidates per line")
-    return ltca_summary(_pair(args.pair, args)[0], args.torque_Nm, on=args.on, positions=args.positions,
+    return ltca_summary(_pair(args)[0], args.torque_Nm, on=args.on, positions=args.positions,
                         points=args.points, contact_law=args.contact_law)
 
 
@@ -121,7 +134,7 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.dynamics import check_dynamics_settings, dynamics_summary, positive_torque
 
     positive_torque("torque_Nm", args.torque_Nm)
-    pair, geom = _pair(args.pair, args)
+    pair, geom = _pair(args)
     check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
                                    "backlash_um": args.backlash_um, "sample_speeds_rpm": [],
                                    "excitation": args.excitation})
@@ -187,7 +200,7 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     # the design torque: given, or the middle torque of the spectrum (the lower of two middles)
     design = args.torque_Nm if args.torque_Nm is not None else sorted(torques)[(len(torques) - 1) // 2]
     out = _output_pair_path(args.write_pair)
-    pair = _pair(args.pair, args)[0]
+    pair = _pair(args)[0]
     if torques is not None:
         from .ltca import check_torques
 
@@ -380,6 +393,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             if value is not None and not math.isfinite(value):
                 raise GearmeshInputError(option, value, "must be a finite number")
         result = args.func(args)
+        if getattr(args, "loaded_pair", None) is not None:
+            result["notes"] = pair_notes(args.loaded_pair)
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)
         if args.command == "validate" and args.json:

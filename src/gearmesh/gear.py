@@ -105,6 +105,7 @@ class GearPair:
     modification: tuple[Modification, Modification] = (Modification(), Modification())
     helix_hand: str = "right"
     source: str = ""
+    defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. DEFAULT_MATERIAL)
 
     def with_changes(self, **changes: Any) -> "GearPair":
         """A copy with some fields replaced (e.g. a helix-angle sweep)."""
@@ -123,6 +124,13 @@ _PAIR_KEYS = {
 }
 _REQUIRED_KEYS = ("teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg", "face_width_mm")
 _MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3"}
+#: Steel, for a pair file without ``material`` or without one of its keys (given keys override):
+#: E = 206 GPa and ν = 0.3 are the steel of the gear standards, ISO 6336-1:2019 (the single
+#: stiffness c' refers to E_st = 206 000 N/mm²) and ISO 6336-2:2019 (Z_E = √(E/(2π(1 − ν²))) =
+#: 189.8 √(N/mm²) for steel on steel); ρ = 7850 kg/m³ is EN 1993-1-1:2005 §3.2.6 (which gives
+#: E = 210 GPa for structural steel: the gear standards' 206 GPa is taken because the stiffness
+#: and load limits here refer to it). Which keys were filled is stated (:func:`pair_notes`).
+DEFAULT_MATERIAL = {"youngs_modulus_GPa": 206.0, "poisson_ratio": 0.3, "density_kg_m3": 7850.0}
 _MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
     "root_relief_um": ("root_relief", 1e-6),
     "tip_relief_um": ("tip_relief", 1e-6),
@@ -258,20 +266,17 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
     if spec.get("bore_radius_mm") is not None:
         bore = tuple(b * 1e-3 for b in _per_gear("bore_radius_mm", spec["bore_radius_mm"], nonneg))
 
-    material = None
-    if spec.get("material") is not None:
-        m = _mapping("material", spec["material"], _MATERIAL_KEYS)
-        for key in _MATERIAL_KEYS:
-            if key not in m:
-                raise GearmeshInputError(f"material.{key}", None, "is required")
-        nu = _number("material.poisson_ratio", m["poisson_ratio"])
-        if not 0 <= nu < 0.5:
-            raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
-        material = Material(
-            youngs_modulus=_positive("material.youngs_modulus_GPa", m["youngs_modulus_GPa"]) * 1e9,
-            poisson_ratio=nu,
-            density=_positive("material.density_kg_m3", m["density_kg_m3"]),
-        )
+    given_material = {} if spec.get("material") is None else _mapping("material", spec["material"], _MATERIAL_KEYS)
+    m = {**DEFAULT_MATERIAL, **given_material}
+    defaults = tuple(f"material.{key}" for key in DEFAULT_MATERIAL if key not in given_material)
+    nu = _number("material.poisson_ratio", m["poisson_ratio"])
+    if not 0 <= nu < 0.5:
+        raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
+    material = Material(
+        youngs_modulus=_positive("material.youngs_modulus_GPa", m["youngs_modulus_GPa"]) * 1e9,
+        poisson_ratio=nu,
+        density=_positive("material.density_kg_m3", m["density_kg_m3"]),
+    )
 
     mods = (Modification(), Modification())
     if spec.get("modification") is not None:
@@ -298,6 +303,7 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         modification=mods,
         helix_hand=hand,
         source=str(spec.get("source", source)),
+        defaults=defaults,
     )
 
 
@@ -458,6 +464,33 @@ def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
                           default_name=Path(path_or_data).stem)
 
 
+def pair_notes(pair: GearPair) -> list[str]:
+    """What the results of ``pair`` rest on that its file did not say: the material values
+    filled by :data:`DEFAULT_MATERIAL`. One sentence each, for the output (JSON, dataset attrs)."""
+    notes = []
+    filled = _defaulted_material(pair)
+    if filled:
+        values = ", ".join(f"{key} = {DEFAULT_MATERIAL[key]:g}" for key in filled)
+        notes.append(f"material not given: steel {values} (ISO 6336-1/-2 steel, EN 1993-1-1 density)")
+    return notes
+
+
+def material_values(material: Material) -> dict[str, float]:
+    """``material`` as the pair file's ``material`` mapping (GPa, -, kg/m³)."""
+    return {"youngs_modulus_GPa": material.youngs_modulus * 1e-9, "poisson_ratio": material.poisson_ratio,
+            "density_kg_m3": material.density}
+
+
+def _defaulted_material(pair: GearPair) -> list[str]:
+    """The material keys of ``pair`` filled by :data:`DEFAULT_MATERIAL` and still at that value
+    (a material set in code since replaces them)."""
+    if pair.material is None:
+        return []
+    values = material_values(pair.material)
+    return [key for key, default in DEFAULT_MATERIAL.items()
+            if f"material.{key}" in pair.defaults and math.isclose(values[key], default, rel_tol=1e-12)]
+
+
 def check_pair_name(pair: GearPair, path: str | Path) -> GearPair:
     """Refuse a pair whose ``name`` differs from the name of its file ``path``: the rule of
     a study's pair library (``pairs_dir/NAME.yaml``), whose results are filed under the name.
@@ -493,12 +526,11 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
         out["center_distance_mm"] = pair.center_distance * 1e3
     if pair.bore_radius is not None:
         out["bore_radius_mm"] = [r * 1e3 for r in pair.bore_radius]
-    if pair.material is not None:
-        out["material"] = {
-            "youngs_modulus_GPa": pair.material.youngs_modulus * 1e-9,
-            "poisson_ratio": pair.material.poisson_ratio,
-            "density_kg_m3": pair.material.density,
-        }
+    if pair.material is not None:  # the keys given; defaulted ones are filled again on reading
+        defaulted = _defaulted_material(pair)
+        material = {k: v for k, v in material_values(pair.material).items() if k not in defaulted}
+        if material:
+            out["material"] = material
     if any(not m.is_zero for m in pair.modification):
         out["modification"] = {
             gear: {key: getattr(mod, attr) / factor for key, (attr, factor) in _MODIFICATION_KEYS.items()}
@@ -595,6 +627,7 @@ class PairGeometry:
             "face_width_mm": self.face_width * 1e3,
             "mass_kg": [float(x) for x in self.mass],
             "inertia_kg_m2": [float(x) for x in self.inertia],
+            "material": material_values(self.pair.material) if self.pair.material is not None else None,
         }
 
 
