@@ -10,7 +10,16 @@ import pytest
 import yaml
 
 from gearmesh.cli import main
-from gearmesh.gear import Material, load_pair, pair_from_dict, pair_notes, pair_to_dict
+from gearmesh.errors import GearmeshInputError
+from gearmesh.gear import (
+    Material,
+    load_pair,
+    pair_from_dict,
+    pair_geometry,
+    pair_notes,
+    pair_to_dict,
+    shift_rounding_center_distance,
+)
 
 from pairs import seed001_pair1
 
@@ -103,3 +112,48 @@ def test_dataset_attrs_state_the_material_defaults(tmp_path):
     pair = pair_from_dict(data)
     path = finish(geometry_dataset(pair), tmp_path / "geometry.nc", {"study": "s"}, pair, "geometry")
     assert "material not given" in read_dataset(path).attrs["pair_notes"]
+
+
+# --------------------------------------------------------------------------------------
+# Centre distance a hair below zero backlash: the shifts' rounding, not interpenetration
+# --------------------------------------------------------------------------------------
+
+#: The parallel helical stage of a KISSsoft report (issue 18): shifts printed to four decimals
+#: put its zero-backlash distance 0.15 µm above the printed 861.000 mm.
+KISSSOFT = {"teeth": [24, 95], "normal_module_mm": 14, "normal_pressure_angle_deg": 20, "helix_angle_deg": 10,
+            "face_width_mm": 360, "profile_shift": [0.48, 0.6691], "center_distance_mm": 861.000,
+            "tip_diameter_mm": [380.747, 1395.376], "basic_rack_profile": "ISO 53 A",
+            "bore_diameter_mm": [179.10, 1193.32]}
+
+
+def _zero_backlash_distance(data) -> float:
+    return pair_geometry(pair_from_dict({"name": "p", **data, "center_distance_mm": None})).center_distance
+
+
+def test_rounding_tolerance_is_the_printed_shifts_effect_on_a0():
+    """Independent check of the closed-form ∂a0/∂Σx: a0 of the shifts each raised by 0.5e-4."""
+    data = seed001_pair1(profile_shift=[0.3, 0.2])
+    geom = pair_geometry(pair_from_dict(data))
+    raised = _zero_backlash_distance(seed001_pair1(profile_shift=[0.30005, 0.20005]))
+    allowed = shift_rounding_center_distance(geom.pair, geom.transverse_pressure_angle, geom.operating_pressure_angle)
+    assert allowed == pytest.approx(raised - geom.center_distance, rel=1e-4)
+    assert 0.5e-4 < allowed / geom.pair.normal_module < 2e-4  # about 1e-4 m_n
+
+
+def test_centre_distance_below_zero_backlash_within_rounding_is_zero_backlash():
+    data = {k: v for k, v in KISSSOFT.items() if k in ("teeth", "normal_module_mm", "normal_pressure_angle_deg",
+                                                        "helix_angle_deg", "face_width_mm", "profile_shift",
+                                                        "center_distance_mm")}
+    pair = pair_from_dict({**data, "name": "stage"})
+    a0 = _zero_backlash_distance(data)
+    assert 0.1e-6 < a0 - 0.861 < 0.3e-6
+    geom = pair_geometry(pair)
+    assert geom.center_distance == a0 and geom.backlash_normal == pytest.approx(0, abs=1e-15)
+    assert any("zero backlash" in note for note in pair_notes(pair))
+    # beyond the rounding (1.25 µm here): refused, naming the distance and the limit
+    with pytest.raises(GearmeshInputError) as info:
+        pair_geometry(pair_from_dict({**data, "name": "stage", "center_distance_mm": 860.9985}))
+    assert info.value.field == "center_distance_mm" and "rounding" in str(info.value)
+    # above a0 nothing is said
+    assert pair_notes(pair_from_dict({**data, "name": "stage", "center_distance_mm": 861.1})) == [
+        note for note in pair_notes(pair) if "material" in note]

@@ -465,9 +465,18 @@ def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
 
 
 def pair_notes(pair: GearPair) -> list[str]:
-    """What the results of ``pair`` rest on that its file did not say: the material values
+    """What the results of ``pair`` rest on that its file did not say: a centre distance taken
+    as the zero-backlash one (:func:`shift_rounding_center_distance`) and the material values
     filled by :data:`DEFAULT_MATERIAL`. One sentence each, for the output (JSON, dataset attrs)."""
     notes = []
+    if pair.center_distance is not None and pair.profile_shift is not None:
+        alpha_t = math.atan(math.tan(pair.normal_pressure_angle) / math.cos(pair.helix_angle))
+        r_sum = sum(pair.teeth) * pair.normal_module / math.cos(pair.helix_angle) / 2
+        a0 = _resolve_shift_and_center(pair, alpha_t, r_sum)[3]
+        if pair.center_distance < a0:
+            notes.append(f"center_distance_mm = {pair.center_distance * 1e3:.6g} lies {(a0 - pair.center_distance) * 1e6:.2g}"
+                         f" µm below the zero-backlash distance {a0 * 1e3:.6f} mm of the shifts as printed, within "
+                         "their rounding to four decimals: zero backlash, computed at that distance")
     filled = _defaulted_material(pair)
     if filled:
         values = ", ".join(f"{key} = {DEFAULT_MATERIAL[key]:g}" for key in filled)
@@ -664,12 +673,40 @@ def _resolve_shift_and_center(pair: GearPair, alpha_t: float, r_sum: float):
     if pair.center_distance is None:
         return shift, False, a0, a0, alpha_wt0
     a = pair.center_distance
-    if a < a0 * (1 - 1e-9):
-        raise GearmeshInputError("center_distance_mm", a * 1e3,
-                                 f"is below the zero-backlash distance {a0 * 1e3:.4f} mm of these profile shifts "
-                                 "(the teeth would interpenetrate)")
+    if a < a0:  # within the shifts' rounding: zero backlash at a0 (pair_notes says so); beyond: refused
+        allowed = shift_rounding_center_distance(pair, alpha_t, alpha_wt0)
+        if a0 - a > allowed:
+            raise GearmeshInputError("center_distance_mm", a * 1e3,
+                                     f"is {(a0 - a) * 1e6:.3g} µm below the zero-backlash distance {a0 * 1e3:.4f} mm "
+                                     f"of these profile shifts, more than the {allowed * 1e6:.2g} µm their rounding to "
+                                     "four decimals explains (the teeth would interpenetrate)")
+        return shift, inferred, a0, a0, alpha_wt0
     alpha_wt = math.acos(min(1.0, r_sum * math.cos(alpha_t) / a))
     return shift, inferred, a, a0, alpha_wt
+
+
+#: Half a unit of the fourth decimal: datasheets and the source documents print profile shifts
+#: to four decimals, so each printed shift is the designed one within ±0.5·10⁻⁴.
+SHIFT_ROUNDING = 0.5e-4
+
+
+def shift_rounding_center_distance(pair: GearPair, alpha_t: float, alpha_wt0: float) -> float:
+    """How far (m) below the zero-backlash centre distance a0 of the printed shifts a given
+    centre distance may lie and still be the zero-backlash design: the change of a0 when both
+    shifts are off by :data:`SHIFT_ROUNDING` in the same direction.
+
+    From inv αwt = inv αt + 2 tan αn Σx/Σz and a0 = (r1 + r2) cos αt / cos αwt (ISO 21771
+    eqs. 57–59), with d inv α/dα = tan²α:  ∂a0/∂Σx = 2 a0 tan αn/(Σz tan αwt) =
+    m_n tan αn cos αt/(cos β sin αwt), so the tolerance is 2·0.5·10⁻⁴·∂a0/∂Σx, about 10⁻⁴ m_n
+    (1.25 µm for z 24/95, m_n 14 mm, αn 20°, β 10°, x 0.48/0.6691). Against manufacturing it is
+    nothing: the finest centre-distance allowance of DIN 3964 (ISO 286 field js5) is ±6.5 µm
+    for a = 50–80 mm and ±20 µm for a = 800–1000 mm. A centre distance printed 0.1–0.3 µm
+    below a0 (that pair at 861.000 mm, a0 = 861.00015 mm) is therefore the zero-backlash design
+    whose shifts were rounded, not interpenetrating teeth.
+    """
+    mn, an, beta = pair.normal_module, pair.normal_pressure_angle, pair.helix_angle
+    da0_dxsum = mn * math.tan(an) * math.cos(alpha_t) / (math.cos(beta) * math.sin(alpha_wt0))
+    return 2 * SHIFT_ROUNDING * da0_dxsum
 
 
 DEFAULT_TOOL_TIP_RADIUS_COEFFICIENT = 0.38  # ISO 53:1998 basic rack profiles A and B: ρ_fP = 0.38 m_n
