@@ -157,3 +157,75 @@ def test_centre_distance_below_zero_backlash_within_rounding_is_zero_backlash():
     # above a0 nothing is said
     assert pair_notes(pair_from_dict({**data, "name": "stage", "center_distance_mm": 861.1})) == [
         note for note in pair_notes(pair) if "material" in note]
+
+
+# --------------------------------------------------------------------------------------
+# Datasheet quantities instead of coefficients: tip, root and bore diameters, ISO 53 profile
+# --------------------------------------------------------------------------------------
+
+
+def test_kisssoft_stage_is_accepted_and_its_tip_diameters_give_its_contact_ratio(tmp_path, capsys):
+    """The datasheet gives εα = 1.463; its tip diameters (tip shortening included) must give it,
+    where the default addendum 1.0 gave 1.557 (issue 18)."""
+    assert main(["geometry", _write(tmp_path / "kisssoft_stage.yaml", KISSSOFT), "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out["eps_alpha"] == pytest.approx(1.463, rel=3e-3)
+    assert [2 * r for r in out["tip_radius_mm"]] == pytest.approx([380.747, 1395.376], abs=1e-9)
+    assert out["backlash_mm"] == pytest.approx(0, abs=1e-12)
+    assert any("zero backlash" in note for note in out["notes"])
+    standard = {k: v for k, v in KISSSOFT.items() if k != "tip_diameter_mm"}
+    assert pair_geometry(pair_from_dict({**standard, "name": "s"})).eps_alpha == pytest.approx(1.557, abs=1e-3)
+    # ISO 53 profile A: hob addendum 1.25 m_n, tip radius 0.38 m_n; inner diameters: bore radii
+    pair = load_pair(tmp_path / "kisssoft_stage.yaml")
+    assert pair.dedendum_coefficient == (1.25, 1.25) and pair.tool_tip_radius_coefficient == (0.38, 0.38)
+    assert pair.bore_radius == pytest.approx((0.08955, 0.59666))
+
+
+def test_root_diameter_is_the_hob_dedendum_iso21771():
+    # spur 20/40, m 4, x 0.3/-0.1: d_f = d - 2 h_fP + 2 x m (ISO 21771 eq. 47)
+    # pinion 80 - 10 + 2.4 = 72.4 mm (h_fP = 1.25 m); gear 160 - 11.2 - 0.8 = 148.0 mm (h_fP = 1.4 m)
+    data = {"name": "spur", "teeth": [20, 40], "normal_module_mm": 4, "normal_pressure_angle_deg": 20,
+            "helix_angle_deg": 0, "face_width_mm": 30, "profile_shift": [0.3, -0.1]}
+    pair = pair_from_dict({**data, "root_diameter_mm": [72.4, 148.0]})
+    assert pair.dedendum_coefficient == pytest.approx((1.25, 1.4), abs=1e-12)
+    geom = pair_geometry(pair)
+    assert [2e3 * r for r in geom.root_radius] == pytest.approx([72.4, 148.0], abs=1e-9)
+
+
+def test_tip_diameter_with_shifts_inferred_from_the_centre_distance():
+    # no shifts, a = 122 mm: the zero-backlash total shift is split equally (pair_geometry);
+    # the tip diameters are absolute and must come out as given
+    data = {"name": "spur", "teeth": [20, 40], "normal_module_mm": 4, "normal_pressure_angle_deg": 20,
+            "helix_angle_deg": 0, "face_width_mm": 30, "center_distance_mm": 122.0,
+            "tip_diameter_mm": [89.5, 169.5]}
+    geom = pair_geometry(pair_from_dict(data))
+    assert geom.shift_inferred
+    assert [2e3 * r for r in geom.tip_radius] == pytest.approx([89.5, 169.5], abs=1e-9)
+
+
+@pytest.mark.parametrize("extra, field, other", [
+    ({"addendum_coefficient": 1.0, "tip_diameter_mm": [380.747, 1395.376]}, "tip_diameter_mm", "addendum_coefficient"),
+    ({"dedendum_coefficient": 1.25}, "basic_rack_profile", "dedendum_coefficient"),
+    ({"root_diameter_mm": 300}, "basic_rack_profile", "root_diameter_mm"),
+    ({"tool_tip_radius_coefficient": 0.3}, "basic_rack_profile", "tool_tip_radius_coefficient"),
+    ({"bore_radius_mm": 80}, "bore_diameter_mm", "bore_radius_mm"),
+])
+def test_two_keys_for_one_dimension_are_one_error(tmp_path, capsys, extra, field, other):
+    data = {**KISSSOFT, **extra}
+    assert main(["validate", _write(tmp_path / "p.yaml", data)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith(f"gearmesh: error: {field} = ") and f"conflicts with {other}" in err
+    assert len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("change, field", [
+    ({"basic_rack_profile": "DIN 867"}, "basic_rack_profile"),
+    ({"normal_pressure_angle_deg": 25}, "basic_rack_profile"),
+    ({"tip_diameter_mm": [340.0, 1395.376]}, "tip_diameter_mm[0]"),  # below d + 2 x m_n = 354.6 mm
+    ({"tip_diameter_mm": [380.747, -1]}, "tip_diameter_mm[1]"),
+    ({"bore_diameter_mm": "wide"}, "bore_diameter_mm"),
+])
+def test_bad_datasheet_values_are_refused(change, field):
+    with pytest.raises(GearmeshInputError) as info:
+        pair_geometry(pair_from_dict({**KISSSOFT, "name": "k", **change}))
+    assert info.value.field == field

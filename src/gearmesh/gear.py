@@ -121,7 +121,21 @@ _PAIR_KEYS = {
     "face_width_mm", "profile_shift", "center_distance_mm", "addendum_coefficient",
     "dedendum_coefficient", "tool_tip_radius_coefficient", "bore_radius_mm", "material",
     "modification", "helix_hand", "source",
+    "tip_diameter_mm", "root_diameter_mm", "bore_diameter_mm", "basic_rack_profile",  # datasheet alternatives
 }
+#: Keys that say the same thing: at most one of each group may be given (_one_of).
+_ALTERNATIVE_KEYS = (
+    ("addendum_coefficient", "tip_diameter_mm"),
+    ("dedendum_coefficient", "root_diameter_mm", "basic_rack_profile"),
+    ("tool_tip_radius_coefficient", "basic_rack_profile"),
+    ("bore_radius_mm", "bore_diameter_mm"),
+)
+#: ISO 53:1998 basic rack profiles (α_P = 20°, h_aP = 1.0 m): the dedendum h_fP and root fillet
+#: radius ρ_fP of the rack, in modules — the addendum and tip radius of the hob that generates
+#: the gear (``dedendum_coefficient``, ``tool_tip_radius_coefficient``). A for high torque, B and
+#: C for normal service (smaller fillets), D for gears finished by grinding or shaving.
+ISO53_PROFILES = {"ISO 53 A": (1.25, 0.38), "ISO 53 B": (1.25, 0.30), "ISO 53 C": (1.25, 0.25),
+                  "ISO 53 D": (1.40, 0.39)}
 _REQUIRED_KEYS = ("teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg", "face_width_mm")
 _MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3"}
 #: Steel, for a pair file without ``material`` or without one of its keys (given keys override):
@@ -235,6 +249,8 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         if key not in spec:
             raise GearmeshInputError(key, None, "is required")
     name = _pair_name(spec.get("name"), default_name)
+    for group in _ALTERNATIVE_KEYS:
+        _one_of(spec, group)
     alpha_n = _number("normal_pressure_angle_deg", spec["normal_pressure_angle_deg"])
     if not 0 < alpha_n < 45:
         raise GearmeshInputError("normal_pressure_angle_deg", alpha_n, "must lie in (0, 45) degrees")
@@ -265,6 +281,9 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
     bore = None
     if spec.get("bore_radius_mm") is not None:
         bore = tuple(b * 1e-3 for b in _per_gear("bore_radius_mm", spec["bore_radius_mm"], nonneg))
+    elif spec.get("bore_diameter_mm") is not None:  # a datasheet's inner (bore) diameter: r = d/2
+        bore = tuple(d / 2 * 1e-3 for d in _per_gear("bore_diameter_mm", spec["bore_diameter_mm"], nonneg))
+    rack = _basic_rack(spec.get("basic_rack_profile"), alpha_n)
 
     given_material = {} if spec.get("material") is None else _mapping("material", spec["material"], _MATERIAL_KEYS)
     m = {**DEFAULT_MATERIAL, **given_material}
@@ -284,7 +303,7 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         mods = (_modification("modification.pinion", mm.get("pinion")),
                 _modification("modification.gear", mm.get("gear")))
 
-    return GearPair(
+    pair = GearPair(
         name=name,
         teeth=_teeth(spec["teeth"]),
         normal_module=_positive("normal_module_mm", spec["normal_module_mm"]) * 1e-3,
@@ -294,10 +313,12 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         profile_shift=shift,
         center_distance=center,
         addendum_coefficient=_per_gear("addendum_coefficient", spec.get("addendum_coefficient", 1.0), _positive),
-        dedendum_coefficient=_per_gear("dedendum_coefficient", spec.get("dedendum_coefficient", 1.25), _positive),
+        dedendum_coefficient=(_per_gear("dedendum_coefficient", spec.get("dedendum_coefficient", 1.25), _positive)
+                              if rack is None else (rack[0], rack[0])),
         tool_tip_radius_coefficient=(
             _per_gear("tool_tip_radius_coefficient", spec["tool_tip_radius_coefficient"], nonneg)
-            if spec.get("tool_tip_radius_coefficient") is not None else (None, None)),
+            if spec.get("tool_tip_radius_coefficient") is not None
+            else (rack[1], rack[1]) if rack is not None else (None, None)),
         bore_radius=bore,
         material=material,
         modification=mods,
@@ -305,6 +326,67 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         source=str(spec.get("source", source)),
         defaults=defaults,
     )
+    return _datasheet_diameters(pair, spec)
+
+
+def _one_of(spec: Mapping[str, Any], keys: tuple[str, ...]) -> None:
+    """Refuse two keys of one group of :data:`_ALTERNATIVE_KEYS` given together."""
+    given = [k for k in keys if spec.get(k) is not None]
+    if len(given) > 1:
+        raise GearmeshInputError(given[1], spec[given[1]], f"conflicts with {given[0]} = {spec[given[0]]!r}: "
+                                 "both set the same dimension, give one of them")
+
+
+def _basic_rack(value: Any, alpha_n_deg: float) -> tuple[float, float] | None:
+    """(dedendum, tool tip radius) coefficients of an :data:`ISO53_PROFILES` name, or None."""
+    if value is None:
+        return None
+    if value not in ISO53_PROFILES:
+        raise GearmeshInputError("basic_rack_profile", value, f"must be one of {list(ISO53_PROFILES)}")
+    if not math.isclose(alpha_n_deg, 20.0, abs_tol=1e-9):
+        raise GearmeshInputError("basic_rack_profile", value, f"is a 20° profile (ISO 53:1998), the pair has "
+                                 f"normal_pressure_angle_deg = {alpha_n_deg:g}: give dedendum_coefficient and "
+                                 "tool_tip_radius_coefficient instead")
+    return ISO53_PROFILES[value]
+
+
+def _datasheet_diameters(pair: GearPair, spec: Mapping[str, Any]) -> GearPair:
+    """``pair`` with the coefficients that the datasheet diameters ``tip_diameter_mm`` and
+    ``root_diameter_mm`` (one number or [pinion, gear]) give, exactly (ISO 21771 eqs. 45, 47):
+
+        h_a* = (d_a − d)/(2 m_n) − x,    h_f* = (d − d_f)/(2 m_n) + x,
+
+    d = z m_n/cos β the reference diameter and x the profile shift as :func:`pair_geometry`
+    resolves it (given, inferred from the centre distance, or zero). A tip diameter thus
+    includes any tip shortening; a root diameter is that of the generating hob's addendum
+    h_f*·m_n (a tooth-thickness allowance cut by a deeper infeed is not modelled).
+    """
+    if spec.get("tip_diameter_mm") is None and spec.get("root_diameter_mm") is None:
+        return pair
+    mn, beta = pair.normal_module, pair.helix_angle
+    alpha_t = math.atan(math.tan(pair.normal_pressure_angle) / math.cos(beta))
+    d = np.array(pair.teeth) * mn / math.cos(beta)
+    shift = _resolve_shift_and_center(pair, alpha_t, d.sum() / 2)[0]
+    changes = {}
+    if spec.get("tip_diameter_mm") is not None:
+        tip = np.array(_per_gear("tip_diameter_mm", spec["tip_diameter_mm"], _positive)) * 1e-3
+        changes["addendum_coefficient"] = _coefficient("tip_diameter_mm", tip, (tip - d) / (2 * mn) - shift,
+                                                       "addendum coefficient", "tip at or below")
+    if spec.get("root_diameter_mm") is not None:
+        root = np.array(_per_gear("root_diameter_mm", spec["root_diameter_mm"], _positive)) * 1e-3
+        changes["dedendum_coefficient"] = _coefficient("root_diameter_mm", root, (d - root) / (2 * mn) + shift,
+                                                       "dedendum coefficient", "root at or above")
+    return pair.with_changes(**changes)
+
+
+def _coefficient(key: str, diameters: np.ndarray, values: np.ndarray, what: str, where: str) -> tuple[float, float]:
+    """The per-gear ``values`` converted from ``diameters`` (m) of pair-file ``key``, each > 0."""
+    for i, v in enumerate(values):
+        if not v > 0:
+            raise GearmeshInputError(f"{key}[{i}]", float(diameters[i]) * 1e3,
+                                     f"puts the {GEARS[i]} {where} its reference circle shifted by the profile "
+                                     f"shift ({what} {v:.4f} <= 0)")
+    return (float(values[0]), float(values[1]))
 
 
 #: Normal modules (m) the models are valid for. ISO 54:1996 standardises 1–50 mm; fine-pitch
@@ -709,7 +791,7 @@ def shift_rounding_center_distance(pair: GearPair, alpha_t: float, alpha_wt0: fl
     return 2 * SHIFT_ROUNDING * da0_dxsum
 
 
-DEFAULT_TOOL_TIP_RADIUS_COEFFICIENT = 0.38  # ISO 53:1998 basic rack profiles A and B: ρ_fP = 0.38 m_n
+DEFAULT_TOOL_TIP_RADIUS_COEFFICIENT = 0.38  # ISO 53:1998 basic rack profile A: ρ_fP = 0.38 m_n
 
 
 def max_tool_tip_radius(normal_module: float, tool_addendum: float, alpha_n: float) -> float:
