@@ -45,18 +45,20 @@ def pair_file(wildcards):
     return str(pair_path(config, wildcards.pair))
 
 
-def variant_pair_file(wildcards):
-    """The pair file of one micro-geometry variant (rule variant_pair)."""
-    return f"results/{wildcards.study}/{wildcards.pair}/{wildcards.variant}/pair.yaml"
-
-
 def variant_source_pair(wildcards):
-    """The input of the variant_pair job: the pair file, or for a variant {from: optimise.NAME}
-    that optimisation's pair file (its optimum, rule optimise)."""
+    """The pair file a variant's stages read: the study's pair file, or for a variant
+    {from: optimise.NAME} that optimisation's pair file (its optimum, rule optimise). The stage
+    applies the variant's micro-geometry itself (params.variant, gearmesh.gear.variant_pair):
+    a job of its own per variant would cost a Python start-up to copy a pair file."""
     source = config["variants"][wildcards.variant].get("from")
     if source:
         return f"results/{wildcards.study}/{wildcards.pair}/optimise/{source.split('.', 1)[1]}/pair.yaml"
     return pair_file(wildcards)
+
+
+def variant_spec(wildcards):
+    """The variant's section of the study config (params.variant of every variant stage)."""
+    return config["variants"][wildcards.variant]
 
 
 def dynamics_contact():
@@ -69,7 +71,7 @@ def dynamics_inputs(wildcards):
     LTCA when it excites the model (excitation ltca, or unset in a study that runs the LTCA) and
     the FE tooth tables when the contact table uses method fe."""
     base = f"results/{wildcards.study}/{wildcards.pair}"
-    out = {"pair": variant_pair_file(wildcards), "stiffness": f"{base}/stiffness.nc"}
+    out = {"pair": variant_source_pair(wildcards), "stiffness": f"{base}/stiffness.nc"}
     if "ltca" in config and config["dynamics"].get("excitation") in (None, "ltca"):
         out["ltca"] = f"{base}/{wildcards.variant}/ltca.nc"
     out.update(fe_tables("dynamics")(wildcards))
@@ -82,37 +84,16 @@ def study_pair_files(section):
 
 
 def pair_results(name):
-    """Files every pair of the study gets."""
+    """Files every pair of the study gets (each job's figures come with its netCDF file)."""
     base = f"results/{STUDY}/{name}"
-    return [
-        f"{base}/geometry.nc",
-        f"{base}/contact_lines.nc",
-        f"{base}/stiffness.nc",
-        f"{base}/plots/stiffness.png",
-        f"{base}/plots/tooth_profile.png",
-        f"{base}/plots/contact_length.png",
-        f"{base}/plots/contact_lines.png",
-    ]
+    return [f"{base}/geometry.nc", f"{base}/contact_lines.nc", f"{base}/stiffness.nc"]
 
 
 def variant_results(name, variant):
     """Files every micro-geometry variant of a pair gets, by the stages the study configures."""
     base = f"results/{STUDY}/{name}/{variant}"
-    out = []
-    if "tca" in config:
-        out += [f"{base}/tca.nc", f"{base}/plots/tca.png"]
-    if "ltca" in config:
-        out += [f"{base}/ltca.nc", f"{base}/plots/te_lte.png", f"{base}/plots/contact_pattern.png"]
-    if "dynamics" in config:
-        out += [f"{base}/dynamics.nc", f"{base}/plots/dynamics_rms.png", f"{base}/plots/dynamics_spectrum.png"]
-        if dynamics_contact():
-            out.append(f"{base}/plots/dynamics_engagement.png")
-    if "train_dynamics" in config:
-        out += [f"{base}/train.nc", f"{base}/plots/train_spectrum.png"]
-    if "impact" in config:
-        out += [f"{base}/impact.nc", f"{base}/plots/impact_speed.png", f"{base}/plots/mesh_in_trajectory.png",
-                f"{base}/plots/impact_simulation.png"]
-    return out
+    stages = {"tca": "tca", "ltca": "ltca", "dynamics": "dynamics", "train_dynamics": "train", "impact": "impact"}
+    return [f"{base}/{stage}.nc" for section, stage in stages.items() if section in config]
 
 
 def all_targets():
@@ -120,36 +101,30 @@ def all_targets():
     targets += [f for name in config["pairs"] for v in VARIANTS for f in variant_results(name, v)]
     if "impact" in config:
         for name in config["pairs"]:
-            targets += [f"results/{STUDY}/{name}/impact_table.nc", f"results/{STUDY}/{name}/impact_table.csv",
-                        f"results/{STUDY}/{name}/plots/impact_force.png", f"results/{STUDY}/{name}/plots/robustness.png"]
+            targets.append(f"results/{STUDY}/{name}/impact_table.nc")
     for run, section in (config.get("optimise") or {}).items():
         for name in config["pairs"]:
             base = f"results/{STUDY}/{name}/optimise/{run}"
-            targets += [f"{base}/ga.nc", f"{base}/pair.yaml", f"{base}/plots/convergence.png",
-                        f"{base}/plots/modification.png"]
+            targets.append(f"{base}/ga.nc")
             if section["method"] == "nsga2":
                 targets.append(f"{base}/plots/pareto.png")
     if "dynamics" in config:
         targets += [f"results/{STUDY}/{name}/plots/dynamics_variants.png" for name in config["pairs"]]
         if dynamics_contact() and "impact" in config:
-            targets += [f"results/{STUDY}/{name}/engagement_table.{ext}" for name in config["pairs"]
-                        for ext in ("nc", "csv")]
+            targets += [f"results/{STUDY}/{name}/engagement_table.nc" for name in config["pairs"]]
     if "helix_sweep" in config:
-        targets += [f"results/{STUDY}/helix_sweep.nc", f"results/{STUDY}/plots/helix_sweep.png"]
+        targets.append(f"results/{STUDY}/helix_sweep.nc")
     if "fe_compliance" in config:
-        targets += [f"results/{STUDY}/{name}/{f}" for name in config["pairs"]
-                    for f in ("fe_compliance.nc", "plots/fe_compliance.png")]
+        targets += [f"results/{STUDY}/{name}/fe_compliance.nc" for name in config["pairs"]]
     for table in ("stiffness_table", "slice_convergence"):
         if table in config:
-            targets += [f"results/{STUDY}/{table}.nc", f"results/{STUDY}/{table}.csv",
-                        f"results/{STUDY}/plots/{table}.png"]
+            targets.append(f"results/{STUDY}/{table}.nc")
     if lste_comparison_wanted(config):
-        targets += [f"results/{STUDY}/lste_comparison.nc", f"results/{STUDY}/lste_comparison.csv"]
+        targets.append(f"results/{STUDY}/lste_comparison.nc")
     if "dynamics_comparison" in config:
-        targets += [f"results/{STUDY}/dynamics_comparison.nc", f"results/{STUDY}/dynamics_comparison.csv",
-                    f"results/{STUDY}/plots/dynamics_comparison.png"]
+        targets.append(f"results/{STUDY}/dynamics_comparison.nc")
     if "low_fluctuation_design" in config:
-        targets += [f"results/{STUDY}/low_fluctuation_design.nc", f"results/{STUDY}/low_fluctuation_design.csv"]
+        targets.append(f"results/{STUDY}/low_fluctuation_design.nc")
     return targets
 
 
