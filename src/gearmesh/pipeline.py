@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import importlib
 import logging
+import os
 import resource
 import sys
 import time
@@ -55,8 +56,12 @@ def resolve(spec: str) -> Callable[..., Any]:
 
 
 def _process_age() -> float | None:
-    """Seconds since this process started (interpreter start-up, Snakemake's script preamble and
-    every import included), or None where psutil (a Snakemake dependency) is missing."""
+    """Seconds since the job's process started (interpreter start-up, Snakemake's script
+    preamble and every import included; for a job run by the job server, since its script
+    started), or None where psutil (a Snakemake dependency) is missing."""
+    started = os.environ.get("GEARMESH_JOB_STARTED")  # set by gearmesh.jobserver
+    if started:
+        return time.time() - float(started)
     try:
         import psutil
     except ImportError:  # pragma: no cover - psutil comes with Snakemake

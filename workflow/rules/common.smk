@@ -4,6 +4,7 @@ import sys
 from gearmesh.config import check_study, lste_comparison_wanted, pair_path
 from gearmesh.codeversion import versioned
 from gearmesh.errors import GearmeshInputError
+from gearmesh import jobserver
 from gearmesh.io import remove_stale_temporaries
 
 STUDY = config["study"]
@@ -78,6 +79,18 @@ def dynamics_inputs(wildcards):
     return out
 
 
+def dynamics_figure_outputs():
+    """The figures of the dynamics job: RMS against speed and spectra, and with the contact excitation the
+    entering pair's force over the engagement."""
+    base = "results/{study}/{pair}/{variant}/plots"
+    out = {"rms": report_item(f"{base}/dynamics_rms.png", "dynamics_rms", "Dynamics", BY_VARIANT),
+           "spectrum": report_item(f"{base}/dynamics_spectrum.png", "dynamics_spectrum", "Dynamics", BY_VARIANT)}
+    if dynamics_contact():
+        out["engagement"] = report_item(f"{base}/dynamics_engagement.png", "dynamics_engagement", "Dynamics",
+                                        BY_VARIANT)
+    return out
+
+
 def study_pair_files(section):
     """Input function: the pair files a study-level section names."""
     return lambda wildcards: [str(pair_path(config, n)) for n in config[section]["pairs"]]
@@ -146,5 +159,18 @@ def report_item(path, caption, category, subcategory=BY_PAIR):
 
 # A job killed outright (kill -9, a lost node) skips the cleanup of its atomic write and leaves
 # .NAME.PID.tmp.* beside its target: remove them before any job of this run starts.
+# A local run then starts its job server: one process that imports the modules of the study's
+# rules once and forks a child per job (gearmesh.jobserver; GEARMESH_JOBSERVER=off runs every
+# job in a process of its own, as a cluster run does).
 onstart:
     remove_stale_temporaries("results")
+    if jobserver.wanted(workflow):
+        jobserver.start(jobserver.rule_modules(workflow.rules))
+
+
+onsuccess:
+    jobserver.stop()
+
+
+onerror:
+    jobserver.stop()

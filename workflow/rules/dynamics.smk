@@ -5,18 +5,6 @@
 # depend on the micro-geometry).
 
 
-def dynamics_figure_outputs():
-    """The figures of the dynamics job: RMS against speed and spectra, and with the contact excitation the
-    entering pair's force over the engagement."""
-    base = "results/{study}/{pair}/{variant}/plots"
-    out = {"rms": report_item(f"{base}/dynamics_rms.png", "dynamics_rms", "Dynamics", BY_VARIANT),
-           "spectrum": report_item(f"{base}/dynamics_spectrum.png", "dynamics_spectrum", "Dynamics", BY_VARIANT)}
-    if dynamics_contact():
-        out["engagement"] = report_item(f"{base}/dynamics_engagement.png", "dynamics_engagement", "Dynamics",
-                                        BY_VARIANT)
-    return out
-
-
 rule dynamics:
     """Steady-state speed sweeps of the 8-DOF pair at the study's torques: RMS of DTE, displacements, velocities;
     mesh force; with excitation: contact the entering pair's force, mesh-in point and dynamic impact (dynamics.nc);
