@@ -22,6 +22,8 @@ rule optimise:
                                  "optimise_modification", "optimisation", BY_RUN),
     log:
         "logs/{study}/{pair}/optimise/{run}.log",
+    # the longest job, and the variants it writes wait for it: start it first
+    priority: 10
     params:
         function=versioned("gearmesh.datasets.optimise:optimise_dataset"),
         # the impact model is the study's (impact: section), so the optimum is optimal for the impact stage
