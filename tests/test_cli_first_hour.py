@@ -14,8 +14,8 @@ import sysconfig
 
 import pytest
 
-from gearmesh.cli import build_parser, example_pairs, main
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.cli import build_parser, main
+from gearmesh.gear import example_pairs, load_pair, pair_geometry
 
 
 def _json(capsys, argv) -> dict:

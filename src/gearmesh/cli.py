@@ -20,7 +20,7 @@ from . import __version__
 from .config import check_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
-from .gear import load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
+from .gear import example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_load
 
 EXIT_BAD_INPUT = 2
@@ -311,18 +311,10 @@ def _torque_options(p, required: bool) -> None:
 def cmd_example(args: argparse.Namespace) -> dict[str, Any] | None:
     """The example pairs shipped with the package: their names and sources, or one of them
     printed as it is (a pair file every command reads)."""
-    pairs = example_pairs()
     if args.name is None:
-        return {name: _source(path) for name, path in pairs.items()}
-    if args.name not in pairs:
-        raise GearmeshInputError("example", args.name, f"must be one of {sorted(pairs)}")
-    sys.stdout.write(pairs[args.name].read_text(encoding="utf-8"))
+        return {name: _source(path) for name, path in example_pairs().items()}
+    sys.stdout.write(example_pair(args.name).read_text(encoding="utf-8"))
     return None
-
-
-def example_pairs() -> dict[str, Path]:
-    """{name: file} of the example pairs shipped in the package (``gearmesh/pairs/*.yaml``)."""
-    return {f.stem: f for f in sorted((Path(__file__).parent / "pairs").glob("*.yaml"))}
 
 
 def _source(path: Path) -> str:

@@ -582,6 +582,24 @@ def _defaulted_material(pair: GearPair) -> list[str]:
             if f"material.{key}" in pair.defaults and math.isclose(values[key], default, rel_tol=1e-12)]
 
 
+#: The example pairs shipped with the package, one file each: every pair of the source documents
+#: (docs/references.md), also the workflow's pair library (the repository's config/pairs links here).
+EXAMPLES_DIR = Path(__file__).parent / "pairs"
+
+
+def example_pairs() -> dict[str, Path]:
+    """{name: file} of the example pairs shipped with the package (:data:`EXAMPLES_DIR`)."""
+    return {f.stem: f for f in sorted(EXAMPLES_DIR.glob("*.yaml"))}
+
+
+def example_pair(name: str) -> Path:
+    """The file of the shipped example pair ``name`` (e.g. ``seed000_case``), for :func:`load_pair`."""
+    pairs = example_pairs()
+    if name not in pairs:
+        raise GearmeshInputError("example", name, f"must be one of {sorted(pairs)}")
+    return pairs[name]
+
+
 def check_pair_name(pair: GearPair, path: str | Path) -> GearPair:
     """Refuse a pair whose ``name`` differs from the name of its file ``path``: the rule of
     a study's pair library (``pairs_dir/NAME.yaml``), whose results are filed under the name.
