@@ -51,8 +51,9 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
     for key, value in lines.items():
         if isinstance(value, float):
             value = f"{value:.6g}"
-        elif isinstance(value, list):
-            value = ", ".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in value)
+        elif isinstance(value, list):  # sentences (notes) apart by "; ", numbers by ", "
+            value = ("; " if all(isinstance(v, str) for v in value) else ", ").join(
+                f"{v:.6g}" if isinstance(v, float) else str(v) for v in value)
         print(f"{key:<{width}}  {value}")
     if rows:  # a table, one row per speed
         keys = list(rows[0])

@@ -737,6 +737,8 @@ class PairGeometry:
             "circumferential_backlash_mm": self.backlash_circumferential * 1e3,
             "profile_shift": [float(x) for x in self.profile_shift],
             "profile_shift_inferred": self.shift_inferred,
+            "addendum_coefficient": [float(x) for x in self.pair.addendum_coefficient],  # as used (tip diameter)
+            "dedendum_coefficient": [float(x) for x in self.pair.dedendum_coefficient],
             "reference_radius_mm": mm(self.reference_radius),
             "base_radius_mm": mm(self.base_radius),
             "tip_radius_mm": mm(self.tip_radius),
@@ -993,7 +995,7 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
 
     # Backlash: thicknesses on the operating pitch circles (ISO 21771 §5.5; j = 0 at a0).
     swt = 2 * rw * (st / (2 * r) + involute(alpha_t) - involute(alpha_wt))
-    j_wt = 2 * math.pi * rw[0] / z[0] - swt.sum()
+    j_wt = 2 * math.pi * rw[0] / z[0] - swt.sum() if a != a0 else 0.0  # at a0 zero by construction, not ±1e-17
     j_bn = j_wt * math.cos(alpha_wt) * math.cos(beta_b)
 
     if pair.bore_radius is not None and pair.material is not None:
