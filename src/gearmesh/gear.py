@@ -363,10 +363,9 @@ def _datasheet_diameters(pair: GearPair, spec: Mapping[str, Any]) -> GearPair:
     """
     if spec.get("tip_diameter_mm") is None and spec.get("root_diameter_mm") is None:
         return pair
-    mn, beta = pair.normal_module, pair.helix_angle
-    alpha_t = math.atan(math.tan(pair.normal_pressure_angle) / math.cos(beta))
-    d = np.array(pair.teeth) * mn / math.cos(beta)
-    shift = _resolve_shift_and_center(pair, alpha_t, d.sum() / 2)[0]
+    mn = pair.normal_module
+    d = np.array(pair.teeth) * mn / math.cos(pair.helix_angle)
+    shift = _resolve_shift_and_center(pair, *_transverse_angle_and_radius_sum(pair))[0]
     changes = {}
     if spec.get("tip_diameter_mm") is not None:
         tip = np.array(_per_gear("tip_diameter_mm", spec["tip_diameter_mm"], _positive)) * 1e-3
@@ -377,6 +376,14 @@ def _datasheet_diameters(pair: GearPair, spec: Mapping[str, Any]) -> GearPair:
         changes["dedendum_coefficient"] = _coefficient("root_diameter_mm", root, (d - root) / (2 * mn) + shift,
                                                        "dedendum coefficient", "root at or above")
     return pair.with_changes(**changes)
+
+
+def _transverse_angle_and_radius_sum(pair: GearPair) -> tuple[float, float]:
+    """αt = atan(tan αn/cos β) (rad) and r1 + r2 = (z1 + z2) m_n/(2 cos β) (m), ISO 21771 eqs. 9, 11:
+    what :func:`_resolve_shift_and_center` needs, for a pair not yet through :func:`pair_geometry`."""
+    beta = pair.helix_angle
+    return (math.atan(math.tan(pair.normal_pressure_angle) / math.cos(beta)),
+            sum(pair.teeth) * pair.normal_module / (2 * math.cos(beta)))
 
 
 def _coefficient(key: str, diameters: np.ndarray, values: np.ndarray, what: str, where: str) -> tuple[float, float]:
@@ -552,9 +559,7 @@ def pair_notes(pair: GearPair) -> list[str]:
     filled by :data:`DEFAULT_MATERIAL`. One sentence each, for the output (JSON, dataset attrs)."""
     notes = []
     if pair.center_distance is not None and pair.profile_shift is not None:
-        alpha_t = math.atan(math.tan(pair.normal_pressure_angle) / math.cos(pair.helix_angle))
-        r_sum = sum(pair.teeth) * pair.normal_module / math.cos(pair.helix_angle) / 2
-        a0 = _resolve_shift_and_center(pair, alpha_t, r_sum)[3]
+        a0 = _resolve_shift_and_center(pair, *_transverse_angle_and_radius_sum(pair))[3]
         if pair.center_distance < a0:
             notes.append(f"center_distance_mm = {pair.center_distance * 1e3:.6g} lies {(a0 - pair.center_distance) * 1e6:.2g}"
                          f" µm below the zero-backlash distance {a0 * 1e3:.6f} mm of the shifts as printed, within "
