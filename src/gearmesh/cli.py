@@ -10,6 +10,7 @@ import argparse
 import json
 import logging
 import math
+import os
 import re
 import sys
 from collections.abc import Mapping, Sequence
@@ -471,13 +472,16 @@ def main(argv: Sequence[str] | None = None) -> int:
         result = args.func(args)
         if result is not None and getattr(args, "loaded_pair", None) is not None:
             result["notes"] = pair_notes(args.loaded_pair)
+        if result is not None:
+            _emit(result, args.json)
+        sys.stdout.flush()
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)
         if args.command == "validate" and args.json:
             print(json.dumps({"file": args.file, "valid": False, "errors": [str(exc)]}))
         return EXIT_BAD_INPUT
-    if result is not None:
-        _emit(result, args.json)
+    except BrokenPipeError:  # the reader stopped early ('gearmesh example | head'): nothing more to say
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # so the exit flush cannot fail again
     return 0
 
 
