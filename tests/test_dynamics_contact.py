@@ -209,13 +209,13 @@ def test_period_map_jacobian_is_its_forward_difference(geom, speed):
     """The monodromy matrix the shooting integrates beside the period (variational equations of
     the RK4 stages) is the derivative of the period map: equal to its central difference, column
     by column, on an orbit with contact loss and back-flank contact (large excitation)."""
-    from gearmesh.dynamics.integrate import _contact_tables, _kinds, _Speed, step_plan
+    from gearmesh.dynamics.integrate import _Loop, step_plan
 
     force = 1000.0 / float(geom.base_radius[0])
     tab = mesh_force_table(geom, 4 * force, positions=64, approaches=32, points=30)
     model = _model(geom, tab, 1000.0)
     f_mesh, m, _, dt = step_plan(model, np.array([speed]))
-    run = _Speed(model, _kinds(model), _contact_tables(model), int(m[0]), float(f_mesh[0]), float(dt[0]))
+    run = _Loop(model).speed(int(m[0]), float(f_mesh[0]), float(dt[0]))
     y = np.concatenate([model.static_state(), np.zeros(model.n)])
     y[model.n:] = 0.3 * np.abs(y[:model.n]).max() * 2 * np.pi * f_mesh[0]  # far from the orbit: gaps open
     tangent = np.eye(y.size)[None].copy()

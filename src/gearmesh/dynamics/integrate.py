@@ -135,7 +135,7 @@ def step_plan(model: GearModel, speed_rpm: np.ndarray, settings: SolverSettings 
     """
     speed_rpm = np.asarray(speed_rpm, dtype=float)
     kmax = np.array([ml.k_max for ml in model.meshes])
-    w_max = float(np.max(np.abs(model.modes(kmax)["eigenvalue"])))
+    w_max = model.largest_eigenvalue(kmax)
     sigma = float(np.min(model.modes()["decay_rate"]))
     f_mesh = speed_rpm * model.mesh_frequency_per_rpm
     t_mesh = 1.0 / f_mesh
@@ -520,37 +520,54 @@ def _shoot(Y0, scale, tol, max_iter, no_tangent, *loop):
     return Y0.copy(), max_iter, -1, J
 
 
-class _Speed:
-    """The compiled loop's view of one model at one speed: its arguments after (Ys, cycles,
-    n_rec), and empty recording buffers for runs that record nothing (one signature: compiled once)."""
+class _Loop:
+    """The compiled loop's per-model arguments (diagonal bearing matrices, mesh kinds, contact
+    tables) and the empty buffers of runs that record nothing (one signature: compiled once)."""
 
-    def __init__(self, model: GearModel, kind, ct: _Contact, m: int, f_mesh: float, dt: float):
+    def __init__(self, model: GearModel):
         kr, cr = np.diag(model.Kr).copy(), np.diag(model.Cr).copy()
         if np.any(model.Kr != np.diag(kr)) or np.any(model.Cr != np.diag(cr)):
             raise ValueError("the compiled loop needs diagonal reduced bearing matrices Kr, Cr")
+        self.model = model
         self.n, self.nm = model.n, model.m
-        self._idle = (np.zeros(model.n), np.zeros(model.m), np.zeros((3, model.n)), np.zeros((_NQ, model.m)))
-        self._no_tangent = np.zeros((0, 2 * model.n, 2 * model.n))
-        self.args = (kr, cr, model.B, model.G, model.f0, kind, _stage_tables(model, m, f_mesh), ct.force, ct.enter,
-                     ct.enter_gap, ct.enter_static, ct.geom, model.cos_beta_b, np.asarray(model.damping, dtype=float),
-                     float(model.backlash), int(m), float(dt))
+        self.kind = _kinds(model)
+        self.contact = _contact_tables(model)
+        ct = self.contact
+        self.head = (kr, cr, model.B, model.G, model.f0, self.kind)
+        self.tail = (ct.force, ct.enter, ct.enter_gap, ct.enter_static, ct.geom, model.cos_beta_b,
+                     np.asarray(model.damping, dtype=float), float(model.backlash))
+        self.idle = (np.zeros(model.n), np.zeros(model.m), FIRST_PART_AFTER_A, np.zeros((3, model.n)),
+                     np.zeros((_NQ, model.m)), False) + _series_buffers(0, model.n, model.m)
+        self.no_tangent = np.zeros((0, 2 * model.n, 2 * model.n))
+
+    def speed(self, m: int, f_mesh: float, dt: float) -> "_Speed":
+        """The loop at one speed: m steps of ``dt`` (s) per mesh period of frequency ``f_mesh`` (Hz)."""
+        return _Speed(self, self.head + (_stage_tables(self.model, m, f_mesh),) + self.tail + (int(m), float(dt)))
+
+
+class _Speed:
+    """The compiled loop at one speed: its arguments after (Ys, Js, cycles, n_rec)."""
+
+    def __init__(self, loop: _Loop, args: tuple):
+        self.loop, self.args = loop, args
 
     def shoot(self, Y0: np.ndarray, scale: np.ndarray, tol: float, max_iter: int):
         """:func:`_shoot` at this speed."""
-        ys, d_ref, acc_y, acc_m = self._idle
-        return _shoot(np.asarray(Y0, dtype=float), scale, float(tol), int(max_iter), self._no_tangent, *self.args, ys,
-                      d_ref, FIRST_PART_AFTER_A, acc_y, acc_m, False, *_series_buffers(0, self.n, self.nm))
+        return _shoot(np.asarray(Y0, dtype=float), scale, float(tol), int(max_iter), self.loop.no_tangent, *self.args,
+                      *self.loop.idle)
 
     def run(self, Ys: np.ndarray, cycles: int, n_rec: int = 0, ys=None, d_ref=None, acc_y=None, acc_m=None,
             series=None, tangent: np.ndarray | None = None) -> None:
         """Advance the rows of Ys (K, 2n) in place by ``cycles`` mesh periods; record the last
         ``n_rec`` into acc_y, acc_m (and the ``series`` buffers) when given; advance each row's
         ``tangent`` matrix (K, 2n, 2n) too when given (identity: the period map's Jacobian)."""
+        tangent = self.loop.no_tangent if tangent is None else tangent
         if n_rec == 0:
-            ys, d_ref, acc_y, acc_m = self._idle
-        ser = series if series is not None else _series_buffers(0, self.n, self.nm)
-        _advance(Ys, self._no_tangent if tangent is None else tangent, int(cycles), int(n_rec), *self.args, ys, d_ref,
-                 FIRST_PART_AFTER_A, acc_y, acc_m, series is not None, *ser)
+            _advance(Ys, tangent, int(cycles), 0, *self.args, *self.loop.idle)
+            return
+        ser = series if series is not None else self.loop.idle[-6:]
+        _advance(Ys, tangent, int(cycles), int(n_rec), *self.args, ys, d_ref, FIRST_PART_AFTER_A, acc_y, acc_m,
+                 series is not None, *ser)
 
 
 def _series_buffers(k: int, n: int, nm: int) -> tuple:
@@ -580,8 +597,7 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     f_mesh, m, n_tr, dt = step_plan(model, speed_rpm, settings)
     S, n, nm = speed_rpm.size, model.n, model.m
     n_rec = np.full(S, settings.record_cycles, dtype=np.int64)
-    kind = _kinds(model)
-    ct = _contact_tables(model)
+    loop = _Loop(model)
     ys = model.static_state() if y0 is None else np.asarray(y0, dtype=float)
     d_ref = model.G @ model.static_state()
     acc_y = np.zeros((S, 3, n))
@@ -597,7 +613,7 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     for s in range(S):
         Y = np.zeros(2 * n)
         Y[:n] = ys
-        speed = _Speed(model, kind, ct, int(m[s]), float(f_mesh[s]), float(dt[s]))
+        speed = loop.speed(int(m[s]), float(f_mesh[s]), float(dt[s]))
         iterations[s] = -1
         if settings.steady_state == "shooting":
             Ys, it, ok = periodic_state(Y, speed, scale * (2 * np.pi * f_mesh[s]) ** np.repeat([0, 1], n),
@@ -614,8 +630,8 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
         if progress is not None and cum[s] >= report_next:
             progress(float(cum[s]))
             report_next = float(cum[s]) + 0.05
-    res = _result(speed_rpm, f_mesh, m, cycles_before, dt, n_rec, acc_y, acc_m, ys, d_ref, kind, ct.geom[:, 0],
-                  out_series, int(((cycles_before + n_rec) * m).max()))
+    res = _result(speed_rpm, f_mesh, m, cycles_before, dt, n_rec, acc_y, acc_m, ys, d_ref, loop.kind,
+                  loop.contact.geom[:, 0], out_series, int(((cycles_before + n_rec) * m).max()))
     res.shooting_iterations = iterations
     res.periodic_state = periodic
     return res

@@ -77,13 +77,20 @@ class GearModel:
             return dict(self._cache["modes"])
         return self._eigen(k)
 
+    def largest_eigenvalue(self, k: np.ndarray | None = None) -> float:
+        """max |λ| (s⁻¹) of the linearised model at mesh stiffness ``k`` (eigenvalues alone)."""
+        return float(np.max(np.abs(np.linalg.eigvals(self._state_matrix(k)))))
+
+    def _state_matrix(self, k: np.ndarray | None) -> np.ndarray:
+        K, C = self.linear_matrices(k)
+        n = self.n
+        return np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]])
+
     def _eigen(self, k: np.ndarray | None) -> dict[str, np.ndarray]:
         import scipy.linalg
 
-        K, C = self.linear_matrices(k)
         n = self.n
-        A = np.block([[np.zeros((n, n)), np.eye(n)], [-K, -C]])
-        lam, vec = scipy.linalg.eig(A)
+        lam, vec = scipy.linalg.eig(self._state_matrix(k))
         keep = lam.imag > 0
         over = (lam.imag == 0)  # overdamped modes: real eigenvalues
         lam_k, vec_k = lam[keep], vec[:n, keep]
@@ -148,9 +155,18 @@ def _equivalent_mass(cb: float, rb, inertia) -> float:
     return 1.0 / (cb**2 * sum(r**2 / j for r, j in zip(rb, inertia)))
 
 
-def _reduce(name, M, Kb, Cb, Gfull, tau, rot_idx, R, meshes, damping, backlash, static_force, fmesh_per_rpm,
-            teeth, names_full, cos_beta_b):
-    """Reduced model from full matrices: translations kept, rotations → q = R θ."""
+#: The reduced matrices of recent (masses, bearings, mesh geometry, torque): a population of
+#: micro-geometries of one pair builds many models that differ in the mesh law alone.
+_REDUCED: dict[bytes, tuple] = {}
+
+
+def _reduced_matrices(M, Kb, Cb, Gfull, tau, rot_idx, R):
+    """Kr, Cr, B, G, f0 (read-only) of the reduced model (:func:`_reduce`), computed once per distinct
+    input (its bytes are the key: the same input gives the same matrices, bit for bit)."""
+    key = b"".join(np.ascontiguousarray(a, dtype=float).tobytes() for a in (M, Kb, Cb, Gfull, tau, R)) \
+        + np.asarray(rot_idx, dtype=np.int64).tobytes()
+    if key in _REDUCED:
+        return _REDUCED[key]
     n_full = M.shape[0]
     trans = [i for i in range(n_full) if i not in rot_idx]
     J = M[np.ix_(rot_idx, rot_idx)]
@@ -175,10 +191,24 @@ def _reduce(name, M, Kb, Cb, Gfull, tau, rot_idx, R, meshes, damping, backlash, 
     B[nt:] = R @ Jinv @ R.T @ Gq.T
     f0 = np.zeros(n)
     f0[nt:] = R @ Jinv @ tau[rot_idx]
-    names = tuple([names_full[i] for i in trans] + [f"q{i + 1}" for i in range(m)])
+    out = (Kr, Cr, B, G, f0)
+    for a in out:
+        a.flags.writeable = False
+    if len(_REDUCED) >= 64:
+        _REDUCED.clear()
+    _REDUCED[key] = out
+    return out
+
+
+def _reduce(name, M, Kb, Cb, Gfull, tau, rot_idx, R, meshes, damping, backlash, static_force, fmesh_per_rpm,
+            teeth, names_full, cos_beta_b):
+    """Reduced model from full matrices: translations kept, rotations → q = R θ."""
+    Kr, Cr, B, G, f0 = _reduced_matrices(M, Kb, Cb, Gfull, tau, rot_idx, R)
+    trans = [i for i in range(M.shape[0]) if i not in rot_idx]
+    names = tuple([names_full[i] for i in trans] + [f"q{i + 1}" for i in range(R.shape[0])])
     full = {"M": M, "K_bearing": Kb, "C_bearing": Cb, "G": Gfull, "forces": tau, "names": tuple(names_full),
             "R": R, "rotations": tuple(rot_idx)}
-    return GearModel(name=name, names=names, n_trans=nt, Kr=Kr, Cr=Cr, B=B, G=G, f0=f0, meshes=tuple(meshes),
+    return GearModel(name=name, names=names, n_trans=len(trans), Kr=Kr, Cr=Cr, B=B, G=G, f0=f0, meshes=tuple(meshes),
                      damping=np.asarray(damping, dtype=float), backlash=backlash,
                      static_force=np.asarray(static_force, dtype=float), mesh_frequency_per_rpm=fmesh_per_rpm,
                      teeth_driver=teeth, full=full, cos_beta_b=float(cos_beta_b))
@@ -340,10 +370,7 @@ def mesh_energy_fraction(model: GearModel, shapes: np.ndarray) -> np.ndarray:
     k = np.array([ml.k_mean for ml in model.meshes])
     trans = [i for i in range(model.full["M"].shape[0]) if i not in model.full["rotations"]]
     kb = np.diag(model.full["K_bearing"])[trans]
-    out = np.zeros(shapes.shape[1])
-    for j in range(shapes.shape[1]):
-        v = shapes[:, j]
-        v = np.real(v * np.exp(-1j * np.angle(v[np.argmax(np.abs(v))])))
-        mesh = float(np.sum(k * (model.G @ v) ** 2))
-        out[j] = mesh / (float(np.sum(kb * v[:model.n_trans] ** 2)) + mesh)
-    return out
+    big = np.argmax(np.abs(shapes), axis=0)
+    v = np.real(shapes * np.exp(-1j * np.angle(shapes[big, np.arange(shapes.shape[1])]))[None, :])
+    mesh = np.sum(k[:, None] * (model.G @ v) ** 2, axis=0)
+    return mesh / (np.sum(kb[:, None] * v[:model.n_trans] ** 2, axis=0) + mesh)
