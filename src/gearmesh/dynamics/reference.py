@@ -2,8 +2,8 @@
 :mod:`gearmesh.dynamics.integrate` (tests, ``benchmarks/bench_dynamics.py``):
 
 * :func:`simulate_numpy` — the batch RK4 in numpy over all speeds at once that the compiled loop
-  replaced (same step rules, same phases: the two agree to round-off) for the ``tvms``, ``lste``
-  and ``ltca`` excitations;
+  replaced (same step rules, same phases: the two agree to round-off) for every excitation (the
+  ``contact`` table read with numpy's own indexing, a check of the compiled loop's);
 * :func:`reference_solution` — one speed by scipy's solve_ivp (DOP853, tight tolerances) on the
   *full* equations (absolute rotations, rigid-body mode not removed), every excitation
   including ``contact``: an independent integrator on an independent formulation.
@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from ..errors import GearmeshInputError
-from .integrate import SolverSettings, SweepResult, step_plan
+from .integrate import SolverSettings, SweepResult, _stage_tables, step_plan
 from .model import GearModel
 
 def _phase_tables(model: GearModel, m: np.ndarray):
@@ -35,10 +35,45 @@ def _phase_tables(model: GearModel, m: np.ndarray):
     return k, e, ed
 
 
+def _contact_phase_tables(model: GearModel, m: np.ndarray, f_mesh: np.ndarray, contact: list[int], length: int):
+    """Row, row weight, g_min (m) and dg_min/dt (m/s) of the contact meshes at the 2m half-step phases
+    of each speed (:func:`gearmesh.dynamics.integrate._stage_tables`), padded: (4, meshes, S·length)."""
+    out = np.zeros((4, model.m, m.size, length))
+    for s in range(m.size):
+        tab = _stage_tables(model, int(m[s]), float(f_mesh[s]))
+        for i in contact:
+            out[:, i, s, :tab.shape[2]] = tab[:, i]
+    return out.reshape(4, model.m, -1)
+
+
+def _contact_force(table, delta, ddot, tab, cb: float, c_m: float, bl: float):
+    """Normal force, deflection statistic, contact loss and back contact (0/1) of a contact mesh at
+    normal approach ``delta`` and its rate ``ddot`` (arrays over speeds), ``tab`` (4, S) its stage
+    values (:func:`_contact_phase_tables`): the table bilinear in (row, approach beyond the first
+    touch), the back flanks across the backlash, the damper on the first touching point's rate."""
+    r, a, g0, g_rate = tab[0].astype(np.intp), tab[1], tab[2], tab[3]
+    x = delta / cb
+    u_front = x - g0
+    u_back = -x - bl / cb - g0
+    front, back = u_front > 0.0, (u_front <= 0.0) & (u_back > 0.0)
+    u = np.where(front, u_front, np.where(back, u_back, 0.0))
+    du = table.approach[1] - table.approach[0]
+    col = np.minimum((u / du).astype(np.intp), table.approach.size - 2)
+    b = u / du - col
+    f_r = table.force[r, col] + b * (table.force[r, col + 1] - table.force[r, col])
+    f_r1 = table.force[r + 1, col] + b * (table.force[r + 1, col + 1] - table.force[r + 1, col])
+    f = np.maximum(f_r + a * (f_r1 - f_r), 0.0)
+    side = np.where(back, -1.0, 1.0)
+    force = np.where(front | back, side * f / cb + c_m * (ddot - side * g_rate * cb), 0.0)
+    return force, u_front * cb, (~front & ~back).astype(float), back.astype(float)
+
+
 def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = SolverSettings(),
              series: bool = False, y0: np.ndarray | None = None, progress=None) -> SweepResult:
     """Steady-state response of ``model`` at every speed (rpm), one RK4 batch in numpy (the
-    kernel the compiled loop replaced; ``tvms``, ``lste`` and ``ltca`` meshes only).
+    kernel the compiled loop replaced), always with the physical-time transient. ``contact``
+    meshes read their table as the compiled loop does (bilinear, the same stage phases), written
+    independently with numpy; the entering-pair statistics are not computed (None).
 
     ``series=True`` also returns, per speed, the record window sampled at every step:
     time (s), δ (m, meshes), F (N), y (n) and ẏ (n). Keep it for a few speeds only.
@@ -49,8 +84,6 @@ def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = Solve
         raise GearmeshInputError("speed_rpm", speed_rpm.tolist(), "must be positive finite speeds")
     if settings.record_cycles < 2 or settings.record_cycles % 2:
         raise GearmeshInputError("record_cycles", settings.record_cycles, "must be an even number >= 2")
-    if any(ml.contact is not None for ml in model.meshes):
-        raise ValueError("simulate_numpy has no contact excitation: use simulate or reference_solution")
     f_mesh, m, n_tr, dt = step_plan(model, speed_rpm, settings)
     S, n, nm = speed_rpm.size, model.n, model.m
     n_rec = settings.record_cycles
@@ -80,19 +113,30 @@ def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = Solve
     Y[:n] = ys[:, None]
     ys_col = ys[:, None]
     d_ref = (model.G @ ys)[:, None]
+    contact = [i for i, ml in enumerate(model.meshes) if ml.contact is not None]
+    ctab = _contact_phase_tables(model, m, f_mesh, contact, L)  # (4, meshes, S·L): row, weight, g_min, ġ_min
+    cb = model.cos_beta_b
 
-    def force(Y, k, e, ed):
+    def force(Y, k, e, ed, idx):
         d = G2 @ Y
         delta, ddot = d[:nm], d[nm:]
         if has_e:
             delta = delta - e
             ddot = ddot - ed
         if linear:
-            return delta, k * delta + c_m * ddot
-        f = delta - np.clip(delta, -bl, 0.0)
-        F = k * f + c_m * ddot
-        F *= (f != 0.0)
-        return delta, F
+            F = k * delta + c_m * ddot
+        else:
+            f = delta - np.clip(delta, -bl, 0.0)
+            F = k * f + c_m * ddot
+            F *= (f != 0.0)
+        apart = back = None
+        if contact:
+            delta, F, apart, back = delta.copy(), F.copy(), np.zeros((nm, S)), np.zeros((nm, S))
+            for i in contact:
+                F[i], delta[i], apart[i], back[i] = _contact_force(model.meshes[i].contact, d[i], d[nm + i],
+                                                                   np.take(ctab[:, i], idx + row, axis=1), cb,
+                                                                   float(c_m[i, 0]), bl)
+        return delta, F, apart, back
 
     def deriv(Y, F):
         dY = np.empty_like(Y)
@@ -139,7 +183,7 @@ def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = Solve
         for j in range(nb):
             step = b0 + j
             ej = (e0[:, j], d0[:, j]) if has_e else (None, None)
-            delta, F = force(Y, k0[:, j], *ej)
+            delta, F, apart, back = force(Y, k0[:, j], *ej, i0[j])
             if step >= rec_first:
                 w = (step >= rec_start)
                 wf = w.astype(float)
@@ -156,6 +200,8 @@ def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = Solve
                 sd_h += dc * wh
                 sdd_h += dc * dc * wh
                 ac = dc + e0[:, j] if has_e else dc
+                for i in contact:  # the bodies' approach G·y (δ is the deflection beyond the first touch)
+                    ac[i] = (G2[i] @ Y) - d_ref[i]
                 sa += ac * wf
                 saa += ac * ac * wf
                 sf += F * wf
@@ -164,9 +210,12 @@ def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = Solve
                 fmax = np.maximum(fmax, np.where(w, F, -np.inf))
                 dmin = np.minimum(dmin, np.where(w, delta, np.inf))
                 dmax = np.maximum(dmax, np.where(w, delta, -np.inf))
-                if not linear:
-                    ngap += ((delta < 0) & (delta > -bl)) * wf
-                    nback += (delta <= -bl) * wf
+                if not linear or contact:
+                    gap_f, back_f = (delta < 0) & (delta > -bl), delta <= -bl
+                    for i in contact:
+                        gap_f[i], back_f[i] = apart[i], back[i]
+                    ngap += gap_f * wf
+                    nback += back_f * wf
                 if series:
                     for s in np.flatnonzero(w):
                         st = store[s]
@@ -178,12 +227,12 @@ def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = Solve
             h2, h = hdt_b[j], dt_b[j]
             K1 = deriv(Y, F)
             ej = (e1[:, j], d1[:, j]) if has_e else (None, None)
-            K2 = deriv(Y + h2 * K1, force(Y + h2 * K1, k1[:, j], *ej)[1])
+            K2 = deriv(Y + h2 * K1, force(Y + h2 * K1, k1[:, j], *ej, i1[j])[1])
             Yt = Y + h2 * K2
-            K3 = deriv(Yt, force(Yt, k1[:, j], *ej)[1])
+            K3 = deriv(Yt, force(Yt, k1[:, j], *ej, i1[j])[1])
             Yt = Y + h * K3
             ej = (e2[:, j], d2[:, j]) if has_e else (None, None)
-            K4 = deriv(Yt, force(Yt, k2[:, j], *ej)[1])
+            K4 = deriv(Yt, force(Yt, k2[:, j], *ej, i2[j])[1])
             Y = Y + (h / 6.0) * (K1 + 2.0 * K2 + 2.0 * K3 + K4)
     if progress is not None:
         progress(1.0)
