@@ -3,18 +3,21 @@ RK4 it replaced and against solve_ivp, for the three excitations, in one run.
 
 * ``dynamics_default_sweep_<excitation>``: the default study's sweep (seed 000 case pair,
   1000 N·m on the pinion, 1000:15000:500 rpm plus the speeds the sweep adds around the predicted
-  resonances, seed 001 bearings, backlash 60 µm) excited by ``tvms`` (slice stiffness), ``ltca``
-  (the LTCA's loaded stiffness and error) or ``contact`` (the mesh-force table). Baselines in
-  the same process: the numpy batch kernel :func:`gearmesh.dynamics.simulate_numpy` (today's
-  kernel until issue 17; not for ``contact``) over the same speeds, and solve_ivp (DOP853,
-  rtol 1e-6) on the full equations over the same physical-time transient at ``subset`` speeds,
-  scaled to all. The model (stiffness, LTCA, table) is built once, outside the timing.
+  resonances, seed 001 bearings, backlash 60 µm, the study's solver settings) excited by
+  ``tvms`` (slice stiffness), ``ltca`` (the LTCA's loaded stiffness and error) or ``contact``
+  (the mesh-force table). References in the same run, on the same speeds: today's numpy batch
+  kernel :func:`gearmesh.dynamics.simulate_numpy` (the kernel before issue 17, the contact table
+  read with numpy's own indexing; always the physical-time transient of 10 decay times, so it
+  agrees with the periodic orbit to e^-10 of the transient); solve_ivp (DOP853, rtol 1e-6) on the
+  full equations over the same physical-time transient at ``subset`` speeds, scaled to all; and
+  the compiled loop as it was before issue 17's kernel work (:mod:`bench_baseline`). Issue 17's
+  target: ≥ 10× the numpy kernel. The model (stiffness, LTCA, table) is built outside the timing.
 * ``dynamics_sweep_496_speeds``: seed 001 pair 1, 500:50000:100 rpm, new loop against the numpy
   batch (where the batch amortised numpy's overhead best).
 * ``dynamics_contact_over_ltca``: the contact sweep's time over the ltca sweep's (issue 15: ≤ 1.5).
 
-Run by hand: ``python benchmarks/bench_dynamics.py`` (a few minutes: solve_ivp is slow), or
-``python benchmarks/run.py dynamics``.
+Run by hand: ``python benchmarks/bench_dynamics.py`` (several minutes: solve_ivp and the numpy
+contact kernel are slow), or ``python benchmarks/run.py dynamics_default``.
 """
 
 from __future__ import annotations
@@ -44,37 +47,62 @@ def _default_models() -> dict[str, dy.GearModel]:
             "contact": build_pair_model(pair, 1000.0, "pinion", excitation="contact", table=table, **common)}
 
 
-def _diff(a: dy.SweepResult, b, keys=("force_max", "approach_std")) -> float:
-    return max(float(np.max(np.abs(getattr(a, k) / getattr(b, k) - 1))) for k in keys)
+def _diff(a, b, keys=("force_max", "approach_std")) -> float:
+    def get(r, k):
+        return np.asarray(getattr(r, k) if hasattr(r, k) else r[k], dtype=float)
+
+    return max(float(np.max(np.abs(get(a, k) / get(b, k) - 1))) for k in keys)
+
+
+def _default_speeds(models) -> np.ndarray:
+    return resonance_refined(speed_grid({"start": 1000, "stop": 15000, "step": 500}), models["ltca"])
+
+
+def compiled_sweeps(repeats: int) -> dict:
+    """{excitation: (wall s, CPU s, {force_max, approach_std}, shooting failures)} of the compiled
+    loop over the default sweep (module docstring); also run by the baseline's code."""
+    from bench_impact import _timed
+
+    models = _default_models()
+    speeds = _default_speeds(models)
+    out = {}
+    for name, model in models.items():
+        wall, cpu, res = _timed(lambda: dy.simulate(model, speeds), repeats)
+        out[name] = (wall, cpu, {"force_max": res.force_max, "approach_std": res.approach_std},
+                     int(np.sum(res.shooting_iterations < 0)))
+    return out
 
 
 def bench_default_sweep(repeats: int = 3, subset: int = 2) -> list[dict]:
+    from bench_baseline import BASELINE_NAME, baseline_call
+
     models = _default_models()
-    grid = speed_grid({"start": 1000, "stop": 15000, "step": 500})
-    speeds = resonance_refined(grid, models["ltca"])
-    rows, times = [], {}
+    speeds = _default_speeds(models)
+    new = compiled_sweeps(repeats)
+    old = baseline_call("bench_dynamics", "compiled_sweeps", repeats)
+    rows = []
     for name, model in models.items():
-        dy.simulate(model, speeds[:1])  # the compiled loop is cached on disk; load it outside the timing
-        fast, res = median_seconds(lambda: dy.simulate(model, speeds), repeats)
-        times[name] = fast
-        row = {"name": f"dynamics_default_sweep_{name}", "median_s": fast, "speeds": int(speeds.size),
-               "shooting_failures": int(np.sum(res.shooting_iterations < 0))}
-        if name != "contact":
-            old, ref = median_seconds(lambda: dy.simulate_numpy(model, speeds), max(1, repeats // 2))
-            row.update({"baseline": "numpy batch RK4 (the kernel before issue 17), same speeds, physical-time "
-                                    "transient", "baseline_median_s": old, "ratio": old / fast,
-                        "max_rel_diff": _diff(res, ref)})
+        fast, cpu, res, failures = new[name]
+        row = {"name": f"dynamics_default_sweep_{name}", "median_s": fast, "cpu_s": cpu, "speeds": int(speeds.size),
+               "shooting_failures": failures}
+        numpy_s, ref = median_seconds(lambda: dy.simulate_numpy(model, speeds), 1)
+        row.update({"baseline": "numpy batch RK4 (today's kernel before issue 17), same speeds, physical-time "
+                                "transient", "baseline_median_s": numpy_s, "ratio": numpy_s / fast,
+                    "max_rel_diff": _diff(res, ref)})
         pick = np.unique(np.linspace(0, speeds.size - 1, subset).round().astype(int))
         ivp, refs = median_seconds(lambda: [dy.reference_solution(model, float(speeds[i]), rtol=1e-6, atol=1e-13)
                                             for i in pick], 1)
         row.update({"solve_ivp_scaled_s": ivp * speeds.size / pick.size,
                     "solve_ivp_ratio": ivp * speeds.size / pick.size / fast,
-                    "solve_ivp_max_rel_diff": max(abs(float(res.approach_std[0, i]) / float(r["approach_std"][0]) - 1)
+                    "solve_ivp_max_rel_diff": max(abs(float(res["approach_std"][0, i]) / float(r["approach_std"][0]) - 1)
                                                   for i, r in zip(pick, refs))})
+        if old is not None:
+            row.update({"compiled_before": BASELINE_NAME, "compiled_before_s": old[name][0],
+                        "compiled_before_ratio": old[name][0] / fast, "compiled_before_max_rel_diff": _diff(res, old[name][2])})
         rows.append(row)
-    rows.append({"name": "dynamics_contact_over_ltca", "median_s": times["contact"],
-                 "baseline": "the ltca sweep, same speeds, same run", "baseline_median_s": times["ltca"],
-                 "ratio": times["contact"] / times["ltca"]})
+    rows.append({"name": "dynamics_contact_over_ltca", "median_s": new["contact"][0],
+                 "baseline": "the ltca sweep, same speeds, same run", "baseline_median_s": new["ltca"][0],
+                 "ratio": new["contact"][0] / new["ltca"][0]})
     return rows
 
 

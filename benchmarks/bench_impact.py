@@ -1,48 +1,117 @@
-"""Impact benchmark: one mesh-in impact evaluation (one torque, one speed) of seed 000's pair.
+"""Impact benchmarks (seed 000's case pair, the default study's impact model), today's code against
+the code before issue 17's kernel work (:mod:`bench_baseline`) in the same run.
 
-``bench_impact(repeats)`` returns one JSON-able dict in the style of ``benchmarks/run.py``:
-median_s of :func:`gearmesh.impact.impact_static` + :func:`gearmesh.impact.impact_response`
-on a prepared model (what a load/speed map and the GA repeat), batch_median_s for 40
-modifications in one call (one GA generation) and its per-candidate cost, against the
-straightforward baseline: the same evaluation building everything from scratch (slice tables,
-LTCA grid, window) each time, as a script calling the stage per load would. Results must be
-identical (max_rel_diff of F_s). Run by hand: ``python benchmarks/bench_impact.py``.
+* ``impact_one_evaluation``: one mesh-in impact evaluation alone, :func:`gearmesh.impact.impact_static`
+  + :func:`gearmesh.impact.impact_response` at 1000 N·m and 5000 rpm on a prepared model (what a
+  load/speed map repeats).
+* ``impact_robust_generation``: the impact part of one generation of the default study's robust
+  optimisation — 40 candidates (seed 0 draws within seed 000's bounds) × 9 manufactured gears
+  (nominal and the 8 tolerance samples) × 3 torques (400, 1000, 1600 N·m) in one batch
+  (:func:`gearmesh.optimise.impact_values`, as the GA calls it); per evaluation = the batch over
+  its 1080 (candidate, sample, torque) evaluations. Issue 17's targets: ≤ 1 ms per evaluation
+  and ≤ 1 s per generation on the issue's machine (about 0.4 ms and 0.4 s on the machine of the
+  work, 2.3× faster).
+
+Each row: median_s (today), baseline_median_s (before), ratio, max_rel_diff of F_s, and the
+process CPU time of both (cpu_s, baseline_cpu_s: on a shared machine the wall time includes
+waiting for a core). Run by hand: ``python benchmarks/run.py impact``.
 """
 
 from __future__ import annotations
 
 import json
+import time
 
 import numpy as np
 
-from gearmesh.gear import load_pair, pair_geometry
-from gearmesh.impact import impact_model, impact_response, impact_static
+from bench_baseline import BASELINE_NAME, baseline_call
+from common import ROOT
 
-from common import ROOT, median_seconds
-
-
-def _evaluate(model, params=None):
-    st = impact_static(model, [1000.0], params)
-    return impact_response(model, st, [5000.0])[1].force[:, 0, 0]
+TORQUE, SPEED = 1000.0, 5000.0
 
 
-def bench_impact(repeats: int) -> dict:
-    geom = pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml"))
-    model = impact_model(geom)
-    fast, result = median_seconds(lambda: _evaluate(model), repeats)
-    base, reference = median_seconds(lambda: _evaluate(impact_model(geom)), max(3, repeats // 2))
-    rng = np.random.default_rng(0)
-    mn, b = geom.pair.normal_module, geom.face_width
-    params = np.zeros((40, 2, 6))
-    params[:, 0] = np.column_stack([rng.uniform(0.001, 0.015, 40) * mn, rng.uniform(0.001, 0.015, 40) * mn,
-                                    rng.uniform(0.1, 0.8, 40) * mn, rng.uniform(0.1, 0.8, 40) * mn,
-                                    rng.uniform(0.001, 0.015, 40) * mn, rng.uniform(0.01, 0.5, 40) * b])
-    batch, _ = median_seconds(lambda: _evaluate(model, params), max(3, repeats // 2))
-    return {"name": "impact_one_torque_one_speed", "median_s": fast, "batch_40_median_s": batch,
-            "batch_per_candidate_s": batch / 40, "baseline": "model rebuilt for every evaluation",
-            "baseline_median_s": base, "ratio": base / fast,
-            "max_rel_diff": float(np.max(np.abs(result - reference) / np.abs(reference)))}
+def _timed(func, repeats: int, warm_up: bool = True):
+    """(median wall s, median CPU s, last result) of ``repeats`` calls (after one warm-up call)."""
+    if warm_up:
+        func()
+    walls, cpus, result = [], [], None
+    for _ in range(repeats):
+        c0, w0 = time.process_time(), time.perf_counter()
+        result = func()
+        walls.append(time.perf_counter() - w0)
+        cpus.append(time.process_time() - c0)
+    return float(np.median(walls)), float(np.median(cpus)), result
+
+
+def evaluation_alone(repeats: int):
+    """(wall s, CPU s, F_s) of one evaluation alone (module docstring)."""
+    from gearmesh.gear import load_pair, pair_geometry
+    from gearmesh.impact import impact_model, impact_response, impact_static
+
+    model = impact_model(pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml")))
+
+    def one():
+        return impact_response(model, impact_static(model, [TORQUE]), [SPEED])[1].force[:, 0, 0]
+
+    return _timed(one, repeats)
+
+
+def robust_problem(constraints=None):
+    """The default study's robust optimisation problem of the case pair (config/config.yaml's
+    ``optimise.optimised``; ``constraints`` replaces its constraints) and 40 candidates' parameters."""
+    import yaml
+
+    from gearmesh.datasets.optimise import run_problem
+    from gearmesh.gear import load_pair
+
+    config = yaml.safe_load((ROOT / "config/config.yaml").read_text())
+    section = {**config["optimise"]["optimised"], "impact": config["impact"], "tolerances": config["tolerances"]}
+    if constraints is not None:
+        section["constraints"] = constraints
+    prob = run_problem(load_pair(ROOT / "config/pairs/seed000_case.yaml"), **section)
+    low = np.array([g.low for g in prob.genes])
+    high = np.array([g.high for g in prob.genes])
+    params = prob.decode(low + (high - low) * np.random.default_rng(0).random((40, low.size)))
+    return prob, params
+
+
+def robust_generation(repeats: int):
+    """(wall s, CPU s, F_s (1080,)) of the impact part of one robust generation (module docstring)."""
+    from gearmesh.optimise import _manufactured_rows, impact_values
+
+    prob, params = robust_problem(constraints={})
+    rows, lead = _manufactured_rows(prob.model, prob.tolerance, params, prob.population_deviations)
+    torques = prob.settings.objective_torques
+    return _timed(lambda: impact_values(prob.model, prob.settings, rows, lead, torques).force.ravel(), repeats)
+
+
+def compare(name: str, new, old, evaluations: int = 1, **extra) -> dict:
+    """A benchmark row: today's (wall, CPU, result) against the baseline's (or None)."""
+    wall, cpu, result = new
+    row = {"name": name, "median_s": wall, "cpu_s": cpu, **extra}
+    if evaluations > 1:
+        row.update({"evaluations": evaluations, "per_evaluation_s": wall / evaluations,
+                    "per_evaluation_cpu_s": cpu / evaluations})
+    if old is None:
+        return {**row, "baseline": "none (no git history for the old code)"}
+    b_wall, b_cpu, reference = old
+    a, b = np.asarray(result, dtype=float), np.asarray(reference, dtype=float)
+    ok = np.isfinite(a) & np.isfinite(b) & (b != 0)
+    return {**row, "baseline": BASELINE_NAME, "baseline_median_s": b_wall, "baseline_cpu_s": b_cpu,
+            "ratio": b_wall / wall, "cpu_ratio": b_cpu / cpu,
+            "max_rel_diff": float(np.max(np.abs(a[ok] - b[ok]) / np.abs(b[ok]))) if ok.any() else float("nan"),
+            "same_finite": bool(np.array_equal(np.isfinite(a), np.isfinite(b)))}
+
+
+def bench_impact(repeats: int) -> list[dict]:
+    alone = compare("impact_one_evaluation", evaluation_alone(repeats),
+                    baseline_call("bench_impact", "evaluation_alone", repeats))
+    n = max(3, repeats // 2)
+    batch = compare("impact_robust_generation_40x9x3", robust_generation(n),
+                    baseline_call("bench_impact", "robust_generation", n), evaluations=40 * 9 * 3)
+    return [alone, batch]
 
 
 if __name__ == "__main__":
-    print(json.dumps(bench_impact(5)))
+    for row in bench_impact(5):
+        print(json.dumps(row), flush=True)
