@@ -491,11 +491,14 @@ def _shoot(Y0, scale, tol, max_iter, no_tangent, *loop):
     eye = np.eye(n2)
     P = np.empty((1, n2))
     T = np.empty((1, n2, n2))
-    have_j = False
     last = np.inf
     for it in range(max_iter + 1):
         P[0] = Y
-        _advance(P, no_tangent, 1, 0, *loop)
+        if it == 0:  # the first period brings its monodromy matrix along (the same trajectory, bit for bit)
+            T[0] = eye
+            _advance(P, T, 1, 0, *loop)
+        else:
+            _advance(P, no_tangent, 1, 0, *loop)
         r = P[0] - Y
         err = 0.0
         for p in range(n2):
@@ -503,15 +506,16 @@ def _shoot(Y0, scale, tol, max_iter, no_tangent, *loop):
         if not np.isfinite(err):
             return Y0.copy(), it, -1, J
         if err <= tol:
-            return Y, it, 1 if have_j else 0, J
+            return Y, it, 1 if it > 0 else 0, J
         if it == max_iter:
             break
-        if not have_j or err > 0.5 * last:
+        if it == 0:
+            J[:] = T[0]
+        elif err > 0.5 * last:  # the chord iteration slowed down: the Jacobian at the current iterate
             T[0] = eye
             P[0] = Y
             _advance(P, T, 1, 0, *loop)
             J[:] = T[0]
-            have_j = True
         A = J - eye
         if not np.all(np.isfinite(A)) or abs(np.linalg.det(A)) == 0.0:
             return Y0.copy(), it, -1, J
