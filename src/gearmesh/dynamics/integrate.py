@@ -44,7 +44,7 @@ class SolverSettings:
     record_cycles : n_rec mesh periods (even); min_transient_cycles : at least this many
     mesh periods before recording; block : steps per block of the numpy reference.
     steady_state : 'shooting' (the periodic steady state by Newton's method on the one-period
-    map, :func:`periodic_state`, then ``settle_cycles`` periods before recording; the
+    map, :func:`_shoot`, then ``settle_cycles`` periods before recording; the
     physical-time transient where it does not converge to a stable orbit) or 'transient'
     (always the physical-time transient); shooting_tolerance : the fixed point's residual
     relative to the state's scale; shooting_iterations : at most this many Newton steps;
@@ -198,28 +198,30 @@ def _contact_tables(model: GearModel) -> _Contact:
     return out
 
 
-def _stage_tables(model: GearModel, m: int, f_mesh: float) -> np.ndarray:
+def _stage_tables(model: GearModel, m, f_mesh) -> np.ndarray:
     """(4, meshes, 2m) values at the half-step phases j/(2m) of one speed: for a linear mesh
     k (N/m), e (m), ė (m/s) from its :class:`~gearmesh.dynamics.excitation.MeshLaw`; for a
     contact mesh the table row (as a float), the row weight, g_min (m) and dg_min/dt (m/s,
-    transverse) at the window position of that phase."""
-    ph = np.arange(2 * m) / (2.0 * m)
-    out = np.zeros((4, model.m, 2 * m))
+    transverse) at the window position of that phase. With arrays ``m``, ``f_mesh`` (S,): all
+    speeds at once, (S, 4, meshes, 2·max m), each speed's 2m phases first."""
+    m_s, f_s = np.atleast_1d(m), np.atleast_1d(np.asarray(f_mesh, dtype=float))
+    ph = np.arange(2 * int(m_s.max()))[None, :] / (2.0 * m_s[:, None])  # (S, L)
+    out = np.zeros((m_s.size, 4, model.m, ph.shape[1]))
     for i, ml in enumerate(model.meshes):
         if ml.contact is None:
-            out[0, i] = ml.stiffness(ph)
+            out[:, 0, i] = ml.stiffness(ph)
             e, es = ml.error(ph)
-            out[1, i], out[2, i] = e, es * f_mesh
+            out[:, 1, i], out[:, 2, i] = e, es * f_s[:, None]
             continue
         t = ml.contact
         w = t.window_position(np.mod(ph + ml.phase_offset, 1.0) * t.pitch)
         dw = t.pitch / t.positions
         row = np.minimum((w / dw).astype(np.int64), t.positions - 1)
-        out[0, i] = row
-        out[1, i] = w / dw - row
-        out[2, i] = t.gap_min[row] + out[1, i] * (t.gap_min[row + 1] - t.gap_min[row])
-        out[3, i] = (t.gap_min[row + 1] - t.gap_min[row]) / dw * t.pitch * f_mesh
-    return out
+        out[:, 0, i] = row
+        out[:, 1, i] = w / dw - row
+        out[:, 2, i] = t.gap_min[row] + out[:, 1, i] * (t.gap_min[row + 1] - t.gap_min[row])
+        out[:, 3, i] = (t.gap_min[row + 1] - t.gap_min[row]) / dw * t.pitch * f_s[:, None]
+    return out if np.ndim(m) else out[0]
 
 
 # --------------------------------------------------------------------------------------
@@ -481,10 +483,21 @@ def _advance(Ys, Js, cycles, n_rec, kr, cr, B, G, f0, kind, tab, c_force, c_ente
 
 @njit(cache=True)
 def _shoot(Y0, scale, tol, max_iter, no_tangent, *loop):
-    """Newton's method on the one-period map from Y0 (:func:`periodic_state`), compiled: ``loop``
-    the arguments of :func:`_advance` after (Ys, Js, cycles, n_rec), recording idle. Returns (Y,
-    iterations, status, J): status 1 converged with the monodromy matrix J of the last Newton
-    step (stability to check), 0 converged at Y0 without a step, −1 not converged (Y0 returned)."""
+    """The periodic steady state of one speed by shooting: the state Y with P(Y) = Y, P the map
+    over one mesh period (RK4, the same steps as the sweep), by Newton's method from ``Y0``;
+    ``loop`` the arguments of :func:`_advance` after (Ys, Js, cycles, n_rec), recording idle.
+
+    The Jacobian of P (the monodromy matrix of the discrete map) is integrated beside the period,
+    exactly (the RK4 stages' variational equations, :func:`_advance`; about 3 periods' work for
+    the 14 states of the 8-DOF pair, against 14 periods by forward differences), and kept while
+    the residual falls at least twofold per step (chord iterations); for the linear-in-state
+    models (stiffness and LTCA excitations without contact loss) P is affine and one Newton step
+    is exact. Converged when ‖(P(Y) − Y)/scale‖∞ ≤ ``tol``. Returns (Y, iterations, status, J):
+    status 1 converged after Newton steps, J the monodromy matrix of the last one (the caller
+    checks the orbit is stable: every eigenvalue inside the unit circle), 0 converged at Y0, −1
+    not converged (Y0 returned; the caller runs the physical-time transient). Shooting for
+    periodic responses of gear models: e.g. Kahraman & Blankenship 1997 (J. Appl. Mech. 64:217);
+    Parker et al. 2000 (J. Sound Vib. 237:435)."""
     n2 = Y0.size
     Y = Y0.copy()
     J = np.zeros((n2, n2))
@@ -523,6 +536,40 @@ def _shoot(Y0, scale, tol, max_iter, no_tangent, *loop):
         last = err
     return Y0.copy(), max_iter, -1, J
 
+
+
+@njit(cache=True)
+def _shoot_speeds(Y0s, scales, tol, max_iter, no_tangent, kr, cr, B, G, f0, kind, tabs, c_force, c_enter, c_egap,
+                  c_estat, c_geom, cb, c_m, bl, ms, hs, ys, d_ref, first_part, acc_y, acc_m, ser_t, ser_d, ser_f,
+                  ser_y, ser_v, ser_e):
+    """:func:`_shoot` at each speed s (stage tables tabs[s], m = ms[s], Δt = hs[s]) from Y0s[s] with
+    residual scale scales[s]: (states (S, 2n), iterations (S,), status (S,), monodromy (S, 2n, 2n))."""
+    S, n2 = Y0s.shape
+    Ys = np.empty((S, n2))
+    its = np.empty(S, dtype=np.int64)
+    status = np.empty(S, dtype=np.int64)
+    Js = np.empty((S, n2, n2))
+    for k in range(S):
+        Y, it, st, J = _shoot(Y0s[k], scales[k], tol, max_iter, no_tangent, kr, cr, B, G, f0, kind, tabs[k], c_force,
+                              c_enter, c_egap, c_estat, c_geom, cb, c_m, bl, ms[k], hs[k], ys, d_ref, first_part,
+                              acc_y, acc_m, False, ser_t, ser_d, ser_f, ser_y, ser_v, ser_e)
+        Ys[k] = Y
+        its[k] = it
+        status[k] = st
+        Js[k] = J
+    return Ys, its, status, Js
+
+
+@njit(cache=True)
+def _record_speeds(Ys, cycles, n_rec, no_tangent, kr, cr, B, G, f0, kind, tabs, c_force, c_enter, c_egap, c_estat,
+                   c_geom, cb, c_m, bl, ms, hs, ys, d_ref, first_part, acc_y, acc_m, ser_t, ser_d, ser_f, ser_y, ser_v,
+                   ser_e):
+    """:func:`_advance` at each speed k: Ys[k] by cycles[k] periods, the last n_rec[k] recorded into
+    acc_y[k], acc_m[k] (no series)."""
+    for k in range(Ys.shape[0]):
+        _advance(Ys[k:k + 1], no_tangent, cycles[k], n_rec[k], kr, cr, B, G, f0, kind, tabs[k], c_force, c_enter,
+                 c_egap, c_estat, c_geom, cb, c_m, bl, ms[k], hs[k], ys, d_ref, first_part, acc_y[k], acc_m[k], False,
+                 ser_t, ser_d, ser_f, ser_y, ser_v, ser_e)
 
 class _Loop:
     """The compiled loop's per-model arguments (diagonal bearing matrices, mesh kinds, contact
@@ -602,6 +649,7 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     S, n, nm = speed_rpm.size, model.n, model.m
     n_rec = np.full(S, settings.record_cycles, dtype=np.int64)
     loop = _Loop(model)
+    tabs = _stage_tables(model, m, f_mesh)
     ys = model.static_state() if y0 is None else np.asarray(y0, dtype=float)
     d_ref = model.G @ model.static_state()
     acc_y = np.zeros((S, 3, n))
@@ -611,29 +659,41 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     report_next = 0.05
     out_series = [] if series else None
     scale = _state_scale(model, ys)
-    iterations = np.zeros(S, dtype=np.int64)
+    iterations = np.full(S, -1, dtype=np.int64)
     periodic = np.full((S, 2 * n), np.nan)
     cycles_before = n_tr.copy()
-    for s in range(S):
-        Y = np.zeros(2 * n)
-        Y[:n] = ys
-        speed = loop.speed(int(m[s]), float(f_mesh[s]), float(dt[s]))
-        iterations[s] = -1
+    start = np.zeros((S, 2 * n))
+    start[:, :n] = ys
+    idle_ys, idle_ref, _, idle_y, idle_m, _, *idle_series = loop.idle
+    # all speeds in one compiled call, or one at a time to report progress or keep the series
+    chunks = [slice(0, S)] if progress is None and not series else [slice(k, k + 1) for k in range(S)]
+    for sl in chunks:
         if settings.steady_state == "shooting":
-            Ys, it, ok = periodic_state(Y, speed, scale * (2 * np.pi * f_mesh[s]) ** np.repeat([0, 1], n),
-                                        settings.shooting_tolerance, settings.shooting_iterations)
-            if ok:
-                Y, iterations[s], cycles_before[s] = Ys, it, settings.settle_cycles
-                periodic[s] = Ys
-                n_rec[s] = settings.periodic_record_cycles or settings.record_cycles
-        ser = _series_buffers(int(n_rec[s] * m[s]) if series else 0, n, nm)
-        speed.run(Y[None], int(cycles_before[s] + n_rec[s]), int(n_rec[s]), ys, d_ref, acc_y[s], acc_m[s],
-                  ser if series else None)
+            scales = scale[None, :] * (2 * np.pi * f_mesh[sl, None]) ** np.repeat([0, 1], n)[None, :]
+            Ys, its, status, Js = _shoot_speeds(start[sl], scales, float(settings.shooting_tolerance),
+                                                int(settings.shooting_iterations), loop.no_tangent, *loop.head,
+                                                tabs[sl], *loop.tail, m[sl], dt[sl], idle_ys, idle_ref,
+                                                FIRST_PART_AFTER_A, idle_y, idle_m, *idle_series)
+            ok = status == 0
+            step = status == 1  # converged after Newton steps: the orbit must be stable
+            ok[step] = np.max(np.abs(np.linalg.eigvals(Js[step])), axis=1) < 1.0
+            k = np.flatnonzero(ok) + sl.start
+            start[k], periodic[k], iterations[k] = Ys[ok], Ys[ok], its[ok]
+            cycles_before[k] = settings.settle_cycles
+            n_rec[k] = settings.periodic_record_cycles or settings.record_cycles
         if series:
+            s0 = sl.start
+            ser = _series_buffers(int(n_rec[s0] * m[s0]), n, nm)
+            _Speed(loop, loop.head + (tabs[s0],) + loop.tail + (int(m[s0]), float(dt[s0]))).run(
+                start[sl], int(cycles_before[s0] + n_rec[s0]), int(n_rec[s0]), ys, d_ref, acc_y[s0], acc_m[s0], ser)
             out_series.append(dict(zip(("t", "delta", "F", "y", "v", "Fe"), ser)))
-        if progress is not None and cum[s] >= report_next:
-            progress(float(cum[s]))
-            report_next = float(cum[s]) + 0.05
+        else:
+            _record_speeds(start[sl], cycles_before[sl] + n_rec[sl], n_rec[sl], loop.no_tangent, *loop.head, tabs[sl],
+                           *loop.tail, m[sl], dt[sl], ys, d_ref, FIRST_PART_AFTER_A, acc_y[sl], acc_m[sl],
+                           *idle_series)
+        if progress is not None and cum[sl.stop - 1] >= report_next:
+            progress(float(cum[sl.stop - 1]))
+            report_next = float(cum[sl.stop - 1]) + 0.05
     res = _result(speed_rpm, f_mesh, m, cycles_before, dt, n_rec, acc_y, acc_m, ys, d_ref, loop.kind,
                   loop.contact.geom[:, 0], out_series, int(((cycles_before + n_rec) * m).max()))
     res.shooting_iterations = iterations
@@ -647,27 +707,6 @@ def _state_scale(model: GearModel, ys: np.ndarray) -> np.ndarray:
     the velocities by 2π f_mesh)."""
     length = max(float(np.max(np.abs(ys))), float(np.max(np.abs(model.G @ ys))), 1e-12)
     return np.full(2 * model.n, length)
-
-
-def periodic_state(Y0: np.ndarray, speed: _Speed, scale: np.ndarray, tol: float, max_iter: int):
-    """The periodic steady state of one speed by shooting: the state Y with P(Y) = Y, P the map
-    over one mesh period (RK4, the same steps as the sweep), by Newton's method from ``Y0``.
-
-    The Jacobian of P (the monodromy matrix of the discrete map) is integrated beside the period,
-    exactly (the RK4 stages' variational equations, :func:`_advance`; about 3 periods' work for
-    the 14 states of the 8-DOF pair, against 14 periods by forward differences), and kept while
-    the residual falls at least twofold per step (chord iterations); for the linear-in-state
-    models (stiffness and LTCA excitations without contact loss) P is affine and one Newton step
-    is exact. The iteration is compiled (:func:`_shoot`). Returns (Y, iterations, ok): ok when
-    ‖(P(Y) − Y)/scale‖∞ ≤ ``tol`` and the orbit is stable (every eigenvalue of the monodromy
-    matrix inside the unit circle); otherwise the caller runs the physical-time transient.
-    Shooting for periodic responses of gear models: e.g. Kahraman & Blankenship 1997 (J. Appl.
-    Mech. 64:217); Parker et al. 2000 (J. Sound Vib. 237:435).
-    """
-    Y, it, status, J = speed.shoot(Y0, scale, tol, max_iter)
-    if status < 0:
-        return np.array(Y0, dtype=float), it, False
-    return Y, it, status == 0 or bool(np.max(np.abs(np.linalg.eigvals(J))) < 1.0)
 
 
 def _result(speed_rpm, f_mesh, m, n_tr, dt, n_rec, acc_y, acc_m, ys, d_ref, kind, pitch, out_series, n_steps):
