@@ -44,7 +44,7 @@ class SolverSettings:
     record_cycles : n_rec mesh periods (even); min_transient_cycles : at least this many
     mesh periods before recording; block : steps per block of the numpy reference.
     steady_state : 'shooting' (the periodic steady state by Newton's method on the one-period
-    map, :func:`_shoot`, then ``settle_cycles`` periods before recording; the
+    map, :func:`_sweep`, then ``settle_cycles`` periods before recording; the
     physical-time transient where it does not converge to a stable orbit) or 'transient'
     (always the physical-time transient); shooting_tolerance : the fixed point's residual
     relative to the state's scale; shooting_iterations : at most this many Newton steps;
@@ -325,251 +325,275 @@ def _tangent_stage(J, Jt, dK, s, h, n, kr, cr, B, G, dF, gp, gv):
                     dK[s, n + p, k] -= b * (dF[i, 0] * gp[k] + dF[i, 1] * gv[k])
 
 
+#: Modes of :func:`_sweep`.
+_SHOOT, _PASS = 0, 1
+
+
 @njit(cache=True)
-def _advance(Ys, Js, cycles, n_rec, kr, cr, B, G, f0, kind, tab, c_force, c_enter, c_egap, c_estat, c_geom, cb, c_m,
-             bl, m, h, ys, d_ref, first_part, acc_y, acc_m, series, ser_t, ser_d, ser_f, ser_y, ser_v, ser_e):
-    """Each row of Ys (K, 2n) advanced in place by ``cycles`` mesh periods of m RK4 steps of h (s)
-    from mesh phase 0; the statistics of the last ``n_rec`` periods (0: none) into acc_y (3, n)
-    and acc_m (_NQ, meshes), summed over the rows; with ``series`` every recorded step of the
-    rows into the ser_* arrays. With Js (K, 2n, 2n) (empty: none) each row's tangent matrix is
-    advanced too: the exact derivative of the discrete RK4 map, ∂Y(end)/∂Y(start) from Js = I
-    (the stages' variational equations with ∂F/∂δ, ∂F/∂δ̇ of :func:`_mesh_force`).
+def _solve(A, b):
+    """x with A·x = b (n small) by Gaussian elimination with partial pivoting, and whether A was
+    regular: the Newton step of the shooting, compiled without LAPACK (numba's bindings to it
+    cost a fresh installation 3 s of compilation for a 14 × 14 solve)."""
+    n = b.size
+    a = A.copy()
+    x = b.copy()
+    for c in range(n):
+        p = c
+        big = abs(a[c, c])
+        for r in range(c + 1, n):
+            if abs(a[r, c]) > big:
+                p, big = r, abs(a[r, c])
+        if not big > 0.0 or not np.isfinite(big):
+            return x, False
+        if p != c:
+            for q in range(n):
+                a[c, q], a[p, q] = a[p, q], a[c, q]
+            x[c], x[p] = x[p], x[c]
+        for r in range(c + 1, n):
+            f = a[r, c] / a[c, c]
+            if f != 0.0:
+                for q in range(c + 1, n):
+                    a[r, q] -= f * a[c, q]
+                x[r] -= f * x[c]
+    for c in range(n - 1, -1, -1):
+        acc = x[c]
+        for q in range(c + 1, n):
+            acc -= a[c, q] * x[q]
+        x[c] = acc / a[c, c]
+    return x, bool(np.all(np.isfinite(x)))
+
+
+@njit(cache=True)
+def _sweep(mode, Ys, Js, scales, tol, max_iter, cycles, n_rec, its, status, kr, cr, B, G, f0, kind, tabs, c_force,
+           c_enter, c_egap, c_estat, c_geom, cb, c_m, bl, ms, hs, ys, d_ref, first_part, acc_y, acc_m, series,
+           ser_start, ser_t, ser_d, ser_f, ser_y, ser_v, ser_e):
+    """Every speed k of a sweep: ms[k] classical RK4 steps of hs[k] s per mesh period, the mesh laws
+    at the stage phases of tabs[k] (:func:`_stage_tables`), in one of two modes.
+
+    ``_PASS`` — Ys[k] advanced in place by cycles[k] mesh periods from mesh phase 0; the statistics
+    of the last n_rec[k] periods into acc_y[k] (3, n), acc_m[k] (_NQ, meshes); with ``series`` every
+    recorded step into the ser_* rows from ser_start[k]. With Js (S, 2n, 2n) (empty: none) each
+    speed's tangent matrix is advanced too: the exact derivative of the discrete RK4 map,
+    ∂Y(end)/∂Y(start) from Js[k] = I (the stages' variational equations with ∂F/∂δ, ∂F/∂δ̇ of
+    :func:`_mesh_force`, :func:`_tangent_stage`).
+
+    ``_SHOOT`` — the periodic steady state by shooting: the state Y with P(Y) = Y, P the map over
+    one mesh period (the same steps), by Newton's method from Ys[k]. The Jacobian of P (the
+    monodromy matrix of the discrete map) is integrated beside the period, exactly (about 3
+    periods' work for the 14 states of the 8-DOF pair, against 14 periods by forward
+    differences), and kept while the residual falls at least twofold per step (chord
+    iterations); for the linear-in-state models (stiffness and LTCA excitations without contact
+    loss) P is affine and one Newton step is exact. Converged when ‖(P(Y) − Y)/scales[k]‖∞ ≤
+    ``tol``. Writes Ys[k] (the state; unchanged where not converged), its[k] (Newton steps),
+    status[k] (1 converged after Newton steps, Js[k] the monodromy matrix of the last one, whose
+    eigenvalues the caller checks for a stable orbit; 0 converged at the start; −1 not
+    converged: the caller runs the physical-time transient). Shooting for periodic responses of
+    gear models: e.g. Kahraman & Blankenship 1997 (J. Appl. Mech. 64:217); Parker et al. 2000
+    (J. Sound Vib. 237:435).
 
     The reduced bearing matrices are diagonal (``kr``, ``cr``: every model's bearings act along
     their own coordinates and the relative rotations have none), so ÿ_p = f0_p − kr_p y_p −
-    cr_p ẏ_p − Σ_i B_pi F_i. The RK4 step is written out here, once: numba does not inline a
-    function taking arrays well enough for a step of ~10² flops (a separate step function is
-    1.5–4× slower)."""
+    cr_p ẏ_p − Σ_i B_pi F_i. The RK4 step is written out once, in this one function: numba does
+    not inline a function taking arrays well enough for a step of ~10² flops (a separate step
+    function is 1.5–4× slower), and it compiles a loop once per function that calls it (what a
+    fresh installation waits for)."""
     n = kr.shape[0]
     n2 = 2 * n
     nm = G.shape[0]
     du = c_geom[:, 3]
     F = np.empty(nm)
+    rs = np.empty((nm, 7))  # per mesh at the step's start: statistic, apart, back, x, column, weight, overrun
     Yt = np.empty(n2)
     K = np.empty((4, n2))
-    tangent = Js.shape[0] > 0
-    nt = n2 if tangent else 0
-    Jt = np.empty((nt, nt))
-    dK = np.empty((4, nt, nt))
+    Jt = np.empty((n2, n2))
+    dK = np.empty((4, n2, n2))
     dF = np.zeros((nm, 2))
-    gp = np.empty(nt)
-    gv = np.empty(nt)
+    gp = np.empty(n2)
+    gv = np.empty(n2)
     prev_h = np.zeros(nm)
     prev_w = np.zeros(nm)
     prev_ok = np.zeros(nm, dtype=np.bool_)
-    total = cycles * m
-    rec0 = (cycles - n_rec) * m
-    half0 = (cycles - n_rec // 2) * m
-    if n_rec > 0:
-        for i in range(nm):
-            acc_m[_F_MIN, i] = np.inf
-            acc_m[_F_MAX, i] = -np.inf
-            acc_m[_D_MIN, i] = np.inf
-            acc_m[_D_MAX, i] = -np.inf
-            acc_m[_TOUCH, i] = np.inf
-            acc_m[_IMPACT, i] = -np.inf
-    k_ser = 0
-    for row in range(Ys.shape[0]):
-        Y = Ys[row]
-        for step in range(total):
-            j0 = 2 * (step % m)
-            j2 = j0 + 2
-            if j2 == 2 * m:
-                j2 = 0
-            if n_rec > 0 and step >= rec0:
-                second = step >= half0
-                for p in range(n):
-                    yc = Y[p] - ys[p]
-                    acc_y[0, p] += yc
-                    acc_y[1, p] += yc * yc
-                    acc_y[2, p] += Y[n + p] * Y[n + p]
-                for i in range(nm):
-                    Fi, d_i, gap_i, back_i, x, col, cw, over, _, _ = _mesh_force(Y, j0, i, G, kind, tab, c_force,
-                                                                                 du, cb, c_m, bl)
-                    dc = d_i - d_ref[i]
-                    app = 0.0
-                    for q in range(n):
-                        app += G[i, q] * Y[q]
-                    ac = app - d_ref[i]
-                    acc_m[_D_SUM, i] += dc
-                    acc_m[_D_SQ, i] += dc * dc
-                    if second:
-                        acc_m[_DH_SUM, i] += dc
-                        acc_m[_DH_SQ, i] += dc * dc
-                    acc_m[_A_SUM, i] += ac
-                    acc_m[_A_SQ, i] += ac * ac
-                    acc_m[_F_SUM, i] += Fi
-                    acc_m[_F_SQ, i] += Fi * Fi
-                    acc_m[_F_MIN, i] = min(acc_m[_F_MIN, i], Fi)
-                    acc_m[_F_MAX, i] = max(acc_m[_F_MAX, i], Fi)
-                    acc_m[_D_MIN, i] = min(acc_m[_D_MIN, i], d_i)
-                    acc_m[_D_MAX, i] = max(acc_m[_D_MAX, i], d_i)
-                    acc_m[_N_GAP, i] += gap_i
-                    acc_m[_N_BACK, i] += back_i
-                    acc_m[_OVERRUN, i] += over
-                    fe = 0.0
-                    if kind[i] == _CONTACT:
-                        pitch, dw = c_geom[i, 0], c_geom[i, 2]
-                        r = int(tab[0, i, j0])
-                        a = tab[1, i, j0]
-                        w = (r + a) * dw
-                        if gap_i == 0.0 and back_i == 0.0:
-                            e0 = c_enter[i, r, col] + cw * (c_enter[i, r, col + 1] - c_enter[i, r, col])
-                            e1 = c_enter[i, r + 1, col] + cw * (c_enter[i, r + 1, col + 1] - c_enter[i, r + 1, col])
-                            fe = max(0.0, e0 + a * (e1 - e0)) / cb
-                        eg0 = c_egap[i, r]
-                        eg1 = c_egap[i, r + 1]
-                        hh = -np.inf
-                        if eg0 < np.inf and eg1 < np.inf:
-                            hh = x - (eg0 + a * (eg1 - eg0))
-                        if prev_ok[i] and w >= prev_w[i]:
-                            if prev_h[i] <= 0.0 and hh > 0.0:
-                                wt = prev_w[i] + (w - prev_w[i]) * (-prev_h[i]) / (hh - prev_h[i])
-                                acc_m[_TOUCH, i] = min(acc_m[_TOUCH, i], wt)
-                        elif hh > 0.0:  # a new window that starts in contact
-                            acc_m[_TOUCH, i] = min(acc_m[_TOUCH, i], w)
-                        prev_h[i] = hh
-                        prev_w[i] = w
-                        prev_ok[i] = True
-                        if w <= (0.5 + first_part) * pitch:
-                            quasi = (c_estat[i, r] + a * (c_estat[i, r + 1] - c_estat[i, r])) / cb
-                            acc_m[_E_MAX, i] = max(acc_m[_E_MAX, i], fe)
-                            acc_m[_IMPACT, i] = max(acc_m[_IMPACT, i], fe - quasi)
-                    if series:
-                        ser_d[k_ser, i] = d_i
-                        ser_f[k_ser, i] = Fi
-                        ser_e[k_ser, i] = fe
-                if series:
-                    ser_t[k_ser] = (step - rec0) * h
-                    for p in range(n):
-                        ser_y[k_ser, p] = Y[p]
-                        ser_v[k_ser, p] = Y[n + p]
-                    k_ser += 1
-            # one classical RK4 step: stages at the half-step phase indices j0, j0 + 1 (twice), j2
-            for s in range(4):
-                if s == 0:
-                    j = j0
-                    for p in range(n2):
-                        Yt[p] = Y[p]
-                elif s == 3:
-                    j = j2
-                    for p in range(n2):
-                        Yt[p] = Y[p] + h * K[2, p]
-                else:
-                    j = j0 + 1
-                    for p in range(n2):
-                        Yt[p] = Y[p] + 0.5 * h * K[s - 1, p]
-                for i in range(nm):
-                    res = _mesh_force(Yt, j, i, G, kind, tab, c_force, du, cb, c_m, bl)
-                    F[i] = res[0]
-                    dF[i, 0] = res[8]
-                    dF[i, 1] = res[9]
-                for p in range(n):
-                    K[s, p] = Yt[n + p]
-                    acc = f0[p] - (kr[p] * Yt[p] + cr[p] * Yt[n + p])
-                    for i in range(nm):
-                        acc -= B[p, i] * F[i]
-                    K[s, n + p] = acc
-                if tangent:
-                    _tangent_stage(Js[row], Jt, dK, s, h, n, kr, cr, B, G, dF, gp, gv)
-            for p in range(n2):
-                Y[p] = Y[p] + (h / 6.0) * (K[0, p] + 2.0 * K[1, p] + 2.0 * K[2, p] + K[3, p])
-            if tangent:
-                J = Js[row]
-                for p in range(n2):
-                    for c in range(n2):
-                        J[p, c] += (h / 6.0) * (dK[0, p, c] + 2.0 * dK[1, p, c] + 2.0 * dK[2, p, c] + dK[3, p, c])
-
-
-@njit(cache=True)
-def _shoot(Y0, scale, tol, max_iter, no_tangent, *loop):
-    """The periodic steady state of one speed by shooting: the state Y with P(Y) = Y, P the map
-    over one mesh period (RK4, the same steps as the sweep), by Newton's method from ``Y0``;
-    ``loop`` the arguments of :func:`_advance` after (Ys, Js, cycles, n_rec), recording idle.
-
-    The Jacobian of P (the monodromy matrix of the discrete map) is integrated beside the period,
-    exactly (the RK4 stages' variational equations, :func:`_advance`; about 3 periods' work for
-    the 14 states of the 8-DOF pair, against 14 periods by forward differences), and kept while
-    the residual falls at least twofold per step (chord iterations); for the linear-in-state
-    models (stiffness and LTCA excitations without contact loss) P is affine and one Newton step
-    is exact. Converged when ‖(P(Y) − Y)/scale‖∞ ≤ ``tol``. Returns (Y, iterations, status, J):
-    status 1 converged after Newton steps, J the monodromy matrix of the last one (the caller
-    checks the orbit is stable: every eigenvalue inside the unit circle), 0 converged at Y0, −1
-    not converged (Y0 returned; the caller runs the physical-time transient). Shooting for
-    periodic responses of gear models: e.g. Kahraman & Blankenship 1997 (J. Appl. Mech. 64:217);
-    Parker et al. 2000 (J. Sound Vib. 237:435)."""
-    n2 = Y0.size
-    Y = Y0.copy()
-    J = np.zeros((n2, n2))
     eye = np.eye(n2)
-    P = np.empty((1, n2))
-    T = np.empty((1, n2, n2))
-    last = np.inf
-    for it in range(max_iter + 1):
-        P[0] = Y
-        if it == 0:  # the first period brings its monodromy matrix along (the same trajectory, bit for bit)
-            T[0] = eye
-            _advance(P, T, 1, 0, *loop)
-        else:
-            _advance(P, no_tangent, 1, 0, *loop)
-        r = P[0] - Y
-        err = 0.0
-        for p in range(n2):
-            err = max(err, abs(r[p]) / scale[p])
-        if not np.isfinite(err):
-            return Y0.copy(), it, -1, J
-        if err <= tol:
-            return Y, it, 1 if it > 0 else 0, J
-        if it == max_iter:
-            break
-        if it == 0:
-            J[:] = T[0]
-        elif err > 0.5 * last:  # the chord iteration slowed down: the Jacobian at the current iterate
-            T[0] = eye
-            P[0] = Y
-            _advance(P, T, 1, 0, *loop)
-            J[:] = T[0]
-        A = J - eye
-        if not np.all(np.isfinite(A)) or abs(np.linalg.det(A)) == 0.0:
-            return Y0.copy(), it, -1, J
-        Y = Y - np.linalg.solve(A, r)
-        last = err
-    return Y0.copy(), max_iter, -1, J
-
-
-
-@njit(cache=True)
-def _shoot_speeds(Y0s, scales, tol, max_iter, no_tangent, kr, cr, B, G, f0, kind, tabs, c_force, c_enter, c_egap,
-                  c_estat, c_geom, cb, c_m, bl, ms, hs, ys, d_ref, first_part, acc_y, acc_m, ser_t, ser_d, ser_f,
-                  ser_y, ser_v, ser_e):
-    """:func:`_shoot` at each speed s (stage tables tabs[s], m = ms[s], Δt = hs[s]) from Y0s[s] with
-    residual scale scales[s]: (states (S, 2n), iterations (S,), status (S,), monodromy (S, 2n, 2n))."""
-    S, n2 = Y0s.shape
-    Ys = np.empty((S, n2))
-    its = np.empty(S, dtype=np.int64)
-    status = np.empty(S, dtype=np.int64)
-    Js = np.empty((S, n2, n2))
-    for k in range(S):
-        Y, it, st, J = _shoot(Y0s[k], scales[k], tol, max_iter, no_tangent, kr, cr, B, G, f0, kind, tabs[k], c_force,
-                              c_enter, c_egap, c_estat, c_geom, cb, c_m, bl, ms[k], hs[k], ys, d_ref, first_part,
-                              acc_y, acc_m, False, ser_t, ser_d, ser_f, ser_y, ser_v, ser_e)
-        Ys[k] = Y
-        its[k] = it
-        status[k] = st
-        Js[k] = J
-    return Ys, its, status, Js
-
-
-@njit(cache=True)
-def _record_speeds(Ys, cycles, n_rec, no_tangent, kr, cr, B, G, f0, kind, tabs, c_force, c_enter, c_egap, c_estat,
-                   c_geom, cb, c_m, bl, ms, hs, ys, d_ref, first_part, acc_y, acc_m, ser_t, ser_d, ser_f, ser_y, ser_v,
-                   ser_e):
-    """:func:`_advance` at each speed k: Ys[k] by cycles[k] periods, the last n_rec[k] recorded into
-    acc_y[k], acc_m[k] (no series)."""
+    J = np.empty((n2, n2))
+    J_last = np.zeros((n2, n2))
+    idle_y = np.zeros((3, n))
+    idle_m = np.zeros((_NQ, nm))
+    with_tangent = Js.shape[0] > 0
     for k in range(Ys.shape[0]):
-        _advance(Ys[k:k + 1], no_tangent, cycles[k], n_rec[k], kr, cr, B, G, f0, kind, tabs[k], c_force, c_enter,
-                 c_egap, c_estat, c_geom, cb, c_m, bl, ms[k], hs[k], ys, d_ref, first_part, acc_y[k], acc_m[k], False,
-                 ser_t, ser_d, ser_f, ser_y, ser_v, ser_e)
+        tab, m, h, o = tabs[k], ms[k], hs[k], ser_start[k]
+        Y0 = Ys[k].copy()
+        Y = Y0.copy()
+        last = np.inf
+        it = 0
+        shoot = mode == _SHOOT
+        tangent = shoot or with_tangent  # the first shooting period brings its monodromy matrix along
+        while True:
+            # one pass: Y (and J) over ``periods`` mesh periods, the last ``recorded`` of them recorded
+            start = Y.copy()
+            if tangent:
+                if shoot:
+                    J[:] = eye
+                else:
+                    J[:] = Js[k]
+            periods, recorded = (1, 0) if shoot else (cycles[k], n_rec[k])
+            into_y = idle_y if shoot else acc_y[k]
+            into_m = idle_m if shoot else acc_m[k]
+            keep = series and not shoot
+            total = periods * m
+            rec0 = (periods - recorded) * m
+            half0 = (periods - recorded // 2) * m
+            if recorded > 0:
+                for i in range(nm):
+                    into_m[_F_MIN, i] = np.inf
+                    into_m[_F_MAX, i] = -np.inf
+                    into_m[_D_MIN, i] = np.inf
+                    into_m[_D_MAX, i] = -np.inf
+                    into_m[_TOUCH, i] = np.inf
+                    into_m[_IMPACT, i] = -np.inf
+                    prev_ok[i] = False
+            k_ser = 0
+            for step in range(total):
+                j0 = 2 * (step % m)
+                j2 = j0 + 2
+                if j2 == 2 * m:
+                    j2 = 0
+                # one classical RK4 step: stages at the half-step phase indices j0, j0 + 1 (twice), j2
+                for s in range(4):
+                    if s == 0:
+                        j = j0
+                        for p in range(n2):
+                            Yt[p] = Y[p]
+                    elif s == 3:
+                        j = j2
+                        for p in range(n2):
+                            Yt[p] = Y[p] + h * K[2, p]
+                    else:
+                        j = j0 + 1
+                        for p in range(n2):
+                            Yt[p] = Y[p] + 0.5 * h * K[s - 1, p]
+                    for i in range(nm):
+                        res = _mesh_force(Yt, j, i, G, kind, tab, c_force, du, cb, c_m, bl)
+                        F[i] = res[0]
+                        dF[i, 0] = res[8]
+                        dF[i, 1] = res[9]
+                        if s == 0:  # what the record needs of the state at the step's start
+                            rs[i, 0], rs[i, 1], rs[i, 2], rs[i, 3] = res[1], res[2], res[3], res[4]
+                            rs[i, 4], rs[i, 5], rs[i, 6] = res[5], res[6], res[7]
+                    if s == 0 and recorded > 0 and step >= rec0:  # the state at the step's start
+                        second = step >= half0
+                        for p in range(n):
+                            yc = Y[p] - ys[p]
+                            into_y[0, p] += yc
+                            into_y[1, p] += yc * yc
+                            into_y[2, p] += Y[n + p] * Y[n + p]
+                        for i in range(nm):
+                            Fi, d_i, gap_i, back_i, x, col, cw, over = (F[i], rs[i, 0], rs[i, 1], rs[i, 2], rs[i, 3],
+                                                                        int(rs[i, 4]), rs[i, 5], rs[i, 6])
+                            dc = d_i - d_ref[i]
+                            app = 0.0
+                            for q in range(n):
+                                app += G[i, q] * Y[q]
+                            ac = app - d_ref[i]
+                            into_m[_D_SUM, i] += dc
+                            into_m[_D_SQ, i] += dc * dc
+                            if second:
+                                into_m[_DH_SUM, i] += dc
+                                into_m[_DH_SQ, i] += dc * dc
+                            into_m[_A_SUM, i] += ac
+                            into_m[_A_SQ, i] += ac * ac
+                            into_m[_F_SUM, i] += Fi
+                            into_m[_F_SQ, i] += Fi * Fi
+                            into_m[_F_MIN, i] = min(into_m[_F_MIN, i], Fi)
+                            into_m[_F_MAX, i] = max(into_m[_F_MAX, i], Fi)
+                            into_m[_D_MIN, i] = min(into_m[_D_MIN, i], d_i)
+                            into_m[_D_MAX, i] = max(into_m[_D_MAX, i], d_i)
+                            into_m[_N_GAP, i] += gap_i
+                            into_m[_N_BACK, i] += back_i
+                            into_m[_OVERRUN, i] += over
+                            fe = 0.0
+                            if kind[i] == _CONTACT:
+                                pitch, dw = c_geom[i, 0], c_geom[i, 2]
+                                r = int(tab[0, i, j0])
+                                a = tab[1, i, j0]
+                                w = (r + a) * dw
+                                if gap_i == 0.0 and back_i == 0.0:
+                                    e0 = c_enter[i, r, col] + cw * (c_enter[i, r, col + 1] - c_enter[i, r, col])
+                                    e1 = c_enter[i, r + 1, col] + cw * (c_enter[i, r + 1, col + 1] - c_enter[i, r + 1, col])
+                                    fe = max(0.0, e0 + a * (e1 - e0)) / cb
+                                eg0 = c_egap[i, r]
+                                eg1 = c_egap[i, r + 1]
+                                hh = -np.inf
+                                if eg0 < np.inf and eg1 < np.inf:
+                                    hh = x - (eg0 + a * (eg1 - eg0))
+                                if prev_ok[i] and w >= prev_w[i]:
+                                    if prev_h[i] <= 0.0 and hh > 0.0:
+                                        wt = prev_w[i] + (w - prev_w[i]) * (-prev_h[i]) / (hh - prev_h[i])
+                                        into_m[_TOUCH, i] = min(into_m[_TOUCH, i], wt)
+                                elif hh > 0.0:  # a new window that starts in contact
+                                    into_m[_TOUCH, i] = min(into_m[_TOUCH, i], w)
+                                prev_h[i] = hh
+                                prev_w[i] = w
+                                prev_ok[i] = True
+                                if w <= (0.5 + first_part) * pitch:
+                                    quasi = (c_estat[i, r] + a * (c_estat[i, r + 1] - c_estat[i, r])) / cb
+                                    into_m[_E_MAX, i] = max(into_m[_E_MAX, i], fe)
+                                    into_m[_IMPACT, i] = max(into_m[_IMPACT, i], fe - quasi)
+                            if keep:
+                                ser_d[o + k_ser, i] = d_i
+                                ser_f[o + k_ser, i] = Fi
+                                ser_e[o + k_ser, i] = fe
+                        if keep:
+                            ser_t[o + k_ser] = (step - rec0) * h
+                            for p in range(n):
+                                ser_y[o + k_ser, p] = Y[p]
+                                ser_v[o + k_ser, p] = Y[n + p]
+                            k_ser += 1
+                    for p in range(n):
+                        K[s, p] = Yt[n + p]
+                        acc = f0[p] - (kr[p] * Yt[p] + cr[p] * Yt[n + p])
+                        for i in range(nm):
+                            acc -= B[p, i] * F[i]
+                        K[s, n + p] = acc
+                    if tangent:
+                        _tangent_stage(J, Jt, dK, s, h, n, kr, cr, B, G, dF, gp, gv)
+                for p in range(n2):
+                    Y[p] = Y[p] + (h / 6.0) * (K[0, p] + 2.0 * K[1, p] + 2.0 * K[2, p] + K[3, p])
+                if tangent:
+                    for p in range(n2):
+                        for c in range(n2):
+                            J[p, c] += (h / 6.0) * (dK[0, p, c] + 2.0 * dK[1, p, c] + 2.0 * dK[2, p, c] + dK[3, p, c])
+
+            if not shoot:
+                Ys[k] = Y
+                if with_tangent:
+                    Js[k] = J
+                break
+            resid = Y - start
+            err = 0.0
+            for p in range(n2):
+                err = max(err, abs(resid[p]) / scales[k, p])
+            if not np.isfinite(err) or it == max_iter and err > tol:
+                status[k], its[k] = -1, it
+                break
+            if err <= tol:
+                Ys[k], status[k], its[k] = start, 1 if it > 0 else 0, it
+                Js[k] = J_last
+                break
+            if tangent:
+                J_last[:] = J
+                tangent = False
+            elif err > 0.5 * last:  # the chord iteration slowed down: this period again, with its Jacobian
+                tangent = True
+                Y = start
+                continue
+            dY, regular = _solve(J_last - eye, resid)
+            if not regular:
+                status[k], its[k] = -1, it
+                break
+            Y = start - dY
+            last = err
+            it += 1
+
 
 class _Loop:
     """The compiled loop's per-model arguments (diagonal bearing matrices, mesh kinds, contact
@@ -587,38 +611,36 @@ class _Loop:
         self.head = (kr, cr, model.B, model.G, model.f0, self.kind)
         self.tail = (ct.force, ct.enter, ct.enter_gap, ct.enter_static, ct.geom, model.cos_beta_b,
                      np.asarray(model.damping, dtype=float), float(model.backlash))
-        self.idle = (np.zeros(model.n), np.zeros(model.m), FIRST_PART_AFTER_A, np.zeros((3, model.n)),
-                     np.zeros((_NQ, model.m)), False) + _series_buffers(0, model.n, model.m)
         self.no_tangent = np.zeros((0, 2 * model.n, 2 * model.n))
+        self.no_series = _series_buffers(0, model.n, model.m)
 
     def speed(self, m: int, f_mesh: float, dt: float) -> "_Speed":
         """The loop at one speed: m steps of ``dt`` (s) per mesh period of frequency ``f_mesh`` (Hz)."""
-        return _Speed(self, self.head + (_stage_tables(self.model, m, f_mesh),) + self.tail + (int(m), float(dt)))
+        return _Speed(self, _stage_tables(self.model, np.array([m]), np.array([f_mesh])), int(m), float(dt))
 
 
 class _Speed:
-    """The compiled loop at one speed: its arguments after (Ys, Js, cycles, n_rec)."""
+    """The compiled loop at one speed (:func:`_sweep` in its ``_PASS`` mode, row by row)."""
 
-    def __init__(self, loop: _Loop, args: tuple):
-        self.loop, self.args = loop, args
-
-    def shoot(self, Y0: np.ndarray, scale: np.ndarray, tol: float, max_iter: int):
-        """:func:`_shoot` at this speed."""
-        return _shoot(np.asarray(Y0, dtype=float), scale, float(tol), int(max_iter), self.loop.no_tangent, *self.args,
-                      *self.loop.idle)
+    def __init__(self, loop: _Loop, tabs: np.ndarray, m: int, dt: float):
+        self.loop, self.tabs, self.m, self.dt = loop, tabs, m, dt
 
     def run(self, Ys: np.ndarray, cycles: int, n_rec: int = 0, ys=None, d_ref=None, acc_y=None, acc_m=None,
             series=None, tangent: np.ndarray | None = None) -> None:
-        """Advance the rows of Ys (K, 2n) in place by ``cycles`` mesh periods; record the last
-        ``n_rec`` into acc_y, acc_m (and the ``series`` buffers) when given; advance each row's
-        ``tangent`` matrix (K, 2n, 2n) too when given (identity: the period map's Jacobian)."""
-        tangent = self.loop.no_tangent if tangent is None else tangent
+        """Advance each row of Ys (K, 2n) in place by ``cycles`` mesh periods (from mesh phase 0);
+        record the last ``n_rec`` of a single row into acc_y (3, n), acc_m (_NQ, meshes) (and the
+        ``series`` buffers) when given; advance each row's ``tangent`` matrix (K, 2n, 2n) too when
+        given (identity: the period map's Jacobian)."""
+        loop = self.loop
+        n, nm = loop.n, loop.nm
         if n_rec == 0:
-            _advance(Ys, tangent, int(cycles), 0, *self.args, *self.loop.idle)
-            return
-        ser = series if series is not None else self.loop.idle[-6:]
-        _advance(Ys, tangent, int(cycles), int(n_rec), *self.args, ys, d_ref, FIRST_PART_AFTER_A, acc_y, acc_m,
-                 series is not None, *ser)
+            ys, d_ref, acc_y, acc_m = np.zeros(n), np.zeros(nm), np.zeros((3, n)), np.zeros((_NQ, nm))
+        one = np.ones(1, dtype=np.int64)
+        for r in range(Ys.shape[0]):
+            _sweep(_PASS, Ys[r:r + 1], loop.no_tangent if tangent is None else tangent[r:r + 1],
+                   np.ones((1, 2 * n)), 0.0, 0, int(cycles) * one, int(n_rec) * one, one.copy(), one.copy(), *loop.head,
+                   self.tabs, *loop.tail, self.m * one, np.array([self.dt]), ys, d_ref, FIRST_PART_AFTER_A,
+                   acc_y[None], acc_m[None], series is not None, 0 * one, *(series or loop.no_series))
 
 
 def _series_buffers(k: int, n: int, nm: int) -> tuple:
@@ -664,33 +686,35 @@ def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSetti
     cycles_before = n_tr.copy()
     start = np.zeros((S, 2 * n))
     start[:, :n] = ys
-    idle_ys, idle_ref, _, idle_y, idle_m, _, *idle_series = loop.idle
-    # all speeds in one compiled call, or one at a time to report progress or keep the series
-    chunks = [slice(0, S)] if progress is None and not series else [slice(k, k + 1) for k in range(S)]
+    # all speeds in two compiled calls, or a speed at a time to report progress (a series records
+    # the periodic window's length, known after the shooting)
+    chunks = [slice(0, S)] if progress is None else [slice(k, k + 1) for k in range(S)]
+    its, status, Js = np.full(S, -1, dtype=np.int64), np.full(S, -1, dtype=np.int64), np.zeros((S, 2 * n, 2 * n))
+    scales = scale[None, :] * (2 * np.pi * f_mesh[:, None]) ** np.repeat([0, 1], n)[None, :]
+    zero = np.zeros(S, dtype=np.int64)
     for sl in chunks:
         if settings.steady_state == "shooting":
-            scales = scale[None, :] * (2 * np.pi * f_mesh[sl, None]) ** np.repeat([0, 1], n)[None, :]
-            Ys, its, status, Js = _shoot_speeds(start[sl], scales, float(settings.shooting_tolerance),
-                                                int(settings.shooting_iterations), loop.no_tangent, *loop.head,
-                                                tabs[sl], *loop.tail, m[sl], dt[sl], idle_ys, idle_ref,
-                                                FIRST_PART_AFTER_A, idle_y, idle_m, *idle_series)
-            ok = status == 0
-            step = status == 1  # converged after Newton steps: the orbit must be stable
-            ok[step] = np.max(np.abs(np.linalg.eigvals(Js[step])), axis=1) < 1.0
+            shot = start[sl].copy()
+            _sweep(_SHOOT, shot, Js[sl], scales[sl], float(settings.shooting_tolerance),
+                   int(settings.shooting_iterations), zero[sl], zero[sl], its[sl], status[sl], *loop.head, tabs[sl],
+                   *loop.tail, m[sl], dt[sl], ys, d_ref, FIRST_PART_AFTER_A, acc_y[sl], acc_m[sl], False, zero[sl],
+                   *loop.no_series)
+            ok = status[sl] == 0
+            step = status[sl] == 1  # converged after Newton steps: the orbit must be stable
+            ok[step] = np.max(np.abs(np.linalg.eigvals(Js[sl][step])), axis=1) < 1.0
             k = np.flatnonzero(ok) + sl.start
-            start[k], periodic[k], iterations[k] = Ys[ok], Ys[ok], its[ok]
+            start[k], periodic[k], iterations[k] = shot[ok], shot[ok], its[k]
             cycles_before[k] = settings.settle_cycles
             n_rec[k] = settings.periodic_record_cycles or settings.record_cycles
+        rows = (n_rec[sl] * m[sl]) if series else zero[sl]
+        offsets = np.concatenate([[0], np.cumsum(rows)[:-1]]).astype(np.int64)
+        buffers = _series_buffers(int(rows.sum()), n, nm)
+        _sweep(_PASS, start[sl], loop.no_tangent, scales[sl], 0.0, 0, cycles_before[sl] + n_rec[sl], n_rec[sl],
+               its[sl], status[sl], *loop.head, tabs[sl], *loop.tail, m[sl], dt[sl], ys, d_ref, FIRST_PART_AFTER_A,
+               acc_y[sl], acc_m[sl], series, offsets, *buffers)
         if series:
-            s0 = sl.start
-            ser = _series_buffers(int(n_rec[s0] * m[s0]), n, nm)
-            _Speed(loop, loop.head + (tabs[s0],) + loop.tail + (int(m[s0]), float(dt[s0]))).run(
-                start[sl], int(cycles_before[s0] + n_rec[s0]), int(n_rec[s0]), ys, d_ref, acc_y[s0], acc_m[s0], ser)
-            out_series.append(dict(zip(("t", "delta", "F", "y", "v", "Fe"), ser)))
-        else:
-            _record_speeds(start[sl], cycles_before[sl] + n_rec[sl], n_rec[sl], loop.no_tangent, *loop.head, tabs[sl],
-                           *loop.tail, m[sl], dt[sl], ys, d_ref, FIRST_PART_AFTER_A, acc_y[sl], acc_m[sl],
-                           *idle_series)
+            for o, r in zip(offsets, rows):
+                out_series.append(dict(zip(("t", "delta", "F", "y", "v", "Fe"), (b[o:o + r] for b in buffers))))
         if progress is not None and cum[sl.stop - 1] >= report_next:
             progress(float(cum[sl.stop - 1]))
             report_next = float(cum[sl.stop - 1]) + 0.05
