@@ -451,8 +451,8 @@ def _touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau: 
     stiffness ΣdF/dδ there (N/m), g (m) and its face position z (m); ``near`` as :func:`_enter_gap`."""
     gap_e, z_e = _enter_gap(model, params, tau, lead, near)
     gap_o, comp = _others_at(model, params, lead, tau)
-    force, stiffness, _ = load_sums(gap_o, comp, gap_e[:, None], model.ltca.law)
-    return force[:, 0], stiffness[:, 0], gap_e, z_e
+    q, dq = _point_loads(model, gap_e[:, None], gap_o, comp)
+    return q.sum(axis=1), dq.sum(axis=1), gap_e, z_e
 
 
 # --------------------------------------------------------------------------------------
