@@ -16,7 +16,7 @@ the steady state over the static normal mesh force T_out/(r_b2 cos βb) (-): the
 method B. Its largest value over the speeds is the peak dynamic mesh force over the static one.
 
 Why the 8-DOF pair and not the torsional (rigid-bearing) model: with the compiled loop and the
-shooting solve one speed of the 8-DOF pair costs about 1 ms, as much as the torsional model, and
+shooting solve one speed of the 8-DOF pair costs about 0.2 ms, as much as the torsional model, and
 on the default pair the bearings move the mesh resonance from about 5000 r/min (torsional) to
 about 6500 r/min (8-DOF), so the torsional model would rank candidates on the wrong resonance.
 
