@@ -67,7 +67,7 @@ def compiled_sweeps(repeats: int) -> dict:
     speeds = _default_speeds(models)
     out = {}
     for name, model in models.items():
-        wall, cpu, res = _timed(lambda: dy.simulate(model, speeds), repeats)
+        wall, cpu, res, _ = _timed(lambda: dy.simulate(model, speeds), repeats)
         out[name] = (wall, cpu, {"force_max": res.force_max, "approach_std": res.approach_std},
                      int(np.sum(res.shooting_iterations < 0)))
     return out

@@ -13,8 +13,9 @@ the code before issue 17's kernel work (:mod:`bench_baseline`) in the same run.
   work, 2.3× faster).
 
 Each row: median_s (today), baseline_median_s (before), ratio, max_rel_diff of F_s, and the
-process CPU time of both (cpu_s, baseline_cpu_s: on a shared machine the wall time includes
-waiting for a core). Run by hand: ``python benchmarks/run.py impact``.
+process CPU time of both, median and least (cpu_s, cpu_min_s, baseline_…, cpu_min_ratio: on a
+machine shared with other work the wall time includes waiting for a core, and the least CPU time
+is the steadiest comparison). Run by hand: ``python benchmarks/run.py impact``.
 """
 
 from __future__ import annotations
@@ -31,7 +32,8 @@ TORQUE, SPEED = 1000.0, 5000.0
 
 
 def _timed(func, repeats: int, warm_up: bool = True):
-    """(median wall s, median CPU s, last result) of ``repeats`` calls (after one warm-up call)."""
+    """(median wall s, median CPU s, last result, least CPU s) of ``repeats`` calls (after one
+    warm-up call). On a machine shared with other work the least CPU time is the steadiest figure."""
     if warm_up:
         func()
     walls, cpus, result = [], [], None
@@ -40,7 +42,7 @@ def _timed(func, repeats: int, warm_up: bool = True):
         result = func()
         walls.append(time.perf_counter() - w0)
         cpus.append(time.process_time() - c0)
-    return float(np.median(walls)), float(np.median(cpus)), result
+    return float(np.median(walls)), float(np.median(cpus)), result, float(np.min(cpus))
 
 
 def evaluation_alone(repeats: int):
@@ -87,18 +89,19 @@ def robust_generation(repeats: int):
 
 def compare(name: str, new, old, evaluations: int = 1, **extra) -> dict:
     """A benchmark row: today's (wall, CPU, result) against the baseline's (or None)."""
-    wall, cpu, result = new
-    row = {"name": name, "median_s": wall, "cpu_s": cpu, **extra}
+    wall, cpu, result, cpu_min = new
+    row = {"name": name, "median_s": wall, "cpu_s": cpu, "cpu_min_s": cpu_min, **extra}
     if evaluations > 1:
         row.update({"evaluations": evaluations, "per_evaluation_s": wall / evaluations,
-                    "per_evaluation_cpu_s": cpu / evaluations})
+                    "per_evaluation_cpu_min_s": cpu_min / evaluations})
     if old is None:
         return {**row, "baseline": "none (no git history for the old code)"}
-    b_wall, b_cpu, reference = old
+    b_wall, b_cpu, reference, b_cpu_min = old
     a, b = np.asarray(result, dtype=float), np.asarray(reference, dtype=float)
     ok = np.isfinite(a) & np.isfinite(b) & (b != 0)
     return {**row, "baseline": BASELINE_NAME, "baseline_median_s": b_wall, "baseline_cpu_s": b_cpu,
-            "ratio": b_wall / wall, "cpu_ratio": b_cpu / cpu,
+            "baseline_cpu_min_s": b_cpu_min, "ratio": b_wall / wall, "cpu_ratio": b_cpu / cpu,
+            "cpu_min_ratio": b_cpu_min / cpu_min,
             "max_rel_diff": float(np.max(np.abs(a[ok] - b[ok]) / np.abs(b[ok]))) if ok.any() else float("nan"),
             "same_finite": bool(np.array_equal(np.isfinite(a), np.isfinite(b)))}
 

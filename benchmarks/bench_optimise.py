@@ -103,8 +103,8 @@ def bench_optimise(repeats: int = 3) -> list[dict]:
                     baseline_call("bench_optimise", "robust_generation", 1), evaluations=40)]
     new, old = study_runs(1), baseline_call("bench_optimise", "study_runs", 1)
     summary = lambda runs: np.array([runs[k][2] for k in ("optimised", "design_point")])  # noqa: E731
-    row = compare("default_study_ga_runs", (new[0], new[1], summary(new[2])),
-                  None if old is None else (old[0], old[1], summary(old[2])),
+    row = compare("default_study_ga_runs", (new[0], new[1], summary(new[2]), new[3]),
+                  None if old is None else (old[0], old[1], summary(old[2]), old[3]),
                   runs="optimised (robust, dynamic constraint, 30 x 12) + design_point (40 x 30)")
     if old is not None:
         row["same_path"] = all(np.array_equal(new[2][k][0], old[2][k][0], equal_nan=True) for k in new[2])
