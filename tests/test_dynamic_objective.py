@@ -66,6 +66,38 @@ def test_population_member_equals_the_pair_with_that_modification_run_alone(pair
         assert kv[0, t] == pytest.approx(res.force_max[0].max() / model.static_force[0], rel=1e-12)
 
 
+def test_models_share_cached_matrices_only_where_their_inputs_are_equal(geom, setup):
+    """The reduced matrices a population reuses (gearmesh.dynamics.model: keyed by the bytes of the
+    masses, bearings, mesh geometry and torque) are the ones a fresh reduction gives, read-only,
+    shared by two members at one torque and not across torques; the modes cached on a model are
+    those recomputed at its mean stiffness; and the GA's evaluator returns for a repeated
+    candidate exactly what it returned the first time, evaluating it once."""
+    from gearmesh.dynamics import model as dm
+    from gearmesh.meshforce import tabulate
+
+    gaps = setup.layout.gaps(np.stack([np.zeros((2, 6)), RELIEF]), np.zeros((2, 2)))
+    tables = [tabulate(setup.layout, g, setup.force_max, 16) for g in gaps]
+    a, b = (pair_model(geom, 2400.0, None, contact=t, backlash=60e-6) for t in tables)
+    c = pair_model(geom, 900.0, None, contact=tables[0], backlash=60e-6)
+    assert a.Kr is b.Kr and a.B is b.B and a.f0 is b.f0 and c.f0 is not a.f0
+    assert not a.Kr.flags.writeable and a.meshes[0] is not b.meshes[0]
+    dm._REDUCED.clear()
+    fresh = pair_model(geom, 2400.0, None, contact=tables[0], backlash=60e-6)
+    for name in ("Kr", "Cr", "B", "G", "f0"):
+        assert fresh.__dict__[name] is not a.__dict__[name]
+        np.testing.assert_array_equal(fresh.__dict__[name], a.__dict__[name])
+    np.testing.assert_array_equal(b.modes()["eigenvalue"], b.modes(np.array([b.meshes[0].k_mean]))["eigenvalue"])
+    model = im.impact_model(geom, points=16, window_positions=24, face_samples=65)
+    prob = op.problem(model, op.check_settings(population=4, generations=1))
+    ev = op._Evaluator(prob)
+    genes = np.array([[g.low + 0.3 * (g.high - g.low) for g in prob.genes], [g.high for g in prob.genes]])
+    first = ev(genes)
+    again = ev(np.vstack([genes[::-1], genes[:1]]))
+    assert ev.count == 2
+    np.testing.assert_equal(again, [first[1], first[0], first[0]])
+    np.testing.assert_equal(op._Evaluator(prob)(genes[:1]), first[:1])  # a fresh cache: the same values
+
+
 def test_dynamic_factor_is_converged_in_the_table_and_exceeds_one(geom, setup):
     """The population's coarse table against the dynamics stage's default one (256 x 96 x 200):
     the dynamic factor of the unmodified pair within 0.5 %; a peak mesh force above the static one
