@@ -1,101 +1,30 @@
-"""Study configs: schema validation with defaults, and resolving pair names to pair files.
+"""Study configs: validation with defaults, resolving pair names to pair files, and the checks
+of everything a study needs before any job runs.
 
-The schema (``schemas/config.schema.yaml``, linked as ``workflow/schemas/``) is the one
-source of truth; Snakemake validates with it through ``snakemake.utils.validate`` and the
-CLI through :func:`validate_study`, both filling the defaults it declares.
+The settings a config may hold are declared once, typed, in :mod:`gearmesh.settings`; the
+study schema is built from them (and published as ``schemas/config.schema.yaml``, linked as
+``workflow/schemas/``). ``gearmesh validate`` and the Snakefile both judge a config with
+:func:`validate_study` and :func:`check_study`, filling the declared defaults.
 """
 
 from __future__ import annotations
 
-import copy
 import math
 from contextlib import contextmanager
-from importlib.resources import files
 from pathlib import Path
 from typing import Any, Iterator, Mapping
 
-import jsonschema
-import yaml
-
 from .errors import GearmeshInputError
 from .gear import GearPair, load_named_pair, pinion_torque, read_yaml
-
-SCHEMA_PATH = Path(str(files("gearmesh") / "schemas" / "config.schema.yaml"))
-
-
-def _with_defaults(validator_class):
-    """A validator that fills ``default`` values while it validates (jsonschema FAQ recipe)."""
-    validate_properties = validator_class.VALIDATORS["properties"]
-
-    def set_defaults(validator, properties, instance, schema):
-        if isinstance(instance, dict):
-            for name, sub in properties.items():
-                if "default" in sub and name not in instance:
-                    instance[name] = copy.deepcopy(sub["default"])
-        yield from validate_properties(validator, properties, instance, schema)
-
-    return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
-
-
-def load_schema() -> dict[str, Any]:
-    return yaml.safe_load(SCHEMA_PATH.read_text())
-
-
-def _schema_error(err: jsonschema.ValidationError) -> GearmeshInputError:
-    """One schema error as the field it is about: an unknown or missing key is named itself,
-    and the message loses its leading repr of the value (the error shows an excerpt)."""
-    path = [str(p) for p in err.path]
-    instance = err.instance
-    if err.validator == "additionalProperties" and err.validator_value is False and isinstance(instance, Mapping):
-        extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
-        if extra:
-            allowed = sorted(err.schema.get("properties", {}))
-            hint = " (YAML 1.1 reads on/off/yes/no as true/false: quote the key, e.g. \"on\")" \
-                if isinstance(extra[0], bool) else ""
-            return GearmeshInputError(".".join(path + [str(extra[0])]), instance[extra[0]],
-                                      f"unknown key{hint}; allowed keys are {allowed}")
-    if err.validator == "required" and isinstance(instance, Mapping):
-        missing = [k for k in err.validator_value if k not in instance]
-        if missing:
-            return GearmeshInputError(".".join(path + [missing[0]]), None, "is required")
-    message = err.message
-    head = repr(instance)
-    if message.startswith(head):
-        message = message[len(head):].strip()
-    return GearmeshInputError(".".join(path) or "config", instance if path else None, message)
-
-
-def _first_non_finite(data: Any, path: str = "") -> tuple[str, float] | None:
-    """The path and value of the first NaN or infinite number in a nested config (JSON schema
-    numbers accept both; no setting of a study may be either)."""
-    stack = [(path, data)]
-    while stack:
-        where, value = stack.pop()
-        if isinstance(value, float) and not math.isfinite(value):
-            return where or "config", value
-        if isinstance(value, Mapping):
-            stack += [(f"{where}.{k}" if where else str(k), v) for k, v in reversed(list(value.items()))]
-        elif isinstance(value, (list, tuple)):
-            stack += [(f"{where}[{i}]", v) for i, v in reversed(list(enumerate(value)))]
-    return None
+from .schema import validate
+from .settings import study_schema
 
 
 def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
     """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field
-    (a NaN or infinite number anywhere, then the schema's first error)."""
-    bad = _first_non_finite(config)
-    if bad:
-        raise GearmeshInputError(bad[0], bad[1], "must be a finite number")
-    schema = load_schema()
-    data = copy.deepcopy(dict(config))
-    validator = _with_defaults(jsonschema.Draft202012Validator)(schema)
-    errors = sorted(validator.iter_errors(data), key=lambda e: (len(e.path), list(map(str, e.path))))
-    if errors:
-        raise _schema_error(errors[0])
-    # Fill defaults a second time: nested defaults of objects created by the first pass.
-    for _ in validator.iter_errors(data):
-        pass
-    return data
+    (a NaN or infinite number anywhere, then the first error of the study schema,
+    :func:`gearmesh.settings.study_schema`)."""
+    return validate(config, study_schema())
 
 
 def load_study(path: str | Path) -> dict[str, Any]:

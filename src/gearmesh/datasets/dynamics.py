@@ -41,6 +41,8 @@ from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT
                          mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
 from ..tca import check_count, check_lead_slope
+from ..schema import check_arguments
+from ..settings import Dynamics, DynamicsComparison, TrainDynamics
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
 #: Seed 004: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
@@ -667,6 +669,7 @@ def _pair_sweep(pair: GearPair, model: GearModel, speeds: np.ndarray, grid: np.n
 _TORQUE_FREE = ("mesh_frequency", "on_grid", "frequency", "time")
 
 
+@check_arguments(Dynamics)
 def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      speeds_rpm: Mapping[str, float] | Sequence[float] | str = DEFAULT_SPEEDS,
                      backlash_um="pair",
@@ -797,6 +800,7 @@ def _engagement_roll(geom: PairGeometry) -> float:
     return engagement_point(geom)[0]
 
 
+@check_arguments(Dynamics)
 def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEFAULT_SPEEDS, on: str = "pinion",
                      progress=None, **settings: Any) -> list[dict[str, float]]:
     """Per speed (for the CLI): speed_rpm, mesh_frequency_Hz, dynamic_te_mean_um, dynamic_te_std_um,
@@ -841,6 +845,7 @@ _SOLVER_KEYS = {"courant": 0.25, "steps_per_cycle_min": 32, "transient_tau": 10.
 # --------------------------------------------------------------------------------------
 
 
+@check_arguments(TrainDynamics)
 def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_FORCE_N,
                   torque_Nm: float | None = None, speeds_rpm: Any = None,
                   mesh_frequency_Hz: float = SEED004_MESH_FREQUENCY_HZ, backlash_um="pair",
@@ -943,6 +948,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     return ds
 
 
+@check_arguments(DynamicsComparison)
 def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
                                 couples: Sequence[Sequence[str]] | None = None) -> xr.Dataset:
     """RMS changes between pairs over a common speed sweep (seed 001 §4–5, its comparisons).

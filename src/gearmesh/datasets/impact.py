@@ -22,6 +22,8 @@ from ..ltca import check_torques, pinion_torques
 from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
 from ..tolerance import apply_deviations, study_tolerances, unit_deviations
+from ..schema import check_arguments
+from ..settings import Impact
 
 UM = 1e-6
 
@@ -47,6 +49,7 @@ def _scenario_var(dims, scenario) -> xr.Variable:
                     flag_values=np.array([0, 1, 2], dtype=np.int8), flag_meanings=" ".join(SCENARIOS))
 
 
+@check_arguments(Impact)
 def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rpm=(5000.0,), on: str = "pinion",
                    design_speed_rpm: float = 5000.0, driver: str = "pinion", points: int = 50,
                    energy_velocity: str = "transverse", added_inertia_kg_m2=(0.0, 0.0), lead_slope_um=(0.0, 0.0),
@@ -338,6 +341,7 @@ def _table_spread(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, x
     }
 
 
+@check_arguments(Impact)
 def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", driver: str = "pinion",
                    points: int = 50, simulate: bool = False, energy_velocity: str = "transverse") -> dict[str, Any]:
     """Headline numbers of one impact in engineering units (the CLI's ``impact --json``)."""

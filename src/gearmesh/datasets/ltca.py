@@ -19,6 +19,8 @@ from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
 from ..ltca import LTCAResult, check_torques, ltca, pinion_torques
 from ..tca import DEFAULT_EXTENSION, TCAResult, check_lead_slope, check_modifications, tca
+from ..schema import check_arguments
+from ..settings import Ltca, Tca
 
 UM = 1e-6
 
@@ -90,6 +92,7 @@ def _coords(geom, res: TCAResult) -> dict[str, xr.Variable]:
     }
 
 
+@check_arguments(Tca)
 def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slope_um=(0.0, 0.0),
                 corner_extension: float = DEFAULT_EXTENSION) -> xr.Dataset:
     """Unloaded TCA over one mesh cycle (dims position, line, point): separations of every
@@ -107,6 +110,7 @@ def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slop
     return ds
 
 
+@check_arguments(Ltca)
 def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: int = 64, points: int = 50,
                  lead_slope_um=(0.0, 0.0), on: str = "pinion", contact_law: str = "palmgren",
                  method: str = "transition", corner_extension: float = DEFAULT_EXTENSION,
@@ -181,6 +185,7 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
     return ds
 
 
+@check_arguments(Ltca)
 def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int = 64, points: int = 50,
                  lead_slope_um=(0.0, 0.0), contact_law: str = "palmgren") -> dict[str, Any]:
     """Headline LTCA numbers at one torque in engineering units (the CLI's ``ltca --json``)."""

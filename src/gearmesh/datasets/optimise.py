@@ -32,6 +32,8 @@ from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positiv
                         problem)
 from ..surface import MODIFICATION_FIELDS
 from ..tolerance import study_tolerances
+from ..schema import check_arguments
+from ..settings import Optimise
 from .ltca import _geometry
 
 __all__ = ["optimise_dataset", "result_dataset", "optimum_pair", "optimise_summary", "run_settings", "run_problem",
@@ -54,6 +56,7 @@ def _window_top(geom, torques: tuple[float, ...]) -> float:
     return top
 
 
+@check_arguments(Optimise)
 def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", population: int = 40,
                  generations: int = 30, seed: int = 0, torque_Nm: float = 1000.0, on: str = "pinion",
                  speed_rpm: float = 5000.0, torques_Nm=None, statistic: str = "max",

@@ -24,6 +24,8 @@ from ..stiffness import (
     pair_slice_table,
     slice_compliance_table,
 )
+from ..schema import check_arguments
+from ..settings import SliceConvergence, Stiffness, StiffnessTable
 
 METHODS = ("traditional", "improved", "transition")
 
@@ -37,6 +39,7 @@ def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
     return gear_pinion_torque(geom.pair, torque_Nm, on)
 
 
+@check_arguments(Stiffness)
 def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
                       positions: int = 360, fourier_order: int = 3, torque_Nm: float | None = None,
                       torque_on: str = "pinion", fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
@@ -102,6 +105,7 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
     return ds
 
 
+@check_arguments(Stiffness)
 def stiffness_summary(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
                       positions: int = 360, torque_Nm: float | None = None, torque_on: str = "pinion") -> dict[str, Any]:
     """Headline stiffness numbers in one unit family, N, mm, µm, the unit in every key (the CLI's
@@ -144,6 +148,7 @@ def apply_variant(pair: GearPair, name: str, overrides: Mapping[str, Any]) -> Ge
     return pair_with_contact_ratios(pair_from_dict(data), **targets)
 
 
+@check_arguments(StiffnessTable)
 def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str] = ("transition",),
                             variants: Mapping[str, Mapping[str, Any]] | None = None,
                             slices: int = DEFAULT_SLICES, positions: int = 360, torque_Nm: float | None = None,
@@ -197,6 +202,7 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str
     return ds
 
 
+@check_arguments(SliceConvergence)
 def slice_convergence_dataset(pairs: Mapping[str, GearPair], slices: Sequence[int] = (25, 50, 100, 200, 400, 1000),
                               method: str = "transition", positions: int = 360) -> xr.Dataset:
     """K statistics against the slice count for both slice rules (seed 004 argues N = 1000):
