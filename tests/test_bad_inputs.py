@@ -303,7 +303,7 @@ BAD_ARGS = [
     ("optimise dynamic factor zero", ["optimise", "--torque-Nm", "100", "--dynamic-factor", "0"],
      "constraints.dynamic_factor"),
     ("optimise robust single point", ["optimise", "--torque-Nm", "100", "--objective", "robust"], "objective"),
-    ("optimise samples -1", ["optimise", "--torque-Nm", "100", "--tolerance-samples", "-1"], "tolerance_samples"),
+    ("optimise samples -1", ["optimise", "--torque-Nm", "100", "--tolerance-samples", "-1"], "tolerances.samples"),
     ("optimise samples text", ["optimise", "--torque-Nm", "100", "--tolerance-samples", "x"], "--tolerance-samples"),
     ("optimise grade 0", ["optimise", "--torque-Nm", "100", "--tolerance-samples", "4", "--grade", "0"],
      "tolerances.grade"),

@@ -119,11 +119,12 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
-    from .datasets.dynamics import check_dynamics_settings, dynamics_summary, positive_torque
+    from .datasets.dynamics import check_dynamics_settings, dynamics_summary, parse_speeds, positive_torque
 
     positive_torque("torque_Nm", args.torque_Nm)
     pair, geom = _pair(args.pair, args)
-    check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
+    speeds = parse_speeds(args.speeds)
+    check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": speeds,
                                    "backlash_um": args.backlash_um, "sample_speeds_rpm": [],
                                    "excitation": args.excitation})
     excitation = {"excitation": args.excitation}
@@ -132,13 +133,34 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
 
         torque_1 = pinion_torque(pair, args.torque_Nm, args.on)
         excitation["ltca"] = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion", positions=64, points=30)
-    rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
+    rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=speeds, on=args.on,
                             backlash_um=args.backlash_um, progress=_progress(), **excitation)
     backlash = geom.backlash_normal * 1e6 if args.backlash_um == "pair" else args.backlash_um
     return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on,
             "pinion_torque_Nm": float(pinion_torque(pair, args.torque_Nm, args.on)), "excitation": args.excitation,
             "backlash_um": backlash, "backlash_source": "pair" if args.backlash_um == "pair" else "given",
             "speeds": rows}
+
+
+def cmd_schema(args: argparse.Namespace) -> None:
+    """Print the JSON schema of a study config or a pair file, or their keys as Markdown tables
+    (:mod:`gearmesh.settings`: the files published under ``schemas/`` and ``config/README.md``)."""
+    from .settings import pair_reference, pair_schema, pair_schema_text, study_reference, study_schema, study_schema_text
+
+    form = args.format or ("yaml" if args.kind == "study" else "json")
+    if form == "markdown":
+        text = study_reference() if args.kind == "study" else pair_reference()
+    elif form == "json":
+        text = pair_schema_text() if args.kind == "pair" else json.dumps(study_schema(), indent=2, ensure_ascii=False) + "\n"
+    else:
+        text = study_schema_text() if args.kind == "study" else yaml_text(pair_schema())
+    sys.stdout.write(text)
+
+
+def yaml_text(data: Any) -> str:
+    import yaml
+
+    return yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=110, default_flow_style=None)
 
 
 def _backlash_option(text: str):
@@ -283,6 +305,13 @@ def build_parser() -> argparse.ArgumentParser:
 
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 
+    p = sub.add_parser("schema", help="print the JSON schema of a study config or a pair file (for editors), or "
+                       "every key as a Markdown table")
+    p.add_argument("kind", choices=("study", "pair"), help="study config or pair file")
+    p.add_argument("--format", choices=("yaml", "json", "markdown"), default=None,
+                   help="default: yaml for a study (workflow/schemas/config.schema.yaml), json for a pair")
+    p.set_defaults(func=cmd_schema)
+
     p = _command(sub, "stiffness", cmd_stiffness,
                  "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
     p.add_argument("--method", choices=("traditional", "improved", "transition", "fe"), default="transition",
@@ -381,6 +410,8 @@ def main(argv: Sequence[str] | None = None) -> int:
             if value is not None and not math.isfinite(value):
                 raise GearmeshInputError(option, value, "must be a finite number")
         result = args.func(args)
+        if result is None:  # the command printed its own output
+            return 0
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)
         if args.command == "validate" and args.json:

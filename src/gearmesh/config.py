@@ -47,7 +47,8 @@ def workflow_config(config: Mapping[str, Any], configfiles: list[str | Path]) ->
 
 
 def pair_path(config: Mapping[str, Any], name: str, root: str | Path = ".") -> Path:
-    return Path(root) / config.get("pairs_dir", "config/pairs") / f"{name}.yaml"
+    """The pair file of pair ``name`` of a validated study config."""
+    return Path(root) / config["pairs_dir"] / f"{name}.yaml"
 
 
 def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, GearPair]:
@@ -111,22 +112,22 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     if lste_comparison_wanted(config):
         stiffness, ltca = config["stiffness"], config["ltca"]
         for name in config["pairs"]:
-            t_k = pinion_torque(pairs[name], stiffness["torque_Nm"], stiffness.get("torque_on", "pinion"))
+            t_k = pinion_torque(pairs[name], stiffness["torque_Nm"], stiffness["torque_on"])
             if not _among(t_k, pairs[name], ltca):
                 raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                          f"must include the stiffness LSTE torque ({stiffness['torque_Nm']} N m on "
-                                         f"the {stiffness.get('torque_on', 'pinion')}) for the LSTE comparison")
+                                         f"the {stiffness['torque_on']}) for the LSTE comparison")
     dyn = config.get("dynamics", {})
     if "dynamics" in config and "ltca" in config and dyn.get("excitation") in (None, "ltca"):
         ltca = config["ltca"]
-        torques = dyn.get("torques_Nm", 200.0)
+        torques = dyn["torques_Nm"]
         for name in config["pairs"]:
             for t in torques if isinstance(torques, list) else [torques]:
-                t_d = pinion_torque(pairs[name], t, dyn.get("on", "pinion"))
+                t_d = pinion_torque(pairs[name], t, dyn["on"])
                 if not _among(t_d, pairs[name], ltca):
                     raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                              f"must include the dynamics torque ({t} N m on the "
-                                             f"{dyn.get('on', 'pinion')}): the LTCA excites the dynamics")
+                                             f"{dyn['on']}): the LTCA excites the dynamics")
     if "dynamics" in config and dyn.get("excitation") == "ltca" and "ltca" not in config:
         raise GearmeshInputError("dynamics.excitation", "ltca", "needs an ltca section in the study")
     _check_impact(config.get("impact"))
@@ -160,7 +161,6 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     from .gear import pair_geometry
     from .limits import (MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, MAX_SWEEP_ANGLES, check_grid,
                          check_load)
-    from .tca import check_lead_slope
 
     geoms = {name: pair_geometry(pair) for name, pair in pairs.items()}
 
@@ -186,16 +186,12 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     for section in ("tca", "ltca"):
         if section in config:
             sec = config[section]
-            with _section(section):
-                check_lead_slope(sec["lead_slope_um"])
             check_grid(f"{section}.points", sec["points"], (sec["positions"] + 1) * sec["points"],
                        MAX_CONTACT_POINTS, "contact candidates per line")
     if "ltca" in config:
         loads("ltca", "torques_Nm", config["ltca"]["on"], config["pairs"])
     if "impact" in config:
         loads("impact", "torques_Nm", config["impact"]["on"], config["pairs"])
-        with _section("impact"):
-            check_lead_slope(config["impact"]["lead_slope_um"])
     for run, section in (config.get("optimise") or {}).items():
         for key in ("torque_Nm", "torques_Nm"):
             values = section.get(key)
@@ -238,25 +234,25 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
 
 def _check_impact(impact: Mapping[str, Any] | None) -> None:
     """The impact map's design speed is one of its speeds, its design torque and its simulated torques are
-    among its torques."""
+    among its torques (``impact``: the validated section, defaults filled)."""
     if not impact:
         return
-    speeds = impact.get("speeds_rpm", [5000])
-    if not any(abs(v - impact.get("design_speed_rpm", 5000)) <= 1e-9 * v for v in speeds):
-        raise GearmeshInputError("impact.design_speed_rpm", impact.get("design_speed_rpm", 5000),
+    speeds = impact["speeds_rpm"]
+    if not any(abs(v - impact["design_speed_rpm"]) <= 1e-9 * v for v in speeds):
+        raise GearmeshInputError("impact.design_speed_rpm", impact["design_speed_rpm"],
                                  f"must be one of impact.speeds_rpm {speeds}")
-    torques = impact.get("torques_Nm", [400, 1000, 1600])
-    design = impact.get("design_torque_Nm")
+    torques = impact["torques_Nm"]
+    design = impact["design_torque_Nm"]
     if design is not None and not any(abs(v - design) <= 1e-9 * v for v in torques):
         raise GearmeshInputError("impact.design_torque_Nm", design, f"must be one of impact.torques_Nm {torques}")
-    for k, t in enumerate(impact.get("simulate_torques_Nm", [])):
+    for k, t in enumerate(impact["simulate_torques_Nm"]):
         if not any(abs(v - t) <= 1e-9 * v for v in torques):
             raise GearmeshInputError(f"impact.simulate_torques_Nm[{k}]", t, f"must be one of impact.torques_Nm {torques}")
 
 
 def _among(t1: float, pair: GearPair, ltca: Mapping[str, Any]) -> bool:
     """Whether pinion torque ``t1`` is one of the LTCA's torques (as pinion torques)."""
-    return any(abs(pinion_torque(pair, t, ltca.get("on", "pinion")) - t1) <= 1e-9 * t1 for t in ltca["torques_Nm"])
+    return any(abs(pinion_torque(pair, t, ltca["on"]) - t1) <= 1e-9 * t1 for t in ltca["torques_Nm"])
 
 
 def lste_comparison_wanted(config: Mapping[str, Any]) -> bool:

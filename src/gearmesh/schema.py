@@ -499,6 +499,9 @@ def _array_words(schema: Mapping[str, Any]) -> str:
     count = (f"{lo}" if lo is not None and lo == hi else f"{lo}–{hi}" if lo is not None and hi is not None
              else f"≥ {lo}" if lo is not None else f"≤ {hi}" if hi is not None else "")
     item = _type_words(schema.get("items", {}))
+    head, _, rest = item.partition(" ")
+    if head in ("integer", "number", "string", "list", "mapping"):
+        item = f"{head}s{' ' + rest if rest else ''}"
     unique = ", distinct" if schema.get("uniqueItems") else ""
     return f"list of {count + ' ' if count else ''}{item}{unique}"
 
@@ -516,6 +519,8 @@ def _flow(value: Any) -> str:
     """A value as YAML flow text."""
     if value is None:
         return "null"
+    if value == "":
+        return '""'
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, float):

@@ -34,6 +34,11 @@ NAME_LENGTH = 64
 Method = Literal["traditional", "improved", "transition", "fe"]
 Gear = Literal["pinion", "gear"]
 ContactLaw = Literal["palmgren", "linear"]
+#: What drives the 8-DOF pair (:mod:`gearmesh.dynamics`); how each speed reaches its steady state.
+PairExcitation = Literal["tvms", "lste", "ltca", "contact"]
+SteadyState = Literal["shooting", "transient"]
+#: Lead slope deviations (µm over the face width) the contact models take (:func:`gearmesh.tca.check_lead_slope`).
+LEAD_SLOPE_BOUNDS_UM = {"minimum": -1000, "maximum": 1000}
 
 _METHOD = ("slice model of the tooth compliance: traditional, improved or transition (hob fillet) potential-energy "
            "cantilever, or fe (2-D finite elements)")
@@ -125,7 +130,7 @@ class Tca:
     STAGES: ClassVar = ("gearmesh.datasets.ltca:tca_dataset",)
     positions: int = setting(64, "rotation positions over one mesh cycle", minimum=8, maximum=10000)
     points: int = setting(50, "points per contact line", minimum=2, maximum=2000)
-    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD)
+    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD, **LEAD_SLOPE_BOUNDS_UM)
     corner_extension: float = setting(0.25, _CORNER, minimum=0, maximum=1)
 
 
@@ -139,7 +144,7 @@ class Ltca:
     on: Gear = setting("pinion", "the gear the torques act on")
     positions: int = setting(64, "rotation positions over one mesh cycle", minimum=8, maximum=10000)
     points: int = setting(50, "points per contact line", minimum=2, maximum=2000)
-    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD)
+    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD, **LEAD_SLOPE_BOUNDS_UM)
     contact_law: ContactLaw = setting("palmgren", _LAW)
     method: Method = setting("transition", _METHOD)
     corner_extension: float = setting(0.25, _CORNER, minimum=0, maximum=1)
@@ -169,7 +174,7 @@ class Impact:
     simulate_torques_Nm: tuple[float, ...] = setting(
         (), "torques (among torques_Nm) whose engagement is also integrated in time at the design speed",
         exclusive_minimum=0, max_items=20)
-    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD)
+    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD, **LEAD_SLOPE_BOUNDS_UM)
     contact_law: ContactLaw = setting("palmgren", _LAW)
     method: Method = setting("transition", _METHOD)
     corner_extension: float = setting(0.25, _CORNER, minimum=0, maximum=1)
@@ -319,12 +324,12 @@ class _Dynamics:
     contact_law: ContactLaw = setting("palmgren", _LAW + " (contact table)")
     points: int = setting(200, "points per contact line of the contact table (the first touch at the face-end "
                                "corner converges as 1/points)", minimum=2, maximum=2000)
-    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD + " (contact table)")
+    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD + " (contact table)", **LEAD_SLOPE_BOUNDS_UM)
     table_positions: int = setting(256, "positions per mesh cycle of the contact table", minimum=16, maximum=100000)
     table_approaches: int = setting(96, "approaches of the contact table", minimum=8, maximum=100000)
     table_force_factor: float = setting(4.0, "the contact table reaches this many times the largest static force",
                                         exclusive_minimum=1, maximum=100)
-    steady_state: Literal["shooting", "transient"] = setting(
+    steady_state: SteadyState = setting(
         "shooting", "shooting: the periodic steady state by Newton's method on the one-period map (the transient "
         "where it fails); transient: wait out transient_tau time constants")
     courant: float = setting(0.25, "bound on ω_max·Δt of the RK4 step", exclusive_minimum=0, maximum=1)
@@ -353,7 +358,7 @@ class Dynamics(_Dynamics):
     speeds_rpm: SpeedRange | tuple[float, ...] = setting(SpeedRange(start=500, stop=50000, step=100),
                                                          "pinion speeds of the sweep: {start, stop, step} or a list",
                                                          exclusive_minimum=0, min_items=1)
-    excitation: Literal["tvms", "lste", "ltca", "contact"] | None = setting(
+    excitation: PairExcitation | None = setting(
         None, "contact: the mesh force of the real tooth contact (every tooth pair, tip edges, modifications: the "
         "mesh-in impact happens in the simulation); ltca: the LTCA's loaded stiffness and error; tvms: k(t) with the "
         "unloaded transmission error; lste: e = F/K(t) as the low-fluctuation source does (counts the fluctuation "
@@ -423,7 +428,7 @@ class LowFluctuationDesign:
     """Integer-overlap-ratio designs of some pairs: the helix angle (forward and backward) or face
     width that makes the overlap ratio an integer (low_fluctuation_design.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.geometry:low_fluctuation_design_dataset",)
+    STAGES: ClassVar = ()  # its one key is the pairs the workflow gathers (low_fluctuation_design_dataset)
     pairs: tuple[str, ...] = setting(REQUIRED, _PAIRS, min_items=1, pattern=NAME, max_length=NAME_LENGTH,
                                      workflow=True)
 
@@ -615,27 +620,34 @@ def pair_schema_text() -> str:
 def study_reference() -> str:
     """``config/README.md``: every study key, section by section (the Snakemake workflow
     catalog's convention of a config README)."""
-    lines = [
-        "# Configuration",
-        "",
-        f"<!-- {_GENERATED.format(what='study --format markdown')} -->",
-        "",
+    return _reference(Study, "Configuration", "study --format markdown", [
         "A study config (`config/config.yaml`, the default study, or one of `config/studies/*.yaml`",
         "with `--configfile`) says which gear pairs to run, which stages and how finely. Run",
         "`gearmesh validate FILE` to check one: it fills the defaults below and refuses a bad key",
         "or value with one line naming it. Gear pairs are files `config/pairs/NAME.yaml`",
-        "(`gearmesh schema pair` prints their schema). Units are in the key names; a value",
-        "left out takes its default; a section left out is a stage that does not run, except",
+        "(`gearmesh schema pair --format markdown` lists their keys). Units are in the key names; a",
+        "value left out takes its default; a section left out is a stage that does not run, except",
         "`geometry`, `contact_lines`, `stiffness` and `variants`, which every study has.",
         "",
         "Editors complete and check a config with the schema `workflow/schemas/config.schema.yaml`",
         "(for the YAML language server: `# yaml-language-server: $schema=../workflow/schemas/config.schema.yaml`",
         "as the first line of `config/config.yaml`).",
-        "",
-        "## Study",
-        "",
-        *markdown_table(Study),
-    ]
-    for path, cls in stage_sections():
+    ])
+
+
+def pair_reference() -> str:
+    """Every key of a pair file as Markdown tables."""
+    return _reference(PairFile, "Gear pair files", "pair --format markdown", [
+        "A pair file `NAME.yaml` describes one helical gear pair as designed. `gearmesh validate FILE`",
+        "checks it, the physics included (contact ratio, interference, centre distance), which no",
+        "schema can; editors complete and check its form with `gearmesh schema pair` (JSON schema).",
+    ])
+
+
+def _reference(root: type, title: str, command: str, intro: list[str]) -> str:
+    """Markdown: a title, ``intro``, the keys of ``root`` and of each nested section."""
+    lines = [f"# {title}", "", f"<!-- {_GENERATED.format(what=command)} -->", "", *intro, "",
+             f"## {'Study' if root is Study else 'Pair'}", "", *markdown_table(root)]
+    for path, cls in nested_sections(root):
         lines += ["", f"## `{path}`", "", description_of(cls), "", *markdown_table(cls, prefix=f"{path}.")]
     return "\n".join(lines) + "\n"

@@ -22,7 +22,7 @@ from ..ltca import check_torques, pinion_torques
 from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
 from ..tolerance import apply_deviations, study_tolerances, unit_deviations
-from ..schema import check_arguments
+from ..schema import check_arguments, defaults
 from ..settings import Impact
 
 UM = 1e-6
@@ -350,7 +350,9 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", dri
             raise GearmeshInputError(name, value, "must be one positive number")
     if driver not in DRIVERS:
         raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")
-    model = _model(pair, points, (0.0, 0.0), "palmgren", "transition", 0.25, driver, (0.0, 0.0))
+    d = defaults(Impact)  # the study's impact model where the CLI gives no option
+    model = _model(pair, points, d["lead_slope_um"], d["contact_law"], d["method"], d["corner_extension"], driver,
+                   d["added_inertia_kg_m2"], d["window_positions"], d["face_samples"])
     geom = model.geom
     t1 = pinion_torques(geom, [torque_Nm], on, field="torque_Nm")
     speed = check_speeds([speed_rpm], "speed_rpm")
