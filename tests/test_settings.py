@@ -318,3 +318,26 @@ def test_the_json_study_schema_is_the_yaml_one(capsys):
 
     assert main(["schema", "study", "--format", "json"]) == 0
     assert json.loads(capsys.readouterr().out) == study_schema()
+
+
+# --------------------------------------------------------------------------------------
+# The workflow's default profile
+# --------------------------------------------------------------------------------------
+
+
+def test_snakemake_applies_the_default_profile_without_a_flag(monkeypatch, capsys):
+    """Snakemake's own command-line parsing, in the repository: the workflow profile is found
+    (profiles/default, the link to workflow/profiles/default) and gives the cores a bare
+    `snakemake` needs; `--cores 2`, as the README says, overrides it."""
+    pytest.importorskip("snakemake")
+    from snakemake.cli import parse_args
+    from snakemake.utils import available_cpu_count
+
+    assert (ROOT / "profiles/default/config.yaml").resolve() == (ROOT / "workflow/profiles/default/config.yaml").resolve()
+    monkeypatch.chdir(ROOT)
+    _, args = parse_args(["--dry-run"])
+    assert "workflow specific profile profiles/default" in capsys.readouterr().err
+    assert args.cores == available_cpu_count()
+    assert args.rerun_incomplete
+    _, args = parse_args(["--dry-run", "--cores", "2"])
+    assert args.cores == 2
