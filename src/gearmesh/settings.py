@@ -47,6 +47,45 @@ _CORNER = "candidate tip-edge contacts beyond the active zone, in transverse bas
 _LAW = "local contact law: palmgren (F ∝ δ^1.11 per slice) or linear"
 
 
+# Settings that several sections have, declared once each (a fresh dataclass field per call).
+
+def _method(extra: str = "") -> Any:
+    return setting("transition", _METHOD + extra)
+
+
+def _slices() -> Any:
+    return setting(200, "slices over the face width", minimum=1, maximum=20000)
+
+
+def _positions(default: int = 360, maximum: int = 100000, what: str = "") -> Any:
+    return setting(default, f"rotation positions over one mesh cycle{what}", minimum=8, maximum=maximum)
+
+
+def _points(default: int = 50, what: str = "") -> Any:
+    return setting(default, f"points per contact line{what}", minimum=2, maximum=2000)
+
+
+def _lead_slope(what: str = "") -> Any:
+    return setting((0.0, 0.0), _LEAD + what, **LEAD_SLOPE_BOUNDS_UM)
+
+
+def _contact_law(what: str = "") -> Any:
+    return setting("palmgren", _LAW + what)
+
+
+def _corner_extension() -> Any:
+    return setting(0.25, _CORNER, minimum=0, maximum=1)
+
+
+def _torque_on() -> Any:
+    return setting("pinion", "the gear torque_Nm acts on")
+
+
+def _pairs() -> Any:
+    return setting(REQUIRED, "the pairs (names in pairs_dir)", min_items=1, pattern=NAME, max_length=NAME_LENGTH,
+                   workflow=True)
+
+
 @dataclass(frozen=True, kw_only=True)
 class SpeedRange:
     """Speeds from start to stop (included) in steps of step."""
@@ -78,8 +117,7 @@ class ContactLines:
     """Contact lines in the plane of action and their total length over one mesh cycle (contact_lines.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.geometry:contact_lines_dataset",)
-    positions: int = setting(360, "rotation positions over one mesh cycle (one transverse base pitch)", minimum=8,
-                             maximum=100000)
+    positions: int = _positions(what=" (one transverse base pitch)")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -88,13 +126,13 @@ class Stiffness:
     ISO 6336-1's value; with a torque the loaded static transmission error F/K (stiffness.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.stiffness:stiffness_dataset",)
-    method: Method = setting("transition", _METHOD)
-    slices: int = setting(200, "slices over the face width", minimum=1, maximum=20000)
-    positions: int = setting(360, "rotation positions over one mesh cycle", minimum=8, maximum=100000)
+    method: Method = _method()
+    slices: int = _slices()
+    positions: int = _positions()
     fourier_order: int = setting(3, "order of the Fourier series fitted to K(φ)", minimum=0, maximum=30)
     torque_Nm: float | None = setting(None, "torque of the loaded static transmission error F/K(φ); left out: none",
                                       exclusive_minimum=0, fill=False)
-    torque_on: Gear = setting("pinion", "the gear torque_Nm acts on")
+    torque_on: Gear = _torque_on()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -128,10 +166,10 @@ class Tca:
     """Unloaded tooth contact analysis of every pair and variant over one mesh cycle (tca.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.ltca:tca_dataset",)
-    positions: int = setting(64, "rotation positions over one mesh cycle", minimum=8, maximum=10000)
-    points: int = setting(50, "points per contact line", minimum=2, maximum=2000)
-    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD, **LEAD_SLOPE_BOUNDS_UM)
-    corner_extension: float = setting(0.25, _CORNER, minimum=0, maximum=1)
+    positions: int = _positions(64, 10000)
+    points: int = _points()
+    lead_slope_um: tuple[float, float] = _lead_slope()
+    corner_extension: float = _corner_extension()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -142,12 +180,12 @@ class Ltca:
     STAGES: ClassVar = ("gearmesh.datasets.ltca:ltca_dataset",)
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques", exclusive_minimum=0, min_items=1)
     on: Gear = setting("pinion", "the gear the torques act on")
-    positions: int = setting(64, "rotation positions over one mesh cycle", minimum=8, maximum=10000)
-    points: int = setting(50, "points per contact line", minimum=2, maximum=2000)
-    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD, **LEAD_SLOPE_BOUNDS_UM)
-    contact_law: ContactLaw = setting("palmgren", _LAW)
-    method: Method = setting("transition", _METHOD)
-    corner_extension: float = setting(0.25, _CORNER, minimum=0, maximum=1)
+    positions: int = _positions(64, 10000)
+    points: int = _points()
+    lead_slope_um: tuple[float, float] = _lead_slope()
+    contact_law: ContactLaw = _contact_law()
+    method: Method = _method()
+    corner_extension: float = _corner_extension()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -166,7 +204,7 @@ class Impact:
     design_speed_rpm: float = setting(5000, "speed of the variants table and the simulation; one of speeds_rpm",
                                       exclusive_minimum=0, maximum=1000000)
     driver: Gear = setting("pinion", "the gear that drives")
-    points: int = setting(50, "points per contact line of the loaded contact", minimum=2, maximum=2000)
+    points: int = _points(what=" of the loaded contact")
     energy_velocity: Literal["transverse", "normal"] = setting(
         "transverse", "velocity in ½ m_eq v²: transverse (consistent with m_eq) or normal (the source literally)")
     added_inertia_kg_m2: tuple[float, float] = setting(
@@ -174,10 +212,10 @@ class Impact:
     simulate_torques_Nm: tuple[float, ...] = setting(
         (), "torques (among torques_Nm) whose engagement is also integrated in time at the design speed",
         exclusive_minimum=0, max_items=20)
-    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD, **LEAD_SLOPE_BOUNDS_UM)
-    contact_law: ContactLaw = setting("palmgren", _LAW)
-    method: Method = setting("transition", _METHOD)
-    corner_extension: float = setting(0.25, _CORNER, minimum=0, maximum=1)
+    lead_slope_um: tuple[float, float] = _lead_slope()
+    contact_law: ContactLaw = _contact_law()
+    method: Method = _method()
+    corner_extension: float = _corner_extension()
     window_positions: int = setting(32, "rolls of the mesh-in search window (one base pitch and the corner "
                                         "extension)", minimum=8, maximum=10000)
     face_samples: int = setting(257, "samples of the entering contact line across the face (its smallest "
@@ -319,12 +357,11 @@ class _Dynamics:
     stiffness_form: Literal["fourier", "table"] = setting("fourier", "mesh stiffness k(t) as its Fourier series to "
                                                                      "fourier_order or as the sampled table")
     fourier_order: int = setting(3, "order of the Fourier series of k(t)", minimum=0, maximum=30)
-    method: Method = setting("transition", _METHOD + " (the stiffness when no stiffness stage runs, the contact "
-                                                      "table)")
-    contact_law: ContactLaw = setting("palmgren", _LAW + " (contact table)")
-    points: int = setting(200, "points per contact line of the contact table (the first touch at the face-end "
-                               "corner converges as 1/points)", minimum=2, maximum=2000)
-    lead_slope_um: tuple[float, float] = setting((0.0, 0.0), _LEAD + " (contact table)", **LEAD_SLOPE_BOUNDS_UM)
+    method: Method = _method(" (the stiffness when no stiffness stage runs, the contact table)")
+    contact_law: ContactLaw = _contact_law(" (contact table)")
+    points: int = _points(200, " of the contact table (the first touch at the face-end corner converges as "
+                               "1/points; 200 puts the default pair's within 0.03 mm of roll of 400's)")
+    lead_slope_um: tuple[float, float] = _lead_slope(" (contact table)")
     table_positions: int = setting(256, "positions per mesh cycle of the contact table", minimum=16, maximum=100000)
     table_approaches: int = setting(96, "approaches of the contact table", minimum=8, maximum=100000)
     table_force_factor: float = setting(4.0, "the contact table reaches this many times the largest static force",
@@ -406,21 +443,17 @@ class DynamicsComparison:
 # Study-level tables
 # --------------------------------------------------------------------------------------
 
-_PAIRS = "the pairs (names in pairs_dir)"
-
-
 @dataclass(frozen=True, kw_only=True)
 class HelixSweep:
     """Contact-line length against helix angle for some pairs, each angle a new pair at its
     zero-backlash centre distance (helix_sweep.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.geometry:helix_sweep_dataset",)
-    pairs: tuple[str, ...] = setting(REQUIRED, _PAIRS, min_items=1, pattern=NAME, max_length=NAME_LENGTH,
-                                     workflow=True)
+    pairs: tuple[str, ...] = _pairs()
     start_deg: float = setting(REQUIRED, "first helix angle", minimum=0, maximum=59)
     stop_deg: float = setting(REQUIRED, "last helix angle (not below start_deg)", minimum=0, maximum=59)
     step_deg: float = setting(REQUIRED, "helix angle step", exclusive_minimum=0)
-    positions: int = setting(360, "rotation positions over one mesh cycle", minimum=8, maximum=100000)
+    positions: int = _positions()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -429,8 +462,7 @@ class LowFluctuationDesign:
     width that makes the overlap ratio an integer (low_fluctuation_design.nc)."""
 
     STAGES: ClassVar = ()  # its one key is the pairs the workflow gathers (low_fluctuation_design_dataset)
-    pairs: tuple[str, ...] = setting(REQUIRED, _PAIRS, min_items=1, pattern=NAME, max_length=NAME_LENGTH,
-                                     workflow=True)
+    pairs: tuple[str, ...] = _pairs()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -438,17 +470,16 @@ class StiffnessTable:
     """Mesh stiffness over pairs, pair-file variants and cantilever methods, one table (stiffness_table.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.stiffness:stiffness_table_dataset",)
-    pairs: tuple[str, ...] = setting(REQUIRED, _PAIRS, min_items=1, pattern=NAME, max_length=NAME_LENGTH,
-                                     workflow=True)
+    pairs: tuple[str, ...] = _pairs()
     methods: tuple[Method, ...] = setting(("transition",), "slice models compared", min_items=1)
     variants: dict[str, dict[str, Any]] | None = setting(
         None, "name → pair-file keys to override (engineering units), e.g. {normal_pressure_angle_deg: 16}; left "
         "out: the pairs as given", key_pattern=r"^[A-Za-z0-9_.-]+$", key_max_length=NAME_LENGTH, fill=False)
-    slices: int = setting(200, "slices over the face width", minimum=1, maximum=20000)
-    positions: int = setting(360, "rotation positions over one mesh cycle", minimum=8, maximum=100000)
+    slices: int = _slices()
+    positions: int = _positions()
     torque_Nm: float | None = setting(None, "torque of the loaded static transmission error; left out: none",
                                       exclusive_minimum=0, fill=False)
-    torque_on: Gear = setting("pinion", "the gear torque_Nm acts on")
+    torque_on: Gear = _torque_on()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -456,12 +487,11 @@ class SliceConvergence:
     """Mean mesh stiffness against the slice count, whole and clipped end slices (slice_convergence.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.stiffness:slice_convergence_dataset",)
-    pairs: tuple[str, ...] = setting(REQUIRED, _PAIRS, min_items=1, pattern=NAME, max_length=NAME_LENGTH,
-                                     workflow=True)
+    pairs: tuple[str, ...] = _pairs()
     slices: tuple[int, ...] = setting((25, 50, 100, 200, 400, 1000), "slice counts", minimum=1, maximum=20000,
                                       min_items=2)
-    method: Method = setting("transition", _METHOD)
-    positions: int = setting(360, "rotation positions over one mesh cycle", minimum=8, maximum=100000)
+    method: Method = _method()
+    positions: int = _positions()
 
 
 # --------------------------------------------------------------------------------------
