@@ -51,6 +51,15 @@ def test_the_workflow_validates_with_the_published_schema():
     jsonschema.Draft202012Validator.check_schema(json.loads((ROOT / "src/gearmesh/schemas/pair.schema.json").read_text()))
 
 
+def test_every_study_config_points_editors_at_the_schema():
+    configs = [ROOT / "config/config.yaml", *sorted((ROOT / "config/studies").glob("*.yaml"))]
+    for path in configs:
+        first = path.read_text(encoding="utf-8").splitlines()[0]
+        assert first.startswith("# yaml-language-server: $schema="), path.name
+        target = (path.parent / first.split("=", 1)[1]).resolve()
+        assert target == (ROOT / "src/gearmesh/schemas/config.schema.yaml").resolve(), path.name
+
+
 def test_config_readme_describes_every_key():
     text = (ROOT / "config/README.md").read_text(encoding="utf-8")
     keys = study_keys()
