@@ -350,3 +350,23 @@ def test_snakemake_applies_the_default_profile_without_a_flag(monkeypatch, capsy
     assert args.rerun_incomplete
     _, args = parse_args(["--dry-run", "--cores", "2"])
     assert args.cores == 2
+
+
+def test_on_a_cluster_only_the_study_tables_and_figures_run_locally(monkeypatch):
+    """The rules a cluster executor runs on the submitting machine (``localrule: True``): the study
+    tables and their figures, whose work grows with the pairs and variants only; every stage whose
+    work grows with a resolution setting is queued."""
+    pytest.importorskip("snakemake")
+    from snakemake.api import SnakemakeApi
+    from snakemake.settings.types import OutputSettings, ResourceSettings
+
+    monkeypatch.chdir(ROOT)
+    with SnakemakeApi(OutputSettings(quiet=set())) as api:
+        workflow = api.workflow(resource_settings=ResourceSettings(cores=1), snakefile=Path("Snakefile"),
+                                workdir=Path("."))._workflow
+        local = set(workflow._localrules)
+        names = {rule.name for rule in workflow.rules}
+    assert local <= names
+    assert {"lste_comparison", "impact_table", "engagement_table"} <= local
+    staged = {"geometry", "contact_lines", "stiffness", "tca", "ltca", "impact", "dynamics", "optimise"}
+    assert staged <= names and not staged & local

@@ -54,6 +54,7 @@ rule train_dynamics:
 
 rule dynamics_comparison:
     """RMS changes between the study's pairs (standard variant): DTE, lateral and axial vibration; and its figure."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
     output:
@@ -80,6 +81,7 @@ if dynamics_contact() and "impact" in config:
     rule engagement_table:
         """The energy method's F_s beside the contact-driven dynamics, per variant and torque at the design speed;
         figure: the peak dynamic mesh force against speed, every variant on one axis, one panel per torque."""
+        localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
             impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
             dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
@@ -102,6 +104,7 @@ else:
 
     rule plot_dynamics_variants:
         """Peak dynamic mesh force against speed, every variant of a pair on one axis, one panel per torque."""
+        localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
             dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
         output:

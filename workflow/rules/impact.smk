@@ -37,6 +37,7 @@ rule impact_table:
     """Impact force of every variant at every torque at the design speed, with the reduction against standard;
     figures: all variants on one axis (impact force against torque and against speed) and, off the design point,
     their load windows and tolerance spreads side by side (the robustness page)."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
     output:

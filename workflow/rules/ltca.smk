@@ -28,6 +28,7 @@ rule ltca:
 
 rule lste_comparison:
     """Seed 001's LSTE of every pair: LTCA (standard variant, first torque) next to F/K(phi)."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         stiffness=expand("results/{{study}}/{pair}/stiffness.nc", pair=config["pairs"]),
         ltca=expand("results/{{study}}/{pair}/standard/ltca.nc", pair=config["pairs"]),

@@ -39,6 +39,7 @@ rule optimise:
 rule plot_pareto:
     """NSGA-II runs: impact force against peak-to-peak LTE with the Pareto front (its own job: only a
     run with method nsga2 has one, and an output cannot depend on a wildcard's config)."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         ga="results/{study}/{pair}/optimise/{run}/ga.nc",
     output:

@@ -22,6 +22,7 @@ rule helix_sweep:
 
 rule low_fluctuation_design:
     """Integer-overlap-ratio designs of each pair: helix angle forward/backward, face width."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         pairs=study_pair_files("low_fluctuation_design"),
     output:
