@@ -252,8 +252,10 @@ def field_schema(cls: type, field: dataclasses.Field) -> dict[str, Any]:
 
 
 def object_schema(cls: type) -> dict[str, Any]:
-    """JSON schema of settings dataclass ``cls``: no unknown key, its required keys, and each
-    setting's :func:`field_schema`; described by the first paragraph of its docstring."""
+    """JSON schema of settings dataclass ``cls``: no unknown key, its required keys, each
+    setting's :func:`field_schema`, and at most one key of each group of its ``ALTERNATIVES``
+    (keys that give the same quantity) other than null; described by the first paragraph of its
+    docstring."""
     fields = settings_fields(cls)
     out: dict[str, Any] = {"type": "object", "additionalProperties": False}
     doc = description_of(cls)
@@ -263,6 +265,11 @@ def object_schema(cls: type) -> dict[str, Any]:
     if required:
         out["required"] = required
     out["properties"] = {key_of(f): field_schema(cls, f) for f in fields}
+    exclusive = [(a, b) for group in getattr(cls, "ALTERNATIVES", ()) for i, a in enumerate(group) for b in group[i + 1:]]
+    if exclusive:  # two keys of one group both given (not null): refused
+        out["allOf"] = [{"not": {"required": [a, b], "properties": {a: {"not": {"type": "null"}},
+                                                                     b: {"not": {"type": "null"}}}}}
+                        for a, b in exclusive]
     return out
 
 
@@ -542,6 +549,8 @@ def markdown_table(cls: type, prefix: str = "") -> list[str]:
         kind = "section" if section else _type_words(schema).replace("|", "\\|")
         text = (spec_of(f).description or (description_of(section) if section else "")).replace("|", "\\|")
         rows.append(f"| `{prefix}{key_of(f)}` | {kind} | {units_of(f)} | {_default_words(f)} | {text} |")
+    for group in getattr(cls, "ALTERNATIVES", ()):
+        rows += ["", "At most one of " + _choices([f"`{prefix}{k}`" for k in group], quote=False) + "."]
     return rows
 
 

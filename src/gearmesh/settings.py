@@ -23,7 +23,7 @@ from typing import Any, ClassVar, Literal
 
 import yaml
 
-from .gear import MODULE_RANGE, NAME_PATTERN
+from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, MODULE_RANGE, NAME_PATTERN
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
 
 #: Names of studies and of the pairs a study uses: a folder of results/{study}/{pair}/, no path characters.
@@ -558,11 +558,14 @@ def study_keys() -> list[str]:
 
 @dataclass(frozen=True, kw_only=True)
 class PairMaterial:
-    """Isotropic elastic material of both gears."""
+    """Isotropic elastic material of both gears; a key left out is steel's (the reader's
+    ``DEFAULT_MATERIAL``, stated in every result)."""
 
-    youngs_modulus_GPa: float = setting(REQUIRED, "Young's modulus", exclusive_minimum=0)
-    poisson_ratio: float = setting(REQUIRED, "Poisson's ratio", minimum=0, exclusive_maximum=0.5)
-    density_kg_m3: float = setting(REQUIRED, "density", exclusive_minimum=0)
+    youngs_modulus_GPa: float = setting(DEFAULT_MATERIAL["youngs_modulus_GPa"], "Young's modulus",
+                                        exclusive_minimum=0)
+    poisson_ratio: float = setting(DEFAULT_MATERIAL["poisson_ratio"], "Poisson's ratio", minimum=0,
+                                   exclusive_maximum=0.5)
+    density_kg_m3: float = setting(DEFAULT_MATERIAL["density_kg_m3"], "density", exclusive_minimum=0)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -582,16 +585,21 @@ class GearModification:
 class PairModification:
     """Micro-geometry of the pinion and of the gear."""
 
-    pinion: GearModification | None = setting(None, "the pinion's six parameters")
-    gear: GearModification | None = setting(None, "the gear's six parameters")
+    pinion: GearModification | None = setting(None, "the pinion's six parameters (null: none)")
+    gear: GearModification | None = setting(None, "the gear's six parameters (null: none)")
 
 
 @dataclass(frozen=True, kw_only=True)
 class PairFile:
     """A helical gear pair as designed: engineering units in the key names; index 0 (or the first
-    of a [pinion, gear] list) is the pinion, the driver."""
+    of a [pinion, gear] list) is the pinion, the driver. A datasheet's diameters may stand for the
+    coefficients (tip_diameter_mm for addendum_coefficient, root_diameter_mm or
+    basic_rack_profile for dedendum_coefficient, bore_diameter_mm for bore_radius_mm)."""
 
-    name: str = setting(REQUIRED, "the pair's name: its file name without .yaml", pattern=f"^{NAME_PATTERN.pattern}$")
+    #: Keys that give one quantity: at most one of each group (the reader's own list).
+    ALTERNATIVES: ClassVar = _ALTERNATIVE_KEYS
+    name: str | None = setting(None, "the pair's name (null or left out: the file name without .yaml; a study's "
+                                     "pair library needs the two equal)", pattern=f"^{NAME_PATTERN.pattern}$")
     teeth: tuple[int, int] = setting(REQUIRED, "numbers of teeth [pinion, gear] (external gears)", minimum=5)
     normal_module_mm: float = setting(REQUIRED, "normal module m_n (ISO 54 modules with margins)",
                                       minimum=round(MODULE_RANGE[0] * 1e3, 9), maximum=round(MODULE_RANGE[1] * 1e3, 9))
@@ -610,13 +618,24 @@ class PairFile:
     addendum_coefficient: float | tuple[float, float] = setting(1.0, "tip height over the reference circle in "
                                                                      "normal modules (before the shift)",
                                                                 exclusive_minimum=0)
+    tip_diameter_mm: float | tuple[float, float] | None = setting(
+        None, "tip diameter d_a, one or [pinion, gear], instead of addendum_coefficient (exact with the shifts)",
+        exclusive_minimum=0)
     dedendum_coefficient: float | tuple[float, float] = setting(1.25, "the generating hob's addendum in normal "
                                                                       "modules", exclusive_minimum=0)
+    root_diameter_mm: float | tuple[float, float] | None = setting(
+        None, "root diameter d_f, one or [pinion, gear], instead of dedendum_coefficient (exact with the shifts)",
+        exclusive_minimum=0)
+    basic_rack_profile: Literal[tuple(ISO53_PROFILES)] | None = setting(
+        None, "an ISO 53:1998 basic rack profile (20° pairs): its dedendum and root fillet radius instead of "
+        "dedendum_coefficient and tool_tip_radius_coefficient")
     tool_tip_radius_coefficient: float | tuple[float, float] | None = setting(
         None, "the hob's tip radius in normal modules (null: 0.38, ISO 53, or the largest that fits)", minimum=0)
     bore_radius_mm: float | tuple[float, float] | None = setting(
         None, "bore radius, one or [pinion, gear]: needed for masses, inertias and the fillet foundation", minimum=0)
-    material: PairMaterial | None = setting(None, "elastic material of both gears")
+    bore_diameter_mm: float | tuple[float, float] | None = setting(
+        None, "bore (inner) diameter, one or [pinion, gear], instead of bore_radius_mm", minimum=0)
+    material: PairMaterial | None = setting(None, "elastic material of both gears (null or left out: steel)")
     modification: PairModification | None = setting(None, "micro-geometry of each gear")
     source: str = setting("", "where the data come from")
 
