@@ -214,7 +214,7 @@ def test_bad_study_settings_and_variants_are_refused_before_any_job(capsys):
     assert err.value.field.startswith("optimise.best.population")
     assert cli_main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000",
                      "--speed-rpm", "5000", "--population", "2"]) == 2
-    assert capsys.readouterr().err.strip() == "gearmesh: error: population = 2: must be at least 4"
+    assert capsys.readouterr().err.strip() == "gearmesh: error: --population = 2: must be at least 4"
 
 
 def test_the_impact_model_is_the_studys_impact_section(pair):

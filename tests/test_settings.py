@@ -242,10 +242,9 @@ def test_the_pair_schema_has_the_readers_keys():
 
 def _pair_files() -> list[Path]:
     """Every pair file the project ships, in the repository and in the package."""
-    files = sorted((ROOT / "config/pairs").glob("*.yaml"))
     package = ROOT / "src/gearmesh"
-    files += sorted(p for p in package.rglob("*.yaml") if p.parent.name != "schemas")
-    return files
+    files = [*(ROOT / "config/pairs").glob("*.yaml"), *(p for p in package.rglob("*.yaml") if p.parent.name != "schemas")]
+    return sorted({p.resolve() for p in files})
 
 
 def test_every_shipped_pair_file_satisfies_the_pair_schema():
@@ -370,3 +369,75 @@ def test_on_a_cluster_only_the_study_tables_and_figures_run_locally(monkeypatch)
     assert {"lste_comparison", "impact_table", "engagement_table"} <= local
     staged = {"geometry", "contact_lines", "stiffness", "tca", "ltca", "impact", "dynamics", "optimise"}
     assert staged <= names and not staged & local
+
+
+# --------------------------------------------------------------------------------------
+# The command line
+# --------------------------------------------------------------------------------------
+
+#: The sections whose keys a command's options are.
+_COMMAND_SECTIONS = {"stiffness": ("stiffness",), "ltca": ("ltca",), "impact": ("impact",), "dynamics": ("dynamics",),
+                     "optimise": ("optimise.NAME", "tolerances")}
+
+
+def _subparsers():
+    import argparse
+
+    from gearmesh.cli import build_parser
+
+    action = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return action.choices
+
+
+#: Options whose default differs from the study's, and why.
+_OWN_DEFAULTS = {
+    ("dynamics", "excitation"): "tvms: what the study's null means without an LTCA upstream",
+    ("optimise", "torque_Nm"): "none: the command needs --torque-Nm or --torques-Nm (the middle one then)",
+    ("optimise", "tolerance_statistic"): "max, used only with --tolerance-samples: without, the nominal alone "
+                                         "(the study's null)",
+}
+
+
+@pytest.mark.parametrize("command", sorted(_COMMAND_SECTIONS))
+def test_every_option_that_is_a_setting_has_its_declared_default(command):
+    parser = _subparsers()[command]
+    sections = [dict(stage_sections())[path] for path in _COMMAND_SECTIONS[command]]
+    declared = {}
+    for cls in reversed(sections):
+        declared.update(defaults(cls))
+    options = [a for a in parser._actions if a.dest in declared and (command, a.dest) not in _OWN_DEFAULTS]
+    assert options
+    for action in options:
+        assert _same(declared[action.dest], action.default), (command, action.dest, action.default)
+
+
+#: What each command needs besides its pair file.
+_REQUIRED_OPTIONS = {"stiffness": [], "ltca": ["--torque-Nm", "100"], "impact": ["--torque-Nm", "100", "--speed-rpm", "5000"],
+                     "dynamics": ["--torque-Nm", "100", "--speeds", "1000"], "optimise": ["--torque-Nm", "1000"]}
+
+
+def test_every_setting_option_refuses_what_the_schema_refuses_naming_the_option(capsys, tmp_path):
+    from gearmesh.cli import main
+
+    pair = ROOT / "config/pairs/seed000_case.yaml"
+    checked = 0
+    for command, parser in _subparsers().items():
+        for key, (section, flag) in (parser.get_default("setting_options") or {}).items():
+            field = next(f for f in settings_fields(section) if key_of(f) == key)
+            for bad in _violations(field_schema(section, field)):
+                if isinstance(bad, list) or isinstance(bad, str) and not isinstance(field.default, str):
+                    continue  # one value per option on the command line
+                argv = [command, str(pair), *_REQUIRED_OPTIONS[command], f"{flag}={bad}"]
+                if command == "optimise":
+                    argv += ["--write-pair", str(tmp_path / "o.yaml")]
+                try:
+                    code = main(argv)
+                except SystemExit as exc:  # argparse's own refusal of a choice or a type
+                    code = exc.code
+                err = capsys.readouterr().err
+                assert code == 2, (argv, err)
+                assert err.startswith(f"gearmesh: error: {flag}") or "invalid" in err or "must be one of" in err, \
+                    (argv, err)
+                assert not (tmp_path / "o.yaml").exists()
+                checked += 1
+    assert checked > 20
