@@ -335,7 +335,7 @@ def _rule(err) -> str:
         return "must be " + " or ".join(_ARTICLES.get(k, k) for k in kinds)
     words = {"minimum": "at least", "maximum": "at most", "exclusiveMinimum": "above", "exclusiveMaximum": "below"}
     if kind in words:
-        return "must be positive" if kind == "exclusiveMinimum" and limit == 0 else f"must be {words[kind]} {limit:g}"
+        return "must be positive" if kind == "exclusiveMinimum" and limit == 0 else f"must be {words[kind]} {_number(limit)}"
     if kind == "multipleOf":
         return f"must be a multiple of {limit}"
     if kind == "enum":
@@ -478,7 +478,8 @@ def _type_words(schema: Mapping[str, Any]) -> str:
             if k == "array":
                 words.append(_array_words(schema))
             elif k == "object":
-                words.append("mapping")
+                values = schema.get("additionalProperties")
+                words.append("mapping" + (f" of {_type_words(values)}" if isinstance(values, Mapping) else ""))
             elif k == "null":
                 words.append("null")
             else:
@@ -486,11 +487,16 @@ def _type_words(schema: Mapping[str, Any]) -> str:
     return " or ".join(words) if words else "any"
 
 
+def _number(value: float) -> str:
+    """A bound as written: integers whole, other numbers short."""
+    return str(value) if isinstance(value, int) else f"{value:g}"
+
+
 def _bound_words(schema: Mapping[str, Any]) -> str:
-    lo = (f"≥ {schema['minimum']:g}" if "minimum" in schema else
-          f"> {schema['exclusiveMinimum']:g}" if "exclusiveMinimum" in schema else "")
-    hi = (f"≤ {schema['maximum']:g}" if "maximum" in schema else
-          f"< {schema['exclusiveMaximum']:g}" if "exclusiveMaximum" in schema else "")
+    lo = (f"≥ {_number(schema['minimum'])}" if "minimum" in schema else
+          f"> {_number(schema['exclusiveMinimum'])}" if "exclusiveMinimum" in schema else "")
+    hi = (f"≤ {_number(schema['maximum'])}" if "maximum" in schema else
+          f"< {_number(schema['exclusiveMaximum'])}" if "exclusiveMaximum" in schema else "")
     parts = [p for p in (lo, hi) if p]
     if "multipleOf" in schema:
         parts.append(f"multiple of {schema['multipleOf']}")
@@ -547,11 +553,23 @@ def markdown_table(cls: type, prefix: str = "") -> list[str]:
         schema = field_schema(cls, f)
         section = _section_type(cls, f)
         kind = "section" if section else _type_words(schema).replace("|", "\\|")
-        text = (spec_of(f).description or (description_of(section) if section else "")).replace("|", "\\|")
+        text = spec_of(f).description
+        if section:  # its own table follows: a link and its first sentence here
+            path = f"{prefix}{key_of(f)}" + ("" if _holds_section(cls, f) else ".NAME")
+            anchor = "".join(c for c in path.lower() if c.isalnum() or c in "_-")
+            text = f"[`{path}`](#{anchor}): " + (text or description_of(section).split(". ")[0].rstrip("."))
+        text = text.replace("|", "\\|")
         rows.append(f"| `{prefix}{key_of(f)}` | {kind} | {units_of(f)} | {_default_words(f)} | {text} |")
     for group in getattr(cls, "ALTERNATIVES", ()):
         rows += ["", "At most one of " + _choices([f"`{prefix}{k}`" for k in group], quote=False) + "."]
     return rows
+
+
+def _holds_section(cls: type, field: dataclasses.Field) -> bool:
+    """Whether a field holds one settings object (directly or optionally), not a mapping of them."""
+    tp = type_hints(cls)[field.name]
+    members = typing.get_args(tp) if typing.get_origin(tp) in (Union, types.UnionType) else (tp,)
+    return any(dataclasses.is_dataclass(m) for m in members)
 
 
 def _section_type(cls: type, field: dataclasses.Field) -> type | None:
@@ -575,9 +593,7 @@ def nested_sections(cls: type, prefix: str = "") -> list[tuple[str, type]]:
         sub = _section_type(cls, f)
         if sub is None:
             continue
-        tp = type_hints(cls)[f.name]
-        named = not dataclasses.is_dataclass(tp) and not any(dataclasses.is_dataclass(a) for a in typing.get_args(tp))
-        path = f"{prefix}{key_of(f)}" + (".NAME" if named else "")
+        path = f"{prefix}{key_of(f)}" + ("" if _holds_section(cls, f) else ".NAME")
         out.append((path, sub))
         out += nested_sections(sub, path + ".")
     return out
