@@ -230,7 +230,7 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     from .datasets.dynamics import check_dynamics_settings
     from .gear import pair_geometry
     from .limits import (MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, MAX_SWEEP_ANGLES, check_grid,
-                         check_load)
+                         check_load, check_speeds)
     from .tca import check_lead_slope
 
     geoms = {name: pair_geometry(pair) for name, pair in pairs.items()}
@@ -267,7 +267,12 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
         loads("impact", "torques_Nm", config["impact"]["on"], config["pairs"])
         with _section("impact"):
             check_lead_slope(config["impact"]["lead_slope_um"])
+            for name in config["pairs"]:
+                check_speeds(geoms[name], config["impact"]["speeds_rpm"], "speeds_rpm")
     for run, section in (config.get("optimise") or {}).items():
+        for key in ("speed_rpm", "dynamic_speeds_rpm"):
+            for name in config["pairs"] if section.get(key) is not None else ():
+                check_speeds(geoms[name], section[key], f"optimise.{run}.{key}")
         for key in ("torque_Nm", "torques_Nm"):
             values = section.get(key)
             for k, value in enumerate(values if isinstance(values, list) else [] if values is None else [values]):
