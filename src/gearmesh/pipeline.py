@@ -21,8 +21,9 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .gear import GearPair, load_pair, pair_to_dict
-from .io import add_provenance, atomic_output, read_dataset, write_dataset
+from .io import add_provenance, atomic_output, write_dataset
 from .tables import write_csv
+from .upstream import Expected, identify, read_input
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
@@ -74,7 +75,18 @@ def _title(smk: Any) -> str:
     return f"gearmesh {smk.rule}"
 
 
+def _expected(smk: Any, pair: GearPair | None = None) -> Expected:
+    """What this job expects of the files it reads (:mod:`gearmesh.upstream`)."""
+    return Expected(smk.config, pair, getattr(smk.wildcards, "variant", None))
+
+
+def _upstream(smk: Any, pair: GearPair) -> dict[str, xr.Dataset]:
+    """The job's named netCDF inputs (all but ``pair``), each checked for this job."""
+    return {k: read_input(v, _expected(smk, pair)) for k, v in smk.input.items() if k != "pair"}
+
+
 def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
+    identify(ds, smk.output[0], smk.rule, smk.wildcards)
     finish(ds, smk.output[0], smk.config, pair, _title(smk))
     if "csv" in smk.output.keys():
         with atomic_output(smk.output.csv) as tmp:
@@ -89,7 +101,7 @@ def run_pair_stage(smk: Any) -> None:
     """
     def body(smk: Any) -> None:
         pair = load_pair(smk.input.pair)
-        upstream = {k: read_dataset(v) for k, v in smk.input.items() if k != "pair"}
+        upstream = _upstream(smk, pair)
         ds = resolve(smk.params.function)(pair, **dict(smk.params.settings), **upstream)
         _write_outputs(smk, ds, pair)
 
@@ -109,7 +121,8 @@ def run_study_stage(smk: Any) -> None:
 def run_collect(smk: Any) -> None:
     """A study table from per-pair results: ``function(**{input name: [Dataset, ...]}, **settings)``."""
     def body(smk: Any) -> None:
-        inputs = {k: [read_dataset(p) for p in (v if isinstance(v, list) else [v])] for k, v in smk.input.items()}
+        inputs = {k: [read_input(p, _expected(smk)) for p in (v if isinstance(v, list) else [v])]
+                  for k, v in smk.input.items()}
         settings = dict(getattr(smk.params, "settings", None) or {})
         _write_outputs(smk, resolve(smk.params.function)(**inputs, **settings), None)
 
@@ -119,8 +132,8 @@ def run_collect(smk: Any) -> None:
 def run_plot(smk: Any) -> None:
     """Figures: ``function({input name: Dataset}, {output name: path})`` writes the PNGs."""
     def body(smk: Any) -> None:
-        inputs = {k: [read_dataset(p) for p in v] if isinstance(v, list) else read_dataset(v)
-                  for k, v in smk.input.items()}
+        inputs = {k: [read_input(p, _expected(smk)) for p in v] if isinstance(v, list)
+                  else read_input(v, _expected(smk)) for k, v in smk.input.items()}
         resolve(smk.params.function)(inputs, dict(smk.output.items()))
 
     _run(smk, body)
@@ -155,7 +168,7 @@ def run_optimise(smk: Any) -> None:
 
     def body(smk: Any) -> None:
         pair = load_pair(smk.input.pair)
-        upstream = {k: read_dataset(v) for k, v in smk.input.items() if k != "pair"}
+        upstream = _upstream(smk, pair)
         ds = resolve(smk.params.function)(pair, **dict(smk.params.settings), **upstream)
         _write_outputs(smk, ds, pair)
         write_pair(optimum_pair(pair, ds), smk.output.pair)
