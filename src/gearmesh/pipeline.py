@@ -25,7 +25,7 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .gear import GearPair, load_pair, pair_to_dict, variant_pair
-from .io import add_provenance, atomic_output, read_dataset, write_dataset
+from .io import add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
 from .tables import write_csv
 from .upstream import Expected, identify, read_input
 
@@ -88,13 +88,15 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
     log_path.parent.mkdir(parents=True, exist_ok=True)
     logging.basicConfig(filename=log_path, level=logging.INFO, filemode="w",
                         format="%(asctime)s %(levelname)s %(message)s", force=True)
+    logging.raiseExceptions = False  # a log that cannot be written (full disk) must not bury the error line
     try:
         for name in ("function", "figures"):  # imports are start-up, not work
             if getattr(smk.params, name, None):
                 resolve(getattr(smk.params, name))
         age, cpu = _process_age(), _cpu_seconds()
         start = time.perf_counter()
-        figures = body(smk)
+        with job_outputs():  # an orphan of a killed run, or a clobbered output, writes nothing
+            figures = body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
         logging.exception("job failed")
         print(f"gearmesh: error: {exc}", file=sys.stderr)
