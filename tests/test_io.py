@@ -9,6 +9,7 @@ import pickle
 import subprocess
 import sys
 import time
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -16,8 +17,10 @@ import xarray as xr
 
 import gearmesh
 import gearmesh.io
-from gearmesh.io import (STALE_AGE, TEMPORARY_NAME, OutputError, add_provenance, config_digest, host_name,
-                         read_dataset, remove_stale_temporaries, temporary_path, variable, write_dataset)
+from gearmesh.errors import GearmeshInputError
+from gearmesh.io import (STALE_AGE, TEMPORARY_NAME, OutputError, add_provenance, check_output_tree, config_digest,
+                         host_name, read_dataset, remove_stale_temporaries, study_folders, temporary_path, variable,
+                         write_dataset)
 
 
 def _dataset():
@@ -183,3 +186,54 @@ def test_a_workflow_job_on_a_full_disk_prints_one_line_naming_the_file(root, tmp
                                         f"device; {proc.stderr.split('device; ')[1].split(' MB free')[0]} MB free "
                                         "there); free space and rerun"]
     assert not nc.exists() and list(nc.parent.iterdir()) == []
+
+
+# --------------------------------------------------------------------------------------
+# The output tree (issue 20)
+# --------------------------------------------------------------------------------------
+
+STUDY = {"study": "s", "pairs": ["p"], "variants": {"standard": {}, "relief": {}}, "optimise": {"ga": {}}}
+
+
+@pytest.mark.parametrize("blocker", ["results", "results/s", "results/s/p/standard", "results/s/p/optimise/ga/plots",
+                                     "logs/s/p"])
+def test_a_file_where_the_study_writes_a_folder_is_refused(tmp_path, blocker):
+    (tmp_path / blocker).parent.mkdir(parents=True, exist_ok=True)
+    (tmp_path / blocker).write_text("not a folder")
+    with pytest.raises(GearmeshInputError) as info:
+        check_output_tree(study_folders(STUDY), tmp_path)
+    assert info.value.field == blocker and "must be a folder" in str(info.value)
+
+
+def test_a_dangling_link_where_the_study_writes_is_refused(tmp_path):
+    (tmp_path / "results").symlink_to(tmp_path / "gone")
+    with pytest.raises(GearmeshInputError, match="a link to nothing"):
+        check_output_tree(study_folders(STUDY), tmp_path)
+
+
+def test_an_empty_or_complete_tree_is_accepted(tmp_path):
+    check_output_tree(study_folders(STUDY), tmp_path)
+    for folder in study_folders(STUDY):
+        (tmp_path / folder).mkdir(parents=True, exist_ok=True)
+    (tmp_path / "elsewhere").symlink_to(tmp_path / "results")
+    check_output_tree(study_folders(STUDY), tmp_path)
+    assert Path("results/s/p/relief/plots") in study_folders(STUDY)
+
+
+def test_snakemake_and_validate_refuse_a_results_path_that_is_a_file_up_front(root, tmp_path):
+    """results/STUDY/PAIR/standard a file crashed Snakemake mid-run with a traceback."""
+    pytest.importorskip("snakemake")
+    from test_workflow import _package_env, _scratch_workflow, _snakemake
+
+    config = {"study": "f", "pairs": ["seed001_pair1"], "stiffness": {"slices": 20, "positions": 24}}
+    work = _scratch_workflow(root, tmp_path, config)
+    blocker = work / "results/f/seed001_pair1/standard"
+    blocker.parent.mkdir(parents=True)
+    blocker.write_text("")
+    line = "gearmesh: error: results/f/seed001_pair1/standard = 'a file': must be a folder"
+    proc = _snakemake(work)
+    assert proc.returncode == 2 and line in proc.stderr, proc.stderr[-2000:]
+    assert sorted(p.name for p in blocker.parent.iterdir()) == ["standard"]  # nothing written
+    cli = subprocess.run([sys.executable, "-m", "gearmesh.cli", "validate", "test_config.yaml"], cwd=work,
+                         capture_output=True, text=True, timeout=120, env=_package_env(work / "package"))
+    assert cli.returncode == 2 and cli.stderr.startswith(line) and len(cli.stderr.splitlines()) == 1

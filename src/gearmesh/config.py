@@ -139,9 +139,11 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     """Everything a study will need, checked before any job runs (one error, naming the field):
     every pair loads and works, has the material and bore the always-run stiffness stage
     needs, every micro-geometry variant and every stiffness-table variant gives a working
-    pair, and sweep ranges are not empty. Returns the pairs."""
+    pair, sweep ranges are not empty, and the folders its jobs write into under ``root`` are
+    folders where they exist (:func:`gearmesh.io.check_output_tree`). Returns the pairs."""
     from .datasets.optimise import check_optimise
     from .datasets.stiffness import apply_variant
+    from .io import check_output_tree, study_folders
     from .gear import pair_geometry
     from .stiffness import require_stiffness_data
 
@@ -191,6 +193,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                                  f"must not be below start_deg ({sweep['start_deg']})")
     check_stages(config, pairs)
     check_optimise(config, pairs)
+    check_output_tree(study_folders(config), root)
     return pairs
 
 

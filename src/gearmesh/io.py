@@ -23,6 +23,7 @@ import numpy as np
 import xarray as xr
 
 from . import __version__
+from .errors import GearmeshInputError
 
 
 def config_digest(config: Mapping[str, Any]) -> tuple[str, str]:
@@ -224,6 +225,39 @@ def remove_stale_temporaries(root: str | Path, now: float | None = None) -> list
         except FileNotFoundError:  # renamed or removed by its writer meanwhile
             continue
     return stale
+
+
+def study_folders(config: Mapping[str, Any]) -> list[Path]:
+    """The folders a study's jobs write into (relative to the working directory): results and
+    logs of the study, of each pair, of each micro-geometry variant and optimisation run, and
+    their ``plots`` folders."""
+    study = str(config["study"])
+    leaves = [Path("results", study, "plots"), Path("logs", study)]
+    for pair in config.get("pairs", []):
+        base = Path(str(pair))
+        leaves += [Path("results", study, base, "plots"), Path("logs", study, base, "optimise")]
+        for variant in config.get("variants") or {}:
+            leaves += [Path("results", study, base, str(variant), "plots"), Path("logs", study, base, str(variant))]
+        for run in config.get("optimise") or {}:
+            leaves.append(Path("results", study, base, "optimise", str(run), "plots"))
+    return leaves
+
+
+def check_output_tree(folders, root: str | Path = ".") -> None:
+    """Refuse (GearmeshInputError) when a folder of ``folders``, or one above it, exists under
+    ``root`` as something other than a folder (a file, a dangling link): the jobs could not
+    write there, and Snakemake would stop mid-run with a traceback."""
+    root, seen = Path(root), set()
+    for folder in folders:
+        for part in reversed([folder, *folder.parents][:-1]):  # from the top, without '.'
+            if part in seen:
+                continue
+            seen.add(part)
+            path = root / part
+            if os.path.lexists(path) and not path.is_dir():
+                kind = "a link to nothing" if path.is_symlink() and not path.exists() else "a file"
+                raise GearmeshInputError(str(part), kind, "must be a folder: the study writes its results under "
+                                         "it; move or delete it")
 
 
 @lru_cache(maxsize=1)
