@@ -24,7 +24,7 @@ from typing import Any, Callable, Mapping
 
 import xarray as xr
 
-from .gear import GearPair, load_pair, pair_to_dict, variant_pair
+from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
 from .io import add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
 from .tables import write_csv
 from .upstream import Expected, identify, read_input
@@ -45,6 +45,7 @@ def finish(ds: xr.Dataset, path: str | Path, study: Mapping[str, Any], pair: Gea
     add_provenance(ds, provenance_config(study, pair), source, title)
     if pair is not None:
         ds.attrs["pair_name"] = pair.name
+        ds.attrs["pair_notes"] = "; ".join(pair_notes(pair))  # e.g. the material defaults used
     ds.attrs["study"] = study.get("study", "")
     return write_dataset(ds, path)
 
