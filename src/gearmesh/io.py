@@ -2,6 +2,13 @@
 
 Every variable must carry ``units`` and ``long_name``; :func:`write_dataset` refuses a
 dataset that does not, so no stage can write an undocumented number.
+
+Every output is written to a temporary file beside it and renamed (:func:`atomic_output`): a
+full disk is named as such; inside a workflow job (:func:`job_outputs`) a job whose Snakemake
+is gone, or whose output another process wrote meanwhile, renames nothing. The temporaries of
+killed writers are removed on the next run's start when no live process writes them
+(:func:`remove_stale_temporaries`), and a study's output folders are checked up front
+(:func:`check_output_tree`). What a stage reads is checked in :mod:`gearmesh.upstream`.
 """
 
 from __future__ import annotations
@@ -164,14 +171,21 @@ def _running(pid: int, started: float) -> bool:
         return False
 
 
+def _space_errno(exc: BaseException) -> int | None:
+    """ENOSPC or EDQUOT when ``exc`` or an exception that caused it is one, else None."""
+    seen: BaseException | None = exc
+    while seen is not None:
+        if isinstance(seen, OSError) and seen.errno in (errno.ENOSPC, errno.EDQUOT):
+            return seen.errno
+        seen = seen.__cause__ or seen.__context__
+    return None
+
+
 def disk_full(exc: BaseException, folder: Path) -> bool:
     """Whether ``exc`` (or what caused it) is a full disk or quota (ENOSPC, EDQUOT), or a library
     error on a file system with less than :data:`FULL_DISK_BYTES` left."""
-    seen = exc
-    while seen is not None:
-        if isinstance(seen, OSError) and seen.errno in (errno.ENOSPC, errno.EDQUOT):
-            return True
-        seen = seen.__cause__ or seen.__context__
+    if _space_errno(exc) is not None:
+        return True
     return isinstance(exc, (OSError, RuntimeError)) and _free_bytes(folder) < FULL_DISK_BYTES
 
 
@@ -185,12 +199,9 @@ def _free_bytes(folder: Path) -> float:
 
 
 def _reason(exc: BaseException) -> str:
-    seen = exc
-    while seen is not None:
-        if isinstance(seen, OSError) and seen.errno in (errno.ENOSPC, errno.EDQUOT):
-            return os.strerror(seen.errno)
-        seen = seen.__cause__ or seen.__context__
-    return " ".join(str(exc).split())[:80] or type(exc).__name__
+    """The failed write's cause in a few words (the system's text for ENOSPC/EDQUOT)."""
+    code = _space_errno(exc)
+    return os.strerror(code) if code is not None else " ".join(str(exc).split())[:80] or type(exc).__name__
 
 
 def writer_alive(pid: int) -> bool:

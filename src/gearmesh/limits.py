@@ -44,9 +44,10 @@ MAX_CONTACT_POINTS = 1_000_000
 #: ρv² is the hoop stress of a thin ring rotating at rim speed v (Timoshenko & Goodier, Theory
 #: of Elasticity, §32); a solid or webbed body of that rim speed carries at most (3 + ν)/4 of it
 #: at a small bore, a thin rim loaded by its teeth more. Steel (7850 kg/m³) reaches it at a tip
-#: speed of about 505 m/s, 2.5× the fastest turbo gears (about 200 m/s pitch-line velocity):
-#: beyond, the gear bursts, and no model here has centrifugal loads, rim growth or a tooth
-#: that is not quasi-static (the mesh frequency nears the teeth's own natural frequency).
+#: speed of about 505 m/s, well above the pitch-line velocities of high-speed turbo gear units
+#: (of the order of 100–200 m/s): beyond, the gear bursts, and no model here has centrifugal
+#: loads or rim growth, or teeth that are not quasi-static (the ratio of the mesh frequency to a
+#: tooth's first natural frequency grows as the pitch-line velocity over the speed of sound).
 MAX_RIM_STRESS = 2.0e9
 #: Density (kg/m³) of steel, for a pair without a material (as :data:`ISO6336_STEEL_MODULUS`).
 STEEL_DENSITY = 7850.0
@@ -132,7 +133,6 @@ def check_speeds(geom: PairGeometry, speeds_rpm, field: str, on: str = "pinion")
     if values.size and values.max() > limit:
         k = int(np.argmax(values))
         pair = geom.pair
-        density = pair.material.density if pair.material else STEEL_DENSITY
         pitch = float(values[k]) * math.pi / 30 * float(geom.reference_radius[0 if on == "pinion" else 1])
         raise GearmeshInputError(f"{field}[{k}]" if values.size > 1 else field, float(values[k]),
                                  f"rpm of the {on} of {pair.name} is a pitch-line velocity of {pitch:.4g} m/s; at "
