@@ -1,37 +1,71 @@
-"""What every figure module shares: the Agg backend, saving, titles, unit scale."""
+"""What every figure module shares: figures without pyplot's global state, saving, titles,
+numbers in labels, legends placed clear of the data."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
-import matplotlib
+import numpy as np
+import xarray as xr
+from matplotlib import colormaps
+from matplotlib.figure import Figure
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-
-from ..io import atomic_output  # noqa: E402
+from ..io import atomic_output
 
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["MM", "UM", "plain_axis", "plt", "save", "title"]
+__all__ = ["MM", "UM", "Figure", "figure", "legend_below", "number", "palette", "plain_axis", "save", "subplots",
+           "title"]
 
 
-def save(fig, path: str | Path) -> Path:
-    """Write ``fig`` as PNG atomically (parent folders created) and close it."""
-    try:
-        with atomic_output(path) as tmp:
-            fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png")
-    finally:
-        plt.close(fig)
+def figure(figsize: tuple[float, float], layout: str | None = None) -> Figure:
+    """A new figure of its own (``matplotlib.figure.Figure``, no pyplot registry), so figures can
+    be drawn in threads and nothing has to be closed."""
+    return Figure(figsize=figsize, layout=layout)
+
+
+def subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], layout: str | None = None,
+             **kwargs: Any) -> tuple[Figure, Any]:
+    """``figure`` and its grid of axes (``Figure.subplots`` keywords: sharex, squeeze, ...)."""
+    fig = figure(figsize, layout)
+    return fig, fig.subplots(nrows, ncols, **kwargs)
+
+
+def palette(n: int, name: str = "viridis", low: float = 0.1, high: float = 0.85) -> np.ndarray:
+    """``n`` colours spread over ``name`` from ``low`` to ``high`` (RGBA rows)."""
+    return colormaps[name](np.linspace(low, high, n))
+
+
+def save(fig: Figure, path: str | Path) -> Path:
+    """Write ``fig`` as PNG atomically (parent folders created)."""
+    with atomic_output(path) as tmp:
+        fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png")
     return Path(path)
 
 
 def title(ds: xr.Dataset, what: str) -> str:
     """'PAIR — what' from the dataset's pair_name attribute."""
     return f"{ds.attrs.get('pair_name', '')} — {what}".strip(" —")
+
+
+def number(value: float, digits: int = 3) -> str:
+    """A value for a label: whole numbers from 100 up (118.367 → "118", 12500 → "12500"), below
+    that ``digits`` significant digits (13.224 → "13.2", 0.01234 → "0.0123"); no exponent, no
+    trailing zeros. The netCDF file keeps the full value; a label only has to tell values apart."""
+    v = float(value)
+    if not np.isfinite(v):
+        return str(v)
+    if abs(v) >= 10 ** (digits - 1) or v == round(v):
+        return f"{round(v):d}"
+    return np.format_float_positional(v, precision=digits, unique=True, fractional=False, trim="-")
+
+
+def legend_below(ax, ncol: int = 2, **kwargs: Any):
+    """The legend of ``ax`` under its x label, so it covers no curve (for axes whose curves fill
+    every corner)."""
+    return ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=ncol, fontsize=7, **kwargs)
 
 
 #: A curve whose peak-to-peak is below this fraction of its mean is drawn flat, with a note.

@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from matplotlib import colormaps
 
-from .common import MM, UM, plain_axis, plt, save as _save, title as _title
+from .common import MM, palette, plain_axis, save as _save, subplots, title as _title, UM
 
 
 def _at_torque(ds: xr.Dataset, k: int | None = None) -> xr.Dataset:
@@ -65,10 +66,10 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     3 (dash-dot) meet the natural frequencies of the linearised model.
     """
     speed = ds.speed.values
-    fig, axes = plt.subplots(3, 1, figsize=(9, 10.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(9, 10.5), sharex=True)
     ax = axes[0]
     torques = range(ds.sizes["torque"]) if "torque" in ds.dims else [None]
-    colors = plt.cm.viridis(np.linspace(0.1, 0.85, len(torques)))
+    colors = palette(len(torques))
     for k, color in zip(torques, colors):
         d = _at_torque(ds, k)
         tl = f", {_torque_label(d)}" if k is not None else ""
@@ -112,7 +113,7 @@ def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
     the middle torque of a sweep over several)."""
     ds = _at_torque(ds)
     n = ds.sizes.get("sample_speed", 0)
-    fig, axes = plt.subplots(max(n, 1), 2, figsize=(11, 1.0 + 2.6 * max(n, 1)), squeeze=False, layout="constrained")
+    fig, axes = subplots(max(n, 1), 2, figsize=(11, 1.0 + 2.6 * max(n, 1)), squeeze=False, layout="constrained")
     meshes = list(ds.mesh.values) if "mesh" in ds.dims else [None]
     same = ""
     if len(meshes) > 1:  # identical meshes (symmetric train): one trace, said so, not one hidden under the other
@@ -160,7 +161,7 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
     engagement, solid), the quasi-static mesh-in point (dotted) and the dynamic one (dashed)."""
     n_s = ds.sizes.get("sample_speed", 0)
     torques = list(range(ds.sizes["torque"])) if "torque" in ds.dims else [None]
-    fig, axes = plt.subplots(max(n_s, 1), len(torques), figsize=(4.2 * len(torques), 1.2 + 2.6 * max(n_s, 1)),
+    fig, axes = subplots(max(n_s, 1), len(torques), figsize=(4.2 * len(torques), 1.2 + 2.6 * max(n_s, 1)),
                              squeeze=False, sharex=True, layout="constrained")
     pitch, roll_a = float(ds.transverse_base_pitch), float(ds.roll_engagement)
     for c, k in enumerate(torques):
@@ -222,9 +223,9 @@ def plot_variants_peak_force(datasets, path: str | Path) -> Path:
     torques = list(range(ref.sizes["torque"])) if "torque" in ref.dims else [None]
     contact = all("dynamic_impact_force" in d for d in datasets)
     rows = 2 if contact else 1
-    fig, axes = plt.subplots(rows, len(torques), figsize=(4.3 * len(torques), 3.6 * rows), squeeze=False,
+    fig, axes = subplots(rows, len(torques), figsize=(4.3 * len(torques), 3.6 * rows), squeeze=False,
                              layout="constrained")
-    colors = plt.cm.tab10(np.arange(len(datasets)))
+    colors = colormaps["tab10"](np.arange(len(datasets)))
     for c, k in enumerate(torques):
         for color, ds in zip(colors, datasets):
             d = _at_torque(ds, k)
@@ -259,7 +260,7 @@ def train_figures(inputs, outputs) -> None:
 
 def plot_dynamics_comparison(datasets, path) -> None:
     """Mesh-deflection std and pinion lateral (y) and axial (z) velocity RMS against speed, all pairs."""
-    fig, axes = plt.subplots(3, 1, figsize=(8, 8.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(8, 8.5), sharex=True)
     for ds in datasets:
         name = ds.attrs.get("pair_name", "")
         ds = _at_torque(ds, 0)  # the comparison is at each sweep's first torque

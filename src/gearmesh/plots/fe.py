@@ -7,7 +7,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from .common import MM, plt, save, title
+from .common import MM, save, subplots, title
 
 #: m²/N -> µm per N/mm (deflection in µm under 1 N per mm of face width)
 UM_MM_PER_N = 1e9
@@ -26,7 +26,7 @@ def plot_fe_compliance(ds: xr.Dataset, path: str | Path) -> Path:
     """Top: total tooth compliance (no contact part) against roll length, FE in its plane and
     in plane stress, and the PEMs. Bottom: the body part, FE (root-section rigid motion)
     against Sainsot's fillet foundation of each PEM."""
-    fig, axes = plt.subplots(2, 2, figsize=(10, 6.4), sharex="col")
+    fig, axes = subplots(2, 2, figsize=(10, 6.4), sharex="col")
     for g, gear in enumerate(ds["gear"].values):
         x = ds["roll"].values[g] * MM
         ax = axes[0, g]

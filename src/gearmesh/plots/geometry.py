@@ -6,14 +6,15 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from matplotlib.patches import Rectangle
 
-from .common import MM, plain_axis, plt, save as _save, title as _title
+from .common import MM, palette, plain_axis, save as _save, subplots, title as _title
 
 
 def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
     """One tooth of each gear in its transverse section: the hob-generated fillet (trochoid)
     and the involute, with the root, base, form and tip circles."""
-    fig, axes = plt.subplots(1, 2, figsize=(10, 5))
+    fig, axes = subplots(1, 2, figsize=(10, 5))
     for g, ax in enumerate(axes):
         sel = ds.isel(gear=g)
         x, y = sel["profile_x"].values * MM, sel["profile_y"].values * MM
@@ -42,7 +43,7 @@ def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
     """Total contact-line length L(φ) over a mesh cycle with its closed-form mean/min/max."""
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = subplots(figsize=(7, 4))
     x = ds["position"].values * MM
     ax.plot(x, ds["total_length"].values * MM, lw=1.6, label="L(φ), sum of clipped lines")
     styles = {"mean": "-", "min": "--", "max": ":"}
@@ -61,12 +62,12 @@ def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_contact_lines(ds: xr.Dataset, path: str | Path, snapshots: int = 4) -> Path:
     """Contact lines in the plane of action (s along the line of action, z across the face)."""
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    fig, ax = subplots(figsize=(7, 4.5))
     g = float(ds.path_of_contact) * MM
     half_b = 0.5 * float(ds.face_width) * MM
-    ax.add_patch(plt.Rectangle((0, -half_b), g, 2 * half_b, fill=False, ec="0.4", lw=1.2))
+    ax.add_patch(Rectangle((0, -half_b), g, 2 * half_b, fill=False, ec="0.4", lw=1.2))
     n = ds.sizes["position"]
-    colors = plt.cm.viridis(np.linspace(0, 0.9, snapshots))
+    colors = palette(snapshots, low=0, high=0.9)
     for color, k in zip(colors, np.linspace(0, n, snapshots, endpoint=False).astype(int)):
         sel = ds.isel(position=k)
         for j in range(ds.sizes["line"]):
@@ -86,7 +87,7 @@ def plot_contact_lines(ds: xr.Dataset, path: str | Path, snapshots: int = 4) -> 
 
 def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
     """ε_l and mean contact length against helix angle for each pair (the V-curve, seed 001 §5)."""
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
+    fig, (ax1, ax2) = subplots(2, 1, figsize=(7, 6.5), sharex=True)
     for name in ds["pair"].values:
         sel = ds.sel(pair=name)
         beta = sel["helix_angle_deg"].values

@@ -9,9 +9,11 @@ from typing import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
+from matplotlib import colormaps
+from matplotlib.patches import Rectangle
 
 from ..impact import SCENARIOS
-from .common import MM, plt, save as _save, title as _title
+from .common import MM, palette, save as _save, subplots, title as _title
 
 __all__ = ["impact_figures", "impact_study_figures", "plot_robustness"]
 
@@ -20,8 +22,8 @@ _COLORS = {"none": "0.6", "surface": "tab:green", "edge": "tab:red"}
 
 def plot_force_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     """F_s (closed form, solid; energy balance, dashed) against pinion speed, one line per torque."""
-    fig, ax = plt.subplots(figsize=(7, 4.4))
-    colors = plt.cm.viridis(np.linspace(0.1, 0.85, ds.sizes["torque"]))
+    fig, ax = subplots(figsize=(7, 4.4))
+    colors = palette(ds.sizes["torque"])
     for color, k in zip(colors, range(ds.sizes["torque"])):
         sel = ds.isel(torque=k)
         scen = SCENARIOS[int(sel["scenario"])]
@@ -41,14 +43,14 @@ def plot_mesh_in_trajectory(ds: xr.Dataset, path: str | Path) -> Path:
     """Where M lies on the pinion flank (face position against roll length) for every torque,
     coloured by scenario, with SAP, tip and face ends (seed 000 Table 3): the whole flank on
     the left, a close-up around the points (labelled with their torque) on the right."""
-    fig, axes = plt.subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1, 1.3]})
+    fig, axes = subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1, 1.3]})
     b = float(ds["face_width"]) * MM
     sap, eap = float(ds["rho_sap"][0]) * MM, float(ds["rho_eap"][0]) * MM
     z = ds["mesh_in_face_position"].values * MM
     rho = ds["mesh_in_rho_pinion"].values * MM
     found = np.isfinite(z) & np.isfinite(rho)
     for ax in axes:
-        ax.add_patch(plt.Rectangle((-b / 2, sap), b, eap - sap, fc="0.94", ec="0.5", lw=0.8))
+        ax.add_patch(Rectangle((-b / 2, sap), b, eap - sap, fc="0.94", ec="0.5", lw=0.8))
         ax.axhline(sap, color="tab:cyan", ls="--", lw=0.8)
         ax.axhline(eap, color="tab:cyan", lw=0.8)
         ax.plot(z, rho, "-", color="0.5", lw=0.8)
@@ -83,7 +85,7 @@ def plot_mesh_in_trajectory(ds: xr.Dataset, path: str | Path) -> Path:
 def plot_simulation(ds: xr.Dataset, path: str | Path) -> Path:
     """The direct time integration at the design speed: total mesh force and the entering pair's
     force against time, with the static force and the energy-method F_s (and F_s above static)."""
-    fig, ax = plt.subplots(figsize=(7, 4.4))
+    fig, ax = subplots(figsize=(7, 4.4))
     if "sim_time" not in ds.coords:
         ax.text(0.5, 0.5, "no simulation in this study (impact.simulate_torques_Nm empty)", ha="center",
                 transform=ax.transAxes)
@@ -146,8 +148,8 @@ def impact_study_figures(inputs: Mapping[str, Sequence[xr.Dataset]], outputs: Ma
     speeds, torques = ref["speed"].values, ref["torque"].values
     design = float(ref.attrs.get("design_speed_rpm", speeds[0]))
     t_bold = torques[len(torques) // 2]
-    fig, axes = plt.subplots(1, 2, figsize=(12, 4.8))
-    colors = plt.cm.tab10(np.arange(len(sets)))
+    fig, axes = subplots(1, 2, figsize=(12, 4.8))
+    colors = colormaps["tab10"](np.arange(len(sets)))
     for color, ds in zip(colors, sets):
         name = ds.attrs.get("variant", "")
         _family(axes[0], torques, ds["impact_force"].values.T, speeds, design, color, name, "rpm", ds is ref)
@@ -236,8 +238,8 @@ def plot_robustness(sets: Sequence[xr.Dataset], path) -> None:
     variant's load window, and the spread of F_s under the manufacturing tolerance samples at each
     study torque (the panels of :data:`ROBUSTNESS_PANELS` whose data the variants have)."""
     panels = [draw for need, draw in ROBUSTNESS_PANELS if all(need in ds for ds in sets)]
-    fig, axes = plt.subplots(1, max(len(panels), 1), figsize=(6.4 * max(len(panels), 1), 5.0), squeeze=False)
-    colors = plt.cm.tab10(np.arange(len(sets)))
+    fig, axes = subplots(1, max(len(panels), 1), figsize=(6.4 * max(len(panels), 1), 5.0), squeeze=False)
+    colors = colormaps["tab10"](np.arange(len(sets)))
     for ax, draw in zip(axes[0], panels):
         draw(ax, sets, colors)
     if not panels:

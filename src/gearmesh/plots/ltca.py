@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from matplotlib.patches import Rectangle
 
-from .common import MM, UM, plt, save as _save, title as _title
+from .common import MM, palette, save as _save, subplots, title as _title, UM
 
 __all__ = ["plot_te_lte", "plot_contact_pattern", "plot_tca", "tca_figures", "ltca_figures"]
 
@@ -21,11 +22,11 @@ def plot_te_lte(ds: xr.Dataset, path: str | Path) -> Path:
     """Unloaded TE and the LTE of every torque over one mesh cycle (µm along the transverse
     line of action, + gear lags), with the start of engagement φ1A, LTE(φ1A) and the
     entering pair's separation TE(φ1A) (seed 000's comparison)."""
-    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    fig, ax = subplots(figsize=(7.5, 4.5))
     x = _angle_mrad(ds)
     xa = float(ds["pinion_angle_engagement"]) * 1e3
     ax.plot(x, ds["te"].values * UM, color="k", lw=1.6, label="TE (unloaded)")
-    colors = plt.cm.viridis(np.linspace(0.1, 0.85, ds.sizes["torque"]))
+    colors = palette(ds.sizes["torque"])
     for color, k in zip(colors, range(ds.sizes["torque"])):
         sel = ds.isel(torque=k)
         ax.plot(x, sel["lte"].values * UM, color=color, lw=1.6,
@@ -64,7 +65,7 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
     (N/mm) over the mesh cycle against axial position z and pinion roll length ρ1, with the
     SAP and tip (EAP) marked."""
     n = ds.sizes["torque"]
-    fig, axes = plt.subplots(1, n, figsize=(4.2 * n, 4.6), squeeze=False, sharey=True)
+    fig, axes = subplots(1, n, figsize=(4.2 * n, 4.6), squeeze=False, sharey=True)
     z = ds["point"].values * MM
     dz = float(ds["point_width"]) * MM
     z_edges = np.append(z - 0.5 * dz, z[-1] + 0.5 * dz)
@@ -88,7 +89,7 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
 def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
     """Unloaded TCA: the TE of the mesh and of each tooth pair over one mesh cycle, and the
     path of each pair's first-contact point on the pinion flank (z, ρ1)."""
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
+    fig, (ax1, ax2) = subplots(1, 2, figsize=(11, 4.3))
     x = _angle_mrad(ds)
     ax1.plot(x, ds["te"].values * UM, color="0.75", lw=4.0, label="TE of the mesh", zorder=1)
     # a tooth pair whose whole contact line touches at once (perfect flanks) has no single
@@ -116,7 +117,7 @@ def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
         ax2.text(0.02, 0.02, "whole line touching at once (perfect flanks): no single point, not drawn",
                  transform=ax2.transAxes, fontsize=7, color="0.3")
     half = 0.5 * float(ds["face_width"]) * MM
-    ax2.add_patch(plt.Rectangle((-half, float(ds.rho_sap[0]) * MM), 2 * half,
+    ax2.add_patch(Rectangle((-half, float(ds.rho_sap[0]) * MM), 2 * half,
                                 float(ds.rho_eap[0] - ds.rho_sap[0]) * MM, fill=False, ec="0.4"))
     ax2.set_xlabel("z across the face (mm)")
     ax2.set_ylabel("pinion roll length ρ1 (mm)")

@@ -10,7 +10,7 @@ import xarray as xr
 from matplotlib.ticker import MaxNLocator
 
 from ..surface import relief_depth
-from .common import MM, UM, plt, save as _save, title as _title
+from .common import figure, MM, save as _save, subplots, title as _title, UM
 
 __all__ = ["plot_convergence", "plot_modification", "plot_pareto", "optimise_figures", "pareto_figures"]
 
@@ -30,7 +30,7 @@ def _change(optimum: float, standard: float) -> str:
 def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     """Best objective so far and the population median against generation, for the run and (when
     it ran) the random search of the same budget, with the standard gear's objective."""
-    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    fig, ax = subplots(figsize=(7.5, 4.5))
     k, unit = _scale(ds)
     gen = ds["generation"].values
     runs = [("", ds.attrs.get("method", "GA").upper(), "tab:blue")]
@@ -90,7 +90,7 @@ def plot_modification(ds: xr.Dataset, path: str | Path) -> Path:
     :func:`gearmesh.surface.modification_depth`)."""
     p = ds["optimum_modification"].values
     gears = [g for g in range(2) if g == 0 or np.any(p[g] > 0)]
-    fig = plt.figure(figsize=(7.2 * len(gears), 7.4))
+    fig = figure(figsize=(7.2 * len(gears), 7.4))
     grid = fig.add_gridspec(2, 3 * len(gears), width_ratios=[4, 1.6, 0.25] * len(gears), height_ratios=[4, 1.5],
                             wspace=0.35, hspace=0.3)
     notes = []
@@ -137,7 +137,7 @@ def plot_modification(ds: xr.Dataset, path: str | Path) -> Path:
 def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
     """NSGA-II: F_s against peak-to-peak LTE at the design torque for every evaluated candidate
     (failed ones left out), the Pareto front and the standard gear."""
-    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    fig, ax = subplots(figsize=(6.5, 4.5))
     ok = ds["failed"].values == 0
     f = ds["objective"].values[ok]
     lte = ds["lte_peak_to_peak"].values[ok] * UM

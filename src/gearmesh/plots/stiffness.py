@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from .common import MM, UM, plain_axis, plt, save, title
+from .common import MM, plain_axis, save, subplots, title, UM
 
 N_PER_UM = 1e-6  # N/m -> N/µm
 
@@ -16,7 +16,7 @@ N_PER_UM = 1e-6  # N/m -> N/µm
 def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
     """K(φ), its Fourier series, the ISO 6336-1 mean, one tooth pair's k, and the LSTE."""
     n = 3 if "lste" in ds else 2
-    fig, axes = plt.subplots(n, 1, figsize=(7.5, 2.8 * n), sharex=False)
+    fig, axes = subplots(n, 1, figsize=(7.5, 2.8 * n), sharex=False)
     ax = axes[0]
     x = ds["position"].values * MM
     ax.plot(x, ds["mesh_stiffness"].values * N_PER_UM, lw=1.8, label="K(φ), slice model")
@@ -51,7 +51,7 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
 def plot_stiffness_table(ds: xr.Dataset, path: str | Path) -> Path:
     """Mean K (bars, min–max whiskers) of every case and method, with the ISO value."""
     cases, methods = ds["case"].values, ds["model"].values
-    fig, ax = plt.subplots(figsize=(min(16, 3 + 0.9 * len(cases) * max(1, len(methods) // 2)), 4.5))
+    fig, ax = subplots(figsize=(min(16, 3 + 0.9 * len(cases) * max(1, len(methods) // 2)), 4.5))
     width = 0.8 / len(methods)
     idx = np.arange(len(cases))
     for k, m in enumerate(methods):
@@ -71,7 +71,7 @@ def plot_stiffness_table(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_slice_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     """|relative difference of the mean K| against the slice count, both slice rules."""
-    fig, ax = plt.subplots(figsize=(6.5, 4))
+    fig, ax = subplots(figsize=(6.5, 4))
     n = ds["slices"].values
     for pair in ds["pair"].values:
         for rule in ds["rule"].values:
