@@ -94,24 +94,27 @@ def _drawn(artist, ax, renderer) -> bool:
     return True
 
 
-def _hidden_by(line: Line2D, other: Line2D) -> bool:
-    """``line`` lies under ``other``: the same points to within a pixel, and not drawn wider."""
+def _hidden_by(line: Line2D, other: Line2D, order: dict) -> bool:
+    """``line`` lies under ``other``: ``other`` drawn above it (higher zorder, or the same and
+    later), through the same points to within a pixel, and at least as wide."""
     if other is line or not other.get_visible():
         return False
-    a, b = _display_points(line), _display_points(other)
-    if len(a) == 0 or len(a) != len(b):
+    above = (other.get_zorder(), order[id(other)]) > (line.get_zorder(), order[id(line)])
+    if not above or other.get_linewidth() < line.get_linewidth() - 0.05:
         return False
-    return bool(np.all(np.abs(a - b) <= PIXEL)) and line.get_linewidth() <= other.get_linewidth() + 1.0
+    a, b = _display_points(line), _display_points(other)
+    return len(a) > 0 and len(a) == len(b) and bool(np.all(np.abs(a - b) <= PIXEL))
 
 
 def _legend_faults(ax, renderer) -> list[str]:
     faults = []
     handles, labels = ax.get_legend_handles_labels()
-    lines = [a for a in ax.get_lines()]
+    lines = list(ax.get_lines())
+    order = {id(line): k for k, line in enumerate(lines)}
     for handle, label in zip(handles, labels):
         if not _drawn(handle, ax, renderer):
             faults.append(f"legend entry {label!r}: nothing drawn in the axes")
-        elif isinstance(handle, Line2D) and any(_hidden_by(handle, other) for other in lines):
+        elif isinstance(handle, Line2D) and any(_hidden_by(handle, other, order) for other in lines):
             faults.append(f"legend entry {label!r}: the curve is hidden under another")
     return faults
 

@@ -16,7 +16,7 @@ from ..io import atomic_output
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["MM", "UM", "Figure", "figure", "legend_below", "number", "palette", "plain_axis", "save", "subplots",
+__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "legend_below", "number", "palette", "plain_axis", "save", "subplots",
            "title"]
 
 
@@ -66,6 +66,55 @@ def legend_below(ax, ncol: int = 2, **kwargs: Any):
     """The legend of ``ax`` under its x label, so it covers no curve (for axes whose curves fill
     every corner)."""
     return ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=ncol, fontsize=7, **kwargs)
+
+
+#: Curves closer than this fraction of the axis range everywhere are one curve on the page.
+SAME_CURVE = 2e-3
+
+
+def coinciding(curves) -> list[list[int]]:
+    """Groups of row indices of ``curves`` (rows of y values on one x grid) that coincide to
+    :data:`SAME_CURVE` of their common range, in first-appearance order: draw one line per group
+    and name every member in its label, instead of a legend entry for a curve hidden under
+    another."""
+    y = np.asarray(curves, dtype=float)
+    finite = y[np.isfinite(y)]
+    span = float(np.ptp(finite)) if finite.size else 0.0
+    tol = SAME_CURVE * (span or 1.0)
+    groups: list[list[int]] = []
+    for k, row in enumerate(y):
+        for group in groups:
+            ref = y[group[0]]
+            both = np.isfinite(ref) & np.isfinite(row)
+            if np.array_equal(np.isfinite(ref), np.isfinite(row)) and np.all(np.abs(ref[both] - row[both]) <= tol):
+                group.append(k)
+                break
+        else:
+            groups.append([k])
+    return groups
+
+
+def end_labels(ax, ends, texts, fontsize: float = 6.5, color: str = "0.3") -> None:
+    """Label lines at their right ends, outside the axes (where no data or frame cuts them),
+    moved apart vertically where they would overlap. ``ends``: the lines' last y values (data
+    units, linear y axis); call after the y limits are final."""
+    lo, hi = ax.get_ylim()
+    fig = ax.get_figure()
+    height_pt = ax.get_position().height * fig.get_figheight() * 72.0
+    gap = 1.25 * fontsize / max(height_pt, 1.0)  # one text line, in axes fractions
+    pos = (np.asarray(ends, dtype=float) - lo) / (hi - lo)
+    order = np.argsort(pos)
+    placed = np.empty_like(pos)
+    last = -np.inf
+    for k in order:
+        placed[k] = max(pos[k], last + gap)
+        last = placed[k]
+    overflow = last - 1.0
+    if overflow > 0:  # pushed above the top: shift the stack down, keeping the gaps
+        placed -= overflow
+    for y, text in zip(placed, texts):
+        ax.annotate(text, (1.0, y), xycoords="axes fraction", xytext=(3, 0), textcoords="offset points",
+                    fontsize=fontsize, color=color, va="center", annotation_clip=False)
 
 
 #: A curve whose peak-to-peak is below this fraction of its mean is drawn flat, with a note.
