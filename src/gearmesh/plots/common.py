@@ -10,13 +10,14 @@ import numpy as np
 import xarray as xr
 from matplotlib import colormaps
 from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter
 
 from ..io import atomic_output
 
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "legend_below", "number", "palette", "plain_axis", "save", "subplots",
+__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "legend_below", "number", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
            "title"]
 
 
@@ -60,6 +61,24 @@ def number(value: float, digits: int = 3) -> str:
     if abs(v) >= 10 ** (digits - 1) or v == round(v):
         return f"{round(v):d}"
     return np.format_float_positional(v, precision=digits, unique=True, fractional=False, trim="-")
+
+
+def plain_log_axis(ax, axis: str = "y") -> None:
+    """Tick labels of a logarithmic axis as plain numbers (5000, 20000; not 5×10³, 2×10⁴); the
+    minor ticks at 2, 3 and 5 labelled too on an axis spanning about a decade, at 2 and 5 on one
+    spanning up to about two and a half."""
+    target = ax.yaxis if axis == "y" else ax.xaxis
+    limits = ax.get_ylim if axis == "y" else ax.get_xlim
+
+    def minor(v: float, _) -> str:
+        lo, hi = sorted(abs(x) for x in limits())
+        if v <= 0 or lo <= 0 or hi / lo > 300:
+            return ""
+        digits = (2, 3, 5) if hi / lo <= 12 else (2, 5)
+        return number(v) if round(v / 10 ** np.floor(np.log10(v))) in digits else ""
+
+    target.set_major_formatter(FuncFormatter(lambda v, _: number(v) if v > 0 else ""))
+    target.set_minor_formatter(FuncFormatter(minor))
 
 
 def legend_below(ax, ncol: int = 2, **kwargs: Any):

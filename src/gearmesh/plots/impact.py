@@ -13,7 +13,7 @@ from matplotlib import colormaps
 from matplotlib.patches import Rectangle
 
 from ..impact import SCENARIOS
-from .common import MM, coinciding, end_labels, legend_below, number, palette, save as _save, subplots, title as _title
+from .common import MM, coinciding, end_labels, legend_below, number, palette, plain_log_axis, save as _save, subplots, title as _title
 
 __all__ = ["impact_figures", "impact_study_figures", "plot_robustness"]
 
@@ -212,6 +212,7 @@ def _load_windows(ax, sets, colors) -> None:
     if design is not None:
         ax.axvline(design, color="0.4", lw=0.8, ls=":")
     ax.set_yscale("log")
+    plain_log_axis(ax)
     ax.set_xlabel("pinion torque T1 (N m)")
     ax.set_ylabel("F_s, closed form, transverse (kN)")
     ax.set_title(f"F_s against torque at {number(float(sets[0].attrs['design_speed_rpm']))} rpm\n(dots: the study torques; "
@@ -234,6 +235,7 @@ def _tolerance_spread(ax, sets, colors) -> None:
         ax.plot(pos, f[0], "o", color=color, ms=3, mec="k", mew=0.4)
     ax.set_xticks(x, [number(t) for t in torques])
     ax.set_yscale("log")
+    plain_log_axis(ax)
     ax.set_xlabel("pinion torque T1 (N m)")
     ax.set_ylabel("F_s, closed form, transverse (kN)")
     grade = sets[0].attrs.get("lead_grade_iso1328", -1)
