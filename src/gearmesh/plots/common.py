@@ -17,7 +17,7 @@ from ..io import atomic_output
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "legend_below", "number", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
+__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "figure_legend", "legend_below", "number", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
            "title"]
 
 
@@ -79,6 +79,16 @@ def plain_log_axis(ax, axis: str = "y") -> None:
 
     target.set_major_formatter(FuncFormatter(lambda v, _: number(v) if v > 0 else ""))
     target.set_minor_formatter(FuncFormatter(minor))
+
+
+def figure_legend(fig, ncol: int = 3, fontsize: float = 8):
+    """One legend under all panels of ``fig`` (constrained layout), each label once, in the order
+    the panels first use it."""
+    seen: dict[str, Any] = {}
+    for ax in fig.axes:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            seen.setdefault(label, handle)
+    return fig.legend(list(seen.values()), list(seen), loc="outside lower center", ncol=ncol, fontsize=fontsize)
 
 
 def legend_below(ax, ncol: int = 2, **kwargs: Any):

@@ -9,7 +9,7 @@ import numpy as np
 import xarray as xr
 from matplotlib import colormaps
 
-from .common import MM, palette, plain_axis, save as _save, subplots, title as _title, UM
+from .common import coinciding, figure_legend, MM, number, palette, plain_axis, plain_log_axis, save as _save, subplots, title as _title, UM
 
 
 def _at_torque(ds: xr.Dataset, k: int | None = None) -> xr.Dataset:
@@ -22,7 +22,7 @@ def _at_torque(ds: xr.Dataset, k: int | None = None) -> xr.Dataset:
 def _torque_label(ds: xr.Dataset) -> str:
     if "torque" not in ds.coords or ds["torque"].ndim:
         return ""
-    return f"{float(ds['torque']):g} N m on the {ds.attrs.get('torque_on', 'pinion')}"
+    return f"{number(float(ds['torque']))} N m on the {ds.attrs.get('torque_on', 'pinion')}"
 
 
 #: A dynamic TE fluctuation below this (µm) is below what the model means: the slice and position
@@ -37,10 +37,10 @@ MEANINGFUL_TE_UM = 0.01
 MESH_ENERGY_MIN = 0.05
 
 
-def _resonances(ax, ds: xr.Dataset) -> None:
+def _resonances(ax, ds: xr.Dataset, labelled: bool = True) -> None:
     """Faint vertical lines where mesh harmonics meet natural frequencies (in the speed range):
     harmonic 1 for every mode, harmonics 2 and 3 for modes with at least :data:`MESH_ENERGY_MIN`
-    of their strain energy in the mesh; one legend entry per harmonic."""
+    of their strain energy in the mesh; one legend entry per harmonic (``labelled``)."""
     if "resonance_speed" not in ds:
         return
     lo, hi = float(ds.speed.min()), float(ds.speed.max())
@@ -49,8 +49,8 @@ def _resonances(ax, ds: xr.Dataset) -> None:
         else np.ones(ds.sizes["mode"], dtype=bool)
     for j, row in zip(ds.harmonic.values, ds.resonance_speed.values):
         keep = np.ones(row.size, dtype=bool) if int(j) == 1 else mesh_modes
-        label = f"{int(j)}× mesh frequency = natural frequency" + \
-            ("" if int(j) == 1 else f" (modes ≥ {MESH_ENERGY_MIN:.0%} mesh energy)")
+        label = (f"{int(j)}× mesh frequency = natural frequency" +
+                 ("" if int(j) == 1 else f" (modes ≥ {MESH_ENERGY_MIN:.0%} mesh energy)")) if labelled else None
         for n in row[keep]:
             if lo <= n <= hi:
                 ax.axvline(n, color="0.55", lw=0.8, ls=styles.get(int(j), ":"), label=label)
@@ -66,17 +66,19 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     3 (dash-dot) meet the natural frequencies of the linearised model.
     """
     speed = ds.speed.values
-    fig, axes = subplots(3, 1, figsize=(9, 10.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(11, 10.5), sharex=True, layout="constrained")
     ax = axes[0]
     torques = range(ds.sizes["torque"]) if "torque" in ds.dims else [None]
     colors = palette(len(torques))
     for k, color in zip(torques, colors):
         d = _at_torque(ds, k)
         tl = f", {_torque_label(d)}" if k is not None else ""
-        ax.plot(speed, d.dynamic_te_std.values * UM, lw=1.3, color=color,
-                label=f"dynamic TE (bodies' approach δ + e){tl}")
-        ax.plot(speed, d.mesh_deflection_std.values * UM, lw=1.0, ls="--", color=color,
-                label=f"mesh deflection δ_m{tl}")
+        te, deflection = d.dynamic_te_std.values * UM, d.mesh_deflection_std.values * UM
+        if len(coinciding([te, deflection])) == 1:  # no separate error e (contact excitation): one curve
+            ax.plot(speed, te, lw=1.3, color=color, label=f"dynamic TE = mesh deflection δ_m{tl}")
+            continue
+        ax.plot(speed, te, lw=1.3, color=color, label=f"dynamic TE (bodies' approach δ + e){tl}")
+        ax.plot(speed, deflection, lw=1.0, ls="--", color=color, label=f"mesh deflection δ_m{tl}")
     mid = _at_torque(ds)
     if "on_grid" in ds:
         added = ds.on_grid.values == 0
@@ -98,11 +100,10 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
                         ls=ls, lw=1.1, label=f"{g} {d}")
         ax.set_ylabel(f"{label}{at} ({unit})" if not at else f"{label} ({unit})\n{at.strip()}")
         ax.set_yscale("log")
-        ax.legend(fontsize=7, ncol=2)
     for ax in axes:
-        _resonances(ax, mid)
+        _resonances(ax, mid, labelled=ax is axes[0])
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=7, loc="best", framealpha=0.9)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), ncol=1 if ax is axes[0] else 2)
     axes[-1].set_xlabel("pinion speed (rpm)")
     axes[0].set_title(_title(ds, "steady-state RMS against speed") + subtitle, fontsize=11 if not subtitle else 9)
     return _save(fig, path)
@@ -138,19 +139,21 @@ def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
                            label="static force")
         axes[i, 0].set_ylabel("normal mesh force (N)")
         plain_axis(axes[i, 0], ds.mesh_force_series.isel(sample_speed=i).values, "N", "force")
-        axes[i, 0].set_title(f"{float(sel.sample_speed):g} rpm, mesh frequency {f_mesh:.1f} Hz", fontsize=9)
+        axes[i, 0].set_title(f"{number(float(sel.sample_speed))} rpm, mesh frequency {number(f_mesh)} Hz", fontsize=9)
         axes[i, 1].set_ylabel("amplitude, normal force (N)")
         axes[i, 1].set_yscale("log")
+        plain_log_axis(axes[i, 1])
         top = float(np.nanmax(ds.mesh_force_spectrum.isel(sample_speed=i).values[1:]))
         if top > 0:
             axes[i, 1].set_ylim(top * 1e-4, top * 2.0)
-        axes[i, 0].legend(fontsize=7)
         for ax in axes[i]:
             ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time (ms)")
     axes[-1, 1].set_xlabel("frequency (Hz)")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=8)
     at = f", {_torque_label(ds)}" if _torque_label(ds) else ""
-    fig.suptitle(_title(ds, f"dynamic mesh force normal to the flanks{at}: time series and spectrum (DC removed)"))
+    fig.suptitle(_title(ds, f"dynamic mesh force normal to the flanks{at}: time series and spectrum (mean removed)"))
     return _save(fig, path)
 
 
@@ -161,7 +164,7 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
     engagement, solid), the quasi-static mesh-in point (dotted) and the dynamic one (dashed)."""
     n_s = ds.sizes.get("sample_speed", 0)
     torques = list(range(ds.sizes["torque"])) if "torque" in ds.dims else [None]
-    fig, axes = subplots(max(n_s, 1), len(torques), figsize=(4.2 * len(torques), 1.2 + 2.6 * max(n_s, 1)),
+    fig, axes = subplots(max(n_s, 1), len(torques), figsize=(4.4 * len(torques), 1.8 + 2.8 * max(n_s, 1)),
                              squeeze=False, sharex=True, layout="constrained")
     pitch, roll_a = float(ds.transverse_base_pitch), float(ds.roll_engagement)
     for c, k in enumerate(torques):
@@ -182,22 +185,32 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
             fe = np.where(wrap | np.roll(wrap, -1), np.nan, fe)  # the samples on both sides of the switch
             ax.plot(cyc[keep], fe, lw=1.2, color="tab:red", label="entering pair (±½ base pitch about A)")
             i_s = int(np.argmin(np.abs(d.speed.values - float(sel.sample_speed))))
-            marks = ((0.0, "k", "-", "A (theoretical start of engagement)"),
-                     (float(d.static_mesh_in_roll_before_A), "0.3", ":", "quasi-static mesh-in point"),
-                     (float(d.mesh_in_roll_before_A.values[i_s]), "tab:red", "--", "dynamic mesh-in point"))
-            for before, color, ls, label in marks:
+            # A wide and pale, the quasi-static point narrower, the dynamic one thin on top: where
+            # two coincide both stay visible
+            # A wide and pale, the quasi-static point narrower, the dynamic one thin on top: where
+            # two coincide both stay visible; a mesh-in at or after A (stored as 0) is not marked
+            dynamic, static = float(d.mesh_in_roll_before_A.values[i_s]), float(d.static_mesh_in_roll_before_A)
+            marks = ((0.0, "0.55", "-", 2.4, "A (theoretical start of engagement)"),
+                     (static, "k", ":", 1.6, "quasi-static mesh-in point"),
+                     (dynamic, "tab:red", "--", 0.9, "dynamic mesh-in point"))
+            for before, color, ls, lw, label in marks:
+                if before <= 0 and label != marks[0][-1]:
+                    continue
                 for cycle in (0, 1, 2):
                     x = (roll_a - before) / pitch + cycle
                     if 0 <= x <= 2:
-                        ax.axvline(x, color=color, ls=ls, lw=0.9, label=label)
+                        ax.axvline(x, color=color, ls=ls, lw=lw, label=label)
                         label = None
-            ax.set_title(f"{float(sel.sample_speed):g} rpm, {_torque_label(d)}: mesh-in "
-                         f"{float(d.mesh_in_roll_before_A.values[i_s]) * MM:.2f} mm before A "
-                         f"(quasi-static {float(d.static_mesh_in_roll_before_A) * MM:.2f})", fontsize=7)
+
+            def where(before: float) -> str:
+                return f"{number(before * MM)} mm before A" if before > 0 else "at or after A"
+
+            head = f"{_torque_label(d)}\n" if r == 0 else ""
+            ax.set_title(f"{head}mesh-in {where(dynamic)} (quasi-static {where(static)})", fontsize=8)
             ax.grid(alpha=0.3)
             if c == 0:
-                ax.set_ylabel("normal force (kN)")
-    axes[0, 0].legend(fontsize=6, loc="upper left", framealpha=0.9)
+                ax.set_ylabel(f"{number(float(sel.sample_speed))} rpm\nnormal force (kN)")
+    figure_legend(fig)
     for ax in axes[-1]:
         ax.set_xlabel("mesh cycles (pinion roll / transverse base pitch)")
     fig.suptitle(_title(ds, "engagement in the steady state, driven by the real tooth contact"), fontsize=10)
