@@ -16,7 +16,7 @@ from contextlib import contextmanager
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.collections import Collection, PolyCollection, QuadMesh
+from matplotlib.collections import Collection, PathCollection, PolyCollection, QuadMesh
 from matplotlib.container import Container
 from matplotlib.legend import Legend
 from matplotlib.lines import Line2D
@@ -85,7 +85,7 @@ def _drawn(artist, ax, renderer) -> bool:
         return _extent_drawn(artist.get_window_extent(renderer), frame, both=True)
     if isinstance(artist, Collection):
         offsets = artist.get_offsets()
-        if len(artist.get_paths()) and not isinstance(artist, (PolyCollection, QuadMesh)) and len(offsets) > 1:
+        if isinstance(artist, PathCollection) and len(artist.get_paths()) and len(offsets):  # scatter
             pts = artist.get_offset_transform().transform(np.asarray(offsets, dtype=float))
             pts = pts[np.isfinite(pts).all(axis=1)]
             return bool(len(pts)) and bool(_inside(pts, frame).any())
@@ -140,6 +140,11 @@ def _covered_curves(legend: Legend, axes, renderer) -> list[str]:
             inner = Bbox.from_extents(box.x0 + 2, box.y0 + 2, box.x1 - 2, box.y1 - 2)
             if len(dense) and _inside(dense, inner, pad=0).any():
                 faults.append(f"legend covers the curve {line.get_label()!r}")
+        for patch in ax.patches:  # bars and other filled data areas (background areas have zorder < 1)
+            if patch.get_visible() and patch.get_fill() and patch.get_zorder() >= 1:
+                inter = Bbox.intersection(box, patch.get_window_extent(renderer))
+                if inter is not None and inter.width > 2 and inter.height > 2:
+                    faults.append(f"legend covers the patch {patch.get_label()!r}")
     return faults
 
 

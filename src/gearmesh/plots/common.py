@@ -53,11 +53,14 @@ def title(ds: xr.Dataset, what: str) -> str:
 
 def number(value: float, digits: int = 3) -> str:
     """A value for a label: whole numbers from 100 up (118.367 → "118", 12500 → "12500"), below
-    that ``digits`` significant digits (13.224 → "13.2", 0.01234 → "0.0123"); no exponent, no
-    trailing zeros. The netCDF file keeps the full value; a label only has to tell values apart."""
+    that ``digits`` significant digits (13.224 → "13.2", 0.01234 → "0.0123"), below 0.001 with an
+    exponent (1.22e-15); no trailing zeros. The netCDF file keeps the full value; a label only has
+    to tell values apart."""
     v = float(value)
     if not np.isfinite(v):
         return str(v)
+    if v != 0 and abs(v) < 1e-3:
+        return f"{v:.{digits}g}"
     if abs(v) >= 10 ** (digits - 1) or v == round(v):
         return f"{round(v):d}"
     return np.format_float_positional(v, precision=digits, unique=True, fractional=False, trim="-")
@@ -97,18 +100,20 @@ def legend_below(ax, ncol: int = 2, **kwargs: Any):
     return ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=ncol, fontsize=7, **kwargs)
 
 
-#: Curves closer than this fraction of the axis range everywhere are one curve on the page.
-SAME_CURVE = 2e-3
+#: Curves closer than this fraction of the axis range everywhere are one curve on the page (a pixel
+#: of a 250-pixel axis; lines are 1–2 pixels wide).
+SAME_CURVE = 4e-3
 
 
-def coinciding(curves) -> list[list[int]]:
+def coinciding(curves, span: float | None = None) -> list[list[int]]:
     """Groups of row indices of ``curves`` (rows of y values on one x grid) that coincide to
-    :data:`SAME_CURVE` of their common range, in first-appearance order: draw one line per group
-    and name every member in its label, instead of a legend entry for a curve hidden under
-    another."""
+    :data:`SAME_CURVE` of ``span`` (the axis range; default their own range), in first-appearance
+    order: draw one line per group and name every member in its label, instead of a legend entry
+    for a curve hidden under another."""
     y = np.asarray(curves, dtype=float)
     finite = y[np.isfinite(y)]
-    span = float(np.ptp(finite)) if finite.size else 0.0
+    if span is None:
+        span = float(np.ptp(finite)) if finite.size else 0.0
     tol = SAME_CURVE * (span or 1.0)
     groups: list[list[int]] = []
     for k, row in enumerate(y):

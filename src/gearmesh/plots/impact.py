@@ -53,7 +53,7 @@ def plot_mesh_in_trajectory(ds: xr.Dataset, path: str | Path) -> Path:
     rho = ds["mesh_in_rho_pinion"].values * MM
     found = np.isfinite(z) & np.isfinite(rho)
     for ax in axes:
-        ax.add_patch(Rectangle((-b / 2, sap), b, eap - sap, fc="0.94", ec="0.5", lw=0.8))
+        ax.add_patch(Rectangle((-b / 2, sap), b, eap - sap, fc="0.94", ec="0.5", lw=0.8, zorder=0))
         ax.axhline(sap, color="tab:cyan", ls="--", lw=0.8)
         ax.axhline(eap, color="tab:cyan", lw=0.8)
         ax.plot(z, rho, "-", color="0.5", lw=0.8)
