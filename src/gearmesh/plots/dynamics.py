@@ -31,16 +31,18 @@ def _torque_label(ds: xr.Dataset) -> str:
 #: even at accuracy grade 4 for these sizes), so the figure says so instead of plotting noise as a result.
 MEANINGFUL_TE_UM = 0.01
 
-#: Harmonics 2 and 3 are drawn only for modes with at least this fraction of their strain energy in
-#: the mesh (the higher mesh harmonics are weak; a bearing mode they would meet barely responds),
-#: harmonic 1 for every mode — so a sweep over a wide speed range is not crowded with lines.
-MESH_ENERGY_MIN = 0.05
+#: Resonance lines are drawn only for modes with at least this fraction of their strain energy in
+#: the mesh: the mesh does work on a mode in proportion to that share, so a mode below it (a bearing
+#: mode, a free axial mode with 1e-31) is not excited by the mesh and its lines would only crowd the
+#: figure (they did on the wide sweeps of the integer-overlap pairs), while the peaks of the
+#: displacement curves sit on the lines of the modes above it, for every harmonic.
+MESH_ENERGY_MIN = 0.01
 
 
 def _resonances(ax, ds: xr.Dataset, labelled: bool = True) -> None:
-    """Faint vertical lines where mesh harmonics meet natural frequencies (in the speed range):
-    harmonic 1 for every mode, harmonics 2 and 3 for modes with at least :data:`MESH_ENERGY_MIN`
-    of their strain energy in the mesh; one legend entry per harmonic (``labelled``)."""
+    """Faint vertical lines where mesh harmonics 1–3 meet the natural frequencies (in the speed
+    range) of the mesh modes, those with at least :data:`MESH_ENERGY_MIN` of their strain energy in the mesh;
+    one legend entry per harmonic (``labelled``)."""
     if "resonance_speed" not in ds:
         return
     lo, hi = float(ds.speed.min()), float(ds.speed.max())
@@ -48,10 +50,8 @@ def _resonances(ax, ds: xr.Dataset, labelled: bool = True) -> None:
     mesh_modes = ds["mesh_energy_fraction"].values >= MESH_ENERGY_MIN if "mesh_energy_fraction" in ds \
         else np.ones(ds.sizes["mode"], dtype=bool)
     for j, row in zip(ds.harmonic.values, ds.resonance_speed.values):
-        keep = np.ones(row.size, dtype=bool) if int(j) == 1 else mesh_modes
-        label = (f"{int(j)}× mesh frequency = natural frequency" +
-                 ("" if int(j) == 1 else f" (modes ≥ {MESH_ENERGY_MIN:.0%} mesh energy)")) if labelled else None
-        for n in row[keep]:
+        label = f"{int(j)}× mesh frequency = natural frequency of a mesh mode" if labelled else None
+        for n in row[mesh_modes]:
             if lo <= n <= hi:
                 ax.axvline(n, color="0.55", lw=0.8, ls=styles.get(int(j), ":"), label=label)
                 label = None
@@ -63,17 +63,22 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
 
     Displacements are shown as their standard deviation (the vibration about the static
     bearing deflection); vertical lines: speeds where mesh harmonics 1 (dotted), 2 (dashed),
-    3 (dash-dot) meet the natural frequencies of the linearised model.
+    3 (dash-dot) meet the natural frequencies of the linearised model's mesh modes. A TE
+    fluctuation below :data:`MEANINGFUL_TE_UM` is drawn in nm and the title says it is below the
+    model's meaning.
     """
     speed = ds.speed.values
     fig, axes = subplots(3, 1, figsize=(11, 10.5), sharex=True, layout="constrained")
     ax = axes[0]
+    top = float(np.nanmax(ds.dynamic_te_std.values)) * UM
+    tiny = top < MEANINGFUL_TE_UM  # nanometres: drawn in nm and said to be below the model's meaning
+    scale, unit = (UM * 1e3, "nm") if tiny else (UM, "µm")
     torques = range(ds.sizes["torque"]) if "torque" in ds.dims else [None]
     colors = palette(len(torques))
     for k, color in zip(torques, colors):
         d = _at_torque(ds, k)
         tl = f", {_torque_label(d)}" if k is not None else ""
-        te, deflection = d.dynamic_te_std.values * UM, d.mesh_deflection_std.values * UM
+        te, deflection = d.dynamic_te_std.values * scale, d.mesh_deflection_std.values * scale
         if len(coinciding([te, deflection])) == 1:  # no separate error e (contact excitation): one curve
             ax.plot(speed, te, lw=1.3, color=color, label=f"dynamic TE = mesh deflection δ_m{tl}")
             continue
@@ -82,14 +87,13 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     mid = _at_torque(ds)
     if "on_grid" in ds:
         added = ds.on_grid.values == 0
-        ax.plot(speed[added], mid.dynamic_te_std.values[added] * UM, "k.", ms=2.5,
+        ax.plot(speed[added], mid.dynamic_te_std.values[added] * scale, "k.", ms=2.5,
                 label="speeds added around predicted resonances")
-    top = float(np.nanmax(ds.dynamic_te_std.values)) * UM
     subtitle = ""
-    if top < MEANINGFUL_TE_UM:
-        subtitle = (f"\nlargest TE fluctuation {top * 1e3:.2g} nm: below what the model means (its discretisation "
+    if tiny:
+        subtitle = (f"\nlargest TE fluctuation {number(top * 1e3)} nm: below what the model means (its discretisation "
                     "leaves nanometres,\nreal flanks deviate by micrometres) — read it as no excitation")
-    ax.set_ylabel("standard deviation along the\ntransverse line of action (µm)")
+    ax.set_ylabel(f"standard deviation along the\ntransverse line of action ({unit})")
     dir_colors = {"x": "tab:blue", "y": "tab:orange", "z": "tab:green"}
     at = f" at {_torque_label(mid)}" if _torque_label(mid) else ""
     for ax, var, unit, scale, label in ((axes[1], "displacement_std", "µm", UM, "displacement (std)"),
