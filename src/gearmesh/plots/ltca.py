@@ -44,8 +44,8 @@ def plot_te_lte(ds: xr.Dataset, path: str | Path) -> Path:
         ax.plot([xa], [at_a[k]], "o", color=color, ms=5, label="LTE at φ1A" if k == 0 else None)
     ax.axvline(xa, color="0.4", ls=":", lw=1.0, label="start of engagement φ1A")
     ax.plot([xa], [separation], "s", color="k", ms=5, label="entering pair's unloaded separation TE(φ1A)")
-    ax.annotate(f"TE(φ1A) = {number(separation)} µm", (xa, separation), xytext=(8, 0), textcoords="offset points",
-                va="center", fontsize=8)
+    ax.annotate(f"TE(φ1A) = {number(separation)} µm", (xa, separation), xytext=(7, 5), textcoords="offset points",
+                va="bottom", fontsize=8, bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 1})
     ax.set_xlabel("pinion rotation φ1 over one mesh cycle (mrad)")
     ax.set_ylabel("transmission error along the line of action (µm)")
     law = str(ds.attrs.get("contact_law", ""))

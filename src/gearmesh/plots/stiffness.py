@@ -70,6 +70,11 @@ def plot_stiffness_table(ds: xr.Dataset, path: str | Path) -> Path:
     return save(fig, path)
 
 
+#: The slice rules as a reader knows them (:mod:`gearmesh.stiffness`: 'centre' takes a whole slice
+#: when its centre is on the active flank, 'clip' clips the end slices to it).
+SLICE_RULES = {"centre": "whole slices (by their centre)", "clip": "end slices clipped"}
+
+
 def plot_slice_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     """|relative difference of the mean K| against the slice count, both slice rules."""
     fig, ax = subplots(figsize=(6.5, 4))
@@ -78,7 +83,7 @@ def plot_slice_convergence(ds: xr.Dataset, path: str | Path) -> Path:
         for rule in ds["rule"].values:
             err = np.abs(ds["mean_relative_difference"].sel(pair=pair, rule=rule).values)
             keep = err > 0
-            ax.loglog(n[keep], err[keep], "o-", label=f"{pair}, {rule}")
+            ax.loglog(n[keep], err[keep], "o-", label=f"{pair}, {SLICE_RULES.get(str(rule), str(rule))}")
     ax.set_xlabel("slices over the face width")
     ax.set_ylabel("|mean K / finest clipped − 1|")
     ax.set_title("slice-count convergence of the mean mesh stiffness")
