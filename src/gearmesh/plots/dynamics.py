@@ -31,6 +31,16 @@ def _torque_label(ds: xr.Dataset) -> str:
 #: even at accuracy grade 4 for these sizes), so the figure says so instead of plotting noise as a result.
 MEANINGFUL_TE_UM = 0.01
 
+
+def _below_meaning(datasets) -> str:
+    """A title line saying the sweeps' dynamic TE is below what the model means, when it is in
+    every dataset (empty otherwise)."""
+    top = max(float(np.nanmax(ds.dynamic_te_std.values)) * UM for ds in datasets)
+    if top >= MEANINGFUL_TE_UM:
+        return ""
+    return (f"\nlargest TE fluctuation {number(top * 1e3)} nm: below what the model means (its discretisation "
+            "leaves nanometres,\nreal flanks deviate by micrometres) — read it as no excitation")
+
 #: Resonance lines are drawn only for modes with at least this fraction of their strain energy in
 #: the mesh: the mesh does work on a mode in proportion to that share, so a mode below it (a bearing
 #: mode, a free axial mode with 1e-31) is not excited by the mesh and its lines would only crowd the
@@ -89,10 +99,7 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
         added = ds.on_grid.values == 0
         ax.plot(speed[added], mid.dynamic_te_std.values[added] * scale, "k.", ms=2.5,
                 label="speeds added around predicted resonances")
-    subtitle = ""
-    if tiny:
-        subtitle = (f"\nlargest TE fluctuation {number(top * 1e3)} nm: below what the model means (its discretisation "
-                    "leaves nanometres,\nreal flanks deviate by micrometres) — read it as no excitation")
+    subtitle = _below_meaning([ds])
     ax.set_ylabel(f"standard deviation along the\ntransverse line of action ({unit})")
     dir_colors = {"x": "tab:blue", "y": "tab:orange", "z": "tab:green"}
     at = f" at {_torque_label(mid)}" if _torque_label(mid) else ""
@@ -240,7 +247,7 @@ def plot_variants_peak_force(datasets, path: str | Path) -> Path:
     torques = list(range(ref.sizes["torque"])) if "torque" in ref.dims else [None]
     contact = all("dynamic_impact_force" in d for d in datasets)
     rows = 2 if contact else 1
-    fig, axes = subplots(rows, len(torques), figsize=(4.3 * len(torques), 3.6 * rows), squeeze=False,
+    fig, axes = subplots(rows, len(torques), figsize=(max(6.5, 4.3 * len(torques)), 3.6 * rows), squeeze=False,
                              layout="constrained")
     colors = colormaps["tab10"](np.arange(len(datasets)))
     for c, k in enumerate(torques):
@@ -260,7 +267,8 @@ def plot_variants_peak_force(datasets, path: str | Path) -> Path:
             ax.grid(alpha=0.3)
             ax.set_xlabel("pinion speed (rpm)")
     axes[0, 0].legend(fontsize=7, title="variant", title_fontsize=7)
-    fig.suptitle(_title(ref, "peak dynamic mesh force against speed, all variants"), fontsize=10)
+    fig.suptitle(_title(ref, "peak dynamic mesh force against speed, all variants") + _below_meaning(datasets),
+                 fontsize=10)
     return _save(fig, path)
 
 
