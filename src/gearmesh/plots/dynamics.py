@@ -95,7 +95,7 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
         ax.plot(speed, te, lw=1.3, color=color, label=f"dynamic TE (bodies' approach δ + e){tl}")
         ax.plot(speed, deflection, lw=1.0, ls="--", color=color, label=f"mesh deflection δ_m{tl}")
     mid = _at_torque(ds)
-    if "on_grid" in ds:
+    if "on_grid" in ds and np.any(ds.on_grid.values == 0):
         added = ds.on_grid.values == 0
         ax.plot(speed[added], mid.dynamic_te_std.values[added] * scale, "k.", ms=2.5,
                 label="speeds added around predicted resonances")
