@@ -162,7 +162,7 @@ def all_targets():
 BY_PAIR = "{pair}"
 BY_VARIANT = "{pair} / {variant}"
 BY_RUN = "{pair} / {run}"
-STUDY_TABLES = "study tables"
+STUDY_TABLES = "Study tables"
 
 
 def report_item(path, caption, category, subcategory=BY_PAIR):

@@ -34,9 +34,9 @@ rule plot_optimise:
         ga="results/{study}/{pair}/optimise/{run}/ga.nc",
     output:
         convergence=report_item("results/{study}/{pair}/optimise/{run}/plots/convergence.png",
-                                "optimise_convergence", "optimisation", BY_RUN),
+                                "optimise_convergence", "Optimisation", BY_RUN),
         modification=report_item("results/{study}/{pair}/optimise/{run}/plots/modification.png",
-                                 "optimise_modification", "optimisation", BY_RUN),
+                                 "optimise_modification", "Optimisation", BY_RUN),
     log:
         "logs/{study}/{pair}/optimise/plot_{run}.log",
     params:
@@ -53,7 +53,7 @@ rule plot_pareto:
         ga="results/{study}/{pair}/optimise/{run}/ga.nc",
     output:
         pareto=report_item("results/{study}/{pair}/optimise/{run}/plots/pareto.png", "optimise_pareto",
-                           "optimisation", BY_RUN),
+                           "Optimisation", BY_RUN),
     log:
         "logs/{study}/{pair}/optimise/pareto_{run}.log",
     params:
