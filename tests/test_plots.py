@@ -84,8 +84,9 @@ def _outputs(tmp_path, *names):
 
 # (plot function, its inputs from the data fixture, its outputs)
 FIGURES = {
-    "pair": (geometry.pair_figures, {"geometry": "geometry", "contact_lines": "contact_lines"},
-             ("tooth_profile", "contact_length", "contact_lines")),
+    "geometry": (geometry.geometry_figures, {"geometry": "geometry"}, ("tooth_profile",)),
+    "contact_lines": (geometry.contact_lines_figures, {"contact_lines": "contact_lines"},
+                      ("contact_length", "contact_lines")),
     "helix_sweep": (geometry.helix_sweep_figures, {"helix_sweep": "helix_sweep"}, ("helix_sweep",)),
     "stiffness": (stiffness.stiffness_figures, {"stiffness": "stiffness"}, ("stiffness",)),
     "stiffness_table": (stiffness.stiffness_table_figures, {"stiffness_table": "stiffness_table"},

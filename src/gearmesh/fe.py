@@ -52,8 +52,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
-from scipy.sparse.linalg import splu
 
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry, pair_to_dict
@@ -153,6 +151,8 @@ def elastic_solver(mesh, youngs_modulus: float, poisson_ratio: float, plane: str
         raise RuntimeError("no clamped facet: the elastic problem is singular")
     free = np.setdiff1d(np.arange(basis.N), fixed)
     # symmetric positive definite: minimum degree on A+Aᵀ and diagonal pivots keep the fill small
+    from scipy.sparse.linalg import splu  # here, not at import: scipy costs a job ~0.5 s of start-up
+
     lu = splu(k[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
               options={"SymmetricMode": True})
     return ElasticSolver(basis=basis, free=free, lu=lu)
@@ -552,6 +552,8 @@ def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAU
     res = fe_tooth_compliance_cached(geom, gear, n_roll, plane, size, neighbours)
     zero = np.zeros_like(res.rho)
     values = {"bending": res.tooth, "shear": zero, "axial": zero.copy(), "fillet": res.body}
+    from scipy.interpolate import CubicSpline
+
     splines = {k: CubicSpline(res.rho, v) for k, v in values.items()}
     return SliceComplianceTable(gear=gear, method="fe", model=tooth_model(geom, gear, "transition", profile),
                                 rho=res.rho, values=values, load_angle=res.load_angle, _splines=splines)
