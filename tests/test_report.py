@@ -92,3 +92,5 @@ def test_the_landing_page_names_its_source_document_by_title():
     assert "Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears" in html
     assert 'href="docs/references.md"' in html
     assert "Where our results differ from the source document" in html
+    for section in ("how-to-read-this-report", "where-our-results-differ-from-the-source-document-and-why"):
+        assert f'id="{section}"' in html  # headings, not text run into a paragraph
