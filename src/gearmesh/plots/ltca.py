@@ -77,7 +77,7 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
     (N/mm) over the mesh cycle against axial position z and pinion roll length ρ1, with the
     SAP and tip (EAP) marked; each panel on its own colour scale (its colour bar below it, so a
     light load is not drawn dark on the scale of the heaviest), cells the contact never
-    reaches grey, shown at the low end of each colour bar."""
+    reaches grey, shown at the low end of each colour bar (where there are any)."""
     n = ds.sizes["torque"]
     fig, axes = subplots(1, n, figsize=(4.2 * n, 5.4), squeeze=False, sharey=True, layout="constrained")
     z = ds["point"].values * MM
@@ -95,8 +95,11 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
         ax.set_title(f"T1 = {number(float(sel.torque))} N m\nmax {number(float(sel.max_line_load_cycle) * 1e-3)} N/mm",
                      fontsize=9)
         ax.set_xlabel("z across the face (mm)")
-        bar = fig.colorbar(mesh, ax=ax, location="bottom", extend="min", extendfrac=0.08, aspect=30)
-        bar.set_label("largest line load over the mesh cycle (N/mm);\ngrey (left end): no contact", fontsize=8)
+        apart = bool(np.isnan(grid).any())  # cells the contact never reaches: on the bar only when there are any
+        bar = fig.colorbar(mesh, ax=ax, location="bottom", extend="min" if apart else "neither", extendfrac=0.08,
+                           aspect=30)
+        bar.set_label("largest line load over the mesh cycle (N/mm)" + (";\ngrey (left end): no contact" if apart else ""),
+                      fontsize=8)
     axes[0][0].set_ylabel("pinion roll length ρ1 (mm); dashed SAP, solid tip")
     fig.suptitle(_title(ds, "loaded contact pattern on the pinion flank"))
     return _save(fig, path)
