@@ -160,6 +160,28 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     _check_report(work)
     _check_code_change_reruns(root, work, tmp_path)
     _check_slurm_profile_dry_run(work)
+    _check_swapped_input_is_refused(work)  # last: it leaves a failed job behind
+
+
+def _check_swapped_input_is_refused(work: Path) -> None:
+    """Another variant's LTCA copied over standard's (issue 20): the jobs that read it refuse it
+    with one line naming the file and how to regenerate it, and write nothing from it."""
+    base = work / "results/e2e/seed001_pair1"
+    before = shutil.copy(base / "standard/dynamics.nc", work / "dynamics_before.nc")
+    shutil.copy(base / "relief/ltca.nc", base / "standard/ltca.nc")
+    proc = _snakemake(work)
+    assert proc.returncode != 0
+    wanted = ("gearmesh: error: results/e2e/seed001_pair1/standard/ltca.nc = 'the ltca result written as "
+              "results/e2e/seed001_pair1/relief/ltca.nc'")
+    assert wanted in proc.stderr, proc.stderr[-3000:]
+    assert "snakemake --forcerun results/e2e/seed001_pair1/standard/ltca.nc" in proc.stderr
+    # nothing made from it: the dynamics either refused it (Snakemake removed its output first) or never ran
+    assert not (base / "standard/dynamics.nc").exists() or \
+        (base / "standard/dynamics.nc").read_bytes() == before.read_bytes()
+    # the advice works: the file is remade and what reads it with it, bit-identical to the first run
+    proc = _snakemake(work, "--forcerun", "results/e2e/seed001_pair1/standard/ltca.nc")
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert read_dataset(base / "standard/dynamics.nc").identical(read_dataset(before))
 
 
 def test_workflow_refuses_a_bad_pair_before_writing_anything(root, tmp_path):
