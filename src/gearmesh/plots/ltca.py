@@ -80,6 +80,7 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
     reaches grey, shown at the low end of each colour bar (where there are any)."""
     n = ds.sizes["torque"]
     fig, axes = subplots(1, n, figsize=(4.2 * n, 5.4), squeeze=False, sharey=True, layout="constrained")
+    fig.get_layout_engine().set(wspace=0.08)  # the panels' end tick labels apart
     z = ds["point"].values * MM
     dz = float(ds["point_width"]) * MM
     z_edges = np.append(z - 0.5 * dz, z[-1] + 0.5 * dz)
