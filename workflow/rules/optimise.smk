@@ -25,11 +25,11 @@ rule optimise:
     # the longest job, and the variants it writes wait for it: start it first
     priority: 10
     params:
-        function=versioned("gearmesh.datasets.optimise:optimise_dataset"),
+        function=versioned_param("gearmesh.datasets.optimise:optimise_dataset"),
         # the impact model is the study's (impact: section), so the optimum is optimal for the impact stage
         settings=lambda wildcards: {**config["optimise"][wildcards.run], "impact": config.get("impact"),
                                     "tolerances": config.get("tolerances")},
-        figures=versioned("gearmesh.plots.optimise:optimise_figures"),
+        figures=versioned_param("gearmesh.plots.optimise:optimise_figures"),
     conda:
         ENV
     script:
@@ -47,7 +47,7 @@ rule plot_pareto:
     log:
         "logs/{study}/{pair}/optimise/pareto_{run}.log",
     params:
-        function=versioned("gearmesh.plots.optimise:pareto_figures"),
+        function=versioned_param("gearmesh.plots.optimise:pareto_figures"),
     conda:
         ENV
     script:
