@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import re
 import importlib.util
 import os
 import shutil
@@ -72,6 +73,9 @@ def _check_report(work: Path) -> None:
     assert "Where our results differ from the source document" in html  # the workflow page
     assert "<strong>relief</strong>" in html  # captions rendered with the job's wildcards
     assert '"seed001_pair1 / relief"' in html  # subcategory per pair and variant
+    # the job panel names each job's function, without the digest that reruns it when its code changes
+    assert "gearmesh.datasets.ltca:ltca_dataset" in html
+    assert not re.search(r"gearmesh\.[\w.]+:\w+@[0-9a-f]{16}", html)
 
 
 def _check_code_change_reruns(root: Path, work: Path, tmp: Path) -> None:
