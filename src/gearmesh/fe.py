@@ -270,6 +270,7 @@ class GearSector:
     bore_radius: float
     full: bool
     sizes: tuple[float, ...]  # boundary spacing (m) on tooth |j| = 0, 1, 2, ... (last: the rest, cuts, bore)
+    chord: np.ndarray | None = None  # vertex indices along the loaded tooth's root chord, left to right
 
 
 def _tooth_outline(profile, load_rolls: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
@@ -291,10 +292,47 @@ def _closed(start: int, n: int) -> np.ndarray:
     return np.column_stack([i, np.roll(i, -1)])
 
 
+def _insert_junctions(outer: np.ndarray, theta_f: float, pitch: float):
+    """Insert into the outline (n, 2) the points of the loaded tooth (polar angle within
+    ±pitch/2 of +y) at polar angles −θ_f and +θ_f (on the outline's segments, or an existing
+    vertex within 1e-9 rad); returns the new outline and the two indices (left, right)."""
+    phi = np.arctan2(outer[:, 0], outer[:, 1])  # from +y towards +x
+    out = outer
+    ends = []
+    for target in (-theta_f, theta_f):
+        phi = np.arctan2(out[:, 0], out[:, 1])
+        hit = np.flatnonzero(np.abs(phi - target) < 1e-9)
+        if hit.size:
+            ends.append(int(hit[0]))
+            continue
+        i = np.flatnonzero((np.abs(phi[:-1]) <= 0.5 * pitch + 1e-12) & ((phi[:-1] - target) * (phi[1:] - target) < 0))
+        if i.size != 1:
+            raise RuntimeError("the root section's ends are not found once on the loaded tooth")
+        i = int(i[0])
+        p, q = out[i], out[i + 1]
+        d = np.array([math.sin(target), math.cos(target)])  # the ray at polar angle target
+        # p + t (q − p) on the ray: cross(d, p + t(q − p)) = 0
+        cr = lambda v: d[0] * v[1] - d[1] * v[0]  # noqa: E731
+        t = cr(p) / (cr(p) - cr(q))
+        out = np.vstack([out[:i + 1], p + t * (q - p), out[i + 1:]])
+        ends.append(i + 1)
+    if ends[0] >= ends[1]:
+        raise RuntimeError("root section ends out of order")
+    return out, ends
+
+
 def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarray, size: float,
-                   neighbours: int | None = DEFAULT_NEIGHBOURS) -> GearSector:
+                   neighbours: int | None = DEFAULT_NEIGHBOURS, ring: bool = False,
+                   root_chord: float | None = None) -> GearSector:
     """Outline of the loaded tooth, ``neighbours`` teeth each side and the rim to the bore;
-    the whole gear when ``neighbours`` is None or the sector would close.
+    the whole gear when ``neighbours`` is None or the sector would close. With ``ring`` the
+    body is the whole ring (no radial cuts) and only the ``neighbours`` teeth each side of
+    the loaded one are kept, the root circle closing the outline over the others (the
+    3-D model's domain, :mod:`gearmesh.fe3d`: far teeth carry no load and stiffen the rim
+    only slightly, measured in docs/validation.md). ``root_chord`` = θ_f (rad): the loaded
+    tooth's root section — the chord between the points at polar angle ±θ_f where its flanks
+    meet the root circle (the transition cantilever's root, Sainsot's S_f) — becomes an
+    inner segment of the mesh (:func:`tooth_body_split`).
 
     ``size`` (m): boundary spacing on the loaded tooth, then :data:`GRADING` times it on
     the teeth next to it (the last factor on all others, the cuts and the bore). The load
@@ -303,6 +341,7 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
     pitch = 2 * math.pi / teeth
     sizes = tuple(size * GRADING[k] for k in range(len(GRADING)))
     full = neighbours is None or 2 * neighbours + 1 >= teeth
+    closed = full or ring
     js = range(-(teeth // 2), teeth - teeth // 2) if full else range(-neighbours, neighbours + 1)
     pieces = []
     for j in js:
@@ -313,8 +352,16 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
         pieces.append(_rotate(tooth if keep_first else tooth[1:], j * pitch))
     outer = np.vstack(pieces)  # over the tips, ending at the right-most root-space middle
     rf = float(np.hypot(*outer[-1]))
-    kb = max(int(math.ceil(2 * math.pi * bore_radius / sizes[-1])), 64)  # the wind-up field grows as 1/r³
-    if full:
+    if root_chord is not None:
+        outer, ends = _insert_junctions(outer, float(root_chord), pitch)
+    if ring and not full:  # the root circle from the right-most root-space middle round to the left-most
+        a0 = (neighbours + 0.5) * pitch
+        ka = max(int(math.ceil(rf * (2 * math.pi - 2 * a0) / sizes[-1])), 8)
+        th = np.linspace(a0, 2 * math.pi - a0, ka + 1)[1:-1]
+        outer = np.vstack([outer, np.column_stack([rf * np.sin(th), rf * np.cos(th)])])
+    # the wind-up field grows as 1/r³ (the 2-D whole gear: at least 64 points; the 3-D ring: 32)
+    kb = max(int(math.ceil(2 * math.pi * bore_radius / sizes[-1])), 32 if ring else 64)
+    if closed:
         th = np.linspace(0, 2 * math.pi, kb + 1)[:-1]
         bore = np.column_stack([bore_radius * np.sin(th), bore_radius * np.cos(th)])
         verts = np.vstack([outer, bore])
@@ -332,6 +379,16 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
         segments = _closed(0, len(verts))
         holes = np.zeros((0, 2))
 
+    chord = None
+    if root_chord is not None:  # inner segment along the chord, spaced like the loaded tooth
+        a, b = verts[ends[0]], verts[ends[1]]
+        kc = max(int(math.ceil(np.hypot(*(b - a)) / sizes[0])), 2)
+        inner = a + np.outer(np.linspace(0.0, 1.0, kc + 1)[1:-1], b - a)
+        first = len(verts)
+        verts = np.vstack([verts, inner])
+        chord = np.concatenate([[ends[0]], np.arange(first, first + len(inner)), [ends[1]]])
+        segments = np.vstack([segments, np.column_stack([chord[:-1], chord[1:]])])
+
     def find(points):
         d = np.hypot(verts[:, None, 0] - points[None, :, 0], verts[:, None, 1] - points[None, :, 1])
         i = np.argmin(d, axis=0)
@@ -340,15 +397,17 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
         return i
 
     return GearSector(vertices=verts, segments=segments, holes=holes, right_loads=find(loads),
-                      left_loads=find(loads * np.array([-1.0, 1.0])), bore_radius=bore_radius, full=full,
-                      sizes=sizes)
+                      left_loads=find(loads * np.array([-1.0, 1.0])), bore_radius=bore_radius, full=closed,
+                      sizes=sizes, chord=chord)
 
 
 def gear_sector(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAULT_SIZE,
-                neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None):
+                neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None, ring: bool = False,
+                root_chord: float | None = None):
     """(profile, sector) of gear ``gear`` (0 pinion, 1 gear): the profile of
     :func:`gearmesh.profile.tooth_profile` and the sector outline with the load rolls (m)
-    as vertices; ``size`` in normal modules; ``bore_radius`` (m) defaults to the pair's."""
+    as vertices; ``size`` in normal modules; ``bore_radius`` (m) defaults to the pair's;
+    ``ring``: the whole ring with ``neighbours`` teeth each side (:func:`sector_outline`)."""
     from .profile import tooth_profile
     from .stiffness import require_stiffness_data
 
@@ -365,7 +424,7 @@ def gear_sector(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAULT
     if np.any(rho < profile.form_roll - 1e-12) or np.any(rho > np.nanmax(profile.roll) + 1e-12):
         raise GearmeshInputError("rho", rho.tolist(), "load rolls must lie on the involute (form point to tip)")
     sector = sector_outline(profile, geom.pair.teeth[gear], r_int, rho, size * geom.pair.normal_module,
-                            None if neighbours is None else int(neighbours))
+                            None if neighbours is None else int(neighbours), ring=ring, root_chord=root_chord)
     return profile, sector
 
 
@@ -407,20 +466,21 @@ class ToothCompliance:
 
 
 def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
-                     neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None) -> ToothCompliance:
+                     neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None,
+                     ring: bool = False) -> ToothCompliance:
     """FE compliance of one tooth of gear ``gear`` under a unit load along the line of action
     at roll lengths ``rho`` (m), on either flank (module docstring for model and read-out).
 
     Parameters: ``plane`` 'strain' or 'stress'; ``size`` element edge on the loaded tooth in
     normal modules; ``neighbours`` teeth modelled on each side (None: the whole gear, no
-    cuts); ``bore_radius`` (m) to
-    override the pair's (rim-thickness studies).
+    cuts); ``bore_radius`` (m) to override the pair's (rim-thickness studies); ``ring``: the
+    whole ring with only ``neighbours`` teeth each side (the domain of :mod:`gearmesh.fe3d`).
     """
     from .stiffness import contact_point, tooth_model
 
     lame_parameters(1.0, 0.3, plane)  # refuse an unknown plane before meshing
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
-    profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius)
+    profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius, ring)
     model = tooth_model(geom, gear, "transition", profile)
     mat = geom.pair.material
     mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
@@ -448,7 +508,7 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
     u_body = t + np.vstack([-d[1], d[0]]) * omega
     body = np.einsum("ik,ik->k", n_right.T, u_body)
     wind, shift = np.full(m, np.nan), np.full(m, np.nan)
-    if sector.full:  # the body's torsional wind-up: mean rotation of a circle just inside the root circle
+    if sector.full and neighbours is None:  # the body's torsional wind-up: mean rotation of a circle just inside the root circle
         r_ref = model.root_radius - 0.01 * geom.pair.normal_module
         phi = np.linspace(0.0, 2 * math.pi, 721)[:-1]
         ring = r_ref * np.vstack([np.sin(phi), np.cos(phi)])
@@ -457,9 +517,98 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
         wind = omega * np.einsum("ik,ik->k", n_right.T, np.vstack([-c[1], c[0]]))
         shift = np.einsum("ki,ik->k", n_right, d.mean(axis=1))  # n = 1 mode: mean translation
     return ToothCompliance(rho=rho, total=total, body=body, tooth=total - body, total_left=total_left,
-                           wind_up=wind, ring_shift=shift, local=total - wind - shift, wind_up_radius=r_ref if sector.full else math.nan,
-                           load_angle=alpha1, plane=plane, size=float(size), neighbours=-1 if sector.full else int(neighbours),
+                           wind_up=wind, ring_shift=shift, local=total - wind - shift, wind_up_radius=r_ref if sector.full and neighbours is None else math.nan,
+                           load_angle=alpha1, plane=plane, size=float(size), neighbours=-1 if neighbours is None else int(neighbours),
                            n_elements=int(mesh.t.shape[1]), n_dofs=int(solver.basis.N))
+
+
+# --------------------------------------------------------------------------------------
+# Where the compliance sits: tooth on a rigid base, body under a rigid tooth
+# --------------------------------------------------------------------------------------
+
+#: stiffening of the material taken as rigid (E × this): its own compliance becomes 1e-4 of itself
+RIGID = 1.0e4
+
+
+@dataclass(frozen=True, eq=False)
+class ToothBodySplit:
+    """Compliances per unit width (m²/N) at roll lengths ``rho`` (m), all read at C along the
+    line of action (Weber's split) on one mesh (:func:`tooth_body_split`):
+
+    ``total`` the whole gear; ``tooth_rigid_base`` the tooth above its root chord clamped
+    on the chord (the potential-energy cantilever's problem: bending + shear + axial);
+    ``body_rigid_tooth`` the whole gear with that tooth E × :data:`RIGID` (the body alone
+    under the tooth's load: the fillet-foundation problem of Sainsot et al. 2004);
+    ``section_body`` the rigid motion of the root chord carried to C (the split of
+    :func:`tooth_compliance`); ``interaction`` = total − tooth_rigid_base − body_rigid_tooth
+    (the root section does not stay plane: its warping couples tooth and body)."""
+
+    rho: np.ndarray
+    total: np.ndarray
+    tooth_rigid_base: np.ndarray
+    body_rigid_tooth: np.ndarray
+    section_body: np.ndarray
+    interaction: np.ndarray
+    plane: str
+    size: float
+
+
+def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", size: float = DEFAULT_SIZE,
+                     neighbours: int | None = DEFAULT_NEIGHBOURS) -> ToothBodySplit:
+    """The FE compliance of one tooth split into an independent tooth problem and body
+    problem on one mesh, whose inner segment is the loaded tooth's root chord y = y_root
+    of the transition cantilever (:class:`ToothBodySplit`): the FE models the potential-
+    energy components are checked against. ``plane`` 'stress' by default: the cantilever
+    and Sainsot's foundation use E and G."""
+    from skfem import Basis, ElementTriP2, ElementVector, asm
+    from skfem.models.elasticity import linear_elasticity
+
+    from .stiffness import contact_point, tooth_model
+
+    lame_parameters(1.0, 0.3, plane)
+    rho = np.atleast_1d(np.asarray(rho, dtype=float))
+    model = tooth_model(geom, gear, "transition")
+    profile, sector = gear_sector(geom, gear, rho, size, neighbours, root_chord=model.theta_f)
+    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
+                       holes=sector.holes)
+    mat = geom.pair.material
+    lam, mu = lame_parameters(mat.youngs_modulus, mat.poisson_ratio, plane)
+    pitch = 2 * math.pi / geom.pair.teeth[gear]
+    mid = mesh.p[:, mesh.t].mean(axis=1)
+    in_tooth = (mid[1] > model.y_root) & (np.abs(np.arctan2(mid[0], mid[1])) < 0.5 * pitch)
+    elem = ElementVector(ElementTriP2())
+    basis = Basis(mesh, elem, intorder=4)
+    form = linear_elasticity(lam, mu)
+    k_tooth = asm(form, Basis(mesh, elem, intorder=4, elements=np.flatnonzero(in_tooth))).tocsr()
+    k_body = asm(form, Basis(mesh, elem, intorder=4, elements=np.flatnonzero(~in_tooth))).tocsr()
+    bore = basis.get_dofs(lambda x: np.hypot(x[0], x[1]) <= sector.bore_radius * (1 + 1e-9)).all()
+    x_p, y_p, alpha1, _ = contact_point(model, rho)
+    n_right = np.column_stack([-np.cos(alpha1), -np.sin(alpha1)])
+    c = np.vstack([np.zeros(rho.size), y_p - x_p * np.tan(alpha1)])
+    cols = np.arange(rho.size)
+
+    def read(k, held):
+        free = np.setdiff1d(np.arange(basis.N), held)
+        lu = splu(k[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                  options={"SymmetricMode": True})
+        solver = ElasticSolver(basis=basis, free=free, lu=lu)
+        u = solver.solve(point_load_matrix(solver, sector.right_loads, n_right))
+        return np.einsum("ik,ik->k", n_right.T, probe_displacements(solver, u, c)[:, cols, cols]), solver, u
+
+    total, solver, u = read(k_tooth + k_body, bore)
+    body, _, _ = read(k_body + RIGID * k_tooth, bore)
+    # the tooth alone: every dof off the tooth's elements, and the dofs on its root chord, held
+    chord = sector.vertices[sector.chord]
+    on_chord = basis.get_dofs(lambda x: (np.abs(x[1] - model.y_root) < 1e-9 * model.root_radius)
+                              & (np.abs(x[0]) <= np.abs(chord[0, 0]) * (1 + 1e-9))).all()
+    held = np.union1d(np.setdiff1d(np.arange(basis.N), np.unique(basis.element_dofs[:, in_tooth])), on_chord)
+    tooth, _, _ = read(k_tooth, held)
+    a, b = chord[0], chord[-1]
+    t, omega = section_rigid_motion(solver, u, a, b)
+    d = c - (0.5 * (a + b))[:, None]
+    section = np.einsum("ik,ik->k", n_right.T, t + np.vstack([-d[1], d[0]]) * omega)
+    return ToothBodySplit(rho=rho, total=total, tooth_rigid_base=tooth, body_rigid_tooth=body, section_body=section,
+                          interaction=total - tooth - body, plane=plane, size=float(size))
 
 
 # --------------------------------------------------------------------------------------
