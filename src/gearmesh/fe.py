@@ -245,10 +245,14 @@ def _right_flank(profile, load_rolls: np.ndarray, spacing: float) -> tuple[np.nd
     near = np.min(np.abs(arc[:, None] - load_arc[None, :]), axis=1) < 0.3 * spacing if load_arc.size else \
         np.zeros(arc.size, bool)
     near[0] = False  # keep the form point
-    rho = np.unique(np.concatenate([grid[~near], load_rolls]))
+    rho = np.sort(np.concatenate([grid[~near], load_rolls]))
+    rho = rho[np.concatenate([[True], np.diff(rho) > 1e-9 * spacing])]  # equal up to rounding: one vertex
     x, y, _, _ = rack_flank_envelope(rack, rho)
     flank = np.vstack([fillet[:-1], np.column_stack([x, y])])
-    idx = fillet.shape[0] - 1 + np.searchsorted(rho, load_rolls)
+    j = np.clip(np.searchsorted(rho, load_rolls), 1, rho.size - 1) if rho.size > 1 else np.zeros(len(load_rolls), int)
+    if rho.size > 1:
+        j = np.where(np.abs(rho[j - 1] - load_rolls) < np.abs(rho[j] - load_rolls), j - 1, j)
+    idx = fillet.shape[0] - 1 + j
     return flank, idx
 
 
@@ -554,12 +558,15 @@ class ToothBodySplit:
 
 
 def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", size: float = DEFAULT_SIZE,
-                     neighbours: int | None = DEFAULT_NEIGHBOURS) -> ToothBodySplit:
+                     neighbours: int | None = DEFAULT_NEIGHBOURS, body_plane: str | None = None,
+                     ring: bool = False) -> ToothBodySplit:
     """The FE compliance of one tooth split into an independent tooth problem and body
     problem on one mesh, whose inner segment is the loaded tooth's root chord y = y_root
     of the transition cantilever (:class:`ToothBodySplit`): the FE models the potential-
     energy components are checked against. ``plane`` 'stress' by default: the cantilever
-    and Sainsot's foundation use E and G."""
+    and Sainsot's foundation use E and G. ``body_plane``: another plane for the body (the
+    material below the loaded tooth's root chord and the other teeth), e.g. a tooth in
+    plane strain on a body in plane stress; ``ring``: the domain of :mod:`gearmesh.fe3d`."""
     from skfem import Basis, ElementTriP2, ElementVector, asm
     from skfem.models.elasticity import linear_elasticity
 
@@ -568,7 +575,7 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     lame_parameters(1.0, 0.3, plane)
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
     model = tooth_model(geom, gear, "transition")
-    profile, sector = gear_sector(geom, gear, rho, size, neighbours, root_chord=model.theta_f)
+    profile, sector = gear_sector(geom, gear, rho, size, neighbours, ring=ring, root_chord=model.theta_f)
     mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
                        holes=sector.holes)
     mat = geom.pair.material
@@ -580,7 +587,9 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     basis = Basis(mesh, elem, intorder=4)
     form = linear_elasticity(lam, mu)
     k_tooth = asm(form, Basis(mesh, elem, intorder=4, elements=np.flatnonzero(in_tooth))).tocsr()
-    k_body = asm(form, Basis(mesh, elem, intorder=4, elements=np.flatnonzero(~in_tooth))).tocsr()
+    form_body = form if body_plane is None else linear_elasticity(
+        *lame_parameters(mat.youngs_modulus, mat.poisson_ratio, body_plane))
+    k_body = asm(form_body, Basis(mesh, elem, intorder=4, elements=np.flatnonzero(~in_tooth))).tocsr()
     bore = basis.get_dofs(lambda x: np.hypot(x[0], x[1]) <= sector.bore_radius * (1 + 1e-9)).all()
     x_p, y_p, alpha1, _ = contact_point(model, rho)
     n_right = np.column_stack([-np.cos(alpha1), -np.sin(alpha1)])
@@ -609,6 +618,99 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     section = np.einsum("ik,ik->k", n_right.T, t + np.vstack([-d[1], d[0]]) * omega)
     return ToothBodySplit(rho=rho, total=total, tooth_rigid_base=tooth, body_rigid_tooth=body, section_body=section,
                           interaction=total - tooth - body, plane=plane, size=float(size))
+
+
+@dataclass(frozen=True, eq=False)
+class ContactApproach:
+    """One tooth under a Hertzian pressure strip of half-width ``half_width`` (m) centred on
+    the contact point of roll ``rho`` (m), unit resultant per unit width along the line of
+    action, in ``plane``: ``at_c`` n·u(C) (m²/N, the tooth deflection of Weber's split),
+    ``point_at_c`` the same for the point load of :func:`tooth_compliance` (same mesh),
+    ``approach`` n·(u(P) − u(C)) (m²/N, the local contact part: P's approach to C),
+    ``weber`` Weber's closed form of that approach (:func:`weber_approach`), ``depth`` |PC| (m)."""
+
+    rho: float
+    half_width: float
+    at_c: float
+    point_at_c: float
+    approach: float
+    weber: float
+    depth: float
+    plane: str
+
+
+def weber_approach(depth, half_width, youngs_modulus: float, poisson_ratio: float, plane: str = "strain"):
+    """Approach (m²/N, per unit load per unit width) of the surface point under the middle of
+    a Hertzian strip of half-width a towards the point at ``depth`` d below it on the load
+    line, the half-plane solution Weber (1949) used for the local part of a tooth's
+    deflection: plane strain (2(1−ν²)/(πE))·[ln(2d/a) − ν/(2(1−ν))], plane stress
+    (2/(πE))·[ln(2d/a) − ν/2]. Derivation: ∫₀ᵈ ε_z dz on the axis of the strip with
+    Johnson's (Contact Mechanics, 1985, eq. 2.40/5.?) subsurface stresses σ_z = −p₀a/√(a²+z²),
+    σ_x = −p₀[(a² + 2z²)/√(a²+z²) − 2z]/a, whose integrals are −p₀a·asinh(d/a) and
+    −p₀·d(√(a²+d²) − d)/a → −p₀a·ln(2d/a) and −p₀a/2 for d ≫ a; p₀a = 2/π per unit load."""
+    d = np.asarray(depth, dtype=float)
+    a = np.asarray(half_width, dtype=float)
+    e, nu = float(youngs_modulus), float(poisson_ratio)
+    lam = np.arcsinh(d / a)  # exact integral of σ_z along the axis, = ln(2d/a) + O((a/d)²)
+    sx = d * (np.sqrt(a * a + d * d) - d) / (a * a)  # exact integral of σ_x / (p₀a), → 1/2
+    if plane == "strain":
+        return 2.0 / (math.pi * e) * ((1 - nu**2) * lam - nu * (1 + nu) * sx)
+    lame_parameters(1.0, 0.3, plane)
+    return 2.0 / (math.pi * e) * (lam - nu * sx)
+
+
+def contact_approach(geom: PairGeometry, gear: int, rho: float, half_width: float, plane: str = "strain",
+                     size: float = DEFAULT_SIZE, neighbours: int | None = DEFAULT_NEIGHBOURS,
+                     points: int = 12) -> ContactApproach:
+    """The FE tooth under a Hertzian strip against the point load and against Weber's closed
+    form (:class:`ContactApproach`). The flank carries vertices every a/``points`` of arc
+    length over ±1.5 a around P (the involute's arc length from the base circle is
+    ρ²/(2 r_b)); the pressure p(s) = (2/(πa))·√(1 − s²/a²) acts on them along each
+    vertex's own line of action, lumped by the trapezoidal rule and scaled to a unit
+    resultant."""
+    from .stiffness import contact_point, tooth_model
+
+    model = tooth_model(geom, gear, "transition")
+    rb = model.base_radius
+    s_p = rho**2 / (2 * rb)
+    ds = half_width / points
+    k = np.arange(-int(1.5 * points), int(1.5 * points) + 1)
+    rolls = np.sqrt(2 * rb * (s_p + k * ds))
+    lo, hi = geom.rho_sap[gear], float(np.nanmax(tooth_profile_rolls(geom, gear)))
+    keep = (rolls >= max(lo, 0.0)) & (rolls <= hi)
+    rolls, k = rolls[keep], k[keep]
+    profile, sector = gear_sector(geom, gear, rolls, size, neighbours)
+    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
+                       holes=sector.holes)
+    mat = geom.pair.material
+    solver = elastic_solver(mesh, mat.youngs_modulus, mat.poisson_ratio, plane,
+                            clamped=lambda x: np.hypot(x[0], x[1]) <= sector.bore_radius * (1 + 1e-9))
+    x_p, y_p, a1, _ = contact_point(model, rolls)
+    n = np.column_stack([-np.cos(a1), -np.sin(a1)])
+    s = k * ds
+    inside = np.abs(s) < half_width
+    p = np.where(inside, np.sqrt(np.clip(1 - (s / half_width) ** 2, 0, None)), 0.0)
+    p /= p.sum()
+    centre = int(np.flatnonzero(k == 0)[0])
+    strip = point_load_matrix(solver, sector.right_loads, n * p[:, None]).sum(axis=1)
+    point = point_load_matrix(solver, sector.right_loads[[centre]], n[[centre]])[:, 0]
+    u = solver.solve(np.column_stack([strip, point]))
+    nc = n[centre]
+    c = np.array([[0.0], [y_p[centre] - x_p[centre] * math.tan(a1[centre])]])
+    uc = probe_displacements(solver, u, c)[:, 0, :]  # (2, 2 cases)
+    up = u[solver.basis.nodal_dofs[:, sector.right_loads[centre]], 0]
+    depth = float(np.hypot(x_p[centre] - c[0, 0], y_p[centre] - c[1, 0]))
+    return ContactApproach(rho=float(rho), half_width=float(half_width), at_c=float(nc @ uc[:, 0]),
+                           point_at_c=float(nc @ uc[:, 1]), approach=float(nc @ (up - uc[:, 0])),
+                           weber=float(weber_approach(depth, half_width, mat.youngs_modulus, mat.poisson_ratio, plane)),
+                           depth=depth, plane=plane)
+
+
+def tooth_profile_rolls(geom: PairGeometry, gear: int) -> np.ndarray:
+    """Roll lengths (m) of the involute of :func:`gearmesh.profile.tooth_profile` (NaN off it)."""
+    from .profile import tooth_profile
+
+    return tooth_profile(geom, gear, n_fillet=400, n_involute=50).roll
 
 
 # --------------------------------------------------------------------------------------

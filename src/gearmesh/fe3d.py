@@ -292,7 +292,9 @@ def layer_grid_rolls(geom: PairGeometry, gear: int, rho0, z: np.ndarray) -> np.n
     flank: the vertices the 2-D section must carry."""
     r = line_rolls(geom, gear, rho0, z)
     lo, hi = geom.rho_sap[gear], geom.rho_eap[gear]
-    return np.unique(r[(r >= lo - 1e-12) & (r <= hi + 1e-12)])
+    r = np.sort(r[(r >= lo - 1e-12) & (r <= hi + 1e-12)])
+    # one vertex for rolls equal up to rounding (lines on one grid reach a roll by different sums)
+    return r[np.concatenate([[True], np.diff(r) > 1e-9 * geom.pair.normal_module])]
 
 
 def _solve(model: GearModel3D, f: np.ndarray):
@@ -306,10 +308,12 @@ def _solve(model: GearModel3D, f: np.ndarray):
     return u, len(residuals) - 1
 
 
-def line_compliance_3d(model: GearModel3D, rho0) -> LineCompliance3D:
+def line_compliance_3d(model: GearModel3D, rho0, transverse_only: bool = False) -> LineCompliance3D:
     """Load ``model`` along the contact lines whose right-flank roll length at z = 0 is each of
     ``rho0`` (m) and read the tooth deflection at C(z) (module docstring). Every roll a line
-    touches at a layer must be one of the model's ``load_rolls``."""
+    touches at a layer must be one of the model's ``load_rolls``. ``transverse_only``: the
+    slice model's load instead (the transverse part n alone, read along n), to separate the
+    effect of the axial part of the flank normal."""
     from .stiffness import contact_point, tooth_model
 
     geom, gear = model.geom, model.gear
@@ -338,8 +342,9 @@ def line_compliance_3d(model: GearModel3D, rho0) -> LineCompliance3D:
                        + np.concatenate([dz, [0.0]])[ks] * active[r][np.minimum(ks + 1, z.size - 1)])
         if ks.size == 1:
             w[ks] = 1.0
-        idx = np.searchsorted(model.load_rolls, rho[r, ks])
-        idx = np.clip(idx, 0, model.load_rolls.size - 1)
+        idx = np.clip(np.searchsorted(model.load_rolls, rho[r, ks]), 1, model.load_rolls.size - 1)
+        idx = np.where(np.abs(model.load_rolls[idx - 1] - rho[r, ks]) < np.abs(model.load_rolls[idx] - rho[r, ks]),
+                       idx - 1, idx)  # the nearest vertex roll
         near = np.abs(model.load_rolls[idx] - rho[r, ks]) < 1e-9 * geom.pair.normal_module
         if not np.all(near):
             raise ValueError("a contact line crosses a layer between the section's load vertices")
@@ -352,6 +357,8 @@ def line_compliance_3d(model: GearModel3D, rho0) -> LineCompliance3D:
         ny = nx0 * np.sin(th) + ny0 * np.cos(th)
         # flank normal: transverse part n·cos βb, axial part along the helix (sign below)
         normal = np.vstack([nx * cb, ny * cb, np.full(ks.size, _axial_sign(model) * sb)])
+        if transverse_only:
+            normal = np.vstack([nx, ny, np.zeros(ks.size)])
         vert3 = ks * n2 + load_vertices[idx]
         f = np.zeros(model.basis.N)
         dofs = model.basis.nodal_dofs[:, vert3]  # (3, k)
@@ -374,7 +381,7 @@ def line_compliance_3d(model: GearModel3D, rho0) -> LineCompliance3D:
     load = weights.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         mean = np.nansum(np.nan_to_num(out_def) * weights, axis=1) / load
-    return LineCompliance3D(rho0=rho0, compliance=mean / cb**2, deflection=out_def, weights=weights, rho=rho, z=z,
+    return LineCompliance3D(rho0=rho0, compliance=mean if transverse_only else mean / cb**2, deflection=out_def, weights=weights, rho=rho, z=z,
                             load_angle=alpha, iterations=iters, seconds=secs, n_dofs=model.n_dofs,
                             n_elements=model.n_elements, size=model.size, layers=model.layers)
 
