@@ -798,11 +798,19 @@ def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAU
     continuum), 'fillet' the body part (root-section rigid motion), 'shear' and 'axial'
     zero (module docstring); cubic splines over ``n_roll`` FE roll positions.
     """
+    res = fe_tooth_compliance_cached(geom, gear, n_roll, plane, size, neighbours)
+    return compliance_table(geom, gear, res.rho, res.tooth, res.body, res.load_angle, profile)
+
+
+def compliance_table(geom: PairGeometry, gear: int, rho: np.ndarray, tooth: np.ndarray, body: np.ndarray,
+                     load_angle: np.ndarray, profile=None):
+    """A :class:`gearmesh.stiffness.SliceComplianceTable` (method 'fe') of a tooth compliance
+    per unit width (m²/N) given at roll lengths ``rho`` (m): ``tooth`` as 'bending', ``body``
+    as 'fillet', 'shear' and 'axial' zero; cubic splines."""
     from .stiffness import SliceComplianceTable, tooth_model
 
-    res = fe_tooth_compliance_cached(geom, gear, n_roll, plane, size, neighbours)
-    zero = np.zeros_like(res.rho)
-    values = {"bending": res.tooth, "shear": zero, "axial": zero.copy(), "fillet": res.body}
-    splines = {k: CubicSpline(res.rho, v) for k, v in values.items()}
+    zero = np.zeros_like(rho)
+    values = {"bending": np.asarray(tooth, float), "shear": zero, "axial": zero.copy(), "fillet": np.asarray(body, float)}
+    splines = {k: CubicSpline(rho, v) for k, v in values.items()}
     return SliceComplianceTable(gear=gear, method="fe", model=tooth_model(geom, gear, "transition", profile),
-                                rho=res.rho, values=values, load_angle=res.load_angle, _splines=splines)
+                                rho=rho, values=values, load_angle=load_angle, _splines=splines)
