@@ -212,6 +212,10 @@ def gear_model_3d(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAU
 
     from . import fe
 
+    if solver not in SOLVERS:
+        raise GearmeshInputError("solver", solver, f"must be one of {list(SOLVERS)}")
+    if layers is not None and (int(layers) != layers or layers < 1):
+        raise GearmeshInputError("layers", layers, "must be a whole number >= 1")
     t0 = time.perf_counter()
     rolls = np.unique(np.asarray(load_rolls, dtype=float))
     profile, sector = fe.gear_sector(geom, gear, rolls, size, neighbours, ring=True)
@@ -220,8 +224,6 @@ def gear_model_3d(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAU
     b = float(geom.face_width if face_width is None else face_width)
     h = size * geom.pair.normal_module
     n_layers = int(math.ceil(b / h)) if layers is None else int(layers)
-    if n_layers < 1:
-        raise GearmeshInputError("layers", layers, "must be at least 1")
     z = np.linspace(-0.5 * b, 0.5 * b, n_layers + 1)
     twist = math.tan(geom.pair.helix_angle) / float(geom.reference_radius[gear])
     mesh = extrude(mesh2.p, mesh2.t, z, twist)
@@ -241,15 +243,13 @@ def gear_model_3d(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAU
 
         # symmetric positive definite: minimum degree on A+Aᵀ, diagonal pivots (as fe.elastic_solver)
         ml = splu(kff.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
-    elif solver == "amg":
+    else:  # 'amg'
         import pyamg
         from scipy.sparse import bsr_matrix
 
         near_null = _rigid_modes(basis.doflocs[:, free])
         ml = pyamg.smoothed_aggregation_solver(bsr_matrix(kff, blocksize=(3, 3)), B=near_null, symmetry="symmetric",
                                                max_coarse=500)
-    else:
-        raise GearmeshInputError("solver", solver, f"must be one of {list(SOLVERS)}")
     return GearModel3D(geom=geom, gear=gear, basis=basis, free=free, stiffness=kff, multigrid=ml, solver=solver,
                        sector=sector,
                        profile=profile, load_rolls=rolls,
