@@ -581,8 +581,14 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     mat = geom.pair.material
     lam, mu = lame_parameters(mat.youngs_modulus, mat.poisson_ratio, plane)
     pitch = 2 * math.pi / geom.pair.teeth[gear]
+    chord = sector.vertices[sector.chord]
+    a, b = chord[0], chord[-1]  # on the outline's polyline: y within rounding of y_root
+
+    def above(x):  # signed distance (m) from the chord line, positive towards the tip
+        return ((b[0] - a[0]) * (x[1] - a[1]) - (b[1] - a[1]) * (x[0] - a[0])) / np.hypot(*(b - a))
+
     mid = mesh.p[:, mesh.t].mean(axis=1)
-    in_tooth = (mid[1] > model.y_root) & (np.abs(np.arctan2(mid[0], mid[1])) < 0.5 * pitch)
+    in_tooth = (above(mid) > 0) & (np.abs(np.arctan2(mid[0], mid[1])) < 0.5 * pitch)
     elem = ElementVector(ElementTriP2())
     basis = Basis(mesh, elem, intorder=4)
     form = linear_elasticity(lam, mu)
@@ -607,12 +613,10 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     total, solver, u = read(k_tooth + k_body, bore)
     body, _, _ = read(k_body + RIGID * k_tooth, bore)
     # the tooth alone: every dof off the tooth's elements, and the dofs on its root chord, held
-    chord = sector.vertices[sector.chord]
-    on_chord = basis.get_dofs(lambda x: (np.abs(x[1] - model.y_root) < 1e-9 * model.root_radius)
-                              & (np.abs(x[0]) <= np.abs(chord[0, 0]) * (1 + 1e-9))).all()
+    on_chord = basis.get_dofs(lambda x: (np.abs(above(x)) < 1e-9 * model.root_radius)
+                              & (x[0] >= min(a[0], b[0]) - 1e-12) & (x[0] <= max(a[0], b[0]) + 1e-12)).all()
     held = np.union1d(np.setdiff1d(np.arange(basis.N), np.unique(basis.element_dofs[:, in_tooth])), on_chord)
     tooth, _, _ = read(k_tooth, held)
-    a, b = chord[0], chord[-1]
     t, omega = section_rigid_motion(solver, u, a, b)
     d = c - (0.5 * (a + b))[:, None]
     section = np.einsum("ik,ik->k", n_right.T, t + np.vstack([-d[1], d[0]]) * omega)
