@@ -38,14 +38,12 @@ include: "workflow/rules/geometry.smk"
 include: "workflow/rules/contact_lines.smk"
 include: "workflow/rules/stiffness.smk"
 include: "workflow/rules/fe.smk"
-include: "workflow/rules/variants.smk"
 include: "workflow/rules/optimise.smk"
 include: "workflow/rules/tca.smk"
 include: "workflow/rules/ltca.smk"
 include: "workflow/rules/impact.smk"
 include: "workflow/rules/dynamics.smk"
 include: "workflow/rules/studies.smk"
-include: "workflow/rules/plots.smk"
 
 
 rule all:

@@ -83,7 +83,6 @@ def decompose(name: str, line_load: float) -> dict:
         rho = np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], ROLL_NODES)
         model = st.tooth_model(geom, gear, "transition")
         c = st.tooth_slice_compliance(model, rho)
-        beam = c["bending"] + c["shear"] + c["axial"]
         alpha = st.contact_point(model, rho)[2]
         split = fe.tooth_body_split(geom, gear, rho, "stress", SIZE)
         strain = fe.tooth_compliance(geom, gear, rho, "strain", SIZE).total

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import hashlib
+import json
 import importlib.util
 import os
 import shutil
@@ -82,7 +83,10 @@ def _check_code_change_reruns(root: Path, work: Path, tmp: Path) -> None:
     module.write_text(module.read_text() + "\n# a change\n")
     proc = _snakemake(work, "--dry-run", env=_package_env(package))
     assert proc.returncode == 0, proc.stderr[-3000:]
-    assert _planned_jobs(proc) == {"plot_tca": 3, "plot_ltca": 3, "all": 1}, proc.stdout[-3000:]
+    # the figures are drawn by the jobs that write their data: those rerun, and what reads their files
+    # (the LTCA-excited dynamics, its variants figure and the LSTE table)
+    assert _planned_jobs(proc) == {"tca": 3, "ltca": 3, "dynamics": 3, "plot_dynamics_variants": 1,
+                                   "lste_comparison": 1, "all": 1}, proc.stdout[-3000:]
 
 
 def _check_slurm_profile_dry_run(work: Path) -> None:
@@ -129,10 +133,20 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     # the GA's optimum runs through the same rules as any variant
     ga = read_dataset(base / "optimise/robust/ga.nc")
     assert ga.sizes["generation"] == 3 and ga.sizes["tolerance_sample"] == 3 and ga.sizes["objective_torque"] == 2
-    assert (base / "optimised/pair.yaml").read_text() == (base / "optimise/robust/pair.yaml").read_text()
+    optimum = yaml.safe_load((base / "optimise/robust/pair.yaml").read_text())
+    for png in ("convergence", "modification"):
+        assert (base / "optimise/robust/plots" / f"{png}.png").stat().st_size > 1000
     for variant in ("standard", "relief", "optimised"):
         ltca = read_dataset(base / variant / "ltca.nc")
         assert ltca.sizes["position"] == 8
+        # each stage applies its variant's micro-geometry; the optimised one is the GA's optimum
+        modification = json.loads(ltca.attrs["config_json"])["pair"].get("modification")
+        if variant == "relief":
+            assert modification["gear"]["tip_relief_um"] == pytest.approx(10)
+        else:
+            assert modification == {"standard": None, "optimised": optimum["modification"]}[variant]
+        for png in ("tca", "te_lte", "contact_pattern", "dynamics_rms", "dynamics_spectrum"):
+            assert (base / variant / "plots" / f"{png}.png").stat().st_size > 1000
         # the loads carry the applied force at every position
         total = ltca["load"].sum(dim=[d for d in ltca["load"].dims if d not in ("torque", "position")])
         np.testing.assert_allclose(total.values, np.broadcast_to(ltca["force"].values[:, None], total.shape), rtol=1e-9)

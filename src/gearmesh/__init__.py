@@ -1,5 +1,10 @@
-"""gearmesh: helical gear geometry, contact, mesh stiffness, impact and dynamics."""
+"""gearmesh: helical gear geometry, contact, mesh stiffness, impact and dynamics.
 
+The names below are loaded on first use (PEP 562), so ``import gearmesh`` and the light
+modules (``gearmesh.errors``, ``gearmesh.jobserver``) import neither numpy nor YAML.
+"""
+
+from importlib import import_module
 from importlib.metadata import PackageNotFoundError, version
 
 try:
@@ -7,16 +12,24 @@ try:
 except PackageNotFoundError:  # running from a source tree without installation
     __version__ = "0.0.0+unknown"
 
-from .errors import GearmeshInputError
-from .gear import GearPair, Material, Modification, PairGeometry, load_pair, pair_geometry
+_LAZY = {
+    "GearmeshInputError": "errors",
+    "GearPair": "gear",
+    "Material": "gear",
+    "Modification": "gear",
+    "PairGeometry": "gear",
+    "load_pair": "gear",
+    "pair_geometry": "gear",
+}
 
-__all__ = [
-    "GearmeshInputError",
-    "GearPair",
-    "Material",
-    "Modification",
-    "PairGeometry",
-    "load_pair",
-    "pair_geometry",
-    "__version__",
-]
+__all__ = [*_LAZY, "__version__"]
+
+
+def __getattr__(name: str):
+    if name in _LAZY:
+        return getattr(import_module(f".{_LAZY[name]}", __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted(__all__)

@@ -18,7 +18,7 @@ import jsonschema
 import yaml
 
 from .errors import GearmeshInputError
-from .gear import GearPair, load_named_pair, pinion_torque, read_yaml
+from .gear import GearPair, load_named_pair, pinion_torque, read_yaml, variant_pair
 
 SCHEMA_PATH = Path(str(files("gearmesh") / "schemas" / "config.schema.yaml"))
 
@@ -133,22 +133,6 @@ def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
             raise GearmeshInputError("pairs", name, f"has no pair file {path}")
         out[name] = load_named_pair(path)
     return out
-
-
-def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearPair:
-    """``pair`` carrying the modification of micro-geometry ``variant`` (none for 'standard'
-    or a variant without one); the variant's modification replaces the pair file's. A variant
-    ``{from: optimise.NAME}`` is ``pair`` as given: the optimisation's pair file, its optimum
-    (rule variants.smk takes that file as the input)."""
-    from .gear import pair_from_dict, pair_to_dict
-
-    if spec.get("from"):
-        return pair
-    data = pair_to_dict(pair)
-    data.pop("modification", None)
-    if spec.get("modification"):
-        data["modification"] = spec["modification"]
-    return pair_from_dict(data, source=pair.source)
 
 
 def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, GearPair]:

@@ -52,8 +52,6 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.interpolate import CubicSpline
-from scipy.sparse.linalg import splu
 
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry, pair_to_dict
@@ -153,6 +151,8 @@ def elastic_solver(mesh, youngs_modulus: float, poisson_ratio: float, plane: str
         raise RuntimeError("no clamped facet: the elastic problem is singular")
     free = np.setdiff1d(np.arange(basis.N), fixed)
     # symmetric positive definite: minimum degree on A+Aᵀ and diagonal pivots keep the fill small
+    from scipy.sparse.linalg import splu  # here, not at import: scipy costs a job ~0.5 s of start-up
+
     lu = splu(k[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
               options={"SymmetricMode": True})
     return ElasticSolver(basis=basis, free=free, lu=lu)
@@ -602,6 +602,8 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     c = np.vstack([np.zeros(rho.size), y_p - x_p * np.tan(alpha1)])
     cols = np.arange(rho.size)
 
+    from scipy.sparse.linalg import splu
+
     def read(k, held):
         free = np.setdiff1d(np.arange(basis.N), held)
         lu = splu(k[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
@@ -812,6 +814,8 @@ def compliance_table(geom: PairGeometry, gear: int, rho: np.ndarray, tooth: np.n
     per unit width (m²/N) given at roll lengths ``rho`` (m): ``tooth`` as 'bending', ``body``
     as 'fillet', 'shear' and 'axial' zero; cubic splines."""
     from .stiffness import SliceComplianceTable, tooth_model
+
+    from scipy.interpolate import CubicSpline
 
     zero = np.zeros_like(rho)
     values = {"bending": np.asarray(tooth, float), "shear": zero, "axial": zero.copy(), "fillet": np.asarray(body, float)}

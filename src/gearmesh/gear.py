@@ -491,6 +491,20 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
     return out
 
 
+def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearPair:
+    """``pair`` carrying the modification of micro-geometry ``variant`` (none for 'standard'
+    or a variant without one); the variant's modification replaces the pair file's. A variant
+    ``{from: optimise.NAME}`` is ``pair`` as given: the optimisation's pair file, its optimum
+    (the workflow hands that file to the variant's stages)."""
+    if spec.get("from"):
+        return pair
+    data = pair_to_dict(pair)
+    data.pop("modification", None)
+    if spec.get("modification"):
+        data["modification"] = spec["modification"]
+    return pair_from_dict(data, source=pair.source)
+
+
 # --------------------------------------------------------------------------------------
 # Derived geometry
 # --------------------------------------------------------------------------------------

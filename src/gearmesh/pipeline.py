@@ -1,17 +1,21 @@
 """The glue between a Snakemake job and the package: logging, provenance, atomic output.
 
 Every rule names the one package function it runs in ``params.function``
-("module:function") and passes its settings in ``params.settings``; three generic scripts
-(``workflow/scripts/{pair_stage,study_stage,plot}.py``) call :func:`run_pair_stage`,
-:func:`run_study_stage` or :func:`run_plot`. Provenance (the study config and the pair data
-as JSON with its sha256) is attached here and each file is written atomically, so a failing
-job leaves no output with its final name.
+("module:function") and passes its settings in ``params.settings``; generic scripts
+(``workflow/scripts/{pair_stage,study_stage,collect,optimise,plot}.py``) call the ``run_*``
+function of the same name. A job's outputs are told apart by suffix: one ``.nc`` (the
+dataset), an optional ``.csv`` copy, and ``.png`` figures drawn by the plot function
+``params.figures`` from the netCDF file just written, in the same process (a figure job of
+its own would cost a Python start-up and the imports for a fraction of a second's drawing).
+Provenance (the study config and the pair data as JSON with its sha256) is attached here and
+each file is written atomically, so a failing job leaves no output with its final name.
 """
 
 from __future__ import annotations
 
 import importlib
 import logging
+import os
 import resource
 import sys
 import time
@@ -20,7 +24,7 @@ from typing import Any, Callable, Mapping
 
 import xarray as xr
 
-from .gear import GearPair, load_pair, pair_to_dict
+from .gear import GearPair, load_pair, pair_to_dict, variant_pair
 from .io import add_provenance, atomic_output, read_dataset, write_dataset
 from .tables import write_csv
 
@@ -51,22 +55,54 @@ def resolve(spec: str) -> Callable[..., Any]:
     return getattr(importlib.import_module(module), name)
 
 
-def _run(smk: Any, body: Callable[[Any], None]) -> None:
-    """Run one job with its log file; exit non-zero with the reason on failure."""
+def _process_age() -> float | None:
+    """Seconds since the job's process started (interpreter start-up, Snakemake's script
+    preamble and every import included; for a job run by the job server, since its script
+    started), or None where psutil (a Snakemake dependency) is missing."""
+    started = os.environ.get("GEARMESH_JOB_STARTED")  # set by gearmesh.jobserver
+    if started:
+        return time.time() - float(started)
+    try:
+        import psutil
+    except ImportError:  # pragma: no cover - psutil comes with Snakemake
+        return None
+    return time.time() - psutil.Process().create_time()
+
+
+def _cpu_seconds() -> float:
+    """CPU time (user + system, s) this process has used so far."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def _run(smk: Any, body: Callable[[Any], float]) -> None:
+    """Run one job with its log file; exit non-zero with the reason on failure.
+
+    The last log line says how the job's time went: ``done in W s (figures F s) after S s of
+    start-up, CPU C1 s + C2 s``, W the work inside the package (reading, computing, writing,
+    drawing), S the time from the process start to the work (Python, Snakemake's script
+    preamble, importing the modules of the job's functions), C1 and C2 the CPU time of each. ``benchmarks/bench_workflow.py`` sums both over a study's
+    logs (the job overhead)."""
     log_path = Path(smk.log[0])
     log_path.parent.mkdir(parents=True, exist_ok=True)
     logging.basicConfig(filename=log_path, level=logging.INFO, filemode="w",
                         format="%(asctime)s %(levelname)s %(message)s", force=True)
-    start = time.perf_counter()
     try:
-        body(smk)
+        for name in ("function", "figures"):  # imports are start-up, not work
+            if getattr(smk.params, name, None):
+                resolve(getattr(smk.params, name))
+        age, cpu = _process_age(), _cpu_seconds()
+        start = time.perf_counter()
+        figures = body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
         logging.exception("job failed")
         print(f"gearmesh: error: {exc}", file=sys.stderr)
         sys.exit(2 if isinstance(exc, ValueError) else 1)
     # wall time and peak memory of every job, the measurements behind the profiles' resources
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # Linux: kB
-    logging.info("done in %.1f s, peak RSS %.0f MB (threads %s): %s", time.perf_counter() - start, peak_mb,
+    startup = "" if age is None else f" after {age:.2f} s of start-up"
+    logging.info("done in %.2f s (figures %.2f s)%s, CPU %.2f s + %.2f s, peak RSS %.0f MB (threads %s): %s",
+                 time.perf_counter() - start, figures or 0.0, startup, cpu, _cpu_seconds() - cpu, peak_mb,
                  getattr(smk, "threads", 1), ", ".join(map(str, smk.output)))
 
 
@@ -74,54 +110,98 @@ def _title(smk: Any) -> str:
     return f"gearmesh {smk.rule}"
 
 
+def _outputs(smk: Any, suffix: str) -> dict[str, str]:
+    """The job's named outputs whose path ends with ``suffix`` ('.nc', '.csv', '.png')."""
+    return {k: str(v) for k, v in smk.output.items() if str(v).endswith(suffix)}
+
+
+def _draw(smk: Any, inputs: dict[str, Any]) -> float:
+    """Draw the job's figures (its ``.png`` outputs, by output name) with the plot function
+    ``params.figures`` from the netCDF file the job wrote (read back, so a figure shows what the
+    file holds; passed under its file stem, e.g. 'ltca') and from ``inputs``; the seconds it took."""
+    spec = getattr(smk.params, "figures", None)
+    if not spec:
+        return 0.0
+    start = time.perf_counter()
+    written = {Path(path).stem: read_dataset(path) for path in _outputs(smk, ".nc").values()}
+    resolve(spec)({**inputs, **written}, _outputs(smk, ".png"))
+    return time.perf_counter() - start
+
+
 def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
-    finish(ds, smk.output[0], smk.config, pair, _title(smk))
-    if "csv" in smk.output.keys():
-        with atomic_output(smk.output.csv) as tmp:
+    """The dataset to the job's netCDF output (provenance attached), and to its CSV output if any."""
+    (nc,) = _outputs(smk, ".nc").values()
+    finish(ds, nc, smk.config, pair, _title(smk))
+    for csv in _outputs(smk, ".csv").values():
+        with atomic_output(csv) as tmp:
             write_csv(ds, tmp)
 
 
-def run_pair_stage(smk: Any) -> None:
-    """A stage of one pair: ``function(pair, **settings, **upstream datasets)`` -> Dataset.
+def _job_pair(smk: Any) -> GearPair:
+    """The job's pair: its pair file, carrying the micro-geometry of its variant when the rule
+    names one (``params.variant``: the variant's spec from the study config)."""
+    pair = load_pair(smk.input.pair)
+    spec = getattr(smk.params, "variant", None)
+    return pair if spec is None else variant_pair(pair, smk.wildcards.variant, spec)
 
-    Named inputs other than ``pair`` are netCDF files of upstream stages, read and passed
-    by name.
-    """
-    def body(smk: Any) -> None:
-        pair = load_pair(smk.input.pair)
+
+def _pair_stage(smk: Any, then: Callable[[GearPair, xr.Dataset], None] | None = None) -> None:
+    """A stage of one pair: ``function(pair, **settings, **upstream datasets)`` -> Dataset,
+    written, then ``then(pair, dataset)``, then the figures drawn from it. Named inputs other
+    than ``pair`` are netCDF files of upstream stages, read and passed by name."""
+    def body(smk: Any) -> float:
+        pair = _job_pair(smk)
         upstream = {k: read_dataset(v) for k, v in smk.input.items() if k != "pair"}
         ds = resolve(smk.params.function)(pair, **dict(smk.params.settings), **upstream)
         _write_outputs(smk, ds, pair)
+        if then is not None:
+            then(pair, ds)
+        return _draw(smk, upstream)
 
     _run(smk, body)
+
+
+def run_pair_stage(smk: Any) -> None:
+    """A stage of one pair (:func:`_pair_stage`)."""
+    _pair_stage(smk)
 
 
 def run_study_stage(smk: Any) -> None:
-    """A stage over several pairs: ``function({name: pair}, **settings)`` -> Dataset."""
-    def body(smk: Any) -> None:
+    """A stage over several pairs: ``function({name: pair}, **settings)`` -> Dataset, and its figures."""
+    def body(smk: Any) -> float:
         pairs = {p.name: p for p in map(load_pair, smk.input.pairs)}
         settings = {k: v for k, v in dict(smk.params.settings).items() if k != "pairs"}
         _write_outputs(smk, resolve(smk.params.function)(pairs, **settings), None)
+        return _draw(smk, {})
 
     _run(smk, body)
 
 
+def _read_inputs(smk: Any) -> dict[str, Any]:
+    """Every named input as a Dataset, or a list of Datasets for a list of files."""
+    return {k: [read_dataset(p) for p in v] if isinstance(v, list) else read_dataset(v)
+            for k, v in smk.input.items()}
+
+
 def run_collect(smk: Any) -> None:
-    """A study table from per-pair results: ``function(**{input name: [Dataset, ...]}, **settings)``."""
-    def body(smk: Any) -> None:
-        inputs = {k: [read_dataset(p) for p in (v if isinstance(v, list) else [v])] for k, v in smk.input.items()}
+    """A study table from per-pair results: ``function(**{input name: [Dataset, ...]}, **settings)``,
+    and its figures (drawn from the inputs and the table)."""
+    def body(smk: Any) -> float:
+        inputs = _read_inputs(smk)
+        lists = {k: v if isinstance(v, list) else [v] for k, v in inputs.items()}
         settings = dict(getattr(smk.params, "settings", None) or {})
-        _write_outputs(smk, resolve(smk.params.function)(**inputs, **settings), None)
+        _write_outputs(smk, resolve(smk.params.function)(**lists, **settings), None)
+        return _draw(smk, inputs)
 
     _run(smk, body)
 
 
 def run_plot(smk: Any) -> None:
-    """Figures: ``function({input name: Dataset}, {output name: path})`` writes the PNGs."""
-    def body(smk: Any) -> None:
-        inputs = {k: [read_dataset(p) for p in v] if isinstance(v, list) else read_dataset(v)
-                  for k, v in smk.input.items()}
-        resolve(smk.params.function)(inputs, dict(smk.output.items()))
+    """Figures alone: ``function({input name: Dataset}, {output name: path})`` writes the PNGs."""
+    def body(smk: Any) -> float:
+        start = time.perf_counter()
+        resolve(smk.params.function)(_read_inputs(smk), dict(smk.output.items()))
+        return time.perf_counter() - start
 
     _run(smk, body)
 
@@ -138,26 +218,9 @@ def write_pair(pair: GearPair, path: str | Path) -> Path:
     return Path(path)
 
 
-def run_variant_pair(smk: Any) -> None:
-    """Write the pair file of one micro-geometry variant."""
-    from .config import variant_pair
-
-    def body(smk: Any) -> None:
-        write_pair(variant_pair(load_pair(smk.input.pair), smk.wildcards.variant, smk.params.spec), smk.output[0])
-
-    _run(smk, body)
-
-
 def run_optimise(smk: Any) -> None:
-    """The optimiser of one pair: ``function(pair, **settings)`` -> ga.nc (first output) and the
-    optimum as a pair file (``output.pair``), the input of a variant ``{from: optimise}``."""
+    """The optimiser of one pair: ``function(pair, **settings)`` -> ga.nc, the optimum as a pair
+    file (``output.pair``, the input of a variant ``{from: optimise.NAME}``) and its figures."""
     from .datasets.optimise import optimum_pair
 
-    def body(smk: Any) -> None:
-        pair = load_pair(smk.input.pair)
-        upstream = {k: read_dataset(v) for k, v in smk.input.items() if k != "pair"}
-        ds = resolve(smk.params.function)(pair, **dict(smk.params.settings), **upstream)
-        _write_outputs(smk, ds, pair)
-        write_pair(optimum_pair(pair, ds), smk.output.pair)
-
-    _run(smk, body)
+    _pair_stage(smk, lambda pair, ds: write_pair(optimum_pair(pair, ds), smk.output.pair))

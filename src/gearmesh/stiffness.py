@@ -99,17 +99,17 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from functools import lru_cache
-from typing import Callable, Mapping
+from typing import TYPE_CHECKING, Callable, Mapping
 
 import numpy as np
 from numpy.polynomial.legendre import leggauss as _leggauss
-from scipy import integrate
-from scipy.interpolate import CubicSpline
-from scipy.optimize import brentq
 
 from .contact import contact_length_breakpoints, contact_roll_positions, hand_sign, mesh_cycle_rolls, tooth_pair_indices
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry, involute
+
+if TYPE_CHECKING:  # scipy is imported where it is used: importing it costs ~0.5 s of a job's start-up
+    from scipy.interpolate import CubicSpline
 
 #: the potential-energy cantilever models; 'fe' is the finite-element tooth of :mod:`gearmesh.fe`
 PEM_METHODS = ("traditional", "improved", "transition")
@@ -451,6 +451,8 @@ def tooth_slice_compliance(model: ToothModel, rho, n_gauss: int = 64,
 
 def fixed_moments_quad(model: ToothModel, epsrel: float = 1e-12) -> _FixedMoments:
     """Moments ∫y^n/x³ dy (n = 0, 1, 2) and ∫dy/x of the fixed segments by adaptive quadrature."""
+    from scipy import integrate
+
     out = [0.0, 0.0, 0.0, 0.0]
     for lo, hi, f in model.fixed:
         def xf(y, f=f):
@@ -471,6 +473,9 @@ def tooth_slice_compliance_quad(model: ToothModel, rho: float, epsrel: float = 1
     involute (fillet, straight root segment) do not depend on ρ; their moments come from
     :func:`fixed_moments_quad` (pass ``moments`` to reuse them). Slow; for tests and baselines.
     """
+    from scipy import integrate
+    from scipy.optimize import brentq
+
     E, G = model.youngs_modulus, model.shear_modulus
     x_p, y_p, alpha1, a_p = (float(v) for v in contact_point(model, rho))
     ca, sa = math.cos(alpha1), math.sin(alpha1)
@@ -552,6 +557,8 @@ def slice_compliance_table(geom: PairGeometry, gear: int, method: str = "transit
         from .fe import fe_slice_compliance_table
 
         return fe_slice_compliance_table(geom, gear, profile=profile)
+    from scipy.interpolate import CubicSpline
+
     model = tooth_model(geom, gear, method, profile)
     rho = np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], n_nodes)
     vals = tooth_slice_compliance(model, rho, n_gauss=n_gauss)

@@ -4,6 +4,7 @@ import sys
 from gearmesh.config import check_study, lste_comparison_wanted, pair_path
 from gearmesh.codeversion import versioned
 from gearmesh.errors import GearmeshInputError
+from gearmesh import jobserver
 from gearmesh.io import remove_stale_temporaries
 
 STUDY = config["study"]
@@ -45,18 +46,20 @@ def pair_file(wildcards):
     return str(pair_path(config, wildcards.pair))
 
 
-def variant_pair_file(wildcards):
-    """The pair file of one micro-geometry variant (rule variant_pair)."""
-    return f"results/{wildcards.study}/{wildcards.pair}/{wildcards.variant}/pair.yaml"
-
-
 def variant_source_pair(wildcards):
-    """The input of the variant_pair job: the pair file, or for a variant {from: optimise.NAME}
-    that optimisation's pair file (its optimum, rule optimise)."""
+    """The pair file a variant's stages read: the study's pair file, or for a variant
+    {from: optimise.NAME} that optimisation's pair file (its optimum, rule optimise). The stage
+    applies the variant's micro-geometry itself (params.variant, gearmesh.gear.variant_pair):
+    a job of its own per variant would cost a Python start-up to copy a pair file."""
     source = config["variants"][wildcards.variant].get("from")
     if source:
         return f"results/{wildcards.study}/{wildcards.pair}/optimise/{source.split('.', 1)[1]}/pair.yaml"
     return pair_file(wildcards)
+
+
+def variant_spec(wildcards):
+    """The variant's section of the study config (params.variant of every variant stage)."""
+    return config["variants"][wildcards.variant]
 
 
 def dynamics_contact():
@@ -69,10 +72,22 @@ def dynamics_inputs(wildcards):
     LTCA when it excites the model (excitation ltca, or unset in a study that runs the LTCA) and
     the FE tooth tables when the contact table uses method fe."""
     base = f"results/{wildcards.study}/{wildcards.pair}"
-    out = {"pair": variant_pair_file(wildcards), "stiffness": f"{base}/stiffness.nc"}
+    out = {"pair": variant_source_pair(wildcards), "stiffness": f"{base}/stiffness.nc"}
     if "ltca" in config and config["dynamics"].get("excitation") in (None, "ltca"):
         out["ltca"] = f"{base}/{wildcards.variant}/ltca.nc"
     out.update(fe_tables("dynamics")(wildcards))
+    return out
+
+
+def dynamics_figure_outputs():
+    """The figures of the dynamics job: RMS against speed and spectra, and with the contact excitation the
+    entering pair's force over the engagement."""
+    base = "results/{study}/{pair}/{variant}/plots"
+    out = {"rms": report_item(f"{base}/dynamics_rms.png", "dynamics_rms", "Dynamics", BY_VARIANT),
+           "spectrum": report_item(f"{base}/dynamics_spectrum.png", "dynamics_spectrum", "Dynamics", BY_VARIANT)}
+    if dynamics_contact():
+        out["engagement"] = report_item(f"{base}/dynamics_engagement.png", "dynamics_engagement", "Dynamics",
+                                        BY_VARIANT)
     return out
 
 
@@ -82,37 +97,16 @@ def study_pair_files(section):
 
 
 def pair_results(name):
-    """Files every pair of the study gets."""
+    """Files every pair of the study gets (each job's figures come with its netCDF file)."""
     base = f"results/{STUDY}/{name}"
-    return [
-        f"{base}/geometry.nc",
-        f"{base}/contact_lines.nc",
-        f"{base}/stiffness.nc",
-        f"{base}/plots/stiffness.png",
-        f"{base}/plots/tooth_profile.png",
-        f"{base}/plots/contact_length.png",
-        f"{base}/plots/contact_lines.png",
-    ]
+    return [f"{base}/geometry.nc", f"{base}/contact_lines.nc", f"{base}/stiffness.nc"]
 
 
 def variant_results(name, variant):
     """Files every micro-geometry variant of a pair gets, by the stages the study configures."""
     base = f"results/{STUDY}/{name}/{variant}"
-    out = []
-    if "tca" in config:
-        out += [f"{base}/tca.nc", f"{base}/plots/tca.png"]
-    if "ltca" in config:
-        out += [f"{base}/ltca.nc", f"{base}/plots/te_lte.png", f"{base}/plots/contact_pattern.png"]
-    if "dynamics" in config:
-        out += [f"{base}/dynamics.nc", f"{base}/plots/dynamics_rms.png", f"{base}/plots/dynamics_spectrum.png"]
-        if dynamics_contact():
-            out.append(f"{base}/plots/dynamics_engagement.png")
-    if "train_dynamics" in config:
-        out += [f"{base}/train.nc", f"{base}/plots/train_spectrum.png"]
-    if "impact" in config:
-        out += [f"{base}/impact.nc", f"{base}/plots/impact_speed.png", f"{base}/plots/mesh_in_trajectory.png",
-                f"{base}/plots/impact_simulation.png"]
-    return out
+    stages = {"tca": "tca", "ltca": "ltca", "dynamics": "dynamics", "train_dynamics": "train", "impact": "impact"}
+    return [f"{base}/{stage}.nc" for section, stage in stages.items() if section in config]
 
 
 def all_targets():
@@ -120,36 +114,30 @@ def all_targets():
     targets += [f for name in config["pairs"] for v in VARIANTS for f in variant_results(name, v)]
     if "impact" in config:
         for name in config["pairs"]:
-            targets += [f"results/{STUDY}/{name}/impact_table.nc", f"results/{STUDY}/{name}/impact_table.csv",
-                        f"results/{STUDY}/{name}/plots/impact_force.png", f"results/{STUDY}/{name}/plots/robustness.png"]
+            targets.append(f"results/{STUDY}/{name}/impact_table.nc")
     for run, section in (config.get("optimise") or {}).items():
         for name in config["pairs"]:
             base = f"results/{STUDY}/{name}/optimise/{run}"
-            targets += [f"{base}/ga.nc", f"{base}/pair.yaml", f"{base}/plots/convergence.png",
-                        f"{base}/plots/modification.png"]
+            targets.append(f"{base}/ga.nc")
             if section["method"] == "nsga2":
                 targets.append(f"{base}/plots/pareto.png")
     if "dynamics" in config:
         targets += [f"results/{STUDY}/{name}/plots/dynamics_variants.png" for name in config["pairs"]]
         if dynamics_contact() and "impact" in config:
-            targets += [f"results/{STUDY}/{name}/engagement_table.{ext}" for name in config["pairs"]
-                        for ext in ("nc", "csv")]
+            targets += [f"results/{STUDY}/{name}/engagement_table.nc" for name in config["pairs"]]
     if "helix_sweep" in config:
-        targets += [f"results/{STUDY}/helix_sweep.nc", f"results/{STUDY}/plots/helix_sweep.png"]
+        targets.append(f"results/{STUDY}/helix_sweep.nc")
     if "fe_compliance" in config:
-        targets += [f"results/{STUDY}/{name}/{f}" for name in config["pairs"]
-                    for f in ("fe_compliance.nc", "plots/fe_compliance.png")]
+        targets += [f"results/{STUDY}/{name}/fe_compliance.nc" for name in config["pairs"]]
     for table in ("stiffness_table", "slice_convergence"):
         if table in config:
-            targets += [f"results/{STUDY}/{table}.nc", f"results/{STUDY}/{table}.csv",
-                        f"results/{STUDY}/plots/{table}.png"]
+            targets.append(f"results/{STUDY}/{table}.nc")
     if lste_comparison_wanted(config):
-        targets += [f"results/{STUDY}/lste_comparison.nc", f"results/{STUDY}/lste_comparison.csv"]
+        targets.append(f"results/{STUDY}/lste_comparison.nc")
     if "dynamics_comparison" in config:
-        targets += [f"results/{STUDY}/dynamics_comparison.nc", f"results/{STUDY}/dynamics_comparison.csv",
-                    f"results/{STUDY}/plots/dynamics_comparison.png"]
+        targets.append(f"results/{STUDY}/dynamics_comparison.nc")
     if "low_fluctuation_design" in config:
-        targets += [f"results/{STUDY}/low_fluctuation_design.nc", f"results/{STUDY}/low_fluctuation_design.csv"]
+        targets.append(f"results/{STUDY}/low_fluctuation_design.nc")
     return targets
 
 
@@ -171,5 +159,18 @@ def report_item(path, caption, category, subcategory=BY_PAIR):
 
 # A job killed outright (kill -9, a lost node) skips the cleanup of its atomic write and leaves
 # .NAME.PID.tmp.* beside its target: remove them before any job of this run starts.
+# A local run then starts its job server: one process that imports the modules of the study's
+# rules once and forks a child per job (gearmesh.jobserver; GEARMESH_JOBSERVER=off runs every
+# job in a process of its own, as a cluster run does).
 onstart:
     remove_stale_temporaries("results")
+    if jobserver.wanted(workflow):
+        jobserver.start(jobserver.rule_modules(workflow.rules))
+
+
+onsuccess:
+    jobserver.stop()
+
+
+onerror:
+    jobserver.stop()

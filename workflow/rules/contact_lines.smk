@@ -1,14 +1,17 @@
 rule contact_lines:
-    """Contact lines in the plane of action and L(phi) over one mesh cycle (contact_lines.nc)."""
+    """Contact lines in the plane of action and L(phi) over one mesh cycle (contact_lines.nc), and their figures."""
     input:
         pair=pair_file,
     output:
-        "results/{study}/{pair}/contact_lines.nc",
+        nc="results/{study}/{pair}/contact_lines.nc",
+        contact_length=report_item("results/{study}/{pair}/plots/contact_length.png", "contact_length", "Contact lines"),
+        contact_lines=report_item("results/{study}/{pair}/plots/contact_lines.png", "contact_lines", "Contact lines"),
     log:
         "logs/{study}/{pair}/contact_lines.log",
     params:
         function=versioned("gearmesh.datasets.geometry:contact_lines_dataset"),
         settings=lambda wildcards: config["contact_lines"],
+        figures=versioned("gearmesh.plots.geometry:contact_lines_figures"),
     conda:
         ENV
     script:

@@ -5,32 +5,19 @@
 
 
 rule fe_compliance:
-    """FE tooth compliance of both gears along the profile, with the PEM models (fe_compliance.nc)."""
+    """FE tooth compliance of both gears along the profile, with the PEM models (fe_compliance.nc), and its figure."""
     input:
         pair=pair_file,
     output:
-        "results/{study}/{pair}/fe_compliance.nc",
+        nc="results/{study}/{pair}/fe_compliance.nc",
+        fe_compliance=report_item("results/{study}/{pair}/plots/fe_compliance.png", "fe_compliance", "Stiffness"),
     log:
         "logs/{study}/{pair}/fe_compliance.log",
     params:
         function=versioned("gearmesh.datasets.fe:fe_compliance_dataset"),
         settings=lambda wildcards: config["fe_compliance"],
+        figures=versioned("gearmesh.plots.fe:fe_compliance_figures"),
     conda:
         ENV
     script:
         "../scripts/pair_stage.py"
-
-
-rule plot_fe_compliance:
-    input:
-        fe_compliance="results/{study}/{pair}/fe_compliance.nc",
-    output:
-        fe_compliance=report_item("results/{study}/{pair}/plots/fe_compliance.png", "fe_compliance", "Stiffness"),
-    log:
-        "logs/{study}/{pair}/plot_fe_compliance.log",
-    params:
-        function=versioned("gearmesh.plots.fe:fe_compliance_figures"),
-    conda:
-        ENV
-    script:
-        "../scripts/plot.py"

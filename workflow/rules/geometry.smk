@@ -1,14 +1,17 @@
 rule geometry:
-    """Radii, contact ratios, tooth profile with the hob fillet, flank surfaces (geometry.nc)."""
+    """Radii, contact ratios, tooth profile with the hob fillet, flank surfaces (geometry.nc), and the
+    tooth profile figure."""
     input:
         pair=pair_file,
     output:
-        "results/{study}/{pair}/geometry.nc",
+        nc="results/{study}/{pair}/geometry.nc",
+        tooth_profile=report_item("results/{study}/{pair}/plots/tooth_profile.png", "tooth_profile", "Geometry"),
     log:
         "logs/{study}/{pair}/geometry.log",
     params:
         function=versioned("gearmesh.datasets.geometry:geometry_dataset"),
         settings=lambda wildcards: config["geometry"],
+        figures=versioned("gearmesh.plots.geometry:geometry_figures"),
     conda:
         ENV
     script:

@@ -5,30 +5,13 @@
 
 rule impact:
     """Mesh-in point, impact velocity, local stiffness and energy-method impact force over the
-    torque x speed grid, and the direct simulation of the engagement at the design speed (impact.nc)."""
+    torque x speed grid, and the direct simulation of the engagement at the design speed (impact.nc);
+    figures: impact force against speed per torque, the trajectory of M on the flank, the simulated engagement."""
     input:
         unpack(fe_tables("impact")),
-        pair=variant_pair_file,
+        pair=variant_source_pair,
     output:
-        "results/{study}/{pair}/{variant}/impact.nc",
-    log:
-        "logs/{study}/{pair}/{variant}/impact.log",
-    params:
-        function=versioned("gearmesh.datasets.impact:impact_dataset"),
-        # the study's manufacturing tolerances give each variant's tolerance spread
-        settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant,
-                                    "tolerances": config.get("tolerances")},
-    conda:
-        ENV
-    script:
-        "../scripts/pair_stage.py"
-
-
-rule plot_impact:
-    """Impact force against speed per torque, the trajectory of M on the flank, the simulated engagement."""
-    input:
-        impact="results/{study}/{pair}/{variant}/impact.nc",
-    output:
+        nc="results/{study}/{pair}/{variant}/impact.nc",
         force_speed=report_item("results/{study}/{pair}/{variant}/plots/impact_speed.png", "impact_speed",
                                 "Impact", BY_VARIANT),
         trajectory=report_item("results/{study}/{pair}/{variant}/plots/mesh_in_trajectory.png",
@@ -36,45 +19,37 @@ rule plot_impact:
         simulation=report_item("results/{study}/{pair}/{variant}/plots/impact_simulation.png",
                                "impact_simulation", "Impact", BY_VARIANT),
     log:
-        "logs/{study}/{pair}/{variant}/plot_impact.log",
+        "logs/{study}/{pair}/{variant}/impact.log",
     params:
-        function=versioned("gearmesh.plots.impact:impact_figures"),
+        function=versioned("gearmesh.datasets.impact:impact_dataset"),
+        # the study's manufacturing tolerances give each variant's tolerance spread
+        settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant,
+                                    "tolerances": config.get("tolerances")},
+        variant=variant_spec,
+        figures=versioned("gearmesh.plots.impact:impact_figures"),
     conda:
         ENV
     script:
-        "../scripts/plot.py"
+        "../scripts/pair_stage.py"
 
 
 rule impact_table:
-    """Impact force of every variant at every torque at the design speed, with the reduction against standard."""
+    """Impact force of every variant at every torque at the design speed, with the reduction against standard;
+    figures: all variants on one axis (impact force against torque and against speed) and, off the design point,
+    their load windows and tolerance spreads side by side (the robustness page)."""
     input:
         impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
     output:
         nc="results/{study}/{pair}/impact_table.nc",
         csv=report_item("results/{study}/{pair}/impact_table.csv", "impact_table", "Impact", BY_PAIR),
+        impact_force=report_item("results/{study}/{pair}/plots/impact_force.png", "impact_force", "Impact", BY_PAIR),
+        robustness=report_item("results/{study}/{pair}/plots/robustness.png", "robustness", "Impact", BY_PAIR),
     log:
         "logs/{study}/{pair}/impact_table.log",
     params:
         function=versioned("gearmesh.datasets.impact:impact_table_dataset"),
+        figures=versioned("gearmesh.plots.impact:impact_study_figures"),
     conda:
         ENV
     script:
         "../scripts/collect.py"
-
-
-rule plot_impact_variants:
-    """All variants on one axis: impact force against torque and against speed; and off the design point,
-    their load windows and tolerance spreads side by side (the robustness page)."""
-    input:
-        impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
-    output:
-        impact_force=report_item("results/{study}/{pair}/plots/impact_force.png", "impact_force", "Impact", BY_PAIR),
-        robustness=report_item("results/{study}/{pair}/plots/robustness.png", "robustness", "Impact", BY_PAIR),
-    log:
-        "logs/{study}/{pair}/plot_impact_variants.log",
-    params:
-        function=versioned("gearmesh.plots.impact:impact_study_figures"),
-    conda:
-        ENV
-    script:
-        "../scripts/plot.py"

@@ -3,39 +3,27 @@
 
 rule ltca:
     """LTCA at every torque over one mesh cycle: LTE, load per point (contact pattern), loaded mesh
-    stiffness, pairs in contact, LTE at the start of engagement (ltca.nc)."""
+    stiffness, pairs in contact, LTE at the start of engagement (ltca.nc); figures: TE and LTE against
+    rotation, the loaded contact pattern on the pinion flank."""
     input:
         unpack(fe_tables("ltca")),
-        pair=variant_pair_file,
+        pair=variant_source_pair,
     output:
-        "results/{study}/{pair}/{variant}/ltca.nc",
+        nc="results/{study}/{pair}/{variant}/ltca.nc",
+        te_lte=report_item("results/{study}/{pair}/{variant}/plots/te_lte.png", "te_lte", "LTCA", BY_VARIANT),
+        contact_pattern=report_item("results/{study}/{pair}/{variant}/plots/contact_pattern.png", "contact_pattern",
+                                    "LTCA", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/ltca.log",
     params:
         function=versioned("gearmesh.datasets.ltca:ltca_dataset"),
         settings=lambda wildcards: config["ltca"],
+        variant=variant_spec,
+        figures=versioned("gearmesh.plots.ltca:ltca_figures"),
     conda:
         ENV
     script:
         "../scripts/pair_stage.py"
-
-
-rule plot_ltca:
-    """TE and LTE against rotation for every torque, and the loaded contact pattern on the pinion flank."""
-    input:
-        ltca="results/{study}/{pair}/{variant}/ltca.nc",
-    output:
-        te_lte=report_item("results/{study}/{pair}/{variant}/plots/te_lte.png", "te_lte", "LTCA", BY_VARIANT),
-        contact_pattern=report_item("results/{study}/{pair}/{variant}/plots/contact_pattern.png", "contact_pattern",
-                                    "LTCA", BY_VARIANT),
-    log:
-        "logs/{study}/{pair}/{variant}/plot_ltca.log",
-    params:
-        function=versioned("gearmesh.plots.ltca:ltca_figures"),
-    conda:
-        ENV
-    script:
-        "../scripts/plot.py"
 
 
 rule lste_comparison:

@@ -1,54 +1,44 @@
 # Micro-geometry optimisations against the mesh-in impact (seed 000), each named in the config
 # section "optimise" ({run}), once per pair. No physics here: the rule names one package
 # function; the settings are the run's section, the study's impact model and its tolerances. A
-# variant {from: optimise.NAME} takes results/{study}/{pair}/optimise/NAME/pair.yaml (rule
-# variant_pair), so the later stages run on the optimum like on any variant.
+# variant {from: optimise.NAME} takes results/{study}/{pair}/optimise/NAME/pair.yaml as its pair
+# file (common.smk variant_source_pair), so the later stages run on the optimum like on any variant.
 
 
 rule optimise:
     """GA (or NSGA-II, or random search) over seed 000's six modification parameters: every
-    generation, the optimum with its load window and tolerance spread (ga.nc), and the optimum as a
-    pair file."""
+    generation, the optimum with its load window and tolerance spread (ga.nc), the optimum as a
+    pair file; figures: convergence (and the random search on one axis when it ran) and the optimum's
+    modification map."""
     input:
         unpack(fe_tables("impact")),  # the optimiser runs the study's impact model
         pair=pair_file,
     output:
         nc="results/{study}/{pair}/optimise/{run}/ga.nc",
         pair="results/{study}/{pair}/optimise/{run}/pair.yaml",
+        convergence=report_item("results/{study}/{pair}/optimise/{run}/plots/convergence.png",
+                                "optimise_convergence", "optimisation", BY_RUN),
+        modification=report_item("results/{study}/{pair}/optimise/{run}/plots/modification.png",
+                                 "optimise_modification", "optimisation", BY_RUN),
     log:
         "logs/{study}/{pair}/optimise/{run}.log",
+    # the longest job, and the variants it writes wait for it: start it first
+    priority: 10
     params:
         function=versioned("gearmesh.datasets.optimise:optimise_dataset"),
         # the impact model is the study's (impact: section), so the optimum is optimal for the impact stage
         settings=lambda wildcards: {**config["optimise"][wildcards.run], "impact": config.get("impact"),
                                     "tolerances": config.get("tolerances")},
+        figures=versioned("gearmesh.plots.optimise:optimise_figures"),
     conda:
         ENV
     script:
         "../scripts/optimise.py"
 
 
-rule plot_optimise:
-    """Convergence (and the random search on one axis when it ran) and the optimum's modification map."""
-    input:
-        ga="results/{study}/{pair}/optimise/{run}/ga.nc",
-    output:
-        convergence=report_item("results/{study}/{pair}/optimise/{run}/plots/convergence.png",
-                                "optimise_convergence", "optimisation", BY_RUN),
-        modification=report_item("results/{study}/{pair}/optimise/{run}/plots/modification.png",
-                                 "optimise_modification", "optimisation", BY_RUN),
-    log:
-        "logs/{study}/{pair}/optimise/plot_{run}.log",
-    params:
-        function=versioned("gearmesh.plots.optimise:optimise_figures"),
-    conda:
-        ENV
-    script:
-        "../scripts/plot.py"
-
-
 rule plot_pareto:
-    """NSGA-II runs: impact force against peak-to-peak LTE with the Pareto front."""
+    """NSGA-II runs: impact force against peak-to-peak LTE with the Pareto front (its own job: only a
+    run with method nsga2 has one, and an output cannot depend on a wildcard's config)."""
     input:
         ga="results/{study}/{pair}/optimise/{run}/ga.nc",
     output:

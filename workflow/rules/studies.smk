@@ -2,16 +2,18 @@
 
 
 rule helix_sweep:
-    """Contact-line length statistics against helix angle (seed 002; seed 001 V-curve)."""
+    """Contact-line length statistics against helix angle (seed 002; seed 001 V-curve), and the V-curve figure."""
     input:
         pairs=study_pair_files("helix_sweep"),
     output:
-        "results/{study}/helix_sweep.nc",
+        nc="results/{study}/helix_sweep.nc",
+        helix_sweep=report_item("results/{study}/plots/helix_sweep.png", "helix_sweep", "Contact lines", STUDY_TABLES),
     log:
         "logs/{study}/helix_sweep.log",
     params:
         function=versioned("gearmesh.datasets.geometry:helix_sweep_dataset"),
         settings=lambda wildcards: config["helix_sweep"],
+        figures=versioned("gearmesh.plots.geometry:helix_sweep_figures"),
     conda:
         ENV
     script:

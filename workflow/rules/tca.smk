@@ -2,33 +2,21 @@
 
 
 rule tca:
-    """Unloaded TCA over one mesh cycle: separations, TE of the mesh and of each pair, first-contact path (tca.nc)."""
+    """Unloaded TCA over one mesh cycle: separations, TE of the mesh and of each pair, first-contact path (tca.nc);
+    figure: the unloaded TE and the first-contact points on the pinion flank."""
     input:
-        pair=variant_pair_file,
+        pair=variant_source_pair,
     output:
-        "results/{study}/{pair}/{variant}/tca.nc",
+        nc="results/{study}/{pair}/{variant}/tca.nc",
+        tca=report_item("results/{study}/{pair}/{variant}/plots/tca.png", "tca", "TCA", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/tca.log",
     params:
         function=versioned("gearmesh.datasets.ltca:tca_dataset"),
         settings=lambda wildcards: config["tca"],
+        variant=variant_spec,
+        figures=versioned("gearmesh.plots.ltca:tca_figures"),
     conda:
         ENV
     script:
         "../scripts/pair_stage.py"
-
-
-rule plot_tca:
-    """Unloaded TE of the mesh and of each tooth pair, and the first-contact points on the pinion flank."""
-    input:
-        tca="results/{study}/{pair}/{variant}/tca.nc",
-    output:
-        tca=report_item("results/{study}/{pair}/{variant}/plots/tca.png", "tca", "TCA", BY_VARIANT),
-    log:
-        "logs/{study}/{pair}/{variant}/plot_tca.log",
-    params:
-        function=versioned("gearmesh.plots.ltca:tca_figures"),
-    conda:
-        ENV
-    script:
-        "../scripts/plot.py"

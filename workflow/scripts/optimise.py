@@ -1,4 +1,5 @@
 """Thin adapter: pair file -> gearmesh.pipeline.run_optimise (ga.nc and the optimum's pair file)."""
-from gearmesh.pipeline import run_optimise
+from gearmesh.jobserver import run
 
-run_optimise(snakemake)  # noqa: F821 (injected by Snakemake's script directive)
+# on the run's job server when there is one (a fork of a process that has imported everything), else here
+run(snakemake, "run_optimise")  # noqa: F821 (injected by Snakemake's script directive)

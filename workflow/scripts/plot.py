@@ -1,4 +1,5 @@
 """Thin adapter: Snakemake job -> gearmesh.pipeline.run_plot (the rule names the function)."""
-from gearmesh.pipeline import run_plot
+from gearmesh.jobserver import run
 
-run_plot(snakemake)  # noqa: F821 (injected by Snakemake's script directive)
+# on the run's job server when there is one (a fork of a process that has imported everything), else here
+run(snakemake, "run_plot")  # noqa: F821 (injected by Snakemake's script directive)

@@ -204,7 +204,7 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def dynamics_figures(inputs, outputs) -> None:
-    """The ``plot_dynamics`` rule: outputs 'rms', 'spectrum' and (contact) 'engagement' from input 'dynamics'."""
+    """The figures of the ``dynamics`` rule: outputs 'rms', 'spectrum' and (contact) 'engagement' from input 'dynamics'."""
     ds = inputs["dynamics"]
     if "rms" in outputs:
         plot_rms_against_speed(ds, outputs["rms"])
@@ -247,13 +247,13 @@ def plot_variants_peak_force(datasets, path: str | Path) -> Path:
 
 
 def dynamics_variants_figures(inputs, outputs) -> None:
-    """The ``plot_dynamics_variants`` rule."""
+    """The figure of the ``engagement_table`` rule (or ``plot_dynamics_variants`` without one)."""
     sets = inputs["dynamics"]
     plot_variants_peak_force(sets if isinstance(sets, (list, tuple)) else [sets], outputs["dynamics_variants"])
 
 
 def train_figures(inputs, outputs) -> None:
-    """The ``plot_train`` rule: output 'spectrum' (both meshes) from input 'train'."""
+    """The figure of the ``train_dynamics`` rule: output 'spectrum' (both meshes) from input 'train'."""
     plot_force_spectrum(inputs["train"], outputs["spectrum"])
 
 
@@ -280,5 +280,5 @@ def plot_dynamics_comparison(datasets, path) -> None:
 
 
 def dynamics_comparison_figures(inputs, outputs) -> None:
-    """The ``plot_dynamics_comparison`` rule."""
+    """The figure of the ``dynamics_comparison`` rule."""
     plot_dynamics_comparison(inputs["dynamics"], outputs["dynamics_comparison"])

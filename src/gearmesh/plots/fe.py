@@ -55,5 +55,5 @@ def plot_fe_compliance(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def fe_compliance_figures(inputs, outputs) -> None:
-    """The ``plot_fe_compliance`` rule."""
+    """The figure of the ``fe_compliance`` rule."""
     plot_fe_compliance(inputs["fe_compliance"], outputs["fe_compliance"])

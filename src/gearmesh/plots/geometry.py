@@ -110,13 +110,17 @@ def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
     return _save(fig, path)
 
 
-def pair_figures(inputs, outputs) -> None:
-    """The per-pair figures of the ``plot_pair`` rule from its ``geometry`` and ``contact_lines`` datasets."""
+def geometry_figures(inputs, outputs) -> None:
+    """The figure of the ``geometry`` rule from its ``geometry`` dataset: the tooth profile."""
     plot_tooth_profile(inputs["geometry"], outputs["tooth_profile"])
+
+
+def contact_lines_figures(inputs, outputs) -> None:
+    """The figures of the ``contact_lines`` rule from its ``contact_lines`` dataset: L(phi) and the lines."""
     plot_contact_length(inputs["contact_lines"], outputs["contact_length"])
     plot_contact_lines(inputs["contact_lines"], outputs["contact_lines"])
 
 
 def helix_sweep_figures(inputs, outputs) -> None:
-    """The V-curve figure of the ``plot_helix_sweep`` rule."""
+    """The V-curve figure of the ``helix_sweep`` rule."""
     plot_helix_sweep(inputs["helix_sweep"], outputs["helix_sweep"])

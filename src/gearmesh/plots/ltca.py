@@ -126,11 +126,11 @@ def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def tca_figures(inputs, outputs) -> None:
-    """The figure of the ``plot_tca`` rule from its ``tca`` dataset."""
+    """The figure of the ``tca`` rule from its ``tca`` dataset."""
     plot_tca(inputs["tca"], outputs["tca"])
 
 
 def ltca_figures(inputs, outputs) -> None:
-    """The figures of the ``plot_ltca`` rule from its ``ltca`` dataset."""
+    """The figures of the ``ltca`` rule from its ``ltca`` dataset."""
     plot_te_lte(inputs["ltca"], outputs["te_lte"])
     plot_contact_pattern(inputs["ltca"], outputs["contact_pattern"])

@@ -156,7 +156,7 @@ def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def optimise_figures(inputs, outputs) -> None:
-    """The figures of the ``plot_optimise`` rule from its ``ga`` dataset."""
+    """The figures of the ``optimise`` rule from its ``ga`` dataset."""
     plot_convergence(inputs["ga"], outputs["convergence"])
     plot_modification(inputs["ga"], outputs["modification"])
 

@@ -87,15 +87,15 @@ def plot_slice_convergence(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def stiffness_figures(inputs, outputs) -> None:
-    """The ``plot_stiffness`` rule."""
+    """The figure of the ``stiffness`` rule."""
     plot_mesh_stiffness(inputs["stiffness"], outputs["stiffness"])
 
 
 def stiffness_table_figures(inputs, outputs) -> None:
-    """The ``plot_stiffness_table`` rule."""
+    """The figure of the ``stiffness_table`` rule."""
     plot_stiffness_table(inputs["stiffness_table"], outputs["stiffness_table"])
 
 
 def slice_convergence_figures(inputs, outputs) -> None:
-    """The ``plot_slice_convergence`` rule."""
+    """The figure of the ``slice_convergence`` rule."""
     plot_slice_convergence(inputs["slice_convergence"], outputs["slice_convergence"])

@@ -1,0 +1,146 @@
+"""The job server: a job run by a fork of the warm server gives what the job run alone gives, bit
+for bit; its failures reach the script; a killed script takes its job with it; no server, no
+difference."""
+
+from __future__ import annotations
+
+import os
+import pickle
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import psutil
+import pytest
+
+from gearmesh import jobserver
+from gearmesh.codeversion import versioned
+from gearmesh.io import read_dataset
+
+pytest.importorskip("snakemake")
+from snakemake.iocontainers import InputFiles, Log, OutputFiles, Params, Snakemake, Wildcards  # noqa: E402
+
+pytestmark = pytest.mark.skipif(os.name != "posix", reason="the job server forks (POSIX only)")
+
+
+def _job(root: Path, out: Path, function: str, settings: dict, figures: str | None = None,
+         outputs: dict | None = None) -> Snakemake:
+    """The Snakemake object of a pair-stage job of seed001_pair1, as a script rule gets it."""
+    params = {"function": versioned(function), "settings": settings}
+    if figures:
+        params["figures"] = versioned(figures)
+    return Snakemake(InputFiles(fromdict={"pair": str(root / "config/pairs/seed001_pair1.yaml")}),
+                     OutputFiles(fromdict=outputs or {"nc": str(out / "result.nc")}), Params(fromdict=params),
+                     Wildcards(fromdict={"pair": "seed001_pair1"}), 1, None, Log([str(out / "job.log")]),
+                     {"study": "test"}, "test_rule", None)
+
+
+def _script(job: Snakemake, tmp: Path, env: dict) -> subprocess.Popen:
+    """What workflow/scripts/pair_stage.py does, in a process of its own."""
+    blob = tmp / f"job{time.monotonic_ns()}.pickle"
+    blob.write_bytes(pickle.dumps(job))
+    code = ("import pickle, sys; from gearmesh.jobserver import run; "
+            f"run(pickle.loads(open({str(blob)!r}, 'rb').read()), 'run_pair_stage')")
+    return subprocess.Popen([sys.executable, "-c", code], env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
+
+
+@pytest.fixture
+def server(monkeypatch):
+    """A server for this test, as the Snakefile's onstart starts one; stopped afterwards."""
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    path = jobserver.start(["gearmesh.pipeline", "gearmesh.datasets.geometry", "gearmesh.plots.geometry",
+                            "gearmesh.datasets.stiffness"])
+    assert path is not None and os.environ[jobserver.ENV] == path
+    yield SimpleNamespace(path=path, env=dict(os.environ), process=jobserver._server)
+    jobserver.stop()
+    assert not Path(path).exists()
+
+
+def test_a_job_on_the_server_equals_the_job_alone(root, tmp_path, server):
+    settings = {"positions": 24}
+    results = {}
+    for where, env in (("server", server.env), ("alone", {**server.env, jobserver.ENV: "off"})):
+        out = tmp_path / where
+        outputs = {"nc": str(out / "contact_lines.nc"), "contact_length": str(out / "contact_length.png"),
+                   "contact_lines": str(out / "contact_lines.png")}
+        job = _job(root, out, "gearmesh.datasets.geometry:contact_lines_dataset", settings,
+                   "gearmesh.plots.geometry:contact_lines_figures", outputs)
+        proc = _script(job, tmp_path, env)
+        _, err = proc.communicate(timeout=300)
+        assert proc.returncode == 0, err
+        results[where] = read_dataset(out / "contact_lines.nc")
+        assert (out / "contact_lines.png").stat().st_size > 1000
+        log = (out / "job.log").read_text()
+        assert "done in" in log
+        # the child of the warm server starts working without importing anything
+        startup_cpu = float(log.rsplit("CPU ", 1)[1].split(" s")[0])
+        if where == "server":
+            assert startup_cpu < 0.2, log
+    a, b = results["server"], results["alone"]
+    assert set(a.data_vars) == set(b.data_vars)
+    for name in a.data_vars:
+        np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
+    assert a.attrs["config_json"] == b.attrs["config_json"]
+
+
+def test_a_failing_job_reports_its_error_and_exit_code(root, tmp_path, server):
+    job = _job(root, tmp_path, "gearmesh.datasets.geometry:contact_lines_dataset", {"positions": -3})
+    proc = _script(job, tmp_path, server.env)
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 2
+    assert "gearmesh: error:" in err and "positions" in err
+    assert not (tmp_path / "result.nc").exists()
+
+
+def test_a_killed_script_takes_its_job_with_it(root, tmp_path, server):
+    # a stiffness job of many slices runs for seconds: kill its script while it works
+    job = _job(root, tmp_path, "gearmesh.datasets.stiffness:stiffness_dataset",
+               {"slices": 4000, "positions": 720})
+    proc = _script(job, tmp_path, server.env)
+    server_process = psutil.Process(server.process.pid)
+    deadline = time.monotonic() + 60
+    while not server_process.children() and time.monotonic() < deadline:
+        time.sleep(0.05)
+    (child,) = server_process.children()
+    proc.send_signal(signal.SIGKILL)
+    proc.wait(timeout=10)
+    child.wait(timeout=10)  # psutil.TimeoutExpired if the job outlived its script
+    assert not (tmp_path / "result.nc").exists()
+
+
+def test_without_a_server_the_script_runs_the_job_itself(root, tmp_path, monkeypatch):
+    monkeypatch.setenv(jobserver.ENV, str(tmp_path / "no-such-socket"))
+    job = _job(root, tmp_path, "gearmesh.datasets.geometry:contact_lines_dataset", {"positions": 12})
+    proc = _script(job, tmp_path, dict(os.environ))
+    _, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err
+    assert read_dataset(tmp_path / "result.nc").sizes["position"] == 12
+
+
+@pytest.mark.parametrize("methods, local, remote, wanted", [
+    (set(), True, False, True),
+    ({"conda"}, True, False, False),            # the job's Python is the conda environment's
+    ({"apptainer"}, True, False, False),
+    (set(), False, False, False),               # a cluster run: every job a process of its own
+    (set(), True, True, False),                 # a job step on a node
+])
+def test_only_a_local_run_in_this_python_uses_a_server(monkeypatch, methods, local, remote, wanted):
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    workflow = SimpleNamespace(deployment_settings=SimpleNamespace(deployment_method=methods),
+                               local_exec=local, remote_exec=remote)
+    assert jobserver.wanted(workflow) is wanted
+    monkeypatch.setenv(jobserver.ENV, "off")
+    assert jobserver.wanted(SimpleNamespace(deployment_settings=SimpleNamespace(deployment_method=set()),
+                                            local_exec=True, remote_exec=False)) is False
+
+
+def test_the_server_imports_the_modules_its_rules_name():
+    rules = [SimpleNamespace(params=["gearmesh.datasets.ltca:ltca_dataset@0123456789abcdef",
+                                     "gearmesh.plots.ltca:ltca_figures@0123456789abcdef", {"positions": 3}]),
+             SimpleNamespace(params=None)]
+    assert jobserver.rule_modules(rules) == ["gearmesh.datasets.ltca", "gearmesh.pipeline", "gearmesh.plots.ltca"]
