@@ -24,7 +24,7 @@ Model
   (:data:`GRADING`); one sparse LU factorisation per gear serves every load position.
 * Load: a unit force per unit width at the contact point P of roll length ρ on the involute,
   along the line of action into the tooth, n = (−cos α1, −sin α1) in the tooth frame of
-  :mod:`gearmesh.stiffness` (α1 the load angle of :func:`gearmesh.stiffness.contact_point`).
+  :mod:`gearmesh.stiffness` (α1 the load angle of :func:`gearmesh.tooth.contact_point`).
 * Local contact part removed as Weber (1949, "Formänderung und Profilrücknahme bei gerad-
   und schrägverzahnten Rädern", Schriftenreihe Antriebstechnik 11) and Cornell (1981, J.
   Mech. Des. 103:447) split the tooth deflection: the tooth deflection is the displacement,
@@ -55,6 +55,7 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry, pair_to_dict
+from .tooth import SliceComplianceTable, contact_point, require_stiffness_data, tooth_model
 
 __all__ = [
     "PLANES", "DEFAULT_SIZE", "DEFAULT_NEIGHBOURS", "DEFAULT_PLANE", "DEFAULT_ROLL_NODES",
@@ -413,8 +414,6 @@ def gear_sector(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAULT
     as vertices; ``size`` in normal modules; ``bore_radius`` (m) defaults to the pair's;
     ``ring``: the whole ring with ``neighbours`` teeth each side (:func:`sector_outline`)."""
     from .profile import tooth_profile
-    from .stiffness import require_stiffness_data
-
     require_stiffness_data(geom)
     if not size > 0:
         raise GearmeshInputError("size", size, "must be positive (element edge in normal modules)")
@@ -480,8 +479,6 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
     cuts); ``bore_radius`` (m) to override the pair's (rim-thickness studies); ``ring``: the
     whole ring with only ``neighbours`` teeth each side (the domain of :mod:`gearmesh.fe3d`).
     """
-    from .stiffness import contact_point, tooth_model
-
     lame_parameters(1.0, 0.3, plane)  # refuse an unknown plane before meshing
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
     profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius, ring)
@@ -569,8 +566,6 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     plane strain on a body in plane stress; ``ring``: the domain of :mod:`gearmesh.fe3d`."""
     from skfem import Basis, ElementTriP2, ElementVector, asm
     from skfem.models.elasticity import linear_elasticity
-
-    from .stiffness import contact_point, tooth_model
 
     lame_parameters(1.0, 0.3, plane)
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
@@ -674,8 +669,6 @@ def contact_approach(geom: PairGeometry, gear: int, rho: float, half_width: floa
     ρ²/(2 r_b)); the pressure p(s) = (2/(πa))·√(1 − s²/a²) acts on them along each
     vertex's own line of action, lumped by the trapezoidal rule and scaled to a unit
     resultant."""
-    from .stiffness import contact_point, tooth_model
-
     model = tooth_model(geom, gear, "transition")
     rb = model.base_radius
     s_p = rho**2 / (2 * rb)
@@ -796,7 +789,7 @@ def use_fe_tables(ds, geom: PairGeometry) -> None:
 def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAULT_ROLL_NODES,
                               plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
                               neighbours: int | None = DEFAULT_NEIGHBOURS, profile=None):
-    """The :class:`gearmesh.stiffness.SliceComplianceTable` of ``method='fe'`` (the same
+    """The :class:`gearmesh.tooth.SliceComplianceTable` of ``method='fe'`` (the same
     object the potential-energy methods build, so the stiffness stage, the LTCA, the impact
     and the dynamics use it unchanged).
 
@@ -810,11 +803,9 @@ def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAU
 
 def compliance_table(geom: PairGeometry, gear: int, rho: np.ndarray, tooth: np.ndarray, body: np.ndarray,
                      load_angle: np.ndarray, profile=None):
-    """A :class:`gearmesh.stiffness.SliceComplianceTable` (method 'fe') of a tooth compliance
+    """A :class:`gearmesh.tooth.SliceComplianceTable` (method 'fe') of a tooth compliance
     per unit width (m²/N) given at roll lengths ``rho`` (m): ``tooth`` as 'bending', ``body``
     as 'fillet', 'shear' and 'axial' zero; cubic splines."""
-    from .stiffness import SliceComplianceTable, tooth_model
-
     from scipy.interpolate import CubicSpline
 
     zero = np.zeros_like(rho)

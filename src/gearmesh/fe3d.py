@@ -61,6 +61,7 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import PairGeometry
+from .tooth import contact_point, tooth_model
 
 __all__ = ["DEFAULT_NEIGHBOURS", "extrude", "gear_model_3d", "GearModel3D", "line_compliance_3d",
            "LineCompliance3D", "richardson"]
@@ -316,8 +317,6 @@ def line_compliance_3d(model: GearModel3D, rho0, transverse_only: bool = False) 
     touches at a layer must be one of the model's ``load_rolls``. ``transverse_only``: the
     slice model's load instead (the transverse part n alone, read along n), to separate the
     effect of the axial part of the flank normal."""
-    from .stiffness import contact_point, tooth_model
-
     geom, gear = model.geom, model.gear
     rho0 = np.atleast_1d(np.asarray(rho0, dtype=float))
     z = model.z
@@ -394,8 +393,6 @@ def line_compliance_3d(model: GearModel3D, rho0, transverse_only: bool = False) 
 
 def _probe_c(model: GearModel3D, tm, rho: np.ndarray, z: np.ndarray, u: np.ndarray) -> np.ndarray:
     """Displacements (3, k) at the points C of the sections at ``z`` (m) for contacts at ``rho`` (m)."""
-    from .stiffness import contact_point
-
     x_p, y_p, a1, _ = contact_point(tm, rho)
     th = model.twist * z
     yc = y_p - x_p * np.tan(a1)
