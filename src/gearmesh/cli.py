@@ -285,8 +285,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = _command(sub, "stiffness", cmd_stiffness,
                  "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
-    p.add_argument("--method", choices=("traditional", "improved", "transition", "fe"), default="transition",
-                   help="tooth model (default transition: hob fillet, seed 003; fe: 2-D finite elements)")
+    p.add_argument("--method", choices=("traditional", "improved", "transition", "fe"), default="fe",
+                   help="tooth model (default fe: 2-D finite elements, within a few %% of 3-D, docs/validation.md; "
+                        "transition: the hob-fillet cantilever of seed 003)")
     p.add_argument("--slices", type=int, default=200, help="slices over the face width")
     p.add_argument("--positions", type=int, default=360, help="rotation positions per mesh cycle")
     _torque_options(p, required=False, on_default="pinion")
