@@ -114,13 +114,14 @@ def test_study_validation_builds_every_variant(tmp_path, capsys, extra, field):
     assert capsys.readouterr().err.startswith(f"gearmesh: error: {field}")
 
 
-def test_study_pair_without_material_is_refused_up_front(tmp_path, capsys):
+def test_study_pair_without_bore_is_refused_up_front(tmp_path, capsys):
     (tmp_path / "pairs").mkdir()
-    (tmp_path / "pairs/p.yaml").write_text(PAIR_TEXT.replace("name: x", "name: p").split("material")[0])
+    (tmp_path / "pairs/p.yaml").write_text(PAIR_TEXT.replace("name: x", "name: p").replace("bore_radius_mm: [15, 25]\n",
+                                                                                            ""))
     study = tmp_path / "study.yaml"
     study.write_text(f"study: s\npairs: [p]\npairs_dir: {tmp_path / 'pairs'}\n")
     assert main(["validate", str(study)]) == 2
-    assert capsys.readouterr().err.startswith("gearmesh: error: material")
+    assert capsys.readouterr().err.startswith("gearmesh: error: bore_radius_mm")
 
 
 def test_cli_bounds_grid_sizes(root, capsys):

@@ -91,9 +91,16 @@ def test_cli_stiffness_refuses_bad_options(root, capsys, args, field):
     assert capsys.readouterr().err.startswith(f"gearmesh: error: {field}")
 
 
-def test_cli_stiffness_refuses_missing_material(tmp_path, capsys):
+def test_cli_stiffness_without_material_is_steel_and_says_so(tmp_path, capsys):
     path = tmp_path / "p.yaml"
-    path.write_text("name: p\nteeth: [29, 49]\nnormal_module_mm: 2\nnormal_pressure_angle_deg: 20\n"
-                    "helix_angle_deg: 10\nface_width_mm: 20\nbore_radius_mm: [10, 20]\n")
-    assert main(["stiffness", str(path)]) == 2
-    assert capsys.readouterr().err.startswith("gearmesh: error: material")
+    text = ("name: p\nteeth: [29, 49]\nnormal_module_mm: 2\nnormal_pressure_angle_deg: 20\n"
+            "helix_angle_deg: 10\nface_width_mm: 20\nbore_radius_mm: [10, 20]\n")
+    path.write_text(text)
+    assert main(["stiffness", str(path), "--slices", "40", "--positions", "40", "--json"]) == 0
+    default = json.loads(capsys.readouterr().out)
+    assert "material not given" in default["notes"][0]
+    path.write_text(text + "material: {youngs_modulus_GPa: 206, poisson_ratio: 0.3, density_kg_m3: 7850}\n")
+    assert main(["stiffness", str(path), "--slices", "40", "--positions", "40", "--json"]) == 0
+    given = json.loads(capsys.readouterr().out)
+    assert given["notes"] == []
+    assert given["mean_mesh_stiffness_N_per_um"] == default["mean_mesh_stiffness_N_per_um"]

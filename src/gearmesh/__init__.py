@@ -19,6 +19,7 @@ _LAZY = {
     "Modification": "gear",
     "PairGeometry": "gear",
     "load_pair": "gear",
+    "example_pair": "gear",
     "pair_geometry": "gear",
 }
 

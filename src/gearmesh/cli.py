@@ -10,15 +10,18 @@ import argparse
 import json
 import logging
 import math
+import os
 import re
 import sys
 from collections.abc import Mapping, Sequence
+from pathlib import Path
 from typing import Any
 
+from . import __version__
 from .config import check_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
-from .gear import check_pair_name, load_pair, pair_from_dict, pair_geometry, pinion_torque, read_yaml
+from .gear import example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_load
 
 EXIT_BAD_INPUT = 2
@@ -38,33 +41,53 @@ def _finite(obj: Any) -> Any:
 
 
 def _emit(result: Mapping[str, Any], as_json: bool) -> None:
+    """Print a result: one JSON object, or one ``key  value`` line per number (nested keys
+    dotted) and, for a speed sweep, a table with one row per speed."""
     if as_json:
         print(json.dumps(_finite(result)))
         return
-    width = max(len(k) for k in result)
     rows = result.get("speeds") if isinstance(result.get("speeds"), list) else None
+    lines = _flat(_finite({k: v for k, v in result.items() if rows is None or k != "speeds"}))
+    width = max(len(k) for k in lines)
+    for key, value in lines.items():
+        if isinstance(value, float):
+            value = f"{value:.6g}"
+        elif isinstance(value, list):  # sentences (notes) apart by "; ", numbers by ", "
+            value = ("; " if all(isinstance(v, str) for v in value) else ", ").join(
+                f"{v:.6g}" if isinstance(v, float) else str(v) for v in value)
+        print(f"{key:<{width}}  {value}")
     if rows:  # a table, one row per speed
         keys = list(rows[0])
         print("  ".join(f"{k:>18}" for k in keys))
         for row in _finite(rows):
             print("  ".join(f"{v:>18.6g}" if isinstance(v, float) else f"{v!s:>18}" for v in row.values()))
-        return
-    for key, value in _finite(result).items():
-        if isinstance(value, float):
-            value = f"{value:.6g}"
-        elif isinstance(value, list):
-            value = ", ".join(f"{v:.6g}" if isinstance(v, float) else str(v) for v in value)
-        print(f"{key:<{width}}  {value}")
 
 
-def _pair(path: str, args: argparse.Namespace | None = None):
-    """The pair file at ``path`` (name = file name) and its geometry; with ``args``, its
-    ``--torque-Nm`` checked against the load limits of :func:`gearmesh.limits.check_load`."""
-    pair = load_pair(path)
+def _flat(result: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """Nested mappings, and lists of them, as dotted keys (``material.poisson_ratio``,
+    ``by_torque[0].torque_Nm``), for the text output."""
+    out: dict[str, Any] = {}
+    for key, value in result.items():
+        if isinstance(value, Mapping):
+            out.update(_flat(value, f"{prefix}{key}."))
+        elif isinstance(value, list) and value and all(isinstance(v, Mapping) for v in value):
+            for i, v in enumerate(value):
+                out.update(_flat(v, f"{prefix}{key}[{i}]."))
+        else:
+            out[f"{prefix}{key}"] = value
+    return out
+
+
+def _pair(args: argparse.Namespace, path: str | None = None):
+    """The pair file of the command (``path``, else ``args.pair``; its ``name``, or its file
+    stem without one) and its geometry, a ``--torque-Nm`` checked against the load limits of
+    :func:`gearmesh.limits.check_load`. Kept on ``args`` for the notes :func:`main` prints."""
+    pair = load_pair(path or args.pair)
     geom = pair_geometry(pair)
-    check_pair_name(pair, path)
-    if args is not None and args.torque_Nm is not None and args.torque_Nm > 0:
-        check_load(geom, pinion_torque(pair, args.torque_Nm, args.on), "--torque-Nm", args.torque_Nm)
+    torque = getattr(args, "torque_Nm", None)
+    if torque is not None and torque > 0:
+        check_load(geom, pinion_torque(pair, torque, args.on), "--torque-Nm", torque)
+    args.loaded_pair = pair
     return pair, geom
 
 
@@ -73,13 +96,12 @@ def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     if isinstance(data, Mapping) and ("study" in data or "pairs" in data):  # a pair file has neither key
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
-    pair = pair_from_dict(data, source=args.file)
-    _pair(args.file)
+    pair = _pair(args, args.file)[0]
     return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
-    geom = _pair(args.pair)[1]
+    geom = _pair(args)[1]
     result = geom.scalars()
     summary = contact_length_summary(geom)
     result.update({
@@ -98,14 +120,16 @@ def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.stiffness import stiffness_summary
 
     check_grid("--slices", args.slices, args.slices * args.positions, MAX_STIFFNESS_POINTS, "slice-positions")
-    return stiffness_summary(_pair(args.pair, args)[0], method=args.method, slices=args.slices,
-                             positions=args.positions, torque_Nm=args.torque_Nm, torque_on=args.on)
+    pair = _pair(args)[0]
+    result = stiffness_summary(pair, method=args.method, slices=args.slices, positions=args.positions,
+                               torque_Nm=args.torque_Nm, torque_on=args.on)
+    return result if args.torque_Nm is None else {**result, **_torque(pair, args.torque_Nm, args.on)}
 
 
 def cmd_impact(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.impact import impact_summary
 
-    return impact_summary(_pair(args.pair, args)[0], args.torque_Nm, args.speed_rpm, on=args.on, driver=args.driver,
+    return impact_summary(_pair(args)[0], args.torque_Nm, args.speed_rpm, on=args.on, driver=args.driver,
                           points=args.points, simulate=args.simulate, energy_velocity=args.energy_velocity)
 
 
@@ -114,7 +138,7 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 
     check_grid("--points", args.points, (args.positions + 1) * args.points, MAX_CONTACT_POINTS,
                "contact candidates per line")
-    return ltca_summary(_pair(args.pair, args)[0], args.torque_Nm, on=args.on, positions=args.positions,
+    return ltca_summary(_pair(args)[0], args.torque_Nm, on=args.on, positions=args.positions,
                         points=args.points, contact_law=args.contact_law)
 
 
@@ -122,7 +146,7 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.dynamics import check_dynamics_settings, dynamics_summary, positive_torque
 
     positive_torque("torque_Nm", args.torque_Nm)
-    pair, geom = _pair(args.pair, args)
+    pair, geom = _pair(args)
     check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
                                    "backlash_um": args.backlash_um, "sample_speeds_rpm": [],
                                    "excitation": args.excitation})
@@ -134,11 +158,22 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
         excitation["ltca"] = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion", positions=64, points=30)
     rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
                             backlash_um=args.backlash_um, progress=_progress(), **excitation)
-    backlash = geom.backlash_normal * 1e6 if args.backlash_um == "pair" else args.backlash_um
-    return {"name": pair.name, "torque_Nm": args.torque_Nm, "torque_on": args.on,
-            "pinion_torque_Nm": float(pinion_torque(pair, args.torque_Nm, args.on)), "excitation": args.excitation,
-            "backlash_um": backlash, "backlash_source": "pair" if args.backlash_um == "pair" else "given",
-            "speeds": rows}
+    return {"name": pair.name, **_torque(pair, args.torque_Nm, args.on), "excitation": args.excitation,
+            **_backlash(geom, args.backlash_um), "speeds": rows}
+
+
+def _torque(pair, torque_Nm: float, on: str) -> dict[str, Any]:
+    """What a result says of its load: the torque as given, the gear it acts on and the pinion
+    torque it is (every command applies ``--torque-Nm`` to the pinion unless ``--on gear``)."""
+    return {"torque_Nm": torque_Nm, "torque_on": on, "pinion_torque_Nm": float(pinion_torque(pair, torque_Nm, on))}
+
+
+def _backlash(geom, option) -> dict[str, Any]:
+    """The backlash a dynamics used (normal, µm) and where it came from: ``--backlash-um pair``
+    (the default) is the pair's own, from its centre distance and shifts."""
+    if option == "pair":
+        return {"backlash_um": geom.backlash_normal * 1e6, "backlash_source": "pair"}
+    return {"backlash_um": option, "backlash_source": "given"}
 
 
 def _backlash_option(text: str):
@@ -188,12 +223,12 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     # the design torque: given, or the middle torque of the spectrum (the lower of two middles)
     design = args.torque_Nm if args.torque_Nm is not None else sorted(torques)[(len(torques) - 1) // 2]
     out = _output_pair_path(args.write_pair)
-    pair = _pair(args.pair, args)[0]
+    pair, geom = _pair(args)
     if torques is not None:
         from .ltca import check_torques
 
         for t in check_torques(torques, "torques_Nm"):
-            check_load(pair_geometry(pair), pinion_torque(pair, t, args.on), "--torques-Nm", t)
+            check_load(geom, pinion_torque(pair, t, args.on), "--torques-Nm", t)
     if sys.stderr.isatty():  # one line per generation on the terminal
         handler = logging.StreamHandler(sys.stderr)
         handler.setFormatter(logging.Formatter("  %(message)s"))
@@ -215,6 +250,9 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
                                    backlash_um=args.backlash_um,
                                    constraints={"dynamic_factor": args.dynamic_factor}
                                    if args.dynamic_factor is not None else None)
+    summary["pinion_torque_Nm"] = float(pinion_torque(pair, design, args.on))
+    if args.objective == "dynamic" or args.dynamic_factor is not None:  # the candidates' dynamics
+        summary.update(_backlash(geom, args.backlash_um))
     if out is not None:
         write_pair(optimum_pair(pair, ds, name=out.stem), out)
         summary["pair_file"] = str(out)
@@ -224,7 +262,6 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
 def _output_pair_path(path: str | None):
     """The ``--write-pair`` target: a .yaml file in an existing folder whose stem is a valid pair
     name (the name the written pair carries)."""
-    from pathlib import Path
 
     if path is None:
         return None
@@ -241,18 +278,51 @@ def _output_pair_path(path: str | None):
     return out
 
 
-def _command(sub, name: str, func, help: str, pair_help: str = "gear pair file (config/pairs/NAME.yaml)"):
+PAIR_HELP = "gear pair file (YAML, engineering units; 'gearmesh example NAME' prints one)"
+
+
+class _HelpFormatter(argparse.HelpFormatter):
+    """Help with each option's default once: appended where the help text does not already
+    name it, left out for required options, flags and options without a default."""
+
+    def _get_help_string(self, action: argparse.Action) -> str:
+        text = action.help or ""
+        default = action.default
+        if (action.required or not action.option_strings or default is None or default is False
+                or default == argparse.SUPPRESS or "default" in text):
+            return text
+        shown = " ".join(map(str, default)) if isinstance(default, (list, tuple)) else str(default)
+        return f"{text} (default: {shown.replace('%', '%%')})"
+
+
+def _command(sub, name: str, func, help: str, pair_help: str = PAIR_HELP):
     """A subcommand with its input file and --json."""
-    p = sub.add_parser(name, help=help, formatter_class=argparse.ArgumentDefaultsHelpFormatter)
+    p = sub.add_parser(name, help=help, description=help, formatter_class=_HelpFormatter)
     p.add_argument("pair" if name != "validate" else "file", help=pair_help)
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=func)
     return p
 
 
-def _torque_options(p, required: bool, on_default: str) -> None:
-    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, required=required, help="torque (N m)")
-    p.add_argument("--on", choices=("pinion", "gear"), default=on_default, help="which gear carries the torque")
+def _torque_options(p, required: bool) -> None:
+    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, required=required,
+                   help="torque (N m), on the pinion unless --on gear")
+    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="the gear the torque acts on")
+
+
+def cmd_example(args: argparse.Namespace) -> dict[str, Any] | None:
+    """The example pairs shipped with the package: their names and sources, or one of them
+    printed as it is (a pair file every command reads)."""
+    if args.name is None:
+        return {name: _source(path) for name, path in example_pairs().items()}
+    sys.stdout.write(example_pair(args.name).read_text(encoding="utf-8"))
+    return None
+
+
+def _source(path: Path) -> str:
+    """The ``source`` of an example pair file (what it is taken from)."""
+    data = read_yaml(path, "example")
+    return str(data.get("source", "")) if isinstance(data, Mapping) else ""
 
 
 class _Parser(argparse.ArgumentParser):
@@ -275,8 +345,21 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="gearmesh", description=__doc__.splitlines()[0])
-    sub = parser.add_subparsers(dest="command", required=True)
+    parser = _Parser(prog="gearmesh", description="Helical gear pairs from their design data: geometry, contact, "
+                     "mesh stiffness, loaded contact, mesh-in impact, micro-geometry optimisation and dynamics; "
+                     "each command prints its headline numbers (--json: one JSON object).",
+                     formatter_class=_HelpFormatter,
+                     epilog="Start with 'gearmesh example' (the shipped pairs), 'gearmesh example NAME > p.yaml' "
+                            "and 'gearmesh geometry p.yaml'; 'gearmesh command --help' for its options.")
+    parser.add_argument("--version", action="version", version=f"gearmesh {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="command")
+
+    p = sub.add_parser("example", help="list the example pairs shipped with gearmesh, or print one (a pair file)",
+                       description="List the example pairs shipped with gearmesh, or print one as a pair file: "
+                                   "gearmesh example NAME > my_pair.yaml", formatter_class=_HelpFormatter)
+    p.add_argument("name", nargs="?", default=None, help="the example to print (without: list them)")
+    p.add_argument("--json", action="store_true", help="the list as one JSON object")
+    p.set_defaults(func=cmd_example)
 
     _command(sub, "validate", cmd_validate, "check a gear pair file or a study config (exit 0, or 2 with the reason)",
              "a pair file or a study config")
@@ -286,34 +369,35 @@ def build_parser() -> argparse.ArgumentParser:
     p = _command(sub, "stiffness", cmd_stiffness,
                  "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
     p.add_argument("--method", choices=("traditional", "improved", "transition", "fe"), default="fe",
-                   help="tooth model (default fe: 2-D finite elements, within a few %% of 3-D, docs/validation.md; "
-                        "transition: the hob-fillet cantilever of seed 003)")
+                   help="tooth model: fe (2-D finite elements, within a few %% of 3-D: docs/validation.md), "
+                        "transition (the hob-generated fillet), improved or traditional (cantilever root cases)")
     p.add_argument("--slices", type=int, default=200, help="slices over the face width")
     p.add_argument("--positions", type=int, default=360, help="rotation positions per mesh cycle")
-    _torque_options(p, required=False, on_default="pinion")
+    _torque_options(p, required=False)
 
     p = _command(sub, "ltca", cmd_ltca, "loaded tooth contact analysis at one torque: TE, LTE, line load, stiffness",
-                 "gear pair file (config/pairs/NAME.yaml), with its modification if any")
-    _torque_options(p, required=True, on_default="pinion")
+                 PAIR_HELP.replace(";", ", with its modification if any;"))
+    _torque_options(p, required=True)
     p.add_argument("--positions", type=int, default=64, help="rotation positions per mesh cycle")
     p.add_argument("--points", type=int, default=50, help="points per contact line")
     p.add_argument("--contact-law", dest="contact_law", choices=("palmgren", "linear"), default="palmgren",
-                   help="local contact law (default palmgren, n = 1.11)")
+                   help="local contact law: palmgren (approach ∝ F^0.9, n = 1.11) or linear")
 
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
-                 "velocity, local stiffness, impact force (seed 000)",
-                 "gear pair file (config/pairs/NAME.yaml), with its modification if any")
-    _torque_options(p, required=True, on_default="pinion")
+                 "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
+    _torque_options(p, required=True)
     p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True, help="pinion speed (rpm)")
     p.add_argument("--driver", choices=("pinion", "gear"), default="pinion", help="which gear drives")
     p.add_argument("--points", type=int, default=50, help="points per contact line")
     p.add_argument("--energy-velocity", dest="energy_velocity", choices=("transverse", "normal"),
-                   default="transverse", help="velocity in 1/2 m_eq v^2: transverse (consistent) or normal (seed 000)")
+                   default="transverse", help="velocity in 1/2 m_eq v^2: transverse (the coordinate m_eq belongs to) "
+                                              "or normal (as the mesh-in impact source document writes it)")
     p.add_argument("--simulate", action="store_true",
                    help="also integrate the engagement in time and print the simulated peak force")
 
-    p = _command(sub, "dynamics", cmd_dynamics, "steady-state speed sweep of the 8-DOF helical pair (seed 001 model)")
-    _torque_options(p, required=True, on_default="pinion")
+    p = _command(sub, "dynamics", cmd_dynamics, "steady-state speed sweep of the 8-DOF bending-torsion-axial "
+                 "model of the pair")
+    _torque_options(p, required=True)
     p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
     p.add_argument("--backlash-um", dest="backlash_um", type=_backlash_option, default="pair",
                    help="total backlash 2b0 along the normal (µm), or 'pair': the pair's own from its centre "
@@ -323,8 +407,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "of an LTCA at this torque (64 positions, 30 points per line); contact: the mesh force of "
                         "the real tooth contact of every tooth pair, the mesh-in impact included")
 
-    p = _command(sub, "optimise", cmd_optimise, "GA optimisation of seed 000's six modification parameters against "
-                 "the mesh-in impact over a load spectrum and the manufacturing tolerances")
+    p = _command(sub, "optimise", cmd_optimise, "GA optimisation of the six micro-geometry parameters (root and tip "
+                 "relief amounts and lengths, crowning, unmodified lead length) against the mesh-in impact over a "
+                 "load spectrum and the manufacturing tolerances")
     p.add_argument("--objective", choices=("force", "velocity", "robust", "dynamic"), default="force",
                    help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
                         "dynamic: the dynamic factor (peak over static mesh force) of the contact-driven 8-DOF pair "
@@ -336,7 +421,7 @@ def build_parser() -> argparse.ArgumentParser:
                    help="speeds of the dynamic objective/constraint, comma-separated (rpm; default 0.2, 1 and 3 times "
                         "--speed-rpm), resonances within their range added per candidate")
     p.add_argument("--backlash-um", dest="backlash_um", type=_backlash_option, default="pair",
-                   help="backlash of the candidates' dynamics (um, or 'pair': the pair's own)")
+                   help="backlash of the candidates' dynamics (µm, or 'pair': the pair's own)")
     p.add_argument("--torque-Nm", dest="torque_Nm", type=float, default=None,
                    help="design torque (N m; default the middle of --torques-Nm)")
     p.add_argument("--torques-Nm", dest="torques_Nm", default=None,
@@ -344,14 +429,14 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--weights", default=None, help="time shares of --torques-Nm, comma-separated (duty-cycle mean); "
                                                   "without: the worst case over the spectrum")
     p.add_argument("--statistic", choices=("max", "mean"), default="max", help="over the load spectrum")
-    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="which gear carries the torques")
+    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="the gear the torques act on")
     p.add_argument("--speed-rpm", dest="speed_rpm", type=float, default=5000.0, help="pinion speed (rpm)")
     p.add_argument("--tolerance-samples", dest="tolerance_samples", type=int, default=0,
                    help="manufactured samples evaluated with the nominal (0: nominal only)")
     p.add_argument("--grade", type=int, default=None,
-                   help="ISO 1328-1:2013 flank tolerance class 1-11: lead slope within +-f_Hbeta on both gears")
+                   help="ISO 1328-1:2013 flank tolerance class 1-11: lead slope within ±f_Hβ on both gears")
     p.add_argument("--amount-tolerance-um", dest="amount_tolerance_um", type=float, default=0.0,
-                   help="+- on every relief and crowning amount (um)")
+                   help="± on every relief and crowning amount (µm)")
     p.add_argument("--sampling", choices=("lhs", "corners"), default="lhs",
                    help="seeded Latin hypercube or corners of the tolerance box")
     p.add_argument("--tolerance-statistic", dest="tolerance_statistic", choices=("max", "mean", "percentile", "cvar"),
@@ -372,6 +457,9 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
     args = parser.parse_args(argv)
+    if args.command is None:  # bare 'gearmesh': what it can do
+        parser.print_help()
+        return 0
     try:
         for option, low, high in (("positions", 8, 100_000), ("slices", 1, 20_000), ("points", 2, 2000)):
             value = getattr(args, option, None)
@@ -382,12 +470,18 @@ def main(argv: Sequence[str] | None = None) -> int:
             if value is not None and not math.isfinite(value):
                 raise GearmeshInputError(option, value, "must be a finite number")
         result = args.func(args)
+        if result is not None and getattr(args, "loaded_pair", None) is not None:
+            result["notes"] = pair_notes(args.loaded_pair)
+        if result is not None:
+            _emit(result, args.json)
+        sys.stdout.flush()
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)
         if args.command == "validate" and args.json:
             print(json.dumps({"file": args.file, "valid": False, "errors": [str(exc)]}))
         return EXIT_BAD_INPUT
-    _emit(result, args.json)
+    except BrokenPipeError:  # the reader stopped early ('gearmesh example | head'): nothing more to say
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())  # so the exit flush cannot fail again
     return 0
 
 

@@ -139,9 +139,11 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     """Everything a study will need, checked before any job runs (one error, naming the field):
     every pair loads and works, has the material and bore the always-run stiffness stage
     needs, every micro-geometry variant and every stiffness-table variant gives a working
-    pair, and sweep ranges are not empty. Returns the pairs."""
+    pair, sweep ranges are not empty, and the folders its jobs write into under ``root`` are
+    folders where they exist (:func:`gearmesh.io.check_output_tree`). Returns the pairs."""
     from .datasets.optimise import check_optimise
     from .datasets.stiffness import apply_variant
+    from .io import check_output_tree, study_folders
     from .gear import pair_geometry
     from .stiffness import require_stiffness_data
 
@@ -191,6 +193,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                                  f"must not be below start_deg ({sweep['start_deg']})")
     check_stages(config, pairs)
     check_optimise(config, pairs)
+    check_output_tree(study_folders(config), root)
     return pairs
 
 
@@ -214,7 +217,7 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     from .datasets.dynamics import check_dynamics_settings
     from .gear import pair_geometry
     from .limits import (MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, MAX_SWEEP_ANGLES, check_grid,
-                         check_load)
+                         check_load, check_speeds)
     from .tca import check_lead_slope
 
     geoms = {name: pair_geometry(pair) for name, pair in pairs.items()}
@@ -251,7 +254,12 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
         loads("impact", "torques_Nm", config["impact"]["on"], config["pairs"])
         with _section("impact"):
             check_lead_slope(config["impact"]["lead_slope_um"])
+            for name in config["pairs"]:
+                check_speeds(geoms[name], config["impact"]["speeds_rpm"], "speeds_rpm")
     for run, section in (config.get("optimise") or {}).items():
+        for key in ("speed_rpm", "dynamic_speeds_rpm"):
+            for name in config["pairs"] if section.get(key) is not None else ():
+                check_speeds(geoms[name], section[key], f"optimise.{run}.{key}")
         for key in ("torque_Nm", "torques_Nm"):
             values = section.get(key)
             for k, value in enumerate(values if isinstance(values, list) else [] if values is None else [values]):

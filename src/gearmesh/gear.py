@@ -101,6 +101,7 @@ class GearPair:
     modification: tuple[Modification, Modification] = (Modification(), Modification())
     helix_hand: str = "right"
     source: str = ""
+    defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. DEFAULT_MATERIAL)
 
     def with_changes(self, **changes: Any) -> "GearPair":
         """A copy with some fields replaced (e.g. a helix-angle sweep)."""
@@ -116,10 +117,30 @@ _PAIR_KEYS = {
     "face_width_mm", "profile_shift", "center_distance_mm", "addendum_coefficient",
     "dedendum_coefficient", "tool_tip_radius_coefficient", "bore_radius_mm", "material",
     "modification", "helix_hand", "source",
+    "tip_diameter_mm", "root_diameter_mm", "bore_diameter_mm", "basic_rack_profile",  # datasheet alternatives
 }
-_REQUIRED_KEYS = ("name", "teeth", "normal_module_mm", "normal_pressure_angle_deg",
-                  "helix_angle_deg", "face_width_mm")
+#: Keys that say the same thing: at most one of each group may be given (_one_of).
+_ALTERNATIVE_KEYS = (
+    ("addendum_coefficient", "tip_diameter_mm"),
+    ("dedendum_coefficient", "root_diameter_mm", "basic_rack_profile"),
+    ("tool_tip_radius_coefficient", "basic_rack_profile"),
+    ("bore_radius_mm", "bore_diameter_mm"),
+)
+#: ISO 53:1998 basic rack profiles (α_P = 20°, h_aP = 1.0 m): the dedendum h_fP and root fillet
+#: radius ρ_fP of the rack, in modules — the addendum and tip radius of the hob that generates
+#: the gear (``dedendum_coefficient``, ``tool_tip_radius_coefficient``). A for high torque, B and
+#: C for normal service (smaller fillets), D for gears finished by grinding or shaving.
+ISO53_PROFILES = {"ISO 53 A": (1.25, 0.38), "ISO 53 B": (1.25, 0.30), "ISO 53 C": (1.25, 0.25),
+                  "ISO 53 D": (1.40, 0.39)}
+_REQUIRED_KEYS = ("teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg", "face_width_mm")
 _MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3"}
+#: Steel, for a pair file without ``material`` or without one of its keys (given keys override):
+#: E = 206 GPa and ν = 0.3 are the steel of the gear standards, ISO 6336-1:2019 (the single
+#: stiffness c' refers to E_st = 206 000 N/mm²) and ISO 6336-2:2019 (Z_E = √(E/(2π(1 − ν²))) =
+#: 189.8 √(N/mm²) for steel on steel); ρ = 7850 kg/m³ is EN 1993-1-1:2005 §3.2.6 (which gives
+#: E = 210 GPa for structural steel: the gear standards' 206 GPa is taken because the stiffness
+#: and load limits here refer to it). Which keys were filled is stated (:func:`pair_notes`).
+DEFAULT_MATERIAL = {"youngs_modulus_GPa": 206.0, "poisson_ratio": 0.3, "density_kg_m3": 7850.0}
 _MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
     "root_relief_um": ("root_relief", 1e-6),
     "tip_relief_um": ("tip_relief", 1e-6),
@@ -177,10 +198,39 @@ def _teeth(value: Any) -> tuple[int, int]:
     for i, z in enumerate(value):
         if isinstance(z, bool) or not isinstance(z, int):
             raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer")
-        if z < 5:
-            raise GearmeshInputError(f"teeth[{i}]", z, "must be at least 5 (external gears)")
+        check_teeth(f"teeth[{i}]", z)
         out.append(z)
     return (out[0], out[1])
+
+
+#: Most teeth of a gear: the scope of ISO 1328-1:2013 (5 <= z <= 1000), the flank tolerance
+#: system the package uses (:mod:`gearmesh.tolerance`); larger tooth counts are not made as
+#: cylindrical gears, and the roll lengths of the contact models lose their precision in
+#: double arithmetic long before z reaches 10⁹.
+MAX_TEETH = 1000
+
+
+def check_teeth(field_name: str, z: int) -> None:
+    """Refuse a tooth count outside [5, :data:`MAX_TEETH`] (compared as integers: no overflow)."""
+    if z < 5:
+        raise GearmeshInputError(field_name, z, "must be at least 5 (external gears)")
+    if z > MAX_TEETH:
+        raise GearmeshInputError(field_name, z, f"must be at most {MAX_TEETH} (ISO 1328-1 scope)")
+
+
+def _pair_name(given: Any, default_name: str | None) -> str:
+    """The pair's name: as given, else ``default_name`` (the file stem); either must be a
+    :data:`NAME_PATTERN` name."""
+    rule = "1 to 160 letters, digits, '_', '-' or '.' (not first): a file name, no path characters"
+    if given is None:
+        if default_name is None:
+            raise GearmeshInputError("name", None, "is required")
+        if not NAME_PATTERN.fullmatch(default_name):
+            raise GearmeshInputError("name", None, f"is required: the file name {default_name!r} cannot be one ({rule})")
+        return default_name
+    if not isinstance(given, str) or not NAME_PATTERN.fullmatch(given):
+        raise GearmeshInputError("name", given, f"must be {rule}")
+    return given
 
 
 def _modification(field_name: str, value: Any) -> Modification:
@@ -197,20 +247,20 @@ def _modification(field_name: str, value: Any) -> Modification:
     return Modification(**kwargs)
 
 
-def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
+def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str | None = None) -> GearPair:
     """Build a :class:`GearPair` (SI) from a pair-file mapping in engineering units.
 
     Checks the form of the data (keys, types, signs, ranges); the physics of the pair
     (contact ratio, interference, centre distance) is checked by :func:`pair_geometry`.
+    ``name`` may be left out when ``default_name`` is given (a file's stem, :func:`load_pair`).
     """
     spec = _mapping("pair", data, _PAIR_KEYS)
     for key in _REQUIRED_KEYS:
         if key not in spec:
             raise GearmeshInputError(key, None, "is required")
-    name = spec["name"]
-    if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name):
-        raise GearmeshInputError("name", name, "must be 1 to 160 letters, digits, '_', '-' or '.' (not "
-                                 "first): a file name, no path characters")
+    name = _pair_name(spec.get("name"), default_name)
+    for group in _ALTERNATIVE_KEYS:
+        _one_of(spec, group)
     alpha_n = _number("normal_pressure_angle_deg", spec["normal_pressure_angle_deg"])
     if not 0 < alpha_n < 45:
         raise GearmeshInputError("normal_pressure_angle_deg", alpha_n, "must lie in (0, 45) degrees")
@@ -241,21 +291,21 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
     bore = None
     if spec.get("bore_radius_mm") is not None:
         bore = tuple(b * 1e-3 for b in _per_gear("bore_radius_mm", spec["bore_radius_mm"], nonneg))
+    elif spec.get("bore_diameter_mm") is not None:  # a datasheet's inner (bore) diameter: r = d/2
+        bore = tuple(d / 2 * 1e-3 for d in _per_gear("bore_diameter_mm", spec["bore_diameter_mm"], nonneg))
+    rack = _basic_rack(spec.get("basic_rack_profile"), alpha_n)
 
-    material = None
-    if spec.get("material") is not None:
-        m = _mapping("material", spec["material"], _MATERIAL_KEYS)
-        for key in _MATERIAL_KEYS:
-            if key not in m:
-                raise GearmeshInputError(f"material.{key}", None, "is required")
-        nu = _number("material.poisson_ratio", m["poisson_ratio"])
-        if not 0 <= nu < 0.5:
-            raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
-        material = Material(
-            youngs_modulus=_positive("material.youngs_modulus_GPa", m["youngs_modulus_GPa"]) * 1e9,
-            poisson_ratio=nu,
-            density=_positive("material.density_kg_m3", m["density_kg_m3"]),
-        )
+    given_material = {} if spec.get("material") is None else _mapping("material", spec["material"], _MATERIAL_KEYS)
+    m = {**DEFAULT_MATERIAL, **given_material}
+    defaults = tuple(f"material.{key}" for key in DEFAULT_MATERIAL if key not in given_material)
+    nu = _number("material.poisson_ratio", m["poisson_ratio"])
+    if not 0 <= nu < 0.5:
+        raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
+    material = Material(
+        youngs_modulus=_positive("material.youngs_modulus_GPa", m["youngs_modulus_GPa"]) * 1e9,
+        poisson_ratio=nu,
+        density=_positive("material.density_kg_m3", m["density_kg_m3"]),
+    )
 
     mods = (Modification(), Modification())
     if spec.get("modification") is not None:
@@ -263,7 +313,7 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
         mods = (_modification("modification.pinion", mm.get("pinion")),
                 _modification("modification.gear", mm.get("gear")))
 
-    return GearPair(
+    pair = GearPair(
         name=name,
         teeth=_teeth(spec["teeth"]),
         normal_module=_positive("normal_module_mm", spec["normal_module_mm"]) * 1e-3,
@@ -273,16 +323,87 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "") -> GearPair:
         profile_shift=shift,
         center_distance=center,
         addendum_coefficient=_per_gear("addendum_coefficient", spec.get("addendum_coefficient", 1.0), _positive),
-        dedendum_coefficient=_per_gear("dedendum_coefficient", spec.get("dedendum_coefficient", 1.25), _positive),
+        dedendum_coefficient=(_per_gear("dedendum_coefficient", spec.get("dedendum_coefficient", 1.25), _positive)
+                              if rack is None else (rack[0], rack[0])),
         tool_tip_radius_coefficient=(
             _per_gear("tool_tip_radius_coefficient", spec["tool_tip_radius_coefficient"], nonneg)
-            if spec.get("tool_tip_radius_coefficient") is not None else (None, None)),
+            if spec.get("tool_tip_radius_coefficient") is not None
+            else (rack[1], rack[1]) if rack is not None else (None, None)),
         bore_radius=bore,
         material=material,
         modification=mods,
         helix_hand=hand,
         source=str(spec.get("source", source)),
+        defaults=defaults,
     )
+    return _datasheet_diameters(pair, spec)
+
+
+def _one_of(spec: Mapping[str, Any], keys: tuple[str, ...]) -> None:
+    """Refuse two keys of one group of :data:`_ALTERNATIVE_KEYS` given together."""
+    given = [k for k in keys if spec.get(k) is not None]
+    if len(given) > 1:
+        raise GearmeshInputError(given[1], spec[given[1]], f"conflicts with {given[0]} = {spec[given[0]]!r}: "
+                                 "both set the same dimension, give one of them")
+
+
+def _basic_rack(value: Any, alpha_n_deg: float) -> tuple[float, float] | None:
+    """(dedendum, tool tip radius) coefficients of an :data:`ISO53_PROFILES` name, or None."""
+    if value is None:
+        return None
+    if value not in ISO53_PROFILES:
+        raise GearmeshInputError("basic_rack_profile", value, f"must be one of {list(ISO53_PROFILES)}")
+    if not math.isclose(alpha_n_deg, 20.0, abs_tol=1e-9):
+        raise GearmeshInputError("basic_rack_profile", value, f"is a 20° profile (ISO 53:1998), the pair has "
+                                 f"normal_pressure_angle_deg = {alpha_n_deg:g}: give dedendum_coefficient and "
+                                 "tool_tip_radius_coefficient instead")
+    return ISO53_PROFILES[value]
+
+
+def _datasheet_diameters(pair: GearPair, spec: Mapping[str, Any]) -> GearPair:
+    """``pair`` with the coefficients that the datasheet diameters ``tip_diameter_mm`` and
+    ``root_diameter_mm`` (one number or [pinion, gear]) give, exactly (ISO 21771 eqs. 45, 47):
+
+        h_a* = (d_a − d)/(2 m_n) − x,    h_f* = (d − d_f)/(2 m_n) + x,
+
+    d = z m_n/cos β the reference diameter and x the profile shift as :func:`pair_geometry`
+    resolves it (given, inferred from the centre distance, or zero). A tip diameter thus
+    includes any tip shortening; a root diameter is that of the generating hob's addendum
+    h_f*·m_n (a tooth-thickness allowance cut by a deeper infeed is not modelled).
+    """
+    if spec.get("tip_diameter_mm") is None and spec.get("root_diameter_mm") is None:
+        return pair
+    mn = pair.normal_module
+    d = np.array(pair.teeth) * mn / math.cos(pair.helix_angle)
+    shift = _resolve_shift_and_center(pair, *_transverse_angle_and_radius_sum(pair))[0]
+    changes = {}
+    if spec.get("tip_diameter_mm") is not None:
+        tip = np.array(_per_gear("tip_diameter_mm", spec["tip_diameter_mm"], _positive)) * 1e-3
+        changes["addendum_coefficient"] = _coefficient("tip_diameter_mm", tip, (tip - d) / (2 * mn) - shift,
+                                                       "addendum coefficient", "tip at or below")
+    if spec.get("root_diameter_mm") is not None:
+        root = np.array(_per_gear("root_diameter_mm", spec["root_diameter_mm"], _positive)) * 1e-3
+        changes["dedendum_coefficient"] = _coefficient("root_diameter_mm", root, (d - root) / (2 * mn) + shift,
+                                                       "dedendum coefficient", "root at or above")
+    return pair.with_changes(**changes)
+
+
+def _transverse_angle_and_radius_sum(pair: GearPair) -> tuple[float, float]:
+    """αt = atan(tan αn/cos β) (rad) and r1 + r2 = (z1 + z2) m_n/(2 cos β) (m), ISO 21771 eqs. 9, 11:
+    what :func:`_resolve_shift_and_center` needs, for a pair not yet through :func:`pair_geometry`."""
+    beta = pair.helix_angle
+    return (math.atan(math.tan(pair.normal_pressure_angle) / math.cos(beta)),
+            sum(pair.teeth) * pair.normal_module / (2 * math.cos(beta)))
+
+
+def _coefficient(key: str, diameters: np.ndarray, values: np.ndarray, what: str, where: str) -> tuple[float, float]:
+    """The per-gear ``values`` converted from ``diameters`` (m) of pair-file ``key``, each > 0."""
+    for i, v in enumerate(values):
+        if not v > 0:
+            raise GearmeshInputError(f"{key}[{i}]", float(diameters[i]) * 1e3,
+                                     f"puts the {GEARS[i]} {where} its reference circle shifted by the profile "
+                                     f"shift ({what} {v:.4f} <= 0)")
+    return (float(values[0]), float(values[1]))
 
 
 #: Normal modules (m) the models are valid for. ISO 54:1996 standardises 1–50 mm; fine-pitch
@@ -309,8 +430,9 @@ def validate_pair(pair: GearPair) -> None:
     designs); field names are the pair-file keys. The ranges are :data:`MODULE_RANGE`,
     :data:`MIN_FACE_WIDTH_TO_MODULE` and :data:`MAX_FACE_WIDTH_TO_DIAMETER`."""
     for i, z in enumerate(pair.teeth):
-        if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 5:
-            raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer of at least 5 (external gears)")
+        if isinstance(z, bool) or not isinstance(z, (int, np.integer)):
+            raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer")
+        check_teeth(f"teeth[{i}]", z)
     mn, (m_lo, m_hi) = pair.normal_module, MODULE_RANGE
     checks = [
         ("normal_module_mm", mn * 1e3, m_lo <= mn <= m_hi,
@@ -433,15 +555,71 @@ def read_yaml(path: str | Path, what: str) -> Any:
 
 
 def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
-    """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`."""
+    """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`; a file
+    without ``name`` is named after its stem (``my_pair.yaml``: ``my_pair``), a different
+    ``name`` is kept as given."""
     if isinstance(path_or_data, Mapping):
         return pair_from_dict(path_or_data)
-    return pair_from_dict(read_yaml(path_or_data, "pair file"), source=str(path_or_data))
+    return pair_from_dict(read_yaml(path_or_data, "pair file"), source=str(path_or_data),
+                          default_name=Path(path_or_data).stem)
+
+
+def pair_notes(pair: GearPair) -> list[str]:
+    """What the results of ``pair`` rest on that its file did not say: a centre distance taken
+    as the zero-backlash one (:func:`shift_rounding_center_distance`) and the material values
+    filled by :data:`DEFAULT_MATERIAL`. One sentence each, for the output (JSON, dataset attrs)."""
+    notes = []
+    if pair.center_distance is not None and pair.profile_shift is not None:
+        a0 = _resolve_shift_and_center(pair, *_transverse_angle_and_radius_sum(pair))[3]
+        if pair.center_distance < a0:
+            notes.append(f"center_distance_mm = {pair.center_distance * 1e3:.6g} lies {(a0 - pair.center_distance) * 1e6:.2g}"
+                         f" µm below the zero-backlash distance {a0 * 1e3:.6f} mm of the shifts as printed, within "
+                         "their rounding to four decimals: zero backlash, computed at that distance")
+    filled = _defaulted_material(pair)
+    if filled:
+        values = ", ".join(f"{key} = {DEFAULT_MATERIAL[key]:g}" for key in filled)
+        notes.append(f"material not given: steel {values} (ISO 6336-1/-2 steel, EN 1993-1-1 density)")
+    return notes
+
+
+def material_values(material: Material) -> dict[str, float]:
+    """``material`` as the pair file's ``material`` mapping (GPa, -, kg/m³)."""
+    return {"youngs_modulus_GPa": material.youngs_modulus * 1e-9, "poisson_ratio": material.poisson_ratio,
+            "density_kg_m3": material.density}
+
+
+def _defaulted_material(pair: GearPair) -> list[str]:
+    """The material keys of ``pair`` filled by :data:`DEFAULT_MATERIAL` and still at that value
+    (a material set in code since replaces them)."""
+    if pair.material is None:
+        return []
+    values = material_values(pair.material)
+    return [key for key, default in DEFAULT_MATERIAL.items()
+            if f"material.{key}" in pair.defaults and math.isclose(values[key], default, rel_tol=1e-12)]
+
+
+#: The example pairs shipped with the package, one file each: every pair of the source documents
+#: (docs/references.md), also the workflow's pair library (the repository's config/pairs links here).
+EXAMPLES_DIR = Path(__file__).parent / "pairs"
+
+
+def example_pairs() -> dict[str, Path]:
+    """{name: file} of the example pairs shipped with the package (:data:`EXAMPLES_DIR`)."""
+    return {f.stem: f for f in sorted(EXAMPLES_DIR.glob("*.yaml"))}
+
+
+def example_pair(name: str) -> Path:
+    """The file of the shipped example pair ``name`` (e.g. ``seed000_case``), for :func:`load_pair`."""
+    pairs = example_pairs()
+    if name not in pairs:
+        raise GearmeshInputError("example", name, f"must be one of {sorted(pairs)}")
+    return pairs[name]
 
 
 def check_pair_name(pair: GearPair, path: str | Path) -> GearPair:
-    """Refuse a pair whose ``name`` differs from the name of its file ``path``
-    (``config/pairs/NAME.yaml``), as the workflow and the CLI require: results are filed under it."""
+    """Refuse a pair whose ``name`` differs from the name of its file ``path``: the rule of
+    a study's pair library (``pairs_dir/NAME.yaml``), whose results are filed under the name.
+    The command line has no such rule (:func:`load_pair`)."""
     if pair.name != Path(path).stem:
         raise GearmeshInputError("name", pair.name, f"must equal the file name {Path(path).stem!r} of {path}")
     return pair
@@ -473,12 +651,11 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
         out["center_distance_mm"] = pair.center_distance * 1e3
     if pair.bore_radius is not None:
         out["bore_radius_mm"] = [r * 1e3 for r in pair.bore_radius]
-    if pair.material is not None:
-        out["material"] = {
-            "youngs_modulus_GPa": pair.material.youngs_modulus * 1e-9,
-            "poisson_ratio": pair.material.poisson_ratio,
-            "density_kg_m3": pair.material.density,
-        }
+    if pair.material is not None:  # the keys given; defaulted ones are filled again on reading
+        defaulted = _defaulted_material(pair)
+        material = {k: v for k, v in material_values(pair.material).items() if k not in defaulted}
+        if material:
+            out["material"] = material
     if any(not m.is_zero for m in pair.modification):
         out["modification"] = {
             gear: {key: getattr(mod, attr) / factor for key, (attr, factor) in _MODIFICATION_KEYS.items()}
@@ -576,6 +753,8 @@ class PairGeometry:
             "circumferential_backlash_mm": self.backlash_circumferential * 1e3,
             "profile_shift": [float(x) for x in self.profile_shift],
             "profile_shift_inferred": self.shift_inferred,
+            "addendum_coefficient": [float(x) for x in self.pair.addendum_coefficient],  # as used (tip diameter)
+            "dedendum_coefficient": [float(x) for x in self.pair.dedendum_coefficient],
             "reference_radius_mm": mm(self.reference_radius),
             "base_radius_mm": mm(self.base_radius),
             "tip_radius_mm": mm(self.tip_radius),
@@ -589,6 +768,7 @@ class PairGeometry:
             "face_width_mm": self.face_width * 1e3,
             "mass_kg": [float(x) for x in self.mass],
             "inertia_kg_m2": [float(x) for x in self.inertia],
+            "material": material_values(self.pair.material) if self.pair.material is not None else None,
         }
 
 
@@ -625,15 +805,43 @@ def _resolve_shift_and_center(pair: GearPair, alpha_t: float, r_sum: float):
     if pair.center_distance is None:
         return shift, False, a0, a0, alpha_wt0
     a = pair.center_distance
-    if a < a0 * (1 - 1e-9):
-        raise GearmeshInputError("center_distance_mm", a * 1e3,
-                                 f"is below the zero-backlash distance {a0 * 1e3:.4f} mm of these profile shifts "
-                                 "(the teeth would interpenetrate)")
+    if a < a0:  # within the shifts' rounding: zero backlash at a0 (pair_notes says so); beyond: refused
+        allowed = shift_rounding_center_distance(pair, alpha_t, alpha_wt0)
+        if a0 - a > allowed:
+            raise GearmeshInputError("center_distance_mm", a * 1e3,
+                                     f"is {(a0 - a) * 1e6:.3g} µm below the zero-backlash distance {a0 * 1e3:.4f} mm "
+                                     f"of these profile shifts, more than the {allowed * 1e6:.2g} µm their rounding to "
+                                     "four decimals explains (the teeth would interpenetrate)")
+        return shift, inferred, a0, a0, alpha_wt0
     alpha_wt = math.acos(min(1.0, r_sum * math.cos(alpha_t) / a))
     return shift, inferred, a, a0, alpha_wt
 
 
-DEFAULT_TOOL_TIP_RADIUS_COEFFICIENT = 0.38  # ISO 53:1998 basic rack profiles A and B: ρ_fP = 0.38 m_n
+#: Half a unit of the fourth decimal: datasheets and the source documents print profile shifts
+#: to four decimals, so each printed shift is the designed one within ±0.5·10⁻⁴.
+SHIFT_ROUNDING = 0.5e-4
+
+
+def shift_rounding_center_distance(pair: GearPair, alpha_t: float, alpha_wt0: float) -> float:
+    """How far (m) below the zero-backlash centre distance a0 of the printed shifts a given
+    centre distance may lie and still be the zero-backlash design: the change of a0 when both
+    shifts are off by :data:`SHIFT_ROUNDING` in the same direction.
+
+    From inv αwt = inv αt + 2 tan αn Σx/Σz and a0 = (r1 + r2) cos αt / cos αwt (ISO 21771
+    eqs. 57–59), with d inv α/dα = tan²α:  ∂a0/∂Σx = 2 a0 tan αn/(Σz tan αwt) =
+    m_n tan αn cos αt/(cos β sin αwt), so the tolerance is 2·0.5·10⁻⁴·∂a0/∂Σx, about 10⁻⁴ m_n
+    (1.25 µm for z 24/95, m_n 14 mm, αn 20°, β 10°, x 0.48/0.6691). Against manufacturing it is
+    nothing: the finest centre-distance allowance of DIN 3964 (ISO 286 field js5) is ±6.5 µm
+    for a = 50–80 mm and ±20 µm for a = 800–1000 mm. A centre distance printed 0.1–0.3 µm
+    below a0 (that pair at 861.000 mm, a0 = 861.00015 mm) is therefore the zero-backlash design
+    whose shifts were rounded, not interpenetrating teeth.
+    """
+    mn, an, beta = pair.normal_module, pair.normal_pressure_angle, pair.helix_angle
+    da0_dxsum = mn * math.tan(an) * math.cos(alpha_t) / (math.cos(beta) * math.sin(alpha_wt0))
+    return 2 * SHIFT_ROUNDING * da0_dxsum
+
+
+DEFAULT_TOOL_TIP_RADIUS_COEFFICIENT = 0.38  # ISO 53:1998 basic rack profile A: ρ_fP = 0.38 m_n
 
 
 def max_tool_tip_radius(normal_module: float, tool_addendum: float, alpha_n: float) -> float:
@@ -803,7 +1011,7 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
 
     # Backlash: thicknesses on the operating pitch circles (ISO 21771 §5.5; j = 0 at a0).
     swt = 2 * rw * (st / (2 * r) + involute(alpha_t) - involute(alpha_wt))
-    j_wt = 2 * math.pi * rw[0] / z[0] - swt.sum()
+    j_wt = 2 * math.pi * rw[0] / z[0] - swt.sum() if a != a0 else 0.0  # at a0 zero by construction, not ±1e-17
     j_bn = j_wt * math.cos(alpha_wt) * math.cos(beta_b)
 
     if pair.bore_radius is not None and pair.material is not None:

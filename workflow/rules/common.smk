@@ -30,6 +30,18 @@ wildcard_constraints:
     run="|".join(RUNS) or "^$",
 
 
+def versioned_param(spec):
+    """A rule's ``params.function`` / ``params.figures``: the package function ``spec`` with the
+    digest of the code it can run (gearmesh.codeversion.versioned), so a code change reruns the job.
+    Given as a function of the wildcards: Snakemake formats a plain string param with the wildcards
+    (a plain ``str`` again) but keeps what a param function returns, so the report's job panel shows
+    the function's name and the rerun trigger still compares the digest."""
+    value = versioned(spec)
+    param = lambda wildcards: value
+    param.spec = value  # gearmesh.jobserver.rule_modules reads it without wildcards
+    return param
+
+
 def fe_tables(section):
     """Input function: the pair's FE tooth tables (rule fe_compliance) when the stage of
     ``section`` uses the stiffness method 'fe' — computed once per pair, read by every stage."""
@@ -150,7 +162,7 @@ def all_targets():
 BY_PAIR = "{pair}"
 BY_VARIANT = "{pair} / {variant}"
 BY_RUN = "{pair} / {run}"
-STUDY_TABLES = "study tables"
+STUDY_TABLES = "Study tables"
 
 
 def report_item(path, caption, category, subcategory=BY_PAIR):

@@ -18,10 +18,10 @@ rule dynamics:
     log:
         "logs/{study}/{pair}/{variant}/dynamics.log",
     params:
-        function=versioned("gearmesh.datasets.dynamics:dynamics_dataset"),
+        function=versioned_param("gearmesh.datasets.dynamics:dynamics_dataset"),
         settings=lambda wildcards: {**config["dynamics"], "variant": wildcards.variant},
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.dynamics:dynamics_figures"),
+        figures=versioned_param("gearmesh.plots.dynamics:dynamics_figures"),
     conda:
         ENV
     script:
@@ -42,10 +42,10 @@ rule train_dynamics:
     log:
         "logs/{study}/{pair}/{variant}/train.log",
     params:
-        function=versioned("gearmesh.datasets.dynamics:train_dataset"),
+        function=versioned_param("gearmesh.datasets.dynamics:train_dataset"),
         settings=lambda wildcards: config["train_dynamics"],
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.dynamics:train_figures"),
+        figures=versioned_param("gearmesh.plots.dynamics:train_figures"),
     conda:
         ENV
     script:
@@ -64,9 +64,9 @@ rule dynamics_comparison:
     log:
         "logs/{study}/dynamics_comparison.log",
     params:
-        function=versioned("gearmesh.datasets.dynamics:dynamics_comparison_dataset"),
+        function=versioned_param("gearmesh.datasets.dynamics:dynamics_comparison_dataset"),
         settings=lambda wildcards: config.get("dynamics_comparison", {}),
-        figures=versioned("gearmesh.plots.dynamics:dynamics_comparison_figures"),
+        figures=versioned_param("gearmesh.plots.dynamics:dynamics_comparison_figures"),
     conda:
         ENV
     script:
@@ -91,8 +91,8 @@ if dynamics_contact() and "impact" in config:
         log:
             "logs/{study}/{pair}/engagement_table.log",
         params:
-            function=versioned("gearmesh.datasets.dynamics:engagement_table_dataset"),
-            figures=versioned("gearmesh.plots.dynamics:dynamics_variants_figures"),
+            function=versioned_param("gearmesh.datasets.dynamics:engagement_table_dataset"),
+            figures=versioned_param("gearmesh.plots.dynamics:dynamics_variants_figures"),
         conda:
             ENV
         script:
@@ -110,7 +110,7 @@ else:
         log:
             "logs/{study}/{pair}/plot_dynamics_variants.log",
         params:
-            function=versioned("gearmesh.plots.dynamics:dynamics_variants_figures"),
+            function=versioned_param("gearmesh.plots.dynamics:dynamics_variants_figures"),
         conda:
             ENV
         script:

@@ -21,12 +21,12 @@ rule impact:
     log:
         "logs/{study}/{pair}/{variant}/impact.log",
     params:
-        function=versioned("gearmesh.datasets.impact:impact_dataset"),
+        function=versioned_param("gearmesh.datasets.impact:impact_dataset"),
         # the study's manufacturing tolerances give each variant's tolerance spread
         settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant,
                                     "tolerances": config.get("tolerances")},
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.impact:impact_figures"),
+        figures=versioned_param("gearmesh.plots.impact:impact_figures"),
     conda:
         ENV
     script:
@@ -47,8 +47,8 @@ rule impact_table:
     log:
         "logs/{study}/{pair}/impact_table.log",
     params:
-        function=versioned("gearmesh.datasets.impact:impact_table_dataset"),
-        figures=versioned("gearmesh.plots.impact:impact_study_figures"),
+        function=versioned_param("gearmesh.datasets.impact:impact_table_dataset"),
+        figures=versioned_param("gearmesh.plots.impact:impact_study_figures"),
     conda:
         ENV
     script:

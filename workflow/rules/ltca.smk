@@ -16,10 +16,10 @@ rule ltca:
     log:
         "logs/{study}/{pair}/{variant}/ltca.log",
     params:
-        function=versioned("gearmesh.datasets.ltca:ltca_dataset"),
+        function=versioned_param("gearmesh.datasets.ltca:ltca_dataset"),
         settings=lambda wildcards: config["ltca"],
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.ltca:ltca_figures"),
+        figures=versioned_param("gearmesh.plots.ltca:ltca_figures"),
     conda:
         ENV
     script:
@@ -37,7 +37,7 @@ rule lste_comparison:
     log:
         "logs/{study}/lste_comparison.log",
     params:
-        function=versioned("gearmesh.datasets.ltca:lste_comparison_dataset"),
+        function=versioned_param("gearmesh.datasets.ltca:lste_comparison_dataset"),
     conda:
         ENV
     script:

@@ -36,6 +36,7 @@ from ..errors import GearmeshInputError
 from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import variable
+from ..limits import check_load, check_loads, check_slice_grid, check_speeds
 from ..ltca import CONTACT_LAWS, positive_values
 from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable,
                          mesh_force_table)
@@ -192,10 +193,12 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
     coarse = max(_ESTIMATE_POSITIONS, 2 * order + 2) if isinstance(order, int) else _ESTIMATE_POSITIONS
     if not train:
         speeds = speed_grid(s.get("speeds_rpm", DEFAULT_SPEEDS))
+        check_speeds(pair_geometry(pair), speeds, "speeds_rpm")
         try:
-            speed_grid(list(s.get("sample_speeds_rpm", ())) or 1.0)
+            samples = speed_grid(list(s.get("sample_speeds_rpm", ())) or 1.0)
         except GearmeshInputError as exc:
             raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
+        check_speeds(pair_geometry(pair), samples, "sample_speeds_rpm")
         known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca", "table",
                                                                        "torque_Nm", "excitation"}
         models = [build_pair_model(pair, float(t), **{k: v for k, v in s.items() if k in known},
@@ -210,6 +213,7 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
                                * 60.0 / pair.teeth[1]])
         else:
             speeds = speed_grid(s["speeds_rpm"])
+        check_speeds(geom, speeds, "speeds_rpm", on="gear")
         if s.get("torque_Nm") is not None:
             torque = positive_torque("torque_Nm", s["torque_Nm"])
         else:
@@ -445,6 +449,9 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
     torque = positive_torque("torque_Nm", torque_Nm)
     if on not in _PAIR_GEARS:
         raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torque_Nm acts)")
+    check_load(geom, pinion_torque(pair, torque, on), "torque_Nm", torque_Nm)
+    if stiffness is None and ltca is None and table is None:
+        check_slice_grid(slices, positions)
     t_out = torque if on == "gear" else torque * geom.base_radius[1] / geom.base_radius[0]
     backlash = _backlash(geom, backlash_um)
     if not (isinstance(fourier_order, int) and 0 <= fourier_order <= 50):
@@ -723,13 +730,17 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     """
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
-    use_fe_tables(fe_compliance, geom)
     given = positive_values(torques_Nm, "torques_Nm", "N m")
     if on not in _PAIR_GEARS:
         raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torques_Nm act)")
     t1 = pinion_torque(pair, given, on)
+    check_loads(geom, t1, "torques_Nm", given)
     grid = speed_grid(speeds_rpm)
+    check_speeds(geom, grid, "speeds_rpm")
     samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
+    check_speeds(geom, samples, "sample_speeds_rpm")
+    check_slice_grid(slices, positions)
+    use_fe_tables(fe_compliance, geom)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
     exc = resolve_excitation(excitation, ltca)
     table = None
@@ -812,7 +823,9 @@ def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEF
                                                 **{k: v for k, v in settings.items() if k in _TABLE_KEYS})
     model = build_pair_model(pair, torque_Nm, on, **model_settings)
     solver = _solver(*(settings.get(k, d) for k, d in _SOLVER_KEYS.items()))
-    res = simulate(model, speed_grid(speeds), solver, progress=progress)
+    grid = speed_grid(speeds)
+    check_speeds(pair_geometry(pair), grid, "speeds_rpm")
+    res = simulate(model, grid, solver, progress=progress)
     fs = float(model.static_force[0])
     um = 1e6 / model.cos_beta_b  # normal (m) -> transverse (µm)
     rows = []
@@ -875,8 +888,10 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     rb, cb = float(geom.base_radius[1]), math.cos(geom.base_helix_angle)
     if torque_Nm is not None:
         torque = positive_torque("torque_Nm", torque_Nm)
+        check_load(geom, pinion_torque(pair, torque, "gear"), "torque_Nm", torque_Nm)
     elif static_force_N is not None:
         torque = positive_torque("static_force_N", static_force_N) * rb * cb
+        check_load(geom, pinion_torque(pair, torque, "gear"), "static_force_N", static_force_N)
     else:
         raise GearmeshInputError("torque_Nm", None, "give torque_Nm or static_force_N")
     if speeds_rpm is None:
@@ -884,6 +899,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
         speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
     else:
         speeds = speed_grid(speeds_rpm)
+    check_speeds(geom, speeds, "speeds_rpm" if speeds_rpm is not None else "mesh_frequency_Hz", on="gear")
     if len(speeds) > MAX_TRAIN_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds",
                                  f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")

@@ -18,7 +18,8 @@ from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactSta
                       impact_response, impact_static, load_grid, load_window, mesh_in_point, seed_edge_roll,
                       simulate_engagement, vector_velocity)
 from ..io import variable
-from ..ltca import check_torques, pinion_torques
+from ..limits import check_speeds as check_speed_limit
+from ..ltca import check_torques, loaded_pinion_torques, pinion_torques
 from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
 from ..tolerance import apply_deviations, study_tolerances, unit_deviations
@@ -38,6 +39,19 @@ def _model(pair: GearPair, points: int, lead_slope_um, contact_law: str, method:
     return impact_model(geom, points=points, lead_slope=lead, contact_law_name=contact_law, method=method,
                         extension=corner_extension, driver=driver, added_inertia_kg_m2=added_inertia_kg_m2,
                         window_positions=window_positions, face_samples=face_samples)
+
+
+def _operating_points(pair: GearPair, torques, on: str, speeds_rpm, torque_field: str = "torques_Nm",
+                      speed_field: str = "speeds_rpm") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Torques as given and as pinion torques (N m) and pinion speeds (rpm), each checked against
+    the load and speed limits of :mod:`gearmesh.limits` before any model is built."""
+    if not isinstance(pair, GearPair):
+        raise GearmeshInputError("pair", type(pair).__name__, "must be a GearPair")
+    geom = pair_geometry(pair)
+    given, t1 = loaded_pinion_torques(geom, torques, on, torque_field)
+    speeds = check_speeds(speeds_rpm, speed_field)
+    check_speed_limit(geom, speeds, speed_field)
+    return given, t1, speeds
 
 
 def _scenario_var(dims, scenario) -> xr.Variable:
@@ -73,16 +87,14 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
     ``tolerances`` (:func:`gearmesh.tolerance.study_tolerances`) F_s of the nominal and
     every tolerance sample at each torque (the tolerance spread).
     """
+    given, t1, speeds = _operating_points(pair, torques_Nm, on, speeds_rpm)
+    design = float(_operating_points(pair, given, on, [design_speed_rpm], speed_field="design_speed_rpm")[2][0])
+    anchor = _design_torque(given, design_torque_Nm)
     if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
         use_fe_tables(fe_compliance, pair_geometry(pair))
     model = _model(pair, points, lead_slope_um, contact_law, method, corner_extension, driver, added_inertia_kg_m2,
                    window_positions, face_samples)
     geom = model.geom
-    given = check_torques(torques_Nm)
-    t1 = pinion_torques(geom, given, on)
-    anchor = _design_torque(given, design_torque_Nm)
-    speeds = check_speeds(speeds_rpm)
-    design = float(check_speeds([design_speed_rpm], "design_speed_rpm")[0])
     sim_given = check_torques(simulate_torques_Nm, "simulate_torques_Nm") if len(simulate_torques_Nm) else np.array([])
     for k, t in enumerate(sim_given):
         if not np.any(np.abs(given - t) <= 1e-9 * t):
@@ -346,10 +358,8 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", dri
             raise GearmeshInputError(name, value, "must be one positive number")
     if driver not in DRIVERS:
         raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")
+    t1, speed = _operating_points(pair, [torque_Nm], on, [speed_rpm], "torque_Nm", "speed_rpm")[1:]
     model = _model(pair, points, (0.0, 0.0), "palmgren", "transition", 0.25, driver, (0.0, 0.0))
-    geom = model.geom
-    t1 = pinion_torques(geom, [torque_Nm], on, field="torque_Nm")
-    speed = check_speeds([speed_rpm], "speed_rpm")
     static = impact_static(model, t1)
     static, resp = impact_response(model, static, speed, energy_velocity)
     um, mm = 1e6, 1e3

@@ -17,7 +17,8 @@ from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
-from ..ltca import LTCAResult, check_torques, ltca, pinion_torques
+from ..limits import check_contact_grid
+from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..tca import DEFAULT_EXTENSION, TCAResult, check_lead_slope, check_modifications, tca
 
 UM = 1e-6
@@ -99,6 +100,7 @@ def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slop
     ``lead_slope_um`` [pinion, gear] lead slope errors in µm over the face width.
     """
     geom = _geometry(pair)
+    positions, points = check_contact_grid(positions, points)
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
     res = tca(geom, positions, points, lead, corner_extension)
     ds = xr.Dataset(data_vars=_tca_variables(geom, res), coords=_coords(geom, res))
@@ -124,10 +126,10 @@ def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: 
     (with 'fe', ``fe_compliance`` supplies the FE tables: :func:`gearmesh.fe.seed_cache`).
     """
     geom = _geometry(pair)
+    positions, points = check_contact_grid(positions, points)
+    given, t1 = loaded_pinion_torques(geom, torques_Nm, on)
     use_fe_tables(fe_compliance, geom)
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    given = check_torques(torques_Nm)
-    t1 = pinion_torques(geom, given, on)
     res = ltca(geom, t1, positions, points, lead, "pinion", contact_law, method, corner_extension)
     return _ltca_to_dataset(geom, res, given, on)
 
@@ -187,8 +189,9 @@ def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int =
     if not (isinstance(torque_Nm, (int, float, np.floating, np.integer)) and not isinstance(torque_Nm, bool)):
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be one positive number (N m)")
     geom = _geometry(pair)
+    positions, points = check_contact_grid(positions, points)
+    t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    t1 = pinion_torques(geom, [torque_Nm], on, field="torque_Nm")
     res = ltca(geom, t1, positions, points, lead, "pinion", contact_law)
     um = 1e6
     lte = res.lte[0]

@@ -14,6 +14,7 @@ from ..errors import GearmeshInputError
 from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_to_dict
 from ..gear import pinion_torque as gear_pinion_torque
 from ..io import variable
+from ..limits import check_load, check_slice_grid
 from ..stiffness import (
     DEFAULT_RULE,
     DEFAULT_SLICES,
@@ -48,6 +49,11 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
     ``fe_compliance`` (the pair's fe_compliance.nc) supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
     """
     geom = pair_geometry(pair)
+    slices, positions = check_slice_grid(slices, positions)
+    t1 = None
+    if torque_Nm is not None:
+        t1 = pinion_torque(geom, torque_Nm, torque_on)
+        check_load(geom, t1, "torque_Nm", torque_Nm)
     use_fe_tables(fe_compliance, geom)
     result = mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method)
     fit = fourier_fit(result.K, fourier_order)
@@ -82,8 +88,7 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
         "eps_alpha": variable((), geom.eps_alpha, "1", "transverse contact ratio"),
         "eps_beta": variable((), geom.eps_beta, "1", "overlap ratio"),
     }
-    if torque_Nm is not None:
-        t1 = pinion_torque(geom, torque_Nm, torque_on)
+    if t1 is not None:
         e = lste(result, t1)
         data.update({
             "lste": variable(("position",), e, "m", "loaded static transmission error F/K(phi) along the line of action"),
