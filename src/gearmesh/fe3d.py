@@ -37,10 +37,12 @@ Model
   unit axial length (the slice model's δ_t = c_t·q_t with q_t = q_n cos βb, δ_n = δ_t cos βb).
   Under a uniform load the slice model's prediction for the same line is the mean of its
   slice compliance c_t(ρ(z)) over the loaded z.
-* Solver: conjugate gradients preconditioned by smoothed-aggregation algebraic multigrid
-  (pyamg, the optional extra ``gearmesh[fe3d]``; Vaněk, Mandel & Brezina 1996) with the six
-  rigid-body modes as near-null space; relative residual 1e-10. Assembly in blocks of
-  elements (bounded memory).
+* Solver: a sparse LU factorisation (one for every line) up to :data:`DIRECT_LIMIT`
+  unknowns; above, conjugate gradients preconditioned by smoothed-aggregation algebraic
+  multigrid (pyamg, the optional extra ``gearmesh[fe3d]``; Vaněk, Mandel & Brezina 1996) with
+  the six rigid-body modes as near-null space, relative residual 1e-10 (bounded memory; on
+  quadratic tetrahedra it needed 40–90 iterations and was slower than the direct solve at
+  the sizes of docs/validation.md). Assembly in blocks of elements (bounded memory).
 * Bounds (checked in the tests and docs/validation.md): plane strain is the 3-D problem
   with the axial displacement held, so the 3-D compliance of a spur tooth under a uniform
   line load is at least the plane-strain one; the plane-stress stress field is statically
