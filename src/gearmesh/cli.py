@@ -426,8 +426,9 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = _command(sub, "stiffness", cmd_stiffness,
                  "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
-    _setting_option(p, "--method", Stiffness, help="tooth model: transition (the hob-generated fillet), improved or "
-                    "traditional (cantilever root cases), fe (2-D finite elements)")
+    _setting_option(p, "--method", Stiffness, help="tooth model: fe (2-D finite elements, within a few %% of 3-D: "
+                    "docs/validation.md), transition (the hob-generated fillet), improved or traditional "
+                    "(cantilever root cases)")
     _setting_option(p, "--slices", Stiffness, type=int, help="slices over the face width")
     _setting_option(p, "--positions", Stiffness, type=int, help="rotation positions per mesh cycle")
     _torque_options(p, required=False)

@@ -20,13 +20,9 @@ import numpy as np
 import yaml
 
 from .errors import GearmeshInputError
+from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
 
 GEARS = ("pinion", "gear")
-
-
-def involute(alpha: np.ndarray | float) -> np.ndarray | float:
-    """Involute function inv(α) = tan α − α (ISO 21771 eq. 18), α in rad."""
-    return np.tan(alpha) - alpha
 
 
 def inverse_involute(value: float) -> float:
@@ -980,9 +976,9 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     rho_a = np.sqrt(ra**2 - rb**2)
     line_of_action = a * math.sin(alpha_wt)  # T1T2
     rho_sap = line_of_action - rho_a[::-1]
-    from .profile import form_point  # the generated fillet lives there; profile imports gear
-
-    rho_form, undercut = (np.array(v) for v in zip(*(form_point(pair, i, shift[i]) for i in range(2))))
+    racks = [rack_from(z[i], mn, an, beta, pair.dedendum_coefficient[i] * mn, tool_tip_radius(pair, i), shift[i])
+             for i in range(2)]
+    rho_form, undercut = (np.array(v) for v in zip(*(form_roll(rack) for rack in racks)))
     r_form = np.sqrt(rb**2 + rho_form**2)
     for i in range(2):
         other = 1 - i

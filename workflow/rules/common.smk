@@ -54,6 +54,14 @@ def fe_tables(section):
     return inputs
 
 
+def fe_wanted():
+    """Whether the study uses the finite-element tooth (a stage's method fe, or fe among the
+    stiffness table's methods): then every pair gets its FE tables and their figure."""
+    sections = ("stiffness", "slice_convergence", "ltca", "impact", "dynamics", "train_dynamics")
+    return (any((config.get(s) or {}).get("method") == "fe" for s in sections)
+            or "fe" in (config.get("stiffness_table") or {}).get("methods", []))
+
+
 def pair_file(wildcards):
     return str(pair_path(config, wildcards.pair))
 
@@ -139,7 +147,7 @@ def all_targets():
             targets += [f"results/{STUDY}/{name}/engagement_table.nc" for name in config["pairs"]]
     if "helix_sweep" in config:
         targets.append(f"results/{STUDY}/helix_sweep.nc")
-    if "fe_compliance" in config:
+    if fe_wanted():
         targets += [f"results/{STUDY}/{name}/fe_compliance.nc" for name in config["pairs"]]
     for table in ("stiffness_table", "slice_convergence"):
         if table in config:

@@ -17,6 +17,7 @@ rule fe_compliance:
         function=versioned_param("gearmesh.datasets.fe:fe_compliance_dataset"),
         settings=lambda wildcards: config["fe_compliance"],
         figures=versioned_param("gearmesh.plots.fe:fe_compliance_figures"),
+    priority: 10  # with method fe the optimiser (priority 10, the longest job) waits for it
     conda:
         ENV
     script:

@@ -42,7 +42,7 @@ from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT
                          mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
 from ..schema import check_arguments, check_value, defaults, settings_fields
-from ..settings import Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
+from ..settings import DEFAULT_TOOTH_METHOD, Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
 #: Seed 004: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
@@ -420,7 +420,7 @@ def _table_settings(**settings: Any) -> dict[str, Any]:
             "approaches": approaches, "factor": float(s["table_force_factor"])}
 
 
-def contact_table(geom: PairGeometry, pinion_torques, method: str = "transition", **settings) -> MeshForceTable:
+def contact_table(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOTH_METHOD, **settings) -> MeshForceTable:
     """The mesh force table of ``geom`` (its micro-geometry) for the ``contact`` excitation:
     every row reaches ``table_force_factor`` times the largest static force F_bt = T1/r_b1 of
     ``pinion_torques`` (N m); ``settings`` as :data:`_TABLE_KEYS` (:mod:`gearmesh.meshforce`)."""
@@ -438,7 +438,7 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
                      bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                      stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                     method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                     method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
                      transmission_error_um=None, stiffness: xr.Dataset | None = None,
                      ltca: xr.Dataset | None = None, table: MeshForceTable | None = None) -> GearModel:
     """The 8-DOF model of ``pair`` at one torque from engineering-unit settings (:func:`dynamics_dataset`).
@@ -684,7 +684,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                      stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                     method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                     method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
                      transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
                      courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
                      record_cycles: int = 8, steady_state: str = "shooting", points_per_cycle: int = 64,
@@ -864,7 +864,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                   bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                   damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                   stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                  method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                  method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
                   phase_offsets_cycles: Sequence[float] = (0.0, 0.0), courant: float = 0.25,
                   steps_per_cycle_min: int = 32, transient_tau: float = 10.0, record_cycles: int = 8,
                   steady_state: str = "shooting", points_per_cycle: int = 64, max_order: int = 10,

@@ -24,7 +24,7 @@ from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
 from ..tolerance import apply_deviations, study_tolerances, unit_deviations
 from ..schema import check_arguments, defaults
-from ..settings import Impact
+from ..settings import DEFAULT_TOOTH_METHOD, Impact
 
 UM = 1e-6
 
@@ -67,7 +67,7 @@ def _scenario_var(dims, scenario) -> xr.Variable:
 def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rpm=(5000.0,), on: str = "pinion",
                    design_speed_rpm: float = 5000.0, driver: str = "pinion", points: int = 50,
                    energy_velocity: str = "transverse", added_inertia_kg_m2=(0.0, 0.0), lead_slope_um=(0.0, 0.0),
-                   contact_law: str = "palmgren", method: str = "transition", corner_extension: float = 0.25,
+                   contact_law: str = "palmgren", method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = 0.25,
                    simulate_torques_Nm=(), variant: str = "", fe_compliance: xr.Dataset | None = None,
                    window_positions: int = 32, face_samples: int = 257, design_torque_Nm: float | None = None,
                    load_window_step_Nm: float | None = None,

@@ -21,7 +21,7 @@ from ..limits import check_contact_grid
 from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..tca import DEFAULT_EXTENSION, TCAResult, check_lead_slope, check_modifications, tca
 from ..schema import check_arguments
-from ..settings import Ltca, Tca
+from ..settings import DEFAULT_TOOTH_METHOD, Ltca, Tca
 
 UM = 1e-6
 
@@ -115,7 +115,7 @@ def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slop
 @check_arguments(Ltca)
 def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: int = 64, points: int = 50,
                  lead_slope_um=(0.0, 0.0), on: str = "pinion", contact_law: str = "palmgren",
-                 method: str = "transition", corner_extension: float = DEFAULT_EXTENSION,
+                 method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = DEFAULT_EXTENSION,
                  fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """LTCA at each torque over one mesh cycle (dims torque, position, line, point).
 

@@ -26,7 +26,7 @@ from ..stiffness import (
     slice_compliance_table,
 )
 from ..schema import check_arguments
-from ..settings import SliceConvergence, Stiffness, StiffnessTable
+from ..settings import DEFAULT_TOOTH_METHOD, SliceConvergence, Stiffness, StiffnessTable
 
 METHODS = ("traditional", "improved", "transition")
 
@@ -41,7 +41,7 @@ def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
 
 
 @check_arguments(Stiffness)
-def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
+def stiffness_dataset(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES,
                       positions: int = 360, fourier_order: int = 3, torque_Nm: float | None = None,
                       torque_on: str = "pinion", fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """K(φ) of ``pair`` by the slice potential energy method (:func:`gearmesh.stiffness.mesh_stiffness`),
@@ -111,7 +111,7 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
 
 
 @check_arguments(Stiffness)
-def stiffness_summary(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
+def stiffness_summary(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES,
                       positions: int = 360, torque_Nm: float | None = None, torque_on: str = "pinion") -> dict[str, Any]:
     """Headline stiffness numbers in one unit family, N, mm, µm, the unit in every key (the CLI's
     ``stiffness --json``); stiffnesses along the transverse line of action."""
@@ -209,7 +209,7 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str
 
 @check_arguments(SliceConvergence)
 def slice_convergence_dataset(pairs: Mapping[str, GearPair], slices: Sequence[int] = (25, 50, 100, 200, 400, 1000),
-                              method: str = "transition", positions: int = 360) -> xr.Dataset:
+                              method: str = DEFAULT_TOOTH_METHOD, positions: int = 360) -> xr.Dataset:
     """K statistics against the slice count for both slice rules (seed 004 argues N = 1000):
     'centre' (whole slices, the documents' sampling) and 'clip' (end slices clipped), with
     the relative difference of the mean to the finest 'clip' result."""
