@@ -142,4 +142,4 @@ def test_help_shows_the_defaults(capsys):
     with pytest.raises(SystemExit):
         main(["stiffness", "--help"])
     text = " ".join(capsys.readouterr().out.split())
-    assert "(default: 200)" in text and "(default: transition)" in text
+    assert "(default: 200)" in text and "(default: fe)" in text

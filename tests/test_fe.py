@@ -238,3 +238,88 @@ def test_workflow_tables_are_read_not_recomputed(monkeypatch):
     monkeypatch.setattr(fe, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
     out = stiffness_dataset(pair, method="fe", slices=20, positions=24, fe_compliance=full)
     assert float(out["mean_stiffness"]) > 0
+
+
+# ----------------------------------------------------------------------------- where the compliance sits
+
+
+def _slender():
+    return pair_geometry(load_pair({
+        "name": "slender", "teeth": [60, 60], "normal_module_mm": 2, "normal_pressure_angle_deg": 16,
+        "helix_angle_deg": 0, "face_width_mm": 20, "addendum_coefficient": 1.5, "dedendum_coefficient": 1.75,
+        "bore_radius_mm": [30, 30], "material": dict(STEEL)}))
+
+
+def test_tooth_and_body_split_on_one_mesh(p1):
+    """The tooth on a rigid base (clamped on its root chord), the body under a rigid tooth and
+    their coupling add up to the whole gear; the coupling (the root section's warping, which
+    no cantilever-plus-foundation model has) is positive and under 12 % of the total; the
+    rigid-tooth limit is reached (E × 1e4 vs × 1e5 within 0.1 %)."""
+    rho = _mid_rolls(p1, 0)
+    res = fe.tooth_body_split(p1, 0, rho, size=0.2)
+    assert np.allclose(res.tooth_rigid_base + res.body_rigid_tooth + res.interaction, res.total, rtol=1e-12)
+    assert np.all(res.interaction > 0) and np.all(res.interaction < 0.12 * res.total)
+    whole = fe.tooth_compliance(p1, 0, rho, "stress", size=0.2).total
+    assert np.allclose(res.total, whole, rtol=0.01)  # the chord segment only changes the mesh
+    old = fe.RIGID
+    try:
+        fe.RIGID = 1e5
+        stiffer = fe.tooth_body_split(p1, 0, rho, size=0.2).body_rigid_tooth
+    finally:
+        fe.RIGID = old
+    assert np.allclose(stiffer, res.body_rigid_tooth, rtol=1e-3)
+
+
+def test_beam_and_foundation_against_their_fe_problems():
+    """Slender tooth loaded at the tip (the cantilever's best case), plane stress: the FE tooth
+    on a rigid base is within 8 % of the PEM beam (bending + shear + axial) and below it (the
+    flared fillet is stiffer than a beam of its horizontal sections); the FE body under a
+    rigid tooth is within 25 % of Sainsot's foundation and below it; Sainsot is nearer the
+    body plus the coupling (its fit carried the root warping in the foundation)."""
+    geom = _slender()
+    rho = np.array([geom.rho_eap[0]])
+    res = fe.tooth_body_split(geom, 0, rho, size=0.1)
+    pem = st.tooth_slice_compliance(st.tooth_model(geom, 0, "transition"), rho)
+    beam = pem["bending"] + pem["shear"] + pem["axial"]
+    assert 0.92 < res.tooth_rigid_base[0] / beam[0] < 1.0
+    assert 0.75 < res.body_rigid_tooth[0] / pem["fillet"][0] < 1.0
+    assert abs(res.body_rigid_tooth[0] + res.interaction[0] - pem["fillet"][0]) < \
+        abs(res.body_rigid_tooth[0] - pem["fillet"][0])
+
+
+def test_tooth_in_plane_strain_on_a_body_in_plane_stress_lies_between(p1):
+    rho = _mid_rolls(p1, 1)
+    mixed = fe.tooth_body_split(p1, 1, rho, "strain", size=0.2, body_plane="stress").total
+    strain = fe.tooth_body_split(p1, 1, rho, "strain", size=0.2).total  # the same mesh
+    stress = fe.tooth_body_split(p1, 1, rho, "stress", size=0.2).total
+    assert np.all(strain < mixed) and np.all(mixed < stress)
+
+
+def test_weber_approach_is_the_integral_of_johnsons_stresses():
+    """Weber's closed form against a numerical integral of the strain along the axis of a
+    Hertzian strip (Johnson 1985: σ_z, σ_x on the axis; plane strain and plane stress)."""
+    from scipy.integrate import quad
+
+    a, d = 1e-4, 1.5e-3
+    p0 = 2.0 / (math.pi * a)  # unit resultant
+    sz = lambda z: -p0 * a / math.sqrt(a * a + z * z)  # noqa: E731
+    sx = lambda z: -p0 * ((a * a + 2 * z * z) / math.sqrt(a * a + z * z) - 2 * z) / a  # noqa: E731
+    strain = -quad(lambda z: ((1 - NU**2) * sz(z) - NU * (1 + NU) * sx(z)) / E, 0, d, epsrel=1e-12)[0]
+    stress = -quad(lambda z: (sz(z) - NU * sx(z)) / E, 0, d, epsrel=1e-12)[0]
+    assert fe.weber_approach(d, a, E, NU, "strain") == pytest.approx(strain, rel=1e-9)
+    assert fe.weber_approach(d, a, E, NU, "stress") == pytest.approx(stress, rel=1e-9)
+
+
+def test_hertz_strip_against_point_load_and_weber(p1):
+    """At C a Hertzian strip and a point load of the same resultant give the same deflection
+    (0.2 %: Saint-Venant, |PC| ≫ a), so the point load of the stage is no approximation there;
+    the FE approach of P to C falls with the half-width as Weber's log term,
+    −2(1−ν²)/(πE) per unit ln a (3 %), within 15 % of Weber's half-plane value (the tooth is
+    not a half-plane: a constant offset)."""
+    rho = 0.5 * (p1.rho_sap[0] + p1.rho_eap[0])
+    res = [fe.contact_approach(p1, 0, rho, a, size=0.1) for a in (0.05e-3, 0.2e-3)]
+    for r in res:
+        assert r.at_c == pytest.approx(r.point_at_c, rel=2e-3)
+        assert r.approach == pytest.approx(r.weber, rel=0.15)
+    slope = (res[0].approach - res[1].approach) / math.log(4.0)
+    assert slope == pytest.approx(2 * (1 - NU**2) / (math.pi * E), rel=0.03)

@@ -140,7 +140,9 @@ def test_only_a_local_run_in_this_python_uses_a_server(monkeypatch, methods, loc
 
 
 def test_the_server_imports_the_modules_its_rules_name():
-    rules = [SimpleNamespace(params=["gearmesh.datasets.ltca:ltca_dataset@0123456789abcdef",
-                                     "gearmesh.plots.ltca:ltca_figures@0123456789abcdef", {"positions": 3}]),
+    figures = lambda wildcards: None  # noqa: E731 - a param function, as the workflow's versioned_param
+    figures.spec = "gearmesh.plots.ltca:ltca_figures@0123456789abcdef"
+    rules = [SimpleNamespace(params=["gearmesh.datasets.ltca:ltca_dataset@0123456789abcdef", figures,
+                                     {"positions": 3}]),
              SimpleNamespace(params=None)]
     assert jobserver.rule_modules(rules) == ["gearmesh.datasets.ltca", "gearmesh.pipeline", "gearmesh.plots.ltca"]

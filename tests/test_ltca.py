@@ -179,23 +179,23 @@ def test_unmodified_pair_meets_with_an_edge_and_modification_delays_it(seed000):
 def test_bad_torques_and_modifications_are_refused(seed000):
     for bad in (0.0, -5.0, float("nan"), float("inf"), [], [100.0, -1.0], "100", True, None):
         with pytest.raises(GearmeshInputError, match="torques_Nm"):
-            ltca_dataset(seed000, torques_Nm=bad, positions=4, points=5)
+            ltca_dataset(seed000, torques_Nm=bad, positions=8, points=5)
     with pytest.raises(GearmeshInputError, match="torque_Nm"):
         ltca_summary(seed000, -1.0)
     with pytest.raises(GearmeshInputError, match="on"):
-        ltca_dataset(seed000, torques_Nm=[100.0], on="wheel", positions=4, points=5)
+        ltca_dataset(seed000, torques_Nm=[100.0], on="wheel", positions=8, points=5)
     with pytest.raises(GearmeshInputError, match="corner_extension"):
-        ltca_dataset(seed000, torques_Nm=[100.0], corner_extension=-0.1, positions=4, points=5)
+        ltca_dataset(seed000, torques_Nm=[100.0], corner_extension=-0.1, positions=8, points=5)
     with pytest.raises(GearmeshInputError, match="points"):
-        ltca_dataset(seed000, torques_Nm=[100.0], positions=4, points=0)
+        ltca_dataset(seed000, torques_Nm=[100.0], positions=8, points=0)
     with pytest.raises(GearmeshInputError, match="contact_law"):
-        ltca_dataset(seed000, torques_Nm=[100.0], contact_law="hertz", positions=4, points=5)
+        ltca_dataset(seed000, torques_Nm=[100.0], contact_law="hertz", positions=8, points=5)
     neg = seed000.with_changes(modification=(Modification(), Modification(root_relief=-1e-6, root_relief_length=1e-3)))
     with pytest.raises(GearmeshInputError, match="modification.gear.root_relief_um"):
-        ltca_dataset(neg, torques_Nm=[100.0], positions=4, points=5)
+        ltca_dataset(neg, torques_Nm=[100.0], positions=8, points=5)
     crown = seed000.with_changes(modification=(Modification(crowning=5e-6, unmodified_lead_length=50e-3), Modification()))
     with pytest.raises(GearmeshInputError, match="unmodified_lead_length_mm"):
-        ltca_dataset(crown, torques_Nm=[100.0], positions=4, points=5)
+        ltca_dataset(crown, torques_Nm=[100.0], positions=8, points=5)
 
 
 def test_dataset_and_summary(seed000):

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import hashlib
 import json
+import re
 import importlib.util
 import os
 import shutil
@@ -72,6 +73,9 @@ def _check_report(work: Path) -> None:
     assert "Where our results differ from the source document" in html  # the workflow page
     assert "<strong>relief</strong>" in html  # captions rendered with the job's wildcards
     assert '"seed001_pair1 / relief"' in html  # subcategory per pair and variant
+    # the job panel names each job's function, without the digest that reruns it when its code changes
+    assert "gearmesh.datasets.ltca:ltca_dataset" in html
+    assert not re.search(r"gearmesh\.[\w.]+:\w+@[0-9a-f]{16}", html)
 
 
 def _check_code_change_reruns(root: Path, work: Path, tmp: Path) -> None:
@@ -126,7 +130,7 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     geometry = read_dataset(base / "geometry.nc")
     assert abs(float(geometry["eps_alpha"]) - 1.4702) < 1e-3  # seed 001 Table 1: 1.470
     stiffness = read_dataset(base / "stiffness.nc")
-    assert stiffness.attrs["method"] == "transition" and float(stiffness.mean_stiffness) > 0
+    assert stiffness.attrs["method"] == "fe" and float(stiffness.mean_stiffness) > 0  # the default (issue 19)
     for png in ("tooth_profile", "contact_length", "contact_lines", "stiffness"):
         assert (base / "plots" / f"{png}.png").stat().st_size > 1000
     assert (work / "results/e2e/plots/helix_sweep.png").exists()
@@ -160,6 +164,28 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     _check_report(work)
     _check_code_change_reruns(root, work, tmp_path)
     _check_slurm_profile_dry_run(work)
+    _check_swapped_input_is_refused(work)  # last: it leaves a failed job behind
+
+
+def _check_swapped_input_is_refused(work: Path) -> None:
+    """Another variant's LTCA copied over standard's (issue 20): the jobs that read it refuse it
+    with one line naming the file and how to regenerate it, and write nothing from it."""
+    base = work / "results/e2e/seed001_pair1"
+    before = shutil.copy(base / "standard/dynamics.nc", work / "dynamics_before.nc")
+    shutil.copy(base / "relief/ltca.nc", base / "standard/ltca.nc")
+    proc = _snakemake(work)
+    assert proc.returncode != 0
+    wanted = ("gearmesh: error: results/e2e/seed001_pair1/standard/ltca.nc = 'the ltca result written as "
+              "results/e2e/seed001_pair1/relief/ltca.nc'")
+    assert wanted in proc.stderr, proc.stderr[-3000:]
+    assert "snakemake --forcerun results/e2e/seed001_pair1/standard/ltca.nc" in proc.stderr
+    # nothing made from it: the dynamics either refused it (Snakemake removed its output first) or never ran
+    assert not (base / "standard/dynamics.nc").exists() or \
+        (base / "standard/dynamics.nc").read_bytes() == before.read_bytes()
+    # the advice works: the file is remade and what reads it with it, bit-identical to the first run
+    proc = _snakemake(work, "--forcerun", "results/e2e/seed001_pair1/standard/ltca.nc")
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    assert read_dataset(base / "standard/dynamics.nc").identical(read_dataset(before))
 
 
 def test_workflow_refuses_a_bad_pair_before_writing_anything(root, tmp_path):

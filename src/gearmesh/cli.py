@@ -23,6 +23,8 @@ from .contact import contact_length_summary
 from .errors import GearmeshInputError
 from .gear import example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_load
+from .schema import check_value, defaults, field_schema, key_of, settings_fields
+from .settings import Dynamics, Impact, Ltca, Optimise, Stiffness, Tolerances
 
 EXIT_BAD_INPUT = 2
 
@@ -143,11 +145,12 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
-    from .datasets.dynamics import check_dynamics_settings, dynamics_summary, positive_torque
+    from .datasets.dynamics import check_dynamics_settings, dynamics_summary, parse_speeds, positive_torque
 
     positive_torque("torque_Nm", args.torque_Nm)
     pair, geom = _pair(args)
-    check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": args.speeds,
+    speeds = parse_speeds(args.speeds)
+    check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": speeds,
                                    "backlash_um": args.backlash_um, "sample_speeds_rpm": [],
                                    "excitation": args.excitation})
     excitation = {"excitation": args.excitation}
@@ -156,7 +159,7 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
 
         torque_1 = pinion_torque(pair, args.torque_Nm, args.on)
         excitation["ltca"] = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion", positions=64, points=30)
-    rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=args.speeds, on=args.on,
+    rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=speeds, on=args.on,
                             backlash_um=args.backlash_um, progress=_progress(), **excitation)
     return {"name": pair.name, **_torque(pair, args.torque_Nm, args.on), "excitation": args.excitation,
             **_backlash(geom, args.backlash_um), "speeds": rows}
@@ -174,6 +177,27 @@ def _backlash(geom, option) -> dict[str, Any]:
     if option == "pair":
         return {"backlash_um": geom.backlash_normal * 1e6, "backlash_source": "pair"}
     return {"backlash_um": option, "backlash_source": "given"}
+
+
+def cmd_schema(args: argparse.Namespace) -> None:
+    """Print the JSON schema of a study config or a pair file, or their keys as Markdown tables
+    (:mod:`gearmesh.settings`: the files published under ``schemas/`` and ``config/README.md``)."""
+    from .settings import pair_reference, pair_schema, pair_schema_text, study_reference, study_schema, study_schema_text
+
+    form = args.format or ("yaml" if args.kind == "study" else "json")
+    if form == "markdown":
+        text = study_reference() if args.kind == "study" else pair_reference()
+    elif form == "json":
+        text = pair_schema_text() if args.kind == "pair" else json.dumps(study_schema(), indent=2, ensure_ascii=False) + "\n"
+    else:
+        text = study_schema_text() if args.kind == "study" else yaml_text(pair_schema())
+    sys.stdout.write(text)
+
+
+def yaml_text(data: Any) -> str:
+    import yaml
+
+    return yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=110, default_flow_style=None)
 
 
 def _backlash_option(text: str):
@@ -244,7 +268,7 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
                                    weights=weights, statistic="mean" if weights else args.statistic, on=args.on,
                                    speed_rpm=args.speed_rpm, modify=args.modify, method=args.method, seed=args.seed,
                                    population=args.population, generations=args.generations,
-                                   tolerance_statistic=statistic, tolerance_level_percent=args.tolerance_level,
+                                   tolerance_statistic=statistic, tolerance_level_percent=args.tolerance_level_percent,
                                    tolerances=tolerances, dynamic_speeds_rpm=_numbers("--dynamic-speeds-rpm",
                                                                                       args.dynamic_speeds_rpm),
                                    backlash_um=args.backlash_um,
@@ -302,6 +326,33 @@ def _command(sub, name: str, func, help: str, pair_help: str = PAIR_HELP):
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=func)
     return p
+
+
+def _setting_option(p, flag: str, section: type, help: str, key: str | None = None, **kwargs) -> None:
+    """An option that is the setting ``key`` (default: the option's name) of ``section``
+    (:mod:`gearmesh.settings`): its default and choices are the declaration's, and :func:`main`
+    checks its value against the declaration before the command runs, naming the option."""
+    key = key or flag.lstrip("-").replace("-", "_")
+    field = next(f for f in settings_fields(section) if key_of(f) == key)
+    schema = field_schema(section, field)
+    choices = schema.get("enum") or schema.get("items", {}).get("enum")
+    if choices:
+        kwargs["choices"] = [c for c in choices if c is not None]
+    p.add_argument(flag, dest=key, default=defaults(section).get(key), help=help, **kwargs)
+    p.set_defaults(setting_options={**(p.get_default("setting_options") or {}), key: (section, flag)})
+
+
+def _check_setting_options(args: argparse.Namespace) -> None:
+    """The values of the options that are settings, each against its declaration (the bounds a
+    study config has), refused naming the option."""
+    for key, (section, flag) in (getattr(args, "setting_options", None) or {}).items():
+        value = getattr(args, key)
+        if value is None and defaults(section).get(key) is None:
+            continue  # not given, and the setting's own "none"
+        try:
+            check_value(section, key, value)
+        except GearmeshInputError as exc:
+            raise GearmeshInputError(flag + exc.field[len(key):], exc.value, exc.rule) from None
 
 
 def _torque_options(p, required: bool) -> None:
@@ -366,32 +417,38 @@ def build_parser() -> argparse.ArgumentParser:
 
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 
+    p = sub.add_parser("schema", help="print the JSON schema of a study config or a pair file (for editors), or "
+                       "every key as a Markdown table")
+    p.add_argument("kind", choices=("study", "pair"), help="study config or pair file")
+    p.add_argument("--format", choices=("yaml", "json", "markdown"), default=None,
+                   help="default: yaml for a study (workflow/schemas/config.schema.yaml), json for a pair")
+    p.set_defaults(func=cmd_schema)
+
     p = _command(sub, "stiffness", cmd_stiffness,
                  "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
-    p.add_argument("--method", choices=("traditional", "improved", "transition", "fe"), default="transition",
-                   help="tooth model: transition (the hob-generated fillet), improved or traditional (cantilever "
-                        "root cases), fe (2-D finite elements)")
-    p.add_argument("--slices", type=int, default=200, help="slices over the face width")
-    p.add_argument("--positions", type=int, default=360, help="rotation positions per mesh cycle")
+    _setting_option(p, "--method", Stiffness, help="tooth model: fe (2-D finite elements, within a few %% of 3-D: "
+                    "docs/validation.md), transition (the hob-generated fillet), improved or traditional "
+                    "(cantilever root cases)")
+    _setting_option(p, "--slices", Stiffness, type=int, help="slices over the face width")
+    _setting_option(p, "--positions", Stiffness, type=int, help="rotation positions per mesh cycle")
     _torque_options(p, required=False)
 
     p = _command(sub, "ltca", cmd_ltca, "loaded tooth contact analysis at one torque: TE, LTE, line load, stiffness",
                  PAIR_HELP.replace(";", ", with its modification if any;"))
     _torque_options(p, required=True)
-    p.add_argument("--positions", type=int, default=64, help="rotation positions per mesh cycle")
-    p.add_argument("--points", type=int, default=50, help="points per contact line")
-    p.add_argument("--contact-law", dest="contact_law", choices=("palmgren", "linear"), default="palmgren",
-                   help="local contact law: palmgren (approach ∝ F^0.9, n = 1.11) or linear")
+    _setting_option(p, "--positions", Ltca, type=int, help="rotation positions per mesh cycle")
+    _setting_option(p, "--points", Ltca, type=int, help="points per contact line")
+    _setting_option(p, "--contact-law", Ltca, help="local contact law: palmgren (approach ∝ F^0.9, n = 1.11) or "
+                    "linear")
 
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
                  "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
     _torque_options(p, required=True)
     p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True, help="pinion speed (rpm)")
-    p.add_argument("--driver", choices=("pinion", "gear"), default="pinion", help="which gear drives")
-    p.add_argument("--points", type=int, default=50, help="points per contact line")
-    p.add_argument("--energy-velocity", dest="energy_velocity", choices=("transverse", "normal"),
-                   default="transverse", help="velocity in 1/2 m_eq v^2: transverse (the coordinate m_eq belongs to) "
-                                              "or normal (as the mesh-in impact source document writes it)")
+    _setting_option(p, "--driver", Impact, help="which gear drives")
+    _setting_option(p, "--points", Impact, type=int, help="points per contact line")
+    _setting_option(p, "--energy-velocity", Impact, help="velocity in 1/2 m_eq v^2: transverse (the coordinate m_eq "
+                    "belongs to) or normal (as the mesh-in impact source document writes it)")
     p.add_argument("--simulate", action="store_true",
                    help="also integrate the engagement in time and print the simulated peak force")
 
@@ -399,9 +456,9 @@ def build_parser() -> argparse.ArgumentParser:
                  "model of the pair")
     _torque_options(p, required=True)
     p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
-    p.add_argument("--backlash-um", dest="backlash_um", type=_backlash_option, default="pair",
-                   help="total backlash 2b0 along the normal (µm), or 'pair': the pair's own from its centre "
-                        "distance and shifts")
+    _setting_option(p, "--backlash-um", Dynamics, type=_backlash_option,
+                    help="total backlash 2b0 along the normal (µm), or 'pair': the pair's own from its centre "
+                         "distance and shifts")
     p.add_argument("--excitation", choices=("tvms", "ltca", "contact"), default="tvms",
                    help="tvms: slice-model stiffness K(t), unloaded TE zero; ltca: loaded stiffness and loaded TE "
                         "of an LTCA at this torque (64 positions, 30 points per line); contact: the mesh force of "
@@ -410,8 +467,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = _command(sub, "optimise", cmd_optimise, "GA optimisation of the six micro-geometry parameters (root and tip "
                  "relief amounts and lengths, crowning, unmodified lead length) against the mesh-in impact over a "
                  "load spectrum and the manufacturing tolerances")
-    p.add_argument("--objective", choices=("force", "velocity", "robust", "dynamic"), default="force",
-                   help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
+    _setting_option(p, "--objective", Optimise,
+                    help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
                         "dynamic: the dynamic factor (peak over static mesh force) of the contact-driven 8-DOF pair "
                         "over the speed range")
     p.add_argument("--dynamic-factor", dest="dynamic_factor", type=float, default=None,
@@ -420,35 +477,33 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dynamic-speeds-rpm", dest="dynamic_speeds_rpm", default=None,
                    help="speeds of the dynamic objective/constraint, comma-separated (rpm; default 0.2, 1 and 3 times "
                         "--speed-rpm), resonances within their range added per candidate")
-    p.add_argument("--backlash-um", dest="backlash_um", type=_backlash_option, default="pair",
-                   help="backlash of the candidates' dynamics (µm, or 'pair': the pair's own)")
+    _setting_option(p, "--backlash-um", Optimise, type=_backlash_option,
+                    help="backlash of the candidates' dynamics (µm, or 'pair': the pair's own)")
     p.add_argument("--torque-Nm", dest="torque_Nm", type=float, default=None,
                    help="design torque (N m; default the middle of --torques-Nm)")
     p.add_argument("--torques-Nm", dest="torques_Nm", default=None,
                    help="load spectrum, comma-separated (N m; default the design torque alone)")
     p.add_argument("--weights", default=None, help="time shares of --torques-Nm, comma-separated (duty-cycle mean); "
                                                   "without: the worst case over the spectrum")
-    p.add_argument("--statistic", choices=("max", "mean"), default="max", help="over the load spectrum")
+    _setting_option(p, "--statistic", Optimise, help="over the load spectrum")
     p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="the gear the torques act on")
-    p.add_argument("--speed-rpm", dest="speed_rpm", type=float, default=5000.0, help="pinion speed (rpm)")
+    _setting_option(p, "--speed-rpm", Optimise, type=float, help="pinion speed (rpm)")
     p.add_argument("--tolerance-samples", dest="tolerance_samples", type=int, default=0,
                    help="manufactured samples evaluated with the nominal (0: nominal only)")
-    p.add_argument("--grade", type=int, default=None,
-                   help="ISO 1328-1:2013 flank tolerance class 1-11: lead slope within ±f_Hβ on both gears")
+    _setting_option(p, "--grade", Tolerances, type=int,
+                    help="ISO 1328-1:2013 flank tolerance class 1-11: lead slope within ±f_Hβ on both gears")
     p.add_argument("--amount-tolerance-um", dest="amount_tolerance_um", type=float, default=0.0,
                    help="± on every relief and crowning amount (µm)")
-    p.add_argument("--sampling", choices=("lhs", "corners"), default="lhs",
-                   help="seeded Latin hypercube or corners of the tolerance box")
+    _setting_option(p, "--sampling", Tolerances, help="seeded Latin hypercube or corners of the tolerance box")
     p.add_argument("--tolerance-statistic", dest="tolerance_statistic", choices=("max", "mean", "percentile", "cvar"),
                    default="max", help="over the nominal and the samples")
-    p.add_argument("--tolerance-level", dest="tolerance_level", type=float, default=90.0,
-                   help="level (%%) of percentile and cvar")
-    p.add_argument("--modify", choices=("pinion", "gear"), nargs="+", default=["pinion"],
-                   help="the gear(s) whose six parameters are optimised")
-    p.add_argument("--method", choices=("ga", "random", "nsga2"), default="ga", help="GA, random search or NSGA-II")
-    p.add_argument("--seed", type=int, default=0, help="random seed (GA and tolerance samples)")
-    p.add_argument("--population", type=int, default=40, help="candidates per generation")
-    p.add_argument("--generations", type=int, default=30, help="generations")
+    _setting_option(p, "--tolerance-level", Optimise, key="tolerance_level_percent", type=float, metavar="PERCENT",
+                    help="level (%%) of percentile and cvar")
+    _setting_option(p, "--modify", Optimise, nargs="+", help="the gear(s) whose six parameters are optimised")
+    _setting_option(p, "--method", Optimise, help="GA, random search or NSGA-II")
+    _setting_option(p, "--seed", Optimise, type=int, help="random seed (GA and tolerance samples)")
+    _setting_option(p, "--population", Optimise, type=int, help="candidates per generation")
+    _setting_option(p, "--generations", Optimise, type=int, help="generations")
     p.add_argument("--write-pair", dest="write_pair", default=None,
                    help="write the optimum as a pair file OUT.yaml (its name: OUT), readable by every subcommand")
     return parser
@@ -461,10 +516,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return 0
     try:
-        for option, low, high in (("positions", 8, 100_000), ("slices", 1, 20_000), ("points", 2, 2000)):
-            value = getattr(args, option, None)
-            if value is not None and not low <= value <= high:
-                raise GearmeshInputError(f"--{option}", value, f"must lie in [{low}, {high}]")
+        _check_setting_options(args)
         for option in ("torque_Nm",):  # signs: the stages' own checks
             value = getattr(args, option, None)
             if value is not None and not math.isfinite(value):

@@ -114,6 +114,25 @@ def function_digest(spec: str, root: Path = PACKAGE_ROOT) -> str:
     return _digest(module, Path(root))
 
 
-def versioned(spec: str, root: Path = PACKAGE_ROOT) -> str:
+class Versioned(str):
+    """A function spec with its digest ("module:function@digest") that shows without it.
+
+    Snakemake compares a job's params by ``repr`` (its params rerun trigger: the digest is what
+    reruns a job whose code changed) and writes them into the report's job panel by ``format``
+    (where a reader wants the function's name, not a hash). The workflow hands it to Snakemake
+    from a param function (``versioned_param`` in ``workflow/rules/common.smk``): a plain string
+    param is formatted with the wildcards, which would make it a plain ``str``. The end-to-end test
+    checks both: a changed module reruns its jobs, and the report shows no digest."""
+
+    __slots__ = ()
+
+    def __str__(self) -> str:
+        return self.partition("@")[0]
+
+    def __format__(self, spec: str) -> str:
+        return format(str(self), spec)
+
+
+def versioned(spec: str, root: Path = PACKAGE_ROOT) -> Versioned:
     """``spec`` with the first 16 hex digits of :func:`function_digest` appended after '@'."""
-    return f"{spec}@{function_digest(spec, root)[:16]}"
+    return Versioned(f"{spec}@{function_digest(spec, root)[:16]}")

@@ -1,101 +1,30 @@
-"""Study configs: schema validation with defaults, and resolving pair names to pair files.
+"""Study configs: validation with defaults, resolving pair names to pair files, and the checks
+of everything a study needs before any job runs.
 
-The schema (``schemas/config.schema.yaml``, linked as ``workflow/schemas/``) is the one
-source of truth; Snakemake validates with it through ``snakemake.utils.validate`` and the
-CLI through :func:`validate_study`, both filling the defaults it declares.
+The settings a config may hold are declared once, typed, in :mod:`gearmesh.settings`; the
+study schema is built from them (and published as ``schemas/config.schema.yaml``, linked as
+``workflow/schemas/``). ``gearmesh validate`` and the Snakefile both judge a config with
+:func:`validate_study` and :func:`check_study`, filling the declared defaults.
 """
 
 from __future__ import annotations
 
-import copy
 import math
 from contextlib import contextmanager
-from importlib.resources import files
 from pathlib import Path
 from typing import Any, Iterator, Mapping
 
-import jsonschema
-import yaml
-
 from .errors import GearmeshInputError
 from .gear import GearPair, load_named_pair, pinion_torque, read_yaml, variant_pair
-
-SCHEMA_PATH = Path(str(files("gearmesh") / "schemas" / "config.schema.yaml"))
-
-
-def _with_defaults(validator_class):
-    """A validator that fills ``default`` values while it validates (jsonschema FAQ recipe)."""
-    validate_properties = validator_class.VALIDATORS["properties"]
-
-    def set_defaults(validator, properties, instance, schema):
-        if isinstance(instance, dict):
-            for name, sub in properties.items():
-                if "default" in sub and name not in instance:
-                    instance[name] = copy.deepcopy(sub["default"])
-        yield from validate_properties(validator, properties, instance, schema)
-
-    return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
-
-
-def load_schema() -> dict[str, Any]:
-    return yaml.safe_load(SCHEMA_PATH.read_text())
-
-
-def _schema_error(err: jsonschema.ValidationError) -> GearmeshInputError:
-    """One schema error as the field it is about: an unknown or missing key is named itself,
-    and the message loses its leading repr of the value (the error shows an excerpt)."""
-    path = [str(p) for p in err.path]
-    instance = err.instance
-    if err.validator == "additionalProperties" and err.validator_value is False and isinstance(instance, Mapping):
-        extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
-        if extra:
-            allowed = sorted(err.schema.get("properties", {}))
-            hint = " (YAML 1.1 reads on/off/yes/no as true/false: quote the key, e.g. \"on\")" \
-                if isinstance(extra[0], bool) else ""
-            return GearmeshInputError(".".join(path + [str(extra[0])]), instance[extra[0]],
-                                      f"unknown key{hint}; allowed keys are {allowed}")
-    if err.validator == "required" and isinstance(instance, Mapping):
-        missing = [k for k in err.validator_value if k not in instance]
-        if missing:
-            return GearmeshInputError(".".join(path + [missing[0]]), None, "is required")
-    message = err.message
-    head = repr(instance)
-    if message.startswith(head):
-        message = message[len(head):].strip()
-    return GearmeshInputError(".".join(path) or "config", instance if path else None, message)
-
-
-def _first_non_finite(data: Any, path: str = "") -> tuple[str, float] | None:
-    """The path and value of the first NaN or infinite number in a nested config (JSON schema
-    numbers accept both; no setting of a study may be either)."""
-    stack = [(path, data)]
-    while stack:
-        where, value = stack.pop()
-        if isinstance(value, float) and not math.isfinite(value):
-            return where or "config", value
-        if isinstance(value, Mapping):
-            stack += [(f"{where}.{k}" if where else str(k), v) for k, v in reversed(list(value.items()))]
-        elif isinstance(value, (list, tuple)):
-            stack += [(f"{where}[{i}]", v) for i, v in reversed(list(enumerate(value)))]
-    return None
+from .schema import validate
+from .settings import study_schema
 
 
 def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
     """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field
-    (a NaN or infinite number anywhere, then the schema's first error)."""
-    bad = _first_non_finite(config)
-    if bad:
-        raise GearmeshInputError(bad[0], bad[1], "must be a finite number")
-    schema = load_schema()
-    data = copy.deepcopy(dict(config))
-    validator = _with_defaults(jsonschema.Draft202012Validator)(schema)
-    errors = sorted(validator.iter_errors(data), key=lambda e: (len(e.path), list(map(str, e.path))))
-    if errors:
-        raise _schema_error(errors[0])
-    # Fill defaults a second time: nested defaults of objects created by the first pass.
-    for _ in validator.iter_errors(data):
-        pass
-    return data
+    (a NaN or infinite number anywhere, then the first error of the study schema,
+    :func:`gearmesh.settings.study_schema`)."""
+    return validate(config, study_schema())
 
 
 def load_study(path: str | Path) -> dict[str, Any]:
@@ -118,7 +47,8 @@ def workflow_config(config: Mapping[str, Any], configfiles: list[str | Path]) ->
 
 
 def pair_path(config: Mapping[str, Any], name: str, root: str | Path = ".") -> Path:
-    return Path(root) / config.get("pairs_dir", "config/pairs") / f"{name}.yaml"
+    """The pair file of pair ``name`` of a validated study config."""
+    return Path(root) / config["pairs_dir"] / f"{name}.yaml"
 
 
 def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, GearPair]:
@@ -139,9 +69,11 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     """Everything a study will need, checked before any job runs (one error, naming the field):
     every pair loads and works, has the material and bore the always-run stiffness stage
     needs, every micro-geometry variant and every stiffness-table variant gives a working
-    pair, and sweep ranges are not empty. Returns the pairs."""
+    pair, sweep ranges are not empty, and the folders its jobs write into under ``root`` are
+    folders where they exist (:func:`gearmesh.io.check_output_tree`). Returns the pairs."""
     from .datasets.optimise import check_optimise
     from .datasets.stiffness import apply_variant
+    from .io import check_output_tree, study_folders
     from .gear import pair_geometry
     from .stiffness import require_stiffness_data
 
@@ -166,22 +98,22 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     if lste_comparison_wanted(config):
         stiffness, ltca = config["stiffness"], config["ltca"]
         for name in config["pairs"]:
-            t_k = pinion_torque(pairs[name], stiffness["torque_Nm"], stiffness.get("torque_on", "pinion"))
+            t_k = pinion_torque(pairs[name], stiffness["torque_Nm"], stiffness["torque_on"])
             if not _among(t_k, pairs[name], ltca):
                 raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                          f"must include the stiffness LSTE torque ({stiffness['torque_Nm']} N m on "
-                                         f"the {stiffness.get('torque_on', 'pinion')}) for the LSTE comparison")
+                                         f"the {stiffness['torque_on']}) for the LSTE comparison")
     dyn = config.get("dynamics", {})
     if "dynamics" in config and "ltca" in config and dyn.get("excitation") in (None, "ltca"):
         ltca = config["ltca"]
-        torques = dyn.get("torques_Nm", 200.0)
+        torques = dyn["torques_Nm"]
         for name in config["pairs"]:
             for t in torques if isinstance(torques, list) else [torques]:
-                t_d = pinion_torque(pairs[name], t, dyn.get("on", "pinion"))
+                t_d = pinion_torque(pairs[name], t, dyn["on"])
                 if not _among(t_d, pairs[name], ltca):
                     raise GearmeshInputError("ltca.torques_Nm", ltca["torques_Nm"],
                                              f"must include the dynamics torque ({t} N m on the "
-                                             f"{dyn.get('on', 'pinion')}): the LTCA excites the dynamics")
+                                             f"{dyn['on']}): the LTCA excites the dynamics")
     if "dynamics" in config and dyn.get("excitation") == "ltca" and "ltca" not in config:
         raise GearmeshInputError("dynamics.excitation", "ltca", "needs an ltca section in the study")
     _check_impact(config.get("impact"))
@@ -191,6 +123,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                                  f"must not be below start_deg ({sweep['start_deg']})")
     check_stages(config, pairs)
     check_optimise(config, pairs)
+    check_output_tree(study_folders(config), root)
     return pairs
 
 
@@ -214,8 +147,7 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     from .datasets.dynamics import check_dynamics_settings
     from .gear import pair_geometry
     from .limits import (MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, MAX_SWEEP_ANGLES, check_grid,
-                         check_load)
-    from .tca import check_lead_slope
+                         check_load, check_speeds)
 
     geoms = {name: pair_geometry(pair) for name, pair in pairs.items()}
 
@@ -241,8 +173,6 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     for section in ("tca", "ltca"):
         if section in config:
             sec = config[section]
-            with _section(section):
-                check_lead_slope(sec["lead_slope_um"])
             check_grid(f"{section}.points", sec["points"], (sec["positions"] + 1) * sec["points"],
                        MAX_CONTACT_POINTS, "contact candidates per line")
     if "ltca" in config:
@@ -250,8 +180,12 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     if "impact" in config:
         loads("impact", "torques_Nm", config["impact"]["on"], config["pairs"])
         with _section("impact"):
-            check_lead_slope(config["impact"]["lead_slope_um"])
+            for name in config["pairs"]:
+                check_speeds(geoms[name], config["impact"]["speeds_rpm"], "speeds_rpm")
     for run, section in (config.get("optimise") or {}).items():
+        for key in ("speed_rpm", "dynamic_speeds_rpm"):
+            for name in config["pairs"] if section.get(key) is not None else ():
+                check_speeds(geoms[name], section[key], f"optimise.{run}.{key}")
         for key in ("torque_Nm", "torques_Nm"):
             values = section.get(key)
             for k, value in enumerate(values if isinstance(values, list) else [] if values is None else [values]):
@@ -293,25 +227,25 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
 
 def _check_impact(impact: Mapping[str, Any] | None) -> None:
     """The impact map's design speed is one of its speeds, its design torque and its simulated torques are
-    among its torques."""
+    among its torques (``impact``: the validated section, defaults filled)."""
     if not impact:
         return
-    speeds = impact.get("speeds_rpm", [5000])
-    if not any(abs(v - impact.get("design_speed_rpm", 5000)) <= 1e-9 * v for v in speeds):
-        raise GearmeshInputError("impact.design_speed_rpm", impact.get("design_speed_rpm", 5000),
+    speeds = impact["speeds_rpm"]
+    if not any(abs(v - impact["design_speed_rpm"]) <= 1e-9 * v for v in speeds):
+        raise GearmeshInputError("impact.design_speed_rpm", impact["design_speed_rpm"],
                                  f"must be one of impact.speeds_rpm {speeds}")
-    torques = impact.get("torques_Nm", [400, 1000, 1600])
-    design = impact.get("design_torque_Nm")
+    torques = impact["torques_Nm"]
+    design = impact["design_torque_Nm"]
     if design is not None and not any(abs(v - design) <= 1e-9 * v for v in torques):
         raise GearmeshInputError("impact.design_torque_Nm", design, f"must be one of impact.torques_Nm {torques}")
-    for k, t in enumerate(impact.get("simulate_torques_Nm", [])):
+    for k, t in enumerate(impact["simulate_torques_Nm"]):
         if not any(abs(v - t) <= 1e-9 * v for v in torques):
             raise GearmeshInputError(f"impact.simulate_torques_Nm[{k}]", t, f"must be one of impact.torques_Nm {torques}")
 
 
 def _among(t1: float, pair: GearPair, ltca: Mapping[str, Any]) -> bool:
     """Whether pinion torque ``t1`` is one of the LTCA's torques (as pinion torques)."""
-    return any(abs(pinion_torque(pair, t, ltca.get("on", "pinion")) - t1) <= 1e-9 * t1 for t in ltca["torques_Nm"])
+    return any(abs(pinion_torque(pair, t, ltca["on"]) - t1) <= 1e-9 * t1 for t in ltca["torques_Nm"])
 
 
 def lste_comparison_wanted(config: Mapping[str, Any]) -> bool:

@@ -24,7 +24,7 @@ Model
   (:data:`GRADING`); one sparse LU factorisation per gear serves every load position.
 * Load: a unit force per unit width at the contact point P of roll length ρ on the involute,
   along the line of action into the tooth, n = (−cos α1, −sin α1) in the tooth frame of
-  :mod:`gearmesh.stiffness` (α1 the load angle of :func:`gearmesh.stiffness.contact_point`).
+  :mod:`gearmesh.stiffness` (α1 the load angle of :func:`gearmesh.tooth.contact_point`).
 * Local contact part removed as Weber (1949, "Formänderung und Profilrücknahme bei gerad-
   und schrägverzahnten Rädern", Schriftenreihe Antriebstechnik 11) and Cornell (1981, J.
   Mech. Des. 103:447) split the tooth deflection: the tooth deflection is the displacement,
@@ -55,6 +55,7 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry, pair_to_dict
+from .tooth import SliceComplianceTable, contact_point, require_stiffness_data, tooth_model
 
 __all__ = [
     "PLANES", "DEFAULT_SIZE", "DEFAULT_NEIGHBOURS", "DEFAULT_PLANE", "DEFAULT_ROLL_NODES",
@@ -245,10 +246,14 @@ def _right_flank(profile, load_rolls: np.ndarray, spacing: float) -> tuple[np.nd
     near = np.min(np.abs(arc[:, None] - load_arc[None, :]), axis=1) < 0.3 * spacing if load_arc.size else \
         np.zeros(arc.size, bool)
     near[0] = False  # keep the form point
-    rho = np.unique(np.concatenate([grid[~near], load_rolls]))
+    rho = np.sort(np.concatenate([grid[~near], load_rolls]))
+    rho = rho[np.concatenate([[True], np.diff(rho) > 1e-9 * spacing])]  # equal up to rounding: one vertex
     x, y, _, _ = rack_flank_envelope(rack, rho)
     flank = np.vstack([fillet[:-1], np.column_stack([x, y])])
-    idx = fillet.shape[0] - 1 + np.searchsorted(rho, load_rolls)
+    j = np.clip(np.searchsorted(rho, load_rolls), 1, rho.size - 1) if rho.size > 1 else np.zeros(len(load_rolls), int)
+    if rho.size > 1:
+        j = np.where(np.abs(rho[j - 1] - load_rolls) < np.abs(rho[j] - load_rolls), j - 1, j)
+    idx = fillet.shape[0] - 1 + j
     return flank, idx
 
 
@@ -270,6 +275,7 @@ class GearSector:
     bore_radius: float
     full: bool
     sizes: tuple[float, ...]  # boundary spacing (m) on tooth |j| = 0, 1, 2, ... (last: the rest, cuts, bore)
+    chord: np.ndarray | None = None  # vertex indices along the loaded tooth's root chord, left to right
 
 
 def _tooth_outline(profile, load_rolls: np.ndarray, h: float) -> tuple[np.ndarray, np.ndarray]:
@@ -291,10 +297,47 @@ def _closed(start: int, n: int) -> np.ndarray:
     return np.column_stack([i, np.roll(i, -1)])
 
 
+def _insert_junctions(outer: np.ndarray, theta_f: float, pitch: float):
+    """Insert into the outline (n, 2) the points of the loaded tooth (polar angle within
+    ±pitch/2 of +y) at polar angles −θ_f and +θ_f (on the outline's segments, or an existing
+    vertex within 1e-9 rad); returns the new outline and the two indices (left, right)."""
+    phi = np.arctan2(outer[:, 0], outer[:, 1])  # from +y towards +x
+    out = outer
+    ends = []
+    for target in (-theta_f, theta_f):
+        phi = np.arctan2(out[:, 0], out[:, 1])
+        hit = np.flatnonzero(np.abs(phi - target) < 1e-9)
+        if hit.size:
+            ends.append(int(hit[0]))
+            continue
+        i = np.flatnonzero((np.abs(phi[:-1]) <= 0.5 * pitch + 1e-12) & ((phi[:-1] - target) * (phi[1:] - target) < 0))
+        if i.size != 1:
+            raise RuntimeError("the root section's ends are not found once on the loaded tooth")
+        i = int(i[0])
+        p, q = out[i], out[i + 1]
+        d = np.array([math.sin(target), math.cos(target)])  # the ray at polar angle target
+        # p + t (q − p) on the ray: cross(d, p + t(q − p)) = 0
+        cr = lambda v: d[0] * v[1] - d[1] * v[0]  # noqa: E731
+        t = cr(p) / (cr(p) - cr(q))
+        out = np.vstack([out[:i + 1], p + t * (q - p), out[i + 1:]])
+        ends.append(i + 1)
+    if ends[0] >= ends[1]:
+        raise RuntimeError("root section ends out of order")
+    return out, ends
+
+
 def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarray, size: float,
-                   neighbours: int | None = DEFAULT_NEIGHBOURS) -> GearSector:
+                   neighbours: int | None = DEFAULT_NEIGHBOURS, ring: bool = False,
+                   root_chord: float | None = None) -> GearSector:
     """Outline of the loaded tooth, ``neighbours`` teeth each side and the rim to the bore;
-    the whole gear when ``neighbours`` is None or the sector would close.
+    the whole gear when ``neighbours`` is None or the sector would close. With ``ring`` the
+    body is the whole ring (no radial cuts) and only the ``neighbours`` teeth each side of
+    the loaded one are kept, the root circle closing the outline over the others (the
+    3-D model's domain, :mod:`gearmesh.fe3d`: far teeth carry no load and stiffen the rim
+    only slightly, measured in docs/validation.md). ``root_chord`` = θ_f (rad): the loaded
+    tooth's root section — the chord between the points at polar angle ±θ_f where its flanks
+    meet the root circle (the transition cantilever's root, Sainsot's S_f) — becomes an
+    inner segment of the mesh (:func:`tooth_body_split`).
 
     ``size`` (m): boundary spacing on the loaded tooth, then :data:`GRADING` times it on
     the teeth next to it (the last factor on all others, the cuts and the bore). The load
@@ -303,6 +346,7 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
     pitch = 2 * math.pi / teeth
     sizes = tuple(size * GRADING[k] for k in range(len(GRADING)))
     full = neighbours is None or 2 * neighbours + 1 >= teeth
+    closed = full or ring
     js = range(-(teeth // 2), teeth - teeth // 2) if full else range(-neighbours, neighbours + 1)
     pieces = []
     for j in js:
@@ -313,8 +357,16 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
         pieces.append(_rotate(tooth if keep_first else tooth[1:], j * pitch))
     outer = np.vstack(pieces)  # over the tips, ending at the right-most root-space middle
     rf = float(np.hypot(*outer[-1]))
-    kb = max(int(math.ceil(2 * math.pi * bore_radius / sizes[-1])), 64)  # the wind-up field grows as 1/r³
-    if full:
+    if root_chord is not None:
+        outer, ends = _insert_junctions(outer, float(root_chord), pitch)
+    if ring and not full:  # the root circle from the right-most root-space middle round to the left-most
+        a0 = (neighbours + 0.5) * pitch
+        ka = max(int(math.ceil(rf * (2 * math.pi - 2 * a0) / sizes[-1])), 8)
+        th = np.linspace(a0, 2 * math.pi - a0, ka + 1)[1:-1]
+        outer = np.vstack([outer, np.column_stack([rf * np.sin(th), rf * np.cos(th)])])
+    # the wind-up field grows as 1/r³ (the 2-D whole gear: at least 64 points; the 3-D ring: 32)
+    kb = max(int(math.ceil(2 * math.pi * bore_radius / sizes[-1])), 32 if ring else 64)
+    if closed:
         th = np.linspace(0, 2 * math.pi, kb + 1)[:-1]
         bore = np.column_stack([bore_radius * np.sin(th), bore_radius * np.cos(th)])
         verts = np.vstack([outer, bore])
@@ -332,6 +384,16 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
         segments = _closed(0, len(verts))
         holes = np.zeros((0, 2))
 
+    chord = None
+    if root_chord is not None:  # inner segment along the chord, spaced like the loaded tooth
+        a, b = verts[ends[0]], verts[ends[1]]
+        kc = max(int(math.ceil(np.hypot(*(b - a)) / sizes[0])), 2)
+        inner = a + np.outer(np.linspace(0.0, 1.0, kc + 1)[1:-1], b - a)
+        first = len(verts)
+        verts = np.vstack([verts, inner])
+        chord = np.concatenate([[ends[0]], np.arange(first, first + len(inner)), [ends[1]]])
+        segments = np.vstack([segments, np.column_stack([chord[:-1], chord[1:]])])
+
     def find(points):
         d = np.hypot(verts[:, None, 0] - points[None, :, 0], verts[:, None, 1] - points[None, :, 1])
         i = np.argmin(d, axis=0)
@@ -340,18 +402,18 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
         return i
 
     return GearSector(vertices=verts, segments=segments, holes=holes, right_loads=find(loads),
-                      left_loads=find(loads * np.array([-1.0, 1.0])), bore_radius=bore_radius, full=full,
-                      sizes=sizes)
+                      left_loads=find(loads * np.array([-1.0, 1.0])), bore_radius=bore_radius, full=closed,
+                      sizes=sizes, chord=chord)
 
 
 def gear_sector(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAULT_SIZE,
-                neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None):
+                neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None, ring: bool = False,
+                root_chord: float | None = None):
     """(profile, sector) of gear ``gear`` (0 pinion, 1 gear): the profile of
     :func:`gearmesh.profile.tooth_profile` and the sector outline with the load rolls (m)
-    as vertices; ``size`` in normal modules; ``bore_radius`` (m) defaults to the pair's."""
+    as vertices; ``size`` in normal modules; ``bore_radius`` (m) defaults to the pair's;
+    ``ring``: the whole ring with ``neighbours`` teeth each side (:func:`sector_outline`)."""
     from .profile import tooth_profile
-    from .stiffness import require_stiffness_data
-
     require_stiffness_data(geom)
     if not size > 0:
         raise GearmeshInputError("size", size, "must be positive (element edge in normal modules)")
@@ -365,7 +427,7 @@ def gear_sector(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAULT
     if np.any(rho < profile.form_roll - 1e-12) or np.any(rho > np.nanmax(profile.roll) + 1e-12):
         raise GearmeshInputError("rho", rho.tolist(), "load rolls must lie on the involute (form point to tip)")
     sector = sector_outline(profile, geom.pair.teeth[gear], r_int, rho, size * geom.pair.normal_module,
-                            None if neighbours is None else int(neighbours))
+                            None if neighbours is None else int(neighbours), ring=ring, root_chord=root_chord)
     return profile, sector
 
 
@@ -407,20 +469,19 @@ class ToothCompliance:
 
 
 def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
-                     neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None) -> ToothCompliance:
+                     neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None,
+                     ring: bool = False) -> ToothCompliance:
     """FE compliance of one tooth of gear ``gear`` under a unit load along the line of action
     at roll lengths ``rho`` (m), on either flank (module docstring for model and read-out).
 
     Parameters: ``plane`` 'strain' or 'stress'; ``size`` element edge on the loaded tooth in
     normal modules; ``neighbours`` teeth modelled on each side (None: the whole gear, no
-    cuts); ``bore_radius`` (m) to
-    override the pair's (rim-thickness studies).
+    cuts); ``bore_radius`` (m) to override the pair's (rim-thickness studies); ``ring``: the
+    whole ring with only ``neighbours`` teeth each side (the domain of :mod:`gearmesh.fe3d`).
     """
-    from .stiffness import contact_point, tooth_model
-
     lame_parameters(1.0, 0.3, plane)  # refuse an unknown plane before meshing
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
-    profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius)
+    profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius, ring)
     model = tooth_model(geom, gear, "transition", profile)
     mat = geom.pair.material
     mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
@@ -448,7 +509,7 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
     u_body = t + np.vstack([-d[1], d[0]]) * omega
     body = np.einsum("ik,ik->k", n_right.T, u_body)
     wind, shift = np.full(m, np.nan), np.full(m, np.nan)
-    if sector.full:  # the body's torsional wind-up: mean rotation of a circle just inside the root circle
+    if sector.full and neighbours is None:  # the body's torsional wind-up: mean rotation of a circle just inside the root circle
         r_ref = model.root_radius - 0.01 * geom.pair.normal_module
         phi = np.linspace(0.0, 2 * math.pi, 721)[:-1]
         ring = r_ref * np.vstack([np.sin(phi), np.cos(phi)])
@@ -457,9 +518,198 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
         wind = omega * np.einsum("ik,ik->k", n_right.T, np.vstack([-c[1], c[0]]))
         shift = np.einsum("ki,ik->k", n_right, d.mean(axis=1))  # n = 1 mode: mean translation
     return ToothCompliance(rho=rho, total=total, body=body, tooth=total - body, total_left=total_left,
-                           wind_up=wind, ring_shift=shift, local=total - wind - shift, wind_up_radius=r_ref if sector.full else math.nan,
-                           load_angle=alpha1, plane=plane, size=float(size), neighbours=-1 if sector.full else int(neighbours),
+                           wind_up=wind, ring_shift=shift, local=total - wind - shift, wind_up_radius=r_ref if sector.full and neighbours is None else math.nan,
+                           load_angle=alpha1, plane=plane, size=float(size), neighbours=-1 if neighbours is None else int(neighbours),
                            n_elements=int(mesh.t.shape[1]), n_dofs=int(solver.basis.N))
+
+
+# --------------------------------------------------------------------------------------
+# Where the compliance sits: tooth on a rigid base, body under a rigid tooth
+# --------------------------------------------------------------------------------------
+
+#: stiffening of the material taken as rigid (E × this): its own compliance becomes 1e-4 of itself
+RIGID = 1.0e4
+
+
+@dataclass(frozen=True, eq=False)
+class ToothBodySplit:
+    """Compliances per unit width (m²/N) at roll lengths ``rho`` (m), all read at C along the
+    line of action (Weber's split) on one mesh (:func:`tooth_body_split`):
+
+    ``total`` the whole gear; ``tooth_rigid_base`` the tooth above its root chord clamped
+    on the chord (the potential-energy cantilever's problem: bending + shear + axial);
+    ``body_rigid_tooth`` the whole gear with that tooth E × :data:`RIGID` (the body alone
+    under the tooth's load: the fillet-foundation problem of Sainsot et al. 2004);
+    ``section_body`` the rigid motion of the root chord carried to C (the split of
+    :func:`tooth_compliance`); ``interaction`` = total − tooth_rigid_base − body_rigid_tooth
+    (the root section does not stay plane: its warping couples tooth and body)."""
+
+    rho: np.ndarray
+    total: np.ndarray
+    tooth_rigid_base: np.ndarray
+    body_rigid_tooth: np.ndarray
+    section_body: np.ndarray
+    interaction: np.ndarray
+    plane: str
+    size: float
+
+
+def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", size: float = DEFAULT_SIZE,
+                     neighbours: int | None = DEFAULT_NEIGHBOURS, body_plane: str | None = None,
+                     ring: bool = False) -> ToothBodySplit:
+    """The FE compliance of one tooth split into an independent tooth problem and body
+    problem on one mesh, whose inner segment is the loaded tooth's root chord y = y_root
+    of the transition cantilever (:class:`ToothBodySplit`): the FE models the potential-
+    energy components are checked against. ``plane`` 'stress' by default: the cantilever
+    and Sainsot's foundation use E and G. ``body_plane``: another plane for the body (the
+    material below the loaded tooth's root chord and the other teeth), e.g. a tooth in
+    plane strain on a body in plane stress; ``ring``: the domain of :mod:`gearmesh.fe3d`."""
+    from skfem import Basis, ElementTriP2, ElementVector, asm
+    from skfem.models.elasticity import linear_elasticity
+
+    lame_parameters(1.0, 0.3, plane)
+    rho = np.atleast_1d(np.asarray(rho, dtype=float))
+    model = tooth_model(geom, gear, "transition")
+    profile, sector = gear_sector(geom, gear, rho, size, neighbours, ring=ring, root_chord=model.theta_f)
+    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
+                       holes=sector.holes)
+    mat = geom.pair.material
+    lam, mu = lame_parameters(mat.youngs_modulus, mat.poisson_ratio, plane)
+    pitch = 2 * math.pi / geom.pair.teeth[gear]
+    chord = sector.vertices[sector.chord]
+    a, b = chord[0], chord[-1]  # on the outline's polyline: y within rounding of y_root
+
+    def above(x):  # signed distance (m) from the chord line, positive towards the tip
+        return ((b[0] - a[0]) * (x[1] - a[1]) - (b[1] - a[1]) * (x[0] - a[0])) / np.hypot(*(b - a))
+
+    mid = mesh.p[:, mesh.t].mean(axis=1)
+    in_tooth = (above(mid) > 0) & (np.abs(np.arctan2(mid[0], mid[1])) < 0.5 * pitch)
+    elem = ElementVector(ElementTriP2())
+    basis = Basis(mesh, elem, intorder=4)
+    form = linear_elasticity(lam, mu)
+    k_tooth = asm(form, Basis(mesh, elem, intorder=4, elements=np.flatnonzero(in_tooth))).tocsr()
+    form_body = form if body_plane is None else linear_elasticity(
+        *lame_parameters(mat.youngs_modulus, mat.poisson_ratio, body_plane))
+    k_body = asm(form_body, Basis(mesh, elem, intorder=4, elements=np.flatnonzero(~in_tooth))).tocsr()
+    bore = basis.get_dofs(lambda x: np.hypot(x[0], x[1]) <= sector.bore_radius * (1 + 1e-9)).all()
+    x_p, y_p, alpha1, _ = contact_point(model, rho)
+    n_right = np.column_stack([-np.cos(alpha1), -np.sin(alpha1)])
+    c = np.vstack([np.zeros(rho.size), y_p - x_p * np.tan(alpha1)])
+    cols = np.arange(rho.size)
+
+    from scipy.sparse.linalg import splu
+
+    def read(k, held):
+        free = np.setdiff1d(np.arange(basis.N), held)
+        lu = splu(k[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+                  options={"SymmetricMode": True})
+        solver = ElasticSolver(basis=basis, free=free, lu=lu)
+        u = solver.solve(point_load_matrix(solver, sector.right_loads, n_right))
+        return np.einsum("ik,ik->k", n_right.T, probe_displacements(solver, u, c)[:, cols, cols]), solver, u
+
+    total, solver, u = read(k_tooth + k_body, bore)
+    body, _, _ = read(k_body + RIGID * k_tooth, bore)
+    # the tooth alone: every dof off the tooth's elements, and the dofs on its root chord, held
+    on_chord = basis.get_dofs(lambda x: (np.abs(above(x)) < 1e-9 * model.root_radius)
+                              & (x[0] >= min(a[0], b[0]) - 1e-12) & (x[0] <= max(a[0], b[0]) + 1e-12)).all()
+    held = np.union1d(np.setdiff1d(np.arange(basis.N), np.unique(basis.element_dofs[:, in_tooth])), on_chord)
+    tooth, _, _ = read(k_tooth, held)
+    t, omega = section_rigid_motion(solver, u, a, b)
+    d = c - (0.5 * (a + b))[:, None]
+    section = np.einsum("ik,ik->k", n_right.T, t + np.vstack([-d[1], d[0]]) * omega)
+    return ToothBodySplit(rho=rho, total=total, tooth_rigid_base=tooth, body_rigid_tooth=body, section_body=section,
+                          interaction=total - tooth - body, plane=plane, size=float(size))
+
+
+@dataclass(frozen=True, eq=False)
+class ContactApproach:
+    """One tooth under a Hertzian pressure strip of half-width ``half_width`` (m) centred on
+    the contact point of roll ``rho`` (m), unit resultant per unit width along the line of
+    action, in ``plane``: ``at_c`` n·u(C) (m²/N, the tooth deflection of Weber's split),
+    ``point_at_c`` the same for the point load of :func:`tooth_compliance` (same mesh),
+    ``approach`` n·(u(P) − u(C)) (m²/N, the local contact part: P's approach to C),
+    ``weber`` Weber's closed form of that approach (:func:`weber_approach`), ``depth`` |PC| (m)."""
+
+    rho: float
+    half_width: float
+    at_c: float
+    point_at_c: float
+    approach: float
+    weber: float
+    depth: float
+    plane: str
+
+
+def weber_approach(depth, half_width, youngs_modulus: float, poisson_ratio: float, plane: str = "strain"):
+    """Approach (m²/N, per unit load per unit width) of the surface point under the middle of
+    a Hertzian strip of half-width a towards the point at ``depth`` d below it on the load
+    line, the half-plane solution Weber (1949) used for the local part of a tooth's
+    deflection: plane strain (2(1−ν²)/(πE))·[ln(2d/a) − ν/(2(1−ν))], plane stress
+    (2/(πE))·[ln(2d/a) − ν/2]. Derivation: ∫₀ᵈ ε_z dz on the axis of the strip with
+    Johnson's (Contact Mechanics, 1985, eq. 2.40/5.?) subsurface stresses σ_z = −p₀a/√(a²+z²),
+    σ_x = −p₀[(a² + 2z²)/√(a²+z²) − 2z]/a, whose integrals are −p₀a·asinh(d/a) and
+    −p₀·d(√(a²+d²) − d)/a → −p₀a·ln(2d/a) and −p₀a/2 for d ≫ a; p₀a = 2/π per unit load."""
+    d = np.asarray(depth, dtype=float)
+    a = np.asarray(half_width, dtype=float)
+    e, nu = float(youngs_modulus), float(poisson_ratio)
+    lam = np.arcsinh(d / a)  # exact integral of σ_z along the axis, = ln(2d/a) + O((a/d)²)
+    sx = d * (np.sqrt(a * a + d * d) - d) / (a * a)  # exact integral of σ_x / (p₀a), → 1/2
+    if plane == "strain":
+        return 2.0 / (math.pi * e) * ((1 - nu**2) * lam - nu * (1 + nu) * sx)
+    lame_parameters(1.0, 0.3, plane)
+    return 2.0 / (math.pi * e) * (lam - nu * sx)
+
+
+def contact_approach(geom: PairGeometry, gear: int, rho: float, half_width: float, plane: str = "strain",
+                     size: float = DEFAULT_SIZE, neighbours: int | None = DEFAULT_NEIGHBOURS,
+                     points: int = 12) -> ContactApproach:
+    """The FE tooth under a Hertzian strip against the point load and against Weber's closed
+    form (:class:`ContactApproach`). The flank carries vertices every a/``points`` of arc
+    length over ±1.5 a around P (the involute's arc length from the base circle is
+    ρ²/(2 r_b)); the pressure p(s) = (2/(πa))·√(1 − s²/a²) acts on them along each
+    vertex's own line of action, lumped by the trapezoidal rule and scaled to a unit
+    resultant."""
+    model = tooth_model(geom, gear, "transition")
+    rb = model.base_radius
+    s_p = rho**2 / (2 * rb)
+    ds = half_width / points
+    k = np.arange(-int(1.5 * points), int(1.5 * points) + 1)
+    rolls = np.sqrt(2 * rb * (s_p + k * ds))
+    lo, hi = geom.rho_sap[gear], float(np.nanmax(tooth_profile_rolls(geom, gear)))
+    keep = (rolls >= max(lo, 0.0)) & (rolls <= hi)
+    rolls, k = rolls[keep], k[keep]
+    profile, sector = gear_sector(geom, gear, rolls, size, neighbours)
+    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
+                       holes=sector.holes)
+    mat = geom.pair.material
+    solver = elastic_solver(mesh, mat.youngs_modulus, mat.poisson_ratio, plane,
+                            clamped=lambda x: np.hypot(x[0], x[1]) <= sector.bore_radius * (1 + 1e-9))
+    x_p, y_p, a1, _ = contact_point(model, rolls)
+    n = np.column_stack([-np.cos(a1), -np.sin(a1)])
+    s = k * ds
+    inside = np.abs(s) < half_width
+    p = np.where(inside, np.sqrt(np.clip(1 - (s / half_width) ** 2, 0, None)), 0.0)
+    p /= p.sum()
+    centre = int(np.flatnonzero(k == 0)[0])
+    strip = point_load_matrix(solver, sector.right_loads, n * p[:, None]).sum(axis=1)
+    point = point_load_matrix(solver, sector.right_loads[[centre]], n[[centre]])[:, 0]
+    u = solver.solve(np.column_stack([strip, point]))
+    nc = n[centre]
+    c = np.array([[0.0], [y_p[centre] - x_p[centre] * math.tan(a1[centre])]])
+    uc = probe_displacements(solver, u, c)[:, 0, :]  # (2, 2 cases)
+    up = u[solver.basis.nodal_dofs[:, sector.right_loads[centre]], 0]
+    depth = float(np.hypot(x_p[centre] - c[0, 0], y_p[centre] - c[1, 0]))
+    return ContactApproach(rho=float(rho), half_width=float(half_width), at_c=float(nc @ uc[:, 0]),
+                           point_at_c=float(nc @ uc[:, 1]), approach=float(nc @ (up - uc[:, 0])),
+                           weber=float(weber_approach(depth, half_width, mat.youngs_modulus, mat.poisson_ratio, plane)),
+                           depth=depth, plane=plane)
+
+
+def tooth_profile_rolls(geom: PairGeometry, gear: int) -> np.ndarray:
+    """Roll lengths (m) of the involute of :func:`gearmesh.profile.tooth_profile` (NaN off it)."""
+    from .profile import tooth_profile
+
+    return tooth_profile(geom, gear, n_fillet=400, n_involute=50).roll
 
 
 # --------------------------------------------------------------------------------------
@@ -539,7 +789,7 @@ def use_fe_tables(ds, geom: PairGeometry) -> None:
 def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAULT_ROLL_NODES,
                               plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
                               neighbours: int | None = DEFAULT_NEIGHBOURS, profile=None):
-    """The :class:`gearmesh.stiffness.SliceComplianceTable` of ``method='fe'`` (the same
+    """The :class:`gearmesh.tooth.SliceComplianceTable` of ``method='fe'`` (the same
     object the potential-energy methods build, so the stiffness stage, the LTCA, the impact
     and the dynamics use it unchanged).
 
@@ -547,13 +797,19 @@ def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAU
     continuum), 'fillet' the body part (root-section rigid motion), 'shear' and 'axial'
     zero (module docstring); cubic splines over ``n_roll`` FE roll positions.
     """
-    from .stiffness import SliceComplianceTable, tooth_model
-
     res = fe_tooth_compliance_cached(geom, gear, n_roll, plane, size, neighbours)
-    zero = np.zeros_like(res.rho)
-    values = {"bending": res.tooth, "shear": zero, "axial": zero.copy(), "fillet": res.body}
+    return compliance_table(geom, gear, res.rho, res.tooth, res.body, res.load_angle, profile)
+
+
+def compliance_table(geom: PairGeometry, gear: int, rho: np.ndarray, tooth: np.ndarray, body: np.ndarray,
+                     load_angle: np.ndarray, profile=None):
+    """A :class:`gearmesh.tooth.SliceComplianceTable` (method 'fe') of a tooth compliance
+    per unit width (m²/N) given at roll lengths ``rho`` (m): ``tooth`` as 'bending', ``body``
+    as 'fillet', 'shear' and 'axial' zero; cubic splines."""
     from scipy.interpolate import CubicSpline
 
-    splines = {k: CubicSpline(res.rho, v) for k, v in values.items()}
+    zero = np.zeros_like(rho)
+    values = {"bending": np.asarray(tooth, float), "shear": zero, "axial": zero.copy(), "fillet": np.asarray(body, float)}
+    splines = {k: CubicSpline(rho, v) for k, v in values.items()}
     return SliceComplianceTable(gear=gear, method="fe", model=tooth_model(geom, gear, "transition", profile),
-                                rho=res.rho, values=values, load_angle=res.load_angle, _splines=splines)
+                                rho=rho, values=values, load_angle=load_angle, _splines=splines)

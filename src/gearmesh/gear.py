@@ -20,13 +20,9 @@ import numpy as np
 import yaml
 
 from .errors import GearmeshInputError
+from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
 
 GEARS = ("pinion", "gear")
-
-
-def involute(alpha: np.ndarray | float) -> np.ndarray | float:
-    """Involute function inv(α) = tan α − α (ISO 21771 eq. 18), α in rad."""
-    return np.tan(alpha) - alpha
 
 
 def inverse_involute(value: float) -> float:
@@ -202,10 +198,24 @@ def _teeth(value: Any) -> tuple[int, int]:
     for i, z in enumerate(value):
         if isinstance(z, bool) or not isinstance(z, int):
             raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer")
-        if z < 5:
-            raise GearmeshInputError(f"teeth[{i}]", z, "must be at least 5 (external gears)")
+        check_teeth(f"teeth[{i}]", z)
         out.append(z)
     return (out[0], out[1])
+
+
+#: Most teeth of a gear: the scope of ISO 1328-1:2013 (5 <= z <= 1000), the flank tolerance
+#: system the package uses (:mod:`gearmesh.tolerance`); larger tooth counts are not made as
+#: cylindrical gears, and the roll lengths of the contact models lose their precision in
+#: double arithmetic long before z reaches 10⁹.
+MAX_TEETH = 1000
+
+
+def check_teeth(field_name: str, z: int) -> None:
+    """Refuse a tooth count outside [5, :data:`MAX_TEETH`] (compared as integers: no overflow)."""
+    if z < 5:
+        raise GearmeshInputError(field_name, z, "must be at least 5 (external gears)")
+    if z > MAX_TEETH:
+        raise GearmeshInputError(field_name, z, f"must be at most {MAX_TEETH} (ISO 1328-1 scope)")
 
 
 def _pair_name(given: Any, default_name: str | None) -> str:
@@ -420,8 +430,9 @@ def validate_pair(pair: GearPair) -> None:
     designs); field names are the pair-file keys. The ranges are :data:`MODULE_RANGE`,
     :data:`MIN_FACE_WIDTH_TO_MODULE` and :data:`MAX_FACE_WIDTH_TO_DIAMETER`."""
     for i, z in enumerate(pair.teeth):
-        if isinstance(z, bool) or not isinstance(z, (int, np.integer)) or z < 5:
-            raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer of at least 5 (external gears)")
+        if isinstance(z, bool) or not isinstance(z, (int, np.integer)):
+            raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer")
+        check_teeth(f"teeth[{i}]", z)
     mn, (m_lo, m_hi) = pair.normal_module, MODULE_RANGE
     checks = [
         ("normal_module_mm", mn * 1e3, m_lo <= mn <= m_hi,
@@ -965,9 +976,9 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     rho_a = np.sqrt(ra**2 - rb**2)
     line_of_action = a * math.sin(alpha_wt)  # T1T2
     rho_sap = line_of_action - rho_a[::-1]
-    from .profile import form_point  # the generated fillet lives there; profile imports gear
-
-    rho_form, undercut = (np.array(v) for v in zip(*(form_point(pair, i, shift[i]) for i in range(2))))
+    racks = [rack_from(z[i], mn, an, beta, pair.dedendum_coefficient[i] * mn, tool_tip_radius(pair, i), shift[i])
+             for i in range(2)]
+    rho_form, undercut = (np.array(v) for v in zip(*(form_roll(rack) for rack in racks)))
     r_form = np.sqrt(rb**2 + rho_form**2)
     for i in range(2):
         other = 1 - i

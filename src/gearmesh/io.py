@@ -2,23 +2,35 @@
 
 Every variable must carry ``units`` and ``long_name``; :func:`write_dataset` refuses a
 dataset that does not, so no stage can write an undocumented number.
+
+Every output is written to a temporary file beside it and renamed (:func:`atomic_output`): a
+full disk is named as such; inside a workflow job (:func:`job_outputs`) a job whose Snakemake
+is gone, or whose output another process wrote meanwhile, renames nothing. The temporaries of
+killed writers are removed on the next run's start when no live process writes them
+(:func:`remove_stale_temporaries`), and a study's output folders are checked up front
+(:func:`check_output_tree`). What a stage reads is checked in :mod:`gearmesh.upstream`.
 """
 
 from __future__ import annotations
 
+import errno
 import hashlib
 import json
+import math
 import os
 import re
+import socket
+import time
 from contextlib import contextmanager
 from functools import lru_cache
 from pathlib import Path
-from typing import Any, Iterator, Mapping
+from typing import Any, Callable, Iterator, Mapping
 
 import numpy as np
 import xarray as xr
 
 from . import __version__
+from .errors import GearmeshInputError
 
 
 def config_digest(config: Mapping[str, Any]) -> tuple[str, str]:
@@ -42,36 +54,221 @@ def variable(dims, data, units: str, long_name: str, **attrs) -> xr.Variable:
     return xr.Variable(dims, np.asarray(data), attrs={"units": units, "long_name": long_name, **attrs})
 
 
-#: Name of a temporary file of :func:`atomic_output`: ``.NAME.PID.tmp.SUFFIX`` beside the target.
-TEMPORARY_NAME = re.compile(r"\..+\.\d+\.tmp(\.[A-Za-z0-9]+)?")
+#: Name of a temporary file of :func:`atomic_output`: ``.NAME.HOST.PID.tmp.SUFFIX`` beside the
+#: target, HOST the writer's host name (up to its first dot; not all digits), PID its process id;
+#: without HOST, a temporary of an earlier gearmesh (removed only by age).
+TEMPORARY_NAME = re.compile(r"\.(?P<stem>.+?)(?:\.(?P<host>[A-Za-z0-9-]*[A-Za-z-][A-Za-z0-9-]*))?\.(?P<pid>\d+)"
+                            r"\.tmp(?P<suffix>\.[A-Za-z0-9]+)?")
+#: Age (s) beyond which a temporary file of another host counts as stale: nothing writes one
+#: file for a day (the SLURM profile gives a job at most an hour; a write takes seconds).
+STALE_AGE = 24 * 3600.0
+#: Free space (bytes) below which a failed write is reported as a full disk (the netCDF library
+#: says only "NetCDF: HDF error" when the disk fills).
+FULL_DISK_BYTES = 1 << 20
+
+
+class OutputError(OSError):
+    """An output that could not be written, or was not written on purpose: the message is the
+    one line ``PATH = 'not written': WHY; WHAT TO DO``."""
+
+
+def host_name() -> str:
+    """This host's name as it appears in temporary file names (letters, digits, '-')."""
+    name = re.sub(r"[^A-Za-z0-9-]", "-", socket.gethostname().split(".")[0])
+    return name if re.search(r"[A-Za-z-]", name) else f"h{name}"
+
+
+def temporary_path(path: str | Path) -> Path:
+    """The temporary file of ``path`` for this process: ``.NAME.HOST.PID.tmp.SUFFIX`` beside it."""
+    path = Path(path)
+    return path.with_name(f".{path.stem}.{host_name()}.{os.getpid()}.tmp{path.suffix}")
+
+
+#: The check a workflow job makes before each rename (:func:`job_outputs`); None outside a job.
+_before_rename: Callable[[Path], None] | None = None
 
 
 @contextmanager
 def atomic_output(path: str | Path) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it to ``path`` only if the block succeeds,
     so no partial file ever carries the final name (docs/architecture.md). A process killed outright
-    (SIGKILL skips the cleanup) leaves the temporary file: :func:`remove_stale_temporaries`."""
+    (SIGKILL skips the cleanup) leaves the temporary file: :func:`remove_stale_temporaries`.
+    A write that fails on a full disk raises :class:`OutputError` naming ``path``; inside a
+    workflow job (:func:`job_outputs`) the rename waits on the job's check."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
-    tmp = path.with_name(f".{path.stem}.{os.getpid()}.tmp{path.suffix}")
+    tmp = temporary_path(path)
     try:
         yield tmp
+        if _before_rename is not None:
+            _before_rename(path)
         os.replace(tmp, path)
+    except Exception as exc:
+        if not isinstance(exc, OutputError) and disk_full(exc, path.parent):
+            raise OutputError(f"{path} = 'not written': the disk is full ({_reason(exc)}; "
+                              f"{_free_bytes(path.parent) / 1e6:.3g} MB free there); free space and rerun") from exc
+        raise
     finally:
         if tmp.exists():
             tmp.unlink()
 
 
-def remove_stale_temporaries(root: str | Path) -> list[Path]:
-    """Delete every temporary file of :func:`atomic_output` under ``root`` (the debris of
-    killed writers) and return their paths. Only safe while nothing writes under ``root``:
-    the workflow calls it on start, before any job, under Snakemake's directory lock."""
+@contextmanager
+def job_outputs() -> Iterator[None]:
+    """Inside a workflow job: before each rename of :func:`atomic_output`, refuse
+    (:class:`OutputError`, the temporary discarded, the target untouched) when
+
+    * the Snakemake process that started the job is gone (killed with ``kill -9``: its jobs go on
+      as orphans, and a recovery run may already be remaking the same files), or
+    * the target exists: Snakemake removes a job's outputs before the job starts
+      (``snakemake.jobs.Job.prepare``), so another process wrote it meanwhile, a job of a newer
+      run or an orphan of an older one; the older writer must not clobber it, the newer one fails
+      (Snakemake then removes the file) and the next run remakes it.
+
+    A cluster job's controller runs on another host: there only the second check applies."""
+    global _before_rename
+    controller = controller_process()
+
+    def check(path: Path) -> None:
+        if controller is not None and not _running(*controller):
+            raise OutputError(f"{path} = 'not written': the Snakemake run that started this job is gone (killed?); "
+                              "run snakemake --unlock, then rerun with --rerun-incomplete")
+        if os.path.lexists(path):
+            raise OutputError(f"{path} = 'not written': another process wrote it while this job ran (a job of a "
+                              "killed run?); this job's result is discarded: rerun to remake it")
+
+    previous, _before_rename = _before_rename, check
+    try:
+        yield
+    finally:
+        _before_rename = previous
+
+
+def controller_process() -> tuple[int, float] | None:
+    """(pid, start time) of the nearest ancestor that is a Snakemake process (``.../snakemake``
+    or ``python -m snakemake``), or None (no such ancestor, or no psutil)."""
+    try:
+        import psutil  # a Snakemake dependency
+    except ImportError:  # pragma: no cover
+        return None
+    try:
+        for proc in psutil.Process().parents():
+            args = proc.cmdline()
+            if any(Path(a).name == "snakemake" for a in args[:2]) or args[1:3] == ["-m", "snakemake"]:
+                return proc.pid, proc.create_time()
+    except psutil.Error:
+        return None
+    return None
+
+
+def _running(pid: int, started: float) -> bool:
+    """Whether process ``pid`` still runs and is the one that started at ``started`` (not a reuse)."""
+    import psutil
+
+    try:
+        return psutil.Process(pid).create_time() == started
+    except psutil.Error:
+        return False
+
+
+def _space_errno(exc: BaseException) -> int | None:
+    """ENOSPC or EDQUOT when ``exc`` or an exception that caused it is one, else None."""
+    seen: BaseException | None = exc
+    while seen is not None:
+        if isinstance(seen, OSError) and seen.errno in (errno.ENOSPC, errno.EDQUOT):
+            return seen.errno
+        seen = seen.__cause__ or seen.__context__
+    return None
+
+
+def disk_full(exc: BaseException, folder: Path) -> bool:
+    """Whether ``exc`` (or what caused it) is a full disk or quota (ENOSPC, EDQUOT), or a library
+    error on a file system with less than :data:`FULL_DISK_BYTES` left."""
+    if _space_errno(exc) is not None:
+        return True
+    return isinstance(exc, (OSError, RuntimeError)) and _free_bytes(folder) < FULL_DISK_BYTES
+
+
+def _free_bytes(folder: Path) -> float:
+    """Bytes an unprivileged process can still write on ``folder``'s file system (inf if unknown)."""
+    try:
+        st = os.statvfs(folder)
+    except (OSError, AttributeError):
+        return math.inf
+    return float(st.f_bavail * st.f_frsize)
+
+
+def _reason(exc: BaseException) -> str:
+    """The failed write's cause in a few words (the system's text for ENOSPC/EDQUOT)."""
+    code = _space_errno(exc)
+    return os.strerror(code) if code is not None else " ".join(str(exc).split())[:80] or type(exc).__name__
+
+
+def writer_alive(pid: int) -> bool:
+    """Whether process ``pid`` of this host exists (a process of another user counts)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        return True
+    return True
+
+
+def remove_stale_temporaries(root: str | Path, now: float | None = None) -> list[Path]:
+    """Delete the temporary files of :func:`atomic_output` under ``root`` that no live process
+    writes, and return their paths: those of this host whose writer (its PID) is gone, and those
+    of any host untouched for :data:`STALE_AGE`. A temporary of a live writer stays, so two runs
+    in one checkout (different studies, or a run beside a job of a killed one) do not delete each
+    other's files in flight; the workflow calls it on start."""
     root = Path(root)
-    stale = [p for p in root.rglob(".*.tmp*") if p.is_file() and TEMPORARY_NAME.fullmatch(p.name)] \
-        if root.is_dir() else []
-    for p in stale:
-        p.unlink(missing_ok=True)
+    now = time.time() if now is None else now
+    host = host_name()
+    stale = []
+    for p in (root.rglob(".*.tmp*") if root.is_dir() else ()):
+        match = TEMPORARY_NAME.fullmatch(p.name)
+        try:
+            if not match or not p.is_file():
+                continue
+            if match["host"] == host and not writer_alive(int(match["pid"])) or now - p.stat().st_mtime > STALE_AGE:
+                p.unlink()
+                stale.append(p)
+        except FileNotFoundError:  # renamed or removed by its writer meanwhile
+            continue
     return stale
+
+
+def study_folders(config: Mapping[str, Any]) -> list[Path]:
+    """The folders a study's jobs write into (relative to the working directory): results and
+    logs of the study, of each pair, of each micro-geometry variant and optimisation run, and
+    their ``plots`` folders."""
+    study = str(config["study"])
+    leaves = [Path("results", study, "plots"), Path("logs", study)]
+    for pair in config.get("pairs", []):
+        base = Path(str(pair))
+        leaves += [Path("results", study, base, "plots"), Path("logs", study, base, "optimise")]
+        for variant in config.get("variants") or {}:
+            leaves += [Path("results", study, base, str(variant), "plots"), Path("logs", study, base, str(variant))]
+        for run in config.get("optimise") or {}:
+            leaves.append(Path("results", study, base, "optimise", str(run), "plots"))
+    return leaves
+
+
+def check_output_tree(folders, root: str | Path = ".") -> None:
+    """Refuse (GearmeshInputError) when a folder of ``folders``, or one above it, exists under
+    ``root`` as something other than a folder (a file, a dangling link): the jobs could not
+    write there, and Snakemake would stop mid-run with a traceback."""
+    root, seen = Path(root), set()
+    for folder in folders:
+        for part in reversed([folder, *folder.parents][:-1]):  # from the top, without '.'
+            if part in seen:
+                continue
+            seen.add(part)
+            path = root / part
+            if os.path.lexists(path) and not path.is_dir():
+                kind = "a link to nothing" if path.is_symlink() and not path.exists() else "a file"
+                raise GearmeshInputError(str(part), kind, "must be a folder: the study writes its results under "
+                                         "it; move or delete it")
 
 
 @lru_cache(maxsize=1)

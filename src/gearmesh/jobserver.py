@@ -171,10 +171,12 @@ def stop() -> None:
 
 def rule_modules(rules: Iterable[Any]) -> list[str]:
     """The gearmesh modules named by the rules' ``params.function`` and ``params.figures``
-    ("package.module:function@digest"), and the pipeline: what the server imports."""
+    ("package.module:function@digest", or a param function carrying it as ``.spec``), and the
+    pipeline: what the server imports."""
     modules = {"gearmesh.pipeline"}
     for rule in rules:
         for value in getattr(rule, "params", None) or []:
+            value = getattr(value, "spec", value)
             if isinstance(value, str) and value.startswith("gearmesh.") and ":" in value:
                 modules.add(value.partition(":")[0])
     return sorted(modules)

@@ -1,14 +1,19 @@
-"""Validity of loads and work sizes, checked before any computation (GearmeshInputError).
+"""Validity of loads, speeds and work sizes, checked before any computation (GearmeshInputError).
 
-Geometric ranges (module, face width, modification depths, names) live beside the pair
-data in :mod:`gearmesh.gear`; here are the limits that need a pair's geometry and a load,
-or a stage's grid: the nominal contact stress and deflection of a torque, and the size of
-the grids and sweeps a stage would allocate. Each limit says where it comes from.
+Geometric ranges (module, face width, teeth, modification depths, names) live beside the pair
+data in :mod:`gearmesh.gear`; here are the limits that need a pair's geometry and a load, a
+speed or a stage's grid: the nominal contact stress and deflection of a torque, the rim speed
+of a rotational speed, and the size of the grids and sweeps a stage would allocate. Each limit
+says where it comes from. The functions that compute (``gearmesh.datasets.*``) call these
+checks at their entry, so the Python API, the command line and the workflow refuse the same
+values with the same one line, in bounded time and memory.
 """
 
 from __future__ import annotations
 
 import math
+
+import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import PairGeometry
@@ -33,6 +38,20 @@ MAX_STIFFNESS_POINTS = 4_000_000
 #: Most position × point candidates of one TCA/LTCA torque: measured about 1 kB per candidate
 #: (2000 positions × 50 points: 0.2 GB), so 1e6 stay under about 1 GB.
 MAX_CONTACT_POINTS = 1_000_000
+#: Highest centrifugal hoop stress ρ·v_a² (Pa) at the tip circle accepted: the ultimate tensile
+#: strength of maraging steel 18Ni(300), about 2.0 GPa (ASM Handbook vol. 1, 1990), above that
+#: of any carburising or through-hardening gear steel (EN 10084 18CrNiMo7-6 core: 1.08–1.32 GPa).
+#: ρv² is the hoop stress of a thin ring rotating at rim speed v (Timoshenko & Goodier, Theory
+#: of Elasticity, §32); a solid or webbed body of that rim speed carries at most (3 + ν)/4 of it
+#: at a small bore, a thin rim loaded by its teeth more. Steel (7850 kg/m³) reaches it at a tip
+#: speed of about 505 m/s, well above the pitch-line velocities of high-speed turbo gear units
+#: (of the order of 100–200 m/s): beyond, the gear bursts, and no model here has centrifugal
+#: loads or rim growth, or teeth that are not quasi-static (the ratio of the mesh frequency to a
+#: tooth's first natural frequency grows as the pitch-line velocity over the speed of sound).
+MAX_RIM_STRESS = 2.0e9
+#: Density (kg/m³) of steel, for a pair without a material (as :data:`ISO6336_STEEL_MODULUS`).
+STEEL_DENSITY = 7850.0
+
 #: Most helix angles of a sweep: each is a full pair geometry and contact-line run (about
 #: 10 ms); the seeds use fewer than 100.
 MAX_SWEEP_ANGLES = 2000
@@ -85,8 +104,68 @@ def check_load(geom: PairGeometry, pinion_torque: float, field: str, value: obje
                                  f"module ({limit * 1e6:.4g} µm): outside the linear models")
 
 
+def check_loads(geom: PairGeometry, pinion_torques, field: str, given) -> None:
+    """:func:`check_load` on each of ``pinion_torques`` (N m); ``given`` the values as the user
+    gave them (same order), named ``field[k]`` when there are several."""
+    values = np.ravel(given).tolist()
+    for k, (t1, value) in enumerate(zip(np.ravel(pinion_torques), values)):
+        check_load(geom, float(t1), f"{field}[{k}]" if len(values) > 1 else field, value)
+
+
+def max_speed_rpm(geom: PairGeometry, on: str = "pinion") -> float:
+    """Highest speed (rpm) of the ``on`` gear ('pinion' or 'gear') at which the faster tip circle
+    stays within :data:`MAX_RIM_STRESS`: ρ (ω_g r_a,g)² ≤ σ_max for both gears, ω2 = ω1 z1/z2."""
+    pair = geom.pair
+    density = pair.material.density if pair.material else STEEL_DENSITY
+    v_max = math.sqrt(MAX_RIM_STRESS / density)
+    z1, z2 = pair.teeth
+    ratio_to_pinion = 1.0 if on == "pinion" else z2 / z1  # ω1 = ω_on × ratio
+    omega1 = min(v_max / float(geom.tip_radius[0]), v_max / float(geom.tip_radius[1]) * z2 / z1)
+    return omega1 / ratio_to_pinion * 30.0 / math.pi
+
+
+def check_speeds(geom: PairGeometry, speeds_rpm, field: str, on: str = "pinion") -> None:
+    """Refuse any speed (rpm of the ``on`` gear) above :func:`max_speed_rpm`: the centrifugal
+    hoop stress of the faster tip circle would exceed :data:`MAX_RIM_STRESS`. ``speeds_rpm``
+    are numbers already checked finite and positive; the advice is to lower the speed."""
+    limit = max_speed_rpm(geom, on)
+    values = np.ravel(np.asarray(speeds_rpm, dtype=float))
+    if values.size and values.max() > limit:
+        k = int(np.argmax(values))
+        pair = geom.pair
+        pitch = float(values[k]) * math.pi / 30 * float(geom.reference_radius[0 if on == "pinion" else 1])
+        raise GearmeshInputError(f"{field}[{k}]" if values.size > 1 else field, float(values[k]),
+                                 f"rpm of the {on} of {pair.name} is a pitch-line velocity of {pitch:.4g} m/s; at "
+                                 f"most {limit:.5g} rpm, where the centrifugal hoop stress rho v^2 of the tip circle "
+                                 f"reaches {MAX_RIM_STRESS / 1e9:g} GPa, the strength of the strongest steels "
+                                 "(gearmesh.limits.MAX_RIM_STRESS): lower the speed")
+
+
 def check_grid(field: str, value: object, points: int, limit: int, what: str) -> None:
     """Refuse a stage grid of ``points`` (e.g. slices × positions) above ``limit``."""
     if points > limit:
         raise GearmeshInputError(field, value, f"gives {points:.3g} {what}; at most {limit:.3g} "
                                  "(memory, see gearmesh.limits)")
+
+
+def _count(field: str, value) -> int:
+    """``value`` as an integer >= 1 (a grid size), refused naming ``field`` otherwise."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
+        raise GearmeshInputError(field, value, "must be an integer >= 1")
+    return int(value)
+
+
+def check_slice_grid(slices, positions) -> tuple[int, int]:
+    """``slices`` and ``positions`` of a slice-model run as integers, refused when their product
+    exceeds :data:`MAX_STIFFNESS_POINTS`."""
+    slices, positions = _count("slices", slices), _count("positions", positions)
+    check_grid("slices", slices, slices * positions, MAX_STIFFNESS_POINTS, "slice-positions")
+    return slices, positions
+
+
+def check_contact_grid(positions, points) -> tuple[int, int]:
+    """``positions`` and ``points`` of a TCA/LTCA as integers, refused when the (positions + 1) ×
+    points candidates per contact line exceed :data:`MAX_CONTACT_POINTS`."""
+    positions, points = _count("positions", positions), _count("points", points)
+    check_grid("points", points, (positions + 1) * points, MAX_CONTACT_POINTS, "contact candidates per line")
+    return positions, points

@@ -68,6 +68,7 @@ import numpy as np
 from .contact import mesh_cycle_rolls
 from .errors import GearmeshInputError
 from .gear import PairGeometry, pinion_torque
+from .limits import check_loads
 from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
                         pair_slice_table, require_stiffness_data, slice_compliance_table)
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
@@ -509,6 +510,17 @@ def check_torques(torques, field: str = "torques_Nm") -> np.ndarray:
 def pinion_torques(geom: PairGeometry, torques, on: str = "pinion", field: str = "torques_Nm") -> np.ndarray:
     """Pinion torques T1 (N·m): as given, or from gear torques T2 by T1 = T2·z1/z2."""
     return pinion_torque(geom.pair, check_torques(torques, field), on)
+
+
+def loaded_pinion_torques(geom: PairGeometry, torques, on: str = "pinion",
+                          field: str = "torques_Nm") -> tuple[np.ndarray, np.ndarray]:
+    """The torques as given and as pinion torques T1 (N·m), each refused (GearmeshInputError
+    naming ``field``) above the contact-stress and deflection limits of
+    :func:`gearmesh.limits.check_load`: the entry check of every stage that loads the mesh."""
+    given = check_torques(torques, field)
+    t1 = pinion_torque(geom.pair, given, on)
+    check_loads(geom, t1, field, given)
+    return given, t1
 
 
 # --------------------------------------------------------------------------------------

@@ -25,8 +25,9 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
-from .io import add_provenance, atomic_output, read_dataset, write_dataset
+from .io import add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
 from .tables import write_csv
+from .upstream import Expected, identify, read_input
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
@@ -88,13 +89,15 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
     log_path.parent.mkdir(parents=True, exist_ok=True)
     logging.basicConfig(filename=log_path, level=logging.INFO, filemode="w",
                         format="%(asctime)s %(levelname)s %(message)s", force=True)
+    logging.raiseExceptions = False  # a log that cannot be written (full disk) must not bury the error line
     try:
         for name in ("function", "figures"):  # imports are start-up, not work
             if getattr(smk.params, name, None):
                 resolve(getattr(smk.params, name))
         age, cpu = _process_age(), _cpu_seconds()
         start = time.perf_counter()
-        figures = body(smk)
+        with job_outputs():  # an orphan of a killed run, or a clobbered output, writes nothing
+            figures = body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
         logging.exception("job failed")
         print(f"gearmesh: error: {exc}", file=sys.stderr)
@@ -109,6 +112,11 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
 
 def _title(smk: Any) -> str:
     return f"gearmesh {smk.rule}"
+
+
+def _expected(smk: Any, pair: GearPair | None = None) -> Expected:
+    """What this job expects of the files it reads (:mod:`gearmesh.upstream`)."""
+    return Expected(smk.config, pair, getattr(smk.wildcards, "variant", None))
 
 
 def _outputs(smk: Any, suffix: str) -> dict[str, str]:
@@ -130,8 +138,10 @@ def _draw(smk: Any, inputs: dict[str, Any]) -> float:
 
 
 def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
-    """The dataset to the job's netCDF output (provenance attached), and to its CSV output if any."""
+    """The dataset to the job's netCDF output (provenance and what it is attached), and to its
+    CSV output if any."""
     (nc,) = _outputs(smk, ".nc").values()
+    identify(ds, nc, smk.rule, smk.wildcards)
     finish(ds, nc, smk.config, pair, _title(smk))
     for csv in _outputs(smk, ".csv").values():
         with atomic_output(csv) as tmp:
@@ -149,10 +159,11 @@ def _job_pair(smk: Any) -> GearPair:
 def _pair_stage(smk: Any, then: Callable[[GearPair, xr.Dataset], None] | None = None) -> None:
     """A stage of one pair: ``function(pair, **settings, **upstream datasets)`` -> Dataset,
     written, then ``then(pair, dataset)``, then the figures drawn from it. Named inputs other
-    than ``pair`` are netCDF files of upstream stages, read and passed by name."""
+    than ``pair`` are netCDF files of upstream stages, read, checked for this job's pair
+    (:mod:`gearmesh.upstream`) and passed by name."""
     def body(smk: Any) -> float:
         pair = _job_pair(smk)
-        upstream = {k: read_dataset(v) for k, v in smk.input.items() if k != "pair"}
+        upstream = _read_inputs(smk, pair)
         ds = resolve(smk.params.function)(pair, **dict(smk.params.settings), **upstream)
         _write_outputs(smk, ds, pair)
         if then is not None:
@@ -178,10 +189,12 @@ def run_study_stage(smk: Any) -> None:
     _run(smk, body)
 
 
-def _read_inputs(smk: Any) -> dict[str, Any]:
-    """Every named input as a Dataset, or a list of Datasets for a list of files."""
-    return {k: [read_dataset(p) for p in v] if isinstance(v, list) else read_dataset(v)
-            for k, v in smk.input.items()}
+def _read_inputs(smk: Any, pair: GearPair | None = None) -> dict[str, Any]:
+    """Every named netCDF input (all but ``pair``) as a Dataset, or a list of Datasets for a list
+    of files, each checked to be what this job expects (:func:`gearmesh.upstream.read_input`)."""
+    expected = _expected(smk, pair)
+    return {k: [read_input(p, expected) for p in v] if isinstance(v, list) else read_input(v, expected)
+            for k, v in smk.input.items() if k != "pair"}
 
 
 def run_collect(smk: Any) -> None:

@@ -1,24 +1,42 @@
 """CSV copies of the study tables: the netCDF dataset as one row per index combination, every
-column headed ``name [units]`` (the variable's CF ``units``), and rows without values carrying
-their reason (from the dataset's ``refused`` attribute, as in the netCDF file)."""
+column headed ``name [units]`` (the variable's CF ``units``), coded categories as their words
+(CF ``flag_values``/``flag_meanings``: a scenario reads ``edge``, not ``2``), numbers to six
+significant digits, and rows without values carrying their reason (from the dataset's
+``refused`` attribute, as in the netCDF file)."""
 
 from __future__ import annotations
 
 import re
 
+import numpy as np
 import pandas as pd
 import xarray as xr
 
 NOTE = "note"
 
+#: Six significant digits: 0.1 µm in a 1 m quantity, 1 ppm of a force; more than any model here
+#: means (the netCDF file keeps the full double precision).
+FLOAT_FORMAT = "%.6g"
+
 
 def _header(name: str, var: xr.Variable | xr.DataArray) -> str:
     units = var.attrs.get("units")
-    return f"{name} [{units}]" if units and var.dtype.kind in "fiuc" else name
+    return f"{name} [{units}]" if units and var.dtype.kind in "fiuc" and not _flags(var) else name
+
+
+def _flags(var: xr.Variable | xr.DataArray) -> dict[int, str]:
+    """The words of a CF flag variable ({code: word}), empty for any other variable."""
+    values, meanings = var.attrs.get("flag_values"), var.attrs.get("flag_meanings")
+    if values is None or not meanings:
+        return {}
+    words = str(meanings).split()
+    codes = [int(v) for v in np.atleast_1d(values)]
+    return dict(zip(codes, words)) if len(words) == len(codes) else {}
 
 
 def table(ds: xr.Dataset) -> pd.DataFrame:
-    """The dataset as a table with units in the headers and a ``note`` column for empty rows."""
+    """The dataset as a table with units in the headers, flag variables as words and a ``note``
+    column for empty rows."""
     df = ds.to_dataframe()
     # entries "NAME CASE: reason" joined by "; " (a reason may itself contain "; ")
     refused = [r.strip() for r in re.split(r"; (?=[^;:\s]+ [^;:\s]+: )", str(ds.attrs.get("refused", "")))
@@ -32,6 +50,10 @@ def table(ds: xr.Dataset) -> pd.DataFrame:
         labels = [str(k) for k in (key if isinstance(key, tuple) else (key,))]
         reasons = [r for r in refused if all(label in r for label in labels)]
         notes.append("; ".join(reasons) or "no value: the design or case was refused (see the netCDF attributes)")
+    for name in df.columns:
+        words = _flags(ds[name]) if name in ds.variables else {}
+        if words:
+            df[name] = [words.get(int(v), "") if pd.notna(v) else "" for v in df[name]]
     if any(notes):
         df[NOTE] = notes
     df = df.rename(columns={c: _header(c, ds[c]) for c in df.columns if c in ds.variables})
@@ -41,4 +63,4 @@ def table(ds: xr.Dataset) -> pd.DataFrame:
 
 def write_csv(ds: xr.Dataset, path) -> None:
     """Write :func:`table` of ``ds`` to ``path`` (an open temporary path of an atomic write)."""
-    table(ds).to_csv(path)
+    table(ds).to_csv(path, float_format=FLOAT_FORMAT)

@@ -205,14 +205,13 @@ def sample_statistic(values: np.ndarray, statistic: str, level_percent: float = 
 
 def study_tolerances(geom: PairGeometry, tolerances: Mapping[str, Any] | None):
     """The study's ``tolerances:`` section as (ToleranceModel, samples, sampling, seed); None or {} is
-    no tolerance (nominal only). Keys: grade (ISO 1328-1 class of the lead slope, null: none),
+    no tolerance (nominal only). Keys (:class:`gearmesh.settings.Tolerances`): grade (ISO 1328-1 class of the lead slope, null: none),
     lead_on, modification {pair-file key: ±}, samples, sampling, seed (of the samples: the same
     manufactured population for every optimisation and the impact stage)."""
-    tol = dict(tolerances or {})
-    unknown = set(tol) - {"grade", "lead_on", "modification", "samples", "sampling", "seed"}
-    if unknown:
-        key = sorted(unknown)[0]
-        raise GearmeshInputError(f"tolerances.{key}", tol[key], "is not a tolerance setting; use grade, lead_on, "
-                                                               "modification, samples, sampling, seed")
-    model = tolerance_model(geom, tol.get("grade"), tol.get("lead_on", ("pinion", "gear")), tol.get("modification"))
-    return model, tol.get("samples", 0), tol.get("sampling", "lhs"), tol.get("seed", 0)
+    from .schema import object_schema, validate
+    from .settings import Tolerances
+
+    # checked against the declarations, their defaults filled (no section: no samples either)
+    tol = validate(tolerances or {"samples": 0}, object_schema(Tolerances), prefix="tolerances")
+    model = tolerance_model(geom, tol["grade"], tol["lead_on"], tol["modification"])
+    return model, tol["samples"], tol["sampling"], tol["seed"]

@@ -30,6 +30,18 @@ wildcard_constraints:
     run="|".join(RUNS) or "^$",
 
 
+def versioned_param(spec):
+    """A rule's ``params.function`` / ``params.figures``: the package function ``spec`` with the
+    digest of the code it can run (gearmesh.codeversion.versioned), so a code change reruns the job.
+    Given as a function of the wildcards: Snakemake formats a plain string param with the wildcards
+    (a plain ``str`` again) but keeps what a param function returns, so the report's job panel shows
+    the function's name and the rerun trigger still compares the digest."""
+    value = versioned(spec)
+    param = lambda wildcards: value
+    param.spec = value  # gearmesh.jobserver.rule_modules reads it without wildcards
+    return param
+
+
 def fe_tables(section):
     """Input function: the pair's FE tooth tables (rule fe_compliance) when the stage of
     ``section`` uses the stiffness method 'fe' — computed once per pair, read by every stage."""
@@ -40,6 +52,14 @@ def fe_tables(section):
         return {}
 
     return inputs
+
+
+def fe_wanted():
+    """Whether the study uses the finite-element tooth (a stage's method fe, or fe among the
+    stiffness table's methods): then every pair gets its FE tables and their figure."""
+    sections = ("stiffness", "slice_convergence", "ltca", "impact", "dynamics", "train_dynamics")
+    return (any((config.get(s) or {}).get("method") == "fe" for s in sections)
+            or "fe" in (config.get("stiffness_table") or {}).get("methods", []))
 
 
 def pair_file(wildcards):
@@ -127,7 +147,7 @@ def all_targets():
             targets += [f"results/{STUDY}/{name}/engagement_table.nc" for name in config["pairs"]]
     if "helix_sweep" in config:
         targets.append(f"results/{STUDY}/helix_sweep.nc")
-    if "fe_compliance" in config:
+    if fe_wanted():
         targets += [f"results/{STUDY}/{name}/fe_compliance.nc" for name in config["pairs"]]
     for table in ("stiffness_table", "slice_convergence"):
         if table in config:
@@ -150,7 +170,7 @@ def all_targets():
 BY_PAIR = "{pair}"
 BY_VARIANT = "{pair} / {variant}"
 BY_RUN = "{pair} / {run}"
-STUDY_TABLES = "study tables"
+STUDY_TABLES = "Study tables"
 
 
 def report_item(path, caption, category, subcategory=BY_PAIR):

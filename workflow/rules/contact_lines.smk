@@ -9,9 +9,9 @@ rule contact_lines:
     log:
         "logs/{study}/{pair}/contact_lines.log",
     params:
-        function=versioned("gearmesh.datasets.geometry:contact_lines_dataset"),
+        function=versioned_param("gearmesh.datasets.geometry:contact_lines_dataset"),
         settings=lambda wildcards: config["contact_lines"],
-        figures=versioned("gearmesh.plots.geometry:contact_lines_figures"),
+        figures=versioned_param("gearmesh.plots.geometry:contact_lines_figures"),
     conda:
         ENV
     script:

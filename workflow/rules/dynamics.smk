@@ -18,10 +18,10 @@ rule dynamics:
     log:
         "logs/{study}/{pair}/{variant}/dynamics.log",
     params:
-        function=versioned("gearmesh.datasets.dynamics:dynamics_dataset"),
+        function=versioned_param("gearmesh.datasets.dynamics:dynamics_dataset"),
         settings=lambda wildcards: {**config["dynamics"], "variant": wildcards.variant},
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.dynamics:dynamics_figures"),
+        figures=versioned_param("gearmesh.plots.dynamics:dynamics_figures"),
     conda:
         ENV
     script:
@@ -42,10 +42,10 @@ rule train_dynamics:
     log:
         "logs/{study}/{pair}/{variant}/train.log",
     params:
-        function=versioned("gearmesh.datasets.dynamics:train_dataset"),
+        function=versioned_param("gearmesh.datasets.dynamics:train_dataset"),
         settings=lambda wildcards: config["train_dynamics"],
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.dynamics:train_figures"),
+        figures=versioned_param("gearmesh.plots.dynamics:train_figures"),
     conda:
         ENV
     script:
@@ -54,6 +54,7 @@ rule train_dynamics:
 
 rule dynamics_comparison:
     """RMS changes between the study's pairs (standard variant): DTE, lateral and axial vibration; and its figure."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
     output:
@@ -64,9 +65,9 @@ rule dynamics_comparison:
     log:
         "logs/{study}/dynamics_comparison.log",
     params:
-        function=versioned("gearmesh.datasets.dynamics:dynamics_comparison_dataset"),
+        function=versioned_param("gearmesh.datasets.dynamics:dynamics_comparison_dataset"),
         settings=lambda wildcards: config.get("dynamics_comparison", {}),
-        figures=versioned("gearmesh.plots.dynamics:dynamics_comparison_figures"),
+        figures=versioned_param("gearmesh.plots.dynamics:dynamics_comparison_figures"),
     conda:
         ENV
     script:
@@ -80,6 +81,7 @@ if dynamics_contact() and "impact" in config:
     rule engagement_table:
         """The energy method's F_s beside the contact-driven dynamics, per variant and torque at the design speed;
         figure: the peak dynamic mesh force against speed, every variant on one axis, one panel per torque."""
+        localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
             impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
             dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
@@ -91,8 +93,8 @@ if dynamics_contact() and "impact" in config:
         log:
             "logs/{study}/{pair}/engagement_table.log",
         params:
-            function=versioned("gearmesh.datasets.dynamics:engagement_table_dataset"),
-            figures=versioned("gearmesh.plots.dynamics:dynamics_variants_figures"),
+            function=versioned_param("gearmesh.datasets.dynamics:engagement_table_dataset"),
+            figures=versioned_param("gearmesh.plots.dynamics:dynamics_variants_figures"),
         conda:
             ENV
         script:
@@ -102,6 +104,7 @@ else:
 
     rule plot_dynamics_variants:
         """Peak dynamic mesh force against speed, every variant of a pair on one axis, one panel per torque."""
+        localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
             dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
         output:
@@ -110,7 +113,7 @@ else:
         log:
             "logs/{study}/{pair}/plot_dynamics_variants.log",
         params:
-            function=versioned("gearmesh.plots.dynamics:dynamics_variants_figures"),
+            function=versioned_param("gearmesh.plots.dynamics:dynamics_variants_figures"),
         conda:
             ENV
         script:

@@ -14,9 +14,10 @@ rule fe_compliance:
     log:
         "logs/{study}/{pair}/fe_compliance.log",
     params:
-        function=versioned("gearmesh.datasets.fe:fe_compliance_dataset"),
+        function=versioned_param("gearmesh.datasets.fe:fe_compliance_dataset"),
         settings=lambda wildcards: config["fe_compliance"],
-        figures=versioned("gearmesh.plots.fe:fe_compliance_figures"),
+        figures=versioned_param("gearmesh.plots.fe:fe_compliance_figures"),
+    priority: 10  # with method fe the optimiser (priority 10, the longest job) waits for it
     conda:
         ENV
     script:

@@ -9,9 +9,9 @@ rule geometry:
     log:
         "logs/{study}/{pair}/geometry.log",
     params:
-        function=versioned("gearmesh.datasets.geometry:geometry_dataset"),
+        function=versioned_param("gearmesh.datasets.geometry:geometry_dataset"),
         settings=lambda wildcards: config["geometry"],
-        figures=versioned("gearmesh.plots.geometry:geometry_figures"),
+        figures=versioned_param("gearmesh.plots.geometry:geometry_figures"),
     conda:
         ENV
     script:

@@ -21,12 +21,12 @@ rule impact:
     log:
         "logs/{study}/{pair}/{variant}/impact.log",
     params:
-        function=versioned("gearmesh.datasets.impact:impact_dataset"),
+        function=versioned_param("gearmesh.datasets.impact:impact_dataset"),
         # the study's manufacturing tolerances give each variant's tolerance spread
         settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant,
                                     "tolerances": config.get("tolerances")},
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.impact:impact_figures"),
+        figures=versioned_param("gearmesh.plots.impact:impact_figures"),
     conda:
         ENV
     script:
@@ -37,6 +37,7 @@ rule impact_table:
     """Impact force of every variant at every torque at the design speed, with the reduction against standard;
     figures: all variants on one axis (impact force against torque and against speed) and, off the design point,
     their load windows and tolerance spreads side by side (the robustness page)."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
     output:
@@ -47,8 +48,8 @@ rule impact_table:
     log:
         "logs/{study}/{pair}/impact_table.log",
     params:
-        function=versioned("gearmesh.datasets.impact:impact_table_dataset"),
-        figures=versioned("gearmesh.plots.impact:impact_study_figures"),
+        function=versioned_param("gearmesh.datasets.impact:impact_table_dataset"),
+        figures=versioned_param("gearmesh.plots.impact:impact_study_figures"),
     conda:
         ENV
     script:

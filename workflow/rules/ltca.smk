@@ -16,10 +16,10 @@ rule ltca:
     log:
         "logs/{study}/{pair}/{variant}/ltca.log",
     params:
-        function=versioned("gearmesh.datasets.ltca:ltca_dataset"),
+        function=versioned_param("gearmesh.datasets.ltca:ltca_dataset"),
         settings=lambda wildcards: config["ltca"],
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.ltca:ltca_figures"),
+        figures=versioned_param("gearmesh.plots.ltca:ltca_figures"),
     conda:
         ENV
     script:
@@ -28,6 +28,7 @@ rule ltca:
 
 rule lste_comparison:
     """Seed 001's LSTE of every pair: LTCA (standard variant, first torque) next to F/K(phi)."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         stiffness=expand("results/{{study}}/{pair}/stiffness.nc", pair=config["pairs"]),
         ltca=expand("results/{{study}}/{pair}/standard/ltca.nc", pair=config["pairs"]),
@@ -37,7 +38,7 @@ rule lste_comparison:
     log:
         "logs/{study}/lste_comparison.log",
     params:
-        function=versioned("gearmesh.datasets.ltca:lste_comparison_dataset"),
+        function=versioned_param("gearmesh.datasets.ltca:lste_comparison_dataset"),
     conda:
         ENV
     script:

@@ -17,19 +17,19 @@ rule optimise:
         nc="results/{study}/{pair}/optimise/{run}/ga.nc",
         pair="results/{study}/{pair}/optimise/{run}/pair.yaml",
         convergence=report_item("results/{study}/{pair}/optimise/{run}/plots/convergence.png",
-                                "optimise_convergence", "optimisation", BY_RUN),
+                                "optimise_convergence", "Optimisation", BY_RUN),
         modification=report_item("results/{study}/{pair}/optimise/{run}/plots/modification.png",
-                                 "optimise_modification", "optimisation", BY_RUN),
+                                 "optimise_modification", "Optimisation", BY_RUN),
     log:
         "logs/{study}/{pair}/optimise/{run}.log",
     # the longest job, and the variants it writes wait for it: start it first
     priority: 10
     params:
-        function=versioned("gearmesh.datasets.optimise:optimise_dataset"),
+        function=versioned_param("gearmesh.datasets.optimise:optimise_dataset"),
         # the impact model is the study's (impact: section), so the optimum is optimal for the impact stage
         settings=lambda wildcards: {**config["optimise"][wildcards.run], "impact": config.get("impact"),
                                     "tolerances": config.get("tolerances")},
-        figures=versioned("gearmesh.plots.optimise:optimise_figures"),
+        figures=versioned_param("gearmesh.plots.optimise:optimise_figures"),
     conda:
         ENV
     script:
@@ -39,15 +39,16 @@ rule optimise:
 rule plot_pareto:
     """NSGA-II runs: impact force against peak-to-peak LTE with the Pareto front (its own job: only a
     run with method nsga2 has one, and an output cannot depend on a wildcard's config)."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         ga="results/{study}/{pair}/optimise/{run}/ga.nc",
     output:
         pareto=report_item("results/{study}/{pair}/optimise/{run}/plots/pareto.png", "optimise_pareto",
-                           "optimisation", BY_RUN),
+                           "Optimisation", BY_RUN),
     log:
         "logs/{study}/{pair}/optimise/pareto_{run}.log",
     params:
-        function=versioned("gearmesh.plots.optimise:pareto_figures"),
+        function=versioned_param("gearmesh.plots.optimise:pareto_figures"),
     conda:
         ENV
     script:

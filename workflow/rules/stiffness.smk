@@ -10,9 +10,9 @@ rule stiffness:
     log:
         "logs/{study}/{pair}/stiffness.log",
     params:
-        function=versioned("gearmesh.datasets.stiffness:stiffness_dataset"),
+        function=versioned_param("gearmesh.datasets.stiffness:stiffness_dataset"),
         settings=lambda wildcards: config["stiffness"],
-        figures=versioned("gearmesh.plots.stiffness:stiffness_figures"),
+        figures=versioned_param("gearmesh.plots.stiffness:stiffness_figures"),
     conda:
         ENV
     script:
@@ -31,9 +31,9 @@ rule stiffness_table:
     log:
         "logs/{study}/stiffness_table.log",
     params:
-        function=versioned("gearmesh.datasets.stiffness:stiffness_table_dataset"),
+        function=versioned_param("gearmesh.datasets.stiffness:stiffness_table_dataset"),
         settings=lambda wildcards: config["stiffness_table"],
-        figures=versioned("gearmesh.plots.stiffness:stiffness_table_figures"),
+        figures=versioned_param("gearmesh.plots.stiffness:stiffness_table_figures"),
     conda:
         ENV
     script:
@@ -52,9 +52,9 @@ rule slice_convergence:
     log:
         "logs/{study}/slice_convergence.log",
     params:
-        function=versioned("gearmesh.datasets.stiffness:slice_convergence_dataset"),
+        function=versioned_param("gearmesh.datasets.stiffness:slice_convergence_dataset"),
         settings=lambda wildcards: config["slice_convergence"],
-        figures=versioned("gearmesh.plots.stiffness:slice_convergence_figures"),
+        figures=versioned_param("gearmesh.plots.stiffness:slice_convergence_figures"),
     conda:
         ENV
     script:

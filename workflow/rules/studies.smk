@@ -11,9 +11,9 @@ rule helix_sweep:
     log:
         "logs/{study}/helix_sweep.log",
     params:
-        function=versioned("gearmesh.datasets.geometry:helix_sweep_dataset"),
+        function=versioned_param("gearmesh.datasets.geometry:helix_sweep_dataset"),
         settings=lambda wildcards: config["helix_sweep"],
-        figures=versioned("gearmesh.plots.geometry:helix_sweep_figures"),
+        figures=versioned_param("gearmesh.plots.geometry:helix_sweep_figures"),
     conda:
         ENV
     script:
@@ -22,6 +22,7 @@ rule helix_sweep:
 
 rule low_fluctuation_design:
     """Integer-overlap-ratio designs of each pair: helix angle forward/backward, face width."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         pairs=study_pair_files("low_fluctuation_design"),
     output:
@@ -30,7 +31,7 @@ rule low_fluctuation_design:
     log:
         "logs/{study}/low_fluctuation_design.log",
     params:
-        function=versioned("gearmesh.datasets.geometry:low_fluctuation_design_dataset"),
+        function=versioned_param("gearmesh.datasets.geometry:low_fluctuation_design_dataset"),
         settings=lambda wildcards: config["low_fluctuation_design"],
     conda:
         ENV

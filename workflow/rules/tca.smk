@@ -12,10 +12,10 @@ rule tca:
     log:
         "logs/{study}/{pair}/{variant}/tca.log",
     params:
-        function=versioned("gearmesh.datasets.ltca:tca_dataset"),
+        function=versioned_param("gearmesh.datasets.ltca:tca_dataset"),
         settings=lambda wildcards: config["tca"],
         variant=variant_spec,
-        figures=versioned("gearmesh.plots.ltca:tca_figures"),
+        figures=versioned_param("gearmesh.plots.ltca:tca_figures"),
     conda:
         ENV
     script:

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import logging
 import math
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping, Sequence, get_args
 
 import numpy as np
 import xarray as xr
@@ -36,11 +36,13 @@ from ..errors import GearmeshInputError
 from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import variable
-from ..ltca import CONTACT_LAWS, positive_values
+from ..limits import check_load, check_loads, check_slice_grid, check_speeds
+from ..ltca import positive_values
 from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable,
                          mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
-from ..tca import check_count, check_lead_slope
+from ..schema import check_arguments, check_value, defaults, settings_fields
+from ..settings import DEFAULT_TOOTH_METHOD, Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
 #: Seed 004: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
@@ -54,6 +56,20 @@ MAX_SPEEDS = 20000
 # --------------------------------------------------------------------------------------
 
 
+def parse_speeds(text: str) -> dict[str, float] | list[float]:
+    """'START:STOP:STEP' (rpm) as {start, stop, step}, or 'SPEED' as [speed]: the forms of a
+    study's ``speeds_rpm`` (GearmeshInputError naming ``speeds_rpm``)."""
+    try:
+        values = [float(p) for p in text.split(":")]
+    except ValueError:
+        raise GearmeshInputError("speeds_rpm", text, "must be START:STOP:STEP numbers") from None
+    if len(values) == 1:
+        return values
+    if len(values) == 3:
+        return dict(zip(("start", "stop", "step"), values))
+    raise GearmeshInputError("speeds_rpm", text, "must be START:STOP:STEP or one speed")
+
+
 def speed_grid(speeds: Mapping[str, float] | Sequence[float] | str | float) -> np.ndarray:
     """Speeds (rpm) from {start, stop, step} (stop included), a list, 'START:STOP:STEP' or one number.
 
@@ -61,17 +77,7 @@ def speed_grid(speeds: Mapping[str, float] | Sequence[float] | str | float) -> n
     :data:`MAX_SPEEDS` speeds (GearmeshInputError naming ``speeds_rpm``).
     """
     if isinstance(speeds, str):
-        parts = speeds.split(":")
-        try:
-            vals = [float(p) for p in parts]
-        except ValueError:
-            raise GearmeshInputError("speeds_rpm", speeds, "must be START:STOP:STEP numbers") from None
-        if len(vals) == 1:
-            speeds = vals
-        elif len(vals) == 3:
-            speeds = dict(zip(("start", "stop", "step"), vals))
-        else:
-            raise GearmeshInputError("speeds_rpm", speeds, "must be START:STOP:STEP or one speed")
+        speeds = parse_speeds(speeds)
     if isinstance(speeds, Mapping):
         unknown = sorted(set(speeds) - {"start", "stop", "step"})
         if unknown:
@@ -122,25 +128,29 @@ def _bearing(k_radial_N_per_m, k_axial_N_per_m, c_radial_Ns_per_m, c_axial_Ns_pe
     return out
 
 
+#: The declared defaults of the dynamics settings (:class:`gearmesh.settings.Dynamics`).
+_DEFAULTS = defaults(Dynamics)
+#: The keys each settings class declares.
+_DECLARED = {cls: {f.name for f in settings_fields(cls)} for cls in (Dynamics, TrainDynamics)}
+#: Solver rules of the settings (:class:`gearmesh.dynamics.SolverSettings`), with their defaults.
+_SOLVER_KEYS = {k: _DEFAULTS[k] for k in ("courant", "steps_per_cycle_min", "transient_tau", "record_cycles",
+                                          "steady_state")}
+
+
 def _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state="shooting") -> SolverSettings:
-    if not (isinstance(courant, (int, float)) and 0 < courant <= 1.0):
-        raise GearmeshInputError("courant", courant, "must lie in (0, 1] (RK4 accuracy bound on omega_max dt)")
-    if not (isinstance(steps_per_cycle_min, int) and steps_per_cycle_min >= 8):
-        raise GearmeshInputError("steps_per_cycle_min", steps_per_cycle_min, "must be an integer >= 8")
-    if not (isinstance(transient_tau, (int, float)) and transient_tau >= 1):
-        raise GearmeshInputError("transient_tau", transient_tau, "must be >= 1 (time constants of the slowest mode)")
-    if not (isinstance(record_cycles, int) and record_cycles >= 2 and record_cycles % 2 == 0):
-        raise GearmeshInputError("record_cycles", record_cycles, "must be an even integer >= 2")
-    if steady_state not in STEADY_STATES:
-        raise GearmeshInputError("steady_state", steady_state, f"must be one of {list(STEADY_STATES)}")
+    """The solver rules as :class:`gearmesh.dynamics.SolverSettings`, each checked against its
+    declaration (:class:`gearmesh.settings.Dynamics`: the bounds the study schema has)."""
+    given = dict(zip(_SOLVER_KEYS, (courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)))
+    for key, value in given.items():
+        check_value(Dynamics, key, value)
     return SolverSettings(courant=float(courant), steps_per_cycle_min=steps_per_cycle_min,
                           transient_tau=float(transient_tau), record_cycles=record_cycles, steady_state=steady_state)
 
 
 #: How each speed reaches its steady state (:class:`gearmesh.dynamics.SolverSettings`).
-STEADY_STATES = ("shooting", "transient")
+STEADY_STATES = get_args(SteadyState)
 #: Excitations of the pair model; None (the default) is 'ltca' when an LTCA dataset is given, else 'tvms'.
-PAIR_EXCITATIONS = ("tvms", "lste", "ltca", "contact")
+PAIR_EXCITATIONS = get_args(PairExcitation)
 
 
 #: Work limits of one dynamics job, checked before any job runs (:func:`check_dynamics_settings`).
@@ -175,65 +185,66 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
 
     from ..dynamics import step_plan
 
-    s = dict(settings)
-    solver = _solver(*(s.get(k, d) for k, d in _SOLVER_KEYS.items()))
-    order = s.get("fourier_order", 3)
-    excitation = s.get("excitation")
-    if excitation is not None and excitation not in PAIR_EXCITATIONS:
-        raise GearmeshInputError("excitation", excitation, f"must be one of {list(PAIR_EXCITATIONS)} or null")
+    section = TrainDynamics if train else Dynamics
+    s = {**defaults(section), **settings}  # the declared defaults of what is not given
+    for key, value in settings.items():
+        if key in _DECLARED[section]:
+            check_value(section, key, value)
+    solver = _solver(*(s[k] for k in _SOLVER_KEYS))
+    order = s["fourier_order"]
+    excitation = s["excitation"]
     if excitation == "contact":
-        _table_settings(**{k: s[k] for k in _TABLE_KEYS if k in s})
-    if s.get("stiffness_form", "fourier") == "fourier" and isinstance(order, int) and excitation != "contact":
+        _table_settings(**{k: s[k] for k in _TABLE_KEYS})
+    if s["stiffness_form"] == "fourier" and excitation != "contact":
         for what, points in (("the excitation k(t)", excitation_points),
                              ("transmission_error_um", len(s.get("transmission_error_um") or []) or None)):
             if points is not None and not 2 * order < points:
                 raise GearmeshInputError("fourier_order", order, f"needs more than {2 * order} samples of {what} "
                                          f"over a mesh cycle; it has {points}")
-    coarse = max(_ESTIMATE_POSITIONS, 2 * order + 2) if isinstance(order, int) else _ESTIMATE_POSITIONS
+    coarse = max(_ESTIMATE_POSITIONS, 2 * order + 2)
     if not train:
-        speeds = speed_grid(s.get("speeds_rpm", DEFAULT_SPEEDS))
+        speeds = speed_grid(s["speeds_rpm"])
+        check_speeds(pair_geometry(pair), speeds, "speeds_rpm")
         try:
-            speed_grid(list(s.get("sample_speeds_rpm", ())) or 1.0)
+            samples = speed_grid(list(s["sample_speeds_rpm"]) or 1.0)
         except GearmeshInputError as exc:
             raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
+        check_speeds(pair_geometry(pair), samples, "sample_speeds_rpm")
         known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca", "table",
                                                                        "torque_Nm", "excitation"}
         models = [build_pair_model(pair, float(t), **{k: v for k, v in s.items() if k in known},
                                    excitation="tvms" if excitation in ("ltca", "contact") else excitation,
                                    slices=_ESTIMATE_SLICES, positions=coarse)
-                  for t in positive_values(s.get("torques_Nm", 200.0), "torques_Nm", "N m")]
+                  for t in positive_values(s["torques_Nm"], "torques_Nm", "N m")]
     else:
         geom = pair_geometry(pair)
         require_dynamics_data(geom)
-        if s.get("speeds_rpm") is None:
-            speeds = np.array([positive_torque("mesh_frequency_Hz", s.get("mesh_frequency_Hz", SEED004_MESH_FREQUENCY_HZ))
-                               * 60.0 / pair.teeth[1]])
+        if s["speeds_rpm"] is None:
+            speeds = np.array([positive_torque("mesh_frequency_Hz", s["mesh_frequency_Hz"]) * 60.0 / pair.teeth[1]])
         else:
             speeds = speed_grid(s["speeds_rpm"])
-        if s.get("torque_Nm") is not None:
+        check_speeds(geom, speeds, "speeds_rpm", on="gear")
+        if s["torque_Nm"] is not None:
             torque = positive_torque("torque_Nm", s["torque_Nm"])
         else:
-            torque = positive_torque("static_force_N", s.get("static_force_N", SEED004_STATIC_FORCE_N)) \
+            torque = positive_torque("static_force_N", s["static_force_N"]) \
                 * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
         if speeds.size > MAX_TRAIN_SPEEDS:
             raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",
                                      f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
         K = mesh_stiffness(geom, n_positions=coarse, n_slices=_ESTIMATE_SLICES, components=False).K
-        bearing = _bearing(*(s.get(f"bearing_{key}_{unit}", SEED001_BEARING[key]) for key, unit in (
+        bearing = _bearing(*(s[f"bearing_{key}_{unit}"] for key, unit in (
             ("k_radial", "N_per_m"), ("k_axial", "N_per_m"), ("c_radial", "Ns_per_m"), ("c_axial", "Ns_per_m"))))
-        models = [train_model(geom, torque, K, bearing=bearing,
-                              damping_ratio=s.get("damping_ratio", DEFAULT_DAMPING_RATIO),
-                              backlash=_backlash(geom, s.get("backlash_um", "pair")),
-                              stiffness_form=s.get("stiffness_form", "fourier"), order=s.get("fourier_order", 3),
-                              excitation="tvms" if excitation in (None, "contact") else excitation,
-                              phase_offsets=tuple(s.get("phase_offsets_cycles", (0.0, 0.0))),
-                              mesh_damping=s.get("mesh_damping_Ns_per_m"))]
+        models = [train_model(geom, torque, K, bearing=bearing, damping_ratio=s["damping_ratio"],
+                              backlash=_backlash(geom, s["backlash_um"]), stiffness_form=s["stiffness_form"],
+                              order=order, excitation="tvms" if excitation in (None, "contact") else excitation,
+                              phase_offsets=tuple(s["phase_offsets_cycles"]), mesh_damping=s["mesh_damping_Ns_per_m"])]
     steps = 0
     for model in models:
         _, m, n_tr, _ = step_plan(model, speeds, solver)
         steps = max(steps, int(((n_tr + solver.record_cycles) * m).max()))
     if steps * speeds.size * len(models) > MAX_SPEED_STEPS:
-        raise GearmeshInputError("speeds_rpm", s.get("speeds_rpm"),
+        raise GearmeshInputError("speeds_rpm", s["speeds_rpm"],
                                  f"needs {len(models)} torques × {speeds.size} speeds × {steps} RK4 steps = "
                                  f"{steps * speeds.size * len(models):.3g} speed-steps; at most {MAX_SPEED_STEPS:.0e} "
                                  "(fewer or faster speeds)")
@@ -386,33 +397,30 @@ def _backlash(geom: PairGeometry, backlash_um) -> float | None:
 
 
 #: Settings of the contact table (:func:`contact_table`), with their defaults.
-_TABLE_KEYS = {"contact_law": "palmgren", "points": DEFAULT_TABLE_POINTS, "lead_slope_um": (0.0, 0.0),
-               "table_positions": DEFAULT_TABLE_POSITIONS, "table_approaches": DEFAULT_TABLE_APPROACHES,
-               "table_force_factor": 4.0}
+_TABLE_KEYS = {k: _DEFAULTS[k] for k in ("contact_law", "points", "lead_slope_um", "table_positions",
+                                         "table_approaches", "table_force_factor")}
 
 
-def _table_settings(contact_law="palmgren", points=DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
-                    table_positions=DEFAULT_TABLE_POSITIONS, table_approaches=DEFAULT_TABLE_APPROACHES,
-                    table_force_factor=4.0) -> dict[str, Any]:
-    """The contact-table settings checked (GearmeshInputError naming the key)."""
-    if contact_law not in CONTACT_LAWS:
-        raise GearmeshInputError("contact_law", contact_law, f"must be one of {list(CONTACT_LAWS)}")
-    points = check_count("points", points, 2, 100000)
-    positions = check_count("table_positions", table_positions, 16, 100000)
-    approaches = check_count("table_approaches", table_approaches, 8, 100000)
+def _table_settings(**settings: Any) -> dict[str, Any]:
+    """The contact-table settings (:data:`_TABLE_KEYS`; the declared defaults for those not
+    given), each checked against its declaration, and their product against the work limit
+    :data:`MAX_TABLE_POINTS` (GearmeshInputError naming the key)."""
+    unknown = sorted(set(settings) - set(_TABLE_KEYS))
+    if unknown:
+        raise GearmeshInputError(unknown[0], settings[unknown[0]], f"is not a contact-table setting {list(_TABLE_KEYS)}")
+    s = {**_TABLE_KEYS, **settings}
+    for key, value in s.items():
+        check_value(Dynamics, key, value)
+    positions, approaches, points = s["table_positions"], s["table_approaches"], s["points"]
     if positions * approaches * points > MAX_TABLE_POINTS:
         raise GearmeshInputError("table_positions", positions, f"× table_approaches {approaches} × points {points} "
                                  f"must be at most {MAX_TABLE_POINTS:.0e} (the table's build time and memory)")
-    if isinstance(table_force_factor, bool) or not isinstance(table_force_factor, (int, float)) \
-            or not 1.0 < table_force_factor <= 100.0:
-        raise GearmeshInputError("table_force_factor", table_force_factor,
-                                 "must lie in (1, 100]: the table reaches this many times the largest static force")
-    return {"contact_law_name": contact_law, "points": points, "lead_slope": tuple(v * 1e-6 for v in
-                                                                                    check_lead_slope(lead_slope_um)),
-            "positions": positions, "approaches": approaches, "factor": float(table_force_factor)}
+    return {"contact_law_name": s["contact_law"], "points": points,
+            "lead_slope": tuple(v * 1e-6 for v in s["lead_slope_um"]), "positions": positions,
+            "approaches": approaches, "factor": float(s["table_force_factor"])}
 
 
-def contact_table(geom: PairGeometry, pinion_torques, method: str = "transition", **settings) -> MeshForceTable:
+def contact_table(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOTH_METHOD, **settings) -> MeshForceTable:
     """The mesh force table of ``geom`` (its micro-geometry) for the ``contact`` excitation:
     every row reaches ``table_force_factor`` times the largest static force F_bt = T1/r_b1 of
     ``pinion_torques`` (N m); ``settings`` as :data:`_TABLE_KEYS` (:mod:`gearmesh.meshforce`)."""
@@ -422,6 +430,7 @@ def contact_table(geom: PairGeometry, pinion_torques, method: str = "transition"
                             t["contact_law_name"], method)
 
 
+@check_arguments(Dynamics)
 def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion", backlash_um="pair",
                      bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
                      bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
@@ -429,7 +438,7 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
                      bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                      stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                     method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                     method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
                      transmission_error_um=None, stiffness: xr.Dataset | None = None,
                      ltca: xr.Dataset | None = None, table: MeshForceTable | None = None) -> GearModel:
     """The 8-DOF model of ``pair`` at one torque from engineering-unit settings (:func:`dynamics_dataset`).
@@ -445,13 +454,11 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
     torque = positive_torque("torque_Nm", torque_Nm)
     if on not in _PAIR_GEARS:
         raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torque_Nm acts)")
+    check_load(geom, pinion_torque(pair, torque, on), "torque_Nm", torque_Nm)
+    if stiffness is None and ltca is None and table is None:
+        check_slice_grid(slices, positions)
     t_out = torque if on == "gear" else torque * geom.base_radius[1] / geom.base_radius[0]
     backlash = _backlash(geom, backlash_um)
-    if not (isinstance(fourier_order, int) and 0 <= fourier_order <= 50):
-        raise GearmeshInputError("fourier_order", fourier_order, "must be an integer in [0, 50]")
-    if mesh_damping_Ns_per_m is not None and not (isinstance(mesh_damping_Ns_per_m, (int, float))
-                                                  and mesh_damping_Ns_per_m >= 0):
-        raise GearmeshInputError("mesh_damping_Ns_per_m", mesh_damping_Ns_per_m, "must be >= 0 or null")
     exc = resolve_excitation(excitation, ltca)
     K = te = None
     if exc == "contact":
@@ -667,6 +674,7 @@ def _pair_sweep(pair: GearPair, model: GearModel, speeds: np.ndarray, grid: np.n
 _TORQUE_FREE = ("mesh_frequency", "on_grid", "frequency", "time")
 
 
+@check_arguments(Dynamics)
 def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      speeds_rpm: Mapping[str, float] | Sequence[float] | str = DEFAULT_SPEEDS,
                      backlash_um="pair",
@@ -676,7 +684,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                      stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                     method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                     method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
                      transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
                      courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
                      record_cycles: int = 8, steady_state: str = "shooting", points_per_cycle: int = 64,
@@ -723,13 +731,17 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     """
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
-    use_fe_tables(fe_compliance, geom)
     given = positive_values(torques_Nm, "torques_Nm", "N m")
     if on not in _PAIR_GEARS:
         raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torques_Nm act)")
     t1 = pinion_torque(pair, given, on)
+    check_loads(geom, t1, "torques_Nm", given)
     grid = speed_grid(speeds_rpm)
+    check_speeds(geom, grid, "speeds_rpm")
     samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
+    check_speeds(geom, samples, "sample_speeds_rpm")
+    check_slice_grid(slices, positions)
+    use_fe_tables(fe_compliance, geom)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
     exc = resolve_excitation(excitation, ltca)
     table = None
@@ -797,6 +809,7 @@ def _engagement_roll(geom: PairGeometry) -> float:
     return engagement_point(geom)[0]
 
 
+@check_arguments(Dynamics)
 def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEFAULT_SPEEDS, on: str = "pinion",
                      progress=None, **settings: Any) -> list[dict[str, float]]:
     """Per speed (for the CLI): speed_rpm, mesh_frequency_Hz, dynamic_te_mean_um, dynamic_te_std_um,
@@ -808,11 +821,13 @@ def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEF
     if resolve_excitation(settings.get("excitation"), settings.get("ltca")) == "contact":
         geom = pair_geometry(pair)
         t1 = pinion_torque(pair, positive_torque("torque_Nm", torque_Nm), on)
-        model_settings["table"] = contact_table(geom, [t1], settings.get("method", "transition"),
+        model_settings["table"] = contact_table(geom, [t1], settings.get("method", _DEFAULTS["method"]),
                                                 **{k: v for k, v in settings.items() if k in _TABLE_KEYS})
     model = build_pair_model(pair, torque_Nm, on, **model_settings)
     solver = _solver(*(settings.get(k, d) for k, d in _SOLVER_KEYS.items()))
-    res = simulate(model, speed_grid(speeds), solver, progress=progress)
+    grid = speed_grid(speeds)
+    check_speeds(pair_geometry(pair), grid, "speeds_rpm")
+    res = simulate(model, grid, solver, progress=progress)
     fs = float(model.static_force[0])
     um = 1e6 / model.cos_beta_b  # normal (m) -> transverse (µm)
     rows = []
@@ -832,8 +847,6 @@ def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEF
     return rows
 
 
-_SOLVER_KEYS = {"courant": 0.25, "steps_per_cycle_min": 32, "transient_tau": 10.0, "record_cycles": 8,
-                "steady_state": "shooting"}
 
 
 # --------------------------------------------------------------------------------------
@@ -841,6 +854,7 @@ _SOLVER_KEYS = {"courant": 0.25, "steps_per_cycle_min": 32, "transient_tau": 10.
 # --------------------------------------------------------------------------------------
 
 
+@check_arguments(TrainDynamics)
 def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_FORCE_N,
                   torque_Nm: float | None = None, speeds_rpm: Any = None,
                   mesh_frequency_Hz: float = SEED004_MESH_FREQUENCY_HZ, backlash_um="pair",
@@ -850,7 +864,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                   bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                   damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                   stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                  method: str = "transition", slices: int = DEFAULT_SLICES, positions: int = 360,
+                  method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
                   phase_offsets_cycles: Sequence[float] = (0.0, 0.0), courant: float = 0.25,
                   steps_per_cycle_min: int = 32, transient_tau: float = 10.0, record_cycles: int = 8,
                   steady_state: str = "shooting", points_per_cycle: int = 64, max_order: int = 10,
@@ -875,8 +889,10 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     rb, cb = float(geom.base_radius[1]), math.cos(geom.base_helix_angle)
     if torque_Nm is not None:
         torque = positive_torque("torque_Nm", torque_Nm)
+        check_load(geom, pinion_torque(pair, torque, "gear"), "torque_Nm", torque_Nm)
     elif static_force_N is not None:
         torque = positive_torque("static_force_N", static_force_N) * rb * cb
+        check_load(geom, pinion_torque(pair, torque, "gear"), "static_force_N", static_force_N)
     else:
         raise GearmeshInputError("torque_Nm", None, "give torque_Nm or static_force_N")
     if speeds_rpm is None:
@@ -884,6 +900,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
         speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
     else:
         speeds = speed_grid(speeds_rpm)
+    check_speeds(geom, speeds, "speeds_rpm" if speeds_rpm is not None else "mesh_frequency_Hz", on="gear")
     if len(speeds) > MAX_TRAIN_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds",
                                  f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
@@ -943,6 +960,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     return ds
 
 
+@check_arguments(DynamicsComparison)
 def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
                                 couples: Sequence[Sequence[str]] | None = None) -> xr.Dataset:
     """RMS changes between pairs over a common speed sweep (seed 001 §4–5, its comparisons).

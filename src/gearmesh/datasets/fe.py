@@ -12,8 +12,11 @@ from .. import fe
 from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
 from ..stiffness import PEM_METHODS, tooth_model, tooth_slice_compliance
+from ..schema import check_arguments
+from ..settings import FeCompliance
 
 
+@check_arguments(FeCompliance)
 def fe_compliance_dataset(pair: GearPair, plane: str = fe.DEFAULT_PLANE, size: float = fe.DEFAULT_SIZE,
                           roll_nodes: int = fe.DEFAULT_ROLL_NODES) -> xr.Dataset:
     """Per-unit-width tooth compliance (m²/N) of each gear at ``roll_nodes`` roll lengths over

@@ -26,6 +26,8 @@ from ..gear import GEARS, GearPair, PairGeometry, pair_geometry
 from ..io import variable
 from ..profile import tooth_profile
 from ..surface import tooth_surface
+from ..schema import check_arguments
+from ..settings import ContactLines, Geometry, HelixSweep
 
 
 def _per_gear(values, units: str, long_name: str) -> xr.Variable:
@@ -81,6 +83,7 @@ def _gear_coord() -> dict[str, xr.Variable]:
     return {"gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair (pinion drives)")}
 
 
+@check_arguments(Geometry)
 def geometry_dataset(pair: GearPair, involute_points: int = 120, fillet_points: int = 60,
                      face_points: int = 21) -> xr.Dataset:
     """The pair's geometry: scalars, the transverse tooth profile with its hob fillet, and the
@@ -122,6 +125,7 @@ def geometry_dataset(pair: GearPair, involute_points: int = 120, fillet_points: 
     return ds
 
 
+@check_arguments(ContactLines)
 def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:
     """Contact lines and total length L(φ) over one mesh cycle (seed 002; seed 001 §1, §5).
 
@@ -178,6 +182,7 @@ def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:
     return ds
 
 
+@check_arguments(HelixSweep)
 def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_deg: float,
                         step_deg: float, positions: int = 360) -> xr.Dataset:
     """Contact-length statistics against helix angle for each pair (seed 002; seed 001 §5).

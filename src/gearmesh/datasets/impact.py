@@ -18,10 +18,13 @@ from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactSta
                       impact_response, impact_static, load_grid, load_window, mesh_in_point, seed_edge_roll,
                       simulate_engagement, vector_velocity)
 from ..io import variable
-from ..ltca import check_torques, pinion_torques
+from ..limits import check_speeds as check_speed_limit
+from ..ltca import check_torques, loaded_pinion_torques, pinion_torques
 from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
 from ..tolerance import apply_deviations, study_tolerances, unit_deviations
+from ..schema import check_arguments, defaults
+from ..settings import DEFAULT_TOOTH_METHOD, Impact
 
 UM = 1e-6
 
@@ -40,6 +43,19 @@ def _model(pair: GearPair, points: int, lead_slope_um, contact_law: str, method:
                         window_positions=window_positions, face_samples=face_samples)
 
 
+def _operating_points(pair: GearPair, torques, on: str, speeds_rpm, torque_field: str = "torques_Nm",
+                      speed_field: str = "speeds_rpm") -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Torques as given and as pinion torques (N m) and pinion speeds (rpm), each checked against
+    the load and speed limits of :mod:`gearmesh.limits` before any model is built."""
+    if not isinstance(pair, GearPair):
+        raise GearmeshInputError("pair", type(pair).__name__, "must be a GearPair")
+    geom = pair_geometry(pair)
+    given, t1 = loaded_pinion_torques(geom, torques, on, torque_field)
+    speeds = check_speeds(speeds_rpm, speed_field)
+    check_speed_limit(geom, speeds, speed_field)
+    return given, t1, speeds
+
+
 def _scenario_var(dims, scenario) -> xr.Variable:
     return variable(dims, np.asarray(scenario, dtype=np.int8), "1",
                     "mesh-in scenario: 0 none, 1 surface (modified flanks, seed 000 scenario 2), "
@@ -47,10 +63,11 @@ def _scenario_var(dims, scenario) -> xr.Variable:
                     flag_values=np.array([0, 1, 2], dtype=np.int8), flag_meanings=" ".join(SCENARIOS))
 
 
+@check_arguments(Impact)
 def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rpm=(5000.0,), on: str = "pinion",
                    design_speed_rpm: float = 5000.0, driver: str = "pinion", points: int = 50,
                    energy_velocity: str = "transverse", added_inertia_kg_m2=(0.0, 0.0), lead_slope_um=(0.0, 0.0),
-                   contact_law: str = "palmgren", method: str = "transition", corner_extension: float = 0.25,
+                   contact_law: str = "palmgren", method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = 0.25,
                    simulate_torques_Nm=(), variant: str = "", fe_compliance: xr.Dataset | None = None,
                    window_positions: int = 32, face_samples: int = 257, design_torque_Nm: float | None = None,
                    load_window_step_Nm: float | None = None,
@@ -73,16 +90,14 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
     ``tolerances`` (:func:`gearmesh.tolerance.study_tolerances`) F_s of the nominal and
     every tolerance sample at each torque (the tolerance spread).
     """
+    given, t1, speeds = _operating_points(pair, torques_Nm, on, speeds_rpm)
+    design = float(_operating_points(pair, given, on, [design_speed_rpm], speed_field="design_speed_rpm")[2][0])
+    anchor = _design_torque(given, design_torque_Nm)
     if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
         use_fe_tables(fe_compliance, pair_geometry(pair))
     model = _model(pair, points, lead_slope_um, contact_law, method, corner_extension, driver, added_inertia_kg_m2,
                    window_positions, face_samples)
     geom = model.geom
-    given = check_torques(torques_Nm)
-    t1 = pinion_torques(geom, given, on)
-    anchor = _design_torque(given, design_torque_Nm)
-    speeds = check_speeds(speeds_rpm)
-    design = float(check_speeds([design_speed_rpm], "design_speed_rpm")[0])
     sim_given = check_torques(simulate_torques_Nm, "simulate_torques_Nm") if len(simulate_torques_Nm) else np.array([])
     for k, t in enumerate(sim_given):
         if not np.any(np.abs(given - t) <= 1e-9 * t):
@@ -338,6 +353,7 @@ def _table_spread(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, x
     }
 
 
+@check_arguments(Impact)
 def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", driver: str = "pinion",
                    points: int = 50, simulate: bool = False, energy_velocity: str = "transverse") -> dict[str, Any]:
     """Headline numbers of one impact in engineering units (the CLI's ``impact --json``)."""
@@ -346,10 +362,10 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", dri
             raise GearmeshInputError(name, value, "must be one positive number")
     if driver not in DRIVERS:
         raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")
-    model = _model(pair, points, (0.0, 0.0), "palmgren", "transition", 0.25, driver, (0.0, 0.0))
-    geom = model.geom
-    t1 = pinion_torques(geom, [torque_Nm], on, field="torque_Nm")
-    speed = check_speeds([speed_rpm], "speed_rpm")
+    t1, speed = _operating_points(pair, [torque_Nm], on, [speed_rpm], "torque_Nm", "speed_rpm")[1:]
+    d = defaults(Impact)  # the study's impact model where the CLI gives no option
+    model = _model(pair, points, d["lead_slope_um"], d["contact_law"], d["method"], d["corner_extension"], driver,
+                   d["added_inertia_kg_m2"], d["window_positions"], d["face_samples"])
     static = impact_static(model, t1)
     static, resp = impact_response(model, static, speed, energy_velocity)
     um, mm = 1e6, 1e3

@@ -17,8 +17,11 @@ from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
-from ..ltca import LTCAResult, check_torques, ltca, pinion_torques
+from ..limits import check_contact_grid
+from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..tca import DEFAULT_EXTENSION, TCAResult, check_lead_slope, check_modifications, tca
+from ..schema import check_arguments
+from ..settings import DEFAULT_TOOTH_METHOD, Ltca, Tca
 
 UM = 1e-6
 
@@ -90,6 +93,7 @@ def _coords(geom, res: TCAResult) -> dict[str, xr.Variable]:
     }
 
 
+@check_arguments(Tca)
 def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slope_um=(0.0, 0.0),
                 corner_extension: float = DEFAULT_EXTENSION) -> xr.Dataset:
     """Unloaded TCA over one mesh cycle (dims position, line, point): separations of every
@@ -99,6 +103,7 @@ def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slop
     ``lead_slope_um`` [pinion, gear] lead slope errors in µm over the face width.
     """
     geom = _geometry(pair)
+    positions, points = check_contact_grid(positions, points)
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
     res = tca(geom, positions, points, lead, corner_extension)
     ds = xr.Dataset(data_vars=_tca_variables(geom, res), coords=_coords(geom, res))
@@ -107,9 +112,10 @@ def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slop
     return ds
 
 
+@check_arguments(Ltca)
 def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: int = 64, points: int = 50,
                  lead_slope_um=(0.0, 0.0), on: str = "pinion", contact_law: str = "palmgren",
-                 method: str = "transition", corner_extension: float = DEFAULT_EXTENSION,
+                 method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = DEFAULT_EXTENSION,
                  fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """LTCA at each torque over one mesh cycle (dims torque, position, line, point).
 
@@ -124,10 +130,10 @@ def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: 
     (with 'fe', ``fe_compliance`` supplies the FE tables: :func:`gearmesh.fe.seed_cache`).
     """
     geom = _geometry(pair)
+    positions, points = check_contact_grid(positions, points)
+    given, t1 = loaded_pinion_torques(geom, torques_Nm, on)
     use_fe_tables(fe_compliance, geom)
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    given = check_torques(torques_Nm)
-    t1 = pinion_torques(geom, given, on)
     res = ltca(geom, t1, positions, points, lead, "pinion", contact_law, method, corner_extension)
     return _ltca_to_dataset(geom, res, given, on)
 
@@ -181,14 +187,16 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
     return ds
 
 
+@check_arguments(Ltca)
 def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int = 64, points: int = 50,
                  lead_slope_um=(0.0, 0.0), contact_law: str = "palmgren") -> dict[str, Any]:
     """Headline LTCA numbers at one torque in engineering units (the CLI's ``ltca --json``)."""
     if not (isinstance(torque_Nm, (int, float, np.floating, np.integer)) and not isinstance(torque_Nm, bool)):
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be one positive number (N m)")
     geom = _geometry(pair)
+    positions, points = check_contact_grid(positions, points)
+    t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    t1 = pinion_torques(geom, [torque_Nm], on, field="torque_Nm")
     res = ltca(geom, t1, positions, points, lead, "pinion", contact_law)
     um = 1e6
     lte = res.lte[0]

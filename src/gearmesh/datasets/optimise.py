@@ -32,6 +32,8 @@ from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positiv
                         problem)
 from ..surface import MODIFICATION_FIELDS
 from ..tolerance import study_tolerances
+from ..schema import check_arguments, defaults
+from ..settings import Impact, Optimise
 from .ltca import _geometry
 
 __all__ = ["optimise_dataset", "result_dataset", "optimum_pair", "optimise_summary", "run_settings", "run_problem",
@@ -54,6 +56,7 @@ def _window_top(geom, torques: tuple[float, ...]) -> float:
     return top
 
 
+@check_arguments(Optimise)
 def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", population: int = 40,
                  generations: int = 30, seed: int = 0, torque_Nm: float = 1000.0, on: str = "pinion",
                  speed_rpm: float = 5000.0, torques_Nm=None, statistic: str = "max",
@@ -82,7 +85,7 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
     from ..tca import check_lead_slope
 
     geom = _geometry(pair)
-    imp = dict(impact or {})
+    imp = {**defaults(Impact), **(impact or {})}  # the study's impact model, the declared defaults without one
     constraints = dict(constraints or {})
     unknown = set(constraints) - {"lte_factor", "line_load_factor", "dynamic_factor", "penalty"}
     if unknown:
@@ -111,7 +114,7 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                               penalty=constraints.get("penalty", 10.0), mutation_probability=mutation_probability,
                               mutation_scale=mutation_scale, keep_elitism=keep_elitism,
                               random_baseline=random_baseline,
-                              energy_velocity=imp.get("energy_velocity", "transverse"), load_window_step=step,
+                              energy_velocity=imp["energy_velocity"], load_window_step=step,
                               dynamic_speeds=dynamic_speeds_rpm, dynamic_factor=constraints.get("dynamic_factor"),
                               backlash=backlash)
     settings = replace(settings, load_window_top=_window_top(geom, settings.torques))
@@ -120,17 +123,16 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                                  "needs tolerances (tolerances.grade or tolerances.modification): nothing deviates")
     genes = {"modify": modify, "bounds": bounds, "fixed": fixed}
     gene_table(geom, **genes)
-    lead = tuple(v * 1e-6 for v in check_lead_slope(imp.get("lead_slope_um", (0.0, 0.0))))
+    lead = tuple(v * 1e-6 for v in check_lead_slope(imp["lead_slope_um"]))
 
-    def pick(own, key, default):
-        return imp.get(key, default) if own is None else own
+    def pick(own, key):
+        return imp[key] if own is None else own
 
-    model = {"points": pick(points, "points", 50), "contact_law_name": pick(contact_law, "contact_law", "palmgren"),
-             "extension": pick(corner_extension, "corner_extension", 0.25),
-             "method": imp.get("method", "transition"), "driver": imp.get("driver", "pinion"), "lead_slope": lead,
-             "added_inertia_kg_m2": imp.get("added_inertia_kg_m2", (0.0, 0.0)),
-             "window_positions": pick(window_positions, "window_positions", 32),
-             "face_samples": pick(face_samples, "face_samples", 257), "cycle_positions": cycle_positions}
+    model = {"points": pick(points, "points"), "contact_law_name": pick(contact_law, "contact_law"),
+             "extension": pick(corner_extension, "corner_extension"), "method": imp["method"],
+             "driver": imp["driver"], "lead_slope": lead, "added_inertia_kg_m2": imp["added_inertia_kg_m2"],
+             "window_positions": pick(window_positions, "window_positions"),
+             "face_samples": pick(face_samples, "face_samples"), "cycle_positions": cycle_positions}
     return geom, settings, genes, model, tol_model
 
 

@@ -14,6 +14,7 @@ from ..errors import GearmeshInputError
 from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_to_dict
 from ..gear import pinion_torque as gear_pinion_torque
 from ..io import variable
+from ..limits import check_load, check_slice_grid
 from ..stiffness import (
     DEFAULT_RULE,
     DEFAULT_SLICES,
@@ -24,6 +25,8 @@ from ..stiffness import (
     pair_slice_table,
     slice_compliance_table,
 )
+from ..schema import check_arguments
+from ..settings import DEFAULT_TOOTH_METHOD, SliceConvergence, Stiffness, StiffnessTable
 
 METHODS = ("traditional", "improved", "transition")
 
@@ -37,7 +40,8 @@ def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
     return gear_pinion_torque(geom.pair, torque_Nm, on)
 
 
-def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
+@check_arguments(Stiffness)
+def stiffness_dataset(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES,
                       positions: int = 360, fourier_order: int = 3, torque_Nm: float | None = None,
                       torque_on: str = "pinion", fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """K(φ) of ``pair`` by the slice potential energy method (:func:`gearmesh.stiffness.mesh_stiffness`),
@@ -48,6 +52,11 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
     ``fe_compliance`` (the pair's fe_compliance.nc) supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
     """
     geom = pair_geometry(pair)
+    slices, positions = check_slice_grid(slices, positions)
+    t1 = None
+    if torque_Nm is not None:
+        t1 = pinion_torque(geom, torque_Nm, torque_on)
+        check_load(geom, t1, "torque_Nm", torque_Nm)
     use_fe_tables(fe_compliance, geom)
     result = mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method)
     fit = fourier_fit(result.K, fourier_order)
@@ -82,8 +91,7 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
         "eps_alpha": variable((), geom.eps_alpha, "1", "transverse contact ratio"),
         "eps_beta": variable((), geom.eps_beta, "1", "overlap ratio"),
     }
-    if torque_Nm is not None:
-        t1 = pinion_torque(geom, torque_Nm, torque_on)
+    if t1 is not None:
         e = lste(result, t1)
         data.update({
             "lste": variable(("position",), e, "m", "loaded static transmission error F/K(phi) along the line of action"),
@@ -102,7 +110,8 @@ def stiffness_dataset(pair: GearPair, method: str = "transition", slices: int = 
     return ds
 
 
-def stiffness_summary(pair: GearPair, method: str = "transition", slices: int = DEFAULT_SLICES,
+@check_arguments(Stiffness)
+def stiffness_summary(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES,
                       positions: int = 360, torque_Nm: float | None = None, torque_on: str = "pinion") -> dict[str, Any]:
     """Headline stiffness numbers in one unit family, N, mm, µm, the unit in every key (the CLI's
     ``stiffness --json``); stiffnesses along the transverse line of action."""
@@ -144,6 +153,7 @@ def apply_variant(pair: GearPair, name: str, overrides: Mapping[str, Any]) -> Ge
     return pair_with_contact_ratios(pair_from_dict(data), **targets)
 
 
+@check_arguments(StiffnessTable)
 def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str] = ("transition",),
                             variants: Mapping[str, Mapping[str, Any]] | None = None,
                             slices: int = DEFAULT_SLICES, positions: int = 360, torque_Nm: float | None = None,
@@ -197,8 +207,9 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str
     return ds
 
 
+@check_arguments(SliceConvergence)
 def slice_convergence_dataset(pairs: Mapping[str, GearPair], slices: Sequence[int] = (25, 50, 100, 200, 400, 1000),
-                              method: str = "transition", positions: int = 360) -> xr.Dataset:
+                              method: str = DEFAULT_TOOTH_METHOD, positions: int = 360) -> xr.Dataset:
     """K statistics against the slice count for both slice rules (seed 004 argues N = 1000):
     'centre' (whole slices, the documents' sampling) and 'clip' (end slices clipped), with
     the relative difference of the mean to the finest 'clip' result."""

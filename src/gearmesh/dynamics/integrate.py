@@ -147,10 +147,12 @@ def step_plan(model: GearModel, speed_rpm: np.ndarray, settings: SolverSettings 
     total = steps_per_cycle * (cycles + settings.record_cycles)
     if np.max(total) > MAX_STEPS_PER_SPEED:
         worst = int(np.argmax(total))
+        # above the speed where steps_per_cycle_min sets the step, the work grows with the speed
+        advice = "lower the speed" if steps_per_cycle[worst] <= settings.steps_per_cycle_min else "raise the speed"
         raise GearmeshInputError(
             "speeds_rpm", float(speed_rpm[worst]),
             f"needs {total[worst]:.3g} time steps at this speed (limit {MAX_STEPS_PER_SPEED:.0e}): the transient "
-            f"lasts {settings.transient_tau / sigma:.3g} s and a step is at most {dt_max:.3g} s; raise the speed")
+            f"lasts {settings.transient_tau / sigma:.3g} s and a step is at most {dt_max:.3g} s; {advice}")
     m = steps_per_cycle.astype(np.int64)
     m += m % 2  # even, so that half steps fall on the tabulated grid of 2m points
     return f_mesh, m, cycles.astype(np.int64), t_mesh / m

@@ -1,37 +1,154 @@
-"""What every figure module shares: the Agg backend, saving, titles, unit scale."""
+"""What every figure module shares: figures without pyplot's global state, saving, titles,
+numbers in labels, legends placed clear of the data."""
 
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Any
 
-import matplotlib
+import numpy as np
+import xarray as xr
+from matplotlib import colormaps
+from matplotlib.figure import Figure
+from matplotlib.ticker import FuncFormatter
 
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
-import xarray as xr  # noqa: E402
-
-from ..io import atomic_output  # noqa: E402
+from ..io import atomic_output
 
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["MM", "UM", "plain_axis", "plt", "save", "title"]
+__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "figure_legend", "legend_below", "number", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
+           "title"]
 
 
-def save(fig, path: str | Path) -> Path:
-    """Write ``fig`` as PNG atomically (parent folders created) and close it."""
-    try:
-        with atomic_output(path) as tmp:
-            fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png")
-    finally:
-        plt.close(fig)
+def figure(figsize: tuple[float, float], layout: str | None = None) -> Figure:
+    """A new figure of its own (``matplotlib.figure.Figure``, no pyplot registry), so figures can
+    be drawn in threads and nothing has to be closed."""
+    return Figure(figsize=figsize, layout=layout)
+
+
+def subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], layout: str | None = None,
+             **kwargs: Any) -> tuple[Figure, Any]:
+    """``figure`` and its grid of axes (``Figure.subplots`` keywords: sharex, squeeze, ...)."""
+    fig = figure(figsize, layout)
+    return fig, fig.subplots(nrows, ncols, **kwargs)
+
+
+def palette(n: int, name: str = "viridis", low: float = 0.1, high: float = 0.85) -> np.ndarray:
+    """``n`` colours spread over ``name`` from ``low`` to ``high`` (RGBA rows)."""
+    return colormaps[name](np.linspace(low, high, n))
+
+
+def save(fig: Figure, path: str | Path) -> Path:
+    """Write ``fig`` as PNG atomically (parent folders created)."""
+    with atomic_output(path) as tmp:
+        fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png")
     return Path(path)
 
 
 def title(ds: xr.Dataset, what: str) -> str:
     """'PAIR — what' from the dataset's pair_name attribute."""
     return f"{ds.attrs.get('pair_name', '')} — {what}".strip(" —")
+
+
+def number(value: float, digits: int = 3) -> str:
+    """A value for a label: whole numbers from 100 up (118.367 → "118", 12500 → "12500"), below
+    that ``digits`` significant digits (13.224 → "13.2", 0.01234 → "0.0123"), below 0.001 with an
+    exponent (1.22e-15); no trailing zeros. The netCDF file keeps the full value; a label only has
+    to tell values apart."""
+    v = float(value)
+    if not np.isfinite(v):
+        return str(v)
+    if v != 0 and abs(v) < 1e-3:
+        return f"{v:.{digits}g}"
+    if abs(v) >= 10 ** (digits - 1) or v == round(v):
+        return f"{round(v):d}"
+    return np.format_float_positional(v, precision=digits, unique=True, fractional=False, trim="-")
+
+
+def plain_log_axis(ax, axis: str = "y") -> None:
+    """Tick labels of a logarithmic axis as plain numbers (5000, 20000; not 5×10³, 2×10⁴); the
+    minor ticks at 2, 3 and 5 labelled too on an axis spanning about a decade, at 2 and 5 on one
+    spanning up to about two and a half."""
+    target = ax.yaxis if axis == "y" else ax.xaxis
+    limits = ax.get_ylim if axis == "y" else ax.get_xlim
+
+    def minor(v: float, _) -> str:
+        lo, hi = sorted(abs(x) for x in limits())
+        if v <= 0 or lo <= 0 or hi / lo > 300:
+            return ""
+        digits = (2, 3, 5) if hi / lo <= 12 else (2, 5)
+        return number(v) if round(v / 10 ** np.floor(np.log10(v))) in digits else ""
+
+    target.set_major_formatter(FuncFormatter(lambda v, _: number(v) if v > 0 else ""))
+    target.set_minor_formatter(FuncFormatter(minor))
+
+
+def figure_legend(fig, ncol: int = 3, fontsize: float = 8):
+    """One legend under all panels of ``fig`` (constrained layout), each label once, in the order
+    the panels first use it."""
+    seen: dict[str, Any] = {}
+    for ax in fig.axes:
+        for handle, label in zip(*ax.get_legend_handles_labels()):
+            seen.setdefault(label, handle)
+    return fig.legend(list(seen.values()), list(seen), loc="outside lower center", ncol=ncol, fontsize=fontsize)
+
+
+def legend_below(ax, ncol: int = 2, **kwargs: Any):
+    """The legend of ``ax`` under its x label, so it covers no curve (for axes whose curves fill
+    every corner)."""
+    return ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=ncol, fontsize=7, **kwargs)
+
+
+#: Curves closer than this fraction of the axis range everywhere are one curve on the page (a pixel
+#: of a 250-pixel axis; lines are 1–2 pixels wide).
+SAME_CURVE = 4e-3
+
+
+def coinciding(curves, span: float | None = None) -> list[list[int]]:
+    """Groups of row indices of ``curves`` (rows of y values on one x grid) that coincide to
+    :data:`SAME_CURVE` of ``span`` (the axis range; default their own range), in first-appearance
+    order: draw one line per group and name every member in its label, instead of a legend entry
+    for a curve hidden under another."""
+    y = np.asarray(curves, dtype=float)
+    finite = y[np.isfinite(y)]
+    if span is None:
+        span = float(np.ptp(finite)) if finite.size else 0.0
+    tol = SAME_CURVE * (span or 1.0)
+    groups: list[list[int]] = []
+    for k, row in enumerate(y):
+        for group in groups:
+            ref = y[group[0]]
+            both = np.isfinite(ref) & np.isfinite(row)
+            if np.array_equal(np.isfinite(ref), np.isfinite(row)) and np.all(np.abs(ref[both] - row[both]) <= tol):
+                group.append(k)
+                break
+        else:
+            groups.append([k])
+    return groups
+
+
+def end_labels(ax, ends, texts, fontsize: float = 6.5, color: str = "0.3") -> None:
+    """Label lines at their right ends, outside the axes (where no data or frame cuts them),
+    moved apart vertically where they would overlap. ``ends``: the lines' last y values (data
+    units, linear y axis); call after the y limits are final."""
+    lo, hi = ax.get_ylim()
+    fig = ax.get_figure()
+    height_pt = ax.get_position().height * fig.get_figheight() * 72.0
+    gap = 1.25 * fontsize / max(height_pt, 1.0)  # one text line, in axes fractions
+    pos = (np.asarray(ends, dtype=float) - lo) / (hi - lo)
+    order = np.argsort(pos)
+    placed = np.empty_like(pos)
+    last = -np.inf
+    for k in order:
+        placed[k] = max(pos[k], last + gap)
+        last = placed[k]
+    overflow = last - 1.0
+    if overflow > 0:  # pushed above the top: shift the stack down, keeping the gaps
+        placed -= overflow
+    for y, text in zip(placed, texts):
+        ax.annotate(text, (1.0, y), xycoords="axes fraction", xytext=(3, 0), textcoords="offset points",
+                    fontsize=fontsize, color=color, va="center", annotation_clip=False)
 
 
 #: A curve whose peak-to-peak is below this fraction of its mean is drawn flat, with a note.

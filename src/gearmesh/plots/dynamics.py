@@ -7,8 +7,9 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from matplotlib import colormaps
 
-from .common import MM, UM, plain_axis, plt, save as _save, title as _title
+from .common import coinciding, figure_legend, MM, number, palette, plain_axis, plain_log_axis, save as _save, subplots, title as _title, UM
 
 
 def _at_torque(ds: xr.Dataset, k: int | None = None) -> xr.Dataset:
@@ -21,7 +22,7 @@ def _at_torque(ds: xr.Dataset, k: int | None = None) -> xr.Dataset:
 def _torque_label(ds: xr.Dataset) -> str:
     if "torque" not in ds.coords or ds["torque"].ndim:
         return ""
-    return f"{float(ds['torque']):g} N m on the {ds.attrs.get('torque_on', 'pinion')}"
+    return f"{number(float(ds['torque']))} N m on the {ds.attrs.get('torque_on', 'pinion')}"
 
 
 #: A dynamic TE fluctuation below this (µm) is below what the model means: the slice and position
@@ -30,16 +31,28 @@ def _torque_label(ds: xr.Dataset) -> str:
 #: even at accuracy grade 4 for these sizes), so the figure says so instead of plotting noise as a result.
 MEANINGFUL_TE_UM = 0.01
 
-#: Harmonics 2 and 3 are drawn only for modes with at least this fraction of their strain energy in
-#: the mesh (the higher mesh harmonics are weak; a bearing mode they would meet barely responds),
-#: harmonic 1 for every mode — so a sweep over a wide speed range is not crowded with lines.
-MESH_ENERGY_MIN = 0.05
+
+def _below_meaning(datasets) -> str:
+    """A title line saying the sweeps' dynamic TE is below what the model means, when it is in
+    every dataset (empty otherwise)."""
+    top = max(float(np.nanmax(ds.dynamic_te_std.values)) * UM for ds in datasets)
+    if top >= MEANINGFUL_TE_UM:
+        return ""
+    return (f"\nlargest TE fluctuation {number(top * 1e3)} nm: below what the model means (its discretisation "
+            "leaves nanometres,\nreal flanks deviate by micrometres) — read it as no excitation")
+
+#: Resonance lines are drawn only for modes with at least this fraction of their strain energy in
+#: the mesh: the mesh does work on a mode in proportion to that share, so a mode below it (a bearing
+#: mode, a free axial mode with 1e-31) is not excited by the mesh and its lines would only crowd the
+#: figure (they did on the wide sweeps of the integer-overlap pairs), while the peaks of the
+#: displacement curves sit on the lines of the modes above it, for every harmonic.
+MESH_ENERGY_MIN = 0.01
 
 
-def _resonances(ax, ds: xr.Dataset) -> None:
-    """Faint vertical lines where mesh harmonics meet natural frequencies (in the speed range):
-    harmonic 1 for every mode, harmonics 2 and 3 for modes with at least :data:`MESH_ENERGY_MIN`
-    of their strain energy in the mesh; one legend entry per harmonic."""
+def _resonances(ax, ds: xr.Dataset, labelled: bool = True) -> None:
+    """Faint vertical lines where mesh harmonics 1–3 meet the natural frequencies (in the speed
+    range) of the mesh modes, those with at least :data:`MESH_ENERGY_MIN` of their strain energy in the mesh;
+    one legend entry per harmonic (``labelled``)."""
     if "resonance_speed" not in ds:
         return
     lo, hi = float(ds.speed.min()), float(ds.speed.max())
@@ -47,10 +60,8 @@ def _resonances(ax, ds: xr.Dataset) -> None:
     mesh_modes = ds["mesh_energy_fraction"].values >= MESH_ENERGY_MIN if "mesh_energy_fraction" in ds \
         else np.ones(ds.sizes["mode"], dtype=bool)
     for j, row in zip(ds.harmonic.values, ds.resonance_speed.values):
-        keep = np.ones(row.size, dtype=bool) if int(j) == 1 else mesh_modes
-        label = f"{int(j)}× mesh frequency = natural frequency" + \
-            ("" if int(j) == 1 else f" (modes ≥ {MESH_ENERGY_MIN:.0%} mesh energy)")
-        for n in row[keep]:
+        label = f"{int(j)}× mesh frequency = natural frequency of a mesh mode" if labelled else None
+        for n in row[mesh_modes]:
             if lo <= n <= hi:
                 ax.axvline(n, color="0.55", lw=0.8, ls=styles.get(int(j), ":"), label=label)
                 label = None
@@ -62,31 +73,34 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
 
     Displacements are shown as their standard deviation (the vibration about the static
     bearing deflection); vertical lines: speeds where mesh harmonics 1 (dotted), 2 (dashed),
-    3 (dash-dot) meet the natural frequencies of the linearised model.
+    3 (dash-dot) meet the natural frequencies of the linearised model's mesh modes. A TE
+    fluctuation below :data:`MEANINGFUL_TE_UM` is drawn in nm and the title says it is below the
+    model's meaning.
     """
     speed = ds.speed.values
-    fig, axes = plt.subplots(3, 1, figsize=(9, 10.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(11, 10.5), sharex=True, layout="constrained")
     ax = axes[0]
+    top = float(np.nanmax(ds.dynamic_te_std.values)) * UM
+    tiny = top < MEANINGFUL_TE_UM  # nanometres: drawn in nm and said to be below the model's meaning
+    scale, unit = (UM * 1e3, "nm") if tiny else (UM, "µm")
     torques = range(ds.sizes["torque"]) if "torque" in ds.dims else [None]
-    colors = plt.cm.viridis(np.linspace(0.1, 0.85, len(torques)))
+    colors = palette(len(torques))
     for k, color in zip(torques, colors):
         d = _at_torque(ds, k)
         tl = f", {_torque_label(d)}" if k is not None else ""
-        ax.plot(speed, d.dynamic_te_std.values * UM, lw=1.3, color=color,
-                label=f"dynamic TE (bodies' approach δ + e){tl}")
-        ax.plot(speed, d.mesh_deflection_std.values * UM, lw=1.0, ls="--", color=color,
-                label=f"mesh deflection δ_m{tl}")
+        te, deflection = d.dynamic_te_std.values * scale, d.mesh_deflection_std.values * scale
+        if len(coinciding([te, deflection])) == 1:  # no separate error e (contact excitation): one curve
+            ax.plot(speed, te, lw=1.3, color=color, label=f"dynamic TE = mesh deflection δ_m{tl}")
+            continue
+        ax.plot(speed, te, lw=1.3, color=color, label=f"dynamic TE (bodies' approach δ + e){tl}")
+        ax.plot(speed, deflection, lw=1.0, ls="--", color=color, label=f"mesh deflection δ_m{tl}")
     mid = _at_torque(ds)
-    if "on_grid" in ds:
+    if "on_grid" in ds and np.any(ds.on_grid.values == 0):
         added = ds.on_grid.values == 0
-        ax.plot(speed[added], mid.dynamic_te_std.values[added] * UM, "k.", ms=2.5,
+        ax.plot(speed[added], mid.dynamic_te_std.values[added] * scale, "k.", ms=2.5,
                 label="speeds added around predicted resonances")
-    top = float(np.nanmax(ds.dynamic_te_std.values)) * UM
-    subtitle = ""
-    if top < MEANINGFUL_TE_UM:
-        subtitle = (f"\nlargest TE fluctuation {top * 1e3:.2g} nm: below what the model means (its discretisation "
-                    "leaves nanometres,\nreal flanks deviate by micrometres) — read it as no excitation")
-    ax.set_ylabel("standard deviation along the\ntransverse line of action (µm)")
+    subtitle = _below_meaning([ds])
+    ax.set_ylabel(f"standard deviation along the\ntransverse line of action ({unit})")
     dir_colors = {"x": "tab:blue", "y": "tab:orange", "z": "tab:green"}
     at = f" at {_torque_label(mid)}" if _torque_label(mid) else ""
     for ax, var, unit, scale, label in ((axes[1], "displacement_std", "µm", UM, "displacement (std)"),
@@ -97,11 +111,10 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
                         ls=ls, lw=1.1, label=f"{g} {d}")
         ax.set_ylabel(f"{label}{at} ({unit})" if not at else f"{label} ({unit})\n{at.strip()}")
         ax.set_yscale("log")
-        ax.legend(fontsize=7, ncol=2)
     for ax in axes:
-        _resonances(ax, mid)
+        _resonances(ax, mid, labelled=ax is axes[0])
         ax.grid(alpha=0.3)
-    axes[0].legend(fontsize=7, loc="best", framealpha=0.9)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), ncol=1 if ax is axes[0] else 2)
     axes[-1].set_xlabel("pinion speed (rpm)")
     axes[0].set_title(_title(ds, "steady-state RMS against speed") + subtitle, fontsize=11 if not subtitle else 9)
     return _save(fig, path)
@@ -112,7 +125,7 @@ def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
     the middle torque of a sweep over several)."""
     ds = _at_torque(ds)
     n = ds.sizes.get("sample_speed", 0)
-    fig, axes = plt.subplots(max(n, 1), 2, figsize=(11, 1.0 + 2.6 * max(n, 1)), squeeze=False, layout="constrained")
+    fig, axes = subplots(max(n, 1), 2, figsize=(11, 1.0 + 2.6 * max(n, 1)), squeeze=False, layout="constrained")
     meshes = list(ds.mesh.values) if "mesh" in ds.dims else [None]
     same = ""
     if len(meshes) > 1:  # identical meshes (symmetric train): one trace, said so, not one hidden under the other
@@ -137,19 +150,21 @@ def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
                            label="static force")
         axes[i, 0].set_ylabel("normal mesh force (N)")
         plain_axis(axes[i, 0], ds.mesh_force_series.isel(sample_speed=i).values, "N", "force")
-        axes[i, 0].set_title(f"{float(sel.sample_speed):g} rpm, mesh frequency {f_mesh:.1f} Hz", fontsize=9)
+        axes[i, 0].set_title(f"{number(float(sel.sample_speed))} rpm, mesh frequency {number(f_mesh)} Hz", fontsize=9)
         axes[i, 1].set_ylabel("amplitude, normal force (N)")
         axes[i, 1].set_yscale("log")
+        plain_log_axis(axes[i, 1])
         top = float(np.nanmax(ds.mesh_force_spectrum.isel(sample_speed=i).values[1:]))
         if top > 0:
             axes[i, 1].set_ylim(top * 1e-4, top * 2.0)
-        axes[i, 0].legend(fontsize=7)
         for ax in axes[i]:
             ax.grid(alpha=0.3)
     axes[-1, 0].set_xlabel("time (ms)")
     axes[-1, 1].set_xlabel("frequency (Hz)")
+    handles, labels = axes[0, 0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=8)
     at = f", {_torque_label(ds)}" if _torque_label(ds) else ""
-    fig.suptitle(_title(ds, f"dynamic mesh force normal to the flanks{at}: time series and spectrum (DC removed)"))
+    fig.suptitle(_title(ds, f"dynamic mesh force normal to the flanks{at}: time series and spectrum (mean removed)"))
     return _save(fig, path)
 
 
@@ -160,7 +175,7 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
     engagement, solid), the quasi-static mesh-in point (dotted) and the dynamic one (dashed)."""
     n_s = ds.sizes.get("sample_speed", 0)
     torques = list(range(ds.sizes["torque"])) if "torque" in ds.dims else [None]
-    fig, axes = plt.subplots(max(n_s, 1), len(torques), figsize=(4.2 * len(torques), 1.2 + 2.6 * max(n_s, 1)),
+    fig, axes = subplots(max(n_s, 1), len(torques), figsize=(4.4 * len(torques), 1.8 + 2.8 * max(n_s, 1)),
                              squeeze=False, sharex=True, layout="constrained")
     pitch, roll_a = float(ds.transverse_base_pitch), float(ds.roll_engagement)
     for c, k in enumerate(torques):
@@ -181,22 +196,32 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
             fe = np.where(wrap | np.roll(wrap, -1), np.nan, fe)  # the samples on both sides of the switch
             ax.plot(cyc[keep], fe, lw=1.2, color="tab:red", label="entering pair (±½ base pitch about A)")
             i_s = int(np.argmin(np.abs(d.speed.values - float(sel.sample_speed))))
-            marks = ((0.0, "k", "-", "A (theoretical start of engagement)"),
-                     (float(d.static_mesh_in_roll_before_A), "0.3", ":", "quasi-static mesh-in point"),
-                     (float(d.mesh_in_roll_before_A.values[i_s]), "tab:red", "--", "dynamic mesh-in point"))
-            for before, color, ls, label in marks:
+            # A wide and pale, the quasi-static point narrower, the dynamic one thin on top: where
+            # two coincide both stay visible
+            # A wide and pale, the quasi-static point narrower, the dynamic one thin on top: where
+            # two coincide both stay visible; a mesh-in at or after A (stored as 0) is not marked
+            dynamic, static = float(d.mesh_in_roll_before_A.values[i_s]), float(d.static_mesh_in_roll_before_A)
+            marks = ((0.0, "0.55", "-", 2.4, "A (theoretical start of engagement)"),
+                     (static, "k", ":", 1.6, "quasi-static mesh-in point"),
+                     (dynamic, "tab:red", "--", 0.9, "dynamic mesh-in point"))
+            for before, color, ls, lw, label in marks:
+                if before <= 0 and label != marks[0][-1]:
+                    continue
                 for cycle in (0, 1, 2):
                     x = (roll_a - before) / pitch + cycle
                     if 0 <= x <= 2:
-                        ax.axvline(x, color=color, ls=ls, lw=0.9, label=label)
+                        ax.axvline(x, color=color, ls=ls, lw=lw, label=label)
                         label = None
-            ax.set_title(f"{float(sel.sample_speed):g} rpm, {_torque_label(d)}: mesh-in "
-                         f"{float(d.mesh_in_roll_before_A.values[i_s]) * MM:.2f} mm before A "
-                         f"(quasi-static {float(d.static_mesh_in_roll_before_A) * MM:.2f})", fontsize=7)
+
+            def where(before: float) -> str:
+                return f"{number(before * MM)} mm before A" if before > 0 else "at or after A"
+
+            head = f"{_torque_label(d)}\n" if r == 0 else ""
+            ax.set_title(f"{head}mesh-in {where(dynamic)} (quasi-static {where(static)})", fontsize=8)
             ax.grid(alpha=0.3)
             if c == 0:
-                ax.set_ylabel("normal force (kN)")
-    axes[0, 0].legend(fontsize=6, loc="upper left", framealpha=0.9)
+                ax.set_ylabel(f"{number(float(sel.sample_speed))} rpm\nnormal force (kN)")
+    figure_legend(fig)
     for ax in axes[-1]:
         ax.set_xlabel("mesh cycles (pinion roll / transverse base pitch)")
     fig.suptitle(_title(ds, "engagement in the steady state, driven by the real tooth contact"), fontsize=10)
@@ -222,9 +247,9 @@ def plot_variants_peak_force(datasets, path: str | Path) -> Path:
     torques = list(range(ref.sizes["torque"])) if "torque" in ref.dims else [None]
     contact = all("dynamic_impact_force" in d for d in datasets)
     rows = 2 if contact else 1
-    fig, axes = plt.subplots(rows, len(torques), figsize=(4.3 * len(torques), 3.6 * rows), squeeze=False,
+    fig, axes = subplots(rows, len(torques), figsize=(max(6.5, 4.3 * len(torques)), 3.6 * rows), squeeze=False,
                              layout="constrained")
-    colors = plt.cm.tab10(np.arange(len(datasets)))
+    colors = colormaps["tab10"](np.arange(len(datasets)))
     for c, k in enumerate(torques):
         for color, ds in zip(colors, datasets):
             d = _at_torque(ds, k)
@@ -242,7 +267,8 @@ def plot_variants_peak_force(datasets, path: str | Path) -> Path:
             ax.grid(alpha=0.3)
             ax.set_xlabel("pinion speed (rpm)")
     axes[0, 0].legend(fontsize=7, title="variant", title_fontsize=7)
-    fig.suptitle(_title(ref, "peak dynamic mesh force against speed, all variants"), fontsize=10)
+    fig.suptitle(_title(ref, "peak dynamic mesh force against speed, all variants") + _below_meaning(datasets),
+                 fontsize=10)
     return _save(fig, path)
 
 
@@ -259,7 +285,7 @@ def train_figures(inputs, outputs) -> None:
 
 def plot_dynamics_comparison(datasets, path) -> None:
     """Mesh-deflection std and pinion lateral (y) and axial (z) velocity RMS against speed, all pairs."""
-    fig, axes = plt.subplots(3, 1, figsize=(8, 8.5), sharex=True)
+    fig, axes = subplots(3, 1, figsize=(8, 8.5), sharex=True)
     for ds in datasets:
         name = ds.attrs.get("pair_name", "")
         ds = _at_torque(ds, 0)  # the comparison is at each sweep's first torque

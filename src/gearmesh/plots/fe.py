@@ -5,9 +5,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
-from .common import MM, plt, save, title
+from .common import coinciding, MM, save, subplots, title
 
 #: m²/N -> µm per N/mm (deflection in µm under 1 N per mm of face width)
 UM_MM_PER_N = 1e9
@@ -17,16 +18,22 @@ STYLE = {"traditional": ("tab:orange", ":"), "improved": ("tab:green", "-."), "t
 
 
 def _pem_lines(ax, x, ds, name: str, gear: int, label: str) -> None:
-    """One line per potential-energy model of variable ``name`` (m²/N → µm per N/mm) of ``gear``."""
-    for m in ds["model"].values:
-        c, ls = STYLE.get(str(m), ("tab:red", "-"))
-        ax.plot(x, ds[name].sel(model=m).values[gear] * UM_MM_PER_N, ls=ls, color=c, lw=1.4, label=label.format(m))
+    """One line per potential-energy model of variable ``name`` (m²/N → µm per N/mm) of ``gear``;
+    models whose curves coincide (the same root) drawn once and named together."""
+    models = [str(m) for m in ds["model"].values]
+    curves = [ds[name].sel(model=m).values[gear] * UM_MM_PER_N for m in models]
+    lo, hi = ax.get_ylim()  # the FE lines' range, drawn before
+    span = max(hi, np.nanmax(curves)) - min(lo, np.nanmin(curves))
+    for group in coinciding(curves, span):
+        c, ls = STYLE.get(models[group[0]], ("tab:red", "-"))
+        ax.plot(x, curves[group[0]], ls=ls, color=c, lw=1.4, label=label.format(" and ".join(models[k] for k in group)))
+
 
 def plot_fe_compliance(ds: xr.Dataset, path: str | Path) -> Path:
     """Top: total tooth compliance (no contact part) against roll length, FE in its plane and
     in plane stress, and the PEMs. Bottom: the body part, FE (root-section rigid motion)
     against Sainsot's fillet foundation of each PEM."""
-    fig, axes = plt.subplots(2, 2, figsize=(10, 6.4), sharex="col")
+    fig, axes = subplots(2, 2, figsize=(10, 6.4), sharex="col")
     for g, gear in enumerate(ds["gear"].values):
         x = ds["roll"].values[g] * MM
         ax = axes[0, g]

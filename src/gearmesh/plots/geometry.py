@@ -6,14 +6,15 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from matplotlib.patches import Rectangle
 
-from .common import MM, plain_axis, plt, save as _save, title as _title
+from .common import coinciding, legend_below, MM, number, palette, plain_axis, save as _save, subplots, title as _title
 
 
 def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
     """One tooth of each gear in its transverse section: the hob-generated fillet (trochoid)
     and the involute, with the root, base, form and tip circles."""
-    fig, axes = plt.subplots(1, 2, figsize=(10, 5))
+    fig, axes = subplots(1, 2, figsize=(10, 5))
     for g, ax in enumerate(axes):
         sel = ds.isel(gear=g)
         x, y = sel["profile_x"].values * MM, sel["profile_y"].values * MM
@@ -23,16 +24,22 @@ def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
                     label="fillet (hob trochoid)" if side == 1 else None)
             ax.plot(side * x[seg == 1], y[seg == 1], color="tab:blue", lw=1.8, label="involute" if side == 1 else None)
         half = 1.3 * np.nanmax(np.abs(x))
+        bottom = float(sel["root_radius"]) * MM - 0.3 * half
         angles = np.linspace(-half / np.nanmax(y), half / np.nanmax(y), 200)
+        below = []
         for name, ls in (("root_radius", ":"), ("base_radius", "--"), ("form_radius", "-."), ("tip_radius", "-")):
             r = float(sel[name]) * MM
+            if r * np.cos(angles[0]) < bottom:  # below the view (a base circle inside the root circle)
+                below.append(f"{name.replace('_', ' ')} {r:.3f} mm")
+                continue
             ax.plot(r * np.sin(angles), r * np.cos(angles), color="0.5", ls=ls, lw=0.8,
                     label=f"{name.replace('_', ' ')} {r:.3f} mm")
         ax.set_aspect("equal")
         ax.set_xlim(-half, half)
-        ax.set_ylim(float(sel["root_radius"]) * MM - 0.3 * half, float(sel["tip_radius"]) * MM + 0.2 * half)
-        ax.set_title(f"{str(sel.gear.values)}: z = {int(sel.teeth)}, x = {float(sel.profile_shift):.3f}"
-                     + (", undercut" if int(sel.undercut) else ""))
+        ax.set_ylim(bottom, float(sel["tip_radius"]) * MM + 0.2 * half)
+        ax.set_title(f"{str(sel.gear.values)}: z = {int(sel.teeth)}, x = {number(float(sel.profile_shift))}"
+                     + (", undercut" if int(sel.undercut) else "")
+                     + "".join(f"\n{b}: below the root circle, out of view" for b in below), fontsize=10)
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm), gear centre at 0")
         ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2)  # below the x label
@@ -42,41 +49,45 @@ def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
     """Total contact-line length L(φ) over a mesh cycle with its closed-form mean/min/max."""
-    fig, ax = plt.subplots(figsize=(7, 4))
+    fig, ax = subplots(figsize=(7, 4))
     x = ds["position"].values * MM
     ax.plot(x, ds["total_length"].values * MM, lw=1.6, label="L(φ), sum of clipped lines")
     styles = {"mean": "-", "min": "--", "max": ":"}
-    for key, ls in styles.items():
-        ax.axhline(float(ds[f"{key}_length_closed_form"]) * MM, color="k", ls=ls, lw=0.9,
-                   label=f"{key}, closed form")
+    values = {key: float(ds[f"{key}_length_closed_form"]) * MM for key in styles}
+    keys = list(styles)
+    plain_axis(ax, ds["total_length"].values * MM, "mm", "L(φ)")
+    lo, hi = ax.get_ylim()
+    span = max(hi, *values.values()) - min(lo, *values.values())
+    for group in coinciding([[values[key]] for key in keys], span):  # one line where they meet on the page
+        names = [keys[k] for k in group]
+        ax.axhline(values[names[0]], color="k", ls=styles[names[0]], lw=0.9, label=f"{' = '.join(names)}, closed form")
     ax.set_xlabel("pinion roll distance r_b1·φ1 over one base pitch (mm)")
     ax.set_ylabel("total contact-line length (mm)")
     ax.set_title(_title(ds, f"εα = {float(ds.eps_alpha):.3f}, εβ = {float(ds.eps_beta):.3f}, "
                             f"ε_l = {float(ds.length_fluctuation):.3f}"))
     ax.legend(fontsize=8, loc="best")
     ax.grid(alpha=0.3)
-    plain_axis(ax, ds["total_length"].values * MM, "mm", "L(φ)")
     return _save(fig, path)
 
 
 def plot_contact_lines(ds: xr.Dataset, path: str | Path, snapshots: int = 4) -> Path:
     """Contact lines in the plane of action (s along the line of action, z across the face)."""
-    fig, ax = plt.subplots(figsize=(7, 4.5))
+    fig, ax = subplots(figsize=(7, 4.5))
     g = float(ds.path_of_contact) * MM
     half_b = 0.5 * float(ds.face_width) * MM
-    ax.add_patch(plt.Rectangle((0, -half_b), g, 2 * half_b, fill=False, ec="0.4", lw=1.2))
+    ax.add_patch(Rectangle((0, -half_b), g, 2 * half_b, fill=False, ec="0.4", lw=1.2))
     n = ds.sizes["position"]
-    colors = plt.cm.viridis(np.linspace(0, 0.9, snapshots))
+    colors = palette(snapshots, low=0, high=0.9)
     for color, k in zip(colors, np.linspace(0, n, snapshots, endpoint=False).astype(int)):
         sel = ds.isel(position=k)
+        label = f"roll {float(sel.position) * MM:.2f} mm, L = {float(sel.total_length) * MM:.2f} mm"
         for j in range(ds.sizes["line"]):
             if np.isnan(sel.s_start[j]):
                 continue
             ax.plot([sel.s_start[j] * MM, sel.s_end[j] * MM], [sel.z_start[j] * MM, sel.z_end[j] * MM],
-                    color=color, lw=2)
-        ax.plot([], [], color=color, lw=2, label=f"roll {float(sel.position) * MM:.2f} mm, "
-                                                   f"L = {float(sel.total_length) * MM:.2f} mm")
-    ax.set_xlabel("s: distance along the line of action from the start of active profile (mm)")
+                    color=color, lw=2, label=label)
+            label = None
+    ax.set_xlabel("s along the line of action from the\nstart of active profile (mm)")
     ax.set_ylabel("z: axial position (mm)")
     ax.set_title(_title(ds, "contact lines in the plane of action"))
     ax.set_aspect("equal")
@@ -85,13 +96,21 @@ def plot_contact_lines(ds: xr.Dataset, path: str | Path, snapshots: int = 4) -> 
 
 
 def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
-    """ε_l and mean contact length against helix angle for each pair (the V-curve, seed 001 §5)."""
-    fig, (ax1, ax2) = plt.subplots(2, 1, figsize=(7, 6.5), sharex=True)
+    """ε_l and mean contact length against helix angle for each pair (the V-curve, seed 001 §5):
+    the closed form solid, the sampled lines dashed where they differ from it visibly (where they
+    do not, the legend gives their largest difference instead of a hidden curve)."""
+    fig, (ax1, ax2) = subplots(2, 1, figsize=(7, 6.8), sharex=True)
     for name in ds["pair"].values:
         sel = ds.sel(pair=name)
         beta = sel["helix_angle_deg"].values
-        line, = ax1.plot(beta, sel["length_fluctuation"].values, lw=1.5, label=str(name))
-        ax1.plot(beta, sel["length_fluctuation_sampled"].values, color=line.get_color(), lw=0.8, ls="--")
+        closed, sampled = sel["length_fluctuation"].values, sel["length_fluctuation_sampled"].values
+        both = np.isfinite(closed) & np.isfinite(sampled)
+        apart = float(np.max(np.abs(closed[both] - sampled[both]))) if both.any() else 0.0
+        same = len(coinciding([closed, sampled])) == 1
+        label = f"{name} (the sampled lines agree to {number(apart)})" if same else f"{name} (dashed: sampled lines)"
+        line, = ax1.plot(beta, closed, lw=1.5, label=label)
+        if not same:
+            ax1.plot(beta, sampled, color=line.get_color(), lw=0.8, ls="--")
         ax2.plot(beta, sel["mean_length"].values * MM, color=line.get_color(), lw=1.5)
         ax2.fill_between(beta, sel["min_length"].values * MM, sel["max_length"].values * MM,
                          color=line.get_color(), alpha=0.15)
@@ -101,12 +120,15 @@ def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
             if abs(eb[k] - n) < 0.05:
                 ax1.axvline(beta[k], color=line.get_color(), ls=":", lw=0.8)
     ax1.set_ylabel("ε_l = (Lmax − Lmin)/b")
-    ax1.set_title("contact-line fluctuation against helix angle\n(solid: closed form, dashed: sampled lines; dotted: integer εβ)")
-    ax1.legend(fontsize=8)
+    ax1.set_title("contact-line fluctuation against helix angle\n(closed form; dotted: integer overlap ratio εβ)",
+                  fontsize=10)
+    legend_below(ax1, ncol=1)
+    ax1.tick_params(labelbottom=True)
     ax1.grid(alpha=0.3)
     ax2.set_xlabel("helix angle β (deg)")
     ax2.set_ylabel("contact length (mm): mean, band min–max")
     ax2.grid(alpha=0.3)
+    fig.set_layout_engine("constrained")
     return _save(fig, path)
 
 

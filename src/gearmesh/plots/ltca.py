@@ -7,8 +7,10 @@ from pathlib import Path
 
 import numpy as np
 import xarray as xr
+from matplotlib import colormaps
+from matplotlib.patches import Rectangle
 
-from .common import MM, UM, plt, save as _save, title as _title
+from .common import coinciding, MM, number, palette, save as _save, subplots, title as _title, UM
 
 __all__ = ["plot_te_lte", "plot_contact_pattern", "plot_tca", "tca_figures", "ltca_figures"]
 
@@ -17,26 +19,37 @@ def _angle_mrad(ds: xr.Dataset) -> np.ndarray:
     return ds["pinion_angle"].values * 1e3
 
 
+#: The contact laws' names as a reader knows them (the attribute holds the code's name).
+CONTACT_LAWS = {"palmgren": "Palmgren line", "linear": "linear Hertz"}
+
+
 def plot_te_lte(ds: xr.Dataset, path: str | Path) -> Path:
     """Unloaded TE and the LTE of every torque over one mesh cycle (µm along the transverse
-    line of action, + gear lags), with the start of engagement φ1A, LTE(φ1A) and the
-    entering pair's separation TE(φ1A) (seed 000's comparison)."""
-    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    line of action, + gear lags), with the start of engagement φ1A, LTE(φ1A) (dots) and the
+    entering pair's separation TE(φ1A) (square, its value written beside it): seed 000's
+    criterion, an LTE at φ1A above that separation means the entering pair touches before A."""
+    fig, ax = subplots(figsize=(7.5, 4.5))
     x = _angle_mrad(ds)
     xa = float(ds["pinion_angle_engagement"]) * 1e3
+    separation = float(ds["te_next_pair_at_engagement"]) * UM
     ax.plot(x, ds["te"].values * UM, color="k", lw=1.6, label="TE (unloaded)")
-    colors = plt.cm.viridis(np.linspace(0.1, 0.85, ds.sizes["torque"]))
-    for color, k in zip(colors, range(ds.sizes["torque"])):
+    colors = palette(ds.sizes["torque"])
+    at_a = ds["lte_at_engagement"].values * UM
+    for k, color in enumerate(colors):
         sel = ds.isel(torque=k)
         ax.plot(x, sel["lte"].values * UM, color=color, lw=1.6,
-                label=f"LTE, T1 = {float(sel.torque):g} N m (p-p {float(sel.lte_peak_to_peak) * UM:.2f} µm)")
-        ax.plot([xa], [float(sel["lte_at_engagement"]) * UM], "o", color=color, ms=5)
+                label=f"LTE, T1 = {number(float(sel.torque))} N m, p-p {number(float(sel.lte_peak_to_peak) * UM)} µm: "
+                      f"entering pair touches {'before' if at_a[k] > separation else 'after'} A")
+    for k, color in enumerate(colors):
+        ax.plot([xa], [at_a[k]], "o", color=color, ms=5, label="LTE at φ1A" if k == 0 else None)
     ax.axvline(xa, color="0.4", ls=":", lw=1.0, label="start of engagement φ1A")
-    ax.plot([xa], [float(ds["te_next_pair_at_engagement"]) * UM], "s", color="k", ms=5,
-            label="entering pair's separation TE(φ1A)")
+    ax.plot([xa], [separation], "s", color="k", ms=5, label="entering pair's unloaded separation TE(φ1A)")
+    ax.annotate(f"TE(φ1A) = {number(separation)} µm", (xa, separation), xytext=(7, 5), textcoords="offset points",
+                va="bottom", fontsize=8, bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 1})
     ax.set_xlabel("pinion rotation φ1 over one mesh cycle (mrad)")
     ax.set_ylabel("transmission error along the line of action (µm)")
-    ax.set_title(_title(ds, f"TE and LTE ({ds.attrs.get('contact_law', '')} contact law)"))
+    law = str(ds.attrs.get("contact_law", ""))
+    ax.set_title(_title(ds, f"TE and LTE ({CONTACT_LAWS.get(law, law)} contact)"))
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1))
     return _save(fig, path)
@@ -62,33 +75,41 @@ def _pattern(ds: xr.Dataset, k: int, bins: int = 80):
 def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
     """The loaded contact pattern on the pinion flank for every torque: the largest line load
     (N/mm) over the mesh cycle against axial position z and pinion roll length ρ1, with the
-    SAP and tip (EAP) marked."""
+    SAP and tip (EAP) marked; each panel on its own colour scale (its colour bar below it, so a
+    light load is not drawn dark on the scale of the heaviest), cells the contact never
+    reaches grey, shown at the low end of each colour bar (where there are any)."""
     n = ds.sizes["torque"]
-    fig, axes = plt.subplots(1, n, figsize=(4.2 * n, 4.6), squeeze=False, sharey=True)
+    fig, axes = subplots(1, n, figsize=(4.2 * n, 5.4), squeeze=False, sharey=True, layout="constrained")
+    fig.get_layout_engine().set(wspace=0.08)  # the panels' end tick labels apart
     z = ds["point"].values * MM
     dz = float(ds["point_width"]) * MM
     z_edges = np.append(z - 0.5 * dz, z[-1] + 0.5 * dz)
-    patterns = [_pattern(ds, k) for k in range(n)]
-    vmax = max(float(np.nanmax(p[1])) if np.isfinite(p[1]).any() else 1.0 for p in patterns)
-    mesh = None
+    cmap = colormaps["inferno"].with_extremes(under="0.8", bad="0.8")
     for k, ax in enumerate(axes[0]):
-        edges, grid = patterns[k]
-        mesh = ax.pcolormesh(z_edges, edges * MM, grid, cmap="inferno", vmin=0, vmax=vmax, shading="flat")
+        edges, grid = _pattern(ds, k)
+        top = float(np.nanmax(grid)) if np.isfinite(grid).any() else 1.0
+        mesh = ax.pcolormesh(z_edges, edges * MM, np.where(np.isfinite(grid), grid, -1.0), cmap=cmap, vmin=0,
+                             vmax=top, shading="flat")
         for name, ls in (("rho_sap", "--"), ("rho_eap", "-")):
             ax.axhline(float(ds[name][0]) * MM, color="tab:cyan", ls=ls, lw=0.9)
         sel = ds.isel(torque=k)
-        ax.set_title(f"T1 = {float(sel.torque):g} N m\nmax {float(sel.max_line_load_cycle) * 1e-3:.0f} N/mm", fontsize=9)
+        ax.set_title(f"T1 = {number(float(sel.torque))} N m\nmax {number(float(sel.max_line_load_cycle) * 1e-3)} N/mm",
+                     fontsize=9)
         ax.set_xlabel("z across the face (mm)")
+        apart = bool(np.isnan(grid).any())  # cells the contact never reaches: on the bar only when there are any
+        bar = fig.colorbar(mesh, ax=ax, location="bottom", extend="min" if apart else "neither", extendfrac=0.08,
+                           aspect=30)
+        bar.set_label("largest line load over the mesh cycle (N/mm)" + (";\ngrey (left end): no contact" if apart else ""),
+                      fontsize=8)
     axes[0][0].set_ylabel("pinion roll length ρ1 (mm); dashed SAP, solid tip")
-    fig.colorbar(mesh, ax=axes[0].tolist(), label="largest line load over the mesh cycle (N/mm)")
-    fig.suptitle(_title(ds, "loaded contact pattern on the pinion flank"), y=1.04)
+    fig.suptitle(_title(ds, "loaded contact pattern on the pinion flank"))
     return _save(fig, path)
 
 
 def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
     """Unloaded TCA: the TE of the mesh and of each tooth pair over one mesh cycle, and the
     path of each pair's first-contact point on the pinion flank (z, ρ1)."""
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(11, 4.3))
+    fig, (ax1, ax2) = subplots(1, 2, figsize=(11, 4.6), layout="constrained")
     x = _angle_mrad(ds)
     ax1.plot(x, ds["te"].values * UM, color="0.75", lw=4.0, label="TE of the mesh", zorder=1)
     # a tooth pair whose whole contact line touches at once (perfect flanks) has no single
@@ -98,12 +119,18 @@ def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
     spread = np.where(finite, sep, -np.inf).max(axis=2) - np.where(finite, sep, np.inf).min(axis=2)
     whole_line = (finite.sum(axis=2) >= 2) & (spread < 1e-9)  # (position, line)
     styles = ("--", "-.", ":", (0, (5, 1, 1, 1)))
+    te_pairs = ds["te_pair"].transpose("line", ...).values * UM
+    labelled = {group[0]: group for group in coinciding(te_pairs)}
+    pair_colors = colormaps["tab10"](np.arange(ds.sizes["line"]) % 10)  # one colour per pair, both panels
     for j in range(ds.sizes["line"]):
-        te_j = ds["te_pair"].isel(line=j).values * UM
-        note = " (0 over the cycle)" if np.nanmax(np.abs(te_j)) == 0 else ""
-        ax1.plot(x, te_j, lw=1.3, ls=styles[j % len(styles)], label=f"pair j = {int(ds.line[j])}{note}", zorder=2)
+        group = labelled.get(j)
+        if group is not None:  # pairs whose curves coincide: one line, every pair named
+            names = ", ".join(str(int(ds.line[i])) for i in group)
+            note = " (0 over the cycle)" if np.nanmax(np.abs(te_pairs[j])) == 0 else ""
+            ax1.plot(x, te_pairs[j], lw=1.3, ls=styles[j % len(styles)], color=pair_colors[j],
+                     label=f"pair{'s' if len(group) > 1 else ''} j = {names}{note}", zorder=2)
         z = np.where(whole_line[:, j], np.nan, ds["contact_z"].isel(line=j).values) * MM
-        ax2.plot(z, ds["contact_rho_pinion"].isel(line=j).values * MM, ".-", ms=3, lw=0.8,
+        ax2.plot(z, ds["contact_rho_pinion"].isel(line=j).values * MM, ".-", ms=3, lw=0.8, color=pair_colors[j],
                  label=f"pair j = {int(ds.line[j])}")
     ax1.axvline(float(ds["pinion_angle_engagement"]) * 1e3, color="0.4", ls=":", lw=1.0, label="φ1A")
     ax1.set_yscale("symlog", linthresh=1.0)  # the µm TE and the 100 µm separations of the other pairs
@@ -112,16 +139,16 @@ def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
     ax1.set_ylabel("unloaded separation / TE (µm),\nlinear to 1 µm, logarithmic above")
     ax1.grid(alpha=0.3)
     ax1.legend(fontsize=7)
-    if whole_line.any():
-        ax2.text(0.02, 0.02, "whole line touching at once (perfect flanks): no single point, not drawn",
-                 transform=ax2.transAxes, fontsize=7, color="0.3")
     half = 0.5 * float(ds["face_width"]) * MM
-    ax2.add_patch(plt.Rectangle((-half, float(ds.rho_sap[0]) * MM), 2 * half,
+    ax2.add_patch(Rectangle((-half, float(ds.rho_sap[0]) * MM), 2 * half,
                                 float(ds.rho_eap[0] - ds.rho_sap[0]) * MM, fill=False, ec="0.4"))
     ax2.set_xlabel("z across the face (mm)")
     ax2.set_ylabel("pinion roll length ρ1 (mm)")
-    ax2.set_title("first-contact points of each pair", fontsize=9)
-    fig.suptitle(_title(ds, f"unloaded TCA, TE p-p {float(ds.te_peak_to_peak) * UM:.2f} µm"))
+    ax2.legend(fontsize=7, loc="best")
+    ax2.set_title("first-contact points of each pair" + ("\n(where a whole line touches at once, as on perfect "
+                                                         "flanks, there is no single point: not drawn)"
+                                                         if whole_line.any() else ""), fontsize=8)
+    fig.suptitle(_title(ds, f"unloaded TCA, TE p-p {number(float(ds.te_peak_to_peak) * UM)} µm"))
     return _save(fig, path)
 
 

@@ -10,7 +10,7 @@ import xarray as xr
 from matplotlib.ticker import MaxNLocator
 
 from ..surface import relief_depth
-from .common import MM, UM, plt, save as _save, title as _title
+from .common import figure, MM, number, plain_log_axis, save as _save, subplots, title as _title, UM
 
 __all__ = ["plot_convergence", "plot_modification", "plot_pareto", "optimise_figures", "pareto_figures"]
 
@@ -30,7 +30,7 @@ def _change(optimum: float, standard: float) -> str:
 def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     """Best objective so far and the population median against generation, for the run and (when
     it ran) the random search of the same budget, with the standard gear's objective."""
-    fig, ax = plt.subplots(figsize=(7.5, 4.5))
+    fig, ax = subplots(figsize=(7.5, 4.5))
     k, unit = _scale(ds)
     gen = ds["generation"].values
     runs = [("", ds.attrs.get("method", "GA").upper(), "tab:blue")]
@@ -46,8 +46,8 @@ def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     ax.set_yscale("log")
     ax.set_xlabel("generation (0: initial population)")
     torques = ds["objective_torque"].values
-    where = f"{torques[0]:g} N m" if torques.size == 1 else \
-        f"{ds.attrs.get('objective_statistic', 'max')} over {', '.join(f'{t:g}' for t in torques)} N m"
+    where = f"{number(torques[0])} N m" if torques.size == 1 else \
+        f"{ds.attrs.get('objective_statistic', 'max')} over {', '.join(number(t) for t in torques)} N m"
     tol = ds.attrs.get("tolerance_statistic", "none (nominal)")
     if not tol.startswith("none"):
         where += f", {tol} over nominal + {ds.attrs.get('tolerance_samples', 0)} tolerance samples"
@@ -60,7 +60,8 @@ def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     def value(v: float) -> str:
         return f"{v:.0f}" if abs(v) >= 100 else f"{v:.3g}"
 
-    ax.set_title(_title(ds, f"{ds.attrs.get('objective', '')} objective ({quantity}, {where}), seed "
+    plain_log_axis(ax)
+    ax.set_title(_title(ds, f"{ds.attrs.get('objective', '')} objective ({quantity}, {where}), random seed "
                             f"{ds.attrs.get('seed', '')}\noptimum {value(opt)} {unit}, {_change(opt, std)} "
                             f"({value(std)} {unit})"), fontsize=9)
     return _save(fig, path)
@@ -76,68 +77,86 @@ def _depth_map(ds: xr.Dataset, gear: int, n_profile: int = 161, n_face: int = 12
     return rho, z, depth
 
 
-#: Seed 000's six parameters in words, with their symbols (the subtitle of the map).
-_PARAMETERS = ("y1 root relief", "y2 tip relief", "y3 root relief length", "y4 tip relief length",
-               "y5 lead crowning", "y6 unmodified lead length")
+def _words(p_gear) -> str:
+    """Seed 000's six parameters of one gear (y1..y6, m) in words."""
+    y1, y2, y3, y4, y5, y6 = p_gear
+    parts = [f"tip relief {number(y2 * UM)} µm over {number(y4 * MM)} mm" if y2 > 0 and y4 > 0 else "no tip relief",
+             f"root relief {number(y1 * UM)} µm over {number(y3 * MM)} mm" if y1 > 0 and y3 > 0 else "no root relief",
+             f"lead crowning {number(y5 * UM)} µm outside the middle {number(y6 * MM)} mm" if y5 > 0 else "no crowning"]
+    return ", ".join(parts)
+
+
+def _zones(ax, side, below, ds: xr.Dataset, gear: int, p_gear) -> None:
+    """Where each relief begins (dashed, across the map and the profile, the zone named beside
+    the profile) and the unmodified middle of the lead (dashed, across the map and the lead)."""
+    y1, y2, y3, y4, y5, y6 = p_gear
+    sap, eap = float(ds["rho_sap"][gear]) * MM, float(ds["rho_eap"][gear]) * MM
+    for amount, length, start, end, name in ((y2, y4, eap - y4 * MM, eap, "tip relief"),
+                                             (y1, y3, sap, sap + y3 * MM, "root relief")):
+        if amount > 0 and length > 0:
+            edge = start if name == "tip relief" else end
+            for a in (ax, side):
+                a.axhline(edge, color="w" if a is ax else "0.4", ls="--", lw=0.9)
+            side.annotate(f"{name}\n{number(amount * UM)} µm over {number(length * MM)} mm", (1.0, 0.5 * (start + end)),
+                          xycoords=("axes fraction", "data"), xytext=(4, 0), textcoords="offset points", va="center",
+                          fontsize=7, annotation_clip=False)
+    half = 0.5 * float(ds["face_width"]) * MM
+    if y5 > 0 and 0 < y6 * MM < 2 * half:
+        for x in (-0.5 * y6 * MM, 0.5 * y6 * MM):
+            for a in (ax, below):
+                a.axvline(x, color="w" if a is ax else "0.4", ls="--", lw=0.9)
 
 
 def plot_modification(ds: xr.Dataset, path: str | Path) -> Path:
     """The optimum's material removal δ (µm) on the active flank of the pinion and of the gear
     where it is modified: the map against axial position z and roll length ρ (filled levels, the
-    levels marked on the colour bar), the profile δ(ρ) at the face centre and at a face end beside
-    it, the lead δ(z) at the tip and at mid-profile below it, and the six parameters in words
+    colour bar above it), the profile δ(ρ) at the face centre and at a face end beside it with
+    each relief zone named, the lead δ(z) at the tip and at mid-profile below it, dashed lines
+    where the reliefs and the crowning begin, and the six parameters in words in the title
     (seed 000's parabolic tip and root reliefs and lead crowning,
     :func:`gearmesh.surface.modification_depth`)."""
     p = ds["optimum_modification"].values
     gears = [g for g in range(2) if g == 0 or np.any(p[g] > 0)]
-    fig = plt.figure(figsize=(7.2 * len(gears), 7.4))
-    grid = fig.add_gridspec(2, 3 * len(gears), width_ratios=[4, 1.6, 0.25] * len(gears), height_ratios=[4, 1.5],
-                            wspace=0.35, hspace=0.3)
+    fig = figure(figsize=(8.2 * len(gears), 8.4), layout="constrained")
+    grid = fig.add_gridspec(2, 2 * len(gears), width_ratios=[4, 1.7] * len(gears), height_ratios=[4, 1.5])
     notes = []
     for n, g in enumerate(gears):
         rho, z, depth = _depth_map(ds, g)
-        ax = fig.add_subplot(grid[0, 3 * n])
-        side = fig.add_subplot(grid[0, 3 * n + 1], sharey=ax)
-        below = fig.add_subplot(grid[1, 3 * n], sharex=ax)
-        cax = fig.add_subplot(grid[0, 3 * n + 2])
+        ax = fig.add_subplot(grid[0, 2 * n])
+        side = fig.add_subplot(grid[0, 2 * n + 1], sharey=ax)
+        below = fig.add_subplot(grid[1, 2 * n], sharex=ax)
         top = max(float(depth.max()) * UM, 1e-3)
         levels = MaxNLocator(nbins=10).tick_values(0.0, top)
-        levels = levels[levels >= 0]
-        filled = ax.contourf(z * MM, rho * MM, depth * UM, levels=levels, cmap="viridis")
-        lines = ax.contour(z * MM, rho * MM, depth * UM, levels=levels[1:-1], colors="w", linewidths=0.5)
-        bar = fig.colorbar(filled, cax=cax)
-        bar.add_lines(lines)
-        bar.set_label("material removed δ (µm)")
+        filled = ax.contourf(z * MM, rho * MM, depth * UM, levels=levels[levels >= 0], cmap="viridis")
+        fig.colorbar(filled, ax=ax, location="top", aspect=30, label="material removed δ (µm)")
         name = str(ds["gear"].values[g])
         ax.set_ylabel(f"{name} roll length ρ (mm), SAP (bottom) to tip")
         ax.tick_params(labelbottom=False)
         mid = z.size // 2
-        side.plot(depth[:, mid] * UM, rho * MM, color="tab:blue", label="face centre")
-        side.plot(depth[:, -1] * UM, rho * MM, color="tab:red", ls="--", label="face end")
+        side.plot(depth[:, mid] * UM, rho * MM, color="tab:blue", label="at the face centre")
+        side.plot(depth[:, -1] * UM, rho * MM, color="tab:red", ls="--", label="at a face end")
         side.set_xlabel("δ (µm)")
         side.tick_params(labelleft=False)
         side.grid(alpha=0.3)
-        side.legend(fontsize=7, loc="upper right")
+        side.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=1)
         side.set_title("profile", fontsize=8)
         below.plot(z * MM, depth[-1] * UM, color="tab:purple", label="at the tip")
-        below.plot(z * MM, depth[rho.size // 2] * UM, color="tab:green", ls="--", label="mid-profile")
+        below.plot(z * MM, depth[rho.size // 2] * UM, color="tab:green", ls="--", label="at mid-profile")
         below.set_xlabel("z across the face (mm)")
         below.set_ylabel("δ (µm)")
+        below.set_title("lead", fontsize=8)
         below.grid(alpha=0.3)
-        below.legend(fontsize=7, ncol=2)
-        words = [f"{label} {v * (UM if k in (0, 1, 4) else MM):.3g} {'µm' if k in (0, 1, 4) else 'mm'}"
-                 for k, (label, v) in enumerate(zip(_PARAMETERS, p[g]))]
-        ax.set_title(f"{name} flank", fontsize=9)
-        notes.append(f"{name}: {', '.join(words[:3])},\n{', '.join(words[3:])}")
-    fig.suptitle(_title(ds, "optimum micro-geometry δ(profile, face)") + "\n" + "\n".join(notes), y=1.02,
-                 fontsize=9)
+        below.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.3), ncol=2)
+        _zones(ax, side, below, ds, g, p[g])
+        notes.append(f"{name}: {_words(p[g])}")
+    fig.suptitle(_title(ds, "optimum micro-geometry δ(profile, face)") + "\n" + "\n".join(notes), fontsize=9)
     return _save(fig, path)
 
 
 def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
     """NSGA-II: F_s against peak-to-peak LTE at the design torque for every evaluated candidate
     (failed ones left out), the Pareto front and the standard gear."""
-    fig, ax = plt.subplots(figsize=(6.5, 4.5))
+    fig, ax = subplots(figsize=(6.5, 4.5))
     ok = ds["failed"].values == 0
     f = ds["objective"].values[ok]
     lte = ds["lte_peak_to_peak"].values[ok] * UM
@@ -147,8 +166,9 @@ def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
     ax.plot([float(ds["standard_lte_peak_to_peak"]) * UM], [float(ds["standard_objective"])], "ks", ms=6,
             label="standard (unmodified) gear")
     ax.set_yscale("log")
-    ax.set_xlabel(f"peak-to-peak LTE at {float(ds['design_torque']):g} N m (µm)")
-    ax.set_ylabel(f"mesh-in impact force F_s at {float(ds['speed']):g} rpm (N)")
+    plain_log_axis(ax)
+    ax.set_xlabel(f"peak-to-peak LTE at {number(float(ds['design_torque']))} N m (µm)")
+    ax.set_ylabel(f"mesh-in impact force F_s at {number(float(ds['speed']))} rpm (N)")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7)
     ax.set_title(_title(ds, "NSGA-II: impact force against LTE"), fontsize=9)

@@ -1,0 +1,607 @@
+"""Typed settings → JSON schema, argument checks and reference tables: one declaration each.
+
+A setting is a field of a frozen dataclass declared with :func:`setting`: its Python type,
+default, bounds and description. From that one declaration come
+
+* the JSON schema (:func:`object_schema`) that validates a document and fills its defaults
+  (``gearmesh validate``, the Snakefile and editors through the published schema files);
+* the refusal of a bad argument of a stage function (:func:`check_arguments`), with the same
+  bounds, so the Python API, the CLI and a study config refuse the same values;
+* the reference table of every key (:func:`markdown_table`, ``config/README.md``).
+
+Types map to JSON schema as: ``int`` → integer, ``float`` → number, ``bool`` → boolean,
+``str`` → string, ``Literal[...]`` → enum, ``tuple[X, ...]`` → array of X, ``tuple[X, X]``
+→ array of exactly two X, ``dict[str, X]`` → object of X, a dataclass → object, ``X | None``
+→ X or null, ``X | Y`` → one of X, Y. Numeric bounds apply to every number inside the type
+(the items of an array too), item counts to the outermost array, key patterns to the outermost
+mapping.
+"""
+
+from __future__ import annotations
+
+import copy
+import dataclasses
+import functools
+import inspect
+import math
+import types
+import typing
+from collections.abc import Mapping
+from typing import Any, Callable, Literal, Union
+
+from .errors import GearmeshInputError
+
+#: Key of a field's :class:`Spec` in ``dataclasses.field(metadata=...)``.
+SPEC = "gearmesh"
+#: Default of a setting that must be given.
+REQUIRED = dataclasses.MISSING
+
+#: Units of a key from its suffix (the convention of config and pair files: the unit is in the name).
+UNIT_SUFFIXES = (
+    ("_Ns_per_m", "N s/m"), ("_N_per_m", "N/m"), ("_kg_m2", "kg m²"), ("_kg_m3", "kg/m³"), ("_Nm", "N m"),
+    ("_rpm", "r/min"), ("_um", "µm"), ("_mm", "mm"), ("_deg", "°"), ("_Hz", "Hz"), ("_GPa", "GPa"),
+    ("_percent", "%"), ("_N", "N"),
+)
+
+
+@dataclasses.dataclass(frozen=True)
+class Spec:
+    """What a setting declares beyond its type and default (:func:`setting`)."""
+
+    description: str
+    units: str | None = None
+    minimum: float | None = None
+    maximum: float | None = None
+    exclusive_minimum: float | None = None
+    exclusive_maximum: float | None = None
+    multiple_of: int | None = None
+    min_items: int | None = None
+    max_items: int | None = None
+    unique: bool = False
+    pattern: str | None = None
+    max_length: int | None = None
+    key_pattern: str | None = None
+    key_max_length: int | None = None
+    key: str | None = None
+    fill: bool = True
+    workflow: bool = False
+
+
+def setting(default: Any = REQUIRED, description: str = "", **spec: Any) -> Any:
+    """A dataclass field declaring one setting: ``default`` (:data:`REQUIRED`: must be given),
+    a ``description`` (a sentence fragment: what it is, what null or a special value means) and
+    the keywords of :class:`Spec`:
+
+    units : shown in the reference table; by default from the key's suffix (:data:`UNIT_SUFFIXES`).
+    minimum, maximum, exclusive_minimum, exclusive_maximum, multiple_of : numeric bounds.
+    min_items, max_items, unique : of the outermost array.
+    pattern, max_length : of the strings; key_pattern, key_max_length : of a mapping's keys.
+    key : the key in the document when it is not a Python name (``from``).
+    fill : False when leaving the key out means something of its own (the schema fills no
+        default, and null is not accepted); the Python default is then None.
+    workflow : read by the workflow (e.g. the pair names a study stage gathers), not passed
+        to the stage function.
+    """
+    meta = {SPEC: Spec(description=" ".join(description.split()), **spec)}
+    if default is REQUIRED:
+        return dataclasses.field(metadata=meta)
+    if isinstance(default, (dict, list, set)):
+        return dataclasses.field(default_factory=lambda: copy.deepcopy(default), metadata=meta)
+    return dataclasses.field(default=default, metadata=meta)
+
+
+# --------------------------------------------------------------------------------------
+# Reading a declaration
+# --------------------------------------------------------------------------------------
+
+
+def spec_of(field: dataclasses.Field) -> Spec:
+    return field.metadata[SPEC]
+
+
+def key_of(field: dataclasses.Field) -> str:
+    """The field's key in the document."""
+    return spec_of(field).key or field.name
+
+
+def settings_fields(cls: type) -> list[dataclasses.Field]:
+    """The settings of dataclass ``cls``, in declaration order."""
+    return [f for f in dataclasses.fields(cls) if SPEC in f.metadata]
+
+
+@functools.cache
+def type_hints(cls: type) -> dict[str, Any]:
+    return typing.get_type_hints(cls)
+
+
+def has_default(field: dataclasses.Field) -> bool:
+    return field.default is not dataclasses.MISSING or field.default_factory is not dataclasses.MISSING
+
+
+def default_of(field: dataclasses.Field) -> Any:
+    """The field's default as a document value: tuples as lists, a settings object that is all
+    its own defaults as ``{}`` (they are filled inside it), any other in full."""
+    value = field.default_factory() if field.default is dataclasses.MISSING else field.default
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        try:
+            plain = type(value)()
+        except TypeError:  # it has keys that must be given
+            plain = None
+        return {} if value == plain else jsonable(value)
+    return jsonable(value)
+
+
+def jsonable(value: Any) -> Any:
+    """``value`` as JSON data: tuples and arrays as lists, numpy scalars as Python numbers,
+    mappings as dicts, a settings object as the mapping of its keys."""
+    if dataclasses.is_dataclass(value) and not isinstance(value, type):
+        return {key_of(f): jsonable(getattr(value, f.name)) for f in settings_fields(type(value))}
+    if isinstance(value, Mapping):
+        return {k: jsonable(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [jsonable(v) for v in value]
+    if hasattr(value, "tolist") and not isinstance(value, (str, bytes)):  # numpy arrays and scalars
+        return jsonable(value.tolist())
+    return value
+
+
+def units_of(field: dataclasses.Field) -> str:
+    """The units of a setting: declared, or from its key's suffix, else '' (a count, a name or
+    a dimensionless number)."""
+    spec = spec_of(field)
+    if spec.units is not None:
+        return spec.units
+    key = key_of(field)
+    return next((units for suffix, units in UNIT_SUFFIXES if key.endswith(suffix)), "")
+
+
+# --------------------------------------------------------------------------------------
+# JSON schema
+# --------------------------------------------------------------------------------------
+
+_SCALARS = {bool: "boolean", int: "integer", float: "number", str: "string"}
+
+
+def _numeric(spec: Spec) -> dict[str, Any]:
+    out = {}
+    for attr, word in (("minimum", "minimum"), ("maximum", "maximum"), ("exclusive_minimum", "exclusiveMinimum"),
+                       ("exclusive_maximum", "exclusiveMaximum"), ("multiple_of", "multipleOf")):
+        if getattr(spec, attr) is not None:
+            out[word] = getattr(spec, attr)
+    return out
+
+
+def type_schema(tp: Any, spec: Spec, outer: bool = True) -> dict[str, Any]:
+    """JSON schema of Python type ``tp`` with the constraints of ``spec`` (module docstring)."""
+    origin, args = typing.get_origin(tp), typing.get_args(tp)
+    if tp is Any:
+        return {}
+    if tp is type(None):
+        return {"type": "null"}
+    if origin in (Union, types.UnionType):
+        members = [a for a in args if a is not type(None)]
+        nullable = len(members) < len(args)
+        parts = [type_schema(a, spec, outer) for a in members]
+        if len(parts) == 1:
+            return _with_null(parts[0]) if nullable else parts[0]
+        return {"oneOf": parts + ([{"type": "null"}] if nullable else [])}
+    if origin is Literal:
+        return {"type": "string", "enum": list(args)}
+    if tp in _SCALARS:
+        out: dict[str, Any] = {"type": _SCALARS[tp]}
+        if tp in (int, float):
+            out.update(_numeric(spec))
+        if tp is str:
+            out.update({k: v for k, v in (("pattern", spec.pattern), ("maxLength", spec.max_length)) if v is not None})
+        return out
+    if origin in (tuple, list):
+        variadic = origin is list or (len(args) == 2 and args[1] is Ellipsis)
+        item = args[0]
+        if not variadic and any(a != item for a in args):
+            raise TypeError(f"{tp}: arrays of one item type only")
+        out = {"type": "array", "items": type_schema(item, spec, outer=False)}
+        if not variadic:
+            out["minItems"] = out["maxItems"] = len(args)
+        elif outer:
+            for attr, word in (("min_items", "minItems"), ("max_items", "maxItems")):
+                if getattr(spec, attr) is not None:
+                    out[word] = getattr(spec, attr)
+            if spec.unique:
+                out["uniqueItems"] = True
+        return out
+    if origin in (dict, Mapping, typing.Mapping) or tp is dict:
+        value = args[1] if args else Any
+        out = {"type": "object"}
+        if value is not Any:
+            out["additionalProperties"] = type_schema(value, spec, outer=False)
+        names = {k: v for k, v in (("pattern", spec.key_pattern), ("maxLength", spec.key_max_length)) if v is not None}
+        if names and outer:
+            out["propertyNames"] = names
+        return out
+    if dataclasses.is_dataclass(tp):
+        return object_schema(tp)
+    raise TypeError(f"no JSON schema for the type {tp!r}")
+
+
+def _with_null(schema: dict[str, Any]) -> dict[str, Any]:
+    out = dict(schema)
+    if "enum" in out:
+        out["enum"] = out["enum"] + [None]
+    kind = out.get("type")
+    if kind is None:
+        return {"oneOf": [schema, {"type": "null"}]}
+    out["type"] = [kind, "null"] if isinstance(kind, str) else [*kind, "null"]
+    return out
+
+
+def field_schema(cls: type, field: dataclasses.Field) -> dict[str, Any]:
+    """JSON schema of one setting of ``cls``: type, bounds, description and default."""
+    spec = spec_of(field)
+    tp = type_hints(cls)[field.name]
+    if not spec.fill:  # absent means "not given": the key may be left out, not set to null
+        args = typing.get_args(tp)
+        if typing.get_origin(tp) in (Union, types.UnionType) and type(None) in args:
+            members = tuple(a for a in args if a is not type(None))
+            tp = members[0] if len(members) == 1 else Union[members]
+    out = type_schema(tp, spec)
+    if spec.description:
+        out = {**out, "description": spec.description}
+    if spec.fill and has_default(field):
+        out["default"] = default_of(field)
+    return out
+
+
+def object_schema(cls: type) -> dict[str, Any]:
+    """JSON schema of settings dataclass ``cls``: no unknown key, its required keys, each
+    setting's :func:`field_schema`, and at most one key of each group of its ``ALTERNATIVES``
+    (keys that give the same quantity) other than null; described by the first paragraph of its
+    docstring."""
+    fields = settings_fields(cls)
+    out: dict[str, Any] = {"type": "object", "additionalProperties": False}
+    doc = description_of(cls)
+    if doc:
+        out["description"] = doc
+    required = [key_of(f) for f in fields if not has_default(f)]
+    if required:
+        out["required"] = required
+    out["properties"] = {key_of(f): field_schema(cls, f) for f in fields}
+    exclusive = [(a, b) for group in getattr(cls, "ALTERNATIVES", ()) for i, a in enumerate(group) for b in group[i + 1:]]
+    if exclusive:  # two keys of one group both given (not null): refused
+        out["allOf"] = [{"not": {"required": [a, b], "properties": {a: {"not": {"type": "null"}},
+                                                                     b: {"not": {"type": "null"}}}}}
+                        for a, b in exclusive]
+    return out
+
+
+def description_of(cls: type) -> str:
+    """The first paragraph of ``cls``'s own docstring, on one line."""
+    doc = cls.__dict__.get("__doc__") or ""
+    return " ".join(inspect.cleandoc(doc).split("\n\n")[0].split())
+
+
+# --------------------------------------------------------------------------------------
+# Validation with defaults, and the refusal of one bad value
+# --------------------------------------------------------------------------------------
+
+
+def _with_defaults(validator_class):
+    """A validator that fills ``default`` values while it validates (jsonschema FAQ recipe)."""
+    validate_properties = validator_class.VALIDATORS["properties"]
+
+    def set_defaults(validator, properties, instance, schema):
+        if isinstance(instance, dict):
+            for name, sub in properties.items():
+                if "default" in sub and name not in instance:
+                    instance[name] = copy.deepcopy(sub["default"])
+        yield from validate_properties(validator, properties, instance, schema)
+
+    import jsonschema
+
+    return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
+
+
+def first_non_finite(data: Any, path: str = "") -> tuple[str, float] | None:
+    """The path and value of the first NaN or infinite number in nested data (JSON schema
+    numbers accept both; no setting may be either)."""
+    stack = [(path, data)]
+    while stack:
+        where, value = stack.pop()
+        if isinstance(value, float) and not math.isfinite(value):
+            return where or "config", value
+        if isinstance(value, Mapping):
+            stack += [(f"{where}.{k}" if where else str(k), v) for k, v in reversed(list(value.items()))]
+        elif isinstance(value, (list, tuple)):
+            stack += [(f"{where}[{i}]", v) for i, v in reversed(list(enumerate(value)))]
+    return None
+
+
+def _field(parts: list[Any]) -> str:
+    """A key path as the error names it: ``optimise.best.modify[0]``."""
+    out = ""
+    for p in parts:
+        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
+    return out
+
+
+_ARTICLES = {"integer": "an integer", "number": "a number", "string": "a string", "array": "a list",
+             "object": "a mapping", "boolean": "true or false", "null": "null"}
+
+
+def _rule(err) -> str:
+    """The rule a jsonschema error says was broken, in the words of the reference tables."""
+    kind, limit = err.validator, err.validator_value
+    if kind == "type":
+        kinds = [limit] if isinstance(limit, str) else list(limit)
+        return "must be " + " or ".join(_ARTICLES.get(k, k) for k in kinds)
+    words = {"minimum": "at least", "maximum": "at most", "exclusiveMinimum": "above", "exclusiveMaximum": "below"}
+    if kind in words:
+        return "must be positive" if kind == "exclusiveMinimum" and limit == 0 else f"must be {words[kind]} {_number(limit)}"
+    if kind == "multipleOf":
+        return f"must be a multiple of {limit}"
+    if kind == "enum":
+        return f"must be one of {_choices(limit)}"
+    if kind == "minItems":
+        return f"must have at least {limit} item{'s' if limit != 1 else ''}"
+    if kind == "maxItems":
+        return f"must have at most {limit} item{'s' if limit != 1 else ''}"
+    if kind == "uniqueItems":
+        return "must not repeat an item"
+    if kind == "pattern":
+        return f"{'names ' if 'propertyNames' in err.schema_path else ''}must match {limit}"
+    if kind == "maxLength":
+        return f"{'names ' if 'propertyNames' in err.schema_path else ''}must be at most {limit} characters"
+    if kind == "oneOf":
+        return "must be " + _choices([_alternative(sub) for sub in limit], quote=False)
+    message, head = err.message, repr(err.instance)
+    return message[len(head):].strip() if message.startswith(head) else message
+
+
+def _choices(values: list[Any], quote: bool = True) -> str:
+    """``a, b or c``: values as a reader writes them (null, not None)."""
+    words = ["null" if v is None else repr(v) if quote and isinstance(v, str) else str(v) for v in values]
+    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
+
+
+def _alternative(schema: Mapping[str, Any]) -> str:
+    """One alternative of a ``oneOf`` in words: ``a number ≥ 0``, ``'pair'``, ``null``."""
+    if "enum" in schema:
+        return _choices(schema["enum"])
+    kind = schema.get("type")
+    if not isinstance(kind, str):
+        return _type_words(schema)
+    bounds = _bound_words(schema)
+    return _ARTICLES.get(kind, kind) + (" " + bounds.strip(" ()").replace(", ", " and ") if bounds else "")
+
+
+def schema_error(err, prefix: str = "") -> GearmeshInputError:
+    """One jsonschema error as the field it is about (``a.b[0]``, an unknown or missing key
+    named itself) and the rule it breaks (:func:`_rule`)."""
+    path = ([prefix] if prefix else []) + list(err.path)
+    instance = err.instance
+    if err.validator == "additionalProperties" and err.validator_value is False and isinstance(instance, Mapping):
+        extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
+        if extra:
+            allowed = sorted(err.schema.get("properties", {}))
+            hint = " (YAML 1.1 reads on/off/yes/no as true/false: quote the key, e.g. \"on\")" \
+                if isinstance(extra[0], bool) else ""
+            return GearmeshInputError(_field(path + [str(extra[0])]), instance[extra[0]],
+                                      f"unknown key{hint}; allowed keys are {allowed}")
+    if err.validator == "required" and isinstance(instance, Mapping):
+        missing = [k for k in err.validator_value if k not in instance]
+        if missing:
+            return GearmeshInputError(_field(path + [missing[0]]), None, "is required")
+    return GearmeshInputError(_field(path) or "config", instance if path else None, _rule(err))
+
+
+def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
+    """A copy of ``data`` with the defaults of ``schema`` filled; GearmeshInputError naming the
+    first bad field (a NaN or infinite number anywhere, then the schema's first error)."""
+    import jsonschema
+
+    bad = first_non_finite(data, prefix)
+    if bad:
+        raise GearmeshInputError(bad[0], bad[1], "must be a finite number")
+    out = copy.deepcopy(jsonable(dict(data)))
+    validator = _with_defaults(jsonschema.Draft202012Validator)(schema)
+    errors = sorted(validator.iter_errors(out), key=lambda e: (len(e.path), list(map(str, e.path))))
+    if errors:
+        raise schema_error(errors[0], prefix)
+    for _ in validator.iter_errors(out):  # fill a second time: nested defaults of objects the first pass created
+        pass
+    return out
+
+
+def check_value(cls: type, key: str, value: Any) -> None:
+    """Refuse ``value`` of setting ``key`` of ``cls`` unless its declaration accepts it
+    (GearmeshInputError naming the key)."""
+    field = next(f for f in settings_fields(cls) if key_of(f) == key)
+    schema = {"type": "object", "properties": {key: field_schema(cls, field)}}
+    validate({key: value}, schema)
+
+
+def check_arguments(cls: type, exclude: tuple[str, ...] = ()) -> Callable[[Callable], Callable]:
+    """Decorator: the function's arguments named as settings of ``cls`` (given, not defaulted)
+    are checked against their declarations before it runs (:func:`check_value`), so the API
+    refuses what the schema refuses, with the same bounds. Keys the workflow reads
+    (``workflow``) and ``exclude`` (keys the function checks itself, with more context) are
+    left to the function."""
+    keys = {key_of(f) for f in settings_fields(cls) if not spec_of(f).workflow} - set(exclude)
+
+    def decorate(func: Callable) -> Callable:
+        signature = inspect.signature(func)
+        names = [n for n in signature.parameters if n in keys]
+        extra = next((n for n, p in signature.parameters.items() if p.kind is p.VAR_KEYWORD), None)
+
+        @functools.wraps(func)
+        def checked(*args: Any, **kwargs: Any) -> Any:
+            given = signature.bind_partial(*args, **kwargs).arguments
+            for name, value in [*((n, given[n]) for n in names if n in given),
+                                *((k, v) for k, v in given.get(extra, {}).items() if k in keys)]:
+                if value is None and name in signature.parameters and signature.parameters[name].default is None:
+                    continue  # the function's own "none" (no mutable default): e.g. no bounds, no constraints
+                check_value(cls, name, value)
+            return func(*args, **kwargs)
+
+        checked.__settings__ = cls
+        return checked
+
+    return decorate
+
+
+def defaults(cls: type) -> dict[str, Any]:
+    """The filled defaults of settings dataclass ``cls`` as a document (keys that must be given
+    and keys without a default are left out)."""
+    out = {}
+    for f in settings_fields(cls):
+        if has_default(f) and spec_of(f).fill:
+            value = f.default_factory() if f.default is dataclasses.MISSING else f.default
+            out[key_of(f)] = defaults(type(value)) if dataclasses.is_dataclass(value) else jsonable(value)
+    return out
+
+
+# --------------------------------------------------------------------------------------
+# Reference tables
+# --------------------------------------------------------------------------------------
+
+
+def _type_words(schema: Mapping[str, Any]) -> str:
+    """A short reader's description of a schema's type and bounds."""
+    if "oneOf" in schema:
+        return " or ".join(_type_words(s) for s in schema["oneOf"])
+    kind = schema.get("type")
+    kinds = [kind] if isinstance(kind, str) else list(kind or [])
+    words = []
+    if "enum" in schema:
+        words.append(" / ".join("null" if v is None else f"`{v}`" for v in schema["enum"]))
+    else:
+        for k in kinds:
+            if k == "array":
+                words.append(_array_words(schema))
+            elif k == "object":
+                values = schema.get("additionalProperties")
+                words.append("mapping" + (f" of {_type_words(values)}" if isinstance(values, Mapping) else ""))
+            elif k == "null":
+                words.append("null")
+            else:
+                words.append(k + _bound_words(schema))
+    return " or ".join(words) if words else "any"
+
+
+def _number(value: float) -> str:
+    """A bound as written: integers whole, other numbers short."""
+    return str(value) if isinstance(value, int) else f"{value:g}"
+
+
+def _bound_words(schema: Mapping[str, Any]) -> str:
+    lo = (f"≥ {_number(schema['minimum'])}" if "minimum" in schema else
+          f"> {_number(schema['exclusiveMinimum'])}" if "exclusiveMinimum" in schema else "")
+    hi = (f"≤ {_number(schema['maximum'])}" if "maximum" in schema else
+          f"< {_number(schema['exclusiveMaximum'])}" if "exclusiveMaximum" in schema else "")
+    parts = [p for p in (lo, hi) if p]
+    if "multipleOf" in schema:
+        parts.append(f"multiple of {schema['multipleOf']}")
+    if "pattern" in schema:
+        parts.append(f"matching `{schema['pattern']}`")
+    if "maxLength" in schema:
+        parts.append(f"at most {schema['maxLength']} characters")
+    return f" ({', '.join(parts)})" if parts else ""
+
+
+def _array_words(schema: Mapping[str, Any]) -> str:
+    lo, hi = schema.get("minItems"), schema.get("maxItems")
+    count = (f"{lo}" if lo is not None and lo == hi else f"{lo}–{hi}" if lo is not None and hi is not None
+             else f"≥ {lo}" if lo is not None else f"≤ {hi}" if hi is not None else "")
+    item = _type_words(schema.get("items", {}))
+    head, _, rest = item.partition(" ")
+    if head in ("integer", "number", "string", "list", "mapping"):
+        item = f"{head}s{' ' + rest if rest else ''}"
+    unique = ", distinct" if schema.get("uniqueItems") else ""
+    return f"list of {count + ' ' if count else ''}{item}{unique}"
+
+
+def _default_words(field: dataclasses.Field) -> str:
+    if not has_default(field):
+        return "required"
+    if not spec_of(field).fill:
+        return "—"
+    value = default_of(field)
+    return "`" + _flow(value) + "`"
+
+
+def _flow(value: Any) -> str:
+    """A value as YAML flow text."""
+    if value is None:
+        return "null"
+    if value == "":
+        return '""'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{k}: {_flow(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, list):
+        return "[" + ", ".join(_flow(v) for v in value) + "]"
+    return str(value)
+
+
+def markdown_table(cls: type, prefix: str = "") -> list[str]:
+    """Markdown rows ``| key | type | units | default | description |`` of the settings of ``cls``
+    (keys under ``prefix``), without nested sections (:func:`nested_sections` lists them)."""
+    rows = ["| key | type | units | default | description |", "| --- | --- | --- | --- | --- |"]
+    for f in settings_fields(cls):
+        schema = field_schema(cls, f)
+        section = _section_type(cls, f)
+        kind = "section" if section else _type_words(schema).replace("|", "\\|")
+        text = spec_of(f).description
+        if section:  # its own table follows: a link and its first sentence here
+            path = f"{prefix}{key_of(f)}" + ("" if _holds_section(cls, f) else ".NAME")
+            anchor = "".join(c for c in path.lower() if c.isalnum() or c in "_-")
+            text = f"[`{path}`](#{anchor}): " + (text or description_of(section).split(". ")[0].rstrip("."))
+        text = text.replace("|", "\\|")
+        rows.append(f"| `{prefix}{key_of(f)}` | {kind} | {units_of(f)} | {_default_words(f)} | {text} |")
+    for group in getattr(cls, "ALTERNATIVES", ()):
+        rows += ["", "At most one of " + _choices([f"`{prefix}{k}`" for k in group], quote=False) + "."]
+    return rows
+
+
+def _holds_section(cls: type, field: dataclasses.Field) -> bool:
+    """Whether a field holds one settings object (directly or optionally), not a mapping of them."""
+    tp = type_hints(cls)[field.name]
+    members = typing.get_args(tp) if typing.get_origin(tp) in (Union, types.UnionType) else (tp,)
+    return any(dataclasses.is_dataclass(m) for m in members)
+
+
+def _section_type(cls: type, field: dataclasses.Field) -> type | None:
+    """The settings dataclass a field holds (directly, optionally, or as the values of a
+    mapping of named entries), else None."""
+    tp = type_hints(cls)[field.name]
+    for candidate in (tp, *typing.get_args(tp)):
+        if dataclasses.is_dataclass(candidate):
+            return candidate
+        inner = typing.get_args(candidate)
+        if typing.get_origin(candidate) in (dict, Mapping, typing.Mapping) and inner and dataclasses.is_dataclass(inner[-1]):
+            return inner[-1]
+    return None
+
+
+def nested_sections(cls: type, prefix: str = "") -> list[tuple[str, type]]:
+    """(key path, dataclass) of every settings object inside ``cls``, depth first; a mapping of
+    named entries appears as ``KEY.NAME``."""
+    out = []
+    for f in settings_fields(cls):
+        sub = _section_type(cls, f)
+        if sub is None:
+            continue
+        path = f"{prefix}{key_of(f)}" + ("" if _holds_section(cls, f) else ".NAME")
+        out.append((path, sub))
+        out += nested_sections(sub, path + ".")
+    return out
+
+
+def all_keys(cls: type, prefix: str = "") -> list[str]:
+    """Every key path of ``cls`` and its nested settings (``a.b.c``; named entries as ``NAME``)."""
+    keys = [f"{prefix}{key_of(f)}" for f in settings_fields(cls)]
+    for path, sub in nested_sections(cls, prefix):
+        keys += [f"{path}.{key_of(f)}" for f in settings_fields(sub)]
+    return keys

@@ -1,0 +1,709 @@
+"""The settings of a study config and the keys of a pair file, declared once (typed).
+
+Every study key is a field of one of the frozen dataclasses below, declared with
+:func:`gearmesh.schema.setting` (type, default, bounds, description). From them come the
+study schema (:func:`study_schema`; published as ``schemas/config.schema.yaml``, linked as
+``workflow/schemas/``), which ``gearmesh validate`` and the Snakefile validate a config with
+and fill its defaults from; the argument checks of the stage functions
+(:func:`gearmesh.schema.check_arguments`: the API refuses what the schema refuses); the
+reference of every key (``config/README.md``) and the pair-file schema for editors
+(:func:`pair_schema`, ``schemas/pair.schema.json``). ``gearmesh schema`` prints each.
+
+Each section names the stage function that takes its keys as keyword arguments
+(``STAGES``); the tests hold every key and default of a section equal to that function's
+parameters. Engineering units, the unit in the key name (``torque_Nm``, ``speed_rpm``).
+Reading a config imports no physics: this module needs :mod:`gearmesh.gear`'s limits only.
+"""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass
+from typing import Any, ClassVar, Literal
+
+import yaml
+
+from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, MODULE_RANGE, NAME_PATTERN
+from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
+
+#: Names of studies and of the pairs a study uses: a folder of results/{study}/{pair}/, no path characters.
+NAME = r"^[A-Za-z0-9_-]+$"
+#: Longest study, pair or variant name in a study: results/{study}/{pair}/{variant}/ stays a short path.
+NAME_LENGTH = 64
+#: The slice models of the tooth compliance (:mod:`gearmesh.stiffness`, :mod:`gearmesh.fe`).
+Method = Literal["traditional", "improved", "transition", "fe"]
+Gear = Literal["pinion", "gear"]
+ContactLaw = Literal["palmgren", "linear"]
+#: What drives the 8-DOF pair (:mod:`gearmesh.dynamics`); how each speed reaches its steady state.
+PairExcitation = Literal["tvms", "lste", "ltca", "contact"]
+SteadyState = Literal["shooting", "transient"]
+#: Lead slope deviations (µm over the face width) the contact models take (:func:`gearmesh.tca.check_lead_slope`).
+LEAD_SLOPE_BOUNDS_UM = {"minimum": -1000, "maximum": 1000}
+
+_METHOD = ("slice model of the tooth compliance: traditional, improved or transition (hob fillet) potential-energy "
+           "cantilever, or fe (2-D finite elements)")
+_LEAD = "lead slope deviation f_Hβ of [pinion, gear] over the face width (positive: more contact at the face end z > 0)"
+_CORNER = "candidate tip-edge contacts beyond the active zone, in transverse base pitches"
+_LAW = "local contact law: palmgren (F ∝ δ^1.11 per slice) or linear"
+
+
+# Settings that several sections have, declared once each (a fresh dataclass field per call).
+
+#: The tooth model of every stage unless a study or call says otherwise: the 2-D plane-strain
+#: finite-element tooth, within +3/−7 % of the 3-D reference on seven of the nine shipped pairs,
+#: where the potential-energy cantilevers are 10–50 % too compliant (docs/validation.md, "Which
+#: tooth stiffness to trust").
+DEFAULT_TOOTH_METHOD = "fe"
+
+
+def _method(extra: str = "") -> Any:
+    return setting(DEFAULT_TOOTH_METHOD, _METHOD + extra)
+
+
+def _slices() -> Any:
+    return setting(200, "slices over the face width", minimum=1, maximum=20000)
+
+
+def _positions(default: int = 360, maximum: int = 100000, what: str = "") -> Any:
+    return setting(default, f"rotation positions over one mesh cycle{what}", minimum=8, maximum=maximum)
+
+
+def _points(default: int = 50, what: str = "") -> Any:
+    return setting(default, f"points per contact line{what}", minimum=2, maximum=2000)
+
+
+def _lead_slope(what: str = "") -> Any:
+    return setting((0.0, 0.0), _LEAD + what, **LEAD_SLOPE_BOUNDS_UM)
+
+
+def _contact_law(what: str = "") -> Any:
+    return setting("palmgren", _LAW + what)
+
+
+def _corner_extension() -> Any:
+    return setting(0.25, _CORNER, minimum=0, maximum=1)
+
+
+def _torque_on() -> Any:
+    return setting("pinion", "the gear torque_Nm acts on")
+
+
+def _pairs() -> Any:
+    return setting(REQUIRED, "the pairs (names in pairs_dir)", min_items=1, pattern=NAME, max_length=NAME_LENGTH,
+                   workflow=True)
+
+
+@dataclass(frozen=True, kw_only=True)
+class SpeedRange:
+    """Speeds from start to stop (included) in steps of step."""
+
+    start: float = setting(REQUIRED, "first speed", units="r/min", exclusive_minimum=0)
+    stop: float = setting(REQUIRED, "last speed (included when on the grid)", units="r/min", exclusive_minimum=0)
+    step: float = setting(REQUIRED, "speed step", units="r/min", exclusive_minimum=0)
+
+
+# --------------------------------------------------------------------------------------
+# Pair stages
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, kw_only=True)
+class Geometry:
+    """Grids of the geometry stage: the transverse tooth profile with its hob fillet and the
+    flank surface of each gear (geometry.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.geometry:geometry_dataset",)
+    involute_points: int = setting(120, "points on each involute flank of the transverse profile", minimum=8,
+                                   maximum=5000)
+    fillet_points: int = setting(60, "points on each root fillet (the hob's trochoid)", minimum=4, maximum=5000)
+    face_points: int = setting(21, "points across the face width of the flank surface", minimum=2, maximum=2000)
+
+
+@dataclass(frozen=True, kw_only=True)
+class ContactLines:
+    """Contact lines in the plane of action and their total length over one mesh cycle (contact_lines.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.geometry:contact_lines_dataset",)
+    positions: int = _positions(what=" (one transverse base pitch)")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Stiffness:
+    """Time-varying mesh stiffness by the slice potential-energy method, its Fourier series and
+    ISO 6336-1's value; with a torque the loaded static transmission error F/K (stiffness.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.stiffness:stiffness_dataset",)
+    method: Method = _method()
+    slices: int = _slices()
+    positions: int = _positions()
+    fourier_order: int = setting(3, "order of the Fourier series fitted to K(φ)", minimum=0, maximum=30)
+    torque_Nm: float | None = setting(None, "torque of the loaded static transmission error F/K(φ); left out: none",
+                                      exclusive_minimum=0, fill=False)
+    torque_on: Gear = _torque_on()
+
+
+@dataclass(frozen=True, kw_only=True)
+class FeCompliance:
+    """Finite-element tooth compliance of both gears of every pair along the active profile,
+    beside the three potential-energy cantilevers (fe_compliance.nc); stiffness method fe uses
+    these settings too."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.fe:fe_compliance_dataset",)
+    plane: Literal["strain", "stress"] = setting("strain", "plane strain (a wide face) or plane stress (a thin disc)")
+    size: float = setting(0.05, "element edge on the loaded tooth", units="normal modules", minimum=0.01,
+                          maximum=0.5)
+    roll_nodes: int = setting(17, "load positions along the active profile", minimum=4, maximum=200)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Variant:
+    """One micro-geometry variant: a modification that replaces the pair file's, the optimum of
+    one of the study's optimisations, or nothing (the unmodified pair)."""
+
+    modification: dict[str, Any] | None = setting(
+        None, "{pinion: {...}, gear: {...}} with the six keys of the pair file's modification", fill=False)
+    from_: str | None = setting(
+        None, "optimise.NAME: the optimum of the study's optimisation NAME "
+        "(results/{study}/{pair}/optimise/NAME/pair.yaml)", key="from", pattern=r"^optimise\.[A-Za-z0-9_]+$",
+        fill=False)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Tca:
+    """Unloaded tooth contact analysis of every pair and variant over one mesh cycle (tca.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.ltca:tca_dataset",)
+    positions: int = _positions(64, 10000)
+    points: int = _points()
+    lead_slope_um: tuple[float, float] = _lead_slope()
+    corner_extension: float = _corner_extension()
+
+
+@dataclass(frozen=True, kw_only=True)
+class Ltca:
+    """Loaded tooth contact analysis of every pair and variant at each torque over one mesh
+    cycle: loaded and load transmission error, contact pattern, loaded mesh stiffness (ltca.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.ltca:ltca_dataset",)
+    torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques", exclusive_minimum=0, min_items=1)
+    on: Gear = setting("pinion", "the gear the torques act on")
+    positions: int = _positions(64, 10000)
+    points: int = _points()
+    lead_slope_um: tuple[float, float] = _lead_slope()
+    contact_law: ContactLaw = _contact_law()
+    method: Method = _method()
+    corner_extension: float = _corner_extension()
+
+
+@dataclass(frozen=True, kw_only=True)
+class Impact:
+    """Mesh-in impact of every pair and variant over a torque × speed grid: where the entering
+    pair first touches, edge or surface contact, impact velocity and force by the energy method,
+    the variants side by side at the design speed, and a direct simulation of the engagement
+    as a check (impact.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.impact:impact_dataset",)
+    torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques of the map", exclusive_minimum=0,
+                                            min_items=1, max_items=100)
+    on: Gear = setting("pinion", "the gear the torques act on")
+    speeds_rpm: tuple[float, ...] = setting((5000,), "pinion speeds of the map", exclusive_minimum=0,
+                                            maximum=1000000, min_items=1, max_items=200)
+    design_speed_rpm: float = setting(5000, "speed of the variants table and the simulation; one of speeds_rpm",
+                                      exclusive_minimum=0, maximum=1000000)
+    driver: Gear = setting("pinion", "the gear that drives")
+    points: int = _points(what=" of the loaded contact")
+    energy_velocity: Literal["transverse", "normal"] = setting(
+        "transverse", "velocity in ½ m_eq v²: transverse (consistent with m_eq) or normal (the source literally)")
+    added_inertia_kg_m2: tuple[float, float] = setting(
+        (0.0, 0.0), "inertia of what hangs on each shaft [pinion, gear], added to the gear bodies'", minimum=0)
+    simulate_torques_Nm: tuple[float, ...] = setting(
+        (), "torques (among torques_Nm) whose engagement is also integrated in time at the design speed",
+        exclusive_minimum=0, max_items=20)
+    lead_slope_um: tuple[float, float] = _lead_slope()
+    contact_law: ContactLaw = _contact_law()
+    method: Method = _method()
+    corner_extension: float = _corner_extension()
+    window_positions: int = setting(32, "rolls of the mesh-in search window (one base pitch and the corner "
+                                        "extension)", minimum=8, maximum=10000)
+    face_samples: int = setting(257, "samples of the entering contact line across the face (its smallest "
+                                     "separation)", minimum=9, maximum=100000)
+    design_torque_Nm: float | None = setting(
+        None, "torque the load windows are anchored at, one of torques_Nm (null: the middle one)",
+        exclusive_minimum=0)
+    load_window_step_Nm: float | None = setting(
+        None, "F_s also on a torque grid of this step up to 1.25 × the largest torque at the design speed: the "
+        "variants' load windows in the impact table (null: none)", exclusive_minimum=0)
+
+
+# --------------------------------------------------------------------------------------
+# Optimisation and tolerances
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, kw_only=True)
+class Constraints:
+    """Constraints of an optimisation as penalties: J = f + penalty·f_std·Σ max(0, m/(factor·m_std) − 1),
+    m against the unmodified pair's m_std."""
+
+    lte_factor: float | None = setting(None, "load transmission error peak-to-peak at the design torque at most "
+                                             "this times the unmodified pair's (null: free)", exclusive_minimum=0)
+    line_load_factor: float | None = setting(None, "largest line load at the design torque at most this times the "
+                                                   "unmodified pair's (null: free)", exclusive_minimum=0)
+    dynamic_factor: float | None = setting(None, "dynamic factor at every torque at most this times the unmodified "
+                                                 "pair's (null: free)", exclusive_minimum=0)
+    penalty: float = setting(10, "weight of a violated constraint", exclusive_minimum=0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Optimise:
+    """One named optimisation of the six modification parameters per modified gear against the
+    mesh-in impact, over a load spectrum and the study's manufacturing tolerances, once per pair
+    (results/{study}/{pair}/optimise/NAME/ga.nc and pair.yaml). Its impact model is the study's
+    impact section; points, contact_law, corner_extension, window_positions and face_samples
+    given here override it."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.optimise:run_settings",)
+    method: Literal["ga", "random", "nsga2"] = setting("ga", "genetic algorithm (pygad), random search of the same "
+                                                             "budget, or NSGA-II (F_s against LTE peak-to-peak)")
+    objective: Literal["force", "velocity", "robust", "dynamic"] = setting(
+        "force", "per torque and manufactured sample: force F_s or velocity |v_n| of the impact; robust: F_s, needing "
+        "a load spectrum or tolerance samples; dynamic: the dynamic factor (peak over static mesh force) of the "
+        "contact-driven 8-DOF pair over dynamic_speeds_rpm and the resonances within their range")
+    population: int = setting(40, "candidates per generation", minimum=4, maximum=10000)
+    generations: int = setting(30, "generations", minimum=1, maximum=10000)
+    seed: int = setting(0, "seed of the random numbers", minimum=0, maximum=4294967295)
+    torque_Nm: float = setting(1000, "design torque, one of torques_Nm when a spectrum is given",
+                               exclusive_minimum=0)
+    on: Gear = setting("pinion", "the gear the torques act on")
+    speed_rpm: float = setting(5000, "pinion speed of the objective", exclusive_minimum=0, maximum=1000000)
+    torques_Nm: tuple[float, ...] | None = setting(
+        None, "the load spectrum: the objective at every torque (null: the design torque alone)",
+        exclusive_minimum=0, min_items=1, max_items=50)
+    statistic: Literal["max", "mean"] = setting("max", "over the load spectrum: the worst case or the duty-cycle "
+                                                       "mean")
+    weights: tuple[float, ...] | None = setting(None, "time shares of torques_Nm for statistic mean (null: equal "
+                                                      "shares)", minimum=0)
+    tolerance_statistic: Literal["max", "mean", "percentile", "cvar"] | None = setting(
+        None, "over the nominal and the study's tolerance samples (tolerances section); null: the nominal alone")
+    tolerance_level_percent: float = setting(90, "level of percentile and cvar (cvar below 100)", minimum=0,
+                                             maximum=100)
+    load_window_step_Nm: float = setting(50, "torque grid of each optimum's load window (finer than torques_Nm), up "
+                                             "to 1.25 × the largest torque", exclusive_minimum=0)
+    dynamic_speeds_rpm: tuple[float, ...] | None = setting(
+        None, "speeds of the dynamic objective or constraint (null: 0.2, 1 and 3 × speed_rpm); each candidate adds "
+        "its own resonance speeds within their range", exclusive_minimum=0, maximum=1000000, min_items=2,
+        max_items=50)
+    backlash_um: float | Literal["pair"] = setting("pair", "backlash of the candidates' dynamics (pair: the pair's "
+                                                           "own)", minimum=0, maximum=1000)
+    modify: tuple[Gear, ...] = setting(("pinion",), "the gears whose six parameters are optimised", min_items=1,
+                                       max_items=2, unique=True)
+    bounds: dict[str, tuple[float, float]] = setting(
+        {}, "{pair-file modification key: [low, high]} in µm / mm, overriding the default bounds (reliefs and "
+        "crowning 0.001–0.015 m_n, relief lengths 0.1–0.8 m_n, unmodified lead length up to half the face)")
+    fixed: dict[str, float] = setting({}, "{pair-file modification key: value} in µm / mm: parameters held fixed "
+                                          "instead of optimised", minimum=0)
+    constraints: Constraints = setting(Constraints(), "")
+    random_baseline: bool = setting(False, "also run the random search of the same budget (convergence plot)")
+    mutation_probability: float = setting(0.3, "chance that a gene of an offspring mutates", exclusive_minimum=0,
+                                          maximum=1)
+    mutation_scale: float = setting(0.1, "standard deviation of the Gaussian mutation step, as a fraction of the "
+                                         "gene's range", exclusive_minimum=0, maximum=1)
+    keep_elitism: int = setting(2, "best candidates kept unchanged into the next generation", minimum=0)
+    points: int | None = setting(None, "points per contact line (null: the impact section's)", minimum=2,
+                                 maximum=2000)
+    contact_law: ContactLaw | None = setting(None, "local contact law (null: the impact section's)")
+    corner_extension: float | None = setting(None, _CORNER + " (null: the impact section's)", minimum=0, maximum=1)
+    window_positions: int | None = setting(None, "rolls of the mesh-in search window (null: the impact section's)",
+                                           minimum=8, maximum=10000)
+    face_samples: int | None = setting(None, "samples of the entering contact line across the face (null: the "
+                                             "impact section's)", minimum=9, maximum=100000)
+    cycle_positions: int = setting(32, "rotation positions over one mesh cycle of the loaded contact (LTE, line "
+                                       "load)", minimum=8, maximum=10000)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Tolerances:
+    """Manufacturing tolerances of the study's gears: the population of manufactured gears that
+    the optimisations (tolerance_statistic) and the impact stage (its tolerance spread) evaluate
+    beside the nominal. Lead slope of each gear in lead_on within ±f_Hβ of an ISO 1328-1:2013
+    flank tolerance class (Formula (10)); every nonzero modification parameter within ± its
+    tolerance."""
+
+    STAGES: ClassVar = ()  # a mapping for gearmesh.tolerance.study_tolerances
+    grade: int | None = setting(None, "ISO 1328-1:2013 flank tolerance class of the lead slope (null: no lead "
+                                      "deviation)", minimum=1, maximum=11)
+    lead_on: tuple[Gear, ...] = setting(("pinion", "gear"), "the gears whose lead slope deviates", min_items=1,
+                                        max_items=2, unique=True)
+    modification: dict[str, float] = setting({}, "{pair-file modification key: ± value} in µm / mm on every nonzero "
+                                                 "parameter of either gear", minimum=0)
+    samples: int = setting(8, "deviation samples beside the nominal (0: the nominal only)", minimum=0, maximum=4096)
+    sampling: Literal["lhs", "corners"] = setting("lhs", "seeded Latin hypercube, or the corners of the tolerance box")
+    seed: int = setting(0, "seed of the samples: one manufactured population for every optimisation and the impact "
+                           "stage", minimum=0, maximum=4294967295)
+
+
+# --------------------------------------------------------------------------------------
+# Dynamics
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, kw_only=True)
+class _Dynamics:
+    """What the 8-DOF pair and the 9-DOF train share: bearings, mesh, contact table, solver."""
+
+    backlash_um: float | Literal["pair"] | None = setting(
+        "pair", "total backlash 2b0 along the normal; pair: the pair's own (centre distance and shifts); null: none",
+        minimum=0)
+    bearing_k_radial_N_per_m: float = setting(1.5e8, "radial bearing stiffness", exclusive_minimum=0)
+    bearing_k_axial_N_per_m: float = setting(1.0e7, "axial bearing stiffness", exclusive_minimum=0)
+    bearing_c_radial_Ns_per_m: float = setting(1000, "radial bearing damping", minimum=0)
+    bearing_c_axial_Ns_per_m: float = setting(1000, "axial bearing damping", minimum=0)
+    damping_ratio: float = setting(0.07, "mesh damping ratio ζ", minimum=0, maximum=1)
+    mesh_damping_Ns_per_m: float | None = setting(None, "mesh damping given directly (null: from damping_ratio)",
+                                                  minimum=0)
+    stiffness_form: Literal["fourier", "table"] = setting("fourier", "mesh stiffness k(t) as its Fourier series to "
+                                                                     "fourier_order or as the sampled table")
+    fourier_order: int = setting(3, "order of the Fourier series of k(t)", minimum=0, maximum=30)
+    method: Method = _method(" (the stiffness when no stiffness stage runs, the contact table)")
+    contact_law: ContactLaw = _contact_law(" (contact table)")
+    points: int = _points(200, " of the contact table (the first touch at the face-end corner converges as "
+                               "1/points; 200 puts the default pair's within 0.03 mm of roll of 400's)")
+    lead_slope_um: tuple[float, float] = _lead_slope(" (contact table)")
+    table_positions: int = setting(256, "positions per mesh cycle of the contact table", minimum=16, maximum=100000)
+    table_approaches: int = setting(96, "approaches of the contact table", minimum=8, maximum=100000)
+    table_force_factor: float = setting(4.0, "the contact table reaches this many times the largest static force",
+                                        exclusive_minimum=1, maximum=100)
+    steady_state: SteadyState = setting(
+        "shooting", "shooting: the periodic steady state by Newton's method on the one-period map (the transient "
+        "where it fails); transient: wait out transient_tau time constants")
+    courant: float = setting(0.25, "bound on ω_max·Δt of the RK4 step", exclusive_minimum=0, maximum=1)
+    steps_per_cycle_min: int = setting(32, "fewest RK4 steps per mesh period", minimum=8)
+    transient_tau: float = setting(10.0, "transient length in time constants of the slowest mode",
+                                   units="time constants", minimum=1)
+    record_cycles: int = setting(8, "mesh periods recorded after the steady state (even)", minimum=2, multiple_of=2)
+    # Kept time series: speeds × record_cycles × points_per_cycle × DOF values; 4096 points per mesh
+    # period resolve far above max_order, and 200 mesh orders are beyond any RK4 step plan.
+    points_per_cycle: int = setting(64, "points per mesh period of the kept time series", minimum=8, maximum=4096)
+    max_order: int = setting(10, "highest mesh order of the kept spectra", minimum=1, maximum=200)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Dynamics(_Dynamics):
+    """Speed sweeps of the 8-DOF bending-torsion-axial helical pair at one or more torques, once
+    per pair and variant: the periodic steady state at each speed, dynamic transmission error,
+    mesh force, bearing displacements (dynamics.nc). The mesh stiffness comes from the stiffness
+    stage, the ltca excitation from the variant's LTCA, the contact table from the variant's
+    micro-geometry."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.dynamics:dynamics_dataset",)
+    torques_Nm: float | tuple[float, ...] = setting(200.0, "one torque or a list", exclusive_minimum=0, min_items=1,
+                                                    max_items=20)
+    on: Gear = setting("pinion", "the gear the torques act on")
+    speeds_rpm: SpeedRange | tuple[float, ...] = setting(SpeedRange(start=500, stop=50000, step=100),
+                                                         "pinion speeds of the sweep: {start, stop, step} or a list",
+                                                         exclusive_minimum=0, min_items=1)
+    excitation: PairExcitation | None = setting(
+        None, "contact: the mesh force of the real tooth contact (every tooth pair, tip edges, modifications: the "
+        "mesh-in impact happens in the simulation); ltca: the LTCA's loaded stiffness and error; tvms: k(t) with the "
+        "unloaded transmission error; lste: e = F/K(t) as the low-fluctuation source does (counts the fluctuation "
+        "twice); null: ltca when the study runs the LTCA, else tvms")
+    transmission_error_um: tuple[float, ...] | None = setting(
+        None, "unloaded transmission error over one mesh cycle, evenly spaced (null: none; must be null when the "
+        "study runs the LTCA)")
+    sample_speeds_rpm: tuple[float, ...] = setting((5000, 13700, 27000), "speeds whose time series and spectra are "
+                                                                         "kept", exclusive_minimum=0, max_items=50)
+    refine_resonances: bool = setting(True, "add speeds around each resonance speed the linearised model predicts "
+                                            "(on_grid marks the configured ones)")
+
+
+@dataclass(frozen=True, kw_only=True)
+class TrainDynamics(_Dynamics):
+    """The 9-DOF plate–blanket–impression train of the printing-press source: three gears alike
+    (the pair's gear), the pair's mesh in both meshes, at one load and speed (train.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.dynamics:train_dataset",)
+    static_force_N: float | None = setting(2832, "static normal mesh force, the load when torque_Nm is null",
+                                           exclusive_minimum=0)
+    torque_Nm: float | None = setting(None, "torque on the plate gear (null: from static_force_N)",
+                                      exclusive_minimum=0)
+    speeds_rpm: SpeedRange | tuple[float, ...] | None = setting(
+        None, "gear speeds: {start, stop, step} or a list (null: the speed of mesh_frequency_Hz)", exclusive_minimum=0,
+        min_items=1)
+    mesh_frequency_Hz: float = setting(249.4, "mesh frequency when speeds_rpm is null", exclusive_minimum=0)
+    excitation: Literal["tvms", "lste", "contact"] | None = setting(
+        None, "tvms (null): the slice stiffness; lste: e = F/K(t) as the low-fluctuation source does; contact: the "
+        "real tooth contact of the pair in both meshes")
+    phase_offsets_cycles: tuple[float, float] = setting((0.0, 0.0), "mesh phase of each mesh, in mesh cycles",
+                                                        units="mesh cycles")
+
+
+@dataclass(frozen=True, kw_only=True)
+class DynamicsComparison:
+    """RMS changes between the study's pairs over their speed sweeps (dynamics_comparison.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.dynamics:dynamics_comparison_dataset",)
+    couples: tuple[tuple[str, str], ...] | None = setting(
+        None, "[pair, reference] couples; left out: every pair against the first", min_items=1, fill=False)
+
+
+# --------------------------------------------------------------------------------------
+# Study-level tables
+# --------------------------------------------------------------------------------------
+
+@dataclass(frozen=True, kw_only=True)
+class HelixSweep:
+    """Contact-line length against helix angle for some pairs, each angle a new pair at its
+    zero-backlash centre distance (helix_sweep.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.geometry:helix_sweep_dataset",)
+    pairs: tuple[str, ...] = _pairs()
+    start_deg: float = setting(REQUIRED, "first helix angle", minimum=0, maximum=59)
+    stop_deg: float = setting(REQUIRED, "last helix angle (not below start_deg)", minimum=0, maximum=59)
+    step_deg: float = setting(REQUIRED, "helix angle step", exclusive_minimum=0)
+    positions: int = _positions()
+
+
+@dataclass(frozen=True, kw_only=True)
+class LowFluctuationDesign:
+    """Integer-overlap-ratio designs of some pairs: the helix angle (forward and backward) or face
+    width that makes the overlap ratio an integer (low_fluctuation_design.nc)."""
+
+    STAGES: ClassVar = ()  # its one key is the pairs the workflow gathers (low_fluctuation_design_dataset)
+    pairs: tuple[str, ...] = _pairs()
+
+
+@dataclass(frozen=True, kw_only=True)
+class StiffnessTable:
+    """Mesh stiffness over pairs, pair-file variants and cantilever methods, one table (stiffness_table.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.stiffness:stiffness_table_dataset",)
+    pairs: tuple[str, ...] = _pairs()
+    methods: tuple[Method, ...] = setting(("transition",), "slice models compared", min_items=1)
+    variants: dict[str, dict[str, Any]] | None = setting(
+        None, "name → pair-file keys to override (engineering units), e.g. {normal_pressure_angle_deg: 16}; left "
+        "out: the pairs as given", key_pattern=r"^[A-Za-z0-9_.-]+$", key_max_length=NAME_LENGTH, fill=False)
+    slices: int = _slices()
+    positions: int = _positions()
+    torque_Nm: float | None = setting(None, "torque of the loaded static transmission error; left out: none",
+                                      exclusive_minimum=0, fill=False)
+    torque_on: Gear = _torque_on()
+
+
+@dataclass(frozen=True, kw_only=True)
+class SliceConvergence:
+    """Mean mesh stiffness against the slice count, whole and clipped end slices (slice_convergence.nc)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.stiffness:slice_convergence_dataset",)
+    pairs: tuple[str, ...] = _pairs()
+    slices: tuple[int, ...] = setting((25, 50, 100, 200, 400, 1000), "slice counts", minimum=1, maximum=20000,
+                                      min_items=2)
+    method: Method = _method()
+    positions: int = _positions()
+
+
+# --------------------------------------------------------------------------------------
+# The study
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, kw_only=True)
+class Study:
+    """One study: which gear pairs to run, which stages and how finely. Engineering units in the
+    key names. A section left out is a stage not run, except geometry, contact_lines, stiffness
+    and variants, which every study has (their defaults filled)."""
+
+    study: str = setting(REQUIRED, "study name; results go to results/{study}/", pattern=NAME, max_length=NAME_LENGTH)
+    description: str = setting("", "what the study shows")
+    source: str = setting("", "the source document the study reproduces")
+    pairs_dir: str = setting("config/pairs", "folder of the pair files, relative to the working directory")
+    pairs: tuple[str, ...] = setting(REQUIRED, "pair names, each a file {pairs_dir}/{name}.yaml", min_items=1,
+                                     unique=True, pattern=NAME, max_length=NAME_LENGTH)
+    geometry: Geometry = setting(Geometry(), "")
+    contact_lines: ContactLines = setting(ContactLines(), "")
+    helix_sweep: HelixSweep | None = setting(None, "", fill=False)
+    low_fluctuation_design: LowFluctuationDesign | None = setting(None, "", fill=False)
+    stiffness: Stiffness = setting(Stiffness(), "")
+    fe_compliance: FeCompliance = setting(FeCompliance(), "")
+    stiffness_table: StiffnessTable | None = setting(None, "", fill=False)
+    slice_convergence: SliceConvergence | None = setting(None, "", fill=False)
+    variants: dict[str, Variant] = setting(
+        {"standard": {}}, "micro-geometry variants of every pair by name; standard is the unmodified pair. The "
+        "later stages (tca, ltca, impact, dynamics) run once per variant: results/{study}/{pair}/{variant}/",
+        key_pattern=r"^[A-Za-z0-9_]+$", key_max_length=NAME_LENGTH)
+    tca: Tca | None = setting(None, "", fill=False)
+    ltca: Ltca | None = setting(None, "", fill=False)
+    impact: Impact | None = setting(None, "", fill=False)
+    optimise: dict[str, Optimise] | None = setting(
+        None, "named optimisations {NAME: settings}; a variant {from: optimise.NAME} runs the later stages on the "
+        "optimum", key_pattern=r"^[A-Za-z0-9_]+$", key_max_length=NAME_LENGTH, fill=False)
+    tolerances: Tolerances | None = setting(None, "", fill=False)
+    dynamics: Dynamics | None = setting(None, "", fill=False)
+    train_dynamics: TrainDynamics | None = setting(None, "", fill=False)
+    dynamics_comparison: DynamicsComparison | None = setting(None, "", fill=False)
+
+
+def study_schema() -> dict[str, Any]:
+    """The JSON schema of a study config (:class:`Study`)."""
+    return {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": "gearmesh study config",
+            **object_schema(Study)}
+
+
+def stage_sections() -> list[tuple[str, type]]:
+    """(key path, settings class) of every section of a study."""
+    return nested_sections(Study)
+
+
+def study_keys() -> list[str]:
+    """Every key path of a study config (``dynamics.speeds_rpm.start``; named entries as ``NAME``)."""
+    return all_keys(Study)
+
+
+# --------------------------------------------------------------------------------------
+# The pair file
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True, kw_only=True)
+class PairMaterial:
+    """Isotropic elastic material of both gears; a key left out is steel's (the reader's
+    ``DEFAULT_MATERIAL``, stated in every result)."""
+
+    youngs_modulus_GPa: float = setting(DEFAULT_MATERIAL["youngs_modulus_GPa"], "Young's modulus",
+                                        exclusive_minimum=0)
+    poisson_ratio: float = setting(DEFAULT_MATERIAL["poisson_ratio"], "Poisson's ratio", minimum=0,
+                                   exclusive_maximum=0.5)
+    density_kg_m3: float = setting(DEFAULT_MATERIAL["density_kg_m3"], "density", exclusive_minimum=0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class GearModification:
+    """The six micro-geometry parameters of one gear (all zero when left out)."""
+
+    root_relief_um: float = setting(0.0, "root relief depth y1 at the start of active profile", minimum=0)
+    tip_relief_um: float = setting(0.0, "tip relief depth y2 at the tip", minimum=0)
+    root_relief_length_mm: float = setting(0.0, "root relief length y3, roll length from the start of active "
+                                                "profile", minimum=0)
+    tip_relief_length_mm: float = setting(0.0, "tip relief length y4, roll length from the tip", minimum=0)
+    crowning_um: float = setting(0.0, "lead crowning depth y5 at each face end", minimum=0)
+    unmodified_lead_length_mm: float = setting(0.0, "central unmodified lead length y6", minimum=0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PairModification:
+    """Micro-geometry of the pinion and of the gear."""
+
+    pinion: GearModification | None = setting(None, "the pinion's six parameters (null: none)")
+    gear: GearModification | None = setting(None, "the gear's six parameters (null: none)")
+
+
+@dataclass(frozen=True, kw_only=True)
+class PairFile:
+    """A helical gear pair as designed: engineering units in the key names; index 0 (or the first
+    of a [pinion, gear] list) is the pinion, the driver. A datasheet's diameters may stand for the
+    coefficients (tip_diameter_mm for addendum_coefficient, root_diameter_mm or
+    basic_rack_profile for dedendum_coefficient, bore_diameter_mm for bore_radius_mm)."""
+
+    #: Keys that give one quantity: at most one of each group (the reader's own list).
+    ALTERNATIVES: ClassVar = _ALTERNATIVE_KEYS
+    name: str | None = setting(None, "the pair's name (null or left out: the file name without .yaml; a study's "
+                                     "pair library needs the two equal)", pattern=f"^{NAME_PATTERN.pattern}$")
+    teeth: tuple[int, int] = setting(REQUIRED, "numbers of teeth [pinion, gear] (external gears)", minimum=5)
+    normal_module_mm: float = setting(REQUIRED, "normal module m_n (ISO 54 modules with margins)",
+                                      minimum=round(MODULE_RANGE[0] * 1e3, 9), maximum=round(MODULE_RANGE[1] * 1e3, 9))
+    normal_pressure_angle_deg: float = setting(REQUIRED, "normal pressure angle α_n", exclusive_minimum=0,
+                                               exclusive_maximum=45)
+    helix_angle_deg: float = setting(REQUIRED, "helix angle β (the hand in helix_hand)", minimum=0,
+                                     exclusive_maximum=60)
+    helix_hand: Literal["right", "left"] = setting("right", "hand of the pinion's helix (the gear's is the other)")
+    face_width_mm: float | tuple[float, float] = setting(REQUIRED, "face width, one or [pinion, gear]; the mesh uses "
+                                                                   "the overlap", exclusive_minimum=0)
+    profile_shift: float | tuple[float, float] | None = setting(
+        None, "profile shift coefficients x, one or [pinion, gear] (null: none, or inferred from the centre "
+        "distance)", exclusive_minimum=-3, exclusive_maximum=3)
+    center_distance_mm: float | None = setting(None, "operating centre distance (null: the zero-backlash distance "
+                                                     "of the shifts)", exclusive_minimum=0)
+    addendum_coefficient: float | tuple[float, float] = setting(1.0, "tip height over the reference circle in "
+                                                                     "normal modules (before the shift)",
+                                                                exclusive_minimum=0)
+    tip_diameter_mm: float | tuple[float, float] | None = setting(
+        None, "tip diameter d_a, one or [pinion, gear], instead of addendum_coefficient (exact with the shifts)",
+        exclusive_minimum=0)
+    dedendum_coefficient: float | tuple[float, float] = setting(1.25, "the generating hob's addendum in normal "
+                                                                      "modules", exclusive_minimum=0)
+    root_diameter_mm: float | tuple[float, float] | None = setting(
+        None, "root diameter d_f, one or [pinion, gear], instead of dedendum_coefficient (exact with the shifts)",
+        exclusive_minimum=0)
+    basic_rack_profile: Literal[tuple(ISO53_PROFILES)] | None = setting(
+        None, "an ISO 53:1998 basic rack profile (20° pairs): its dedendum and root fillet radius instead of "
+        "dedendum_coefficient and tool_tip_radius_coefficient")
+    tool_tip_radius_coefficient: float | tuple[float, float] | None = setting(
+        None, "the hob's tip radius in normal modules (null: 0.38, ISO 53, or the largest that fits)", minimum=0)
+    bore_radius_mm: float | tuple[float, float] | None = setting(
+        None, "bore radius, one or [pinion, gear]: needed for masses, inertias and the fillet foundation", minimum=0)
+    bore_diameter_mm: float | tuple[float, float] | None = setting(
+        None, "bore (inner) diameter, one or [pinion, gear], instead of bore_radius_mm", minimum=0)
+    material: PairMaterial | None = setting(None, "elastic material of both gears (null or left out: steel)")
+    modification: PairModification | None = setting(None, "micro-geometry of each gear")
+    source: str = setting("", "where the data come from")
+
+
+def pair_schema() -> dict[str, Any]:
+    """The JSON schema of a pair file (:class:`PairFile`): what an editor completes and checks.
+    The physics of a pair (contact ratio, interference, centre distance) is the reader's
+    (:func:`gearmesh.gear.pair_geometry`), beyond any schema."""
+    return {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": "gearmesh gear pair file",
+            **object_schema(PairFile)}
+
+
+# --------------------------------------------------------------------------------------
+# The published files
+# --------------------------------------------------------------------------------------
+
+_GENERATED = "generated from gearmesh/settings.py by `gearmesh schema {what}`: edit the settings, not this file"
+
+
+def study_schema_text() -> str:
+    """The study schema as published in ``schemas/config.schema.yaml``."""
+    head = f"# The JSON schema of a study config, {_GENERATED.format(what='study')}.\n"
+    return head + yaml.safe_dump(study_schema(), sort_keys=False, allow_unicode=True, width=110, default_flow_style=None)
+
+
+def pair_schema_text() -> str:
+    """The pair-file schema as published in ``schemas/pair.schema.json``."""
+    return json.dumps(pair_schema(), indent=2, ensure_ascii=False) + "\n"
+
+
+def study_reference() -> str:
+    """``config/README.md``: every study key, section by section (the Snakemake workflow
+    catalog's convention of a config README)."""
+    return _reference(Study, "Configuration", "study --format markdown", [
+        "A study config (`config/config.yaml`, the default study, or one of `config/studies/*.yaml`",
+        "with `--configfile`) says which gear pairs to run, which stages and how finely. Run",
+        "`gearmesh validate FILE` to check one: it fills the defaults below and refuses a bad key",
+        "or value with one line naming it. Gear pairs are files `config/pairs/NAME.yaml`",
+        "(`gearmesh schema pair --format markdown` lists their keys). Units are in the key names; a",
+        "value left out takes its default; a section left out is a stage that does not run, except",
+        "`geometry`, `contact_lines`, `stiffness` and `variants`, which every study has.",
+        "",
+        "Editors complete and check a config with the schema `workflow/schemas/config.schema.yaml`",
+        "(for the YAML language server: `# yaml-language-server: $schema=../workflow/schemas/config.schema.yaml`",
+        "as the first line of `config/config.yaml`).",
+    ])
+
+
+def pair_reference() -> str:
+    """Every key of a pair file as Markdown tables."""
+    return _reference(PairFile, "Gear pair files", "pair --format markdown", [
+        "A pair file `NAME.yaml` describes one helical gear pair as designed. `gearmesh validate FILE`",
+        "checks it, the physics included (contact ratio, interference, centre distance), which no",
+        "schema can; editors complete and check its form with `gearmesh schema pair` (JSON schema).",
+    ])
+
+
+def _reference(root: type, title: str, command: str, intro: list[str]) -> str:
+    """Markdown: a title, ``intro``, the keys of ``root`` and of each nested section."""
+    lines = [f"# {title}", "", f"<!-- {_GENERATED.format(what=command)} -->", "", *intro, "",
+             f"## {'Study' if root is Study else 'Pair'}", "", *markdown_table(root)]
+    for path, cls in nested_sections(root):
+        lines += ["", f"## `{path}`", "", description_of(cls), "", *markdown_table(cls, prefix=f"{path}.")]
+    return "\n".join(lines) + "\n"

@@ -1,0 +1,96 @@
+"""The report's landing page and captions, rendered as ``snakemake --report`` renders them (Jinja,
+then reStructuredText) for every study config: no markup error, tables as tables, and the
+reader's language (documents by title or subject, no "seed 00x", no "withheld", no raw
+sub- or superscript markup such as K_s·δ^n)."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from types import SimpleNamespace
+
+import numpy as np
+import pytest
+import xarray as xr
+from docutils.core import publish_parts
+from jinja2 import Environment
+
+from gearmesh.config import load_study
+from gearmesh.io import variable
+from gearmesh.tables import write_csv
+
+# Snakemake renders captions with docutils' publish_parts(writer_name="html"), deprecated in docutils 0.22
+pytestmark = pytest.mark.filterwarnings("ignore:Argument \"writer_name\":PendingDeprecationWarning")
+
+ROOT = Path(__file__).resolve().parents[1]
+CAPTIONS = sorted((ROOT / "workflow/report").glob("*.rst"))
+STUDIES = [ROOT / "config/config.yaml", *sorted((ROOT / "config/studies").glob("*.yaml"))]
+
+#: The config sections a caption's figure or table needs (no entry: every study has it).
+NEEDS = {
+    "contact_pattern": ("ltca",), "te_lte": ("ltca",), "lste_comparison": ("ltca",), "tca": ("tca",),
+    "impact_force": ("impact",), "impact_simulation": ("impact",), "impact_speed": ("impact",),
+    "impact_table": ("impact",), "mesh_in_trajectory": ("impact",), "robustness": ("impact",),
+    "dynamics_rms": ("dynamics",), "dynamics_spectrum": ("dynamics",), "dynamics_variants": ("dynamics",),
+    "dynamics_engagement": ("dynamics",), "engagement_table": ("impact", "dynamics"),
+    "dynamics_comparison": ("dynamics_comparison",), "optimise_convergence": ("optimise",),
+    "optimise_modification": ("optimise",), "optimise_pareto": ("optimise",), "helix_sweep": ("helix_sweep",),
+    "low_fluctuation_design": ("low_fluctuation_design",), "slice_convergence": ("slice_convergence",),
+    "stiffness_table": ("stiffness_table",), "fe_compliance": ("fe_compliance",), "train_spectrum": ("train_dynamics",),
+}
+
+
+@pytest.fixture(scope="module")
+def csv_file(tmp_path_factory) -> str:
+    """A table as the workflow writes it (a flag variable and a float), for the csv-table captions."""
+    scenario = variable(("variant",), np.array([2, 1], dtype=np.int8), "1", "scenario")
+    scenario.attrs.update(flag_values=np.array([0, 1, 2], dtype=np.int8), flag_meanings="none surface edge")
+    ds = xr.Dataset({"scenario": scenario, "impact_force": variable(("variant",), [13639.36, 6864.9], "N", "F_s")},
+                    coords={"variant": variable(("variant",), ["standard", "relief"], "1", "variant")})
+    path = tmp_path_factory.mktemp("table") / "table.csv"
+    write_csv(ds, path)
+    return str(path)
+
+
+def _render(caption: Path, config: dict, output: SimpleNamespace) -> str:
+    wildcards = SimpleNamespace(pair=config["pairs"][0], variant=next(iter(config.get("variants") or {"standard": 0})),
+                                run=next(iter(config.get("optimise") or {"run": 0})), study=config["study"])
+    snakemake = SimpleNamespace(config=config, wildcards=wildcards, output=output)
+    text = Environment(trim_blocks=True, lstrip_blocks=True).from_string(caption.read_text()).render(snakemake=snakemake)
+    # halt on any warning: a markup error would show as a "System Message" in the report
+    return publish_parts(text, writer_name="html", settings_overrides={"halt_level": 2, "report_level": 2})["body"]
+
+
+def _cases():
+    for study in STUDIES:
+        config = load_study(study)
+        for caption in CAPTIONS:
+            if all(section in config for section in NEEDS.get(caption.stem, ())):
+                yield pytest.param(study, caption, id=f"{config['study']}-{caption.stem}")
+
+
+@pytest.mark.parametrize("study, caption", list(_cases()))
+def test_captions_render_in_the_readers_language(study, caption, csv_file):
+    config = load_study(study)
+    uses_csv = "snakemake.output.csv" in caption.read_text()
+    outputs = [SimpleNamespace(csv=csv_file)] + ([SimpleNamespace()] if "is defined" in caption.read_text() else [])
+    for output in outputs if uses_csv else [SimpleNamespace()]:
+        html = _render(caption, config, output)
+        # names, file names, links and the tables (whose columns are the variables' names) left out
+        text = re.sub(r"<(tt|strong|em|a|table)\b[^>]*>.*?</\1>", " ", html, flags=re.S)
+        text = re.sub(r"<[^>]+>", " ", text)
+        assert not re.search(r"\b[Ss]eed 00\d", text), text
+        assert "withheld" not in text and "System Message" not in html
+        assert not re.search(r"\w_\w|\^", text), re.findall(r".{20}(?:\w_\w|\^).{20}", text)
+        if getattr(output, "csv", None):
+            assert "<table" in html and "<td>edge</td>" in html and "13639.4" in html  # the table itself
+
+
+def test_the_landing_page_names_its_source_document_by_title():
+    config = load_study(ROOT / "config/config.yaml")
+    html = _render(ROOT / "workflow/report/workflow.rst", config, SimpleNamespace())
+    assert "Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears" in html
+    assert 'href="docs/references.md"' in html
+    assert "Where our results differ from the source document" in html
+    for section in ("how-to-read-this-report", "where-our-results-differ-from-the-source-document-and-why"):
+        assert f'id="{section}"' in html  # headings, not text run into a paragraph

@@ -1,0 +1,443 @@
+"""One declaration per setting (gearmesh.settings): the published schema files and the config
+README are generated from it, every stage function takes each key with the declared default and
+refuses what the schema refuses, and the pair-file schema accepts exactly what the reader's form
+checks accept."""
+
+from __future__ import annotations
+
+import dataclasses
+import inspect
+import json
+from pathlib import Path
+
+import jsonschema
+import pytest
+import yaml
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from gearmesh import gear
+from gearmesh.config import validate_study
+from gearmesh.errors import GearmeshInputError
+from gearmesh.pipeline import resolve
+from gearmesh.schema import (defaults, default_of, field_schema, has_default, key_of, settings_fields,
+                             spec_of)
+from gearmesh.settings import (Dynamics, GearModification, PairFile, PairMaterial, Study, pair_schema,
+                               pair_schema_text, stage_sections, study_keys, study_reference, study_schema,
+                               study_schema_text)
+
+ROOT = Path(__file__).resolve().parents[1]
+STAGED = [(path, cls) for path, cls in stage_sections() if getattr(cls, "STAGES", ())]
+
+
+# --------------------------------------------------------------------------------------
+# The published files
+# --------------------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("path, text, command", [
+    ("src/gearmesh/schemas/config.schema.yaml", study_schema_text, "gearmesh schema study > FILE"),
+    ("src/gearmesh/schemas/pair.schema.json", pair_schema_text, "gearmesh schema pair > FILE"),
+    ("config/README.md", study_reference, "gearmesh schema study --format markdown > FILE"),
+])
+def test_published_files_are_the_settings_rendered(path, text, command):
+    assert (ROOT / path).read_text(encoding="utf-8") == text(), f"{path} is stale: {command}"
+
+
+def test_the_workflow_validates_with_the_published_schema():
+    published = yaml.safe_load((ROOT / "workflow/schemas/config.schema.yaml").read_text(encoding="utf-8"))
+    assert published == study_schema()
+    jsonschema.Draft202012Validator.check_schema(published)
+    jsonschema.Draft202012Validator.check_schema(json.loads((ROOT / "src/gearmesh/schemas/pair.schema.json").read_text()))
+
+
+def test_every_study_config_points_editors_at_the_schema():
+    configs = [ROOT / "config/config.yaml", *sorted((ROOT / "config/studies").glob("*.yaml"))]
+    for path in configs:
+        first = path.read_text(encoding="utf-8").splitlines()[0]
+        assert first.startswith("# yaml-language-server: $schema="), path.name
+        target = (path.parent / first.split("=", 1)[1]).resolve()
+        assert target == (ROOT / "src/gearmesh/schemas/config.schema.yaml").resolve(), path.name
+
+
+def test_config_readme_describes_every_key():
+    text = (ROOT / "config/README.md").read_text(encoding="utf-8")
+    keys = study_keys()
+    assert len(keys) > 150
+    missing = [k for k in keys if f"| `{k}` |" not in text]
+    assert not missing
+
+
+def test_every_setting_is_described():
+    for path, cls in [("", Study), *stage_sections()]:
+        for f in settings_fields(cls):  # a section is described by its class's docstring
+            assert field_schema(cls, f).get("description"), f"{path}.{key_of(f)} has no description"
+
+
+# --------------------------------------------------------------------------------------
+# Every key, default and bound known to the stage functions
+# --------------------------------------------------------------------------------------
+
+
+def _same(declared, given) -> bool:
+    """The declared default (a document value) and a function's default are the same setting: equal
+    as JSON data, an empty mapping also meeting None (a function's "none", having no mutable default)."""
+    from gearmesh.schema import jsonable
+
+    a, b = jsonable(declared), jsonable(given)
+    return a == b or (a == {} and b is None)
+
+
+@pytest.mark.parametrize("path, cls", STAGED, ids=[p for p, _ in STAGED])
+def test_every_key_is_a_parameter_of_its_stage_with_the_declared_default(path, cls):
+    for n, spec in enumerate(cls.STAGES):
+        func = resolve(spec)
+        assert getattr(func, "__settings__", None) is cls, f"{spec} does not check its arguments against {cls.__name__}"
+        params = inspect.signature(func).parameters
+        for f in settings_fields(cls):
+            key = key_of(f)
+            if spec_of(f).workflow:
+                continue
+            if key not in params:
+                assert n > 0, f"{path}.{key} is not a parameter of {spec}"
+                continue
+            default = params[key].default
+            if not has_default(f):
+                assert default is inspect.Parameter.empty, f"{spec}: {key} has a default, the setting must be given"
+            elif not spec_of(f).fill:
+                assert default is None, f"{spec}: {key} left out means none"
+            else:
+                assert _same(default_of(f), default), f"{spec}: {key} = {default!r}, declared {default_of(f)!r}"
+
+
+def test_the_solver_defaults_are_the_declared_ones():
+    from gearmesh.dynamics import SolverSettings
+
+    declared, solver = defaults(Dynamics), SolverSettings()
+    shared = [f.name for f in dataclasses.fields(SolverSettings) if f.name in declared]
+    assert len(shared) == 5
+    for name in shared:
+        assert getattr(solver, name) == declared[name], name
+
+
+def test_the_lead_slope_bound_is_the_contact_models_own():
+    from gearmesh.tca import check_lead_slope
+
+    check_lead_slope((1000.0, -1000.0))
+    with pytest.raises(GearmeshInputError):
+        check_lead_slope((1000.001, 0.0))
+    for path in ("tca", "ltca", "impact", "dynamics", "train_dynamics"):
+        cls = dict(stage_sections())[path]
+        items = field_schema(cls, next(f for f in settings_fields(cls) if f.name == "lead_slope_um"))["items"]
+        assert (items["minimum"], items["maximum"]) == (-1000, 1000)
+
+
+def _violations(schema: dict) -> list:
+    """Values just outside the bounds of a setting's schema (its first alternative for a oneOf)."""
+    if "oneOf" in schema:
+        schema = schema["oneOf"][0]
+    kinds = schema.get("type", [])
+    kinds = [kinds] if isinstance(kinds, str) else kinds
+    if "array" in kinds:
+        out = [[bad] for bad in _violations(schema.get("items", {}))]
+        if schema.get("minItems"):
+            out.append([])
+        if "maxItems" in schema and "enum" not in schema.get("items", {}):
+            item = (schema["items"].get("minimum", 0) + 1) if schema["items"].get("type") in ("number", "integer") \
+                else "x"
+            out.append([item] * (schema["maxItems"] + 1))
+        return out
+    out = []
+    step = 1 if "integer" in kinds else 1e-6
+    for word, sign in (("minimum", -1), ("maximum", 1)):
+        if word in schema:
+            out.append(schema[word] + sign * step * max(1, abs(schema[word])))
+    for word in ("exclusiveMinimum", "exclusiveMaximum"):
+        if word in schema:
+            out.append(schema[word])
+    if "enum" in schema:
+        out.append("no-such-choice")
+    if kinds == ["integer"]:
+        out.append(2.5)
+    if "multipleOf" in schema:
+        out.append(schema.get("minimum", 0) + 1)
+    return out
+
+
+#: The keys a section must have, with valid values.
+_REQUIRED = {"helix_sweep": {"pairs": ["p"], "start_deg": 0, "stop_deg": 10, "step_deg": 1},
+             "stiffness_table": {"pairs": ["p"]}, "slice_convergence": {"pairs": ["p"]}}
+
+
+@pytest.mark.parametrize("path, cls", STAGED, ids=[p for p, _ in STAGED])
+def test_every_bound_is_the_stages_own(path, cls):
+    """A value just outside a declared bound is refused by the stage function, naming the key,
+    before it does any work (the pair is None: any work would fail otherwise)."""
+    func = resolve(cls.STAGES[0])
+    checked = 0
+    for f in settings_fields(cls):
+        if spec_of(f).workflow:
+            continue
+        for bad in _violations(field_schema(cls, f)):
+            with pytest.raises(GearmeshInputError) as err:
+                func(None, **{key_of(f): bad})
+            assert err.value.field.split("[")[0].split(".")[0] == key_of(f), (key_of(f), bad, str(err.value))
+            # and the study schema refuses it too, under the section's name
+            if "." not in path:
+                doc = {"study": "s", "pairs": ["p"], path: {**_REQUIRED.get(path, {}), key_of(f): bad}}
+                with pytest.raises(GearmeshInputError) as err:
+                    validate_study(doc)
+                assert err.value.field.startswith(f"{path}.{key_of(f)}"), str(err.value)
+            checked += 1
+    assert checked > 0
+
+
+def test_a_value_the_schema_accepts_passes_the_stage_check():
+    """The other direction for the solver, the instance of the issue (courant 1.5 passed the
+    schema, then the stage refused it): the bounds themselves pass both."""
+    from gearmesh.datasets.dynamics import _solver, _table_settings
+
+    _solver(1.0, 8, 1.0, 2, "transient")
+    _table_settings(points=2000, table_positions=16, table_approaches=8, table_force_factor=100)
+    config = validate_study({"study": "s", "pairs": ["p"], "dynamics": {"courant": 1.0, "points": 2000}})
+    assert config["dynamics"]["courant"] == 1.0
+
+
+def test_the_api_refuses_the_values_of_the_issue():
+    from gearmesh.datasets.dynamics import dynamics_dataset
+    from gearmesh.datasets.optimise import run_settings
+
+    with pytest.raises(GearmeshInputError, match=r"^courant = 1.5: must be at most 1$"):
+        dynamics_dataset(None, courant=1.5)
+    with pytest.raises(GearmeshInputError, match=r"^population = 20000: must be at most 10000$"):
+        run_settings(None, population=20000)
+    with pytest.raises(GearmeshInputError, match=r"^dynamics.courant = 1.5: must be at most 1$"):
+        validate_study({"study": "s", "pairs": ["p"], "dynamics": {"courant": 1.5}})
+
+
+def test_tolerances_take_the_declared_defaults():
+    from gearmesh.gear import load_pair, pair_geometry
+    from gearmesh.tolerance import study_tolerances
+
+    geom = pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml"))
+    model, samples, sampling, seed = study_tolerances(geom, {"grade": 6})
+    assert (samples, sampling, seed) == tuple(defaults(dict(stage_sections())["tolerances"])[k]
+                                              for k in ("samples", "sampling", "seed"))
+    assert study_tolerances(geom, None)[1] == 0  # no section: the nominal alone
+    with pytest.raises(GearmeshInputError, match="^tolerances.samples"):
+        study_tolerances(geom, {"samples": -1})
+
+
+# --------------------------------------------------------------------------------------
+# The pair file
+# --------------------------------------------------------------------------------------
+
+
+def test_the_pair_schema_has_the_readers_keys():
+    assert {key_of(f) for f in settings_fields(PairFile)} == gear._PAIR_KEYS
+    assert {key_of(f) for f in settings_fields(PairFile) if not has_default(f)} == set(gear._REQUIRED_KEYS)
+    assert {key_of(f) for f in settings_fields(PairMaterial)} == gear._MATERIAL_KEYS
+    assert {key_of(f) for f in settings_fields(GearModification)} == set(gear._MODIFICATION_KEYS)
+
+
+def _pair_files() -> list[Path]:
+    """Every pair file the project ships, in the repository and in the package."""
+    package = ROOT / "src/gearmesh"
+    files = [*(ROOT / "config/pairs").glob("*.yaml"), *(p for p in package.rglob("*.yaml") if p.parent.name != "schemas")]
+    return sorted({p.resolve() for p in files})
+
+
+def test_every_shipped_pair_file_satisfies_the_pair_schema():
+    validator = jsonschema.Draft202012Validator(json.loads((ROOT / "src/gearmesh/schemas/pair.schema.json").read_text()))
+    files = _pair_files()
+    assert len(files) >= 9
+    for path in files:
+        errors = [e.message for e in validator.iter_errors(yaml.safe_load(path.read_text()))]
+        assert not errors, (path.name, errors)
+
+
+def _reader_refusal(data) -> GearmeshInputError | None:
+    """The refusal of the reader's checks of the form of a pair file (keys, types, ranges; not
+    its physics), or None."""
+    try:
+        gear.validate_pair(gear.pair_from_dict(data, default_name="the_file_stem"))
+    except GearmeshInputError as exc:
+        return exc
+    return None
+
+
+#: Rules of the reader between keys, beyond a schema of one key at a time: face width against
+#: module and diameter, an ISO 53 profile against the pressure angle, a datasheet diameter or a
+#: centre distance against the pair's circles (teeth, module, helix angle, shifts).
+_RELATIONS = ("normal module", "pinion reference diameters", "is a 20° profile", "its reference circle shifted",
+              "too small for any working pair", "zero-backlash")
+
+
+_BASE = yaml.safe_load((ROOT / "config/pairs/seed000_case.yaml").read_text())
+_VALUES = st.one_of(st.none(), st.booleans(), st.integers(-10, 300), st.floats(-1e3, 1e3, allow_nan=False),
+                    st.sampled_from([0, 0.05, 0.1, 100, 100.5, 45, 60, 59.99, 0.5, -3, 3, 2.99, 5, 4, "right", "left",
+                                     "x", "a.b", ".a", "", "1e6", "ISO 53 A", "ISO 53 D", "ISO 53"]),
+                    st.lists(st.one_of(st.integers(-10, 300), st.floats(-10, 1e3, allow_nan=False)), max_size=3))
+# source: text in the schema; the reader takes any value as text (str(value)), so it is left out here
+_KEYS = sorted(gear._PAIR_KEYS - {"source"}) + ["material.youngs_modulus_GPa", "material.poisson_ratio",
+                                                "material.density_kg_m3", "modification.pinion.tip_relief_um",
+                                                "modification.gear.crowning_um", "unknown"]
+_EDITS = st.lists(st.tuples(st.sampled_from(_KEYS), _VALUES, st.booleans()), min_size=1, max_size=3)
+
+
+def _edited(changes) -> dict:
+    """The shipped pair file with ``changes``: (key path, value, delete) each."""
+    data = json.loads(json.dumps(_BASE))
+    for key, value, delete in changes:
+        *parents, last = key.split(".")
+        node = data
+        for p in parents:
+            if not isinstance(node.get(p), dict):
+                node[p] = {}
+            node = node[p]
+        if delete:
+            node.pop(last, None)
+        else:
+            node[last] = value
+    return data
+
+
+def _schema_accepts(data) -> bool:
+    return not list(jsonschema.Draft202012Validator(pair_schema()).iter_errors(data))
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(_EDITS)
+def test_the_pair_schema_accepts_every_file_the_reader_accepts(changes):
+    """Random edits of a shipped pair file (set a key to a value, or delete it): an editor never
+    flags a file the reader takes."""
+    data = _edited(changes)
+    if _reader_refusal(data) is None:
+        assert _schema_accepts(data), data
+
+
+@settings(max_examples=300, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(st.sampled_from(_KEYS), _VALUES, st.booleans())
+def test_the_pair_schema_refuses_what_the_reader_refuses_of_one_key(key, value, delete):
+    """One key of a shipped pair file edited: what the reader refuses for that key's own form
+    (type, range, choice, a conflicting alternative), the schema refuses too; the rules between
+    keys (:data:`_RELATIONS`) and the physics are the reader's alone."""
+    data = _edited([(key, value, delete)])
+    refusal = _reader_refusal(data)
+    if refusal is not None and not any(words in refusal.rule for words in _RELATIONS):
+        assert not _schema_accepts(data), (str(refusal), data)
+
+
+# --------------------------------------------------------------------------------------
+# The workflow's default profile
+# --------------------------------------------------------------------------------------
+
+
+def test_snakemake_applies_the_default_profile_without_a_flag(monkeypatch, capsys):
+    """Snakemake's own command-line parsing, in the repository: the workflow profile is found
+    (profiles/default, the link to workflow/profiles/default) and gives the cores a bare
+    `snakemake` needs; `--cores 2`, as the README says, overrides it."""
+    pytest.importorskip("snakemake")
+    from snakemake.cli import parse_args
+    from snakemake.utils import available_cpu_count
+
+    assert (ROOT / "profiles/default/config.yaml").resolve() == (ROOT / "workflow/profiles/default/config.yaml").resolve()
+    monkeypatch.chdir(ROOT)
+    _, args = parse_args(["--dry-run"])
+    assert "workflow specific profile profiles/default" in capsys.readouterr().err
+    assert args.cores == available_cpu_count()
+    assert args.rerun_incomplete
+    _, args = parse_args(["--dry-run", "--cores", "2"])
+    assert args.cores == 2
+
+
+def test_on_a_cluster_only_the_study_tables_and_figures_run_locally(monkeypatch):
+    """The rules a cluster executor runs on the submitting machine (``localrule: True``): the study
+    tables and their figures, whose work grows with the pairs and variants only; every stage whose
+    work grows with a resolution setting is queued."""
+    pytest.importorskip("snakemake")
+    from snakemake.api import SnakemakeApi
+    from snakemake.settings.types import OutputSettings, ResourceSettings
+
+    monkeypatch.chdir(ROOT)
+    with SnakemakeApi(OutputSettings(quiet=set())) as api:
+        workflow = api.workflow(resource_settings=ResourceSettings(cores=1), snakefile=Path("Snakefile"),
+                                workdir=Path("."))._workflow
+        local = set(workflow._localrules)
+        names = {rule.name for rule in workflow.rules}
+    assert local <= names
+    assert {"lste_comparison", "impact_table", "engagement_table"} <= local
+    staged = {"geometry", "contact_lines", "stiffness", "tca", "ltca", "impact", "dynamics", "optimise"}
+    assert staged <= names and not staged & local
+
+
+# --------------------------------------------------------------------------------------
+# The command line
+# --------------------------------------------------------------------------------------
+
+#: The sections whose keys a command's options are.
+_COMMAND_SECTIONS = {"stiffness": ("stiffness",), "ltca": ("ltca",), "impact": ("impact",), "dynamics": ("dynamics",),
+                     "optimise": ("optimise.NAME", "tolerances")}
+
+
+def _subparsers():
+    import argparse
+
+    from gearmesh.cli import build_parser
+
+    action = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    return action.choices
+
+
+#: Options whose default differs from the study's, and why.
+_OWN_DEFAULTS = {
+    ("dynamics", "excitation"): "tvms: what the study's null means without an LTCA upstream",
+    ("optimise", "torque_Nm"): "none: the command needs --torque-Nm or --torques-Nm (the middle one then)",
+    ("optimise", "tolerance_statistic"): "max, used only with --tolerance-samples: without, the nominal alone "
+                                         "(the study's null)",
+}
+
+
+@pytest.mark.parametrize("command", sorted(_COMMAND_SECTIONS))
+def test_every_option_that_is_a_setting_has_its_declared_default(command):
+    parser = _subparsers()[command]
+    sections = [dict(stage_sections())[path] for path in _COMMAND_SECTIONS[command]]
+    declared = {}
+    for cls in reversed(sections):
+        declared.update(defaults(cls))
+    options = [a for a in parser._actions if a.dest in declared and (command, a.dest) not in _OWN_DEFAULTS]
+    assert options
+    for action in options:
+        assert _same(declared[action.dest], action.default), (command, action.dest, action.default)
+
+
+#: What each command needs besides its pair file.
+_REQUIRED_OPTIONS = {"stiffness": [], "ltca": ["--torque-Nm", "100"], "impact": ["--torque-Nm", "100", "--speed-rpm", "5000"],
+                     "dynamics": ["--torque-Nm", "100", "--speeds", "1000"], "optimise": ["--torque-Nm", "1000"]}
+
+
+def test_every_setting_option_refuses_what_the_schema_refuses_naming_the_option(capsys, tmp_path):
+    from gearmesh.cli import main
+
+    pair = ROOT / "config/pairs/seed000_case.yaml"
+    checked = 0
+    for command, parser in _subparsers().items():
+        for key, (section, flag) in (parser.get_default("setting_options") or {}).items():
+            field = next(f for f in settings_fields(section) if key_of(f) == key)
+            for bad in _violations(field_schema(section, field)):
+                if isinstance(bad, list) or isinstance(bad, str) and not isinstance(field.default, str):
+                    continue  # one value per option on the command line
+                argv = [command, str(pair), *_REQUIRED_OPTIONS[command], f"{flag}={bad}"]
+                if command == "optimise":
+                    argv += ["--write-pair", str(tmp_path / "o.yaml")]
+                try:
+                    code = main(argv)
+                except SystemExit as exc:  # argparse's own refusal of a choice or a type
+                    code = exc.code
+                err = capsys.readouterr().err
+                assert code == 2, (argv, err)
+                assert err.startswith(f"gearmesh: error: {flag}") or "invalid" in err or "must be one of" in err, \
+                    (argv, err)
+                assert not (tmp_path / "o.yaml").exists()
+                checked += 1
+    assert checked > 20
