@@ -37,11 +37,15 @@ from common import ROOT, median_seconds
 
 
 def _default_models() -> dict[str, dy.GearModel]:
+    """The default study's pair at 1000 N·m under each excitation, the tooth model of
+    :data:`bench_impact.TOOTH_METHOD` (the code before issue 17's kernel work computes it alike)."""
+    from bench_impact import TOOTH_METHOD
+
     pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
     geom = pair_geometry(pair)
-    ltca: xr.Dataset = ltca_dataset(pair, torques_Nm=[1000.0], positions=64, points=50)
-    table = contact_table(geom, [1000.0, 1600.0])
-    common = {"backlash_um": 60.0}
+    ltca: xr.Dataset = ltca_dataset(pair, torques_Nm=[1000.0], positions=64, points=50, method=TOOTH_METHOD)
+    table = contact_table(geom, [1000.0, 1600.0], method=TOOTH_METHOD)
+    common = {"backlash_um": 60.0, "method": TOOTH_METHOD}
     return {"tvms": build_pair_model(pair, 1000.0, "pinion", excitation="tvms", **common),
             "ltca": build_pair_model(pair, 1000.0, "pinion", excitation="ltca", ltca=ltca, **common),
             "contact": build_pair_model(pair, 1000.0, "pinion", excitation="contact", table=table, **common)}

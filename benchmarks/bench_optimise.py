@@ -23,7 +23,7 @@ contact-driven 8-DOF pair over 1000–15000 rpm and each candidate's resonances)
 study's constraint; max_rel_diff of K_v.
 
 Every row has median_s / cpu_s (today) and baseline_median_s / baseline_cpu_s (before), their
-ratios, and the differences. Run by hand: ``python benchmarks/run.py optimise dynamic_objective``.
+ratios, and the differences; every model the slice cantilever tooth (:data:`bench_impact.TOOTH_METHOD`). Run by hand: ``python benchmarks/run.py optimise dynamic_objective``.
 """
 
 from __future__ import annotations
@@ -34,7 +34,7 @@ import sys
 import numpy as np
 
 from bench_baseline import baseline_call
-from bench_impact import _timed, compare, robust_problem
+from bench_impact import TOOTH_METHOD, _timed, compare, robust_problem, study_section
 from common import ROOT
 
 TORQUE, SPEED = 1000.0, 5000.0
@@ -46,7 +46,7 @@ def point_generation(repeats: int):
     from gearmesh.impact import impact_model
     from gearmesh.optimise import check_settings, evaluate, problem
 
-    model = impact_model(pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml")))
+    model = impact_model(pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml")), method=TOOTH_METHOD)
     prob = problem(model, check_settings(population=40, generations=30, seed=0, torque=TORQUE, speed_rpm=SPEED))
     low = np.array([g.low for g in prob.genes])
     high = np.array([g.high for g in prob.genes])
@@ -74,20 +74,16 @@ def dynamic_generation(repeats: int):
 def study_runs(repeats: int):
     """(wall s, CPU s, (genes of every generation, optimum genes, optimum J) per run) of both GA runs
     of the default study, set-up included."""
-    import yaml
-
     from gearmesh.datasets.optimise import run_problem
     from gearmesh.gear import load_pair
     from gearmesh.optimise import optimise
 
-    config = yaml.safe_load((ROOT / "config/config.yaml").read_text())
     pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
 
     def both():
         out = {}
         for name in ("optimised", "design_point"):
-            section = {**config["optimise"][name], "impact": config["impact"], "tolerances": config["tolerances"]}
-            result = optimise(run_problem(pair, **section))
+            result = optimise(run_problem(pair, **study_section(name)))
             out[name] = (result.history.arrays()["genes"], result.optimum_genes,
                          float(result.optimum_evaluation.objective[0]))
         return out
