@@ -72,8 +72,8 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import PairGeometry, involute
-from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, load_sums, ltca_model, point_compliance,
-                   positive_values, solve_contact)
+from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, law_scales, log_universal_inverse,
+                   ltca_model, point_compliance, positive_values, solve_contact)
 from .surface import body_rotation, flank_point, modification_parameters, plane_of_action_point, relief_depth
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, approach_tip_point, basis_gap,
                   candidate_grid, engagement_point, point_centres, recess_tip_point, separation_basis)
@@ -794,19 +794,14 @@ def _approach_at(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force
     return _solve_rows(gap, comp, f, law, delta_start=start).reshape(shape)
 
 
-def _slices(model: ImpactModel, rel: np.ndarray, comp: np.ndarray):
-    """The entering line's slices of every row (R, L): separations from the first to touch
-    (non-candidates at 1 m, out of reach) and compliances (m/N, the local law's linear part added)."""
+def _sorted_slices(model: ImpactModel, rel: np.ndarray, comp: np.ndarray):
+    """The entering line's slices of every row (R, L), in order of separation from the first to
+    touch: separations (non-candidates at 1 m, out of reach) and compliances (m/N, the local
+    law's linear part added)."""
     law = model.local_law
     length = rel.shape[-1]
     e = np.where(np.isfinite(rel), rel, 1.0).reshape(-1, length)
     c = (np.where(np.isfinite(comp), comp, 1.0) + law.linear).reshape(-1, length)
-    return e, c
-
-
-def _sorted_slices(model: ImpactModel, rel: np.ndarray, comp: np.ndarray):
-    """:func:`_slices` in order of separation from the first to touch."""
-    e, c = _slices(model, rel, comp)
     order = np.argsort(e, axis=1, kind="stable")
     return np.take_along_axis(e, order, 1), np.take_along_axis(c, order, 1)
 
@@ -814,14 +809,41 @@ def _sorted_slices(model: ImpactModel, rel: np.ndarray, comp: np.ndarray):
 def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, dmax: np.ndarray, levels: int):
     """F–δ of the entering pair alone: approaches (C, T, K) geometric from 1e-5·dmax to dmax and
     the force each causes, F(δ) = Σ q_i(δ − e_i) with every slice's own law inverted directly
-    (separations ``rel`` e_i from the first slice to touch; no load solve needed this way round),
-    summed by :func:`gearmesh.ltca.load_sums`."""
-    e, c = _slices(model, rel, comp)
+    (separations ``rel`` e_i from the first slice to touch; no load solve needed this way round).
+
+    Only the loaded (slice, level) pairs are formed: with the slices in order of separation, the
+    slices loaded at level k are the first n_k of them (e_i < δ_k)."""
+    law = model.local_law
+    e, c = _sorted_slices(model, rel, comp)
+    rows, length = e.shape
     frac = np.geomspace(1e-5, 1.0, int(levels))
     dm = np.broadcast_to(np.asarray(dmax, dtype=float), rel.shape[:-1]).reshape(-1)
     d = dm[:, None] * frac  # (R, K)
-    force, _, _ = load_sums(e, c, d, model.local_law)
-    return force.reshape(rel.shape[:-1] + (levels,)), d.reshape(rel.shape[:-1] + (levels,))
+    with np.errstate(invalid="ignore", divide="ignore"):
+        first = np.searchsorted(frac, e / dm[:, None], side="right")  # first level with δ_k > e_i
+    # the ratio test can differ from δ_k > e_i by one ulp: settle it on δ_k itself
+    lower = np.maximum(first - 1, 0)
+    first = np.where((first > 0) & (np.take_along_axis(d, np.minimum(lower, levels - 1), 1) > e), lower, first)
+    hist = np.zeros((rows, levels + 1), dtype=np.intp)
+    np.add.at(hist, (np.arange(rows)[:, None], first), 1)
+    n = np.cumsum(hist[:, :levels], axis=1).reshape(-1)  # slices loaded at each (row, level)
+    rk = np.repeat(np.arange(rows * levels), n)
+    j = np.arange(rk.size) - np.repeat(np.cumsum(n) - n, n)
+    flat = (rk // levels) * length + j
+    x = d.reshape(-1)[rk] - e.reshape(-1)[flat]  # > 0 by construction
+    if law.coefficient:
+        # the universal inverse of :func:`gearmesh.ltca.invert_tabulated`, with each slice's
+        # scales taken once per slice rather than once per (slice, level)
+        log_q, log_cq = law_scales(c, law.coefficient, law.exponent)
+        v = log_universal_inverse(np.log(x) - log_cq.reshape(-1)[flat], law.exponent)
+        q = np.exp(log_q.reshape(-1)[flat] + v)
+        outside = np.isnan(v)
+        if outside.any():
+            q[outside] = _invert(x[outside], c.reshape(-1)[flat[outside]], law.coefficient, law.exponent)[0]
+    else:
+        q = x / c.reshape(-1)[flat]
+    force = np.bincount(rk, weights=q, minlength=rows * levels).reshape(rel.shape[:-1] + (levels,))
+    return force, d.reshape(rel.shape[:-1] + (levels,))
 
 
 def _curve_reach(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, force: np.ndarray) -> np.ndarray:
