@@ -448,11 +448,35 @@ def _touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau: 
     """The force F*(τ) at which the entering pair touches at time-like roll τ, exactly, for rows
     (N,): the force the pairs already in mesh carry when they are compressed to the entering
     pair's smallest separation g(τ), F* = Σ_i q_i(g(τ) − g_i(τ)). Returns F* (N), the tangent
-    stiffness ΣdF/dδ there (N/m), g (m) and its face position z (m); ``near`` as :func:`_enter_gap`."""
+    stiffness ΣdF/dδ there (N/m), g (m) and its face position z (m); ``near`` as :func:`_enter_gap`;
+    and the other pairs' points there (:class:`_Others`)."""
     gap_e, z_e = _enter_gap(model, params, tau, lead, near)
     gap_o, comp = _others_at(model, params, lead, tau)
     q, dq = _point_loads(model, gap_e[:, None], gap_o, comp)
-    return q.sum(axis=1), dq.sum(axis=1), gap_e, z_e
+    return q.sum(axis=1), dq.sum(axis=1), gap_e, z_e, _Others(gap_o, comp, q, dq)
+
+
+@dataclass
+class _Others:
+    """The points of the pairs already in mesh at a touch roll, rows (N, M): separations (m),
+    compliances (m/N), loads q (N) and dq/dδ (N/m) at the entering pair's separation."""
+
+    gap: np.ndarray
+    comp: np.ndarray
+    q: np.ndarray
+    dq: np.ndarray
+
+    def put(self, rows: np.ndarray, other: "_Others") -> "_Others":
+        """``other`` written into ``rows`` (allocated at the first write, NaN elsewhere)."""
+        for name in ("gap", "comp", "q", "dq"):
+            here, there = getattr(self, name), getattr(other, name)
+            if here is None:
+                here = np.full((self.gap_rows, there.shape[1]), np.nan)
+                setattr(self, name, here)
+            here[rows] = there
+        return self
+
+    gap_rows: int = 0
 
 
 # --------------------------------------------------------------------------------------
@@ -541,14 +565,16 @@ def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: n
         # bracket (bisection when a step would leave it); every evaluation exact
         x_last, slope = _inverse_cubic(model.tau, f_win[cc], kk, force[tt], a, b, fa, fb)
         f_last, g_last, z_last = (np.full(cc.size, np.nan) for _ in range(3))
+        last_others = _Others(None, None, None, None, cc.size)
         active = np.flatnonzero(fb != 0.0)
         x_next = x_last.copy()
         for _ in range(_MAX_TOUCH_ITERATIONS):
             if not active.size:
                 break
             c = x_next[active]
-            f_c, k_c, g_c, z_c = _touch_force(model, params[cc[active]], lead[cc[active]], c)
+            f_c, k_c, g_c, z_c, o_c = _touch_force(model, params[cc[active]], lead[cc[active]], c)
             g_last[active], z_last[active] = g_c, z_c
+            last_others.put(active, o_c)
             fc = f_c - force[tt[active]]
             up = fc > 0
             a[active] = np.where(up, c, a[active])
@@ -568,7 +594,13 @@ def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: n
             active = active[~stop]
         t_star[cc, tt] = np.where(np.isfinite(f_last), x_last, b)
         g_star[cc, tt], z_star[cc, tt] = g_last, z_last
-    return t_star, g_star, z_star, found & ~at_start, at_start, g_win[:, k0]
+        if last_others.gap is not None:  # the other pairs at each touch roll, as last evaluated
+            evaluated = np.isfinite(f_last)
+            at_touch = _Others(None, None, None, None, nc * nt).put(cc[evaluated] * nt + tt[evaluated],
+                                                                    _Others(*(getattr(last_others, f)[evaluated] for f in
+                                                                              ("gap", "comp", "q", "dq"))))
+            return t_star, g_star, z_star, found & ~at_start, at_start, g_win[:, k0], at_touch
+    return t_star, g_star, z_star, found & ~at_start, at_start, g_win[:, k0], None
 
 
 #: Window rolls evaluated per pass of :func:`_window_touch_force`.
@@ -700,7 +732,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     t1 = check_torques(torques)
     force = t1 / float(g.base_radius[0])
     nt = force.size
-    t_star, g_star, z_star, found, at_start, te0 = _crossing(model, params, lead, force)
+    t_star, g_star, z_star, found, at_start, te0, at_touch = _crossing(model, params, lead, force)
     if np.any(at_start):
         warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
                       "raise corner_extension", RuntimeWarning, stacklevel=2)
@@ -723,10 +755,19 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     n2 = 2 * nc * nt
     gap2, _ = (v.reshape(2, nc * nt) for v in _enter_gap(model, p3[:n2], stack[:n2], l3[:n2], np.tile(z_min, 2)))
     gap3 = np.concatenate([gap2, gap_min[None]])
-    gap_o, comp = _others_at(model, p3, l3, stack)
-    m = gap_o.shape[-1]
+    # the other pairs at τ − 2ε, τ − ε, and at τ itself where the touch iteration left them
+    kept = np.zeros(nc * nt, dtype=bool) if at_touch is None else np.isfinite(at_touch.gap).any(axis=1) & found.reshape(-1)
+    anew = np.concatenate([np.ones(n2, dtype=bool), ~kept])
+    gap_n, comp_n = _others_at(model, p3[anew], l3[anew], stack[anew])
+    m = gap_n.shape[-1]
+    gap_o, comp = np.empty((3 * nc * nt, m)), np.empty((3 * nc * nt, m))
+    gap_o[anew], comp[anew] = gap_n, comp_n
     gap_o, comp = gap_o.reshape(3, nc * nt, m), comp.reshape(3, nc * nt, m)
-    q, dq = _point_loads(model, gap_min[:, None], gap_o[2], comp[2])
+    q, dq = np.empty((nc * nt, m)), np.empty((nc * nt, m))
+    if kept.any():
+        gap_o[2, kept], comp[2, kept], q[kept], dq[kept] = (at_touch.gap[kept], at_touch.comp[kept], at_touch.q[kept],
+                                                            at_touch.dq[kept])
+    q[~kept], dq[~kept] = _point_loads(model, gap_min[~kept, None], gap_o[2, ~kept], comp[2, ~kept])
     stiff = dq.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
         resid = (q.sum(axis=1) - np.tile(force, nc)) / stiff  # g − δ_others at τ* (one Newton step)
