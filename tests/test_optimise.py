@@ -273,11 +273,13 @@ def test_diagnostics_window_spread_and_scenarios(robust):
     beats = d.window_force < d.window_standard
     inside = (d.window_torque >= low) & (d.window_torque <= high)
     assert np.all(beats[inside]) and low <= 1000 <= high
-    # the spread's nominal row is the optimum's own nominal evaluation
-    np.testing.assert_allclose(d.spread_force[0], robust.optimum_evaluation.force[0, 0], rtol=1e-12)
+    # the spread's nominal row is the optimum's own nominal evaluation, in another batch: equal to the
+    # round-off of the point inversions (whose Newton steps stop when the whole batch has converged),
+    # far below the touch tolerance's own spread of F_s (~1e-7)
+    np.testing.assert_allclose(d.spread_force[0], robust.optimum_evaluation.force[0, 0], rtol=1e-10)
     assert d.spread_force.shape == (4, 3) and np.all(d.spread_scenario > 0)
     k = int(np.flatnonzero(d.window_torque == 1000.0)[0])
-    assert d.window_force[k] == pytest.approx(d.spread_force[0, 1], rel=1e-12)  # same model, same point
+    assert d.window_force[k] == pytest.approx(d.spread_force[0, 1], rel=1e-10)  # same model, same point
 
 
 def test_cli_json_by_torque_load_window_and_write_pair_round_trip(tmp_path, capsys):
