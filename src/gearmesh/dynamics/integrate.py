@@ -11,9 +11,12 @@ equations) are kept as references; the tests and ``benchmarks/bench_dynamics.py`
 
 Why compiled: a sweep of ~10² speeds takes ~10⁴–10⁵ steps per speed on a model of 7–9 reduced
 coordinates; numpy spends its time in per-call overhead on such small arrays (the batch over
-speeds amortised it only for hundreds of speeds), a compiled loop does the arithmetic alone.
-The kernel is cached on disk (numba ``cache=True``) so a job pays the compilation once per
-installation, not once per process.
+speeds amortised it only for hundreds of speeds), a compiled loop does the arithmetic alone
+(about 0.26 µs an RK4 step of the 8-DOF pair with the contact table, measured). One compiled
+function, :func:`_sweep`, runs every speed of a sweep — the shooting with its monodromy matrix,
+then the recorded periods — so that Python is entered twice a sweep, not per period. It is
+cached on disk (numba ``cache=True``): a fresh installation compiles it once, in about 7 s
+(measured), and every later process loads it.
 """
 
 from __future__ import annotations
