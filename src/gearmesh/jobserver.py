@@ -79,7 +79,7 @@ def _run_on_server(smk: Any, entry: str) -> int | None:
     except OSError:
         return None
     with conn:
-        payload = pickle.dumps({"entry": entry, "smk": smk, "cwd": os.getcwd(), "started": _start_time()})
+        payload = pickle.dumps({"entry": entry, "smk": smk, "cwd": os.getcwd(), "started": process_start_time()})
         try:
             socket.send_fds(conn, [_HEADER.pack(len(payload))], [0, 1, 2])
             conn.sendall(payload)
@@ -109,13 +109,19 @@ def _recv_exactly(conn: socket.socket, n: int) -> bytes:
     return data
 
 
-def _start_time() -> float | None:
-    """When this process started (epoch seconds), or None without psutil (a Snakemake dependency)."""
+def process_start_time() -> float | None:
+    """When this process started (epoch seconds, to the kernel's clock tick), or None off Linux.
+
+    From /proc: the start in clock ticks since boot against the uptime, both since boot, so the
+    result does not carry the whole-second rounding of the boot time that psutil's
+    ``create_time`` adds (up to a second: more than a job's start-up)."""
     try:
-        import psutil
-    except ImportError:  # pragma: no cover
+        with open("/proc/self/stat", encoding="ascii") as stat, open("/proc/uptime", encoding="ascii") as up:
+            start_ticks = int(stat.read().rsplit(")", 1)[1].split()[19])  # field 22, starttime
+            uptime = float(up.read().split()[0])
+        return time.time() - (uptime - start_ticks / os.sysconf("SC_CLK_TCK"))
+    except (OSError, ValueError, IndexError):
         return None
-    return psutil.Process().create_time()
 
 
 # --------------------------------------------------------------------------------------
