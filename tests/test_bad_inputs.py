@@ -13,6 +13,7 @@ import signal
 import subprocess
 import sys
 import time
+import tracemalloc
 from pathlib import Path
 
 import pytest
@@ -22,7 +23,11 @@ from gearmesh.cli import main
 from gearmesh.io import host_name
 from pairs import seed001_pair1
 
-SECONDS_PER_REFUSAL = 10.0  # generous for a shared CI machine; a refusal takes well under 2 s
+# Bounded work without a clock (timings differ 2x between machines): a refusal allocates less than
+# this much (tracemalloc traces numpy's buffers too), and a hang (a FIFO opened for reading)
+# becomes a failure after HANG_GUARD_S instead of a CI run that never ends.
+PEAK_BYTES_PER_REFUSAL = 400 * 2**20  # a study check builds a coarse FE tooth (~200 MiB)
+HANG_GUARD_S = 120
 MAX_LINE = 800  # characters of the one error line (field, excerpt of the value, rule)
 
 
@@ -326,12 +331,21 @@ BAD_ARGS = [
 def _refused(argv: list[str], capsys, cwd: Path, field: str) -> str:
     """Run the CLI in-process; assert the refusal contract; return the error line."""
     before = sorted(cwd.rglob("*"))
-    start = time.perf_counter()
+    def hung(signum, frame):
+        raise AssertionError(f"no refusal after {HANG_GUARD_S} s: the CLI blocks on {argv}")
+
+    previous = signal.signal(signal.SIGALRM, hung)
+    signal.alarm(HANG_GUARD_S)
+    tracemalloc.start()
     try:
         code = main(argv)
     except SystemExit as exc:  # argparse refusals exit through parser.error
         code = exc.code
-    elapsed = time.perf_counter() - start
+    finally:
+        peak = tracemalloc.get_traced_memory()[1]
+        tracemalloc.stop()
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
     out, err = capsys.readouterr()
     lines = err.strip().splitlines()
     assert code == 2, err
@@ -339,7 +353,7 @@ def _refused(argv: list[str], capsys, cwd: Path, field: str) -> str:
     assert lines[0].startswith(f"gearmesh: error: {field}"), lines[0]
     assert "Traceback" not in err and out == ""
     assert len(lines[0]) <= MAX_LINE
-    assert elapsed < SECONDS_PER_REFUSAL
+    assert peak < PEAK_BYTES_PER_REFUSAL, f"{peak / 2**20:.0f} MiB allocated before the refusal"
     assert sorted(cwd.rglob("*")) == before  # nothing written
     return lines[0]
 
