@@ -401,7 +401,9 @@ def _sweep(mode, Ys, Js, scales, tol, max_iter, cycles, n_rec, its, status, kr, 
     cr_p ẏ_p − Σ_i B_pi F_i. The RK4 step is written out once, in this one function: numba does
     not inline a function taking arrays well enough for a step of ~10² flops (a separate step
     function is 1.5–4× slower), and it compiles a loop once per function that calls it (what a
-    fresh installation waits for)."""
+    fresh installation waits for). Whole-array assignments and arithmetic are written as loops
+    too: numba compiles the shape-error formatting of each (`J[:] = eye`, `Y - start`), 3.5 s of
+    the 8.6 s a fresh installation spent compiling this function."""
     n = kr.shape[0]
     n2 = 2 * n
     nm = G.shape[0]
@@ -418,9 +420,13 @@ def _sweep(mode, Ys, Js, scales, tol, max_iter, cycles, n_rec, its, status, kr, 
     prev_h = np.zeros(nm)
     prev_w = np.zeros(nm)
     prev_ok = np.zeros(nm, dtype=np.bool_)
-    eye = np.eye(n2)
+    eye = np.zeros((n2, n2))
+    for p in range(n2):
+        eye[p, p] = 1.0
     J = np.empty((n2, n2))
     J_last = np.zeros((n2, n2))
+    M = np.zeros((n2, n2))  # J_last − I: the Newton matrix
+    resid = np.empty(n2)
     idle_y = np.zeros((3, n))
     idle_m = np.zeros((_NQ, nm))
     with_tangent = Js.shape[0] > 0
@@ -436,10 +442,10 @@ def _sweep(mode, Ys, Js, scales, tol, max_iter, cycles, n_rec, its, status, kr, 
             # one pass: Y (and J) over ``periods`` mesh periods, the last ``recorded`` of them recorded
             start = Y.copy()
             if tangent:
-                if shoot:
-                    J[:] = eye
-                else:
-                    J[:] = Js[k]
+                J0 = eye if shoot else Js[k]
+                for p in range(n2):
+                    for q in range(n2):
+                        J[p, q] = J0[p, q]
             periods, recorded = (1, 0) if shoot else (cycles[k], n_rec[k])
             into_y = idle_y if shoot else acc_y[k]
             into_m = idle_m if shoot else acc_m[k]
@@ -569,33 +575,42 @@ def _sweep(mode, Ys, Js, scales, tol, max_iter, cycles, n_rec, its, status, kr, 
                             J[p, c] += (h / 6.0) * (dK[0, p, c] + 2.0 * dK[1, p, c] + 2.0 * dK[2, p, c] + dK[3, p, c])
 
             if not shoot:
-                Ys[k] = Y
-                if with_tangent:
-                    Js[k] = J
+                for p in range(n2):
+                    Ys[k, p] = Y[p]
+                    if with_tangent:
+                        for q in range(n2):
+                            Js[k, p, q] = J[p, q]
                 break
-            resid = Y - start
             err = 0.0
             for p in range(n2):
+                resid[p] = Y[p] - start[p]
                 err = max(err, abs(resid[p]) / scales[k, p])
             if not np.isfinite(err) or it == max_iter and err > tol:
                 status[k], its[k] = -1, it
                 break
             if err <= tol:
-                Ys[k], status[k], its[k] = start, 1 if it > 0 else 0, it
-                Js[k] = J_last
+                for p in range(n2):
+                    Ys[k, p] = start[p]
+                    for q in range(n2):
+                        Js[k, p, q] = J_last[p, q]
+                status[k], its[k] = 1 if it > 0 else 0, it
                 break
             if tangent:
-                J_last[:] = J
+                for p in range(n2):
+                    for q in range(n2):
+                        J_last[p, q] = J[p, q]
+                        M[p, q] = J[p, q] - eye[p, q]
                 tangent = False
             elif err > 0.5 * last:  # the chord iteration slowed down: this period again, with its Jacobian
                 tangent = True
                 Y = start
                 continue
-            dY, regular = _solve(J_last - eye, resid)
+            dY, regular = _solve(M, resid)
             if not regular:
                 status[k], its[k] = -1, it
                 break
-            Y = start - dY
+            for p in range(n2):
+                Y[p] = start[p] - dY[p]
             last = err
             it += 1
 
