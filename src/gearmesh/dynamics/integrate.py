@@ -15,7 +15,7 @@ speeds amortised it only for hundreds of speeds), a compiled loop does the arith
 (about 0.26 µs an RK4 step of the 8-DOF pair with the contact table, measured). One compiled
 function, :func:`_sweep`, runs every speed of a sweep — the shooting with its monodromy matrix,
 then the recorded periods — so that Python is entered twice a sweep, not per period. It is
-cached on disk (numba ``cache=True``): a fresh installation compiles it once, in about 7 s
+cached on disk (numba ``cache=True``): a fresh installation compiles it once, in about 5 s
 (measured), and every later process loads it.
 """
 
@@ -432,8 +432,7 @@ def _sweep(mode, Ys, Js, scales, tol, max_iter, cycles, n_rec, its, status, kr, 
     with_tangent = Js.shape[0] > 0
     for k in range(Ys.shape[0]):
         tab, m, h, o = tabs[k], ms[k], hs[k], ser_start[k]
-        Y0 = Ys[k].copy()
-        Y = Y0.copy()
+        Y = Ys[k].copy()
         last = np.inf
         it = 0
         shoot = mode == _SHOOT
