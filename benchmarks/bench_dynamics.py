@@ -34,7 +34,7 @@ from gearmesh.datasets.ltca import ltca_dataset
 from gearmesh.gear import load_pair, pair_geometry
 from gearmesh.stiffness import mesh_stiffness
 
-from common import ROOT, median_seconds
+from common import ROOT, median_seconds, timed_calls
 
 
 def _default_models() -> dict[str, dy.GearModel]:
@@ -66,13 +66,12 @@ def _default_speeds(models) -> np.ndarray:
 def compiled_sweeps(repeats: int) -> dict:
     """{excitation: (wall s, CPU s, {force_max, approach_std}, shooting failures)} of the compiled
     loop over the default sweep (module docstring); also run by the baseline's code."""
-    from bench_impact import _timed
 
     models = _default_models()
     speeds = _default_speeds(models)
     out = {}
     for name, model in models.items():
-        wall, cpu, res, _ = _timed(lambda: dy.simulate(model, speeds), repeats)
+        wall, cpu, res, _ = timed_calls(lambda: dy.simulate(model, speeds), repeats)
         out[name] = (wall, cpu, {"force_max": res.force_max, "approach_std": res.approach_std},
                      int(np.sum(res.shooting_iterations < 0)))
     return out

@@ -24,28 +24,13 @@ is the steadiest comparison). Run by hand: ``python benchmarks/run.py impact``.
 from __future__ import annotations
 
 import json
-import time
 
 import numpy as np
 
 from bench_baseline import BASELINE_NAME, baseline_call
-from common import ROOT
+from common import ROOT, timed_calls
 
 TORQUE, SPEED = 1000.0, 5000.0
-
-
-def _timed(func, repeats: int, warm_up: bool = True):
-    """(median wall s, median CPU s, last result, least CPU s) of ``repeats`` calls (after one
-    warm-up call). On a machine shared with other work the least CPU time is the steadiest figure."""
-    if warm_up:
-        func()
-    walls, cpus, result = [], [], None
-    for _ in range(repeats):
-        c0, w0 = time.process_time(), time.perf_counter()
-        result = func()
-        walls.append(time.perf_counter() - w0)
-        cpus.append(time.process_time() - c0)
-    return float(np.median(walls)), float(np.median(cpus)), result, float(np.min(cpus))
 
 
 def evaluation_alone(repeats: int):
@@ -58,7 +43,7 @@ def evaluation_alone(repeats: int):
     def one():
         return impact_response(model, impact_static(model, [TORQUE]), [SPEED])[1].force[:, 0, 0]
 
-    return _timed(one, repeats)
+    return timed_calls(one, repeats)
 
 
 #: The tooth model of every benchmarked impact and dynamics model: the slice cantilever along the
@@ -101,7 +86,7 @@ def robust_generation(repeats: int):
     prob, params = robust_problem(constraints={})
     rows, lead = _manufactured_rows(prob.model, prob.tolerance, params, prob.population_deviations)
     torques = prob.settings.objective_torques
-    return _timed(lambda: impact_values(prob.model, prob.settings, rows, lead, torques).force.ravel(), repeats)
+    return timed_calls(lambda: impact_values(prob.model, prob.settings, rows, lead, torques).force.ravel(), repeats)
 
 
 def compare(name: str, new, old, evaluations: int = 1, **extra) -> dict:

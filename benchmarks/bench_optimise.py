@@ -34,8 +34,8 @@ import sys
 import numpy as np
 
 from bench_baseline import baseline_call
-from bench_impact import TOOTH_METHOD, _timed, compare, robust_problem, study_section
-from common import ROOT
+from bench_impact import TOOTH_METHOD, compare, robust_problem, study_section
+from common import ROOT, timed_calls
 
 TORQUE, SPEED = 1000.0, 5000.0
 
@@ -51,7 +51,7 @@ def point_generation(repeats: int):
     low = np.array([g.low for g in prob.genes])
     high = np.array([g.high for g in prob.genes])
     params = prob.decode(low + (high - low) * np.random.default_rng(0).random((40, low.size)))
-    return _timed(lambda: np.asarray(evaluate(prob, params).force).reshape(40, -1)[:, 0], repeats)
+    return timed_calls(lambda: np.asarray(evaluate(prob, params).force).reshape(40, -1)[:, 0], repeats)
 
 
 def robust_generation(repeats: int):
@@ -59,7 +59,7 @@ def robust_generation(repeats: int):
     from gearmesh.optimise import evaluate
 
     prob, params = robust_problem()
-    return _timed(lambda: evaluate(prob, params).objective, repeats)
+    return timed_calls(lambda: evaluate(prob, params).objective, repeats)
 
 
 def dynamic_generation(repeats: int):
@@ -68,7 +68,7 @@ def dynamic_generation(repeats: int):
 
     prob, params = robust_problem()
     lead = np.zeros((params.shape[0], 2))
-    return _timed(lambda: dynamic_factors(prob.dynamics, params, lead), repeats)
+    return timed_calls(lambda: dynamic_factors(prob.dynamics, params, lead), repeats)
 
 
 def study_runs(repeats: int):
@@ -88,7 +88,7 @@ def study_runs(repeats: int):
                          float(result.optimum_evaluation.objective[0]))
         return out
 
-    return _timed(both, repeats, warm_up=False)  # as a job runs them: once, compiled loops from the cache
+    return timed_calls(both, repeats, warm_up=False)  # as a job runs them: once, compiled loops from the cache
 
 
 def bench_optimise(repeats: int = 3) -> list[dict]:
