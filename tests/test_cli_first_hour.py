@@ -36,9 +36,9 @@ def test_ltca_and_dynamics_with_the_same_flags_act_on_the_same_gear(root, capsys
     for out in (ltca, dyn):
         assert (out["torque_Nm"], out["torque_on"]) == (200.0, "gear" if on else "pinion")
         assert out["pinion_torque_Nm"] == pytest.approx(expected_t1)
-    assert ltca["force_N"] == pytest.approx(expected_t1 / geom.base_radius[0], rel=1e-9)
-    static_normal = ltca["force_N"] / math.cos(geom.base_helix_angle)
-    assert dyn["speeds"][0]["mesh_force_mean_N"] == pytest.approx(static_normal, rel=1e-3)
+    assert ltca["force_transverse_N"] == pytest.approx(expected_t1 / geom.base_radius[0], rel=1e-9)
+    static_normal = ltca["force_transverse_N"] / math.cos(geom.base_helix_angle)
+    assert dyn["speeds"][0]["mesh_force_mean_normal_N"] == pytest.approx(static_normal, rel=1e-3)
 
 
 @pytest.mark.parametrize("command", [

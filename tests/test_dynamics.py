@@ -253,8 +253,8 @@ def test_dataset_summary_and_inputs():
     assert float(spec.sel(order=1.0)) > 10 * float(spec.sel(order=0.5))  # lines at mesh orders only
     rows = dynamics_summary(pair, 200.0, "25000:27000:2000", transient_tau=4.0, record_cycles=4)
     assert [r["speed_rpm"] for r in rows] == [25000.0, 27000.0]
-    assert {"speed_rpm", "dynamic_te_mean_um", "dynamic_te_std_um", "mesh_deflection_mean_um", "mesh_force_mean_N",
-            "mesh_force_max_N"} <= set(rows[0])
+    assert {"speed_rpm", "dynamic_te_mean_um", "dynamic_te_std_um", "mesh_deflection_mean_um", "mesh_force_mean_normal_N",
+            "mesh_force_max_normal_N"} <= set(rows[0])
     with pytest.raises(GearmeshInputError, match="torques_Nm"):
         dynamics_dataset(pair, torques_Nm=-5.0)
     with pytest.raises(GearmeshInputError, match="speeds_rpm.stop"):

@@ -148,14 +148,21 @@ def test_batch_over_modifications_equals_one_by_one(case, case_model):
         assert batch.slope[c, 0] == pytest.approx(float(one.slope[0, 0]), rel=1e-6)
 
 
-def test_convergence_in_points_per_line(case):
+@pytest.mark.parametrize("method", ["transition", "fe"])
+def test_convergence_in_points_per_line(case, method):
+    """F_s as the contact lines get more points: the cantilever's steps shrink (367, 339, 2 N of
+    13.2 kN); the FE tooth's are at the level of its tabulated compliance's interpolation from
+    12 points on (40, 26, 75 N of 13.0 kN: within 0.6 %, not monotone)."""
     forces = []
     for points in (12, 24, 48, 96):
-        model = impact_model(case, points=points, window_positions=40, face_samples=129)
+        model = impact_model(case, points=points, window_positions=40, face_samples=129, method=method)
         st, rs = impact_response(model, impact_static(model, [1000]), [5000])
         forces.append(float(rs.force_energy_balance[0, 0, 0]))
     steps = np.abs(np.diff(forces))
-    assert steps[2] < steps[0] and steps[2] < 0.03 * forces[-1]
+    if method == "transition":
+        assert steps[2] < steps[0] and steps[2] < 0.03 * forces[-1]
+    else:
+        assert np.all(steps < 0.01 * forces[-1])
 
 
 def test_simulation_starts_in_equilibrium_and_the_entering_pair_takes_load(case_model):

@@ -292,7 +292,7 @@ def test_cli_json_by_torque_load_window_and_write_pair_round_trip(tmp_path, caps
     summary = json.loads(capsys.readouterr().out)
     assert [r["torque_Nm"] for r in summary["by_torque"]] == [400.0, 1000.0, 1600.0]
     for row in summary["by_torque"]:
-        assert {"torque_Nm", "impact_force_N", "standard_impact_force_N", "scenario"} <= set(row)
+        assert {"torque_Nm", "impact_force_transverse_N", "standard_impact_force_transverse_N", "scenario"} <= set(row)
         assert row["scenario"] in ("surface", "edge")
     assert len(summary["load_window_Nm"]) == 2 and summary["torque_Nm"] == 1000.0
     written = load_pair(out)
@@ -309,4 +309,4 @@ def test_cli_json_by_torque_load_window_and_write_pair_round_trip(tmp_path, caps
     # the impact the CLI evaluates on the written pair is the one the optimiser reported
     assert cli_main(["impact", str(out), "--torque-Nm", "1000", "--speed-rpm", "5000", "--json"]) == 0
     impact = json.loads(capsys.readouterr().out)
-    assert impact["impact_force_N"] == pytest.approx(summary["by_torque"][1]["impact_force_N"], rel=1e-9)
+    assert impact["impact_force_transverse_N"] == pytest.approx(summary["by_torque"][1]["impact_force_transverse_N"], rel=1e-9)

@@ -79,13 +79,26 @@ def test_iso6336_by_hand(p1):
     zn2 = 49 / (math.cos(beta_b) ** 2 * math.cos(beta))
     q = 0.04723 + 0.15551 / zn1 + 0.25791 / zn2  # x1 = x2 = 0
     cb = (1 + 0.5 * (1.2 - 1.25)) * (1 - 0.02 * (20 - 25))
-    c_prime = 1 / q * 0.8 * 1.0 * cb * math.cos(beta)
+    xi = p1.pair.material.youngs_modulus / 206e9  # ISO 6336-1 9.3.1: q' is steel's (206 GPa)
+    c_prime = 1 / q * 0.8 * 1.0 * cb * math.cos(beta) * xi
     c_ga = c_prime * (0.75 * p1.eps_alpha + 0.25)
+    assert iso["material_factor"] == pytest.approx(xi, rel=1e-15)
     assert iso["C_B"] == pytest.approx(0.975 * 1.1, rel=1e-14)
     assert iso["c_prime"] == pytest.approx(c_prime, rel=1e-13)
     assert iso["c_gamma_alpha"] == pytest.approx(c_ga, rel=1e-13)
     assert iso["c_gamma_beta"] == pytest.approx(0.85 * c_ga, rel=1e-13)
     assert iso["K_gamma_alpha"] == pytest.approx(c_ga * 20 * 1e6, rel=1e-13)
+
+
+@pytest.mark.parametrize("modulus_GPa", [206.0, 210.0, 70.0])
+def test_iso6336_stiffness_scales_with_the_modulus(modulus_GPa):
+    """ISO 6336-1 9.3.1: c' (and with it cγα, cγβ) in proportion to E/E_st, E_st = 206 GPa; the
+    fitted q' itself is the steel pair's."""
+    steel = st.iso6336_stiffness(geom_of(material={"youngs_modulus_GPa": 206.0}))
+    other = st.iso6336_stiffness(geom_of(material={"youngs_modulus_GPa": modulus_GPa}))
+    assert other["q_prime"] == steel["q_prime"]
+    for key in ("c_prime", "c_gamma_alpha", "c_gamma_beta", "K_gamma_alpha"):
+        assert other[key] == pytest.approx(steel[key] * modulus_GPa / 206.0, rel=1e-14)
 
 
 def test_iso6336_profile_shift_terms_by_hand():
@@ -236,7 +249,7 @@ def test_beta_zero_is_the_spur_slice_model():
     whatever the number of slices or the rule."""
     geom = geom_of(helix_angle_deg=0)
     roll = mesh_cycle_rolls(geom, 24)
-    ks = [st.mesh_stiffness(geom, 24, n, rule=r, components=False).K
+    ks = [st.mesh_stiffness(geom, 24, n, "transition", rule=r, components=False).K
           for n in (1, 7, 1000) for r in ("centre", "clip")]
     for k in ks[1:]:
         assert np.allclose(k, ks[0], rtol=1e-12)
@@ -351,15 +364,16 @@ def test_integer_overlap_ratio_lowers_the_fluctuation(p1, p1_tables):
     exactly once across the face, so in slice theory K = ∫k0(s)ds/tan βb is constant: the
     variation of the slice stiffness along the flank averages out, not only the length.
     """
-    base = st.mesh_stiffness(p1, 360, tables=p1_tables["transition"], components=False)
+    base = st.mesh_stiffness(p1, 360, method="transition", tables=p1_tables["transition"], components=False)
     assert base.fluctuation > 0.2
     p2 = geom_of(helix_angle_deg=15.95)
     p3 = geom_of(face_width_mm=31.66)
     assert p2.eps_beta == pytest.approx(1.0, abs=1e-3) and p3.eps_beta == pytest.approx(1.0, abs=1e-4)
     for g in (p2, p3):
-        assert st.mesh_stiffness(g, 360, components=False).fluctuation < 1e-3
+        assert st.mesh_stiffness(g, 360, method="transition", components=False).fluctuation < 1e-3
     # and the fluctuation grows again away from the integer (seed 001 pair 4, εβ = 1.353)
-    assert st.mesh_stiffness(geom_of(helix_angle_deg=21.84), 360, components=False).fluctuation > 0.1
+    assert st.mesh_stiffness(geom_of(helix_angle_deg=21.84), 360, method="transition",
+                             components=False).fluctuation > 0.1
 
 
 def test_iso_and_pem_means_agree_within_a_factor_1_3(p1, p1_tables):
@@ -372,12 +386,12 @@ def test_iso_and_pem_means_agree_within_a_factor_1_3(p1, p1_tables):
 
 def test_stiffness_scales_with_youngs_modulus(p1_result):
     geom = geom_of(material=dict(STEEL, youngs_modulus_GPa=105))
-    half = st.mesh_stiffness(geom, 360, components=False)
+    half = st.mesh_stiffness(geom, 360, method="transition", components=False)
     assert np.allclose(half.K, 0.5 * p1_result.K, rtol=1e-9)
 
 
 def test_left_hand_gives_the_same_stiffness(p1_result):
-    left = st.mesh_stiffness(geom_of(helix_hand="left"), 360, components=False)
+    left = st.mesh_stiffness(geom_of(helix_hand="left"), 360, method="transition", components=False)
     assert np.allclose(left.K, p1_result.K, rtol=1e-9)
 
 

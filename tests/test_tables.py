@@ -1,9 +1,11 @@
-"""CSV tables: units in every numeric header, blank rows carry their reason."""
+"""CSV tables: engineering units in every numeric header (those of the JSON output), force
+columns named by their line, blank rows carry their reason."""
 
 from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+import pytest
 import xarray as xr
 
 from gearmesh.io import variable
@@ -25,7 +27,36 @@ def test_one_dimensional_table():
     ds = xr.Dataset({"k": variable(("pair",), [1.0, 2.0], "N m-1", "stiffness")},
                     coords={"pair": variable(("pair",), ["a", "b"], "1", "pair")})
     df = table(ds)
-    assert list(df.columns) == ["k [N m-1]"] and list(df.index) == ["a", "b"] and df.index.name == "pair"
+    assert list(df.columns) == ["k [N/µm]"] and list(df.index) == ["a", "b"] and df.index.name == "pair"
+    np.testing.assert_allclose(df["k [N/µm]"].to_numpy(), [1e-6, 2e-6], rtol=1e-15)
+
+
+def test_engineering_units_as_the_json_gives_them():
+    """Lengths in mm, displacements in µm where the variable says so, stresses in MPa, an index
+    coordinate converted with its column; the netCDF dataset itself stays in SI."""
+    ds = xr.Dataset({"roll": variable(("x",), [0.00105039, 0.002], "m", "roll before A"),
+                     "te": variable(("x",), [1.86e-5, 2e-5], "m", "loaded TE", engineering_units="µm"),
+                     "stress": variable(("x",), [1.2e9, 1e9], "Pa", "contact pressure"),
+                     "line_load": variable(("x",), [2.28e5, 1e5], "N m-1", "line load", engineering_units="N/mm")},
+                    coords={"x": variable(("x",), [0.001, 0.002], "m", "face position")})
+    df = table(ds)
+    assert list(df.columns) == ["roll [mm]", "te [µm]", "stress [MPa]", "line_load [N/mm]"]
+    assert df.index.name == "x [mm]"
+    np.testing.assert_allclose(df.index.to_numpy(), [1.0, 2.0])
+    np.testing.assert_allclose(df.iloc[0].to_numpy(), [1.05039, 18.6, 1200.0, 228.0])
+    assert ds["roll"].attrs["units"] == "m" and float(ds["roll"][0]) == 0.00105039
+
+
+def test_unknown_engineering_unit_is_refused():
+    ds = xr.Dataset({"te": variable(("x",), [1.0], "m", "loaded TE", engineering_units="furlong")})
+    with pytest.raises(ValueError, match="furlong"):
+        table(ds)
+
+
+def test_force_columns_name_their_line():
+    ds = _impact_like()
+    ds["impact_force"].attrs["force_line"] = "transverse"
+    assert list(table(ds).columns) == ["scenario", "impact_force_transverse [N]"]
 
 
 def _impact_like() -> xr.Dataset:

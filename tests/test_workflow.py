@@ -130,7 +130,7 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     geometry = read_dataset(base / "geometry.nc")
     assert abs(float(geometry["eps_alpha"]) - 1.4702) < 1e-3  # seed 001 Table 1: 1.470
     stiffness = read_dataset(base / "stiffness.nc")
-    assert stiffness.attrs["method"] == "fe" and float(stiffness.mean_stiffness) > 0  # the default (issue 19)
+    assert stiffness.attrs["tooth_model"] == "fe" and float(stiffness.mean_stiffness) > 0  # the default (issue 19)
     for png in ("tooth_profile", "contact_length", "contact_lines", "stiffness"):
         assert (base / "plots" / f"{png}.png").stat().st_size > 1000
     assert (work / "results/e2e/plots/helix_sweep.png").exists()

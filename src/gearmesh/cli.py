@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from . import __version__
+from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .config import check_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
@@ -141,7 +142,7 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
     check_grid("--points", args.points, (args.positions + 1) * args.points, MAX_CONTACT_POINTS,
                "contact candidates per line")
     return ltca_summary(_pair(args)[0], args.torque_Nm, on=args.on, positions=args.positions,
-                        points=args.points, contact_law=args.contact_law)
+                        points=args.points, contact_law=args.contact_law, method=args.method)
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
@@ -158,11 +159,20 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
         from .datasets.ltca import ltca_dataset
 
         torque_1 = pinion_torque(pair, args.torque_Nm, args.on)
-        excitation["ltca"] = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion", positions=64, points=30)
+        excitation["ltca"] = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion")  # the LTCA stage's defaults
     rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=speeds, on=args.on,
                             backlash_um=args.backlash_um, progress=_progress(), **excitation)
     return {"name": pair.name, **_torque(pair, args.torque_Nm, args.on), "excitation": args.excitation,
-            **_backlash(geom, args.backlash_um), "speeds": rows}
+            **_model_choices(args.excitation), **_backlash(geom, args.backlash_um), "speeds": rows}
+
+
+def _model_choices(excitation: str) -> dict[str, str]:
+    """The tooth model and contact law a dynamics result used: the stiffness stage's tooth model
+    drives ``tvms``; the LTCA's (tooth model and contact law) ``ltca`` and ``contact``."""
+    choices = {"tooth_model": DEFAULT_TOOTH_METHOD}
+    if excitation != "tvms":
+        choices["contact_law"] = DEFAULT_CONTACT_LAW
+    return choices
 
 
 def _torque(pair, torque_Nm: float, on: str) -> dict[str, Any]:
@@ -303,6 +313,10 @@ def _output_pair_path(path: str | None):
 
 
 PAIR_HELP = "gear pair file (YAML, engineering units; 'gearmesh example NAME' prints one)"
+#: One description of the tooth model for every command that takes --method.
+TOOTH_MODEL_HELP = ("tooth model of the slice compliance: fe (2-D plane-strain finite elements), "
+                    "transition (potential-energy cantilever with the hob-generated fillet), improved or traditional "
+                    "(potential-energy cantilever root cases)")
 
 
 class _HelpFormatter(argparse.HelpFormatter):
@@ -425,10 +439,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_schema)
 
     p = _command(sub, "stiffness", cmd_stiffness,
-                 "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
-    _setting_option(p, "--method", Stiffness, help="tooth model: fe (2-D finite elements, within a few %% of 3-D: "
-                    "docs/validation.md), transition (the hob-generated fillet), improved or traditional "
-                    "(cantilever root cases)")
+                 "time-varying mesh stiffness (slice method over the face width; tooth model --method), ISO 6336-1, LSTE")
+    _setting_option(p, "--method", Stiffness, help=TOOTH_MODEL_HELP)
     _setting_option(p, "--slices", Stiffness, type=int, help="slices over the face width")
     _setting_option(p, "--positions", Stiffness, type=int, help="rotation positions per mesh cycle")
     _torque_options(p, required=False)
@@ -440,6 +452,7 @@ def build_parser() -> argparse.ArgumentParser:
     _setting_option(p, "--points", Ltca, type=int, help="points per contact line")
     _setting_option(p, "--contact-law", Ltca, help="local contact law: palmgren (approach ∝ F^0.9, n = 1.11) or "
                     "linear")
+    _setting_option(p, "--method", Ltca, help=TOOTH_MODEL_HELP)
 
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
                  "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
@@ -461,7 +474,7 @@ def build_parser() -> argparse.ArgumentParser:
                          "distance and shifts")
     p.add_argument("--excitation", choices=("tvms", "ltca", "contact"), default="tvms",
                    help="tvms: slice-model stiffness K(t), unloaded TE zero; ltca: loaded stiffness and loaded TE "
-                        "of an LTCA at this torque (64 positions, 30 points per line); contact: the mesh force of "
+                        "of an LTCA at this torque (the ltca command's defaults); contact: the mesh force of "
                         "the real tooth contact of every tooth pair, the mesh-in impact included")
 
     p = _command(sub, "optimise", cmd_optimise, "GA optimisation of the six micro-geometry parameters (root and tip "

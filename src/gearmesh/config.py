@@ -14,6 +14,7 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any, Iterator, Mapping
 
+from .choices import pair_excitation
 from .errors import GearmeshInputError
 from .gear import GearPair, load_named_pair, pinion_torque, read_yaml, variant_pair
 from .schema import validate
@@ -104,7 +105,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                                          f"must include the stiffness LSTE torque ({stiffness['torque_Nm']} N m on "
                                          f"the {stiffness['torque_on']}) for the LSTE comparison")
     dyn = config.get("dynamics", {})
-    if "dynamics" in config and "ltca" in config and dyn.get("excitation") in (None, "ltca"):
+    if study_excitation(config) == "ltca" and "ltca" in config:
         ltca = config["ltca"]
         torques = dyn["torques_Nm"]
         for name in config["pairs"]:
@@ -246,6 +247,14 @@ def _check_impact(impact: Mapping[str, Any] | None) -> None:
 def _among(t1: float, pair: GearPair, ltca: Mapping[str, Any]) -> bool:
     """Whether pinion torque ``t1`` is one of the LTCA's torques (as pinion torques)."""
     return any(abs(pinion_torque(pair, t, ltca["on"]) - t1) <= 1e-9 * t1 for t in ltca["torques_Nm"])
+
+
+def study_excitation(config: Mapping[str, Any]) -> str | None:
+    """The excitation of the study's dynamics (None: the study has none): the section's, or the
+    LTCA's when the study runs the LTCA (:func:`gearmesh.choices.pair_excitation`)."""
+    if "dynamics" not in config:
+        return None
+    return pair_excitation((config.get("dynamics") or {}).get("excitation"), "ltca" in config)
 
 
 def lste_comparison_wanted(config: Mapping[str, Any]) -> bool:

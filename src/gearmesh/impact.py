@@ -70,6 +70,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry, involute
 from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, law_scales, log_universal_inverse,
@@ -259,8 +260,8 @@ def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
     return float(roll_e), j_e, float(z_e)
 
 
-def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), contact_law_name: str = "palmgren",
-                 method: str = "transition", extension: float = 0.25, driver: str = "pinion",
+def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), contact_law_name: str = DEFAULT_CONTACT_LAW,
+                 method: str = DEFAULT_TOOTH_METHOD, extension: float = DEFAULT_CORNER_EXTENSION, driver: str = "pinion",
                  added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 32, face_samples: int = 257,
                  cycle_positions: int = 32, local_points: int = 400, local_keep: int = 400,
                  ltca: LTCAModel | None = None) -> ImpactModel:

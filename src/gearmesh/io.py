@@ -30,6 +30,7 @@ import numpy as np
 import xarray as xr
 
 from . import __version__
+from .choices import FORCE_LINES
 from .errors import GearmeshInputError
 
 
@@ -52,6 +53,18 @@ def _json_default(obj: Any) -> Any:
 def variable(dims, data, units: str, long_name: str, **attrs) -> xr.Variable:
     """An xarray Variable with its CF ``units`` and ``long_name``."""
     return xr.Variable(dims, np.asarray(data), attrs={"units": units, "long_name": long_name, **attrs})
+
+
+def name_force_lines(ds: xr.Dataset, line: str) -> xr.Dataset:
+    """Mark every force variable (units N) of ``ds`` that names no line as acting along ``line``
+    ('transverse' or 'normal', :data:`gearmesh.choices.FORCE_LINES`): its ``force_line``
+    attribute, which the CSV copies add to the column name. Returns ``ds`` (changed in place)."""
+    if line not in FORCE_LINES:
+        raise ValueError(f"force line {line!r} is not one of {list(FORCE_LINES)}")
+    for var in ds.variables.values():
+        if var.attrs.get("units") == "N":
+            var.attrs.setdefault("force_line", line)
+    return ds
 
 
 #: Name of a temporary file of :func:`atomic_output`: ``.NAME.HOST.PID.tmp.SUFFIX`` beside the

@@ -66,6 +66,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .contact import mesh_cycle_rolls
+from .choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry, pinion_torque
 from .limits import check_loads
@@ -81,7 +82,6 @@ __all__ = [
     "LTCAResult", "ltca",
 ]
 
-CONTACT_LAWS = ("palmgren", "linear")
 PALMGREN_COEFFICIENT = 3.84e-5  # mm·N^-0.9·mm^0.8 (Palmgren 1959; Harris & Kotzalas 2007)
 PALMGREN_EXPONENT = 0.9
 _STEEL_E_PRIME = 207e9 / (1.0 - 0.3**2)
@@ -104,7 +104,7 @@ class ContactLaw:
         return 1.0 / self.exponent if self.coefficient > 0 else 1.0
 
 
-def contact_law(geom: PairGeometry, dz: float, name: str = "palmgren") -> ContactLaw:
+def contact_law(geom: PairGeometry, dz: float, name: str = DEFAULT_CONTACT_LAW) -> ContactLaw:
     """The local contact law of a point of width ``dz`` (m) in transverse units (module docstring).
 
     Palmgren: δ_n [mm] = 3.84e-5·(w·E'_steel/E')^0.9·l_ref^0.1 with w = q/Δz the normal load
@@ -440,7 +440,7 @@ class LTCAModel:
 
 
 def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
-               contact_law_name: str = "palmgren", method: str = "transition",
+               contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
                extension: float = DEFAULT_EXTENSION,
                tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
                n_nodes: int = 257) -> LTCAModel:
@@ -608,7 +608,7 @@ def _reach_exceeded(model: LTCAModel, q: np.ndarray) -> bool:
 
 
 def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
-         on: str = "pinion", contact_law_name: str = "palmgren", method: str = "transition",
+         on: str = "pinion", contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
          extension: float = DEFAULT_EXTENSION, model: LTCAModel | None = None) -> LTCAResult:
     """Loaded TCA at each torque over one mesh cycle (and at the start of engagement φ1A).
 

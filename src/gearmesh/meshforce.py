@@ -58,6 +58,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry
 from .ltca import ContactLaw, load_sums, ltca_model, point_compliance, solve_contact
@@ -247,7 +248,7 @@ class TableLayout:
 
 
 def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, points: int = DEFAULT_TABLE_POINTS,
-                 contact_law_name: str = "palmgren", method: str = "transition",
+                 contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
                  extension: float = DEFAULT_TABLE_EXTENSION,
                  tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None) -> TableLayout:
     """The micro-geometry-independent part of :func:`mesh_force_table` (its parameters)."""
@@ -304,7 +305,7 @@ def tabulate(layout: TableLayout, gap: np.ndarray, force_max: float,
 
 def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFAULT_TABLE_POSITIONS,
                      approaches: int = DEFAULT_TABLE_APPROACHES, points: int = DEFAULT_TABLE_POINTS,
-                     lead_slope=(0.0, 0.0), contact_law_name: str = "palmgren", method: str = "transition",
+                     lead_slope=(0.0, 0.0), contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
                      extension: float = DEFAULT_TABLE_EXTENSION,
                      tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None) -> MeshForceTable:
     """Tabulate the mesh force F(x, w) of ``geom`` (its modifications) over one mesh cycle.

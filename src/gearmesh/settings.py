@@ -23,6 +23,8 @@ from typing import Any, ClassVar, Literal
 
 import yaml
 
+from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
+                      TOOTH_METHODS)
 from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, MODULE_RANGE, NAME_PATTERN
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
 
@@ -31,11 +33,11 @@ NAME = r"^[A-Za-z0-9_-]+$"
 #: Longest study, pair or variant name in a study: results/{study}/{pair}/{variant}/ stays a short path.
 NAME_LENGTH = 64
 #: The slice models of the tooth compliance (:mod:`gearmesh.stiffness`, :mod:`gearmesh.fe`).
-Method = Literal["traditional", "improved", "transition", "fe"]
+Method = Literal[TOOTH_METHODS]
 Gear = Literal["pinion", "gear"]
-ContactLaw = Literal["palmgren", "linear"]
+ContactLaw = Literal[CONTACT_LAWS]
 #: What drives the 8-DOF pair (:mod:`gearmesh.dynamics`); how each speed reaches its steady state.
-PairExcitation = Literal["tvms", "lste", "ltca", "contact"]
+PairExcitation = Literal[PAIR_EXCITATIONS]
 SteadyState = Literal["shooting", "transient"]
 #: Lead slope deviations (µm over the face width) the contact models take (:func:`gearmesh.tca.check_lead_slope`).
 LEAD_SLOPE_BOUNDS_UM = {"minimum": -1000, "maximum": 1000}
@@ -49,11 +51,6 @@ _LAW = "local contact law: palmgren (F ∝ δ^1.11 per slice) or linear"
 
 # Settings that several sections have, declared once each (a fresh dataclass field per call).
 
-#: The tooth model of every stage unless a study or call says otherwise: the 2-D plane-strain
-#: finite-element tooth, within +3/−7 % of the 3-D reference on seven of the nine shipped pairs,
-#: where the potential-energy cantilevers are 10–50 % too compliant (docs/validation.md, "Which
-#: tooth stiffness to trust").
-DEFAULT_TOOTH_METHOD = "fe"
 
 
 def _method(extra: str = "") -> Any:
@@ -77,7 +74,7 @@ def _lead_slope(what: str = "") -> Any:
 
 
 def _contact_law(what: str = "") -> Any:
-    return setting("palmgren", _LAW + what)
+    return setting(DEFAULT_CONTACT_LAW, _LAW + what)
 
 
 def _corner_extension() -> Any:

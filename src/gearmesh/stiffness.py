@@ -105,6 +105,7 @@ import numpy as np
 from numpy.polynomial.legendre import leggauss as _leggauss
 
 from .contact import contact_length_breakpoints, contact_roll_positions, hand_sign, mesh_cycle_rolls, tooth_pair_indices
+from .choices import DEFAULT_TOOTH_METHOD, TOOTH_METHODS
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
 # the shared tooth types live below both tooth models (re-exported here); stiffness chooses the method
@@ -112,7 +113,7 @@ from .tooth import (COMPONENTS, PEM_METHODS, SliceComplianceTable, ToothModel, _
                     _involute_xy, base_half_angle, contact_point, require_stiffness_data, tooth_model)
 
 #: the potential-energy cantilever models; 'fe' is the finite-element tooth of :mod:`gearmesh.fe`
-METHODS = PEM_METHODS + ("fe",)
+METHODS = TOOTH_METHODS
 
 
 @lru_cache(maxsize=16)
@@ -340,7 +341,7 @@ def tooth_slice_compliance_quad(model: ToothModel, rho: float, epsrel: float = 1
 # --------------------------------------------------------------------------------------
 
 
-def slice_compliance_table(geom: PairGeometry, gear: int, method: str = "transition", n_nodes: int = 257,
+def slice_compliance_table(geom: PairGeometry, gear: int, method: str = DEFAULT_TOOTH_METHOD, n_nodes: int = 257,
                            n_gauss: int = 64, profile=None) -> SliceComplianceTable:
     """Tabulate one gear's per-unit-width slice compliance over its active flank.
 
@@ -642,7 +643,7 @@ def _sum_slices(geom: PairGeometry, pair_table: PairSliceTable, roll: np.ndarray
 
 
 def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = DEFAULT_SLICES,
-                   method: str = "transition", components: bool = True, n_nodes: int = 257,
+                   method: str = DEFAULT_TOOTH_METHOD, components: bool = True, n_nodes: int = 257,
                    tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
                    pair_table: PairSliceTable | None = None, rule: str = DEFAULT_RULE) -> MeshStiffness:
     """Time-varying mesh stiffness of a helical pair by the slice potential energy method.
@@ -700,15 +701,17 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
                          base_helix_angle=geom.base_helix_angle)
 
 
-def mesh_stiffness_reference(geom: PairGeometry, n_positions: int, n_slices: int,
-                             method: str = "transition") -> np.ndarray:
+def mesh_stiffness_reference(geom: PairGeometry, n_positions: int, n_slices: int, method: str) -> np.ndarray:
     """Straightforward baseline of :func:`mesh_stiffness` with ``rule='centre'`` (N/m): at
     every roll position, every slice of every tooth pair in contact
     (:func:`gearmesh.contact.contact_roll_positions`) gets its compliance by adaptive
     quadrature (:func:`tooth_slice_compliance_quad`); no tables, no interpolation. Slow:
     for tests and benchmark baselines on small grids (about 5 ms per slice and position).
+    ``method`` one of the potential-energy cantilevers (:data:`PEM_METHODS`).
     """
-    _check_method(method)
+    if method not in PEM_METHODS:
+        raise GearmeshInputError("method", method, f"must be one of {list(PEM_METHODS)} (the reference is the "
+                                 "potential-energy cantilever's)")
     require_stiffness_data(geom)
     models = (tooth_model(geom, 0, method), tooth_model(geom, 1, method))
     moments = tuple(fixed_moments_quad(m) for m in models)
@@ -794,6 +797,10 @@ def fourier_fit(values, order: int = 3) -> FourierFit:
                       relative_rms_error=err / abs(fit.mean) if fit.mean else math.inf)
 
 
+#: Young's modulus of steel (Pa) that ISO 6336-1's single stiffness q' is fitted to (9.3.1).
+ISO6336_STEEL_MODULUS = 206e9
+
+
 def iso6336_stiffness(geom: PairGeometry) -> dict[str, float]:
     """ISO 6336-1 (method B) single and mesh stiffness (docs/modelling.md formulas).
 
@@ -802,6 +809,11 @@ def iso6336_stiffness(geom: PairGeometry) -> dict[str, float]:
     zn = z/(cos²βb cos β), c' = c'th·CM·CR·CB·cos β with CM = 0.8, CR = 1 (solid wheels),
     CB = [1 + 0.5(1.2 − hfP/mn)]·[1 − 0.02(20° − αPn)] (mean of pinion and gear when their
     basic-rack dedendums differ), cγα = c'(0.75εα + 0.25), cγβ = 0.85cγα.
+
+    q' is fitted to steel on steel (E_st = 206 000 N/mm²); for another modulus ISO 6336-1
+    (9.3.1, "other material combinations") scales c' by E/E_st, E = 2E1E2/(E1 + E2) (here
+    one material for both gears: the pair's E; steel when the pair gives none). The factor is
+    returned as ``material_factor``.
 
     Returns c_prime_th, c_prime, c_gamma_alpha, c_gamma_beta in N/(mm·µm), the
     factors, and K_gamma_alpha = cγα·b, K_gamma_beta = cγβ·b in N/m (mean transverse mesh
@@ -825,14 +837,16 @@ def iso6336_stiffness(geom: PairGeometry) -> dict[str, float]:
     alpha_pn = math.degrees(pair.normal_pressure_angle)
     cb_each = [(1 + 0.5 * (1.2 - hf)) * (1 - 0.02 * (20.0 - alpha_pn)) for hf in pair.dedendum_coefficient]
     c_b = 0.5 * (cb_each[0] + cb_each[1])
-    c_prime = c_th * c_m * c_r * c_b * math.cos(beta)
+    material = pair.material
+    xi = (material.youngs_modulus if material is not None else ISO6336_STEEL_MODULUS) / ISO6336_STEEL_MODULUS
+    c_prime = c_th * c_m * c_r * c_b * math.cos(beta) * xi
     c_ga = c_prime * (0.75 * geom.eps_alpha + 0.25)
     c_gb = 0.85 * c_ga
     b_mm = geom.face_width * 1e3
     per_um_to_si = 1e6  # N/µm -> N/m
     return {
         "zn1": float(zn[0]), "zn2": float(zn[1]), "q_prime": q, "c_prime_th": c_th,
-        "C_M": c_m, "C_R": c_r, "C_B": c_b, "c_prime": c_prime,
+        "C_M": c_m, "C_R": c_r, "C_B": c_b, "material_factor": xi, "c_prime": c_prime,
         "c_gamma_alpha": c_ga, "c_gamma_beta": c_gb,
         "K_gamma_alpha": c_ga * b_mm * per_um_to_si, "K_gamma_beta": c_gb * b_mm * per_um_to_si,
     }

@@ -1,5 +1,6 @@
 """CSV copies of the study tables: the netCDF dataset as one row per index combination, every
-column headed ``name [units]`` (the variable's CF ``units``), coded categories as their words
+column headed ``name [units]`` in the engineering units of the JSON output (mm, µm, N/µm, MPa:
+:data:`ENGINEERING_UNITS`; the netCDF file keeps SI), coded categories as their words
 (CF ``flag_values``/``flag_meanings``: a scenario reads ``edge``, not ``2``), numbers to six
 significant digits, and rows without values carrying their reason (from the dataset's
 ``refused`` attribute, as in the netCDF file)."""
@@ -19,8 +20,38 @@ NOTE = "note"
 FLOAT_FORMAT = "%.6g"
 
 
-def _header(name: str, var: xr.Variable | xr.DataArray) -> str:
+#: SI unit of a netCDF variable -> {engineering unit: factor}: the units the CLI's JSON and the
+#: figures use. The first entry is the default; a variable picks another by its
+#: ``engineering_units`` attribute (a displacement in µm, a line load in N/mm).
+ENGINEERING_UNITS = {
+    "m": {"mm": 1e3, "µm": 1e6},
+    "N m-1": {"N/µm": 1e-6, "N/mm": 1e-3},
+    "N m-2": {"N/(mm µm)": 1e-9},
+    "Pa": {"MPa": 1e-6},
+}
+
+
+def engineering(var: xr.Variable | xr.DataArray) -> tuple[str | None, float]:
+    """The unit a table shows ``var`` in and the factor from its SI values: the variable's
+    ``engineering_units`` or its SI unit's default (:data:`ENGINEERING_UNITS`), else its own
+    unit unchanged."""
     units = var.attrs.get("units")
+    choices = ENGINEERING_UNITS.get(units)
+    if not choices or var.dtype.kind not in "fiuc" or _flags(var):
+        return units, 1.0
+    wanted = var.attrs.get("engineering_units", next(iter(choices)))
+    if wanted not in choices:
+        raise ValueError(f"{var.attrs.get('long_name', 'variable')}: engineering_units {wanted!r} is not one of "
+                         f"{list(choices)} for {units}")
+    return wanted, choices[wanted]
+
+
+def _header(name: str, var: xr.Variable | xr.DataArray) -> str:
+    """``name [units]``; a force's name ends in its line (``_transverse``/``_normal``)."""
+    line = var.attrs.get("force_line")
+    if line and not name.endswith(f"_{line}"):
+        name = f"{name}_{line}"
+    units = engineering(var)[0]
     return f"{name} [{units}]" if units and var.dtype.kind in "fiuc" and not _flags(var) else name
 
 
@@ -54,9 +85,16 @@ def table(ds: xr.Dataset) -> pd.DataFrame:
         words = _flags(ds[name]) if name in ds.variables else {}
         if words:
             df[name] = [words.get(int(v), "") if pd.notna(v) else "" for v in df[name]]
+        elif name in ds.variables and engineering(ds[name])[1] != 1.0:
+            df[name] = df[name] * engineering(ds[name])[1]
     if any(notes):
         df[NOTE] = notes
     df = df.rename(columns={c: _header(c, ds[c]) for c in df.columns if c in ds.variables})
+    index = df.index.to_frame(index=False)
+    for n in index.columns:
+        if n in ds.variables and engineering(ds[n])[1] != 1.0:
+            index[n] = index[n] * engineering(ds[n])[1]
+    df.index = pd.MultiIndex.from_frame(index) if index.shape[1] > 1 else pd.Index(index.iloc[:, 0])
     df.index = df.index.set_names([_header(n, ds[n]) if n in ds.variables else n for n in df.index.names])
     return df
 

@@ -69,6 +69,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from .contact import hand_sign, mesh_cycle_rolls
+from .choices import DEFAULT_CORNER_EXTENSION
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
 from .surface import modification_parameters, relief_depth
@@ -84,7 +85,7 @@ __all__ = [
 REGION_NONE, REGION_FLANK, REGION_APPROACH_TIP, REGION_RECESS_TIP = 0, 1, 2, 3
 
 #: Default reach of the candidate points beyond the active zone, as a fraction of p_bt.
-DEFAULT_EXTENSION = 0.25
+DEFAULT_EXTENSION = DEFAULT_CORNER_EXTENSION
 
 
 # --------------------------------------------------------------------------------------

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Callable, Mapping
 
 import numpy as np
 
+from .choices import PEM_TOOTH_METHODS
 from .errors import GearmeshInputError
 from .gear import PairGeometry, involute
 
@@ -28,7 +29,7 @@ __all__ = ["PEM_METHODS", "COMPONENTS", "require_stiffness_data", "ToothModel", 
            "contact_point", "SliceComplianceTable"]
 
 #: the potential-energy cantilever models (:func:`tooth_model`)
-PEM_METHODS = ("traditional", "improved", "transition")
+PEM_METHODS = PEM_TOOTH_METHODS
 #: the components of a slice compliance table
 COMPONENTS = ("bending", "shear", "axial", "fillet")
 
@@ -117,7 +118,7 @@ def base_half_angle(geom: PairGeometry, gear: int) -> float:
                  + involute(geom.transverse_pressure_angle))
 
 
-def tooth_model(geom: PairGeometry, gear: int, method: str = "transition", profile=None) -> ToothModel:
+def tooth_model(geom: PairGeometry, gear: int, method: str, profile=None) -> ToothModel:
     """Build the cantilever model of one tooth (see the module docstring for the methods).
 
     Parameters

@@ -1,7 +1,7 @@
 # Config loading and helpers shared by every rule. No physics here.
 import sys
 
-from gearmesh.config import check_study, lste_comparison_wanted, pair_path
+from gearmesh.config import check_study, lste_comparison_wanted, pair_path, study_excitation
 from gearmesh.codeversion import versioned
 from gearmesh.errors import GearmeshInputError
 from gearmesh import jobserver
@@ -84,7 +84,7 @@ def variant_spec(wildcards):
 
 def dynamics_contact():
     """Whether the study's dynamics is driven by the real tooth contact (excitation: contact)."""
-    return config.get("dynamics", {}).get("excitation") == "contact"
+    return study_excitation(config) == "contact"
 
 
 def dynamics_inputs(wildcards):
@@ -93,7 +93,7 @@ def dynamics_inputs(wildcards):
     the FE tooth tables when the contact table uses method fe."""
     base = f"results/{wildcards.study}/{wildcards.pair}"
     out = {"pair": variant_source_pair(wildcards), "stiffness": f"{base}/stiffness.nc"}
-    if "ltca" in config and config["dynamics"].get("excitation") in (None, "ltca"):
+    if study_excitation(config) == "ltca":
         out["ltca"] = f"{base}/{wildcards.variant}/ltca.nc"
     out.update(fe_tables("dynamics")(wildcards))
     return out

@@ -35,14 +35,15 @@ from ..dynamics import (
 from ..errors import GearmeshInputError
 from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
-from ..io import variable
+from ..io import name_force_lines, variable
 from ..limits import check_load, check_loads, check_slice_grid, check_speeds
 from ..ltca import positive_values
 from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable,
                          mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
 from ..schema import check_arguments, check_value, defaults, settings_fields
-from ..settings import DEFAULT_TOOTH_METHOD, Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
+from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD, pair_excitation
+from ..settings import Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
 #: Seed 004: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
@@ -344,13 +345,26 @@ def excitation_used(excitation: str, ltca: xr.Dataset | None = None, transmissio
     return f"tvms: slice-model stiffness K(t){te}"
 
 
+def model_choices(excitation: str, method: str, contact_law: str, stiffness: xr.Dataset | None = None,
+                  ltca: xr.Dataset | None = None) -> dict[str, str]:
+    """The tooth model and contact law behind a dynamics result (its ``tooth_model`` and
+    ``contact_law`` attributes): the given stiffness dataset's tooth model or ``method`` for
+    ``tvms``/``lste``; the LTCA's for ``ltca``; ``method`` and ``contact_law`` of the tabulated
+    contact for ``contact``."""
+    if excitation == "ltca" and ltca is not None:
+        return {"tooth_model": str(ltca.attrs.get("tooth_model", method)),
+                "contact_law": str(ltca.attrs.get("contact_law", contact_law))}
+    if excitation == "contact":
+        return {"tooth_model": method, "contact_law": contact_law}
+    return {"tooth_model": str(stiffness.attrs.get("tooth_model", method)) if stiffness is not None else method}
+
+
 def resolve_excitation(excitation: str | None, ltca: xr.Dataset | None) -> str:
-    """The excitation to run: as given, or (None) 'ltca' when an LTCA dataset is at hand, else 'tvms'."""
-    if excitation is None:
-        return "ltca" if ltca is not None else "tvms"
-    if excitation not in PAIR_EXCITATIONS:
+    """The excitation to run (:func:`gearmesh.choices.pair_excitation`): as given, or (None) 'ltca'
+    when an LTCA dataset is at hand, else 'tvms'."""
+    if excitation is not None and excitation not in PAIR_EXCITATIONS:
         raise GearmeshInputError("excitation", excitation, f"must be one of {list(PAIR_EXCITATIONS)} or null")
-    return excitation
+    return pair_excitation(excitation, ltca is not None)
 
 
 def resonance_refined(grid: np.ndarray, model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> np.ndarray:
@@ -688,7 +702,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
                      courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
                      record_cycles: int = 8, steady_state: str = "shooting", points_per_cycle: int = 64,
-                     max_order: int = 10, refine_resonances: bool = True, contact_law: str = "palmgren",
+                     max_order: int = 10, refine_resonances: bool = True, contact_law: str = DEFAULT_CONTACT_LAW,
                      points: int = DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
                      table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
                      table_force_factor: float = 4.0, variant: str = "", stiffness: xr.Dataset | None = None,
@@ -788,6 +802,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
         "model": "8-DOF bending-torsion-axial helical pair (seed 001 section 4, projections corrected; "
                  "gearmesh.dynamics)",
         "excitation": excitation_used(exc, ltca, transmission_error_um, table), "excitation_name": exc,
+        **model_choices(exc, method, contact_law, stiffness, ltca),
         "resonance_refinement": "on" if refine_resonances else "off", "stiffness_form": stiffness_form,
         "fourier_order": fourier_order, "torque_on": on, "variant": variant,
         "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
@@ -800,7 +815,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                         (f"{transient_tau} time constants 1/sigma_min of the slowest linearised mode, then "
                          f"{record_cycles} mesh periods recorded"),
     })
-    return ds
+    return name_force_lines(ds, "normal")
 
 
 def _engagement_roll(geom: PairGeometry) -> float:
@@ -814,9 +829,9 @@ def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEF
                      progress=None, **settings: Any) -> list[dict[str, float]]:
     """Per speed (for the CLI): speed_rpm, mesh_frequency_Hz, dynamic_te_mean_um, dynamic_te_std_um,
     mesh_deflection_mean_um (all three along the transverse line of action, as the LTCA's
-    lte_mean_um; :func:`dynamics_dataset`), mesh_force_mean_N, mesh_force_min_N, mesh_force_max_N
+    lte_mean_um; :func:`dynamics_dataset`), mesh_force_mean_normal_N, mesh_force_min_normal_N, mesh_force_max_normal_N
     (normal force), dynamic_factor, contact_loss_fraction; with the ``contact`` excitation also
-    entering_pair_force_max_N, dynamic_impact_force_N (normal) and mesh_in_roll_before_A_mm."""
+    entering_pair_force_max_normal_N, dynamic_impact_force_normal_N (normal) and mesh_in_roll_before_A_mm."""
     model_settings = {k: v for k, v in settings.items() if k not in _SOLVER_KEYS and k not in _TABLE_KEYS}
     if resolve_excitation(settings.get("excitation"), settings.get("ltca")) == "contact":
         geom = pair_geometry(pair)
@@ -836,12 +851,12 @@ def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEF
                "dynamic_te_mean_um": float(res.approach_mean[0, i]) * um,
                "dynamic_te_std_um": float(res.approach_std[0, i]) * um,
                "mesh_deflection_mean_um": float(res.dte_mean[0, i]) * um,
-               "mesh_force_mean_N": float(res.force_mean[0, i]), "mesh_force_min_N": float(res.force_min[0, i]),
-               "mesh_force_max_N": float(res.force_max[0, i]), "dynamic_factor": float(res.force_max[0, i]) / fs,
+               "mesh_force_mean_normal_N": float(res.force_mean[0, i]), "mesh_force_min_normal_N": float(res.force_min[0, i]),
+               "mesh_force_max_normal_N": float(res.force_max[0, i]), "dynamic_factor": float(res.force_max[0, i]) / fs,
                "contact_loss_fraction": float(res.gap_fraction[0, i])}
         if model.meshes[0].contact is not None:
-            row.update({"entering_pair_force_max_N": float(res.enter_force_max[0, i]),
-                        "dynamic_impact_force_N": float(res.impact_force[0, i]),
+            row.update({"entering_pair_force_max_normal_N": float(res.enter_force_max[0, i]),
+                        "dynamic_impact_force_normal_N": float(res.impact_force[0, i]),
                         "mesh_in_roll_before_A_mm": float(res.touch_roll_before_A[0, i]) * 1e3})
         rows.append(row)
     return rows
@@ -868,7 +883,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                   phase_offsets_cycles: Sequence[float] = (0.0, 0.0), courant: float = 0.25,
                   steps_per_cycle_min: int = 32, transient_tau: float = 10.0, record_cycles: int = 8,
                   steady_state: str = "shooting", points_per_cycle: int = 64, max_order: int = 10,
-                  contact_law: str = "palmgren", points: int = DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
+                  contact_law: str = DEFAULT_CONTACT_LAW, points: int = DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
                   table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
                   table_force_factor: float = 4.0, stiffness: xr.Dataset | None = None,
                   fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
@@ -951,13 +966,14 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     ds.attrs.update({
         "model": "9-DOF plate-blanket-impression helical train (seed 004, projections corrected; gearmesh.dynamics)",
         "excitation": excitation_used(exc, None, None, table), "excitation_name": exc,
-        "stiffness_form": stiffness_form, "fourier_order": fourier_order,
+        **model_choices(exc, method, contact_law, stiffness), "stiffness_form": stiffness_form,
+        "fourier_order": fourier_order,
         "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
         else ("none" if backlash_um is None else "given"),
         "assumptions": "three alike gears (the pair file's gear); plate drives, impression loaded, blanket idles; "
                        "seed 001 bearings; meshes in phase unless phase_offsets_cycles; centres on one line",
     })
-    return ds
+    return name_force_lines(ds, "normal")
 
 
 @check_arguments(DynamicsComparison)
@@ -1104,5 +1120,7 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
     }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
                "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
     ds.attrs.update({"design_speed_rpm": design, "dynamics_speed_rpm": speed_used,
-                     "force_direction": "transverse (F_bt convention of the LTCA and the impact model)"})
-    return ds
+                     "force_direction": "transverse (F_bt convention of the LTCA and the impact model)",
+                     **{f"{key}_{stage}": str(sets[0].attrs.get(key, "")) for stage, sets in
+                        (("impact", impact), ("dynamics", dynamics)) for key in ("tooth_model", "contact_law")}})
+    return name_force_lines(ds, "transverse")

@@ -17,14 +17,15 @@ from ..gear import GEARS, GearPair, pair_geometry
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, check_speeds, impact_model,
                       impact_response, impact_static, load_grid, load_window, mesh_in_point, seed_edge_roll,
                       simulate_engagement, vector_velocity)
-from ..io import variable
+from ..io import name_force_lines, variable
 from ..limits import check_speeds as check_speed_limit
 from ..ltca import check_torques, loaded_pinion_torques, pinion_torques
 from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
 from ..tolerance import apply_deviations, study_tolerances, unit_deviations
 from ..schema import check_arguments, defaults
-from ..settings import DEFAULT_TOOTH_METHOD, Impact
+from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
+from ..settings import Impact
 
 UM = 1e-6
 
@@ -67,7 +68,7 @@ def _scenario_var(dims, scenario) -> xr.Variable:
 def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rpm=(5000.0,), on: str = "pinion",
                    design_speed_rpm: float = 5000.0, driver: str = "pinion", points: int = 50,
                    energy_velocity: str = "transverse", added_inertia_kg_m2=(0.0, 0.0), lead_slope_um=(0.0, 0.0),
-                   contact_law: str = "palmgren", method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = 0.25,
+                   contact_law: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = DEFAULT_CORNER_EXTENSION,
                    simulate_torques_Nm=(), variant: str = "", fe_compliance: xr.Dataset | None = None,
                    window_positions: int = 32, face_samples: int = 257, design_torque_Nm: float | None = None,
                    load_window_step_Nm: float | None = None,
@@ -132,11 +133,11 @@ def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rp
                        design, energy_velocity)
     _add_tolerance_spread(ds, model, t1, tolerances, design, energy_velocity)
     ds.attrs.update({"variant": variant, "driver": driver, "torque_on": on, "energy_velocity": energy_velocity,
-                     "contact_law": model.ltca.law.name, "stiffness_method": model.ltca.method,
+                     "contact_law": model.ltca.law.name, "tooth_model": model.ltca.method,
                      "design_speed_rpm": design,
                      "displacement_convention": ("transverse along the line of action, r_b1 * dphi_1 with the gear "
                                                  "held; forces transverse (F_bt = T1/r_b1)")})
-    return ds
+    return name_force_lines(ds, "transverse")
 
 
 def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, vec, seed_roll) -> dict:
@@ -309,7 +310,7 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     ref = force[names.index("standard")] if "standard" in names else np.full(torque.size, np.nan)
     dims = ("variant", "torque")
     extra = _table_windows(impact, names) | _table_spread(impact, names)
-    return xr.Dataset(extra | {
+    table = xr.Dataset(extra | {
         "impact_force": variable(dims, force, "N", "mesh-in impact force F_s at the design speed (closed form)"),
         "impact_force_energy_balance": variable(dims, np.array([r[1] for r in rows]), "N",
                                                 "impact force by the energy balance at the design speed"),
@@ -319,6 +320,8 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
                                       "reduction of F_s against the standard variant"),
     }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
                "torque": variable(("torque",), torque, "N m", "pinion torque T1")})
+    table.attrs.update({key: str(impact[0].attrs.get(key, "")) for key in ("tooth_model", "contact_law")})
+    return name_force_lines(table, "transverse")
 
 
 def _table_windows(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, xr.Variable]:
@@ -372,9 +375,10 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", dri
     scen = SCENARIOS[int(static.scenario[0, 0])]
     out: dict[str, Any] = {
         "name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "pinion_torque_Nm": float(t1[0]),
-        "speed_rpm": float(speed[0]), "driver": driver, "scenario": scen,
-        "impact_force_N": float(resp.force[0, 0, 0]),
-        "impact_force_energy_balance_N": float(resp.force_energy_balance[0, 0, 0]),
+        "speed_rpm": float(speed[0]), "driver": driver, "tooth_model": d["method"], "contact_law": d["contact_law"],
+        "scenario": scen,
+        "impact_force_transverse_N": float(resp.force[0, 0, 0]),
+        "impact_force_energy_balance_transverse_N": float(resp.force_energy_balance[0, 0, 0]),
         "impact_velocity_m_per_s": float(resp.velocity_normal[0, 0, 0]),
         "impact_velocity_transverse_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
         "impact_velocity_closing_rate_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
@@ -400,8 +404,8 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", dri
         if scen == "none":
             raise GearmeshInputError("torque_Nm", torque_Nm, "gives no mesh-in contact to simulate")
         r = simulate_engagement(model, float(t1[0]), float(speed[0]))
-        out["simulated_peak_force_N"] = r["peak_above_static"]
-        out["simulated_entering_peak_force_N"] = r["entering_peak"]
-        out["simulated_entering_impact_force_N"] = r["entering_excess"]
-        out["static_force_N"] = r["static_force"]
+        out["simulated_peak_force_transverse_N"] = r["peak_above_static"]
+        out["simulated_entering_peak_force_transverse_N"] = r["entering_peak"]
+        out["simulated_entering_impact_force_transverse_N"] = r["entering_excess"]
+        out["static_force_transverse_N"] = r["static_force"]
     return out

@@ -16,12 +16,13 @@ import xarray as xr
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
-from ..io import variable
+from ..io import name_force_lines, variable
 from ..limits import check_contact_grid
 from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..tca import DEFAULT_EXTENSION, TCAResult, check_lead_slope, check_modifications, tca
 from ..schema import check_arguments
-from ..settings import DEFAULT_TOOTH_METHOD, Ltca, Tca
+from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
+from ..settings import Ltca, Tca
 
 UM = 1e-6
 
@@ -114,7 +115,7 @@ def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slop
 
 @check_arguments(Ltca)
 def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: int = 64, points: int = 50,
-                 lead_slope_um=(0.0, 0.0), on: str = "pinion", contact_law: str = "palmgren",
+                 lead_slope_um=(0.0, 0.0), on: str = "pinion", contact_law: str = DEFAULT_CONTACT_LAW,
                  method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = DEFAULT_EXTENSION,
                  fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """LTCA at each torque over one mesh cycle (dims torque, position, line, point).
@@ -179,17 +180,18 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
     coords["torque"] = variable(("torque",), res.torque, "N m", "pinion torque T1")
     ds = xr.Dataset(data_vars=data, coords=coords)
     ds.attrs.update({
-        "contact_law": res.model.law.name, "stiffness_method": res.model.method, "torque_on": on,
+        "contact_law": res.model.law.name, "tooth_model": res.model.method, "torque_on": on,
         "slice_coupling": "independent slices (Smith slice theory, as the stiffness stage)",
         "displacement_convention": ("transverse along the line of action, r_b1 * dphi_1 with the gear held; "
                                     "normal depths divided by cos(beta_b)"),
     })
-    return ds
+    return name_force_lines(ds, "transverse")
 
 
 @check_arguments(Ltca)
 def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int = 64, points: int = 50,
-                 lead_slope_um=(0.0, 0.0), contact_law: str = "palmgren") -> dict[str, Any]:
+                 lead_slope_um=(0.0, 0.0), contact_law: str = DEFAULT_CONTACT_LAW,
+                 method: str = DEFAULT_TOOTH_METHOD) -> dict[str, Any]:
     """Headline LTCA numbers at one torque in engineering units (the CLI's ``ltca --json``)."""
     if not (isinstance(torque_Nm, (int, float, np.floating, np.integer)) and not isinstance(torque_Nm, bool)):
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be one positive number (N m)")
@@ -197,7 +199,7 @@ def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int =
     positions, points = check_contact_grid(positions, points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    res = ltca(geom, t1, positions, points, lead, "pinion", contact_law)
+    res = ltca(geom, t1, positions, points, lead, "pinion", contact_law, method)
     um = 1e6
     lte = res.lte[0]
     return {
@@ -205,7 +207,8 @@ def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int =
         "torque_Nm": float(torque_Nm),
         "torque_on": on,
         "pinion_torque_Nm": float(t1[0]),
-        "force_N": float(res.force[0]),
+        "force_transverse_N": float(res.force[0]),
+        "tooth_model": res.model.method,
         "contact_law": res.model.law.name,
         "contact_force_exponent": res.model.law.force_exponent,
         "te_peak_to_peak_um": res.tca.te_peak_to_peak * um,
@@ -218,7 +221,7 @@ def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int =
         "loaded_mesh_stiffness_max_N_per_um": float(res.stiffness.max()) * 1e-6,
         "pairs_in_contact_min": int(res.pairs_in_contact.min()),
         "pairs_in_contact_max": int(res.pairs_in_contact.max()),
-        "corner_load_max_N": float(res.corner_load.max()),
+        "corner_load_max_transverse_N": float(res.corner_load.max()),
         "pinion_angle_engagement_rad": res.tca.roll_engagement / geom.base_radius[0],
         "te_at_engagement_um": res.tca.te_at_engagement * um,
         "te_next_pair_at_engagement_um": res.tca.te_next_pair_at_engagement * um,
@@ -250,9 +253,13 @@ def lste_comparison_dataset(stiffness: Sequence[xr.Dataset], ltca: Sequence[xr.D
     v = np.array(rows)
     dims = ("pair",)
     return xr.Dataset({
-        "lste_stiffness_mean": variable(dims, v[:, 0], "m", "mean LSTE F/K(phi) of the stiffness stage"),
-        "lste_stiffness_peak_to_peak": variable(dims, v[:, 1], "m", "peak-to-peak LSTE F/K(phi)"),
-        "lte_ltca_mean": variable(dims, v[:, 2], "m", "mean loaded TE of the LTCA"),
-        "lte_ltca_peak_to_peak": variable(dims, v[:, 3], "m", "peak-to-peak loaded TE of the LTCA"),
+        "lste_stiffness_mean": variable(dims, v[:, 0], "m", "mean LSTE F/K(phi) of the stiffness stage",
+                                        engineering_units="µm"),
+        "lste_stiffness_peak_to_peak": variable(dims, v[:, 1], "m", "peak-to-peak LSTE F/K(phi)",
+                                        engineering_units="µm"),
+        "lte_ltca_mean": variable(dims, v[:, 2], "m", "mean loaded TE of the LTCA",
+                                        engineering_units="µm"),
+        "lte_ltca_peak_to_peak": variable(dims, v[:, 3], "m", "peak-to-peak loaded TE of the LTCA",
+                                        engineering_units="µm"),
         "stiffness_fluctuation": variable(dims, v[:, 4], "1", "eps_k = (Kmax - Kmin)/Kmin"),
     }, coords={"pair": variable(dims, np.array(names), "1", "gear pair")})

@@ -25,7 +25,7 @@ from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
-from ..io import variable
+from ..io import name_force_lines, variable
 from ..limits import check_load
 from ..ltca import pinion_torques
 from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, gene_table, optimise,
@@ -369,6 +369,7 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
     ds = xr.Dataset(data_vars=data, coords=coords)
     ds.attrs.update({
         "method": s.method, "seed": s.seed, "objective": s.objective, "objective_statistic": s.statistic,
+        "tooth_model": prob.model.ltca.method, "contact_law": prob.model.ltca.law.name,
         "tolerance_statistic": s.tolerance_statistic or "none (nominal)", "tolerance_level_percent": s.tolerance_level,
         "tolerance_samples": int(prob.deviations.shape[0]), "tolerance_sampling": s.sampling,
         "lead_grade_iso1328": -1 if prob.tolerance.grade is None else prob.tolerance.grade,
@@ -376,7 +377,7 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "failure_factor": "a failed candidate's objective is FAILURE_FACTOR x the standard gear's",
         "settings_json": json.dumps(dict(settings or {}), sort_keys=True, default=str),
     })
-    return ds
+    return name_force_lines(ds, "transverse")
 
 
 def optimum_pair(pair: GearPair, ds: xr.Dataset, name: str | None = None) -> GearPair:
@@ -408,12 +409,12 @@ def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dat
     k = s.design_index
     by_torque = []
     for i, t in enumerate(s.objective_torques):
-        row = {"torque_Nm": t * to_given, "impact_force_N": float(opt.force[0, 0, i]),
-               "standard_impact_force_N": float(std.force[0, 0, i]), "scenario": SCENARIOS[int(opt.scenario[0, 0, i])]}
+        row = {"torque_Nm": t * to_given, "impact_force_transverse_N": float(opt.force[0, 0, i]),
+               "standard_impact_force_transverse_N": float(std.force[0, 0, i]), "scenario": SCENARIOS[int(opt.scenario[0, 0, i])]}
         if prob.deviations.shape[0]:
-            row.update({"impact_force_tolerance_min_N": float(d.spread_force[:, i].min()),
-                        "impact_force_tolerance_max_N": float(d.spread_force[:, i].max()),
-                        "standard_impact_force_tolerance_min_N": float(d.spread_standard[:, i].min())})
+            row.update({"impact_force_tolerance_min_transverse_N": float(d.spread_force[:, i].min()),
+                        "impact_force_tolerance_max_transverse_N": float(d.spread_force[:, i].max()),
+                        "standard_impact_force_tolerance_min_transverse_N": float(d.spread_standard[:, i].min())})
         if np.isfinite(opt.dynamic_factor[0, i]):
             row.update({"dynamic_factor": float(opt.dynamic_factor[0, i]),
                         "standard_dynamic_factor": float(std.dynamic_factor[0, i])})
@@ -422,6 +423,8 @@ def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dat
     summary = {
         "name": pair.name,
         "method": s.method,
+        "tooth_model": prob.model.ltca.method,
+        "contact_law": prob.model.ltca.law.name,
         "objective": s.objective,
         "statistic": s.statistic,
         "tolerance_statistic": s.tolerance_statistic,
@@ -435,8 +438,8 @@ def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dat
         "genes": {g.name: float(v) for g, v in zip(prob.genes, res.optimum_genes)},
         "objective_value": float(opt.objective[0]),
         "standard_objective_value": float(std.objective[0]),
-        "impact_force_N": float(opt.force[0, 0, k]),
-        "standard_impact_force_N": float(std.force[0, 0, k]),
+        "impact_force_transverse_N": float(opt.force[0, 0, k]),
+        "standard_impact_force_transverse_N": float(std.force[0, 0, k]),
         "reduction_percent": 100.0 * (1.0 - float(opt.force[0, 0, k]) / float(std.force[0, 0, k])),
         "scenario": SCENARIOS[int(opt.scenario[0, 0, k])],
         "standard_scenario": SCENARIOS[int(std.scenario[0, 0, k])],

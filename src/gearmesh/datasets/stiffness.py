@@ -26,9 +26,10 @@ from ..stiffness import (
     slice_compliance_table,
 )
 from ..schema import check_arguments
-from ..settings import DEFAULT_TOOTH_METHOD, SliceConvergence, Stiffness, StiffnessTable
+from ..choices import DEFAULT_TOOTH_METHOD, PEM_TOOTH_METHODS
+from ..settings import SliceConvergence, Stiffness, StiffnessTable
 
-METHODS = ("traditional", "improved", "transition")
+METHODS = PEM_TOOTH_METHODS
 
 
 def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
@@ -106,7 +107,7 @@ def stiffness_dataset(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices
         "component": variable(("component",), np.array(names), "1", "stiffness component"),
         "harmonic": variable(("harmonic",), np.arange(1, fourier_order + 1), "1", "harmonic of the mesh frequency"),
     })
-    ds.attrs.update({"method": method, "slices": slices, "slice_rule": result.rule, "fourier_order": fourier_order})
+    ds.attrs.update({"tooth_model": method, "slices": slices, "slice_rule": result.rule, "fourier_order": fourier_order})
     return ds
 
 
@@ -117,7 +118,7 @@ def stiffness_summary(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices
     ``stiffness --json``); stiffnesses along the transverse line of action."""
     ds = stiffness_dataset(pair, method, slices, positions, 3, torque_Nm, torque_on)
     out = {
-        "name": pair.name, "method": method, "slices": slices,
+        "name": pair.name, "tooth_model": method, "slices": slices,
         "mean_mesh_stiffness_N_per_um": float(ds.mean_stiffness) * 1e-6,
         "min_mesh_stiffness_N_per_um": float(ds.min_stiffness) * 1e-6,
         "max_mesh_stiffness_N_per_um": float(ds.max_stiffness) * 1e-6,
@@ -196,8 +197,8 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str
         "pinion_eap_roll": variable(dims, out["eap"], "m", "pinion roll length of the end of active profile"),
     }
     if torque_Nm is not None:
-        data["lste_mean"] = variable(dims, out["lste_mean"], "m", "mean LSTE F/K")
-        data["lste_peak_to_peak"] = variable(dims, out["lste_p2p"], "m", "peak-to-peak LSTE")
+        data["lste_mean"] = variable(dims, out["lste_mean"], "m", "mean LSTE F/K", engineering_units="µm")
+        data["lste_peak_to_peak"] = variable(dims, out["lste_p2p"], "m", "peak-to-peak LSTE", engineering_units="µm")
     ds = xr.Dataset(data, coords={
         "case": variable(("case",), np.array(list(cases)), "1", "pair (and variant)"),
         "model": variable(("model",), np.array(list(methods)), "1", "cantilever model of the tooth (method)"),

@@ -32,6 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
 from ..errors import GearmeshInputError
 from ..gear import PairGeometry
 from ..meshforce import TableLayout, table_layout, tabulate
@@ -85,10 +86,10 @@ class PopulationDynamics:
 
 
 def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash: float | None = None,
-                        damping_ratio: float = DEFAULT_DAMPING_RATIO, method: str = "transition",
+                        damping_ratio: float = DEFAULT_DAMPING_RATIO, method: str = DEFAULT_TOOTH_METHOD,
                         positions: int = POPULATION_TABLE["positions"],
                         approaches: int = POPULATION_TABLE["approaches"],
-                        points: int = POPULATION_TABLE["points"], contact_law_name: str = "palmgren",
+                        points: int = POPULATION_TABLE["points"], contact_law_name: str = DEFAULT_CONTACT_LAW,
                         settings: SolverSettings = POPULATION_SOLVER, tables=None) -> PopulationDynamics:
     """Set up :func:`dynamic_factors` for ``geom`` at pinion torques ``pinion_torques`` (N·m) over
     the speed grid ``speeds_rpm`` (rpm, ≥ 2 speeds: its range bounds the resonance speeds added);

@@ -162,7 +162,12 @@ def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
     axes[-1, 0].set_xlabel("time (ms)")
     axes[-1, 1].set_xlabel("frequency (Hz)")
     handles, labels = axes[0, 0].get_legend_handles_labels()
-    fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=8)
+    if labels:
+        fig.legend(handles, labels, loc="outside lower center", ncol=len(labels), fontsize=8)
+    else:  # dynamics.sample_speeds_rpm: [] keeps no series
+        for ax in axes[0]:
+            ax.text(0.5, 0.5, "no time series kept (dynamics.sample_speeds_rpm is empty)", ha="center",
+                    va="center", transform=ax.transAxes, fontsize=9)
     at = f", {_torque_label(ds)}" if _torque_label(ds) else ""
     fig.suptitle(_title(ds, f"dynamic mesh force normal to the flanks{at}: time series and spectrum (mean removed)"))
     return _save(fig, path)

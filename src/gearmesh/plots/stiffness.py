@@ -8,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from ..choices import TOOTH_MODEL_NAMES
 from .common import MM, plain_axis, save, subplots, title, UM
 
 N_PER_UM = 1e-6  # N/m -> N/µm
@@ -25,8 +26,9 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
     ax.axhline(float(ds["iso6336_mesh_stiffness"]) * N_PER_UM, color="k", ls=":", lw=1, label="ISO 6336-1 cγα·b")
     ax.set_ylabel("K (N/µm)")
     ax.set_xlabel("pinion roll distance over one base pitch (mm)")
-    ax.set_title(title(ds, f"mesh stiffness, {ds.attrs.get('method', '')} method, {ds.attrs.get('slices', '')} "
-                           f"slices; εk = {100 * float(ds.fluctuation):.1f} %"))
+    model = TOOTH_MODEL_NAMES.get(ds.attrs.get("tooth_model", ""), ds.attrs.get("tooth_model", ""))
+    ax.set_title(title(ds, f"mesh stiffness, {model}, {ds.attrs.get('slices', '')} slices; "
+                           f"εk = {100 * float(ds.fluctuation):.1f} %"))
     ax.legend(fontsize=8)
     ax.grid(alpha=0.3)
     plain_axis(ax, ds["mesh_stiffness"].values * N_PER_UM, "N/µm", "K(φ)")

@@ -1,0 +1,63 @@
+"""The model choices a result depends on, and their defaults, declared once for every door.
+
+The study schema (:mod:`gearmesh.settings`), the stage functions (:mod:`gearmesh.datasets`),
+the physics functions below them and the ``gearmesh`` command all take their defaults from
+here, so a question asked through the CLI, the Python API at any level or the workflow gets
+one answer. Every result names the choices it used (netCDF attributes and JSON keys
+``tooth_model`` and ``contact_law``). Nothing is imported:
+this module sits below every other.
+"""
+
+from __future__ import annotations
+
+#: Slice models of the tooth compliance: the three potential-energy cantilevers (seeds 003/004:
+#: ``traditional`` and ``improved`` root cases, ``transition`` with the hob-generated fillet)
+#: and the 2-D plane-strain finite-element tooth (:mod:`gearmesh.fe`).
+PEM_TOOTH_METHODS = ("traditional", "improved", "transition")
+TOOTH_METHODS = (*PEM_TOOTH_METHODS, "fe")
+
+#: How a figure or a message names each tooth model.
+TOOTH_MODEL_NAMES = {
+    "traditional": "potential-energy cantilever (traditional root)",
+    "improved": "potential-energy cantilever (improved root)",
+    "transition": "potential-energy cantilever (hob fillet)",
+    "fe": "2-D finite-element tooth",
+}
+
+#: The tooth model of every stage and function unless a study or call says otherwise: the 2-D
+#: finite-element tooth, within +3/−7 % of the 3-D reference on seven of the nine shipped pairs,
+#: where the potential-energy cantilevers are 10–50 % too compliant (docs/validation.md,
+#: "Which tooth stiffness to trust").
+DEFAULT_TOOTH_METHOD = "fe"
+
+#: Local contact laws of a slice: Palmgren's line-contact approach δ ∝ F^0.9 (F ∝ δ^1.11) or the
+#: linear Hertz strip (:func:`gearmesh.ltca.contact_law`).
+CONTACT_LAWS = ("palmgren", "linear")
+DEFAULT_CONTACT_LAW = "palmgren"
+
+#: Candidate tip-edge contacts beyond the active zone, in transverse base pitches
+#: (:func:`gearmesh.tca.candidate_grid`).
+DEFAULT_CORNER_EXTENSION = 0.25
+
+#: What drives the 8-DOF pair (:mod:`gearmesh.dynamics`).
+PAIR_EXCITATIONS = ("tvms", "lste", "ltca", "contact")
+
+
+def pair_excitation(excitation: str | None, ltca_available: bool) -> str:
+    """The excitation a dynamics runs: as given, or (None) the LTCA's loaded stiffness and error
+    when an LTCA of the variant is at hand (a study that runs the LTCA), else the slice-model
+    stiffness. The one statement of "the LTCA drives the dynamics" for the API, the study checks
+    and the workflow's inputs."""
+    if excitation is None:
+        return "ltca" if ltca_available else "tvms"
+    return excitation
+
+
+#: The two lines a force is reported along; every force key ends in ``_transverse_N`` or
+#: ``_normal_N`` (JSON, CSV) and every force variable carries ``force_line`` (netCDF).
+#: transverse: along the transverse line of action, F_bt = T1/r_b1 (the LTCA, the impact);
+#: normal: normal to the flanks, F_bn = F_bt/cos(β_b) (the dynamics' mesh force).
+FORCE_LINES = {
+    "transverse": "along the transverse line of action (F_bt = T1/r_b1)",
+    "normal": "normal to the flanks (F_bn = F_bt/cos beta_b)",
+}
