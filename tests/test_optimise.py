@@ -295,6 +295,10 @@ def test_cli_json_by_torque_load_window_and_write_pair_round_trip(tmp_path, caps
         assert {"torque_Nm", "impact_force_transverse_N", "standard_impact_force_transverse_N", "scenario"} <= set(row)
         assert row["scenario"] in ("surface", "edge")
     assert len(summary["load_window_Nm"]) == 2 and summary["torque_Nm"] == 1000.0
+    # a window that runs to the end of its grid says so; the robust run is no single-point optimum
+    at_end = summary["load_window_Nm"][1] == summary["load_window_grid_Nm"][1]
+    assert at_end == any("end of the window's torque grid" in n for n in summary["notes"])
+    assert not any(n.startswith("single-point") for n in summary["notes"])
     written = load_pair(out)
     assert written.name == "best_gear"
     genes = summary["genes"]
@@ -310,3 +314,27 @@ def test_cli_json_by_torque_load_window_and_write_pair_round_trip(tmp_path, caps
     assert cli_main(["impact", str(out), "--torque-Nm", "1000", "--speed-rpm", "5000", "--json"]) == 0
     impact = json.loads(capsys.readouterr().out)
     assert impact["impact_force_transverse_N"] == pytest.approx(summary["by_torque"][1]["impact_force_transverse_N"], rel=1e-9)
+
+
+def test_optimum_notes_name_a_single_point_optimum_and_an_open_load_window():
+    """The notes an optimum carries: the single-point objective's risk, and a load window whose
+    ends are its grid's ends (1250 N m was reported as the window's top where the grid stopped)."""
+    from types import SimpleNamespace
+
+    from gearmesh.datasets.optimise import optimum_notes
+
+    grid = np.arange(50.0, 1251.0, 50.0)
+
+    def notes(objective, torques, samples, window):
+        prob = SimpleNamespace(settings=SimpleNamespace(objective=objective, objective_torques=torques),
+                               deviations=np.zeros((samples, 3)))
+        return optimum_notes(prob, SimpleNamespace(load_window=window, window_torque=grid))
+
+    single = notes("force", (1000.0,), 0, (700.0, 1100.0))
+    assert len(single) == 1 and single[0].startswith("single-point optimum")
+    assert notes("robust", (400.0, 1000.0), 8, (700.0, 1100.0)) == []
+    assert notes("robust", (1000.0,), 0, (700.0, 1100.0))[0].startswith("single-point")  # nothing to be robust over
+    top = notes("robust", (400.0, 1000.0), 8, (350.0, 1250.0))
+    assert len(top) == 1 and "1250 N m" in top[0] and "end of the window's torque grid" in top[0]
+    assert "start of the window's torque grid" in notes("robust", (400.0, 1000.0), 8, (50.0, 900.0))[0]
+    assert notes("robust", (400.0, 1000.0), 8, (math.nan, math.nan)) == []  # no window: nothing to qualify

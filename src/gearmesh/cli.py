@@ -536,7 +536,7 @@ def main(argv: Sequence[str] | None = None) -> int:
                 raise GearmeshInputError(option, value, "must be a finite number")
         result = args.func(args)
         if result is not None and getattr(args, "loaded_pair", None) is not None:
-            result["notes"] = pair_notes(args.loaded_pair)
+            result["notes"] = pair_notes(args.loaded_pair) + list(result.get("notes", []))
         if result is not None:
             _emit(result, args.json)
         sys.stdout.flush()

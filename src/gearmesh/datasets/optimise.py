@@ -370,6 +370,7 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
     ds.attrs.update({
         "method": s.method, "seed": s.seed, "objective": s.objective, "objective_statistic": s.statistic,
         "tooth_model": prob.model.ltca.method, "contact_law": prob.model.ltca.law.name,
+        "notes": "; ".join(optimum_notes(prob, result.diagnostics)),
         "tolerance_statistic": s.tolerance_statistic or "none (nominal)", "tolerance_level_percent": s.tolerance_level,
         "tolerance_samples": int(prob.deviations.shape[0]), "tolerance_sampling": s.sampling,
         "lead_grade_iso1328": -1 if prob.tolerance.grade is None else prob.tolerance.grade,
@@ -445,7 +446,30 @@ def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dat
         "standard_scenario": SCENARIOS[int(std.scenario[0, 0, k])],
         "by_torque": by_torque,
         "load_window_Nm": [_finite(low * to_given), _finite(high * to_given)],
+        "load_window_grid_Nm": [float(d.window_torque[0] * to_given), float(d.window_torque[-1] * to_given)],
         "evaluations": res.evaluations,
         "wall_s": res.wall_s,
+        "notes": optimum_notes(prob, d),
     }
     return summary, result_dataset(res, settings)
+
+
+def optimum_notes(prob, diagnostics) -> list[str]:
+    """What an optimum's numbers do not say by themselves: a single-point objective's risk, and a
+    load window that ends where its torque grid ends (its true bound lies beyond)."""
+    s, notes = prob.settings, []
+    single_torque = len(s.objective_torques) == 1
+    if s.objective in ("force", "velocity") or (single_torque and not prob.deviations.shape[0]):
+        notes.append("single-point optimum: the objective saw one torque and the nominal geometry only; it can be a "
+                     "grazing touch that is worse at other loads or under manufacturing deviations (check "
+                     "load_window_Nm; the robust objective over --torques-Nm with --tolerance-samples guards "
+                     "against it)")
+    low, high = diagnostics.load_window
+    grid = diagnostics.window_torque
+    if math.isfinite(high) and high >= grid[-1]:
+        notes.append(f"load window: its upper end {high:g} N m (pinion) is the end of the window's torque grid, not "
+                     "where the optimum stops beating the standard gear; that lies beyond (raise load_window_top_Nm "
+                     "to find it)")
+    if math.isfinite(low) and low <= grid[0]:
+        notes.append(f"load window: its lower end {low:g} N m (pinion) is the start of the window's torque grid")
+    return notes
