@@ -132,13 +132,13 @@ check. The step loop is compiled (numba; :mod:`gearmesh.dynamics.integrate`).
 
 from .excitation import EXCITATIONS, FOURIER_TABLE_POINTS, STIFFNESS_FORMS, MeshLaw, contact_mesh_law, mesh_law
 from .integrate import FIRST_PART_AFTER_A, MAX_STEPS_PER_SPEED, SolverSettings, SweepResult, simulate, step_plan
-from .model import (DEFAULT_DAMPING_RATIO, RESONANCE_OFFSETS, SEED001_BEARING, TRAIN_GEARS, GearModel, mesh_energy_fraction,
+from .model import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, RESONANCE_OFFSETS, full_translations, mesh_mode, SEED001_BEARING, TRAIN_GEARS, GearModel, mesh_energy_fraction,
                     pair_model, require_dynamics_data, resonance_band, resonance_speeds, train_model)
 from .reference import reference_solution, simulate_numpy
 
 __all__ = [
     "EXCITATIONS", "FOURIER_TABLE_POINTS", "STIFFNESS_FORMS", "MeshLaw", "contact_mesh_law", "mesh_law",
     "FIRST_PART_AFTER_A", "MAX_STEPS_PER_SPEED", "SolverSettings", "SweepResult", "simulate", "step_plan",
-    "DEFAULT_DAMPING_RATIO", "SEED001_BEARING", "TRAIN_GEARS", "GearModel", "pair_model", "require_dynamics_data",
+    "DAMPING_MEANING", "DEFAULT_DAMPING_RATIO", "full_translations", "mesh_mode", "SEED001_BEARING", "TRAIN_GEARS", "GearModel", "pair_model", "require_dynamics_data",
     "resonance_speeds", "resonance_band", "mesh_energy_fraction", "RESONANCE_OFFSETS", "train_model", "reference_solution", "simulate_numpy",
 ]
