@@ -15,6 +15,7 @@ from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_t
 from ..gear import pinion_torque as gear_pinion_torque
 from ..io import variable
 from ..limits import check_load, check_slice_grid
+from ..ltca import contact_tangent_compliance
 from ..stiffness import (
     DEFAULT_RULE,
     DEFAULT_SLICES,
@@ -29,6 +30,14 @@ from ..schema import check_arguments
 from ..settings import DEFAULT_TOOTH_METHOD, SliceConvergence, Stiffness, StiffnessTable
 
 METHODS = ("traditional", "improved", "transition")
+
+
+#: The contact term of the linear stiffness, as the dataset states it (with a torque, without).
+CONTACT_TERM_NOTE = {
+    True: "the tangent of the LTCA's Palmgren contact law at the mean line load of torque_Nm "
+          "(gearmesh.ltca.contact_tangent_compliance): one mesh stiffness with the LTCA and the contact dynamics",
+    False: "Yang & Sun's constant line-contact stiffness pi E/(4(1-nu^2)) (no torque given: 2.8-3.3x stiffer than "
+           "the loaded contact, docs/validation.md)"}
 
 
 def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
@@ -58,7 +67,8 @@ def stiffness_dataset(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices
         t1 = pinion_torque(geom, torque_Nm, torque_on)
         check_load(geom, t1, "torque_Nm", torque_Nm)
     use_fe_tables(fe_compliance, geom)
-    result = mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method)
+    result = mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method,
+                            contact_compliance=None if t1 is None else contact_tangent_compliance(geom, t1))
     fit = fourier_fit(result.K, fourier_order)
     theta = 2 * np.pi * result.roll / geom.transverse_base_pitch
     iso = iso6336_stiffness(geom)
@@ -106,7 +116,8 @@ def stiffness_dataset(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices
         "component": variable(("component",), np.array(names), "1", "stiffness component"),
         "harmonic": variable(("harmonic",), np.arange(1, fourier_order + 1), "1", "harmonic of the mesh frequency"),
     })
-    ds.attrs.update({"method": method, "slices": slices, "slice_rule": result.rule, "fourier_order": fourier_order})
+    ds.attrs.update({"method": method, "slices": slices, "slice_rule": result.rule, "fourier_order": fourier_order,
+                     "contact_term": CONTACT_TERM_NOTE[t1 is not None]})
     return ds
 
 
