@@ -160,3 +160,20 @@ def test_mesh_damping_is_the_mesh_modes_modal_damping(excitation):
     i = int(np.argmax(mesh_share))
     assert -lam[i].real / abs(lam[i]) == pytest.approx(0.07, rel=1e-6)
     assert model.modes()["damping_ratio"][mesh_mode(model)] == pytest.approx(0.07, rel=1e-6)
+
+
+def test_rigid_radial_supports_in_the_dataset_are_zero_displacements():
+    """Radial supports rigid, axial compliant: the dataset keeps its (gear, direction) layout, x and
+    y are exactly zero, z moves, and the attrs state the supports and what ζ means."""
+    from gearmesh.datasets.dynamics import dynamics_dataset
+
+    pair = _default_pair(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um=[230, 458])
+    ds = dynamics_dataset(pair, torques_Nm=1000.0, speeds_rpm=[3000.0, 5000.0], sample_speeds_rpm=[5000.0],
+                          backlash_um=60, excitation="tvms", refine_resonances=False, method="transition",
+                          slices=50, positions=64)
+    for name in ("displacement_std", "displacement_series", "velocity_peak_to_peak"):
+        v = ds[name].sel(direction=["x", "y"]) if "direction" in ds[name].dims else None
+        assert v is not None and np.all(v.values == 0), name
+        assert np.any(ds[name].sel(direction="z").values != 0), name
+    assert "from the pair file" in ds.attrs["supports"] and "rigid" in ds.attrs["supports"]
+    assert "mesh mode" in ds.attrs["damping_ratio_meaning"]

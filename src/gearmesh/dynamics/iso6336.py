@@ -41,11 +41,23 @@ def reduced_mass_per_width(geom: PairGeometry) -> float:
     return j1 * j2 / (j1 * r2**2 + j2 * r1**2)
 
 
-def resonance_speed(geom: PairGeometry, c_gamma_alpha: float | None = None) -> float:
+def reduced_mass_solid_discs(geom: PairGeometry) -> float:
+    """ISO 6336-1's own estimate of m_red (kg/mm) for solid gears of mean diameter d_m = (d_a + d_f)/2:
+    (π/8)(d_m1/d_b1)² d_m1²/(1/ρ1 + 1/(ρ2 u²)) (ρ in kg/mm³, u = z2/z1) — bores and webs left out."""
+    rho = geom.pair.material.density * 1e-9
+    dm1 = float(geom.tip_radius[0] + geom.root_radius[0]) * 1e3
+    db1 = 2 * float(geom.base_radius[0]) * 1e3
+    u = geom.pair.teeth[1] / geom.pair.teeth[0]
+    return math.pi / 8 * (dm1 / db1) ** 2 * dm1**2 / (1 / rho + 1 / (rho * u**2))
+
+
+def resonance_speed(geom: PairGeometry, c_gamma_alpha: float | None = None, solid_discs: bool = False) -> float:
     """n_E1 (r/min) of the pinion; ``c_gamma_alpha`` in N/(mm·µm), default ISO's own
-    (:func:`gearmesh.stiffness.iso6336_stiffness`)."""
+    (:func:`gearmesh.stiffness.iso6336_stiffness`); m_red of the pair's own bodies, or with
+    ``solid_discs`` the standard's solid-disc estimate (:func:`reduced_mass_solid_discs`)."""
     c = iso6336_stiffness(geom)["c_gamma_alpha"] if c_gamma_alpha is None else c_gamma_alpha
-    return 30000.0 / (math.pi * geom.pair.teeth[0]) * math.sqrt(c / reduced_mass_per_width(geom))
+    m_red = reduced_mass_solid_discs(geom) if solid_discs else reduced_mass_per_width(geom)
+    return 30000.0 / (math.pi * geom.pair.teeth[0]) * math.sqrt(c / m_red)
 
 
 def velocity_factors(eps_gamma: float) -> tuple[float, ...]:
