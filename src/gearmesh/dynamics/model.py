@@ -13,12 +13,15 @@ import numpy as np
 from ..errors import GearmeshInputError
 from ..gear import PairGeometry
 from ..meshforce import MeshForceTable
+from ..supports import DEFAULT_SUPPORTS_N_PER_UM
 from .excitation import MeshLaw, contact_mesh_law, mesh_law
 
 #: Seed 001 §4 bearing values: k_x = k_y = 1.5e8 N/m, k_z = 1e7 N/m, c = 1000 N·s/m. The
 #: stiffnesses are the supports of a pair file that gives none (:mod:`gearmesh.supports`); the
 #: damping values are the bearing damping of every model unless the call says otherwise.
-SEED001_BEARING = {"k_radial": 1.5e8, "k_axial": 1.0e7, "c_radial": 1.0e3, "c_axial": 1.0e3}
+SEED001_BEARING = {"k_radial": DEFAULT_SUPPORTS_N_PER_UM["bearing_radial_stiffness_N_per_um"] * 1e6,
+                   "k_axial": DEFAULT_SUPPORTS_N_PER_UM["bearing_axial_stiffness_N_per_um"] * 1e6,
+                   "c_radial": 1.0e3, "c_axial": 1.0e3}
 #: Mesh damping ratio ζ: a mid value of the 0.03–0.17 range of gear-pair models (package docstring).
 DEFAULT_DAMPING_RATIO = 0.07
 #: What ``damping_ratio`` means (dataset attrs): :func:`_with_mesh_damping`.
