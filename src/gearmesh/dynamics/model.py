@@ -335,10 +335,16 @@ def mesh_mode(model: GearModel) -> int:
     return int(np.argmax(mesh_energy_fraction(model, model.modes()["shapes"])))
 
 
-def _mesh_mode_damping(model: GearModel, damping: np.ndarray) -> float:
-    """Modal damping ratio of the mesh mode (:func:`mesh_mode`) with mesh damping ``damping`` (N·s/m)."""
+def _mesh_mode_eigenvalue(model: GearModel, damping: np.ndarray, near: complex | None = None) -> complex:
+    """Eigenvalue λ of the mesh mode (:func:`mesh_mode`) with mesh damping ``damping`` (N·s/m); with
+    ``near``, the eigenvalue (Im λ > 0) nearest it, from the eigenvalues alone (the same mode while the
+    damping changes: cheaper than the shapes)."""
     trial = replace(model, damping=np.asarray(damping, dtype=float))
-    return float(trial.modes()["damping_ratio"][mesh_mode(trial)])
+    if near is None:
+        return complex(trial.modes()["eigenvalue"][mesh_mode(trial)])
+    lam = np.linalg.eigvals(trial._state_matrix(None))
+    lam = lam[lam.imag > 0]
+    return complex(lam[np.argmin(np.abs(lam - near))])
 
 
 def _with_mesh_damping(model: GearModel, mesh_damping: float | None, damping_ratio: float, rb, inertia) -> GearModel:
@@ -347,23 +353,29 @@ def _with_mesh_damping(model: GearModel, mesh_damping: float | None, damping_rat
     eigenvalues of the state matrix, ζ = −Re λ/|λ|, bearing damping included) equal to
     ``damping_ratio``. The meshes share one scale s on c_0 = 2ζ√(k̄ m_e) (m_e the torsional
     equivalent mass along the normal, :func:`_equivalent_mass`): with rigid supports s = 1, the
-    torsional mode's ζ. ζ(s) is nearly affine in s; a few secant steps reach it to 10⁻⁹.
-    When the bearings alone damp the mesh mode more than ζ, the mesh damper is zero."""
+    torsional mode's ζ. ζ(s) is nearly affine in s; secant steps reach it to 10⁻⁹ in two or three
+    eigenvalue solves. When the bearings alone damp the mesh mode more than ζ, the damper is zero."""
     if mesh_damping is not None:
         return replace(model, damping=np.full(model.m, _check_nonneg("mesh_damping_Ns_per_m", mesh_damping)))
     me = _equivalent_mass(model.cos_beta_b, rb, inertia)
     c0 = np.array([2 * damping_ratio * math.sqrt(ml.k_mean * me) for ml in model.meshes])
     if damping_ratio == 0:
         return replace(model, damping=c0)
-    s0, z0 = 0.0, _mesh_mode_damping(model, 0 * c0)
+
+    def zeta(lam: complex) -> float:
+        return -lam.real / abs(lam)
+
+    lam1 = _mesh_mode_eigenvalue(model, c0)
+    s0, z0 = 0.0, zeta(_mesh_mode_eigenvalue(model, 0 * c0, near=lam1))
     if z0 >= damping_ratio:
         return replace(model, damping=0 * c0)
-    s1, z1 = 1.0, _mesh_mode_damping(model, c0)
+    s1, z1 = 1.0, zeta(lam1)
     for _ in range(8):
         if abs(z1 - damping_ratio) <= 1e-9 * damping_ratio or z1 == z0:
             break
         s0, z0, s1 = s1, z1, max(s1 + (damping_ratio - z1) * (s1 - s0) / (z1 - z0), 0.5 * s1)
-        z1 = _mesh_mode_damping(model, s1 * c0)
+        lam1 = _mesh_mode_eigenvalue(model, s1 * c0, near=lam1)
+        z1 = zeta(lam1)
     return replace(model, damping=s1 * c0)
 
 
