@@ -245,20 +245,14 @@ def _bearing_settings(geom: PairGeometry, bearing: Mapping[str, float] | None) -
     return out
 
 
-def _held(names, Kb_diag, rot_idx):
-    """Indices of the coordinates kept (rotations and the translations on finite supports) and the
-    names of the rigid ones: a rigid support holds its coordinate at zero, so it leaves the model."""
-    keep = [i for i in range(len(names)) if i in rot_idx or math.isfinite(Kb_diag[i])]
-    return keep, tuple(names[i] for i in range(len(names)) if i not in keep)
-
-
 def _constrain(names, M, Kb, Cb, G, tau, rot_idx):
-    """The full matrices without the rigidly held translations (:func:`_held`); rotation indices remapped."""
-    keep, rigid = _held(names, np.diag(Kb), rot_idx)
+    """The full matrices without the translations on rigid (infinite) supports, which hold their
+    coordinate at zero and so leave the model; rotation indices remapped."""
+    keep = [i for i in range(len(names)) if i in rot_idx or math.isfinite(Kb[i, i])]
     ix = np.ix_(keep, keep)
     rot = [keep.index(i) for i in rot_idx]
     return (tuple(names[i] for i in keep), M[ix], np.where(np.isfinite(Kb[ix]), Kb[ix], 0.0), Cb[ix],
-            G[:, keep], tau[keep], rot, rigid)
+            G[:, keep], tau[keep], rot)
 
 
 def full_translations(model: "GearModel", a: np.ndarray, axis: int = 0) -> np.ndarray:
@@ -286,10 +280,11 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
     geom : pair geometry with bore radius and material (masses, inertias).
     torque_out : output (gear) torque T_out (N·m), > 0; T_in = T_out r_b1/r_b2.
     K_transverse : (P,) transverse TVMS K (N/m) evenly over one base pitch.
-    bearing : k_radial, k_axial (N/m), c_radial, c_axial (N·s/m), same for both gears
-        (default seed 001: 1.5e8, 1e7, 1000, 1000).
-    damping_ratio : mesh damping ratio ζ (-) on the mean normal stiffness and the equivalent
-        mass (ignored when ``mesh_damping`` (N·s/m) is given).
+    bearing : overrides for both gears of k_radial, k_axial (N/m, inf: rigid), c_radial, c_axial
+        (N·s/m); the stiffnesses default to the pair file's supports (:mod:`gearmesh.supports`, seed
+        001's 1.5e8 / 1e7 when it gives none), the damping to seed 001's 1000 N·s/m.
+    damping_ratio : modal damping ratio ζ (-) of the mesh mode, the mesh damper sized to give it
+        (:func:`_with_mesh_damping`; ignored when ``mesh_damping`` (N·s/m) is given).
     backlash : total backlash 2b0 (m) along the normal; None = no backlash (contact never
         lost: f(δ) = δ, a linear time-varying model).
     stiffness_form, order, excitation, transmission_error : see :func:`mesh_law`.
@@ -322,7 +317,7 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
     R = np.array([[rb1, -rb2]])
     f_static = torque_out / (rb2 * cb)
     trans = tuple(nm for i, nm in enumerate(names) if i not in (3, 7))
-    names, M, Kb, Cb, g, tau, rot, _ = _constrain(names, M, Kb, Cb, g, tau, [3, 7])
+    names, M, Kb, Cb, g, tau, rot = _constrain(names, M, Kb, Cb, g, tau, [3, 7])
     model = _reduce(geom.pair.name, M, Kb, Cb, g, tau, rot, R, [law], [0.0],
                     math.inf if backlash is None else _check_nonneg("backlash_um", backlash),
                     [f_static], geom.pair.teeth[0] / 60.0, geom.pair.teeth[0], names, cb, trans)
@@ -391,8 +386,9 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | No
 
     The three gears are the pair file's gear (index 1) repeated, the pair's TVMS serving both
     meshes (assumption: seed 004's gears are alike, 88 teeth each), the plate driven by
-    ``torque`` (N·m) and the impression loaded by it; y along the line of centres, bearing
-    'k_radial' for y, 'k_axial' for z. ``phase_offsets`` (mesh cycles) shift each mesh's
+    ``torque`` (N·m) and the impression loaded by it; y along the line of centres, each gear on
+    the pair file's gear supports (radial for y, axial for z; ``bearing`` overrides them as in
+    :func:`pair_model`). ``phase_offsets`` (mesh cycles) shift each mesh's
     TVMS (default in phase: seed 004 finds the two mesh forces nearly identical). With
     ``contact`` (the pair's mesh force table) both meshes are driven by the real contact.
     """
@@ -426,7 +422,7 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | No
     R = np.array([[rb, -rb, 0.0], [0.0, rb, -rb]])
     f_static = torque / (rb * cb)
     trans = tuple(nm for i, nm in enumerate(names) if i not in (2, 5, 8))
-    names, M, Kb, Cb, G, tau, rot, _ = _constrain(names, M, Kb, Cb, G, tau, [2, 5, 8])
+    names, M, Kb, Cb, G, tau, rot = _constrain(names, M, Kb, Cb, G, tau, [2, 5, 8])
     model = _reduce("train", M, Kb, Cb, G, tau, rot, R, laws, [0.0, 0.0],
                     math.inf if backlash is None else _check_nonneg("backlash_um", backlash),
                     [f_static, f_static], geom.pair.teeth[1] / 60.0, geom.pair.teeth[1], names, cb, trans)
