@@ -15,3 +15,14 @@ def seed001_pair1(**changes) -> dict:
     }
     data.update(changes)
     return data
+
+
+def torsional_mesh_damping(geom, k_mean_normal: float, zeta: float = 0.07) -> float:
+    """The mesh damper as it was before issue 28, 2ζ√(k̄ m_e) with m_e the torsional equivalent
+    mass along the normal (N·s/m): tests of the solver and of the engagement physics written
+    for that model keep it (the default now sizes the damper on the mesh mode)."""
+    import math
+
+    cb = math.cos(geom.base_helix_angle)
+    m_e = 1.0 / (cb**2 * sum(float(r) ** 2 / float(j) for r, j in zip(geom.base_radius, geom.inertia)))
+    return 2 * zeta * math.sqrt(k_mean_normal * m_e)

@@ -61,7 +61,11 @@ def test_bad_input_exits_2_with_one_message(tmp_path, root, monkeypatch, text, f
 def test_dynamics_json_per_speed(root, capsys):
     assert main(["dynamics", str(root / "config/pairs/seed001_pair1.yaml"), "--torque-Nm", "200",
                  "--speeds", "4000:6000:1000", "--json"]) == 0
-    rows = json.loads(capsys.readouterr().out)["speeds"]
+    out = json.loads(capsys.readouterr().out)
+    rows = out["speeds"]
+    # the supports and the damping it used, stated (issue 28): seed 001's pair file gives its bearings
+    assert out["supports"].startswith("supports radial [150, 150] N/um") and "from the pair file" in out["supports"]
+    assert out["damping_ratio"] == 0.07 and "mesh mode" in out["damping_ratio_meaning"]
     assert [r["speed_rpm"] for r in rows] == [4000.0, 5000.0, 6000.0]
     for row in rows:
         assert {"speed_rpm", "dynamic_te_mean_um", "dynamic_te_std_um", "mesh_deflection_mean_um",

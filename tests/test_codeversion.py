@@ -40,7 +40,8 @@ def test_versioned_spec_resolves_to_the_same_function():
 
 @pytest.mark.parametrize("module, changed", [
     ("stiffness.py", {"stiffness", "dynamics", "ltca"}),   # ltca builds on the slice tables
-    ("ltca.py", {"dynamics", "ltca"}),                      # the contact table is the LTCA's contact model
+    ("ltca.py", {"dynamics", "ltca", "stiffness"}),         # the contact table is the LTCA's contact model;
+    #                                                         the stiffness stage's contact term its tangent (issue 28)
     ("plots/ltca.py", {"plot_ltca"}),
     ("dynamics/integrate.py", {"dynamics"}),
     ("pipeline.py", set(SPECS)),                            # the glue every job runs

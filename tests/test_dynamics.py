@@ -16,7 +16,7 @@ from gearmesh.gear import load_pair, pair_from_dict, pair_geometry
 from gearmesh.io import check_documented
 from gearmesh.stiffness import mesh_stiffness
 
-from pairs import seed001_pair1
+from pairs import seed001_pair1, torsional_mesh_damping
 
 
 @pytest.fixture(scope="module")
@@ -31,7 +31,10 @@ def K(geom):
 
 @pytest.fixture(scope="module")
 def model(geom, K):
-    return dy.pair_model(geom, 200.0, K)
+    """Seed 001's pair and bearings with the mesh damper these solver tests were written for
+    (:func:`pairs.torsional_mesh_damping`)."""
+    k_mean = dy.pair_model(geom, 200.0, K).meshes[0].k_mean
+    return dy.pair_model(geom, 200.0, K, mesh_damping=torsional_mesh_damping(geom, k_mean))
 
 
 FAST = dy.SolverSettings(transient_tau=8.0, record_cycles=4)

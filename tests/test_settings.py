@@ -270,7 +270,8 @@ def _reader_refusal(data) -> GearmeshInputError | None:
 #: module and diameter, an ISO 53 profile against the pressure angle, a datasheet diameter or a
 #: centre distance against the pair's circles (teeth, module, helix angle, shifts).
 _RELATIONS = ("normal module", "pinion reference diameters", "is a 20° profile", "its reference circle shifted",
-              "too small for any working pair", "zero-backlash")
+              "too small for any working pair", "zero-backlash",
+              "is required with")  # supports: both stiffnesses, shaft diameter and span together
 
 
 _BASE = yaml.safe_load((ROOT / "config/pairs/seed000_case.yaml").read_text())

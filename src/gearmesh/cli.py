@@ -146,7 +146,8 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
-    from .datasets.dynamics import check_dynamics_settings, dynamics_summary, parse_speeds, positive_torque
+    from .datasets.dynamics import (check_dynamics_settings, dynamics_summary, parse_speeds, positive_torque,
+                                    supports_note)
 
     positive_torque("torque_Nm", args.torque_Nm)
     pair, geom = _pair(args)
@@ -162,8 +163,10 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
         excitation["ltca"] = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion")  # the LTCA stage's defaults
     rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=speeds, on=args.on,
                             backlash_um=args.backlash_um, progress=_progress(), **excitation)
+    from .dynamics import DAMPING_MEANING, DEFAULT_DAMPING_RATIO
     return {"name": pair.name, **_torque(pair, args.torque_Nm, args.on), "excitation": args.excitation,
-            **_model_choices(args.excitation), **_backlash(geom, args.backlash_um), "speeds": rows}
+            **_model_choices(args.excitation), **_backlash(geom, args.backlash_um), "supports": supports_note(pair),
+            "damping_ratio": DEFAULT_DAMPING_RATIO, "damping_ratio_meaning": DAMPING_MEANING, "speeds": rows}
 
 
 def _model_choices(excitation: str) -> dict[str, str]:

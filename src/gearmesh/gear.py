@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 import re
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any, Mapping
 
@@ -21,6 +21,7 @@ import yaml
 
 from .errors import GearmeshInputError
 from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
+from .supports import SUPPORT_KEYS, Supports, read_supports
 
 GEARS = ("pinion", "gear")
 
@@ -102,6 +103,7 @@ class GearPair:
     helix_hand: str = "right"
     source: str = ""
     defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. DEFAULT_MATERIAL)
+    supports: Supports = field(default_factory=lambda: read_supports({}))  # bearings and shafts (dynamics)
 
     def with_changes(self, **changes: Any) -> "GearPair":
         """A copy with some fields replaced (e.g. a helix-angle sweep)."""
@@ -118,6 +120,7 @@ _PAIR_KEYS = {
     "dedendum_coefficient", "tool_tip_radius_coefficient", "bore_radius_mm", "material",
     "modification", "helix_hand", "source",
     "tip_diameter_mm", "root_diameter_mm", "bore_diameter_mm", "basic_rack_profile",  # datasheet alternatives
+    *SUPPORT_KEYS,  # the gearbox: bearings and shafts (gearmesh.supports)
 }
 #: Keys that say the same thing: at most one of each group may be given (_one_of).
 _ALTERNATIVE_KEYS = (
@@ -335,6 +338,7 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         helix_hand=hand,
         source=str(spec.get("source", source)),
         defaults=defaults,
+        supports=read_supports(spec),
     )
     return _datasheet_diameters(pair, spec)
 
@@ -661,6 +665,7 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
             gear: {key: getattr(mod, attr) / factor for key, (attr, factor) in _MODIFICATION_KEYS.items()}
             for gear, mod in zip(GEARS, pair.modification)
         }
+    out.update(pair.supports.to_dict())
     return out
 
 

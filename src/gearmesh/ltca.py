@@ -125,6 +125,23 @@ def contact_law(geom: PairGeometry, dz: float, name: str = DEFAULT_CONTACT_LAW) 
     return ContactLaw(name, coef, PALMGREN_EXPONENT, 0.0, dz)
 
 
+def contact_tangent_compliance(geom: PairGeometry, pinion_torque: float) -> float:
+    """The linear mesh stiffness's contact compliance (m²/N per unit transverse width, the role of
+    :func:`gearmesh.stiffness.hertz_compliance_transverse`): the tangent of the LTCA's Palmgren
+    law (:func:`contact_law`) at the mean line load of ``pinion_torque`` (N·m), c = 0.9 δ_t(f)/f
+    with f = F_bt/(b εα) the transverse force per unit of contact width (the contact lines'
+    transverse widths sum to b εα on average, l_mean = b εα/cos βb). So the stiffness stage's
+    TVMS, the LTCA's loaded stiffness and the contact table's tangent are one stiffness at one
+    load (issue 28; Palmgren's law is of the size of Weber's contact part, docs/validation.md).
+    The tangent falls as f^-0.1: ±10 % of the contact compliance for a load 2.5× off."""
+    require_stiffness_data(geom, need_bore=False)
+    if not (math.isfinite(pinion_torque) and pinion_torque > 0):
+        raise GearmeshInputError("torque_Nm", pinion_torque, "must be a positive finite number")
+    f = pinion_torque / float(geom.base_radius[0]) / (geom.face_width * geom.eps_alpha)
+    law = contact_law(geom, 1.0)  # width 1 m: δ_t = coefficient · f^0.9
+    return law.exponent * law.coefficient * f ** law.exponent / f
+
+
 # --------------------------------------------------------------------------------------
 # The exact solve of the diagonal contact problem
 # --------------------------------------------------------------------------------------

@@ -351,11 +351,16 @@ class _Dynamics:
     backlash_um: float | Literal["pair"] | None = setting(
         "pair", "total backlash 2b0 along the normal; pair: the pair's own (centre distance and shifts); null: none",
         minimum=0)
-    bearing_k_radial_N_per_m: float = setting(1.5e8, "radial bearing stiffness", exclusive_minimum=0)
-    bearing_k_axial_N_per_m: float = setting(1.0e7, "axial bearing stiffness", exclusive_minimum=0)
+    bearing_k_radial_N_per_m: float | Literal["pair"] = setting(
+        "pair", "radial support stiffness of every gear (pair: the pair file's supports, seed 001's 1.5e8 when it "
+        "gives none; gearmesh.supports)", exclusive_minimum=0)
+    bearing_k_axial_N_per_m: float | Literal["pair"] = setting(
+        "pair", "axial support stiffness of every gear (pair: the pair file's supports, seed 001's 1e7 when it gives "
+        "none)", exclusive_minimum=0)
     bearing_c_radial_Ns_per_m: float = setting(1000, "radial bearing damping", minimum=0)
     bearing_c_axial_Ns_per_m: float = setting(1000, "axial bearing damping", minimum=0)
-    damping_ratio: float = setting(0.07, "mesh damping ratio ζ", minimum=0, maximum=1)
+    damping_ratio: float = setting(0.07, "modal damping ratio ζ of the mesh mode (the mesh damper is sized to give "
+                                         "it, bearing damping included)", minimum=0, maximum=1)
     mesh_damping_Ns_per_m: float | None = setting(None, "mesh damping given directly (null: from damping_ratio)",
                                                   minimum=0)
     stiffness_form: Literal["fourier", "table"] = setting("fourier", "mesh stiffness k(t) as its Fourier series to "
@@ -640,6 +645,18 @@ class PairFile:
     bore_diameter_mm: float | tuple[float, float] | None = setting(
         None, "bore (inner) diameter, one or [pinion, gear], instead of bore_radius_mm", minimum=0)
     material: PairMaterial | None = setting(None, "elastic material of both gears (null or left out: steel)")
+    bearing_radial_stiffness_N_per_um: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
+        None, "radial stiffness of each gear's bearings together at the gear centre, one, [pinion, gear] or rigid "
+        "(dynamics; null: seed 001's 150, stated in the results)", exclusive_minimum=0)
+    bearing_axial_stiffness_N_per_um: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
+        None, "axial stiffness of each gear's bearings at the gear centre, one, [pinion, gear] or rigid (dynamics; "
+        "null: seed 001's 10)", exclusive_minimum=0)
+    shaft_diameter_mm: float | tuple[float, float] | None = setting(
+        None, "shaft diameter, one or [pinion, gear]: shaft bending 48EI/L³ in series with the radial bearing "
+        "stiffness (with bearing_span_mm; the gear at mid-span)", exclusive_minimum=0)
+    bearing_span_mm: float | tuple[float, float] | None = setting(
+        None, "distance between the two bearings of each shaft, one or [pinion, gear] (with shaft_diameter_mm)",
+        exclusive_minimum=0)
     modification: PairModification | None = setting(None, "micro-geometry of each gear")
     source: str = setting("", "where the data come from")
 

@@ -528,14 +528,16 @@ class PairSliceTable:
 
 
 def pair_slice_table(geom: PairGeometry, tables: tuple[SliceComplianceTable, SliceComplianceTable],
-                     n_intervals: int = 8192) -> PairSliceTable:
-    """Resample both gears' slice compliance and the contact on a uniform s grid (m)."""
+                     n_intervals: int = 8192, contact_compliance: float | None = None) -> PairSliceTable:
+    """Resample both gears' slice compliance and the contact on a uniform s grid (m); the contact
+    ``contact_compliance`` (m²/N per unit transverse width, e.g. the LTCA law's tangent at a load,
+    :func:`gearmesh.ltca.contact_tangent_compliance`), Yang & Sun's constant when None."""
     g = geom.path_of_contact
     s = np.linspace(0.0, g, n_intervals + 1)
     rho1 = np.clip(geom.rho_sap[0] + s, tables[0].rho[0], tables[0].rho[-1])
     rho2 = np.clip(geom.rho_eap[1] - s, tables[1].rho[0], tables[1].rho[-1])
     c1, c2 = tables[0](rho1), tables[1](rho2)
-    ch = hertz_compliance_transverse(geom)
+    ch = hertz_compliance_transverse(geom) if contact_compliance is None else float(contact_compliance)
     cols, rows = [], []
     for name, c in zip(GEARS, (c1, c2)):
         for k in COMPONENTS:
@@ -645,7 +647,8 @@ def _sum_slices(geom: PairGeometry, pair_table: PairSliceTable, roll: np.ndarray
 def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = DEFAULT_SLICES,
                    method: str = DEFAULT_TOOTH_METHOD, components: bool = True, n_nodes: int = 257,
                    tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
-                   pair_table: PairSliceTable | None = None, rule: str = DEFAULT_RULE) -> MeshStiffness:
+                   pair_table: PairSliceTable | None = None, rule: str = DEFAULT_RULE,
+                   contact_compliance: float | None = None) -> MeshStiffness:
     """Time-varying mesh stiffness of a helical pair by the slice potential energy method.
 
     Tabulates each gear's slice compliance once (:func:`slice_compliance_table`),
@@ -665,6 +668,8 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
     tables, pair_table : precomputed tables to reuse (e.g. in a sweep of n_slices).
     rule : slice rule of :func:`slice_samples`: 'clip' (end slices clipped to the active
         zone, error O(Δz²)) or 'centre' (whole slices by their centre, error O(Δz)).
+    contact_compliance : the contact term (m²/N per unit transverse width) of
+        :func:`pair_slice_table`; None: Yang & Sun's constant (ignored with ``pair_table``).
     """
     _check_method(method)
     require_stiffness_data(geom)
@@ -677,7 +682,7 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
         if tables is None:
             tables = (slice_compliance_table(geom, 0, method, n_nodes),
                       slice_compliance_table(geom, 1, method, n_nodes))
-        pair_table = pair_slice_table(geom, tables)
+        pair_table = pair_slice_table(geom, tables, contact_compliance=contact_compliance)
     roll = mesh_cycle_rolls(geom, n_positions)
     pairs = tooth_pair_indices(geom)
     k_lines, sums = _sum_slices(geom, pair_table, roll, n_slices, pairs, rule, components)

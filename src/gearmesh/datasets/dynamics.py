@@ -17,11 +17,13 @@ import numpy as np
 import xarray as xr
 
 from ..dynamics import (
+    DAMPING_MEANING,
     DEFAULT_DAMPING_RATIO,
     FIRST_PART_AFTER_A,
     SEED001_BEARING,
     TRAIN_GEARS,
     GearModel,
+    full_translations,
     SolverSettings,
     SweepResult,
     pair_model,
@@ -37,7 +39,7 @@ from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import name_force_lines, variable
 from ..limits import check_load, check_loads, check_slice_grid, check_speeds
-from ..ltca import positive_values
+from ..ltca import contact_tangent_compliance, positive_values
 from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable,
                          mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
@@ -116,17 +118,29 @@ def positive_torque(name: str, value) -> float:
 
 
 def _bearing(k_radial_N_per_m, k_axial_N_per_m, c_radial_Ns_per_m, c_axial_Ns_per_m) -> dict[str, float]:
+    """The model's ``bearing`` overrides: a stiffness ``'pair'`` is the pair file's supports (left out)."""
     out = {}
     for key, name, v, positive in (("k_radial", "bearing_k_radial_N_per_m", k_radial_N_per_m, True),
                                    ("k_axial", "bearing_k_axial_N_per_m", k_axial_N_per_m, True),
                                    ("c_radial", "bearing_c_radial_Ns_per_m", c_radial_Ns_per_m, False),
                                    ("c_axial", "bearing_c_axial_Ns_per_m", c_axial_Ns_per_m, False)):
+        if positive and v == "pair":
+            continue
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v < 0 \
                 or (positive and v == 0):
             raise GearmeshInputError(name, v, "must be a positive finite number" if positive
                                      else "must be a non-negative finite number")
         out[key] = float(v)
     return out
+
+
+def supports_note(pair: GearPair, bearing_k_radial_N_per_m="pair", bearing_k_axial_N_per_m="pair") -> str:
+    """The supports a dynamics result used, one sentence (dataset attrs, CLI JSON)."""
+    own = pair.supports.describe(pair.material.youngs_modulus)
+    if bearing_k_radial_N_per_m == "pair" and bearing_k_axial_N_per_m == "pair":
+        return own
+    return (f"supports set by the study (both gears): radial {bearing_k_radial_N_per_m} N/m, axial "
+            f"{bearing_k_axial_N_per_m} N/m, 'pair' meaning the pair file's: {own}")
 
 
 #: The declared defaults of the dynamics settings (:class:`gearmesh.settings.Dynamics`).
@@ -252,14 +266,16 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
 
 
 def _stiffness_curve(geom: PairGeometry, stiffness: xr.Dataset | None, method: str, slices: int,
-                     positions: int) -> np.ndarray:
+                     positions: int, pinion_torque: float) -> np.ndarray:
     """Transverse TVMS K (N/m) at evenly spaced rolls over one base pitch: from the upstream
-    stiffness dataset (``mesh_stiffness`` on ``position``) or computed here."""
+    stiffness dataset (``mesh_stiffness`` on ``position``; its contact term at its own torque) or
+    computed here with the contact law's tangent at ``pinion_torque`` (N·m)."""
     if stiffness is not None:
         if "mesh_stiffness" not in stiffness:
             raise GearmeshInputError("stiffness", "dataset", "has no 'mesh_stiffness' variable")
         return np.asarray(stiffness["mesh_stiffness"].values, dtype=float)
-    return mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method, components=False).K
+    return mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method, components=False,
+                          contact_compliance=contact_tangent_compliance(geom, pinion_torque)).K
 
 
 def _transmission_error(transmission_error_um) -> np.ndarray | None:
@@ -446,8 +462,8 @@ def contact_table(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOT
 
 @check_arguments(Dynamics)
 def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion", backlash_um="pair",
-                     bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
-                     bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
+                     bearing_k_radial_N_per_m: float | str = "pair",
+                     bearing_k_axial_N_per_m: float | str = "pair",
                      bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
                      bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
@@ -488,7 +504,7 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
             raise GearmeshInputError("transmission_error_um", "given", "give either a table or an ltca dataset")
         K, te = ltca_excitation(geom, ltca, pinion_torque(pair, t_out, "gear"))
     else:
-        K = _stiffness_curve(geom, stiffness, method, slices, positions)
+        K = _stiffness_curve(geom, stiffness, method, slices, positions, pinion_torque(pair, t_out, "gear"))
         te = _transmission_error(transmission_error_um)
     return pair_model(geom, t_out, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                                          bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
@@ -557,16 +573,18 @@ def _common_vars(model: GearModel, res: SweepResult, mesh_dim: bool, cos_beta_b:
     }
 
 
-def _vibration_vars(res: SweepResult, n_trans: int, shape: tuple[int, int]) -> dict[str, xr.Variable]:
-    """Displacement RMS/mean/std and velocity RMS per speed, gear and direction (m, m/s)."""
-    ym = res.y_mean[:n_trans].T.reshape(-1, *shape)
-    ys = res.y_std[:n_trans].T.reshape(-1, *shape)
+def _vibration_vars(res: SweepResult, model: GearModel, shape: tuple[int, int]) -> dict[str, xr.Variable]:
+    """Displacement RMS/mean/std and velocity RMS per speed, gear and direction (m, m/s); zero in
+    a rigidly supported direction (not a coordinate of the model)."""
+    ym = full_translations(model, res.y_mean).T.reshape(-1, *shape)
+    ys = full_translations(model, res.y_std).T.reshape(-1, *shape)
     dims = ("speed", "gear", "direction")
     return {
         "displacement_rms": variable(dims, np.sqrt(ym**2 + ys**2), "m", "RMS displacement (mean included)"),
         "displacement_mean": variable(dims, ym, "m", "mean displacement (static bearing deflection)"),
         "displacement_std": variable(dims, ys, "m", "standard deviation of the displacement (vibration)"),
-        "velocity_rms": variable(dims, res.v_rms[:n_trans].T.reshape(-1, *shape), "m s-1", "RMS velocity"),
+        "velocity_rms": variable(dims, full_translations(model, res.v_rms).T.reshape(-1, *shape), "m s-1",
+                                 "RMS velocity"),
     }
 
 
@@ -585,8 +603,8 @@ def _modal_vars(model: GearModel, harmonics=(1, 2, 3)) -> dict[str, xr.Variable]
 
 
 def _series_vars(res: SweepResult, arr, n_rec: int, max_order: int, ppc: int, gear_dims: tuple[str, str],
-                 trans_shape: tuple[int, int], mesh_dim: bool, cos_beta_b: float) -> dict[str, xr.Variable]:
-    nt = trans_shape[0] * trans_shape[1]
+                 trans_shape: tuple[int, int], mesh_dim: bool, cos_beta_b: float,
+                 model: GearModel) -> dict[str, xr.Variable]:
     S = res.speed_rpm.size
     ms = ("sample_speed", "sample", "mesh") if mesh_dim else ("sample_speed", "sample")
     msp = ("sample_speed", "order", "mesh") if mesh_dim else ("sample_speed", "order")
@@ -596,8 +614,8 @@ def _series_vars(res: SweepResult, arr, n_rec: int, max_order: int, ppc: int, ge
 
     gd = ("sample_speed", "sample") + gear_dims
     pd = ("sample_speed",) + gear_dims
-    y = arr["y"][:, :, :nt].reshape(S, -1, *trans_shape)
-    vv = arr["v"][:, :, :nt].reshape(S, -1, *trans_shape)
+    y = full_translations(model, arr["y"], axis=2).reshape(S, -1, *trans_shape)
+    vv = full_translations(model, arr["v"], axis=2).reshape(S, -1, *trans_shape)
     orders = np.arange(max_order * n_rec + 1) / n_rec
     return {
         "time": variable(("sample_speed", "sample"), arr["t"], "s", "time within the record window"),
@@ -611,11 +629,11 @@ def _series_vars(res: SweepResult, arr, n_rec: int, max_order: int, ppc: int, ge
                                         "one-sided amplitude spectrum of the mesh force (normal)"),
         "mesh_deflection_spectrum": variable(msp, mv(arr["delta_spec"]) / cos_beta_b, "m",
                                              f"one-sided amplitude spectrum of the {MESH_DEFLECTION}"),
-        "displacement_peak_to_peak": variable(pd, arr["y_pp"][:, :nt].reshape(S, *trans_shape), "m",
+        "displacement_peak_to_peak": variable(pd, full_translations(model, arr["y_pp"], axis=1).reshape(S, *trans_shape), "m",
                                               "peak-to-peak displacement"),
-        "velocity_peak_to_peak": variable(pd, arr["v_pp"][:, :nt].reshape(S, *trans_shape), "m s-1",
+        "velocity_peak_to_peak": variable(pd, full_translations(model, arr["v_pp"], axis=1).reshape(S, *trans_shape), "m s-1",
                                           "peak-to-peak velocity"),
-        "acceleration_peak_to_peak": variable(pd, arr["a_pp"][:, :nt].reshape(S, *trans_shape), "m s-2",
+        "acceleration_peak_to_peak": variable(pd, full_translations(model, arr["a_pp"], axis=1).reshape(S, *trans_shape), "m s-2",
                                               "peak-to-peak acceleration (central differences of the velocity)"),
     }
 
@@ -661,7 +679,7 @@ def _pair_sweep(pair: GearPair, model: GearModel, speeds: np.ndarray, grid: np.n
     shape = (2, 3)
     cb = model.cos_beta_b
     data = _common_vars(model, res, mesh_dim=False, cos_beta_b=cb)
-    data.update(_vibration_vars(res, nt, shape))
+    data.update(_vibration_vars(res, model, shape))
     data["torsional_std"] = variable(("speed",), res.y_std[nt], "m",
                                      "standard deviation of the relative rotation r_b1 theta_p - r_b2 theta_g "
                                      "alone (transverse line of action; encoders on compliant bearings)")
@@ -676,7 +694,7 @@ def _pair_sweep(pair: GearPair, model: GearModel, speeds: np.ndarray, grid: np.n
         rs = simulate(model, samples, settings, series=True)
         arr = _series_arrays(rs, points_per_cycle, max_order, settings.record_cycles)
         data.update(_series_vars(rs, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
-                                 shape, mesh_dim=False, cos_beta_b=cb))
+                                 shape, mesh_dim=False, cos_beta_b=cb, model=model))
         if table is not None:
             data["entering_pair_force_series"] = variable(("sample_speed", "sample"), arr["Fe"][..., 0], "N",
                                                           "force (normal) of the tooth pair entering the mesh in "
@@ -692,8 +710,8 @@ _TORQUE_FREE = ("mesh_frequency", "on_grid", "frequency", "time")
 def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      speeds_rpm: Mapping[str, float] | Sequence[float] | str = DEFAULT_SPEEDS,
                      backlash_um="pair",
-                     bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
-                     bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
+                     bearing_k_radial_N_per_m: float | str = "pair",
+                     bearing_k_axial_N_per_m: float | str = "pair",
                      bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
                      bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
@@ -808,6 +826,8 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
         "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
         else ("none" if backlash_um is None else "given"),
         "damping_ratio": float(damping_ratio),
+        "damping_ratio_meaning": DAMPING_MEANING,
+        "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
         "steady_state": (f"periodic steady state by shooting (Newton on the one-period map), then "
                          f"{settings.settle_cycles} periods, then {record_cycles} recorded; the physical-time "
                          f"transient ({transient_tau} time constants of the slowest mode) where shooting does not "
@@ -873,8 +893,8 @@ def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEF
 def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_FORCE_N,
                   torque_Nm: float | None = None, speeds_rpm: Any = None,
                   mesh_frequency_Hz: float = SEED004_MESH_FREQUENCY_HZ, backlash_um="pair",
-                  bearing_k_radial_N_per_m: float = SEED001_BEARING["k_radial"],
-                  bearing_k_axial_N_per_m: float = SEED001_BEARING["k_axial"],
+                  bearing_k_radial_N_per_m: float | str = "pair",
+                  bearing_k_axial_N_per_m: float | str = "pair",
                   bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
                   bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
                   damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
@@ -930,7 +950,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                               table_approaches=table_approaches, table_force_factor=table_force_factor)
         K = None
     else:
-        K = _stiffness_curve(geom, stiffness, method, slices, positions)
+        K = _stiffness_curve(geom, stiffness, method, slices, positions, torque * float(geom.base_radius[0]) / rb)
     model = train_model(geom, torque, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                                           bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
                         damping_ratio=damping_ratio, backlash=_backlash(geom, backlash_um),
@@ -943,14 +963,14 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     shape = (3, 2)
     cb = math.cos(geom.base_helix_angle)
     data = _common_vars(model, res, mesh_dim=True, cos_beta_b=cb)
-    data.update(_vibration_vars(res, nt, shape))
+    data.update(_vibration_vars(res, model, shape))
     data["torque"] = variable((), torque, "N m", "torque on the plate gear (= load on the impression gear)")
     data["backlash"] = variable((), float(model.backlash) if math.isfinite(model.backlash) else np.nan, "m",
                                 "total backlash 2b0 along the normal (NaN: none, contact never lost)")
     data.update(_modal_vars(model))
     arr = _series_arrays(res, points_per_cycle, max_order, settings.record_cycles)
     data.update(_series_vars(res, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
-                             shape, mesh_dim=True, cos_beta_b=cb))
+                             shape, mesh_dim=True, cos_beta_b=cb, model=model))
     coords = {
         "speed": variable(("speed",), speeds, "rpm", "speed of the gears"),
         "sample_speed": variable(("sample_speed",), speeds, "rpm", "speed of the kept time series"),
@@ -970,8 +990,11 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
         "fourier_order": fourier_order,
         "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
         else ("none" if backlash_um is None else "given"),
-        "assumptions": "three alike gears (the pair file's gear); plate drives, impression loaded, blanket idles; "
-                       "seed 001 bearings; meshes in phase unless phase_offsets_cycles; centres on one line",
+        "assumptions": "three alike gears (the pair file's gear, its supports for all three); plate drives, "
+                       "impression loaded, blanket idles; meshes in phase unless phase_offsets_cycles; centres on "
+                       "one line",
+        "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
+        "damping_ratio_meaning": DAMPING_MEANING,
     })
     return name_force_lines(ds, "normal")
 

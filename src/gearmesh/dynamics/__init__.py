@@ -66,10 +66,19 @@ Stiffness: k_m(t) is the stiffness along the normal, K_n = K/cos²βb, with K th
 TVMS of :func:`gearmesh.stiffness.mesh_stiffness`, as a function of the pinion roll
 r_b1·Ω·t (Ω the nominal speed; the vibration does not change the mesh phase, the usual
 assumption). Either its Fourier series of order 3 (seed 004) or the full tabulated curve
-(periodic linear interpolation). Mesh damping c_m = 2ζ√(k̄_n m_e), m_e = 1/[cos²βb·
-(r_b1²/I_p + r_b2²/I_g)] the equivalent mass along δ, ζ = 0.07 by default (a mid value of
-the range 0.03–0.17 used in gear-pair models, e.g. Kahraman & Singh 1990, J. Sound Vib.
-142:49; Parker, Vijayakar & Imajo 2000, J. Sound Vib. 237:435).
+(periodic linear interpolation). Mesh damping: ζ = 0.07 by default (a mid value of the range
+0.03–0.17 used in gear-pair models, e.g. Kahraman & Singh 1990, J. Sound Vib. 142:49; Parker,
+Vijayakar & Imajo 2000, J. Sound Vib. 237:435) is the *modal damping ratio of the mesh mode*
+(the mode with the largest share of its strain energy in the mesh; −Re λ/|λ| of the complex
+eigenvalues of the linearised model, bearing damping included): c_m = s·2ζ√(k̄_n m_e),
+m_e = 1/[cos²βb·(r_b1²/I_p + r_b2²/I_g)] the torsional equivalent mass along δ, with the scale s
+found so (s = 1 with rigid supports; before issue 28 s was 1 always, and on the default pair
+the mesh mode, which also moves the bodies on their bearings, had ζ = 0.095).
+
+Supports (:mod:`gearmesh.supports`): each gear body sits on a radial (x, y) and an axial (z)
+spring from the pair file (bearings, with the shaft's bending in series); a rigid direction is
+no coordinate of the model (held at zero), so both rigid is the torsional model of ISO 6336-1's
+resonance speed n_E1 (:mod:`gearmesh.dynamics.iso6336`).
 
 The rigid-body rotation is removed: the rotations enter only through the relative
 (transverse) coordinates q_i = r_b,drv θ_drv − r_b,drn θ_drn of each mesh; with J the
@@ -132,13 +141,13 @@ check. The step loop is compiled (numba; :mod:`gearmesh.dynamics.integrate`).
 
 from .excitation import EXCITATIONS, FOURIER_TABLE_POINTS, STIFFNESS_FORMS, MeshLaw, contact_mesh_law, mesh_law
 from .integrate import FIRST_PART_AFTER_A, MAX_STEPS_PER_SPEED, SolverSettings, SweepResult, simulate, step_plan
-from .model import (DEFAULT_DAMPING_RATIO, RESONANCE_OFFSETS, SEED001_BEARING, TRAIN_GEARS, GearModel, mesh_energy_fraction,
+from .model import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, RESONANCE_OFFSETS, full_translations, mesh_mode, SEED001_BEARING, TRAIN_GEARS, GearModel, mesh_energy_fraction,
                     pair_model, require_dynamics_data, resonance_band, resonance_speeds, train_model)
 from .reference import reference_solution, simulate_numpy
 
 __all__ = [
     "EXCITATIONS", "FOURIER_TABLE_POINTS", "STIFFNESS_FORMS", "MeshLaw", "contact_mesh_law", "mesh_law",
     "FIRST_PART_AFTER_A", "MAX_STEPS_PER_SPEED", "SolverSettings", "SweepResult", "simulate", "step_plan",
-    "DEFAULT_DAMPING_RATIO", "SEED001_BEARING", "TRAIN_GEARS", "GearModel", "pair_model", "require_dynamics_data",
+    "DAMPING_MEANING", "DEFAULT_DAMPING_RATIO", "full_translations", "mesh_mode", "SEED001_BEARING", "TRAIN_GEARS", "GearModel", "pair_model", "require_dynamics_data",
     "resonance_speeds", "resonance_band", "mesh_energy_fraction", "RESONANCE_OFFSETS", "train_model", "reference_solution", "simulate_numpy",
 ]

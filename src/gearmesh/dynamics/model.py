@@ -5,7 +5,7 @@ the documents in the package docstring (:mod:`gearmesh.dynamics`)."""
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any, Mapping, Sequence
 
 import numpy as np
@@ -13,12 +13,21 @@ import numpy as np
 from ..errors import GearmeshInputError
 from ..gear import PairGeometry
 from ..meshforce import MeshForceTable
+from ..supports import DEFAULT_SUPPORTS_N_PER_UM
 from .excitation import MeshLaw, contact_mesh_law, mesh_law
 
-#: Seed 001 §4 bearing values: k_x = k_y = 1.5e8 N/m, k_z = 1e7 N/m, c = 1000 N·s/m.
-SEED001_BEARING = {"k_radial": 1.5e8, "k_axial": 1.0e7, "c_radial": 1.0e3, "c_axial": 1.0e3}
+#: Seed 001 §4 bearing values: k_x = k_y = 1.5e8 N/m, k_z = 1e7 N/m, c = 1000 N·s/m. The
+#: stiffnesses are the supports of a pair file that gives none (:mod:`gearmesh.supports`); the
+#: damping values are the bearing damping of every model unless the call says otherwise.
+SEED001_BEARING = {"k_radial": DEFAULT_SUPPORTS_N_PER_UM["bearing_radial_stiffness_N_per_um"] * 1e6,
+                   "k_axial": DEFAULT_SUPPORTS_N_PER_UM["bearing_axial_stiffness_N_per_um"] * 1e6,
+                   "c_radial": 1.0e3, "c_axial": 1.0e3}
 #: Mesh damping ratio ζ: a mid value of the 0.03–0.17 range of gear-pair models (package docstring).
 DEFAULT_DAMPING_RATIO = 0.07
+#: What ``damping_ratio`` means (dataset attrs): :func:`_with_mesh_damping`.
+DAMPING_MEANING = ("modal damping ratio of the mesh mode (the mode with the largest share of its strain energy in "
+                   "the mesh; complex eigenvalues of the linearised model at the mean mesh stiffness, bearing damping "
+                   "included); the mesh damper c_m is sized to give it")
 
 @dataclass(frozen=True)
 class GearModel:
@@ -201,28 +210,62 @@ def _reduced_matrices(M, Kb, Cb, Gfull, tau, rot_idx, R):
 
 
 def _reduce(name, M, Kb, Cb, Gfull, tau, rot_idx, R, meshes, damping, backlash, static_force, fmesh_per_rpm,
-            teeth, names_full, cos_beta_b):
+            teeth, names_full, cos_beta_b, translations):
     """Reduced model from full matrices: translations kept, rotations → q = R θ."""
     Kr, Cr, B, G, f0 = _reduced_matrices(M, Kb, Cb, Gfull, tau, rot_idx, R)
     trans = [i for i in range(M.shape[0]) if i not in rot_idx]
     names = tuple([names_full[i] for i in trans] + [f"q{i + 1}" for i in range(R.shape[0])])
     full = {"M": M, "K_bearing": Kb, "C_bearing": Cb, "G": Gfull, "forces": tau, "names": tuple(names_full),
-            "R": R, "rotations": tuple(rot_idx)}
+            "R": R, "rotations": tuple(rot_idx), "translations": tuple(translations)}
     return GearModel(name=name, names=names, n_trans=len(trans), Kr=Kr, Cr=Cr, B=B, G=G, f0=f0, meshes=tuple(meshes),
                      damping=np.asarray(damping, dtype=float), backlash=backlash,
                      static_force=np.asarray(static_force, dtype=float), mesh_frequency_per_rpm=fmesh_per_rpm,
                      teeth_driver=teeth, full=full, cos_beta_b=float(cos_beta_b))
 
 
-def _bearing_settings(bearing: Mapping[str, float] | None) -> dict[str, float]:
-    """Seed 001's bearing values overridden by ``bearing``: known keys, stiffness > 0 (an
-    unsupported direction would leave a rigid-body mode), damping ≥ 0."""
-    out = {**SEED001_BEARING, **(bearing or {})}
-    for key, v in out.items():
+def _bearing_settings(geom: PairGeometry, bearing: Mapping[str, float] | None) -> dict[str, Any]:
+    """The supports of each gear: the pair file's (:class:`gearmesh.supports.Supports`, shaft
+    bending included) with any of ``bearing``'s keys overriding them for both gears (stiffness
+    > 0 in N/m or inf for rigid: an unsupported direction would leave a rigid-body mode), and
+    the bearing damping (≥ 0, N·s/m; default seed 001's). Stiffnesses as [pinion, gear] tuples."""
+    given = dict(bearing or {})
+    for key, v in given.items():
         if key not in SEED001_BEARING:
             raise GearmeshInputError(f"bearing.{key}", v, f"unknown key; allowed {sorted(SEED001_BEARING)}")
-        (_check_positive if key.startswith("k_") else _check_nonneg)(f"bearing.{key}", v)
+        if key.startswith("k_"):
+            if not (isinstance(v, (int, float, np.floating)) and v == math.inf):
+                _check_positive(f"bearing.{key}", v)
+        else:
+            _check_nonneg(f"bearing.{key}", v)
+    sup = geom.pair.supports
+    out: dict[str, Any] = {"k_radial": sup.radial(geom.pair.material.youngs_modulus), "k_axial": sup.axial(),
+                           "c_radial": SEED001_BEARING["c_radial"], "c_axial": SEED001_BEARING["c_axial"]}
+    for key, v in given.items():
+        out[key] = (float(v), float(v)) if key.startswith("k_") else float(v)
     return out
+
+
+def _constrain(names, M, Kb, Cb, G, tau, rot_idx):
+    """The full matrices without the translations on rigid (infinite) supports, which hold their
+    coordinate at zero and so leave the model; rotation indices remapped."""
+    keep = [i for i in range(len(names)) if i in rot_idx or math.isfinite(Kb[i, i])]
+    ix = np.ix_(keep, keep)
+    rot = [keep.index(i) for i in rot_idx]
+    return (tuple(names[i] for i in keep), M[ix], np.where(np.isfinite(Kb[ix]), Kb[ix], 0.0), Cb[ix],
+            G[:, keep], tau[keep], rot)
+
+
+def full_translations(model: "GearModel", a: np.ndarray, axis: int = 0) -> np.ndarray:
+    """``a`` (the model's n_trans translations first along ``axis``) with every translation of the
+    unconstrained model in its place (``model.full['translations']``), zero where a support is rigid."""
+    a = np.moveaxis(np.asarray(a), axis, 0)
+    names = model.full.get("translations", model.names[:model.n_trans])
+    kept = list(model.names[:model.n_trans])
+    out = np.zeros((len(names),) + a.shape[1:], dtype=a.dtype)
+    for i, nm in enumerate(names):
+        if nm in kept:
+            out[i] = a[kept.index(nm)]
+    return np.moveaxis(out, 0, axis)
 
 
 def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray | None, *,
@@ -237,10 +280,11 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
     geom : pair geometry with bore radius and material (masses, inertias).
     torque_out : output (gear) torque T_out (N·m), > 0; T_in = T_out r_b1/r_b2.
     K_transverse : (P,) transverse TVMS K (N/m) evenly over one base pitch.
-    bearing : k_radial, k_axial (N/m), c_radial, c_axial (N·s/m), same for both gears
-        (default seed 001: 1.5e8, 1e7, 1000, 1000).
-    damping_ratio : mesh damping ratio ζ (-) on the mean normal stiffness and the equivalent
-        mass (ignored when ``mesh_damping`` (N·s/m) is given).
+    bearing : overrides for both gears of k_radial, k_axial (N/m, inf: rigid), c_radial, c_axial
+        (N·s/m); the stiffnesses default to the pair file's supports (:mod:`gearmesh.supports`, seed
+        001's 1.5e8 / 1e7 when it gives none), the damping to seed 001's 1000 N·s/m.
+    damping_ratio : modal damping ratio ζ (-) of the mesh mode, the mesh damper sized to give it
+        (:func:`_with_mesh_damping`; ignored when ``mesh_damping`` (N·s/m) is given).
     backlash : total backlash 2b0 (m) along the normal; None = no backlash (contact never
         lost: f(δ) = δ, a linear time-varying model).
     stiffness_form, order, excitation, transmission_error : see :func:`mesh_law`.
@@ -249,7 +293,7 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
     """
     require_dynamics_data(geom)
     torque_out = _check_positive("torque_Nm", torque_out)
-    bearing = _bearing_settings(bearing)
+    bearing = _bearing_settings(geom, bearing)
     damping_ratio = _check_nonneg("damping_ratio", damping_ratio)
     rb1, rb2 = (float(r) for r in geom.base_radius)
     torque_in = torque_out * rb1 / rb2
@@ -264,19 +308,70 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
     ip, ig = (float(x) for x in geom.inertia)
     names = ("x_pinion", "y_pinion", "z_pinion", "theta_pinion", "x_gear", "y_gear", "z_gear", "theta_gear")
     M = np.diag([mp, mp, mp, ip, mg, mg, mg, ig])
-    kr, ka, cr, ca = bearing["k_radial"], bearing["k_axial"], bearing["c_radial"], bearing["c_axial"]
-    Kb = np.diag([kr, kr, ka, 0, kr, kr, ka, 0])
+    (kr1, kr2), (ka1, ka2), cr, ca = bearing["k_radial"], bearing["k_axial"], bearing["c_radial"], bearing["c_axial"]
+    Kb = np.diag([kr1, kr1, ka1, 0, kr2, kr2, ka2, 0])
     Cb = np.diag([cr, cr, ca, 0, cr, cr, ca, 0])
     g = np.array([[cb * math.sin(a), cb * math.cos(a), -h * sb, cb * rb1,
                    -cb * math.sin(a), -cb * math.cos(a), h * sb, -cb * rb2]])
     tau = np.array([0, 0, 0, torque_in, 0, 0, 0, -torque_out])
     R = np.array([[rb1, -rb2]])
-    me = _equivalent_mass(cb, (rb1, rb2), (ip, ig))
-    c_m = mesh_damping if mesh_damping is not None else 2 * damping_ratio * math.sqrt(law.k_mean * me)
     f_static = torque_out / (rb2 * cb)
-    return _reduce(geom.pair.name, M, Kb, Cb, g, tau, [3, 7], R, [law], [c_m],
-                   math.inf if backlash is None else _check_nonneg("backlash_um", backlash),
-                   [f_static], geom.pair.teeth[0] / 60.0, geom.pair.teeth[0], names, cb)
+    trans = tuple(nm for i, nm in enumerate(names) if i not in (3, 7))
+    names, M, Kb, Cb, g, tau, rot = _constrain(names, M, Kb, Cb, g, tau, [3, 7])
+    model = _reduce(geom.pair.name, M, Kb, Cb, g, tau, rot, R, [law], [0.0],
+                    math.inf if backlash is None else _check_nonneg("backlash_um", backlash),
+                    [f_static], geom.pair.teeth[0] / 60.0, geom.pair.teeth[0], names, cb, trans)
+    return _with_mesh_damping(model, mesh_damping, damping_ratio, (rb1, rb2), (ip, ig))
+
+
+def mesh_mode(model: GearModel) -> int:
+    """Index (in :meth:`GearModel.modes`) of the mesh mode: the mode with the largest share of its
+    strain energy in the meshes (:func:`mesh_energy_fraction`)."""
+    return int(np.argmax(mesh_energy_fraction(model, model.modes()["shapes"])))
+
+
+def _mesh_mode_eigenvalue(model: GearModel, damping: np.ndarray, near: complex | None = None) -> complex:
+    """Eigenvalue λ of the mesh mode (:func:`mesh_mode`) with mesh damping ``damping`` (N·s/m); with
+    ``near``, the eigenvalue (Im λ > 0) nearest it, from the eigenvalues alone (the same mode while the
+    damping changes: cheaper than the shapes)."""
+    trial = replace(model, damping=np.asarray(damping, dtype=float))
+    if near is None:
+        return complex(trial.modes()["eigenvalue"][mesh_mode(trial)])
+    lam = np.linalg.eigvals(trial._state_matrix(None))
+    lam = lam[lam.imag > 0]
+    return complex(lam[np.argmin(np.abs(lam - near))])
+
+
+def _with_mesh_damping(model: GearModel, mesh_damping: float | None, damping_ratio: float, rb, inertia) -> GearModel:
+    """``model`` with its mesh damping: ``mesh_damping`` (N·s/m) on every mesh when given, else
+    the damping that makes the modal damping ratio of the mesh mode (:func:`mesh_mode`: complex
+    eigenvalues of the state matrix, ζ = −Re λ/|λ|, bearing damping included) equal to
+    ``damping_ratio``. The meshes share one scale s on c_0 = 2ζ√(k̄ m_e) (m_e the torsional
+    equivalent mass along the normal, :func:`_equivalent_mass`): with rigid supports s = 1, the
+    torsional mode's ζ. ζ(s) is nearly affine in s; secant steps reach it to 10⁻⁹ in two or three
+    eigenvalue solves. When the bearings alone damp the mesh mode more than ζ, the damper is zero."""
+    if mesh_damping is not None:
+        return replace(model, damping=np.full(model.m, _check_nonneg("mesh_damping_Ns_per_m", mesh_damping)))
+    me = _equivalent_mass(model.cos_beta_b, rb, inertia)
+    c0 = np.array([2 * damping_ratio * math.sqrt(ml.k_mean * me) for ml in model.meshes])
+    if damping_ratio == 0:
+        return replace(model, damping=c0)
+
+    def zeta(lam: complex) -> float:
+        return -lam.real / abs(lam)
+
+    lam1 = _mesh_mode_eigenvalue(model, c0)
+    s0, z0 = 0.0, zeta(_mesh_mode_eigenvalue(model, 0 * c0, near=lam1))
+    if z0 >= damping_ratio:
+        return replace(model, damping=0 * c0)
+    s1, z1 = 1.0, zeta(lam1)
+    for _ in range(8):
+        if abs(z1 - damping_ratio) <= 1e-9 * damping_ratio or z1 == z0:
+            break
+        s0, z0, s1 = s1, z1, max(s1 + (damping_ratio - z1) * (s1 - s0) / (z1 - z0), 0.5 * s1)
+        lam1 = _mesh_mode_eigenvalue(model, s1 * c0, near=lam1)
+        z1 = zeta(lam1)
+    return replace(model, damping=s1 * c0)
 
 
 TRAIN_GEARS = ("plate", "blanket", "impression")
@@ -291,14 +386,15 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | No
 
     The three gears are the pair file's gear (index 1) repeated, the pair's TVMS serving both
     meshes (assumption: seed 004's gears are alike, 88 teeth each), the plate driven by
-    ``torque`` (N·m) and the impression loaded by it; y along the line of centres, bearing
-    'k_radial' for y, 'k_axial' for z. ``phase_offsets`` (mesh cycles) shift each mesh's
+    ``torque`` (N·m) and the impression loaded by it; y along the line of centres, each gear on
+    the pair file's gear supports (radial for y, axial for z; ``bearing`` overrides them as in
+    :func:`pair_model`). ``phase_offsets`` (mesh cycles) shift each mesh's
     TVMS (default in phase: seed 004 finds the two mesh forces nearly identical). With
     ``contact`` (the pair's mesh force table) both meshes are driven by the real contact.
     """
     require_dynamics_data(geom)
     torque = _check_positive("torque_Nm", torque)
-    bearing = _bearing_settings(bearing)
+    bearing = _bearing_settings(geom, bearing)
     if len(phase_offsets) != 2 or not all(math.isfinite(float(p)) for p in phase_offsets):
         raise GearmeshInputError("phase_offsets", phase_offsets, "must give two finite mesh-cycle offsets")
     rb = float(geom.base_radius[1])
@@ -314,7 +410,7 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | No
                 for p in phase_offsets]
     names = tuple(f"{d}_{g}" for g in TRAIN_GEARS for d in ("y", "z", "theta"))
     M = np.diag([m_, m_, j_] * 3)
-    kr, ka, cr, ca = bearing["k_radial"], bearing["k_axial"], bearing["c_radial"], bearing["c_axial"]
+    kr, ka, cr, ca = bearing["k_radial"][1], bearing["k_axial"][1], bearing["c_radial"], bearing["c_axial"]
     Kb = np.diag([kr, ka, 0] * 3)
     Cb = np.diag([cr, ca, 0] * 3)
     sa = math.sin(a)
@@ -324,13 +420,13 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | No
     tau = np.zeros(9)
     tau[2], tau[8] = torque, -torque
     R = np.array([[rb, -rb, 0.0], [0.0, rb, -rb]])
-    me = _equivalent_mass(cb, (rb, rb), (j_, j_))
-    c_m = [mesh_damping if mesh_damping is not None else 2 * damping_ratio * math.sqrt(ml.k_mean * me)
-           for ml in laws]
     f_static = torque / (rb * cb)
-    return _reduce("train", M, Kb, Cb, G, tau, [2, 5, 8], R, laws, c_m,
-                   math.inf if backlash is None else _check_nonneg("backlash_um", backlash),
-                   [f_static, f_static], geom.pair.teeth[1] / 60.0, geom.pair.teeth[1], names, cb)
+    trans = tuple(nm for i, nm in enumerate(names) if i not in (2, 5, 8))
+    names, M, Kb, Cb, G, tau, rot = _constrain(names, M, Kb, Cb, G, tau, [2, 5, 8])
+    model = _reduce("train", M, Kb, Cb, G, tau, rot, R, laws, [0.0, 0.0],
+                    math.inf if backlash is None else _check_nonneg("backlash_um", backlash),
+                    [f_static, f_static], geom.pair.teeth[1] / 60.0, geom.pair.teeth[1], names, cb, trans)
+    return _with_mesh_damping(model, mesh_damping, damping_ratio, (rb, rb), (j_, j_))
 
 
 def resonance_speeds(model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> dict[str, np.ndarray]:

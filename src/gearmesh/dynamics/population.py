@@ -17,8 +17,9 @@ method B. Its largest value over the speeds is the peak dynamic mesh force over 
 
 Why the 8-DOF pair and not the torsional (rigid-bearing) model: with the compiled loop and the
 shooting solve one speed of the 8-DOF pair costs about 0.2 ms, as much as the torsional model, and
-on the default pair the bearings move the mesh resonance from about 5000 r/min (torsional) to
-about 6500 r/min (8-DOF), so the torsional model would rank candidates on the wrong resonance.
+on the default pair its supports (the pair file's) move the mesh resonance from about 4900 r/min
+(torsional) to about 7200 r/min (8-DOF), so the torsional model would rank candidates on the wrong
+resonance.
 
 The table of a population member is coarser than the study's (``positions`` 64, ``approaches``
 32, ``points`` 50 by default): on the default pair the peak mesh forces of 7 speeds agree with the

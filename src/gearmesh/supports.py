@@ -1,0 +1,189 @@
+"""Supports of the gear bodies: bearing and shaft stiffness at the gear centre (SI units).
+
+The dynamics (:mod:`gearmesh.dynamics`) hold each gear body on a radial spring (x, y) and an
+axial spring (z). The pair file says what they are (:class:`Supports`, keys
+``bearing_radial_stiffness_N_per_um``, ``bearing_axial_stiffness_N_per_um`` and optionally
+``shaft_diameter_mm``, ``bearing_span_mm``); left out, seed 001 §4's values (stated as a
+default in every result). ``rigid`` removes the direction from the model: both directions
+rigid is the torsional model of ISO 6336-1's resonance speed n_E1.
+
+Closed forms (each checked in ``tests/test_supports.py``):
+
+* Shaft bending, the gear at mid-span of a simply supported shaft of span L and diameter d:
+  k_s = 48 E I / L³, I = π d⁴/64 (Roark's Formulas for Stress and Strain, 7th ed., Table 8.1
+  case 1e; Timoshenko & Gere, Mechanics of Materials). The gear's slope is zero at mid-span,
+  so the shaft adds no tilt to the 8-DOF model. It acts in series with the bearings:
+  1/k = 1/k_bearings + 1/k_s (radial). The shaft's axial compliance L/(2EA) is left out (for
+  the default pair 3 % and 1 % of the bearings').
+* Rolling bearing (line contact): Palmgren's roller–raceway approach δ = 3.84·10⁻⁵ Q^0.9 /
+  l^0.8 (mm, N, mm; Palmgren 1959, Ball and Roller Bearing Engineering; Harris & Kotzalas
+  2007, Rolling Bearing Analysis, 5th ed., Vol. 1 §6.5) at the inner and the outer raceway,
+  the most loaded roller's Q_max = 4.08 F_r/(Z cos α) for zero clearance (half the rollers
+  loaded, Sjövall's integral J_r(0.5) = 0.2453 for line contact; Harris & Kotzalas §7.2), the
+  axial load shared by all Z rollers, Q = F_a/(Z sin α). The stiffness is the tangent at the
+  load, F/(0.9 δ) (δ ∝ F^0.9), the same law as the LTCA's tooth contact.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, Mapping
+
+from .errors import GearmeshInputError
+
+#: Palmgren's line-contact constant: δ (mm) = PALMGREN_LINE · Q^0.9 (N) / l^0.8 (mm), one raceway.
+PALMGREN_LINE = 3.84e-5
+#: Most loaded roller of a line-contact bearing with zero clearance: Q_max = 4.08 F_r / (Z cos α).
+STRIBECK_LINE = 4.08
+
+
+def shaft_bending_stiffness(youngs_modulus: float, diameter: float, span: float) -> float:
+    """Radial stiffness (N/m) at mid-span of a simply supported solid round shaft: 48 E I / L³,
+    I = π d⁴/64 (Roark, Table 8.1 case 1e). E in Pa, d and L in m."""
+    inertia = math.pi * diameter**4 / 64.0
+    return 48.0 * youngs_modulus * inertia / span**3
+
+
+def in_series(*stiffness: float) -> float:
+    """Springs in series: 1/Σ(1/k_i) (N/m); an infinite k (rigid) adds nothing."""
+    return 1.0 / sum(1.0 / k for k in stiffness if math.isfinite(k))
+
+
+def roller_bearing_stiffness(radial_load: float, axial_load: float, rollers: int, roller_length: float,
+                             contact_angle: float) -> tuple[float, float]:
+    """Tangent radial and axial stiffness (N/m) of one line-contact rolling bearing (module
+    docstring: Palmgren's approach at both raceways, Q_max = 4.08 F_r/(Z cos α), the axial load
+    on all rollers). Loads in N (> 0), roller length in m, contact angle in rad (0 < α < π/2 for
+    the axial value)."""
+    l_mm = roller_length * 1e3
+
+    def approach(q):  # both raceways, m
+        return 2.0 * PALMGREN_LINE * q**0.9 / l_mm**0.8 * 1e-3
+
+    q_r = STRIBECK_LINE * radial_load / (rollers * math.cos(contact_angle))
+    k_r = radial_load / (0.9 * approach(q_r) / math.cos(contact_angle))
+    q_a = axial_load / (rollers * math.sin(contact_angle))
+    k_a = axial_load / (0.9 * approach(q_a) / math.sin(contact_angle))
+    return k_r, k_a
+
+
+# --------------------------------------------------------------------------------------
+# The pair file's supports
+# --------------------------------------------------------------------------------------
+
+#: Pair-file keys of the supports (engineering units), each one value, [pinion, gear] or (the
+#: stiffnesses) ``rigid``.
+SUPPORT_KEYS = ("bearing_radial_stiffness_N_per_um", "bearing_axial_stiffness_N_per_um", "shaft_diameter_mm",
+                "bearing_span_mm")
+RIGID = "rigid"
+#: Supports of a pair file that says none: seed 001 §4's bearings (k_x = k_y = 1.5·10⁸ N/m,
+#: k_z = 10⁷ N/m, both gears), the only bearing values of the source documents. They belong to
+#: seed 001's small pair (d ≈ 50/130 mm), not to every gearbox: a pair file should say its own
+#: (the default study's does); which applied is stated in every dynamics result.
+DEFAULT_SUPPORTS_N_PER_UM = {"bearing_radial_stiffness_N_per_um": 150.0, "bearing_axial_stiffness_N_per_um": 10.0}
+
+
+@dataclass(frozen=True)
+class Supports:
+    """Stiffness (N/m) of each gear's support at the gear centre, [pinion, gear]: ``bearing_radial``
+    and ``bearing_axial`` of the bearings of its shaft together (``inf``: rigid), the shaft
+    ``shaft_diameter`` and ``bearing_span`` (m, or None: no shaft bending). ``defaulted``: the
+    pair file said nothing (:data:`DEFAULT_SUPPORTS_N_PER_UM`)."""
+
+    bearing_radial: tuple[float, float]
+    bearing_axial: tuple[float, float]
+    shaft_diameter: tuple[float, float] | None = None
+    bearing_span: tuple[float, float] | None = None
+    defaulted: bool = False
+
+    def radial(self, youngs_modulus: float) -> tuple[float, float]:
+        """Radial stiffness (N/m) at each gear centre: bearings in series with the shaft's bending
+        (:func:`shaft_bending_stiffness`, E of the pair's material); inf where both are rigid."""
+        if self.shaft_diameter is None:
+            return self.bearing_radial
+        return tuple(in_series(kb, shaft_bending_stiffness(youngs_modulus, d, span)) if math.isfinite(kb)
+                     else shaft_bending_stiffness(youngs_modulus, d, span)
+                     for kb, d, span in zip(self.bearing_radial, self.shaft_diameter, self.bearing_span))
+
+    def axial(self) -> tuple[float, float]:
+        """Axial stiffness (N/m) at each gear centre (the bearings'; inf: rigid)."""
+        return self.bearing_axial
+
+    def to_dict(self) -> dict[str, Any]:
+        """The pair-file keys (engineering units; ``rigid`` for inf); empty when defaulted."""
+        if self.defaulted:
+            return {}
+        out: dict[str, Any] = {
+            "bearing_radial_stiffness_N_per_um": [RIGID if math.isinf(k) else k * 1e-6 for k in self.bearing_radial],
+            "bearing_axial_stiffness_N_per_um": [RIGID if math.isinf(k) else k * 1e-6 for k in self.bearing_axial]}
+        if self.shaft_diameter is not None:
+            out["shaft_diameter_mm"] = [d * 1e3 for d in self.shaft_diameter]
+            out["bearing_span_mm"] = [s * 1e3 for s in self.bearing_span]
+        return out
+
+    def describe(self, youngs_modulus: float) -> str:
+        """One sentence for the output: the stiffnesses the dynamics uses and where they come from."""
+        def n(k):
+            return RIGID if math.isinf(k) else f"{k * 1e-6:.4g}"
+        r, a = self.radial(youngs_modulus), self.axial()
+        where = ("not given in the pair file: seed 001 §4's bearings (gearmesh.supports.DEFAULT_SUPPORTS_N_PER_UM)"
+                 if self.defaulted else "from the pair file")
+        shaft = "" if self.shaft_diameter is None else " (bearings in series with the shaft's bending)"
+        return (f"supports radial [{n(r[0])}, {n(r[1])}] N/um{shaft}, axial [{n(a[0])}, {n(a[1])}] N/um "
+                f"[pinion, gear], {where}")
+
+
+def _stiffness(key: str, value: Any) -> tuple[float, float]:
+    """One stiffness (N/µm), [pinion, gear] or ``rigid`` → (N/m, N/m), inf for rigid."""
+    def one(name, v):
+        if v == RIGID:
+            return math.inf
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+            raise GearmeshInputError(name, v, f"must be a positive number (N/um) or '{RIGID}'")
+        return float(v) * 1e6
+    if isinstance(value, (list, tuple)):
+        if len(value) != 2:
+            raise GearmeshInputError(key, value, f"must be one value, a [pinion, gear] pair or '{RIGID}'")
+        return one(f"{key}[0]", value[0]), one(f"{key}[1]", value[1])
+    v = one(key, value)
+    return v, v
+
+
+def _length(key: str, value: Any) -> tuple[float, float]:
+    def one(name, v):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+            raise GearmeshInputError(name, v, "must be a positive length (mm)")
+        return float(v) * 1e-3
+    if isinstance(value, (list, tuple)):
+        if len(value) != 2:
+            raise GearmeshInputError(key, value, "must be one value or a [pinion, gear] pair")
+        return one(f"{key}[0]", value[0]), one(f"{key}[1]", value[1])
+    v = one(key, value)
+    return v, v
+
+
+def read_supports(spec: Mapping[str, Any]) -> Supports:
+    """The supports of a pair-file mapping (its other keys ignored): both stiffnesses or neither
+    (then :data:`DEFAULT_SUPPORTS_N_PER_UM`), shaft diameter and bearing span together or not at
+    all. One :class:`~gearmesh.errors.GearmeshInputError` naming the key otherwise."""
+    given = {k: spec[k] for k in SUPPORT_KEYS if spec.get(k) is not None}
+    stiff = [k for k in SUPPORT_KEYS[:2] if k in given]
+    if len(stiff) == 1:
+        other = SUPPORT_KEYS[1] if stiff[0] == SUPPORT_KEYS[0] else SUPPORT_KEYS[0]
+        raise GearmeshInputError(other, None, f"is required with {stiff[0]} (both directions of the supports)")
+    shaft = [k for k in SUPPORT_KEYS[2:] if k in given]
+    if len(shaft) == 1:
+        other = SUPPORT_KEYS[3] if shaft[0] == SUPPORT_KEYS[2] else SUPPORT_KEYS[2]
+        raise GearmeshInputError(other, None, f"is required with {shaft[0]} (the shaft's bending needs both)")
+    if shaft and not stiff:
+        raise GearmeshInputError(SUPPORT_KEYS[0], None, f"is required with {shaft[0]} (the bearings the shaft "
+                                 "sits in)")
+    if not stiff:
+        d = DEFAULT_SUPPORTS_N_PER_UM
+        return Supports(_stiffness(SUPPORT_KEYS[0], d[SUPPORT_KEYS[0]]),
+                        _stiffness(SUPPORT_KEYS[1], d[SUPPORT_KEYS[1]]), defaulted=True)
+    return Supports(_stiffness(SUPPORT_KEYS[0], given[SUPPORT_KEYS[0]]),
+                    _stiffness(SUPPORT_KEYS[1], given[SUPPORT_KEYS[1]]),
+                    _length(SUPPORT_KEYS[2], given[SUPPORT_KEYS[2]]) if shaft else None,
+                    _length(SUPPORT_KEYS[3], given[SUPPORT_KEYS[3]]) if shaft else None)
