@@ -1,0 +1,155 @@
+"""Load capacity of an LTCA: its stress variables for ltca.nc and the CLI's ``rating --json``.
+
+Physics: :mod:`gearmesh.stress` (Hertzian pressure, ISO 6336-3 local root stress) and
+:mod:`gearmesh.rating` (ISO 6336-2/-3 method B, load factors from the LTCA). Engineering units
+at the boundary, SI in the Dataset variables (units and long_name on each).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Mapping
+
+import numpy as np
+import xarray as xr
+
+from ..errors import GearmeshInputError
+from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry, pair_notes
+from ..io import variable
+from ..limits import check_contact_grid
+from ..ltca import LTCAResult, loaded_pinion_torques, ltca
+from ..rating import face_factor_root, ltca_load_factors, rating, rating_inputs
+from ..stress import ContactStress, contact_stress, iso_root_stress_slices
+
+__all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "rating_summary"]
+
+#: Mesh orders of the loaded-TE harmonics stored per torque.
+MESH_ORDERS = (1, 2, 3)
+
+
+def _edge_radius(geom: PairGeometry) -> float | None:
+    value = dict(geom.pair.rating_inputs).get("tip_edge_radius_mm")
+    return None if value is None else value * 1e-3
+
+
+def _unmodified(geom: PairGeometry) -> PairGeometry | None:
+    """The pair without micro-geometry (the K_Hα reference), or None when it has none."""
+    if all(m.is_zero for m in geom.pair.modification):
+        return None
+    return pair_geometry(geom.pair.with_changes(modification=(Modification(), Modification())))
+
+
+def load_capacity(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | None = None) -> dict[str, Any]:
+    """Stresses and load factors of an LTCA result (SI): ``contact`` (:class:`ContactStress`),
+    ``root`` (T, P, J, N, 2) ISO 6336-3 local root stress of pinion and gear teeth (Pa),
+    ``K_Hbeta``, ``K_Fbeta``, ``K_Halpha`` (T,), ``te_harmonics`` (T, 3) amplitudes of the loaded
+    TE at mesh orders 1–3 (m). ``reference`` is the unmodified pair's LTCA (K_Hα; None: K_Hα = 1)."""
+    g = res.grid
+    w = res.line_load
+    contact = contact_stress(geom, w, g.region, g.rho_pinion, g.rho_gear, _edge_radius(geom))
+    root = np.stack([iso_root_stress_slices(geom, 0, w, g.rho_pinion),
+                     iso_root_stress_slices(geom, 1, w, g.rho_gear)], axis=-1)
+    factors = ltca_load_factors(res.load, None if reference is None else reference.load)
+    b_over_h = geom.face_width / max(float(geom.tip_radius[i] - geom.root_radius[i]) for i in (0, 1))
+    k_fb = np.array([face_factor_root(k, b_over_h) for k in factors["K_Hbeta"]])
+    spec = np.fft.rfft(res.lte, axis=1)
+    n = res.lte.shape[1]
+    harm = 2.0 * np.abs(spec[:, list(MESH_ORDERS)]) / n
+    return {"contact": contact, "root": root, "K_Hbeta": factors["K_Hbeta"], "K_Fbeta": k_fb,
+            "K_Halpha": factors["K_Halpha"], "te_harmonics": harm}
+
+
+def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | None = None
+                            ) -> dict[str, xr.Variable]:
+    """The ltca.nc variables of :func:`load_capacity` (units and long names)."""
+    lc = load_capacity(geom, res, reference)
+    c: ContactStress = lc["contact"]
+    tpjn = ("torque", "position", "line", "point")
+    root = lc["root"]
+    peak_root = root.max(axis=(1, 2, 3))  # (T, 2)
+    k_ha = np.maximum(lc["K_Halpha"], 1.0)
+    return {
+        "contact_pressure": variable(tpjn, c.pressure, "Pa", "Hertzian peak pressure p0 of each point's line contact "
+                                                             "(tip edges as cylinders of radius tip_edge_radius)"),
+        "contact_half_width": variable(tpjn, c.half_width, "m", "Hertzian half-width of each point's line contact"),
+        "peak_contact_pressure": variable(("torque",), c.peak(), "Pa", "largest contact pressure over the mesh cycle"),
+        "peak_contact_pressure_on_edge": variable(("torque",), c.peak_on_edge().astype(np.int8), "1",
+                                                  "1 when the largest contact pressure sits on a tip edge, 0 on a flank"),
+        "tip_edge_radius": variable((), c.edge_radius, "m", "tip-edge rounding radius of the edge-contact pressure"
+                                    + ("" if c.edge_radius_given else " (default 0.1 m_n, assumed)")),
+        "root_stress": variable(tpjn + ("gear",), root, "Pa", "tooth-root stress of each point's tooth slice, ISO 6336-3 "
+                                "local form w cos(alpha_t)/m_n Y_F Y_S with Y_F, Y_S for the load at the point"),
+        "peak_root_stress": variable(("torque", "gear"), peak_root, "Pa",
+                                     "largest tooth-root stress over the mesh cycle and the face (ISO 6336-3 local)"),
+        "K_Hbeta_ltca": variable(("torque",), lc["K_Hbeta"], "1",
+                                 "face load factor K_Hbeta from the LTCA (peak over mean of the cycle's face load)"),
+        "K_Fbeta_ltca": variable(("torque",), lc["K_Fbeta"], "1", "face load factor K_Fbeta = K_Hbeta^N_F (ISO 6336-1)"),
+        "K_Halpha_ltca": variable(("torque",), k_ha, "1", "transverse load factor K_Halpha from the LTCA (largest "
+                                  "tooth-pair load over the unmodified pair's, at least 1)"),
+        "K_Falpha_ltca": variable(("torque",), k_ha, "1", "transverse load factor K_Falpha (= K_Halpha)"),
+        "lte_harmonics": variable(("torque", "mesh_order"), lc["te_harmonics"], "m",
+                                  "amplitude of the loaded transmission error at mesh orders 1-3"),
+    }
+
+
+def reference_ltca(geom: PairGeometry, res: LTCAResult) -> LTCAResult | None:
+    """The LTCA of the unmodified pair on ``res``'s grid and torques (None when unmodified)."""
+    base = _unmodified(geom)
+    if base is None:
+        return None
+    m = res.model
+    return ltca(base, res.torque, res.grid.roll.size, res.grid.z.size, m.lead_slope, "pinion", m.law.name, m.method,
+                res.grid.extension)
+
+
+def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", application_factor: float = 1.0,
+                   life_hours: float | None = None, factors: Mapping[str, float] | None = None, method: str = "iso",
+                   positions: int = 64, points: int = 50, lead_slope_um=(0.0, 0.0)) -> dict[str, Any]:
+    """ISO 6336-2/-3 rating at one torque and speed with the LTCA's stresses (the CLI's ``rating --json``).
+
+    Per-gear values are [pinion, gear]; ``factors_given`` names the factors given; ``factor_sources``
+    where each load factor came from; ``ltca`` the LTCA's peak contact pressure (and whether on an
+    edge), peak root stress per gear and its K factors; ``notes`` the defaults taken."""
+    from ..tca import check_lead_slope
+
+    for name, value in (("torque_Nm", torque_Nm), ("speed_rpm", speed_rpm)):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+            raise GearmeshInputError(name, value, "must be one positive number")
+    if life_hours is not None and (isinstance(life_hours, bool) or not isinstance(life_hours, (int, float))
+                                   or not math.isfinite(life_hours) or life_hours <= 0):
+        raise GearmeshInputError("life_hours", life_hours, "must be a positive number (h)")
+    if isinstance(application_factor, bool) or not isinstance(application_factor, (int, float)) \
+            or not math.isfinite(application_factor) or application_factor < 1:
+        raise GearmeshInputError("application_factor", application_factor, "must be a number ≥ 1 (ISO 6336-1 K_A)")
+    inputs = rating_inputs(dict(pair.rating_inputs))
+    geom = pair_geometry(pair)
+    positions, points = check_contact_grid(positions, points)
+    t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
+    speed1 = speed_rpm if on == "pinion" else speed_rpm * pair.teeth[1] / pair.teeth[0]
+    lead = tuple(v * 1e-6 for v in check_lead_slope(lead_slope_um))
+    res = ltca(geom, t1, positions, points, lead, "pinion")
+    lc = load_capacity(geom, res, reference_ltca(geom, res))
+    k_ha = max(float(lc["K_Halpha"][0]), 1.0)
+    r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method,
+               {"K_Hbeta": float(lc["K_Hbeta"][0]), "K_Halpha": k_ha})
+    c: ContactStress = lc["contact"]
+    g = res.grid
+    k = np.unravel_index(int(c.pressure[0].argmax()), c.pressure[0].shape)
+    root = lc["root"][0]
+    ltca_part = {
+        "peak_contact_pressure_MPa": float(c.pressure[0].max()) * 1e-6,
+        "peak_contact_pressure_at": {"on": "edge" if bool(c.edge[0][k]) else "flank",
+                                     "roll_mm": float(g.roll[k[0]]) * 1e3, "s_mm": float(g.s[k]) * 1e3,
+                                     "z_mm": float(g.z[k[2]]) * 1e3},
+        "tip_edge_radius_mm": c.edge_radius * 1e3,
+        "peak_root_stress_MPa": [float(root[..., i].max()) * 1e-6 for i in (0, 1)],
+        "K_Hbeta": float(lc["K_Hbeta"][0]), "K_Fbeta": float(lc["K_Fbeta"][0]), "K_Halpha": k_ha, "K_Falpha": k_ha,
+        "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
+    }
+    notes = pair_notes(pair) + r.notes
+    if not c.edge_radius_given:
+        notes.append(f"tip_edge_radius_mm not given: {c.edge_radius * 1e3:g} mm (0.1 m_n, an assumed edge break)")
+    notes.append("LTCA root stress: ISO 6336-3 local form per slice (Y_F, Y_S at the point's load, no Y_beta)")
+    return {"name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "method": method, **r.values,
+            "factors_given": r.given, "factor_sources": r.sources, "ltca": ltca_part, "gears": list(GEARS),
+            "notes": notes}
