@@ -413,7 +413,8 @@ def test_every_option_that_is_a_setting_has_its_declared_default(command):
 
 #: What each command needs besides its pair file.
 _REQUIRED_OPTIONS = {"stiffness": [], "ltca": ["--torque-Nm", "100"], "impact": ["--torque-Nm", "100", "--speed-rpm", "5000"],
-                     "dynamics": ["--torque-Nm", "100", "--speeds", "1000"], "optimise": ["--torque-Nm", "1000"]}
+                     "dynamics": ["--torque-Nm", "100", "--speeds", "1000"], "optimise": ["--torque-Nm", "1000"],
+                     "rating": ["--torque-Nm", "100", "--speed-rpm", "5000"]}
 
 
 def test_every_setting_option_refuses_what_the_schema_refuses_naming_the_option(capsys, tmp_path):

@@ -573,6 +573,34 @@ class PairMaterial:
     poisson_ratio: float = setting(DEFAULT_MATERIAL["poisson_ratio"], "Poisson's ratio", minimum=0,
                                    exclusive_maximum=0.5)
     density_kg_m3: float = setting(DEFAULT_MATERIAL["density_kg_m3"], "density", exclusive_minimum=0)
+    contact_fatigue_limit_MPa: float | None = setting(
+        None, "contact fatigue limit σ_Hlim of the rating (null: 1500, case-hardened steel MQ, ISO 6336-5)",
+        exclusive_minimum=0)
+    bending_fatigue_limit_MPa: float | None = setting(
+        None, "bending fatigue limit σ_Flim of the rating (null: 500, case-hardened steel MQ, ISO 6336-5)",
+        exclusive_minimum=0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PairRoughness:
+    """Surface roughness of the rating (ISO 6336-2/-3), the same on both gears."""
+
+    flank_Ra: float | None = setting(None, "flank arithmetic mean roughness Ra (null: 0.4, ground)", exclusive_minimum=0)
+    flank_Rz: float | None = setting(None, "flank mean peak-to-valley roughness Rz (null: 2.5, ground)",
+                                     exclusive_minimum=0)
+    root_Rz: float | None = setting(None, "tooth-root roughness Rz (null: 10, hobbed)", exclusive_minimum=0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PairLubricant:
+    """The oil of the rating (ISO 6336-2 Z_L)."""
+
+    viscosity_40C_mm2_s: float | None = setting(None, "kinematic viscosity at 40 °C (null: 220, ISO VG 220)",
+                                                exclusive_minimum=0)
+    viscosity_100C_mm2_s: float | None = setting(None, "kinematic viscosity at 100 °C (null: 19, ISO VG 220)",
+                                                 exclusive_minimum=0)
+    oil_temperature_C: float | None = setting(None, "oil temperature (null: 70)", exclusive_minimum=-40,
+                                              exclusive_maximum=200)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -644,6 +672,12 @@ class PairFile:
         None, "bore (inner) diameter, one or [pinion, gear], instead of bore_radius_mm", minimum=0)
     material: PairMaterial | None = setting(None, "elastic material of both gears (null or left out: steel)")
     modification: PairModification | None = setting(None, "micro-geometry of each gear")
+    accuracy_grade: int | None = setting(None, "ISO 1328-1 accuracy grade of the rating (null: 6)", minimum=1,
+                                         maximum=12)
+    roughness_um: PairRoughness | None = setting(None, "surface roughness of the rating")
+    lubricant: PairLubricant | None = setting(None, "the oil of the rating")
+    tip_edge_radius_mm: float | None = setting(None, "tip-edge rounding radius of the edge-contact pressure (null: "
+                                                     "0.1 m_n, an assumed edge break)", exclusive_minimum=0)
     source: str = setting("", "where the data come from")
 
 
