@@ -149,3 +149,30 @@ def test_cli_rating_refuses_bad_input_in_one_line(root, capsys, args, message):
     assert code == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and message in err[0]
+
+
+def test_ltca_dataset_carries_the_load_capacity_variables():
+    from gearmesh.datasets.ltca import ltca_dataset
+    from gearmesh.datasets.rating import reference_ltca
+    from gearmesh.gear import example_pair, load_pair, variant_pair
+
+    base = load_pair(example_pair("seed000_case"))
+    relief = variant_pair(base, "relief", {"modification": {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 3}}})
+    kw = dict(torques_Nm=[400.0, 1600.0], positions=16, points=20, method="transition")
+    std, mod = ltca_dataset(base, **kw), ltca_dataset(relief, **kw)
+    for name in ("contact_pressure", "peak_contact_pressure", "root_stress", "peak_root_stress", "K_Hbeta_ltca",
+                 "K_Fbeta_ltca", "K_Halpha_ltca", "K_Falpha_ltca", "lte_harmonics", "peak_contact_pressure_on_edge"):
+        assert {"units", "long_name"} <= set(mod[name].attrs), name
+    assert list(mod.mesh_order.values) == [1, 2, 3]
+    assert np.all(std.K_Halpha_ltca.values == 1.0)  # the unmodified pair is its own reference
+    # the relief variant's K_Hα: its largest tooth-pair load over the unmodified pair's
+    assert np.allclose(mod.K_Halpha_ltca.values,
+                       np.maximum(mod.pair_load.max(("position", "line")).values
+                                  / std.pair_load.max(("position", "line")).values, 1.0), rtol=1e-9)
+    # harmonics: the amplitude of order k of a mesh cycle's LTE by direct projection
+    lte = mod.lte.values[1]
+    n = lte.size
+    k = 2
+    amp = 2 * abs(np.sum(lte * np.exp(-2j * np.pi * k * np.arange(n) / n))) / n
+    assert mod.lte_harmonics.values[1, k - 1] == pytest.approx(amp, rel=1e-12)
+    assert np.all(mod.peak_root_stress.values[1] > mod.peak_root_stress.values[0])

@@ -8,6 +8,7 @@ at the boundary, SI in the Dataset variables (units and long_name on each).
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any, Mapping
 
 import numpy as np
@@ -87,6 +88,7 @@ def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCA
         "K_Halpha_ltca": variable(("torque",), k_ha, "1", "transverse load factor K_Halpha from the LTCA (largest "
                                   "tooth-pair load over the unmodified pair's, at least 1)"),
         "K_Falpha_ltca": variable(("torque",), k_ha, "1", "transverse load factor K_Falpha (= K_Halpha)"),
+        "mesh_order": variable(("mesh_order",), np.array(MESH_ORDERS), "1", "harmonic of the mesh frequency"),
         "lte_harmonics": variable(("torque", "mesh_order"), lc["te_harmonics"], "m",
                                   "amplitude of the loaded transmission error at mesh orders 1-3"),
     }
@@ -94,12 +96,22 @@ def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCA
 
 def reference_ltca(geom: PairGeometry, res: LTCAResult) -> LTCAResult | None:
     """The LTCA of the unmodified pair on ``res``'s grid and torques (None when unmodified)."""
+    from ..ltca import ltca_model
+
     base = _unmodified(geom)
     if base is None:
         return None
     m = res.model
-    return ltca(base, res.torque, res.grid.roll.size, res.grid.z.size, m.lead_slope, "pinion", m.law.name, m.method,
-                res.grid.extension)
+    extension = res.grid.extension / geom.transverse_base_pitch  # the grid keeps it in m
+    while True:  # as ltca() widens the tip-edge zone when loaded edges reach its end
+        model = ltca_model(base, res.grid.roll.size, res.grid.z.size, m.lead_slope, m.law.name, m.method,
+                           extension, tables=m.tables)  # the teeth's compliance does not see the relief
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", RuntimeWarning)
+            out = ltca(base, res.torque, model=model)
+        if not caught or extension >= 1.0:
+            return out
+        extension = min(1.0, 2.0 * extension)
 
 
 def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", application_factor: float = 1.0,
