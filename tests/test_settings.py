@@ -166,7 +166,7 @@ def _violations(schema: dict) -> list:
 
 #: The keys a section must have, with valid values.
 _REQUIRED = {"helix_sweep": {"pairs": ["p"], "start_deg": 0, "stop_deg": 10, "step_deg": 1},
-             "stiffness_table": {"pairs": ["p"]}, "slice_convergence": {"pairs": ["p"]}}
+             "stiffness_table": {"pairs": ["p"]}, "slice_convergence": {"pairs": ["p"]}, "rating": {"speed_rpm": 5000}}
 
 
 @pytest.mark.parametrize("path, cls", STAGED, ids=[p for p, _ in STAGED])

@@ -196,6 +196,20 @@ class Ltca:
 
 
 @dataclass(frozen=True, kw_only=True)
+class Rating:
+    """Load capacity of every pair and variant at the LTCA's torques: ISO 6336-2/-3 method B
+    (S_H, S_F) with the LTCA's contact pressure, root stress and load factors (rating.nc). Material,
+    accuracy, roughness and oil are the pair file's (defaults named in the dataset's notes)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.rating:rating_dataset",)
+    speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
+    application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=1)
+    life_hours: float | None = setting(None, "required life for Z_NT, Y_NT (null: endurance)", exclusive_minimum=0)
+    method: Literal["iso", "ltca"] = setting("ltca", "where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the "
+                                                     "standard's methods B/C or the LTCA's load distribution")
+
+
+@dataclass(frozen=True, kw_only=True)
 class Impact:
     """Mesh-in impact of every pair and variant over a torque × speed grid: where the entering
     pair first touches, edge or surface contact, impact velocity and force by the energy method,
@@ -532,6 +546,7 @@ class Study:
         key_pattern=r"^[A-Za-z0-9_]+$", key_max_length=NAME_LENGTH)
     tca: Tca | None = setting(None, "", fill=False)
     ltca: Ltca | None = setting(None, "", fill=False)
+    rating: Rating | None = setting(None, "", fill=False)
     impact: Impact | None = setting(None, "", fill=False)
     optimise: dict[str, Optimise] | None = setting(
         None, "named optimisations {NAME: settings}; a variant {from: optimise.NAME} runs the later stages on the "

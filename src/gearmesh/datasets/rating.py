@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from typing import Any, Mapping
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 import xarray as xr
@@ -20,9 +20,12 @@ from ..io import variable
 from ..limits import check_contact_grid
 from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..rating import face_factor_root, ltca_load_factors, rating, rating_inputs
+from ..schema import check_arguments
+from ..settings import Rating
 from ..stress import ContactStress, contact_stress, iso_root_stress_slices
 
-__all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "rating_summary"]
+__all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "reference_ltca", "rating_summary",
+           "rating_dataset", "load_capacity_table_dataset"]
 
 #: Mesh orders of the loaded-TE harmonics stored per torque.
 MESH_ORDERS = (1, 2, 3)
@@ -165,3 +168,82 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
     return {"name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "method": method, **r.values,
             "factors_given": r.given, "factor_sources": r.sources, "ltca": ltca_part, "gears": list(GEARS),
             "notes": notes}
+
+
+@check_arguments(Rating)
+def rating_dataset(pair: GearPair, speed_rpm: float, application_factor: float = 1.0, life_hours: float | None = None,
+                   method: str = "ltca", ltca: xr.Dataset | None = None) -> xr.Dataset:
+    """ISO 6336-2/-3 rating of a pair (a variant) at each torque of its ``ltca`` dataset (ltca.nc, with
+    the variables of :func:`load_capacity_variables`) and pinion speed ``speed_rpm`` (rating.nc): safety
+    factors, stresses and the load factors by the standard and from the LTCA, beside the LTCA's peak
+    contact pressure (and whether on an edge) and peak root stress."""
+    if not isinstance(ltca, xr.Dataset) or "K_Hbeta_ltca" not in ltca:
+        raise GearmeshInputError("ltca", type(ltca).__name__, "must be an ltca.nc dataset with its load-capacity "
+                                 "variables")
+    geom = pair_geometry(pair)
+    inputs = rating_inputs(dict(pair.rating_inputs))
+    torques = ltca["torque"].values
+    rows = []
+    for k, t1 in enumerate(torques):
+        lf = {"K_Hbeta": float(ltca["K_Hbeta_ltca"].values[k]), "K_Halpha": float(ltca["K_Halpha_ltca"].values[k])}
+        rows.append(rating(geom, float(t1), speed_rpm, inputs, application_factor, life_hours, None, method, lf))
+    tg, t = ("torque", "gear"), ("torque",)
+
+    def per_gear(key):
+        return np.array([r.values[key] for r in rows], dtype=float)
+
+    def iso(key):
+        return np.array([float(r.values["iso_factors"][key]) for r in rows])
+
+    data = {
+        "S_H": variable(tg, per_gear("S_H"), "1", "safety factor against pitting S_H = sigma_HG/sigma_H (ISO 6336-2)"),
+        "S_F": variable(tg, per_gear("S_F"), "1", "safety factor against tooth breakage S_F = sigma_FG/sigma_F "
+                                                  "(ISO 6336-3)"),
+        "sigma_H": variable(tg, per_gear("sigma_H_MPa") * 1e6, "Pa", "contact stress sigma_H (ISO 6336-2 method B)"),
+        "sigma_HP": variable(tg, per_gear("sigma_HP_MPa") * 1e6, "Pa", "permissible contact stress sigma_HP"),
+        "sigma_F": variable(tg, per_gear("sigma_F_MPa") * 1e6, "Pa", "tooth-root stress sigma_F (ISO 6336-3 method B)"),
+        "sigma_FP": variable(tg, per_gear("sigma_FP_MPa") * 1e6, "Pa", "permissible tooth-root stress sigma_FP"),
+        "K_v": variable(t, per_gear("K_v"), "1", "dynamic factor K_v (ISO 6336-1:1996 method C)"),
+    }
+    for name in ("K_Hbeta", "K_Fbeta", "K_Halpha", "K_Falpha"):
+        data[name] = variable(t, per_gear(name), "1", f"{name} used ({method})")
+        data[f"{name}_iso"] = variable(t, iso(name), "1", f"{name} by ISO 6336-1 methods B/C")
+    data.update({
+        "peak_contact_pressure": variable(t, ltca["peak_contact_pressure"].values, "Pa",
+                                          "LTCA: largest Hertzian contact pressure over the mesh cycle"),
+        "peak_contact_pressure_on_edge": variable(t, ltca["peak_contact_pressure_on_edge"].values, "1",
+                                                  "LTCA: 1 when the largest contact pressure sits on a tip edge"),
+        "peak_root_stress": variable(tg, ltca["peak_root_stress"].values, "Pa",
+                                     "LTCA: largest tooth-root stress (ISO 6336-3 local form, slice by slice)"),
+    })
+    coords = {"torque": variable(t, torques, "N m", "pinion torque T1"),
+              "gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair")}
+    ds = xr.Dataset(data_vars=data, coords=coords)
+    ds.attrs.update({"speed_rpm": float(speed_rpm), "application_factor": float(application_factor),
+                     "factor_method": method, "rating_notes": "; ".join(rows[0].notes)})
+    return ds
+
+
+def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
+    """The load capacity of every variant of a pair side by side (variant × torque): S_H and S_F of the
+    weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear."""
+    names = [ds.attrs.get("variant", f"variant{k}") for k, ds in enumerate(rating)]
+    torques = rating[0]["torque"].values
+    for name, ds in zip(names, rating):
+        if ds.sizes["torque"] != torques.size or not np.allclose(ds["torque"].values, torques, rtol=1e-12):
+            raise GearmeshInputError("ltca.torques_Nm", ds["torque"].values.tolist(),
+                                     f"must be the same for every variant ({name})")
+    stack = lambda key, f: np.array([f(ds[key].values) for ds in rating])  # noqa: E731
+    dims = ("variant", "torque")
+    return xr.Dataset({
+        "S_H": variable(dims, stack("S_H", lambda v: v.min(axis=1)), "1", "safety factor against pitting, weaker gear"),
+        "S_F": variable(dims, stack("S_F", lambda v: v.min(axis=1)), "1",
+                        "safety factor against tooth breakage, weaker gear"),
+        "peak_contact_pressure": variable(dims, stack("peak_contact_pressure", lambda v: v), "Pa",
+                                          "LTCA: largest contact pressure over the mesh cycle"),
+        "peak_contact_pressure_on_edge": variable(dims, stack("peak_contact_pressure_on_edge", lambda v: v), "1",
+                                                  "1: the largest contact pressure sits on a tip edge, 0: on a flank"),
+        "peak_root_stress": variable(dims, stack("peak_root_stress", lambda v: v.max(axis=1)), "Pa",
+                                     "LTCA: largest tooth-root stress of either gear (ISO 6336-3 local form)"),
+    }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+               "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
