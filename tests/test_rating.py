@@ -176,3 +176,21 @@ def test_ltca_dataset_carries_the_load_capacity_variables():
     amp = 2 * abs(np.sum(lte * np.exp(-2j * np.pi * k * np.arange(n) / n))) / n
     assert mod.lte_harmonics.values[1, k - 1] == pytest.approx(amp, rel=1e-12)
     assert np.all(mod.peak_root_stress.values[1] > mod.peak_root_stress.values[0])
+
+
+def test_load_capacity_table_names_the_variants_from_the_jobs_wildcards():
+    from gearmesh.datasets.rating import load_capacity_table_dataset
+
+    def ds(variant, s_h):
+        import xarray as xr
+        out = xr.Dataset({"S_H": (("torque", "gear"), [[s_h, s_h + 1]]), "S_F": (("torque", "gear"), [[3.0, 2.0]]),
+                          "peak_contact_pressure": (("torque",), [1e9]),
+                          "peak_contact_pressure_on_edge": (("torque",), [1]),
+                          "peak_root_stress": (("torque", "gear"), [[1e8, 2e8]])}, coords={"torque": [1000.0]})
+        out.attrs["gearmesh_wildcards_json"] = json.dumps({"variant": variant})
+        return out
+
+    table = load_capacity_table_dataset([ds("standard", 2.0), ds("relief", 1.5)])
+    assert list(table.variant.values) == ["standard", "relief"]
+    assert table.S_H.values.tolist() == [[2.0], [1.5]] and table.S_F.values.tolist() == [[2.0], [2.0]]
+    assert table.peak_root_stress.values.tolist() == [[2e8], [2e8]]

@@ -74,6 +74,8 @@ FACTOR_SOURCES = ("iso", "ltca")
 _K1 = {3: (2.1, 1.9), 4: (3.9, 3.5), 5: (7.5, 6.7), 6: (14.9, 13.3), 7: (26.8, 23.9), 8: (39.1, 34.8),
        9: (52.8, 47.0), 10: (76.6, 68.2), 11: (102.6, 91.4), 12: (146.3, 130.3)}
 _K2 = (0.0193, 0.0087)
+#: Range of method C's K_v: z1·v/100·√(u²/(1 + u²)) below 10 m/s (ISO 6336-1:1996 6.3.4; DIN 3990-1 3.4.3).
+METHOD_C_SPEED_LIMIT = 10.0
 
 
 @dataclass(frozen=True)
@@ -473,6 +475,10 @@ def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: R
                         "c_gamma_alpha_N_mm_um": c_ga, "c_gamma_beta_N_mm_um": c_gb},
     }
     notes = inputs.notes()
+    speed_term = z1 * v / 100.0 * math.sqrt(u**2 / (1 + u**2))
+    if sources["K_v"] == "iso" and speed_term > METHOD_C_SPEED_LIMIT:
+        notes.append(f"K_v by method C outside its range: z1 v/100 sqrt(u^2/(1+u^2)) = {speed_term:.3g} m/s > "
+                     f"{METHOD_C_SPEED_LIMIT:g} m/s; give K_v (--factor K_v=...) from a dynamic analysis")
     if life_hours is None:
         notes.append("life_hours not given: endurance (Z_NT = Y_NT = 1)")
     notes.append("Z_W = 1 (both gears case-hardened), Z_X = 1 (ISO 6336-2), S_Hmin = S_Fmin = 1 unless given")
