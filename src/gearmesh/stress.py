@@ -357,19 +357,12 @@ def fe_fillet_stress(geom: PairGeometry, gear: int, rho, plane: str = "strain", 
     """
     from skfem import ElementTriP2
 
-    from .fe import elastic_solver, gear_sector, lame_parameters, point_load_matrix, triangulate, AREA_FACTOR
-    from .tooth import contact_point, tooth_model
+    from .fe import lame_parameters, loaded_tooth, point_load_matrix
+    from .tooth import contact_point
 
-    lame_parameters(1.0, 0.3, plane)
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
-    profile, sector = gear_sector(geom, gear, rho, size, neighbours)
-    model = tooth_model(geom, gear, "transition", profile)
+    profile, sector, model, mesh, solver = loaded_tooth(geom, gear, rho, plane, size, neighbours)
     mat = geom.pair.material
-    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
-                       holes=sector.holes)
-    r_int = sector.bore_radius
-    solver = elastic_solver(mesh, mat.youngs_modulus, mat.poisson_ratio, plane,
-                            clamped=lambda x: np.hypot(x[0], x[1]) <= r_int * (1 + 1e-9))
     _, _, alpha1, _ = contact_point(model, rho)
     n_right = np.column_stack([-np.cos(alpha1), -np.sin(alpha1)])
     u = solver.solve(point_load_matrix(solver, sector.right_loads, n_right))
