@@ -131,6 +131,9 @@ def test_cli_rating_json(root, capsys):
     assert out["K_v"] == 1.2 and out["K_A"] == 1.25 and out["factors_given"] == ["K_A", "K_v"]
     assert out["ltca"]["peak_contact_pressure_at"]["on"] in ("edge", "flank")
     assert len(out["ltca"]["peak_root_stress_MPa"]) == 2
+    for fe, iso, ratio in zip(out["ltca"]["peak_root_stress_fe_MPa"], out["ltca"]["peak_root_stress_MPa"],
+                              out["ltca"]["root_stress_fe_over_iso"]):
+        assert fe == pytest.approx(iso * ratio) and 0.5 < ratio < 1.5
     assert any("contact_fatigue_limit_MPa" in n for n in out["notes"])
 
 

@@ -117,6 +117,27 @@ def reference_ltca(geom: PairGeometry, res: LTCAResult) -> LTCAResult | None:
         extension = min(1.0, 2.0 * extension)
 
 
+def _fe_root_check(geom: PairGeometry, res: LTCAResult, root: np.ndarray) -> dict[str, Any]:
+    """The FE tooth's fillet stress at each gear's peak ISO-local root-stress point, under the same
+    load (:func:`gearmesh.stress.fe_fillet_stress`, transverse slice, plane strain), and its ratio to
+    the ISO local value: where the two differ, the FE value is the one to use (docs/load_capacity.md)."""
+    from ..stress import fe_fillet_stress
+
+    g = res.grid
+    w = res.line_load[0]
+    peaks, where = [], []
+    for gear, rho_all in enumerate((g.rho_pinion, g.rho_gear)):
+        k = np.unravel_index(int(root[..., gear].argmax()), root[..., gear].shape)
+        lo, hi = float(geom.rho_form[gear]), float(geom.rho_eap[gear])
+        rho = min(max(float(rho_all[k]), lo), hi)
+        peaks.append(float(fe_fillet_stress(geom, gear, [rho]).peak[0]) * float(w[k]))
+        where.append(rho)
+    iso = [float(root[..., i].max()) for i in (0, 1)]
+    return {"peak_root_stress_fe_MPa": [p * 1e-6 for p in peaks],
+            "root_stress_fe_over_iso": [p / s if s > 0 else None for p, s in zip(peaks, iso)],
+            "peak_root_stress_roll_mm": [r * 1e3 for r in where]}
+
+
 def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", application_factor: float = 1.0,
                    life_hours: float | None = None, factors: Mapping[str, float] | None = None, method: str = "iso",
                    positions: int = 64, points: int = 50, lead_slope_um=(0.0, 0.0)) -> dict[str, Any]:
@@ -160,6 +181,7 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
         "peak_root_stress_MPa": [float(root[..., i].max()) * 1e-6 for i in (0, 1)],
         "K_Hbeta": float(lc["K_Hbeta"][0]), "K_Fbeta": float(lc["K_Fbeta"][0]), "K_Halpha": k_ha, "K_Falpha": k_ha,
         "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
+        **_fe_root_check(geom, res, root),
     }
     notes = pair_notes(pair) + r.notes
     if not c.edge_radius_given:
