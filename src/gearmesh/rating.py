@@ -39,7 +39,8 @@ from .stress import gear_root_form
 
 __all__ = [
     "DEFAULT_INPUTS", "FACTOR_NAMES", "FACTOR_SOURCES", "RatingInputs", "rating_inputs", "check_factors",
-    "iso1328_tolerances", "dynamic_factor_c", "face_load_factor_c", "transverse_load_factor_b",
+    "Rating", "iso1328_tolerances", "dynamic_factor_c", "face_load_factor_c", "face_factor_root",
+    "transverse_load_factor_b",
     "zone_factor", "elasticity_factor", "contact_ratio_factor", "single_pair_factors", "life_factor_contact",
     "life_factor_root", "lubrication_velocity_roughness", "helix_factor_root", "rim_factor",
     "deep_tooth_factor", "notch_sensitivity_factor", "root_roughness_factor", "size_factor_root",

@@ -56,7 +56,7 @@ from .gear import PairGeometry, tool_tip_radius
 __all__ = [
     "DEFAULT_TIP_EDGE_RADIUS_COEFFICIENT", "contact_modulus", "hertz_line_contact", "flank_relative_radius",
     "edge_relative_radius", "check_edge_radius", "RootForm", "virtual_gear", "root_form_factors",
-    "outer_single_contact_diameter", "FilletStress", "fe_fillet_stress", "ContactStress", "contact_stress",
+    "outer_single_contact_diameter", "gear_root_form", "virtual_load_diameter", "FilletStress", "fe_fillet_stress", "ContactStress", "contact_stress",
     "iso_root_stress_slices",
 ]
 
