@@ -136,7 +136,8 @@ def test_force_keys_name_their_line(doors):
     lines = tuple(FORCE_LINES)
     outputs = [_cli("ltca", _pair_file(doors), "--torque-Nm", str(TORQUE_NM)),
                _cli("impact", _pair_file(doors), "--torque-Nm", str(TORQUE_NM), "--speed-rpm", str(SPEED_RPM)),
-               _cli("dynamics", _pair_file(doors), "--torque-Nm", str(TORQUE_NM), "--speeds", "1000")]
+               _cli("dynamics", _pair_file(doors), "--torque-Nm", str(TORQUE_NM), "--speeds", "1000"),
+               _cli("rating", _pair_file(doors), "--torque-Nm", str(TORQUE_NM), "--speed-rpm", str(SPEED_RPM))]
 
     def keys(obj):
         if isinstance(obj, dict):
@@ -148,7 +149,7 @@ def test_force_keys_name_their_line(doors):
                 yield from keys(v)
 
     force_keys = [k for out in outputs for k in keys(out) if k.endswith("_N")]
-    assert len(force_keys) >= 7
+    assert len(force_keys) >= 8
     assert all(k.endswith(tuple(f"_{line}_N" for line in lines)) for k in force_keys), force_keys
     for path in sorted((doors / "results").rglob("*.nc")):
         ds = read_dataset(path)

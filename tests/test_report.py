@@ -37,6 +37,7 @@ NEEDS = {
     "optimise_modification": ("optimise",), "optimise_pareto": ("optimise",), "helix_sweep": ("helix_sweep",),
     "low_fluctuation_design": ("low_fluctuation_design",), "slice_convergence": ("slice_convergence",),
     "stiffness_table": ("stiffness_table",), "fe_compliance": ("fe_compliance",), "train_spectrum": ("train_dynamics",),
+    "pressure_map": ("ltca", "rating"), "root_stress_face": ("ltca", "rating"), "load_capacity_table": ("rating",),
 }
 
 

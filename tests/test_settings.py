@@ -166,7 +166,7 @@ def _violations(schema: dict) -> list:
 
 #: The keys a section must have, with valid values.
 _REQUIRED = {"helix_sweep": {"pairs": ["p"], "start_deg": 0, "stop_deg": 10, "step_deg": 1},
-             "stiffness_table": {"pairs": ["p"]}, "slice_convergence": {"pairs": ["p"]}}
+             "stiffness_table": {"pairs": ["p"]}, "slice_convergence": {"pairs": ["p"]}, "rating": {"speed_rpm": 5000}}
 
 
 @pytest.mark.parametrize("path, cls", STAGED, ids=[p for p, _ in STAGED])
@@ -414,7 +414,8 @@ def test_every_option_that_is_a_setting_has_its_declared_default(command):
 
 #: What each command needs besides its pair file.
 _REQUIRED_OPTIONS = {"stiffness": [], "ltca": ["--torque-Nm", "100"], "impact": ["--torque-Nm", "100", "--speed-rpm", "5000"],
-                     "dynamics": ["--torque-Nm", "100", "--speeds", "1000"], "optimise": ["--torque-Nm", "1000"]}
+                     "dynamics": ["--torque-Nm", "100", "--speeds", "1000"], "optimise": ["--torque-Nm", "1000"],
+                     "rating": ["--torque-Nm", "100", "--speed-rpm", "5000"]}
 
 
 def test_every_setting_option_refuses_what_the_schema_refuses_naming_the_option(capsys, tmp_path):

@@ -53,11 +53,13 @@ def pair_excitation(excitation: str | None, ltca_available: bool) -> str:
     return excitation
 
 
-#: The two lines a force is reported along; every force key ends in ``_transverse_N`` or
-#: ``_normal_N`` (JSON, CSV) and every force variable carries ``force_line`` (netCDF).
+#: The lines a force is reported along; every force key ends in ``_transverse_N``, ``_normal_N``
+#: or ``_tangential_N`` (JSON, CSV) and every force variable carries ``force_line`` (netCDF).
 #: transverse: along the transverse line of action, F_bt = T1/r_b1 (the LTCA, the impact);
-#: normal: normal to the flanks, F_bn = F_bt/cos(β_b) (the dynamics' mesh force).
+#: normal: normal to the flanks, F_bn = F_bt/cos(β_b) (the dynamics' mesh force);
+#: tangential: tangential to the reference circle, ISO 6336's F_t = T1/r1 (the rating).
 FORCE_LINES = {
     "transverse": "along the transverse line of action (F_bt = T1/r_b1)",
     "normal": "normal to the flanks (F_bn = F_bt/cos beta_b)",
+    "tangential": "tangential to the reference circle (ISO 6336's F_t = T1/r1)",
 }

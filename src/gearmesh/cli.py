@@ -145,6 +145,30 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
                         points=args.points, contact_law=args.contact_law, method=args.method)
 
 
+def _factor_option(text: str) -> tuple[str, float]:
+    """``NAME=VALUE`` of ``--factor`` as (name, value); the names and bounds are the rating's."""
+    name, sep, value = text.partition("=")
+    if not sep:
+        raise ValueError(text)
+    return name.strip(), float(value)
+
+
+_factor_option.__name__ = "NAME=VALUE (e.g. K_v=1.1)"  # argparse names the type in its refusal
+
+
+def cmd_rating(args: argparse.Namespace) -> dict[str, Any]:
+    from .datasets.rating import rating_summary
+
+    factors = {}
+    for name, value in args.factor or []:
+        if name in factors:
+            raise GearmeshInputError("--factor", name, "must be given once")
+        factors[name] = value
+    return rating_summary(_pair(args)[0], args.torque_Nm, args.speed_rpm, on=args.on,
+                          application_factor=args.application_factor, life_hours=args.life_hours, factors=factors,
+                          method=args.method, positions=args.positions, points=args.points)
+
+
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.dynamics import (check_dynamics_settings, dynamics_summary, parse_speeds, positive_torque,
                                     supports_note)
@@ -457,6 +481,25 @@ def build_parser() -> argparse.ArgumentParser:
                     "linear")
     _setting_option(p, "--method", Ltca, help=TOOTH_MODEL_HELP)
 
+    p = _command(sub, "rating", cmd_rating, "load capacity at one torque and speed: ISO 6336-2/-3 method B "
+                 "(S_H, S_F) with the LTCA's contact pressure and root stress",
+                 PAIR_HELP.replace(";", ", with its modification and rating inputs if any;"))
+    _torque_options(p, required=True)
+    p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True,
+                   help="speed (rpm) of the gear the torque acts on")
+    p.add_argument("--application-factor", dest="application_factor", type=float, default=1.0,
+                   help="application factor K_A (ISO 6336-1)")
+    p.add_argument("--life-hours", dest="life_hours", type=float, default=None,
+                   help="required life (h) for the life factors Z_NT, Y_NT (default: endurance)")
+    p.add_argument("--factor", type=_factor_option, action="append", metavar="NAME=VALUE",
+                   help="a factor given instead of computed (K_v, K_Hbeta, K_Fbeta, K_Halpha, K_Falpha, Z_L, Z_v, "
+                        "Z_R, Z_W, Z_X, Z_NT, Y_NT, Y_deltarelT, Y_RrelT, Y_X, S_Hmin, S_Fmin); repeatable")
+    p.add_argument("--method", choices=("iso", "ltca"), default="iso",
+                   help="where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the standard's methods B/C or the "
+                        "LTCA's load distribution (both are printed)")
+    _setting_option(p, "--positions", Ltca, type=int, help="LTCA rotation positions per mesh cycle")
+    _setting_option(p, "--points", Ltca, type=int, help="LTCA points per contact line")
+
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
                  "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
     _torque_options(p, required=True)
@@ -533,13 +576,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         return 0
     try:
         _check_setting_options(args)
-        for option in ("torque_Nm",):  # signs: the stages' own checks
+        for option in ("torque_Nm", "speed_rpm", "application_factor", "life_hours"):  # signs: the stages' own checks
             value = getattr(args, option, None)
             if value is not None and not math.isfinite(value):
                 raise GearmeshInputError(option, value, "must be a finite number")
         result = args.func(args)
         if result is not None and getattr(args, "loaded_pair", None) is not None:
-            result["notes"] = pair_notes(args.loaded_pair) + list(result.get("notes", []))
+            own = [n for n in result.get("notes", []) if n not in pair_notes(args.loaded_pair)]
+            result["notes"] = pair_notes(args.loaded_pair) + own
         if result is not None:
             _emit(result, args.json)
         sys.stdout.flush()

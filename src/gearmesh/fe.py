@@ -61,7 +61,7 @@ __all__ = [
     "PLANES", "DEFAULT_SIZE", "DEFAULT_NEIGHBOURS", "DEFAULT_PLANE", "DEFAULT_ROLL_NODES",
     "lame_parameters", "triangulate", "ElasticSolver", "elastic_solver", "point_load_matrix",
     "probe_displacements", "section_rigid_motion", "resample_polyline", "sector_outline",
-    "GearSector", "gear_sector", "ToothCompliance", "tooth_compliance", "fe_slice_compliance_table",
+    "GearSector", "gear_sector", "ToothCompliance", "loaded_tooth", "tooth_compliance", "fe_slice_compliance_table",
 ]
 
 PLANES = ("strain", "stress")
@@ -468,6 +468,23 @@ class ToothCompliance:
     n_dofs: int
 
 
+def loaded_tooth(geom: PairGeometry, gear: int, rho: np.ndarray, plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
+                 neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None, ring: bool = False):
+    """(profile, sector, tooth model, mesh, factorised solver) of gear ``gear`` with load points at
+    roll lengths ``rho`` (m) on its loaded tooth, the bore clamped (:func:`tooth_compliance`'s model);
+    an unknown ``plane`` refused before meshing."""
+    lame_parameters(1.0, 0.3, plane)
+    profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius, ring)
+    model = tooth_model(geom, gear, "transition", profile)
+    mat = geom.pair.material
+    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
+                       holes=sector.holes)
+    r_int = sector.bore_radius
+    solver = elastic_solver(mesh, mat.youngs_modulus, mat.poisson_ratio, plane,
+                            clamped=lambda x: np.hypot(x[0], x[1]) <= r_int * (1 + 1e-9))
+    return profile, sector, model, mesh, solver
+
+
 def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
                      neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None,
                      ring: bool = False) -> ToothCompliance:
@@ -479,16 +496,8 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
     cuts); ``bore_radius`` (m) to override the pair's (rim-thickness studies); ``ring``: the
     whole ring with only ``neighbours`` teeth each side (the domain of :mod:`gearmesh.fe3d`).
     """
-    lame_parameters(1.0, 0.3, plane)  # refuse an unknown plane before meshing
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
-    profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius, ring)
-    model = tooth_model(geom, gear, "transition", profile)
-    mat = geom.pair.material
-    mesh = triangulate(sector.vertices, sector.segments, max_area=AREA_FACTOR * sector.sizes[-1] ** 2,
-                       holes=sector.holes)
-    r_int = sector.bore_radius
-    solver = elastic_solver(mesh, mat.youngs_modulus, mat.poisson_ratio, plane,
-                            clamped=lambda x: np.hypot(x[0], x[1]) <= r_int * (1 + 1e-9))
+    profile, sector, model, mesh, solver = loaded_tooth(geom, gear, rho, plane, size, neighbours, bore_radius, ring)
     x_p, y_p, alpha1, _ = contact_point(model, rho)
     ca, sa = np.cos(alpha1), np.sin(alpha1)
     n_right = np.column_stack([-ca, -sa])

@@ -104,6 +104,7 @@ class GearPair:
     source: str = ""
     defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. DEFAULT_MATERIAL)
     supports: Supports = field(default_factory=lambda: read_supports({}))  # bearings and shafts (dynamics)
+    rating_inputs: tuple[tuple[str, Any], ...] = ()  # load-capacity inputs given ((name, value), ...), RATING_KEYS
 
     def with_changes(self, **changes: Any) -> "GearPair":
         """A copy with some fields replaced (e.g. a helix-angle sweep)."""
@@ -121,6 +122,7 @@ _PAIR_KEYS = {
     "modification", "helix_hand", "source",
     "tip_diameter_mm", "root_diameter_mm", "bore_diameter_mm", "basic_rack_profile",  # datasheet alternatives
     *SUPPORT_KEYS,  # the gearbox: bearings and shafts (gearmesh.supports)
+    "accuracy_grade", "roughness_um", "lubricant", "tip_edge_radius_mm",  # load capacity (gearmesh.rating)
 }
 #: Keys that say the same thing: at most one of each group may be given (_one_of).
 _ALTERNATIVE_KEYS = (
@@ -136,7 +138,21 @@ _ALTERNATIVE_KEYS = (
 ISO53_PROFILES = {"ISO 53 A": (1.25, 0.38), "ISO 53 B": (1.25, 0.30), "ISO 53 C": (1.25, 0.25),
                   "ISO 53 D": (1.40, 0.39)}
 _REQUIRED_KEYS = ("teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg", "face_width_mm")
-_MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3"}
+_MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3", "contact_fatigue_limit_MPa",
+                  "bending_fatigue_limit_MPa"}
+#: Pair-file keys of the load-capacity rating (path in the file → input name of gearmesh.rating, which
+#: fills and names the defaults of those not given). Checked here, on reading, by :func:`check_rating_input`.
+RATING_KEYS = {
+    ("material", "contact_fatigue_limit_MPa"): "contact_fatigue_limit_MPa",
+    ("material", "bending_fatigue_limit_MPa"): "bending_fatigue_limit_MPa",
+    ("accuracy_grade",): "accuracy_grade",
+    ("roughness_um", "flank_Ra"): "flank_Ra_um", ("roughness_um", "flank_Rz"): "flank_Rz_um",
+    ("roughness_um", "root_Rz"): "root_Rz_um",
+    ("lubricant", "viscosity_40C_mm2_s"): "viscosity_40C_mm2_s",
+    ("lubricant", "viscosity_100C_mm2_s"): "viscosity_100C_mm2_s",
+    ("lubricant", "oil_temperature_C"): "oil_temperature_C",
+    ("tip_edge_radius_mm",): "tip_edge_radius_mm",
+}
 #: Steel, for a pair file without ``material`` or without one of its keys (given keys override):
 #: E = 206 GPa and ν = 0.3 are the steel of the gear standards, ISO 6336-1:2019 (the single
 #: stiffness c' refers to E_st = 206 000 N/mm²) and ISO 6336-2:2019 (Z_E = √(E/(2π(1 − ν²))) =
@@ -299,8 +315,9 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
     rack = _basic_rack(spec.get("basic_rack_profile"), alpha_n)
 
     given_material = {} if spec.get("material") is None else _mapping("material", spec["material"], _MATERIAL_KEYS)
-    m = {**DEFAULT_MATERIAL, **given_material}
+    m = {**DEFAULT_MATERIAL, **{k: v for k, v in given_material.items() if k in DEFAULT_MATERIAL}}
     defaults = tuple(f"material.{key}" for key in DEFAULT_MATERIAL if key not in given_material)
+    rating = _rating_inputs(spec, given_material)
     nu = _number("material.poisson_ratio", m["poisson_ratio"])
     if not 0 <= nu < 0.5:
         raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
@@ -339,8 +356,49 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         source=str(spec.get("source", source)),
         defaults=defaults,
         supports=read_supports(spec),
+        rating_inputs=rating,
     )
     return _datasheet_diameters(pair, spec)
+
+
+def check_rating_input(name: str, value: Any, field_name: str | None = None) -> float | int:
+    """One load-capacity input (a name of :data:`RATING_KEYS`' values) checked: the accuracy grade
+    an integer 1..12 (ISO 1328-1), the oil temperature in (−40, 200) °C, every other a positive
+    number; GearmeshInputError naming ``field_name`` (default ``name``)."""
+    key = field_name or name
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+        raise GearmeshInputError(key, value, "must be a finite number")
+    if name == "accuracy_grade":
+        if not float(value).is_integer() or not 1 <= value <= 12:
+            raise GearmeshInputError(key, value, "must be an ISO 1328-1 accuracy grade, an integer in 1..12")
+        return int(value)
+    if name == "oil_temperature_C":
+        if not -40 < value < 200:
+            raise GearmeshInputError(key, value, "must lie in (-40, 200) °C")
+        return float(value)
+    if value <= 0:
+        raise GearmeshInputError(key, value, "must be positive")
+    return float(value)
+
+
+def _rating_inputs(spec: Mapping[str, Any], material: Mapping[str, Any]) -> tuple[tuple[str, Any], ...]:
+    """The load-capacity inputs given in a pair file, checked (:data:`RATING_KEYS`)."""
+    sections = {"roughness_um": {"flank_Ra", "flank_Rz", "root_Rz"},
+                "lubricant": {"viscosity_40C_mm2_s", "viscosity_100C_mm2_s", "oil_temperature_C"}}
+    given = {"material": material}
+    for sec, keys in sections.items():
+        if spec.get(sec) is not None:
+            given[sec] = _mapping(sec, spec[sec], keys)
+    out = []
+    for path, name in RATING_KEYS.items():
+        value = spec.get(path[0]) if len(path) == 1 else given.get(path[0], {}).get(path[1])
+        if value is not None:
+            out.append((name, check_rating_input(name, value, ".".join(path))))
+    values = dict(out)
+    if values.get("viscosity_100C_mm2_s", 0) >= values.get("viscosity_40C_mm2_s", math.inf):
+        raise GearmeshInputError("lubricant.viscosity_100C_mm2_s", values["viscosity_100C_mm2_s"],
+                                 "must be below lubricant.viscosity_40C_mm2_s")
+    return tuple(out)
 
 
 def _one_of(spec: Mapping[str, Any], keys: tuple[str, ...]) -> None:
@@ -660,6 +718,10 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
         material = {k: v for k, v in material_values(pair.material).items() if k not in defaulted}
         if material:
             out["material"] = material
+    for (*path, last), name in RATING_KEYS.items():
+        value = dict(pair.rating_inputs).get(name)
+        if value is not None:
+            (out.setdefault(path[0], {}) if path else out)[last] = value
     if any(not m.is_zero for m in pair.modification):
         out["modification"] = {
             gear: {key: getattr(mod, attr) / factor for key, (attr, factor) in _MODIFICATION_KEYS.items()}

@@ -193,6 +193,20 @@ class Ltca:
 
 
 @dataclass(frozen=True, kw_only=True)
+class Rating:
+    """Load capacity of every pair and variant at the LTCA's torques: ISO 6336-2/-3 method B
+    (S_H, S_F) with the LTCA's contact pressure, root stress and load factors (rating.nc). Material,
+    accuracy, roughness and oil are the pair file's (defaults named in the dataset's notes)."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.rating:rating_dataset",)
+    speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
+    application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=1)
+    life_hours: float | None = setting(None, "required life for Z_NT, Y_NT (null: endurance)", exclusive_minimum=0)
+    method: Literal["iso", "ltca"] = setting("ltca", "where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the "
+                                                     "standard's methods B/C or the LTCA's load distribution")
+
+
+@dataclass(frozen=True, kw_only=True)
 class Impact:
     """Mesh-in impact of every pair and variant over a torque × speed grid: where the entering
     pair first touches, edge or surface contact, impact velocity and force by the energy method,
@@ -534,6 +548,7 @@ class Study:
         key_pattern=r"^[A-Za-z0-9_]+$", key_max_length=NAME_LENGTH)
     tca: Tca | None = setting(None, "", fill=False)
     ltca: Ltca | None = setting(None, "", fill=False)
+    rating: Rating | None = setting(None, "", fill=False)
     impact: Impact | None = setting(None, "", fill=False)
     optimise: dict[str, Optimise] | None = setting(
         None, "named optimisations {NAME: settings}; a variant {from: optimise.NAME} runs the later stages on the "
@@ -575,6 +590,34 @@ class PairMaterial:
     poisson_ratio: float = setting(DEFAULT_MATERIAL["poisson_ratio"], "Poisson's ratio", minimum=0,
                                    exclusive_maximum=0.5)
     density_kg_m3: float = setting(DEFAULT_MATERIAL["density_kg_m3"], "density", exclusive_minimum=0)
+    contact_fatigue_limit_MPa: float | None = setting(
+        None, "contact fatigue limit σ_Hlim of the rating (null: 1500, case-hardened steel MQ, ISO 6336-5)",
+        exclusive_minimum=0)
+    bending_fatigue_limit_MPa: float | None = setting(
+        None, "bending fatigue limit σ_Flim of the rating (null: 500, case-hardened steel MQ, ISO 6336-5)",
+        exclusive_minimum=0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PairRoughness:
+    """Surface roughness of the rating (ISO 6336-2/-3), the same on both gears."""
+
+    flank_Ra: float | None = setting(None, "flank arithmetic mean roughness Ra (null: 0.4, ground)", exclusive_minimum=0)
+    flank_Rz: float | None = setting(None, "flank mean peak-to-valley roughness Rz (null: 2.5, ground)",
+                                     exclusive_minimum=0)
+    root_Rz: float | None = setting(None, "tooth-root roughness Rz (null: 10, hobbed)", exclusive_minimum=0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class PairLubricant:
+    """The oil of the rating (ISO 6336-2 Z_L)."""
+
+    viscosity_40C_mm2_s: float | None = setting(None, "kinematic viscosity at 40 °C (null: 220, ISO VG 220)",
+                                                exclusive_minimum=0)
+    viscosity_100C_mm2_s: float | None = setting(None, "kinematic viscosity at 100 °C (null: 19, ISO VG 220)",
+                                                 exclusive_minimum=0)
+    oil_temperature_C: float | None = setting(None, "oil temperature (null: 70)", exclusive_minimum=-40,
+                                              exclusive_maximum=200)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -658,6 +701,12 @@ class PairFile:
         None, "distance between the two bearings of each shaft, one or [pinion, gear] (with shaft_diameter_mm)",
         exclusive_minimum=0)
     modification: PairModification | None = setting(None, "micro-geometry of each gear")
+    accuracy_grade: int | None = setting(None, "ISO 1328-1 accuracy grade of the rating (null: 6)", minimum=1,
+                                         maximum=12)
+    roughness_um: PairRoughness | None = setting(None, "surface roughness of the rating")
+    lubricant: PairLubricant | None = setting(None, "the oil of the rating")
+    tip_edge_radius_mm: float | None = setting(None, "tip-edge rounding radius of the edge-contact pressure (null: "
+                                                     "0.1 m_n, an assumed edge break)", exclusive_minimum=0)
     source: str = setting("", "where the data come from")
 
 

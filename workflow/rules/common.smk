@@ -125,7 +125,8 @@ def pair_results(name):
 def variant_results(name, variant):
     """Files every micro-geometry variant of a pair gets, by the stages the study configures."""
     base = f"results/{STUDY}/{name}/{variant}"
-    stages = {"tca": "tca", "ltca": "ltca", "dynamics": "dynamics", "train_dynamics": "train", "impact": "impact"}
+    stages = {"tca": "tca", "ltca": "ltca", "dynamics": "dynamics", "train_dynamics": "train", "impact": "impact",
+              "rating": "rating"}
     return [f"{base}/{stage}.nc" for section, stage in stages.items() if section in config]
 
 
@@ -135,6 +136,8 @@ def all_targets():
     if "impact" in config:
         for name in config["pairs"]:
             targets.append(f"results/{STUDY}/{name}/impact_table.nc")
+    if "rating" in config:
+        targets += [f"results/{STUDY}/{name}/load_capacity_table.nc" for name in config["pairs"]]
     for run, section in (config.get("optimise") or {}).items():
         for name in config["pairs"]:
             base = f"results/{STUDY}/{name}/optimise/{run}"

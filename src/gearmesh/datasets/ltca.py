@@ -176,6 +176,7 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
         "contact_force_exponent": _scalar(res.model.law.force_exponent, "1",
                                           "exponent n of the local contact law F ~ delta^n (contact alone)"),
     })
+    data.update(_load_capacity_variables(geom, res))
     coords = _coords(geom, res.tca)
     coords["torque"] = variable(("torque",), res.torque, "N m", "pinion torque T1")
     ds = xr.Dataset(data_vars=data, coords=coords)
@@ -186,6 +187,13 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
                                     "normal depths divided by cos(beta_b)"),
     })
     return name_force_lines(ds, "transverse")
+
+
+def _load_capacity_variables(geom, res: LTCAResult) -> dict[str, xr.Variable]:
+    """Contact pressure, root stress, load factors and loaded-TE harmonics (:mod:`gearmesh.datasets.rating`)."""
+    from .rating import load_capacity_variables, reference_ltca
+
+    return load_capacity_variables(geom, res, reference_ltca(geom, res))
 
 
 @check_arguments(Ltca)

@@ -55,12 +55,13 @@ def plot_te_lte(ds: xr.Dataset, path: str | Path) -> Path:
     return _save(fig, path)
 
 
-def _pattern(ds: xr.Dataset, k: int, bins: int = 80):
-    """The largest line load over the mesh cycle at each (pinion roll length, z) cell (N/mm)."""
+def _pattern(ds: xr.Dataset, k: int, bins: int = 80, name: str = "line_load", scale: float = 1e-3):
+    """The largest value of ``name`` (default the line load, N/mm) times ``scale`` over the mesh cycle
+    at each (pinion roll length, z) cell."""
     sel = ds.isel(torque=k)
     rho = ds["rho_pinion"].values
     # tip-edge points of the recess touch the pinion at its tip: plot them there
-    load = sel["line_load"].values * 1e-3
+    load = sel[name].values * scale
     rho_sap, rho_eap = (float(v) for v in (ds["rho_sap"][0], ds["rho_eap"][0]))
     lo = min(rho_sap, np.nanmin(rho)) if np.isfinite(rho).any() else rho_sap
     edges = np.linspace(lo, rho_eap, bins + 1)

@@ -1,0 +1,282 @@
+"""Load capacity of an LTCA: its stress variables for ltca.nc and the CLI's ``rating --json``.
+
+Physics: :mod:`gearmesh.stress` (Hertzian pressure, ISO 6336-3 local root stress) and
+:mod:`gearmesh.rating` (ISO 6336-2/-3 method B, load factors from the LTCA). Engineering units
+at the boundary, SI in the Dataset variables (units and long_name on each).
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from typing import Any, Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..errors import GearmeshInputError
+from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry, pair_notes
+from ..io import variable
+from ..limits import check_contact_grid
+from ..ltca import LTCAResult, loaded_pinion_torques, ltca
+from ..rating import face_factor_root, ltca_load_factors, rating, rating_inputs
+from ..schema import check_arguments
+from ..settings import Rating
+from ..stress import ContactStress, contact_stress, iso_root_stress_slices
+
+__all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "reference_ltca", "rating_summary",
+           "rating_dataset", "load_capacity_table_dataset"]
+
+#: Mesh orders of the loaded-TE harmonics stored per torque.
+MESH_ORDERS = (1, 2, 3)
+
+
+def _edge_radius(geom: PairGeometry) -> float | None:
+    value = dict(geom.pair.rating_inputs).get("tip_edge_radius_mm")
+    return None if value is None else value * 1e-3
+
+
+def _unmodified(geom: PairGeometry) -> PairGeometry | None:
+    """The pair without micro-geometry (the K_Hα reference), or None when it has none."""
+    if all(m.is_zero for m in geom.pair.modification):
+        return None
+    return pair_geometry(geom.pair.with_changes(modification=(Modification(), Modification())))
+
+
+def load_capacity(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | None = None) -> dict[str, Any]:
+    """Stresses and load factors of an LTCA result (SI): ``contact`` (:class:`ContactStress`),
+    ``root`` (T, P, J, N, 2) ISO 6336-3 local root stress of pinion and gear teeth (Pa),
+    ``K_Hbeta``, ``K_Fbeta``, ``K_Halpha`` (T,), ``te_harmonics`` (T, 3) amplitudes of the loaded
+    TE at mesh orders 1–3 (m). ``reference`` is the unmodified pair's LTCA (K_Hα; None: K_Hα = 1)."""
+    g = res.grid
+    w = res.line_load
+    contact = contact_stress(geom, w, g.region, g.rho_pinion, g.rho_gear, _edge_radius(geom))
+    root = np.stack([iso_root_stress_slices(geom, 0, w, g.rho_pinion),
+                     iso_root_stress_slices(geom, 1, w, g.rho_gear)], axis=-1)
+    factors = ltca_load_factors(res.load, None if reference is None else reference.load)
+    b_over_h = geom.face_width / max(float(geom.tip_radius[i] - geom.root_radius[i]) for i in (0, 1))
+    k_fb = np.array([face_factor_root(k, b_over_h) for k in factors["K_Hbeta"]])
+    spec = np.fft.rfft(res.lte, axis=1)
+    n = res.lte.shape[1]
+    harm = 2.0 * np.abs(spec[:, list(MESH_ORDERS)]) / n
+    return {"contact": contact, "root": root, "K_Hbeta": factors["K_Hbeta"], "K_Fbeta": k_fb,
+            "K_Halpha": factors["K_Halpha"], "te_harmonics": harm}
+
+
+def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | None = None
+                            ) -> dict[str, xr.Variable]:
+    """The ltca.nc variables of :func:`load_capacity` (units and long names)."""
+    lc = load_capacity(geom, res, reference)
+    c: ContactStress = lc["contact"]
+    tpjn = ("torque", "position", "line", "point")
+    root = lc["root"]
+    peak_root = root.max(axis=(1, 2, 3))  # (T, 2)
+    k_ha = np.maximum(lc["K_Halpha"], 1.0)
+    return {
+        "contact_pressure": variable(tpjn, c.pressure, "Pa", "Hertzian peak pressure p0 of each point's line contact "
+                                                             "(tip edges as cylinders of radius tip_edge_radius)"),
+        "contact_half_width": variable(tpjn, c.half_width, "m", "Hertzian half-width of each point's line contact"),
+        "peak_contact_pressure": variable(("torque",), c.peak(), "Pa", "largest contact pressure over the mesh cycle"),
+        "peak_contact_pressure_on_edge": variable(("torque",), c.peak_on_edge().astype(np.int8), "1",
+                                                  "1 when the largest contact pressure sits on a tip edge, 0 on a flank"),
+        "tip_edge_radius": variable((), c.edge_radius, "m", "tip-edge rounding radius of the edge-contact pressure"
+                                    + ("" if c.edge_radius_given else " (default 0.1 m_n, assumed)")),
+        "root_stress": variable(tpjn + ("gear",), root, "Pa", "tooth-root stress of each point's tooth slice, ISO 6336-3 "
+                                "local form w cos(alpha_t)/m_n Y_F Y_S with Y_F, Y_S for the load at the point"),
+        "peak_root_stress": variable(("torque", "gear"), peak_root, "Pa",
+                                     "largest tooth-root stress over the mesh cycle and the face (ISO 6336-3 local)"),
+        "K_Hbeta_ltca": variable(("torque",), lc["K_Hbeta"], "1",
+                                 "face load factor K_Hbeta from the LTCA (peak over mean of the cycle's face load)"),
+        "K_Fbeta_ltca": variable(("torque",), lc["K_Fbeta"], "1", "face load factor K_Fbeta = K_Hbeta^N_F (ISO 6336-1)"),
+        "K_Halpha_ltca": variable(("torque",), k_ha, "1", "transverse load factor K_Halpha from the LTCA (largest "
+                                  "tooth-pair load over the unmodified pair's, at least 1)"),
+        "K_Falpha_ltca": variable(("torque",), k_ha, "1", "transverse load factor K_Falpha (= K_Halpha)"),
+        "mesh_order": variable(("mesh_order",), np.array(MESH_ORDERS), "1", "harmonic of the mesh frequency"),
+        "lte_harmonics": variable(("torque", "mesh_order"), lc["te_harmonics"], "m",
+                                  "amplitude of the loaded transmission error at mesh orders 1-3"),
+    }
+
+
+def reference_ltca(geom: PairGeometry, res: LTCAResult) -> LTCAResult | None:
+    """The LTCA of the unmodified pair on ``res``'s grid and torques (None when unmodified)."""
+    from ..ltca import ltca_model
+
+    base = _unmodified(geom)
+    if base is None:
+        return None
+    m = res.model
+    extension = res.grid.extension / geom.transverse_base_pitch  # the grid keeps it in m
+    while True:  # as ltca() widens the tip-edge zone when loaded edges reach its end
+        model = ltca_model(base, res.grid.roll.size, res.grid.z.size, m.lead_slope, m.law.name, m.method,
+                           extension, tables=m.tables)  # the teeth's compliance does not see the relief
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", RuntimeWarning)
+            out = ltca(base, res.torque, model=model)
+        if not caught or extension >= 1.0:
+            return out
+        extension = min(1.0, 2.0 * extension)
+
+
+def _fe_root_check(geom: PairGeometry, res: LTCAResult, root: np.ndarray) -> dict[str, Any]:
+    """The FE tooth's fillet stress at each gear's peak ISO-local root-stress point, under the same
+    load (:func:`gearmesh.stress.fe_fillet_stress`, transverse slice, plane strain), and its ratio to
+    the ISO local value: where the two differ, the FE value is the one to use (docs/load_capacity.md)."""
+    from ..stress import fe_fillet_stress
+
+    g = res.grid
+    w = res.line_load[0]
+    peaks, where = [], []
+    for gear, rho_all in enumerate((g.rho_pinion, g.rho_gear)):
+        k = np.unravel_index(int(root[..., gear].argmax()), root[..., gear].shape)
+        lo, hi = float(geom.rho_form[gear]), float(geom.rho_eap[gear])
+        rho = min(max(float(rho_all[k]), lo), hi)
+        peaks.append(float(fe_fillet_stress(geom, gear, [rho]).peak[0]) * float(w[k]))
+        where.append(rho)
+    iso = [float(root[..., i].max()) for i in (0, 1)]
+    return {"peak_root_stress_fe_MPa": [p * 1e-6 for p in peaks],
+            "root_stress_fe_over_iso": [p / s if s > 0 else None for p, s in zip(peaks, iso)],
+            "peak_root_stress_roll_mm": [r * 1e3 for r in where]}
+
+
+def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", application_factor: float = 1.0,
+                   life_hours: float | None = None, factors: Mapping[str, float] | None = None, method: str = "iso",
+                   positions: int = 64, points: int = 50, lead_slope_um=(0.0, 0.0)) -> dict[str, Any]:
+    """ISO 6336-2/-3 rating at one torque and speed with the LTCA's stresses (the CLI's ``rating --json``).
+
+    Per-gear values are [pinion, gear]; ``factors_given`` names the factors given; ``factor_sources``
+    where each load factor came from; ``ltca`` the LTCA's peak contact pressure (and whether on an
+    edge), peak root stress per gear and its K factors; ``notes`` the defaults taken."""
+    from ..tca import check_lead_slope
+
+    for name, value in (("torque_Nm", torque_Nm), ("speed_rpm", speed_rpm)):
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+            raise GearmeshInputError(name, value, "must be one positive number")
+    if life_hours is not None and (isinstance(life_hours, bool) or not isinstance(life_hours, (int, float))
+                                   or not math.isfinite(life_hours) or life_hours <= 0):
+        raise GearmeshInputError("life_hours", life_hours, "must be a positive number (h)")
+    if isinstance(application_factor, bool) or not isinstance(application_factor, (int, float)) \
+            or not math.isfinite(application_factor) or application_factor < 1:
+        raise GearmeshInputError("application_factor", application_factor, "must be a number ≥ 1 (ISO 6336-1 K_A)")
+    inputs = rating_inputs(dict(pair.rating_inputs))
+    geom = pair_geometry(pair)
+    positions, points = check_contact_grid(positions, points)
+    t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
+    speed1 = speed_rpm if on == "pinion" else speed_rpm * pair.teeth[1] / pair.teeth[0]
+    lead = tuple(v * 1e-6 for v in check_lead_slope(lead_slope_um))
+    res = ltca(geom, t1, positions, points, lead, "pinion")
+    lc = load_capacity(geom, res, reference_ltca(geom, res))
+    k_ha = max(float(lc["K_Halpha"][0]), 1.0)
+    r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method,
+               {"K_Hbeta": float(lc["K_Hbeta"][0]), "K_Halpha": k_ha})
+    c: ContactStress = lc["contact"]
+    g = res.grid
+    k = np.unravel_index(int(c.pressure[0].argmax()), c.pressure[0].shape)
+    root = lc["root"][0]
+    ltca_part = {
+        "peak_contact_pressure_MPa": float(c.pressure[0].max()) * 1e-6,
+        "peak_contact_pressure_at": {"on": "edge" if bool(c.edge[0][k]) else "flank",
+                                     "roll_mm": float(g.roll[k[0]]) * 1e3, "s_mm": float(g.s[k]) * 1e3,
+                                     "z_mm": float(g.z[k[2]]) * 1e3},
+        "tip_edge_radius_mm": c.edge_radius * 1e3,
+        "peak_root_stress_MPa": [float(root[..., i].max()) * 1e-6 for i in (0, 1)],
+        "K_Hbeta": float(lc["K_Hbeta"][0]), "K_Fbeta": float(lc["K_Fbeta"][0]), "K_Halpha": k_ha, "K_Falpha": k_ha,
+        "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
+        **_fe_root_check(geom, res, root),
+    }
+    notes = pair_notes(pair) + r.notes
+    if not c.edge_radius_given:
+        notes.append(f"tip_edge_radius_mm not given: {c.edge_radius * 1e3:g} mm (0.1 m_n, an assumed edge break)")
+    notes.append("LTCA root stress: ISO 6336-3 local form per slice (Y_F, Y_S at the point's load, no Y_beta)")
+    return {"name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "method": method, **r.values,
+            "factors_given": r.given, "factor_sources": r.sources, "ltca": ltca_part, "gears": list(GEARS),
+            "notes": notes}
+
+
+@check_arguments(Rating)
+def rating_dataset(pair: GearPair, speed_rpm: float, application_factor: float = 1.0, life_hours: float | None = None,
+                   method: str = "ltca", ltca: xr.Dataset | None = None) -> xr.Dataset:
+    """ISO 6336-2/-3 rating of a pair (a variant) at each torque of its ``ltca`` dataset (ltca.nc, with
+    the variables of :func:`load_capacity_variables`) and pinion speed ``speed_rpm`` (rating.nc): safety
+    factors, stresses and the load factors by the standard and from the LTCA, beside the LTCA's peak
+    contact pressure (and whether on an edge) and peak root stress."""
+    if not isinstance(ltca, xr.Dataset) or "K_Hbeta_ltca" not in ltca:
+        raise GearmeshInputError("ltca", type(ltca).__name__, "must be an ltca.nc dataset with its load-capacity "
+                                 "variables")
+    geom = pair_geometry(pair)
+    inputs = rating_inputs(dict(pair.rating_inputs))
+    torques = ltca["torque"].values
+    rows = []
+    for k, t1 in enumerate(torques):
+        lf = {"K_Hbeta": float(ltca["K_Hbeta_ltca"].values[k]), "K_Halpha": float(ltca["K_Halpha_ltca"].values[k])}
+        rows.append(rating(geom, float(t1), speed_rpm, inputs, application_factor, life_hours, None, method, lf))
+    tg, t = ("torque", "gear"), ("torque",)
+
+    def per_gear(key):
+        return np.array([r.values[key] for r in rows], dtype=float)
+
+    def iso(key):
+        return np.array([float(r.values["iso_factors"][key]) for r in rows])
+
+    data = {
+        "S_H": variable(tg, per_gear("S_H"), "1", "safety factor against pitting S_H = sigma_HG/sigma_H (ISO 6336-2)"),
+        "S_F": variable(tg, per_gear("S_F"), "1", "safety factor against tooth breakage S_F = sigma_FG/sigma_F "
+                                                  "(ISO 6336-3)"),
+        "sigma_H": variable(tg, per_gear("sigma_H_MPa") * 1e6, "Pa", "contact stress sigma_H (ISO 6336-2 method B)"),
+        "sigma_HP": variable(tg, per_gear("sigma_HP_MPa") * 1e6, "Pa", "permissible contact stress sigma_HP"),
+        "sigma_F": variable(tg, per_gear("sigma_F_MPa") * 1e6, "Pa", "tooth-root stress sigma_F (ISO 6336-3 method B)"),
+        "sigma_FP": variable(tg, per_gear("sigma_FP_MPa") * 1e6, "Pa", "permissible tooth-root stress sigma_FP"),
+        "K_v": variable(t, per_gear("K_v"), "1", "dynamic factor K_v (ISO 6336-1:1996 method C)"),
+    }
+    for name in ("K_Hbeta", "K_Fbeta", "K_Halpha", "K_Falpha"):
+        data[name] = variable(t, per_gear(name), "1", f"{name} used ({method})")
+        data[f"{name}_iso"] = variable(t, iso(name), "1", f"{name} by ISO 6336-1 methods B/C")
+    data.update({
+        "peak_contact_pressure": variable(t, ltca["peak_contact_pressure"].values, "Pa",
+                                          "LTCA: largest Hertzian contact pressure over the mesh cycle"),
+        "peak_contact_pressure_on_edge": variable(t, ltca["peak_contact_pressure_on_edge"].values, "1",
+                                                  "LTCA: 1 when the largest contact pressure sits on a tip edge"),
+        "peak_root_stress": variable(tg, ltca["peak_root_stress"].values, "Pa",
+                                     "LTCA: largest tooth-root stress (ISO 6336-3 local form, slice by slice)"),
+    })
+    coords = {"torque": variable(t, torques, "N m", "pinion torque T1"),
+              "gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair")}
+    ds = xr.Dataset(data_vars=data, coords=coords)
+    ds.attrs.update({"speed_rpm": float(speed_rpm), "application_factor": float(application_factor),
+                     "factor_method": method, "rating_notes": "; ".join(rows[0].notes)})
+    return ds
+
+
+def _variant_name(ds: xr.Dataset, k: int) -> str:
+    """The variant of a stage's dataset: its ``variant`` attribute, else the job's wildcards."""
+    import json
+
+    from ..upstream import WILDCARDS_ATTR
+
+    if "variant" in ds.attrs:
+        return str(ds.attrs["variant"])
+    return str(json.loads(ds.attrs.get(WILDCARDS_ATTR, "{}")).get("variant", f"variant{k}"))
+
+
+def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
+    """The load capacity of every variant of a pair side by side (variant × torque): S_H and S_F of the
+    weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear."""
+    names = [_variant_name(ds, k) for k, ds in enumerate(rating)]
+    torques = rating[0]["torque"].values
+    for name, ds in zip(names, rating):
+        if ds.sizes["torque"] != torques.size or not np.allclose(ds["torque"].values, torques, rtol=1e-12):
+            raise GearmeshInputError("ltca.torques_Nm", ds["torque"].values.tolist(),
+                                     f"must be the same for every variant ({name})")
+    stack = lambda key, f: np.array([f(ds[key].values) for ds in rating])  # noqa: E731
+    dims = ("variant", "torque")
+    return xr.Dataset({
+        "S_H": variable(dims, stack("S_H", lambda v: v.min(axis=1)), "1", "safety factor against pitting, weaker gear"),
+        "S_F": variable(dims, stack("S_F", lambda v: v.min(axis=1)), "1",
+                        "safety factor against tooth breakage, weaker gear"),
+        "peak_contact_pressure": variable(dims, stack("peak_contact_pressure", lambda v: v), "Pa",
+                                          "LTCA: largest contact pressure over the mesh cycle"),
+        "peak_contact_pressure_on_edge": variable(dims, stack("peak_contact_pressure_on_edge", lambda v: v), "1",
+                                                  "1: the largest contact pressure sits on a tip edge, 0: on a flank"),
+        "peak_root_stress": variable(dims, stack("peak_root_stress", lambda v: v.max(axis=1)), "Pa",
+                                     "LTCA: largest tooth-root stress of either gear (ISO 6336-3 local form)"),
+    }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+               "torque": variable(("torque",), torques, "N m", "pinion torque T1")})

@@ -1,0 +1,493 @@
+"""Load capacity rating of a helical pair by ISO 6336-2 (pitting) and ISO 6336-3 (tooth bending), method B.
+
+Units: the standard's own inside the formulas (N, mm, µm, N/mm², m/s), converted once at the
+entry of :func:`rating` (SI in, engineering units out with the unit in the key name).
+
+Factors (ISO 6336-1) are computed two ways, and any may be given instead (``factors``):
+
+* ``iso``: the standard's methods — K_v by the simplified method C of ISO 6336-1:1996 (6.3.4,
+  also DIN 3990-1 eq. 3.05) from the ISO 1328-1 accuracy grade; K_Hβ by method C (F_βx from
+  the pinion's bending f_sh and the mesh misalignment f_ma = f_Hβ of the grade, running-in
+  y_β, c_γβ of ISO 6336-1 method B); K_Fβ = K_Hβ^N_F; K_Hα = K_Fα by method B from the base
+  pitch deviation f_pb of the grade and the running-in y_α, with the standard's bounds.
+* ``ltca``: from the LTCA's own load distribution (ISO 6336-1 method A definitions):
+  K_Hβ = the peak over the face of the line load per unit face width summed over the mesh
+  cycle, over its mean; K_Fβ = K_Hβ^N_F; K_Hα = K_Fα = the largest load a tooth pair carries
+  over the cycle over the same of the unmodified, error-free pair's LTCA (1 for that pair).
+  K_v is the standard's (the dynamics stage's K_v is not used here).
+
+Pitting (ISO 6336-2:2006, method B): Z_H, Z_E, Z_ε, Z_β = 1/√cos β, Z_B/Z_D (single pair
+contact), σ_H0 = Z_H Z_E Z_ε Z_β √(F_t/(d1 b)·(u+1)/u), σ_H = Z_B,D σ_H0 √(K_A K_v K_Hβ K_Hα),
+σ_HG = σ_Hlim Z_NT Z_L Z_v Z_R Z_W Z_X, σ_HP = σ_HG/S_Hmin, S_H = σ_HG/σ_H.
+Bending (ISO 6336-3:2006, method B): Y_F, Y_S at the outer point of single pair tooth contact
+(:func:`gearmesh.stress.gear_root_form`), Y_β, Y_B, Y_DT, σ_F0 = F_t/(b m_n) Y_F Y_S Y_β Y_B Y_DT,
+σ_F = σ_F0 K_A K_v K_Fβ K_Fα, σ_FG = σ_Flim Y_ST Y_NT Y_δrelT Y_RrelT Y_X, σ_FP = σ_FG/S_Fmin,
+S_F = σ_FG/σ_F.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Mapping
+
+import numpy as np
+
+from .errors import GearmeshInputError
+from .gear import PairGeometry, check_rating_input
+from .stress import gear_root_form
+
+__all__ = [
+    "DEFAULT_INPUTS", "FACTOR_NAMES", "FACTOR_SOURCES", "RatingInputs", "rating_inputs", "check_factors",
+    "Rating", "iso1328_tolerances", "dynamic_factor_c", "face_load_factor_c", "face_factor_root",
+    "transverse_load_factor_b",
+    "zone_factor", "elasticity_factor", "contact_ratio_factor", "single_pair_factors", "life_factor_contact",
+    "life_factor_root", "lubrication_velocity_roughness", "helix_factor_root", "rim_factor",
+    "deep_tooth_factor", "notch_sensitivity_factor", "root_roughness_factor", "size_factor_root",
+    "ltca_load_factors", "rating",
+]
+
+#: Inputs when the pair file gives none, each named in the result's notes.
+#: Case-hardened wrought steel, quality MQ, ISO 6336-5:2016 (σ_Hlim 1500 N/mm², σ_Flim 500 N/mm²);
+#: ISO 1328-1 grade 6 (ground gears); ground flanks Ra 0.4 / Rz 2.5 µm and a hobbed, unground
+#: root Rz 10 µm (assumed, typical of ground case-hardened gears); ISO VG 220 oil (ν40 220,
+#: ν100 19 mm²/s, ISO 3448 mid-points) at 70 °C (assumed).
+DEFAULT_INPUTS = {
+    "contact_fatigue_limit_MPa": 1500.0, "bending_fatigue_limit_MPa": 500.0, "accuracy_grade": 6,
+    "flank_Ra_um": 0.4, "flank_Rz_um": 2.5, "root_Rz_um": 10.0,
+    "viscosity_40C_mm2_s": 220.0, "viscosity_100C_mm2_s": 19.0, "oil_temperature_C": 70.0,
+}
+_SOURCES = {
+    "contact_fatigue_limit_MPa": "ISO 6336-5:2016 case-hardened wrought steel MQ",
+    "bending_fatigue_limit_MPa": "ISO 6336-5:2016 case-hardened wrought steel MQ",
+    "accuracy_grade": "ISO 1328-1 grade 6 assumed",
+    "flank_Ra_um": "ground flank assumed", "flank_Rz_um": "ground flank assumed", "root_Rz_um": "hobbed root assumed",
+    "viscosity_40C_mm2_s": "ISO VG 220 assumed", "viscosity_100C_mm2_s": "ISO VG 220 assumed",
+    "oil_temperature_C": "assumed",
+}
+#: Factors that may be given instead of computed (``--factor NAME=VALUE``), with their lower bound.
+FACTOR_NAMES = {"K_A": 1.0, "K_v": 1.0, "K_Hbeta": 1.0, "K_Fbeta": 1.0, "K_Halpha": 1.0, "K_Falpha": 1.0,
+                "Z_NT": 0.0, "Z_L": 0.0, "Z_v": 0.0, "Z_R": 0.0, "Z_W": 0.0, "Z_X": 0.0,
+                "Y_NT": 0.0, "Y_deltarelT": 0.0, "Y_RrelT": 0.0, "Y_X": 0.0, "S_Hmin": 0.0, "S_Fmin": 0.0}
+FACTOR_SOURCES = ("iso", "ltca")
+
+#: ISO 6336-1:1996 method C, K1 by ISO 1328-1 grade 3..12 (spur, helical); K2 0.0193 spur, 0.0087 helical.
+_K1 = {3: (2.1, 1.9), 4: (3.9, 3.5), 5: (7.5, 6.7), 6: (14.9, 13.3), 7: (26.8, 23.9), 8: (39.1, 34.8),
+       9: (52.8, 47.0), 10: (76.6, 68.2), 11: (102.6, 91.4), 12: (146.3, 130.3)}
+_K2 = (0.0193, 0.0087)
+#: Range of method C's K_v: z1·v/100·√(u²/(1 + u²)) below 10 m/s (ISO 6336-1:1996 6.3.4; DIN 3990-1 3.4.3).
+METHOD_C_SPEED_LIMIT = 10.0
+
+
+@dataclass(frozen=True)
+class RatingInputs:
+    """Material, accuracy, roughness and lubricant of a rating (engineering units), and which
+    were taken from :data:`DEFAULT_INPUTS` (``defaulted``)."""
+
+    values: Mapping[str, float]
+    defaulted: tuple[str, ...] = ()
+
+    def __getitem__(self, key: str) -> float:
+        return self.values[key]
+
+    def notes(self) -> list[str]:
+        return [f"{k} = {self.values[k]:g} not given: {_SOURCES[k]}" for k in self.defaulted]
+
+
+def rating_inputs(given: Mapping[str, Any] | None = None) -> RatingInputs:
+    """The given inputs (names of :data:`DEFAULT_INPUTS`, e.g. a pair's ``rating_inputs``; others such
+    as ``tip_edge_radius_mm`` are not the rating's and are skipped) checked by the pair reader's
+    rules (:func:`gearmesh.gear.check_rating_input`: grade an integer 1..12, limits, roughness and
+    viscosities positive, ν100 < ν40) and the others filled from :data:`DEFAULT_INPUTS`."""
+    given = {k: v for k, v in dict(given or {}).items() if k in DEFAULT_INPUTS}
+    out = {k: check_rating_input(k, given.get(k, default)) for k, default in DEFAULT_INPUTS.items()}
+    if out["viscosity_100C_mm2_s"] >= out["viscosity_40C_mm2_s"]:
+        raise GearmeshInputError("viscosity_100C_mm2_s", out["viscosity_100C_mm2_s"],
+                                 f"must be below viscosity_40C_mm2_s ({out['viscosity_40C_mm2_s']:g})")
+    return RatingInputs(values=out, defaulted=tuple(k for k in DEFAULT_INPUTS if k not in given))
+
+
+def check_factors(factors: Mapping[str, Any] | None) -> dict[str, float]:
+    """Given factors {name: value}: names of :data:`FACTOR_NAMES`, finite, positive, and ≥ 1 for
+    the load factors K_* (ISO 6336-1 defines none below 1)."""
+    out = {}
+    for name, value in dict(factors or {}).items():
+        if name not in FACTOR_NAMES:
+            raise GearmeshInputError(f"factor {name}", value, f"must be one of {sorted(FACTOR_NAMES)}")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
+            raise GearmeshInputError(f"factor {name}", value, "must be a positive number")
+        if value < FACTOR_NAMES[name]:
+            raise GearmeshInputError(f"factor {name}", value, f"must be at least {FACTOR_NAMES[name]:g} (ISO 6336-1)")
+        out[name] = float(value)
+    return out
+
+
+# --------------------------------------------------------------------------------------
+# ISO 6336-1 factors
+# --------------------------------------------------------------------------------------
+
+
+def iso1328_tolerances(grade: int, d_mm: float, b_mm: float, m_n_mm: float) -> dict[str, float]:
+    """ISO 1328-1:1995 tolerances (µm) of grade ``grade`` for reference diameter d, face width b and
+    module m_n (mm): single pitch f_pt = 0.3(m_n + 0.4√d) + 4, helix slope f_Hβ = 0.07√d + 0.45√b + 3
+    and total helix F_β = 0.1√d + 0.63√b + 4.2 at grade 5, each times 2^((Q − 5)/2) (clause 5.3;
+    the standard's rounding of the tabulated values is not applied)."""
+    step = 2.0 ** (0.5 * (grade - 5))
+    return {"f_pt": (0.3 * (m_n_mm + 0.4 * math.sqrt(d_mm)) + 4.0) * step,
+            "f_Hbeta": (0.07 * math.sqrt(d_mm) + 0.45 * math.sqrt(b_mm) + 3.0) * step,
+            "F_beta": (0.1 * math.sqrt(d_mm) + 0.63 * math.sqrt(b_mm) + 4.2) * step}
+
+
+def dynamic_factor_c(grade: int, eps_beta: float, v: float, z1: int, u: float, load_per_width: float,
+                     k1: tuple[float, float] | None = None) -> float:
+    """K_v by ISO 6336-1:1996 method C (6.3.4; DIN 3990-1 eq. 3.05):
+    K_v = 1 + (K1/(K_A F_t/b) + K2)·(z1 v/100)·√(u²/(1 + u²)), K_A F_t/b ≥ 100 N/mm, ``v`` the
+    pitch-line speed (m/s), ``load_per_width`` K_A F_t/b (N/mm); K1 (spur, helical) of the grade
+    (``k1`` overrides). ε_β ≥ 1 takes the helical column, ε_β < 1 interpolates K_vα − ε_β(K_vα − K_vβ)."""
+    if grade < 3:
+        grade = 3  # the table starts at grade 3; finer grades take its value (conservative)
+    k1 = _K1[grade] if k1 is None else k1
+    w = max(load_per_width, 100.0)
+    speed = z1 * v / 100.0 * math.sqrt(u**2 / (1 + u**2))
+    kv = [1 + (k1[i] / w + _K2[i]) * speed for i in (0, 1)]
+    return kv[1] if eps_beta >= 1 else kv[0] - eps_beta * (kv[0] - kv[1])
+
+
+def face_load_factor_c(fm_per_width: float, c_gamma_beta: float, f_ma: float, b_over_d1: float,
+                       crowned: bool = False, running_in: bool = True) -> tuple[float, dict[str, float]]:
+    """K_Hβ by ISO 6336-1 method C (7.6): f_sh = (F_m/b)·A·(b/d1)² (pinion bending and torsion, the
+    pinion between bearings, no stiffening factor; A = 0.023 µm·mm/N, 0.012 with crowning),
+    F_βx = 1.33 f_sh + f_ma, y_β = 0.15 F_βx ≤ 6 µm (case-hardened; 0 with ``running_in`` False),
+    F_βy = F_βx − y_β, K_Hβ = 1 + c_γβ F_βy/(2 F_m/b) ≤ 2, else √(2 c_γβ F_βy/(F_m/b)).
+    ``fm_per_width`` F_m/b (N/mm), ``c_gamma_beta`` N/(mm µm), ``f_ma`` µm."""
+    a = 0.012 if crowned else 0.023
+    f_sh = fm_per_width * a * b_over_d1**2
+    f_bx = 1.33 * f_sh + f_ma
+    y_b = min(0.15 * f_bx, 6.0) if running_in else 0.0
+    f_by = f_bx - y_b
+    k = 1 + c_gamma_beta * f_by / (2 * fm_per_width)
+    if k > 2:
+        k = math.sqrt(2 * c_gamma_beta * f_by / fm_per_width)
+    return k, {"f_sh_um": f_sh, "F_betax_um": f_bx, "y_beta_um": y_b, "F_betay_um": f_by}
+
+
+def face_factor_root(k_hbeta: float, b_over_h: float) -> float:
+    """K_Fβ = K_Hβ^N_F, N_F = (b/h)²/(1 + b/h + (b/h)²), b/h not below 3 (ISO 6336-1, 8.3)."""
+    r = max(b_over_h, 3.0)
+    return k_hbeta ** (r**2 / (1 + r + r**2))
+
+
+def transverse_load_factor_b(eps_alpha: float, eps_gamma: float, z_eps: float, c_gamma_alpha: float,
+                             f_pb: float, fth_per_width: float) -> tuple[float, float, float]:
+    """K_Hα, K_Fα by ISO 6336-1 method B (8.3.2): y_α = 0.075 f_pb ≤ 3 µm (case-hardened),
+    ε_γ ≤ 2: K = ε_γ/2·(0.9 + 0.4 c_γα (f_pb − y_α)/(F_tH/b)); ε_γ > 2: K = 0.9 + 0.4 √(2(ε_γ − 1)/ε_γ)·
+    c_γα (f_pb − y_α)/(F_tH/b); bounds 1 ≤ K_Hα ≤ ε_γ/(ε_α Z_ε²), 1 ≤ K_Fα ≤ ε_γ/(0.25 ε_α + 0.75).
+    Returns (K_Hα, K_Fα, y_α in µm)."""
+    y_a = min(0.075 * f_pb, 3.0)
+    term = c_gamma_alpha * (f_pb - y_a) / max(fth_per_width, 1e-9)
+    k = eps_gamma / 2 * (0.9 + 0.4 * term) if eps_gamma <= 2 else 0.9 + 0.4 * math.sqrt(2 * (eps_gamma - 1) / eps_gamma) * term
+    k_h = min(max(k, 1.0), eps_gamma / (eps_alpha * z_eps**2))
+    k_f = min(max(k, 1.0), eps_gamma / (0.25 * eps_alpha + 0.75))
+    return k_h, k_f, y_a
+
+
+# --------------------------------------------------------------------------------------
+# ISO 6336-2 factors
+# --------------------------------------------------------------------------------------
+
+
+def zone_factor(geom: PairGeometry) -> float:
+    """Z_H = √(2 cos βb cos α_wt/(cos² α_t sin α_wt)) (ISO 6336-2, 6.1)."""
+    bb, awt, at = geom.base_helix_angle, geom.operating_pressure_angle, geom.transverse_pressure_angle
+    return math.sqrt(2 * math.cos(bb) * math.cos(awt) / (math.cos(at) ** 2 * math.sin(awt)))
+
+
+def elasticity_factor(youngs_modulus: float, poisson_ratio: float) -> float:
+    """Z_E (√(N/mm²)) of two gears of one material: √(E/(2π(1 − ν²))) (ISO 6336-2, 7), E in Pa."""
+    return math.sqrt(youngs_modulus * 1e-6 / (2 * math.pi * (1 - poisson_ratio**2)))
+
+
+def contact_ratio_factor(eps_alpha: float, eps_beta: float) -> float:
+    """Z_ε (ISO 6336-2, 8): ε_β < 1: √((4 − ε_α)/3·(1 − ε_β) + ε_β/ε_α); ε_β ≥ 1: √(1/ε_α)."""
+    if eps_beta < 1:
+        return math.sqrt((4 - eps_alpha) / 3 * (1 - eps_beta) + eps_beta / eps_alpha)
+    return math.sqrt(1 / eps_alpha)
+
+
+def single_pair_factors(geom: PairGeometry) -> tuple[float, float, float, float]:
+    """(Z_B, Z_D, M1, M2), ISO 6336-2 clause 6.2: M1 = tan α_wt/√((√(d_a1²/d_b1² − 1) − 2π/z1)·
+    (√(d_a2²/d_b2² − 1) − (ε_α − 1)2π/z2)), M2 with the gears exchanged; spur: Z_B = max(1, M1),
+    Z_D = max(1, M2); ε_β ≥ 1: 1; ε_β < 1: Z = M − ε_β(M − 1), not below 1."""
+    z1, z2 = geom.pair.teeth
+    awt, ea, eb = geom.operating_pressure_angle, geom.eps_alpha, geom.eps_beta
+    t1, t2 = (math.sqrt((float(geom.tip_radius[i]) / float(geom.base_radius[i])) ** 2 - 1) for i in (0, 1))
+    m1 = math.tan(awt) / math.sqrt((t1 - 2 * math.pi / z1) * (t2 - (ea - 1) * 2 * math.pi / z2))
+    m2 = math.tan(awt) / math.sqrt((t2 - 2 * math.pi / z2) * (t1 - (ea - 1) * 2 * math.pi / z1))
+    if eb >= 1:
+        return 1.0, 1.0, m1, m2
+    return max(1.0, m1 - eb * (m1 - 1)), max(1.0, m2 - eb * (m2 - 1)), m1, m2
+
+
+def _log_interp(n: float, points: tuple[tuple[float, float], ...]) -> float:
+    """Log-log interpolation in a table of (N_L, factor), constant outside."""
+    if n <= points[0][0]:
+        return points[0][1]
+    for (n0, f0), (n1, f1) in zip(points, points[1:]):
+        if n <= n1:
+            return f0 * (f1 / f0) ** (math.log(n / n0) / math.log(n1 / n0))
+    return points[-1][1]
+
+
+def life_factor_contact(cycles: float) -> float:
+    """Z_NT of case-hardened steel, no pitting permitted (ISO 6336-2, Table 2, method B): 1.6 up to
+    N_L = 10⁵, 1.0 at 5·10⁷ and beyond (the endurance value; the standard's 0.85 at 10¹⁰ applies
+    without optimum lubrication, not taken)."""
+    return _log_interp(cycles, ((1e5, 1.6), (5e7, 1.0)))
+
+
+def life_factor_root(cycles: float) -> float:
+    """Y_NT of case-hardened steel (ISO 6336-3, Table 3, method B): 2.5 up to N_L = 10³, 1.0 at
+    3·10⁶ and beyond (endurance)."""
+    return _log_interp(cycles, ((1e3, 2.5), (3e6, 1.0)))
+
+
+def lubrication_velocity_roughness(sigma_hlim: float, nu40: float, v: float, rz_mean: float,
+                                   rho_red_mm: float) -> dict[str, float]:
+    """Z_L, Z_v, Z_R of ISO 6336-2 method B (clause 11): C_ZL = 0.83 + 0.08(σ_Hlim − 850)/350 on
+    850–1200 N/mm² (0.83 below, 0.91 above), Z_L = C_ZL + 4(1 − C_ZL)/(1.2 + 134/ν40)²;
+    C_Zv = C_ZL + 0.02, Z_v = C_Zv + 2(1 − C_Zv)/√(0.8 + 32/v); R_z10 = R_z (10/ρ_red)^(1/3),
+    C_ZR = 0.32 − 0.0002 σ_Hlim on 850–1200 (0.15 below, 0.08 above), Z_R = (3/R_z10)^C_ZR.
+    ``rz_mean`` (R_z1 + R_z2)/2 µm, ``rho_red_mm`` the relative radius at the pitch point (mm)."""
+    s = min(max(sigma_hlim, 850.0), 1200.0)
+    c_zl = 0.83 + 0.08 * (s - 850.0) / 350.0
+    z_l = c_zl + 4 * (1 - c_zl) / (1.2 + 134.0 / nu40) ** 2
+    c_zv = c_zl + 0.02
+    z_v = c_zv + 2 * (1 - c_zv) / math.sqrt(0.8 + 32.0 / v)
+    rz10 = rz_mean * (10.0 / rho_red_mm) ** (1 / 3)
+    c_zr = 0.15 if sigma_hlim < 850 else 0.08 if sigma_hlim > 1200 else 0.32 - 0.0002 * sigma_hlim
+    return {"Z_L": z_l, "Z_v": z_v, "Z_R": (3.0 / rz10) ** c_zr, "R_z10_um": rz10}
+
+
+# --------------------------------------------------------------------------------------
+# ISO 6336-3 factors
+# --------------------------------------------------------------------------------------
+
+
+def helix_factor_root(eps_beta: float, helix_angle: float) -> float:
+    """Y_β = 1 − ε_β β/120° with ε_β ≤ 1 and β ≤ 30° taken (ISO 6336-3:2006, 9.3)."""
+    return 1 - min(eps_beta, 1.0) * min(math.degrees(helix_angle), 30.0) / 120.0
+
+
+def rim_factor(rim_thickness: float, tooth_depth: float) -> float:
+    """Y_B (ISO 6336-3, 9.4, external gears): s_R/h_t ≥ 1.2: 1; 0.5 < s_R/h_t < 1.2:
+    1.6 ln(2.242 h_t/s_R). Below 0.5 the standard does not apply (refused)."""
+    r = rim_thickness / tooth_depth
+    if r >= 1.2:
+        return 1.0
+    if r <= 0.5:
+        raise GearmeshInputError("bore_radius_mm", None, f"leaves a rim s_R/h_t = {r:.2f} ≤ 0.5, outside ISO 6336-3")
+    return 1.6 * math.log(2.242 / r)
+
+
+def deep_tooth_factor(eps_alpha_n: float, grade: int) -> float:
+    """Y_DT (ISO 6336-3, 9.5): 1 for ε_αn ≤ 2.05 or grade > 4; −0.666 ε_αn + 2.366 on (2.05, 2.5];
+    0.7 above."""
+    if eps_alpha_n <= 2.05 or grade > 4:
+        return 1.0
+    return -0.666 * eps_alpha_n + 2.366 if eps_alpha_n <= 2.5 else 0.7
+
+
+def notch_sensitivity_factor(q_s: float) -> float:
+    """Y_δrelT of case-hardened steel (ISO 6336-3, 12.3, method B): (1 + √(ρ'χ*))/(1 + √(ρ'χ*_T)),
+    slip-layer thickness ρ' = 0.0030 mm, relative stress gradient χ* = (1 + 2q_s)/5 mm⁻¹,
+    χ*_T = 1.2 mm⁻¹ of the standard test gear (q_sT = 2.5)."""
+    rho_p = 0.0030
+    return (1 + math.sqrt(rho_p * (1 + 2 * q_s) / 5)) / (1 + math.sqrt(rho_p * 1.2))
+
+
+def root_roughness_factor(rz: float) -> float:
+    """Y_RrelT of case-hardened steel (ISO 6336-3, 13.3, method B): 1.674 − 0.529 (R_z + 1)^0.1
+    for 1 ≤ R_z ≤ 40 µm; 1.120 below 1 µm."""
+    return 1.120 if rz < 1 else 1.674 - 0.529 * (rz + 1) ** 0.1
+
+
+def size_factor_root(m_n_mm: float) -> float:
+    """Y_X of case-hardened steel (ISO 6336-3, 14): 1 for m_n ≤ 5 mm, 1.05 − 0.01 m_n up to 25,
+    0.8 above."""
+    return 1.0 if m_n_mm <= 5 else 1.05 - 0.01 * m_n_mm if m_n_mm < 25 else 0.8
+
+
+# --------------------------------------------------------------------------------------
+# Load factors from the LTCA (method A definitions)
+# --------------------------------------------------------------------------------------
+
+
+def ltca_load_factors(load: np.ndarray, reference_load: np.ndarray | None = None) -> dict[str, np.ndarray]:
+    """K_Hβ and K_Hα per torque from LTCA point loads ``load`` (T, P, J, N) N.
+
+    K_Hβ: the load of every slice summed over tooth pairs and mesh positions (the face load
+    distribution over a cycle), its maximum over its mean (ISO 6336-1 method A: the peak load per
+    unit face width over the mean). K_Hα: the largest load a tooth pair carries over the cycle,
+    over the same of ``reference_load`` (the LTCA of the same pair unmodified and error-free, same
+    torques and grid): how far the load sharing between pairs departs from the ideal one that
+    Z_ε and Z_B already assume; 1 without a reference (the unmodified pair is its own). The LTCA
+    has no pitch errors, so this K_Hα carries the modifications' effect, not ISO's f_pb."""
+    q = np.asarray(load, dtype=float)
+    face = q.sum(axis=(1, 2))  # (T, N)
+    k_hb = face.max(axis=1) / face.mean(axis=1)
+    if reference_load is None:
+        k_ha = np.ones(q.shape[0])
+    else:
+        k_ha = q.sum(axis=3).max(axis=(1, 2)) / np.asarray(reference_load, dtype=float).sum(axis=3).max(axis=(1, 2))
+    return {"K_Hbeta": k_hb, "K_Halpha": k_ha}
+
+
+# --------------------------------------------------------------------------------------
+# The rating
+# --------------------------------------------------------------------------------------
+
+
+@dataclass
+class Rating:
+    """Values of a rating in engineering units: ``values`` (name → float or [pinion, gear]),
+    ``given`` factor names, ``sources`` factor name → 'iso' | 'ltca' | 'given', ``notes``."""
+
+    values: dict[str, Any]
+    given: list[str]
+    sources: dict[str, str]
+    notes: list[str] = field(default_factory=list)
+
+
+def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: RatingInputs | None = None,
+           application_factor: float = 1.0, life_hours: float | None = None, factors: Mapping[str, float] | None = None,
+           method: str = "iso", ltca_factors: Mapping[str, float] | None = None, running_in: bool = True) -> Rating:
+    """ISO 6336-2/-3 method B rating of ``geom`` at pinion torque ``pinion_torque`` (N·m) and pinion
+    speed ``speed_rpm`` (module docstring). ``life_hours`` None: endurance (Z_NT = Y_NT = 1);
+    ``factors`` given factors (:func:`check_factors`); ``method`` 'iso' or 'ltca' picks where
+    K_Hβ, K_Fβ, K_Hα, K_Fα come from (``ltca_factors`` {K_Hbeta, K_Halpha}, needed for 'ltca')."""
+    if method not in FACTOR_SOURCES:
+        raise GearmeshInputError("method", method, f"must be one of {list(FACTOR_SOURCES)}")
+    given = check_factors({**({"K_A": application_factor} if application_factor != 1.0 else {}), **(factors or {})})
+    check_factors({"K_A": application_factor})
+    inputs = inputs or rating_inputs()
+    p = geom.pair
+    mat = p.material
+    z1, z2 = p.teeth
+    u = z2 / z1
+    mn = p.normal_module * 1e3
+    b = geom.face_width * 1e3
+    d1 = 2 * float(geom.reference_radius[0]) * 1e3
+    ft = 2 * pinion_torque / (d1 * 1e-3)  # N, at the reference circle
+    v = math.pi * d1 * 1e-3 * speed_rpm / 60.0
+    grade = inputs["accuracy_grade"]
+    tol = iso1328_tolerances(grade, d1, b, mn)
+    stiff = _iso_stiffness(geom)
+    c_ga, c_gb = stiff["c_gamma_alpha"], stiff["c_gamma_beta"]
+    k_a = given.get("K_A", application_factor)
+    sources = {"K_A": "given"}
+
+    def pick(name, iso_value, ltca_value=None):
+        if name in given:
+            sources[name] = "given"
+            return given[name]
+        if method == "ltca" and ltca_value is not None:
+            sources[name] = "ltca"
+            return ltca_value
+        sources[name] = "iso"
+        return iso_value
+
+    k_v = pick("K_v", dynamic_factor_c(grade, geom.eps_beta, v, z1, u, k_a * ft / b))
+    fm = ft * k_a * k_v / b
+    crowned = any(m.crowning > 0 for m in p.modification)
+    k_hb_iso, fb = face_load_factor_c(fm, c_gb, tol["f_Hbeta"], b / d1, crowned, running_in)
+    ltca_factors = dict(ltca_factors or {})
+    if method == "ltca" and not {"K_Hbeta", "K_Halpha"} <= set(ltca_factors):
+        raise GearmeshInputError("method", method, "needs the LTCA's K_Hbeta and K_Halpha")
+    k_hb = pick("K_Hbeta", k_hb_iso, ltca_factors.get("K_Hbeta"))
+    b_over_h = b / (1e3 * max(float(geom.tip_radius[i] - geom.root_radius[i]) for i in (0, 1)))
+    k_fb_iso = face_factor_root(k_hb_iso, b_over_h)
+    k_fb = pick("K_Fbeta", k_fb_iso, face_factor_root(ltca_factors["K_Hbeta"], b_over_h) if "K_Hbeta" in ltca_factors
+                else None)
+    z_eps = contact_ratio_factor(geom.eps_alpha, geom.eps_beta)
+    f_pb = tol["f_pt"] * math.cos(geom.transverse_pressure_angle)
+    k_ha_iso, k_fa_iso, y_a = transverse_load_factor_b(geom.eps_alpha, geom.eps_gamma, z_eps, c_ga, f_pb,
+                                                       ft * k_a * k_v * k_hb / b)
+    k_ha = pick("K_Halpha", k_ha_iso, ltca_factors.get("K_Halpha"))
+    k_fa = pick("K_Falpha", k_fa_iso, ltca_factors.get("K_Halpha"))
+
+    # pitting
+    z_h = zone_factor(geom)
+    z_e = elasticity_factor(mat.youngs_modulus, mat.poisson_ratio)
+    z_b_, z_d_, m1, m2 = single_pair_factors(geom)
+    z_beta = 1 / math.sqrt(math.cos(p.helix_angle))
+    s_h0 = z_h * z_e * z_eps * z_beta * math.sqrt(ft / (d1 * b) * (u + 1) / u)
+    k_h = k_a * k_v * k_hb * k_ha
+    s_h = [z_b_ * s_h0 * math.sqrt(k_h), z_d_ * s_h0 * math.sqrt(k_h)]
+    n_rev = (speed_rpm, speed_rpm / u)
+    cycles = [math.inf if life_hours is None else life_hours * 60.0 * n for n in n_rev]
+    s_hlim = inputs["contact_fatigue_limit_MPa"]
+    rho_c = [1e3 * float(geom.base_radius[i]) * math.tan(geom.operating_pressure_angle) for i in (0, 1)]
+    rho_red = rho_c[0] * rho_c[1] / (rho_c[0] + rho_c[1])  # mm, at the pitch point
+    lvr = lubrication_velocity_roughness(s_hlim, inputs["viscosity_40C_mm2_s"], v, inputs["flank_Rz_um"], rho_red)
+    z_l, z_v, z_r = pick("Z_L", lvr["Z_L"]), pick("Z_v", lvr["Z_v"]), pick("Z_R", lvr["Z_R"])
+    z_w, z_x = pick("Z_W", 1.0), pick("Z_X", 1.0)
+    z_nt = [given.get("Z_NT", life_factor_contact(n)) for n in cycles]
+    sources["Z_NT"] = "given" if "Z_NT" in given else "iso"
+    s_hmin = given.get("S_Hmin", 1.0)
+    s_hg = [s_hlim * zn * z_l * z_v * z_r * z_w * z_x for zn in z_nt]
+
+    # bending
+    forms = [gear_root_form(geom, i) for i in (0, 1)]
+    y_beta = helix_factor_root(geom.eps_beta, p.helix_angle)
+    h_t = [float(geom.tip_radius[i] - geom.root_radius[i]) for i in (0, 1)]
+    bore = p.bore_radius or (0.0, 0.0)
+    y_b = [rim_factor(float(geom.root_radius[i]) - bore[i], h_t[i]) for i in (0, 1)]
+    eps_an = geom.eps_alpha / math.cos(geom.base_helix_angle) ** 2
+    y_dt = deep_tooth_factor(eps_an, grade)
+    s_f0 = [ft / (b * mn) * f.Y_F * f.Y_S * y_beta * yb * y_dt for f, yb in zip(forms, y_b)]
+    k_f = k_a * k_v * k_fb * k_fa
+    s_f = [s * k_f for s in s_f0]
+    s_flim = inputs["bending_fatigue_limit_MPa"]
+    y_nt = [given.get("Y_NT", life_factor_root(n)) for n in cycles]
+    sources["Y_NT"] = "given" if "Y_NT" in given else "iso"
+    y_d = [pick("Y_deltarelT", notch_sensitivity_factor(f.q_s)) for f in forms]
+    y_r = pick("Y_RrelT", root_roughness_factor(inputs["root_Rz_um"]))
+    y_x = pick("Y_X", size_factor_root(mn))
+    s_fmin = given.get("S_Fmin", 1.0)
+    s_fg = [s_flim * 2.0 * yn * yd * y_r * y_x for yn, yd in zip(y_nt, y_d)]
+
+    pg = lambda a: [float(a[0]), float(a[1])]  # noqa: E731
+    values = {
+        "pinion_torque_Nm": float(pinion_torque), "speed_rpm": float(speed_rpm), "pitch_line_speed_m_s": v,
+        "force_tangential_N": ft, "accuracy_grade": grade,
+        "K_A": k_a, "K_v": k_v, "K_Hbeta": k_hb, "K_Fbeta": k_fb, "K_Halpha": k_ha, "K_Falpha": k_fa,
+        "Z_H": z_h, "Z_E": z_e, "Z_epsilon": z_eps, "Z_beta": z_beta, "Z_B": z_b_, "Z_D": z_d_, "M_1": m1, "M_2": m2,
+        "sigma_H0_MPa": s_h0, "sigma_H_MPa": pg(s_h), "Z_NT": pg(z_nt), "Z_L": z_l, "Z_v": z_v, "Z_R": z_r,
+        "Z_W": z_w, "Z_X": z_x, "sigma_HG_MPa": pg(s_hg), "sigma_HP_MPa": pg([s / s_hmin for s in s_hg]),
+        "S_H": pg([g / s for g, s in zip(s_hg, s_h)]), "S_Hmin": s_hmin,
+        "Y_F": pg([f.Y_F for f in forms]), "Y_S": pg([f.Y_S for f in forms]), "Y_beta": y_beta, "Y_B": pg(y_b),
+        "Y_DT": y_dt, "sigma_F0_MPa": pg(s_f0), "sigma_F_MPa": pg(s_f), "Y_ST": 2.0, "Y_NT": pg(y_nt),
+        "Y_deltarelT": pg(y_d), "Y_RrelT": y_r, "Y_X": y_x, "sigma_FG_MPa": pg(s_fg),
+        "sigma_FP_MPa": pg([s / s_fmin for s in s_fg]), "S_F": pg([g / s for g, s in zip(s_fg, s_f)]),
+        "S_Fmin": s_fmin, "load_cycles": [None if math.isinf(n) else n for n in cycles],
+        "iso_factors": {"K_v": dynamic_factor_c(grade, geom.eps_beta, v, z1, u, k_a * ft / b),
+                        "K_Hbeta": k_hb_iso, "K_Fbeta": k_fb_iso, "K_Halpha": k_ha_iso, "K_Falpha": k_fa_iso,
+                        **fb, "f_pb_um": f_pb, "f_Hbeta_um": tol["f_Hbeta"], "y_alpha_um": y_a,
+                        "c_gamma_alpha_N_mm_um": c_ga, "c_gamma_beta_N_mm_um": c_gb},
+    }
+    notes = inputs.notes()
+    speed_term = z1 * v / 100.0 * math.sqrt(u**2 / (1 + u**2))
+    if sources["K_v"] == "iso" and speed_term > METHOD_C_SPEED_LIMIT:
+        notes.append(f"K_v by method C outside its range: z1 v/100 sqrt(u^2/(1+u^2)) = {speed_term:.3g} m/s > "
+                     f"{METHOD_C_SPEED_LIMIT:g} m/s; give K_v (--factor K_v=...) from a dynamic analysis")
+    if life_hours is None:
+        notes.append("life_hours not given: endurance (Z_NT = Y_NT = 1)")
+    notes.append("Z_W = 1 (both gears case-hardened), Z_X = 1 (ISO 6336-2), S_Hmin = S_Fmin = 1 unless given")
+    return Rating(values=values, given=sorted(given), sources=sources, notes=notes)
+
+
+def _iso_stiffness(geom: PairGeometry) -> dict[str, float]:
+    """c_γα, c_γβ (N/(mm µm)) of ISO 6336-1 method B (:func:`gearmesh.stiffness.iso6336_stiffness`)."""
+    from .stiffness import iso6336_stiffness
+
+    return iso6336_stiffness(geom)

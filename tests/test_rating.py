@@ -1,0 +1,199 @@
+"""ISO 6336-2/-3 rating (gearmesh.rating): factors against a worked example, K_Hβ from the LTCA
+against method C, bad inputs refused in one line, the CLI's JSON."""
+
+from __future__ import annotations
+
+import json
+import math
+
+import numpy as np
+import pytest
+
+from gearmesh.cli import main
+from gearmesh.errors import GearmeshInputError
+from gearmesh.gear import pair_from_dict, pair_geometry
+from gearmesh.ltca import ltca
+from gearmesh.rating import (check_factors, contact_ratio_factor, dynamic_factor_c, face_factor_root,
+                             face_load_factor_c, ltca_load_factors, rating, rating_inputs, single_pair_factors,
+                             zone_factor)
+from test_stress import SPUR
+
+#: Worked example: hanslhansl/din3990 tests/test_1.py (DIN 3990-11, the method B of ISO 6336:1996 for
+#: these factors): 55 kW at 980 rpm, K_A 1.75, DIN grades 6/7 (K1 = 9.6 spur), c_γ = 20 N/(mm µm).
+P_KW, N1, K_A = 55.0, 980.0, 1.75
+
+
+@pytest.fixture(scope="module")
+def spur():
+    return pair_geometry(pair_from_dict({**SPUR, "material": {"youngs_modulus_GPa": 206}}))
+
+
+def test_contact_factors_agree_with_the_worked_example(spur):
+    assert zone_factor(spur) == pytest.approx(2.3959406670899934, rel=1e-9)
+    assert contact_ratio_factor(spur.eps_alpha, spur.eps_beta) == pytest.approx(0.906214912960638, rel=1e-9)
+    z_b, z_d, m1, m2 = single_pair_factors(spur)
+    assert (z_b, z_d) == pytest.approx((1.00554704549864, 1.0), rel=1e-9)
+    assert m2 == pytest.approx(0.8835590102280203, rel=1e-9)
+    t1 = P_KW * 1e3 / (N1 * 2 * math.pi / 60)
+    r = rating(spur, t1, N1, application_factor=K_A, factors={"K_v": 1.0278576187783273, "K_Hbeta": 1.1064272863295082})
+    assert r.values["Z_E"] == pytest.approx(189.8, abs=0.02)
+    assert r.values["sigma_H0_MPa"] == pytest.approx(875.3827378988153, rel=2e-4)  # Z_E 189.81 against 189.8
+    assert r.values["K_Halpha"] == 1.0  # the example's K_Hα = 1 (grade 6, this load)
+    assert r.values["sigma_H_MPa"][0] == pytest.approx(1241.7875902772687, rel=2e-4)
+    assert r.values["force_tangential_N"] == pytest.approx(14103.41869503906, rel=1e-9)
+    assert r.given == ["K_A", "K_Hbeta", "K_v"] and r.sources["K_v"] == "given" and r.sources["K_Halpha"] == "iso"
+
+
+def test_dynamic_and_face_factors_agree_with_the_worked_example():
+    kv = dynamic_factor_c(6, 0.0, 3.89976368065613, 19, 104 / 19, 507.4215196611504, k1=(9.6, 8.5))
+    assert kv == pytest.approx(1.0278576187783273, rel=1e-9)
+    k_hb, parts = face_load_factor_c(25368.536123904036 / 48.64, 20.0, 0.0, 0.64)
+    assert parts["f_sh_um"] == pytest.approx(4.913484891366676, rel=1e-9)
+    assert parts["F_betax_um"] == pytest.approx(6.534934905517679, rel=1e-9)
+    assert k_hb == pytest.approx(1.1064272863295082, rel=1e-4)  # the example's y_β is 0.4 % larger
+    assert face_factor_root(1.1064272863295082, 48.64 / 9.0) == pytest.approx(1.0864854433487987, rel=1e-6)
+
+
+def test_ltca_face_load_factor_is_one_aligned_and_follows_method_c_with_a_lead_slope(spur):
+    """Linear contact law (the ISO model's springs), no running-in: K_Hβ = 1 + c̄ F_β/(2 F/b) with c̄
+    the LTCA's mean mesh stiffness per unit width, at the centre of the end slice (1 − 1/N of F_β)."""
+    n = 20
+    for f in (0.0, 5e-6, 10e-6):
+        res = ltca(spur, [500.0], positions=32, points=n, lead_slope=(f, 0.0), contact_law_name="linear")
+        k = ltca_load_factors(res.load)["K_Hbeta"][0]
+        c = res.stiffness.mean() / spur.face_width
+        expected = 1 + c * f * (1 - 1 / n) / (2 * res.force[0] / spur.face_width)
+        assert k == pytest.approx(expected, rel=2e-3)
+        # ISO method C's formula with the same stiffness and misalignment, no bending, no running-in
+        iso, _ = face_load_factor_c(res.force[0] / spur.face_width * 1e-3, c * 1e-9, f * 1e6 * (1 - 1 / n), 0.0,
+                                    running_in=False)
+        assert k == pytest.approx(iso, rel=2e-3)
+
+
+def test_rating_safety_factors_are_limits_over_stresses(spur):
+    r = rating(spur, 500.0, 1500.0, life_hours=20000.0).values
+    for i in (0, 1):
+        assert r["S_H"][i] == pytest.approx(r["sigma_HG_MPa"][i] / r["sigma_H_MPa"][i])
+        assert r["S_F"][i] == pytest.approx(r["sigma_FG_MPa"][i] / r["sigma_F_MPa"][i])
+    # doubling the torque: σ_H by √2, σ_F by 2 when the factors are held
+    fixed = {"K_v": 1.1, "K_Hbeta": 1.2, "K_Fbeta": 1.15, "K_Halpha": 1.0, "K_Falpha": 1.0}
+    a, b = (rating(spur, t, 1500.0, factors=fixed).values for t in (500.0, 1000.0))
+    assert b["sigma_H_MPa"][0] / a["sigma_H_MPa"][0] == pytest.approx(math.sqrt(2))
+    assert b["sigma_F_MPa"][1] / a["sigma_F_MPa"][1] == pytest.approx(2.0)
+
+
+@pytest.mark.parametrize("given, field", [
+    ({"contact_fatigue_limit_MPa": -1500}, "contact_fatigue_limit_MPa"),
+    ({"bending_fatigue_limit_MPa": 0}, "bending_fatigue_limit_MPa"),
+    ({"accuracy_grade": 13}, "accuracy_grade"),
+    ({"accuracy_grade": 0}, "accuracy_grade"),
+    ({"accuracy_grade": 5.5}, "accuracy_grade"),
+    ({"viscosity_40C_mm2_s": 100, "viscosity_100C_mm2_s": 150}, "viscosity_100C_mm2_s"),
+])
+def test_bad_rating_inputs_are_refused(given, field):
+    with pytest.raises(GearmeshInputError, match=field):
+        rating_inputs(given)
+
+
+@pytest.mark.parametrize("spec, field", [
+    ({"material": {"contact_fatigue_limit_MPa": -1}}, "material.contact_fatigue_limit_MPa"),
+    ({"accuracy_grade": 13}, "accuracy_grade"),
+    ({"roughness_um": {"flank_Rz": -2}}, "roughness_um.flank_Rz"),
+    ({"roughness_um": {"flank_Rq": 2}}, "flank_Rq"),
+    ({"lubricant": {"oil_temperature_C": 400}}, "lubricant.oil_temperature_C"),
+    ({"tip_edge_radius_mm": 0}, "tip_edge_radius_mm"),
+])
+def test_bad_pair_file_rating_inputs_are_refused(spec, field):
+    with pytest.raises(GearmeshInputError, match=field.replace(".", r"\.")):
+        pair_from_dict({**SPUR, **spec})
+
+
+@pytest.mark.parametrize("factors, name", [({"K_v": 0.9}, "K_v"), ({"K_Hbeta": 0.5}, "K_Hbeta"),
+                                           ({"K_Q": 1.2}, "K_Q"), ({"Z_L": -1.0}, "Z_L")])
+def test_bad_factors_are_refused(factors, name):
+    with pytest.raises(GearmeshInputError, match=name):
+        check_factors(factors)
+
+
+CLI_KEYS = {"Z_H", "Z_E", "Z_epsilon", "Z_beta", "sigma_H0_MPa", "sigma_H_MPa", "sigma_HP_MPa", "S_H", "Y_F", "Y_S",
+            "Y_beta", "sigma_F0_MPa", "sigma_F_MPa", "sigma_FP_MPa", "S_F", "K_v", "K_Hbeta", "K_Fbeta", "K_Halpha",
+            "K_Falpha"}
+
+
+def test_cli_rating_json(root, capsys):
+    pair = str(root / "config/pairs/seed000_case.yaml")
+    assert main(["rating", pair, "--torque-Nm", "1000", "--speed-rpm", "5000", "--factor", "K_v=1.2",
+                 "--application-factor", "1.25", "--points", "20", "--positions", "16", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert CLI_KEYS <= set(out)
+    for key in ("sigma_H_MPa", "S_H", "Y_F", "S_F", "sigma_FP_MPa"):
+        assert len(out[key]) == 2
+    assert out["K_v"] == 1.2 and out["K_A"] == 1.25 and out["factors_given"] == ["K_A", "K_v"]
+    assert out["ltca"]["peak_contact_pressure_at"]["on"] in ("edge", "flank")
+    assert len(out["ltca"]["peak_root_stress_MPa"]) == 2
+    for fe, iso, ratio in zip(out["ltca"]["peak_root_stress_fe_MPa"], out["ltca"]["peak_root_stress_MPa"],
+                              out["ltca"]["root_stress_fe_over_iso"]):
+        assert fe == pytest.approx(iso * ratio) and 0.5 < ratio < 1.5
+    assert any("contact_fatigue_limit_MPa" in n for n in out["notes"])
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--factor", "K_v=0.9"], "factor K_v = 0.9: must be at least 1"),
+    (["--factor", "K_v"], "--factor"),
+    (["--application-factor", "0.5"], "application_factor"),
+    (["--speed-rpm", "-5"], "speed_rpm"),
+])
+def test_cli_rating_refuses_bad_input_in_one_line(root, capsys, args, message):
+    base = ["rating", str(root / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000", "--speed-rpm", "5000"]
+    try:
+        code = main(base + args)
+    except SystemExit as exc:  # argparse's own refusals (the one line of gearmesh.cli._Parser)
+        code = exc.code
+    assert code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and message in err[0]
+
+
+def test_ltca_dataset_carries_the_load_capacity_variables():
+    from gearmesh.datasets.ltca import ltca_dataset
+    from gearmesh.datasets.rating import reference_ltca
+    from gearmesh.gear import example_pair, load_pair, variant_pair
+
+    base = load_pair(example_pair("seed000_case"))
+    relief = variant_pair(base, "relief", {"modification": {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 3}}})
+    kw = dict(torques_Nm=[400.0, 1600.0], positions=16, points=20, method="transition")
+    std, mod = ltca_dataset(base, **kw), ltca_dataset(relief, **kw)
+    for name in ("contact_pressure", "peak_contact_pressure", "root_stress", "peak_root_stress", "K_Hbeta_ltca",
+                 "K_Fbeta_ltca", "K_Halpha_ltca", "K_Falpha_ltca", "lte_harmonics", "peak_contact_pressure_on_edge"):
+        assert {"units", "long_name"} <= set(mod[name].attrs), name
+    assert list(mod.mesh_order.values) == [1, 2, 3]
+    assert np.all(std.K_Halpha_ltca.values == 1.0)  # the unmodified pair is its own reference
+    # the relief variant's K_Hα: its largest tooth-pair load over the unmodified pair's
+    assert np.allclose(mod.K_Halpha_ltca.values,
+                       np.maximum(mod.pair_load.max(("position", "line")).values
+                                  / std.pair_load.max(("position", "line")).values, 1.0), rtol=1e-9)
+    # harmonics: the amplitude of order k of a mesh cycle's LTE by direct projection
+    lte = mod.lte.values[1]
+    n = lte.size
+    k = 2
+    amp = 2 * abs(np.sum(lte * np.exp(-2j * np.pi * k * np.arange(n) / n))) / n
+    assert mod.lte_harmonics.values[1, k - 1] == pytest.approx(amp, rel=1e-12)
+    assert np.all(mod.peak_root_stress.values[1] > mod.peak_root_stress.values[0])
+
+
+def test_load_capacity_table_names_the_variants_from_the_jobs_wildcards():
+    from gearmesh.datasets.rating import load_capacity_table_dataset
+
+    def ds(variant, s_h):
+        import xarray as xr
+        out = xr.Dataset({"S_H": (("torque", "gear"), [[s_h, s_h + 1]]), "S_F": (("torque", "gear"), [[3.0, 2.0]]),
+                          "peak_contact_pressure": (("torque",), [1e9]),
+                          "peak_contact_pressure_on_edge": (("torque",), [1]),
+                          "peak_root_stress": (("torque", "gear"), [[1e8, 2e8]])}, coords={"torque": [1000.0]})
+        out.attrs["gearmesh_wildcards_json"] = json.dumps({"variant": variant})
+        return out
+
+    table = load_capacity_table_dataset([ds("standard", 2.0), ds("relief", 1.5)])
+    assert list(table.variant.values) == ["standard", "relief"]
+    assert table.S_H.values.tolist() == [[2.0], [1.5]] and table.S_F.values.tolist() == [[2.0], [2.0]]
+    assert table.peak_root_stress.values.tolist() == [[2e8], [2e8]]
