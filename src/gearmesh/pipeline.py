@@ -224,8 +224,25 @@ def write_pair(pair: GearPair, path: str | Path) -> Path:
 
     pair_geometry(pair)
     with atomic_output(path) as tmp:
-        tmp.write_text(yaml.safe_dump(pair_to_dict(pair), sort_keys=False))
+        tmp.write_text(yaml.safe_dump(_tidy(pair_to_dict(pair)), sort_keys=False))
     return Path(path)
+
+
+#: Decimals a pair file keeps in its engineering units (µm, mm, deg): 1e-9 µm is 1e-15 m, far below
+#: any tolerance, and the round trip through SI (5 µm -> 5e-06 m -> 5.000000000000001 µm) is gone.
+PAIR_FILE_DECIMALS = 9
+
+
+def _tidy(value: Any) -> Any:
+    """``value`` (a pair dict) with every float rounded to PAIR_FILE_DECIMALS (YAML then writes the
+    shortest decimal that reads back as it: 5.0, not 5.000000000000001)."""
+    if isinstance(value, float):
+        return round(value, PAIR_FILE_DECIMALS)
+    if isinstance(value, dict):
+        return {k: _tidy(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_tidy(v) for v in value]
+    return value
 
 
 def run_optimise(smk: Any) -> None:
