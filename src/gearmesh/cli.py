@@ -421,14 +421,14 @@ def build_parser() -> argparse.ArgumentParser:
                        "every key as a Markdown table")
     p.add_argument("kind", choices=("study", "pair"), help="study config or pair file")
     p.add_argument("--format", choices=("yaml", "json", "markdown"), default=None,
-                   help="default: yaml for a study (workflow/schemas/config.schema.yaml), json for a pair")
+                   help="default: yaml for a study, json for a pair")
     p.set_defaults(func=cmd_schema)
 
     p = _command(sub, "stiffness", cmd_stiffness,
                  "time-varying mesh stiffness (slice potential energy method), ISO 6336-1, LSTE")
-    _setting_option(p, "--method", Stiffness, help="tooth model: fe (2-D finite elements, within a few %% of 3-D: "
-                    "docs/validation.md), transition (the hob-generated fillet), improved or traditional "
-                    "(cantilever root cases)")
+    _setting_option(p, "--method", Stiffness, help="tooth model: fe (2-D finite elements, within a few %% of the 3-D "
+                    "reference gearmesh.fe3d: python -m pydoc gearmesh.fe), transition (the hob-generated "
+                    "fillet), improved or traditional (cantilever root cases)")
     _setting_option(p, "--slices", Stiffness, type=int, help="slices over the face width")
     _setting_option(p, "--positions", Stiffness, type=int, help="rotation positions per mesh cycle")
     _torque_options(p, required=False)
