@@ -161,6 +161,7 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     assert list(lte["variant"].values) == ["standard", "relief", "optimised"]
     np.testing.assert_array_equal(lte["lte_mean"].sel(variant="relief").values,
                                   read_dataset(base / "relief/ltca.nc")["lte_mean"].values)
+    _check_descriptions_in_the_readers_language(work / "results")
     comparison = read_dataset(work / "results/e2e/lste_comparison.nc")
     assert comparison.sizes["pair"] == 1
     again = _snakemake(work, "--dry-run")
@@ -169,6 +170,17 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     _check_code_change_reruns(root, work, tmp_path)
     _check_slurm_profile_dry_run(work)
     _check_swapped_input_is_refused(work)  # last: it leaves a failed job behind
+
+
+def _check_descriptions_in_the_readers_language(results: Path) -> None:
+    """Every variable's long_name in every result file says what it means (issue 25): the source
+    documents by subject, not "seed 000"; contact scenarios and modification parameters
+    physically, not "scenario 2" or "y1..y6"."""
+    jargon = re.compile(r"\b[Ss]eed \d{3}|\bscenario \d|y1\.\.y6|withheld")
+    found = {f"{path.name}:{name}": var.attrs.get("long_name", "")
+             for path in sorted(results.rglob("*.nc")) for name, var in read_dataset(path).variables.items()
+             if jargon.search(str(var.attrs.get("long_name", "")))}
+    assert not found, found
 
 
 def _check_swapped_input_is_refused(work: Path) -> None:
