@@ -106,6 +106,9 @@ def test_the_landing_page_takes_its_numbers_from_the_results(csv_file):
     html = _render(page, config, SimpleNamespace(), [SimpleNamespace(name="lte_table.csv", path=csv_file)])
     assert "<caption>Loaded transmission error</caption>" in html and "13639.4" in html  # the file's rows
     assert "lte_table.csv appears here when the study has run" in _render(page, config, SimpleNamespace())
+    # the page of the default study cut down to the stages every pair gets (as the browser test runs it)
+    bare = {key: config[key] for key in ("study", "description", "source", "pairs")} | {"variants": {"standard": {}}}
+    assert "Where our results differ" in _render(page, bare, SimpleNamespace())
     # no result in µm, N/µm or % written into any study's text by hand (config values come by Jinja)
     source = page.read_text()
     assert not re.search(r"\d\s*(µm|N/µm|%)", source), re.findall(r".{30}\d\s*(?:µm|N/µm|%)", source)
