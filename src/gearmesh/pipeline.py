@@ -228,16 +228,17 @@ def write_pair(pair: GearPair, path: str | Path) -> Path:
     return Path(path)
 
 
-#: Decimals a pair file keeps in its engineering units (µm, mm, deg): 1e-9 µm is 1e-15 m, far below
-#: any tolerance, and the round trip through SI (5 µm -> 5e-06 m -> 5.000000000000001 µm) is gone.
-PAIR_FILE_DECIMALS = 9
+#: Significant digits a pair file keeps: 12 remove the round trip through SI (5 µm -> 5e-06 m ->
+#: 5.000000000000001 µm) and keep an optimum to 5e-13 of itself, so a command reading the file
+#: computes what the optimiser reported (to 1e-9; a 9-decimal rounding moved F_s by 2e-8).
+PAIR_FILE_DIGITS = 12
 
 
 def _tidy(value: Any) -> Any:
-    """``value`` (a pair dict) with every float rounded to PAIR_FILE_DECIMALS (YAML then writes the
-    shortest decimal that reads back as it: 5.0, not 5.000000000000001)."""
+    """``value`` (a pair dict) with every float to PAIR_FILE_DIGITS significant digits (YAML then
+    writes the shortest decimal that reads back as it: 5.0, not 5.000000000000001)."""
     if isinstance(value, float):
-        return round(value, PAIR_FILE_DECIMALS)
+        return float(f"{value:.{PAIR_FILE_DIGITS}g}")
     if isinstance(value, dict):
         return {k: _tidy(v) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
