@@ -7,6 +7,7 @@ from __future__ import annotations
 import json
 import math
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -108,6 +109,8 @@ def test_help_speaks_plainly_and_shows_each_default_once(capsys):
     for name, sub in commands.items():
         text = sub.format_help()
         assert "seed 0" not in text.lower() and "config/pairs" not in text, name
+        # only what a pip install has: no repository files (docs/, tests/, workflow/)
+        assert not re.search(r"\b(docs|tests|workflow)/", parser.format_help() + text), name
         assert "default: None" not in text, name
         formatter = sub._get_formatter()
         for action in sub._actions:

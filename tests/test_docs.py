@@ -45,3 +45,51 @@ def test_citation_carries_the_package_version(root):
 def test_references_name_every_source_document_once(root, number):
     text = (root / "docs/references.md").read_text(encoding="utf-8")
     assert len(re.findall(rf"^\| {number} \| ", text, flags=re.M)) == 1
+
+
+def _markdown_table(text: str, heading: str) -> list[dict[str, str]]:
+    """The first Markdown table after ``heading`` as rows of {column: cell}."""
+    lines = [ln for ln in text[text.index(heading):].splitlines() if ln.startswith("|")]
+    block = []
+    for ln in lines:
+        if block and not ln.startswith("|"):
+            break
+        block.append([c.strip() for c in ln.strip("|").split("|")])
+    header, rows = block[0], [r for r in block[2:]]
+    return [dict(zip(header, r)) for r in rows]
+
+
+def test_impact_doc_table_is_what_the_impact_stage_computes(root):
+    """docs/impact.md's table of the default study's pair (tooth model as its text says) is
+    recomputed by the impact stage: a number copied by hand that drifts from the code fails here
+    (issue 25). Its columns: F_s closed form and energy balance, v_t, vector v, n, scenario, reduction."""
+    from gearmesh.config import load_study
+    from gearmesh.datasets.impact import impact_dataset
+    from gearmesh.gear import example_pair, load_pair, variant_pair
+
+    text = (root / "docs/impact.md").read_text(encoding="utf-8")
+    heading = "## Numbers of the default study"
+    method = re.search(r"computed\s+with the tooth model `(\w+)`", text[text.index(heading):]).group(1)
+    rows = _markdown_table(text, heading)
+    study = load_study(root / "config/config.yaml")
+    pair = load_pair(example_pair(study["pairs"][0]))
+    torques = sorted({float(r["T1 (N·m)"]) for r in rows})
+    computed = {}
+    for name in sorted({r["variant"] for r in rows}):
+        spec = study["variants"][name]
+        ds = impact_dataset(variant_pair(pair, name, spec) if spec else pair, torques_Nm=torques, method=method)
+        computed[name] = ds.sel(speed=5000.0)
+    for row in rows:
+        ds = computed[row["variant"]].sel(torque=float(row["T1 (N·m)"]))
+        where = f"{row['variant']} at {row['T1 (N·m)']} N·m"
+        assert float(row["F_s closed form (N)"]) == pytest.approx(float(ds["impact_force"]), rel=1e-3), where
+        assert float(row["F_s energy balance (N)"]) == pytest.approx(float(ds["impact_force_energy_balance"]),
+                                                                      rel=1e-3), where
+        assert float(row["v_t (m/s)"]) == pytest.approx(float(ds["velocity_transverse"]), abs=1e-3), where
+        assert float(row["v, vector form (m/s)"]) == pytest.approx(float(ds["velocity_vector_form"]), abs=1e-3), where
+        assert float(row["n"]) == pytest.approx(float(ds["stiffness_exponent"]), abs=0.01), where
+        assert row["scenario"] == ("none", "surface", "edge")[int(ds["scenario"])], where
+        if row["reduction"] != "—":
+            standard = computed["standard"].sel(torque=float(row["T1 (N·m)"]))
+            reduction = 100 * (1 - float(ds["impact_force"]) / float(standard["impact_force"]))
+            assert float(row["reduction"].rstrip(" %")) == pytest.approx(reduction, abs=1), where

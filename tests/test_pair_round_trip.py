@@ -6,6 +6,7 @@ variant and a datasheet pair written back."""
 from __future__ import annotations
 
 import json
+import re
 
 import pytest
 
@@ -95,3 +96,16 @@ def test_every_written_pair_is_read_by_every_command(tmp_path, capsys, writer, c
     assert code == 0, err
     result = json.loads(out)
     assert result.get("name", load_pair(path).name) == load_pair(path).name
+
+
+def test_a_written_pair_has_no_round_trip_digits(tmp_path):
+    """Amounts pass through SI (5 µm -> 5e-06 m -> 5.000000000000001 µm): the file rounds them
+    back to what was meant (issue 25), and a real optimum's digits to 12 significant ones."""
+    pair = pair_from_dict(seed001_pair1())
+    spec = {"modification": {"pinion": {"crowning_um": 5, "tip_relief_um": 24.861413680690358,
+                                        "tip_relief_length_mm": 0.7}}}
+    text = write_pair(variant_pair(pair, "relief", spec), tmp_path / "pair.yaml").read_text()
+    assert "crowning_um: 5.0\n" in text and "tip_relief_um: 24.8614136807\n" in text
+    assert "tip_relief_length_mm: 0.7\n" in text
+    numbers = [float(n) for n in re.findall(r"-?\d+\.\d+(?:e-?\d+)?", text)]
+    assert numbers and all(float(f"{n:.12g}") == n for n in numbers), text

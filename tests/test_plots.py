@@ -24,7 +24,7 @@ from gearmesh.datasets import stiffness as st
 from gearmesh.datasets.fe import fe_compliance_dataset
 from gearmesh.gear import load_pair
 from gearmesh.plots import dynamics, fe, geometry, impact, ltca, optimise, stiffness
-from gearmesh.plots.common import coinciding, end_labels, number, subplots
+from gearmesh.plots.common import coinciding, end_labels, number, pair_label, subplots, title
 
 ROOT = Path(__file__).resolve().parents[1]
 COARSE_IMPACT = {"points": 15, "window_positions": 16, "face_samples": 65}
@@ -225,3 +225,19 @@ def test_plot_modules_do_not_use_pyplot():
             "gearmesh.plots.stiffness; print('matplotlib.pyplot' in sys.modules)")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_figures_are_headed_by_the_pair_as_a_reader_knows_it():
+    """A shipped example pair by its data (its name, seed000_case, is a source file number); a
+    pair of the user's own by its name and data; a result without pair data by its name."""
+    import json
+
+    import xarray as xr
+    from gearmesh.pipeline import provenance_config
+
+    pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    ds = xr.Dataset(attrs={"pair_name": "seed000_case", "config_json": json.dumps(provenance_config({}, pair))})
+    assert title(ds, "LTE") == "29/71 teeth, module 5 mm, helix 27.5°, face 42 mm — LTE"
+    ds.attrs["pair_name"] = "stage_2"
+    assert pair_label(ds) == "stage_2: 29/71 teeth, module 5 mm, helix 27.5°, face 42 mm"
+    assert pair_label(xr.Dataset(attrs={"pair_name": "stage_2"})) == "stage_2"

@@ -28,7 +28,7 @@ STUDIES = [ROOT / "config/config.yaml", *sorted((ROOT / "config/studies").glob("
 
 #: The config sections a caption's figure or table needs (no entry: every study has it).
 NEEDS = {
-    "contact_pattern": ("ltca",), "te_lte": ("ltca",), "lste_comparison": ("ltca",), "tca": ("tca",),
+    "contact_pattern": ("ltca",), "te_lte": ("ltca",), "lte_table": ("ltca",), "lste_comparison": ("ltca",), "tca": ("tca",),
     "impact_force": ("impact",), "impact_simulation": ("impact",), "impact_speed": ("impact",),
     "impact_table": ("impact",), "mesh_in_trajectory": ("impact",), "robustness": ("impact",),
     "dynamics_rms": ("dynamics",), "dynamics_spectrum": ("dynamics",), "dynamics_variants": ("dynamics",),
@@ -53,11 +53,12 @@ def csv_file(tmp_path_factory) -> str:
     return str(path)
 
 
-def _render(caption: Path, config: dict, output: SimpleNamespace) -> str:
+def _render(caption: Path, config: dict, output: SimpleNamespace, files=()) -> str:
     wildcards = SimpleNamespace(pair=config["pairs"][0], variant=next(iter(config.get("variants") or {"standard": 0})),
                                 run=next(iter(config.get("optimise") or {"run": 0})), study=config["study"])
     snakemake = SimpleNamespace(config=config, wildcards=wildcards, output=output)
-    text = Environment(trim_blocks=True, lstrip_blocks=True).from_string(caption.read_text()).render(snakemake=snakemake)
+    template = Environment(trim_blocks=True, lstrip_blocks=True).from_string(caption.read_text())
+    text = template.render(snakemake=snakemake, files=list(files))  # files: the report's, as Snakemake passes them
     # halt on any warning: a markup error would show as a "System Message" in the report
     return publish_parts(text, writer_name="html", settings_overrides={"halt_level": 2, "report_level": 2})["body"]
 
@@ -95,3 +96,20 @@ def test_the_landing_page_names_its_source_document_by_title():
     assert "Where our results differ from the source document" in html
     for section in ("how-to-read-this-report", "where-our-results-differ-from-the-source-document-and-why"):
         assert f'id="{section}"' in html  # headings, not text run into a paragraph
+
+
+def test_the_landing_page_takes_its_numbers_from_the_results(csv_file):
+    """The LTE the landing page quotes is the run's lte_table.csv, shown as a table (no number
+    copied into the text by hand, which went stale when the default tooth model changed); before
+    the run has made it, the page says so."""
+    config = load_study(ROOT / "config/config.yaml")
+    page = ROOT / "workflow/report/workflow.rst"
+    html = _render(page, config, SimpleNamespace(), [SimpleNamespace(name="lte_table.csv", path=csv_file)])
+    assert "<caption>Loaded transmission error</caption>" in html and "13639.4" in html  # the file's rows
+    assert "lte_table.csv appears here when the study has run" in _render(page, config, SimpleNamespace())
+    # the page of the default study cut down to the stages every pair gets (as the browser test runs it)
+    bare = {key: config[key] for key in ("study", "description", "source", "pairs")} | {"variants": {"standard": {}}}
+    assert "Where our results differ" in _render(page, bare, SimpleNamespace())
+    # no result in µm, N/µm or % written into any study's text by hand (config values come by Jinja)
+    source = page.read_text()
+    assert not re.search(r"\d\s*(µm|N/µm|%)", source), re.findall(r".{30}\d\s*(?:µm|N/µm|%)", source)

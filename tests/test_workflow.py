@@ -88,9 +88,9 @@ def _check_code_change_reruns(root: Path, work: Path, tmp: Path) -> None:
     proc = _snakemake(work, "--dry-run", env=_package_env(package))
     assert proc.returncode == 0, proc.stderr[-3000:]
     # the figures are drawn by the jobs that write their data: those rerun, and what reads their files
-    # (the LTCA-excited dynamics, its variants figure and the LSTE table)
+    # (the LTCA-excited dynamics, its variants figure, the LTE table and the LSTE table)
     assert _planned_jobs(proc) == {"tca": 3, "ltca": 3, "dynamics": 3, "plot_dynamics_variants": 1,
-                                   "lste_comparison": 1, "all": 1}, proc.stdout[-3000:]
+                                   "lte_table": 1, "lste_comparison": 1, "all": 1}, proc.stdout[-3000:]
 
 
 def _check_slurm_profile_dry_run(work: Path) -> None:
@@ -157,6 +157,11 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
         dyn = read_dataset(base / variant / "dynamics.nc")
         mean, static = xr.broadcast(dyn["mesh_force_mean"], dyn["static_mesh_force"])
         np.testing.assert_allclose(mean.values, static.values, rtol=1e-4)
+    lte = read_dataset(base / "lte_table.nc")  # what the landing page shows, as the variants' LTCA says
+    assert sorted(lte["variant"].values) == ["optimised", "relief", "standard"]
+    np.testing.assert_array_equal(lte["lte_mean"].sel(variant="relief").values,
+                                  read_dataset(base / "relief/ltca.nc")["lte_mean"].values)
+    _check_descriptions_in_the_readers_language(work / "results")
     comparison = read_dataset(work / "results/e2e/lste_comparison.nc")
     assert comparison.sizes["pair"] == 1
     again = _snakemake(work, "--dry-run")
@@ -165,6 +170,17 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
     _check_code_change_reruns(root, work, tmp_path)
     _check_slurm_profile_dry_run(work)
     _check_swapped_input_is_refused(work)  # last: it leaves a failed job behind
+
+
+def _check_descriptions_in_the_readers_language(results: Path) -> None:
+    """Every variable's long_name in every result file says what it means (issue 25): the source
+    documents by subject, not "seed 000"; contact scenarios and modification parameters
+    physically, not "scenario 2" or "y1..y6"."""
+    jargon = re.compile(r"\b[Ss]eed \d{3}|\bscenario \d|y1\.\.y6|withheld")
+    found = {f"{path.name}:{name}": var.attrs.get("long_name", "")
+             for path in sorted(results.rglob("*.nc")) for name, var in read_dataset(path).variables.items()
+             if jargon.search(str(var.attrs.get("long_name", "")))}
+    assert not found, found
 
 
 def _check_swapped_input_is_refused(work: Path) -> None:

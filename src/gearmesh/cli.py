@@ -462,7 +462,7 @@ def build_parser() -> argparse.ArgumentParser:
                        "every key as a Markdown table")
     p.add_argument("kind", choices=("study", "pair"), help="study config or pair file")
     p.add_argument("--format", choices=("yaml", "json", "markdown"), default=None,
-                   help="default: yaml for a study (workflow/schemas/config.schema.yaml), json for a pair")
+                   help="default: yaml for a study, json for a pair")
     p.set_defaults(func=cmd_schema)
 
     p = _command(sub, "stiffness", cmd_stiffness,

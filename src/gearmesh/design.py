@@ -47,8 +47,10 @@ class DesignResult(NamedTuple):
     geometry: PairGeometry
 
 
-def _target_integer(eps: float, direction: str, n: int | None, field: str, what: str) -> int:
+def _target_integer(eps: float, direction: str, n: int | None, field: str, value: object, what: str) -> int:
     """The integer N to reach: given ``n``, or the next one above (forward) / below (backward).
+
+    ``field`` is the pair-file key the design changes and ``value`` its value now, for the error.
 
     An ε already integral (within 1e−9) is its own target in both directions.
     """
@@ -65,7 +67,7 @@ def _target_integer(eps: float, direction: str, n: int | None, field: str, what:
         return int(math.floor(eps)) + 1
     target = int(math.floor(eps))
     if target < 1:
-        raise GearmeshInputError(field, eps, f"{what} = {eps:.4f} < 1: there is no positive integer below it "
+        raise GearmeshInputError(field, value, f"{what} = {eps:.4f} < 1: there is no positive integer below it "
                                  "(backward design impossible; design forward)")
     return target
 
@@ -130,7 +132,8 @@ def integer_overlap_helix_angle(pair: GearPair, direction: str = "forward", n: i
     the new pair must pass :func:`pair_geometry` (its refusals propagate).
     """
     geom0 = pair_geometry(pair)
-    target = _target_integer(geom0.eps_beta, direction, n, "helix_angle_deg", "eps_beta")
+    target = _target_integer(geom0.eps_beta, direction, n, "helix_angle_deg",
+                             round(math.degrees(pair.helix_angle), 9), "eps_beta")
     b = geom0.face_width
     arg = math.pi * pair.normal_module * target / b
     if arg > 1:
@@ -161,7 +164,8 @@ def integer_overlap_face_width(pair: GearPair, direction: str = "forward", n: in
         raise GearmeshInputError("helix_angle_deg", 0.0,
                                  "a spur pair has eps_beta = 0 for any face width; no face width makes it integer")
     geom0 = pair_geometry(pair)
-    target = _target_integer(geom0.eps_beta, direction, n, "face_width_mm", "eps_beta")
+    target = _target_integer(geom0.eps_beta, direction, n, "face_width_mm",
+                             [round(b * 1e3, 9) for b in pair.face_width], "eps_beta")
     new_b = math.pi * pair.normal_module * target / math.sin(pair.helix_angle)
     widths = _face_width_change(pair, new_b)
     new = pair.with_changes(face_width=widths)
@@ -217,7 +221,8 @@ def integer_transverse_addendum(pair: GearPair, direction: str = "forward", n: i
                                 keep_clearance: bool = True) -> DesignResult:
     """Addendum coefficient giving an integer ε_α = N (seed 001 §1): N is the next integer
     above (forward) or below (backward) the current ε_α; see :func:`transverse_ratio_addendum`."""
-    target = _target_integer(pair_geometry(pair).eps_alpha, direction, n, "addendum_coefficient", "eps_alpha")
+    target = _target_integer(pair_geometry(pair).eps_alpha, direction, n, "addendum_coefficient",
+                             list(pair.addendum_coefficient), "eps_alpha")
     return transverse_ratio_addendum(pair, target, keep_clearance)
 
 

@@ -105,7 +105,7 @@ def seed000_inertia(geom: PairGeometry) -> np.ndarray:
     pair = geom.pair
     if pair.material is None or pair.bore_radius is None:
         raise GearmeshInputError("material" if pair.material is None else "bore_radius_mm", None,
-                                 "is required for the gear inertias of the impact model (seed 000)")
+                                 "is required for the gear inertias of the impact model (the mesh-in impact paper's discs)")
     rb, rh, b = geom.base_radius, np.asarray(pair.bore_radius), np.asarray(pair.face_width)
     return math.pi * pair.material.density * b * (rb**4 - rh**4) / 2.0
 

@@ -224,8 +224,26 @@ def write_pair(pair: GearPair, path: str | Path) -> Path:
 
     pair_geometry(pair)
     with atomic_output(path) as tmp:
-        tmp.write_text(yaml.safe_dump(pair_to_dict(pair), sort_keys=False))
+        tmp.write_text(yaml.safe_dump(_tidy(pair_to_dict(pair)), sort_keys=False))
     return Path(path)
+
+
+#: Significant digits a pair file keeps: 12 remove the round trip through SI (5 µm -> 5e-06 m ->
+#: 5.000000000000001 µm) and keep an optimum to 5e-13 of itself, so a command reading the file
+#: computes what the optimiser reported (to 1e-9; a 9-decimal rounding moved F_s by 2e-8).
+PAIR_FILE_DIGITS = 12
+
+
+def _tidy(value: Any) -> Any:
+    """``value`` (a pair dict) with every float to PAIR_FILE_DIGITS significant digits (YAML then
+    writes the shortest decimal that reads back as it: 5.0, not 5.000000000000001)."""
+    if isinstance(value, float):
+        return float(f"{value:.{PAIR_FILE_DIGITS}g}")
+    if isinstance(value, dict):
+        return {k: _tidy(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_tidy(v) for v in value]
+    return value
 
 
 def run_optimise(smk: Any) -> None:

@@ -133,6 +133,8 @@ def variant_results(name, variant):
 def all_targets():
     targets = [f for name in config["pairs"] for f in pair_results(name)]
     targets += [f for name in config["pairs"] for v in VARIANTS for f in variant_results(name, v)]
+    if "ltca" in config:
+        targets += [f"results/{STUDY}/{name}/lte_table.nc" for name in config["pairs"]]
     if "impact" in config:
         for name in config["pairs"]:
             targets.append(f"results/{STUDY}/{name}/impact_table.nc")

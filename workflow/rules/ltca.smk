@@ -26,6 +26,25 @@ rule ltca:
         "../scripts/pair_stage.py"
 
 
+rule lte_table:
+    """Loaded transmission error of every variant of a pair at every torque: mean, peak-to-peak and how
+    the entering pair meets (lte_table.nc); the report's landing page shows the table."""
+    localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
+    input:
+        ltca=expand("results/{{study}}/{{pair}}/{variant}/ltca.nc", variant=VARIANTS),
+    output:
+        nc="results/{study}/{pair}/lte_table.nc",
+        csv=report_item("results/{study}/{pair}/lte_table.csv", "lte_table", "LTCA", BY_PAIR),
+    log:
+        "logs/{study}/{pair}/lte_table.log",
+    params:
+        function=versioned_param("gearmesh.datasets.ltca:lte_table_dataset"),
+    conda:
+        ENV
+    script:
+        "../scripts/collect.py"
+
+
 rule lste_comparison:
     """Seed 001's LSTE of every pair: LTCA (standard variant, first torque) next to F/K(phi)."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)

@@ -356,7 +356,7 @@ def excitation_used(excitation: str, ltca: xr.Dataset | None = None, transmissio
         return ("ltca: loaded mesh stiffness k_L(t) and equivalent error e = LTE - F/k_L of the variant's "
                 f"LTCA ({ltca.attrs.get('contact_law', 'palmgren') if ltca is not None else 'palmgren'} contact)")
     if excitation == "lste":
-        return "lste: slice-model stiffness K(t) and seed 001's e = F/K(t)"
+        return "lste: slice-model stiffness K(t) and the low-fluctuation paper's error e = F/K(t)"
     te = " and the tabulated unloaded TE" if transmission_error_um is not None else " (unloaded TE zero)"
     return f"tvms: slice-model stiffness K(t){te}"
 
@@ -521,7 +521,7 @@ DYNAMIC_TE = ("dynamic transmission error along the transverse line of action: r
               "rigid); statically the loaded TE (LTCA excitation) or F/K (stiffness excitation)")
 MESH_DEFLECTION = ("mesh deflection delta_m along the transverse line of action: elastic approach of the flanks "
                    "(dynamic TE minus the excitation error e), statically F_bt/k with k the transverse mesh "
-                   "stiffness (seed 001 calls it the DTE)")
+                   "stiffness (the low-fluctuation paper calls it the DTE)")
 
 
 def _common_vars(model: GearModel, res: SweepResult, mesh_dim: bool, cos_beta_b: float) -> dict[str, xr.Variable]:
@@ -817,7 +817,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                                      float(_engagement_roll(geom)), "m",
                                      "pinion roll of the theoretical start of engagement A (mesh phase x p_bt)")
     ds.attrs.update({
-        "model": "8-DOF bending-torsion-axial helical pair (seed 001 section 4, projections corrected; "
+        "model": "8-DOF bending-torsion-axial helical pair (the low-fluctuation paper, section 4, projections corrected; "
                  "gearmesh.dynamics)",
         "excitation": excitation_used(exc, ltca, transmission_error_um, table), "excitation_name": exc,
         **model_choices(exc, method, contact_law, stiffness, ltca),
@@ -984,7 +984,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     }
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({
-        "model": "9-DOF plate-blanket-impression helical train (seed 004, projections corrected; gearmesh.dynamics)",
+        "model": "9-DOF plate-blanket-impression helical train (the improved potential-energy paper, projections corrected; gearmesh.dynamics)",
         "excitation": excitation_used(exc, None, None, table), "excitation_name": exc,
         **model_choices(exc, method, contact_law, stiffness), "stiffness_form": stiffness_form,
         "fourier_order": fourier_order,
@@ -1041,7 +1041,7 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
     return xr.Dataset({
         "mesh_deflection_std_change_mean": variable(d1, rows["dte_mean"], "1",
                                                     "mean over speeds of the relative change of the mesh-deflection "
-                                                    "std (seed 001's DTE)"),
+                                                    "std (the low-fluctuation paper's DTE)"),
         "mesh_deflection_std_change_peak": variable(d1, rows["dte_peak"], "1",
                                                     "relative change of the highest mesh-deflection std peak"),
         "displacement_change_mean": variable(d3, np.array(grid["displacement_mean"]), "1",

@@ -74,7 +74,7 @@ def geometry_scalars(geom: PairGeometry) -> dict[str, xr.Variable]:
         "undercut": variable(("gear",), geom.undercut.astype(np.int8), "1", "tooth undercut (1) or not (0)"),
         "normal_tip_thickness": _per_gear(geom.normal_tip_thickness, "m", "normal tooth thickness at the tip"),
         "tip_clearance": _per_gear(geom.tip_clearance, "m", "tip clearance at this gear's root"),
-        "mass": _per_gear(geom.mass, "kg", "body mass (pitch cylinder minus bore, seed 001)"),
+        "mass": _per_gear(geom.mass, "kg", "body mass (pitch cylinder minus bore, as the low-fluctuation paper)"),
         "inertia": _per_gear(geom.inertia, "kg m2", "polar moment of inertia of the body"),
     }
 
@@ -119,7 +119,8 @@ def geometry_dataset(pair: GearPair, involute_points: int = 120, fillet_points: 
         "normal_z": variable(sdims, stack(surfaces, "nz"), "1", "outward unit normal z of the unmodified flank"),
         "surface_roll": variable(sdims, stack(surfaces, "rho"), "m", "involute roll length (NaN on the fillet)"),
         "modification_depth": variable(sdims, stack(surfaces, "depth"), "m",
-                                       "micro-geometry: material removed along the normal (seed 000)"),
+                                       "micro-geometry: material removed along the normal "
+                                       "(six-parameter profile and lead modification)"),
     })
     ds = xr.Dataset(data_vars=data, coords=_gear_coord())
     return ds
@@ -164,7 +165,7 @@ def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:
             "min_length_closed_form": _scalar(summary.min, "m", "minimum total contact length, closed form"),
             "max_length_closed_form": _scalar(summary.max, "m", "maximum total contact length, closed form"),
             "length_fluctuation": _scalar(summary.numeric_eps_l, "1",
-                                          "contact-line fluctuation eps_l = (Lmax - Lmin)/b (seed 001)"),
+                                          "contact-line fluctuation eps_l = (Lmax - Lmin)/b (low-fluctuation paper)"),
             "eps_alpha": _scalar(geom.eps_alpha, "1", "transverse contact ratio"),
             "eps_beta": _scalar(geom.eps_beta, "1", "overlap ratio"),
             "face_width": _scalar(b, "m", "meshing face width"),
@@ -208,7 +209,7 @@ def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_de
             "min_length": variable(dims, stack("l_min"), "m", "minimum total contact length (closed form)"),
             "max_length": variable(dims, stack("l_max"), "m", "maximum total contact length (closed form)"),
             "length_fluctuation": variable(dims, stack("eps_l"), "1",
-                                           "contact-line fluctuation eps_l = (Lmax - Lmin)/b, closed form (seed 001)"),
+                                           "contact-line fluctuation eps_l = (Lmax - Lmin)/b, closed form (low-fluctuation paper)"),
             "length_fluctuation_numeric": variable(dims, stack("eps_l_numeric"), "1",
                                                    "eps_l from the exactly clipped contact lines"),
             "length_fluctuation_sampled": variable(dims, stack("eps_l_sampled"), "1",

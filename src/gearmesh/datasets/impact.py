@@ -59,8 +59,8 @@ def _operating_points(pair: GearPair, torques, on: str, speeds_rpm, torque_field
 
 def _scenario_var(dims, scenario) -> xr.Variable:
     return variable(dims, np.asarray(scenario, dtype=np.int8), "1",
-                    "mesh-in scenario: 0 none, 1 surface (modified flanks, seed 000 scenario 2), "
-                    "2 edge (tip edge on the mating flank, seed 000 scenario 1)",
+                    "mesh-in scenario: 0 none, 1 surface (flank-to-flank contact of modified flanks), "
+                    "2 edge (tip-to-flank edge contact: a tip edge on the mating flank)",
                     flag_values=np.array([0, 1, 2], dtype=np.int8), flag_meanings=" ".join(SCENARIOS))
 
 
@@ -150,12 +150,12 @@ def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, ve
                                            "pinion roll distance before the theoretical start of engagement at which "
                                            "the entering pair touches (negative: after it)"),
         "roll_before_engagement_seed_equation": variable(
-            t, seed_roll, "m", "the same by seed 000's reverse-rotation equation (corrected; unmodified pairs with "
+            t, seed_roll, "m", "the same by the mesh-in impact paper's reverse-rotation equation (corrected; unmodified pairs with "
                                "edge contact only, else NaN)"),
         "approach_at_mesh_in": variable(t, st.approach[c], "m",
                                         "loaded approach of the pairs in mesh when the entering pair touches"),
         "te_at_engagement": variable(t, st.te_engagement[c], "m",
-                                     "entering pair's unloaded separation at phi_1A (seed 000 TE(phi_1A))"),
+                                     "entering pair's unloaded separation at phi_1A (TE(phi_1A) of the mesh-in impact paper)"),
         "lte_at_engagement": variable(t, st.lte_engagement[c], "m", "loaded TE of the mesh at phi_1A (LTE(phi_1A))"),
         "gap_rate": variable(t, st.gap_rate[c], "1", "closing rate of the entering pair's separation per unit roll"),
         "approach_rate": variable(t, st.approach_rate[c], "1", "rate of the loaded approach per unit roll"),
@@ -177,11 +177,11 @@ def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, ve
         "velocity_normal": variable(ts, rs.velocity_normal[c], "m s-1",
                                     "impact velocity along the 3-D common normal (transverse x cos beta_b)"),
         "velocity_vector_form": variable(ts, vec, "m s-1",
-                                         "seed 000's (w1 - w2) x r - E x w2 on the common normal at the exact closest "
+                                         "the mesh-in impact paper's (w1 - w2) x r - E x w2 on the common normal at the exact closest "
                                          "points of the modified profiles, in the transverse line-of-action coordinate"),
         "kinetic_energy": variable(ts, rs.kinetic_energy[c], "J", "kinetic energy 1/2 m_eq v^2 of the impact"),
         "impact_force": variable(ts, rs.force[c], "N",
-                                 "mesh-in impact force F_s, seed 000 closed form with the fitted K_s, n (transverse)"),
+                                 "mesh-in impact force F_s, closed form of the mesh-in impact paper with the fitted K_s, n (transverse)"),
         "impact_force_energy_balance": variable(ts, rs.force_energy_balance[c], "N",
                                                 "mesh-in impact force by the energy balance on the computed "
                                                 "force-approach curve (transverse)"),
@@ -193,8 +193,9 @@ def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, ve
         "curve_force": variable(tl, st.curve_force[c], "N", "entering pair alone from M: transverse force"),
         "curve_approach": variable(tl, st.curve_approach[c], "m", "entering pair alone from M: approach"),
         "equivalent_mass": variable((), model.equivalent_mass, "kg", "m_eq = J1 J2/(J1 r_b2^2 + J2 r_b1^2)"),
-        "inertia": variable(("gear",), model.inertia, "kg m2", "polar moment (seed 000 disc of r_b less the bore, "
-                                                                 "plus added inertia)"),
+        "inertia": variable(("gear",), model.inertia, "kg m2", "polar moment (disc of the base radius less "
+                                                               "the bore, as the mesh-in impact paper, "
+                                                               "plus added inertia)"),
         "base_radius": variable(("gear",), geom.base_radius, "m", "base radius"),
         "rho_sap": variable(("gear",), geom.rho_sap, "m", "roll length of the start of active profile"),
         "rho_eap": variable(("gear",), geom.rho_eap, "m", "roll length of the end of active profile"),

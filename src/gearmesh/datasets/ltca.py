@@ -8,6 +8,7 @@ TE/LTE means the gear lags its conjugate position.
 
 from __future__ import annotations
 
+import json
 from typing import Sequence, Any
 
 import numpy as np
@@ -23,10 +24,11 @@ from ..tca import DEFAULT_EXTENSION, TCAResult, check_lead_slope, check_modifica
 from ..schema import check_arguments
 from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
 from ..settings import Ltca, Tca
+from ..upstream import WILDCARDS_ATTR
 
 UM = 1e-6
 
-__all__ = ["tca_dataset", "ltca_dataset", "ltca_summary"]
+__all__ = ["tca_dataset", "ltca_dataset", "ltca_summary", "lte_table_dataset"]
 
 
 def _geometry(pair: GearPair):
@@ -70,7 +72,8 @@ def _tca_variables(geom, res: TCAResult) -> dict[str, xr.Variable]:
         "z_engagement": _scalar(res.z_engagement, "m", "axial position of the entering corner at phi_1A"),
         "te_at_engagement": _scalar(res.te_at_engagement, "m", "unloaded TE of the mesh at phi_1A"),
         "te_next_pair_at_engagement": _scalar(res.te_next_pair_at_engagement, "m",
-                                              "unloaded separation of the entering pair at phi_1A (seed 000 TE(phi_1A))"),
+                                              "unloaded separation of the entering pair at phi_1A "
+                                              "(TE(phi_1A) of the mesh-in impact paper)"),
         "lead_slope": variable(("gear",), np.array(res.lead_slope), "m",
                                "lead slope error over the face width (transverse, + removes material towards +z)"),
         "transverse_base_pitch": _scalar(geom.transverse_base_pitch, "m", "transverse base pitch (mesh cycle)"),
@@ -166,7 +169,7 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
                                               "load on tip edges at phi_1A"),
         "edge_contact_at_engagement": variable(("torque",), edge.astype(np.int8), "1",
                                                "1 when LTE(phi_1A) exceeds the entering pair's separation "
-                                               "(seed 000 scenario 1, tip-to-surface contact)"),
+                                               "(tip-to-flank edge contact)"),
         "lte_mean": variable(("torque",), res.lte.mean(axis=1), "m", "mean loaded TE over the mesh cycle"),
         "lte_peak_to_peak": variable(("torque",), lte_pp, "m", "peak-to-peak loaded TE"),
         "max_line_load_cycle": variable(("torque",), res.max_line_load.max(axis=1), "N m-1",
@@ -236,6 +239,31 @@ def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int =
         "lte_at_engagement_um": float(res.lte_at_engagement[0]) * um,
         "edge_contact_at_engagement": bool(res.lte_at_engagement[0] > res.tca.te_next_pair_at_engagement),
     }
+
+
+def lte_table_dataset(ltca: Sequence[xr.Dataset]) -> xr.Dataset:
+    """The loaded transmission error of every micro-geometry variant of a pair at every torque:
+    mean and peak-to-peak over the mesh cycle and how the entering pair meets (tip-to-flank edge
+    or flank-to-flank surface contact at the start of engagement), taken from the variants'
+    ``ltca.nc`` as they are (the report's landing page quotes this table). The variants must
+    share their torques."""
+    names = [json.loads(ds.attrs.get(WILDCARDS_ATTR, "{}")).get("variant", f"variant{k}") for k, ds in enumerate(ltca)]
+    torque = ltca[0]["torque"].values
+    for ds in ltca[1:]:
+        if not np.array_equal(ds["torque"].values, torque):
+            raise GearmeshInputError("ltca.torques_Nm", None, "must be the same for every variant")
+    dims = ("variant", "torque")
+    entry = variable(dims, np.array([ds["edge_contact_at_engagement"].values for ds in ltca], dtype=np.int8), "1",
+                     "how the entering pair meets at the start of engagement phi_1A")
+    entry.attrs.update(flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="surface edge")
+    return xr.Dataset({
+        "lte_mean": variable(dims, np.array([ds["lte_mean"].values for ds in ltca]), "m",
+                             "mean loaded transmission error over the mesh cycle", engineering_units="µm"),
+        "lte_peak_to_peak": variable(dims, np.array([ds["lte_peak_to_peak"].values for ds in ltca]), "m",
+                                     "peak-to-peak loaded transmission error", engineering_units="µm"),
+        "entry": entry,
+    }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+               "torque": variable(("torque",), torque, "N m", "pinion torque T1")})
 
 
 def lste_comparison_dataset(stiffness: Sequence[xr.Dataset], ltca: Sequence[xr.Dataset]) -> xr.Dataset:

@@ -40,6 +40,8 @@ __all__ = ["optimise_dataset", "result_dataset", "optimum_pair", "optimise_summa
            "check_optimise", "OPTIMISE_SOURCE"]
 
 _TO_SI = {"um": 1e-6, "mm": 1e-3}
+#: The six modification parameters in words (the mesh-in impact paper's y1 to y6), for descriptions.
+MODIFICATION_TEXT = ", ".join(name.replace("_", " ") for name in MODIFICATION_FIELDS)
 #: A variant that takes an optimum names its run: ``{from: optimise.NAME}``.
 OPTIMISE_SOURCE = "optimise."
 
@@ -304,7 +306,8 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "gene_high": variable(("gene",), _si(result, [g.high for g in genes]), "m", "upper bound of each gene"),
         "optimum_genes": variable(("gene",), _si(result, result.optimum_genes), "m", "gene values of the optimum"),
         "optimum_modification": variable(("gear", "parameter"), result.optimum, "m",
-                                         "seed 000's parameters y1..y6 of both gears at the optimum (as applied)"),
+                                         f"modification of both gears at the optimum, as applied "
+                                         f"({MODIFICATION_TEXT})"),
         "optimum_objective": variable((), float(opt.objective[0]), units, f"optimum: {what}"),
         "standard_objective": variable((), float(std.objective[0]), units, f"standard (unmodified) gear: {what}"),
         "reduction": variable((), 100.0 * (1.0 - float(opt.objective[0]) / float(std.objective[0])), "percent",
@@ -350,10 +353,13 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "generation": variable(("generation",), np.arange(s.generations + 1), "1", "generation (0: initial population)"),
         "candidate": variable(("candidate",), np.arange(s.population), "1", "candidate in the generation"),
         "gene": variable(("gene",), np.array([g.name for g in genes]), "1", "gene: gear.pair-file key"),
-        "gene_symbol": variable(("gene",), np.array([g.symbol for g in genes]), "1", "seed 000's symbol of the gene"),
+        "gene_symbol": variable(("gene",), np.array([g.symbol for g in genes]), "1",
+                                "symbol of the gene in the mesh-in impact paper (y1 to y6)"),
         "gear": variable(("gear",), np.array(GEARS), "1", "gear"),
-        "parameter": variable(("parameter",), np.array(MODIFICATION_FIELDS), "1", "seed 000's parameters y1..y6"),
-        "parameter_symbol": variable(("parameter",), np.array(GENE_SYMBOLS), "1", "seed 000's symbols"),
+        "parameter": variable(("parameter",), np.array(MODIFICATION_FIELDS), "1",
+                              f"modification parameter: {MODIFICATION_TEXT}"),
+        "parameter_symbol": variable(("parameter",), np.array(GENE_SYMBOLS), "1",
+                                     "symbol of the parameter in the mesh-in impact paper (y1 to y6)"),
         "objective_torque": variable(t, np.array(s.objective_torques), "N m", "pinion torques of the load spectrum"),
     }
     if result.diagnostics is not None:

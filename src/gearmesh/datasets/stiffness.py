@@ -86,7 +86,7 @@ def stiffness_dataset(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices
         "mean_stiffness": variable((), result.mean, "N m-1", "mean mesh stiffness"),
         "min_stiffness": variable((), result.min, "N m-1", "minimum mesh stiffness (samples and kinks)"),
         "max_stiffness": variable((), result.max, "N m-1", "maximum mesh stiffness (samples and kinks)"),
-        "fluctuation": variable((), result.fluctuation, "1", "fluctuation eps_k = (Kmax - Kmin)/Kmin (seed 001)"),
+        "fluctuation": variable((), result.fluctuation, "1", "fluctuation eps_k = (Kmax - Kmin)/Kmin (low-fluctuation paper)"),
         "fourier_mean": variable((), fit.mean, "N m-1", "Fourier series: mean k_m"),
         "fourier_cos": variable(("harmonic",), fit.a, "N m-1", "Fourier series: cosine coefficients a_j"),
         "fourier_sin": variable(("harmonic",), fit.b, "N m-1", "Fourier series: sine coefficients b_j"),

@@ -154,7 +154,7 @@ def require_dynamics_data(geom: PairGeometry) -> None:
                                  "Young's modulus for the mesh stiffness)")
     if geom.pair.bore_radius is None:
         raise GearmeshInputError("bore_radius_mm", None, "is required for the dynamics (gear body masses and "
-                                 "inertias, seed 001 Table 1 convention)")
+                                 "inertias, as the low-fluctuation paper's Table 1)")
 
 
 #: Points of the fine table that holds a Fourier-represented error e(phase).

@@ -3,6 +3,7 @@ numbers in labels, legends placed clear of the data."""
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import Any
 
@@ -12,12 +13,13 @@ from matplotlib import colormaps
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter
 
+from ..gear import example_pairs
 from ..io import atomic_output
 
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "figure_legend", "legend_below", "number", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
+__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "figure_legend", "legend_below", "number", "pair_label", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
            "title"]
 
 
@@ -46,9 +48,29 @@ def save(fig: Figure, path: str | Path) -> Path:
     return Path(path)
 
 
+def pair_label(ds: xr.Dataset) -> str:
+    """The dataset's gear pair as a reader knows it: its data ("29/71 teeth, module 5 mm, helix
+    27.5°, face 42 mm", from the pair data the result was computed with), after its name for a
+    pair of the user's own; the shipped example pairs' names (seed000_case, ...) are the source
+    documents' file numbers, which say nothing to a reader, so they are left out. Empty for a
+    result of no single pair."""
+    name = ds.attrs.get("pair_name", "")
+    try:
+        pair = json.loads(ds.attrs.get("config_json", "{}")).get("pair") or {}
+    except ValueError:
+        pair = {}
+    if not {"teeth", "normal_module_mm", "helix_angle_deg", "face_width_mm"} <= set(pair):
+        return name
+    widths = sorted({number(b) for b in pair["face_width_mm"]}) if isinstance(pair["face_width_mm"], list) \
+        else [number(pair["face_width_mm"])]
+    data = (f"{'/'.join(str(z) for z in pair['teeth'])} teeth, module {number(pair['normal_module_mm'])} mm, "
+            f"helix {number(pair['helix_angle_deg'])}°, face {'/'.join(widths)} mm")
+    return data if not name or name in example_pairs() else f"{name}: {data}"
+
+
 def title(ds: xr.Dataset, what: str) -> str:
-    """'PAIR — what' from the dataset's pair_name attribute."""
-    return f"{ds.attrs.get('pair_name', '')} — {what}".strip(" —")
+    """'PAIR — what', the pair as :func:`pair_label` names it."""
+    return f"{pair_label(ds)} — {what}".strip(" —")
 
 
 def number(value: float, digits: int = 3) -> str:

@@ -9,7 +9,8 @@ import numpy as np
 import xarray as xr
 from matplotlib import colormaps
 
-from .common import coinciding, figure_legend, MM, number, palette, plain_axis, plain_log_axis, save as _save, subplots, title as _title, UM
+from .common import (coinciding, figure_legend, MM, number, pair_label, palette, plain_axis, plain_log_axis, save as _save,
+                     subplots, title as _title, UM)
 
 
 def _at_torque(ds: xr.Dataset, k: int | None = None) -> xr.Dataset:
@@ -292,13 +293,13 @@ def plot_dynamics_comparison(datasets, path) -> None:
     """Mesh-deflection std and pinion lateral (y) and axial (z) velocity RMS against speed, all pairs."""
     fig, axes = subplots(3, 1, figsize=(8, 8.5), sharex=True)
     for ds in datasets:
-        name = ds.attrs.get("pair_name", "")
+        name = pair_label(ds)
         ds = _at_torque(ds, 0)  # the comparison is at each sweep's first torque
         speed = ds["speed"].values
         axes[0].plot(speed, ds["mesh_deflection_std"].values * UM, lw=1.2, label=name)
         for ax, direction in zip(axes[1:], ("y", "z")):
             ax.plot(speed, ds["velocity_rms"].sel(gear="pinion", direction=direction).values * 1e3, lw=1.2)
-    axes[0].set_ylabel("mesh deflection std (µm),\ntransverse (seed 001's DTE)")
+    axes[0].set_ylabel("mesh deflection std (µm), transverse\n(the low-fluctuation paper's DTE)")
     axes[1].set_ylabel("pinion y velocity RMS (mm/s)")
     axes[2].set_ylabel("pinion z velocity RMS (mm/s)")
     axes[2].set_xlabel("pinion speed (rpm)")

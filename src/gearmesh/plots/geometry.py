@@ -107,7 +107,9 @@ def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
         both = np.isfinite(closed) & np.isfinite(sampled)
         apart = float(np.max(np.abs(closed[both] - sampled[both]))) if both.any() else 0.0
         same = len(coinciding([closed, sampled])) == 1
-        label = f"{name} (the sampled lines agree to {number(apart)})" if same else f"{name} (dashed: sampled lines)"
+        # ε_l is a ratio: its difference needs no unit; one at round-off is said in words
+        agree = "identical to round-off" if apart < 1e-9 else f"within {number(apart)} in ε_l"
+        label = f"{name} (sampled lines {agree})" if same else f"{name} (dashed: sampled lines)"
         line, = ax1.plot(beta, closed, lw=1.5, label=label)
         if not same:
             ax1.plot(beta, sampled, color=line.get_color(), lw=0.8, ls="--")
