@@ -7,6 +7,7 @@ from snakemake.utils import min_version
 
 from gearmesh.config import workflow_config
 from gearmesh.errors import GearmeshInputError
+from gearmesh.io import check_output_files
 
 min_version("8.0")
 
@@ -50,3 +51,13 @@ rule all:
     input:
         all_targets(),
     default_target: True
+
+
+# A folder where a result file belongs is refused up front (Snakemake would take it for the made
+# file and skip the job), as common.smk refuses a file where a folder belongs.
+try:
+    check_output_files([f for r in workflow.rules for f in (*r.output, *r.log)],
+                       [f"results/{STUDY}", f"logs/{STUDY}"])
+except GearmeshInputError as exc:
+    print(f"gearmesh: error: {exc}", file=sys.stderr)
+    sys.exit(2)

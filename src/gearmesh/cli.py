@@ -22,7 +22,8 @@ from .config import check_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
 from .gear import example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
-from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_load
+from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
+from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
 from .settings import Dynamics, Impact, Ltca, Optimise, Stiffness, Tolerances
 
@@ -83,7 +84,7 @@ def _flat(result: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
 def _pair(args: argparse.Namespace, path: str | None = None):
     """The pair file of the command (``path``, else ``args.pair``; its ``name``, or its file
     stem without one) and its geometry, a ``--torque-Nm`` checked against the load limits of
-    :func:`gearmesh.limits.check_load`. Kept on ``args`` for the notes :func:`main` prints."""
+    :func:`gearmesh.loads.check_load`. Kept on ``args`` for the notes :func:`main` prints."""
     pair = load_pair(path or args.pair)
     geom = pair_geometry(pair)
     torque = getattr(args, "torque_Nm", None)

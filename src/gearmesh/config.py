@@ -146,8 +146,8 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     settings with their work estimate (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`)."""
     from .datasets.dynamics import check_dynamics_settings
     from .gear import pair_geometry
-    from .limits import (MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, MAX_SWEEP_ANGLES, check_grid,
-                         check_load, check_speeds)
+    from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_speeds, check_sweep
+    from .loads import check_load
 
     geoms = {name: pair_geometry(pair) for name, pair in pairs.items()}
 
@@ -193,8 +193,7 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
                 for name in config["pairs"]:
                     check_load(geoms[name], pinion_torque(pairs[name], value, section["on"]), field, value)
     if sweep := config.get("helix_sweep"):
-        count = int((sweep["stop_deg"] - sweep["start_deg"]) / sweep["step_deg"]) + 1
-        check_grid("helix_sweep.step_deg", sweep["step_deg"], count, MAX_SWEEP_ANGLES, "helix angles per pair")
+        check_sweep(sweep["start_deg"], sweep["stop_deg"], sweep["step_deg"], "helix_sweep.")
     for k, couple in enumerate(config.get("dynamics_comparison", {}).get("couples") or []):
         for name in couple:
             if name not in config["pairs"]:

@@ -8,7 +8,7 @@ full disk is named as such; inside a workflow job (:func:`job_outputs`) a job wh
 is gone, or whose output another process wrote meanwhile, renames nothing. The temporaries of
 killed writers are removed on the next run's start when no live process writes them
 (:func:`remove_stale_temporaries`), and a study's output folders are checked up front
-(:func:`check_output_tree`). What a stage reads is checked in :mod:`gearmesh.upstream`.
+(:func:`check_output_tree`, and :func:`check_output_files` for a folder where a file belongs). What a stage reads is checked in :mod:`gearmesh.upstream`.
 """
 
 from __future__ import annotations
@@ -269,6 +269,30 @@ def check_output_tree(folders, root: str | Path = ".") -> None:
                 kind = "a link to nothing" if path.is_symlink() and not path.exists() else "a file"
                 raise GearmeshInputError(str(part), kind, "must be a folder: the study writes its results under "
                                          "it; move or delete it")
+
+
+def output_pattern(pattern: str) -> re.Pattern[str]:
+    """The regular expression of a Snakemake output pattern (``results/{study}/{pair}/tca.nc``):
+    each ``{wildcard}`` (with or without its own ``,regex``) one path component or more of
+    one, the rest literal."""
+    parts = re.split(r"\{([^{}]+)\}", pattern)
+    return re.compile("".join(re.escape(p) if k % 2 == 0 else "[^/]+" for k, p in enumerate(parts)))
+
+
+def check_output_files(patterns, roots, root: str | Path = ".") -> None:
+    """Refuse (GearmeshInputError) a folder under ``roots`` (e.g. ``results/STUDY``) where an
+    output of ``patterns`` (the rules' file outputs) belongs: Snakemake takes an existing path
+    for a made file, skips its job and leaves the result and its figure missing. Walks the
+    folders only (a study has tens of them)."""
+    regexes = [output_pattern(str(p)) for p in patterns]
+    root = Path(root)
+    for top in roots:
+        for folder, dirs, _ in os.walk(root / top):
+            for name in dirs:
+                rel = (Path(folder) / name).relative_to(root).as_posix()
+                if any(r.fullmatch(rel) for r in regexes):
+                    raise GearmeshInputError(rel, "a folder", "must be a file: the study writes one of its results "
+                                             "there; move or delete the folder, then rerun")
 
 
 @lru_cache(maxsize=1)

@@ -26,7 +26,6 @@ import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
 from .io import add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
-from .jobserver import process_start_time
 from .tables import write_csv
 from .upstream import Expected, identify, read_input
 
@@ -59,12 +58,12 @@ def resolve(spec: str) -> Callable[..., Any]:
 
 
 def _process_age() -> float | None:
-    """Seconds since the job's process started (interpreter start-up, Snakemake's script
-    preamble and every import included; for a job run by the job server, since its script
-    started), or None where the start is not known (not Linux)."""
-    started = os.environ.get("GEARMESH_JOB_STARTED")  # set by gearmesh.jobserver
-    started = float(started) if started else process_start_time()
-    return None if started is None else time.time() - started
+    """Seconds since the job's script started (interpreter start-up, Snakemake's script
+    preamble and every import included), as :func:`gearmesh.jobserver.run` exports it in
+    ``GEARMESH_JOB_STARTED``, or None where the start is not known (not Linux, or called
+    without it)."""
+    started = os.environ.get("GEARMESH_JOB_STARTED")
+    return None if not started else time.time() - float(started)
 
 
 def _cpu_seconds() -> float:

@@ -130,6 +130,42 @@ def _check_settings(made_study: Mapping[str, Any], path, rule: str, wildcards: M
                                  f"this run has {field} = {_value(now, key)}; {_recovery(path)}")
 
 
+#: Global attribute of a stage's dataset: the pair data it was computed for (canonical JSON of
+#: the pair file's form; without the modification for a stage of the pair, which does not use it),
+#: so a stage handed another pair's dataset refuses it (:func:`check_dataset_pair`).
+PAIR_ATTR = "gearmesh_pair_json"
+
+
+def stamp_pair(ds: xr.Dataset, pair: GearPair, per_variant: bool) -> xr.Dataset:
+    """Record in ``ds`` the pair data it was computed for (:data:`PAIR_ATTR`); ``per_variant``
+    whether the result depends on the micro-geometry (TCA, LTCA, impact, dynamics)."""
+    data = pair_to_dict(pair)
+    if not per_variant:
+        data.pop("modification", None)
+    ds.attrs[PAIR_ATTR] = config_digest({"pair": data, "per_variant": per_variant})[0]
+    return ds
+
+
+def check_dataset_pair(argument: str, ds: xr.Dataset, pair: GearPair) -> None:
+    """Refuse a dataset argument computed for other pair data than ``pair`` (GearmeshInputError
+    naming the argument, the pair it was made for and the first differing key); a dataset
+    without :data:`PAIR_ATTR` (made by hand) is taken as it is."""
+    text = ds.attrs.get(PAIR_ATTR)
+    if not isinstance(text, str):
+        return
+    made = json.loads(text)
+    wanted = pair_to_dict(pair)
+    if not made.get("per_variant"):
+        wanted.pop("modification", None)
+    recorded = made.get("pair", {})
+    key = first_difference(recorded, wanted)
+    if key is not None:
+        raise GearmeshInputError(argument, f"a dataset of {recorded.get('name')!r}",
+                                 f"was computed with {key} = {_value(recorded, key)}, this pair "
+                                 f"{pair.name!r} has {key} = {_value(wanted, key)}: pass this pair's own "
+                                 f"{argument} dataset (or none)")
+
+
 def first_difference(made: Any, wanted: Any, prefix: str = "") -> str | None:
     """The dotted key (``a.b[2]``) of the first difference between two JSON-like values, numbers
     equal within :data:`PAIR_RTOL`; ``''`` when the values differ at the top; None if equal."""
