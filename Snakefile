@@ -30,8 +30,18 @@ except GearmeshInputError as exc:
     sys.exit(2)
 
 
-# `snakemake --report report.html` (after a run): this page, then every figure and table.
+# `snakemake --report report.html` (after a run): this page, then every figure and table, once
+# `gearmesh check` finds every file of the study's results what it claims to be (gearmesh.pipeline.check_results).
 report: "workflow/report/workflow.rst"
+
+if any(arg == "--report" or arg.startswith("--report=") for arg in sys.argv):
+    from gearmesh.pipeline import check_results
+
+    problems = check_results(config)
+    for line in problems:
+        print(f"gearmesh: error: {line}", file=sys.stderr)
+    if problems:
+        sys.exit(2)
 
 
 include: "workflow/rules/common.smk"

@@ -23,7 +23,13 @@ from .settings import study_schema
 def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
     """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field
     (a NaN or infinite number anywhere, then the first error of the study schema,
-    :func:`gearmesh.settings.study_schema`)."""
+    :func:`gearmesh.settings.study_schema`). A ``__use_yte__`` key is named for what it is: it
+    turns on Snakemake's YTE template engine, which runs the file's Python when Snakemake loads it."""
+    if isinstance(config, Mapping) and "__use_yte__" in config:
+        raise GearmeshInputError("__use_yte__", config["__use_yte__"], "turns on Snakemake's YTE template engine, "
+                                 "which runs Python from the config when Snakemake loads it (before any check): a "
+                                 "gearmesh study is plain data; remove the key, and run studies with 'gearmesh run' "
+                                 "(docs/workflow.md, trust model)")
     return validate(config, study_schema())
 
 

@@ -323,6 +323,29 @@ def add_provenance(ds: xr.Dataset, config: Mapping[str, Any], source: str, title
     return ds
 
 
+#: Global attribute: the sha256 of a file's own data (:func:`data_digest`), written by
+#: :func:`write_dataset` and compared by :func:`gearmesh.upstream.check_input` and ``gearmesh check``.
+DATA_ATTR = "gearmesh_data_sha256"
+
+
+def data_digest(ds: xr.Dataset) -> str:
+    """sha256 of every data and coordinate variable of ``ds`` (name, dimensions, shape and the
+    values: numbers by their bytes in little-endian order, text as UTF-8), in name order. The
+    same before writing and after reading back (netCDF keeps dtypes; strings come back as
+    objects, hashed by their text); an edited value changes it."""
+    h = hashlib.sha256()
+    for name in sorted(map(str, {**ds.data_vars, **ds.coords})):
+        var = ds[name].variable
+        values = np.asarray(var.values)
+        h.update(json.dumps([name, list(var.dims), list(values.shape)]).encode())
+        if values.dtype.kind in "OUS":
+            h.update(json.dumps([str(v) for v in values.ravel().tolist()]).encode())
+        else:
+            h.update(values.dtype.newbyteorder("<").str.encode())
+            h.update(np.ascontiguousarray(values, dtype=values.dtype.newbyteorder("<")).tobytes())
+    return h.hexdigest()
+
+
 def check_documented(ds: xr.Dataset) -> None:
     """Raise if any data or coordinate variable lacks ``units`` or ``long_name``."""
     for name, var in {**ds.data_vars, **ds.coords}.items():
@@ -337,6 +360,7 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     for attr in ("gearmesh_version", "config_sha256"):
         if attr not in ds.attrs:
             raise ValueError(f"dataset lacks the provenance attribute {attr!r}")
+    ds.attrs[DATA_ATTR] = data_digest(ds)
     encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars
                 if ds[name].dtype.kind in "fiu" and ds[name].ndim > 0}
     with atomic_output(path) as tmp:
