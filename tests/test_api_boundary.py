@@ -26,34 +26,13 @@ from gearmesh.gear import GearPair, Material, load_pair, pair_from_dict, pair_ge
 from gearmesh.optimise import check_settings
 from gearmesh.stiffness import mesh_stiffness
 from pairs import seed001_pair1
-
-#: Most memory (bytes) a refusal may trace beyond its input: the pair geometry and the checks.
-REFUSAL_BYTES = 20e6
+from test_limits import REFUSAL_BYTES, _refused  # one line on the field, bounded memory
 PACKAGE = Path(gearmesh.__file__).parent
 
 
 @pytest.fixture(scope="module")
 def pair() -> GearPair:
     return pair_from_dict(seed001_pair1())
-
-
-def _refused(call, field: str, *words: str) -> str:
-    """``call`` raises GearmeshInputError on ``field`` with ``words`` in one line, tracing less
-    than :data:`REFUSAL_BYTES`; its message."""
-    tracemalloc.start()
-    try:
-        with pytest.raises(GearmeshInputError) as info:
-            call()
-        peak = tracemalloc.get_traced_memory()[1]
-    finally:
-        tracemalloc.stop()
-    message = str(info.value)
-    assert info.value.field == field, message
-    assert "\n" not in message
-    for word in words:
-        assert word in message, message
-    assert peak < REFUSAL_BYTES, f"{peak / 1e6:.0f} MB traced before the refusal"
-    return message
 
 
 # --- item 5: the material of a GearPair however it was built -----------------------------------
@@ -296,3 +275,51 @@ def test_no_import_circle():
         if m not in state:
             visit(m, [])
 
+
+
+# --- item 7: configs that only Snakemake's loader would see ---------------------------------------
+
+
+def test_validate_names_the_template_engine(tmp_path, capsys):
+    """A config with __use_yte__: true runs Python when Snakemake loads it."""
+    config = tmp_path / "yte.yaml"
+    config.write_text("study: s\npairs: [seed001_pair1]\n__use_yte__: true\n")
+    assert main(["validate", str(config)]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("gearmesh: error: __use_yte__ = True:") and "runs Python" in err
+
+
+@pytest.mark.parametrize("content, words", [
+    (None, "not a regular file"),  # a FIFO: Snakemake's loader blocked on it forever
+    ("study: s\npairs: [seed001_pair1]\nx: " + "[" * 100 + "]" * 100 + "\n", "nests deeper"),
+    ("study: s\npairs: [seed001_pair1]\n" + "# padding\n" * 40000, "larger than"),
+    ("study: s\npairs: [seed001_pair1]\n__use_yte__: true\n", "__use_yte__"),
+])
+def test_gearmesh_run_reads_configs_bounded_before_snakemake(tmp_path, monkeypatch, capsys, content, words):
+    """A 200 MB config parsed for minutes at 6.5 GB, a deep one printed a 2985-line RecursionError:
+    'gearmesh run' refuses each before Snakemake starts (os.execv is never reached)."""
+    import os
+
+    path = tmp_path / "c.yaml"
+    if content is None:
+        os.mkfifo(path)
+    else:
+        path.write_text(content)
+    monkeypatch.setattr(os, "execv", lambda *a: pytest.fail("snakemake was started"))
+    tracemalloc.start()
+    try:
+        assert main(["run", "-n", "--cores", "1", "--configfile", str(path)]) == 2
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and words in err, err
+    assert peak < REFUSAL_BYTES
+
+
+def test_gearmesh_run_finds_every_config_file():
+    from gearmesh.cli import snakemake_configfiles
+
+    assert snakemake_configfiles(["--cores", "2"]) == ["config/config.yaml"]
+    assert snakemake_configfiles(["-n", "--configfile", "a.yaml", "b.yaml", "--cores", "2", "--configfile=c.yaml"]) \
+        == ["a.yaml", "b.yaml", "c.yaml"]

@@ -13,17 +13,16 @@ import sys
 from pathlib import Path
 
 import netCDF4
-import numpy as np
 import pytest
 import xarray as xr
 
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_from_dict
-from gearmesh.io import variable
-from gearmesh.pipeline import finish, write_pair
-from gearmesh.upstream import Expected, identify, read_input
+from gearmesh.pipeline import write_pair
+from gearmesh.upstream import Expected, read_input
 from pairs import seed001_pair1
+from test_upstream import _write as _write_upstream
 
 STUDY = {"study": "s", "pairs": ["seed001_pair1"], "tolerances": {"samples": 4},
          "impact": {"torques_Nm": [100], "points": 10}, "variants": {"standard": {}, "relief": {}}}
@@ -31,21 +30,13 @@ RELIEF = {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 1}}
 BASE = "results/s/seed001_pair1"
 
 
+def _write(*args, **kwargs) -> str:
+    """A stage's output as a job of this study writes it (tests/test_upstream.py)."""
+    return _write_upstream(*args, **{"study": STUDY, **kwargs})
+
+
 def _pair(modification=None):
     return pair_from_dict(seed001_pair1(**({"modification": modification} if modification else {})))
-
-
-def _write(path: str, rule: str, variant: str | None, pair, study=STUDY, inputs=(), sections=None,
-           data=(0.0, 1.0, 2.0)) -> str:
-    """A stage's output as a workflow job writes it (pipeline._write_outputs)."""
-    from gearmesh.upstream import record_sources
-
-    ds = xr.Dataset({"x": variable(("i",), np.asarray(data), "m", "a number")})
-    wildcards = {"study": "s", "pair": pair.name, **({"variant": variant} if variant else {})}
-    identify(ds, path, rule, wildcards)
-    record_sources(ds, list(inputs), [rule] if sections is None else sections)
-    finish(ds, path, study, pair, f"gearmesh {rule}")
-    return path
 
 
 @pytest.fixture
@@ -237,3 +228,19 @@ def test_snakemake_refuses_a_folder_where_a_result_belongs(root, tmp_path):
     assert proc.stderr.strip() == ("gearmesh: error: results/k/seed001_pair1/stiffness.nc = 'a folder': must be a "
                                    "file: the study writes one of its results there; move or delete the folder, "
                                    "then rerun")
+
+
+def test_a_file_made_by_older_code_of_its_function_is_named(work, capsys):
+    """The code digest a file claims is compared with its function's code now (item 9)."""
+    from gearmesh.codeversion import versioned
+    from gearmesh.upstream import FUNCTION_ATTR
+
+    path = _write(f"{BASE}/geometry.nc", "geometry", None, _pair())
+    spec = versioned("gearmesh.datasets.geometry:geometry_dataset")
+    with netCDF4.Dataset(path, "a") as nc:
+        nc.setncattr(FUNCTION_ATTR, str.__str__(spec))
+    assert main(["check", "results/s"]) == 0
+    with netCDF4.Dataset(path, "a") as nc:
+        nc.setncattr(FUNCTION_ATTR, "gearmesh.datasets.geometry:geometry_dataset@0123456789abcdef")
+    assert main(["check", "results/s"]) == 2
+    assert "older code" in capsys.readouterr().err

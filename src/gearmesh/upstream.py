@@ -12,7 +12,16 @@ what it is, what was expected and how to regenerate it, when
   another study's file);
 * it was made for other pair data than the reading job's (the pair file or the variant's
   modification changed, and the file was not remade);
-* it was made with other settings of its own stage (its config section) or for another study.
+* it was made with other settings of its own stage (its config section), of another section it
+  depends on (the impact stage's tolerances), or for another study;
+* its data do not match the digest it claims (an edited value, a forged file: issue 29);
+* an input it was made from has changed or is gone since (:func:`record_sources`): it is stale.
+
+A study table (no pair of its own) checks each file against that file's own pair and variant.
+The optimum's pair file is checked against the run that wrote it (:func:`check_optimum`), and
+:func:`check_tree` (``gearmesh check``, and ``snakemake --report`` first) checks every file of a
+results folder, those nothing downstream reads included. A stage function handed another
+pair's dataset refuses it (:func:`check_dataset_pair`).
 
 Snakemake reruns a job whose inputs, code or params changed, so none of these happens in a run
 that Snakemake alone drives; they catch the files a person or another program put in place,
@@ -69,8 +78,8 @@ def identify(ds: xr.Dataset, path: str | Path, rule: str, wildcards: Mapping[str
     :func:`check_input` and :func:`check_tree` compare."""
     ds.attrs.update({OUTPUT_ATTR: normal_path(path), RULE_ATTR: rule,
                      WILDCARDS_ATTR: json.dumps({k: str(v) for k, v in dict(wildcards).items()}, sort_keys=True)})
-    if function:
-        ds.attrs[FUNCTION_ATTR] = str(function)
+    if function:  # the whole text: a Versioned spec prints without its digest
+        ds.attrs[FUNCTION_ATTR] = str.__str__(function)
     return ds
 
 
@@ -89,8 +98,10 @@ def read_input(path: str | Path, expected: Expected) -> xr.Dataset:
 
 
 def check_input(ds: xr.Dataset, path: str | Path, expected: Expected) -> None:
-    """Refuse ``ds`` (read from ``path``) unless it is the workflow's file at ``path``, made for
-    the expected study, pair data and variant, with the current settings of its stage."""
+    """Refuse ``ds`` (read from ``path``) unless it is the workflow's file at ``path``, its data
+    those its digest claims, made for the expected study, pair data and variant, with the
+    current settings of every section it depends on, from inputs that are still the files it
+    was made from (module docstring)."""
     attrs = ds.attrs
     _check_identity(ds, path)
     rule = attrs.get(RULE_ATTR, "?")
