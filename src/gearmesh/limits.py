@@ -173,12 +173,16 @@ def positive_values(values, field: str, unit: str, maximum: float = math.inf, no
 
 
 def check_speeds(geom: PairGeometry | None, speeds_rpm, field: str = "speeds_rpm", on: str = "pinion",
-                 max_items: int = MAX_LIST_ITEMS) -> np.ndarray:
-    """Speeds (rpm of the ``on`` gear) as a 1-d float array: at most ``max_items`` of them, each
+                 max_items: int = MAX_SPEEDS, empty_ok: bool = False) -> np.ndarray:
+    """Speeds (rpm of the ``on`` gear) as a 1-d float array: at most ``max_items`` of them (a
+    sweep's grid: :data:`MAX_SPEEDS`; a list in a config is bounded by its schema first), each
     finite and positive (:func:`positive_values`); with a pair's ``geom`` none above
     :func:`max_speed_rpm` (the centrifugal hoop stress of the faster tip circle would exceed
     :data:`MAX_RIM_STRESS`; the advice is to lower the speed); and none above
-    :data:`MAX_SPEED_RPM`. The one speed check of the package."""
+    :data:`MAX_SPEED_RPM`. The one speed check of the package; ``empty_ok``: no speed is a
+    valid answer (e.g. no sampled speeds)."""
+    if empty_ok and hasattr(speeds_rpm, "__len__") and not isinstance(speeds_rpm, str) and len(speeds_rpm) == 0:
+        return np.zeros(0)
     values = positive_values(speeds_rpm, field, "rpm", max_items=max_items)
     if geom is not None:
         limit = max_speed_rpm(geom, on)

@@ -729,7 +729,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     grid = speed_grid(speeds_rpm)
     check_speeds(geom, grid, "speeds_rpm")
     samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
-    check_speeds(geom, samples, "sample_speeds_rpm")
+    check_speeds(geom, samples, "sample_speeds_rpm", empty_ok=True)
     check_slice_grid(slices, positions)
     use_fe_tables(fe_compliance, geom)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
