@@ -7,6 +7,7 @@ from snakemake.utils import min_version
 
 from gearmesh.config import workflow_config
 from gearmesh.errors import GearmeshInputError
+from gearmesh.io import check_output_files
 
 min_version("8.0")
 
@@ -29,8 +30,18 @@ except GearmeshInputError as exc:
     sys.exit(2)
 
 
-# `snakemake --report report.html` (after a run): this page, then every figure and table.
+# `snakemake --report report.html` (after a run): this page, then every figure and table, once
+# `gearmesh check` finds every file of the study's results what it claims to be (gearmesh.pipeline.check_results).
 report: "workflow/report/workflow.rst"
+
+if any(arg == "--report" or arg.startswith("--report=") for arg in sys.argv):
+    from gearmesh.pipeline import check_results
+
+    problems = check_results(config)
+    for line in problems:
+        print(f"gearmesh: error: {line}", file=sys.stderr)
+    if problems:
+        sys.exit(2)
 
 
 include: "workflow/rules/common.smk"
@@ -51,3 +62,13 @@ rule all:
     input:
         all_targets(),
     default_target: True
+
+
+# A folder where a result file belongs is refused up front (Snakemake would take it for the made
+# file and skip the job), as common.smk refuses a file where a folder belongs.
+try:
+    check_output_files([f for r in workflow.rules for f in (*r.output, *r.log)],
+                       [f"results/{STUDY}", f"logs/{STUDY}"])
+except GearmeshInputError as exc:
+    print(f"gearmesh: error: {exc}", file=sys.stderr)
+    sys.exit(2)

@@ -15,7 +15,7 @@ from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_from_dict
 from gearmesh.io import variable, write_dataset
 from gearmesh.pipeline import finish
-from gearmesh.upstream import Expected, first_difference, identify, read_input
+from gearmesh.upstream import Expected, first_difference, identify, read_input, record_sources
 from pairs import seed001_pair1
 
 STUDY = {"study": "s", "pairs": ["seed001_pair1"], "ltca": {"torques_Nm": [100, 200], "positions": 8},
@@ -27,11 +27,15 @@ def _pair(modification=None):
     return pair_from_dict(seed001_pair1(**({"modification": modification} if modification else {})))
 
 
-def _write(path: str, rule: str, variant: str | None, pair, study=STUDY) -> str:
-    """A stage's output as a workflow job writes it (pipeline.finish after upstream.identify)."""
-    ds = xr.Dataset({"x": variable(("i",), np.arange(3.0), "m", "a number")})
+def _write(path: str, rule: str, variant: str | None, pair, study=STUDY, inputs=(), sections=None,
+           data=(0.0, 1.0, 2.0)) -> str:
+    """A stage's output as a workflow job writes it (pipeline._write_outputs): what it is, the
+    ``inputs`` it was made from and the config ``sections`` it depends on (its rule's by
+    default), then provenance; its data ``data``."""
+    ds = xr.Dataset({"x": variable(("i",), np.asarray(data), "m", "a number")})
     wildcards = {"study": "s", "pair": pair.name, **({"variant": variant} if variant else {})}
     identify(ds, path, rule, wildcards)
+    record_sources(ds, list(inputs), [rule] if sections is None else sections)
     finish(ds, path, study, pair, f"gearmesh {rule}")
     return path
 

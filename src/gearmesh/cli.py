@@ -19,11 +19,12 @@ from typing import Any
 
 from . import __version__
 from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
-from .config import check_study, validate_study
+from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
 from .gear import example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
-from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_load
+from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
+from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
 from .settings import Dynamics, Impact, Ltca, Optimise, Stiffness, Tolerances
 
@@ -84,7 +85,7 @@ def _flat(result: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
 def _pair(args: argparse.Namespace, path: str | None = None):
     """The pair file of the command (``path``, else ``args.pair``; its ``name``, or its file
     stem without one) and its geometry, a ``--torque-Nm`` checked against the load limits of
-    :func:`gearmesh.limits.check_load`. Kept on ``args`` for the notes :func:`main` prints."""
+    :func:`gearmesh.loads.check_load`. Kept on ``args`` for the notes :func:`main` prints."""
     pair = load_pair(path or args.pair)
     geom = pair_geometry(pair)
     torque = getattr(args, "torque_Nm", None)
@@ -96,7 +97,7 @@ def _pair(args: argparse.Namespace, path: str | None = None):
 
 def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     data = read_yaml(args.file, "file")
-    if isinstance(data, Mapping) and ("study" in data or "pairs" in data):  # a pair file has neither key
+    if isinstance(data, Mapping) and ("study" in data or "pairs" in data or "__use_yte__" in data):  # not a pair file
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
     pair = _pair(args, args.file)[0]
@@ -436,6 +437,72 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_BAD_INPUT, f"gearmesh: error: {exc}\n")
 
 
+class _Problems(GearmeshInputError):
+    """Several files refused by ``gearmesh check``: one line each."""
+
+    def __init__(self, lines: list[str]):
+        ValueError.__init__(self, "\ngearmesh: error: ".join(lines))
+
+
+def cmd_check(args) -> None:
+    """``gearmesh check RESULTS [--configfile C]``: every problem of a results folder
+    (:func:`gearmesh.upstream.check_tree`), one line each; nothing printed when all is well."""
+    from .pipeline import study_pair
+    from .upstream import check_tree
+
+    root = Path(args.results)
+    if not root.is_dir():
+        raise GearmeshInputError("results", args.results, "must be a study's results folder (results/STUDY)")
+    config = None
+    if args.configfile is not None:
+        config = load_study(args.configfile)
+    problems = check_tree(root, config, None if config is None else lambda name, v: study_pair(config, name, v))
+    if problems:
+        raise _Problems(problems)
+    return None
+
+
+#: The study config Snakemake reads when no --configfile is given (the Snakefile's configfile).
+DEFAULT_STUDY = "config/config.yaml"
+
+
+def snakemake_configfiles(argv: Sequence[str]) -> list[str]:
+    """The config files a Snakemake command line names (``--configfile(s) A B``, ``--configfile=A``),
+    or the workflow's default study when it names none."""
+    files: list[str] = []
+    taking = False
+    for arg in argv:
+        if arg in ("--configfile", "--configfiles"):
+            taking = True
+        elif arg.startswith(("--configfile=", "--configfiles=")):
+            files.append(arg.split("=", 1)[1])
+            taking = False
+        elif taking and not arg.startswith("-"):
+            files.append(arg)
+        else:
+            taking = False
+    return files or [DEFAULT_STUDY]
+
+
+def cmd_run(args) -> None:
+    """``gearmesh run SNAKEMAKE-ARGS``: read every study config of the command line with the
+    package's bounded loader (a regular file, at most MAX_INPUT_BYTES, MAX_INPUT_NODES nodes and
+    MAX_INPUT_DEPTH levels, no alias, no ``__use_yte__``) and validate it, then hand the command
+    line to Snakemake, whose own loader (and template engine) never sees a file that failed."""
+    import shutil
+
+    for path in snakemake_configfiles(args.snakemake_args):
+        data = read_yaml(path, "config file")
+        if not isinstance(data, Mapping):
+            raise GearmeshInputError("config file", path, "must be a YAML mapping (a study config)")
+        validate_study(data)
+    exe = shutil.which("snakemake", path=str(Path(sys.executable).parent)) or shutil.which("snakemake")
+    if exe is None:
+        raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'")
+    sys.stdout.flush()
+    os.execv(exe, [exe, *args.snakemake_args])
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="gearmesh", description="Helical gear pairs from their design data: geometry, contact, "
                      "mesh stiffness, loaded contact, mesh-in impact, micro-geometry optimisation and dynamics; "
@@ -457,6 +524,27 @@ def build_parser() -> argparse.ArgumentParser:
              "a pair file or a study config")
 
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
+
+    p = sub.add_parser("run", help="run the workflow: check every study config with the bounded loader, then "
+                       "snakemake with the same arguments", description="Run the workflow as 'snakemake ARGS' "
+                       "after reading every --configfile (or config/config.yaml) with gearmesh's bounded loader "
+                       "and validating it, so a config Snakemake would parse without limits (a huge or nested file, "
+                       "a FIFO, a __use_yte__ template that runs Python) never reaches Snakemake. Example: "
+                       "gearmesh run --cores 2 --configfile config/studies/contact_lines.yaml",
+                       formatter_class=_HelpFormatter)
+    p.add_argument("snakemake_args", nargs=argparse.REMAINDER, help="the arguments for snakemake")
+    p.set_defaults(func=cmd_run)
+
+    p = sub.add_parser("check", help="check a study's results folder: name every damaged, foreign, edited or stale "
+                       "file (exit 0, or 2 with one line per file)",
+                       description="Check every netCDF file and optimum pair file under RESULTS (e.g. "
+                       "results/impact_case): readable, a gearmesh result at its own path, its data matching its "
+                       "digest, made by the current code from inputs that are still the files it was made from; with "
+                       "--configfile also made with that study's settings and pair data. Each problem is one line "
+                       "naming the file and the command that remakes it.", formatter_class=_HelpFormatter)
+    p.add_argument("results", help="a study's results folder (results/STUDY)")
+    p.add_argument("--configfile", default=None, help="the study config the results must agree with")
+    p.set_defaults(func=cmd_check)
 
     p = sub.add_parser("schema", help="print the JSON schema of a study config or a pair file (for editors), or "
                        "every key as a Markdown table")
@@ -570,7 +658,11 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv: Sequence[str] | None = None) -> int:
     parser = build_parser()
-    args = parser.parse_args(argv)
+    argv = list(sys.argv[1:] if argv is None else argv)
+    if argv[:1] == ["run"] and argv[1:2] not in (["-h"], ["--help"]):  # everything after 'run' is Snakemake's
+        args = argparse.Namespace(command="run", snakemake_args=argv[1:], func=cmd_run, json=False)
+    else:
+        args = parser.parse_args(argv)
     if args.command is None:  # bare 'gearmesh': what it can do
         parser.print_help()
         return 0

@@ -24,7 +24,13 @@ from .settings import study_schema
 def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
     """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field
     (a NaN or infinite number anywhere, then the first error of the study schema,
-    :func:`gearmesh.settings.study_schema`)."""
+    :func:`gearmesh.settings.study_schema`). A ``__use_yte__`` key is named for what it is: it
+    turns on Snakemake's YTE template engine, which runs the file's Python when Snakemake loads it."""
+    if isinstance(config, Mapping) and "__use_yte__" in config:
+        raise GearmeshInputError("__use_yte__", config["__use_yte__"], "turns on Snakemake's YTE template engine, "
+                                 "which runs Python from the config when Snakemake loads it (before any check): a "
+                                 "gearmesh study is plain data; remove the key, and run studies with 'gearmesh run' "
+                                 "(docs/workflow.md, trust model)")
     return validate(config, study_schema())
 
 
@@ -147,8 +153,8 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     settings with their work estimate (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`)."""
     from .datasets.dynamics import check_dynamics_settings
     from .gear import pair_geometry
-    from .limits import (MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, MAX_SWEEP_ANGLES, check_grid,
-                         check_load, check_speeds)
+    from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_speeds, check_sweep
+    from .loads import check_load
 
     geoms = {name: pair_geometry(pair) for name, pair in pairs.items()}
 
@@ -194,8 +200,7 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
                 for name in config["pairs"]:
                     check_load(geoms[name], pinion_torque(pairs[name], value, section["on"]), field, value)
     if sweep := config.get("helix_sweep"):
-        count = int((sweep["stop_deg"] - sweep["start_deg"]) / sweep["step_deg"]) + 1
-        check_grid("helix_sweep.step_deg", sweep["step_deg"], count, MAX_SWEEP_ANGLES, "helix angles per pair")
+        check_sweep(sweep["start_deg"], sweep["stop_deg"], sweep["step_deg"], "helix_sweep.")
     for k, couple in enumerate(config.get("dynamics_comparison", {}).get("couples") or []):
         for name in couple:
             if name not in config["pairs"]:

@@ -33,9 +33,9 @@ import numpy as np
 from .contact import contact_length_closed_form, contact_length_summary
 from .errors import GearmeshInputError
 from .gear import GearPair, PairGeometry, involute, pair_geometry
+from .limits import MAX_HELIX_ANGLE
 
 _INTEGER_TOL = 1e-9
-MAX_HELIX_ANGLE = math.radians(60.0)  # the limit of gear.pair_from_dict
 
 
 class DesignResult(NamedTuple):

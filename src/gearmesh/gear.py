@@ -20,6 +20,8 @@ import numpy as np
 import yaml
 
 from .errors import GearmeshInputError
+from .limits import (MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPTH, MAX_INPUT_NODES,  # noqa: F401
+                     MAX_MODIFICATION_TO_MODULE, MAX_TEETH)
 from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
 from .supports import SUPPORT_KEYS, Supports, read_supports
 
@@ -48,6 +50,18 @@ class Material:
     youngs_modulus: float
     poisson_ratio: float
     density: float
+
+    def __post_init__(self) -> None:
+        """The pair file's material rules, however the material was made (a file, code or
+        ``dataclasses.replace``): E > 0, 0 <= ν < 0.5 (a positive bulk modulus, E/(3(1 − 2ν))),
+        density > 0, all finite; refused naming the pair-file key in its units."""
+        for key, value, scale in (("youngs_modulus_GPa", self.youngs_modulus, 1e-9),
+                                  ("density_kg_m3", self.density, 1.0)):
+            if _number(f"material.{key}", value * scale if _is_number(value) else value) <= 0:
+                raise GearmeshInputError(f"material.{key}", value * scale, "must be positive")
+        nu = _number("material.poisson_ratio", self.poisson_ratio)
+        if not 0 <= nu < 0.5:
+            raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
 
     @property
     def shear_modulus(self) -> float:
@@ -183,6 +197,10 @@ def _number(field_name: str, value: Any) -> float:
     return float(value)
 
 
+def _is_number(value: Any) -> bool:
+    return isinstance(value, (int, float, np.number)) and not isinstance(value, bool)
+
+
 def _positive(field_name: str, value: Any) -> float:
     v = _number(field_name, value)
     if v <= 0:
@@ -222,11 +240,6 @@ def _teeth(value: Any) -> tuple[int, int]:
     return (out[0], out[1])
 
 
-#: Most teeth of a gear: the scope of ISO 1328-1:2013 (5 <= z <= 1000), the flank tolerance
-#: system the package uses (:mod:`gearmesh.tolerance`); larger tooth counts are not made as
-#: cylindrical gears, and the roll lengths of the contact models lose their precision in
-#: double arithmetic long before z reaches 10⁹.
-MAX_TEETH = 1000
 
 
 def check_teeth(field_name: str, z: int) -> None:
@@ -318,13 +331,10 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
     m = {**DEFAULT_MATERIAL, **{k: v for k, v in given_material.items() if k in DEFAULT_MATERIAL}}
     defaults = tuple(f"material.{key}" for key in DEFAULT_MATERIAL if key not in given_material)
     rating = _rating_inputs(spec, given_material)
-    nu = _number("material.poisson_ratio", m["poisson_ratio"])
-    if not 0 <= nu < 0.5:
-        raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
-    material = Material(
-        youngs_modulus=_positive("material.youngs_modulus_GPa", m["youngs_modulus_GPa"]) * 1e9,
-        poisson_ratio=nu,
-        density=_positive("material.density_kg_m3", m["density_kg_m3"]),
+    material = Material(  # its own checks: the rules of the file's keys
+        youngs_modulus=_number("material.youngs_modulus_GPa", m["youngs_modulus_GPa"]) * 1e9,
+        poisson_ratio=_number("material.poisson_ratio", m["poisson_ratio"]),
+        density=_number("material.density_kg_m3", m["density_kg_m3"]),
     )
 
     mods = (Modification(), Modification())
@@ -477,10 +487,6 @@ MODULE_RANGE = (0.1e-3, 100e-3)
 #: tooth slice in plane strain (E/(1 − ν²)); a face narrower than one module is a plate in
 #: plane stress (the tooth is 2.25 m_n high), about 10 % softer than either model says.
 MIN_FACE_WIDTH_TO_MODULE = 1.0
-#: Face width against the pinion reference diameter, b/d1 <= 2: AGMA 2001-D04 (empirical
-#: load-distribution factor) and ISO 6336-1's load distribution assume no wider face; beyond
-#: it shaft bending and torsion shift the load to one end, which no model here includes.
-MAX_FACE_WIDTH_TO_DIAMETER = 2.0
 #: Name of a pair: usable as a file name (letters, digits, '_', '-' and '.', not first; no
 #: path characters), short enough to stay far below the 255-byte limit of one path component
 #: (Linux NAME_MAX) with any suffix. Study configs restrict the names they use further (schema).
@@ -523,14 +529,6 @@ def validate_pair(pair: GearPair) -> None:
             raise GearmeshInputError(name, value, rule)
 
 
-#: Largest input document read (bytes). The largest shipped study config is about 3 kB and a
-#: pair file under 2 kB; 256 kB leaves a factor of ~100 for comments, yet keeps the pure-Python
-#: YAML parse of the worst such file under about a second and ~100 MB.
-MAX_INPUT_BYTES = 256 * 1024
-#: Most YAML nodes (scalars, lists, mappings) and deepest nesting of an input document: a study
-#: has a few hundred nodes nested at most ~6 deep; more is not a pair or a study.
-MAX_INPUT_NODES = 20_000
-MAX_INPUT_DEPTH = 20
 
 
 class _InputRefused(yaml.YAMLError):
@@ -622,8 +620,15 @@ def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
     ``name`` is kept as given."""
     if isinstance(path_or_data, Mapping):
         return pair_from_dict(path_or_data)
-    return pair_from_dict(read_yaml(path_or_data, "pair file"), source=str(path_or_data),
-                          default_name=Path(path_or_data).stem)
+    data = read_yaml(path_or_data, "pair file")
+    if not isinstance(data, Mapping):
+        what = "is empty" if data is None else f"holds a {type(data).__name__}, not a mapping of keys"
+        raise GearmeshInputError("pair file", str(path_or_data), f"{what}: a pair file maps keys such as teeth and "
+                                 "normal_module_mm to values; `gearmesh example seed001_pair1` prints one to start from")
+    try:
+        return pair_from_dict(data, source=str(path_or_data), default_name=Path(path_or_data).stem)
+    except GearmeshInputError as exc:  # the field and rule as they were, and the file they are in
+        raise GearmeshInputError(exc.field, exc.value, f"{exc.rule} (in pair file {path_or_data})") from None
 
 
 def pair_notes(pair: GearPair) -> list[str]:
@@ -731,11 +736,20 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
     return out
 
 
+#: The keys of a variant (gearmesh.settings.Variant).
+_VARIANT_KEYS = {"modification", "from"}
+
+
 def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearPair:
     """``pair`` carrying the modification of micro-geometry ``variant`` (none for 'standard'
     or a variant without one); the variant's modification replaces the pair file's. A variant
     ``{from: optimise.NAME}`` is ``pair`` as given: the optimisation's pair file, its optimum
-    (the workflow hands that file to the variant's stages)."""
+    (the workflow hands that file to the variant's stages). A key other than ``modification`` and
+    ``from``, or both, is refused naming it (a misspelt key must not give the unmodified pair)."""
+    spec = _mapping(f"variants.{variant}", spec, _VARIANT_KEYS)
+    if spec.get("from") and spec.get("modification"):
+        raise GearmeshInputError(f"variants.{variant}.from", spec["from"], "and modification are exclusive: a variant "
+                                 "is the optimum of a run or a modification of its own; keep one")
     if spec.get("from"):
         return pair
     data = pair_to_dict(pair)
@@ -1102,13 +1116,6 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     return geom
 
 
-#: Deepest profile relief or crowning, as a fraction of the normal module. Modifications are
-#: sized to the mesh deflection, F/(b c_γ) ≈ 1000 N/mm / 20 N/(mm µm) = 50 µm at the heaviest
-#: ISO 6336 line loads, i.e. about 0.01 m_n at m_n = 5 mm; the TCA/LTCA add the depth as a gap
-#: along the normal of the unmodified involute, a first-order model that holds while the depth
-#: is small against the tooth (normal tip thickness ≈ 0.4–1 m_n). 0.1 m_n allows ten times the
-#: usual depth and refuses what would reshape the tooth (e.g. 5 mm of crowning on 1.75 mm).
-MAX_MODIFICATION_TO_MODULE = 0.1
 
 
 def validate_modifications(geom: PairGeometry) -> None:

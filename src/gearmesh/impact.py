@@ -73,8 +73,9 @@ import numpy as np
 from .choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry, involute
+from .limits import check_speeds
 from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, law_scales, log_universal_inverse,
-                   ltca_model, point_compliance, positive_values, solve_contact)
+                   ltca_model, point_compliance, solve_contact)
 from .surface import body_rotation, flank_point, modification_parameters, plane_of_action_point, relief_depth
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, approach_tip_point, basis_gap,
                   candidate_grid, engagement_point, point_centres, recess_tip_point, separation_basis)
@@ -84,7 +85,7 @@ __all__ = [
     "SCENARIOS", "DRIVERS", "seed000_inertia", "equivalent_mass", "ImpactModel", "impact_model",
     "ImpactStatic", "impact_static", "ImpactResponse", "impact_response", "closed_form_force",
     "energy_balance", "fit_power_law", "vector_velocity", "seed_edge_roll", "simulate_engagement",
-    "check_speeds", "ltca_metrics", "load_grid", "load_window",
+    "ltca_metrics", "load_grid", "load_window",
 ]
 
 SCENARIOS = ("none", "surface", "edge")
@@ -117,15 +118,6 @@ def equivalent_mass(geom: PairGeometry, inertia) -> float:
     rb1, rb2 = (float(v) for v in geom.base_radius)
     return j1 * j2 / (j1 * rb2**2 + j2 * rb1**2)
 
-
-#: Highest pinion speed accepted (rpm): beyond any gear drive (turbo gears run at up to ~1e5 rpm).
-MAX_SPEED_RPM = 1e6
-
-
-def check_speeds(speeds_rpm, field: str = "speeds_rpm") -> np.ndarray:
-    """Pinion speeds (rpm) as a 1-d float array; refuses empty, non-finite, non-positive and
-    above :data:`MAX_SPEED_RPM`."""
-    return positive_values(speeds_rpm, field, "rpm", MAX_SPEED_RPM)
 
 
 # --------------------------------------------------------------------------------------
@@ -1019,7 +1011,7 @@ def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
     impact's approach reaches slices that ``local_keep`` left out."""
     if energy_velocity not in ENERGY_VELOCITIES:
         raise GearmeshInputError("energy_velocity", energy_velocity, f"must be one of {list(ENERGY_VELOCITIES)}")
-    speeds = check_speeds(speeds_rpm)
+    speeds = check_speeds(None, speeds_rpm)
     omega1 = speeds * (2 * math.pi / 60.0)
     rb1 = float(model.geom.base_radius[0])
     vt = np.maximum(static.slope, 0.0)[..., None] * rb1 * omega1  # (C, T, S)
@@ -1326,7 +1318,7 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     st = impact_static(model, [torque], params)
     if st.scenario[0, 0] == SCENARIO_NONE:
         raise GearmeshInputError("torque_Nm", torque, "gives no mesh-in contact in the search window")
-    speed = float(check_speeds([speed_rpm], "speed_rpm")[0])
+    speed = float(check_speeds(None, [speed_rpm], "speed_rpm")[0])
     f_bt = float(st.force[0])
     t_star = float(st.tau[0, 0])
     m = model.equivalent_mass

@@ -8,7 +8,7 @@ full disk is named as such; inside a workflow job (:func:`job_outputs`) a job wh
 is gone, or whose output another process wrote meanwhile, renames nothing. The temporaries of
 killed writers are removed on the next run's start when no live process writes them
 (:func:`remove_stale_temporaries`), and a study's output folders are checked up front
-(:func:`check_output_tree`). What a stage reads is checked in :mod:`gearmesh.upstream`.
+(:func:`check_output_tree`, and :func:`check_output_files` for a folder where a file belongs). What a stage reads is checked in :mod:`gearmesh.upstream`.
 """
 
 from __future__ import annotations
@@ -284,6 +284,30 @@ def check_output_tree(folders, root: str | Path = ".") -> None:
                                          "it; move or delete it")
 
 
+def output_pattern(pattern: str) -> re.Pattern[str]:
+    """The regular expression of a Snakemake output pattern (``results/{study}/{pair}/tca.nc``):
+    each ``{wildcard}`` (with or without its own ``,regex``) one path component or more of
+    one, the rest literal."""
+    parts = re.split(r"\{([^{}]+)\}", pattern)
+    return re.compile("".join(re.escape(p) if k % 2 == 0 else "[^/]+" for k, p in enumerate(parts)))
+
+
+def check_output_files(patterns, roots, root: str | Path = ".") -> None:
+    """Refuse (GearmeshInputError) a folder under ``roots`` (e.g. ``results/STUDY``) where an
+    output of ``patterns`` (the rules' file outputs) belongs: Snakemake takes an existing path
+    for a made file, skips its job and leaves the result and its figure missing. Walks the
+    folders only (a study has tens of them)."""
+    regexes = [output_pattern(str(p)) for p in patterns]
+    root = Path(root)
+    for top in roots:
+        for folder, dirs, _ in os.walk(root / top):
+            for name in dirs:
+                rel = (Path(folder) / name).relative_to(root).as_posix()
+                if any(r.fullmatch(rel) for r in regexes):
+                    raise GearmeshInputError(rel, "a folder", "must be a file: the study writes one of its results "
+                                             "there; move or delete the folder, then rerun")
+
+
 @lru_cache(maxsize=1)
 def source_digest() -> str:
     """sha256 of the package's own source files (.py and .yaml, sorted by path): ties a result
@@ -312,6 +336,29 @@ def add_provenance(ds: xr.Dataset, config: Mapping[str, Any], source: str, title
     return ds
 
 
+#: Global attribute: the sha256 of a file's own data (:func:`data_digest`), written by
+#: :func:`write_dataset` and compared by :func:`gearmesh.upstream.check_input` and ``gearmesh check``.
+DATA_ATTR = "gearmesh_data_sha256"
+
+
+def data_digest(ds: xr.Dataset) -> str:
+    """sha256 of every data and coordinate variable of ``ds`` (name, dimensions, shape and the
+    values: numbers by their bytes in little-endian order, text as UTF-8), in name order. The
+    same before writing and after reading back (netCDF keeps dtypes; strings come back as
+    objects, hashed by their text); an edited value changes it."""
+    h = hashlib.sha256()
+    for name in sorted(map(str, {**ds.data_vars, **ds.coords})):
+        var = ds[name].variable
+        values = np.asarray(var.values)
+        h.update(json.dumps([name, list(var.dims), list(values.shape)]).encode())
+        if values.dtype.kind in "OUS":
+            h.update(json.dumps([str(v) for v in values.ravel().tolist()]).encode())
+        else:
+            h.update(values.dtype.newbyteorder("<").str.encode())
+            h.update(np.ascontiguousarray(values, dtype=values.dtype.newbyteorder("<")).tobytes())
+    return h.hexdigest()
+
+
 def check_documented(ds: xr.Dataset) -> None:
     """Raise if any data or coordinate variable lacks ``units`` or ``long_name``."""
     for name, var in {**ds.data_vars, **ds.coords}.items():
@@ -326,6 +373,7 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     for attr in ("gearmesh_version", "config_sha256"):
         if attr not in ds.attrs:
             raise ValueError(f"dataset lacks the provenance attribute {attr!r}")
+    ds.attrs[DATA_ATTR] = data_digest(ds)
     encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars
                 if ds[name].dtype.kind in "fiu" and ds[name].ndim > 0}
     with atomic_output(path) as tmp:

@@ -46,6 +46,9 @@ from typing import Any, Iterable
 
 #: The environment variable that names the run's socket ("off" disables the server).
 ENV = "GEARMESH_JOBSERVER"
+#: The environment variable that tells the job when its process (its script) started: the
+#: pipeline measures the job's start-up from it, without importing this module.
+STARTED_ENV = "GEARMESH_JOB_STARTED"
 _HEADER = struct.Struct("!Q")
 _CODE = struct.Struct("!i")
 _server: subprocess.Popen | None = None
@@ -63,6 +66,9 @@ def run(smk: Any, entry: str) -> None:
     code = _run_on_server(smk, entry)
     if code is not None:
         sys.exit(code)
+    started = process_start_time()
+    if started is not None:  # what the job's log measures its start-up from (gearmesh.pipeline)
+        os.environ[STARTED_ENV] = repr(started)
     from . import pipeline
 
     getattr(pipeline, entry)(smk)
@@ -256,7 +262,7 @@ def _child(conn: socket.socket) -> None:
         # the job's script gone (cancelled, killed) = this job stops: nobody waits for it
         threading.Thread(target=_die_with, args=(conn,), daemon=True).start()
         if job["started"] is not None:
-            os.environ["GEARMESH_JOB_STARTED"] = repr(job["started"])
+            os.environ[STARTED_ENV] = repr(job["started"])
         from . import pipeline
 
         try:

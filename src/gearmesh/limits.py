@@ -1,22 +1,99 @@
-"""Validity of loads, speeds and work sizes, checked before any computation (GearmeshInputError).
+"""Every limit of the package, in one module, each with where it comes from (issue 25).
 
-Geometric ranges (module, face width, teeth, modification depths, names) live beside the pair
-data in :mod:`gearmesh.gear`; here are the limits that need a pair's geometry and a load, a
-speed or a stage's grid: the nominal contact stress and deflection of a torque, the rim speed
-of a rotational speed, and the size of the grids and sweeps a stage would allocate. Each limit
-says where it comes from. The functions that compute (``gearmesh.datasets.*``) call these
-checks at their entry, so the Python API, the command line and the workflow refuse the same
-values with the same one line, in bounded time and memory.
+Input documents (size, nodes, nesting), pair data (teeth, face width, modification depth,
+helix angle), list lengths, loads, speeds and work sizes. The limits that need a pair's
+geometry and a load, a speed or a stage's grid are checked here too: the nominal contact
+stress and deflection of a torque, the rim speed of a rotational speed, and the size of the
+grids and sweeps a stage would allocate. The functions that compute (``gearmesh.datasets.*``)
+call these checks at their entry, so the Python API, the command line and the workflow refuse
+the same values with the same one line (GearmeshInputError), in bounded time and memory: a
+list is measured by its length (O(1)) before any of its items is read.
+
+This module imports no other gearmesh module but :mod:`gearmesh.errors` at import time, so
+every module can take its limits from here.
 """
 
 from __future__ import annotations
 
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .errors import GearmeshInputError
-from .gear import PairGeometry
+
+if TYPE_CHECKING:  # annotations only: gear imports its limits from here
+    from .gear import PairGeometry
+
+# --------------------------------------------------------------------------------------
+# Input documents and lists
+# --------------------------------------------------------------------------------------
+
+#: Largest input document read (bytes). The largest shipped study config is about 3 kB and a
+#: pair file under 2 kB; 256 kB leaves a factor of ~100 for comments, yet keeps the pure-Python
+#: YAML parse of the worst such file under about a second and ~100 MB.
+MAX_INPUT_BYTES = 256 * 1024
+#: Most YAML nodes (scalars, lists, mappings) and deepest nesting of an input document: a study
+#: has a few hundred nodes nested at most ~6 deep; more is not a pair or a study.
+MAX_INPUT_NODES = 20_000
+MAX_INPUT_DEPTH = 20
+#: Most items of any list setting that declares no smaller bound (gearmesh.schema gives every
+#: array this ``maxItems``, every mapping this ``maxProperties``): the shipped studies' longest
+#: list has 9 items, each item of a torque or speed list is a full stage run, and a longer speed
+#: grid is written {start, stop, step} (at most :data:`MAX_SPEEDS`).
+MAX_LIST_ITEMS = 1000
+#: Most torques of one LTCA run: each is a full loaded contact over the mesh cycle, about 1.5 MB
+#: per torque at the default grids (3000 torques peaked at 4.7 GB); as the impact map's torques.
+MAX_LTCA_TORQUES = 100
+
+# --------------------------------------------------------------------------------------
+# Pair data
+# --------------------------------------------------------------------------------------
+
+#: Most teeth of a gear: the scope of ISO 1328-1:2013 (5 <= z <= 1000), the flank tolerance
+#: system the package uses (:mod:`gearmesh.tolerance`); larger tooth counts are not made as
+#: cylindrical gears, and the roll lengths of the contact models lose their precision in
+#: double arithmetic long before z reaches 10⁹.
+MAX_TEETH = 1000
+#: Face width against the pinion reference diameter, b/d1 <= 2: AGMA 2001-D04 (empirical
+#: load-distribution factor) and ISO 6336-1's load distribution assume no wider face; beyond
+#: it shaft bending and torsion shift the load to one end, which no model here includes.
+MAX_FACE_WIDTH_TO_DIAMETER = 2.0
+#: Deepest profile relief or crowning, as a fraction of the normal module. Modifications are
+#: sized to the mesh deflection, F/(b c_γ) ≈ 1000 N/mm / 20 N/(mm µm) = 50 µm at the heaviest
+#: ISO 6336 line loads, i.e. about 0.01 m_n at m_n = 5 mm; the TCA/LTCA add the depth as a gap
+#: along the normal of the unmodified involute, a first-order model that holds while the depth
+#: is small against the tooth (normal tip thickness ≈ 0.4–1 m_n). 0.1 m_n allows ten times the
+#: usual depth and refuses what would reshape the tooth (e.g. 5 mm of crowning on 1.75 mm).
+MAX_MODIFICATION_TO_MODULE = 0.1
+#: Largest helix angle (rad): the limit of :func:`gearmesh.gear.pair_from_dict` (0 <= β < 60°).
+MAX_HELIX_ANGLE = math.radians(60.0)
+#: Most corners of a tolerance box (2^k) that are enumerated, and most manufactured samples.
+MAX_CORNER_DIMENSIONS = 12
+MAX_SAMPLES = 4096
+
+# --------------------------------------------------------------------------------------
+# Loads, speeds and work sizes
+# --------------------------------------------------------------------------------------
+
+#: Highest pinion speed accepted (rpm): beyond any gear drive (turbo gears run at up to ~1e5 rpm).
+MAX_SPEED_RPM = 1e6
+#: Most speeds of one dynamics sweep (a 500–50 000 rpm grid in steps of 100 rpm has 496).
+MAX_SPEEDS = 20000
+#: Cap on RK4 steps at one speed (a very low speed would otherwise run for hours: the
+#: transient lasts a fixed physical time while the step is bounded by the highest mode).
+MAX_STEPS_PER_SPEED = 2_000_000
+#: Work limits of one dynamics job, checked before any job runs
+#: (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`).
+#: RK4 speed-steps (steps of the longest speed × speeds, one vectorised batch): measured about
+#: 5e6 per second (seed 001 pair, 496 speeds × 17664 steps in 2 s), so 1e9 is a few minutes.
+MAX_SPEED_STEPS = 1_000_000_000
+#: Most (window positions × approaches × points per line) of a contact table: its build costs
+#: about 0.4 s per 10⁶ (256 × 96 × 50 with the default pair's 4–5 tooth pairs: 0.4 s, measured),
+#: so the limit is about a minute and ~130 MB for the table (chunked build).
+MAX_TABLE_POINTS = 200_000_000
+#: Most speeds of the 9-DOF train: it keeps the time series and spectra of every speed.
+MAX_TRAIN_SPEEDS = 50
 
 #: Highest nominal contact stress σ_H0 (Pa) accepted: ISO 6336-5's highest allowable contact
 #: stress number (case-hardened steel, quality ME: σ_Hlim = 1650 MPa) times ISO 6336-2's static
@@ -57,61 +134,6 @@ STEEL_DENSITY = 7850.0
 MAX_SWEEP_ANGLES = 2000
 
 
-def nominal_load(geom: PairGeometry, pinion_torque: float) -> dict[str, float]:
-    """Nominal contact stress σ_H0 (Pa, ISO 6336-2 method B) and mesh deflection (m) of a
-    pinion torque (N m).
-
-    σ_H0 = Z_H Z_E Z_ε √(F_t (u + 1)/(d1 b u)), with F_t = 2 T1/d1, Z_H = √(2 cos βb cos αwt /
-    (cos² αt sin αwt)), Z_E = √(E/(2π(1 − ν²))) for two gears of one material (steel when the
-    pair has none) and Z_ε of ISO 6336-2 eq. (8)–(10); Z_β ≈ 1 is left out (it lies within
-    ±7 % for β < 30°; the limit is coarse). Deflection δ = F_bt/(c_γα b) with c_γα b from
-    ISO 6336-1 (:func:`gearmesh.stiffness.iso6336_stiffness`) scaled by E/206 GPa.
-    """
-    from .stiffness import iso6336_stiffness
-
-    pair = geom.pair
-    material = pair.material
-    e_mod = material.youngs_modulus if material else ISO6336_STEEL_MODULUS
-    nu = material.poisson_ratio if material else 0.3
-    d1 = 2 * float(geom.reference_radius[0])
-    b = geom.face_width
-    u = pair.teeth[1] / pair.teeth[0]
-    f_t = 2 * pinion_torque / d1
-    z_h = math.sqrt(2 * math.cos(geom.base_helix_angle) * math.cos(geom.operating_pressure_angle)
-                    / (math.cos(geom.transverse_pressure_angle) ** 2 * math.sin(geom.operating_pressure_angle)))
-    z_e = math.sqrt(e_mod / (2 * math.pi * (1 - nu**2)))
-    ea, eb = geom.eps_alpha, geom.eps_beta
-    z_eps = math.sqrt(1 / ea) if eb >= 1 else math.sqrt((4 - ea) / 3 * (1 - eb) + eb / ea)
-    sigma = z_h * z_e * z_eps * math.sqrt(f_t * (u + 1) / (d1 * b * u))
-    stiffness = iso6336_stiffness(geom)["K_gamma_alpha"] * e_mod / ISO6336_STEEL_MODULUS
-    deflection = pinion_torque / float(geom.base_radius[0]) / stiffness
-    return {"contact_stress": sigma, "deflection": deflection}
-
-
-def check_load(geom: PairGeometry, pinion_torque: float, field: str, value: object) -> None:
-    """Refuse a pinion torque (N m) whose nominal contact stress exceeds
-    :data:`MAX_CONTACT_STRESS` or whose deflection exceeds :data:`MAX_DEFLECTION_TO_MODULE`
-    normal modules (:func:`nominal_load`); ``field`` and ``value`` are what the user gave."""
-    load = nominal_load(geom, pinion_torque)
-    if load["contact_stress"] > MAX_CONTACT_STRESS:
-        raise GearmeshInputError(field, value, f"gives a nominal contact stress of {load['contact_stress'] / 1e6:.4g} "
-                                 f"MPa on {geom.pair.name}, above the static strength of any steel "
-                                 f"({MAX_CONTACT_STRESS / 1e6:g} MPa, ISO 6336-2/-5)")
-    limit = MAX_DEFLECTION_TO_MODULE * geom.pair.normal_module
-    if load["deflection"] > limit:
-        raise GearmeshInputError(field, value, f"deflects the mesh of {geom.pair.name} by "
-                                 f"{load['deflection'] * 1e6:.4g} µm, more than {MAX_DEFLECTION_TO_MODULE:g} normal "
-                                 f"module ({limit * 1e6:.4g} µm): outside the linear models")
-
-
-def check_loads(geom: PairGeometry, pinion_torques, field: str, given) -> None:
-    """:func:`check_load` on each of ``pinion_torques`` (N m); ``given`` the values as the user
-    gave them (same order), named ``field[k]`` when there are several."""
-    values = np.ravel(given).tolist()
-    for k, (t1, value) in enumerate(zip(np.ravel(pinion_torques), values)):
-        check_load(geom, float(t1), f"{field}[{k}]" if len(values) > 1 else field, value)
-
-
 def max_speed_rpm(geom: PairGeometry, on: str = "pinion") -> float:
     """Highest speed (rpm) of the ``on`` gear ('pinion' or 'gear') at which the faster tip circle
     stays within :data:`MAX_RIM_STRESS`: ρ (ω_g r_a,g)² ≤ σ_max for both gears, ω2 = ω1 z1/z2."""
@@ -124,21 +146,59 @@ def max_speed_rpm(geom: PairGeometry, on: str = "pinion") -> float:
     return omega1 / ratio_to_pinion * 30.0 / math.pi
 
 
-def check_speeds(geom: PairGeometry, speeds_rpm, field: str, on: str = "pinion") -> None:
-    """Refuse any speed (rpm of the ``on`` gear) above :func:`max_speed_rpm`: the centrifugal
-    hoop stress of the faster tip circle would exceed :data:`MAX_RIM_STRESS`. ``speeds_rpm``
-    are numbers already checked finite and positive; the advice is to lower the speed."""
-    limit = max_speed_rpm(geom, on)
-    values = np.ravel(np.asarray(speeds_rpm, dtype=float))
-    if values.size and values.max() > limit:
+def positive_values(values, field: str, unit: str, maximum: float = math.inf, note: str = "",
+                    max_items: int = MAX_LIST_ITEMS) -> np.ndarray:
+    """A positive number or a list of them as a 1-d float array; refuses more than ``max_items``
+    (measured before any item is read), empty, non-numeric, non-finite, non-positive and (if
+    given) values above ``maximum``, naming ``field`` and the ``unit`` (GearmeshInputError);
+    ``note`` is added to the rule of a non-positive value."""
+    if isinstance(values, (int, float, np.floating, np.integer)) and not isinstance(values, bool):
+        values = [values]
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__len__"):
+        raise GearmeshInputError(field, values, f"must be a positive number or a list of them ({unit})")
+    if len(values) > max_items:
+        raise GearmeshInputError(field, f"{len(values)} values", f"must have at most {max_items} items "
+                                 "(gearmesh.limits): split the work into several runs")
+    vals = list(values)
+    if not vals:
+        raise GearmeshInputError(field, values, f"must name at least one value ({unit})")
+    for k, v in enumerate(vals):
+        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
+            raise GearmeshInputError(f"{field}[{k}]", v, f"must be a finite number ({unit})")
+        if v <= 0:
+            raise GearmeshInputError(f"{field}[{k}]", v, f"must be positive ({unit}){note}")
+        if v > maximum:
+            raise GearmeshInputError(f"{field}[{k}]", v, f"must lie in (0, {maximum:g}] {unit}")
+    return np.asarray(vals, dtype=float)
+
+
+def check_speeds(geom: PairGeometry | None, speeds_rpm, field: str = "speeds_rpm", on: str = "pinion",
+                 max_items: int = MAX_SPEEDS, empty_ok: bool = False) -> np.ndarray:
+    """Speeds (rpm of the ``on`` gear) as a 1-d float array: at most ``max_items`` of them (a
+    sweep's grid: :data:`MAX_SPEEDS`; a list in a config is bounded by its schema first), each
+    finite and positive (:func:`positive_values`); with a pair's ``geom`` none above
+    :func:`max_speed_rpm` (the centrifugal hoop stress of the faster tip circle would exceed
+    :data:`MAX_RIM_STRESS`; the advice is to lower the speed); and none above
+    :data:`MAX_SPEED_RPM`. The one speed check of the package; ``empty_ok``: no speed is a
+    valid answer (e.g. no sampled speeds)."""
+    if empty_ok and hasattr(speeds_rpm, "__len__") and not isinstance(speeds_rpm, str) and len(speeds_rpm) == 0:
+        return np.zeros(0)
+    values = positive_values(speeds_rpm, field, "rpm", max_items=max_items)
+    if geom is not None:
+        limit = max_speed_rpm(geom, on)
+        if values.max() > limit:
+            k = int(np.argmax(values))
+            pair = geom.pair
+            pitch = float(values[k]) * math.pi / 30 * float(geom.reference_radius[0 if on == "pinion" else 1])
+            raise GearmeshInputError(f"{field}[{k}]" if values.size > 1 else field, float(values[k]),
+                                     f"rpm of the {on} of {pair.name} is a pitch-line velocity of {pitch:.4g} m/s; "
+                                     f"at most {limit:.5g} rpm, where the centrifugal hoop stress rho v^2 of the tip "
+                                     f"circle reaches {MAX_RIM_STRESS / 1e9:g} GPa, the strength of the strongest "
+                                     "steels (gearmesh.limits.MAX_RIM_STRESS): lower the speed")
+    if values.max() > MAX_SPEED_RPM:
         k = int(np.argmax(values))
-        pair = geom.pair
-        pitch = float(values[k]) * math.pi / 30 * float(geom.reference_radius[0 if on == "pinion" else 1])
-        raise GearmeshInputError(f"{field}[{k}]" if values.size > 1 else field, float(values[k]),
-                                 f"rpm of the {on} of {pair.name} is a pitch-line velocity of {pitch:.4g} m/s; at "
-                                 f"most {limit:.5g} rpm, where the centrifugal hoop stress rho v^2 of the tip circle "
-                                 f"reaches {MAX_RIM_STRESS / 1e9:g} GPa, the strength of the strongest steels "
-                                 "(gearmesh.limits.MAX_RIM_STRESS): lower the speed")
+        raise GearmeshInputError(f"{field}[{k}]", float(values[k]), f"must lie in (0, {MAX_SPEED_RPM:g}] rpm")
+    return values
 
 
 def check_grid(field: str, value: object, points: int, limit: int, what: str) -> None:
@@ -155,12 +215,25 @@ def _count(field: str, value) -> int:
     return int(value)
 
 
-def check_slice_grid(slices, positions) -> tuple[int, int]:
-    """``slices`` and ``positions`` of a slice-model run as integers, refused when their product
-    exceeds :data:`MAX_STIFFNESS_POINTS`."""
-    slices, positions = _count("slices", slices), _count("positions", positions)
-    check_grid("slices", slices, slices * positions, MAX_STIFFNESS_POINTS, "slice-positions")
+def check_slice_grid(slices, positions, names: tuple[str, str] = ("slices", "positions")) -> tuple[int, int]:
+    """``slices`` and ``positions`` of a slice-model run as integers, refused (naming them as
+    ``names``) when their product exceeds :data:`MAX_STIFFNESS_POINTS`."""
+    slices, positions = _count(names[0], slices), _count(names[1], positions)
+    check_grid(names[0], slices, slices * positions, MAX_STIFFNESS_POINTS, "slice-positions")
     return slices, positions
+
+
+def check_sweep(start: float, stop: float, step: float, prefix: str = "") -> int:
+    """The number of helix angles from ``start`` to ``stop`` (included on the grid) in steps of
+    ``step`` (degrees), computed from the three numbers before any grid exists, refused above
+    :data:`MAX_SWEEP_ANGLES` or when the range is empty (fields ``prefix`` + start_deg/step_deg)."""
+    if not (math.isfinite(start) and math.isfinite(stop) and math.isfinite(step)) or step <= 0:
+        raise GearmeshInputError(f"{prefix}step_deg", step, "must be a positive finite number (degrees)")
+    if stop < start:
+        raise GearmeshInputError(f"{prefix}stop_deg", stop, f"must not be below start_deg ({start:g})")
+    count = math.floor((stop - start) / step + 0.5) + 1
+    check_grid(f"{prefix}step_deg", step, count, MAX_SWEEP_ANGLES, "helix angles per pair")
+    return count
 
 
 def check_contact_grid(positions, points) -> tuple[int, int]:

@@ -69,7 +69,8 @@ from .contact import mesh_cycle_rolls
 from .choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry, pinion_torque
-from .limits import check_loads
+from .limits import positive_values
+from .loads import check_loads
 from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
                         pair_slice_table, require_stiffness_data, slice_compliance_table)
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
@@ -497,28 +498,6 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
 # --------------------------------------------------------------------------------------
 
 
-def positive_values(values, field: str, unit: str, maximum: float = math.inf, note: str = "") -> np.ndarray:
-    """A positive number or a list of them as a 1-d float array; refuses empty, non-numeric,
-    non-finite, non-positive and (if given) values above ``maximum``, naming ``field`` and the
-    ``unit`` (GearmeshInputError); ``note`` is added to the rule of a non-positive value."""
-    if isinstance(values, (int, float, np.floating, np.integer)) and not isinstance(values, bool):
-        values = [values]
-    try:
-        vals = list(values)
-    except TypeError:
-        raise GearmeshInputError(field, values, f"must be a positive number or a list of them ({unit})") from None
-    if not vals:
-        raise GearmeshInputError(field, values, f"must name at least one value ({unit})")
-    for k, v in enumerate(vals):
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
-            raise GearmeshInputError(f"{field}[{k}]", v, f"must be a finite number ({unit})")
-        if v <= 0:
-            raise GearmeshInputError(f"{field}[{k}]", v, f"must be positive ({unit}){note}")
-        if v > maximum:
-            raise GearmeshInputError(f"{field}[{k}]", v, f"must lie in (0, {maximum:g}] {unit}")
-    return np.asarray(vals, dtype=float)
-
-
 def check_torques(torques, field: str = "torques_Nm") -> np.ndarray:
     """Torques (N·m) as a 1-d float array; refuses empty, non-numeric, non-finite, non-positive."""
     return positive_values(torques, field, "N m", note="; the pinion drives")
@@ -533,7 +512,7 @@ def loaded_pinion_torques(geom: PairGeometry, torques, on: str = "pinion",
                           field: str = "torques_Nm") -> tuple[np.ndarray, np.ndarray]:
     """The torques as given and as pinion torques T1 (N·m), each refused (GearmeshInputError
     naming ``field``) above the contact-stress and deflection limits of
-    :func:`gearmesh.limits.check_load`: the entry check of every stage that loads the mesh."""
+    :func:`gearmesh.loads.check_load`: the entry check of every stage that loads the mesh."""
     given = check_torques(torques, field)
     t1 = pinion_torque(geom.pair, given, on)
     check_loads(geom, t1, field, given)

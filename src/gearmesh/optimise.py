@@ -86,7 +86,8 @@ from typing import Any, Callable, Mapping
 import numpy as np
 
 from .errors import GearmeshInputError
-from .gear import GEARS, MAX_MODIFICATION_TO_MODULE, PairGeometry
+from .gear import GEARS, PairGeometry
+from .limits import MAX_MODIFICATION_TO_MODULE
 from .dynamics.population import PopulationDynamics, dynamic_factors, population_dynamics
 from .impact import SCENARIO_NONE, ImpactModel, impact_response, impact_static, load_grid, load_window, ltca_metrics
 from .surface import MODIFICATION_FIELDS, fit_modifications
@@ -230,6 +231,16 @@ def _weights(weights, torques: tuple[float, ...], statistic: str):
     return tuple(float(w) for w in weights)
 
 
+def _declared_bounds(key: str) -> tuple[int, int]:
+    """(minimum, maximum) of integer setting ``key`` as :class:`gearmesh.settings.Optimise`
+    declares it: the one bound of the schema, the CLI and this function."""
+    from .schema import settings_fields, spec_of
+    from .settings import Optimise
+
+    spec = spec_of(next(f for f in settings_fields(Optimise) if f.name == key))
+    return int(spec.minimum), int(spec.maximum)
+
+
 def check_settings(method: str = "ga", objective: str = "force", population: int = 40, generations: int = 30,
                    seed: int = 0, torque: float = 1000.0, torques=None, weights=None,
                    statistic: str = "max", speed_rpm: float = 5000.0, tolerance_samples: int = 0,
@@ -246,9 +257,9 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
 
     method = _choice("method", method, METHODS)
     objective = _choice("objective", objective, OBJECTIVES)
-    population = _integer("population", population, 4, 100_000)
-    generations = _integer("generations", generations, 1, 100_000)
-    seed = _integer("seed", seed, 0, 2**32 - 1)
+    population = _integer("population", population, *_declared_bounds("population"))
+    generations = _integer("generations", generations, *_declared_bounds("generations"))
+    seed = _integer("seed", seed, *_declared_bounds("seed"))
     torque = check_positive("torque_Nm", torque)
     torques = (torque,) if torques is None else tuple(float(t) for t in check_torques(torques, "torques_Nm"))
     if len(set(torques)) != len(torques):

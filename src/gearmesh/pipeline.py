@@ -25,10 +25,9 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
-from .io import add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
-from .jobserver import process_start_time
+from .io import DATA_ATTR, add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
 from .tables import write_csv
-from .upstream import Expected, identify, read_input
+from .upstream import (Expected, check_optimum, identify, optimum_header, read_input, normal_path, record_sources)
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
@@ -59,12 +58,12 @@ def resolve(spec: str) -> Callable[..., Any]:
 
 
 def _process_age() -> float | None:
-    """Seconds since the job's process started (interpreter start-up, Snakemake's script
-    preamble and every import included; for a job run by the job server, since its script
-    started), or None where the start is not known (not Linux)."""
-    started = os.environ.get("GEARMESH_JOB_STARTED")  # set by gearmesh.jobserver
-    started = float(started) if started else process_start_time()
-    return None if started is None else time.time() - started
+    """Seconds since the job's script started (interpreter start-up, Snakemake's script
+    preamble and every import included), as :func:`gearmesh.jobserver.run` exports it in
+    ``GEARMESH_JOB_STARTED``, or None where the start is not known (not Linux, or called
+    without it)."""
+    started = os.environ.get("GEARMESH_JOB_STARTED")
+    return None if not started else time.time() - float(started)
 
 
 def _cpu_seconds() -> float:
@@ -110,9 +109,25 @@ def _title(smk: Any) -> str:
     return f"gearmesh {smk.rule}"
 
 
+def study_pair(config: Mapping[str, Any], name: str, variant: str | None) -> GearPair:
+    """The pair ``name`` of a study as its ``variant``'s stages use it (None: the pair file):
+    the pair file with the variant's micro-geometry, or an optimisation's pair file."""
+    from .config import pair_path
+
+    spec = (config.get("variants") or {}).get(variant) if variant is not None else None
+    if spec is not None and spec.get("from"):
+        source = Path("results", str(config["study"]), name, "optimise", spec["from"].split(".", 1)[1], "pair.yaml")
+        check_optimum(source)
+        return variant_pair(load_pair(source), variant, spec)
+    pair = load_pair(pair_path(config, name))
+    return pair if spec is None else variant_pair(pair, variant, spec)
+
+
 def _expected(smk: Any, pair: GearPair | None = None) -> Expected:
-    """What this job expects of the files it reads (:mod:`gearmesh.upstream`)."""
-    return Expected(smk.config, pair, getattr(smk.wildcards, "variant", None))
+    """What this job expects of the files it reads (:mod:`gearmesh.upstream`); a stage over
+    several pairs or variants (a study table) expects each file's own pair and variant."""
+    return Expected(smk.config, pair, getattr(smk.wildcards, "variant", None),
+                    None if pair is not None else lambda name, variant: study_pair(smk.config, name, variant))
 
 
 def _outputs(smk: Any, suffix: str) -> dict[str, str]:
@@ -134,21 +149,42 @@ def _draw(smk: Any, inputs: dict[str, Any]) -> float:
 
 
 def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
-    """The dataset to the job's netCDF output (provenance and what it is attached), and to its
-    CSV output if any."""
+    """The dataset to the job's netCDF output (provenance, what it is and what it was made from
+    attached: :func:`gearmesh.upstream.record_sources`), and to its CSV output if any."""
     (nc,) = _outputs(smk, ".nc").values()
-    identify(ds, nc, smk.rule, smk.wildcards)
+    identify(ds, nc, smk.rule, smk.wildcards, getattr(smk.params, "function", None))
+    record_sources(ds, _input_files(smk), _sections(smk))
     finish(ds, nc, smk.config, pair, _title(smk))
     for csv in _outputs(smk, ".csv").values():
         with atomic_output(csv) as tmp:
             write_csv(ds, tmp)
 
 
+def _input_files(smk: Any) -> list[str]:
+    """Every input file of the job (pair files and netCDF files), flattened."""
+    out: list[str] = []
+    for value in smk.input.values() if hasattr(smk.input, "values") else smk.input:
+        out += [str(v) for v in value] if isinstance(value, list) else [str(value)]
+    return out
+
+
+def _sections(smk: Any) -> list[str]:
+    """The study config sections the job's result depends on: its rule's, and every section its
+    settings carry whole (the impact stage's ``tolerances``, an optimisation's ``impact``)."""
+    config, settings = smk.config, dict(getattr(smk.params, "settings", None) or {})
+    own = [smk.rule] if smk.rule in config else []
+    return own + sorted(k for k, v in settings.items() if k in config and k != smk.rule and v is not None
+                        and isinstance(config[k], Mapping))
+
+
 def _job_pair(smk: Any) -> GearPair:
     """The job's pair: its pair file, carrying the micro-geometry of its variant when the rule
-    names one (``params.variant``: the variant's spec from the study config)."""
-    pair = load_pair(smk.input.pair)
+    names one (``params.variant``: the variant's spec from the study config); an optimisation's
+    pair file (a variant ``{from: optimise.NAME}``) checked first (:func:`gearmesh.upstream.check_optimum`)."""
     spec = getattr(smk.params, "variant", None)
+    if spec is not None and spec.get("from"):
+        check_optimum(smk.input.pair)
+    pair = load_pair(smk.input.pair)
     return pair if spec is None else variant_pair(pair, smk.wildcards.variant, spec)
 
 
@@ -216,15 +252,18 @@ def run_plot(smk: Any) -> None:
     _run(smk, body)
 
 
-def write_pair(pair: GearPair, path: str | Path) -> Path:
-    """Write ``pair`` as a pair file (YAML, engineering units), checked by pair_geometry first."""
+def write_pair(pair: GearPair, path: str | Path, made_by: Mapping[str, Any] | None = None) -> Path:
+    """Write ``pair`` as a pair file (YAML, engineering units), checked by pair_geometry first;
+    with ``made_by`` (the run that wrote it) its first line is the provenance comment of
+    :func:`gearmesh.upstream.optimum_header` (the content's digest and that run)."""
     import yaml
 
     from .gear import pair_geometry
 
     pair_geometry(pair)
+    body = yaml.safe_dump(_tidy(pair_to_dict(pair)), sort_keys=False)
     with atomic_output(path) as tmp:
-        tmp.write_text(yaml.safe_dump(_tidy(pair_to_dict(pair)), sort_keys=False))
+        tmp.write_text(body if made_by is None else optimum_header(path, body, made_by) + body)
     return Path(path)
 
 
@@ -251,4 +290,19 @@ def run_optimise(smk: Any) -> None:
     file (``output.pair``, the input of a variant ``{from: optimise.NAME}``) and its figures."""
     from .datasets.optimise import optimum_pair
 
-    _pair_stage(smk, lambda pair, ds: write_pair(optimum_pair(pair, ds), smk.output.pair))
+    def then(pair: GearPair, ds: xr.Dataset) -> None:
+        write_pair(optimum_pair(pair, ds), smk.output.pair, {"ga": normal_path(smk.output.nc), "data_sha256":
+                                                             ds.attrs[DATA_ATTR]})
+
+    _pair_stage(smk, then)
+
+
+def check_results(config: Mapping[str, Any]) -> list[str]:
+    """Every problem of the study's results folder against ``config`` (``gearmesh check``,
+    :func:`gearmesh.upstream.check_tree`): what ``snakemake --report`` runs before it publishes
+    the files, those nothing downstream reads included."""
+    from .upstream import check_tree
+
+    root = Path("results", str(config["study"]))
+    return check_tree(root, config, lambda name, variant: study_pair(config, name, variant)) if root.is_dir() else []
+

@@ -30,6 +30,7 @@ from collections.abc import Mapping
 from typing import Any, Callable, Literal, Union
 
 from .errors import GearmeshInputError
+from .limits import MAX_LIST_ITEMS
 
 #: Key of a field's :class:`Spec` in ``dataclasses.field(metadata=...)``.
 SPEC = "gearmesh"
@@ -208,10 +209,12 @@ def type_schema(tp: Any, spec: Spec, outer: bool = True) -> dict[str, Any]:
                     out[word] = getattr(spec, attr)
             if spec.unique:
                 out["uniqueItems"] = True
+        if variadic:  # every list has a length limit (gearmesh.limits)
+            out.setdefault("maxItems", MAX_LIST_ITEMS)
         return out
     if origin in (dict, Mapping, typing.Mapping) or tp is dict:
         value = args[1] if args else Any
-        out = {"type": "object"}
+        out = {"type": "object", "maxProperties": MAX_LIST_ITEMS}
         if value is not Any:
             out["additionalProperties"] = type_schema(value, spec, outer=False)
         names = {k: v for k, v in (("pattern", spec.key_pattern), ("maxLength", spec.key_max_length)) if v is not None}
@@ -344,6 +347,8 @@ def _rule(err) -> str:
         return f"must have at least {limit} item{'s' if limit != 1 else ''}"
     if kind == "maxItems":
         return f"must have at most {limit} item{'s' if limit != 1 else ''}"
+    if kind == "maxProperties":
+        return f"must have at most {limit} keys"
     if kind == "uniqueItems":
         return "must not repeat an item"
     if kind == "pattern":
@@ -375,8 +380,13 @@ def _alternative(schema: Mapping[str, Any]) -> str:
 
 def schema_error(err, prefix: str = "") -> GearmeshInputError:
     """One jsonschema error as the field it is about (``a.b[0]``, an unknown or missing key
-    named itself) and the rule it breaks (:func:`_rule`)."""
-    path = ([prefix] if prefix else []) + list(err.path)
+    named itself) and the rule it breaks (:func:`_rule`). A value that fails every alternative of
+    a ``oneOf`` but has the type of exactly one is judged by that one (``speeds_rpm.start``
+    must be positive, not "must be a mapping or a list")."""
+    alternative = _matching_alternative(err)
+    if alternative is not None:
+        return schema_error(alternative, prefix)
+    path = ([prefix] if prefix else []) + list(err.absolute_path)
     instance = err.instance
     if err.validator == "additionalProperties" and err.validator_value is False and isinstance(instance, Mapping):
         extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
@@ -393,11 +403,26 @@ def schema_error(err, prefix: str = "") -> GearmeshInputError:
     return GearmeshInputError(_field(path) or "config", instance if path else None, _rule(err))
 
 
+def _matching_alternative(err):
+    """The first error of the one ``oneOf`` alternative whose type the value has, or None."""
+    if err.validator != "oneOf" or not err.context:
+        return None
+    by_alternative: dict[int, list] = {}
+    for sub in err.context:
+        by_alternative.setdefault(sub.relative_schema_path[0], []).append(sub)
+    typed = [subs for subs in by_alternative.values()
+             if not any(e.validator in ("type", "enum") and not e.relative_path for e in subs)]
+    if len(typed) != 1:
+        return None
+    return sorted(typed[0], key=lambda e: (len(e.relative_path), list(map(str, e.relative_path))))[0]
+
+
 def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
     """A copy of ``data`` with the defaults of ``schema`` filled; GearmeshInputError naming the
     first bad field (a NaN or infinite number anywhere, then the schema's first error)."""
     import jsonschema
 
+    check_counts(data, schema, prefix)  # O(1) per list before any list is read through
     bad = first_non_finite(data, prefix)
     if bad:
         raise GearmeshInputError(bad[0], bad[1], "must be a finite number")
@@ -409,6 +434,42 @@ def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "
     for _ in validator.iter_errors(out):  # fill a second time: nested defaults of objects the first pass created
         pass
     return out
+
+
+def _alternatives(schema: Mapping[str, Any]) -> list[Mapping[str, Any]]:
+    return [schema, *schema.get("oneOf", ()), *schema.get("anyOf", ())]
+
+
+def check_counts(data: Any, schema: Mapping[str, Any], prefix: str = "") -> None:
+    """Refuse a list with more items (a mapping with more keys) than ``schema`` allows anywhere
+    in ``data``, measuring each by its length before reading any item (GearmeshInputError naming
+    the field and the count), so a list of 10⁷ values costs no more to refuse than one of 10³.
+    Items are visited only inside lists already within their limit."""
+    stack = [(prefix, data, schema)]
+    while stack:
+        where, value, sub = stack.pop()
+        if not isinstance(sub, Mapping):
+            continue
+        field = where or "config"
+        if isinstance(value, Mapping):
+            limits = [a["maxProperties"] for a in _alternatives(sub) if "maxProperties" in a]
+            if limits and len(value) > max(limits):
+                raise GearmeshInputError(field, f"{len(value)} keys", f"must have at most {max(limits)} keys "
+                                         "(gearmesh.limits)")
+            for alt in _alternatives(sub):
+                props, extra = alt.get("properties", {}), alt.get("additionalProperties")
+                for key, item in value.items():
+                    inner = props.get(key, extra if isinstance(extra, Mapping) else None)
+                    if inner is not None:
+                        stack.append((f"{where}.{key}" if where else str(key), item, inner))
+        elif isinstance(value, (list, tuple)) or (hasattr(value, "__len__") and hasattr(value, "shape")):
+            limits = [a["maxItems"] for a in _alternatives(sub) if "maxItems" in a]
+            if limits and len(value) > max(limits):
+                raise GearmeshInputError(field, f"{len(value)} items", f"must have at most {max(limits)} items "
+                                         "(gearmesh.limits)")
+            items = next((a["items"] for a in _alternatives(sub) if isinstance(a.get("items"), Mapping)), None)
+            if items is not None and isinstance(value, (list, tuple)):
+                stack += [(f"{where}[{k}]", v, items) for k, v in enumerate(value)]
 
 
 def check_value(cls: type, key: str, value: Any) -> None:
@@ -440,12 +501,27 @@ def check_arguments(cls: type, exclude: tuple[str, ...] = ()) -> Callable[[Calla
                 if value is None and name in signature.parameters and signature.parameters[name].default is None:
                     continue  # the function's own "none" (no mutable default): e.g. no bounds, no constraints
                 check_value(cls, name, value)
-            return func(*args, **kwargs)
+            pair = given.get("pair")
+            datasets = {n: v for n, v in given.items() if _is_dataset(v)} if pair is not None else {}
+            if datasets:  # another pair's upstream dataset refused (gearmesh.upstream)
+                from .upstream import check_dataset_pair
+                for name, value in datasets.items():
+                    check_dataset_pair(name, value, pair)
+            out = func(*args, **kwargs)
+            if pair is not None and _is_dataset(out) and hasattr(pair, "modification"):
+                from .upstream import stamp_pair
+                stamp_pair(out, pair, bool(getattr(cls, "PER_VARIANT", False)))
+            return out
 
         checked.__settings__ = cls
         return checked
 
     return decorate
+
+
+def _is_dataset(value: Any) -> bool:
+    """Whether ``value`` is an xarray Dataset (without importing xarray)."""
+    return type(value).__name__ == "Dataset" and hasattr(value, "data_vars") and hasattr(value, "attrs")
 
 
 def defaults(cls: type) -> dict[str, Any]:

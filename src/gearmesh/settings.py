@@ -26,6 +26,7 @@ import yaml
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
                       TOOTH_METHODS)
 from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, MODULE_RANGE, NAME_PATTERN
+from .limits import MAX_LTCA_TORQUES
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
 
 #: Names of studies and of the pairs a study uses: a folder of results/{study}/{pair}/, no path characters.
@@ -170,6 +171,7 @@ class Tca:
     """Unloaded tooth contact analysis of every pair and variant over one mesh cycle (tca.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.ltca:tca_dataset",)
+    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
     positions: int = _positions(64, 10000)
     points: int = _points()
     lead_slope_um: tuple[float, float] = _lead_slope()
@@ -182,7 +184,9 @@ class Ltca:
     cycle: loaded and load transmission error, contact pattern, loaded mesh stiffness (ltca.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.ltca:ltca_dataset",)
-    torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques", exclusive_minimum=0, min_items=1)
+    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
+    torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques", exclusive_minimum=0, min_items=1,
+                                            max_items=MAX_LTCA_TORQUES)
     on: Gear = setting("pinion", "the gear the torques act on")
     positions: int = _positions(64, 10000)
     points: int = _points()
@@ -199,6 +203,7 @@ class Rating:
     accuracy, roughness and oil are the pair file's (defaults named in the dataset's notes)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.rating:rating_dataset",)
+    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
     speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
     application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=1)
     life_hours: float | None = setting(None, "required life for Z_NT, Y_NT (null: endurance)", exclusive_minimum=0)
@@ -214,6 +219,7 @@ class Impact:
     as a check (impact.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.impact:impact_dataset",)
+    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques of the map", exclusive_minimum=0,
                                             min_items=1, max_items=100)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -412,6 +418,7 @@ class Dynamics(_Dynamics):
     micro-geometry."""
 
     STAGES: ClassVar = ("gearmesh.datasets.dynamics:dynamics_dataset",)
+    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
     torques_Nm: float | tuple[float, ...] = setting(200.0, "one torque or a list", exclusive_minimum=0, min_items=1,
                                                     max_items=20)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -438,6 +445,7 @@ class TrainDynamics(_Dynamics):
     (the pair's gear), the pair's mesh in both meshes, at one load and speed (train.nc)."""
 
     STAGES: ClassVar = ("gearmesh.datasets.dynamics:train_dataset",)
+    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
     static_force_N: float | None = setting(2832, "static normal mesh force, the load when torque_Nm is null",
                                            exclusive_minimum=0)
     torque_Nm: float | None = setting(None, "torque on the plate gear (null: from static_force_N)",

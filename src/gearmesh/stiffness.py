@@ -108,6 +108,7 @@ from .contact import contact_length_breakpoints, contact_roll_positions, hand_si
 from .choices import DEFAULT_TOOTH_METHOD, TOOTH_METHODS
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
+from .limits import check_slice_grid
 # the shared tooth types live below both tooth models (re-exported here); stiffness chooses the method
 from .tooth import (COMPONENTS, PEM_METHODS, SliceComplianceTable, ToothModel, _involute_dy_da,  # noqa: F401
                     _involute_xy, base_half_angle, contact_point, require_stiffness_data, tooth_model)
@@ -673,8 +674,7 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
     """
     _check_method(method)
     require_stiffness_data(geom)
-    if n_positions < 1:
-        raise GearmeshInputError("n_positions", n_positions, "must be at least 1")
+    n_slices, n_positions = check_slice_grid(n_slices, n_positions, ("n_slices", "n_positions"))
     if tables is not None and any(tab.method != method for tab in tables):
         raise GearmeshInputError("method", method, f"differs from the method of the given tables "
                                  f"({tables[0].method!r}, {tables[1].method!r})")

@@ -43,6 +43,7 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
+from .limits import MAX_CORNER_DIMENSIONS, MAX_SAMPLES
 
 __all__ = ["GRADES", "SAMPLINGS", "STATISTICS", "helix_slope_tolerance", "ToleranceModel", "tolerance_model",
            "unit_deviations", "apply_deviations", "sample_statistic", "check_statistic", "study_tolerances"]
@@ -54,9 +55,6 @@ STATISTICS = ("max", "mean", "percentile", "cvar")
 _KEYS = ("root_relief_um", "tip_relief_um", "root_relief_length_mm", "tip_relief_length_mm", "crowning_um",
          "unmodified_lead_length_mm")
 _TO_SI = np.array([1e-6, 1e-6, 1e-3, 1e-3, 1e-6, 1e-3])
-#: Most corners of a tolerance box (2^k) that are enumerated.
-MAX_CORNER_DIMENSIONS = 12
-MAX_SAMPLES = 4096
 
 
 def helix_slope_tolerance(reference_diameter: float, face_width: float, grade: int) -> float:

@@ -12,7 +12,16 @@ what it is, what was expected and how to regenerate it, when
   another study's file);
 * it was made for other pair data than the reading job's (the pair file or the variant's
   modification changed, and the file was not remade);
-* it was made with other settings of its own stage (its config section) or for another study.
+* it was made with other settings of its own stage (its config section), of another section it
+  depends on (the impact stage's tolerances), or for another study;
+* its data do not match the digest it claims (an edited value, a forged file: issue 29);
+* an input it was made from has changed or is gone since (:func:`record_sources`): it is stale.
+
+A study table (no pair of its own) checks each file against that file's own pair and variant.
+The optimum's pair file is checked against the run that wrote it (:func:`check_optimum`), and
+:func:`check_tree` (``gearmesh check``, and ``snakemake --report`` first) checks every file of a
+results folder, those nothing downstream reads included. A stage function handed another
+pair's dataset refuses it (:func:`check_dataset_pair`).
 
 Snakemake reruns a job whose inputs, code or params changed, so none of these happens in a run
 that Snakemake alone drives; they catch the files a person or another program put in place,
@@ -21,18 +30,19 @@ and runs told to ignore their rerun triggers.
 
 from __future__ import annotations
 
+import hashlib
 import json
 import math
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Mapping
+from typing import Any, Callable, Mapping
 
 import xarray as xr
 
 from .errors import GearmeshInputError, excerpt
 from .gear import GearPair, pair_to_dict
-from .io import config_digest
+from .io import DATA_ATTR, config_digest, data_digest
 
 #: Global attributes :func:`identify` writes: the file as written (relative POSIX path), the
 #: rule that made it and its job's wildcards (JSON).
@@ -41,21 +51,35 @@ OUTPUT_ATTR, RULE_ATTR, WILDCARDS_ATTR = "gearmesh_output", "gearmesh_rule", "ge
 PAIR_RTOL = 1e-9
 
 
+#: Global attributes of :func:`record_sources`: every input file of the job that made the file
+#: with the digest it had then (JSON {path: digest}), and the study config sections it depends on.
+SOURCES_ATTR, SECTIONS_ATTR = "gearmesh_sources_json", "gearmesh_sections_json"
+#: First line of an optimisation's pair file (:func:`optimum_header`).
+OPTIMUM_HEADER = "# gearmesh optimum: "
+
+
 @dataclass(frozen=True)
 class Expected:
     """What a reading job expects of the files it reads: its study ``config``, its ``pair``
-    (None for a stage over several pairs) and its micro-geometry ``variant`` (None if none)."""
+    (None for a stage over several pairs) and its micro-geometry ``variant`` (None if none);
+    for a stage over several pairs or variants, ``pair_of(pair name, variant or None)`` gives
+    the pair each file must have been made for."""
 
     config: Mapping[str, Any]
     pair: GearPair | None = None
     variant: str | None = None
+    pair_of: Callable[[str, str | None], GearPair] | None = None
 
 
-def identify(ds: xr.Dataset, path: str | Path, rule: str, wildcards: Mapping[str, str]) -> xr.Dataset:
-    """Record in ``ds`` the file it is written as, the ``rule`` that made it and the job's
-    ``wildcards``: what :func:`check_input` compares."""
-    ds.attrs.update({OUTPUT_ATTR: _normal(path), RULE_ATTR: rule,
+def identify(ds: xr.Dataset, path: str | Path, rule: str, wildcards: Mapping[str, str],
+             function: str | None = None) -> xr.Dataset:
+    """Record in ``ds`` the file it is written as, the ``rule`` that made it, the job's
+    ``wildcards`` and the ``function`` that made it (with its code digest): what
+    :func:`check_input` and :func:`check_tree` compare."""
+    ds.attrs.update({OUTPUT_ATTR: normal_path(path), RULE_ATTR: rule,
                      WILDCARDS_ATTR: json.dumps({k: str(v) for k, v in dict(wildcards).items()}, sort_keys=True)})
+    if function:  # the whole text: a Versioned spec prints without its digest
+        ds.attrs[FUNCTION_ATTR] = str.__str__(function)
     return ds
 
 
@@ -74,24 +98,126 @@ def read_input(path: str | Path, expected: Expected) -> xr.Dataset:
 
 
 def check_input(ds: xr.Dataset, path: str | Path, expected: Expected) -> None:
-    """Refuse ``ds`` (read from ``path``) unless it is the workflow's file at ``path``, made for
-    the expected study, pair data and variant, with the current settings of its stage."""
+    """Refuse ``ds`` (read from ``path``) unless it is the workflow's file at ``path``, its data
+    those its digest claims, made for the expected study, pair data and variant, with the
+    current settings of every section it depends on, from inputs that are still the files it
+    was made from (module docstring)."""
     attrs = ds.attrs
-    if "config_json" not in attrs or OUTPUT_ATTR not in attrs:
-        raise GearmeshInputError(str(path), "no gearmesh provenance", "is not a result of a gearmesh workflow job "
-                                 f"(no {OUTPUT_ATTR} attribute); {_recovery(path)}")
+    _check_identity(ds, path)
     rule = attrs.get(RULE_ATTR, "?")
-    written = attrs[OUTPUT_ATTR]
-    if not _same_file(written, path):
-        raise GearmeshInputError(str(path), f"the {rule} result written as {written}",
-                                 f"is a copy of that file (or was moved here), not the one this job reads; {_recovery(path)}")
+    _check_digests(ds, path, rule)
     made = json.loads(attrs["config_json"])
     study = made.get("study", {})
     if study.get("study") != expected.config.get("study"):
         raise GearmeshInputError(str(path), f"made for study {study.get('study')!r}",
                                  f"this run is study {expected.config.get('study')!r}; {_recovery(path)}")
-    _check_pair(made.get("pair"), path, rule, json.loads(attrs.get(WILDCARDS_ATTR, "{}")), expected)
-    _check_settings(study, path, rule, json.loads(attrs.get(WILDCARDS_ATTR, "{}")), expected.config)
+    wildcards = json.loads(attrs.get(WILDCARDS_ATTR, "{}"))
+    if expected.pair is None and expected.pair_of is not None and "pair" in wildcards:
+        variant = wildcards.get("variant")  # a study table: each file against its own pair and variant
+        expected = Expected(expected.config, expected.pair_of(wildcards["pair"], variant), variant)
+    _check_pair(made.get("pair"), path, rule, wildcards, expected)
+    _check_settings(study, path, rule, wildcards, expected.config)
+    for section in json.loads(attrs.get(SECTIONS_ATTR, "[]")):
+        if section != rule:
+            _check_section(study, section, path, rule, expected.config)
+    check_sources(ds, path)
+
+
+def _check_digests(ds: xr.Dataset, path, rule: str) -> None:
+    """The file's data against the digest it claims (an edited value, a forged file), and its
+    recorded config against its config digest."""
+    claimed = ds.attrs.get(DATA_ATTR)
+    if not isinstance(claimed, str) or data_digest(ds) != claimed:
+        what = "has no data digest" if not isinstance(claimed, str) else "has data that do not match its digest"
+        raise GearmeshInputError(str(path), f"the {rule} result", f"{what} ({DATA_ATTR}): edited, forged or made "
+                                 f"by an older gearmesh; {_recovery(path)}")
+    if hashlib.sha256(str(ds.attrs["config_json"]).encode()).hexdigest() != ds.attrs.get("config_sha256"):
+        raise GearmeshInputError(str(path), f"the {rule} result", "has a config that does not match its config_sha256 "
+                                 f"(edited); {_recovery(path)}")
+
+
+def _check_section(made_study: Mapping[str, Any], section: str, path, rule: str,
+                   config: Mapping[str, Any]) -> None:
+    """Another config section the file depends on (the impact stage's tolerances, an
+    optimisation's impact model) against this run's."""
+    key = first_difference(made_study.get(section), _plain(config.get(section)))
+    if key is not None:
+        field = f"{section}.{key}" if key else section
+        raise GearmeshInputError(str(path), f"the {rule} result made with {field} = "
+                                 f"{_value(made_study.get(section), key)}",
+                                 f"this run has {field} = {_value(_plain(config.get(section)), key)}; {_recovery(path)}")
+
+
+def file_digest(path: str | Path) -> str:
+    """What a file is as an input: a netCDF result's data digest (its attribute, read from the
+    header only), any other file's sha256; '' for a file that is missing or cannot be read."""
+    path = Path(path)
+    try:
+        if path.suffix == ".nc":
+            import netCDF4
+
+            with netCDF4.Dataset(path) as nc:
+                return str(nc.getncattr(DATA_ATTR)) if DATA_ATTR in nc.ncattrs() else ""
+        return hashlib.sha256(path.read_bytes()).hexdigest()
+    except (OSError, RuntimeError, ValueError):
+        return ""
+
+
+def record_sources(ds: xr.Dataset, files, sections) -> xr.Dataset:
+    """Record in ``ds`` every input file of the job with its :func:`file_digest` now, and the
+    config ``sections`` the result depends on: what :func:`check_sources` and
+    :func:`_check_section` compare when the file is read."""
+    ds.attrs[SOURCES_ATTR] = json.dumps({normal_path(f): file_digest(f) for f in files}, sort_keys=True)
+    ds.attrs[SECTIONS_ATTR] = json.dumps(list(sections))
+    return ds
+
+
+def check_sources(ds: xr.Dataset, path) -> None:
+    """Refuse ``ds`` (read from ``path``) when an input it was made from is gone or is no longer
+    the file it was made from (remade, replaced or edited since, and ``path`` not remade)."""
+    rule = ds.attrs.get(RULE_ATTR, "?")
+    for source, digest in json.loads(ds.attrs.get(SOURCES_ATTR, "{}")).items():
+        now = file_digest(source)
+        if now != digest:
+            what = "is missing or unreadable now" if not now else "has changed since"
+            raise GearmeshInputError(str(path), f"the {rule} result made from {source}",
+                                     f"that input {what}: this file is stale; {_recovery(path)}")
+
+
+def optimum_header(path: str | Path, body: str, made_by: Mapping[str, Any]) -> str:
+    """The first line of an optimisation's pair file at ``path``: a YAML comment with the file
+    as written, the digest of its content ``body`` and ``made_by`` (the run's ga.nc and its
+    data digest)."""
+    meta = {"file": normal_path(path), "content_sha256": hashlib.sha256(body.encode()).hexdigest(), **made_by}
+    return OPTIMUM_HEADER + json.dumps(meta, sort_keys=True) + "\n"
+
+
+def check_optimum(path: str | Path) -> None:
+    """Refuse an optimisation's pair file that is not the optimum its run wrote at ``path``:
+    without the provenance line (hand-made), copied from another run or place, edited after it
+    was written, or older than its run's ga.nc. One line naming the file and how to remake it."""
+    from .gear import read_input_text
+
+    text = read_input_text(path, "pair file")
+    first, _, body = text.partition("\n")
+    redo = f"remake it: snakemake --forcerun {normal_path(path)} (with this run's --configfile)"
+    if not first.startswith(OPTIMUM_HEADER):
+        raise GearmeshInputError(str(path), "an optimum without provenance", "has no '# gearmesh optimum' first line: "
+                                 f"not the file an optimisation wrote (hand-made or replaced); {redo}")
+    try:
+        meta = json.loads(first[len(OPTIMUM_HEADER):])
+    except ValueError:
+        meta = {}
+    if not _same_file(str(meta.get("file", "")), path):
+        raise GearmeshInputError(str(path), f"the optimum written as {meta.get('file')}",
+                                 f"is a copy of another run's optimum, not this run's; {redo}")
+    if hashlib.sha256(body.encode()).hexdigest() != meta.get("content_sha256"):
+        raise GearmeshInputError(str(path), "an edited optimum", "was changed after its optimisation wrote it (its "
+                                 "content does not match its digest); to try a hand-made design give it as a variant's "
+                                 f"modification instead; {redo}")
+    if file_digest(str(meta.get("ga", ""))) != meta.get("data_sha256"):
+        raise GearmeshInputError(str(path), f"the optimum of an older {meta.get('ga')}",
+                                 f"that run's result has changed since this file was written; {redo}")
 
 
 def _check_pair(made: Mapping[str, Any] | None, path, rule: str, wildcards: Mapping[str, str],
@@ -128,6 +254,109 @@ def _check_settings(made_study: Mapping[str, Any], path, rule: str, wildcards: M
         field = f"{prefix}.{key}" if key else prefix
         raise GearmeshInputError(str(path), f"the {rule} result made with {field} = {_value(made, key)}",
                                  f"this run has {field} = {_value(now, key)}; {_recovery(path)}")
+
+
+#: Global attribute of a stage's dataset: the pair data it was computed for (canonical JSON of
+#: the pair file's form; without the modification for a stage of the pair, which does not use it),
+#: so a stage handed another pair's dataset refuses it (:func:`check_dataset_pair`).
+PAIR_ATTR = "gearmesh_pair_json"
+
+
+def stamp_pair(ds: xr.Dataset, pair: GearPair, per_variant: bool) -> xr.Dataset:
+    """Record in ``ds`` the pair data it was computed for (:data:`PAIR_ATTR`); ``per_variant``
+    whether the result depends on the micro-geometry (TCA, LTCA, impact, dynamics)."""
+    data = pair_to_dict(pair)
+    if not per_variant:
+        data.pop("modification", None)
+    ds.attrs[PAIR_ATTR] = config_digest({"pair": data, "per_variant": per_variant})[0]
+    return ds
+
+
+def check_dataset_pair(argument: str, ds: xr.Dataset, pair: GearPair) -> None:
+    """Refuse a dataset argument computed for other pair data than ``pair`` (GearmeshInputError
+    naming the argument, the pair it was made for and the first differing key); a dataset
+    without :data:`PAIR_ATTR` (made by hand) is taken as it is."""
+    text = ds.attrs.get(PAIR_ATTR)
+    if not isinstance(text, str):
+        return
+    made = json.loads(text)
+    wanted = pair_to_dict(pair)
+    if not made.get("per_variant"):
+        wanted.pop("modification", None)
+    recorded = made.get("pair", {})
+    key = first_difference(recorded, wanted)
+    if key is not None:
+        raise GearmeshInputError(argument, f"a dataset of {recorded.get('name')!r}",
+                                 f"was computed with {key} = {_value(recorded, key)}, this pair "
+                                 f"{pair.name!r} has {key} = {_value(wanted, key)}: pass this pair's own "
+                                 f"{argument} dataset (or none)")
+
+
+#: Global attribute of :func:`identify`: the function that made the file, with the digest of
+#: its code (:func:`gearmesh.codeversion.versioned`), compared by :func:`check_tree`.
+FUNCTION_ATTR = "gearmesh_function"
+
+
+def check_tree(root: str | Path, config: Mapping[str, Any] | None = None,
+               pair_of: Callable[[str, str | None], GearPair] | None = None) -> list[str]:
+    """Every problem of the results under ``root`` (a study's results folder), one line each
+    naming the file, what is wrong and how to remake it: each netCDF file readable (not
+    truncated, not empty), a gearmesh result at its own path (not a copy of another variant's,
+    stage's or study's file), its data matching its digest, made by the current code of its
+    function, from inputs that are still the files it was made from (none missing); each
+    optimisation's pair file its run's unedited optimum; with the study ``config`` (and
+    ``pair_of``, the pair each file must be of) also the settings and pair data of each file.
+    The files nothing downstream reads (geometry, contact lines, TCA, tables, ga.nc) included."""
+    from .codeversion import versioned
+
+    problems: list[str] = []
+    root = Path(root)
+    for path in sorted(root.rglob("*.nc")):
+        if any(part.startswith(".") for part in path.relative_to(root).parts):
+            continue  # a temporary of a write in flight
+        rel = normal_path(path)
+        if path.is_dir():
+            problems.append(f"{rel}: a folder where a result file belongs; move or delete it, then rerun")
+            continue
+        try:
+            with xr.open_dataset(path, engine="netcdf4") as ds:
+                ds = ds.load()
+        except (OSError, RuntimeError, ValueError, KeyError, IndexError) as exc:
+            problems.append(f"{rel}: damaged (cannot be read as netCDF: {_reason(exc, path)}, truncated or empty); "
+                            f"{_recovery(rel)}")
+            continue
+        try:
+            if config is not None:
+                check_input(ds, rel, Expected(config, None, None, pair_of))
+            else:
+                _check_identity(ds, rel)
+                _check_digests(ds, rel, ds.attrs.get(RULE_ATTR, "?"))
+                check_sources(ds, rel)
+            spec = ds.attrs.get(FUNCTION_ATTR)
+            if isinstance(spec, str) and "@" in spec and versioned(spec.partition("@")[0]) != spec:
+                raise GearmeshInputError(rel, f"made by {spec}", "older code of its function: stale; "
+                                         f"{_recovery(rel)}")
+        except GearmeshInputError as exc:
+            problems.append(str(exc))
+    for path in sorted(root.rglob("optimise/*/pair.yaml")):
+        try:
+            check_optimum(normal_path(path))
+        except GearmeshInputError as exc:
+            problems.append(str(exc))
+    return list(dict.fromkeys(problems))  # a bad optimum is named once, not once per file of its variant
+
+
+def _check_identity(ds: xr.Dataset, path) -> None:
+    """The file is a gearmesh result (provenance) written as ``path`` (not a copy or a move)."""
+    attrs = ds.attrs
+    if "config_json" not in attrs or OUTPUT_ATTR not in attrs:
+        raise GearmeshInputError(str(path), "no gearmesh provenance", "is not a result of a gearmesh workflow job "
+                                 f"(no {OUTPUT_ATTR} attribute); {_recovery(path)}")
+    written = attrs[OUTPUT_ATTR]
+    if not _same_file(written, path):
+        raise GearmeshInputError(str(path), f"the {attrs.get(RULE_ATTR, '?')} result written as {written}",
+                                 f"is a copy of that file (or was moved here), not the one this job reads; "
+                                 f"{_recovery(path)}")
 
 
 def first_difference(made: Any, wanted: Any, prefix: str = "") -> str | None:
@@ -173,14 +402,15 @@ def _plain(value: Any) -> Any:
     return json.loads(config_digest({"v": value})[0])["v"]
 
 
-def _normal(path: str | Path) -> str:
+def normal_path(path: str | Path) -> str:
+    """``path`` as written in the provenance: normalised, relative as given, POSIX separators."""
     return Path(os.path.normpath(path)).as_posix()
 
 
 def _same_file(written: str, path: str | Path) -> bool:
     """Whether the recorded ``written`` names ``path`` (both relative to the working directory,
     or either absolute)."""
-    return _normal(written) == _normal(path) or os.path.abspath(written) == os.path.abspath(path)
+    return normal_path(written) == normal_path(path) or os.path.abspath(written) == os.path.abspath(path)
 
 
 def _reason(exc: BaseException, path: str | Path) -> str:
@@ -192,4 +422,4 @@ def _reason(exc: BaseException, path: str | Path) -> str:
 
 
 def _recovery(path: str | Path) -> str:
-    return f"regenerate it: snakemake --forcerun {_normal(path)} (with this run's --configfile)"
+    return f"regenerate it: snakemake --forcerun {normal_path(path)} (with this run's --configfile)"

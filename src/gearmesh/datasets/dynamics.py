@@ -38,8 +38,10 @@ from ..errors import GearmeshInputError
 from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import name_force_lines, variable
-from ..limits import check_load, check_loads, check_slice_grid, check_speeds
-from ..ltca import contact_tangent_compliance, positive_values
+from ..limits import (MAX_SPEED_STEPS, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS, check_slice_grid,
+                      check_speeds, positive_values)
+from ..loads import check_load, check_loads
+from ..ltca import contact_tangent_compliance
 from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable,
                          mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
@@ -51,7 +53,6 @@ DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
 #: Seed 004: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
 SEED004_MESH_FREQUENCY_HZ = 249.4
 SEED004_STATIC_FORCE_N = 2832.0
-MAX_SPEEDS = 20000
 
 
 # --------------------------------------------------------------------------------------
@@ -168,16 +169,6 @@ STEADY_STATES = get_args(SteadyState)
 PAIR_EXCITATIONS = get_args(PairExcitation)
 
 
-#: Work limits of one dynamics job, checked before any job runs (:func:`check_dynamics_settings`).
-#: RK4 speed-steps (steps of the longest speed × speeds, one vectorised batch): measured about
-#: 5e6 per second (seed 001 pair, 496 speeds × 17664 steps in 2 s), so 1e9 is a few minutes.
-MAX_SPEED_STEPS = 1_000_000_000
-#: Most (window positions × approaches × points per line) of a contact table: its build costs
-#: about 0.4 s per 10⁶ (256 × 96 × 50 with the default pair's 4–5 tooth pairs: 0.4 s, measured),
-#: so the limit is about a minute and ~130 MB for the table (chunked build).
-MAX_TABLE_POINTS = 200_000_000
-#: Most speeds of the 9-DOF train: it keeps the time series and spectra of every speed.
-MAX_TRAIN_SPEEDS = 50
 #: Coarse slice grid of the stiffness used only to estimate the step size (ω_max) up front.
 _ESTIMATE_SLICES, _ESTIMATE_POSITIONS = 16, 24
 
@@ -771,7 +762,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     grid = speed_grid(speeds_rpm)
     check_speeds(geom, grid, "speeds_rpm")
     samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
-    check_speeds(geom, samples, "sample_speeds_rpm")
+    check_speeds(geom, samples, "sample_speeds_rpm", empty_ok=True)
     check_slice_grid(slices, positions)
     use_fe_tables(fe_compliance, geom)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)

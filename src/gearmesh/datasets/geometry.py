@@ -24,6 +24,7 @@ from ..design import integer_overlap_face_width, integer_overlap_helix_angle, ov
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, PairGeometry, pair_geometry
 from ..io import variable
+from ..limits import check_sweep
 from ..profile import tooth_profile
 from ..surface import tooth_surface
 from ..schema import check_arguments
@@ -192,6 +193,7 @@ def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_de
     (:func:`gearmesh.design.overlap_fluctuation_curve`); angles whose pair cannot work are
     NaN, with the reasons in the ``refused`` attribute.
     """
+    check_sweep(start_deg, stop_deg, step_deg)  # its size from the three numbers, before any grid
     angles = np.arange(start_deg, stop_deg + 0.5 * step_deg, step_deg)
     names = list(pairs)
     curves = [overlap_fluctuation_curve(pairs[n], np.radians(angles), n_positions=positions) for n in names]

@@ -14,11 +14,11 @@ import xarray as xr
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
-from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, check_speeds, impact_model,
+from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
                       impact_response, impact_static, load_grid, load_window, mesh_in_point, seed_edge_roll,
                       simulate_engagement, vector_velocity)
 from ..io import name_force_lines, variable
-from ..limits import check_speeds as check_speed_limit
+from ..limits import check_speeds
 from ..ltca import check_torques, loaded_pinion_torques, pinion_torques
 from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
@@ -52,8 +52,7 @@ def _operating_points(pair: GearPair, torques, on: str, speeds_rpm, torque_field
         raise GearmeshInputError("pair", type(pair).__name__, "must be a GearPair")
     geom = pair_geometry(pair)
     given, t1 = loaded_pinion_torques(geom, torques, on, torque_field)
-    speeds = check_speeds(speeds_rpm, speed_field)
-    check_speed_limit(geom, speeds, speed_field)
+    speeds = check_speeds(geom, speeds_rpm, speed_field)
     return given, t1, speeds
 
 

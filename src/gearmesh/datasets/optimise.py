@@ -26,8 +26,8 @@ from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
 from ..io import name_force_lines, variable
-from ..limits import check_load
-from ..ltca import pinion_torques
+from ..loads import check_load
+from ..ltca import loaded_pinion_torques, pinion_torques
 from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, gene_table, optimise,
                         problem)
 from ..surface import MODIFICATION_FIELDS
@@ -100,9 +100,10 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
         backlash = float(backlash_um) * 1e-6
     else:
         raise GearmeshInputError("backlash_um", backlash_um, "must be 'pair' (the pair's own) or a number (µm)")
-    design = float(pinion_torques(geom, [check_positive("torque_Nm", torque_Nm)], on, field="torque_Nm")[0])
+    # the load limits first: an absurd torque is named as such, not as a load window too fine for it
+    design = float(loaded_pinion_torques(geom, [check_positive("torque_Nm", torque_Nm)], on, field="torque_Nm")[1][0])
     spectrum = None if torques_Nm is None else \
-        tuple(float(t) for t in pinion_torques(geom, torques_Nm, on, field="torques_Nm"))
+        tuple(float(t) for t in loaded_pinion_torques(geom, torques_Nm, on, field="torques_Nm")[1])
     tol_model, samples, sampling, tol_seed = study_tolerances(geom, tolerances)
     step = check_positive("load_window_step_Nm", load_window_step_Nm)
     step = float(pinion_torques(geom, [step], on, field="load_window_step_Nm")[0])

@@ -14,7 +14,8 @@ from ..errors import GearmeshInputError
 from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_to_dict
 from ..gear import pinion_torque as gear_pinion_torque
 from ..io import variable
-from ..limits import check_load, check_slice_grid
+from ..limits import check_slice_grid
+from ..loads import check_load
 from ..ltca import contact_tangent_compliance
 from ..stiffness import (
     DEFAULT_RULE,

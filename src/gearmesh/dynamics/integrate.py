@@ -28,11 +28,9 @@ import numpy as np
 from numba import njit
 
 from ..errors import GearmeshInputError
+from ..limits import MAX_STEPS_PER_SPEED
 from .model import GearModel
 
-#: Cap on RK4 steps at one speed (a very low speed would otherwise run for hours: the
-#: transient lasts a fixed physical time while the step is bounded by the highest mode).
-MAX_STEPS_PER_SPEED = 2_000_000
 
 #: Window of the entering pair's "first part of the engagement" after A (fraction of p_bt): its
 #: largest force and its dynamic impact are taken from the window start (p_bt/2 before A) to here.
