@@ -28,7 +28,7 @@ def nominal_load(geom: PairGeometry, pinion_torque: float) -> dict[str, float]:
     (cos² αt sin αwt)), Z_E = √(E/(2π(1 − ν²))) for two gears of one material (steel when the
     pair has none) and Z_ε of ISO 6336-2 eq. (8)–(10); Z_β ≈ 1 is left out (it lies within
     ±7 % for β < 30°; the limit is coarse). Deflection δ = F_bt/(c_γα b) with c_γα b from
-    ISO 6336-1 (:func:`gearmesh.stiffness.iso6336_stiffness`) scaled by E/206 GPa.
+    ISO 6336-1 (:func:`gearmesh.stiffness.iso6336_stiffness`, which scales it by E/206 GPa).
     """
     pair = geom.pair
     material = pair.material
@@ -44,7 +44,7 @@ def nominal_load(geom: PairGeometry, pinion_torque: float) -> dict[str, float]:
     ea, eb = geom.eps_alpha, geom.eps_beta
     z_eps = math.sqrt(1 / ea) if eb >= 1 else math.sqrt((4 - ea) / 3 * (1 - eb) + eb / ea)
     sigma = z_h * z_e * z_eps * math.sqrt(f_t * (u + 1) / (d1 * b * u))
-    stiffness = iso6336_stiffness(geom)["K_gamma_alpha"] * e_mod / ISO6336_STEEL_MODULUS
+    stiffness = iso6336_stiffness(geom)["K_gamma_alpha"]  # already scaled by E/E_st (ISO 6336-1 9.3.1)
     deflection = pinion_torque / float(geom.base_radius[0]) / stiffness
     return {"contact_stress": sigma, "deflection": deflection}
 

@@ -108,7 +108,7 @@ from .contact import contact_length_breakpoints, contact_roll_positions, hand_si
 from .choices import DEFAULT_TOOTH_METHOD, TOOTH_METHODS
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
-from .limits import check_slice_grid
+from .limits import ISO6336_STEEL_MODULUS, check_slice_grid
 # the shared tooth types live below both tooth models (re-exported here); stiffness chooses the method
 from .tooth import (COMPONENTS, PEM_METHODS, SliceComplianceTable, ToothModel, _involute_dy_da,  # noqa: F401
                     _involute_xy, base_half_angle, contact_point, require_stiffness_data, tooth_model)
@@ -800,10 +800,6 @@ def fourier_fit(values, order: int = 3) -> FourierFit:
     err = float(np.sqrt(np.mean((v - fit(theta)) ** 2)))
     return FourierFit(order=order, mean=fit.mean, a=a, b=b, rms_error=err,
                       relative_rms_error=err / abs(fit.mean) if fit.mean else math.inf)
-
-
-#: Young's modulus of steel (Pa) that ISO 6336-1's single stiffness q' is fitted to (9.3.1).
-ISO6336_STEEL_MODULUS = 206e9
 
 
 def iso6336_stiffness(geom: PairGeometry) -> dict[str, float]:
