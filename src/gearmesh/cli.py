@@ -171,8 +171,8 @@ def cmd_rating(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
-    from .datasets.dynamics import (check_dynamics_settings, dynamics_summary, parse_speeds, positive_torque,
-                                    supports_note)
+    from .datasets.dynamics import (check_dynamics_settings, dynamics_summary, model_choices, parse_speeds,
+                                    positive_torque, supports_note)
 
     positive_torque("torque_Nm", args.torque_Nm)
     pair, geom = _pair(args)
@@ -190,17 +190,9 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
                             backlash_um=args.backlash_um, progress=_progress(), **excitation)
     from .dynamics import DAMPING_MEANING, DEFAULT_DAMPING_RATIO
     return {"name": pair.name, **_torque(pair, args.torque_Nm, args.on), "excitation": args.excitation,
-            **_model_choices(args.excitation), **_backlash(geom, args.backlash_um), "supports": supports_note(pair),
+            **model_choices(args.excitation, DEFAULT_TOOTH_METHOD, DEFAULT_CONTACT_LAW, ltca=excitation.get("ltca")),
+            **_backlash(geom, args.backlash_um), "supports": supports_note(pair),
             "damping_ratio": DEFAULT_DAMPING_RATIO, "damping_ratio_meaning": DAMPING_MEANING, "speeds": rows}
-
-
-def _model_choices(excitation: str) -> dict[str, str]:
-    """The tooth model and contact law a dynamics result used: the stiffness stage's tooth model
-    drives ``tvms``; the LTCA's (tooth model and contact law) ``ltca`` and ``contact``."""
-    choices = {"tooth_model": DEFAULT_TOOTH_METHOD}
-    if excitation != "tvms":
-        choices["contact_law"] = DEFAULT_CONTACT_LAW
-    return choices
 
 
 def _torque(pair, torque_Nm: float, on: str) -> dict[str, Any]:

@@ -85,15 +85,15 @@ def table(ds: xr.Dataset) -> pd.DataFrame:
         words = _flags(ds[name]) if name in ds.variables else {}
         if words:
             df[name] = [words.get(int(v), "") if pd.notna(v) else "" for v in df[name]]
-        elif name in ds.variables and engineering(ds[name])[1] != 1.0:
-            df[name] = df[name] * engineering(ds[name])[1]
+        elif name in ds.variables and (factor := engineering(ds[name])[1]) != 1.0:
+            df[name] = df[name] * factor
     if any(notes):
         df[NOTE] = notes
     df = df.rename(columns={c: _header(c, ds[c]) for c in df.columns if c in ds.variables})
     index = df.index.to_frame(index=False)
     for n in index.columns:
-        if n in ds.variables and engineering(ds[n])[1] != 1.0:
-            index[n] = index[n] * engineering(ds[n])[1]
+        if n in ds.variables and (factor := engineering(ds[n])[1]) != 1.0:
+            index[n] = index[n] * factor
     df.index = pd.MultiIndex.from_frame(index) if index.shape[1] > 1 else pd.Index(index.iloc[:, 0])
     df.index = df.index.set_names([_header(n, ds[n]) if n in ds.variables else n for n in df.index.names])
     return df
