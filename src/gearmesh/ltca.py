@@ -68,6 +68,7 @@ import numpy as np
 from .contact import mesh_cycle_rolls
 from .choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
+from .supports import PALMGREN_LINE, PALMGREN_LINE_EXPONENT
 from .gear import PairGeometry, pinion_torque
 from .limits import positive_values
 from .loads import check_loads
@@ -83,8 +84,10 @@ __all__ = [
     "LTCAResult", "ltca",
 ]
 
-PALMGREN_COEFFICIENT = 3.84e-5  # mm·N^-0.9·mm^0.8 (Palmgren 1959; Harris & Kotzalas 2007)
-PALMGREN_EXPONENT = 0.9
+# Palmgren's line-contact law (Palmgren 1959; Harris & Kotzalas 2007), mm·N^-0.9·mm^0.8: declared
+# once, with the rolling bearings that use it too (gearmesh.supports, the lowest module).
+PALMGREN_COEFFICIENT = PALMGREN_LINE
+PALMGREN_EXPONENT = PALMGREN_LINE_EXPONENT
 _STEEL_E_PRIME = 207e9 / (1.0 - 0.3**2)
 
 

@@ -34,6 +34,7 @@ from .errors import GearmeshInputError
 
 #: Palmgren's line-contact constant: δ (mm) = PALMGREN_LINE · Q^0.9 (N) / l^0.8 (mm), one raceway.
 PALMGREN_LINE = 3.84e-5
+PALMGREN_LINE_EXPONENT = 0.9
 #: Most loaded roller of a line-contact bearing with zero clearance: Q_max = 4.08 F_r / (Z cos α).
 STRIBECK_LINE = 4.08
 
@@ -59,12 +60,12 @@ def roller_bearing_stiffness(radial_load: float, axial_load: float, rollers: int
     l_mm = roller_length * 1e3
 
     def approach(q):  # both raceways, m
-        return 2.0 * PALMGREN_LINE * q**0.9 / l_mm**0.8 * 1e-3
+        return 2.0 * PALMGREN_LINE * q**PALMGREN_LINE_EXPONENT / l_mm**0.8 * 1e-3
 
     q_r = STRIBECK_LINE * radial_load / (rollers * math.cos(contact_angle))
-    k_r = radial_load / (0.9 * approach(q_r) / math.cos(contact_angle))
+    k_r = radial_load / (PALMGREN_LINE_EXPONENT * approach(q_r) / math.cos(contact_angle))
     q_a = axial_load / (rollers * math.sin(contact_angle))
-    k_a = axial_load / (0.9 * approach(q_a) / math.sin(contact_angle))
+    k_a = axial_load / (PALMGREN_LINE_EXPONENT * approach(q_a) / math.sin(contact_angle))
     return k_r, k_a
 
 
