@@ -72,6 +72,7 @@ from .supports import PALMGREN_LINE, PALMGREN_LINE_EXPONENT
 from .gear import PairGeometry, pinion_torque
 from .limits import positive_values
 from .loads import check_loads
+from .body import mesh_body_compliance
 from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
                         pair_slice_table, require_stiffness_data, slice_compliance_table)
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
@@ -641,6 +642,9 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
                           "profile; raise corner_extension", RuntimeWarning, stacklevel=2)
             break
         extension = min(1.0, 2.0 * extension)  # the load reaches further than the candidates: widen
+    if geom.pair.body.given:  # the bodies bend under the total force, in series (gearmesh.body)
+        c_body = mesh_body_compliance(geom)
+        delta, k = delta + c_body * force[:, None], 1.0 / (1.0 / k + c_body)
     g = model.grid
     pp = g.gap.shape[0]
     pair_load = q.sum(axis=3)
