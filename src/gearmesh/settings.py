@@ -455,7 +455,7 @@ class TrainDynamics(_Dynamics):
         min_items=1)
     mesh_frequency_Hz: float = setting(249.4, "mesh frequency when speeds_rpm is null", exclusive_minimum=0)
     excitation: Literal["tvms", "lste", "contact"] | None = setting(
-        None, "tvms (null): the slice stiffness; lste: e = F/K(t) as the low-fluctuation source does; contact: the "
+        None, "tvms (null): the slice stiffness with the tip-edge contact the LTCA loads beyond the active zone at the torque; lste: e = F/K(t) as the low-fluctuation source does; contact: the "
         "real tooth contact of the pair in both meshes")
     phase_offsets_cycles: tuple[float, float] = setting((0.0, 0.0), "mesh phase of each mesh, in mesh cycles",
                                                         units="mesh cycles")
