@@ -118,3 +118,20 @@ def test_bad_body_in_a_pair_file_exits_2(tmp_path, capsys):
     assert main(["validate", str(path)]) == 2
     err = capsys.readouterr().err
     assert err.startswith("gearmesh: error: web_thickness_mm[0]") and len(err.strip().splitlines()) == 1
+
+
+def test_body_in_series_in_the_contact_table():
+    """The mesh force table with a stated body: at every row the static approach under F is the
+    teeth's plus c_body·F, so `contact` sees the same body as the TVMS and the LTCA."""
+    from gearmesh.meshforce import mesh_force_table
+
+    plain = pair_geometry(_pair())
+    body = pair_geometry(_pair(web_thickness_mm=42.0))
+    c = mesh_body_compliance(body)
+    t0, t1 = (mesh_force_table(g, 40e3, positions=16, approaches=400, points=20, method="transition")
+              for g in (plain, body))
+    force = 14e3
+    x0, _ = t0.static_approach(force)
+    x1, _ = t1.static_approach(force)
+    np.testing.assert_allclose(x1, x0 + c * force, rtol=2e-3)
+    assert t1.force_max == t0.force_max and np.all(t1.force[:, -1] >= t1.force_max * (1 - 1e-9))
