@@ -53,8 +53,9 @@ from typing import Any, Mapping
 import numpy as np
 
 from .errors import GearmeshInputError
+from .supports import per_gear_length
 
-__all__ = ["BODY_KEYS", "Body", "read_body", "plate_edge_compliance", "body_axial_compliance",
+__all__ = ["BODY_KEYS", "Body", "read_body", "check_body", "plate_edge_compliance", "body_axial_compliance",
            "mesh_body_compliance"]
 
 #: The pair-file keys of the gear bodies: one value or [pinion, gear], mm.
@@ -84,24 +85,11 @@ class Body:
         return out
 
 
-def _lengths(key: str, value: Any) -> tuple[float, float]:
-    def one(name, v):
-        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-            raise GearmeshInputError(name, v, "must be a positive length (mm)")
-        return float(v) * 1e-3
-    if isinstance(value, (list, tuple)):
-        if len(value) != 2:
-            raise GearmeshInputError(key, value, "must be one value or a [pinion, gear] pair")
-        return one(f"{key}[0]", value[0]), one(f"{key}[1]", value[1])
-    v = one(key, value)
-    return v, v
-
-
 def read_body(spec: Mapping[str, Any]) -> Body:
     """The body keys of a pair-file mapping (others ignored), each one positive length or a
     [pinion, gear] pair; their agreement with the gear (web ≤ face, bore ≤ hub < root circle) is
     checked by :func:`check_body` once the geometry is known."""
-    return Body(*(_lengths(k, spec[k]) if spec.get(k) is not None else None for k in BODY_KEYS))
+    return Body(*(per_gear_length(k, spec[k]) if spec.get(k) is not None else None for k in BODY_KEYS))
 
 
 def check_body(body: Body, face_width, bore_radius, root_radius) -> None:

@@ -82,7 +82,7 @@ from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, Can
 __all__ = [
     "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
     "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "load_sums",
-    "LTCAResult", "ltca",
+    "LTCAResult", "ltca", "contact_tangent_compliance", "edge_tangent_stiffness", "with_loaded_extension",
 ]
 
 # Palmgren's line-contact law (Palmgren 1959; Harris & Kotzalas 2007), mm·N^-0.9·mm^0.8: declared
