@@ -55,7 +55,7 @@ import numpy as np
 from .errors import GearmeshInputError
 from .supports import per_gear_length
 
-__all__ = ["BODY_KEYS", "Body", "read_body", "check_body", "plate_edge_compliance", "body_axial_compliance",
+__all__ = ["BODY_KEYS", "Body", "read_body", "check_body", "describe_body", "plate_edge_compliance", "body_axial_compliance",
            "mesh_body_compliance"]
 
 #: The pair-file keys of the gear bodies: one value or [pinion, gear], mm.
@@ -187,3 +187,12 @@ def mesh_body_compliance(geom) -> float:
         raise GearmeshInputError("bore_radius_mm", None, "the gear-body compliance needs the material and the "
                                  "bore (or hub_diameter_mm)")
     return math.tan(geom.base_helix_angle) ** 2 * (body_axial_compliance(geom, 0) + body_axial_compliance(geom, 1))
+
+
+def describe_body(geom) -> str:
+    """One sentence for a result's attributes: the gear-body compliance in its mesh stiffness."""
+    if not geom.pair.body.given:
+        return ("none: the pair file states no gear body (web_thickness_mm, hub_diameter_mm); the tooth model's "
+                "ring held at the bore")
+    return (f"the webs' axial bending in series with the teeth (gearmesh.body, pair file {geom.pair.body.to_dict()}): "
+            f"{mesh_body_compliance(geom) * 1e9:.4g} um/kN along the transverse line of action")
