@@ -153,25 +153,43 @@ def plot_modification(ds: xr.Dataset, path: str | Path) -> Path:
     return _save(fig, path)
 
 
+def _pareto_axis(ds: xr.Dataset, name: str) -> tuple[str, str, float, float | None]:
+    """(front variable, history variable, scale, standard gear's value) of NSGA-II objective
+    ``name`` and its axis label."""
+    if name == "lte":
+        return ("pareto_lte_peak_to_peak", "lte_peak_to_peak", UM, float(ds["standard_lte_peak_to_peak"]) * UM,
+                f"peak-to-peak LTE at {number(float(ds['design_torque']))} N m (µm)")
+    label = {"te_harmonics": "loaded-TE harmonics", "pressure": "peak contact pressure",
+             "root_stress": "peak root stress"}[name]
+    return (f"pareto_{name}_ratio", f"{name}_ratio", 1.0, 1.0, f"{label}: worst ratio to the standard gear's")
+
+
 def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
-    """NSGA-II: F_s against peak-to-peak LTE at the design torque for every evaluated candidate
-    (failed ones left out), the Pareto front and the standard gear."""
-    fig, ax = subplots(figsize=(6.5, 4.5))
+    """NSGA-II: the objective J (F_s, penalties included) against each other traded objective
+    (ga.nc attribute ``pareto_objectives``) for every evaluated candidate (failed ones left out),
+    the Pareto front, the chosen design (the front's least J) and the standard gear."""
+    names = [n for n in ds.attrs.get("pareto_objectives", "impact,lte").split(",") if n != "impact"]
+    fig, axes = subplots(1, len(names), figsize=(4.6 * len(names) + 0.6, 4.6), squeeze=False)
     ok = ds["failed"].values == 0
     f = ds["objective"].values[ok]
-    lte = ds["lte_peak_to_peak"].values[ok] * UM
-    ax.scatter(lte, f, s=6, color="0.7", label="evaluated candidates")
-    ax.plot(ds["pareto_lte_peak_to_peak"].values * UM, ds["pareto_objective"].values, "o-", color="tab:red",
-            ms=4, lw=1.2, label=f"Pareto front ({ds.sizes['front']} points)")
-    ax.plot([float(ds["standard_lte_peak_to_peak"]) * UM], [float(ds["standard_objective"])], "ks", ms=6,
-            label="standard (unmodified) gear")
-    ax.set_yscale("log")
-    plain_log_axis(ax)
-    ax.set_xlabel(f"peak-to-peak LTE at {number(float(ds['design_torque']))} N m (µm)")
-    ax.set_ylabel(f"mesh-in impact force F_s at {number(float(ds['speed']))} rpm (N)")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    ax.set_title(_title(ds, "NSGA-II: impact force against LTE"), fontsize=9)
+    front_f = ds["pareto_objective"].values
+    for ax, name in zip(axes[0], names):
+        front_var, hist_var, scale, standard, label = _pareto_axis(ds, name)
+        ax.scatter(ds[hist_var].values[ok] * scale, f, s=6, color="0.7", label="evaluated candidates")
+        x = ds[front_var].values * scale
+        ax.plot(x, front_f, "o", color="tab:red", ms=4, label=f"Pareto front ({ds.sizes['front']} points)")
+        ax.plot([x[0]], [front_f[0]], "*", color="tab:blue", ms=13, mec="k", label="chosen design (least J)")
+        ax.plot([standard], [float(ds["standard_objective"])], "ks", ms=6, label="standard (unmodified) gear")
+        if scale == 1.0:
+            ax.axvline(1.0, color="k", lw=0.6, ls="--")
+        ax.set_yscale("log")
+        plain_log_axis(ax)
+        ax.set_xlabel(label, fontsize=8)
+        ax.set_ylabel(f"objective J at {number(float(ds['speed']))} rpm ({ds['objective'].attrs.get('units', '')})")
+        ax.grid(alpha=0.3, which="both")
+    axes[0][0].legend(fontsize=7)
+    fig.suptitle(_title(ds, "NSGA-II: the objective against " + ", ".join(names)
+                        + " (the front is non-dominated in all objectives together)"), fontsize=9)
     return _save(fig, path)
 
 
