@@ -1,191 +1,155 @@
-"""What an engineer signs off, in the optimiser (issue 27): the loaded contact's criteria of every
-candidate (TE mesh orders, contact pressure flank and edge, root stress) checked against
-independent computations, the constraints' penalty zero exactly when a criterion holds, NSGA-II's
-front over three objectives non-dominated, and bad settings refused with the field named.
-
-A coarse impact model (16 points per line) keeps the runs small."""
+"""The sign-off table (issue 27, item 5): every number read from the variants' own results, the
+criteria at their boundaries, any order of the inputs, and the refusals."""
 
 from __future__ import annotations
 
-import math
-from pathlib import Path
+import json
 
 import numpy as np
 import pytest
-from hypothesis import given, settings as hsettings, strategies as st
+import xarray as xr
 
-from gearmesh import impact as im
-from gearmesh import optimise as op
-from gearmesh.datasets.optimise import result_dataset, run_settings
+from gearmesh.config import check_study, validate_study
+from gearmesh.datasets.signoff import signoff_table_dataset
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import load_pair, pair_geometry
-from gearmesh.io import check_documented
-from gearmesh.ltca import MESH_ORDERS, lte_harmonics, ltca, ltca_model
-from gearmesh.plots.optimise import plot_pareto
-from gearmesh.stress import contact_stress, iso_root_stress_slices
+from gearmesh.plots.signoff import plot_signoff
+from gearmesh.tables import table
 
-ROOT = Path(__file__).resolve().parents[1]
-COARSE = {"points": 16, "window_positions": 24, "face_samples": 65}
-TORQUES = (400.0, 1000.0, 1600.0)
-CANDIDATE = [40, 40, 2, 2, 20, 10]  # µm / mm: reliefs, lengths, crowning, unmodified lead
+TORQUES = np.array([400.0, 1000.0, 1600.0])
 
 
-@pytest.fixture(scope="module")
-def pair():
-    return load_pair(ROOT / "config/pairs/seed000_case.yaml")
+def _variant(name: str, scale: dict[str, float], torques=TORQUES, rng=np.random.default_rng(0)):
+    """Minimal impact, ltca, rating and dynamics datasets of one variant: the reference's values
+    times ``scale`` per quantity (the impact and dynamics grids hold more torques than the LTCA)."""
+    s = lambda key: scale.get(key, 1.0)  # noqa: E731
+    n = torques.size
+    grid = np.array([200.0, *torques, 2000.0])
+    base_fs = np.array([5e3, 8e3, 13e3, 17e3, 20e3])
+    impact = xr.Dataset({"impact_force": (("torque", "speed"), np.stack([base_fs * s("fs") * 0.5,
+                                                                         base_fs * s("fs")], axis=1)),
+                         "tolerance_impact_force": (("tolerance_sample", "torque"),
+                                                    np.stack([base_fs * s("fs"), base_fs * s("fs") * 1.2]))},
+                        coords={"torque": grid, "speed": [1000.0, 5000.0]},
+                        attrs={"variant": name, "design_speed_rpm": 5000.0})
+    region = np.ones((4, 2, 3), dtype=np.int8)
+    region[0, 0, 0] = 2  # a tip-edge point: its pressure stays out of the flank's peak
+    pressure = np.broadcast_to(np.linspace(1e8, 5e8, 24).reshape(4, 2, 3), (n, 4, 2, 3)).copy() * s("p")
+    pressure[:, 0, 0, 0] = 9e9
+    ltca = xr.Dataset({"lte_peak_to_peak": ("torque", np.array([1.0, 2.0, 3.0]) * 1e-6 * s("lte")),
+                       "lte_harmonics": (("torque", "mesh_order"), np.outer([1.0, 2.0, 3.0],
+                                                                             [s("h1"), s("h2"), s("h3")]) * 1e-7),
+                       "region": (("position", "line", "point"), region),
+                       "contact_pressure": (("torque", "position", "line", "point"), pressure)},
+                      coords={"torque": torques, "mesh_order": [1, 2, 3]},
+                      attrs={"gearmesh_wildcards_json": json.dumps({"variant": name})})
+    rating = xr.Dataset({"peak_contact_pressure": ("torque", np.array([1e9, 2e9, 3e9]) * s("p")),
+                         "peak_contact_pressure_on_edge": ("torque", np.ones(n, dtype=np.int8)),
+                         "peak_root_stress": (("torque", "gear"), np.outer([1e8, 2e8, 3e8], [1.0, 0.9]) * s("sf")),
+                         "S_H": (("torque", "gear"), np.full((n, 2), 2.0) / s("sf")),
+                         "S_F": (("torque", "gear"), np.full((n, 2), 4.0) / s("sf"))},
+                        coords={"torque": torques}, attrs={"variant": name})
+    dynamics = xr.Dataset({"mesh_force_max": (("torque", "speed"), np.outer(grid * 20.0, [1.0, 1.3]) * s("dyn")),
+                           "dynamic_factor": (("torque", "speed"), np.full((grid.size, 2), 1.3) * s("dyn")),
+                           "pinion_torque": ("torque", grid)}, attrs={"variant": name})
+    return impact, ltca, rating, dynamics
 
 
-@pytest.fixture(scope="module")
-def model(pair):
-    return im.impact_model(pair_geometry(pair), **COARSE)
+def _table(variants, **settings):
+    sets = list(zip(*variants))
+    return signoff_table_dataset(*[list(s) for s in sets], **settings)
 
 
-def _problem(model, **settings):
-    settings = {"population": 8, "generations": 3, "objective": "robust", "torque": 1000.0, "torques": TORQUES,
-                **settings}
-    return op.problem(model, op.check_settings(**settings))
+def test_numbers_are_the_variants_own_and_flags_follow_the_criteria():
+    """At exactly the limits a ≤ criterion is met and the strict F_s one is not; the flank's
+    pressure leaves the tip edge out; a variant's worst F_s is judged against the reference's."""
+    ref = _variant("standard", {})
+    at_limits = _variant("at_limits", {"p": 1.1, "sf": 1.1, "h1": 1.0, "h2": 1.0, "dyn": 1.0, "fs": 1.0})
+    better = _variant("better", {"p": 0.5, "sf": 1.05, "h1": 0.9, "h2": 0.2, "h3": 5.0, "dyn": 0.9, "fs": 0.4})
+    ds = _table([ref, at_limits, better])
+    assert ds.attrs["reference"] == "standard"
+    np.testing.assert_allclose(ds["impact_force"].sel(variant="better").values, [8e3 * 0.4, 13e3 * 0.4, 17e3 * 0.4])
+    np.testing.assert_allclose(ds["impact_force_tolerance_max"].sel(variant="standard").values,
+                               [8e3 * 1.2, 13e3 * 1.2, 17e3 * 1.2])
+    np.testing.assert_allclose(ds["peak_flank_pressure"].sel(variant="standard").values, 5e8)
+    np.testing.assert_allclose(ds["peak_root_stress"].sel(variant="standard").values, [1e8, 2e8, 3e8])
+    np.testing.assert_allclose(ds["dynamic_mesh_force_peak"].sel(variant="standard").values, TORQUES * 26.0)
+    flags = {k: ds[k].sel(variant="at_limits").values.tolist() for k in ds.data_vars if k.startswith("meets_")}
+    assert flags["meets_pressure"] == flags["meets_root_stress"] == flags["meets_te_harmonics"] == [1, 1, 1]
+    assert flags["meets_dynamics"] == [1, 1, 1]
+    assert flags["meets_impact"] == [0, 0, 0] and flags["meets_all"] == [0, 0, 0]
+    assert ds["meets_all"].sel(variant="better").values.tolist() == [1, 1, 1]  # order 3 is not held (default)
+    assert set(ds["meets_all"].sel(variant="standard").values.tolist()) == {-1}
+    csv = table(ds)
+    assert set(csv["meets_all"].loc["standard"]) == {"reference"} and set(csv["meets_all"].loc["better"]) == {"meets"}
 
 
-def test_lte_harmonics_recover_the_amplitudes_of_a_sampled_cycle():
-    p = 32
-    x = 2 * np.pi * np.arange(p) / p
-    amp = np.array([0.7, 0.05, 0.3])
-    lte = 5.0 + sum(a * np.cos(k * x + 0.3 * k) for k, a in zip(MESH_ORDERS, amp)) + 0.1 * np.cos(7 * x)
-    np.testing.assert_allclose(lte_harmonics(lte), amp, rtol=1e-12)
-    with pytest.raises(ValueError):
-        lte_harmonics(lte[:6])
+def test_worst_case_and_orders_and_factors_are_settings():
+    ref = _variant("standard", {})
+    half = _variant("half", {"fs": 0.5, "h3": 1.5})
+    ds = _table([ref, half])
+    assert ds["meets_worst_impact"].sel(variant="half").values.tolist() == [1, 1, 1]
+    ds = _table([ref, half], worst_impact_factor=0.49, harmonic_orders=(1, 3))
+    assert ds["meets_worst_impact"].sel(variant="half").values.tolist() == [0, 0, 0]
+    assert ds["meets_te_harmonics"].sel(variant="half").values.tolist() == [0, 0, 0]
 
 
-def _least_squares_amplitude(y, order):
-    """Amplitude of mesh order ``order`` by a least-squares fit of a mean, cos and sin (no FFT)."""
-    x = 2 * np.pi * np.arange(y.size) / y.size
-    a = np.column_stack([np.ones_like(x), np.cos(order * x), np.sin(order * x)])
-    c = np.linalg.lstsq(a, y, rcond=None)[0]
-    return math.hypot(c[1], c[2])
+def test_any_order_of_inputs_gives_the_same_table():
+    variants = [_variant("standard", {}), _variant("a", {"p": 0.7, "fs": 0.3}), _variant("b", {"sf": 1.3})]
+    ds = _table(variants)
+    impact, ltca, rating, dynamics = (list(s) for s in zip(*variants))
+    shuffled = signoff_table_dataset(impact[::-1], ltca, rating[1:] + rating[:1], dynamics[::-1])
+    xr.testing.assert_identical(ds, shuffled)
+    without = signoff_table_dataset(impact, ltca, rating)  # no dynamics section: no dynamic criterion
+    assert "meets_dynamics" not in without and "dynamic_mesh_force_peak" not in without
 
 
-def test_criteria_of_a_candidate_agree_with_the_ltca_and_the_stress_functions(pair, model):
-    """The optimiser's re-evaluated gaps against a full LTCA of the modified pair on the same grid,
-    and its harmonics against a least-squares fit of the stored LTE."""
-    geom = pair_geometry(pair)
-    prob = _problem(model)
-    params = prob.decode([CANDIDATE])
-    crit = im.ltca_criteria(model, TORQUES, params)
-    from gearmesh.optimise import _manufactured_rows  # noqa: F401 (same module the optimiser uses)
-    from gearmesh.gear import Modification
-    from gearmesh.surface import MODIFICATION_FIELDS
-
-    mods = tuple(Modification(**{f: float(params[0, g, k]) for k, f in enumerate(MODIFICATION_FIELDS)})
-                 for g in range(2))
-    mod_geom = pair_geometry(pair.with_changes(modification=mods))
-    lt = model.ltca
-    full = ltca(mod_geom, list(TORQUES), model=ltca_model(mod_geom, lt.grid.roll.size - 1, COARSE["points"],
-                                                           lt.lead_slope, lt.law.name, lt.method,
-                                                           lt.grid.extension / geom.transverse_base_pitch,
-                                                           tables=lt.tables))
-    np.testing.assert_allclose(crit.lte_peak_to_peak[0], np.ptp(full.lte, axis=1), rtol=1e-6)
-    for t in range(len(TORQUES)):
-        for k, order in enumerate(MESH_ORDERS):
-            assert crit.te_harmonics[0, t, k] == pytest.approx(_least_squares_amplitude(full.lte[t], order),
-                                                               rel=1e-6, abs=1e-13)
-    g = full.grid
-    c = contact_stress(mod_geom, full.line_load, g.region, g.rho_pinion, g.rho_gear)
-    flank = np.where(c.edge, 0.0, c.pressure).max(axis=(1, 2, 3))
-    edge = np.where(c.edge, c.pressure, 0.0).max(axis=(1, 2, 3))
-    np.testing.assert_allclose(crit.flank_pressure[0], flank, rtol=1e-6)
-    np.testing.assert_allclose(crit.edge_pressure[0], edge, rtol=1e-6, atol=1.0)
-    np.testing.assert_allclose(crit.peak_pressure[0], c.peak(), rtol=1e-6)
-    root = np.maximum(iso_root_stress_slices(mod_geom, 0, full.line_load, g.rho_pinion).max(axis=(1, 2, 3)),
-                      iso_root_stress_slices(mod_geom, 1, full.line_load, g.rho_gear).max(axis=(1, 2, 3)))
-    np.testing.assert_allclose(crit.root_stress[0], root, rtol=1e-6)
-    # ltca_metrics is the same solve without the stresses
-    lte, line = im.ltca_metrics(model, TORQUES, params)
-    np.testing.assert_array_equal(lte, crit.lte_peak_to_peak)
-    np.testing.assert_array_equal(line, crit.max_line_load)
-
-
-@hsettings(max_examples=60, deadline=None)
-@given(st.lists(st.floats(0.0, 10.0), min_size=6, max_size=6), st.lists(st.floats(0.01, 10.0), min_size=3, max_size=3))
-def test_worst_ratio_is_at_most_one_exactly_when_no_value_exceeds_its_reference(values, refs):
-    v = np.array(values).reshape(2, 3)
-    r = np.array(refs)
-    ratio = op.worst_ratio(v, r)
-    assert np.array_equal(ratio <= 1.0, np.all(v <= r, axis=1))
-    np.testing.assert_allclose(ratio, np.max(v / r, axis=1))
-
-
-@pytest.mark.parametrize("name,factor", [("pressure", "pressure_factor"), ("root_stress", "root_stress_factor"),
-                                         ("te_harmonics", "te_harmonic_factor"), ("force", "force_factor"),
-                                         ("worst_force", "worst_force_factor")])
-def test_penalty_is_zero_exactly_when_the_criterion_holds(model, name, factor):
-    free = _problem(model)
-    params = free.decode([CANDIDATE])
-    ev = op._evaluate(_problem(model, pressure_factor=1e6), params, None)  # the criteria, no penalty yet
-    std = _problem(model, pressure_factor=1e6).standard
-    ratio = float(op._ratios(free.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load,
-                             ev.dynamic_factor, ev.criteria, std)[name][0])
-    assert math.isfinite(ratio) and ratio > 0
-    loose = _problem(model, **{factor: ratio * (1 + 1e-9)})
-    tight = _problem(model, **{factor: ratio * (1 - 1e-3)})
-    ev_loose, ev_tight = op.evaluate(loose, params), op.evaluate(tight, params)
-    assert ev_loose.violation[0] == 0.0
-    assert ev_tight.violation[0] == pytest.approx(1 / (1 - 1e-3) - 1, rel=1e-6)
-    assert ev_tight.objective[0] > ev_loose.objective[0] == pytest.approx(float(ev_loose.value[0, 0].max()))
-
-
-def test_the_standard_gear_meets_every_relative_criterion_at_factor_one(model):
-    prob = _problem(model, pressure_factor=1.0, root_stress_factor=1.0, te_harmonic_factor=1.0, force_factor=1.0,
-                    worst_force_factor=1.0)
-    ev = op.evaluate(prob, np.zeros((1, 2, 6)))
-    assert ev.violation[0] == 0.0
-
-
-def test_nsga2_front_over_three_objectives_is_non_dominated_and_drawn(model, tmp_path):
-    prob = _problem(model, method="nsga2", pareto_objectives=("impact", "te_harmonics", "root_stress"),
-                    population=10, generations=3, seed=1)
-    res = op.optimise(prob)
-    genes, pts = res.pareto
-    assert pts.shape[1] == 3 and op.pareto_mask(pts).all()
-    # every evaluated candidate is dominated by (or equal to) a front member
-    h = res.history.arrays()
-    allp = h["pareto"].reshape(-1, 3)
-    ok = ~h["failed"].reshape(-1) & np.all(np.isfinite(allp), axis=1)
-    for row in allp[ok]:
-        assert np.any(np.all(pts <= row, axis=1))
-    np.testing.assert_array_equal(res.optimum_genes, genes[0])  # the chosen design: the front's least J
-    ds = result_dataset(res)
-    ds.attrs["pair_name"] = "seed000_case"
-    check_documented(ds)
-    assert {"pareto_te_harmonics_ratio", "pareto_root_stress_ratio", "optimum_lte_harmonics",
-            "standard_root_stress"} <= set(ds.data_vars)
-    assert plot_pareto(ds, tmp_path / "pareto.png").stat().st_size > 1000
-
-
-@pytest.mark.parametrize("settings,field", [
-    ({"pareto_objectives": ("impact", "noise")}, "pareto_objectives[1]"),
-    ({"pareto_objectives": ("lte", "impact")}, "pareto_objectives"),
-    ({"pareto_objectives": ("impact",)}, "pareto_objectives"),
-    ({"method": "ga", "pareto_objectives": ("impact", "pressure")}, "pareto_objectives"),
-    ({"pressure_factor": -1.0}, "constraints.pressure_factor"),
-    ({"root_stress_factor": 0.0}, "constraints.root_stress_factor"),
-    ({"te_harmonic_factor": float("nan")}, "constraints.te_harmonic_factor"),
-    ({"worst_force_factor": "half"}, "constraints.worst_force_factor"),
-    ({"te_orders": (4,)}, "constraints.te_orders"),
-    ({"te_orders": (1, 1)}, "constraints.te_orders"),
+@pytest.mark.parametrize("change, field", [
+    ({"reference": "nominal"}, "signoff.reference"),
+    ({"harmonic_orders": (4,)}, "harmonic_orders"),
+    ({"pressure_factor": -1.0}, "pressure_factor"),
 ])
-def test_bad_criteria_settings_are_refused_naming_the_field(settings, field):
-    settings = {"method": "nsga2", **settings}
-    with pytest.raises(GearmeshInputError) as exc:
-        op.check_settings(**settings)
-    assert exc.value.field == field
+def test_bad_settings_are_refused(change, field):
+    with pytest.raises(GearmeshInputError) as err:
+        _table([_variant("standard", {}), _variant("a", {})], **change)
+    assert field in str(err.value)
 
 
-@pytest.mark.parametrize("section,field", [
-    ({"constraints": {"noise_factor": 1.0}}, "constraints.noise_factor"),
-    ({"constraints": {"pressure_factor": -0.5}}, "pressure_factor"),
-    ({"method": "nsga2", "pareto_objectives": ["impact", "flash_temperature"]}, "pareto_objectives"),
+def test_a_torque_the_impact_map_lacks_is_refused():
+    ref = _variant("standard", {})
+    other = _variant("a", {})
+    impact = other[0].isel(torque=[0, 2, 4])  # 200, 1000 and 2000 N m: no 400 or 1600
+    with pytest.raises(GearmeshInputError, match="impact.torques_Nm"):
+        signoff_table_dataset([ref[0], impact], [ref[1], other[1]], [ref[2], other[2]])
+    with pytest.raises(GearmeshInputError, match="same variants"):
+        signoff_table_dataset([ref[0]], [ref[1], other[1]], [ref[2], other[2]])
+
+
+def test_the_figure_is_drawn_from_the_table(tmp_path):
+    ds = _table([_variant("standard", {}), _variant("a", {"p": 0.7, "fs": 0.3}), _variant("b", {"sf": 1.3})])
+    path = plot_signoff(ds, tmp_path / "signoff.png")
+    assert path.stat().st_size > 10000
+
+
+STUDY = {"study": "s", "pairs": ["seed001_pair1"], "variants": {"standard": {}},
+         "ltca": {"torques_Nm": [100]}, "rating": {"speed_rpm": 3000},
+         "impact": {"torques_Nm": [100, 200], "speeds_rpm": [3000], "design_speed_rpm": 3000}}
+
+
+@pytest.mark.parametrize("change, field", [
+    ({"signoff": {"reference": "relief"}}, "signoff.reference"),
+    ({"signoff": {}, "rating": None}, "signoff"),
+    ({"signoff": {}, "impact": {"torques_Nm": [200], "speeds_rpm": [3000], "design_speed_rpm": 3000}},
+     "impact.torques_Nm"),
+    ({"signoff": {}, "ltca": {"torques_Nm": [100, 200]}, "dynamics": {"torques_Nm": [100], "speeds_rpm": [3000]}},
+     "dynamics.torques_Nm"),
 ])
-def test_bad_criteria_in_a_study_section_are_refused(pair, section, field):
-    with pytest.raises(GearmeshInputError) as exc:
-        run_settings(pair, torque_Nm=1000, **section)
-    assert field in exc.value.field
+def test_a_study_whose_signoff_lacks_its_inputs_is_refused(root, change, field):
+    config = {**STUDY, **change}
+    config = {k: v for k, v in config.items() if v is not None}
+    with pytest.raises(GearmeshInputError) as err:
+        check_study(validate_study(config), root)
+    assert err.value.field == field
+
+
+def test_a_complete_signoff_study_is_accepted(root):
+    check_study(validate_study({**STUDY, "signoff": {}}), root)

@@ -140,6 +140,8 @@ def all_targets():
             targets.append(f"results/{STUDY}/{name}/impact_table.nc")
     if "rating" in config:
         targets += [f"results/{STUDY}/{name}/load_capacity_table.nc" for name in config["pairs"]]
+    if "signoff" in config:
+        targets += [f"results/{STUDY}/{name}/signoff_table.nc" for name in config["pairs"]]
     for run, section in (config.get("optimise") or {}).items():
         for name in config["pairs"]:
             base = f"results/{STUDY}/{name}/optimise/{run}"
