@@ -3,12 +3,11 @@ candidate (TE mesh orders, contact pressure flank and edge, root stress) checked
 independent computations, the constraints' penalty zero exactly when a criterion holds, NSGA-II's
 front over three objectives non-dominated, and bad settings refused with the field named.
 
-A coarse impact model (16 points per line) keeps the runs small."""
+test_optimise's coarse impact model (16 points per line) keeps the runs small."""
 
 from __future__ import annotations
 
 import math
-from pathlib import Path
 
 import numpy as np
 import pytest
@@ -24,20 +23,10 @@ from gearmesh.ltca import MESH_ORDERS, lte_harmonics, ltca, ltca_model
 from gearmesh.plots.optimise import plot_pareto
 from gearmesh.stress import contact_stress, iso_root_stress_slices
 
-ROOT = Path(__file__).resolve().parents[1]
-COARSE = {"points": 16, "window_positions": 24, "face_samples": 65}
+from test_optimise import COARSE, model, pair  # noqa: F401 (the coarse impact model and its pair, as fixtures)
+
 TORQUES = (400.0, 1000.0, 1600.0)
 CANDIDATE = [40, 40, 2, 2, 20, 10]  # µm / mm: reliefs, lengths, crowning, unmodified lead
-
-
-@pytest.fixture(scope="module")
-def pair():
-    return load_pair(ROOT / "config/pairs/seed000_case.yaml")
-
-
-@pytest.fixture(scope="module")
-def model(pair):
-    return im.impact_model(pair_geometry(pair), **COARSE)
 
 
 def _problem(model, **settings):
@@ -115,8 +104,8 @@ def test_worst_ratio_is_at_most_one_exactly_when_no_value_exceeds_its_reference(
 
 
 @pytest.mark.parametrize("name,factor", [("pressure", "pressure_factor"), ("root_stress", "root_stress_factor"),
-                                         ("te_harmonics", "te_harmonic_factor"), ("force", "force_factor"),
-                                         ("worst_force", "worst_force_factor")])
+                                         ("te_harmonics", "harmonic_factor"), ("force", "impact_factor"),
+                                         ("worst_force", "worst_impact_factor")])
 def test_penalty_is_zero_exactly_when_the_criterion_holds(model, name, factor):
     free = _problem(model)
     params = free.decode([CANDIDATE])
@@ -134,8 +123,8 @@ def test_penalty_is_zero_exactly_when_the_criterion_holds(model, name, factor):
 
 
 def test_the_standard_gear_meets_every_relative_criterion_at_factor_one(model):
-    prob = _problem(model, pressure_factor=1.0, root_stress_factor=1.0, te_harmonic_factor=1.0, force_factor=1.0,
-                    worst_force_factor=1.0)
+    prob = _problem(model, pressure_factor=1.0, root_stress_factor=1.0, harmonic_factor=1.0, impact_factor=1.0,
+                    worst_impact_factor=1.0)
     ev = op.evaluate(prob, np.zeros((1, 2, 6)))
     assert ev.violation[0] == 0.0
 
@@ -168,10 +157,10 @@ def test_nsga2_front_over_three_objectives_is_non_dominated_and_drawn(model, tmp
     ({"method": "ga", "pareto_objectives": ("impact", "pressure")}, "pareto_objectives"),
     ({"pressure_factor": -1.0}, "constraints.pressure_factor"),
     ({"root_stress_factor": 0.0}, "constraints.root_stress_factor"),
-    ({"te_harmonic_factor": float("nan")}, "constraints.te_harmonic_factor"),
-    ({"worst_force_factor": "half"}, "constraints.worst_force_factor"),
-    ({"te_orders": (4,)}, "constraints.te_orders"),
-    ({"te_orders": (1, 1)}, "constraints.te_orders"),
+    ({"harmonic_factor": float("nan")}, "constraints.harmonic_factor"),
+    ({"worst_impact_factor": "half"}, "constraints.worst_impact_factor"),
+    ({"harmonic_orders": (4,)}, "constraints.harmonic_orders"),
+    ({"harmonic_orders": (1, 1)}, "constraints.harmonic_orders"),
 ])
 def test_bad_criteria_settings_are_refused_naming_the_field(settings, field):
     settings = {"method": "nsga2", **settings}

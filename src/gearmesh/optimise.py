@@ -117,7 +117,7 @@ METHODS = ("ga", "random", "nsga2")
 OBJECTIVES = ("force", "velocity", "robust", "dynamic")
 #: The objectives NSGA-II can trade (all minimised; module docstring): the objective J (penalties
 #: included), the peak-to-peak LTE at the design torque, and the worst ratio to the unmodified
-#: pair's, over the load spectrum, of the TE harmonics (``te_orders``), the contact pressure
+#: pair's, over the load spectrum, of the TE harmonics (``harmonic_orders``), the contact pressure
 #: (flank and edge each against its kind) and the root stress.
 PARETO_OBJECTIVES = ("impact", "lte", "te_harmonics", "pressure", "root_stress")
 LOAD_STATISTICS = ("max", "mean")
@@ -169,12 +169,12 @@ class OptimiseSettings:
     dynamic_speeds: tuple[float, ...] | None = None
     dynamic_factor: float | None = None
     backlash: float | None = None
-    te_harmonic_factor: float | None = None
-    te_orders: tuple[int, ...] = (1, 2)
+    harmonic_factor: float | None = None
+    harmonic_orders: tuple[int, ...] = (1, 2)
     pressure_factor: float | None = None
     root_stress_factor: float | None = None
-    force_factor: float | None = None
-    worst_force_factor: float | None = None
+    impact_factor: float | None = None
+    worst_impact_factor: float | None = None
     pareto_objectives: tuple[str, ...] = ("impact", "lte")
 
     @property
@@ -185,7 +185,7 @@ class OptimiseSettings:
     @property
     def constrained(self) -> bool:
         """A constraint on the loaded contact (:func:`gearmesh.impact.ltca_criteria`) is set."""
-        return any(v is not None for v in (self.lte_factor, self.line_load_factor, self.te_harmonic_factor,
+        return any(v is not None for v in (self.lte_factor, self.line_load_factor, self.harmonic_factor,
                                            self.pressure_factor, self.root_stress_factor))
 
     @property
@@ -277,8 +277,8 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    mutation_scale: float = 0.1, keep_elitism: int = 2, random_baseline: bool = False,
                    energy_velocity: str = "transverse", load_window_step: float = 50.0,
                    load_window_top: float | None = None, dynamic_speeds=None, dynamic_factor=None,
-                   backlash=None, te_harmonic_factor=None, te_orders=(1, 2), pressure_factor=None,
-                   root_stress_factor=None, force_factor=None, worst_force_factor=None,
+                   backlash=None, harmonic_factor=None, harmonic_orders=(1, 2), pressure_factor=None,
+                   root_stress_factor=None, impact_factor=None, worst_impact_factor=None,
                    pareto_objectives=("impact", "lte")) -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
     the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone.
@@ -350,24 +350,24 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
         if not (math.isfinite(backlash) and 0 <= backlash <= 1e-3):
             raise GearmeshInputError("backlash_um", backlash * 1e6, "must lie in [0, 1000] µm")
     factors = {name: check_positive(f"constraints.{name}", value, allow_none=True) for name, value in (
-        ("te_harmonic_factor", te_harmonic_factor), ("pressure_factor", pressure_factor),
-        ("root_stress_factor", root_stress_factor), ("force_factor", force_factor),
-        ("worst_force_factor", worst_force_factor))}
-    te_orders = _orders(te_orders)
+        ("harmonic_factor", harmonic_factor), ("pressure_factor", pressure_factor),
+        ("root_stress_factor", root_stress_factor), ("impact_factor", impact_factor),
+        ("worst_impact_factor", worst_impact_factor))}
+    harmonic_orders = _orders(harmonic_orders)
     pareto_objectives = _pareto_objectives(pareto_objectives, method)
     return OptimiseSettings(method, objective, population, generations, seed, torque, torques, weights, statistic,
                             speed_rpm, tolerance_samples, sampling, tolerance_seed, tolerance_statistic,
                             float(tolerance_level), lte_factor, line_load_factor, penalty,
                             float(mutation_probability), float(mutation_scale), keep_elitism, random_baseline,
                             energy_velocity, load_window_step, top, dynamic_speeds, dynamic_factor, backlash,
-                            te_orders=te_orders, pareto_objectives=pareto_objectives, **factors)
+                            harmonic_orders=harmonic_orders, pareto_objectives=pareto_objectives, **factors)
 
 
 def _orders(orders) -> tuple[int, ...]:
     """The loaded-TE mesh orders of the harmonic constraint: distinct orders of :data:`MESH_ORDERS`."""
     if not isinstance(orders, (list, tuple)) or not orders or len(set(orders)) != len(orders) or any(
             isinstance(k, bool) or k not in MESH_ORDERS for k in orders):
-        raise GearmeshInputError("constraints.te_orders", orders, f"must list distinct mesh orders of "
+        raise GearmeshInputError("constraints.harmonic_orders", orders, f"must list distinct mesh orders of "
                                                                   f"{list(MESH_ORDERS)}")
     return tuple(int(k) for k in orders)
 
@@ -664,7 +664,7 @@ def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACri
     """Each criterion's worst ratio (C,) to the standard gear's (:func:`worst_ratio`), per torque
     of the spectrum unless said: nominal F_s per torque ('force') and its worst case over the
     torques ('worst_force'), LTE p-p and the largest line load at the design torque, the dynamic
-    factor, and from the loaded contact the TE harmonics of ``te_orders`` ('te_harmonics'), the
+    factor, and from the loaded contact the TE harmonics of ``harmonic_orders`` ('te_harmonics'), the
     flank pressure against the standard's flank pressure and the tip-edge pressure against its
     tip-edge pressure (its flank pressure where it has no edge contact) ('pressure'), and the
     root stress of either gear ('root_stress')."""
@@ -678,7 +678,7 @@ def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACri
            "dynamic": worst_ratio(kv, standard.dynamic_factor[0])}
     if crit is None or ref is None:
         return {**out, "te_harmonics": nan, "pressure": nan, "root_stress": nan}
-    k = [MESH_ORDERS.index(o) for o in s.te_orders]
+    k = [MESH_ORDERS.index(o) for o in s.harmonic_orders]
     out["te_harmonics"] = worst_ratio(crit.te_harmonics[..., k], ref.te_harmonics[0][..., k])
     edge_ref = np.where(ref.edge_pressure[0] > 0, ref.edge_pressure[0], ref.flank_pressure[0])
     out["pressure"] = np.maximum(worst_ratio(crit.flank_pressure, ref.flank_pressure[0]),
@@ -690,8 +690,8 @@ def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACri
 def constraint_factors(s: OptimiseSettings) -> dict[str, float]:
     """The constraints set, {criterion of :func:`_ratios`: factor}."""
     given = {"lte": s.lte_factor, "line_load": s.line_load_factor, "dynamic": s.dynamic_factor,
-             "te_harmonics": s.te_harmonic_factor, "pressure": s.pressure_factor,
-             "root_stress": s.root_stress_factor, "force": s.force_factor, "worst_force": s.worst_force_factor}
+             "te_harmonics": s.harmonic_factor, "pressure": s.pressure_factor,
+             "root_stress": s.root_stress_factor, "force": s.impact_factor, "worst_force": s.worst_impact_factor}
     return {k: v for k, v in given.items() if v is not None}
 
 

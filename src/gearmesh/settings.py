@@ -268,10 +268,10 @@ class Constraints:
                                                    "unmodified pair's (null: free)", exclusive_minimum=0)
     dynamic_factor: float | None = setting(None, "dynamic factor at every torque at most this times the unmodified "
                                                  "pair's (null: free)", exclusive_minimum=0)
-    te_harmonic_factor: float | None = setting(
-        None, "amplitude of each loaded-TE mesh order of te_orders at every spectrum torque at most this times the "
+    harmonic_factor: float | None = setting(
+        None, "amplitude of each loaded-TE mesh order of harmonic_orders at every spectrum torque at most this times the "
         "unmodified pair's (null: free)", exclusive_minimum=0)
-    te_orders: tuple[int, ...] = setting((1, 2), "the loaded-TE mesh orders of te_harmonic_factor (and of NSGA-II's "
+    harmonic_orders: tuple[int, ...] = setting((1, 2), "the loaded-TE mesh orders of harmonic_factor (and of NSGA-II's "
                                                  "te_harmonics)", minimum=1, maximum=3, min_items=1, max_items=3,
                                          unique=True)
     pressure_factor: float | None = setting(
@@ -280,9 +280,9 @@ class Constraints:
     root_stress_factor: float | None = setting(
         None, "largest tooth-root stress of either gear at every spectrum torque at most this times the unmodified "
         "pair's (null: free)", exclusive_minimum=0)
-    force_factor: float | None = setting(None, "nominal impact force F_s at every spectrum torque at most this times "
+    impact_factor: float | None = setting(None, "nominal impact force F_s at every spectrum torque at most this times "
                                                "the unmodified pair's (null: free)", exclusive_minimum=0)
-    worst_force_factor: float | None = setting(
+    worst_impact_factor: float | None = setting(
         None, "the worst nominal F_s over the spectrum torques at most this times the unmodified pair's worst "
         "(null: free)", exclusive_minimum=0)
     penalty: float = setting(10, "weight of a violated constraint", exclusive_minimum=0)

@@ -120,11 +120,11 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
                               random_baseline=random_baseline,
                               energy_velocity=imp["energy_velocity"], load_window_step=step,
                               dynamic_speeds=dynamic_speeds_rpm, dynamic_factor=constraints.get("dynamic_factor"),
-                              backlash=backlash, te_orders=constraints.get("te_orders", (1, 2)),
+                              backlash=backlash, harmonic_orders=constraints.get("harmonic_orders", (1, 2)),
                               pareto_objectives=pareto_objectives,
-                              **{k: constraints.get(k) for k in ("te_harmonic_factor", "pressure_factor",
-                                                                 "root_stress_factor", "force_factor",
-                                                                 "worst_force_factor")})
+                              **{k: constraints.get(k) for k in ("harmonic_factor", "pressure_factor",
+                                                                 "root_stress_factor", "impact_factor",
+                                                                 "worst_impact_factor")})
     settings = replace(settings, load_window_top=_window_top(geom, settings.torques))
     if settings.tolerance_statistic is not None and not tol_model.dimensions:
         raise GearmeshInputError("tolerance_statistic", settings.tolerance_statistic,
@@ -250,7 +250,7 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
 
 #: The ratio objectives of NSGA-II in words (ga.nc long names).
 PARETO_RATIOS = {
-    "te_harmonics": "worst ratio of the loaded-TE mesh-order amplitudes (te_orders) to the unmodified pair's over the "
+    "te_harmonics": "worst ratio of the loaded-TE mesh-order amplitudes (harmonic_orders) to the unmodified pair's over the "
                     "load spectrum",
     "pressure": "worst ratio of the peak contact pressure to the unmodified pair's over the load spectrum (flank to "
                 "flank, tip edge to tip edge)",
