@@ -122,6 +122,22 @@ def test_penalty_is_zero_exactly_when_the_criterion_holds(model, name, factor):
     assert ev_tight.objective[0] > ev_loose.objective[0] == pytest.approx(float(ev_loose.value[0, 0].max()))
 
 
+@pytest.mark.parametrize("key,which", [("S_Hmin", 0), ("S_Fmin", 1)])
+def test_safety_factor_penalty_is_zero_exactly_when_the_minimum_holds(model, key, which):
+    """S_H, S_F of ISO 6336-2/-3 method B with the LTCA's load factors: the penalty vanishes at
+    S = S_min and grows as S_min/S − 1 beyond; the crowned candidate's K_Hβ lowers its S below the
+    unmodified pair's (whose own K_Hα is 1 by definition)."""
+    probe = _problem(model, pressure_factor=1e6)
+    params = probe.decode([CANDIDATE])
+    crit = op._evaluate(probe, params, None).criteria
+    s = op.safety_factors(probe, crit, probe.standard.criteria)[which]
+    s_std = op.safety_factors(probe, probe.standard.criteria, probe.standard.criteria)[which]
+    assert s.shape == (1, 3) and np.all(s < s_std) and np.all(np.diff(s_std[0]) < 0)  # more torque, less safety
+    worst = float(s.min())
+    assert op.evaluate(_problem(model, **{key: worst * (1 - 1e-9)}), params).violation[0] == 0.0
+    assert op.evaluate(_problem(model, **{key: worst * 1.01}), params).violation[0] == pytest.approx(0.01, rel=1e-6)
+
+
 def test_the_standard_gear_meets_every_relative_criterion_at_factor_one(model):
     prob = _problem(model, pressure_factor=1.0, root_stress_factor=1.0, harmonic_factor=1.0, impact_factor=1.0,
                     worst_impact_factor=1.0)
@@ -161,6 +177,9 @@ def test_nsga2_front_over_three_objectives_is_non_dominated_and_drawn(model, tmp
     ({"worst_impact_factor": "half"}, "constraints.worst_impact_factor"),
     ({"harmonic_orders": (4,)}, "constraints.harmonic_orders"),
     ({"harmonic_orders": (1, 1)}, "constraints.harmonic_orders"),
+    ({"S_Hmin": 0.0}, "constraints.S_Hmin"),
+    ({"S_Fmin": 11.0}, "constraints.S_Fmin"),
+    ({"S_Fmin": "1.4"}, "constraints.S_Fmin"),
 ])
 def test_bad_criteria_settings_are_refused_naming_the_field(settings, field):
     settings = {"method": "nsga2", **settings}
@@ -172,6 +191,7 @@ def test_bad_criteria_settings_are_refused_naming_the_field(settings, field):
 @pytest.mark.parametrize("section,field", [
     ({"constraints": {"noise_factor": 1.0}}, "constraints.noise_factor"),
     ({"constraints": {"pressure_factor": -0.5}}, "pressure_factor"),
+    ({"constraints": {"S_Hmin": 50}}, "S_Hmin"),
     ({"method": "nsga2", "pareto_objectives": ["impact", "flash_temperature"]}, "pareto_objectives"),
 ])
 def test_bad_criteria_in_a_study_section_are_refused(pair, section, field):

@@ -1087,7 +1087,9 @@ class LTCACriteria:
     :func:`gearmesh.ltca.lte_harmonics`), ``max_line_load`` (N/m), ``flank_pressure`` and
     ``edge_pressure`` the largest Hertzian pressure on the flanks (region 1) and on the tip edges
     (regions 2, 3; the pair's tip-edge radius, :mod:`gearmesh.stress`) (Pa, 0 where none is
-    loaded), ``root_stress`` the largest ISO 6336-3 local root stress of either gear (Pa)."""
+    loaded), ``root_stress`` the largest ISO 6336-3 local root stress of either gear (Pa);
+    ``load`` (C, T, P, J, N) the point loads (N), for ISO 6336's load factors from the LTCA
+    (:func:`gearmesh.rating.ltca_load_factors`)."""
 
     lte_peak_to_peak: np.ndarray
     te_harmonics: np.ndarray
@@ -1095,6 +1097,7 @@ class LTCACriteria:
     flank_pressure: np.ndarray
     edge_pressure: np.ndarray
     root_stress: np.ndarray
+    load: np.ndarray
 
     @property
     def peak_pressure(self) -> np.ndarray:
@@ -1141,7 +1144,7 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
                           iso_root_stress_slices(g, 1, w, r2).max(axis=(2, 3, 4)))
     return LTCACriteria(lte_peak_to_peak=np.ptp(delta, axis=-1), te_harmonics=lte_harmonics(delta),
                         max_line_load=w.max(axis=(2, 3, 4)), flank_pressure=flank, edge_pressure=edge,
-                        root_stress=root)
+                        root_stress=root, load=q.reshape(nc, nt, p, *jn))
 
 
 def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, np.ndarray]:

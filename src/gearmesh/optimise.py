@@ -104,7 +104,8 @@ __all__ = [
     "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "PARETO_OBJECTIVES", "OBJECTIVE_VALUES", "FAILURE_FACTOR", "Gene",
     "OptimiseSettings", "check_settings", "check_positive", "seed000_bounds", "gene_table", "decode", "Problem",
     "problem", "Evaluation", "evaluate", "load_statistic", "load_grid", "load_window", "Diagnostics", "diagnose",
-    "History", "OptimisationResult", "optimise", "random_search", "pareto_mask", "worst_ratio", "constraint_factors", "ImpactValues", "impact_values",
+    "History", "OptimisationResult", "optimise", "random_search", "pareto_mask", "worst_ratio", "constraint_factors",
+    "safety_factors", "ImpactValues", "impact_values",
 ]
 
 #: Pair-file keys of y1..y6, in the order of :data:`gearmesh.surface.MODIFICATION_FIELDS`.
@@ -176,6 +177,8 @@ class OptimiseSettings:
     impact_factor: float | None = None
     worst_impact_factor: float | None = None
     pareto_objectives: tuple[str, ...] = ("impact", "lte")
+    S_Hmin: float | None = None
+    S_Fmin: float | None = None
 
     @property
     def budget(self) -> int:
@@ -186,7 +189,8 @@ class OptimiseSettings:
     def constrained(self) -> bool:
         """A constraint on the loaded contact (:func:`gearmesh.impact.ltca_criteria`) is set."""
         return any(v is not None for v in (self.lte_factor, self.line_load_factor, self.harmonic_factor,
-                                           self.pressure_factor, self.root_stress_factor))
+                                           self.pressure_factor, self.root_stress_factor, self.S_Hmin,
+                                           self.S_Fmin))
 
     @property
     def needs_criteria(self) -> bool:
@@ -279,7 +283,7 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    load_window_top: float | None = None, dynamic_speeds=None, dynamic_factor=None,
                    backlash=None, harmonic_factor=None, harmonic_orders=(1, 2), pressure_factor=None,
                    root_stress_factor=None, impact_factor=None, worst_impact_factor=None,
-                   pareto_objectives=("impact", "lte")) -> OptimiseSettings:
+                   pareto_objectives=("impact", "lte"), S_Hmin=None, S_Fmin=None) -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
     the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone.
     The constraint factors (``*_factor``) are relative to the unmodified pair's value (module
@@ -353,6 +357,10 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
         ("harmonic_factor", harmonic_factor), ("pressure_factor", pressure_factor),
         ("root_stress_factor", root_stress_factor), ("impact_factor", impact_factor),
         ("worst_impact_factor", worst_impact_factor))}
+    for name, value in (("S_Hmin", S_Hmin), ("S_Fmin", S_Fmin)):
+        factors[name] = check_positive(f"constraints.{name}", value, allow_none=True)
+        if factors[name] is not None and factors[name] > 10:
+            raise GearmeshInputError(f"constraints.{name}", value, "must lie in (0, 10] (a safety factor)")
     harmonic_orders = _orders(harmonic_orders)
     pareto_objectives = _pareto_objectives(pareto_objectives, method)
     return OptimiseSettings(method, objective, population, generations, seed, torque, torques, weights, statistic,
@@ -632,6 +640,10 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
     if standard is None:
         return Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc), crit)
     ratios = _ratios(s, force[:, 0], lte, line, kv, crit, standard)
+    if s.S_Hmin is not None or s.S_Fmin is not None:
+        sh, sf = safety_factors(prob, crit, standard.criteria)
+        ratios.update(S_H=worst_ratio(np.divide(s.S_Hmin or 0.0, sh), 1.0),
+                      S_F=worst_ratio(np.divide(s.S_Fmin or 0.0, sf), 1.0))
     violation = np.zeros(nc)
     for name, factor in constraint_factors(s).items():
         with np.errstate(invalid="ignore"):
@@ -687,11 +699,32 @@ def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACri
     return out
 
 
+def safety_factors(prob: "Problem", crit: LTCACriteria, reference: LTCACriteria) -> tuple[np.ndarray, np.ndarray]:
+    """S_H and S_F (C, T) of the weaker gear of each candidate at the spectrum torques: ISO 6336-2/-3
+    method B (:func:`gearmesh.rating.rating`, the pair's rating inputs, application factor 1) at the
+    objective speed, with K_Hβ and K_Hα from the candidate's LTCA loads and the unmodified pair's
+    (:func:`gearmesh.rating.ltca_load_factors`, K_Hα at least 1, as the rating stage)."""
+    from .rating import ltca_load_factors, rating, rating_inputs
+
+    s, geom = prob.settings, prob.geom
+    inputs = rating_inputs(dict(geom.pair.rating_inputs))
+    nc, nt = crit.load.shape[:2]
+    ref = np.broadcast_to(reference.load[0][None], crit.load.shape).reshape(nc * nt, *crit.load.shape[2:])
+    lf = ltca_load_factors(crit.load.reshape(nc * nt, *crit.load.shape[2:]), ref)
+    sh, sf = np.empty(nc * nt), np.empty(nc * nt)
+    for k in range(nc * nt):
+        r = rating(geom, s.objective_torques[k % nt], s.speed_rpm, inputs, method="ltca",
+                   ltca_factors={"K_Hbeta": float(lf["K_Hbeta"][k]), "K_Halpha": max(float(lf["K_Halpha"][k]), 1.0)})
+        sh[k], sf[k] = min(r.values["S_H"]), min(r.values["S_F"])
+    return sh.reshape(nc, nt), sf.reshape(nc, nt)
+
+
 def constraint_factors(s: OptimiseSettings) -> dict[str, float]:
-    """The constraints set, {criterion of :func:`_ratios`: factor}."""
+    """The constraints set, {criterion of :func:`_ratios` (S_H, S_F: S_min/S): factor (1 for S_min)}."""
     given = {"lte": s.lte_factor, "line_load": s.line_load_factor, "dynamic": s.dynamic_factor,
              "te_harmonics": s.harmonic_factor, "pressure": s.pressure_factor,
-             "root_stress": s.root_stress_factor, "force": s.impact_factor, "worst_force": s.worst_impact_factor}
+             "root_stress": s.root_stress_factor, "force": s.impact_factor, "worst_force": s.worst_impact_factor,
+             "S_H": None if s.S_Hmin is None else 1.0, "S_F": None if s.S_Fmin is None else 1.0}
     return {k: v for k, v in given.items() if v is not None}
 
 

@@ -285,6 +285,13 @@ class Constraints:
     worst_impact_factor: float | None = setting(
         None, "the worst nominal F_s over the spectrum torques at most this times the unmodified pair's worst "
         "(null: free)", exclusive_minimum=0)
+    S_Hmin: float | None = setting(
+        None, "ISO 6336-2 safety factor against pitting of the weaker gear at every spectrum torque at least this "
+        "(method B at speed_rpm, K_Hbeta and K_Halpha from the candidate's LTCA; null: free)", exclusive_minimum=0,
+        maximum=10)
+    S_Fmin: float | None = setting(
+        None, "ISO 6336-3 safety factor against tooth breakage of the weaker gear at every spectrum torque at least "
+        "this (as S_Hmin; null: free)", exclusive_minimum=0, maximum=10)
     penalty: float = setting(10, "weight of a violated constraint", exclusive_minimum=0)
 
 

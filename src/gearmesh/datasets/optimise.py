@@ -124,7 +124,7 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
                               pareto_objectives=pareto_objectives,
                               **{k: constraints.get(k) for k in ("harmonic_factor", "pressure_factor",
                                                                  "root_stress_factor", "impact_factor",
-                                                                 "worst_impact_factor")})
+                                                                 "worst_impact_factor", "S_Hmin", "S_Fmin")})
     settings = replace(settings, load_window_top=_window_top(geom, settings.torques))
     if settings.tolerance_statistic is not None and not tol_model.dimensions:
         raise GearmeshInputError("tolerance_statistic", settings.tolerance_statistic,
