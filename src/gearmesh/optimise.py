@@ -820,7 +820,8 @@ class History:
     ``objective`` (G+1, P) J, ``force`` (G+1, P) nominal F_s at the design torque, ``scenario``
     (G+1, P) there, ``failed`` (G+1, P), ``lte`` (G+1, P) (NaN unless
     computed), ``pareto`` (G+1, P, M) the NSGA-II objectives (M = 0 for the other methods),
-    ``evaluations`` (G+1,) distinct evaluations so far."""
+    ``violation`` (G+1, P) the summed relative constraint excess (0: meets every constraint; NaN
+    when failed), ``evaluations`` (G+1,) distinct evaluations so far."""
 
     genes: list = field(default_factory=list)
     objective: list = field(default_factory=list)
@@ -829,6 +830,7 @@ class History:
     failed: list = field(default_factory=list)
     lte: list = field(default_factory=list)
     pareto: list = field(default_factory=list)
+    violation: list = field(default_factory=list)
     evaluations: list = field(default_factory=list)
 
     def arrays(self) -> dict[str, np.ndarray]:
@@ -864,7 +866,8 @@ class _Evaluator:
             for i, k in enumerate(new):
                 self.cache[keys[k]] = (float(ev.objective[i]), float(ev.force[i, 0, d]), int(ev.scenario[i, 0, d]),
                                        bool(ev.failed[i]), float(ev.lte_peak_to_peak[i]),
-                                       () if ev.pareto is None else tuple(float(v) for v in ev.pareto[i]))
+                                       () if ev.pareto is None else tuple(float(v) for v in ev.pareto[i]),
+                                       float(ev.violation[i]))
             self.count += len(new)
         return [self.cache[key] for key in keys]
 
@@ -875,9 +878,9 @@ class _Evaluator:
         rows = self(values) if len(values) else []
         pad = (size or len(values)) - len(values)
         m = len(self.prob.settings.pareto_objectives) if self.prob.settings.method == "nsga2" else 0
-        rows += [(math.nan, math.nan, -1, False, math.nan, (math.nan,) * m)] * pad
+        rows += [(math.nan, math.nan, -1, False, math.nan, (math.nan,) * m, math.nan)] * pad
         history.genes.append(np.vstack([values, np.full((pad, values.shape[1]), np.nan)]))
-        for name, k in (("objective", 0), ("force", 1), ("scenario", 2), ("failed", 3), ("lte", 4)):
+        for name, k in (("objective", 0), ("force", 1), ("scenario", 2), ("failed", 3), ("lte", 4), ("violation", 6)):
             getattr(history, name).append(np.array([r[k] for r in rows]))
         history.pareto.append(np.array([r[5] for r in rows], dtype=float).reshape(len(rows), m))
         history.evaluations.append(self.count)

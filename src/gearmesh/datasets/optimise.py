@@ -29,7 +29,7 @@ from ..io import name_force_lines, variable
 from ..loads import check_load
 from ..ltca import MESH_ORDERS, loaded_pinion_torques, pinion_torques
 from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, constraint_factors,
-                        gene_table, optimise, problem)
+                        evaluate, gene_table, optimise, problem)
 from ..surface import MODIFICATION_FIELDS
 from ..tolerance import study_tolerances
 from ..schema import check_arguments, defaults, settings_fields
@@ -240,6 +240,9 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
     if np.isfinite(h["lte"]).any():
         out[f"{prefix}lte_peak_to_peak"] = variable(gc, h["lte"], "m", f"{label}: peak-to-peak LTE at the design "
                                                                        "torque of each candidate")
+    if constraint_factors(result.problem.settings):
+        out[f"{prefix}violation"] = variable(gc, h["violation"], "1", f"{label}: summed relative excess of the "
+                                             "constraints of each candidate (0: meets every one; NaN: failed)")
     names = result.problem.settings.pareto_objectives if h["pareto"].shape[-1] else ()
     for k, name in enumerate(names):
         if name in PARETO_RATIOS:
@@ -394,6 +397,10 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
                                                "standard gear: largest line load at the design torque"),
         })
     data.update(_criteria_variables(result))
+    if constraint_factors(s):  # the unmodified pair as a candidate of this run: its J with the penalties
+        data["standard_penalised_objective"] = variable((), float(evaluate(prob, np.zeros((1, 2, 6))).objective[0]),
+                                                        units, f"standard gear as a candidate: {what} with the "
+                                                        "constraints' penalties")
     if result.pareto is not None:
         pg, po = result.pareto
         data["pareto_genes"] = variable(("front", "gene"), _si(result, pg), "m", "Pareto front: gene values "
