@@ -202,3 +202,27 @@ def test_bad_criteria_in_a_study_section_are_refused(pair, section, field):
     with pytest.raises(GearmeshInputError) as exc:
         run_settings(pair, torque_Nm=1000, **section)
     assert field in exc.value.field
+
+
+def test_every_door_defaults_to_the_robust_objective_over_the_tolerance_samples():
+    """Issue 27 item 4: the study schema, the Python API and ``gearmesh optimise`` give one default:
+    the robust objective, the worst case over the nominal and the tolerance samples."""
+    import argparse
+    import inspect
+
+    from gearmesh.cli import CLI_LEAD_GRADE, build_parser
+    from gearmesh.schema import defaults
+    from gearmesh.settings import Optimise, Tolerances
+
+    declared = defaults(Optimise)
+    assert declared["objective"] == "robust" and declared["tolerance_statistic"] == "max"
+    api = inspect.signature(run_settings).parameters
+    assert api["objective"].default == declared["objective"]
+    assert api["tolerance_statistic"].default == declared["tolerance_statistic"]
+    sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)).choices["optimise"]
+    cli = {a.dest: a.default for a in sub._actions}
+    assert cli["objective"] == declared["objective"]
+    assert cli["tolerance_statistic"] == declared["tolerance_statistic"]
+    assert cli["samples"] == defaults(Tolerances)["samples"] > 0
+    assert cli["grade"] == CLI_LEAD_GRADE  # a population to be robust over without a tolerances section
+    assert "OUT.yaml" in sub.format_usage()  # --write-pair OUT.yaml, the name its help gives
