@@ -651,7 +651,7 @@ def build_parser() -> argparse.ArgumentParser:
                          "when the spectrum is one torque)")
     p.add_argument("--grade", type=_grade_option, default=CLI_LEAD_GRADE,
                    help="ISO 1328-1:2013 flank tolerance class 1-11: lead slope within ±f_Hβ on both gears ('none': "
-                        f"no lead deviation; default {CLI_LEAD_GRADE}, the default study's class)"),
+                        f"no lead deviation); unless given, class {CLI_LEAD_GRADE} as in the shipped case study")
     p.add_argument("--amount-tolerance-um", dest="amount_tolerance_um", type=float, default=0.0,
                    help="± on every relief and crowning amount (µm)")
     _setting_option(p, "--sampling", Tolerances, help="seeded Latin hypercube or corners of the tolerance box")
