@@ -50,7 +50,8 @@ def _write_pair_option(folder, capsys):
 def _workflow_optimum(folder, capsys):
     """As the workflow's optimise rule writes it: the pair's own name in a file called pair.yaml."""
     pair = pair_from_dict(seed001_pair1())
-    ds = optimise_summary(pair, torque_Nm=100.0, speed_rpm=3000.0, population=4, generations=1)[1]
+    ds = optimise_summary(pair, torque_Nm=100.0, speed_rpm=3000.0, population=4, generations=1, objective="force",
+                          tolerance_statistic=None)[1]
     path = folder / "optimise" / "force" / "pair.yaml"
     return write_pair(optimum_pair(pair, ds), path)
 

@@ -394,8 +394,8 @@ def _subparsers():
 _OWN_DEFAULTS = {
     ("dynamics", "excitation"): "tvms: what the study's null means without an LTCA upstream",
     ("optimise", "torque_Nm"): "none: the command needs --torque-Nm or --torques-Nm (the middle one then)",
-    ("optimise", "tolerance_statistic"): "max, used only with --tolerance-samples: without, the nominal alone "
-                                         "(the study's null)",
+    ("optimise", "grade"): "6: the robust objective (the default) needs a population, and the command has no "
+                           "tolerances section (cli.CLI_LEAD_GRADE)",
 }
 
 

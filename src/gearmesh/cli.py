@@ -22,7 +22,7 @@ from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
-from .gear import example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
+from .gear import NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
 from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
@@ -288,7 +288,7 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
         handler.setFormatter(logging.Formatter("  %(message)s"))
         LOG.addHandler(handler)
         LOG.setLevel(logging.INFO)
-    samples = args.tolerance_samples
+    samples = args.samples
     tolerances = {"grade": args.grade, "samples": samples, "sampling": args.sampling}
     if args.amount_tolerance_um:
         tolerances["modification"] = {k: args.amount_tolerance_um for k in ("root_relief_um", "tip_relief_um",
@@ -313,6 +313,25 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     return summary
 
 
+#: The lead tolerance class of ``gearmesh optimise`` when none is given: the robust objective (the
+#: default) needs a manufactured population, and a study has its tolerances section where the
+#: command has none; class 6 is the default study's (ISO 1328-1:2013, a ground gear's grade).
+CLI_LEAD_GRADE = 6
+
+
+def _grade_option(text: str) -> int | None:
+    """``--grade``: an ISO 1328-1 class within the declared bounds of ``tolerances.grade``, or 'none'
+    (no lead deviation)."""
+    if text.strip().lower() == "none":
+        return None
+    try:
+        grade = int(text)
+        check_value(Tolerances, "grade", grade)
+        return grade
+    except (ValueError, GearmeshInputError):
+        raise GearmeshInputError("--grade", text, "must be an ISO 1328-1 class 1-11 or 'none'") from None
+
+
 def _output_pair_path(path: str | None):
     """The ``--write-pair`` target: a .yaml file in an existing folder whose stem is a valid pair
     name (the name the written pair carries)."""
@@ -326,9 +345,9 @@ def _output_pair_path(path: str | None):
         raise GearmeshInputError("--write-pair", path, "must be in an existing folder")
     if out.exists() and not out.is_file():
         raise GearmeshInputError("--write-pair", path, "is not a regular file")
-    if not re.fullmatch(r"[A-Za-z0-9_.-]{1,64}", out.stem):
-        raise GearmeshInputError("--write-pair", path, "must have a pair name as its stem (letters, digits, _ - ., "
-                                                       "at most 64)")
+    if not NAME_PATTERN.fullmatch(out.stem):  # the pair files' own rule: the written pair reads back
+        raise GearmeshInputError("--write-pair", path, "must have a pair name as its stem (1 to 160 letters, digits, "
+                                                       "'_', '-' or '.' (not first))")
     return out
 
 
@@ -627,15 +646,16 @@ def build_parser() -> argparse.ArgumentParser:
     _setting_option(p, "--statistic", Optimise, help="over the load spectrum")
     p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="the gear the torques act on")
     _setting_option(p, "--speed-rpm", Optimise, type=float, help="pinion speed (rpm)")
-    p.add_argument("--tolerance-samples", dest="tolerance_samples", type=int, default=0,
-                   help="manufactured samples evaluated with the nominal (0: nominal only)")
-    _setting_option(p, "--grade", Tolerances, type=int,
-                    help="ISO 1328-1:2013 flank tolerance class 1-11: lead slope within ±f_Hβ on both gears")
+    _setting_option(p, "--tolerance-samples", Tolerances, key="samples", type=int,
+                    help="manufactured samples evaluated with the nominal (0: nominal only, a single-point optimum "
+                         "when the spectrum is one torque)")
+    p.add_argument("--grade", type=_grade_option, default=CLI_LEAD_GRADE,
+                   help="ISO 1328-1:2013 flank tolerance class 1-11: lead slope within ±f_Hβ on both gears ('none': "
+                        f"no lead deviation); unless given, class {CLI_LEAD_GRADE} as in the shipped case study")
     p.add_argument("--amount-tolerance-um", dest="amount_tolerance_um", type=float, default=0.0,
                    help="± on every relief and crowning amount (µm)")
     _setting_option(p, "--sampling", Tolerances, help="seeded Latin hypercube or corners of the tolerance box")
-    p.add_argument("--tolerance-statistic", dest="tolerance_statistic", choices=("max", "mean", "percentile", "cvar"),
-                   default="max", help="over the nominal and the samples")
+    _setting_option(p, "--tolerance-statistic", Optimise, help="over the nominal and the samples")
     _setting_option(p, "--tolerance-level", Optimise, key="tolerance_level_percent", type=float, metavar="PERCENT",
                     help="level (%%) of percentile and cvar")
     _setting_option(p, "--modify", Optimise, nargs="+", help="the gear(s) whose six parameters are optimised")
@@ -643,7 +663,7 @@ def build_parser() -> argparse.ArgumentParser:
     _setting_option(p, "--seed", Optimise, type=int, help="random seed (GA and tolerance samples)")
     _setting_option(p, "--population", Optimise, type=int, help="candidates per generation")
     _setting_option(p, "--generations", Optimise, type=int, help="generations")
-    p.add_argument("--write-pair", dest="write_pair", default=None,
+    p.add_argument("--write-pair", dest="write_pair", default=None, metavar="OUT.yaml",
                    help="write the optimum as a pair file OUT.yaml (its name: OUT), readable by every subcommand")
     return parser
 

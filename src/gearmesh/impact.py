@@ -85,7 +85,7 @@ __all__ = [
     "SCENARIOS", "DRIVERS", "seed000_inertia", "equivalent_mass", "ImpactModel", "impact_model",
     "ImpactStatic", "impact_static", "ImpactResponse", "impact_response", "closed_form_force",
     "energy_balance", "fit_power_law", "vector_velocity", "seed_edge_roll", "simulate_engagement",
-    "ltca_metrics", "load_grid", "load_window",
+    "LTCACriteria", "ltca_criteria", "ltca_metrics", "load_grid", "load_window",
 ]
 
 SCENARIOS = ("none", "surface", "edge")
@@ -1080,29 +1080,78 @@ def load_window(grid: np.ndarray, force: np.ndarray, standard: np.ndarray, desig
 # --------------------------------------------------------------------------------------
 
 
-def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, np.ndarray]:
-    """Peak-to-peak LTE (m) and largest line load (N/m) over one mesh cycle, (C, T), for
-    modification parameter sets ``params`` ((C, 2, 6) m) at pinion torques ``torques`` (N m):
-    the LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from
-    its separation basis (no new geometry)."""
+@dataclass(frozen=True)
+class LTCACriteria:
+    """What an engineer signs off, from the loaded contact over one mesh cycle, per (C, T) row
+    (SI): ``lte_peak_to_peak`` (m), ``te_harmonics`` (C, T, 3) amplitudes of mesh orders 1–3 (m,
+    :func:`gearmesh.ltca.lte_harmonics`), ``max_line_load`` (N/m), ``flank_pressure`` and
+    ``edge_pressure`` the largest Hertzian pressure on the flanks (region 1) and on the tip edges
+    (regions 2, 3; the pair's tip-edge radius, :mod:`gearmesh.stress`) (Pa, 0 where none is
+    loaded), ``root_stress`` the largest ISO 6336-3 local root stress of either gear (Pa);
+    ``load`` (C, T, P, J, N) the point loads (N), for ISO 6336's load factors from the LTCA
+    (:func:`gearmesh.rating.ltca_load_factors`)."""
+
+    lte_peak_to_peak: np.ndarray
+    te_harmonics: np.ndarray
+    max_line_load: np.ndarray
+    flank_pressure: np.ndarray
+    edge_pressure: np.ndarray
+    root_stress: np.ndarray
+    load: np.ndarray
+
+    @property
+    def peak_pressure(self) -> np.ndarray:
+        """(C, T) largest pressure wherever it sits (ltca.nc's peak_contact_pressure)."""
+        return np.maximum(self.flank_pressure, self.edge_pressure)
+
+
+def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, stresses: bool = True) -> LTCACriteria:
+    """The loaded contact of modification parameter sets ``params`` ((C, 2, 6) m) with lead slopes
+    ``lead_slope`` ((C, 2) m; None: the model's) at pinion ``torques`` (N m), over one mesh cycle:
+    the LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from its
+    separation basis (no new geometry), and from its loads the sign-off quantities of
+    :class:`LTCACriteria` (``stresses`` False: pressure and root stress left NaN)."""
+    from .ltca import lte_harmonics
+    from .stress import contact_stress, iso_root_stress_slices, pair_edge_radius
 
     g, lt = model.geom, model.ltca
     params = model.params(params)
+    nc = params.shape[0]
+    lead = np.broadcast_to(np.asarray(lt.lead_slope if lead_slope is None else lead_slope, dtype=float), (nc, 2))
     force = check_torques(torques) / float(g.base_radius[0])
     grid = lt.grid
     p = grid.gap.shape[0] - 1  # the last row is φ1A
     basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
-    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lt.lead_slope,
+    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead[:, None, None, None, :],
                     params[:, None, None, None, :, :])  # (C, P, J, N)
-    nc, nt = params.shape[0], force.size
+    nt = force.size
+    jn = gap.shape[2:]
     m = gap.shape[2] * gap.shape[3]
     gap = np.broadcast_to(gap.reshape(nc, 1, p, m), (nc, nt, p, m)).reshape(-1, m)
     comp = np.broadcast_to(lt.compliance[:p].reshape(1, 1, p, m), (nc, nt, p, m)).reshape(-1, m)
     f = np.broadcast_to(force.reshape(1, nt, 1), (nc, nt, p)).reshape(-1)
     q, delta, _, _ = solve_contact(gap, comp, f, lt.law)
     delta = delta.reshape(nc, nt, p)
-    line = (q.max(axis=1) / grid.dz).reshape(nc, nt, p)
-    return np.ptp(delta, axis=-1), line.max(axis=-1)
+    w = q.reshape(nc, nt, p, *jn) / grid.dz  # line loads (N/m)
+    nan = np.full((nc, nt), np.nan)
+    flank = edge = root = nan
+    if stresses:
+        region, r1, r2 = grid.region[:p], grid.rho_pinion[:p], grid.rho_gear[:p]
+        c = contact_stress(g, w, region, r1, r2, pair_edge_radius(g))
+        flank = np.where(c.edge, 0.0, c.pressure).max(axis=(2, 3, 4))
+        edge = np.where(c.edge, c.pressure, 0.0).max(axis=(2, 3, 4))
+        root = np.maximum(iso_root_stress_slices(g, 0, w, r1).max(axis=(2, 3, 4)),
+                          iso_root_stress_slices(g, 1, w, r2).max(axis=(2, 3, 4)))
+    return LTCACriteria(lte_peak_to_peak=np.ptp(delta, axis=-1), te_harmonics=lte_harmonics(delta),
+                        max_line_load=w.max(axis=(2, 3, 4)), flank_pressure=flank, edge_pressure=edge,
+                        root_stress=root, load=q.reshape(nc, nt, p, *jn))
+
+
+def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, np.ndarray]:
+    """Peak-to-peak LTE (m) and largest line load (N/m) over one mesh cycle, (C, T), of
+    :func:`ltca_criteria`."""
+    c = ltca_criteria(model, torques, params, stresses=False)
+    return c.lte_peak_to_peak, c.max_line_load
 
 
 # --------------------------------------------------------------------------------------

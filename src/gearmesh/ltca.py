@@ -83,7 +83,11 @@ __all__ = [
     "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
     "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "load_sums",
     "LTCAResult", "ltca", "contact_tangent_compliance", "edge_tangent_stiffness", "with_loaded_extension",
+    "MESH_ORDERS", "lte_harmonics",
 ]
+
+#: Mesh orders of the loaded-TE harmonics (ltca.nc, the optimiser's TE criteria).
+MESH_ORDERS = (1, 2, 3)
 
 # Palmgren's line-contact law (Palmgren 1959; Harris & Kotzalas 2007), mm·N^-0.9·mm^0.8: declared
 # once, with the rolling bearings that use it too (gearmesh.supports, the lowest module).
@@ -699,3 +703,15 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
                       pairs_in_contact=in_contact[:, :p], corner_load=corner_load[:, :p],
                       lte_at_engagement=delta[:, p], stiffness_at_engagement=k[:, p],
                       corner_load_at_engagement=corner_load[:, p], tca=tca_res, model=model, iterations=it)
+
+
+def lte_harmonics(lte, orders=MESH_ORDERS) -> np.ndarray:
+    """Amplitudes (m) of mesh orders ``orders`` of a loaded TE sampled at P evenly spaced rolls over
+    one mesh cycle, end excluded (last axis; :func:`gearmesh.contact.mesh_cycle_rolls`): the
+    one-sided discrete Fourier amplitude 2·|X_k|/P of order k (exact for a band-limited signal of
+    orders below P/2). Shape (..., len(orders))."""
+    lte = np.asarray(lte, dtype=float)
+    n = lte.shape[-1]
+    if max(orders) >= n / 2:
+        raise ValueError(f"mesh order {max(orders)} needs more than {2 * max(orders)} positions per cycle")
+    return 2.0 * np.abs(np.fft.rfft(lte, axis=-1)[..., list(orders)]) / n

@@ -89,7 +89,9 @@ from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
 from .limits import MAX_MODIFICATION_TO_MODULE
 from .dynamics.population import PopulationDynamics, dynamic_factors, population_dynamics
-from .impact import SCENARIO_NONE, ImpactModel, impact_response, impact_static, load_grid, load_window, ltca_metrics
+from .impact import (SCENARIO_NONE, ImpactModel, LTCACriteria, impact_response, impact_static, load_grid, load_window,
+                     ltca_criteria)
+from .ltca import MESH_ORDERS
 from .surface import MODIFICATION_FIELDS, fit_modifications
 from .tolerance import (SAMPLINGS, ToleranceModel, apply_deviations, check_statistic, sample_statistic,
                         unit_deviations)
@@ -99,10 +101,11 @@ from .tolerance import (SAMPLINGS, ToleranceModel, apply_deviations, check_stati
 LOG = logging.getLogger(__name__)
 
 __all__ = [
-    "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "OBJECTIVE_VALUES", "FAILURE_FACTOR", "Gene",
+    "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "PARETO_OBJECTIVES", "OBJECTIVE_VALUES", "FAILURE_FACTOR", "Gene",
     "OptimiseSettings", "check_settings", "check_positive", "seed000_bounds", "gene_table", "decode", "Problem",
     "problem", "Evaluation", "evaluate", "load_statistic", "load_grid", "load_window", "Diagnostics", "diagnose",
-    "History", "OptimisationResult", "optimise", "random_search", "pareto_mask", "ImpactValues", "impact_values",
+    "History", "OptimisationResult", "optimise", "random_search", "pareto_mask", "worst_ratio", "constraint_factors",
+    "safety_factors", "ImpactValues", "impact_values",
 ]
 
 #: Pair-file keys of y1..y6, in the order of :data:`gearmesh.surface.MODIFICATION_FIELDS`.
@@ -113,6 +116,11 @@ GENE_UNITS = ("um", "um", "mm", "mm", "um", "mm")
 _TO_SI = np.array([1e-6, 1e-6, 1e-3, 1e-3, 1e-6, 1e-3])
 METHODS = ("ga", "random", "nsga2")
 OBJECTIVES = ("force", "velocity", "robust", "dynamic")
+#: The objectives NSGA-II can trade (all minimised; module docstring): the objective J (penalties
+#: included), the peak-to-peak LTE at the design torque, and the worst ratio to the unmodified
+#: pair's, over the load spectrum, of the TE harmonics (``harmonic_orders``), the contact pressure
+#: (flank and edge each against its kind) and the root stress.
+PARETO_OBJECTIVES = ("impact", "lte", "te_harmonics", "pressure", "root_stress")
 LOAD_STATISTICS = ("max", "mean")
 #: A failed candidate's objective, in units of the standard gear's.
 FAILURE_FACTOR = 10.0
@@ -162,6 +170,15 @@ class OptimiseSettings:
     dynamic_speeds: tuple[float, ...] | None = None
     dynamic_factor: float | None = None
     backlash: float | None = None
+    harmonic_factor: float | None = None
+    harmonic_orders: tuple[int, ...] = (1, 2)
+    pressure_factor: float | None = None
+    root_stress_factor: float | None = None
+    impact_factor: float | None = None
+    worst_impact_factor: float | None = None
+    pareto_objectives: tuple[str, ...] = ("impact", "lte")
+    S_Hmin: float | None = None
+    S_Fmin: float | None = None
 
     @property
     def budget(self) -> int:
@@ -170,7 +187,21 @@ class OptimiseSettings:
 
     @property
     def constrained(self) -> bool:
-        return self.lte_factor is not None or self.line_load_factor is not None
+        """A constraint on the loaded contact (:func:`gearmesh.impact.ltca_criteria`) is set."""
+        return any(v is not None for v in (self.lte_factor, self.line_load_factor, self.harmonic_factor,
+                                           self.pressure_factor, self.root_stress_factor, self.S_Hmin,
+                                           self.S_Fmin))
+
+    @property
+    def needs_criteria(self) -> bool:
+        """Each candidate's loaded contact is needed (a constraint on it, or NSGA-II)."""
+        return self.constrained or self.method == "nsga2"
+
+    @property
+    def needs_stresses(self) -> bool:
+        """Each candidate's contact pressure and root stress are needed."""
+        return self.pressure_factor is not None or self.root_stress_factor is not None or (
+            self.method == "nsga2" and bool({"pressure", "root_stress"} & set(self.pareto_objectives)))
 
     @property
     def uses_dynamics(self) -> bool:
@@ -250,9 +281,13 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    mutation_scale: float = 0.1, keep_elitism: int = 2, random_baseline: bool = False,
                    energy_velocity: str = "transverse", load_window_step: float = 50.0,
                    load_window_top: float | None = None, dynamic_speeds=None, dynamic_factor=None,
-                   backlash=None) -> OptimiseSettings:
+                   backlash=None, harmonic_factor=None, harmonic_orders=(1, 2), pressure_factor=None,
+                   root_stress_factor=None, impact_factor=None, worst_impact_factor=None,
+                   pareto_objectives=("impact", "lte"), S_Hmin=None, S_Fmin=None) -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
-    the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone."""
+    the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone.
+    The constraint factors (``*_factor``) are relative to the unmodified pair's value (module
+    docstring); ``pareto_objectives`` the objectives of method nsga2 (:data:`PARETO_OBJECTIVES`)."""
     from .ltca import check_torques
 
     method = _choice("method", method, METHODS)
@@ -275,7 +310,7 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
     check_statistic(tolerance_statistic, tolerance_level, "tolerance_statistic")
     if tolerance_statistic is not None and tolerance_samples == 0:
         raise GearmeshInputError("tolerance_statistic", tolerance_statistic, "needs tolerance samples "
-                                                                             "(tolerance_samples > 0)")
+                                 "(tolerance_samples > 0 and tolerances that deviate); null: the nominal alone")
     if objective == "robust" and len(torques) < 2 and tolerance_statistic is None:
         raise GearmeshInputError("objective", objective, "needs a load spectrum (two or more torques_Nm) or tolerance "
                                                          "samples with a tolerance_statistic; use 'force' for one point")
@@ -318,11 +353,46 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
         backlash = float(backlash)
         if not (math.isfinite(backlash) and 0 <= backlash <= 1e-3):
             raise GearmeshInputError("backlash_um", backlash * 1e6, "must lie in [0, 1000] µm")
+    factors = {name: check_positive(f"constraints.{name}", value, allow_none=True) for name, value in (
+        ("harmonic_factor", harmonic_factor), ("pressure_factor", pressure_factor),
+        ("root_stress_factor", root_stress_factor), ("impact_factor", impact_factor),
+        ("worst_impact_factor", worst_impact_factor))}
+    for name, value in (("S_Hmin", S_Hmin), ("S_Fmin", S_Fmin)):
+        factors[name] = check_positive(f"constraints.{name}", value, allow_none=True)
+        if factors[name] is not None and factors[name] > 10:
+            raise GearmeshInputError(f"constraints.{name}", value, "must lie in (0, 10] (a safety factor)")
+    harmonic_orders = _orders(harmonic_orders)
+    pareto_objectives = _pareto_objectives(pareto_objectives, method)
     return OptimiseSettings(method, objective, population, generations, seed, torque, torques, weights, statistic,
                             speed_rpm, tolerance_samples, sampling, tolerance_seed, tolerance_statistic,
                             float(tolerance_level), lte_factor, line_load_factor, penalty,
                             float(mutation_probability), float(mutation_scale), keep_elitism, random_baseline,
-                            energy_velocity, load_window_step, top, dynamic_speeds, dynamic_factor, backlash)
+                            energy_velocity, load_window_step, top, dynamic_speeds, dynamic_factor, backlash,
+                            harmonic_orders=harmonic_orders, pareto_objectives=pareto_objectives, **factors)
+
+
+def _orders(orders) -> tuple[int, ...]:
+    """The loaded-TE mesh orders of the harmonic constraint: distinct orders of :data:`MESH_ORDERS`."""
+    if not isinstance(orders, (list, tuple)) or not orders or len(set(orders)) != len(orders) or any(
+            isinstance(k, bool) or k not in MESH_ORDERS for k in orders):
+        raise GearmeshInputError("constraints.harmonic_orders", orders, f"must list distinct mesh orders of "
+                                                                  f"{list(MESH_ORDERS)}")
+    return tuple(int(k) for k in orders)
+
+
+def _pareto_objectives(names, method: str) -> tuple[str, ...]:
+    """The NSGA-II objectives: two or more distinct names of :data:`PARETO_OBJECTIVES`, the first 'impact'."""
+    if not isinstance(names, (list, tuple)) or len(names) < 2 or len(set(names)) != len(names):
+        raise GearmeshInputError("pareto_objectives", names, f"must list two or more distinct objectives of "
+                                                             f"{list(PARETO_OBJECTIVES)}")
+    for k, name in enumerate(names):
+        _choice(f"pareto_objectives[{k}]", name, PARETO_OBJECTIVES)
+    if names[0] != "impact":
+        raise GearmeshInputError("pareto_objectives", list(names), "must start with 'impact' (the objective J, whose "
+                                                                   "least value on the front is the optimum)")
+    if method != "nsga2" and tuple(names) != ("impact", "lte"):
+        raise GearmeshInputError("pareto_objectives", list(names), "apply to method nsga2 only")
+    return tuple(names)
 
 
 # --------------------------------------------------------------------------------------
@@ -491,7 +561,10 @@ class Evaluation:
     ``force`` F_s, ``velocity`` |v_n|, ``scenario``; ``failed`` (C,), ``lte_peak_to_peak`` (C,) m
     and ``max_line_load`` (C,) N/m at the design torque (NaN when not needed), ``dynamic_factor``
     (C, T) K_v of the nominal gear at the objective torques (NaN when no dynamic constraint),
-    ``violation`` (C,) the summed relative constraint excess."""
+    ``violation`` (C,) the summed relative constraint excess; ``criteria`` the nominal gear's loaded
+    contact at the objective torques (:class:`gearmesh.impact.LTCACriteria`, (C, T); None when no
+    constraint or objective needs it), ``pareto`` (C, M) the NSGA-II objectives
+    (:data:`PARETO_OBJECTIVES`; None for the other methods)."""
 
     objective: np.ndarray
     value: np.ndarray
@@ -503,6 +576,8 @@ class Evaluation:
     max_line_load: np.ndarray
     dynamic_factor: np.ndarray
     violation: np.ndarray
+    criteria: LTCACriteria | None = None
+    pareto: np.ndarray | None = None
 
 
 @dataclass(frozen=True)
@@ -549,11 +624,9 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
     per_gear = load_statistic(value, s.statistic, s.weights)  # (C, S): each manufactured gear over the spectrum
     f = per_gear[:, 0] if s.tolerance_statistic is None else sample_statistic(per_gear, s.tolerance_statistic,
                                                                               s.tolerance_level)
-    metrics = s.constrained or s.method == "nsga2"
-    if metrics:
-        lte, line = (v[:, 0] for v in ltca_metrics(model, [s.torque], params))
-    else:
-        lte = line = np.full(nc, np.nan)
+    crit = ltca_criteria(model, s.objective_torques, params, stresses=s.needs_stresses) if s.needs_criteria else None
+    d = s.design_index
+    lte, line = (np.full(nc, np.nan),) * 2 if crit is None else (crit.lte_peak_to_peak[:, d], crit.max_line_load[:, d])
     if s.dynamic_factor is None:
         kv = np.full((nc, len(s.objective_torques)), np.nan)
     elif s.objective == "dynamic":  # the nominal gear is sample 0 of the objective's rows
@@ -565,22 +638,94 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
     failed = (~np.isfinite(f) | np.any(scen == SCENARIO_NONE, axis=(1, 2)) | ~np.all(np.isfinite(value), axis=(1, 2))
               | np.any(~(vel > 0), axis=(1, 2)))
     if standard is None:
-        return Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc))
+        return Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc), crit)
+    ratios = _ratios(s, force[:, 0], lte, line, kv, crit, standard)
+    if s.S_Hmin is not None or s.S_Fmin is not None:
+        sh, sf = safety_factors(prob, crit, standard.criteria)
+        ratios.update(S_H=worst_ratio(np.divide(s.S_Hmin or 0.0, sh), 1.0),
+                      S_F=worst_ratio(np.divide(s.S_Fmin or 0.0, sf), 1.0))
     violation = np.zeros(nc)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        # the dynamic factor against the standard gear's at the same torque, the worst torque
-        kv_ratio = np.max(kv / standard.dynamic_factor[0], axis=1)
-    for factor, m, ref in ((s.lte_factor, lte, standard.lte_peak_to_peak[0]),
-                           (s.line_load_factor, line, standard.max_line_load[0]), (s.dynamic_factor, kv_ratio, 1.0)):
-        if factor is not None:
-            with np.errstate(invalid="ignore"):
-                violation += np.maximum(0.0, m / (factor * ref) - 1.0)
+    for name, factor in constraint_factors(s).items():
+        with np.errstate(invalid="ignore"):
+            violation += np.maximum(0.0, ratios[name] / factor - 1.0)
     failed |= ~np.isfinite(violation)
     j = f + s.penalty * standard.objective[0] * violation
     j = np.where(failed, FAILURE_FACTOR * standard.objective[0], j)
+    pareto = None
     if s.method == "nsga2":
         lte = np.where(failed, FAILURE_FACTOR * standard.lte_peak_to_peak[0], lte)
-    return Evaluation(j, value, force, vel, scen, failed, lte, line, kv, np.where(failed, np.nan, violation))
+        pareto = np.column_stack([j if k == "impact" else lte if k == "lte" else
+                                  np.where(failed, FAILURE_FACTOR, ratios[k]) for k in s.pareto_objectives])
+    return Evaluation(j, value, force, vel, scen, failed, lte, line, kv, np.where(failed, np.nan, violation), crit,
+                      pareto)
+
+
+def worst_ratio(values: np.ndarray, reference: np.ndarray) -> np.ndarray:
+    """The largest ratio of ``values`` (C, ...) to the unmodified pair's ``reference`` (...) over
+    every axis but the first (torques, orders): 1 or less exactly when no entry exceeds the
+    reference. A zero reference counts a zero value as ratio 0 and a positive one as infinite."""
+    v = np.asarray(values, dtype=float)
+    ref = np.broadcast_to(np.asarray(reference, dtype=float), v.shape[1:])
+    with np.errstate(invalid="ignore", divide="ignore"):
+        r = np.where(ref > 0, v / np.where(ref > 0, ref, 1.0), np.where(v > 0, np.inf, 0.0))
+    return r.reshape(v.shape[0], -1).max(axis=1)
+
+
+def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACriteria | None,
+            standard: Evaluation) -> dict[str, np.ndarray]:
+    """Each criterion's worst ratio (C,) to the standard gear's (:func:`worst_ratio`), per torque
+    of the spectrum unless said: nominal F_s per torque ('force') and its worst case over the
+    torques ('worst_force'), LTE p-p and the largest line load at the design torque, the dynamic
+    factor, and from the loaded contact the TE harmonics of ``harmonic_orders`` ('te_harmonics'), the
+    flank pressure against the standard's flank pressure and the tip-edge pressure against its
+    tip-edge pressure (its flank pressure where it has no edge contact) ('pressure'), and the
+    root stress of either gear ('root_stress')."""
+    nc = force.shape[0]
+    nan = np.full(nc, np.nan)
+    ref = standard.criteria
+    out = {"force": worst_ratio(force, standard.force[0, 0]),
+           "worst_force": worst_ratio(force.max(axis=1), standard.force[0, 0].max()),
+           "lte": worst_ratio(lte[:, None], standard.lte_peak_to_peak[0]),
+           "line_load": worst_ratio(line[:, None], standard.max_line_load[0]),
+           "dynamic": worst_ratio(kv, standard.dynamic_factor[0])}
+    if crit is None or ref is None:
+        return {**out, "te_harmonics": nan, "pressure": nan, "root_stress": nan}
+    k = [MESH_ORDERS.index(o) for o in s.harmonic_orders]
+    out["te_harmonics"] = worst_ratio(crit.te_harmonics[..., k], ref.te_harmonics[0][..., k])
+    edge_ref = np.where(ref.edge_pressure[0] > 0, ref.edge_pressure[0], ref.flank_pressure[0])
+    out["pressure"] = np.maximum(worst_ratio(crit.flank_pressure, ref.flank_pressure[0]),
+                                 worst_ratio(crit.edge_pressure, edge_ref))
+    out["root_stress"] = worst_ratio(crit.root_stress, ref.root_stress[0])
+    return out
+
+
+def safety_factors(prob: "Problem", crit: LTCACriteria, reference: LTCACriteria) -> tuple[np.ndarray, np.ndarray]:
+    """S_H and S_F (C, T) of the weaker gear of each candidate at the spectrum torques: ISO 6336-2/-3
+    method B (:func:`gearmesh.rating.rating`, the pair's rating inputs, application factor 1) at the
+    objective speed, with K_Hβ and K_Hα from the candidate's LTCA loads and the unmodified pair's
+    (:func:`gearmesh.rating.ltca_load_factors`, K_Hα at least 1, as the rating stage)."""
+    from .rating import ltca_load_factors, rating, rating_inputs
+
+    s, geom = prob.settings, prob.geom
+    inputs = rating_inputs(dict(geom.pair.rating_inputs))
+    nc, nt = crit.load.shape[:2]
+    ref = np.broadcast_to(reference.load[0][None], crit.load.shape).reshape(nc * nt, *crit.load.shape[2:])
+    lf = ltca_load_factors(crit.load.reshape(nc * nt, *crit.load.shape[2:]), ref)
+    sh, sf = np.empty(nc * nt), np.empty(nc * nt)
+    for k in range(nc * nt):
+        r = rating(geom, s.objective_torques[k % nt], s.speed_rpm, inputs, method="ltca",
+                   ltca_factors={"K_Hbeta": float(lf["K_Hbeta"][k]), "K_Halpha": max(float(lf["K_Halpha"][k]), 1.0)})
+        sh[k], sf[k] = min(r.values["S_H"]), min(r.values["S_F"])
+    return sh.reshape(nc, nt), sf.reshape(nc, nt)
+
+
+def constraint_factors(s: OptimiseSettings) -> dict[str, float]:
+    """The constraints set, {criterion of :func:`_ratios` (S_H, S_F: S_min/S): factor (1 for S_min)}."""
+    given = {"lte": s.lte_factor, "line_load": s.line_load_factor, "dynamic": s.dynamic_factor,
+             "te_harmonics": s.harmonic_factor, "pressure": s.pressure_factor,
+             "root_stress": s.root_stress_factor, "force": s.impact_factor, "worst_force": s.worst_impact_factor,
+             "S_H": None if s.S_Hmin is None else 1.0, "S_F": None if s.S_Fmin is None else 1.0}
+    return {k: v for k, v in given.items() if v is not None}
 
 
 def _manufactured_rows(model: ImpactModel, tolerance: ToleranceModel, params: np.ndarray, deviations: np.ndarray):
@@ -674,7 +819,9 @@ class History:
     """Per generation g = 0..G (0 the initial population): ``genes`` (G+1, P, n) in µm / mm,
     ``objective`` (G+1, P) J, ``force`` (G+1, P) nominal F_s at the design torque, ``scenario``
     (G+1, P) there, ``failed`` (G+1, P), ``lte`` (G+1, P) (NaN unless
-    computed), ``evaluations`` (G+1,) distinct evaluations so far."""
+    computed), ``pareto`` (G+1, P, M) the NSGA-II objectives (M = 0 for the other methods),
+    ``violation`` (G+1, P) the summed relative constraint excess (0: meets every constraint; NaN
+    when failed), ``evaluations`` (G+1,) distinct evaluations so far."""
 
     genes: list = field(default_factory=list)
     objective: list = field(default_factory=list)
@@ -682,6 +829,8 @@ class History:
     scenario: list = field(default_factory=list)
     failed: list = field(default_factory=list)
     lte: list = field(default_factory=list)
+    pareto: list = field(default_factory=list)
+    violation: list = field(default_factory=list)
     evaluations: list = field(default_factory=list)
 
     def arrays(self) -> dict[str, np.ndarray]:
@@ -716,7 +865,9 @@ class _Evaluator:
             d = self.prob.settings.design_index
             for i, k in enumerate(new):
                 self.cache[keys[k]] = (float(ev.objective[i]), float(ev.force[i, 0, d]), int(ev.scenario[i, 0, d]),
-                                       bool(ev.failed[i]), float(ev.lte_peak_to_peak[i]))
+                                       bool(ev.failed[i]), float(ev.lte_peak_to_peak[i]),
+                                       () if ev.pareto is None else tuple(float(v) for v in ev.pareto[i]),
+                                       float(ev.violation[i]))
             self.count += len(new)
         return [self.cache[key] for key in keys]
 
@@ -726,10 +877,12 @@ class _Evaluator:
         values = np.asarray(values, dtype=float).reshape(-1, len(self.prob.genes))
         rows = self(values) if len(values) else []
         pad = (size or len(values)) - len(values)
-        rows += [(math.nan, math.nan, -1, False, math.nan)] * pad
+        m = len(self.prob.settings.pareto_objectives) if self.prob.settings.method == "nsga2" else 0
+        rows += [(math.nan, math.nan, -1, False, math.nan, (math.nan,) * m, math.nan)] * pad
         history.genes.append(np.vstack([values, np.full((pad, values.shape[1]), np.nan)]))
-        for name, k in (("objective", 0), ("force", 1), ("scenario", 2), ("failed", 3), ("lte", 4)):
+        for name, k in (("objective", 0), ("force", 1), ("scenario", 2), ("failed", 3), ("lte", 4), ("violation", 6)):
             getattr(history, name).append(np.array([r[k] for r in rows]))
+        history.pareto.append(np.array([r[5] for r in rows], dtype=float).reshape(len(rows), m))
         history.evaluations.append(self.count)
 
 
@@ -738,7 +891,7 @@ class OptimisationResult:
     """A run: its ``history``, the ``optimum`` genes (µm / mm) and parameters (2, 6) m, the
     evaluation of the optimum and of the standard gear, ``evaluations`` (distinct candidates),
     ``wall_s``; ``baseline`` the random search of the same budget (or None); ``pareto``
-    (genes (K, n), F_s (K,), LTE p-p (K,)) for NSGA-II; ``diagnostics`` the optimum's load
+    (genes (K, n), objectives (K, M) of ``settings.pareto_objectives``) for NSGA-II; ``diagnostics`` the optimum's load
     window, tolerance spread and scenarios (:func:`diagnose`)."""
 
     problem: Problem
@@ -750,7 +903,7 @@ class OptimisationResult:
     evaluations: int
     wall_s: float
     baseline: "OptimisationResult | None" = None
-    pareto: tuple[np.ndarray, np.ndarray, np.ndarray] | None = None
+    pareto: tuple[np.ndarray, np.ndarray] | None = None
     diagnostics: Diagnostics | None = None
 
 
@@ -807,7 +960,7 @@ def _run_pygad(prob: Problem) -> OptimisationResult:
     def fitness_func(ga, solutions, indices):  # noqa: ARG001 (pygad's three-argument form)
         rows = ev(solutions)
         if nsga2:
-            return [[-r[0], -r[4]] for r in rows]
+            return [[-v for v in r[5]] for r in rows]
         return [-r[0] for r in rows]
 
     def on_generation(ga):
@@ -848,11 +1001,11 @@ def _finish(prob: Problem, method: str, history: History, ev: _Evaluator, wall: 
         _, first = np.unique(genes, axis=0, return_index=True)
         order = np.sort(first)
         ok = order[~failed[order]]
-        pts = np.column_stack([obj[ok], h["lte"].reshape(-1)[ok]])
-        keep = ok[pareto_mask(pts)]
+        pts = h["pareto"].reshape(-1, h["pareto"].shape[-1])
+        keep = ok[pareto_mask(pts[ok])]
         keep = keep[np.argsort(obj[keep], kind="stable")]
-        pareto = (genes[keep], obj[keep], h["lte"].reshape(-1)[keep])
-        best = int(keep[0])  # the front's member of least F_s
+        pareto = (genes[keep], pts[keep])
+        best = int(keep[0])  # the front's member of least J (penalties included: a feasible one when any is)
     else:
         best = int(np.nanargmin(obj))  # first occurrence
     optimum_genes = genes[best]

@@ -268,6 +268,30 @@ class Constraints:
                                                    "unmodified pair's (null: free)", exclusive_minimum=0)
     dynamic_factor: float | None = setting(None, "dynamic factor at every torque at most this times the unmodified "
                                                  "pair's (null: free)", exclusive_minimum=0)
+    harmonic_factor: float | None = setting(
+        None, "amplitude of each loaded-TE mesh order of harmonic_orders at every spectrum torque at most this times the "
+        "unmodified pair's (null: free)", exclusive_minimum=0)
+    harmonic_orders: tuple[int, ...] = setting((1, 2), "the loaded-TE mesh orders of harmonic_factor (and of NSGA-II's "
+                                                 "te_harmonics)", minimum=1, maximum=3, min_items=1, max_items=3,
+                                         unique=True)
+    pressure_factor: float | None = setting(
+        None, "largest contact pressure at every spectrum torque at most this times the unmodified pair's, flank "
+        "against flank and tip edge against tip edge (null: free)", exclusive_minimum=0)
+    root_stress_factor: float | None = setting(
+        None, "largest tooth-root stress of either gear at every spectrum torque at most this times the unmodified "
+        "pair's (null: free)", exclusive_minimum=0)
+    impact_factor: float | None = setting(None, "nominal impact force F_s at every spectrum torque at most this times "
+                                               "the unmodified pair's (null: free)", exclusive_minimum=0)
+    worst_impact_factor: float | None = setting(
+        None, "the worst nominal F_s over the spectrum torques at most this times the unmodified pair's worst "
+        "(null: free)", exclusive_minimum=0)
+    S_Hmin: float | None = setting(
+        None, "ISO 6336-2 safety factor against pitting of the weaker gear at every spectrum torque at least this "
+        "(method B at speed_rpm, K_Hbeta and K_Halpha from the candidate's LTCA; null: free)", exclusive_minimum=0,
+        maximum=10)
+    S_Fmin: float | None = setting(
+        None, "ISO 6336-3 safety factor against tooth breakage of the weaker gear at every spectrum torque at least "
+        "this (as S_Hmin; null: free)", exclusive_minimum=0, maximum=10)
     penalty: float = setting(10, "weight of a violated constraint", exclusive_minimum=0)
 
 
@@ -281,9 +305,9 @@ class Optimise:
 
     STAGES: ClassVar = ("gearmesh.datasets.optimise:run_settings",)
     method: Literal["ga", "random", "nsga2"] = setting("ga", "genetic algorithm (pygad), random search of the same "
-                                                             "budget, or NSGA-II (F_s against LTE peak-to-peak)")
+                                                             "budget, or NSGA-II (the objective against pareto_objectives)")
     objective: Literal["force", "velocity", "robust", "dynamic"] = setting(
-        "force", "per torque and manufactured sample: force F_s or velocity |v_n| of the impact; robust: F_s, needing "
+        "robust", "per torque and manufactured sample: force F_s or velocity |v_n| of the impact; robust: F_s, needing "
         "a load spectrum or tolerance samples; dynamic: the dynamic factor (peak over static mesh force) of the "
         "contact-driven 8-DOF pair over dynamic_speeds_rpm and the resonances within their range")
     population: int = setting(40, "candidates per generation", minimum=4, maximum=10000)
@@ -301,7 +325,8 @@ class Optimise:
     weights: tuple[float, ...] | None = setting(None, "time shares of torques_Nm for statistic mean (null: equal "
                                                       "shares)", minimum=0)
     tolerance_statistic: Literal["max", "mean", "percentile", "cvar"] | None = setting(
-        None, "over the nominal and the study's tolerance samples (tolerances section); null: the nominal alone")
+        "max", "over the nominal and the study's tolerance samples (tolerances section); null: the nominal alone "
+        "(a single-point optimum when the spectrum is one torque)")
     tolerance_level_percent: float = setting(90, "level of percentile and cvar (cvar below 100)", minimum=0,
                                              maximum=100)
     load_window_step_Nm: float = setting(50, "torque grid of each optimum's load window (finer than torques_Nm), up "
@@ -320,6 +345,10 @@ class Optimise:
     fixed: dict[str, float] = setting({}, "{pair-file modification key: value} in µm / mm: parameters held fixed "
                                           "instead of optimised", minimum=0)
     constraints: Constraints = setting(Constraints(), "")
+    pareto_objectives: tuple[Literal["impact", "lte", "te_harmonics", "pressure", "root_stress"], ...] = setting(
+        ("impact", "lte"), "method nsga2: the objectives traded, the first 'impact' (the objective J); lte the "
+        "peak-to-peak LTE at the design torque, the others the worst ratio to the unmodified pair's over the load "
+        "spectrum", min_items=2, max_items=5, unique=True)
     random_baseline: bool = setting(False, "also run the random search of the same budget (convergence plot)")
     mutation_probability: float = setting(0.3, "chance that a gene of an offspring mutates", exclusive_minimum=0,
                                           maximum=1)

@@ -55,7 +55,7 @@ from .gear import PairGeometry, tool_tip_radius
 
 __all__ = [
     "DEFAULT_TIP_EDGE_RADIUS_COEFFICIENT", "contact_modulus", "hertz_line_contact", "flank_relative_radius",
-    "edge_relative_radius", "check_edge_radius", "RootForm", "virtual_gear", "root_form_factors",
+    "edge_relative_radius", "pair_edge_radius", "check_edge_radius", "RootForm", "virtual_gear", "root_form_factors",
     "outer_single_contact_diameter", "gear_root_form", "virtual_load_diameter", "FilletStress", "fe_fillet_stress", "ContactStress", "contact_stress",
     "iso_root_stress_slices",
 ]
@@ -98,6 +98,12 @@ def edge_relative_radius(edge_radius: float, rho_mate, base_helix_angle: float):
     """Relative radius R (m) of a tip edge rounded to ``edge_radius`` (m) against the mating flank
     at roll length ``rho_mate`` (m): 1/R = 1/r_e + cos βb/ρ_mate (module docstring)."""
     return 1.0 / (1.0 / edge_radius + math.cos(base_helix_angle) / np.asarray(rho_mate, dtype=float))
+
+
+def pair_edge_radius(geom: PairGeometry) -> float | None:
+    """The pair file's tip-edge radius (m; rating input ``tip_edge_radius_mm``), None when not given."""
+    value = dict(geom.pair.rating_inputs).get("tip_edge_radius_mm")
+    return None if value is None else value * 1e-3
 
 
 def check_edge_radius(geom: PairGeometry, edge_radius: float | None) -> tuple[float, bool]:

@@ -27,13 +27,13 @@ from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
 from ..io import name_force_lines, variable
 from ..loads import check_load
-from ..ltca import loaded_pinion_torques, pinion_torques
-from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, gene_table, optimise,
-                        problem)
+from ..ltca import MESH_ORDERS, loaded_pinion_torques, pinion_torques
+from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, constraint_factors,
+                        evaluate, gene_table, optimise, problem)
 from ..surface import MODIFICATION_FIELDS
 from ..tolerance import study_tolerances
-from ..schema import check_arguments, defaults
-from ..settings import Impact, Optimise
+from ..schema import check_arguments, defaults, settings_fields
+from ..settings import Constraints, Impact, Optimise
 from .ltca import _geometry
 
 __all__ = ["optimise_dataset", "result_dataset", "optimum_pair", "optimise_summary", "run_settings", "run_problem",
@@ -59,17 +59,18 @@ def _window_top(geom, torques: tuple[float, ...]) -> float:
 
 
 @check_arguments(Optimise)
-def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", population: int = 40,
+def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", population: int = 40,
                  generations: int = 30, seed: int = 0, torque_Nm: float = 1000.0, on: str = "pinion",
                  speed_rpm: float = 5000.0, torques_Nm=None, statistic: str = "max",
-                 weights=None, tolerance_statistic: str | None = None, tolerance_level_percent: float = 90.0,
+                 weights=None, tolerance_statistic: str | None = "max", tolerance_level_percent: float = 90.0,
                  load_window_step_Nm: float = 50.0, modify=("pinion",), bounds: Mapping[str, Any] | None = None,
                  fixed: Mapping[str, Any] | None = None, constraints: Mapping[str, Any] | None = None,
                  random_baseline: bool = False, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
                  keep_elitism: int = 2, points: int | None = None, window_positions: int | None = None,
                  face_samples: int | None = None, cycle_positions: int = 32, contact_law: str | None = None,
                  corner_extension: float | None = None, impact: Mapping[str, Any] | None = None,
-                 tolerances: Mapping[str, Any] | None = None, dynamic_speeds_rpm=None, backlash_um="pair"):
+                 tolerances: Mapping[str, Any] | None = None, dynamic_speeds_rpm=None, backlash_um="pair",
+                 pareto_objectives=("impact", "lte")):
     """Check one optimisation's settings (the config's ``optimise.NAME`` section, as keywords) for
     ``pair``: (geometry, settings, gene keywords, impact-model keywords, tolerance model). Torques
     are given on ``on`` (converted to the pinion); ``torques_Nm`` the load spectrum (None: the
@@ -89,11 +90,11 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
     geom = _geometry(pair)
     imp = {**defaults(Impact), **(impact or {})}  # the study's impact model, the declared defaults without one
     constraints = dict(constraints or {})
-    unknown = set(constraints) - {"lte_factor", "line_load_factor", "dynamic_factor", "penalty"}
+    known = [f.name for f in settings_fields(Constraints)]
+    unknown = set(constraints) - set(known)
     if unknown:
         key = sorted(unknown)[0]
-        raise GearmeshInputError(f"constraints.{key}", constraints[key],
-                                 "is not a constraint; use lte_factor, line_load_factor, dynamic_factor, penalty")
+        raise GearmeshInputError(f"constraints.{key}", constraints[key], f"is not a constraint; use {', '.join(known)}")
     if backlash_um == "pair":
         backlash = None
     elif isinstance(backlash_um, (int, float)) and not isinstance(backlash_um, bool):
@@ -119,7 +120,11 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "force", p
                               random_baseline=random_baseline,
                               energy_velocity=imp["energy_velocity"], load_window_step=step,
                               dynamic_speeds=dynamic_speeds_rpm, dynamic_factor=constraints.get("dynamic_factor"),
-                              backlash=backlash)
+                              backlash=backlash, harmonic_orders=constraints.get("harmonic_orders", (1, 2)),
+                              pareto_objectives=pareto_objectives,
+                              **{k: constraints.get(k) for k in ("harmonic_factor", "pressure_factor",
+                                                                 "root_stress_factor", "impact_factor",
+                                                                 "worst_impact_factor", "S_Hmin", "S_Fmin")})
     settings = replace(settings, load_window_top=_window_top(geom, settings.torques))
     if settings.tolerance_statistic is not None and not tol_model.dimensions:
         raise GearmeshInputError("tolerance_statistic", settings.tolerance_statistic,
@@ -235,6 +240,54 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
     if np.isfinite(h["lte"]).any():
         out[f"{prefix}lte_peak_to_peak"] = variable(gc, h["lte"], "m", f"{label}: peak-to-peak LTE at the design "
                                                                        "torque of each candidate")
+    if constraint_factors(result.problem.settings):
+        out[f"{prefix}violation"] = variable(gc, h["violation"], "1", f"{label}: summed relative excess of the "
+                                             "constraints of each candidate (0: meets every one; NaN: failed)")
+    names = result.problem.settings.pareto_objectives if h["pareto"].shape[-1] else ()
+    for k, name in enumerate(names):
+        if name in PARETO_RATIOS:
+            out[f"{prefix}{name}_ratio"] = variable(gc, h["pareto"][..., k], "1",
+                                                    f"{label}: {PARETO_RATIOS[name]} of each candidate")
+    return out
+
+
+#: The ratio objectives of NSGA-II in words (ga.nc long names).
+PARETO_RATIOS = {
+    "te_harmonics": "worst ratio of the loaded-TE mesh-order amplitudes (harmonic_orders) to the unmodified pair's over the "
+                    "load spectrum",
+    "pressure": "worst ratio of the peak contact pressure to the unmodified pair's over the load spectrum (flank to "
+                "flank, tip edge to tip edge)",
+    "root_stress": "worst ratio of the peak root stress to the unmodified pair's over the load spectrum",
+}
+
+
+def _pareto_variable(name: str, units: str, what: str) -> tuple[str, str, str]:
+    """(ga.nc name, units, long name) of NSGA-II objective ``name`` on the front."""
+    if name == "impact":
+        return "pareto_objective", units, f"objective J ({what}; penalties included)"
+    if name == "lte":
+        return "pareto_lte_peak_to_peak", "m", "peak-to-peak LTE at the design torque"
+    return f"pareto_{name}_ratio", "1", PARETO_RATIOS[name]
+
+
+def _criteria_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
+    """The optimum's and the standard gear's loaded contact at the spectrum torques (nominal gear)."""
+    opt, std = result.optimum_evaluation.criteria, result.problem.standard.criteria
+    if opt is None or std is None:
+        return {}
+    t, tk = ("objective_torque",), ("objective_torque", "mesh_order")
+    out = {}
+    for who, c in (("optimum", opt), ("standard", std)):
+        label = "optimum" if who == "optimum" else "standard gear"
+        out[f"{who}_lte_harmonics"] = variable(tk, c.te_harmonics[0], "m", f"{label}: amplitude of the loaded TE at "
+                                                                           "mesh orders 1-3 (nominal gear)")
+        if np.all(np.isfinite(c.root_stress)):
+            out[f"{who}_flank_pressure"] = variable(t, c.flank_pressure[0], "Pa", f"{label}: largest Hertzian contact "
+                                                    "pressure on the flanks over the mesh cycle (nominal gear)")
+            out[f"{who}_edge_pressure"] = variable(t, c.edge_pressure[0], "Pa", f"{label}: largest Hertzian contact "
+                                                   "pressure on the tip edges over the mesh cycle (nominal gear)")
+            out[f"{who}_root_stress"] = variable(t, c.root_stress[0], "Pa", f"{label}: largest tooth-root stress of "
+                                                 "either gear (ISO 6336-3 local form, nominal gear)")
     return out
 
 
@@ -343,13 +396,18 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
             "standard_max_line_load": variable((), float(std.max_line_load[0]), "N m-1",
                                                "standard gear: largest line load at the design torque"),
         })
+    data.update(_criteria_variables(result))
+    if constraint_factors(s):  # the unmodified pair as a candidate of this run: its J with the penalties
+        data["standard_penalised_objective"] = variable((), float(evaluate(prob, np.zeros((1, 2, 6))).objective[0]),
+                                                        units, f"standard gear as a candidate: {what} with the "
+                                                        "constraints' penalties")
     if result.pareto is not None:
-        pg, pf, pl = result.pareto
-        data.update({
-            "pareto_objective": variable(("front",), pf, "N", "Pareto front: F_s at the design torque and speed"),
-            "pareto_lte_peak_to_peak": variable(("front",), pl, "m", "Pareto front: peak-to-peak LTE at the design torque"),
-            "pareto_genes": variable(("front", "gene"), _si(result, pg), "m", "Pareto front: gene values"),
-        })
+        pg, po = result.pareto
+        data["pareto_genes"] = variable(("front", "gene"), _si(result, pg), "m", "Pareto front: gene values "
+                                        "(ordered by the objective J; the first is the optimum)")
+        for k, name in enumerate(s.pareto_objectives):
+            key, unit, long_name = _pareto_variable(name, units, what)
+            data[key] = variable(("front",), po[:, k], unit, f"Pareto front: {long_name}")
     coords = {
         "generation": variable(("generation",), np.arange(s.generations + 1), "1", "generation (0: initial population)"),
         "candidate": variable(("candidate",), np.arange(s.population), "1", "candidate in the generation"),
@@ -362,6 +420,7 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "parameter_symbol": variable(("parameter",), np.array(GENE_SYMBOLS), "1",
                                      "symbol of the parameter in the mesh-in impact paper (y1 to y6)"),
         "objective_torque": variable(t, np.array(s.objective_torques), "N m", "pinion torques of the load spectrum"),
+        "mesh_order": variable(("mesh_order",), np.array(MESH_ORDERS), "1", "harmonic of the mesh frequency"),
     }
     if result.diagnostics is not None:
         coords.update({
@@ -383,6 +442,8 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "lead_grade_iso1328": -1 if prob.tolerance.grade is None else prob.tolerance.grade,
         "population_size": s.population, "generations": s.generations,
         "failure_factor": "a failed candidate's objective is FAILURE_FACTOR x the standard gear's",
+        "pareto_objectives": ",".join(s.pareto_objectives) if s.method == "nsga2" else "",
+        "constraints": json.dumps(constraint_factors(s), sort_keys=True),
         "settings_json": json.dumps(dict(settings or {}), sort_keys=True, default=str),
     })
     return name_force_lines(ds, "transverse")

@@ -19,22 +19,15 @@ from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry, p
 from ..io import variable
 from . import variant_name
 from ..limits import check_contact_grid
-from ..ltca import LTCAResult, loaded_pinion_torques, ltca
+from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
 from ..rating import face_factor_root, ltca_load_factors, rating, rating_inputs
 from ..schema import check_arguments
 from ..settings import Rating
-from ..stress import ContactStress, contact_stress, iso_root_stress_slices
+from ..stress import ContactStress, contact_stress, iso_root_stress_slices, pair_edge_radius
 
 __all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "reference_ltca", "rating_summary",
            "rating_dataset", "load_capacity_table_dataset"]
 
-#: Mesh orders of the loaded-TE harmonics stored per torque.
-MESH_ORDERS = (1, 2, 3)
-
-
-def _edge_radius(geom: PairGeometry) -> float | None:
-    value = dict(geom.pair.rating_inputs).get("tip_edge_radius_mm")
-    return None if value is None else value * 1e-3
 
 
 def _unmodified(geom: PairGeometry) -> PairGeometry | None:
@@ -51,15 +44,13 @@ def load_capacity(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | N
     TE at mesh orders 1–3 (m). ``reference`` is the unmodified pair's LTCA (K_Hα; None: K_Hα = 1)."""
     g = res.grid
     w = res.line_load
-    contact = contact_stress(geom, w, g.region, g.rho_pinion, g.rho_gear, _edge_radius(geom))
+    contact = contact_stress(geom, w, g.region, g.rho_pinion, g.rho_gear, pair_edge_radius(geom))
     root = np.stack([iso_root_stress_slices(geom, 0, w, g.rho_pinion),
                      iso_root_stress_slices(geom, 1, w, g.rho_gear)], axis=-1)
     factors = ltca_load_factors(res.load, None if reference is None else reference.load)
     b_over_h = geom.face_width / max(float(geom.tip_radius[i] - geom.root_radius[i]) for i in (0, 1))
     k_fb = np.array([face_factor_root(k, b_over_h) for k in factors["K_Hbeta"]])
-    spec = np.fft.rfft(res.lte, axis=1)
-    n = res.lte.shape[1]
-    harm = 2.0 * np.abs(spec[:, list(MESH_ORDERS)]) / n
+    harm = lte_harmonics(res.lte)
     return {"contact": contact, "root": root, "K_Hbeta": factors["K_Hbeta"], "K_Fbeta": k_fb,
             "K_Halpha": factors["K_Halpha"], "te_harmonics": harm}
 

@@ -3,6 +3,7 @@ modification map δ(profile, face) on each flank it modifies, and NSGA-II's Pare
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import numpy as np
@@ -153,25 +154,64 @@ def plot_modification(ds: xr.Dataset, path: str | Path) -> Path:
     return _save(fig, path)
 
 
+#: NSGA-II's ratio objectives in words (their constraint limits are ga.nc's ``constraints`` under
+#: the same names).
+_PARETO_RATIOS = {"te_harmonics": "loaded-TE harmonics", "pressure": "peak contact pressure",
+                  "root_stress": "peak root stress"}
+
+
+def _pareto_axis(ds: xr.Dataset, name: str) -> tuple[str, str, float, float, str, float | None]:
+    """(front variable, history variable, scale, the standard gear's value, axis label, the
+    constraint's limit or None) of NSGA-II objective ``name``."""
+    if name == "lte":
+        limit = json.loads(ds.attrs.get("constraints", "{}")).get("lte")
+        std = float(ds["standard_lte_peak_to_peak"]) * UM
+        return ("pareto_lte_peak_to_peak", "lte_peak_to_peak", UM, std,
+                f"peak-to-peak LTE at {number(float(ds['design_torque']))} N m (µm)",
+                None if limit is None else limit * std)
+    label = _PARETO_RATIOS[name]
+    limit = json.loads(ds.attrs.get("constraints", "{}")).get(name)
+    return f"pareto_{name}_ratio", f"{name}_ratio", 1.0, 1.0, f"{label}: worst ratio to the standard gear's", limit
+
+
 def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
-    """NSGA-II: F_s against peak-to-peak LTE at the design torque for every evaluated candidate
-    (failed ones left out), the Pareto front and the standard gear."""
-    fig, ax = subplots(figsize=(6.5, 4.5))
+    """NSGA-II: the objective J (F_s with the constraints' penalties) against each other traded
+    objective (ga.nc attribute ``pareto_objectives``) for every evaluated candidate (failed ones
+    left out; those meeting every constraint in green), the Pareto front, the chosen design (the
+    front's least J), the standard gear (its J as a candidate of the run, penalties included,
+    when the run has constraints) and each constraint's limit."""
+    names = [n for n in ds.attrs.get("pareto_objectives", "impact,lte").split(",") if n != "impact"]
+    fig, axes = subplots(1, len(names), figsize=(4.6 * len(names) + 0.6, 4.8), squeeze=False)
     ok = ds["failed"].values == 0
-    f = ds["objective"].values[ok]
-    lte = ds["lte_peak_to_peak"].values[ok] * UM
-    ax.scatter(lte, f, s=6, color="0.7", label="evaluated candidates")
-    ax.plot(ds["pareto_lte_peak_to_peak"].values * UM, ds["pareto_objective"].values, "o-", color="tab:red",
-            ms=4, lw=1.2, label=f"Pareto front ({ds.sizes['front']} points)")
-    ax.plot([float(ds["standard_lte_peak_to_peak"]) * UM], [float(ds["standard_objective"])], "ks", ms=6,
-            label="standard (unmodified) gear")
-    ax.set_yscale("log")
-    plain_log_axis(ax)
-    ax.set_xlabel(f"peak-to-peak LTE at {number(float(ds['design_torque']))} N m (µm)")
-    ax.set_ylabel(f"mesh-in impact force F_s at {number(float(ds['speed']))} rpm (N)")
-    ax.grid(alpha=0.3, which="both")
-    ax.legend(fontsize=7)
-    ax.set_title(_title(ds, "NSGA-II: impact force against LTE"), fontsize=9)
+    feasible = ok & (ds["violation"].values == 0) if "violation" in ds else np.zeros_like(ok)
+    f = ds["objective"].values
+    front_f = ds["pareto_objective"].values
+    std_j = float(ds["standard_penalised_objective"] if "standard_penalised_objective" in ds
+                  else ds["standard_objective"])
+    for ax, name in zip(axes[0], names):
+        front_var, hist_var, scale, standard, label, limit = _pareto_axis(ds, name)
+        x_all = ds[hist_var].values * scale
+        ax.scatter(x_all[ok & ~feasible], f[ok & ~feasible], s=6, color="0.7", label="evaluated candidates")
+        if feasible.any():
+            ax.scatter(x_all[feasible], f[feasible], s=10, color="tab:green", label="meets every constraint")
+        x = ds[front_var].values * scale
+        ax.plot(x, front_f, "o", color="tab:red", ms=4, label=f"Pareto front ({ds.sizes['front']} points)")
+        ax.plot([x[0]], [front_f[0]], "*", color="tab:blue", ms=13, mec="k", label="chosen design (least J)")
+        ax.plot([standard], [std_j], "ks", ms=6, label="standard (unmodified) gear")
+        ax.axvline(standard, color="k", lw=0.6, ls="--")
+        if limit is not None:
+            ax.axvline(limit, color="tab:red", lw=0.8, ls=":", label="constraint limit")
+        ax.set_yscale("log")
+        plain_log_axis(ax)
+        ax.set_xlabel(label, fontsize=8)
+        ax.set_ylabel(f"objective J at {number(float(ds['speed']))} rpm ({ds['objective'].attrs.get('units', '')})")
+        ax.grid(alpha=0.3, which="both")
+    axes[0][0].legend(fontsize=7)
+    verdict = (f"{int(feasible.sum())} candidates meet every constraint" if feasible.any()
+               else "no evaluated candidate meets every constraint") if "violation" in ds else ""
+    fig.suptitle(_title(ds, "NSGA-II: the objective J against " + ", ".join(names)) + "\n"
+                 + "the front is non-dominated in all objectives together" + (f"; {verdict}" if verdict else ""),
+                 fontsize=9)
     return _save(fig, path)
 
 
