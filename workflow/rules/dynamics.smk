@@ -11,17 +11,14 @@ rule dynamics:
     figures: RMS against speed (DTE, x/y/z displacement and velocity, both gears), mesh-force spectra and, with the
     contact excitation, the mesh force and the entering pair's force over two mesh cycles."""
     input:
-        unpack(dynamics_inputs),
+        unpack(stage_inputs("dynamics")),
     output:
-        nc="results/{study}/{pair}/{variant}/dynamics.nc",
+        nc=stage_output("dynamics"),
         **dynamics_figure_outputs(),
     log:
         "logs/{study}/{pair}/{variant}/dynamics.log",
     params:
-        function=versioned_param("gearmesh.datasets.dynamics:dynamics_dataset"),
-        settings=lambda wildcards: {**config["dynamics"], "variant": wildcards.variant},
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.dynamics:dynamics_figures"),
+        **stage_params("dynamics"),
     conda:
         ENV
     script:
@@ -32,20 +29,15 @@ rule train_dynamics:
     """The 9-DOF three-gear train of seed 004 at its speed and load: both mesh forces, spectra, vibration (train.nc);
     figure: the mesh forces of both meshes, time series and spectrum."""
     input:
-        unpack(fe_tables("train_dynamics")),
-        pair=variant_source_pair,
-        stiffness="results/{study}/{pair}/stiffness.nc",
+        unpack(stage_inputs("train_dynamics")),
     output:
-        nc="results/{study}/{pair}/{variant}/train.nc",
+        nc=stage_output("train_dynamics"),
         spectrum=report_item("results/{study}/{pair}/{variant}/plots/train_spectrum.png", "train_spectrum", "Dynamics",
                              BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/train.log",
     params:
-        function=versioned_param("gearmesh.datasets.dynamics:train_dataset"),
-        settings=lambda wildcards: config["train_dynamics"],
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.dynamics:train_figures"),
+        **stage_params("train_dynamics"),
     conda:
         ENV
     script:
@@ -58,16 +50,14 @@ rule dynamics_comparison:
     input:
         dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
     output:
-        nc="results/{study}/dynamics_comparison.nc",
+        nc=stage_output("dynamics_comparison"),
         csv=report_item("results/{study}/dynamics_comparison.csv", "dynamics_comparison", "Dynamics", STUDY_TABLES),
         dynamics_comparison=report_item("results/{study}/plots/dynamics_comparison.png", "dynamics_comparison",
                                         "Dynamics", STUDY_TABLES),
     log:
         "logs/{study}/dynamics_comparison.log",
     params:
-        function=versioned_param("gearmesh.datasets.dynamics:dynamics_comparison_dataset"),
-        settings=lambda wildcards: config.get("dynamics_comparison", {}),
-        figures=versioned_param("gearmesh.plots.dynamics:dynamics_comparison_figures"),
+        **stage_params("dynamics_comparison"),
     conda:
         ENV
     script:

@@ -6,20 +6,16 @@ rule ltca:
     stiffness, pairs in contact, LTE at the start of engagement (ltca.nc); figures: TE and LTE against
     rotation, the loaded contact pattern on the pinion flank."""
     input:
-        unpack(fe_tables("ltca")),
-        pair=variant_source_pair,
+        unpack(stage_inputs("ltca")),
     output:
-        nc="results/{study}/{pair}/{variant}/ltca.nc",
+        nc=stage_output("ltca"),
         te_lte=report_item("results/{study}/{pair}/{variant}/plots/te_lte.png", "te_lte", "LTCA", BY_VARIANT),
         contact_pattern=report_item("results/{study}/{pair}/{variant}/plots/contact_pattern.png", "contact_pattern",
                                     "LTCA", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/ltca.log",
     params:
-        function=versioned_param("gearmesh.datasets.ltca:ltca_dataset"),
-        settings=lambda wildcards: config["ltca"],
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.ltca:ltca_figures"),
+        **stage_params("ltca"),
     conda:
         ENV
     script:
