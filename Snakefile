@@ -54,6 +54,7 @@ include: "workflow/rules/tca.smk"
 include: "workflow/rules/ltca.smk"
 include: "workflow/rules/impact.smk"
 include: "workflow/rules/rating.smk"
+include: "workflow/rules/signoff.smk"
 include: "workflow/rules/dynamics.smk"
 include: "workflow/rules/studies.smk"
 

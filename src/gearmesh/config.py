@@ -124,6 +124,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     if "dynamics" in config and dyn.get("excitation") == "ltca" and "ltca" not in config:
         raise GearmeshInputError("dynamics.excitation", "ltca", "needs an ltca section in the study")
     _check_impact(config.get("impact"))
+    _check_signoff(config, pairs)
     sweep = config.get("helix_sweep")
     if sweep and sweep["stop_deg"] < sweep["start_deg"]:
         raise GearmeshInputError("helix_sweep.stop_deg", sweep["stop_deg"],
@@ -247,6 +248,32 @@ def _check_impact(impact: Mapping[str, Any] | None) -> None:
     for k, t in enumerate(impact["simulate_torques_Nm"]):
         if not any(abs(v - t) <= 1e-9 * v for v in torques):
             raise GearmeshInputError(f"impact.simulate_torques_Nm[{k}]", t, f"must be one of impact.torques_Nm {torques}")
+
+
+def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> None:
+    """The sign-off table has what it reads: the ltca, rating and impact sections, its reference
+    among the variants, and every LTCA torque among the impact's (and the dynamics') torques."""
+    signoff = config.get("signoff")
+    if signoff is None:
+        return
+    for section in ("ltca", "rating", "impact"):
+        if section not in config:
+            raise GearmeshInputError("signoff", dict(signoff), f"needs a {section} section in the study")
+    variants = list(config.get("variants", {}))
+    if signoff["reference"] not in variants:
+        raise GearmeshInputError("signoff.reference", signoff["reference"], f"must be one of the variants {variants}")
+    ltca = config["ltca"]
+    for section in ("impact", "dynamics"):
+        sec = config.get(section)
+        if sec is None:
+            continue
+        torques = sec["torques_Nm"]
+        own = {"torques_Nm": torques if isinstance(torques, list) else [torques], "on": sec.get("on", "pinion")}
+        for name in config["pairs"]:
+            for t in ltca["torques_Nm"]:
+                if not _among(pinion_torque(pairs[name], t, ltca["on"]), pairs[name], own):
+                    raise GearmeshInputError(f"{section}.torques_Nm", torques, f"must include every LTCA torque "
+                                             f"({t} N m on the {ltca['on']}) for the sign-off table")
 
 
 def _among(t1: float, pair: GearPair, ltca: Mapping[str, Any]) -> bool:

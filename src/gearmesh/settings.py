@@ -479,6 +479,33 @@ class TrainDynamics(_Dynamics):
 
 
 @dataclass(frozen=True, kw_only=True)
+class Signoff:
+    """The sign-off table of every pair (signoff_table.nc): each variant beside the reference at
+    every LTCA torque (F_s, swept dynamic peak, loaded-TE orders, peak pressure, root stress, S_H,
+    S_F) and whether it meets these criteria against the reference. Needs the ltca, rating and
+    impact sections; the dynamic criterion needs a dynamics section."""
+
+    STAGES: ClassVar = ("gearmesh.datasets.signoff:signoff_table_dataset",)
+    reference: str = setting("standard", "the variant the others are held against (the unmodified pair)",
+                             pattern=r"^[A-Za-z0-9_]+$", max_length=NAME_LENGTH)
+    pressure_factor: float = setting(1.1, "peak contact pressure (flank or tip edge) at most this times the "
+                                          "reference's", exclusive_minimum=0)
+    root_stress_factor: float = setting(1.1, "peak tooth-root stress at most this times the reference's",
+                                        exclusive_minimum=0)
+    harmonic_orders: tuple[int, ...] = setting((1, 2), "mesh orders of the loaded-TE amplitudes held against the "
+                                                       "reference's", minimum=1, maximum=3, min_items=1,
+                                               max_items=3, unique=True)
+    harmonic_factor: float = setting(1.0, "loaded-TE amplitudes at harmonic_orders at most this times the "
+                                          "reference's", exclusive_minimum=0)
+    impact_factor: float = setting(1.0, "F_s (nominal, at the impact section's design speed) below this times "
+                                        "the reference's at every torque", exclusive_minimum=0)
+    worst_impact_factor: float = setting(0.5, "the worst F_s over the torques at most this times the reference's "
+                                              "worst", exclusive_minimum=0)
+    dynamic_factor: float = setting(1.0, "largest dynamic mesh force over the speed sweep at most this times the "
+                                         "reference's", exclusive_minimum=0)
+
+
+@dataclass(frozen=True, kw_only=True)
 class DynamicsComparison:
     """RMS changes between the study's pairs over their speed sweeps (dynamics_comparison.nc)."""
 
@@ -580,6 +607,7 @@ class Study:
     ltca: Ltca | None = setting(None, "", fill=False)
     rating: Rating | None = setting(None, "", fill=False)
     impact: Impact | None = setting(None, "", fill=False)
+    signoff: Signoff | None = setting(None, "", fill=False)
     optimise: dict[str, Optimise] | None = setting(
         None, "named optimisations {NAME: settings}; a variant {from: optimise.NAME} runs the later stages on the "
         "optimum", key_pattern=r"^[A-Za-z0-9_]+$", key_max_length=NAME_LENGTH, fill=False)

@@ -8,7 +8,6 @@ TE/LTE means the gear lags its conjugate position.
 
 from __future__ import annotations
 
-import json
 from typing import Sequence, Any
 
 import numpy as np
@@ -17,13 +16,13 @@ import xarray as xr
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
+from . import variant_name
 from ..io import name_force_lines, variable
 from ..limits import check_contact_grid
 from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..tca import TCAResult, check_lead_slope, check_modifications, tca
 from ..schema import check_arguments
 from ..settings import Ltca, Tca
-from ..upstream import WILDCARDS_ATTR
 
 UM = 1e-6
 
@@ -242,7 +241,7 @@ def lte_table_dataset(ltca: Sequence[xr.Dataset]) -> xr.Dataset:
     or flank-to-flank surface contact at the start of engagement), taken from the variants'
     ``ltca.nc`` as they are (the report's landing page quotes this table). The variants must
     share their torques."""
-    names = [json.loads(ds.attrs.get(WILDCARDS_ATTR, "{}")).get("variant", f"variant{k}") for k, ds in enumerate(ltca)]
+    names = [variant_name(ds, k) for k, ds in enumerate(ltca)]
     torque = ltca[0]["torque"].values
     for ds in ltca[1:]:
         if not np.array_equal(ds["torque"].values, torque):

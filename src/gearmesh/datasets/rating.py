@@ -17,6 +17,7 @@ import xarray as xr
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry, pair_notes
 from ..io import variable
+from . import variant_name
 from ..limits import check_contact_grid
 from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..rating import face_factor_root, ltca_load_factors, rating, rating_inputs
@@ -246,21 +247,10 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
     return ds
 
 
-def _variant_name(ds: xr.Dataset, k: int) -> str:
-    """The variant of a stage's dataset: its ``variant`` attribute, else the job's wildcards."""
-    import json
-
-    from ..upstream import WILDCARDS_ATTR
-
-    if "variant" in ds.attrs:
-        return str(ds.attrs["variant"])
-    return str(json.loads(ds.attrs.get(WILDCARDS_ATTR, "{}")).get("variant", f"variant{k}"))
-
-
 def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
     """The load capacity of every variant of a pair side by side (variant × torque): S_H and S_F of the
     weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear."""
-    names = [_variant_name(ds, k) for k, ds in enumerate(rating)]
+    names = [variant_name(ds, k) for k, ds in enumerate(rating)]
     torques = rating[0]["torque"].values
     for name, ds in zip(names, rating):
         if ds.sizes["torque"] != torques.size or not np.allclose(ds["torque"].values, torques, rtol=1e-12):

@@ -1,0 +1,184 @@
+"""The sign-off table: every micro-geometry variant of a pair beside the unmodified reference, per
+LTCA torque, on what an engineer signs a modification off by, and whether it meets the study's
+criteria (``signoff`` section; issue 27's item 3 by default).
+
+No physics here: every number is read from the variants' own results as they are:
+``impact.nc`` (F_s at the design speed, nominal and the worst tolerance sample; transverse),
+``ltca.nc`` (loaded-TE peak-to-peak and its mesh-order amplitudes; peak pressure on a flank),
+``rating.nc`` (peak contact pressure anywhere, peak root stress, S_H, S_F) and, where the study
+has a dynamics section, ``dynamics.nc`` (the largest dynamic mesh force over the speed sweep,
+normal, and the peak dynamic factor). The criteria compare each variant with the reference
+variant at the same torque:
+
+- peak contact pressure ≤ ``pressure_factor`` × the reference's (wherever it sits: a tip-edge
+  pressure of the reference counts, because edge contact is what a relief is for);
+- peak root stress of either gear ≤ ``root_stress_factor`` × the reference's;
+- loaded-TE amplitudes at ``harmonic_orders`` ≤ ``harmonic_factor`` × the reference's;
+- F_s (nominal) < ``impact_factor`` × the reference's, and the worst F_s over the torques
+  ≤ ``worst_impact_factor`` × the reference's worst;
+- the swept peak dynamic mesh force ≤ ``dynamic_factor`` × the reference's.
+"""
+
+from __future__ import annotations
+
+from typing import Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..errors import GearmeshInputError
+from ..io import variable
+from ..schema import check_arguments
+from ..settings import Signoff
+from . import variant_name
+
+__all__ = ["CRITERIA", "signoff_table_dataset"]
+
+#: Criterion flags: the reference itself, fails, meets (CF flag_values / flag_meanings).
+_FLAG_VALUES = np.array([-1, 0, 1], dtype=np.int8)
+_FLAG_MEANINGS = "reference fails meets"
+
+#: name -> what the criterion holds (the table's long names).
+CRITERIA = {
+    "meets_pressure": "peak contact pressure at most pressure_factor x the reference's",
+    "meets_root_stress": "peak root stress at most root_stress_factor x the reference's",
+    "meets_te_harmonics": "loaded-TE amplitudes at harmonic_orders at most harmonic_factor x the reference's",
+    "meets_impact": "F_s below impact_factor x the reference's at this torque",
+    "meets_worst_impact": "worst F_s over the torques at most worst_impact_factor x the reference's worst",
+    "meets_dynamics": "swept peak dynamic mesh force at most dynamic_factor x the reference's",
+}
+
+
+def _by_torque(values: np.ndarray, torques: np.ndarray, wanted: np.ndarray, field: str, name: str) -> np.ndarray:
+    """``values`` (torque first) at each of ``wanted`` (pinion torques, to 1e-9 relative)."""
+    out = []
+    for t in wanted:
+        k = np.flatnonzero(np.abs(torques - t) <= 1e-9 * t)
+        if not k.size:
+            raise GearmeshInputError(field, torques.tolist(), f"must include the LTCA torque {t:g} N m (pinion) for "
+                                     f"the sign-off table ({name})")
+        out.append(values[k[0]])
+    return np.array(out)
+
+
+def _flag(meets: np.ndarray, reference: int) -> np.ndarray:
+    """Criterion flags from booleans (variant first), the reference row marked as such."""
+    flags = np.where(meets, 1, 0).astype(np.int8)
+    flags[reference] = -1
+    return flags
+
+
+@check_arguments(Signoff)
+def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Dataset], rating: Sequence[xr.Dataset],
+                          dynamics: Sequence[xr.Dataset] = (), *, reference: str = "standard",
+                          pressure_factor: float = 1.1, root_stress_factor: float = 1.1,
+                          harmonic_orders: Sequence[int] = (1, 2), harmonic_factor: float = 1.0,
+                          impact_factor: float = 1.0, worst_impact_factor: float = 0.5,
+                          dynamic_factor: float = 1.0) -> xr.Dataset:
+    """Every variant beside ``reference`` at each LTCA torque (variant × torque) and the criteria
+    of the module docstring as flags (``reference``/``fails``/``meets``); ``meets_all`` holds
+    them together. The variants' datasets may come in any order; they must cover the same
+    variants (``dynamics`` may be empty: no dynamic criterion)."""
+    names = [variant_name(ds, k) for k, ds in enumerate(ltca)]
+    by = {}
+    for stage, datasets in (("impact", impact), ("rating", rating), ("dynamics", dynamics)):
+        by[stage] = {variant_name(ds, k): ds for k, ds in enumerate(datasets)}
+        if datasets and set(by[stage]) != set(names):
+            raise GearmeshInputError("variants", sorted(by[stage]), f"{stage} and ltca must cover the same variants "
+                                     f"({sorted(names)})")
+    if reference not in names:
+        raise GearmeshInputError("signoff.reference", reference, f"must be one of the study's variants {names}")
+    ref = names.index(reference)
+    torques = np.asarray(ltca[ref]["torque"].values, dtype=float)
+    orders = ltca[ref]["mesh_order"].values.tolist()
+    missing = [n for n in harmonic_orders if n not in orders]
+    if missing:
+        raise GearmeshInputError("signoff.harmonic_orders", list(harmonic_orders),
+                                 f"must be among the LTCA's mesh orders {orders}")
+    dims = ("variant", "torque")
+    cols: dict[str, list[np.ndarray]] = {k: [] for k in (
+        "fs", "fs_tol", "lte_pp", "harm", "p", "p_flank", "p_edge", "sigma_f", "S_H", "S_F", "dyn_peak", "kv_peak")}
+    for name, lt in zip(names, ltca):
+        if not np.allclose(lt["torque"].values, torques, rtol=1e-12):
+            raise GearmeshInputError("ltca.torques_Nm", lt["torque"].values.tolist(),
+                                     f"must be the same for every variant ({name})")
+        imp, rat = by["impact"][name], by["rating"][name]
+        t_imp = np.asarray(imp["torque"].values, dtype=float)  # pinion torques, as the LTCA's
+        speeds = np.asarray(imp["speed"].values, dtype=float)
+        design = float(imp.attrs["design_speed_rpm"])
+        j = int(np.argmin(np.abs(speeds - design)))
+        cols["fs"].append(_by_torque(imp["impact_force"].values[:, j], t_imp, torques, "impact.torques_Nm", name))
+        tol = imp["tolerance_impact_force"].values.max(axis=0) if "tolerance_impact_force" in imp \
+            else np.full(t_imp.size, np.nan)
+        cols["fs_tol"].append(_by_torque(tol, t_imp, torques, "impact.torques_Nm", name))
+        cols["lte_pp"].append(lt["lte_peak_to_peak"].values)
+        cols["harm"].append(lt["lte_harmonics"].values)
+        flank = np.where(lt["region"].values == 1, lt["contact_pressure"].values, np.nan)
+        cols["p_flank"].append(np.nanmax(flank.reshape(torques.size, -1), axis=1, initial=0.0))
+        cols["p"].append(rat["peak_contact_pressure"].values)
+        cols["p_edge"].append(rat["peak_contact_pressure_on_edge"].values)
+        cols["sigma_f"].append(rat["peak_root_stress"].values.max(axis=1))
+        cols["S_H"].append(rat["S_H"].values.min(axis=1))
+        cols["S_F"].append(rat["S_F"].values.min(axis=1))
+        if dynamics:
+            dyn = by["dynamics"][name]
+            t_dyn = np.asarray(dyn["pinion_torque"].values, dtype=float)
+            cols["dyn_peak"].append(_by_torque(dyn["mesh_force_max"].values.max(axis=1), t_dyn, torques,
+                                               "dynamics.torques_Nm", name))
+            cols["kv_peak"].append(_by_torque(dyn["dynamic_factor"].values.max(axis=1), t_dyn, torques,
+                                              "dynamics.torques_Nm", name))
+    c = {k: np.array(v) for k, v in cols.items()}
+    k_orders = [orders.index(n) for n in harmonic_orders]
+    harm = c["harm"][:, :, k_orders]
+    fs_worst = c["fs"].max(axis=1)
+    flags = {
+        "meets_pressure": c["p"] <= pressure_factor * c["p"][ref],
+        "meets_root_stress": c["sigma_f"] <= root_stress_factor * c["sigma_f"][ref],
+        "meets_te_harmonics": np.all(harm <= harmonic_factor * harm[ref], axis=2),
+        "meets_impact": c["fs"] < impact_factor * c["fs"][ref],
+        "meets_worst_impact": np.broadcast_to((fs_worst <= worst_impact_factor * fs_worst[ref])[:, None],
+                                              c["fs"].shape),
+    }
+    if dynamics:
+        flags["meets_dynamics"] = c["dyn_peak"] <= dynamic_factor * c["dyn_peak"][ref]
+    flags["meets_all"] = np.all(list(flags.values()), axis=0)
+    out = {
+        "impact_force": variable(dims, c["fs"], "N", f"mesh-in impact force F_s at the design speed, nominal gears",
+                                 force_line="transverse"),
+        "impact_force_tolerance_max": variable(dims, c["fs_tol"], "N", "largest F_s over the nominal and the "
+                                               "tolerance samples at the design speed", force_line="transverse"),
+        "lte_peak_to_peak": variable(dims, c["lte_pp"], "m", "peak-to-peak loaded transmission error",
+                                     engineering_units="µm"),
+    }
+    for k, n in enumerate(orders):
+        out[f"lte_order_{n}"] = variable(dims, c["harm"][:, :, k], "m", f"amplitude of the loaded transmission error "
+                                         f"at mesh order {n}", engineering_units="µm")
+    out |= {
+        "peak_contact_pressure": variable(dims, c["p"], "Pa", "largest Hertzian contact pressure over the mesh "
+                                          "cycle, flank or tip edge"),
+        "peak_contact_pressure_on_edge": variable(dims, c["p_edge"], "1", "1: the largest contact pressure sits on "
+                                                  "a tip edge, 0: on a flank"),
+        "peak_flank_pressure": variable(dims, c["p_flank"], "Pa", "largest Hertzian contact pressure on the flanks' "
+                                        "active zone (tip edges left out)"),
+        "peak_root_stress": variable(dims, c["sigma_f"], "Pa", "largest tooth-root stress of either gear "
+                                     "(ISO 6336-3 local form, slice by slice)"),
+        "S_H": variable(dims, c["S_H"], "1", "safety factor against pitting, weaker gear (ISO 6336-2)"),
+        "S_F": variable(dims, c["S_F"], "1", "safety factor against tooth breakage, weaker gear (ISO 6336-3)"),
+    }
+    if dynamics:
+        out["dynamic_mesh_force_peak"] = variable(dims, c["dyn_peak"], "N", "largest dynamic mesh force over the "
+                                                  "speed sweep", force_line="normal")
+        out["dynamic_factor_peak"] = variable(dims, c["kv_peak"], "1", "largest dynamic factor (peak over static "
+                                              "mesh force) over the speed sweep")
+    for key, meets in flags.items():
+        v = variable(dims, _flag(np.asarray(meets), ref), "1", CRITERIA.get(key, "every criterion met"))
+        v.attrs.update(flag_values=_FLAG_VALUES, flag_meanings=_FLAG_MEANINGS)
+        out[key] = v
+    ds = xr.Dataset(out, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+                                 "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
+    ds.attrs.update(reference=reference, pressure_factor=pressure_factor, root_stress_factor=root_stress_factor,
+                    harmonic_orders=np.array(harmonic_orders, dtype=np.int64), harmonic_factor=harmonic_factor,
+                    impact_factor=impact_factor, worst_impact_factor=worst_impact_factor,
+                    dynamic_factor=dynamic_factor,
+                    design_speed_rpm=float(by["impact"][reference].attrs["design_speed_rpm"]))
+    return ds

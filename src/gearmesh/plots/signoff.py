@@ -1,0 +1,77 @@
+"""The sign-off figure: each variant's sign-off quantities as ratios to the reference variant's at
+every torque, with each criterion's limit, drawn from signoff_table.nc."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .common import palette, plain_log_axis, save as _save, subplots
+
+__all__ = ["plot_signoff", "signoff_figures"]
+
+
+def _panels(table: xr.Dataset) -> list[tuple[str, str, float, str]]:
+    """(variable, what, limit factor, comparison) of each panel, those the table holds."""
+    a = table.attrs
+    panels = [("peak_contact_pressure", "peak contact pressure", a["pressure_factor"], "≤"),
+              ("peak_root_stress", "peak root stress", a["root_stress_factor"], "≤")]
+    panels += [(f"lte_order_{int(n)}", f"loaded TE, mesh order {int(n)}", a["harmonic_factor"], "≤")
+               for n in np.atleast_1d(a["harmonic_orders"])]
+    panels += [("impact_force", "mesh-in impact force F_s", a["impact_factor"], "<")]
+    if "dynamic_mesh_force_peak" in table:
+        panels += [("dynamic_mesh_force_peak", "swept peak dynamic mesh force", a["dynamic_factor"], "≤")]
+    return panels
+
+
+def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
+    """One panel per criterion: every variant's value over the reference's against torque, the
+    criterion's limit dashed, a failing point as a cross. The worst-case F_s criterion in the
+    F_s panel's title."""
+    ref = str(table.attrs["reference"])
+    panels = _panels(table)
+    ncol = 3
+    nrow = -(-len(panels) // ncol)
+    fig, axes = subplots(nrow, ncol, figsize=(4.3 * ncol, 3.4 * nrow), squeeze=False, layout="constrained")
+    torque = table["torque"].values
+    others = [v for v in table["variant"].values.tolist() if v != ref]
+    colors = palette(max(len(others), 1), "tab10", 0.0, 0.9)
+    flag_of = {"peak_contact_pressure": "meets_pressure", "peak_root_stress": "meets_root_stress",
+               "impact_force": "meets_impact", "dynamic_mesh_force_peak": "meets_dynamics"}
+    for ax, (name, what, limit, op) in zip(axes.flat, panels):
+        reference = table[name].sel(variant=ref).values
+        flag = flag_of.get(name, "meets_te_harmonics")
+        for color, variant in zip(colors, others):
+            ratio = table[name].sel(variant=variant).values / reference
+            # the table's flag; a TE order's own (the table's flag holds the orders together)
+            meets = table[flag].sel(variant=variant).values == 1 if flag != "meets_te_harmonics" \
+                else ratio <= limit
+            ax.plot(torque, ratio, "-", color=color, lw=1.2, label=variant)
+            ax.plot(torque[meets], ratio[meets], "o", color=color, ms=5)
+            ax.plot(torque[~meets], ratio[~meets], "x", color=color, ms=8, mew=2)
+        ax.axhline(limit, color="k", ls="--", lw=1)
+        ax.axhline(1.0, color="0.6", lw=0.8)
+        lo, hi = ax.get_ylim()
+        if lo > 0 and hi / lo > 4:  # a wide spread of ratios: logarithmic, plain tick labels
+            ax.set_yscale("log")
+            plain_log_axis(ax)
+        ax.set_title(f"{what}\n(limit {op} {limit:g} × {ref}'s)", fontsize=9)
+        ax.set_xlabel("pinion torque (N m)")
+        ax.set_ylabel(f"over {ref}'s")
+        ax.grid(alpha=0.3, which="both")
+    if "meets_worst_impact" in table:
+        worst = {v: int(table["meets_worst_impact"].sel(variant=v).values[0]) for v in others}
+        text = ", ".join(f"{v}: {'meets' if f == 1 else 'fails'}" for v, f in worst.items())
+        axes.flat[0].figure.suptitle(f"sign-off against {ref} (o meets, x fails); worst F_s over the torques at "
+                                     f"most {table.attrs['worst_impact_factor']:g} × {ref}'s: {text}", fontsize=9)
+    for ax in list(axes.flat)[len(panels):]:
+        ax.axis("off")
+    axes.flat[0].legend(fontsize=8)
+    return _save(fig, path)
+
+
+def signoff_figures(inputs, outputs) -> None:
+    """The figure of the ``signoff_table`` rule: output 'signoff' from the table it wrote."""
+    plot_signoff(inputs["signoff_table"], outputs["signoff"])

@@ -1,0 +1,31 @@
+# The sign-off table of a pair: every variant beside the reference variant at each LTCA torque, read
+# from the variants' impact, LTCA, rating and (where the study has them) dynamics results, and
+# whether each meets the study's signoff criteria. No physics here.
+
+if "signoff" in config:
+
+    rule signoff_table:
+        """F_s, swept dynamic peak, loaded-TE orders, peak pressure, root stress, S_H and S_F of every variant and
+        LTCA torque beside the reference, with the criteria met or failed (signoff_table.nc); figure: each quantity
+        over the reference's against torque, with the criterion's limit."""
+        localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
+        input:
+            impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
+            ltca=expand("results/{{study}}/{{pair}}/{variant}/ltca.nc", variant=VARIANTS),
+            rating=expand("results/{{study}}/{{pair}}/{variant}/rating.nc", variant=VARIANTS),
+            dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS)
+            if "dynamics" in config else [],
+        output:
+            nc="results/{study}/{pair}/signoff_table.nc",
+            csv=report_item("results/{study}/{pair}/signoff_table.csv", "signoff_table", "Sign-off", BY_PAIR),
+            signoff=report_item("results/{study}/{pair}/plots/signoff.png", "signoff", "Sign-off", BY_PAIR),
+        log:
+            "logs/{study}/{pair}/signoff_table.log",
+        params:
+            function=versioned_param("gearmesh.datasets.signoff:signoff_table_dataset"),
+            settings=lambda wildcards: config["signoff"],
+            figures=versioned_param("gearmesh.plots.signoff:signoff_figures"),
+        conda:
+            ENV
+        script:
+            "../scripts/collect.py"
