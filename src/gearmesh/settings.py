@@ -28,7 +28,7 @@ from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, P
 from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, MODULE_RANGE, NAME_PATTERN
 from .limits import MAX_LTCA_TORQUES
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
-from .stages import Read, Stage, ltca_drives, method_fe
+from .stages import Read, Stage, always, ltca_drives, method_fe, runs
 
 #: Names of studies and of the pairs a study uses: a folder of results/{study}/{pair}/, no path characters.
 NAME = r"^[A-Za-z0-9_-]+$"
@@ -485,7 +485,10 @@ class Signoff:
     S_F) and whether it meets these criteria against the reference. Needs the ltca, rating and
     impact sections; the dynamic criterion needs a dynamics section."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.signoff:signoff_table_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.signoff:signoff_table_dataset", "{pair}/signoff_table.nc", "pair",
+        reads=tuple(Read(s, when, every_variant=True) for s, when in (("impact", always), ("ltca", always),
+                                                                      ("rating", always), ("dynamics", runs("dynamics")))),
+        figures="gearmesh.plots.signoff:signoff_figures", pair_file=False)
     reference: str = setting("standard", "the variant the others are held against (the unmodified pair)",
                              pattern=r"^[A-Za-z0-9_]+$", max_length=NAME_LENGTH)
     pressure_factor: float = setting(1.1, "peak contact pressure (flank or tip edge) at most this times the "

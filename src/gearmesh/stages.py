@@ -50,6 +50,16 @@ def method_fe(of: str | None = None) -> When:
     return when
 
 
+def runs(other: str) -> When:
+    """Read when the study runs stage ``other`` (has its section)."""
+
+    def when(config: Mapping[str, Any], section: str) -> bool:
+        return other in config
+
+    when.__doc__ = f"the study runs {other}"
+    return when
+
+
 def ltca_drives(config: Mapping[str, Any], section: str) -> bool:
     """Read when the LTCA excites the dynamics (:func:`gearmesh.choices.pair_excitation`: the
     section's excitation, or ltca when the study runs the LTCA)."""
@@ -59,10 +69,12 @@ def ltca_drives(config: Mapping[str, Any], section: str) -> bool:
 @dataclass(frozen=True)
 class Read:
     """A result of stage ``stage`` that a stage reads (passed to its function under that name),
-    of the reading job's own pair (and variant), ``when`` the study config says so."""
+    of the reading job's own pair (and variant), or with ``every_variant`` the list of every
+    variant's of the pair (a table of the variants), ``when`` the study config says so."""
 
     stage: str
     when: When = always
+    every_variant: bool = False
 
 
 @dataclass(frozen=True)
@@ -73,7 +85,8 @@ class Stage:
     results, and ``figures`` (``module:name``) draws its pictures from the written file.
     ``carries``: other config sections the function takes whole (the impact stage's
     tolerances), on which its result therefore depends; ``variant_name``: the function also
-    takes the variant's name. ``wanted``: whether a study with this section gets the result
+    takes the variant's name; ``pair_file``: the job reads the pair file (not a table of
+    results). ``wanted``: whether a study with this section gets the result
     (default: whenever the section is in the config)."""
 
     function: str
@@ -83,6 +96,7 @@ class Stage:
     figures: str | None = None
     carries: tuple[str, ...] = ()
     variant_name: bool = False
+    pair_file: bool = True
     wanted: When | None = None
 
     @property

@@ -90,10 +90,17 @@ def stage_inputs(section):
     def inputs(wildcards):
         if stage.scope == "study":
             return {"pairs": [str(pair_path(config, n)) for n in config[section]["pairs"]]}
-        out = {"pair": variant_source_pair(wildcards) if stage.scope == "variant" else pair_file(wildcards)}
+        out = {}
+        if stage.pair_file:
+            out["pair"] = variant_source_pair(wildcards) if stage.scope == "variant" else pair_file(wildcards)
         for read in stage.reads:
-            if read.when(config, section):
-                out[read.stage] = stage_of(read.stage).path(**dict(wildcards.items()))
+            path = stage_of(read.stage).path
+            if not read.when(config, section):
+                continue
+            if read.every_variant:
+                out[read.stage] = [path(**{**dict(wildcards.items()), "variant": v}) for v in VARIANTS]
+            else:
+                out[read.stage] = path(**dict(wildcards.items()))
         return out
 
     return inputs
@@ -151,8 +158,6 @@ def all_targets():
         targets += [f"results/{STUDY}/{name}/impact_table.nc" for name in config["pairs"]]
     if "rating" in config:
         targets += [f"results/{STUDY}/{name}/load_capacity_table.nc" for name in config["pairs"]]
-    if "signoff" in config:
-        targets += [f"results/{STUDY}/{name}/signoff_table.nc" for name in config["pairs"]]
     for run, section in (config.get("optimise") or {}).items():
         if section["method"] == "nsga2":
             targets += [f"results/{STUDY}/{name}/optimise/{run}/plots/pareto.png" for name in config["pairs"]]
