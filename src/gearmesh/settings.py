@@ -25,8 +25,8 @@ import yaml
 
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
                       TOOTH_METHODS)
-from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, MODULE_RANGE, NAME_PATTERN
-from .limits import MAX_LTCA_TORQUES
+from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN
+from .limits import MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
 from .stages import Read, Stage, always, ltca_drives, method_fe, runs
 
@@ -41,8 +41,6 @@ ContactLaw = Literal[CONTACT_LAWS]
 #: What drives the 8-DOF pair (:mod:`gearmesh.dynamics`); how each speed reaches its steady state.
 PairExcitation = Literal[PAIR_EXCITATIONS]
 SteadyState = Literal["shooting", "transient"]
-#: Lead slope deviations (µm over the face width) the contact models take (:func:`gearmesh.tca.check_lead_slope`).
-LEAD_SLOPE_BOUNDS_UM = {"minimum": -1000, "maximum": 1000}
 
 _METHOD = ("slice model of the tooth compliance: traditional, improved or transition (hob fillet) potential-energy "
            "cantilever, or fe (2-D finite elements)")
@@ -72,7 +70,7 @@ def _points(default: int = 50, what: str = "") -> Any:
 
 
 def _lead_slope(what: str = "") -> Any:
-    return setting((0.0, 0.0), _LEAD + what, **LEAD_SLOPE_BOUNDS_UM)
+    return setting((0.0, 0.0), _LEAD + what, minimum=-MAX_LEAD_SLOPE_UM, maximum=MAX_LEAD_SLOPE_UM)
 
 
 def _contact_law(what: str = "") -> Any:
