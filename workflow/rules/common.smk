@@ -130,6 +130,20 @@ def stage_params(section):
     return out
 
 
+def every_variant(section):
+    """Input function of a table of a pair's variants: the result of stage ``section`` of every
+    variant of the job's pair (its path the stage's declaration)."""
+    path = stage_of(section).path
+    return lambda wildcards: [path(study=wildcards.study, pair=wildcards.pair, variant=v) for v in VARIANTS]
+
+
+def every_pair(section, variant="standard"):
+    """Input function of a study table: the result of stage ``section`` of every pair of the study
+    (of its ``variant`` for a stage of the variants)."""
+    path = stage_of(section).path
+    return lambda wildcards: [path(study=wildcards.study, pair=name, variant=variant) for name in config["pairs"]]
+
+
 def stage_targets():
     """The result of every stage the study runs (each job's figures come with its netCDF file):
     once per study, per pair, per variant of a pair or per optimisation run of a pair."""

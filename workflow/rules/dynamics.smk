@@ -48,7 +48,7 @@ rule dynamics_comparison:
     """RMS changes between the study's pairs (standard variant): DTE, lateral and axial vibration; and its figure."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
+        dynamics=every_pair("dynamics"),
     output:
         nc=stage_output("dynamics_comparison"),
         csv=report_item("results/{study}/dynamics_comparison.csv", "dynamics_comparison", "Dynamics", STUDY_TABLES),
@@ -73,8 +73,8 @@ if dynamics_contact() and "impact" in config:
         figure: the peak dynamic mesh force against speed, every variant on one axis, one panel per torque."""
         localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
-            impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
-            dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
+            impact=every_variant("impact"),
+            dynamics=every_variant("dynamics"),
         output:
             nc="results/{study}/{pair}/engagement_table.nc",
             csv=report_item("results/{study}/{pair}/engagement_table.csv", "engagement_table", "Dynamics", BY_PAIR),
@@ -96,7 +96,7 @@ else:
         """Peak dynamic mesh force against speed, every variant of a pair on one axis, one panel per torque."""
         localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
-            dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
+            dynamics=every_variant("dynamics"),
         output:
             dynamics_variants=report_item("results/{study}/{pair}/plots/dynamics_variants.png", "dynamics_variants",
                                           "Dynamics"),

@@ -33,7 +33,7 @@ rule impact_table:
     their load windows and tolerance spreads side by side (the robustness page)."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
+        impact=every_variant("impact"),
     output:
         nc="results/{study}/{pair}/impact_table.nc",
         csv=report_item("results/{study}/{pair}/impact_table.csv", "impact_table", "Impact", BY_PAIR),

@@ -36,7 +36,7 @@ rule plot_pareto:
     run with method nsga2 has one, and an output cannot depend on a wildcard's config)."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        ga="results/{study}/{pair}/optimise/{run}/ga.nc",
+        ga=stage_output("optimise"),
     output:
         pareto=report_item("results/{study}/{pair}/optimise/{run}/plots/pareto.png", "optimise_pareto",
                            "Optimisation", BY_RUN),

@@ -27,7 +27,7 @@ rule load_capacity_table:
     """S_H, S_F, peak contact pressure (flank or edge) and peak root stress of every variant and torque."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        rating=expand("results/{{study}}/{{pair}}/{variant}/rating.nc", variant=VARIANTS),
+        rating=every_variant("rating"),
     output:
         nc="results/{study}/{pair}/load_capacity_table.nc",
         csv=report_item("results/{study}/{pair}/load_capacity_table.csv", "load_capacity_table", "Load capacity",
