@@ -134,3 +134,48 @@ if __name__ == "__main__":
     for row in bench_default_sweep():
         print(json.dumps(row), flush=True)
     print(json.dumps(bench_dynamics()), flush=True)
+
+
+def bench_damping_search(repeats: int = 5) -> dict:
+    """``mesh_damping_search_24_models``: the mesh damper of the GA's models (the default pair's
+    contact-driven 8-DOF pair, 8 micro-geometries × the default study's 3 torques, the population
+    tables), each model's modes included (the GA's resonance band asks for them). Today's search
+    (:func:`gearmesh.dynamics.model._ray_damping_scale`, checked on the damped modes) against the
+    secant on the complex eigenvalues that was the only search at c61da5b (kept as the fallback,
+    :func:`gearmesh.dynamics.model._secant_damping_scale`), in one run; max_rel_diff of the dampers."""
+    from dataclasses import replace
+
+    from gearmesh.dynamics import model as dm
+    from gearmesh.dynamics.population import population_dynamics
+    from gearmesh.gear import load_pair, pair_geometry
+    from gearmesh.meshforce import tabulate
+
+    geom = pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml"))
+    pd = population_dynamics(geom, [400.0, 1000.0, 1600.0], np.arange(1000, 15001, 500.0), method="fe")
+    params = np.zeros((8, 2, 6))
+    params[:, :, 0] = np.random.default_rng(0).random((8, 2)) * 30e-6  # root/tip reliefs up to 30 µm
+    params[:, :, 2] = 2e-3
+    tables = [tabulate(pd.layout, g, pd.force_max, pd.approaches) for g in pd.layout.gaps(params, np.zeros((8, 2)))]
+    bare = [dm.pair_model(geom, float(t), None, contact=tb, backlash=pd.backlash, mesh_damping=0.0)
+            for tb in tables for t in pd.torques_out]
+    rb, inertia = geom.base_radius, geom.inertia
+
+    def today():
+        out = [dm._with_mesh_damping(m, None, pd.damping_ratio, rb, inertia) for m in bare]
+        return np.array([m.modes()["frequency_Hz"].size and m.damping[0] for m in out])
+
+    def before():
+        out = []
+        for m in bare:
+            c0 = np.array([2 * pd.damping_ratio * np.sqrt(m.meshes[0].k_mean * dm._equivalent_mass(m.cos_beta_b, rb, inertia))])
+            d = replace(m, damping=dm._secant_damping_scale(m, c0, pd.damping_ratio) * c0)
+            d.modes()
+            out.append(d.damping[0])
+        return np.array(out)
+
+    wall, cpu, new, _ = timed_calls(today, repeats)
+    bwall, bcpu, old, _ = timed_calls(before, repeats)
+    return {"name": "mesh_damping_search_24_models", "median_s": wall, "cpu_s": cpu,
+            "baseline": "secant on the complex eigenvalues (c61da5b)", "baseline_median_s": bwall,
+            "baseline_cpu_s": bcpu, "ratio": bwall / wall, "cpu_ratio": bcpu / cpu,
+            "max_rel_diff": float(np.max(np.abs(new / old - 1)))}

@@ -13,7 +13,7 @@ import math
 
 import numpy as np
 
-from bench_dynamics import bench_default_sweep, bench_dynamics
+from bench_dynamics import bench_damping_search, bench_default_sweep, bench_dynamics
 from bench_impact import bench_impact
 from bench_ltca import bench_ltca
 from bench_optimise import bench_dynamic_objective, bench_optimise
@@ -78,6 +78,7 @@ def bench_tvms(repeats: int) -> dict:
 
 BENCHMARKS = {"contact_lines": bench_contact_lines, "tvms": bench_tvms, "ltca": bench_ltca,
               "dynamics": bench_dynamics, "dynamics_default": lambda repeats: bench_default_sweep(min(repeats, 3)),
+              "damping_search": bench_damping_search,
               "impact": bench_impact,
               "optimise": lambda repeats: bench_optimise(min(repeats, 5)),
               "dynamic_objective": lambda repeats: bench_dynamic_objective(min(repeats, 3)),

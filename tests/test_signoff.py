@@ -18,7 +18,7 @@ from gearmesh.tables import table
 TORQUES = np.array([400.0, 1000.0, 1600.0])
 
 
-def _variant(name: str, scale: dict[str, float], torques=TORQUES, rng=np.random.default_rng(0)):
+def _variant(name: str, scale: dict[str, float], torques=TORQUES, edge: float = 9e9):
     """Minimal impact, ltca, rating and dynamics datasets of one variant: the reference's values
     times ``scale`` per quantity (the impact and dynamics grids hold more torques than the LTCA)."""
     s = lambda key: scale.get(key, 1.0)  # noqa: E731
@@ -32,9 +32,10 @@ def _variant(name: str, scale: dict[str, float], torques=TORQUES, rng=np.random.
                         coords={"torque": grid, "speed": [1000.0, 5000.0]},
                         attrs={"variant": name, "design_speed_rpm": 5000.0})
     region = np.ones((4, 2, 3), dtype=np.int8)
-    region[0, 0, 0] = 2  # a tip-edge point: its pressure stays out of the flank's peak
+    # a tip-edge point (edge > 0): its pressure stays out of the flank's peak
     pressure = np.broadcast_to(np.linspace(1e8, 5e8, 24).reshape(4, 2, 3), (n, 4, 2, 3)).copy() * s("p")
-    pressure[:, 0, 0, 0] = 9e9
+    pressure[:, 0, 0, 0] = edge
+    region[0, 0, 0] = 2 if edge else 1
     ltca = xr.Dataset({"lte_peak_to_peak": ("torque", np.array([1.0, 2.0, 3.0]) * 1e-6 * s("lte")),
                        "lte_harmonics": (("torque", "mesh_order"), np.outer([1.0, 2.0, 3.0],
                                                                              [s("h1"), s("h2"), s("h3")]) * 1e-7),
@@ -42,8 +43,9 @@ def _variant(name: str, scale: dict[str, float], torques=TORQUES, rng=np.random.
                        "contact_pressure": (("torque", "position", "line", "point"), pressure)},
                       coords={"torque": torques, "mesh_order": [1, 2, 3]},
                       attrs={"gearmesh_wildcards_json": json.dumps({"variant": name})})
-    rating = xr.Dataset({"peak_contact_pressure": ("torque", np.array([1e9, 2e9, 3e9]) * s("p")),
-                         "peak_contact_pressure_on_edge": ("torque", np.ones(n, dtype=np.int8)),
+    peak = pressure.reshape(n, -1).max(axis=1)
+    rating = xr.Dataset({"peak_contact_pressure": ("torque", peak),
+                         "peak_contact_pressure_on_edge": ("torque", (peak == edge).astype(np.int8)),
                          "peak_root_stress": (("torque", "gear"), np.outer([1e8, 2e8, 3e8], [1.0, 0.9]) * s("sf")),
                          "S_H": (("torque", "gear"), np.full((n, 2), 2.0) / s("sf")),
                          "S_F": (("torque", "gear"), np.full((n, 2), 4.0) / s("sf"))},
@@ -81,6 +83,22 @@ def test_numbers_are_the_variants_own_and_flags_follow_the_criteria():
     assert set(ds["meets_all"].sel(variant="standard").values.tolist()) == {-1}
     csv = table(ds)
     assert set(csv["meets_all"].loc["standard"]) == {"reference"} and set(csv["meets_all"].loc["better"]) == {"meets"}
+
+
+def test_pressure_is_held_like_against_like():
+    """A flank pressure 20 % up fails although the overall peak (the reference's tip edge) is far
+    higher; a variant's edge contact where the reference has none is held against its flank peak."""
+    ref = _variant("standard", {})
+    flank_up = _variant("flank_up", {"p": 1.2}, edge=1e9)
+    ds = _table([ref, flank_up])
+    assert (ds["peak_contact_pressure"].sel(variant="flank_up") < ds["peak_contact_pressure"].sel(variant="standard")).all()
+    np.testing.assert_allclose(ds["pressure_ratio"].sel(variant="flank_up").values, 1.2)
+    assert ds["meets_pressure"].sel(variant="flank_up").values.tolist() == [0, 0, 0]
+    clean = _variant("standard", {}, edge=0.0)
+    np.testing.assert_allclose(_table([clean, _variant("a", {}, edge=0.0)])["peak_edge_pressure"].values, 0.0)
+    ds = _table([clean, _variant("edgy", {}, edge=5.4e8)])  # the reference's flank peak is 5e8
+    np.testing.assert_allclose(ds["pressure_ratio"].sel(variant="edgy").values, 1.08)
+    assert ds["meets_pressure"].sel(variant="edgy").values.tolist() == [1, 1, 1]
 
 
 def test_worst_case_and_orders_and_factors_are_settings():

@@ -177,3 +177,36 @@ def test_rigid_radial_supports_in_the_dataset_are_zero_displacements():
         assert np.any(ds[name].sel(direction="z").values != 0), name
     assert "from the pair file" in ds.attrs["supports"] and "rigid" in ds.attrs["supports"]
     assert "mesh mode" in ds.attrs["damping_ratio_meaning"]
+
+
+@pytest.mark.parametrize("scale", [0.1, 1.0, 10.0, math.inf])
+def test_damping_search_by_the_determinant_lemma_matches_the_eigenvalue_secant(scale):
+    """The fast damper (a root on the ζ-ray, :func:`_ray_damping_scale`) against the secant on the
+    complex eigenvalues of the state matrix, supports scaled from soft to rigid: the same scale to
+    1e-8, and the damped model's mesh mode has the stated ζ."""
+    from dataclasses import replace
+
+    from gearmesh.dynamics import model as dm
+
+    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    sup = geom.pair.supports
+    kr, ka = np.mean(sup.radial(geom.pair.material.youngs_modulus)), np.mean(sup.axial())
+    bare = dm.pair_model(geom, 1000.0, np.full(64, 7e8), excitation="tvms", mesh_damping=0.0,
+                         bearing={"k_radial": float(kr * scale), "k_axial": float(ka * scale)})
+    c0 = np.array([2 * 0.07 * math.sqrt(7e8 * dm._equivalent_mass(bare.cos_beta_b, geom.base_radius, geom.inertia))])
+    s_ray, s_secant = dm._ray_damping_scale(bare, c0, 0.07), dm._secant_damping_scale(bare, c0, 0.07)
+    assert s_ray == pytest.approx(s_secant, rel=1e-8)
+    damped = replace(bare, damping=s_ray * c0)
+    assert damped.modes()["damping_ratio"][mesh_mode(damped)] == pytest.approx(0.07, rel=1e-9)
+
+
+def test_bearings_that_damp_the_mesh_mode_enough_leave_no_mesh_damper():
+    """Bearing dampers of 10⁵ N·s/m already damp the mesh mode beyond ζ = 0.02: the search falls back
+    to the eigenvalue secant, which returns no damper (not a negative one)."""
+    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    from gearmesh.dynamics import model as dm
+
+    model = dm.pair_model(geom, 1000.0, np.full(64, 3e8), excitation="tvms", damping_ratio=0.02,
+                          bearing={"c_radial": 1e5, "c_axial": 1e5})
+    assert model.damping[0] == 0.0
+    assert model.modes()["damping_ratio"][mesh_mode(model)] > 0.02
