@@ -9,10 +9,15 @@ and fill its defaults from; the argument checks of the stage functions
 reference of every key (``config/README.md``) and the pair-file schema for editors
 (:func:`pair_schema`, ``schemas/pair.schema.json``). ``gearmesh schema`` prints each.
 
-Each section names the stage function that takes its keys as keyword arguments
-(``STAGES``); the tests hold every key and default of a section equal to that function's
-parameters. Engineering units, the unit in the key name (``torque_Nm``, ``speed_rpm``).
-Reading a config imports no physics: this module needs :mod:`gearmesh.gear`'s limits only.
+A stage's section also declares the stage (``STAGE``, :class:`gearmesh.stages.Stage`): the
+function that takes its keys as keyword arguments (and its defaults from here, through
+:func:`gearmesh.schema.check_arguments`), the result it writes, the results it reads and the
+figures it draws; the workflow's rules, the study's targets and the upstream checks derive
+from it (:func:`stages`, docs/architecture.md "Each stage declared once"). Every bound is
+this module's or :mod:`gearmesh.limits`'s. Engineering units, the unit in the key name
+(``torque_Nm``, ``speed_rpm``).
+Reading a config imports no physics: this module needs the pair reader's constants
+(:mod:`gearmesh.gear`) and :mod:`gearmesh.limits` only.
 """
 
 from __future__ import annotations
