@@ -61,3 +61,31 @@ def test_the_fe_tables_are_read_when_the_method_is_fe():
     config = {"x": {"method": "fe"}, "other": {"method": "transition"}}
     assert [r.when(config, "x") for r in stage.reads] == [True, False]
     assert stage_of("optimise").reads[0].when({"impact": {"method": "fe"}}, "optimise")
+
+
+def test_every_stage_is_the_rule_of_its_name_writing_its_declared_file(monkeypatch):
+    """The rule of each declared stage (the default study's and a study with every section's
+    rule) writes the stage's file as its ``nc`` output and runs the stage's function: what
+    gearmesh.upstream compares (rule name = config section) holds by construction."""
+    pytest.importorskip("snakemake")
+    from pathlib import Path
+
+    from snakemake.api import SnakemakeApi
+    from snakemake.settings.types import OutputSettings, ResourceSettings
+
+    root = Path(__file__).resolve().parents[1]
+    monkeypatch.chdir(root)
+    with SnakemakeApi(OutputSettings(quiet=set())) as api:
+        workflow = api.workflow(resource_settings=ResourceSettings(cores=1), snakefile=Path("Snakefile"),
+                                workdir=Path("."))._workflow
+        rules = {rule.name: rule for rule in workflow.rules}
+    checked = 0
+    for section, stage in stages().items():
+        if section not in rules:
+            continue  # a stage the default study's Snakefile has no rule for (signoff without its section)
+        rule = rules[section]
+        written = re.sub(r"{(\w+),[^}]*}", r"{\1}", str(rule.output.get("nc")))  # without the constraints
+        assert written == stage.path(), section
+        assert rule.params.get("function").spec.partition("@")[0] == stage.function, section
+        checked += 1
+    assert checked >= 12
