@@ -416,7 +416,8 @@ _OWN_DEFAULTS = {
     ("optimise", "weights"): "comma-separated text, read by the command",
     ("optimise", "dynamic_speeds_rpm"): "comma-separated text, read by the command",
     ("optimise", "samples"): "--tolerance-samples 0: the nominal alone unless asked",
-    ("rating", "method"): "iso: the command rates one operating point by the standard, the LTCA's factors printed beside",
+    ("rating", "method"): "iso: the command rates one operating point by the standard, the LTCA's factors "
+                          "printed beside",
     ("rating", "speed_rpm"): "the speed of the gear --on, not the pinion's",
     ("stiffness", "torque_Nm"): "--torque-Nm of every command (one help; the load checked against the pair first)",
 }
@@ -445,7 +446,7 @@ def test_every_option_that_is_a_setting_is_made_from_its_declaration(command):
 
 
 #: What each command needs besides its pair file.
-_REQUIRED_OPTIONS = {"stiffness": [], "rating": ["--torque-Nm", "100", "--speed-rpm", "5000"], "ltca": ["--torque-Nm", "100"], "impact": ["--torque-Nm", "100", "--speed-rpm", "5000"],
+_REQUIRED_OPTIONS = {"stiffness": [], "ltca": ["--torque-Nm", "100"], "impact": ["--torque-Nm", "100", "--speed-rpm", "5000"],
                      "dynamics": ["--torque-Nm", "100", "--speeds", "1000"], "optimise": ["--torque-Nm", "1000"],
                      "rating": ["--torque-Nm", "100", "--speed-rpm", "5000"]}
 

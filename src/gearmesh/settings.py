@@ -489,8 +489,8 @@ class Signoff:
     impact sections; the dynamic criterion needs a dynamics section."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.signoff:signoff_table_dataset", "{pair}/signoff_table.nc", "pair",
-        reads=tuple(Read(s, when, every_variant=True) for s, when in (("impact", always), ("ltca", always),
-                                                                      ("rating", always), ("dynamics", runs("dynamics")))),
+        reads=tuple(Read(s, when, every_variant=True) for s, when in (
+            ("impact", always), ("ltca", always), ("rating", always), ("dynamics", runs("dynamics")))),
         figures="gearmesh.plots.signoff:signoff_figures", pair_file=False)
     reference: str = setting("standard", "the variant the others are held against (the unmodified pair)",
                              pattern=r"^[A-Za-z0-9_]+$", max_length=NAME_LENGTH)
@@ -544,8 +544,8 @@ class LowFluctuationDesign:
     """Integer-overlap-ratio designs of some pairs: the helix angle (forward and backward) or face
     width that makes the overlap ratio an integer (low_fluctuation_design.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:low_fluctuation_design_dataset", "low_fluctuation_design.nc", "study",
-)
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:low_fluctuation_design_dataset", "low_fluctuation_design.nc",
+                            "study")
     pairs: tuple[str, ...] = _pairs()
 
 

@@ -137,7 +137,8 @@ def check_lead_slope(lead_slope_um) -> tuple[float, float]:
         if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
             raise GearmeshInputError(f"lead_slope_um[{i}]", v, "must be a finite number (µm over the face width)")
         if abs(v) > MAX_LEAD_SLOPE_UM:
-            raise GearmeshInputError(f"lead_slope_um[{i}]", v, f"must lie within ±{MAX_LEAD_SLOPE_UM} µm over the face width")
+            raise GearmeshInputError(f"lead_slope_um[{i}]", v,
+                                     f"must lie within ±{MAX_LEAD_SLOPE_UM} µm over the face width")
         out.append(float(v))
     return out[0], out[1]
 
