@@ -3,7 +3,8 @@
 For the default study's pair at one torque: ISO's n_E1 and K_v(n) for perfect gears (and with a
 tip relief), the model's mesh-mode resonance and peak dynamic factor (maximum over static mesh
 force) over a speed sweep, with rigid supports, the pair file's and seed 001's, for the
-``contact`` and ``tvms`` excitations. Writes results/dynamics_iso/seed000_case.json and prints a
+``contact`` and ``tvms`` excitations; ``--web-thickness-mm`` states a gear body (its compliance in
+series, :mod:`gearmesh.body`). Writes results/dynamics_iso/seed000_case[_web<t>mm].json and prints a
 table. Run: ``python scripts/dynamics_iso.py`` (about 2 min on a quiet 2-core machine).
 """
 
@@ -27,11 +28,15 @@ SUPPORTS = {"rigid": {"bearing_radial_stiffness_N_per_um": "rigid", "bearing_axi
             "seed 001": {}}
 
 
-def _pair(name: str, supports: dict | None, relief_um: float):
+def _pair(name: str, supports: dict | None, relief_um: float, web_thickness_mm: float | None = None):
     pair = load_pair(example_pair(name))
-    if supports is not None:
-        data = {k: v for k, v in pair_to_dict(pair).items() if k not in SUPPORT_KEYS}
-        data.update(supports)
+    if supports is not None or web_thickness_mm is not None:
+        data = pair_to_dict(pair)
+        if supports is not None:
+            data = {k: v for k, v in data.items() if k not in SUPPORT_KEYS}
+            data.update(supports)
+        if web_thickness_mm is not None:
+            data["web_thickness_mm"] = web_thickness_mm
         pair = load_pair(data)
     if relief_um:
         pair = variant_pair(pair, "relief", {"modification": {"pinion": {"tip_relief_um": relief_um,
@@ -48,6 +53,8 @@ def main() -> None:
     ap.add_argument("--speeds", default="1000:12000:250", help="start:stop:step (r/min)")
     ap.add_argument("--relief-um", type=float, default=20.0)
     ap.add_argument("--out", default="results/dynamics_iso")
+    ap.add_argument("--web-thickness-mm", type=float, default=None,
+                    help="state a gear body (gearmesh.body; the face width: a solid disc held at the bore)")
     args = ap.parse_args()
     a, b, c = (float(v) for v in args.speeds.split(":"))
     speeds = np.arange(a, b + 0.5 * c, c)
@@ -64,7 +71,7 @@ def main() -> None:
     for label, sup in SUPPORTS.items():
         for exc in ("contact", "tvms"):
             for relief in ((0.0, args.relief_um) if exc == "contact" else (0.0,)):
-                pair = _pair(args.pair, sup, relief)
+                pair = _pair(args.pair, sup, relief, args.web_thickness_mm)
                 model = build_pair_model(pair, args.torque_Nm, "pinion", 60, excitation=exc)
                 md = model.modes()
                 i = mesh_mode(model)
@@ -88,7 +95,8 @@ def main() -> None:
     kv = np.array(out["iso"]["K_v_perfect"])
     print(f"ISO K_v perfect gears: max {kv.max():.3f}; with {args.relief_um:g} um tip relief: "
           f"max {max(out['iso'][f'K_v_tip_relief_{args.relief_um:g}um']):.3f}")
-    path = Path(args.out) / f"{args.pair}.json"
+    path = Path(args.out) / (f"{args.pair}.json" if args.web_thickness_mm is None
+                             else f"{args.pair}_web{args.web_thickness_mm:g}mm.json")
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(out, indent=1))
     print("wrote", path)

@@ -41,3 +41,60 @@ def test_tangent_compliance_is_the_laws_derivative(geom):
     assert contact_tangent_compliance(geom, t1) > 3 * hertz_compliance_transverse(geom)
     with pytest.raises(Exception):
         contact_tangent_compliance(geom, -1.0)
+
+
+def test_edge_tangent_is_the_ltcas_stiffness_beyond_the_active_zone(geom):
+    """The LTCA's tangent (the sum of every loaded point's tangent) against finite differences of two
+    solves at F and F(1 + 1e-6); the tip-edge part of it is positive, below the whole, and a 20 µm
+    tip relief over 3 mm takes most of it away (fewer tips reach the mating flank under load)."""
+    from gearmesh.ltca import edge_tangent_stiffness
+
+    res = ltca(geom, [1000.0], positions=32, points=50, method="transition")
+    k_edge = edge_tangent_stiffness(res)[0]
+    assert np.any(k_edge > 0) and np.all(k_edge >= 0) and np.all(k_edge < res.stiffness[0])
+    res2 = ltca(geom, [1000.0 * (1 + 1e-6)], positions=32, points=50, method="transition")
+    fd = (res2.force[0] - res.force[0]) / (res2.lte[0] - res.lte[0])
+    np.testing.assert_allclose(res.stiffness[0], fd, rtol=1e-4)
+    pair = load_pair(example_pair("seed000_case"))
+    relieved = pair_geometry(pair.with_changes(modification=tuple(_relief(m) for m in pair.modification)))
+    k_rel = edge_tangent_stiffness(ltca(relieved, [1000.0], positions=32, points=50, method="transition"))[0]
+    assert np.mean(k_rel) < 0.5 * np.mean(k_edge)
+
+
+def _relief(mod):
+    from dataclasses import replace
+
+    return replace(mod, tip_relief=20e-6, tip_relief_length=3e-3)
+
+
+def test_tvms_with_the_loaded_extension_is_the_ltcas_stiffness(geom):
+    """The linear TVMS (tangent contact term) plus the LTCA's tip-edge tangent at the same load is the
+    LTCA's tangent stiffness on the same rolls: mean within 0.5 %, every position within 3 %."""
+    from gearmesh.ltca import with_loaded_extension
+
+    t1 = 1000.0
+    K = mesh_stiffness(geom, n_positions=64, method="transition", components=False,
+                       contact_compliance=contact_tangent_compliance(geom, t1)).K
+    K_ext = with_loaded_extension(geom, K, t1, "transition")
+    k_l = ltca(geom, [t1], positions=64, points=50, method="transition").stiffness[0]
+    assert np.mean(K_ext) > 1.05 * np.mean(K)  # the unrelieved tips carry load beyond the zone
+    assert np.mean(K_ext) == pytest.approx(np.mean(k_l), rel=5e-3)
+    np.testing.assert_allclose(K_ext, k_l, rtol=3e-2)
+
+
+def test_tvms_and_contact_put_the_mesh_mode_within_3_percent():
+    """Issue 28's 'done when': the default pair at 1000 N·m, its own supports and rigid ones."""
+    from gearmesh.datasets.dynamics import build_pair_model
+    from gearmesh.dynamics import mesh_mode
+    from gearmesh.gear import pair_to_dict
+
+    data = pair_to_dict(load_pair(example_pair("seed000_case")))
+    rigid = {k: v for k, v in data.items() if k not in ("shaft_diameter_mm", "bearing_span_mm")}
+    rigid.update(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid")
+    for pair in (load_pair(data), load_pair(rigid)):
+        n = {}
+        for exc in ("tvms", "contact"):
+            m = build_pair_model(pair, 1000.0, "pinion", 60, excitation=exc, method="transition", slices=100,
+                                 positions=64)
+            n[exc] = m.modes()["frequency_Hz"][mesh_mode(m)]
+        assert n["tvms"] == pytest.approx(n["contact"], rel=0.03)

@@ -23,6 +23,7 @@ from .errors import GearmeshInputError
 from .limits import (MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPTH, MAX_INPUT_NODES,  # noqa: F401
                      MAX_MODIFICATION_TO_MODULE, MAX_TEETH, MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE)
 from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
+from .body import BODY_KEYS, Body, check_body, read_body
 from .supports import SUPPORT_KEYS, Supports, read_supports
 
 GEARS = ("pinion", "gear")
@@ -118,6 +119,7 @@ class GearPair:
     source: str = ""
     defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. DEFAULT_MATERIAL)
     supports: Supports = field(default_factory=lambda: read_supports({}))  # bearings and shafts (dynamics)
+    body: Body = field(default_factory=Body)  # gear-body webs and hubs (gearmesh.body)
     rating_inputs: tuple[tuple[str, Any], ...] = ()  # load-capacity inputs given ((name, value), ...), RATING_KEYS
 
     def with_changes(self, **changes: Any) -> "GearPair":
@@ -136,6 +138,7 @@ _PAIR_KEYS = {
     "modification", "helix_hand", "source",
     "tip_diameter_mm", "root_diameter_mm", "bore_diameter_mm", "basic_rack_profile",  # datasheet alternatives
     *SUPPORT_KEYS,  # the gearbox: bearings and shafts (gearmesh.supports)
+    *BODY_KEYS,  # the gear bodies' webs and hubs (gearmesh.body)
     "accuracy_grade", "roughness_um", "lubricant", "tip_edge_radius_mm",  # load capacity (gearmesh.rating)
 }
 #: Keys that say the same thing: at most one of each group may be given (_one_of).
@@ -366,6 +369,7 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         source=str(spec.get("source", source)),
         defaults=defaults,
         supports=read_supports(spec),
+        body=read_body(spec),
         rating_inputs=rating,
     )
     return _datasheet_diameters(pair, spec)
@@ -724,6 +728,7 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
             for gear, mod in zip(GEARS, pair.modification)
         }
     out.update(pair.supports.to_dict())
+    out.update(pair.body.to_dict())
     return out
 
 
@@ -1078,6 +1083,7 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
         raise GearmeshInputError("addendum_coefficient", [float(x) for x in ha],
                                  f"gives a transverse contact ratio eps_alpha = {eps_alpha:.4f} < 1: "
                                  "the mesh is not continuous")
+    check_body(pair.body, pair.face_width, pair.bore_radius, rf)
     b = min(pair.face_width)
     eps_beta = b * math.sin(beta) / (math.pi * mn)  # eq. 91
 

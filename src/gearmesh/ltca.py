@@ -72,6 +72,7 @@ from .supports import PALMGREN_LINE, PALMGREN_LINE_EXPONENT
 from .gear import PairGeometry, pinion_torque
 from .limits import positive_values
 from .loads import check_loads
+from .body import mesh_body_compliance
 from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
                         pair_slice_table, require_stiffness_data, slice_compliance_table)
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
@@ -81,7 +82,7 @@ from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, Can
 __all__ = [
     "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
     "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "load_sums",
-    "LTCAResult", "ltca",
+    "LTCAResult", "ltca", "contact_tangent_compliance", "edge_tangent_stiffness", "with_loaded_extension",
 ]
 
 # Palmgren's line-contact law (Palmgren 1959; Harris & Kotzalas 2007), mm·N^-0.9·mm^0.8: declared
@@ -144,6 +145,47 @@ def contact_tangent_compliance(geom: PairGeometry, pinion_torque: float) -> floa
     f = pinion_torque / float(geom.base_radius[0]) / (geom.face_width * geom.eps_alpha)
     law = contact_law(geom, 1.0)  # width 1 m: δ_t = coefficient · f^0.9
     return law.exponent * law.coefficient * f ** law.exponent / f
+
+
+def edge_tangent_stiffness(result: "LTCAResult") -> np.ndarray:
+    """Tangent stiffness (T, P) in N/m of the loaded tip-edge points beyond the active zone: the
+    loaded extension of contact (the unrelieved tips that touch under load before the start and
+    after the end of the active profile; Munro 1990, Velex & Maatar 1996). Each loaded point i of
+    :func:`solve_contact` has δ − g_i = c_i q_i + coef·q_i^m, so its tangent is
+    1/(c_i + coef·m·q_i^(m−1)); the LTCA's tangent ``stiffness`` is the sum over all loaded points,
+    this the sum over the tip-edge ones alone (teeth only: the bodies' series compliance,
+    :mod:`gearmesh.body`, is not in it)."""
+    model = result.model
+    law, g = model.law, model.grid
+    corner = (g.region == REGION_APPROACH_TIP) | (g.region == REGION_RECESS_TIP)
+    p = result.load.shape[1]
+    q = result.load
+    c = model.compliance[None, :p] + law.linear
+    with np.errstate(divide="ignore", invalid="ignore"):
+        slope = c + (law.coefficient * law.exponent * q ** (law.exponent - 1.0) if law.coefficient else 0.0)
+        k = np.where(corner[None, :p] & (q > 0), 1.0 / slope, 0.0)
+    return k.sum(axis=(2, 3))
+
+
+def with_loaded_extension(geom: PairGeometry, K: np.ndarray, pinion_torque: float, method: str = DEFAULT_TOOTH_METHOD,
+                          points: int = 50) -> np.ndarray:
+    """The linear TVMS ``K`` (N/m, evenly over one mesh cycle from roll 0, as
+    :func:`gearmesh.stiffness.mesh_stiffness`) with the loaded extension of contact added in
+    parallel with the teeth (inside the bodies' series compliance): the tip-edge tangent
+    stiffness (:func:`edge_tangent_stiffness`) of the LTCA at ``pinion_torque`` (N·m) on the same
+    rolls. The linear TVMS counts the active zone only; under load the unrelieved tips also touch
+    beyond it, and that contact is what the LTCA's tangent has and the TVMS lacks (issue 28: for
+    the default pair at 1000 N·m 77 of its 767 N/µm). So ``tvms``, ``ltca`` and ``contact`` are
+    one mesh stiffness at one load."""
+    K = np.asarray(K, dtype=float)
+    res = ltca(geom, [pinion_torque], positions=K.size, points=points, method=method)
+    k_edge = edge_tangent_stiffness(res)[0]
+    if not np.any(k_edge):
+        return K
+    if geom.pair.body.given:
+        c = mesh_body_compliance(geom)
+        return 1.0 / (1.0 / (1.0 / (1.0 / K - c) + k_edge) + c)
+    return K + k_edge
 
 
 # --------------------------------------------------------------------------------------
@@ -641,6 +683,9 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
                           "profile; raise corner_extension", RuntimeWarning, stacklevel=2)
             break
         extension = min(1.0, 2.0 * extension)  # the load reaches further than the candidates: widen
+    if geom.pair.body.given:  # the bodies bend under the total force, in series (gearmesh.body)
+        c_body = mesh_body_compliance(geom)
+        delta, k = delta + c_body * force[:, None], 1.0 / (1.0 / k + c_body)
     g = model.grid
     pp = g.gap.shape[0]
     pair_load = q.sum(axis=3)

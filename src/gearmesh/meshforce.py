@@ -61,6 +61,7 @@ import numpy as np
 from .choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry
+from .body import mesh_body_compliance
 from .ltca import ContactLaw, load_sums, ltca_model, point_compliance, solve_contact
 from .stiffness import SliceComplianceTable
 from .tca import REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point
@@ -294,13 +295,31 @@ def tabulate(layout: TableLayout, gap: np.ndarray, force_max: float,
     # the approach range: every row carries force_max
     _, delta_max, _, _ = solve_contact(gap, comp - law.linear, np.full(rows, float(force_max)), law)
     u_max = float(np.max(delta_max - gap_min))
+    geom = layout.geom
+    c_body = mesh_body_compliance(geom) if geom.pair.body.given else 0.0
     u = np.linspace(0.0, u_max, approaches)
     force, stiff, enter = load_sums(gap, comp, gap_min[:, None] + u[None, :], law, enter_mask)
-    geom = layout.geom
+    if c_body:
+        u, force, stiff, enter = _with_body(u, force, stiff, enter, c_body, float(force_max))
     _warn_reach(layout.grid, gap, gap_min[:, None] + u_max, layout.grid.extension, geom.path_of_contact)
     return MeshForceTable(pitch=layout.pitch, roll_engagement=layout.roll_engagement, window=layout.window,
                           roll=layout.roll, approach=u, gap_min=gap_min, force=force, stiffness=stiff,
                           enter_gap=enter_gap, enter_force=enter, force_max=float(force_max))
+
+
+def _with_body(u, force, stiff, enter, c_body: float, force_max: float):
+    """The table of the teeth (approach u (U,), force, tangent, entering pair's load (R, U)) with the
+    bodies' compliance ``c_body`` (m/N, :mod:`gearmesh.body`) in series: the bodies' approach is
+    u + c_body·F(u) (they bend under the total force), each row interpolated back onto a uniform grid
+    that still reaches ``force_max`` in every row; tangent 1/(1/k + c_body)."""
+    u_new = np.linspace(0.0, float(u[-1]) + c_body * force_max, u.size)
+    out = [np.empty((force.shape[0], u.size)) for _ in range(3)]
+    for r in range(force.shape[0]):
+        x = u + c_body * force[r]
+        out[0][r] = np.interp(u_new, x, force[r])
+        out[1][r] = np.interp(u_new, x, 1.0 / (1.0 / np.maximum(stiff[r], 1e-300) + c_body))
+        out[2][r] = np.interp(u_new, x, enter[r])
+    return u_new, out[0], out[1], out[2]
 
 
 def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFAULT_TABLE_POSITIONS,

@@ -475,7 +475,7 @@ class TrainDynamics(_Dynamics):
         min_items=1)
     mesh_frequency_Hz: float = setting(249.4, "mesh frequency when speeds_rpm is null", exclusive_minimum=0)
     excitation: Literal["tvms", "lste", "contact"] | None = setting(
-        None, "tvms (null): the slice stiffness; lste: e = F/K(t) as the low-fluctuation source does; contact: the "
+        None, "tvms (null): the slice stiffness with the tip-edge contact the LTCA loads beyond the active zone at the torque; lste: e = F/K(t) as the low-fluctuation source does; contact: the "
         "real tooth contact of the pair in both meshes")
     phase_offsets_cycles: tuple[float, float] = setting((0.0, 0.0), "mesh phase of each mesh, in mesh cycles",
                                                         units="mesh cycles")
@@ -776,6 +776,13 @@ class PairFile:
     bearing_span_mm: float | tuple[float, float] | None = setting(
         None, "distance between the two bearings of each shaft, one or [pinion, gear] (with shaft_diameter_mm)",
         exclusive_minimum=0)
+    web_thickness_mm: float | tuple[float, float] | None = setting(
+        None, "thickness of each gear body's web, one or [pinion, gear], at most the face width: the body's axial "
+        "bending under the helical load in series with the mesh (gearmesh.body; null with hub_diameter_mm null: "
+        "no body compliance; null alone: a solid disc)", exclusive_minimum=0)
+    hub_diameter_mm: float | tuple[float, float] | None = setting(
+        None, "diameter where each web meets its hub (held), one or [pinion, gear], from the bore up to below the "
+        "root circle (gearmesh.body; null: the bore)", exclusive_minimum=0)
     modification: PairModification | None = setting(None, "micro-geometry of each gear")
     accuracy_grade: int | None = setting(None, "ISO 1328-1 accuracy grade of the rating (null: 6)", minimum=1,
                                          maximum=12)

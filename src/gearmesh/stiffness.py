@@ -104,6 +104,7 @@ from typing import Callable, Mapping
 import numpy as np
 from numpy.polynomial.legendre import leggauss as _leggauss
 
+from .body import mesh_body_compliance
 from .contact import contact_length_breakpoints, contact_roll_positions, hand_sign, mesh_cycle_rolls, tooth_pair_indices
 from .choices import DEFAULT_TOOTH_METHOD, TOOTH_METHODS
 from .errors import GearmeshInputError
@@ -560,11 +561,12 @@ class MeshStiffness:
     K : (P,) total mesh stiffness (N/m) along the transverse line of action.
     pair_roll : (Q,) position (m) on the line of action of the mid-face contact of one
         tooth pair followed over its whole engagement (0 = mid-face at the SAP).
-    k_pair : (Q,) its stiffness (N/m); K(roll) = Σ_j k_pair(roll + j·p_bt).
+    k_pair : (Q,) its stiffness (N/m); K(roll) = Σ_j k_pair(roll + j·p_bt) (the teeth alone:
+        with the pair file's gear bodies K is 1/(1/Σ_j k_pair + c_body), :mod:`gearmesh.body`).
     components : series-equivalent stiffness (N/m) of each component at each roll: with
         U_x the strain energy stored in component x under the slice load sharing,
         1/K_x = 2U_x/F², so that 1/K = Σ_x 1/K_x exactly. Keys 'bending_pinion', …,
-        'fillet_gear', 'hertz'. Empty if not requested.
+        'fillet_gear', 'hertz' (and 'body' with the pair file's gear bodies). Empty if not requested.
     roll_breakpoints, K_breakpoints : K (N/m) also at the rolls (m) where a contact line
         end crosses a corner of the active zone (the kinks of K,
         :func:`gearmesh.contact.contact_length_breakpoints`), so that :attr:`min`,
@@ -694,6 +696,11 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
                 comps[name] = K**2 / row
     roll_bp = contact_length_breakpoints(geom)
     K_bp = _sum_slices(geom, pair_table, roll_bp, n_slices, pairs, rule, False)[0].sum(axis=1)
+    if geom.pair.body.given:  # the bodies' axial bending in series with the teeth (gearmesh.body)
+        c_body = mesh_body_compliance(geom)
+        K, K_bp = 1.0 / (1.0 / K + c_body), 1.0 / (1.0 / K_bp + c_body)
+        if components:
+            comps["body"] = np.full(K.shape, 1.0 / c_body)
     # one pair over its engagement: u = roll + j·p_bt, ordered by j then roll
     u = (roll[None, :] + pairs[:, None] * geom.transverse_base_pitch).ravel()
     kp = k_lines.T.ravel()

@@ -151,7 +151,10 @@ def _stiffness(key: str, value: Any) -> tuple[float, float]:
     return v, v
 
 
-def _length(key: str, value: Any) -> tuple[float, float]:
+def per_gear_length(key: str, value: Any) -> tuple[float, float]:
+    """One positive length (mm) or a [pinion, gear] pair of a pair-file key → (m, m); one
+    :class:`GearmeshInputError` naming the key (and index) otherwise (shafts here, gear bodies in
+    :mod:`gearmesh.body`)."""
     def one(name, v):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
             raise GearmeshInputError(name, v, "must be a positive length (mm)")
@@ -186,5 +189,5 @@ def read_supports(spec: Mapping[str, Any]) -> Supports:
                         _stiffness(SUPPORT_KEYS[1], d[SUPPORT_KEYS[1]]), defaulted=True)
     return Supports(_stiffness(SUPPORT_KEYS[0], given[SUPPORT_KEYS[0]]),
                     _stiffness(SUPPORT_KEYS[1], given[SUPPORT_KEYS[1]]),
-                    _length(SUPPORT_KEYS[2], given[SUPPORT_KEYS[2]]) if shaft else None,
-                    _length(SUPPORT_KEYS[3], given[SUPPORT_KEYS[3]]) if shaft else None)
+                    per_gear_length(SUPPORT_KEYS[2], given[SUPPORT_KEYS[2]]) if shaft else None,
+                    per_gear_length(SUPPORT_KEYS[3], given[SUPPORT_KEYS[3]]) if shaft else None)

@@ -41,7 +41,7 @@ from ..io import name_force_lines, variable
 from ..limits import (MAX_SPEED_STEPS, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS, check_slice_grid,
                       check_speeds, positive_values)
 from ..loads import check_load, check_loads
-from ..ltca import contact_tangent_compliance
+from ..ltca import contact_tangent_compliance, with_loaded_extension
 from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable,
                          mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
@@ -468,7 +468,9 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
     with the default table settings when not given); 'ltca' the loaded stiffness and equivalent
     error of the ``ltca`` dataset (:func:`ltca_excitation`, the variant's micro-geometry
     included); 'tvms' / 'lste' the slice stiffness (``stiffness`` dataset or computed) with
-    ``transmission_error_um`` (or none).
+    ``transmission_error_um`` (or none), 'tvms' with the loaded extension of contact beyond the
+    active zone at the torque (:func:`gearmesh.ltca.with_loaded_extension`; 'lste' is seed 001's
+    literal form without it).
     """
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
@@ -496,6 +498,8 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
         K, te = ltca_excitation(geom, ltca, pinion_torque(pair, t_out, "gear"))
     else:
         K = _stiffness_curve(geom, stiffness, method, slices, positions, pinion_torque(pair, t_out, "gear"))
+        if exc == "tvms":  # the loaded extension of contact beyond the active zone (one stiffness at one load)
+            K = with_loaded_extension(geom, K, pinion_torque(pair, t_out, "gear"), method)
         te = _transmission_error(transmission_error_um)
     return pair_model(geom, t_out, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                                          bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
@@ -734,8 +738,8 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
         once for all torques from ``method``, ``contact_law``, ``points``, ``lead_slope_um``,
         ``table_positions``, ``table_approaches`` and ``table_force_factor`` × the largest static
         force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error at each torque),
-        'tvms' (the slice stiffness with ``transmission_error_um`` or none), 'lste' (seed 001
-        literal); null: 'ltca' with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
+        'tvms' (the slice stiffness with ``transmission_error_um`` or none, plus the tip-edge contact
+        the LTCA loads beyond the active zone at the torque), 'lste' (seed 001 literal); null: 'ltca' with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
     method, slices, positions : slice model (and the TVMS grid when no upstream ``stiffness``).
     sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
         the record window) and spectra (to ``max_order`` mesh orders) are kept.

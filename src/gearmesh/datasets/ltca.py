@@ -22,6 +22,7 @@ from ..limits import check_contact_grid
 from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..tca import TCAResult, check_lead_slope, check_modifications, tca
 from ..schema import check_arguments
+from ..body import describe_body
 from ..settings import Ltca, Tca
 
 UM = 1e-6
@@ -180,6 +181,7 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
     ds = xr.Dataset(data_vars=data, coords=coords)
     ds.attrs.update({
         "contact_law": res.model.law.name, "tooth_model": res.model.method, "torque_on": on,
+        "gear_body": describe_body(geom),
         "slice_coupling": "independent slices (Smith slice theory, as the stiffness stage)",
         "displacement_convention": ("transverse along the line of action, r_b1 * dphi_1 with the gear held; "
                                     "normal depths divided by cos(beta_b)"),

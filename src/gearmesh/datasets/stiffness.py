@@ -16,6 +16,7 @@ from ..gear import pinion_torque as gear_pinion_torque
 from ..io import variable
 from ..limits import check_slice_grid
 from ..loads import check_load
+from ..body import describe_body
 from ..ltca import contact_tangent_compliance
 from ..stiffness import (
     DEFAULT_RULE,
@@ -117,7 +118,7 @@ def stiffness_dataset(pair: GearPair, *, method: str, slices: int, positions: in
         "harmonic": variable(("harmonic",), np.arange(1, fourier_order + 1), "1", "harmonic of the mesh frequency"),
     })
     ds.attrs.update({"tooth_model": method, "slices": slices, "slice_rule": result.rule, "fourier_order": fourier_order,
-                     "contact_term": CONTACT_TERM_NOTE[t1 is not None]})
+                     "contact_term": CONTACT_TERM_NOTE[t1 is not None], "gear_body": describe_body(geom)})
     return ds
 
 
