@@ -196,7 +196,8 @@ def test_dataset_is_documented(root, tmp_path):
     from gearmesh.datasets.impact import impact_dataset, impact_table_dataset
 
     pair = load_pair(root / ROOT_PAIR)
-    ds = impact_dataset(pair, [400, 1000], [2500, 5000], points=16, simulate_torques_Nm=[1000], variant="standard")
+    ds = impact_dataset(pair, torques_Nm=[400, 1000], speeds_rpm=[2500, 5000], points=16, simulate_torques_Nm=[1000],
+                        variant="standard")
     add_provenance(ds, {"test": True}, "", "test")
     write_dataset(ds, tmp_path / "impact.nc")
     assert set(ds["scenario"].values) == {2}

@@ -20,14 +20,13 @@ from gearmesh import gear
 from gearmesh.config import validate_study
 from gearmesh.errors import GearmeshInputError
 from gearmesh.pipeline import resolve
-from gearmesh.schema import (defaults, default_of, field_schema, has_default, key_of, settings_fields,
-                             spec_of)
+from gearmesh.schema import defaults, field_schema, has_default, jsonable, key_of, settings_fields, spec_of
 from gearmesh.settings import (Dynamics, GearModification, PairFile, PairMaterial, Study, pair_schema,
                                pair_schema_text, stage_sections, study_keys, study_reference, study_schema,
                                study_schema_text)
 
 ROOT = Path(__file__).resolve().parents[1]
-STAGED = [(path, cls) for path, cls in stage_sections() if getattr(cls, "STAGES", ())]
+STAGED = [(path, cls) for path, cls in stage_sections() if getattr(cls, "STAGE", None) is not None]
 
 
 # --------------------------------------------------------------------------------------
@@ -79,35 +78,49 @@ def test_every_setting_is_described():
 # --------------------------------------------------------------------------------------
 
 
-def _same(declared, given) -> bool:
-    """The declared default (a document value) and a function's default are the same setting: equal
-    as JSON data, an empty mapping also meeting None (a function's "none", having no mutable default)."""
-    from gearmesh.schema import jsonable
+def test_a_stage_function_takes_its_defaults_from_the_declaration():
+    """The defaults a stage function gets are the settings fields' (gearmesh.schema.check_arguments
+    fills them): what a caller leaving them out computes with, what help() shows."""
+    from gearmesh.datasets.ltca import ltca_dataset
+    from gearmesh.settings import Ltca
 
-    a, b = jsonable(declared), jsonable(given)
-    return a == b or (a == {} and b is None)
+    params = inspect.signature(ltca_dataset).parameters
+    for f in settings_fields(Ltca):
+        assert params[f.name].default == getattr(Ltca(), f.name), f.name
 
 
-@pytest.mark.parametrize("path, cls", STAGED, ids=[p for p, _ in STAGED])
-def test_every_key_is_a_parameter_of_its_stage_with_the_declared_default(path, cls):
-    for n, spec in enumerate(cls.STAGES):
-        func = resolve(spec)
-        assert getattr(func, "__settings__", None) is cls, f"{spec} does not check its arguments against {cls.__name__}"
-        params = inspect.signature(func).parameters
-        for f in settings_fields(cls):
-            key = key_of(f)
-            if spec_of(f).workflow:
-                continue
-            if key not in params:
-                assert n > 0, f"{path}.{key} is not a parameter of {spec}"
-                continue
-            default = params[key].default
-            if not has_default(f):
-                assert default is inspect.Parameter.empty, f"{spec}: {key} has a default, the setting must be given"
-            elif not spec_of(f).fill:
-                assert default is None, f"{spec}: {key} left out means none"
-            else:
-                assert _same(default_of(f), default), f"{spec}: {key} = {default!r}, declared {default_of(f)!r}"
+def test_a_second_declaration_of_a_default_is_refused_at_import():
+    """What the agreement tests held by hand, the decorator now refuses when the module is
+    imported: a signature default other than the declared one, a setting without a default
+    that is not keyword-only, and a stage function that does not take every setting, every
+    result its stage reads and every section it carries."""
+    from gearmesh.schema import check_arguments
+    from gearmesh.settings import Ltca
+
+    with pytest.raises(TypeError, match="differs from the declared Ltca.positions"):
+        @check_arguments(Ltca)
+        def one(pair, *, positions=65):
+            pass
+    with pytest.raises(TypeError, match="keyword-only"):
+        @check_arguments(Ltca)
+        def two(pair, positions):
+            pass
+
+    def ltca_dataset(pair, *, torques_Nm, on, positions, points, lead_slope_um, contact_law, method):
+        pass  # no corner_extension, no fe_compliance
+
+    ltca_dataset.__module__ = "gearmesh.datasets.ltca"
+    with pytest.raises(TypeError, match=r"does not take \['corner_extension', 'fe_compliance'\]"):
+        check_arguments(Ltca)(ltca_dataset)
+
+
+def test_every_stage_names_a_function_that_checks_its_settings():
+    """Each declared stage's function exists and is the one its settings class checks (or passes
+    its settings on whole)."""
+    for path, cls in STAGED:
+        func = resolve(cls.STAGE.function)
+        takes_all = any(p.kind is p.VAR_KEYWORD for p in inspect.signature(func).parameters.values())
+        assert getattr(func, "__settings__", None) is cls or takes_all, path
 
 
 def test_the_solver_defaults_are_the_declared_ones():
@@ -169,11 +182,14 @@ _REQUIRED = {"helix_sweep": {"pairs": ["p"], "start_deg": 0, "stop_deg": 10, "st
              "stiffness_table": {"pairs": ["p"]}, "slice_convergence": {"pairs": ["p"]}, "rating": {"speed_rpm": 5000}}
 
 
-@pytest.mark.parametrize("path, cls", STAGED, ids=[p for p, _ in STAGED])
+CHECKED = [(path, cls) for path, cls in STAGED if any(not spec_of(f).workflow for f in settings_fields(cls))]
+
+
+@pytest.mark.parametrize("path, cls", CHECKED, ids=[p for p, _ in CHECKED])
 def test_every_bound_is_the_stages_own(path, cls):
     """A value just outside a declared bound is refused by the stage function, naming the key,
     before it does any work (the pair is None: any work would fail otherwise)."""
-    func = resolve(cls.STAGES[0])
+    func = resolve(cls.STAGE.function)
     checked = 0
     for f in settings_fields(cls):
         if spec_of(f).workflow:
@@ -378,7 +394,7 @@ def test_on_a_cluster_only_the_study_tables_and_figures_run_locally(monkeypatch)
 
 #: The sections whose keys a command's options are.
 _COMMAND_SECTIONS = {"stiffness": ("stiffness",), "ltca": ("ltca",), "impact": ("impact",), "dynamics": ("dynamics",),
-                     "optimise": ("optimise.NAME", "tolerances")}
+                     "optimise": ("optimise.NAME", "tolerances"), "rating": ("rating", "ltca")}
 
 
 def _subparsers():
@@ -396,20 +412,36 @@ _OWN_DEFAULTS = {
     ("optimise", "torque_Nm"): "none: the command needs --torque-Nm or --torques-Nm (the middle one then)",
     ("optimise", "grade"): "6: the robust objective (the default) needs a population, and the command has no "
                            "tolerances section (cli.CLI_LEAD_GRADE)",
+    ("optimise", "torques_Nm"): "comma-separated text, read by the command",
+    ("optimise", "weights"): "comma-separated text, read by the command",
+    ("optimise", "dynamic_speeds_rpm"): "comma-separated text, read by the command",
+    ("rating", "method"): "iso: the command rates one operating point by the standard, the LTCA's factors "
+                          "printed beside",
+    ("rating", "speed_rpm"): "the speed of the gear --on, not the pinion's",
+    ("stiffness", "torque_Nm"): "--torque-Nm of every command (one help; the load checked against the pair first)",
 }
 
 
+def _same(declared, given) -> bool:
+    """A declared default (a document value) and an option's default are the same setting."""
+    return jsonable(declared) == jsonable(given)
+
+
 @pytest.mark.parametrize("command", sorted(_COMMAND_SECTIONS))
-def test_every_option_that_is_a_setting_has_its_declared_default(command):
+def test_every_option_that_is_a_setting_is_made_from_its_declaration(command):
+    """An option named as a setting of its command's sections is built from the declaration
+    (gearmesh.cli._setting_option: its default, choices and bounds), unless its own default is
+    listed with the reason; each one's default is then the declared one by construction."""
     parser = _subparsers()[command]
     sections = [dict(stage_sections())[path] for path in _COMMAND_SECTIONS[command]]
-    declared = {}
-    for cls in reversed(sections):
-        declared.update(defaults(cls))
-    options = [a for a in parser._actions if a.dest in declared and (command, a.dest) not in _OWN_DEFAULTS]
+    keys = {key_of(f) for cls in sections for f in settings_fields(cls)} | {"on"}
+    derived = parser.get_default("setting_options") or {}
+    options = [a for a in parser._actions if a.dest in keys and (command, a.dest) not in _OWN_DEFAULTS]
     assert options
     for action in options:
-        assert _same(declared[action.dest], action.default), (command, action.dest, action.default)
+        assert action.dest in derived, f"{command} --{action.dest} is written by hand: use _setting_option"
+        section, key, _ = derived[action.dest]
+        assert _same(defaults(section).get(key), action.default), (command, action.dest)
 
 
 #: What each command needs besides its pair file.
@@ -424,7 +456,7 @@ def test_every_setting_option_refuses_what_the_schema_refuses_naming_the_option(
     pair = ROOT / "config/pairs/seed000_case.yaml"
     checked = 0
     for command, parser in _subparsers().items():
-        for key, (section, flag) in (parser.get_default("setting_options") or {}).items():
+        for _, (section, key, flag) in (parser.get_default("setting_options") or {}).items():
             field = next(f for f in settings_fields(section) if key_of(f) == key)
             for bad in _violations(field_schema(section, field)):
                 if isinstance(bad, list) or isinstance(bad, str) and not isinstance(field.default, str):

@@ -26,7 +26,7 @@ from .gear import NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geo
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
 from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
-from .settings import Dynamics, Impact, Ltca, Optimise, Stiffness, Tolerances
+from .settings import Dynamics, Impact, Ltca, Optimise, Rating, Stiffness, Tolerances
 
 EXIT_BAD_INPUT = 2
 
@@ -381,25 +381,28 @@ def _command(sub, name: str, func, help: str, pair_help: str = PAIR_HELP):
     return p
 
 
-def _setting_option(p, flag: str, section: type, help: str, key: str | None = None, **kwargs) -> None:
+def _setting_option(p, flag: str, section: type, help: str, key: str | None = None, dest: str | None = None,
+                    **kwargs) -> None:
     """An option that is the setting ``key`` (default: the option's name) of ``section``
-    (:mod:`gearmesh.settings`): its default and choices are the declaration's, and :func:`main`
-    checks its value against the declaration before the command runs, naming the option."""
+    (:mod:`gearmesh.settings`), kept as ``dest`` (default: ``key``): its default and choices are
+    the declaration's, and :func:`main` checks its value against the declaration before the
+    command runs, naming the option."""
     key = key or flag.lstrip("-").replace("-", "_")
+    dest = dest or key
     field = next(f for f in settings_fields(section) if key_of(f) == key)
     schema = field_schema(section, field)
     choices = schema.get("enum") or schema.get("items", {}).get("enum")
     if choices:
         kwargs["choices"] = [c for c in choices if c is not None]
-    p.add_argument(flag, dest=key, default=defaults(section).get(key), help=help, **kwargs)
-    p.set_defaults(setting_options={**(p.get_default("setting_options") or {}), key: (section, flag)})
+    p.add_argument(flag, dest=dest, default=defaults(section).get(key), help=help, **kwargs)
+    p.set_defaults(setting_options={**(p.get_default("setting_options") or {}), dest: (section, key, flag)})
 
 
 def _check_setting_options(args: argparse.Namespace) -> None:
     """The values of the options that are settings, each against its declaration (the bounds a
     study config has), refused naming the option."""
-    for key, (section, flag) in (getattr(args, "setting_options", None) or {}).items():
-        value = getattr(args, key)
+    for dest, (section, key, flag) in (getattr(args, "setting_options", None) or {}).items():
+        value = getattr(args, dest)
         if value is None and defaults(section).get(key) is None:
             continue  # not given, and the setting's own "none"
         try:
@@ -408,10 +411,11 @@ def _check_setting_options(args: argparse.Namespace) -> None:
             raise GearmeshInputError(flag + exc.field[len(key):], exc.value, exc.rule) from None
 
 
-def _torque_options(p, required: bool) -> None:
+def _torque_options(p, required: bool, section: type, on: str = "on") -> None:
+    """--torque-Nm and --on, the gear it acts on: the setting ``on`` of ``section``."""
     p.add_argument("--torque-Nm", dest="torque_Nm", type=float, required=required,
                    help="torque (N m), on the pinion unless --on gear")
-    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="the gear the torque acts on")
+    _setting_option(p, "--on", section, key=on, dest="on", help="the gear the torque acts on")
 
 
 def cmd_example(args: argparse.Namespace) -> dict[str, Any] | None:
@@ -569,11 +573,11 @@ def build_parser() -> argparse.ArgumentParser:
     _setting_option(p, "--method", Stiffness, help=TOOTH_MODEL_HELP)
     _setting_option(p, "--slices", Stiffness, type=int, help="slices over the face width")
     _setting_option(p, "--positions", Stiffness, type=int, help="rotation positions per mesh cycle")
-    _torque_options(p, required=False)
+    _torque_options(p, required=False, section=Stiffness, on="torque_on")
 
     p = _command(sub, "ltca", cmd_ltca, "loaded tooth contact analysis at one torque: TE, LTE, line load, stiffness",
                  PAIR_HELP.replace(";", ", with its modification if any;"))
-    _torque_options(p, required=True)
+    _torque_options(p, required=True, section=Ltca)
     _setting_option(p, "--positions", Ltca, type=int, help="rotation positions per mesh cycle")
     _setting_option(p, "--points", Ltca, type=int, help="points per contact line")
     _setting_option(p, "--contact-law", Ltca, help="local contact law: palmgren (approach ∝ F^0.9, n = 1.11) or "
@@ -583,13 +587,12 @@ def build_parser() -> argparse.ArgumentParser:
     p = _command(sub, "rating", cmd_rating, "load capacity at one torque and speed: ISO 6336-2/-3 method B "
                  "(S_H, S_F) with the LTCA's contact pressure and root stress",
                  PAIR_HELP.replace(";", ", with its modification and rating inputs if any;"))
-    _torque_options(p, required=True)
+    _torque_options(p, required=True, section=Ltca)  # the rating's torques are the LTCA's
     p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True,
                    help="speed (rpm) of the gear the torque acts on")
-    p.add_argument("--application-factor", dest="application_factor", type=float, default=1.0,
-                   help="application factor K_A (ISO 6336-1)")
-    p.add_argument("--life-hours", dest="life_hours", type=float, default=None,
-                   help="required life (h) for the life factors Z_NT, Y_NT (default: endurance)")
+    _setting_option(p, "--application-factor", Rating, type=float, help="application factor K_A (ISO 6336-1)")
+    _setting_option(p, "--life-hours", Rating, type=float,
+                    help="required life (h) for the life factors Z_NT, Y_NT (default: endurance)")
     p.add_argument("--factor", type=_factor_option, action="append", metavar="NAME=VALUE",
                    help="a factor given instead of computed (K_v, K_Hbeta, K_Fbeta, K_Halpha, K_Falpha, Z_L, Z_v, "
                         "Z_R, Z_W, Z_X, Z_NT, Y_NT, Y_deltarelT, Y_RrelT, Y_X, S_Hmin, S_Fmin); repeatable")
@@ -601,7 +604,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
                  "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
-    _torque_options(p, required=True)
+    _torque_options(p, required=True, section=Impact)
     p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True, help="pinion speed (rpm)")
     _setting_option(p, "--driver", Impact, help="which gear drives")
     _setting_option(p, "--points", Impact, type=int, help="points per contact line")
@@ -612,7 +615,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = _command(sub, "dynamics", cmd_dynamics, "steady-state speed sweep of the 8-DOF bending-torsion-axial "
                  "model of the pair")
-    _torque_options(p, required=True)
+    _torque_options(p, required=True, section=Dynamics)
     p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
     _setting_option(p, "--backlash-um", Dynamics, type=_backlash_option,
                     help="total backlash 2b0 along the normal (µm), or 'pair': the pair's own from its centre "
@@ -644,7 +647,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--weights", default=None, help="time shares of --torques-Nm, comma-separated (duty-cycle mean); "
                                                   "without: the worst case over the spectrum")
     _setting_option(p, "--statistic", Optimise, help="over the load spectrum")
-    p.add_argument("--on", choices=("pinion", "gear"), default="pinion", help="the gear the torques act on")
+    _setting_option(p, "--on", Optimise, help="the gear the torques act on")
     _setting_option(p, "--speed-rpm", Optimise, type=float, help="pinion speed (rpm)")
     _setting_option(p, "--tolerance-samples", Tolerances, key="samples", type=int,
                     help="manufactured samples evaluated with the nominal (0: nominal only, a single-point optimum "

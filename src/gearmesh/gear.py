@@ -21,7 +21,7 @@ import yaml
 
 from .errors import GearmeshInputError
 from .limits import (MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPTH, MAX_INPUT_NODES,  # noqa: F401
-                     MAX_MODIFICATION_TO_MODULE, MAX_TEETH)
+                     MAX_MODIFICATION_TO_MODULE, MAX_TEETH, MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE)
 from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
 from .body import BODY_KEYS, Body, check_body, read_body
 from .supports import SUPPORT_KEYS, Supports, read_supports
@@ -482,15 +482,6 @@ def _coefficient(key: str, diameters: np.ndarray, values: np.ndarray, what: str,
     return (float(values[0]), float(values[1]))
 
 
-#: Normal modules (m) the models are valid for. ISO 54:1996 standardises 1–50 mm; fine-pitch
-#: instrument gears go down to about 0.1 mm and the largest mill gears to about 100 mm. The
-#: slice and contact models are scale-free, but material data, ISO 6336 stiffness factors and
-#: tolerances (ISO 1328-1 covers 0.5–70 mm) have no meaning far outside that range.
-MODULE_RANGE = (0.1e-3, 100e-3)
-#: Face width against the normal module, b/m_n >= 1: the slice models and ISO 6336-1 treat a
-#: tooth slice in plane strain (E/(1 − ν²)); a face narrower than one module is a plate in
-#: plane stress (the tooth is 2.25 m_n high), about 10 % softer than either model says.
-MIN_FACE_WIDTH_TO_MODULE = 1.0
 #: Name of a pair: usable as a file name (letters, digits, '_', '-' and '.', not first; no
 #: path characters), short enough to stay far below the 255-byte limit of one path component
 #: (Linux NAME_MAX) with any suffix. Study configs restrict the names they use further (schema).

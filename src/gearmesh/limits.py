@@ -9,21 +9,19 @@ call these checks at their entry, so the Python API, the command line and the wo
 the same values with the same one line (GearmeshInputError), in bounded time and memory: a
 list is measured by its length (O(1)) before any of its items is read.
 
-This module imports no other gearmesh module but :mod:`gearmesh.errors` at import time, so
-every module can take its limits from here.
+This module imports no other gearmesh module but :mod:`gearmesh.errors`, not even for its
+annotations (a ``geom`` below is a :class:`gearmesh.gear.PairGeometry`, which takes its
+limits from here), so every module can take its limits from here without an import circle.
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import Any
 
 import numpy as np
 
 from .errors import GearmeshInputError
-
-if TYPE_CHECKING:  # annotations only: gear imports its limits from here
-    from .gear import PairGeometry
 
 # --------------------------------------------------------------------------------------
 # Input documents and lists
@@ -46,6 +44,12 @@ MAX_LIST_ITEMS = 1000
 #: per torque at the default grids (3000 torques peaked at 4.7 GB); as the impact map's torques.
 MAX_LTCA_TORQUES = 100
 
+#: Largest lead slope deviation f_Hβ (µm over the face width) the contact models take, of either
+#: gear: ISO 1328-1:2013 class 11 allows f_Hβ of about 100 µm on a 1 m face of a large gear; ten
+#: times that is a mounting error, not a lead deviation, and turns the contact into an edge load
+#: on one face end that no slice model here describes.
+MAX_LEAD_SLOPE_UM = 1000
+
 # --------------------------------------------------------------------------------------
 # Pair data
 # --------------------------------------------------------------------------------------
@@ -55,6 +59,15 @@ MAX_LTCA_TORQUES = 100
 #: cylindrical gears, and the roll lengths of the contact models lose their precision in
 #: double arithmetic long before z reaches 10⁹.
 MAX_TEETH = 1000
+#: Normal modules (m) the models are valid for. ISO 54:1996 standardises 1–50 mm; fine-pitch
+#: instrument gears go down to about 0.1 mm and the largest mill gears to about 100 mm. The
+#: slice and contact models are scale-free, but material data, ISO 6336 stiffness factors and
+#: tolerances (ISO 1328-1 covers 0.5–70 mm) have no meaning far outside that range.
+MODULE_RANGE = (0.1e-3, 100e-3)
+#: Face width against the normal module, b/m_n >= 1: the slice models and ISO 6336-1 treat a
+#: tooth slice in plane strain (E/(1 − ν²)); a face narrower than one module is a plate in
+#: plane stress (the tooth is 2.25 m_n high), about 10 % softer than either model says.
+MIN_FACE_WIDTH_TO_MODULE = 1.0
 #: Face width against the pinion reference diameter, b/d1 <= 2: AGMA 2001-D04 (empirical
 #: load-distribution factor) and ISO 6336-1's load distribution assume no wider face; beyond
 #: it shaft bending and torsion shift the load to one end, which no model here includes.
@@ -134,7 +147,7 @@ STEEL_DENSITY = 7850.0
 MAX_SWEEP_ANGLES = 2000
 
 
-def max_speed_rpm(geom: PairGeometry, on: str = "pinion") -> float:
+def max_speed_rpm(geom: Any, on: str = "pinion") -> float:
     """Highest speed (rpm) of the ``on`` gear ('pinion' or 'gear') at which the faster tip circle
     stays within :data:`MAX_RIM_STRESS`: ρ (ω_g r_a,g)² ≤ σ_max for both gears, ω2 = ω1 z1/z2."""
     pair = geom.pair
@@ -172,7 +185,7 @@ def positive_values(values, field: str, unit: str, maximum: float = math.inf, no
     return np.asarray(vals, dtype=float)
 
 
-def check_speeds(geom: PairGeometry | None, speeds_rpm, field: str = "speeds_rpm", on: str = "pinion",
+def check_speeds(geom: Any, speeds_rpm, field: str = "speeds_rpm", on: str = "pinion",
                  max_items: int = MAX_SPEEDS, empty_ok: bool = False) -> np.ndarray:
     """Speeds (rpm of the ``on`` gear) as a 1-d float array: at most ``max_items`` of them (a
     sweep's grid: :data:`MAX_SPEEDS`; a list in a config is bounded by its schema first), each

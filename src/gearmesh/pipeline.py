@@ -26,6 +26,8 @@ import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
 from .io import DATA_ATTR, add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
+from .settings import stage_of
+from .stages import dependencies
 from .tables import write_csv
 from .upstream import (Expected, check_optimum, identify, optimum_header, read_input, normal_path, record_sources)
 
@@ -170,11 +172,9 @@ def _input_files(smk: Any) -> list[str]:
 
 def _sections(smk: Any) -> list[str]:
     """The study config sections the job's result depends on: its rule's, and every section its
-    settings carry whole (the impact stage's ``tolerances``, an optimisation's ``impact``)."""
-    config, settings = smk.config, dict(getattr(smk.params, "settings", None) or {})
-    own = [smk.rule] if smk.rule in config else []
-    return own + sorted(k for k, v in settings.items() if k in config and k != smk.rule and v is not None
-                        and isinstance(config[k], Mapping))
+    stage carries whole (:func:`gearmesh.stages.dependencies`: the impact stage's ``tolerances``,
+    an optimisation's ``impact``)."""
+    return dependencies(stage_of(smk.rule), smk.rule, smk.config)
 
 
 def _job_pair(smk: Any) -> GearPair:

@@ -9,25 +9,31 @@ and fill its defaults from; the argument checks of the stage functions
 reference of every key (``config/README.md``) and the pair-file schema for editors
 (:func:`pair_schema`, ``schemas/pair.schema.json``). ``gearmesh schema`` prints each.
 
-Each section names the stage function that takes its keys as keyword arguments
-(``STAGES``); the tests hold every key and default of a section equal to that function's
-parameters. Engineering units, the unit in the key name (``torque_Nm``, ``speed_rpm``).
-Reading a config imports no physics: this module needs :mod:`gearmesh.gear`'s limits only.
+A stage's section also declares the stage (``STAGE``, :class:`gearmesh.stages.Stage`): the
+function that takes its keys as keyword arguments (and its defaults from here, through
+:func:`gearmesh.schema.check_arguments`), the result it writes, the results it reads and the
+figures it draws; the workflow's rules, the study's targets and the upstream checks derive
+from it (:func:`stages`, docs/architecture.md "Each stage declared once"). Every bound is
+this module's or :mod:`gearmesh.limits`'s. Engineering units, the unit in the key name
+(``torque_Nm``, ``speed_rpm``).
+Reading a config imports no physics: this module needs the pair reader's constants
+(:mod:`gearmesh.gear`) and :mod:`gearmesh.limits` only.
 """
 
 from __future__ import annotations
 
 import json
 from dataclasses import dataclass
-from typing import Any, ClassVar, Literal
+from typing import Any, ClassVar, Literal, Mapping
 
 import yaml
 
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
                       TOOTH_METHODS)
-from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, MODULE_RANGE, NAME_PATTERN
-from .limits import MAX_LTCA_TORQUES
+from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN
+from .limits import MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
+from .stages import Read, Stage, always, ltca_drives, method_fe, runs
 
 #: Names of studies and of the pairs a study uses: a folder of results/{study}/{pair}/, no path characters.
 NAME = r"^[A-Za-z0-9_-]+$"
@@ -40,8 +46,6 @@ ContactLaw = Literal[CONTACT_LAWS]
 #: What drives the 8-DOF pair (:mod:`gearmesh.dynamics`); how each speed reaches its steady state.
 PairExcitation = Literal[PAIR_EXCITATIONS]
 SteadyState = Literal["shooting", "transient"]
-#: Lead slope deviations (µm over the face width) the contact models take (:func:`gearmesh.tca.check_lead_slope`).
-LEAD_SLOPE_BOUNDS_UM = {"minimum": -1000, "maximum": 1000}
 
 _METHOD = ("slice model of the tooth compliance: traditional, improved or transition (hob fillet) potential-energy "
            "cantilever, or fe (2-D finite elements)")
@@ -71,7 +75,7 @@ def _points(default: int = 50, what: str = "") -> Any:
 
 
 def _lead_slope(what: str = "") -> Any:
-    return setting((0.0, 0.0), _LEAD + what, **LEAD_SLOPE_BOUNDS_UM)
+    return setting((0.0, 0.0), _LEAD + what, minimum=-MAX_LEAD_SLOPE_UM, maximum=MAX_LEAD_SLOPE_UM)
 
 
 def _contact_law(what: str = "") -> Any:
@@ -89,6 +93,14 @@ def _torque_on() -> Any:
 def _pairs() -> Any:
     return setting(REQUIRED, "the pairs (names in pairs_dir)", min_items=1, pattern=NAME, max_length=NAME_LENGTH,
                    workflow=True)
+
+
+def fe_wanted(config: Mapping[str, Any], section: str) -> bool:
+    """Whether a study gets the pair's finite-element tooth tables (its ``section``,
+    fe_compliance, is always filled): when a stage of it uses the FE tooth (its ``method``, or
+    among a table's ``methods``), so that every pair's tables are computed once and drawn."""
+    return any((config.get(s) or {}).get("method") == "fe" or "fe" in (config.get(s) or {}).get("methods", ())
+               for s, _ in stage_sections() if isinstance(config.get(s), Mapping))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -110,7 +122,8 @@ class Geometry:
     """Grids of the geometry stage: the transverse tooth profile with its hob fillet and the
     flank surface of each gear (geometry.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.geometry:geometry_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:geometry_dataset", "{pair}/geometry.nc", "pair",
+        figures="gearmesh.plots.geometry:geometry_figures")
     involute_points: int = setting(120, "points on each involute flank of the transverse profile", minimum=8,
                                    maximum=5000)
     fillet_points: int = setting(60, "points on each root fillet (the hob's trochoid)", minimum=4, maximum=5000)
@@ -121,7 +134,8 @@ class Geometry:
 class ContactLines:
     """Contact lines in the plane of action and their total length over one mesh cycle (contact_lines.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.geometry:contact_lines_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:contact_lines_dataset", "{pair}/contact_lines.nc", "pair",
+        figures="gearmesh.plots.geometry:contact_lines_figures")
     positions: int = _positions(what=" (one transverse base pitch)")
 
 
@@ -130,7 +144,8 @@ class Stiffness:
     """Time-varying mesh stiffness by the slice potential-energy method, its Fourier series and
     ISO 6336-1's value; with a torque the loaded static transmission error F/K (stiffness.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.stiffness:stiffness_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_dataset", "{pair}/stiffness.nc", "pair",
+        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.stiffness:stiffness_figures")
     method: Method = _method()
     slices: int = _slices()
     positions: int = _positions()
@@ -146,7 +161,8 @@ class FeCompliance:
     beside the three potential-energy cantilevers (fe_compliance.nc); stiffness method fe uses
     these settings too."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.fe:fe_compliance_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.fe:fe_compliance_dataset", "{pair}/fe_compliance.nc", "pair",
+        figures="gearmesh.plots.fe:fe_compliance_figures", wanted=fe_wanted)
     plane: Literal["strain", "stress"] = setting("strain", "plane strain (a wide face) or plane stress (a thin disc)")
     size: float = setting(0.05, "element edge on the loaded tooth", units="normal modules", minimum=0.01,
                           maximum=0.5)
@@ -170,8 +186,8 @@ class Variant:
 class Tca:
     """Unloaded tooth contact analysis of every pair and variant over one mesh cycle (tca.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.ltca:tca_dataset",)
-    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
+    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:tca_dataset", "{pair}/{variant}/tca.nc", "variant",
+        figures="gearmesh.plots.ltca:tca_figures")
     positions: int = _positions(64, 10000)
     points: int = _points()
     lead_slope_um: tuple[float, float] = _lead_slope()
@@ -183,8 +199,8 @@ class Ltca:
     """Loaded tooth contact analysis of every pair and variant at each torque over one mesh
     cycle: loaded and load transmission error, contact pattern, loaded mesh stiffness (ltca.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.ltca:ltca_dataset",)
-    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
+    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:ltca_dataset", "{pair}/{variant}/ltca.nc", "variant",
+        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.ltca:ltca_figures")
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques", exclusive_minimum=0, min_items=1,
                                             max_items=MAX_LTCA_TORQUES)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -202,8 +218,8 @@ class Rating:
     (S_H, S_F) with the LTCA's contact pressure, root stress and load factors (rating.nc). Material,
     accuracy, roughness and oil are the pair file's (defaults named in the dataset's notes)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.rating:rating_dataset",)
-    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
+    STAGE: ClassVar = Stage("gearmesh.datasets.rating:rating_dataset", "{pair}/{variant}/rating.nc", "variant",
+        reads=(Read("ltca"),), figures="gearmesh.plots.rating:rating_figures")
     speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
     application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=1)
     life_hours: float | None = setting(None, "required life for Z_NT, Y_NT (null: endurance)", exclusive_minimum=0)
@@ -218,8 +234,9 @@ class Impact:
     the variants side by side at the design speed, and a direct simulation of the engagement
     as a check (impact.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.impact:impact_dataset",)
-    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
+    STAGE: ClassVar = Stage("gearmesh.datasets.impact:impact_dataset", "{pair}/{variant}/impact.nc", "variant",
+        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.impact:impact_figures",
+        carries=("tolerances",), variant_name=True)
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques of the map", exclusive_minimum=0,
                                             min_items=1, max_items=100)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -303,7 +320,9 @@ class Optimise:
     impact section; points, contact_law, corner_extension, window_positions and face_samples
     given here override it."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.optimise:run_settings",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.optimise:optimise_dataset", "{pair}/optimise/{run}/ga.nc", "run",
+        reads=(Read("fe_compliance", method_fe("impact")),), figures="gearmesh.plots.optimise:optimise_figures",
+        carries=("impact", "tolerances"))
     method: Literal["ga", "random", "nsga2"] = setting("ga", "genetic algorithm (pygad), random search of the same "
                                                              "budget, or NSGA-II (the objective against pareto_objectives)")
     objective: Literal["force", "velocity", "robust", "dynamic"] = setting(
@@ -375,7 +394,6 @@ class Tolerances:
     flank tolerance class (Formula (10)); every nonzero modification parameter within ± its
     tolerance."""
 
-    STAGES: ClassVar = ()  # a mapping for gearmesh.tolerance.study_tolerances
     grade: int | None = setting(None, "ISO 1328-1:2013 flank tolerance class of the lead slope (null: no lead "
                                       "deviation)", minimum=1, maximum=11)
     lead_on: tuple[Gear, ...] = setting(("pinion", "gear"), "the gears whose lead slope deviates", min_items=1,
@@ -446,8 +464,9 @@ class Dynamics(_Dynamics):
     stage, the ltca excitation from the variant's LTCA, the contact table from the variant's
     micro-geometry."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.dynamics:dynamics_dataset",)
-    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
+    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_dataset", "{pair}/{variant}/dynamics.nc", "variant",
+        reads=(Read("stiffness"), Read("ltca", ltca_drives), Read("fe_compliance", method_fe())),
+        figures="gearmesh.plots.dynamics:dynamics_figures", variant_name=True)
     torques_Nm: float | tuple[float, ...] = setting(200.0, "one torque or a list", exclusive_minimum=0, min_items=1,
                                                     max_items=20)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -473,8 +492,9 @@ class TrainDynamics(_Dynamics):
     """The 9-DOF plate–blanket–impression train of the printing-press source: three gears alike
     (the pair's gear), the pair's mesh in both meshes, at one load and speed (train.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.dynamics:train_dataset",)
-    PER_VARIANT: ClassVar = True  # its result depends on the micro-geometry (a variant's)
+    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:train_dataset", "{pair}/{variant}/train.nc", "variant",
+        reads=(Read("stiffness"), Read("fe_compliance", method_fe())),
+        figures="gearmesh.plots.dynamics:train_figures")
     static_force_N: float | None = setting(2832, "static normal mesh force, the load when torque_Nm is null",
                                            exclusive_minimum=0)
     torque_Nm: float | None = setting(None, "torque on the plate gear (null: from static_force_N)",
@@ -497,7 +517,10 @@ class Signoff:
     S_F) and whether it meets these criteria against the reference. Needs the ltca, rating and
     impact sections; the dynamic criterion needs a dynamics section."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.signoff:signoff_table_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.signoff:signoff_table_dataset", "{pair}/signoff_table.nc", "pair",
+        reads=tuple(Read(s, when, every_variant=True) for s, when in (
+            ("impact", always), ("ltca", always), ("rating", always), ("dynamics", runs("dynamics")))),
+        figures="gearmesh.plots.signoff:signoff_figures", pair_file=False)
     reference: str = setting("standard", "the variant the others are held against (the unmodified pair)",
                              pattern=r"^[A-Za-z0-9_]+$", max_length=NAME_LENGTH)
     pressure_factor: float = setting(1.1, "peak contact pressure (flank or tip edge) at most this times the "
@@ -521,7 +544,8 @@ class Signoff:
 class DynamicsComparison:
     """RMS changes between the study's pairs over their speed sweeps (dynamics_comparison.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.dynamics:dynamics_comparison_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_comparison_dataset", "dynamics_comparison.nc", "study",
+        figures="gearmesh.plots.dynamics:dynamics_comparison_figures")
     couples: tuple[tuple[str, str], ...] | None = setting(
         None, "[pair, reference] couples; left out: every pair against the first", min_items=1, fill=False)
 
@@ -535,7 +559,8 @@ class HelixSweep:
     """Contact-line length against helix angle for some pairs, each angle a new pair at its
     zero-backlash centre distance (helix_sweep.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.geometry:helix_sweep_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:helix_sweep_dataset", "helix_sweep.nc", "study",
+        figures="gearmesh.plots.geometry:helix_sweep_figures")
     pairs: tuple[str, ...] = _pairs()
     start_deg: float = setting(REQUIRED, "first helix angle", minimum=0, maximum=59)
     stop_deg: float = setting(REQUIRED, "last helix angle (not below start_deg)", minimum=0, maximum=59)
@@ -548,7 +573,8 @@ class LowFluctuationDesign:
     """Integer-overlap-ratio designs of some pairs: the helix angle (forward and backward) or face
     width that makes the overlap ratio an integer (low_fluctuation_design.nc)."""
 
-    STAGES: ClassVar = ()  # its one key is the pairs the workflow gathers (low_fluctuation_design_dataset)
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:low_fluctuation_design_dataset", "low_fluctuation_design.nc",
+                            "study")
     pairs: tuple[str, ...] = _pairs()
 
 
@@ -556,7 +582,8 @@ class LowFluctuationDesign:
 class StiffnessTable:
     """Mesh stiffness over pairs, pair-file variants and cantilever methods, one table (stiffness_table.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.stiffness:stiffness_table_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_table_dataset", "stiffness_table.nc", "study",
+        figures="gearmesh.plots.stiffness:stiffness_table_figures")
     pairs: tuple[str, ...] = _pairs()
     methods: tuple[Method, ...] = setting(("transition",), "slice models compared", min_items=1)
     variants: dict[str, dict[str, Any]] | None = setting(
@@ -573,7 +600,8 @@ class StiffnessTable:
 class SliceConvergence:
     """Mean mesh stiffness against the slice count, whole and clipped end slices (slice_convergence.nc)."""
 
-    STAGES: ClassVar = ("gearmesh.datasets.stiffness:slice_convergence_dataset",)
+    STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:slice_convergence_dataset", "slice_convergence.nc", "study",
+        figures="gearmesh.plots.stiffness:slice_convergence_figures")
     pairs: tuple[str, ...] = _pairs()
     slices: tuple[int, ...] = setting((25, 50, 100, 200, 400, 1000), "slice counts", minimum=1, maximum=20000,
                                       min_items=2)
@@ -633,6 +661,18 @@ def study_schema() -> dict[str, Any]:
 def stage_sections() -> list[tuple[str, type]]:
     """(key path, settings class) of every section of a study."""
     return nested_sections(Study)
+
+
+def stages() -> dict[str, Stage]:
+    """Every stage of a study by its config section (and rule name): the declaration
+    (:class:`gearmesh.stages.Stage`) of each settings class that has one."""
+    return {path.removesuffix(".NAME"): cls.STAGE for path, cls in stage_sections()
+            if "." not in path.removesuffix(".NAME") and isinstance(getattr(cls, "STAGE", None), Stage)}
+
+
+def stage_of(section: str) -> Stage | None:
+    """The stage of config ``section`` (a rule's name), or None (a table, a figure)."""
+    return stages().get(section)
 
 
 def study_keys() -> list[str]:

@@ -72,6 +72,7 @@ from .contact import hand_sign, mesh_cycle_rolls
 from .choices import DEFAULT_CORNER_EXTENSION
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
+from .limits import MAX_LEAD_SLOPE_UM
 from .surface import modification_parameters, relief_depth
 
 __all__ = [
@@ -135,8 +136,9 @@ def check_lead_slope(lead_slope_um) -> tuple[float, float]:
     for i, v in enumerate(vals):
         if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
             raise GearmeshInputError(f"lead_slope_um[{i}]", v, "must be a finite number (µm over the face width)")
-        if abs(v) > 1000:
-            raise GearmeshInputError(f"lead_slope_um[{i}]", v, "must lie within ±1000 µm over the face width")
+        if abs(v) > MAX_LEAD_SLOPE_UM:
+            raise GearmeshInputError(f"lead_slope_um[{i}]", v,
+                                     f"must lie within ±{MAX_LEAD_SLOPE_UM} µm over the face width")
         out.append(float(v))
     return out[0], out[1]
 

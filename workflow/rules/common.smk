@@ -2,6 +2,7 @@
 import sys
 
 from gearmesh.config import check_study, lste_comparison_wanted, pair_path, study_excitation
+from gearmesh.settings import stage_of, stages
 from gearmesh.codeversion import versioned
 from gearmesh.errors import GearmeshInputError
 from gearmesh import jobserver
@@ -42,26 +43,6 @@ def versioned_param(spec):
     return param
 
 
-def fe_tables(section):
-    """Input function: the pair's FE tooth tables (rule fe_compliance) when the stage of
-    ``section`` uses the stiffness method 'fe' — computed once per pair, read by every stage."""
-
-    def inputs(wildcards):
-        if config.get(section, {}).get("method") == "fe":
-            return {"fe_compliance": f"results/{wildcards.study}/{wildcards.pair}/fe_compliance.nc"}
-        return {}
-
-    return inputs
-
-
-def fe_wanted():
-    """Whether the study uses the finite-element tooth (a stage's method fe, or fe among the
-    stiffness table's methods): then every pair gets its FE tables and their figure."""
-    sections = ("stiffness", "slice_convergence", "ltca", "impact", "dynamics", "train_dynamics")
-    return (any((config.get(s) or {}).get("method") == "fe" for s in sections)
-            or "fe" in (config.get("stiffness_table") or {}).get("methods", []))
-
-
 def pair_file(wildcards):
     return str(pair_path(config, wildcards.pair))
 
@@ -87,18 +68,6 @@ def dynamics_contact():
     return study_excitation(config) == "contact"
 
 
-def dynamics_inputs(wildcards):
-    """The pair stage inputs of the dynamics: the variant's pair, the stiffness, the variant's
-    LTCA when it excites the model (excitation ltca, or unset in a study that runs the LTCA) and
-    the FE tooth tables when the contact table uses method fe."""
-    base = f"results/{wildcards.study}/{wildcards.pair}"
-    out = {"pair": variant_source_pair(wildcards), "stiffness": f"{base}/stiffness.nc"}
-    if study_excitation(config) == "ltca":
-        out["ltca"] = f"{base}/{wildcards.variant}/ltca.nc"
-    out.update(fe_tables("dynamics")(wildcards))
-    return out
-
-
 def dynamics_figure_outputs():
     """The figures of the dynamics job: RMS against speed and spectra, and with the contact excitation the
     entering pair's force over the engagement."""
@@ -111,60 +80,107 @@ def dynamics_figure_outputs():
     return out
 
 
-def study_pair_files(section):
-    """Input function: the pair files a study-level section names."""
-    return lambda wildcards: [str(pair_path(config, n)) for n in config[section]["pairs"]]
+def stage_inputs(section):
+    """Input function of the rule of stage ``section`` (gearmesh.settings: its STAGE): its pair
+    file (a variant's stage: the variant's source pair; a study stage: every pair it names), and
+    each result the stage reads, of the job's own pair and variant, when the study config says so
+    (the FE tables when its method is fe, the LTCA when it drives the dynamics)."""
+    stage = stage_of(section)
+
+    def inputs(wildcards):
+        if stage.scope == "study":
+            return {"pairs": [str(pair_path(config, n)) for n in config[section]["pairs"]]}
+        out = {}
+        if stage.pair_file:
+            out["pair"] = variant_source_pair(wildcards) if stage.scope == "variant" else pair_file(wildcards)
+        for read in stage.reads:
+            path = stage_of(read.stage).path
+            if not read.when(config, section):
+                continue
+            if read.every_variant:
+                out[read.stage] = [path(**{**dict(wildcards.items()), "variant": v}) for v in VARIANTS]
+            else:
+                out[read.stage] = path(**dict(wildcards.items()))
+        return out
+
+    return inputs
 
 
-def pair_results(name):
-    """Files every pair of the study gets (each job's figures come with its netCDF file)."""
-    base = f"results/{STUDY}/{name}"
-    return [f"{base}/geometry.nc", f"{base}/contact_lines.nc", f"{base}/stiffness.nc"]
+def stage_output(section):
+    """The netCDF file the rule of stage ``section`` writes (its declaration's)."""
+    return stage_of(section).path()
 
 
-def variant_results(name, variant):
-    """Files every micro-geometry variant of a pair gets, by the stages the study configures."""
-    base = f"results/{STUDY}/{name}/{variant}"
-    stages = {"tca": "tca", "ltca": "ltca", "dynamics": "dynamics", "train_dynamics": "train", "impact": "impact",
-              "rating": "rating"}
-    return [f"{base}/{stage}.nc" for section, stage in stages.items() if section in config]
+def stage_params(section):
+    """The params of the rule of stage ``section``: the function it runs, its settings (its config
+    section, the run's entry for a stage per run; the variant's name and the sections it carries
+    when it takes them), the variant's spec and the function that draws its figures."""
+    stage = stage_of(section)
+
+    def settings(wildcards):
+        own = config[section][wildcards.run] if stage.scope == "run" else config.get(section, {})
+        return {**own, **({"variant": wildcards.variant} if stage.variant_name else {}),
+                **{s: config.get(s) for s in stage.carries}}
+
+    out = {"function": versioned_param(stage.function), "settings": settings}
+    if stage.scope == "variant":
+        out["variant"] = variant_spec
+    if stage.figures:
+        out["figures"] = versioned_param(stage.figures)
+    return out
+
+
+def every_variant(section):
+    """Input function of a table of a pair's variants: the result of stage ``section`` of every
+    variant of the job's pair (its path the stage's declaration)."""
+    path = stage_of(section).path
+    return lambda wildcards: [path(study=wildcards.study, pair=wildcards.pair, variant=v) for v in VARIANTS]
+
+
+def every_pair(section, variant="standard"):
+    """Input function of a study table: the result of stage ``section`` of every pair of the study
+    (of its ``variant`` for a stage of the variants)."""
+    path = stage_of(section).path
+    return lambda wildcards: [path(study=wildcards.study, pair=name, variant=variant) for name in config["pairs"]]
+
+
+def stage_targets():
+    """The result of every stage the study runs (each job's figures come with its netCDF file):
+    once per study, per pair, per variant of a pair or per optimisation run of a pair."""
+    out = []
+    for section, stage in stages().items():
+        if section not in config or (stage.wanted is not None and not stage.wanted(config, section)):
+            continue
+        pairs = config["pairs"]
+        if stage.scope == "study":
+            out.append(stage.path(study=STUDY))
+        elif stage.scope == "pair":
+            out += [stage.path(study=STUDY, pair=name) for name in pairs]
+        elif stage.scope == "variant":
+            out += [stage.path(study=STUDY, pair=name, variant=v) for name in pairs for v in VARIANTS]
+        else:
+            out += [stage.path(study=STUDY, pair=name, run=r) for name in pairs for r in RUNS]
+    return out
 
 
 def all_targets():
-    targets = [f for name in config["pairs"] for f in pair_results(name)]
-    targets += [f for name in config["pairs"] for v in VARIANTS for f in variant_results(name, v)]
+    """Every stage's result, the study tables and the figures of no stage of their own."""
+    targets = stage_targets()
     if "ltca" in config:
         targets += [f"results/{STUDY}/{name}/lte_table.nc" for name in config["pairs"]]
     if "impact" in config:
-        for name in config["pairs"]:
-            targets.append(f"results/{STUDY}/{name}/impact_table.nc")
+        targets += [f"results/{STUDY}/{name}/impact_table.nc" for name in config["pairs"]]
     if "rating" in config:
         targets += [f"results/{STUDY}/{name}/load_capacity_table.nc" for name in config["pairs"]]
-    if "signoff" in config:
-        targets += [f"results/{STUDY}/{name}/signoff_table.nc" for name in config["pairs"]]
     for run, section in (config.get("optimise") or {}).items():
-        for name in config["pairs"]:
-            base = f"results/{STUDY}/{name}/optimise/{run}"
-            targets.append(f"{base}/ga.nc")
-            if section["method"] == "nsga2":
-                targets.append(f"{base}/plots/pareto.png")
+        if section["method"] == "nsga2":
+            targets += [f"results/{STUDY}/{name}/optimise/{run}/plots/pareto.png" for name in config["pairs"]]
     if "dynamics" in config:
         targets += [f"results/{STUDY}/{name}/plots/dynamics_variants.png" for name in config["pairs"]]
         if dynamics_contact() and "impact" in config:
             targets += [f"results/{STUDY}/{name}/engagement_table.nc" for name in config["pairs"]]
-    if "helix_sweep" in config:
-        targets.append(f"results/{STUDY}/helix_sweep.nc")
-    if fe_wanted():
-        targets += [f"results/{STUDY}/{name}/fe_compliance.nc" for name in config["pairs"]]
-    for table in ("stiffness_table", "slice_convergence"):
-        if table in config:
-            targets.append(f"results/{STUDY}/{table}.nc")
     if lste_comparison_wanted(config):
         targets.append(f"results/{STUDY}/lste_comparison.nc")
-    if "dynamics_comparison" in config:
-        targets.append(f"results/{STUDY}/dynamics_comparison.nc")
-    if "low_fluctuation_design" in config:
-        targets.append(f"results/{STUDY}/low_fluctuation_design.nc")
     return targets
 
 

@@ -11,17 +11,14 @@ rule dynamics:
     figures: RMS against speed (DTE, x/y/z displacement and velocity, both gears), mesh-force spectra and, with the
     contact excitation, the mesh force and the entering pair's force over two mesh cycles."""
     input:
-        unpack(dynamics_inputs),
+        unpack(stage_inputs("dynamics")),
     output:
-        nc="results/{study}/{pair}/{variant}/dynamics.nc",
+        nc=stage_output("dynamics"),
         **dynamics_figure_outputs(),
     log:
         "logs/{study}/{pair}/{variant}/dynamics.log",
     params:
-        function=versioned_param("gearmesh.datasets.dynamics:dynamics_dataset"),
-        settings=lambda wildcards: {**config["dynamics"], "variant": wildcards.variant},
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.dynamics:dynamics_figures"),
+        **stage_params("dynamics"),
     conda:
         ENV
     script:
@@ -32,20 +29,15 @@ rule train_dynamics:
     """The 9-DOF three-gear train of seed 004 at its speed and load: both mesh forces, spectra, vibration (train.nc);
     figure: the mesh forces of both meshes, time series and spectrum."""
     input:
-        unpack(fe_tables("train_dynamics")),
-        pair=variant_source_pair,
-        stiffness="results/{study}/{pair}/stiffness.nc",
+        unpack(stage_inputs("train_dynamics")),
     output:
-        nc="results/{study}/{pair}/{variant}/train.nc",
+        nc=stage_output("train_dynamics"),
         spectrum=report_item("results/{study}/{pair}/{variant}/plots/train_spectrum.png", "train_spectrum", "Dynamics",
                              BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/train.log",
     params:
-        function=versioned_param("gearmesh.datasets.dynamics:train_dataset"),
-        settings=lambda wildcards: config["train_dynamics"],
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.dynamics:train_figures"),
+        **stage_params("train_dynamics"),
     conda:
         ENV
     script:
@@ -56,18 +48,16 @@ rule dynamics_comparison:
     """RMS changes between the study's pairs (standard variant): DTE, lateral and axial vibration; and its figure."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        dynamics=expand("results/{{study}}/{pair}/standard/dynamics.nc", pair=config["pairs"]),
+        dynamics=every_pair("dynamics"),
     output:
-        nc="results/{study}/dynamics_comparison.nc",
+        nc=stage_output("dynamics_comparison"),
         csv=report_item("results/{study}/dynamics_comparison.csv", "dynamics_comparison", "Dynamics", STUDY_TABLES),
         dynamics_comparison=report_item("results/{study}/plots/dynamics_comparison.png", "dynamics_comparison",
                                         "Dynamics", STUDY_TABLES),
     log:
         "logs/{study}/dynamics_comparison.log",
     params:
-        function=versioned_param("gearmesh.datasets.dynamics:dynamics_comparison_dataset"),
-        settings=lambda wildcards: config.get("dynamics_comparison", {}),
-        figures=versioned_param("gearmesh.plots.dynamics:dynamics_comparison_figures"),
+        **stage_params("dynamics_comparison"),
     conda:
         ENV
     script:
@@ -83,8 +73,8 @@ if dynamics_contact() and "impact" in config:
         figure: the peak dynamic mesh force against speed, every variant on one axis, one panel per torque."""
         localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
-            impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
-            dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
+            impact=every_variant("impact"),
+            dynamics=every_variant("dynamics"),
         output:
             nc="results/{study}/{pair}/engagement_table.nc",
             csv=report_item("results/{study}/{pair}/engagement_table.csv", "engagement_table", "Dynamics", BY_PAIR),
@@ -106,7 +96,7 @@ else:
         """Peak dynamic mesh force against speed, every variant of a pair on one axis, one panel per torque."""
         localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
-            dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS),
+            dynamics=every_variant("dynamics"),
         output:
             dynamics_variants=report_item("results/{study}/{pair}/plots/dynamics_variants.png", "dynamics_variants",
                                           "Dynamics"),

@@ -7,16 +7,14 @@
 rule fe_compliance:
     """FE tooth compliance of both gears along the profile, with the PEM models (fe_compliance.nc), and its figure."""
     input:
-        pair=pair_file,
+        unpack(stage_inputs("fe_compliance")),
     output:
-        nc="results/{study}/{pair}/fe_compliance.nc",
+        nc=stage_output("fe_compliance"),
         fe_compliance=report_item("results/{study}/{pair}/plots/fe_compliance.png", "fe_compliance", "Stiffness"),
     log:
         "logs/{study}/{pair}/fe_compliance.log",
     params:
-        function=versioned_param("gearmesh.datasets.fe:fe_compliance_dataset"),
-        settings=lambda wildcards: config["fe_compliance"],
-        figures=versioned_param("gearmesh.plots.fe:fe_compliance_figures"),
+        **stage_params("fe_compliance"),
     priority: 10  # with method fe the optimiser (priority 10, the longest job) waits for it
     conda:
         ENV

@@ -8,10 +8,9 @@ rule impact:
     torque x speed grid, and the direct simulation of the engagement at the design speed (impact.nc);
     figures: impact force against speed per torque, the trajectory of M on the flank, the simulated engagement."""
     input:
-        unpack(fe_tables("impact")),
-        pair=variant_source_pair,
+        unpack(stage_inputs("impact")),
     output:
-        nc="results/{study}/{pair}/{variant}/impact.nc",
+        nc=stage_output("impact"),
         force_speed=report_item("results/{study}/{pair}/{variant}/plots/impact_speed.png", "impact_speed",
                                 "Impact", BY_VARIANT),
         trajectory=report_item("results/{study}/{pair}/{variant}/plots/mesh_in_trajectory.png",
@@ -21,12 +20,7 @@ rule impact:
     log:
         "logs/{study}/{pair}/{variant}/impact.log",
     params:
-        function=versioned_param("gearmesh.datasets.impact:impact_dataset"),
-        # the study's manufacturing tolerances give each variant's tolerance spread
-        settings=lambda wildcards: {**config["impact"], "variant": wildcards.variant,
-                                    "tolerances": config.get("tolerances")},
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.impact:impact_figures"),
+        **stage_params("impact"),
     conda:
         ENV
     script:
@@ -39,7 +33,7 @@ rule impact_table:
     their load windows and tolerance spreads side by side (the robustness page)."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
+        impact=every_variant("impact"),
     output:
         nc="results/{study}/{pair}/impact_table.nc",
         csv=report_item("results/{study}/{pair}/impact_table.csv", "impact_table", "Impact", BY_PAIR),

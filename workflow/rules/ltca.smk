@@ -6,20 +6,16 @@ rule ltca:
     stiffness, pairs in contact, LTE at the start of engagement (ltca.nc); figures: TE and LTE against
     rotation, the loaded contact pattern on the pinion flank."""
     input:
-        unpack(fe_tables("ltca")),
-        pair=variant_source_pair,
+        unpack(stage_inputs("ltca")),
     output:
-        nc="results/{study}/{pair}/{variant}/ltca.nc",
+        nc=stage_output("ltca"),
         te_lte=report_item("results/{study}/{pair}/{variant}/plots/te_lte.png", "te_lte", "LTCA", BY_VARIANT),
         contact_pattern=report_item("results/{study}/{pair}/{variant}/plots/contact_pattern.png", "contact_pattern",
                                     "LTCA", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/ltca.log",
     params:
-        function=versioned_param("gearmesh.datasets.ltca:ltca_dataset"),
-        settings=lambda wildcards: config["ltca"],
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.ltca:ltca_figures"),
+        **stage_params("ltca"),
     conda:
         ENV
     script:
@@ -31,7 +27,7 @@ rule lte_table:
     the entering pair meets (lte_table.nc); the report's landing page shows the table."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        ltca=expand("results/{{study}}/{{pair}}/{variant}/ltca.nc", variant=VARIANTS),
+        ltca=every_variant("ltca"),
     output:
         nc="results/{study}/{pair}/lte_table.nc",
         csv=report_item("results/{study}/{pair}/lte_table.csv", "lte_table", "LTCA", BY_PAIR),
@@ -49,8 +45,8 @@ rule lste_comparison:
     """Seed 001's LSTE of every pair: LTCA (standard variant, first torque) next to F/K(phi)."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        stiffness=expand("results/{{study}}/{pair}/stiffness.nc", pair=config["pairs"]),
-        ltca=expand("results/{{study}}/{pair}/standard/ltca.nc", pair=config["pairs"]),
+        stiffness=every_pair("stiffness"),
+        ltca=every_pair("ltca"),
     output:
         nc="results/{study}/lste_comparison.nc",
         csv=report_item("results/{study}/lste_comparison.csv", "lste_comparison", "LTCA", STUDY_TABLES),

@@ -11,10 +11,9 @@ rule optimise:
     pair file; figures: convergence (and the random search on one axis when it ran) and the optimum's
     modification map."""
     input:
-        unpack(fe_tables("impact")),  # the optimiser runs the study's impact model
-        pair=pair_file,
+        unpack(stage_inputs("optimise")),
     output:
-        nc="results/{study}/{pair}/optimise/{run}/ga.nc",
+        nc=stage_output("optimise"),
         pair="results/{study}/{pair}/optimise/{run}/pair.yaml",
         convergence=report_item("results/{study}/{pair}/optimise/{run}/plots/convergence.png",
                                 "optimise_convergence", "Optimisation", BY_RUN),
@@ -25,11 +24,7 @@ rule optimise:
     # the longest job, and the variants it writes wait for it: start it first
     priority: 10
     params:
-        function=versioned_param("gearmesh.datasets.optimise:optimise_dataset"),
-        # the impact model is the study's (impact: section), so the optimum is optimal for the impact stage
-        settings=lambda wildcards: {**config["optimise"][wildcards.run], "impact": config.get("impact"),
-                                    "tolerances": config.get("tolerances")},
-        figures=versioned_param("gearmesh.plots.optimise:optimise_figures"),
+        **stage_params("optimise"),
     conda:
         ENV
     script:
@@ -41,7 +36,7 @@ rule plot_pareto:
     run with method nsga2 has one, and an output cannot depend on a wildcard's config)."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        ga="results/{study}/{pair}/optimise/{run}/ga.nc",
+        ga=stage_output("optimise"),
     output:
         pareto=report_item("results/{study}/{pair}/optimise/{run}/plots/pareto.png", "optimise_pareto",
                            "Optimisation", BY_RUN),

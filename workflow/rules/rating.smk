@@ -6,10 +6,9 @@ rule rating:
     """S_H, S_F, stresses and load factors (standard and LTCA) at every LTCA torque (rating.nc); figures: the
     contact-pressure map over the pinion flank, the tooth-root stress along the face."""
     input:
-        pair=variant_source_pair,
-        ltca="results/{study}/{pair}/{variant}/ltca.nc",
+        unpack(stage_inputs("rating")),
     output:
-        nc="results/{study}/{pair}/{variant}/rating.nc",
+        nc=stage_output("rating"),
         pressure_map=report_item("results/{study}/{pair}/{variant}/plots/pressure_map.png", "pressure_map",
                                  "Load capacity", BY_VARIANT),
         root_stress_face=report_item("results/{study}/{pair}/{variant}/plots/root_stress_face.png",
@@ -17,10 +16,7 @@ rule rating:
     log:
         "logs/{study}/{pair}/{variant}/rating.log",
     params:
-        function=versioned_param("gearmesh.datasets.rating:rating_dataset"),
-        settings=lambda wildcards: config["rating"],
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.rating:rating_figures"),
+        **stage_params("rating"),
     conda:
         ENV
     script:
@@ -31,7 +27,7 @@ rule load_capacity_table:
     """S_H, S_F, peak contact pressure (flank or edge) and peak root stress of every variant and torque."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
-        rating=expand("results/{{study}}/{{pair}}/{variant}/rating.nc", variant=VARIANTS),
+        rating=every_variant("rating"),
     output:
         nc="results/{study}/{pair}/load_capacity_table.nc",
         csv=report_item("results/{study}/{pair}/load_capacity_table.csv", "load_capacity_table", "Load capacity",

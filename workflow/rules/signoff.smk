@@ -10,21 +10,15 @@ if "signoff" in config:
         over the reference's against torque, with the criterion's limit."""
         localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
         input:
-            impact=expand("results/{{study}}/{{pair}}/{variant}/impact.nc", variant=VARIANTS),
-            ltca=expand("results/{{study}}/{{pair}}/{variant}/ltca.nc", variant=VARIANTS),
-            rating=expand("results/{{study}}/{{pair}}/{variant}/rating.nc", variant=VARIANTS),
-            dynamics=expand("results/{{study}}/{{pair}}/{variant}/dynamics.nc", variant=VARIANTS)
-            if "dynamics" in config else [],
+            unpack(stage_inputs("signoff")),
         output:
-            nc="results/{study}/{pair}/signoff_table.nc",
+            nc=stage_output("signoff"),
             csv=report_item("results/{study}/{pair}/signoff_table.csv", "signoff_table", "Sign-off", BY_PAIR),
             signoff=report_item("results/{study}/{pair}/plots/signoff.png", "signoff", "Sign-off", BY_PAIR),
         log:
             "logs/{study}/{pair}/signoff_table.log",
         params:
-            function=versioned_param("gearmesh.datasets.signoff:signoff_table_dataset"),
-            settings=lambda wildcards: config["signoff"],
-            figures=versioned_param("gearmesh.plots.signoff:signoff_figures"),
+            **stage_params("signoff"),
         conda:
             ENV
         script:

@@ -5,17 +5,14 @@ rule tca:
     """Unloaded TCA over one mesh cycle: separations, TE of the mesh and of each pair, first-contact path (tca.nc);
     figure: the unloaded TE and the first-contact points on the pinion flank."""
     input:
-        pair=variant_source_pair,
+        unpack(stage_inputs("tca")),
     output:
-        nc="results/{study}/{pair}/{variant}/tca.nc",
+        nc=stage_output("tca"),
         tca=report_item("results/{study}/{pair}/{variant}/plots/tca.png", "tca", "TCA", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/tca.log",
     params:
-        function=versioned_param("gearmesh.datasets.ltca:tca_dataset"),
-        settings=lambda wildcards: config["tca"],
-        variant=variant_spec,
-        figures=versioned_param("gearmesh.plots.ltca:tca_figures"),
+        **stage_params("tca"),
     conda:
         ENV
     script:

@@ -17,8 +17,7 @@ from ..settings import FeCompliance
 
 
 @check_arguments(FeCompliance)
-def fe_compliance_dataset(pair: GearPair, plane: str = fe.DEFAULT_PLANE, size: float = fe.DEFAULT_SIZE,
-                          roll_nodes: int = fe.DEFAULT_ROLL_NODES) -> xr.Dataset:
+def fe_compliance_dataset(pair: GearPair, *, plane: str, size: float, roll_nodes: int) -> xr.Dataset:
     """Per-unit-width tooth compliance (m²/N) of each gear at ``roll_nodes`` roll lengths over
     [ρ_SAP, ρ_EAP]: the FE total in ``plane`` (the table of ``stiffness.method: fe``) and in
     plane stress (the PEM's E and G), its body / tooth / wind-up / ring-shift / local parts

@@ -28,7 +28,7 @@ from ..limits import check_sweep
 from ..profile import tooth_profile
 from ..surface import tooth_surface
 from ..schema import check_arguments
-from ..settings import ContactLines, Geometry, HelixSweep
+from ..settings import ContactLines, Geometry, HelixSweep, LowFluctuationDesign
 
 
 def _per_gear(values, units: str, long_name: str) -> xr.Variable:
@@ -85,8 +85,7 @@ def _gear_coord() -> dict[str, xr.Variable]:
 
 
 @check_arguments(Geometry)
-def geometry_dataset(pair: GearPair, involute_points: int = 120, fillet_points: int = 60,
-                     face_points: int = 21) -> xr.Dataset:
+def geometry_dataset(pair: GearPair, *, involute_points: int, fillet_points: int, face_points: int) -> xr.Dataset:
     """The pair's geometry: scalars, the transverse tooth profile with its hob fillet, and the
     (modified) flank surface of each gear on a (profile, face) grid, in each gear's body frame.
 
@@ -128,7 +127,7 @@ def geometry_dataset(pair: GearPair, involute_points: int = 120, fillet_points: 
 
 
 @check_arguments(ContactLines)
-def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:
+def contact_lines_dataset(pair: GearPair, *, positions: int) -> xr.Dataset:
     """Contact lines and total length L(φ) over one mesh cycle (seed 002; seed 001 §1, §5).
 
     Positions are pinion roll distances over one transverse base pitch. Each line is given
@@ -185,8 +184,8 @@ def contact_lines_dataset(pair: GearPair, positions: int = 360) -> xr.Dataset:
 
 
 @check_arguments(HelixSweep)
-def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_deg: float,
-                        step_deg: float, positions: int = 360) -> xr.Dataset:
+def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_deg: float, step_deg: float, *,
+                        positions: int) -> xr.Dataset:
     """Contact-length statistics against helix angle for each pair (seed 002; seed 001 §5).
 
     Each helix angle is a full new pair geometry at its zero-backlash centre distance
@@ -235,6 +234,7 @@ DESIGN_ROUTES = {  # name -> (design function, direction)
 }
 
 
+@check_arguments(LowFluctuationDesign)
 def low_fluctuation_design_dataset(pairs: Mapping[str, GearPair]) -> xr.Dataset:
     """Integer-overlap-ratio designs of each pair (seed 001 §1, §5): the original and its
     helix-angle (forward/backward) and face-width (forward/backward) redesigns, with εα,

@@ -24,7 +24,6 @@ from ..surface import fit_modifications
 from ..tca import check_lead_slope, check_modifications
 from ..tolerance import apply_deviations, study_tolerances, unit_deviations
 from ..schema import check_arguments, defaults
-from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
 from ..settings import Impact
 
 UM = 1e-6
@@ -64,13 +63,11 @@ def _scenario_var(dims, scenario) -> xr.Variable:
 
 
 @check_arguments(Impact)
-def impact_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), speeds_rpm=(5000.0,), on: str = "pinion",
-                   design_speed_rpm: float = 5000.0, driver: str = "pinion", points: int = 50,
-                   energy_velocity: str = "transverse", added_inertia_kg_m2=(0.0, 0.0), lead_slope_um=(0.0, 0.0),
-                   contact_law: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = DEFAULT_CORNER_EXTENSION,
-                   simulate_torques_Nm=(), variant: str = "", fe_compliance: xr.Dataset | None = None,
-                   window_positions: int = 32, face_samples: int = 257, design_torque_Nm: float | None = None,
-                   load_window_step_Nm: float | None = None,
+def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_speed_rpm: float, driver: str,
+                   points: int, energy_velocity: str, added_inertia_kg_m2, lead_slope_um, contact_law: str,
+                   method: str, corner_extension: float, simulate_torques_Nm, variant: str = "",
+                   fe_compliance: xr.Dataset | None = None, window_positions: int, face_samples: int,
+                   design_torque_Nm: float | None, load_window_step_Nm: float | None,
                    tolerances: dict[str, Any] | None = None) -> xr.Dataset:
     """Mesh-in impact over a torque × speed grid (dims torque, speed): scenario, mesh-in point
     M (3-D, profile and face position, common normal), impact velocity (closing rate and seed
@@ -357,8 +354,8 @@ def _table_spread(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, x
 
 
 @check_arguments(Impact)
-def impact_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", driver: str = "pinion",
-                   points: int = 50, simulate: bool = False, energy_velocity: str = "transverse") -> dict[str, Any]:
+def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str, points: int, simulate: bool = False,
+                   energy_velocity: str) -> dict[str, Any]:
     """Headline numbers of one impact in engineering units (the CLI's ``impact --json``)."""
     for name, value in (("torque_Nm", torque_Nm), ("speed_rpm", speed_rpm)):
         if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):

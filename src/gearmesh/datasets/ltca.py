@@ -20,10 +20,9 @@ from . import variant_name
 from ..io import name_force_lines, variable
 from ..limits import check_contact_grid
 from ..ltca import LTCAResult, loaded_pinion_torques, ltca
-from ..tca import DEFAULT_EXTENSION, TCAResult, check_lead_slope, check_modifications, tca
+from ..tca import TCAResult, check_lead_slope, check_modifications, tca
 from ..schema import check_arguments
 from ..body import describe_body
-from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
 from ..settings import Ltca, Tca
 
 UM = 1e-6
@@ -98,8 +97,7 @@ def _coords(geom, res: TCAResult) -> dict[str, xr.Variable]:
 
 
 @check_arguments(Tca)
-def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slope_um=(0.0, 0.0),
-                corner_extension: float = DEFAULT_EXTENSION) -> xr.Dataset:
+def tca_dataset(pair: GearPair, *, positions: int, points: int, lead_slope_um, corner_extension: float) -> xr.Dataset:
     """Unloaded TCA over one mesh cycle (dims position, line, point): separations of every
     candidate point (flank and tip edges), the TE curve of the mesh and of each pair, the
     first-contact point of each pair and the values at the start of engagement φ1A.
@@ -117,10 +115,8 @@ def tca_dataset(pair: GearPair, positions: int = 64, points: int = 50, lead_slop
 
 
 @check_arguments(Ltca)
-def ltca_dataset(pair: GearPair, torques_Nm=(400.0, 1000.0, 1600.0), positions: int = 64, points: int = 50,
-                 lead_slope_um=(0.0, 0.0), on: str = "pinion", contact_law: str = DEFAULT_CONTACT_LAW,
-                 method: str = DEFAULT_TOOTH_METHOD, corner_extension: float = DEFAULT_EXTENSION,
-                 fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, lead_slope_um, on: str, contact_law: str,
+                 method: str, corner_extension: float, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """LTCA at each torque over one mesh cycle (dims torque, position, line, point).
 
     Loaded TE, load and line load of every point (the contact pattern), load per tooth
@@ -201,9 +197,8 @@ def _load_capacity_variables(geom, res: LTCAResult) -> dict[str, xr.Variable]:
 
 
 @check_arguments(Ltca)
-def ltca_summary(pair: GearPair, torque_Nm, on: str = "pinion", positions: int = 64, points: int = 50,
-                 lead_slope_um=(0.0, 0.0), contact_law: str = DEFAULT_CONTACT_LAW,
-                 method: str = DEFAULT_TOOTH_METHOD) -> dict[str, Any]:
+def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: int, lead_slope_um, contact_law: str,
+                 method: str) -> dict[str, Any]:
     """Headline LTCA numbers at one torque in engineering units (the CLI's ``ltca --json``)."""
     if not (isinstance(torque_Nm, (int, float, np.floating, np.integer)) and not isinstance(torque_Nm, bool)):
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be one positive number (N m)")

@@ -185,8 +185,8 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
 
 
 @check_arguments(Rating)
-def rating_dataset(pair: GearPair, speed_rpm: float, application_factor: float = 1.0, life_hours: float | None = None,
-                   method: str = "ltca", ltca: xr.Dataset | None = None) -> xr.Dataset:
+def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: float, life_hours: float | None,
+                   method: str, ltca: xr.Dataset | None = None) -> xr.Dataset:
     """ISO 6336-2/-3 rating of a pair (a variant) at each torque of its ``ltca`` dataset (ltca.nc, with
     the variables of :func:`load_capacity_variables`) and pinion speed ``speed_rpm`` (rating.nc): safety
     factors, stresses and the load factors by the standard and from the LTCA, beside the LTCA's peak

@@ -20,7 +20,6 @@ from ..body import describe_body
 from ..ltca import contact_tangent_compliance
 from ..stiffness import (
     DEFAULT_RULE,
-    DEFAULT_SLICES,
     fourier_fit,
     iso6336_stiffness,
     lste,
@@ -29,7 +28,7 @@ from ..stiffness import (
     slice_compliance_table,
 )
 from ..schema import check_arguments
-from ..choices import DEFAULT_TOOTH_METHOD, PEM_TOOTH_METHODS
+from ..choices import PEM_TOOTH_METHODS
 from ..settings import SliceConvergence, Stiffness, StiffnessTable
 
 METHODS = PEM_TOOTH_METHODS
@@ -53,9 +52,8 @@ def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
 
 
 @check_arguments(Stiffness)
-def stiffness_dataset(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES,
-                      positions: int = 360, fourier_order: int = 3, torque_Nm: float | None = None,
-                      torque_on: str = "pinion", fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+def stiffness_dataset(pair: GearPair, *, method: str, slices: int, positions: int, fourier_order: int,
+                      torque_Nm: float | None, torque_on: str, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """K(φ) of ``pair`` by the slice potential energy method (:func:`gearmesh.stiffness.mesh_stiffness`),
     with its components, one tooth pair's k over its engagement, the Fourier series of K to
     ``fourier_order`` (seed 004) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
@@ -125,11 +123,12 @@ def stiffness_dataset(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices
 
 
 @check_arguments(Stiffness)
-def stiffness_summary(pair: GearPair, method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES,
-                      positions: int = 360, torque_Nm: float | None = None, torque_on: str = "pinion") -> dict[str, Any]:
+def stiffness_summary(pair: GearPair, *, method: str, slices: int, positions: int, torque_Nm: float | None,
+                      torque_on: str) -> dict[str, Any]:
     """Headline stiffness numbers in one unit family, N, mm, µm, the unit in every key (the CLI's
     ``stiffness --json``); stiffnesses along the transverse line of action."""
-    ds = stiffness_dataset(pair, method, slices, positions, 3, torque_Nm, torque_on)
+    ds = stiffness_dataset(pair, method=method, slices=slices, positions=positions, torque_Nm=torque_Nm,
+                           torque_on=torque_on)
     out = {
         "name": pair.name, "tooth_model": method, "contact_term": ds.attrs["contact_term"], "slices": slices,
         "mean_mesh_stiffness_N_per_um": float(ds.mean_stiffness) * 1e-6,
@@ -168,10 +167,9 @@ def apply_variant(pair: GearPair, name: str, overrides: Mapping[str, Any]) -> Ge
 
 
 @check_arguments(StiffnessTable)
-def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str] = ("transition",),
-                            variants: Mapping[str, Mapping[str, Any]] | None = None,
-                            slices: int = DEFAULT_SLICES, positions: int = 360, torque_Nm: float | None = None,
-                            torque_on: str = "pinion") -> xr.Dataset:
+def stiffness_table_dataset(pairs: Mapping[str, GearPair], *, methods: Sequence[str],
+                            variants: Mapping[str, Mapping[str, Any]] | None, slices: int, positions: int,
+                            torque_Nm: float | None, torque_on: str) -> xr.Dataset:
     """A comparison table over pairs (and pair-file variants of each) and cantilever methods:
     mean/min/max K, ε_k, ISO 6336-1 mesh stiffness and, with a torque, LSTE mean and
     peak-to-peak (seed 001 Table/§3, seed 003 parametric tables, seed 004 method table)."""
@@ -222,8 +220,8 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], methods: Sequence[str
 
 
 @check_arguments(SliceConvergence)
-def slice_convergence_dataset(pairs: Mapping[str, GearPair], slices: Sequence[int] = (25, 50, 100, 200, 400, 1000),
-                              method: str = DEFAULT_TOOTH_METHOD, positions: int = 360) -> xr.Dataset:
+def slice_convergence_dataset(pairs: Mapping[str, GearPair], *, slices: Sequence[int], method: str,
+                              positions: int) -> xr.Dataset:
     """K statistics against the slice count for both slice rules (seed 004 argues N = 1000):
     'centre' (whole slices, the documents' sampling) and 'clip' (end slices clipped), with
     the relative difference of the mean to the finest 'clip' result."""
