@@ -226,3 +226,33 @@ def test_every_door_defaults_to_the_robust_objective_over_the_tolerance_samples(
     assert cli["samples"] == defaults(Tolerances)["samples"] > 0
     assert cli["grade"] == CLI_LEAD_GRADE  # a population to be robust over without a tolerances section
     assert "OUT.yaml" in sub.format_usage()  # --write-pair OUT.yaml, the name its help gives
+
+
+def test_criteria_over_samples_are_the_tolerance_statistic_of_each_manufactured_gears_own(model):
+    """criteria_over_samples: each criterion is the statistic over the nominal and the tolerance
+    samples of that gear's own LTCA (computed here one manufactured gear at a time), for the
+    candidate and for the unmodified pair it is held against; without it, the nominal gear's."""
+    from gearmesh.tolerance import tolerance_model
+
+    tol = tolerance_model(model.geom, grade=6, modification={"tip_relief_um": 2, "crowning_um": 2})
+    common = {"population": 4, "generations": 1, "objective": "robust", "torque": 1000.0, "torques": TORQUES,
+              "tolerance_samples": 2, "tolerance_statistic": "max", "root_stress_factor": 1.1}
+    over = op.problem(model, op.check_settings(**common, criteria_over_samples=True), tolerance=tol)
+    nominal = op.problem(model, op.check_settings(**common), tolerance=tol)
+    params = over.decode([CANDIDATE])
+    rows, lead = op._manufactured_rows(model, over.tolerance, params, over.population_deviations)
+    assert rows.shape[0] == 3  # the nominal and two samples
+    each = [im.ltca_criteria(model, TORQUES, rows[k:k + 1], lead_slope=lead[k:k + 1]) for k in range(3)]
+    ev = op.evaluate(over, params)
+    for name in ("root_stress", "flank_pressure", "edge_pressure", "lte_peak_to_peak", "te_harmonics"):
+        worst = np.max([getattr(c, name)[0] for c in each], axis=0)
+        np.testing.assert_allclose(getattr(ev.criteria, name)[0], worst, rtol=1e-12)
+        np.testing.assert_allclose(getattr(op.evaluate(nominal, params).criteria, name)[0], getattr(each[0], name)[0],
+                                   rtol=1e-12)
+    std_rows, std_lead = op._manufactured_rows(model, over.tolerance, np.zeros((1, 2, 6)), over.population_deviations)
+    std_root = np.max([im.ltca_criteria(model, TORQUES, std_rows[k:k + 1], lead_slope=std_lead[k:k + 1]).root_stress[0]
+                       for k in range(3)], axis=0)
+    np.testing.assert_allclose(over.standard.criteria.root_stress[0], std_root, rtol=1e-12)
+    ratios = op._ratios(over.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load, ev.dynamic_factor,
+                        ev.criteria, over.standard)
+    assert ratios["root_stress"][0] == pytest.approx(np.max(ev.criteria.root_stress[0] / std_root), rel=1e-12)

@@ -179,6 +179,7 @@ class OptimiseSettings:
     pareto_objectives: tuple[str, ...] = ("impact", "lte")
     S_Hmin: float | None = None
     S_Fmin: float | None = None
+    criteria_over_samples: bool = False
 
     @property
     def budget(self) -> int:
@@ -283,7 +284,8 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    load_window_top: float | None = None, dynamic_speeds=None, dynamic_factor=None,
                    backlash=None, harmonic_factor=None, harmonic_orders=(1, 2), pressure_factor=None,
                    root_stress_factor=None, impact_factor=None, worst_impact_factor=None,
-                   pareto_objectives=("impact", "lte"), S_Hmin=None, S_Fmin=None) -> OptimiseSettings:
+                   pareto_objectives=("impact", "lte"), S_Hmin=None, S_Fmin=None,
+                   criteria_over_samples: bool = False) -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
     the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone.
     The constraint factors (``*_factor``) are relative to the unmodified pair's value (module
@@ -368,7 +370,8 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                             float(tolerance_level), lte_factor, line_load_factor, penalty,
                             float(mutation_probability), float(mutation_scale), keep_elitism, random_baseline,
                             energy_velocity, load_window_step, top, dynamic_speeds, dynamic_factor, backlash,
-                            harmonic_orders=harmonic_orders, pareto_objectives=pareto_objectives, **factors)
+                            harmonic_orders=harmonic_orders, pareto_objectives=pareto_objectives,
+                            criteria_over_samples=bool(criteria_over_samples), **factors)
 
 
 def _orders(orders) -> tuple[int, ...]:
@@ -624,7 +627,7 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
     per_gear = load_statistic(value, s.statistic, s.weights)  # (C, S): each manufactured gear over the spectrum
     f = per_gear[:, 0] if s.tolerance_statistic is None else sample_statistic(per_gear, s.tolerance_statistic,
                                                                               s.tolerance_level)
-    crit = ltca_criteria(model, s.objective_torques, params, stresses=s.needs_stresses) if s.needs_criteria else None
+    crit = _criteria(prob, params, rows, lead) if s.needs_criteria else None
     d = s.design_index
     lte, line = (np.full(nc, np.nan),) * 2 if crit is None else (crit.lte_peak_to_peak[:, d], crit.max_line_load[:, d])
     if s.dynamic_factor is None:
@@ -658,6 +661,29 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
                                   np.where(failed, FAILURE_FACTOR, ratios[k]) for k in s.pareto_objectives])
     return Evaluation(j, value, force, vel, scen, failed, lte, line, kv, np.where(failed, np.nan, violation), crit,
                       pareto)
+
+
+def _criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray, lead: np.ndarray) -> LTCACriteria:
+    """The candidates' loaded-contact criteria (C, T, ...): of the nominal gears, or with
+    ``criteria_over_samples`` (and a tolerance statistic) of every manufactured gear ``rows``,
+    ``lead`` ((C·S, ...), sample 0 the nominal, as :func:`_manufactured_rows`), each quantity
+    reduced over the S gears by the tolerance statistic; the point loads stay the nominal gear's
+    (S_Hmin, S_Fmin are nominal)."""
+    s, model = prob.settings, prob.model
+    if not s.criteria_over_samples or s.tolerance_statistic is None:
+        return ltca_criteria(model, s.objective_torques, params, stresses=s.needs_stresses)
+    nc = params.shape[0]
+    ns = rows.shape[0] // nc
+    c = ltca_criteria(model, s.objective_torques, rows, lead_slope=lead, stresses=s.needs_stresses)
+
+    def over_samples(a: np.ndarray) -> np.ndarray:
+        a = np.asarray(a).reshape(nc, ns, *a.shape[1:])
+        return sample_statistic(np.moveaxis(a, 1, -1), s.tolerance_statistic, s.tolerance_level)
+
+    return LTCACriteria(lte_peak_to_peak=over_samples(c.lte_peak_to_peak), te_harmonics=over_samples(c.te_harmonics),
+                        max_line_load=over_samples(c.max_line_load), flank_pressure=over_samples(c.flank_pressure),
+                        edge_pressure=over_samples(c.edge_pressure), root_stress=over_samples(c.root_stress),
+                        load=c.load.reshape(nc, ns, *c.load.shape[1:])[:, 0])
 
 
 def worst_ratio(values: np.ndarray, reference: np.ndarray) -> np.ndarray:

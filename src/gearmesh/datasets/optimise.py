@@ -122,6 +122,7 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
                               dynamic_speeds=dynamic_speeds_rpm, dynamic_factor=constraints.get("dynamic_factor"),
                               backlash=backlash, harmonic_orders=constraints.get("harmonic_orders", (1, 2)),
                               pareto_objectives=pareto_objectives,
+                              criteria_over_samples=constraints.get("criteria_over_samples", False),
                               **{k: constraints.get(k) for k in ("harmonic_factor", "pressure_factor",
                                                                  "root_stress_factor", "impact_factor",
                                                                  "worst_impact_factor", "S_Hmin", "S_Fmin")})
@@ -271,23 +272,27 @@ def _pareto_variable(name: str, units: str, what: str) -> tuple[str, str, str]:
 
 
 def _criteria_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
-    """The optimum's and the standard gear's loaded contact at the spectrum torques (nominal gear)."""
+    """The optimum's and the standard gear's loaded contact at the spectrum torques (nominal gear,
+    or each quantity's tolerance statistic over the manufactured gears with criteria_over_samples)."""
     opt, std = result.optimum_evaluation.criteria, result.problem.standard.criteria
     if opt is None or std is None:
         return {}
+    s = result.problem.settings
+    gears = f"{s.tolerance_statistic} over the manufactured gears" if s.criteria_over_samples and \
+        s.tolerance_statistic is not None else "nominal gear"
     t, tk = ("objective_torque",), ("objective_torque", "mesh_order")
     out = {}
     for who, c in (("optimum", opt), ("standard", std)):
         label = "optimum" if who == "optimum" else "standard gear"
         out[f"{who}_lte_harmonics"] = variable(tk, c.te_harmonics[0], "m", f"{label}: amplitude of the loaded TE at "
-                                                                           "mesh orders 1-3 (nominal gear)")
+                                                                           f"mesh orders 1-3 ({gears})")
         if np.all(np.isfinite(c.root_stress)):
             out[f"{who}_flank_pressure"] = variable(t, c.flank_pressure[0], "Pa", f"{label}: largest Hertzian contact "
-                                                    "pressure on the flanks over the mesh cycle (nominal gear)")
+                                                    f"pressure on the flanks over the mesh cycle ({gears})")
             out[f"{who}_edge_pressure"] = variable(t, c.edge_pressure[0], "Pa", f"{label}: largest Hertzian contact "
-                                                   "pressure on the tip edges over the mesh cycle (nominal gear)")
+                                                   f"pressure on the tip edges over the mesh cycle ({gears})")
             out[f"{who}_root_stress"] = variable(t, c.root_stress[0], "Pa", f"{label}: largest tooth-root stress of "
-                                                 "either gear (ISO 6336-3 local form, nominal gear)")
+                                                 f"either gear (ISO 6336-3 local form, {gears})")
     return out
 
 
