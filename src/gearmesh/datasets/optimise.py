@@ -95,6 +95,7 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
     if unknown:
         key = sorted(unknown)[0]
         raise GearmeshInputError(f"constraints.{key}", constraints[key], f"is not a constraint; use {', '.join(known)}")
+    constraints = {**defaults(Constraints), **constraints}  # the declared defaults of those not given
     if backlash_um == "pair":
         backlash = None
     elif isinstance(backlash_um, (int, float)) and not isinstance(backlash_um, bool):
@@ -113,19 +114,12 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
                               speed_rpm=speed_rpm, tolerance_samples=samples, sampling=sampling,
                               tolerance_seed=tol_seed,
                               tolerance_statistic=tolerance_statistic, tolerance_level=tolerance_level_percent,
-                              lte_factor=constraints.get("lte_factor"),
-                              line_load_factor=constraints.get("line_load_factor"),
-                              penalty=constraints.get("penalty", 10.0), mutation_probability=mutation_probability,
+                              mutation_probability=mutation_probability,
                               mutation_scale=mutation_scale, keep_elitism=keep_elitism,
                               random_baseline=random_baseline,
                               energy_velocity=imp["energy_velocity"], load_window_step=step,
-                              dynamic_speeds=dynamic_speeds_rpm, dynamic_factor=constraints.get("dynamic_factor"),
-                              backlash=backlash, harmonic_orders=constraints.get("harmonic_orders", (1, 2)),
-                              pareto_objectives=pareto_objectives,
-                              criteria_over_samples=constraints.get("criteria_over_samples", False),
-                              **{k: constraints.get(k) for k in ("harmonic_factor", "pressure_factor",
-                                                                 "root_stress_factor", "impact_factor",
-                                                                 "worst_impact_factor", "S_Hmin", "S_Fmin")})
+                              dynamic_speeds=dynamic_speeds_rpm, backlash=backlash,
+                              pareto_objectives=pareto_objectives, **constraints)
     settings = replace(settings, load_window_top=_window_top(geom, settings.torques))
     if settings.tolerance_statistic is not None and not tol_model.dimensions:
         raise GearmeshInputError("tolerance_statistic", settings.tolerance_statistic,
