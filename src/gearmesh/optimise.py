@@ -92,6 +92,7 @@ from .dynamics.population import PopulationDynamics, dynamic_factors, population
 from .impact import (SCENARIO_NONE, ImpactModel, LTCACriteria, impact_response, impact_static, load_grid, load_window,
                      ltca_criteria)
 from .ltca import MESH_ORDERS
+from .stress import edge_pressure_reference
 from .surface import MODIFICATION_FIELDS, fit_modifications
 from .tolerance import (SAMPLINGS, ToleranceModel, apply_deviations, check_statistic, sample_statistic,
                         unit_deviations)
@@ -718,7 +719,7 @@ def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACri
         return {**out, "te_harmonics": nan, "pressure": nan, "root_stress": nan}
     k = [MESH_ORDERS.index(o) for o in s.harmonic_orders]
     out["te_harmonics"] = worst_ratio(crit.te_harmonics[..., k], ref.te_harmonics[0][..., k])
-    edge_ref = np.where(ref.edge_pressure[0] > 0, ref.edge_pressure[0], ref.flank_pressure[0])
+    edge_ref = edge_pressure_reference(ref.flank_pressure[0], ref.edge_pressure[0])
     out["pressure"] = np.maximum(worst_ratio(crit.flank_pressure, ref.flank_pressure[0]),
                                  worst_ratio(crit.edge_pressure, edge_ref))
     out["root_stress"] = worst_ratio(crit.root_stress, ref.root_stress[0])

@@ -57,6 +57,7 @@ __all__ = [
     "DEFAULT_TIP_EDGE_RADIUS_COEFFICIENT", "contact_modulus", "hertz_line_contact", "flank_relative_radius",
     "edge_relative_radius", "pair_edge_radius", "check_edge_radius", "RootForm", "virtual_gear", "root_form_factors",
     "outer_single_contact_diameter", "gear_root_form", "virtual_load_diameter", "FilletStress", "fe_fillet_stress", "ContactStress", "contact_stress",
+    "edge_pressure_reference",
     "iso_root_stress_slices",
 ]
 
@@ -183,6 +184,15 @@ def contact_stress(geom: PairGeometry, line_load, region, rho_pinion, rho_gear,
 # --------------------------------------------------------------------------------------
 # ISO 6336-3 method B: form factor Y_F and stress correction factor Y_S
 # --------------------------------------------------------------------------------------
+
+
+def edge_pressure_reference(flank_peak, edge_peak):
+    """The pressure a design's tip-edge pressure is held against, like against like: the
+    reference's own tip-edge peak ``edge_peak``, or its flank peak ``flank_peak`` where it has no
+    edge contact (0). A reference's edge pressure (GPa with an assumed edge radius) would
+    otherwise let a design's flank pressure rise at will (docs/optimisation.md)."""
+    flank_peak, edge_peak = np.asarray(flank_peak, dtype=float), np.asarray(edge_peak, dtype=float)
+    return np.where(edge_peak > 0, edge_peak, flank_peak)
 
 
 def virtual_gear(geom: PairGeometry, gear: int) -> dict[str, float]:

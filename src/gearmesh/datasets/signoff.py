@@ -33,6 +33,7 @@ from ..errors import GearmeshInputError
 from ..io import variable
 from ..schema import check_arguments
 from ..settings import Signoff
+from ..stress import edge_pressure_reference
 from . import variant_name
 
 __all__ = ["CRITERIA", "signoff_table_dataset"]
@@ -137,7 +138,7 @@ def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Datase
     k_orders = [orders.index(n) for n in harmonic_orders]
     harm = c["harm"][:, :, k_orders]
     fs_worst = c["fs"].max(axis=1)
-    edge_ref = np.where(c["p_edge"][ref] > 0, c["p_edge"][ref], c["p_flank"][ref])
+    edge_ref = edge_pressure_reference(c["p_flank"][ref], c["p_edge"][ref])
     pressure_ratio = np.maximum(c["p_flank"] / c["p_flank"][ref], c["p_edge"] / edge_ref)
     flags = {
         "meets_pressure": pressure_ratio <= pressure_factor,
