@@ -2,7 +2,6 @@
 strip it becomes for a narrow annulus, its limits, against the 3-D reference, in series with the
 teeth in the TVMS and the LTCA, and bad body geometry rejected with one error naming the key."""
 
-import math
 
 import numpy as np
 import pytest

@@ -1,7 +1,6 @@
 """One contact compliance (issue 28): the linear TVMS with the LTCA law's tangent at the load is the
 LTCA's own loaded (tangent) stiffness on the same contact lines, and the tangent scales as the law says."""
 
-import math
 
 import numpy as np
 import pytest

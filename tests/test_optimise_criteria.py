@@ -17,7 +17,7 @@ from gearmesh import impact as im
 from gearmesh import optimise as op
 from gearmesh.datasets.optimise import result_dataset, run_settings
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
 from gearmesh.io import check_documented
 from gearmesh.ltca import MESH_ORDERS, lte_harmonics, ltca, ltca_model
 from gearmesh.plots.optimise import plot_pareto
@@ -60,7 +60,6 @@ def test_criteria_of_a_candidate_agree_with_the_ltca_and_the_stress_functions(pa
     prob = _problem(model)
     params = prob.decode([CANDIDATE])
     crit = im.ltca_criteria(model, TORQUES, params)
-    from gearmesh.optimise import _manufactured_rows  # noqa: F401 (same module the optimiser uses)
     from gearmesh.gear import Modification
     from gearmesh.surface import MODIFICATION_FIELDS
 

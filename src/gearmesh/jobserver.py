@@ -41,7 +41,6 @@ import tempfile
 import threading
 import time
 import traceback
-from pathlib import Path
 from typing import Any, Iterable
 
 #: The environment variable that names the run's socket ("off" disables the server).

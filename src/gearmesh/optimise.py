@@ -93,7 +93,7 @@ from .impact import (SCENARIO_NONE, ImpactModel, LTCACriteria, impact_response, 
                      ltca_criteria)
 from .ltca import MESH_ORDERS
 from .stress import edge_pressure_reference
-from .surface import MODIFICATION_FIELDS, fit_modifications
+from .surface import fit_modifications
 from .tolerance import (SAMPLINGS, ToleranceModel, apply_deviations, check_statistic, sample_statistic,
                         unit_deviations)
 
@@ -1022,7 +1022,7 @@ def pareto_mask(objectives: np.ndarray) -> np.ndarray:
 def _finish(prob: Problem, method: str, history: History, ev: _Evaluator, wall: float) -> OptimisationResult:
     h = history.arrays()
     genes = h["genes"].reshape(-1, len(prob.genes))
-    obj, force, failed = h["objective"].reshape(-1), h["force"].reshape(-1), h["failed"].reshape(-1)
+    obj, failed = h["objective"].reshape(-1), h["failed"].reshape(-1)
     pareto = None
     if method == "nsga2":
         _, first = np.unique(genes, axis=0, return_index=True)

@@ -46,7 +46,7 @@ from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT
                          mesh_force_table)
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
 from ..schema import check_arguments, check_value, defaults, settings_fields
-from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD, pair_excitation
+from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, pair_excitation
 from ..settings import Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
@@ -954,7 +954,6 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                         phase_offsets=tuple(phase_offsets_cycles), mesh_damping=mesh_damping_Ns_per_m)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
     res = simulate(model, speeds, settings, series=True)
-    nt = model.n_trans  # 6: y, z of plate, blanket, impression
     shape = (3, 2)
     cb = math.cos(geom.base_helix_angle)
     data = _common_vars(model, res, mesh_dim=True, cos_beta_b=cb)

@@ -152,7 +152,7 @@ def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Datase
         flags["meets_dynamics"] = c["dyn_peak"] <= dynamic_factor * c["dyn_peak"][ref]
     flags["meets_all"] = np.all(list(flags.values()), axis=0)
     out = {
-        "impact_force": variable(dims, c["fs"], "N", f"mesh-in impact force F_s at the design speed, nominal gears",
+        "impact_force": variable(dims, c["fs"], "N", "mesh-in impact force F_s at the design speed, nominal gears",
                                  force_line="transverse"),
         "impact_force_tolerance_max": variable(dims, c["fs_tol"], "N", "largest F_s over the nominal and the "
                                                "tolerance samples at the design speed", force_line="transverse"),

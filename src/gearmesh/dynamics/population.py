@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
+from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from ..errors import GearmeshInputError
 from ..gear import PairGeometry
 from ..meshforce import TableLayout, table_layout, tabulate
