@@ -1110,9 +1110,16 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     ``lead_slope`` ((C, 2) m; None: the model's) at pinion ``torques`` (N m), over one mesh cycle:
     the LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from its
     separation basis (no new geometry), and from its loads the sign-off quantities of
-    :class:`LTCACriteria` (``stresses`` False: pressure and root stress left NaN)."""
-    from .ltca import lte_harmonics
-    from .stress import contact_stress, iso_root_stress_slices, pair_edge_radius
+    :class:`LTCACriteria` (``stresses`` False: pressure and root stress left NaN).
+
+    Every (C, T, position) row is one exact solve (:func:`gearmesh.ltca.solve_contact`) warm-started
+    at the root of its compiled tabulated load sum (:func:`gearmesh.ltca.approach_start`). The
+    stresses are per point of the grid a fixed function of its line load w — the Hertzian peak
+    p0 = √(w E*/(π R)) (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's local root
+    stress σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`) with R and
+    Y_F Y_S of the point's roll lengths — so each is evaluated once at w = 1 and scaled: p0(w) =
+    √w · p0(1), σ(w) = w · σ(1) (the same quantities, not an approximation)."""
+    from .ltca import approach_start, lte_harmonics
 
     g, lt = model.geom, model.ltca
     params = model.params(params)
@@ -1130,21 +1137,36 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     gap = np.broadcast_to(gap.reshape(nc, 1, p, m), (nc, nt, p, m)).reshape(-1, m)
     comp = np.broadcast_to(lt.compliance[:p].reshape(1, 1, p, m), (nc, nt, p, m)).reshape(-1, m)
     f = np.broadcast_to(force.reshape(1, nt, 1), (nc, nt, p)).reshape(-1)
-    q, delta, _, _ = solve_contact(gap, comp, f, lt.law)
+    q, delta, _, _ = solve_contact(gap, comp, f, lt.law, delta_start=approach_start(gap, comp, f, lt.law))
     delta = delta.reshape(nc, nt, p)
     w = q.reshape(nc, nt, p, *jn) / grid.dz  # line loads (N/m)
     nan = np.full((nc, nt), np.nan)
     flank = edge = root = nan
     if stresses:
-        region, r1, r2 = grid.region[:p], grid.rho_pinion[:p], grid.rho_gear[:p]
-        c = contact_stress(g, w, region, r1, r2, pair_edge_radius(g))
-        flank = np.where(c.edge, 0.0, c.pressure).max(axis=(2, 3, 4))
-        edge = np.where(c.edge, c.pressure, 0.0).max(axis=(2, 3, 4))
-        root = np.maximum(iso_root_stress_slices(g, 0, w, r1).max(axis=(2, 3, 4)),
-                          iso_root_stress_slices(g, 1, w, r2).max(axis=(2, 3, 4)))
+        pressure, edge_point, root_stress = _unit_load_stresses(model)
+        wf = w.reshape(nc, nt, -1)
+        p0 = np.sqrt(wf) * pressure
+        flank = np.where(edge_point, 0.0, p0).max(axis=-1)
+        edge = np.where(edge_point, p0, 0.0).max(axis=-1)
+        root = (wf * root_stress).max(axis=-1)
     return LTCACriteria(lte_peak_to_peak=np.ptp(delta, axis=-1), te_harmonics=lte_harmonics(delta),
                         max_line_load=w.max(axis=(2, 3, 4)), flank_pressure=flank, edge_pressure=edge,
                         root_stress=root, load=q.reshape(nc, nt, p, *jn))
+
+
+def _unit_load_stresses(model: ImpactModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per point of the mesh-cycle grid (flattened P·J·N) under a line load of 1 N/m: the Hertzian
+    peak pressure (Pa, 0 where no point), whether it is a tip-edge point, and the larger ISO 6336-3
+    local root stress of the two gears (Pa) (:func:`ltca_criteria`)."""
+    from .stress import contact_stress, iso_root_stress_slices, pair_edge_radius
+
+    g, grid = model.geom, model.ltca.grid
+    p = grid.gap.shape[0] - 1
+    region, r1, r2 = grid.region[:p], grid.rho_pinion[:p], grid.rho_gear[:p]
+    unit = np.ones(region.shape)
+    c = contact_stress(g, unit, region, r1, r2, pair_edge_radius(g))
+    root = np.maximum(iso_root_stress_slices(g, 0, unit, r1), iso_root_stress_slices(g, 1, unit, r2))
+    return c.pressure.reshape(-1), np.asarray(c.edge).reshape(-1), root.reshape(-1)
 
 
 def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, np.ndarray]:

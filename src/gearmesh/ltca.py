@@ -81,7 +81,7 @@ from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, Can
 
 __all__ = [
     "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
-    "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "load_sums",
+    "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "approach_start", "load_sums",
     "LTCAResult", "ltca", "contact_tangent_compliance", "edge_tangent_stiffness", "with_loaded_extension",
     "MESH_ORDERS", "lte_harmonics",
 ]
@@ -391,6 +391,50 @@ def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law
         out[0][k], out[1][k], out[2][k] = q.sum(axis=1), dq.sum(axis=1), np.where(mask[k], q, 0.0).sum(axis=1)
     return tuple(out)
 
+def _contact_rows(gap: np.ndarray, compliance: np.ndarray, force, law: ContactLaw):
+    """The contact problem of :func:`solve_contact` made ready to solve: separations (B, M) with
+    inf where no point can touch, compliances (B, M) with the law's linear part, forces (B,) and
+    the upper bound of the approach δ (B,) with all of F on the point closest to contact."""
+    g = np.where(np.isfinite(gap), gap, np.inf)
+    c_eff = np.where(np.isfinite(gap), compliance, 1.0) + law.linear
+    force = np.asarray(force, dtype=float)
+    rows = np.arange(g.shape[0])
+    i_min = np.argmin(g, axis=1)
+    g_min = g[rows, i_min]
+    if not np.all(np.isfinite(g_min)):
+        raise GearmeshInputError("positions", int(np.sum(~np.isfinite(g_min))),
+                                 "roll positions without any candidate contact point")
+    coef, m = law.coefficient, law.exponent
+    return g, c_eff, force, g_min + c_eff[rows, i_min] * force + (coef * force**m if coef else 0.0)
+
+
+def approach_start(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw, delta=None,
+                   rtol: float = 1e-12, max_iter: int = 100) -> np.ndarray:
+    """A warm start of :func:`solve_contact` (same ``gap``, ``compliance``, ``force``, ``law``): the
+    approach δ (B,) m at which the loads carry the force, by Newton on S(δ) = Σ q_i(δ) − F with the
+    compiled tabulated load sums of :func:`load_sums` (no (B, M) arrays per step, each row until
+    its own convergence), from ``delta`` (B,) m — an upper bound, e.g. a neighbouring problem's
+    tangent estimate (default: all of F on the point closest to contact). S is convex, so Newton
+    from the right stays right of the root. The root of the tabulated sum is within the table's
+    error (relative 1e-13, :func:`invert_tabulated`) of the exact one, so the result is placed
+    rtol/2 · F/S' to its right: an upper bound of the exact root at which :func:`solve_contact`
+    (``rtol``) has converged, so that it only checks it with its exact inversion."""
+    g, c_eff, force, bound = _contact_rows(gap, compliance, force, law)
+    delta = bound if delta is None else np.minimum(np.asarray(delta, dtype=float), bound)
+    out = np.full(delta.shape, np.nan)
+    rows = np.arange(delta.size)
+    for _ in range(max_iter):
+        s, k, _ = load_sums(g[rows], c_eff[rows], delta[rows, None], law)
+        resid = s[:, 0] - force[rows]
+        done = np.abs(resid) <= 0.1 * rtol * force[rows]
+        out[rows[done]] = delta[rows[done]] + 0.5 * rtol * force[rows[done]] / k[done, 0]
+        delta[rows] -= np.where(done, 0.0, resid / k[:, 0])
+        rows = rows[~done]
+        if not rows.size:
+            break
+    return out
+
+
 def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw,
                   rtol: float = 1e-12, max_iter: int = 200, inner_tol: float = 1e-14, delta_start=None):
     """Loads, approach and tangent stiffness of independent contact points (exact LCP solve).
@@ -411,19 +455,8 @@ def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, la
     Complementarity holds exactly: q_i > 0 only where g_i < δ, and there
     δ − g_i = c_i q_i + δ_c(q_i) to the inner tolerance; Σ q = F to ``rtol``.
     """
-    g = np.where(np.isfinite(gap), gap, np.inf)
-    c = np.where(np.isfinite(gap), compliance, 1.0)
-    force = np.asarray(force, dtype=float)
+    g, c_eff, force, delta = _contact_rows(gap, compliance, force, law)
     coef, m = law.coefficient, law.exponent
-    c_eff = c + law.linear
-    i_min = np.argmin(g, axis=1)
-    rows = np.arange(g.shape[0])
-    g_min = g[rows, i_min]
-    if not np.all(np.isfinite(g_min)):
-        raise GearmeshInputError("positions", int(np.sum(~np.isfinite(g_min))),
-                                 "roll positions without any candidate contact point")
-    # upper bound: all of F on the point closest to contact
-    delta = g_min + c_eff[rows, i_min] * force + (coef * force**m if coef else 0.0)
     q = None
     if delta_start is not None:
         ds = np.asarray(delta_start, dtype=float)
@@ -431,7 +464,9 @@ def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, la
         if ok.any():
             d = np.where(ok, ds, delta)[:, None] - g
             q_s, _ = _invert(np.where(np.isfinite(d), d, -1.0), c_eff, coef, m, tol=inner_tol)
-            delta = np.where(ok & (q_s.sum(axis=1) >= force), ds, delta)  # still an upper bound: Newton from it
+            ok &= q_s.sum(axis=1) >= force  # still an upper bound: Newton from it
+            delta = np.where(ok, ds, delta)
+            q = np.where(ok[:, None], q_s, 0.0)  # the loads there start the first inversion (0: its own bound)
     it = 0
     converged = False
     for it in range(1, max_iter + 1):
