@@ -1105,25 +1105,30 @@ class LTCACriteria:
         return np.maximum(self.flank_pressure, self.edge_pressure)
 
 
-def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, stresses: bool = True) -> LTCACriteria:
+def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, stresses: bool = True,
+                  samples: int = 1) -> LTCACriteria:
     """The loaded contact of modification parameter sets ``params`` ((C, 2, 6) m) with lead slopes
     ``lead_slope`` ((C, 2) m; None: the model's) at pinion ``torques`` (N m), over one mesh cycle:
     the LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from its
     separation basis (no new geometry), and from its loads the sign-off quantities of
-    :class:`LTCACriteria` (``stresses`` False: pressure and root stress left NaN).
+    :class:`LTCACriteria` (``stresses`` False: pressure and root stress left NaN). ``samples``: the
+    rows come in runs of that many manufactured gears of one design, the first the nominal
+    (:func:`_cycle_loads` starts the others from it).
 
-    Every (C, T, position) row is one exact solve (:func:`gearmesh.ltca.solve_contact`) warm-started
-    at the root of its compiled tabulated load sum (:func:`gearmesh.ltca.approach_start`). The
-    stresses are per point of the grid a fixed function of its line load w — the Hertzian peak
-    p0 = √(w E*/(π R)) (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's local root
-    stress σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`) with R and
-    Y_F Y_S of the point's roll lengths — so each is evaluated once at w = 1 and scaled: p0(w) =
-    √w · p0(1), σ(w) = w · σ(1) (the same quantities, not an approximation)."""
-    from .ltca import approach_start, lte_harmonics
+    Each (row, torque, position) is one contact problem on the position's candidate points,
+    solved with the tabulated contact law (:func:`gearmesh.ltca.solve_contact_tabulated`: the
+    loads of :func:`gearmesh.ltca.solve_contact` to its tolerance). The stresses are per point of the grid a fixed function of its line load w — the Hertzian
+    peak p0 = √(w E*/(π R)) (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's local root
+    stress σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`), R and
+    Y_F Y_S those of the point's roll lengths — so each is evaluated once at w = 1 and scaled:
+    p0(w) = √w · p0(1), σ(w) = w · σ(1) (the same quantities, not an approximation)."""
+    from .ltca import lte_harmonics
 
     g, lt = model.geom, model.ltca
     params = model.params(params)
     nc = params.shape[0]
+    if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or samples < 1 or nc % samples:
+        raise GearmeshInputError("samples", samples, f"must be a positive integer dividing the {nc} parameter sets")
     lead = np.broadcast_to(np.asarray(lt.lead_slope if lead_slope is None else lead_slope, dtype=float), (nc, 2))
     force = check_torques(torques) / float(g.base_radius[0])
     grid = lt.grid
@@ -1132,30 +1137,69 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead[:, None, None, None, :],
                     params[:, None, None, None, :, :])  # (C, P, J, N)
     nt = force.size
-    jn = gap.shape[2:]
-    m = gap.shape[2] * gap.shape[3]
-    gap = np.broadcast_to(gap.reshape(nc, 1, p, m), (nc, nt, p, m)).reshape(-1, m)
-    comp = np.broadcast_to(lt.compliance[:p].reshape(1, 1, p, m), (nc, nt, p, m)).reshape(-1, m)
-    f = np.broadcast_to(force.reshape(1, nt, 1), (nc, nt, p)).reshape(-1)
-    q, delta, _, _ = solve_contact(gap, comp, f, lt.law, delta_start=approach_start(gap, comp, f, lt.law))
-    delta = delta.reshape(nc, nt, p)
-    w = q.reshape(nc, nt, p, *jn) / grid.dz  # line loads (N/m)
+    gap = gap.reshape(nc, p, -1)
+    # each position's candidate points first (the grid's, the same for every gear), the rest dropped
+    candidate = np.isfinite(gap).any(axis=0)  # (P, M)
+    cols = np.argsort(~candidate, axis=1, kind="stable")[:, :int(candidate.sum(axis=1).max())]  # (P, M')
+    q, delta = _cycle_loads(lt.law, np.take_along_axis(gap, cols[None], axis=2),
+                            np.take_along_axis(lt.compliance[:p].reshape(p, -1), cols, axis=1), force, samples)
+    w = q / grid.dz  # line loads (N/m), (C, T, P, M')
     nan = np.full((nc, nt), np.nan)
     flank = edge = root = nan
     if stresses:
-        pressure, edge_point, root_stress = _unit_load_stresses(model)
-        wf = w.reshape(nc, nt, -1)
-        p0 = np.sqrt(wf) * pressure
-        flank = np.where(edge_point, 0.0, p0).max(axis=-1)
-        edge = np.where(edge_point, p0, 0.0).max(axis=-1)
-        root = (wf * root_stress).max(axis=-1)
+        pressure, edge_point, root_stress = (np.take_along_axis(a.reshape(p, -1), cols, axis=1)
+                                             for a in _unit_load_stresses(model))
+        p0 = np.sqrt(w) * pressure
+        flank = np.where(edge_point, 0.0, p0).max(axis=(2, 3))
+        edge = np.where(edge_point, p0, 0.0).max(axis=(2, 3))
+        root = (w * root_stress).max(axis=(2, 3))
+    load = np.zeros((nc, nt, p, gap.shape[2]))
+    np.put_along_axis(load, np.broadcast_to(cols, q.shape), q, axis=3)
     return LTCACriteria(lte_peak_to_peak=np.ptp(delta, axis=-1), te_harmonics=lte_harmonics(delta),
-                        max_line_load=w.max(axis=(2, 3, 4)), flank_pressure=flank, edge_pressure=edge,
-                        root_stress=root, load=q.reshape(nc, nt, p, *jn))
+                        max_line_load=w.max(axis=(2, 3)), flank_pressure=flank, edge_pressure=edge,
+                        root_stress=root, load=load.reshape(nc, nt, p, *basis.base.shape[1:]))
+
+
+def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force: np.ndarray,
+                 samples: int = 1) -> tuple[np.ndarray, np.ndarray]:
+    """Loads (C, T, P, M) N and approach (C, T, P) m of C gears with separations ``gap`` (C, P, M)
+    at the points of P positions (compliance (P, M) m/N) under the transverse forces ``force`` (T,)
+    N: every row one contact problem of :func:`gearmesh.ltca.solve_contact_tabulated`.
+
+    With ``samples`` S > 1 the gears come in runs of S manufactured gears of one design, the
+    first the nominal. A sample's separations differ from its nominal's by its deviations
+    (Δg_i, µm), so its approach starts at the nominal's tangent estimate
+    δ_n + Σ k_i Δg_i / Σ k_i (k_i = dq_i/dδ at the nominal's solution). It is an upper bound of
+    the sample's: each q_i(d) is convex, so q_i(δ − g_i − Δg_i) ≥ q_i,n + k_i (δ − δ_n − Δg_i) and
+    the loads at that δ carry at least F; Newton descends from it in a few steps."""
+    from .ltca import solve_contact_tabulated
+
+    nc, p, m = gap.shape
+    nt = force.size
+
+    def solve(gp: np.ndarray, start=None):
+        k = gp.shape[0]
+        rows = (k, nt, p, m)
+        q, d, dq = solve_contact_tabulated(np.broadcast_to(gp[:, None], rows).reshape(-1, m),
+                                           np.broadcast_to(compliance, rows).reshape(-1, m),
+                                           np.broadcast_to(force[:, None], rows[:3]).reshape(-1), law, start)
+        return q.reshape(rows), d.reshape(rows[:3]), dq.reshape(rows)
+
+    if samples == 1:
+        return solve(gap)[:2]
+    g = gap.reshape(nc // samples, samples, p, m)
+    qn, dn, kn = solve(g[:, 0])
+    with np.errstate(invalid="ignore"):  # inf − inf at points that are no candidates (k = 0 there)
+        dg = np.where(kn[:, None] > 0, (g[:, 1:] - g[:, :1])[:, :, None], 0.0)  # (C/S, S−1, T, P, M)
+    start = dn[:, None] + (kn[:, None] * dg).sum(axis=-1) / kn.sum(axis=-1)[:, None]
+    qs, ds, _ = solve(g[:, 1:].reshape(-1, p, m), start.reshape(-1))
+    q = np.concatenate([qn[:, None], qs.reshape(-1, samples - 1, nt, p, m)], axis=1).reshape(nc, nt, p, m)
+    d = np.concatenate([dn[:, None], ds.reshape(-1, samples - 1, nt, p)], axis=1).reshape(nc, nt, p)
+    return q, d
 
 
 def _unit_load_stresses(model: ImpactModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """Per point of the mesh-cycle grid (flattened P·J·N) under a line load of 1 N/m: the Hertzian
+    """Per point of the mesh-cycle grid (P, J, N) under a line load of 1 N/m: the Hertzian
     peak pressure (Pa, 0 where no point), whether it is a tip-edge point, and the larger ISO 6336-3
     local root stress of the two gears (Pa) (:func:`ltca_criteria`)."""
     from .stress import contact_stress, iso_root_stress_slices, pair_edge_radius
@@ -1166,7 +1210,7 @@ def _unit_load_stresses(model: ImpactModel) -> tuple[np.ndarray, np.ndarray, np.
     unit = np.ones(region.shape)
     c = contact_stress(g, unit, region, r1, r2, pair_edge_radius(g))
     root = np.maximum(iso_root_stress_slices(g, 0, unit, r1), iso_root_stress_slices(g, 1, unit, r2))
-    return c.pressure.reshape(-1), np.asarray(c.edge).reshape(-1), root.reshape(-1)
+    return c.pressure, np.asarray(c.edge), root
 
 
 def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, np.ndarray]:

@@ -81,9 +81,9 @@ from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, Can
 
 __all__ = [
     "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
-    "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact", "approach_start", "load_sums",
-    "LTCAResult", "ltca", "contact_tangent_compliance", "edge_tangent_stiffness", "with_loaded_extension",
-    "MESH_ORDERS", "lte_harmonics",
+    "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact",
+    "solve_contact_tabulated", "load_sums", "LTCAResult", "ltca", "contact_tangent_compliance",
+    "edge_tangent_stiffness", "with_loaded_extension", "MESH_ORDERS", "lte_harmonics",
 ]
 
 #: Mesh orders of the loaded-TE harmonics (ltca.nc, the optimiser's TE criteria).
@@ -308,13 +308,17 @@ def invert_tabulated(d, c, coef: float, m: float):
 
 
 
-def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, force, stiff, masked, outside):
+def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, force, stiff, masked, outside,
+                    point_q, point_dq):
     """The loop of :func:`load_sums` (compiled by numba on first use): for each row k, the sums
-    over its points i of q_i, dq_i/dd and (``mask``) q_i at every approach x_kj, d = x_kj − g_ki."""
+    over its points i of q_i, dq_i/dd and (``mask``) q_i at every approach x_kj, d = x_kj − g_ki;
+    with ``point_q``, ``point_dq`` of the rows' shape (else (0, 0)) each point's q_i and dq_i/dd at
+    the last approach."""
     rows, npts = gap.shape
     nu = approach.shape[1]
     last = v_tab.size - 1
     inv_h = 1.0 / h
+    points = point_q.shape[0] > 0
     for k in range(rows):
         for i in range(npts):
             g = gap[k, i]
@@ -329,6 +333,9 @@ def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, for
                         stiff[k, j] += 1.0 / c
                         if mask[k, i]:
                             masked[k, j] += d / c
+                if points:
+                    point_q[k, i] = (approach[k, nu - 1] - g) / c
+                    point_dq[k, i] = 1.0 / c
                 continue
             log_c = np.log(c)
             log_q = (np.log(coef) - log_c) / (1.0 - m)
@@ -350,21 +357,27 @@ def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, for
                      + (3 - 2 * t) * t2 * v_tab[ti + 1] + (t - 1) * t2 * h * s_tab[ti + 1])
                 x = np.exp(v)
                 q = big_q * x
+                dq = x / (c * (x + m * (d / cq - x)))
                 force[k, j] += q
-                stiff[k, j] += x / (c * (x + m * (d / cq - x)))
+                stiff[k, j] += dq
                 if mask[k, i]:
                     masked[k, j] += q
+                if points and j == nu - 1:
+                    point_q[k, i] = q
+                    point_dq[k, i] = dq
 
 
 _COMPILED: dict = {}
 
 
-def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law: ContactLaw, mask=None):
+def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law: ContactLaw, mask=None,
+              points: bool = False):
     """Per row, the total load Σ q_i (N), its tangent Σ dq_i/dδ (N/m) and the load of the points
     in ``mask`` at each of several approaches: q_i the root of c_i·q + coef·q^m = δ − g_i (0 where
     δ ≤ g_i) for points of separation ``gap`` (R, M) m (inf: none) and compliance ``compliance``
     (R, M) m/N (the law's linear part included) at approaches ``approach`` (R, U) m, increasing
-    along each row. Returns three (R, U) arrays.
+    along each row. Returns three (R, U) arrays; with ``points`` also each point's q_i and dq_i/dδ
+    (R, M) at the last approach.
 
     Each root by :func:`invert_tabulated`'s method — q = Q·X(y), Q = (coef/c)^(1/(1−m)) the load
     at which both terms are equal, y = d/(c·Q), X the root of X + X^m = y from its universal table
@@ -375,6 +388,7 @@ def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law
     x = np.ascontiguousarray(approach, dtype=float)
     mask = np.zeros(gap.shape, dtype=np.bool_) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
     out = [np.zeros(x.shape) for _ in range(3)]
+    per_point = [np.zeros(gap.shape if points else (0, 0)) for _ in range(2)]
     outside = np.zeros(gap.shape[0], dtype=np.bool_)
     if "loop" not in _COMPILED:
         from numba import njit
@@ -383,13 +397,16 @@ def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law
     lo, _, h = _TABLE_LOG_Y
     v_tab, s_tab = _universal_inverse(float(law.exponent))
     _COMPILED["loop"](gap, comp, x, mask, float(law.coefficient), float(law.exponent), v_tab, s_tab, lo, h, *out,
-                      outside)
+                      outside, *per_point)
     for k in np.flatnonzero(outside):
         d = x[k, :, None] - gap[k, None, :]
         q, dq = invert_tabulated(np.where(np.isfinite(d), d, -1.0), np.broadcast_to(comp[k], d.shape),
                                  law.coefficient, law.exponent)
         out[0][k], out[1][k], out[2][k] = q.sum(axis=1), dq.sum(axis=1), np.where(mask[k], q, 0.0).sum(axis=1)
-    return tuple(out)
+        if points:
+            per_point[0][k], per_point[1][k] = q[-1], dq[-1]
+    return (*out, *per_point) if points else tuple(out)
+
 
 def _contact_rows(gap: np.ndarray, compliance: np.ndarray, force, law: ContactLaw):
     """The contact problem of :func:`solve_contact` made ready to solve: separations (B, M) with
@@ -408,31 +425,33 @@ def _contact_rows(gap: np.ndarray, compliance: np.ndarray, force, law: ContactLa
     return g, c_eff, force, g_min + c_eff[rows, i_min] * force + (coef * force**m if coef else 0.0)
 
 
-def approach_start(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw, delta=None,
-                   rtol: float = 1e-12, max_iter: int = 100) -> np.ndarray:
-    """A warm start of :func:`solve_contact` (same ``gap``, ``compliance``, ``force``, ``law``): the
-    approach δ (B,) m at which the loads carry the force, by Newton on S(δ) = Σ q_i(δ) − F with the
-    compiled tabulated load sums of :func:`load_sums` (no (B, M) arrays per step, each row until
-    its own convergence), from ``delta`` (B,) m — an upper bound, e.g. a neighbouring problem's
-    tangent estimate (default: all of F on the point closest to contact). S is convex, so Newton
-    from the right stays right of the root. The root of the tabulated sum is within the table's
-    error (relative 1e-13, :func:`invert_tabulated`) of the exact one, so the result is placed
-    rtol/2 · F/S' to its right: an upper bound of the exact root at which :func:`solve_contact`
-    (``rtol``) has converged, so that it only checks it with its exact inversion."""
+def solve_contact_tabulated(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw,
+                            delta_start=None, rtol: float = 1e-12, max_iter: int = 100):
+    """:func:`solve_contact`'s problem with the tabulated inversion of the contact law
+    (:func:`invert_tabulated`, relative error of a load about 1e-13, below ``rtol``), for many rows.
+
+    The approach of each row by Newton on S(δ) = Σ q_i(δ) − F with the compiled load sums of
+    :func:`load_sums`, each row until its own |S| ≤ rtol·F/10 (the rows still iterating copied out
+    for each pass, their loads kept from the pass that meets it), from ``delta_start`` (B,) m
+    where it is below the default upper bound (all of F on the point closest to contact). S is
+    convex and increasing: Newton from an upper bound descends monotonically to the root, and from
+    a point left of it steps once to its right. Returns loads (B, M) N, approach δ (B,) m and each
+    point's tangent dq_i/dδ (B, M) N/m (0 where unloaded)."""
     g, c_eff, force, bound = _contact_rows(gap, compliance, force, law)
-    delta = bound if delta is None else np.minimum(np.asarray(delta, dtype=float), bound)
-    out = np.full(delta.shape, np.nan)
+    delta = bound if delta_start is None else np.where(np.asarray(delta_start) < bound, delta_start, bound)
+    q, dq = np.zeros(g.shape), np.zeros(g.shape)
     rows = np.arange(delta.size)
     for _ in range(max_iter):
-        s, k, _ = load_sums(g[rows], c_eff[rows], delta[rows, None], law)
+        s, k, _, q_rows, dq_rows = load_sums(g[rows], c_eff[rows], delta[rows, None], law, points=True)
         resid = s[:, 0] - force[rows]
         done = np.abs(resid) <= 0.1 * rtol * force[rows]
-        out[rows[done]] = delta[rows[done]] + 0.5 * rtol * force[rows[done]] / k[done, 0]
-        delta[rows] -= np.where(done, 0.0, resid / k[:, 0])
-        rows = rows[~done]
+        q[rows[done]], dq[rows[done]] = q_rows[done], dq_rows[done]
+        rows, resid, k = rows[~done], resid[~done], k[~done, 0]
         if not rows.size:
-            break
-    return out
+            return q, delta, dq
+        with np.errstate(divide="ignore", invalid="ignore"):  # k = 0: left of every point, back to the bound
+            delta[rows] = np.where(k > 0, delta[rows] - resid / k, bound[rows])
+    raise RuntimeError("tabulated LTCA load solve did not converge (load sum differs from the applied force)")
 
 
 def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw,
@@ -464,9 +483,7 @@ def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, la
         if ok.any():
             d = np.where(ok, ds, delta)[:, None] - g
             q_s, _ = _invert(np.where(np.isfinite(d), d, -1.0), c_eff, coef, m, tol=inner_tol)
-            ok &= q_s.sum(axis=1) >= force  # still an upper bound: Newton from it
-            delta = np.where(ok, ds, delta)
-            q = np.where(ok[:, None], q_s, 0.0)  # the loads there start the first inversion (0: its own bound)
+            delta = np.where(ok & (q_s.sum(axis=1) >= force), ds, delta)  # still an upper bound: Newton from it
     it = 0
     converged = False
     for it in range(1, max_iter + 1):

@@ -675,7 +675,7 @@ def _criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray, lead: np.nd
         return ltca_criteria(model, s.objective_torques, params, stresses=s.needs_stresses)
     nc = params.shape[0]
     ns = rows.shape[0] // nc
-    c = ltca_criteria(model, s.objective_torques, rows, lead_slope=lead, stresses=s.needs_stresses)
+    c = ltca_criteria(model, s.objective_torques, rows, lead_slope=lead, stresses=s.needs_stresses, samples=ns)
 
     def over_samples(a: np.ndarray) -> np.ndarray:
         a = np.asarray(a).reshape(nc, ns, *a.shape[1:])
