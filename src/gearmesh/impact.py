@@ -1117,10 +1117,11 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
 
     Each (row, torque, position) is one contact problem on the position's candidate points,
     solved with the tabulated contact law (:func:`gearmesh.ltca.solve_contact_tabulated`: the
-    loads of :func:`gearmesh.ltca.solve_contact` to its tolerance). The stresses are per point of the grid a fixed function of its line load w — the Hertzian
-    peak p0 = √(w E*/(π R)) (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's local root
-    stress σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`), R and
-    Y_F Y_S those of the point's roll lengths — so each is evaluated once at w = 1 and scaled:
+    loads of :func:`gearmesh.ltca.solve_contact` to its tolerance). The stresses are per point
+    of the grid a fixed function of its line load w — the Hertzian peak p0 = √(w E*/(π R))
+    (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's local root stress
+    σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`), R and Y_F Y_S
+    those of the point's roll lengths — so each is evaluated once at w = 1 and scaled:
     p0(w) = √w · p0(1), σ(w) = w · σ(1) (the same quantities, not an approximation)."""
     from .ltca import lte_harmonics
 
@@ -1189,13 +1190,20 @@ def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force
         return solve(gap)[:2]
     g = gap.reshape(nc // samples, samples, p, m)
     qn, dn, kn = solve(g[:, 0])
-    with np.errstate(invalid="ignore"):  # inf − inf at points that are no candidates (k = 0 there)
-        dg = np.where(kn[:, None] > 0, (g[:, 1:] - g[:, :1])[:, :, None], 0.0)  # (C/S, S−1, T, P, M)
-    start = dn[:, None] + (kn[:, None] * dg).sum(axis=-1) / kn.sum(axis=-1)[:, None]
-    qs, ds, _ = solve(g[:, 1:].reshape(-1, p, m), start.reshape(-1))
+    qs, ds, _ = solve(g[:, 1:].reshape(-1, p, m), _tangent_start(g[:, 1:] - g[:, :1], dn, kn).reshape(-1))
     q = np.concatenate([qn[:, None], qs.reshape(-1, samples - 1, nt, p, m)], axis=1).reshape(nc, nt, p, m)
     d = np.concatenate([dn[:, None], ds.reshape(-1, samples - 1, nt, p)], axis=1).reshape(nc, nt, p)
     return q, d
+
+
+def _tangent_start(change: np.ndarray, delta: np.ndarray, tangent: np.ndarray) -> np.ndarray:
+    """Upper bound (C, S, T, P) m of the approach of gears whose separations differ from a solved
+    one's by ``change`` (C, S, P, M) m (inf/NaN where no point): δ + Σ k_i Δg_i / Σ k_i with the
+    solved gear's approach ``delta`` (C, T, P) and point tangents ``tangent`` k_i = dq_i/dδ
+    (C, T, P, M) (:func:`_cycle_loads`)."""
+    with np.errstate(invalid="ignore"):  # inf − inf at points that are no candidates (k = 0 there)
+        dg = np.where(tangent[:, None] > 0, change[:, :, None], 0.0)  # (C, S, T, P, M)
+    return delta[:, None] + (tangent[:, None] * dg).sum(axis=-1) / tangent.sum(axis=-1)[:, None]
 
 
 def _unit_load_stresses(model: ImpactModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:

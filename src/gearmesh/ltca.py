@@ -438,7 +438,7 @@ def solve_contact_tabulated(gap: np.ndarray, compliance: np.ndarray, force: np.n
     a point left of it steps once to its right. Returns loads (B, M) N, approach δ (B,) m and each
     point's tangent dq_i/dδ (B, M) N/m (0 where unloaded)."""
     g, c_eff, force, bound = _contact_rows(gap, compliance, force, law)
-    delta = bound if delta_start is None else np.where(np.asarray(delta_start) < bound, delta_start, bound)
+    delta = bound.copy() if delta_start is None else np.where(np.asarray(delta_start) < bound, delta_start, bound)
     q, dq = np.zeros(g.shape), np.zeros(g.shape)
     rows = np.arange(delta.size)
     for _ in range(max_iter):
