@@ -330,8 +330,9 @@ def test_optimum_notes_name_a_single_point_optimum_and_an_open_load_window():
 
     grid = np.arange(50.0, 1251.0, 50.0)
 
-    def notes(objective, torques, samples, window):
-        prob = SimpleNamespace(settings=SimpleNamespace(objective=objective, objective_torques=torques),
+    def notes(objective, torques, samples, window, **criteria):
+        settings = {"needs_criteria": False, "criteria_over_samples": True, "tolerance_statistic": "max", **criteria}
+        prob = SimpleNamespace(settings=SimpleNamespace(objective=objective, objective_torques=torques, **settings),
                                deviations=np.zeros((samples, 3)))
         return optimum_notes(prob, SimpleNamespace(load_window=window, window_torque=grid))
 
@@ -343,3 +344,8 @@ def test_optimum_notes_name_a_single_point_optimum_and_an_open_load_window():
     assert len(top) == 1 and "1250 N m" in top[0] and "end of the window's torque grid" in top[0]
     assert "start of the window's torque grid" in notes("robust", (400.0, 1000.0), 8, (50.0, 900.0))[0]
     assert notes("robust", (400.0, 1000.0), 8, (math.nan, math.nan)) == []  # no window: nothing to qualify
+    # constraints on the loaded contact: judged on every manufactured gear (the default) or said to be nominal
+    assert notes("robust", (400.0, 1000.0), 8, (700.0, 1100.0), needs_criteria=True) == []
+    for nominal in ({"criteria_over_samples": False}, {"tolerance_statistic": None}):
+        said = notes("robust", (400.0, 1000.0), 8, (700.0, 1100.0), needs_criteria=True, **nominal)
+        assert len(said) == 1 and said[0].startswith("nominal criteria")

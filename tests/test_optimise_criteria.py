@@ -23,7 +23,7 @@ from gearmesh.ltca import MESH_ORDERS, lte_harmonics, ltca, ltca_model
 from gearmesh.plots.optimise import plot_pareto
 from gearmesh.stress import contact_stress, iso_root_stress_slices
 
-from test_optimise import COARSE, model, pair  # noqa: F401 (the coarse impact model and its pair, as fixtures)
+from test_optimise import COARSE, ROOT, model, pair  # noqa: F401 (the coarse impact model and its pair, as fixtures)
 
 TORQUES = (400.0, 1000.0, 1600.0)
 CANDIDATE = [40, 40, 2, 2, 20, 10]  # µm / mm: reliefs, lengths, crowning, unmodified lead
@@ -227,31 +227,188 @@ def test_every_door_defaults_to_the_robust_objective_over_the_tolerance_samples(
     assert "OUT.yaml" in sub.format_usage()  # --write-pair OUT.yaml, the name its help gives
 
 
+def _straightforward_criteria(model, torques, params, lead) -> dict[str, np.ndarray]:
+    """One manufactured gear's criteria (T, ...) the straightforward way, as main's ltca_criteria
+    computed them: gaps from the separation basis, the exact solve (ltca.solve_contact, cold) on
+    every grid point, the stresses by contact_stress and iso_root_stress_slices of the loads."""
+    from gearmesh.ltca import solve_contact
+    from gearmesh.stress import pair_edge_radius
+    from gearmesh.tca import SeparationBasis, basis_gap
+
+    g, lt = model.geom, model.ltca
+    grid = lt.grid
+    p = grid.gap.shape[0] - 1
+    basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
+    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead, params).reshape(p, -1)
+    out = {k: [] for k in ("lte_peak_to_peak", "te_harmonics", "flank_pressure", "edge_pressure", "root_stress",
+                           "max_line_load")}
+    for t in torques:
+        q, delta, _, _ = solve_contact(gap, lt.compliance[:p].reshape(p, -1), np.full(p, t / g.base_radius[0]), lt.law)
+        w = q.reshape(basis.base.shape) / grid.dz
+        c = contact_stress(g, w, grid.region[:p], grid.rho_pinion[:p], grid.rho_gear[:p], pair_edge_radius(g))
+        out["lte_peak_to_peak"].append(np.ptp(delta))
+        out["te_harmonics"].append(lte_harmonics(delta))
+        out["flank_pressure"].append(np.where(c.edge, 0.0, c.pressure).max())
+        out["edge_pressure"].append(np.where(c.edge, c.pressure, 0.0).max())
+        out["root_stress"].append(max(iso_root_stress_slices(g, 0, w, grid.rho_pinion[:p]).max(),
+                                      iso_root_stress_slices(g, 1, w, grid.rho_gear[:p]).max()))
+        out["max_line_load"].append(w.max())
+    return {k: np.array(v) for k, v in out.items()}
+
+
+def _assert_criterion(name, fast, straight):
+    """Equal within the contact solve's tolerance (rtol 1e-12 on the load sum): 1e-9 of the value,
+    the small TE harmonics within 1e-9 of the largest."""
+    atol = 1e-9 * np.max(np.abs(straight)) if name == "te_harmonics" else 0.0
+    np.testing.assert_allclose(fast, straight, rtol=1e-9, atol=atol, err_msg=name)
+
+
 def test_criteria_over_samples_are_the_tolerance_statistic_of_each_manufactured_gears_own(model):
     """criteria_over_samples: each criterion is the statistic over the nominal and the tolerance
-    samples of that gear's own LTCA (computed here one manufactured gear at a time), for the
-    candidate and for the unmodified pair it is held against; without it, the nominal gear's."""
+    samples of that gear's own LTCA — here the straightforward exact LTCA of one manufactured gear
+    at a time (:func:`_straightforward_criteria`), against the optimiser's tabulated batch with its
+    samples started from their nominal — for the candidate and for the unmodified pair it is held
+    against; without it, the nominal gear's."""
     from gearmesh.tolerance import tolerance_model
 
     tol = tolerance_model(model.geom, grade=6, modification={"tip_relief_um": 2, "crowning_um": 2})
     common = {"population": 4, "generations": 1, "objective": "robust", "torque": 1000.0, "torques": TORQUES,
               "tolerance_samples": 2, "tolerance_statistic": "max", "root_stress_factor": 1.1}
     over = op.problem(model, op.check_settings(**common, criteria_over_samples=True), tolerance=tol)
-    nominal = op.problem(model, op.check_settings(**common), tolerance=tol)
+    nominal = op.problem(model, op.check_settings(**common, criteria_over_samples=False), tolerance=tol)
     params = over.decode([CANDIDATE])
     rows, lead = op._manufactured_rows(model, over.tolerance, params, over.population_deviations)
     assert rows.shape[0] == 3  # the nominal and two samples
-    each = [im.ltca_criteria(model, TORQUES, rows[k:k + 1], lead_slope=lead[k:k + 1]) for k in range(3)]
+    each = [_straightforward_criteria(model, TORQUES, rows[k], lead[k]) for k in range(3)]
     ev = op.evaluate(over, params)
     for name in ("root_stress", "flank_pressure", "edge_pressure", "lte_peak_to_peak", "te_harmonics"):
-        worst = np.max([getattr(c, name)[0] for c in each], axis=0)
-        np.testing.assert_allclose(getattr(ev.criteria, name)[0], worst, rtol=1e-12)
-        np.testing.assert_allclose(getattr(op.evaluate(nominal, params).criteria, name)[0], getattr(each[0], name)[0],
-                                   rtol=1e-12)
+        worst = np.max([c[name] for c in each], axis=0)
+        _assert_criterion(name, getattr(ev.criteria, name)[0], worst)
+        _assert_criterion(name, getattr(op.evaluate(nominal, params).criteria, name)[0], each[0][name])
     std_rows, std_lead = op._manufactured_rows(model, over.tolerance, np.zeros((1, 2, 6)), over.population_deviations)
-    std_root = np.max([im.ltca_criteria(model, TORQUES, std_rows[k:k + 1], lead_slope=std_lead[k:k + 1]).root_stress[0]
+    std_root = np.max([_straightforward_criteria(model, TORQUES, std_rows[k], std_lead[k])["root_stress"]
                        for k in range(3)], axis=0)
-    np.testing.assert_allclose(over.standard.criteria.root_stress[0], std_root, rtol=1e-12)
+    _assert_criterion("root_stress", over.standard.criteria.root_stress[0], std_root)
     ratios = op._ratios(over.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load, ev.dynamic_factor,
                         ev.criteria, over.standard)
-    assert ratios["root_stress"][0] == pytest.approx(np.max(ev.criteria.root_stress[0] / std_root), rel=1e-12)
+    assert ratios["root_stress"][0] == pytest.approx(np.max(ev.criteria.root_stress[0] / std_root), rel=1e-9)
+
+
+def test_population_batch_equals_each_gear_solved_on_its_own(model):
+    """ltca_criteria over runs of manufactured gears (``samples``: each sample started from its
+    nominal's tangent) gives every gear's criteria and loads as the same gears solved cold, one
+    problem each, and as the straightforward exact LTCA."""
+    from gearmesh.tolerance import apply_deviations, tolerance_model, unit_deviations
+
+    tol = tolerance_model(model.geom, grade=5, modification={"tip_relief_um": 3, "crowning_um": 3})
+    dev = unit_deviations(len(tol.dimensions), 4, "corners", 0)[:4]
+    prob = _problem(model)
+    params = prob.decode([CANDIDATE, [10, 30, 1, 3, 5, 20]])
+    p, lead = apply_deviations(tol, params, model.lead_slope, dev)
+    rows, lead = p.reshape(-1, 2, 6), lead.reshape(-1, 2)
+    batch = im.ltca_criteria(model, TORQUES, rows, lead_slope=lead, samples=5)
+    cold = im.ltca_criteria(model, TORQUES, rows, lead_slope=lead)
+    for name in ("lte_peak_to_peak", "te_harmonics", "max_line_load", "flank_pressure", "edge_pressure",
+                 "root_stress", "load"):
+        _assert_criterion(name, getattr(batch, name), getattr(cold, name)) if name != "load" else \
+            np.testing.assert_allclose(batch.load, cold.load, rtol=0, atol=1e-10 * cold.load.max())
+    for k in (0, 3, 7):
+        straight = _straightforward_criteria(model, TORQUES, rows[k], lead[k])
+        for name, value in straight.items():
+            _assert_criterion(name, getattr(batch, name)[k], value)
+    with pytest.raises(GearmeshInputError) as exc:
+        im.ltca_criteria(model, TORQUES, rows, lead_slope=lead, samples=3)  # 10 gears are no runs of 3
+    assert exc.value.field == "samples"
+
+
+def test_tangent_start_of_a_sample_is_an_upper_bound_of_its_approach(model):
+    """The nominal gear's tangent estimate δ_n + Σ k_i Δg_i / Σ k_i is an upper bound of each
+    sample's exact approach (each q_i convex in δ), close to it (the deviations are small)."""
+    from gearmesh.ltca import solve_contact, solve_contact_tabulated
+    from gearmesh.tca import SeparationBasis, basis_gap
+    from gearmesh.tolerance import apply_deviations, tolerance_model, unit_deviations
+
+    g, lt = model.geom, model.ltca
+    grid = lt.grid
+    p = grid.gap.shape[0] - 1
+    basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
+    tol = tolerance_model(g, grade=6, modification={"tip_relief_um": 2, "crowning_um": 2})
+    params = _problem(model).decode([CANDIDATE])
+    rows, lead = apply_deviations(tol, params, model.lead_slope, unit_deviations(len(tol.dimensions), 6, "lhs", 2))
+    rows, lead = rows.reshape(-1, 2, 6), lead.reshape(-1, 2)
+    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead[:, None, None, None, :],
+                    rows[:, None, None, None, :, :]).reshape(7, p, -1)
+    comp, force = lt.compliance[:p].reshape(p, -1), 1600.0 / g.base_radius[0]
+    _, dn, kn = solve_contact_tabulated(gap[0], comp, np.full(p, force), lt.law)
+    start = im._tangent_start((gap[1:] - gap[:1])[None], dn[None, None], kn[None, None])[0, :, 0]  # (6, P)
+    for s in range(6):
+        _, exact, _, _ = solve_contact(gap[s + 1], comp, np.full(p, force), lt.law)
+        assert np.all(start[s] >= exact * (1 - 1e-12))
+        assert np.all(start[s] - exact <= 0.05 * exact)
+
+
+@pytest.mark.parametrize("law_name", ["palmgren", "linear"])
+def test_tabulated_solve_equals_the_exact_solve_from_any_start(pair, law_name):
+    """solve_contact_tabulated: the loads and approach of solve_contact to its tolerance, the load
+    sum equal to F, from the default bound, from a start right of the root and from one left of
+    every point (no load there: back to the bound)."""
+    from gearmesh.ltca import contact_law, solve_contact, solve_contact_tabulated
+
+    geom = pair_geometry(pair)
+    law = contact_law(geom, geom.face_width / 40, law_name)
+    rng = np.random.default_rng(4)
+    gap = rng.uniform(0.0, 20e-6, (50, 40))
+    gap[:, ::7] = np.inf  # points that are no candidates
+    gap[:, 1] = rng.uniform(0.0, 1e-9, 50)  # one point close to contact in every row
+    comp = rng.uniform(2e-11, 8e-11, (50, 40))
+    force = rng.uniform(1e3, 4e5, 50)
+    q, delta, _, _ = solve_contact(gap, comp, force, law)
+    for start in (None, delta * 1.3, np.full(50, -1.0)):
+        qt, dt, dq = solve_contact_tabulated(gap, comp, force, law, start)
+        np.testing.assert_allclose(dt, delta, rtol=1e-11)
+        assert np.all(np.abs(qt - q) <= 1e-11 * force[:, None])
+        np.testing.assert_allclose(qt.sum(axis=1), force, rtol=1e-12)
+        assert np.all((qt > 0) == (dq > 0)) and np.all(qt[~np.isfinite(gap)] == 0)
+
+
+def test_every_door_judges_the_criteria_over_the_manufactured_population(pair, monkeypatch):
+    """Issue 27: the loaded-contact criteria over the manufactured gears is the one declared
+    default (settings.Constraints), and the schema, the checked settings, the study's optimise
+    sections, the Python API (optimise_dataset) and ``gearmesh optimise`` all take it from there."""
+    import yaml
+
+    from gearmesh import cli
+    from gearmesh.datasets import optimise as dop
+    from gearmesh.schema import defaults
+    from gearmesh.settings import Constraints
+
+    assert defaults(Constraints)["criteria_over_samples"] is True
+    schema = yaml.safe_load((ROOT / "src/gearmesh/schemas/config.schema.yaml").read_text())
+    run = schema["properties"]["optimise"]["additionalProperties"]
+    assert run["properties"]["constraints"]["properties"]["criteria_over_samples"]["default"] is True
+    assert op.OptimiseSettings().criteria_over_samples is True
+    assert op.check_settings().criteria_over_samples is True
+    assert op.check_settings(criteria_over_samples=False).criteria_over_samples is False
+    config = yaml.safe_load((ROOT / "config/config.yaml").read_text())
+    for name, section in config["optimise"].items():
+        checked = run_settings(pair, **section, impact=config.get("impact"), tolerances=config.get("tolerances"))[1]
+        assert checked.criteria_over_samples is True, name
+
+    seen = []
+
+    class Seen(Exception):
+        pass
+
+    def capture(model, settings, **kwargs):
+        seen.append(settings)
+        raise Seen
+
+    monkeypatch.setattr(dop, "impact_model", lambda geom, **kwargs: None)
+    monkeypatch.setattr(dop, "problem", capture)
+    with pytest.raises(Seen):
+        dop.optimise_dataset(pair, torque_Nm=1000, torques_Nm=[400, 1000], tolerances={"grade": 6, "samples": 2})
+    with pytest.raises(Seen):
+        cli.main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torques-Nm", "400,1000",
+                  "--method", "nsga2"])
+    assert [s.criteria_over_samples for s in seen] == [True, True]
+    assert all(s.tolerance_statistic == "max" for s in seen)

@@ -45,13 +45,14 @@ crossing the impact model did not resolve: its zero force would be an artefact t
 exploit).
 
 Constraints (optional) are an exterior static penalty (Homaifar, Qi & Lai 1994, Simulation
-62(4); Coello Coello 2002, Comput. Methods Appl. Mech. Engrg. 191, §3.1): with m_k the
-peak-to-peak LTE or the largest line load at the design torque
-(:func:`gearmesh.impact.ltca_metrics`) and m_k,std the standard gear's,
+62(4); Coello Coello 2002, Comput. Methods Appl. Mech. Engrg. 191, §3.1): with m_k a criterion
+of the loaded contact (:func:`gearmesh.impact.ltca_criteria`: LTE, line load, TE orders,
+pressure, root stress; by default the tolerance statistic over the manufactured gears,
+``criteria_over_samples``) or of the impact and the dynamics, and m_k,std the standard gear's,
 
     J = f + penalty · f_std · Σ_k max(0, m_k / (factor_k · m_k,std) − 1),
 
-so a candidate that spoils the LTE or the line load by more than ``factor_k`` pays in
+so a candidate that spoils a criterion by more than ``factor_k`` pays in
 proportion to the excess, in units of the standard gear's objective f_std.
 
 Diagnostics of every optimum (:func:`diagnose`): its **load window** — the contiguous range of
@@ -180,7 +181,7 @@ class OptimiseSettings:
     pareto_objectives: tuple[str, ...] = ("impact", "lte")
     S_Hmin: float | None = None
     S_Fmin: float | None = None
-    criteria_over_samples: bool = False
+    criteria_over_samples: bool = field(default_factory=lambda: _declared_constraint("criteria_over_samples"))
 
     @property
     def budget(self) -> int:
@@ -264,6 +265,15 @@ def _weights(weights, torques: tuple[float, ...], statistic: str):
     return tuple(float(w) for w in weights)
 
 
+def _declared_constraint(key: str) -> Any:
+    """The default of constraint ``key`` as :class:`gearmesh.settings.Constraints` declares it (the
+    one default of the schema, the study, the CLI and this module)."""
+    from .schema import defaults
+    from .settings import Constraints
+
+    return defaults(Constraints)[key]
+
+
 def _declared_bounds(key: str) -> tuple[int, int]:
     """(minimum, maximum) of integer setting ``key`` as :class:`gearmesh.settings.Optimise`
     declares it: the one bound of the schema, the CLI and this function."""
@@ -286,11 +296,12 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    backlash=None, harmonic_factor=None, harmonic_orders=(1, 2), pressure_factor=None,
                    root_stress_factor=None, impact_factor=None, worst_impact_factor=None,
                    pareto_objectives=("impact", "lte"), S_Hmin=None, S_Fmin=None,
-                   criteria_over_samples: bool = False) -> OptimiseSettings:
+                   criteria_over_samples: bool | None = None) -> OptimiseSettings:
     """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
     the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone.
     The constraint factors (``*_factor``) are relative to the unmodified pair's value (module
-    docstring); ``pareto_objectives`` the objectives of method nsga2 (:data:`PARETO_OBJECTIVES`)."""
+    docstring); ``pareto_objectives`` the objectives of method nsga2 (:data:`PARETO_OBJECTIVES`);
+    ``criteria_over_samples`` None: the declared default (:func:`_declared_constraint`)."""
     from .ltca import check_torques
 
     method = _choice("method", method, METHODS)
@@ -366,13 +377,17 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
             raise GearmeshInputError(f"constraints.{name}", value, "must lie in (0, 10] (a safety factor)")
     harmonic_orders = _orders(harmonic_orders)
     pareto_objectives = _pareto_objectives(pareto_objectives, method)
+    if criteria_over_samples is None:
+        criteria_over_samples = _declared_constraint("criteria_over_samples")
+    if not isinstance(criteria_over_samples, bool):
+        raise GearmeshInputError("constraints.criteria_over_samples", criteria_over_samples, "must be true or false")
     return OptimiseSettings(method, objective, population, generations, seed, torque, torques, weights, statistic,
                             speed_rpm, tolerance_samples, sampling, tolerance_seed, tolerance_statistic,
                             float(tolerance_level), lte_factor, line_load_factor, penalty,
                             float(mutation_probability), float(mutation_scale), keep_elitism, random_baseline,
                             energy_velocity, load_window_step, top, dynamic_speeds, dynamic_factor, backlash,
                             harmonic_orders=harmonic_orders, pareto_objectives=pareto_objectives,
-                            criteria_over_samples=bool(criteria_over_samples), **factors)
+                            criteria_over_samples=criteria_over_samples, **factors)
 
 
 def _orders(orders) -> tuple[int, ...]:
@@ -565,8 +580,9 @@ class Evaluation:
     ``force`` F_s, ``velocity`` |v_n|, ``scenario``; ``failed`` (C,), ``lte_peak_to_peak`` (C,) m
     and ``max_line_load`` (C,) N/m at the design torque (NaN when not needed), ``dynamic_factor``
     (C, T) K_v of the nominal gear at the objective torques (NaN when no dynamic constraint),
-    ``violation`` (C,) the summed relative constraint excess; ``criteria`` the nominal gear's loaded
-    contact at the objective torques (:class:`gearmesh.impact.LTCACriteria`, (C, T); None when no
+    ``violation`` (C,) the summed relative constraint excess; ``criteria`` the loaded contact at the
+    objective torques (:class:`gearmesh.impact.LTCACriteria`, (C, T): each quantity's tolerance
+    statistic over the manufactured gears, or the nominal gear's, :func:`_criteria`; None when no
     constraint or objective needs it), ``pareto`` (C, M) the NSGA-II objectives
     (:data:`PARETO_OBJECTIVES`; None for the other methods)."""
 

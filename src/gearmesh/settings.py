@@ -303,10 +303,10 @@ class Constraints:
         None, "the worst nominal F_s over the spectrum torques at most this times the unmodified pair's worst "
         "(null: free)", exclusive_minimum=0)
     criteria_over_samples: bool = setting(
-        False, "evaluate the loaded-contact criteria (LTE, line load, TE orders, pressure, root stress) for every "
+        True, "evaluate the loaded-contact criteria (LTE, line load, TE orders, pressure, root stress) for every "
         "manufactured gear (the nominal and the tolerance samples) and reduce each by tolerance_statistic, against the "
-        "unmodified pair's population likewise; false: the nominal gears (one LTCA per candidate and torque instead of "
-        "one per manufactured gear). S_Hmin and S_Fmin stay nominal")
+        "unmodified pair's population likewise, as ISO 6336-1's K_Hbeta counts the lead deviation; false, or no "
+        "tolerance_statistic: the nominal gears. S_Hmin and S_Fmin stay nominal")
     S_Hmin: float | None = setting(
         None, "ISO 6336-2 safety factor against pitting of the weaker gear at every spectrum torque at least this "
         "(method B at speed_rpm, K_Hbeta and K_Halpha from the candidate's LTCA; null: free)", exclusive_minimum=0,

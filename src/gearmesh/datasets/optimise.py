@@ -522,8 +522,9 @@ def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dat
 
 
 def optimum_notes(prob, diagnostics) -> list[str]:
-    """What an optimum's numbers do not say by themselves: a single-point objective's risk, and a
-    load window that ends where its torque grid ends (its true bound lies beyond)."""
+    """What an optimum's numbers do not say by themselves: a single-point objective's risk,
+    loaded-contact criteria judged on the nominal gear alone, and a load window that ends where
+    its torque grid ends (its true bound lies beyond)."""
     s, notes = prob.settings, []
     single_torque = len(s.objective_torques) == 1
     if s.objective in ("force", "velocity") or (single_torque and not prob.deviations.shape[0]):
@@ -531,6 +532,11 @@ def optimum_notes(prob, diagnostics) -> list[str]:
                      "grazing touch that is worse at other loads or under manufacturing deviations (check "
                      "load_window_Nm; the robust objective over --torques-Nm with --tolerance-samples guards "
                      "against it)")
+    if s.needs_criteria and not (s.criteria_over_samples and s.tolerance_statistic is not None):
+        notes.append("nominal criteria: the loaded-contact constraints and objectives (TE orders, pressure, root "
+                     "stress, LTE, line load) were judged on the nominal gear only; a manufactured gear's lead and "
+                     "modification deviations can break them (constraints.criteria_over_samples with a "
+                     "tolerance_statistic judges every manufactured gear)")
     low, high = diagnostics.load_window
     grid = diagnostics.window_torque
     if math.isfinite(high) and high >= grid[-1]:
