@@ -220,6 +220,9 @@ def test_the_figure_is_drawn_from_the_table(tmp_path):
     ds = _table([_variant("standard", {}), _variant("a", {"p": 0.7, "fs": 0.3}), _variant("b", {"sf": 1.3})])
     path = plot_signoff(ds, tmp_path / "signoff.png")
     assert path.stat().st_size > 10000
+    variants = [_variant("standard", {}), _variant("a", {"p": 0.7, "fs": 0.3})]
+    nominal = plot_signoff(_table(variants, basis="nominal"), tmp_path / "signoff_nominal.png")
+    assert nominal.stat().st_size > 10000
 
 
 STUDY = {"study": "s", "pairs": ["seed001_pair1"], "variants": {"standard": {}},
