@@ -815,10 +815,11 @@ class PairFile:
     bearing_span_mm: float | tuple[float, float] | None = setting(
         None, "distance between the two bearings of each shaft, one or [pinion, gear] (with shaft_diameter_mm)",
         exclusive_minimum=0)
-    web_thickness_mm: float | tuple[float, float] | None = setting(
-        None, "thickness of each gear body's web, one or [pinion, gear], at most the face width: the body's axial "
-        "bending under the helical load in series with the mesh (gearmesh.body; null with hub_diameter_mm null: "
-        "no body compliance; null alone: a solid disc)", exclusive_minimum=0)
+    web_thickness_mm: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
+        None, "thickness of each gear body's web, one, [pinion, gear] or rigid, at most the face width: the body's "
+        "axial bending under the helical load in series with the mesh (gearmesh.body; null: a solid disc, the face "
+        "width; rigid: no body bending, the model of ISO 6336-1's c' and of the source documents)",
+        exclusive_minimum=0)
     hub_diameter_mm: float | tuple[float, float] | None = setting(
         None, "diameter where each web meets its hub (held), one or [pinion, gear], from the bore up to below the "
         "root circle (gearmesh.body; null: the bore)", exclusive_minimum=0)
