@@ -3,9 +3,9 @@
 For the default study's pair at one torque: ISO's n_E1 and K_v(n) for perfect gears (and with a
 tip relief), the model's mesh-mode resonance and peak dynamic factor (maximum over static mesh
 force) over a speed sweep, with rigid supports, the pair file's and seed 001's, for the
-``contact`` and ``tvms`` excitations; ``--web-thickness-mm`` states a gear body (its compliance in
-series, :mod:`gearmesh.body`). Writes results/dynamics_iso/seed000_case[_web<t>mm].json and prints a
-table. Run: ``python scripts/dynamics_iso.py`` (about 2 min on a quiet 2-core machine).
+``contact`` and ``tvms`` excitations, with the pair file's gear bodies (by default solid discs,
+their compliance in series, :mod:`gearmesh.body`) or ``--web-thickness-mm T`` (mm, or ``rigid``: the
+teeth alone, ISO's model). Writes results/dynamics_iso/seed000_case[_web<T>].json and prints a table. Run: ``python scripts/dynamics_iso.py`` (about 2 min on a quiet 2-core machine).
 """
 
 from __future__ import annotations
@@ -28,7 +28,11 @@ SUPPORTS = {"rigid": {"bearing_radial_stiffness_N_per_um": "rigid", "bearing_axi
             "seed 001": {}}
 
 
-def _pair(name: str, supports: dict | None, relief_um: float, web_thickness_mm: float | None = None):
+def _web(value: str) -> float | str:
+    return value if value == "rigid" else float(value)
+
+
+def _pair(name: str, supports: dict | None, relief_um: float, web_thickness_mm: float | str | None = None):
     pair = load_pair(example_pair(name))
     if supports is not None or web_thickness_mm is not None:
         data = pair_to_dict(pair)
@@ -53,8 +57,8 @@ def main() -> None:
     ap.add_argument("--speeds", default="1000:12000:250", help="start:stop:step (r/min)")
     ap.add_argument("--relief-um", type=float, default=20.0)
     ap.add_argument("--out", default="results/dynamics_iso")
-    ap.add_argument("--web-thickness-mm", type=float, default=None,
-                    help="state a gear body (gearmesh.body; the face width: a solid disc held at the bore)")
+    ap.add_argument("--web-thickness-mm", type=_web, default=None,
+                    help="the gear bodies' web (gearmesh.body; mm, or rigid: none; default the pair file's)")
     args = ap.parse_args()
     a, b, c = (float(v) for v in args.speeds.split(":"))
     speeds = np.arange(a, b + 0.5 * c, c)
@@ -96,7 +100,7 @@ def main() -> None:
     print(f"ISO K_v perfect gears: max {kv.max():.3f}; with {args.relief_um:g} um tip relief: "
           f"max {max(out['iso'][f'K_v_tip_relief_{args.relief_um:g}um']):.3f}")
     path = Path(args.out) / (f"{args.pair}.json" if args.web_thickness_mm is None
-                             else f"{args.pair}_web{args.web_thickness_mm:g}mm.json")
+                             else f"{args.pair}_web{args.web_thickness_mm}.json")
     path.parent.mkdir(parents=True, exist_ok=True)
     path.write_text(json.dumps(out, indent=1))
     print("wrote", path)

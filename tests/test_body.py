@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 import yaml
 
-from gearmesh.body import _harmonic_edge, mesh_body_compliance, plate_edge_compliance
+from gearmesh.body import _harmonic_edge, describe_body, mesh_body_compliance, plate_edge_compliance
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import example_pair, load_pair, pair_geometry, pair_to_dict
@@ -75,11 +75,11 @@ def test_mesh_body_compliance_against_the_3d_reference(name, k_transverse, k_nor
 
 
 def test_body_in_series_with_the_teeth_in_the_tvms_and_the_ltca():
-    """A solid-disc web stated in the pair file: 1/K gains c_body at every position in the TVMS
-    (a 'body' component), and the LTCA's loaded TE gains c_body·F with its tangent in series; the
-    teeth's loads are unchanged (the body bends under the total force)."""
-    plain = pair_geometry(_pair())
-    body = pair_geometry(_pair(web_thickness_mm=42.0))
+    """The default body (solid discs) against rigid webs: 1/K gains c_body at every position in the
+    TVMS (a 'body' component), and the LTCA's loaded TE gains c_body·F with its tangent in series;
+    the teeth's loads are unchanged (the body bends under the total force)."""
+    plain = pair_geometry(_pair(web_thickness_mm="rigid"))
+    body = pair_geometry(_pair())
     c = mesh_body_compliance(body)
     k0, k1 = mesh_stiffness(plain, 30, 60, "transition"), mesh_stiffness(body, 30, 60, "transition")
     np.testing.assert_allclose(1 / k1.K, 1 / k0.K + c, rtol=1e-12)
@@ -98,7 +98,28 @@ def test_thin_web_and_large_hub_change_the_compliance_the_expected_way():
     assert mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=42.0, hub_diameter_mm=[100, 250]))) < solid
 
 
+def test_the_default_body_is_the_solid_disc_and_rigid_webs_remove_it():
+    """No body keys: solid discs held at the bore, the same as a web as thick as the face (42 mm)
+    stated; ``rigid`` per gear removes that gear's web, both rigid none; a pair without a bore
+    has nothing to hold the web. Each result says which (describe_body)."""
+    default = pair_geometry(_pair())
+    c = mesh_body_compliance(default)
+    assert c > 0 and c == pytest.approx(mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=42.0))), rel=1e-12)
+    assert "solid discs" in describe_body(default)
+    c_gear = mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=["rigid", 42.0])))
+    c_pinion = mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=[42.0, "rigid"])))
+    assert 0 < c_gear < c and 0 < c_pinion < c and c_gear + c_pinion == pytest.approx(c, rel=1e-12)
+    rigid = pair_geometry(_pair(web_thickness_mm="rigid"))
+    assert mesh_body_compliance(rigid) == 0.0 and describe_body(rigid).startswith("none: the pair file states rigid")
+    assert pair_to_dict(rigid.pair)["web_thickness_mm"] == ["rigid", "rigid"]
+    assert load_pair(pair_to_dict(rigid.pair)).body == rigid.pair.body
+    no_bore = pair_geometry(_pair(bore_radius_mm=None))
+    assert mesh_body_compliance(no_bore) == 0.0 and "no bore or hub" in describe_body(no_bore)
+
+
 @pytest.mark.parametrize("body, field", [
+    ({"web_thickness_mm": "soft"}, "web_thickness_mm"),
+    ({"web_thickness_mm": ["rigid", 0.0]}, "web_thickness_mm[1]"),
     ({"web_thickness_mm": 50.0}, "web_thickness_mm[0]"),  # face 42 mm
     ({"hub_diameter_mm": [160.0, 200.0]}, "hub_diameter_mm[0]"),  # pinion root diameter 151 mm
     ({"hub_diameter_mm": [50.0, 200.0]}, "hub_diameter_mm[0]"),  # pinion bore 60 mm
@@ -126,8 +147,8 @@ def test_body_in_series_in_the_contact_table():
     teeth's plus c_body·F, so `contact` sees the same body as the TVMS and the LTCA."""
     from gearmesh.meshforce import mesh_force_table
 
-    plain = pair_geometry(_pair())
-    body = pair_geometry(_pair(web_thickness_mm=42.0))
+    plain = pair_geometry(_pair(web_thickness_mm="rigid"))
+    body = pair_geometry(_pair())
     c = mesh_body_compliance(body)
     t0, t1 = (mesh_force_table(g, 40e3, positions=16, approaches=400, points=20, method="transition")
               for g in (plain, body))

@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from gearmesh import dynamics as dy
+from gearmesh.body import Body
 from gearmesh.config import variant_pair
 from gearmesh.contact import mesh_cycle_rolls
 from gearmesh.datasets.dynamics import build_pair_model, contact_table, dynamics_dataset, train_dataset
@@ -42,6 +43,13 @@ def pair():
 @pytest.fixture(scope="module")
 def geom(pair):
     return pair_geometry(pair)
+
+
+@pytest.fixture(scope="module")
+def teeth(pair):
+    """The pair with rigid webs: the teeth alone, as the convergence and kernel tests were written
+    (the bodies' series term of the table is checked in tests/test_body.py)."""
+    return pair_geometry(pair.with_changes(body=Body(web_thickness=(math.inf, math.inf))))
 
 
 @pytest.fixture(scope="module")
@@ -94,10 +102,11 @@ def test_quasi_static_limit_is_the_ltca(geom, table):
     assert abs(touch - table.static_touch(1000.0 / float(geom.base_radius[0]))) < table.pitch / table.positions
 
 
-def test_mesh_in_converges_to_the_impact_model(geom):
+def test_mesh_in_converges_to_the_impact_model(teeth):
     """The table's quasi-static first touch converges like 1/N in the points per line to the
     impact model's exact face-end corner (slice centres lie half a slice inside the face): the
     Richardson extrapolation 2·T(2N) − T(N) meets impact_static's roll before engagement."""
+    geom = teeth
     force = 1000.0 / float(geom.base_radius[0])
     t = {n: mesh_force_table(geom, 2 * force, positions=128, approaches=32, points=n).static_touch(force)
          for n in (50, 100)}
@@ -125,11 +134,12 @@ def test_contact_and_ltca_excitation_agree_for_small_motion(pair, geom, table):
     np.testing.assert_allclose(b.force_max[0], a.force_max[0], rtol=0.01)
 
 
-def test_converges_in_time_step_and_table(geom):
+def test_converges_in_time_step_and_table(teeth):
     """Halving the time step, or doubling the table's positions or approaches, changes the peak
     force and the TE fluctuation less each time (at the mesh resonance, 6500 rpm). On the
     cantilever tooth: the FE tooth's tabulated compliance has an interpolation floor of about
     7e-4 in these quantities, below which doubling the approaches no longer converges."""
+    geom = teeth
     force = 1600.0 / float(geom.base_radius[0])
     speeds = [6500.0]
 
@@ -272,10 +282,11 @@ def test_compiled_loop_equals_the_numpy_kernel(excitation):
         assert np.any(a.gap_fraction > 0)  # the backlash branch is exercised
 
 
-def test_compiled_contact_loop_equals_the_numpy_kernel(geom):
+def test_compiled_contact_loop_equals_the_numpy_kernel(teeth):
     """The contact table read by the compiled loop and by the numpy batch kernel (independent
     indexing, numpy's own RK4 over all speeds): the same trajectory to round-off through a start
     far from equilibrium that opens the mesh and hits the back flanks."""
+    geom = teeth
     force = 1000.0 / float(geom.base_radius[0])
     tab = mesh_force_table(geom, 4 * force, positions=64, approaches=32, points=30)
     model = dy.pair_model(geom, 400.0 * geom.base_radius[1] / geom.base_radius[0], None, contact=tab, backlash=20e-6)

@@ -10,6 +10,7 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st_
 
 from pairs import STEEL, seed001_pair1
+from gearmesh.body import mesh_body_compliance
 from gearmesh import stiffness as st
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
 from gearmesh.errors import GearmeshInputError
@@ -219,8 +220,9 @@ def test_methods_order_when_base_circle_is_above_root_circle():
 
 
 def test_fast_equals_reference_quadrature_on_a_small_grid():
-    """Tables + interpolation + sums against per-slice adaptive quadrature at every point."""
-    geom = geom_of()
+    """Tables + interpolation + sums against per-slice adaptive quadrature at every point (the
+    teeth: rigid webs, the bodies' series term being tested in tests/test_body.py)."""
+    geom = geom_of(web_thickness_mm="rigid")
     for method in ("improved", "transition"):
         ref = st.mesh_stiffness_reference(geom, 3, 6, method)
         fast = st.mesh_stiffness(geom, 3, 6, method, rule="centre").K
@@ -297,7 +299,8 @@ def test_clip_rule_sums_contact_length_exactly_for_random_pairs(beta, b, z1, han
 def test_components_add_up_in_series(p1_result):
     inv = sum(1.0 / v for v in p1_result.components.values())
     assert np.allclose(inv, 1.0 / p1_result.K, rtol=1e-10)
-    assert set(p1_result.components) == {f"{c}_{g}" for c in st.COMPONENTS for g in ("pinion", "gear")} | {"hertz"}
+    assert set(p1_result.components) == ({f"{c}_{g}" for c in st.COMPONENTS for g in ("pinion", "gear")}
+                                         | {"hertz", "body"})
     # the bodies' foundation and the contact are the soft parts; axial compression is tiny
     comp = {k: v.mean() for k, v in p1_result.components.items()}
     assert comp["axial_pinion"] > 10 * comp["fillet_pinion"]
@@ -314,7 +317,9 @@ def test_single_pair_curve_rebuilds_the_total(p1, p1_result):
     for u, k in zip(r.pair_roll, r.k_pair):
         p = int(round((u % pbt) / step)) % r.roll.size
         total[p] += k
-    assert np.allclose(total, r.K, rtol=1e-12)
+    c_body = mesh_body_compliance(p1)  # the pairs' teeth in parallel, the bodies in series (gearmesh.body)
+    assert c_body > 0
+    assert np.allclose(1.0 / (1.0 / total + c_body), r.K, rtol=1e-12)
 
 
 def test_min_max_include_the_kinks(p1_result):

@@ -10,8 +10,11 @@ pair's thin discs. This module gives that compliance from the pair file's body g
   t = the face width, when only ``hub_diameter_mm`` is given), clamped at the hub radius b
   (``hub_diameter_mm``/2, default the bore: the 3-D reference holds the bore) and free at the
   root radius a (the rim and teeth beyond the root circle rigid in this bending). A pair file
-  with neither key has no body compliance (the tooth models' bore-held ring alone, as before
-  issue 28): stating one applies it;
+  with neither key has solid discs (issue 28: the body every gear has unless it says otherwise;
+  the 3-D reference is a solid disc held at the bore). ``web_thickness_mm: rigid`` (one or per
+  gear) removes the body's bending: the tooth models' bore-held ring alone, the model of the source
+  documents and of ISO 6336-1's c' (its C_R = 1 for solid wheels has no axial tilt), so a study
+  can reproduce them. A pair without a bore or a hub has nothing to hold the web: none, stated;
 * the **load**: F_a on the edge r = a, spread evenly over the arc the contact line spans across
   the face (its transverse projection b tan β_b, as an arc at r_w: the 3-D reference loads one
   contact line evenly), carried out to the operating pitch radius r_w by a rigid tooth (so the
@@ -58,45 +61,65 @@ from .supports import per_gear_length
 __all__ = ["BODY_KEYS", "Body", "read_body", "check_body", "describe_body", "plate_edge_compliance", "body_axial_compliance",
            "mesh_body_compliance"]
 
-#: The pair-file keys of the gear bodies: one value or [pinion, gear], mm.
+#: The pair-file keys of the gear bodies: one value or [pinion, gear], mm (a web also ``rigid``).
 BODY_KEYS = ("web_thickness_mm", "hub_diameter_mm")
+RIGID = "rigid"
 #: Fourier harmonics of the edge load summed (module docstring: 10⁻⁴ at 64 with the load over its arc).
 HARMONICS = 64
 
 
 @dataclass(frozen=True)
 class Body:
-    """The gear bodies [pinion, gear] (m): web thickness and hub diameter, None where the pair file
-    gives none (a solid disc: the face width; the hub: the bore)."""
+    """The gear bodies [pinion, gear] (m): web thickness (inf: a rigid web) and hub diameter, None
+    where the pair file gives none (a solid disc: the face width; the hub: the bore)."""
 
     web_thickness: tuple[float, float] | None = None
     hub_diameter: tuple[float, float] | None = None
 
     @property
-    def given(self) -> bool:
-        return self.web_thickness is not None or self.hub_diameter is not None
+    def rigid(self) -> tuple[bool, bool]:
+        """Whether each gear's web is stated rigid (no body bending)."""
+        if self.web_thickness is None:
+            return (False, False)
+        return tuple(math.isinf(t) for t in self.web_thickness)
 
     def to_dict(self) -> dict[str, Any]:
         out: dict[str, Any] = {}
         if self.web_thickness is not None:
-            out["web_thickness_mm"] = [t * 1e3 for t in self.web_thickness]
+            out["web_thickness_mm"] = [RIGID if math.isinf(t) else t * 1e3 for t in self.web_thickness]
         if self.hub_diameter is not None:
             out["hub_diameter_mm"] = [d * 1e3 for d in self.hub_diameter]
         return out
 
 
+def _web(key: str, value: Any) -> tuple[float, float]:
+    """A web thickness (mm), [pinion, gear] or ``rigid`` (each) → (m, m), inf for rigid."""
+    items = list(value) if isinstance(value, (list, tuple)) else [value, value]
+    try:
+        if len(items) == 2 and RIGID in items:
+            return tuple(math.inf if v == RIGID else per_gear_length(f"{key}[{i}]", v)[0] for i, v in enumerate(items))
+        return per_gear_length(key, value)
+    except GearmeshInputError as err:
+        rule = f"must be a positive length (mm) or '{RIGID}'" if "positive length" in err.rule else err.rule
+        raise GearmeshInputError(err.field, err.value, rule) from None
+
+
 def read_body(spec: Mapping[str, Any]) -> Body:
-    """The body keys of a pair-file mapping (others ignored), each one positive length or a
-    [pinion, gear] pair; their agreement with the gear (web ≤ face, bore ≤ hub < root circle) is
-    checked by :func:`check_body` once the geometry is known."""
-    return Body(*(per_gear_length(k, spec[k]) if spec.get(k) is not None else None for k in BODY_KEYS))
+    """The body keys of a pair-file mapping (others ignored): the web one positive length, ``rigid``
+    or a [pinion, gear] pair of either, the hub one positive length or a pair; their agreement with
+    the gear (web ≤ face, bore ≤ hub < root circle) is checked by :func:`check_body` once the
+    geometry is known."""
+    web, hub = (spec.get(k) for k in BODY_KEYS)
+    return Body(None if web is None else _web(BODY_KEYS[0], web),
+                None if hub is None else per_gear_length(BODY_KEYS[1], hub))
 
 
 def check_body(body: Body, face_width, bore_radius, root_radius) -> None:
     """One :class:`GearmeshInputError` naming the key when a web is thicker than its face or a hub
     is not between the bore and the root circle (all in m, [pinion, gear]; bore may be None)."""
     for i in range(2):
-        if body.web_thickness is not None and body.web_thickness[i] > face_width[i] * (1 + 1e-12):
+        if body.web_thickness is not None and math.isfinite(body.web_thickness[i]) \
+                and body.web_thickness[i] > face_width[i] * (1 + 1e-12):
             raise GearmeshInputError(f"web_thickness_mm[{i}]", body.web_thickness[i] * 1e3,
                                      f"must not exceed the face width {face_width[i] * 1e3:.6g} mm")
         if body.hub_diameter is not None:
@@ -169,10 +192,13 @@ def plate_edge_compliance(youngs_modulus: float, poisson_ratio: float, hub_radiu
 
 def body_axial_compliance(geom, gear: int) -> float:
     """c_w (m/N) of one gear of ``geom`` (:class:`gearmesh.gear.PairGeometry`): the web of the pair
-    file's body (default a solid disc held at the bore), the load at the operating pitch radius."""
+    file's body (default a solid disc held at the bore; 0 for a rigid web), the load at the
+    operating pitch radius."""
     pair = geom.pair
     body = pair.body
     t = body.web_thickness[gear] if body.web_thickness is not None else pair.face_width[gear]
+    if math.isinf(t):
+        return 0.0
     hub = body.hub_diameter[gear] / 2 if body.hub_diameter is not None else pair.bore_radius[gear]
     mat = pair.material
     r_w = float(geom.operating_pitch_radius[gear])
@@ -180,19 +206,32 @@ def body_axial_compliance(geom, gear: int) -> float:
                                  spread=geom.face_width * math.tan(geom.base_helix_angle) / r_w)
 
 
+def _why_none(pair) -> str | None:
+    """Why the pair's bodies add no compliance (None: they do)."""
+    if all(pair.body.rigid):
+        return "the pair file states rigid webs (web_thickness_mm: rigid)"
+    if pair.material is None:
+        return "the pair file gives no material"
+    if pair.body.hub_diameter is None and pair.bore_radius is None:
+        return "the pair file gives no bore or hub to hold the web (bore_radius_mm, hub_diameter_mm)"
+    return None
+
+
 def mesh_body_compliance(geom) -> float:
     """Both bodies' compliance in series with the mesh along the transverse line of action (m/N):
-    tan² β_b (c_w1 + c_w2) (module docstring). Needs the material and, for a default hub, the bore."""
-    if geom.pair.material is None or (geom.pair.body.hub_diameter is None and geom.pair.bore_radius is None):
-        raise GearmeshInputError("bore_radius_mm", None, "the gear-body compliance needs the material and the "
-                                 "bore (or hub_diameter_mm)")
+    tan² β_b (c_w1 + c_w2) (module docstring); 0 where the bodies add none (rigid webs, or no
+    material, or neither bore nor hub: :func:`describe_body` says which)."""
+    if _why_none(geom.pair) is not None:
+        return 0.0
     return math.tan(geom.base_helix_angle) ** 2 * (body_axial_compliance(geom, 0) + body_axial_compliance(geom, 1))
 
 
 def describe_body(geom) -> str:
     """One sentence for a result's attributes: the gear-body compliance in its mesh stiffness."""
-    if not geom.pair.body.given:
-        return ("none: the pair file states no gear body (web_thickness_mm, hub_diameter_mm); the tooth model's "
-                "ring held at the bore")
-    return (f"the webs' axial bending in series with the teeth (gearmesh.body, pair file {geom.pair.body.to_dict()}): "
+    why = _why_none(geom.pair)
+    if why is not None:
+        return f"none: {why}; the tooth model's ring held at the bore"
+    stated = geom.pair.body.to_dict()
+    where = f"pair file {stated}" if stated else "not stated in the pair file: solid discs held at the bore"
+    return (f"the webs' axial bending in series with the teeth (gearmesh.body, {where}): "
             f"{mesh_body_compliance(geom) * 1e9:.4g} um/kN along the transverse line of action")

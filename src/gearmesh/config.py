@@ -251,14 +251,18 @@ def _check_impact(impact: Mapping[str, Any] | None) -> None:
 
 
 def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> None:
-    """The sign-off table has what it reads: the ltca, rating and impact sections, its reference
-    among the variants, and every LTCA torque among the impact's (and the dynamics') torques."""
+    """The sign-off table has what it reads: the ltca, rating and impact sections (basis population:
+    the tolerances section with samples), its reference among the variants, and every LTCA torque
+    among the impact's (and the dynamics') torques."""
     signoff = config.get("signoff")
     if signoff is None:
         return
     for section in ("ltca", "rating", "impact"):
         if section not in config:
             raise GearmeshInputError("signoff", dict(signoff), f"needs a {section} section in the study")
+    if signoff.get("basis") == "population" and not (config.get("tolerances") or {}).get("samples"):
+        raise GearmeshInputError("signoff.basis", "population", "needs a tolerances section with samples (the "
+                                 "manufactured gears it judges); or basis: nominal")
     variants = list(config.get("variants", {}))
     if signoff["reference"] not in variants:
         raise GearmeshInputError("signoff.reference", signoff["reference"], f"must be one of the variants {variants}")

@@ -186,8 +186,8 @@ def with_loaded_extension(geom: PairGeometry, K: np.ndarray, pinion_torque: floa
     k_edge = edge_tangent_stiffness(res)[0]
     if not np.any(k_edge):
         return K
-    if geom.pair.body.given:
-        c = mesh_body_compliance(geom)
+    c = mesh_body_compliance(geom)
+    if c:
         return 1.0 / (1.0 / (1.0 / (1.0 / K - c) + k_edge) + c)
     return K + k_edge
 
@@ -739,8 +739,8 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
                           "profile; raise corner_extension", RuntimeWarning, stacklevel=2)
             break
         extension = min(1.0, 2.0 * extension)  # the load reaches further than the candidates: widen
-    if geom.pair.body.given:  # the bodies bend under the total force, in series (gearmesh.body)
-        c_body = mesh_body_compliance(geom)
+    c_body = mesh_body_compliance(geom)
+    if c_body:  # the bodies bend under the total force, in series (gearmesh.body)
         delta, k = delta + c_body * force[:, None], 1.0 / (1.0 / k + c_body)
     g = model.grid
     pp = g.gap.shape[0]

@@ -296,7 +296,7 @@ def tabulate(layout: TableLayout, gap: np.ndarray, force_max: float,
     _, delta_max, _, _ = solve_contact(gap, comp - law.linear, np.full(rows, float(force_max)), law)
     u_max = float(np.max(delta_max - gap_min))
     geom = layout.geom
-    c_body = mesh_body_compliance(geom) if geom.pair.body.given else 0.0
+    c_body = mesh_body_compliance(geom)
     u = np.linspace(0.0, u_max, approaches)
     force, stiff, enter = load_sums(gap, comp, gap_min[:, None] + u[None, :], law, enter_mask)
     if c_body:

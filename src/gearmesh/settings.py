@@ -520,7 +520,8 @@ class Signoff:
     """The sign-off table of every pair (signoff_table.nc): each variant beside the reference at
     every LTCA torque (F_s, swept dynamic peak, loaded-TE orders, peak pressure, root stress, S_H,
     S_F) and whether it meets these criteria against the reference. Needs the ltca, rating and
-    impact sections; the dynamic criterion needs a dynamics section."""
+    impact sections (basis population also tolerance samples); the dynamic criterion needs a
+    dynamics section."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.signoff:signoff_table_dataset", "{pair}/signoff_table.nc", "pair",
         reads=tuple(Read(s, when, every_variant=True) for s, when in (
@@ -528,6 +529,10 @@ class Signoff:
         figures="gearmesh.plots.signoff:signoff_figures", pair_file=False)
     reference: str = setting("standard", "the variant the others are held against (the unmodified pair)",
                              pattern=r"^[A-Za-z0-9_]+$", max_length=NAME_LENGTH)
+    basis: Literal["population", "nominal"] = setting(
+        "population", "the gear the pressure, root-stress and TE-order criteria judge: population, the worst "
+        "manufactured gear (the nominal and the tolerances section's samples, impact model; as the optimiser) "
+        "against the reference's worst; nominal, the nominal gear (ltca and rating stages)")
     pressure_factor: float = setting(1.1, "peak contact pressure (flank or tip edge) at most this times the "
                                           "reference's", exclusive_minimum=0)
     root_stress_factor: float = setting(1.1, "peak tooth-root stress at most this times the reference's",
@@ -810,10 +815,11 @@ class PairFile:
     bearing_span_mm: float | tuple[float, float] | None = setting(
         None, "distance between the two bearings of each shaft, one or [pinion, gear] (with shaft_diameter_mm)",
         exclusive_minimum=0)
-    web_thickness_mm: float | tuple[float, float] | None = setting(
-        None, "thickness of each gear body's web, one or [pinion, gear], at most the face width: the body's axial "
-        "bending under the helical load in series with the mesh (gearmesh.body; null with hub_diameter_mm null: "
-        "no body compliance; null alone: a solid disc)", exclusive_minimum=0)
+    web_thickness_mm: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
+        None, "thickness of each gear body's web, one, [pinion, gear] or rigid, at most the face width: the body's "
+        "axial bending under the helical load in series with the mesh (gearmesh.body; null: a solid disc, the face "
+        "width; rigid: no body bending, the model of ISO 6336-1's c' and of the source documents)",
+        exclusive_minimum=0)
     hub_diameter_mm: float | tuple[float, float] | None = setting(
         None, "diameter where each web meets its hub (held), one or [pinion, gear], from the bore up to below the "
         "root circle (gearmesh.body; null: the bore)", exclusive_minimum=0)

@@ -696,8 +696,8 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
                 comps[name] = K**2 / row
     roll_bp = contact_length_breakpoints(geom)
     K_bp = _sum_slices(geom, pair_table, roll_bp, n_slices, pairs, rule, False)[0].sum(axis=1)
-    if geom.pair.body.given:  # the bodies' axial bending in series with the teeth (gearmesh.body)
-        c_body = mesh_body_compliance(geom)
+    c_body = mesh_body_compliance(geom)
+    if c_body:  # the bodies' axial bending in series with the teeth (gearmesh.body)
         K, K_bp = 1.0 / (1.0 / K + c_body), 1.0 / (1.0 / K_bp + c_body)
         if components:
             comps["body"] = np.full(K.shape, 1.0 / c_body)

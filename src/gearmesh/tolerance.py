@@ -44,9 +44,10 @@ import numpy as np
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
 from .limits import MAX_CORNER_DIMENSIONS, MAX_SAMPLES
+from .surface import fit_modifications
 
 __all__ = ["GRADES", "SAMPLINGS", "STATISTICS", "helix_slope_tolerance", "ToleranceModel", "tolerance_model",
-           "unit_deviations", "apply_deviations", "sample_statistic", "check_statistic", "study_tolerances"]
+           "unit_deviations", "apply_deviations", "manufactured_population", "sample_statistic", "check_statistic", "study_tolerances"]
 
 GRADES = tuple(range(1, 12))
 SAMPLINGS = ("lhs", "corners")
@@ -171,6 +172,18 @@ def apply_deviations(model: ToleranceModel, params: np.ndarray, lead_slope, unit
             p[:, 1:, g, k] = np.where(nominal > 0, np.maximum(nominal + units[:, j] * model.modification[g, k], 0.0),
                                       nominal)
     return p, lead
+
+
+def manufactured_population(geom: PairGeometry, model: ToleranceModel, params: np.ndarray, lead_slope,
+                            units: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The manufactured gears of parameter sets ``params`` (C, 2, 6) (m) with nominal lead slopes
+    ``lead_slope`` (2,) (m) as flat rows: parameters (C·(S + 1), 2, 6) and lead slopes
+    (C·(S + 1), 2), candidate-major, sample 0 of each candidate the nominal
+    (:func:`apply_deviations`), every row made a valid modification
+    (:func:`gearmesh.surface.fit_modifications`). The one population of the optimiser and the
+    impact stage."""
+    p, lead = apply_deviations(model, params, lead_slope, units)
+    return fit_modifications(geom, p.reshape(-1, 2, 6)), lead.reshape(-1, 2)
 
 
 def check_statistic(statistic: str | None, level_percent: float, field: str = "tolerance_statistic") -> None:

@@ -16,6 +16,7 @@ from typing import Any, Mapping, Sequence, get_args
 import numpy as np
 import xarray as xr
 
+from ..body import describe_body
 from ..dynamics import (
     DAMPING_MEANING,
     DEFAULT_DAMPING_RATIO,
@@ -823,6 +824,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
         "damping_ratio": float(damping_ratio),
         "damping_ratio_meaning": DAMPING_MEANING,
         "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
+        "gear_body": describe_body(geom),
         "steady_state": (f"periodic steady state by shooting (Newton on the one-period map), then "
                          f"{settings.settle_cycles} periods, then {record_cycles} recorded; the physical-time "
                          f"transient ({transient_tau} time constants of the slowest mode) where shooting does not "
@@ -988,6 +990,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                        "impression loaded, blanket idles; meshes in phase unless phase_offsets_cycles; centres on "
                        "one line",
         "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
+        "gear_body": describe_body(geom),
         "damping_ratio_meaning": DAMPING_MEANING,
     })
     return name_force_lines(ds, "normal")

@@ -15,14 +15,13 @@ from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
-                      impact_response, impact_static, load_grid, load_window, mesh_in_point, seed_edge_roll,
-                      simulate_engagement, vector_velocity)
+                      impact_response, impact_static, load_grid, load_window, ltca_criteria, mesh_in_point,
+                      seed_edge_roll, simulate_engagement, vector_velocity)
 from ..io import name_force_lines, variable
 from ..limits import check_speeds
-from ..ltca import check_torques, loaded_pinion_torques, pinion_torques
-from ..surface import fit_modifications
+from ..ltca import MESH_ORDERS, check_torques, loaded_pinion_torques, pinion_torques
 from ..tca import check_lead_slope, check_modifications
-from ..tolerance import apply_deviations, study_tolerances, unit_deviations
+from ..tolerance import manufactured_population, study_tolerances, unit_deviations
 from ..schema import check_arguments, defaults
 from ..settings import Impact
 
@@ -85,7 +84,9 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
     to 1.25 × the largest torque (:func:`gearmesh.impact.load_grid`; the impact table's load
     windows, anchored at ``design_torque_Nm``, default the middle torque), and with the study's
     ``tolerances`` (:func:`gearmesh.tolerance.study_tolerances`) F_s of the nominal and
-    every tolerance sample at each torque (the tolerance spread).
+    every tolerance sample at each torque (the tolerance spread) and the loaded contact of each
+    of those manufactured gears at each torque (:func:`gearmesh.impact.ltca_criteria`, the
+    optimiser's criteria on the same model and population: the sign-off table's population basis).
     """
     given, t1, speeds = _operating_points(pair, torques_Nm, on, speeds_rpm)
     design = float(_operating_points(pair, given, on, [design_speed_rpm], speed_field="design_speed_rpm")[2][0])
@@ -235,9 +236,8 @@ def _add_tolerance_spread(ds: xr.Dataset, model: ImpactModel, t1, tolerances, de
     units = unit_deviations(len(tol.dimensions), samples, sampling, seed)
     if units.shape[0] == 0:
         return
-    params, lead = apply_deviations(tol, model.params(), model.lead_slope, units)
-    params = fit_modifications(model.geom, params[0])
-    force, force_eb, scen = _design_response(model, t1, params, lead[0], design, energy_velocity)
+    rows, lead = manufactured_population(model.geom, tol, model.params(), model.lead_slope, units)
+    force, force_eb, scen = _design_response(model, t1, rows, lead, design, energy_velocity)
     st = ("tolerance_sample", "torque")
     ds.coords["tolerance_sample"] = variable(("tolerance_sample",), np.arange(units.shape[0] + 1), "1",
                                              "manufactured sample (0: the nominal)")
@@ -246,9 +246,31 @@ def _add_tolerance_spread(ds: xr.Dataset, model: ImpactModel, t1, tolerances, de
     ds["tolerance_impact_force_energy_balance"] = variable(st, force_eb, "N", "F_s (energy balance) of each "
                                                                               "tolerance sample")
     ds["tolerance_scenario"] = _scenario_var(st, scen)
+    _add_population_contact(ds, model, t1, rows, lead)
     ds.attrs.update({"tolerance_samples": int(units.shape[0]), "tolerance_sampling": sampling,
                      "lead_grade_iso1328": -1 if tol.grade is None else tol.grade,
                      "toleranced": ", ".join(tol.labels())})
+
+
+def _add_population_contact(ds: xr.Dataset, model: ImpactModel, t1, rows: np.ndarray, lead: np.ndarray) -> None:
+    """The loaded contact over one mesh cycle of every manufactured gear (``rows``, ``lead``; sample
+    0 the nominal) at each torque: :func:`gearmesh.impact.ltca_criteria` on the impact model's
+    mesh-cycle grid, as the optimiser evaluates its criteria."""
+    c = ltca_criteria(model, t1, rows, lead_slope=lead)
+    st, sto = ("tolerance_sample", "torque"), ("tolerance_sample", "torque", "mesh_order")
+    of = "of the nominal (sample 0) and each tolerance sample over one mesh cycle (impact model's LTCA)"
+    ds.coords["mesh_order"] = variable(("mesh_order",), np.array(MESH_ORDERS), "1",
+                                       "harmonic order of the mesh frequency")
+    ds["tolerance_lte_peak_to_peak"] = variable(st, c.lte_peak_to_peak, "m", f"peak-to-peak loaded transmission "
+                                                f"error {of}", engineering_units="µm")
+    ds["tolerance_lte_harmonics"] = variable(sto, c.te_harmonics, "m", f"amplitudes of the loaded transmission "
+                                             f"error at the mesh orders {of}", engineering_units="µm")
+    ds["tolerance_peak_flank_pressure"] = variable(st, c.flank_pressure, "Pa", f"largest Hertzian contact pressure "
+                                                   f"on the flanks' active zone (tip edges left out) {of}")
+    ds["tolerance_peak_edge_pressure"] = variable(st, c.edge_pressure, "Pa", f"largest Hertzian contact pressure "
+                                                  f"of a tip edge on the mating flank (0: no edge contact) {of}")
+    ds["tolerance_peak_root_stress"] = variable(st, c.root_stress, "Pa", f"largest tooth-root stress of either gear "
+                                                f"(ISO 6336-3 local form, slice by slice) {of}")
 
 
 def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, design: float) -> None:

@@ -1,5 +1,7 @@
 """The sign-off figure: each variant's sign-off quantities as ratios to the reference variant's at
-every torque, with each criterion's limit, drawn from signoff_table.nc."""
+every torque, with each criterion's limit, drawn from signoff_table.nc: the pressure, root-stress
+and TE-order panels on the table's basis (the worst manufactured gear, or the nominal gear), the
+nominal gear's ratios beside the population's as open markers."""
 
 from __future__ import annotations
 
@@ -27,11 +29,19 @@ def _panels(table: xr.Dataset) -> list[tuple[str, str, float, str]]:
     return panels
 
 
+def _judged(table: xr.Dataset, name: str) -> str:
+    """The table's variable of quantity ``name`` on its basis (the population's ``worst_`` columns)."""
+    worst = f"worst_{name}"
+    return worst if table.attrs.get("basis") == "population" and worst in table else name
+
+
 def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
-    """One panel per criterion: every variant's value over the reference's against torque, the
-    criterion's limit dashed, a failing point as a cross. The worst-case F_s criterion in the
-    F_s panel's title."""
+    """One panel per criterion: every variant's value over the reference's against torque on the
+    table's basis, the criterion's limit dashed, a failing point as a cross; on the population
+    basis the nominal gear's ratios as open markers, dotted. The worst-case F_s criterion in the
+    title."""
     ref = str(table.attrs["reference"])
+    basis = str(table.attrs.get("basis", "nominal"))
     panels = _panels(table)
     ncol = 3
     nrow = -(-len(panels) // ncol)
@@ -41,32 +51,45 @@ def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
     colors = palette(max(len(others), 1), "tab10", 0.0, 0.9)
     flag_of = {"pressure_ratio": "meets_pressure", "peak_root_stress": "meets_root_stress",
                "impact_force": "meets_impact", "dynamic_mesh_force_peak": "meets_dynamics"}
+
+    def ratio_of(name: str, variant: str) -> np.ndarray:
+        reference = 1.0 if name.endswith("pressure_ratio") else table[name].sel(variant=ref).values  # a ratio already
+        return table[name].sel(variant=variant).values / reference
+
     for ax, (name, what, limit, op) in zip(axes.flat, panels):
-        reference = 1.0 if name == "pressure_ratio" else table[name].sel(variant=ref).values  # a ratio already
+        judged = _judged(table, name)
         flag = flag_of.get(name, "meets_te_harmonics")
         for color, variant in zip(colors, others):
-            ratio = table[name].sel(variant=variant).values / reference
+            ratio = ratio_of(judged, variant)
             # the table's flag; a TE order's own (the table's flag holds the orders together)
             meets = table[flag].sel(variant=variant).values == 1 if flag != "meets_te_harmonics" \
                 else ratio <= limit
             ax.plot(torque, ratio, "-", color=color, lw=1.2, label=variant)
             ax.plot(torque[meets], ratio[meets], "o", color=color, ms=5)
             ax.plot(torque[~meets], ratio[~meets], "x", color=color, ms=8, mew=2)
+            if judged != name:  # the nominal gear beside the judged worst manufactured gear
+                ax.plot(torque, ratio_of(name, variant), ":o", color=color, lw=0.8, ms=5, mfc="none")
         ax.axhline(limit, color="k", ls="--", lw=1)
         ax.axhline(1.0, color="0.6", lw=0.8)
         lo, hi = ax.get_ylim()
         if lo > 0 and hi / lo > 4:  # a wide spread of ratios: logarithmic, plain tick labels
             ax.set_yscale("log")
             plain_log_axis(ax)
-        ax.set_title(f"{what}\n(limit {op} {limit:g} × {ref}'s)", fontsize=9)
+        on = ", worst manufactured gear" if judged != name else ""
+        ax.set_title(f"{what}{on}\n(limit {op} {limit:g} × {ref}'s)", fontsize=9)
         ax.set_xlabel("pinion torque (N m)")
         ax.set_ylabel(f"over {ref}'s")
         ax.grid(alpha=0.3, which="both")
+    basis_text = (f"judged on the worst manufactured gear (nominal + {table.attrs.get('tolerance_samples', '?')} "
+                  f"tolerance samples, max), open markers: nominal gear" if basis == "population"
+                  else "judged on the nominal gear")
+    title = f"sign-off against {ref} (o meets, x fails); {basis_text}"
     if "meets_worst_impact" in table:
         worst = {v: int(table["meets_worst_impact"].sel(variant=v).values[0]) for v in others}
         text = ", ".join(f"{v}: {'meets' if f == 1 else 'fails'}" for v, f in worst.items())
-        axes.flat[0].figure.suptitle(f"sign-off against {ref} (o meets, x fails); worst F_s over the torques at "
-                                     f"most {table.attrs['worst_impact_factor']:g} × {ref}'s: {text}", fontsize=9)
+        title += (f"\nworst F_s over the torques at most {table.attrs['worst_impact_factor']:g} × {ref}'s: "
+                  f"{text}")
+    fig.suptitle(title, fontsize=9)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
     axes.flat[0].legend(fontsize=8)
