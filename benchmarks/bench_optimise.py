@@ -17,6 +17,16 @@ before issue 17's kernel work (:mod:`bench_baseline`) in the same run.
   generation's genes identical) and the optimum, and max_rel_diff of the optima's objective J.
   Issue 17's target: ≤ 20 s on the issue's machine (≤ 8.5 s on the machine of the work).
 
+``bench_population_criteria(repeats)``: ``population_criteria_generation_30_candidates``, the
+loaded-contact criteria of one generation of the default study's ``optimised`` run over its
+manufactured population (30 candidates × 9 gears × 3 torques × 32 positions, the study's impact
+model: :func:`gearmesh.impact.ltca_criteria` with its samples started from their nominal), against
+the straightforward evaluation in the same run (:func:`straightforward_criteria`: one exact
+:func:`gearmesh.ltca.solve_contact` over every grid point of every gear, the stresses by
+:func:`gearmesh.stress.contact_stress` and :func:`gearmesh.stress.iso_root_stress_slices` of the
+loads, as ltca_criteria did before issue 27's population default); max_rel_diff over LTE p-p,
+flank, edge and root stress.
+
 ``bench_dynamic_objective(repeats)``: ``dynamic_objective_generation_40_candidates``, the dynamic
 factor K_v of 40 candidates at the 3 torques of the default study (nominal gears; the
 contact-driven 8-DOF pair over 1000–15000 rpm and each candidate's resonances), the default
@@ -109,11 +119,64 @@ def bench_optimise(repeats: int = 3) -> list[dict]:
     return rows
 
 
+def straightforward_criteria(model, torques, params, lead) -> np.ndarray:
+    """(C, 4, T) LTE p-p, flank and edge pressure, root stress of gears ``params`` (C, 2, 6) with
+    lead slopes ``lead`` (C, 2): every grid point of every gear in one exact solve, stresses of the
+    loads (the baseline of :func:`population_criteria`)."""
+    from gearmesh.ltca import solve_contact
+    from gearmesh.stress import contact_stress, iso_root_stress_slices, pair_edge_radius
+    from gearmesh.tca import SeparationBasis, basis_gap
+
+    g, lt = model.geom, model.ltca
+    grid, nc, nt = lt.grid, params.shape[0], len(torques)
+    p = grid.gap.shape[0] - 1
+    basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
+    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead[:, None, None, None, :],
+                    params[:, None, None, None, :, :]).reshape(nc, 1, p, -1)
+    m = gap.shape[-1]
+    force = np.asarray(torques) / g.base_radius[0]
+    q, delta, _, _ = solve_contact(np.broadcast_to(gap, (nc, nt, p, m)).reshape(-1, m),
+                                   np.broadcast_to(lt.compliance[:p].reshape(p, m), (nc, nt, p, m)).reshape(-1, m),
+                                   np.broadcast_to(force[:, None], (nc, nt, p)).reshape(-1), lt.law)
+    w = q.reshape(nc, nt, *basis.base.shape) / grid.dz
+    r1, r2 = grid.rho_pinion[:p], grid.rho_gear[:p]
+    c = contact_stress(g, w, grid.region[:p], r1, r2, pair_edge_radius(g))
+    root = np.maximum(iso_root_stress_slices(g, 0, w, r1), iso_root_stress_slices(g, 1, w, r2))
+    return np.stack([np.ptp(delta.reshape(nc, nt, p), axis=-1), np.where(c.edge, 0.0, c.pressure).max(axis=(2, 3, 4)),
+                     np.where(c.edge, c.pressure, 0.0).max(axis=(2, 3, 4)), root.max(axis=(2, 3, 4))], axis=1)
+
+
+def population_criteria(repeats: int) -> tuple:
+    """Today's and the straightforward (wall s, CPU s, criteria (30, 4, 3), least CPU s) of one
+    generation's criteria over the manufactured population (module docstring)."""
+    from gearmesh.impact import ltca_criteria
+    from gearmesh.optimise import _manufactured_rows
+
+    prob, params = robust_problem()
+    params = params[:30]
+    rows, lead = _manufactured_rows(prob.model, prob.tolerance, params, prob.population_deviations)
+    torques, samples = prob.settings.objective_torques, rows.shape[0] // params.shape[0]
+
+    def today():
+        c = ltca_criteria(prob.model, torques, rows, lead_slope=lead, samples=samples)
+        return np.stack([c.lte_peak_to_peak, c.flank_pressure, c.edge_pressure, c.root_stress], axis=1)
+
+    return (timed_calls(today, repeats),
+            timed_calls(lambda: straightforward_criteria(prob.model, torques, rows, lead), repeats))
+
+
+def bench_population_criteria(repeats: int = 3) -> dict:
+    new, old = population_criteria(repeats)
+    row = compare("population_criteria_generation_30_candidates", new, old, evaluations=30 * 9)
+    return {**row, "baseline": "straightforward: one exact solve_contact over every grid point, stresses of the loads"}
+
+
 def bench_dynamic_objective(repeats: int = 3) -> dict:
     return compare("dynamic_objective_generation_40_candidates", dynamic_generation(repeats),
                    baseline_call("bench_optimise", "dynamic_generation", repeats), evaluations=40)
 
 
 if __name__ == "__main__":
-    for row in bench_optimise(int(sys.argv[1]) if len(sys.argv) > 1 else 3) + [bench_dynamic_objective()]:
+    for row in bench_optimise(int(sys.argv[1]) if len(sys.argv) > 1 else 3) + [bench_population_criteria(),
+                                                                               bench_dynamic_objective()]:
         print(json.dumps(row), flush=True)

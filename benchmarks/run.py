@@ -16,7 +16,7 @@ import numpy as np
 from bench_dynamics import bench_damping_search, bench_default_sweep, bench_dynamics
 from bench_impact import bench_impact
 from bench_ltca import bench_ltca
-from bench_optimise import bench_dynamic_objective, bench_optimise
+from bench_optimise import bench_dynamic_objective, bench_optimise, bench_population_criteria
 from bench_workflow import bench_imports, bench_study
 from common import ROOT, median_seconds
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
@@ -82,6 +82,7 @@ BENCHMARKS = {"contact_lines": bench_contact_lines, "tvms": bench_tvms, "ltca": 
               "impact": bench_impact,
               "optimise": lambda repeats: bench_optimise(min(repeats, 5)),
               "dynamic_objective": lambda repeats: bench_dynamic_objective(min(repeats, 3)),
+              "population_criteria": lambda repeats: bench_population_criteria(min(repeats, 5)),
               "imports": bench_imports,
               # a default-study run takes about a minute: repeats // 5 runs of each (one by default)
               "study": lambda repeats: bench_study(max(1, repeats // 5))}
