@@ -95,7 +95,7 @@ from .impact import (SCENARIO_NONE, ImpactModel, LTCACriteria, impact_response, 
 from .ltca import MESH_ORDERS
 from .stress import edge_pressure_reference
 from .surface import fit_modifications
-from .tolerance import (SAMPLINGS, ToleranceModel, apply_deviations, check_statistic, sample_statistic,
+from .tolerance import (SAMPLINGS, ToleranceModel, check_statistic, manufactured_population, sample_statistic,
                         unit_deviations)
 
 #: Progress of a run, one line per generation: the rule's log records it, and the CLI shows it
@@ -161,7 +161,7 @@ class OptimiseSettings:
     tolerance_level: float = 90.0
     lte_factor: float | None = None
     line_load_factor: float | None = None
-    penalty: float = 10.0
+    penalty: float = field(default_factory=lambda: _declared_constraint("penalty"))
     mutation_probability: float = 0.3
     mutation_scale: float = 0.1
     keep_elitism: int = 2
@@ -173,7 +173,7 @@ class OptimiseSettings:
     dynamic_factor: float | None = None
     backlash: float | None = None
     harmonic_factor: float | None = None
-    harmonic_orders: tuple[int, ...] = (1, 2)
+    harmonic_orders: tuple[int, ...] = field(default_factory=lambda: tuple(_declared_constraint("harmonic_orders")))
     pressure_factor: float | None = None
     root_stress_factor: float | None = None
     impact_factor: float | None = None
@@ -289,11 +289,11 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    statistic: str = "max", speed_rpm: float = 5000.0, tolerance_samples: int = 0,
                    sampling: str = "lhs", tolerance_seed: int | None = None,
                    tolerance_statistic: str | None = None, tolerance_level: float = 90.0,
-                   lte_factor=None, line_load_factor=None, penalty: float = 10.0, mutation_probability: float = 0.3,
+                   lte_factor=None, line_load_factor=None, penalty: float | None = None, mutation_probability: float = 0.3,
                    mutation_scale: float = 0.1, keep_elitism: int = 2, random_baseline: bool = False,
                    energy_velocity: str = "transverse", load_window_step: float = 50.0,
                    load_window_top: float | None = None, dynamic_speeds=None, dynamic_factor=None,
-                   backlash=None, harmonic_factor=None, harmonic_orders=(1, 2), pressure_factor=None,
+                   backlash=None, harmonic_factor=None, harmonic_orders=None, pressure_factor=None,
                    root_stress_factor=None, impact_factor=None, worst_impact_factor=None,
                    pareto_objectives=("impact", "lte"), S_Hmin=None, S_Fmin=None,
                    criteria_over_samples: bool | None = None) -> OptimiseSettings:
@@ -301,7 +301,8 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
     the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone.
     The constraint factors (``*_factor``) are relative to the unmodified pair's value (module
     docstring); ``pareto_objectives`` the objectives of method nsga2 (:data:`PARETO_OBJECTIVES`);
-    ``criteria_over_samples`` None: the declared default (:func:`_declared_constraint`)."""
+    ``criteria_over_samples``, ``penalty``, ``harmonic_orders`` None: the declared default
+    (:func:`_declared_constraint`)."""
     from .ltca import check_torques
 
     method = _choice("method", method, METHODS)
@@ -335,7 +336,7 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
         raise GearmeshInputError("speed_rpm", speed_rpm, "must lie in (0, 1e6] rpm")
     lte_factor = check_positive("constraints.lte_factor", lte_factor, allow_none=True)
     line_load_factor = check_positive("constraints.line_load_factor", line_load_factor, allow_none=True)
-    penalty = check_positive("constraints.penalty", penalty)
+    penalty = check_positive("constraints.penalty", _declared_constraint("penalty") if penalty is None else penalty)
     if isinstance(mutation_probability, bool) or not isinstance(mutation_probability, (int, float)) \
             or not 0 < mutation_probability <= 1:
         raise GearmeshInputError("mutation_probability", mutation_probability, "must lie in (0, 1]")
@@ -375,7 +376,7 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
         factors[name] = check_positive(f"constraints.{name}", value, allow_none=True)
         if factors[name] is not None and factors[name] > 10:
             raise GearmeshInputError(f"constraints.{name}", value, "must lie in (0, 10] (a safety factor)")
-    harmonic_orders = _orders(harmonic_orders)
+    harmonic_orders = _orders(_declared_constraint("harmonic_orders") if harmonic_orders is None else harmonic_orders)
     pareto_objectives = _pareto_objectives(pareto_objectives, method)
     if criteria_over_samples is None:
         criteria_over_samples = _declared_constraint("criteria_over_samples")
@@ -773,9 +774,8 @@ def constraint_factors(s: OptimiseSettings) -> dict[str, float]:
 
 def _manufactured_rows(model: ImpactModel, tolerance: ToleranceModel, params: np.ndarray, deviations: np.ndarray):
     """Rows (C·S, 2, 6) and lead slopes (C·S, 2) of the manufactured population of each candidate
-    (sample 0 the nominal), made valid modifications."""
-    p, lead = apply_deviations(tolerance, params, model.lead_slope, deviations)
-    return fit_modifications(model.geom, p.reshape(-1, 2, 6)), lead.reshape(-1, 2)
+    (sample 0 the nominal): :func:`gearmesh.tolerance.manufactured_population` on the model."""
+    return manufactured_population(model.geom, tolerance, params, model.lead_slope, deviations)
 
 
 def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), bounds=None,

@@ -256,7 +256,7 @@ def _add_population_contact(ds: xr.Dataset, model: ImpactModel, t1, rows: np.nda
     """The loaded contact over one mesh cycle of every manufactured gear (``rows``, ``lead``; sample
     0 the nominal) at each torque: :func:`gearmesh.impact.ltca_criteria` on the impact model's
     mesh-cycle grid, as the optimiser evaluates its criteria."""
-    c = ltca_criteria(model, t1, rows, lead_slope=lead)
+    c = ltca_criteria(model, t1, rows, lead_slope=lead, samples=rows.shape[0])  # the samples start from the nominal
     st, sto = ("tolerance_sample", "torque"), ("tolerance_sample", "torque", "mesh_order")
     of = "of the nominal (sample 0) and each tolerance sample over one mesh cycle (impact model's LTCA)"
     ds.coords["mesh_order"] = variable(("mesh_order",), np.array(MESH_ORDERS), "1",
