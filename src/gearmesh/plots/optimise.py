@@ -207,7 +207,8 @@ def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
         ax.set_ylabel(f"objective J at {number(float(ds['speed']))} rpm ({ds['objective'].attrs.get('units', '')})")
         ax.grid(alpha=0.3, which="both")
     axes[0][0].legend(fontsize=7)
-    verdict = (f"{int(feasible.sum())} candidates meet every constraint" if feasible.any()
+    n_ok = int(feasible.sum())
+    verdict = (f"{n_ok} candidate{'' if n_ok == 1 else 's'} meet{'s' if n_ok == 1 else ''} every constraint" if feasible.any()
                else "no evaluated candidate meets every constraint") if "violation" in ds else ""
     fig.suptitle(_title(ds, "NSGA-II: the objective J against " + ", ".join(names)) + "\n"
                  + "the front is non-dominated in all objectives together" + (f"; {verdict}" if verdict else ""),
