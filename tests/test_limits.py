@@ -138,3 +138,14 @@ def test_the_step_budget_advice_points_the_way_the_work_falls(pair, speed, advic
     settings = SolverSettings(transient_tau=1000.0)
     with pytest.raises(GearmeshInputError, match=advice):
         step_plan(model, np.array([speed]), settings)
+
+
+def test_same_point_is_one_relative_tolerance_of_the_point_looked_for():
+    """Stages find a torque or speed again to SAME_POINT_RTOL of it: 1000 N m after a unit
+    conversion's round-off is the same point, 1000.001 is another; any unit, any shape."""
+    from gearmesh.limits import SAME_POINT_RTOL, same_point
+
+    torques = np.array([400.0, 1000.0 * (1 + 0.5 * SAME_POINT_RTOL), 1000.001, 1600.0])
+    np.testing.assert_array_equal(same_point(torques, 1000.0), [False, True, False, False])
+    assert same_point([5000.0], 5000.0 * (1 - 2 * SAME_POINT_RTOL)).tolist() == [False]
+    assert same_point(np.full((2, 3), 7.5e-3), 7.5e-3).all()  # a speed in other units, a 2-D grid

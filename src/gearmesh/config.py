@@ -17,6 +17,7 @@ from typing import Any, Iterator, Mapping
 from .choices import pair_excitation
 from .errors import GearmeshInputError
 from .gear import GearPair, load_named_pair, pinion_torque, read_yaml, variant_pair
+from .limits import same_point
 from .schema import validate
 from .settings import study_schema
 
@@ -238,15 +239,15 @@ def _check_impact(impact: Mapping[str, Any] | None) -> None:
     if not impact:
         return
     speeds = impact["speeds_rpm"]
-    if not any(abs(v - impact["design_speed_rpm"]) <= 1e-9 * v for v in speeds):
+    if not same_point(speeds, impact["design_speed_rpm"]).any():
         raise GearmeshInputError("impact.design_speed_rpm", impact["design_speed_rpm"],
                                  f"must be one of impact.speeds_rpm {speeds}")
     torques = impact["torques_Nm"]
     design = impact["design_torque_Nm"]
-    if design is not None and not any(abs(v - design) <= 1e-9 * v for v in torques):
+    if design is not None and not same_point(torques, design).any():
         raise GearmeshInputError("impact.design_torque_Nm", design, f"must be one of impact.torques_Nm {torques}")
     for k, t in enumerate(impact["simulate_torques_Nm"]):
-        if not any(abs(v - t) <= 1e-9 * v for v in torques):
+        if not same_point(torques, t).any():
             raise GearmeshInputError(f"impact.simulate_torques_Nm[{k}]", t, f"must be one of impact.torques_Nm {torques}")
 
 
@@ -282,7 +283,7 @@ def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> 
 
 def _among(t1: float, pair: GearPair, ltca: Mapping[str, Any]) -> bool:
     """Whether pinion torque ``t1`` is one of the LTCA's torques (as pinion torques)."""
-    return any(abs(pinion_torque(pair, t, ltca["on"]) - t1) <= 1e-9 * t1 for t in ltca["torques_Nm"])
+    return bool(same_point([pinion_torque(pair, t, ltca["on"]) for t in ltca["torques_Nm"]], t1).any())
 
 
 def study_excitation(config: Mapping[str, Any]) -> str | None:

@@ -89,6 +89,18 @@ MAX_SAMPLES = 4096
 # Loads, speeds and work sizes
 # --------------------------------------------------------------------------------------
 
+#: Two torques or speeds are one operating point when they differ by at most this fraction of
+#: the one looked for: what a stage computed at 1000 N m is found again at 1000.0000000001
+#: (a value passed through a unit conversion or a pinion/gear torque ratio) and nowhere else.
+SAME_POINT_RTOL = 1e-9
+
+
+def same_point(values, target: float) -> np.ndarray:
+    """Boolean mask (shape of ``values``): which of ``values`` are the operating point ``target``
+    (torque or speed, any unit) to :data:`SAME_POINT_RTOL` of ``target``."""
+    return np.abs(np.asarray(values, dtype=float) - target) <= SAME_POINT_RTOL * abs(target)
+
+
 #: Highest pinion speed accepted (rpm): beyond any gear drive (turbo gears run at up to ~1e5 rpm).
 MAX_SPEED_RPM = 1e6
 #: Most speeds of one dynamics sweep (a 500–50 000 rpm grid in steps of 100 rpm has 496).

@@ -88,7 +88,7 @@ import numpy as np
 
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
-from .limits import MAX_MODIFICATION_TO_MODULE
+from .limits import MAX_MODIFICATION_TO_MODULE, same_point
 from .dynamics.population import PopulationDynamics, dynamic_factors, population_dynamics
 from .impact import (SCENARIO_NONE, ImpactModel, LTCACriteria, impact_response, impact_static, load_grid, load_window,
                      ltca_criteria)
@@ -314,7 +314,7 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
     torques = (torque,) if torques is None else tuple(float(t) for t in check_torques(torques, "torques_Nm"))
     if len(set(torques)) != len(torques):
         raise GearmeshInputError("torques_Nm", list(torques), "must not repeat a torque")
-    if not any(abs(t - torque) <= 1e-9 * torque for t in torques):
+    if not same_point(torques, torque).any():
         raise GearmeshInputError("torque_Nm", torque, f"must be one of torques_Nm {list(torques)} (the design torque "
                                                       "of the load spectrum)")
     statistic = _choice("statistic", statistic, LOAD_STATISTICS)

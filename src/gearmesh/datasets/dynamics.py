@@ -39,7 +39,7 @@ from ..errors import GearmeshInputError
 from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import name_force_lines, variable
-from ..limits import (MAX_SPEED_STEPS, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS, check_slice_grid,
+from ..limits import (MAX_SPEED_STEPS, same_point, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS, check_slice_grid,
                       check_speeds, positive_values)
 from ..loads import check_load, check_loads
 from ..ltca import contact_tangent_compliance, with_loaded_extension
@@ -291,7 +291,7 @@ def ltca_excitation(geom: PairGeometry, ltca: xr.Dataset, pinion_torque: float) 
     law thus enter the dynamics through the LTCA of each variant.
     """
     torques = np.asarray(ltca["torque"].values, dtype=float)
-    match = np.flatnonzero(np.abs(torques - pinion_torque) <= 1e-9 * pinion_torque)
+    match = np.flatnonzero(same_point(torques, pinion_torque))
     if not match.size:
         raise GearmeshInputError("ltca.torques_Nm", torques.tolist(),
                                  f"must include the dynamics torque ({pinion_torque:.6g} N m on the pinion)")
@@ -1080,7 +1080,7 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
     ref = dynamics[0]
     t_dyn = np.asarray(ref["pinion_torque"].values, dtype=float)
     t_imp = np.asarray(impact[0]["torque"].values, dtype=float)
-    torques = np.array([t for t in t_dyn if np.any(np.abs(t_imp - t) <= 1e-9 * t)])
+    torques = np.array([t for t in t_dyn if same_point(t_imp, t).any()])
     if not torques.size:
         raise GearmeshInputError("dynamics.torques_Nm", t_dyn.tolist(), f"share no torque with impact.torques_Nm "
                                  f"{t_imp.tolist()} (pinion torques)")
@@ -1096,8 +1096,8 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
         grid = dyn["speed"].values[dyn["on_grid"].values.astype(bool)]
         speed_used = float(grid[np.argmin(np.abs(grid - design))])
         for k, t in enumerate(torques):
-            i = int(np.flatnonzero(np.abs(imp["torque"].values - t) <= 1e-9 * t)[0])
-            j = int(np.flatnonzero(np.abs(dyn["pinion_torque"].values - t) <= 1e-9 * t)[0])
+            i = int(np.flatnonzero(same_point(imp["torque"].values, t))[0])
+            j = int(np.flatnonzero(same_point(dyn["pinion_torque"].values, t))[0])
             at = imp.sel(speed=design)
             cols["fs"][v, k] = float(at["impact_force"].values[i])
             cols["fs_eb"][v, k] = float(at["impact_force_energy_balance"].values[i])

@@ -18,7 +18,7 @@ from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactSta
                       impact_response, impact_static, load_grid, load_window, ltca_criteria, mesh_in_point,
                       seed_edge_roll, simulate_engagement, vector_velocity)
 from ..io import name_force_lines, variable
-from ..limits import check_speeds
+from ..limits import check_speeds, same_point
 from ..ltca import MESH_ORDERS, check_torques, loaded_pinion_torques, pinion_torques
 from ..tca import check_lead_slope, check_modifications
 from ..tolerance import manufactured_population, study_tolerances, unit_deviations
@@ -98,7 +98,7 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
     geom = model.geom
     sim_given = check_torques(simulate_torques_Nm, "simulate_torques_Nm") if len(simulate_torques_Nm) else np.array([])
     for k, t in enumerate(sim_given):
-        if not np.any(np.abs(given - t) <= 1e-9 * t):
+        if not same_point(given, t).any():
             raise GearmeshInputError(f"simulate_torques_Nm[{k}]", float(t), "must be one of torques_Nm")
     static = impact_static(model, t1)
     static, resp = impact_response(model, static, speeds, energy_velocity)
@@ -204,7 +204,7 @@ def _design_torque(given: np.ndarray, design_torque_Nm: float | None) -> float:
     """The anchor of the load window: ``design_torque_Nm`` (one of the torques), or the middle torque."""
     if design_torque_Nm is None:
         return float(np.sort(given)[(given.size - 1) // 2])
-    if not np.any(np.abs(given - design_torque_Nm) <= 1e-9 * abs(design_torque_Nm)):
+    if not same_point(given, design_torque_Nm).any():
         raise GearmeshInputError("design_torque_Nm", design_torque_Nm, "must be one of torques_Nm")
     return float(design_torque_Nm)
 
@@ -278,7 +278,7 @@ def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, de
     peak, enter, excess = np.full(nt, np.nan), np.full(nt, np.nan), np.full(nt, np.nan)
     series = None
     for t in sim_given:
-        k = int(np.flatnonzero(np.abs(given - t) <= 1e-9 * t)[0])
+        k = int(np.flatnonzero(same_point(given, t))[0])
         r = simulate_engagement(model, float(t1[k]), design)
         peak[k], enter[k], excess[k] = r["peak_above_static"], r["entering_peak"], r["entering_excess"]
         if series is None:

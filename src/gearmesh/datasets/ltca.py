@@ -18,7 +18,7 @@ from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from . import variant_name
 from ..io import name_force_lines, variable
-from ..limits import check_contact_grid
+from ..limits import check_contact_grid, same_point
 from ..ltca import LTCAResult, loaded_pinion_torques, ltca
 from ..tca import TCAResult, check_lead_slope, check_modifications, tca
 from ..schema import check_arguments
@@ -274,7 +274,7 @@ def lste_comparison_dataset(stiffness: Sequence[xr.Dataset], ltca: Sequence[xr.D
         if "lste" not in k_ds:
             raise GearmeshInputError("stiffness.torque_Nm", None, f"is needed for the LSTE of {name}")
         t_k, t_l = float(k_ds.pinion_torque), l_ds["torque"].values  # both pinion torques
-        match = np.flatnonzero(np.abs(t_l - t_k) <= 1e-9 * t_k)
+        match = np.flatnonzero(same_point(t_l, t_k))
         if not match.size:
             raise GearmeshInputError("ltca.torques_Nm", t_l.tolist(), f"must include the stiffness stage's LSTE "
                                      f"torque ({t_k} N m on the pinion) for {name}")

@@ -46,6 +46,7 @@ import xarray as xr
 
 from ..errors import GearmeshInputError
 from ..io import variable
+from ..limits import same_point
 from ..schema import check_arguments
 from ..settings import Signoff
 from ..stress import edge_pressure_reference
@@ -88,7 +89,7 @@ def _by_torque(values: np.ndarray, torques: np.ndarray, wanted: np.ndarray, fiel
     """``values`` (torque first) at each of ``wanted`` (pinion torques, to 1e-9 relative)."""
     out = []
     for t in wanted:
-        k = np.flatnonzero(np.abs(torques - t) <= 1e-9 * t)
+        k = np.flatnonzero(same_point(torques, t))
         if not k.size:
             raise GearmeshInputError(field, torques.tolist(), f"must include the LTCA torque {t:g} N m (pinion) for "
                                      f"the sign-off table ({name})")
