@@ -12,6 +12,8 @@ def seed001_pair1(**changes) -> dict:
         "normal_pressure_angle_deg": 25, "helix_angle_deg": 10, "face_width_mm": 20,
         "addendum_coefficient": 1.0, "dedendum_coefficient": 1.25,
         "bore_radius_mm": [15, 25], "material": dict(STEEL),
+        # the shipped file's bodies: rigid webs, the source's model
+        "web_thickness_mm": "rigid",
         # the shipped file's supports: the low-fluctuation paper's bearings (N/µm)
         "bearing_radial_stiffness_N_per_um": 150, "bearing_axial_stiffness_N_per_um": 10,
     }

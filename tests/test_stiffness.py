@@ -221,8 +221,8 @@ def test_methods_order_when_base_circle_is_above_root_circle():
 
 def test_fast_equals_reference_quadrature_on_a_small_grid():
     """Tables + interpolation + sums against per-slice adaptive quadrature at every point (the
-    teeth: rigid webs, the bodies' series term being tested in tests/test_body.py)."""
-    geom = geom_of(web_thickness_mm="rigid")
+    teeth: rigid webs, as the shipped pair states; the bodies' series term in tests/test_body.py)."""
+    geom = geom_of()
     for method in ("improved", "transition"):
         ref = st.mesh_stiffness_reference(geom, 3, 6, method)
         fast = st.mesh_stiffness(geom, 3, 6, method, rule="centre").K
@@ -299,8 +299,7 @@ def test_clip_rule_sums_contact_length_exactly_for_random_pairs(beta, b, z1, han
 def test_components_add_up_in_series(p1_result):
     inv = sum(1.0 / v for v in p1_result.components.values())
     assert np.allclose(inv, 1.0 / p1_result.K, rtol=1e-10)
-    assert set(p1_result.components) == ({f"{c}_{g}" for c in st.COMPONENTS for g in ("pinion", "gear")}
-                                         | {"hertz", "body"})
+    assert set(p1_result.components) == {f"{c}_{g}" for c in st.COMPONENTS for g in ("pinion", "gear")} | {"hertz"}
     # the bodies' foundation and the contact are the soft parts; axial compression is tiny
     comp = {k: v.mean() for k, v in p1_result.components.items()}
     assert comp["axial_pinion"] > 10 * comp["fillet_pinion"]
@@ -317,9 +316,22 @@ def test_single_pair_curve_rebuilds_the_total(p1, p1_result):
     for u, k in zip(r.pair_roll, r.k_pair):
         p = int(round((u % pbt) / step)) % r.roll.size
         total[p] += k
-    c_body = mesh_body_compliance(p1)  # the pairs' teeth in parallel, the bodies in series (gearmesh.body)
+    assert np.allclose(total, r.K, rtol=1e-12)
+
+
+def test_single_pair_curves_in_parallel_and_the_bodies_in_series():
+    """With solid-disc bodies (the default; the shipped seed 001 pair states rigid webs, its
+    source's model) the mesh stiffness is the pairs' curves in parallel, the bodies in series."""
+    geom = geom_of(web_thickness_mm=None)
+    c_body = mesh_body_compliance(geom)
     assert c_body > 0
+    r = st.mesh_stiffness(geom, 60, 64, "transition", components=True)
+    pbt, step = geom.transverse_base_pitch, geom.transverse_base_pitch / r.roll.size
+    total = np.zeros_like(r.K)
+    for u, k in zip(r.pair_roll, r.k_pair):
+        total[int(round((u % pbt) / step)) % r.roll.size] += k
     assert np.allclose(1.0 / (1.0 / total + c_body), r.K, rtol=1e-12)
+    assert r.components["body"][0] == pytest.approx(1 / c_body)
 
 
 def test_min_max_include_the_kinks(p1_result):
