@@ -274,34 +274,29 @@ class Impact:
 # --------------------------------------------------------------------------------------
 
 
+def _ratio_limit(what: str, after: str = "") -> Any:
+    """A constraint "``what`` at most this times the unmodified pair's[``after``]" (null: free)."""
+    return setting(None, f"{what} at most this times the unmodified pair's{after} (null: free)", exclusive_minimum=0)
+
+
 @dataclass(frozen=True, kw_only=True)
 class Constraints:
     """Constraints of an optimisation as penalties: J = f + penalty·f_std·Σ max(0, m/(factor·m_std) − 1),
     m against the unmodified pair's m_std."""
 
-    lte_factor: float | None = setting(None, "load transmission error peak-to-peak at the design torque at most "
-                                             "this times the unmodified pair's (null: free)", exclusive_minimum=0)
-    line_load_factor: float | None = setting(None, "largest line load at the design torque at most this times the "
-                                                   "unmodified pair's (null: free)", exclusive_minimum=0)
-    dynamic_factor: float | None = setting(None, "dynamic factor at every torque at most this times the unmodified "
-                                                 "pair's (null: free)", exclusive_minimum=0)
-    harmonic_factor: float | None = setting(
-        None, "amplitude of each loaded-TE mesh order of harmonic_orders at every spectrum torque at most this times the "
-        "unmodified pair's (null: free)", exclusive_minimum=0)
+    lte_factor: float | None = _ratio_limit("load transmission error peak-to-peak at the design torque")
+    line_load_factor: float | None = _ratio_limit("largest line load at the design torque")
+    dynamic_factor: float | None = _ratio_limit("dynamic factor at every torque")
+    harmonic_factor: float | None = _ratio_limit("amplitude of each loaded-TE mesh order of harmonic_orders at every "
+                                                 "spectrum torque")
     harmonic_orders: tuple[int, ...] = setting((1, 2), "the loaded-TE mesh orders of harmonic_factor (and of NSGA-II's "
                                                  "te_harmonics)", minimum=1, maximum=3, min_items=1, max_items=3,
                                          unique=True)
-    pressure_factor: float | None = setting(
-        None, "largest contact pressure at every spectrum torque at most this times the unmodified pair's, flank "
-        "against flank and tip edge against tip edge (null: free)", exclusive_minimum=0)
-    root_stress_factor: float | None = setting(
-        None, "largest tooth-root stress of either gear at every spectrum torque at most this times the unmodified "
-        "pair's (null: free)", exclusive_minimum=0)
-    impact_factor: float | None = setting(None, "nominal impact force F_s at every spectrum torque at most this times "
-                                               "the unmodified pair's (null: free)", exclusive_minimum=0)
-    worst_impact_factor: float | None = setting(
-        None, "the worst nominal F_s over the spectrum torques at most this times the unmodified pair's worst "
-        "(null: free)", exclusive_minimum=0)
+    pressure_factor: float | None = _ratio_limit("largest contact pressure at every spectrum torque", ", flank against "
+                                                 "flank and tip edge against tip edge")
+    root_stress_factor: float | None = _ratio_limit("largest tooth-root stress of either gear at every spectrum torque")
+    impact_factor: float | None = _ratio_limit("nominal impact force F_s at every spectrum torque")
+    worst_impact_factor: float | None = _ratio_limit("the worst nominal F_s over the spectrum torques", " worst")
     criteria_over_samples: bool = setting(
         True, "evaluate the loaded-contact criteria (LTE, line load, TE orders, pressure, root stress) for every "
         "manufactured gear (the nominal and the tolerance samples) and reduce each by tolerance_statistic, against the "
