@@ -34,7 +34,7 @@ import numpy as np
 
 from gearmesh import fe
 from gearmesh import stiffness as st
-from gearmesh.body import Body
+from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import load_pair, pair_geometry
 
 PAIRS = ("seed000_case", "seed001_pair1", "seed001_pair2", "seed001_pair3", "seed001_pair4", "seed002_input",
@@ -79,7 +79,7 @@ def mean_k(geom, tables, extra=None):
 def _teeth(name: str):
     """The shipped pair with rigid webs: the teeth alone, as the 3-D reference's transverse load
     sees them (the bodies' tilt is compared on its own, gearmesh.body)."""
-    return load_pair(Path("config/pairs") / f"{name}.yaml").with_changes(body=Body(web_thickness=(math.inf, math.inf)))
+    return load_pair(Path("config/pairs") / f"{name}.yaml").with_changes(body=RIGID_WEBS)
 
 
 def decompose(name: str, line_load: float) -> dict:

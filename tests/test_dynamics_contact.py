@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from gearmesh import dynamics as dy
-from gearmesh.body import Body
+from gearmesh.body import RIGID_WEBS
 from gearmesh.config import variant_pair
 from gearmesh.contact import mesh_cycle_rolls
 from gearmesh.datasets.dynamics import build_pair_model, contact_table, dynamics_dataset, train_dataset
@@ -49,7 +49,7 @@ def geom(pair):
 def teeth(pair):
     """The pair with rigid webs: the teeth alone, as the convergence and kernel tests were written
     (the bodies' series term of the table is checked in tests/test_body.py)."""
-    return pair_geometry(pair.with_changes(body=Body(web_thickness=(math.inf, math.inf))))
+    return pair_geometry(pair.with_changes(body=RIGID_WEBS))
 
 
 @pytest.fixture(scope="module")

@@ -4,13 +4,12 @@ method, for both contact laws, and beyond the universal inverse's table."""
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
 import pytest
 
-from gearmesh.body import Body
+from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import load_pair, pair_geometry
 from gearmesh.ltca import ContactLaw, _invert, load_sums
 from gearmesh.meshforce import table_layout, tabulate
@@ -21,7 +20,7 @@ PAIR = Path(__file__).resolve().parents[1] / "config" / "pairs" / "seed000_case.
 @pytest.fixture(scope="module")
 def geom():
     """The teeth's table: rigid webs (the bodies' series term: tests/test_body.py)."""
-    return pair_geometry(load_pair(PAIR).with_changes(body=Body(web_thickness=(math.inf, math.inf))))
+    return pair_geometry(load_pair(PAIR).with_changes(body=RIGID_WEBS))
 
 
 @pytest.mark.parametrize("law", ["palmgren", "linear"])

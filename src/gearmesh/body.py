@@ -58,7 +58,7 @@ import numpy as np
 from .errors import GearmeshInputError
 from .supports import per_gear_length
 
-__all__ = ["BODY_KEYS", "Body", "read_body", "check_body", "describe_body", "plate_edge_compliance", "body_axial_compliance",
+__all__ = ["BODY_KEYS", "Body", "RIGID_WEBS", "read_body", "check_body", "describe_body", "plate_edge_compliance", "body_axial_compliance",
            "mesh_body_compliance"]
 
 #: The pair-file keys of the gear bodies: one value or [pinion, gear], mm (a web also ``rigid``).
@@ -90,6 +90,10 @@ class Body:
         if self.hub_diameter is not None:
             out["hub_diameter_mm"] = [d * 1e3 for d in self.hub_diameter]
         return out
+
+
+#: Rigid webs on both gears (``web_thickness_mm: rigid``): the teeth alone, ISO's c' and the source documents' model.
+RIGID_WEBS = Body(web_thickness=(math.inf, math.inf))
 
 
 def _web(key: str, value: Any) -> tuple[float, float]:
