@@ -658,9 +658,17 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
     # crossing the impact model did not resolve: zero force would be an artefact, not an optimum)
     failed = (~np.isfinite(f) | np.any(scen == SCENARIO_NONE, axis=(1, 2)) | ~np.all(np.isfinite(value), axis=(1, 2))
               | np.any(~(vel > 0), axis=(1, 2)))
-    if standard is None:
-        return Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc), crit)
-    ratios = _ratios(s, force[:, 0], lte, line, kv, crit, standard)
+    raw = Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc), crit)
+    return raw if standard is None else _score(prob, raw, standard)
+
+
+def _score(prob: "Problem", raw: Evaluation, standard: Evaluation) -> Evaluation:
+    """The candidates' measured ``raw`` evaluation (objective f, no penalty) scored against the
+    ``standard``'s: the constraints' violation, J = f + penalty·f_std·violation, the NSGA-II
+    objectives (module docstring)."""
+    s, crit, f = prob.settings, raw.criteria, raw.objective
+    lte, line, kv, nc = raw.lte_peak_to_peak, raw.max_line_load, raw.dynamic_factor, raw.objective.shape[0]
+    ratios = _ratios(s, raw.force[:, 0], lte, line, kv, crit, standard)
     if s.S_Hmin is not None or s.S_Fmin is not None:
         sh, sf = safety_factors(prob, crit, standard.criteria)
         ratios.update(S_H=worst_ratio(np.divide(s.S_Hmin or 0.0, sh), 1.0),
@@ -669,7 +677,7 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
     for name, factor in constraint_factors(s).items():
         with np.errstate(invalid="ignore"):
             violation += np.maximum(0.0, ratios[name] / factor - 1.0)
-    failed |= ~np.isfinite(violation)
+    failed = raw.failed | ~np.isfinite(violation)
     j = f + s.penalty * standard.objective[0] * violation
     j = np.where(failed, FAILURE_FACTOR * standard.objective[0], j)
     pareto = None
@@ -677,8 +685,8 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
         lte = np.where(failed, FAILURE_FACTOR * standard.lte_peak_to_peak[0], lte)
         pareto = np.column_stack([j if k == "impact" else lte if k == "lte" else
                                   np.where(failed, FAILURE_FACTOR, ratios[k]) for k in s.pareto_objectives])
-    return Evaluation(j, value, force, vel, scen, failed, lte, line, kv, np.where(failed, np.nan, violation), crit,
-                      pareto)
+    return Evaluation(j, raw.value, raw.force, raw.velocity, raw.scenario, failed, lte, line, kv,
+                      np.where(failed, np.nan, violation), crit, pareto)
 
 
 def _criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray, lead: np.ndarray) -> LTCACriteria:
@@ -800,6 +808,12 @@ def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), 
                                  list(settings.objective_torques),
                                  "gives the standard (unmodified) gear no mesh-in impact: nothing to reduce")
     return replace(prob, standard=standard)
+
+
+def standard_penalised_objective(prob: Problem) -> float:
+    """The unmodified pair as a candidate of the run: its J with the constraints' penalties, scored
+    from its evaluation in :func:`problem` (no second impact batch)."""
+    return float(_score(prob, prob.standard, prob.standard).objective[0])
 
 
 def evaluate(prob: Problem, params: np.ndarray) -> Evaluation:

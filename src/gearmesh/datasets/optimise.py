@@ -29,7 +29,7 @@ from ..io import name_force_lines, variable
 from ..loads import check_load
 from ..ltca import MESH_ORDERS, loaded_pinion_torques, pinion_torques
 from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, constraint_factors,
-                        evaluate, gene_table, optimise, problem)
+                        gene_table, optimise, problem, standard_penalised_objective)
 from ..surface import MODIFICATION_FIELDS
 from ..tolerance import study_tolerances
 from ..schema import check_arguments, defaults, settings_fields
@@ -397,8 +397,8 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         })
     data.update(_criteria_variables(result))
     if constraint_factors(s):  # the unmodified pair as a candidate of this run: its J with the penalties
-        data["standard_penalised_objective"] = variable((), float(evaluate(prob, np.zeros((1, 2, 6))).objective[0]),
-                                                        units, f"standard gear as a candidate: {what} with the "
+        data["standard_penalised_objective"] = variable((), standard_penalised_objective(prob), units,
+                                                        f"standard gear as a candidate: {what} with the "
                                                         "constraints' penalties")
     if result.pareto is not None:
         pg, po = result.pareto
