@@ -86,6 +86,7 @@ def stage_inputs(section):
     each result the stage reads, of the job's own pair and variant, when the study config says so
     (the FE tables when its method is fe, the LTCA when it drives the dynamics)."""
     stage = stage_of(section)
+    reads = [(read, stage_of(read.stage).path) for read in stage.reads]  # resolved once, not per job
 
     def inputs(wildcards):
         if stage.scope == "study":
@@ -93,8 +94,7 @@ def stage_inputs(section):
         out = {}
         if stage.pair_file:
             out["pair"] = variant_source_pair(wildcards) if stage.scope == "variant" else pair_file(wildcards)
-        for read in stage.reads:
-            path = stage_of(read.stage).path
+        for read, path in reads:
             if not read.when(config, section):
                 continue
             if read.every_variant:

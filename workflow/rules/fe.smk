@@ -1,7 +1,7 @@
 # Finite-element tooth compliance (issue 12): per pair, both gears along the active profile,
 # beside the three potential-energy cantilevers. It is computed once per pair here; the stages
 # whose section says method: fe (stiffness, ltca, impact, optimise) take their tables from this
-# file (common.smk fe_tables, gearmesh.fe.seed_cache) instead of meshing again.
+# file (common.smk stage_inputs: Read("fe_compliance"), gearmesh.fe.seed_cache) instead of meshing again.
 
 
 rule fe_compliance:
