@@ -36,6 +36,7 @@ from ..dynamics import (
     train_model,
 )
 from ..errors import GearmeshInputError
+from . import variant_name
 from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import name_force_lines, variable
@@ -1068,8 +1069,8 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
     sweep. Every force transverse (the impact stage's direction: normal × cos βb), so F_s and
     the dynamics stand in one unit. Torques are those both stages ran (pinion torques).
     """
-    names = [ds.attrs.get("variant", f"variant{k}") for k, ds in enumerate(impact)]
-    by_name = {d.attrs.get("variant", f"variant{k}"): d for k, d in enumerate(dynamics)}
+    names = [variant_name(ds, k) for k, ds in enumerate(impact)]
+    by_name = {variant_name(d, k): d for k, d in enumerate(dynamics)}
     if set(by_name) != set(names):
         raise GearmeshInputError("variants", sorted(by_name), f"impact and dynamics must cover the same variants "
                                  f"({sorted(names)})")
