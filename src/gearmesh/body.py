@@ -99,13 +99,10 @@ RIGID_WEBS = Body(web_thickness=(math.inf, math.inf))
 def _web(key: str, value: Any) -> tuple[float, float]:
     """A web thickness (mm), [pinion, gear] or ``rigid`` (each) → (m, m), inf for rigid."""
     items = list(value) if isinstance(value, (list, tuple)) else [value, value]
-    try:
-        if len(items) == 2 and RIGID in items:
-            return tuple(math.inf if v == RIGID else per_gear_length(f"{key}[{i}]", v)[0] for i, v in enumerate(items))
-        return per_gear_length(key, value)
-    except GearmeshInputError as err:
-        rule = f"must be a positive length (mm) or '{RIGID}'" if "positive length" in err.rule else err.rule
-        raise GearmeshInputError(err.field, err.value, rule) from None
+    if len(items) == 2 and RIGID in items:
+        return tuple(math.inf if v == RIGID else per_gear_length(f"{key}[{i}]", v, RIGID)[0]
+                     for i, v in enumerate(items))
+    return per_gear_length(key, value, RIGID)
 
 
 def read_body(spec: Mapping[str, Any]) -> Body:

@@ -151,13 +151,15 @@ def _stiffness(key: str, value: Any) -> tuple[float, float]:
     return v, v
 
 
-def per_gear_length(key: str, value: Any) -> tuple[float, float]:
+def per_gear_length(key: str, value: Any, alternative: str = "") -> tuple[float, float]:
     """One positive length (mm) or a [pinion, gear] pair of a pair-file key → (m, m); one
     :class:`GearmeshInputError` naming the key (and index) otherwise (shafts here, gear bodies in
-    :mod:`gearmesh.body`)."""
+    :mod:`gearmesh.body`, whose web may also be the word ``alternative``, named in the rule)."""
+    rule = "must be a positive length (mm)" + (f" or '{alternative}'" if alternative else "")
+
     def one(name, v):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
-            raise GearmeshInputError(name, v, "must be a positive length (mm)")
+            raise GearmeshInputError(name, v, rule)
         return float(v) * 1e-3
     if isinstance(value, (list, tuple)):
         if len(value) != 2:
