@@ -269,13 +269,13 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
     added_inertia_kg_m2 : inertia (kg m²) of what hangs on each shaft, added to seed 000's discs.
     window_positions : grid rolls over the search window (−extension … +1 base pitch).
     face_samples : samples of the entering line over the face for min_z (refined by a parabola).
-    cycle_positions : rolls per mesh cycle of the LTCA grid kept for :func:`ltca_metrics`.
+    cycle_positions : rolls per mesh cycle of the LTCA grid kept for :func:`ltca_criteria`.
     local_points, local_keep : slices of the entering line for its local stiffness, and how
         many of them (those closest to contact) are loaded. The F–δ curve of an edge contact
         spreads along the line (separations growing like |z − z_M|), and converges only when a
         slice's separation step is small against the impact's approach: hundreds of slices,
         more than the LTCA's ``points`` (test ``test_convergence_in_local_slices``).
-    ltca : a prepared LTCA model (its grid is the one :func:`ltca_metrics` uses).
+    ltca : a prepared LTCA model (its grid is the one :func:`ltca_criteria` uses).
     """
     if driver not in DRIVERS:
         raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")

@@ -138,11 +138,10 @@ def _judge(c: dict[str, np.ndarray], ref: int, k_orders: list[int], pressure_fac
 
 @check_arguments(Signoff)
 def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Dataset], rating: Sequence[xr.Dataset],
-                          dynamics: Sequence[xr.Dataset] = (), *, reference: str = "standard",
-                          basis: str = "population", pressure_factor: float = 1.1, root_stress_factor: float = 1.1,
-                          harmonic_orders: Sequence[int] = (1, 2), harmonic_factor: float = 1.0,
-                          impact_factor: float = 1.0, worst_impact_factor: float = 0.5,
-                          dynamic_factor: float = 1.0) -> xr.Dataset:
+                          dynamics: Sequence[xr.Dataset] = (), *, reference: str, basis: str,
+                          pressure_factor: float, root_stress_factor: float, harmonic_orders: Sequence[int],
+                          harmonic_factor: float, impact_factor: float, worst_impact_factor: float,
+                          dynamic_factor: float) -> xr.Dataset:
     """Every variant beside ``reference`` at each LTCA torque (variant × torque) and the criteria
     of the module docstring, judged on ``basis``, as flags (``reference``/``fails``/``meets``);
     ``meets_all`` holds them together. The variants' datasets may come in any order; they must
