@@ -756,7 +756,7 @@ def safety_factors(prob: "Problem", crit: LTCACriteria, reference: LTCACriteria)
     method B (:func:`gearmesh.rating.rating`, the pair's rating inputs, application factor 1) at the
     objective speed, with K_Hβ and K_Hα from the candidate's LTCA loads and the unmodified pair's
     (:func:`gearmesh.rating.ltca_load_factors`, K_Hα at least 1, as the rating stage)."""
-    from .rating import ltca_load_factors, rating, rating_inputs
+    from .rating import ltca_load_factors, rated_transverse_factor, rating, rating_inputs
 
     s, geom = prob.settings, prob.geom
     inputs = rating_inputs(dict(geom.pair.rating_inputs))
@@ -766,7 +766,7 @@ def safety_factors(prob: "Problem", crit: LTCACriteria, reference: LTCACriteria)
     sh, sf = np.empty(nc * nt), np.empty(nc * nt)
     for k in range(nc * nt):
         r = rating(geom, s.objective_torques[k % nt], s.speed_rpm, inputs, method="ltca",
-                   ltca_factors={"K_Hbeta": float(lf["K_Hbeta"][k]), "K_Halpha": max(float(lf["K_Halpha"][k]), 1.0)})
+                   ltca_factors={"K_Hbeta": float(lf["K_Hbeta"][k]), "K_Halpha": float(rated_transverse_factor(lf["K_Halpha"][k]))})
         sh[k], sf[k] = min(r.values["S_H"]), min(r.values["S_F"])
     return sh.reshape(nc, nt), sf.reshape(nc, nt)
 

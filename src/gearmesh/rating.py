@@ -39,7 +39,7 @@ from .stress import gear_root_form
 
 __all__ = [
     "DEFAULT_INPUTS", "FACTOR_NAMES", "FACTOR_SOURCES", "RatingInputs", "rating_inputs", "check_factors",
-    "Rating", "iso1328_tolerances", "dynamic_factor_c", "face_load_factor_c", "face_factor_root",
+    "Rating", "iso1328_tolerances", "rated_transverse_factor", "dynamic_factor_c", "face_load_factor_c", "face_factor_root",
     "transverse_load_factor_b",
     "zone_factor", "elasticity_factor", "contact_ratio_factor", "single_pair_factors", "life_factor_contact",
     "life_factor_root", "lubrication_velocity_roughness", "helix_factor_root", "rim_factor",
@@ -356,6 +356,13 @@ class Rating:
     given: list[str]
     sources: dict[str, str]
     notes: list[str] = field(default_factory=list)
+
+
+def rated_transverse_factor(k_halpha):
+    """The LTCA's K_Hα (scalar or array) as the rating takes it: at least 1, since ISO 6336-1
+    defines no load factor below 1 (:func:`check_factors`); better load sharing than the
+    unmodified pair's earns no credit below the standard's own assumption."""
+    return np.maximum(k_halpha, 1.0)
 
 
 def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: RatingInputs | None = None,

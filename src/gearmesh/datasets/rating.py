@@ -20,7 +20,7 @@ from ..io import variable
 from . import variant_name
 from ..limits import check_contact_grid
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
-from ..rating import face_factor_root, ltca_load_factors, rating, rating_inputs
+from ..rating import face_factor_root, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
 from ..schema import check_arguments
 from ..settings import Rating
 from ..stress import ContactStress, contact_stress, iso_root_stress_slices, pair_edge_radius
@@ -63,7 +63,7 @@ def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCA
     tpjn = ("torque", "position", "line", "point")
     root = lc["root"]
     peak_root = root.max(axis=(1, 2, 3))  # (T, 2)
-    k_ha = np.maximum(lc["K_Halpha"], 1.0)
+    k_ha = rated_transverse_factor(lc["K_Halpha"])
     return {
         "contact_pressure": variable(tpjn, c.pressure, "Pa", "Hertzian peak pressure p0 of each point's line contact "
                                                              "(tip edges as cylinders of radius tip_edge_radius)"),
@@ -157,7 +157,7 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
     lead = tuple(v * 1e-6 for v in check_lead_slope(lead_slope_um))
     res = ltca(geom, t1, positions, points, lead, "pinion")
     lc = load_capacity(geom, res, reference_ltca(geom, res))
-    k_ha = max(float(lc["K_Halpha"][0]), 1.0)
+    k_ha = float(rated_transverse_factor(lc["K_Halpha"][0]))
     r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method,
                {"K_Hbeta": float(lc["K_Hbeta"][0]), "K_Halpha": k_ha})
     c: ContactStress = lc["contact"]
