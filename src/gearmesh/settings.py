@@ -274,6 +274,12 @@ class Impact:
 # --------------------------------------------------------------------------------------
 
 
+def _mesh_orders(description: str) -> Any:
+    """Loaded-TE mesh orders, default 1 and 2, distinct, from 1 to 3: the orders ltca.nc and the
+    optimiser's criteria compute (gearmesh.ltca.MESH_ORDERS)."""
+    return setting((1, 2), description, minimum=1, maximum=3, min_items=1, max_items=3, unique=True)
+
+
 def _ratio_limit(what: str, after: str = "") -> Any:
     """A constraint "``what`` at most this times the unmodified pair's[``after``]" (null: free)."""
     return setting(None, f"{what} at most this times the unmodified pair's{after} (null: free)", exclusive_minimum=0)
@@ -289,9 +295,8 @@ class Constraints:
     dynamic_factor: float | None = _ratio_limit("dynamic factor at every torque")
     harmonic_factor: float | None = _ratio_limit("amplitude of each loaded-TE mesh order of harmonic_orders at every "
                                                  "spectrum torque")
-    harmonic_orders: tuple[int, ...] = setting((1, 2), "the loaded-TE mesh orders of harmonic_factor (and of NSGA-II's "
-                                                 "te_harmonics)", minimum=1, maximum=3, min_items=1, max_items=3,
-                                         unique=True)
+    harmonic_orders: tuple[int, ...] = _mesh_orders("the loaded-TE mesh orders of harmonic_factor (and of NSGA-II's "
+                                                    "te_harmonics)")
     pressure_factor: float | None = _ratio_limit("largest contact pressure at every spectrum torque", ", flank against "
                                                  "flank and tip edge against tip edge")
     root_stress_factor: float | None = _ratio_limit("largest tooth-root stress of either gear at every spectrum torque")
@@ -532,9 +537,8 @@ class Signoff:
                                           "reference's", exclusive_minimum=0)
     root_stress_factor: float = setting(1.1, "peak tooth-root stress at most this times the reference's",
                                         exclusive_minimum=0)
-    harmonic_orders: tuple[int, ...] = setting((1, 2), "mesh orders of the loaded-TE amplitudes held against the "
-                                                       "reference's", minimum=1, maximum=3, min_items=1,
-                                               max_items=3, unique=True)
+    harmonic_orders: tuple[int, ...] = _mesh_orders("mesh orders of the loaded-TE amplitudes held against the "
+                                                    "reference's")
     harmonic_factor: float = setting(1.0, "loaded-TE amplitudes at harmonic_orders at most this times the "
                                           "reference's", exclusive_minimum=0)
     impact_factor: float = setting(1.0, "F_s (nominal, at the impact section's design speed) below this times "
