@@ -485,23 +485,24 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
     t_out = torque if on == "gear" else torque * geom.base_radius[1] / geom.base_radius[0]
     backlash = _backlash(geom, backlash_um)
     exc = resolve_excitation(excitation, ltca)
+    t1 = pinion_torque(pair, t_out, "gear")  # the pinion torque of the mesh's static force
     K = te = None
     if exc == "contact":
         if transmission_error_um is not None:
             raise GearmeshInputError("transmission_error_um", "given", "the contact excitation has the "
                                      "micro-geometry in its table; give no tabulated TE")
         if table is None:
-            table = contact_table(geom, [pinion_torque(pair, t_out, "gear")], method)
+            table = contact_table(geom, [t1], method)
     elif exc == "ltca":
         if ltca is None:
             raise GearmeshInputError("excitation", "ltca", "needs the variant's LTCA dataset (ltca.nc)")
         if transmission_error_um is not None:
             raise GearmeshInputError("transmission_error_um", "given", "give either a table or an ltca dataset")
-        K, te = ltca_excitation(geom, ltca, pinion_torque(pair, t_out, "gear"))
+        K, te = ltca_excitation(geom, ltca, t1)
     else:
-        K = _stiffness_curve(geom, stiffness, method, slices, positions, pinion_torque(pair, t_out, "gear"))
+        K = _stiffness_curve(geom, stiffness, method, slices, positions, t1)
         if exc == "tvms":  # the loaded extension of contact beyond the active zone (one stiffness at one load)
-            K = with_loaded_extension(geom, K, pinion_torque(pair, t_out, "gear"), method)
+            K = with_loaded_extension(geom, K, t1, method)
         te = _transmission_error(transmission_error_um)
     return pair_model(geom, t_out, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                                          bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
