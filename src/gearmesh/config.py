@@ -19,7 +19,8 @@ from .errors import GearmeshInputError
 from .gear import GearPair, load_named_pair, pinion_torque, read_yaml, variant_pair
 from .limits import same_point
 from .schema import validate
-from .settings import study_schema
+from .settings import stage_of, study_schema
+from .stages import always
 
 
 def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
@@ -258,7 +259,7 @@ def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> 
     signoff = config.get("signoff")
     if signoff is None:
         return
-    for section in ("ltca", "rating", "impact"):
+    for section in (r.stage for r in stage_of("signoff").reads if r.when is always):  # what it always reads
         if section not in config:
             raise GearmeshInputError("signoff", dict(signoff), f"needs a {section} section in the study")
     if signoff.get("basis") == "population" and not (config.get("tolerances") or {}).get("samples"):
