@@ -23,6 +23,21 @@ def _pair(name="seed000_case", **body):
     return load_pair(data)
 
 
+def _solid_discs(name="seed000_case", **more):
+    """The pair's gears as solid discs of the face width held at the bore (hub = bore), on stated shafts
+    and bearings (a body never comes without them: the pair's own, or rigid bearings on a shaft of the
+    bore's diameter spanning three face widths)."""
+    data = pair_to_dict(load_pair(example_pair(name)))
+    data.pop("web_thickness_mm", None)
+    data["hub_diameter_mm"] = [2 * r for r in data["bore_radius_mm"]]
+    if "shaft_diameter_mm" not in data:
+        face = data["face_width_mm"][0]
+        data.update(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid",
+                    shaft_diameter_mm=data["hub_diameter_mm"], bearing_span_mm=3 * face)
+    data.update(more)
+    return load_pair(data)
+
+
 @pytest.mark.parametrize("n", [0, 1, 2, 7])
 def test_narrow_annulus_is_the_cantilever_plate_strip(n):
     """Annulus of radial length L ≪ radius: every harmonic is a cantilever plate strip in cylindrical
@@ -68,24 +83,25 @@ def test_mesh_body_compliance_against_the_3d_reference(name, k_transverse, k_nor
     file's body by default) gives it within 3 % of the stiffness for seed 004 (b/(r_f − r_bore) =
     0.51) and 10 % for the default pair's thinner discs (the Kirchhoff plate has no shear: a
     lower bound on the compliance)."""
-    geom = pair_geometry(_pair(name, web_thickness_mm=None, hub_diameter_mm=None))
+    geom = pair_geometry(_solid_discs(name))
     k = 1.0 / (1.0 / (k_transverse * 1e6) + mesh_body_compliance(geom)) * 1e-6
     assert k == pytest.approx(k_normal, rel=rel)
     assert k > k_normal  # Kirchhoff: no shear, stiffer
 
 
 def test_body_in_series_with_the_teeth_in_the_tvms_and_the_ltca():
-    """The default body (solid discs) against rigid webs: 1/K gains c_body at every position in the
-    TVMS (a 'body' component), and the LTCA's loaded TE gains c_body·F with its tangent in series;
-    the teeth's loads are unchanged (the body bends under the total force)."""
+    """Solid discs against rigid webs: 1/K gains c_body at every position in the TVMS (a 'body'
+    component), and the LTCA's loaded TE gains c_body·F with its tangent in series; the teeth's loads
+    are unchanged (the body bends under the total force) at one mesh misalignment (the discs' tilt
+    adds to the shafts', tests/test_deflection.py)."""
     plain = pair_geometry(_pair(web_thickness_mm="rigid"))
-    body = pair_geometry(_pair())
+    body = pair_geometry(_solid_discs())
     c = mesh_body_compliance(body)
     k0, k1 = mesh_stiffness(plain, 30, 60, "transition"), mesh_stiffness(body, 30, 60, "transition")
     np.testing.assert_allclose(1 / k1.K, 1 / k0.K + c, rtol=1e-12)
     assert k1.components["body"][0] == pytest.approx(1 / c)
     np.testing.assert_allclose(1 / k1.K, sum(1 / v for v in k1.components.values()), rtol=1e-9)
-    r0, r1 = (ltca(g, [1000.0], 16, 20, method="transition") for g in (plain, body))
+    r0, r1 = (ltca(g, [1000.0], 16, 20, method="transition", misalignment=[0.0]) for g in (plain, body))
     np.testing.assert_allclose(r1.lte, r0.lte + c * r0.force[:, None], rtol=1e-12)
     np.testing.assert_allclose(1 / r1.stiffness, 1 / r0.stiffness + c, rtol=1e-12)
     np.testing.assert_allclose(r1.load, r0.load, rtol=0, atol=1e-9 * r0.force[0])
@@ -98,14 +114,21 @@ def test_thin_web_and_large_hub_change_the_compliance_the_expected_way():
     assert mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=42.0, hub_diameter_mm=[100, 250]))) < solid
 
 
-def test_the_default_body_is_the_solid_disc_and_rigid_webs_remove_it():
-    """No body keys: solid discs held at the bore, the same as a web as thick as the face (42 mm)
-    stated; ``rigid`` per gear removes that gear's web, both rigid none; a pair without a bore
-    has nothing to hold the web. Each result says which (describe_body)."""
-    default = pair_geometry(_pair())
+def test_no_body_described_is_the_teeth_alone_and_a_hub_alone_is_the_solid_disc():
+    """No body keys: the teeth alone (ISO 6336-1's solid-wheel model), said so; a hub alone: a solid
+    disc of the face width held there, the same as a web as thick as the face (42 mm) stated;
+    ``rigid`` per gear removes that gear's web, both rigid none; a pair without a bore has nothing to
+    hold the web. Each result says which (describe_body). A body needs stated shafts."""
+    teeth = pair_geometry(_pair())
+    assert mesh_body_compliance(teeth) == 0.0 and "the teeth alone" in describe_body(teeth)
+    default = pair_geometry(_solid_discs())
     c = mesh_body_compliance(default)
-    assert c > 0 and c == pytest.approx(mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=42.0))), rel=1e-12)
-    assert "solid discs" in describe_body(default)
+    assert c > 0 and c == pytest.approx(mesh_body_compliance(pair_geometry(_solid_discs(web_thickness_mm=42.0))),
+                                        rel=1e-12)
+    assert "the webs' axial bending" in describe_body(default)
+    with pytest.raises(GearmeshInputError, match="shafts and bearings") as err:
+        pair_geometry(_pair("seed004_pair", web_thickness_mm=10.0))
+    assert err.value.field == "web_thickness_mm"
     c_gear = mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=["rigid", 42.0])))
     c_pinion = mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=[42.0, "rigid"])))
     assert 0 < c_gear < c and 0 < c_pinion < c and c_gear + c_pinion == pytest.approx(c, rel=1e-12)
@@ -113,7 +136,7 @@ def test_the_default_body_is_the_solid_disc_and_rigid_webs_remove_it():
     assert mesh_body_compliance(rigid) == 0.0 and describe_body(rigid).startswith("none: the pair file states rigid")
     assert pair_to_dict(rigid.pair)["web_thickness_mm"] == ["rigid", "rigid"]
     assert load_pair(pair_to_dict(rigid.pair)).body == rigid.pair.body
-    no_bore = pair_geometry(_pair(bore_radius_mm=None))
+    no_bore = pair_geometry(_pair(bore_radius_mm=None, web_thickness_mm=10.0))
     assert mesh_body_compliance(no_bore) == 0.0 and "no bore or hub" in describe_body(no_bore)
 
 

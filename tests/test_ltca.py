@@ -18,6 +18,7 @@ from gearmesh.datasets.ltca import ltca_dataset, ltca_summary
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import Modification, load_pair, pair_from_dict, pair_geometry
 from gearmesh.io import check_documented
+from gearmesh.supports import read_supports
 from gearmesh.ltca import PALMGREN_COEFFICIENT, contact_law, ltca, ltca_model, solve_contact
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -26,7 +27,9 @@ MOD = (Modification(tip_relief=20e-6, tip_relief_length=3e-3, crowning=10e-6), M
 
 @pytest.fixture(scope="module")
 def seed000():
-    return load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    """The case pair without its shafts and bearings: the mesh alone, so that the separations are the
+    grid's (the system deflection's misalignment per torque is tested in tests/test_deflection.py)."""
+    return load_pair(ROOT / "config/pairs/seed000_case.yaml").with_changes(supports=read_supports({}))
 
 
 @pytest.fixture(scope="module")

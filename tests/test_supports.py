@@ -122,10 +122,14 @@ def test_rigid_supports_give_the_torsional_model_and_isos_resonance():
     """Both directions rigid and, as ISO's c' assumes, rigid webs: one coordinate left (the relative
     rotation), the mesh mode at √(k/m_e), and the contact-excited resonance within 3 % of ISO
     6336-1's n_E1 = 30000/(π z1)·√(c_γα/m_red), m_red = J1* J2*/(J1* r_b2² + J2* r_b1²) (ISO
-    6336-1:2019 §6.5.3, eqs. (6), (7)). The default solid-disc bodies (gearmesh.body) put the
-    bodies' tilt in series: the mode falls with √ of the mean stiffness, below n_E1."""
+    6336-1:2019 §6.5.3, eqs. (6), (7)). A pair file that describes no body is the teeth alone, the
+    same model; described solid discs held at the bore (gearmesh.body) put the bodies' tilt in
+    series: the mode falls with √ of the mean stiffness, below n_E1."""
     pair = _default_pair(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid",
                          web_thickness_mm="rigid")
+    bores_only = _default_pair(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid")
+    assert mesh_body_compliance(pair_geometry(bores_only)) == 0.0
+    alone = build_pair_model(bores_only, 1000.0, "pinion", 60, excitation="contact")
     geom = pair_geometry(pair)
     model = build_pair_model(pair, 1000.0, "pinion", 60, excitation="contact")
     assert model.n == 1
@@ -140,7 +144,9 @@ def test_rigid_supports_give_the_torsional_model_and_isos_resonance():
     n_e1 = 30000 / (math.pi * pair.teeth[0]) * math.sqrt(iso["c_gamma_alpha"] / (m_red / b))
     n_model = md["frequency_Hz"][0] / model.mesh_frequency_per_rpm
     assert n_model == pytest.approx(n_e1, rel=0.03)
-    solid = _default_pair(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid")
+    assert alone.modes()["frequency_Hz"][0] / alone.mesh_frequency_per_rpm == pytest.approx(n_model, rel=1e-12)
+    solid = _default_pair(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid",
+                          hub_diameter_mm=[60.0, 140.0])  # solid discs held at the bore on rigid supports
     c_body = mesh_body_compliance(pair_geometry(solid))
     with_body = build_pair_model(solid, 1000.0, "pinion", 60, excitation="contact")
     k_body = with_body.meshes[0].k_mean * with_body.cos_beta_b**2  # along the transverse line, as c_body
@@ -188,7 +194,7 @@ def test_rigid_radial_supports_in_the_dataset_are_zero_displacements():
         assert v is not None and np.all(v.values == 0), name
         assert np.any(ds[name].sel(direction="z").values != 0), name
     assert "from the pair file" in ds.attrs["supports"] and "rigid" in ds.attrs["supports"]
-    assert "solid discs" in ds.attrs["gear_body"]  # the default body, named in the result
+    assert "the teeth alone" in ds.attrs["gear_body"]  # no body described: the teeth alone, named in the result
     assert "mesh mode" in ds.attrs["damping_ratio_meaning"]
 
 

@@ -11,6 +11,7 @@ from scipy.optimize import minimize_scalar
 from pairs import seed001_pair1
 
 from gearmesh.datasets.ltca import tca_dataset
+from gearmesh.deviation import Deviations, read_deviations
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import Modification, load_pair, pair_from_dict, pair_geometry
 from gearmesh.io import check_documented
@@ -177,21 +178,24 @@ def test_lead_slope_errors_of_both_gears_cancel_and_add():
     assert np.all(np.abs(opposite.gap[flank]) < 1e-15)  # matching errors cancel: no gap, no TE
     aligned = tca(geom, positions=8, points=21, lead_slope=(10e-6, -10e-6))
     assert np.all(np.abs(aligned.te) < 1e-15)
-    one = candidate_grid(geom, np.array([0.3e-3]), 20, (10e-6, 0.0), 0.0)
-    z = one.z
-    slope = np.polyfit(z, one.gap[0, np.flatnonzero((one.region[0] > 0).any(axis=1))[0]], 1)[0]
-    assert slope == pytest.approx(10e-6 / b, rel=1e-9)
+    # + stands proud at the leading face end (z = +b/2 of a right-hand pinion, −b/2 of a left-hand
+    # one): the gap closes towards it whatever the hand (gearmesh.deviation)
+    for hand, sign in (("right", -1.0), ("left", 1.0)):
+        g = pair_geometry(pair.with_changes(helix_hand=hand))
+        one = candidate_grid(g, np.array([0.3e-3]), 20, (10e-6, 0.0), 0.0)
+        slope = np.polyfit(one.z, one.gap[0, np.flatnonzero((one.region[0] > 0).any(axis=1))[0]], 1)[0]
+        assert slope == pytest.approx(sign * 10e-6 / b, rel=1e-9)
 
 
 def test_tca_dataset_is_documented_and_refuses_bad_input(seed000):
-    ds = tca_dataset(seed000, positions=8, points=10, lead_slope_um=(5.0, 0.0))
+    ds = tca_dataset(seed000.with_changes(deviations=Deviations(lead_slope=(5e-6, 0.0))), positions=8, points=10)
     check_documented(ds)
     assert set(ds["separation"].dims) == {"position", "line", "point"}
     assert float(ds["lead_slope"][0]) == pytest.approx(5e-6)
-    with pytest.raises(GearmeshInputError, match="lead_slope_um"):
-        tca_dataset(seed000, lead_slope_um=(float("nan"), 0.0))
-    with pytest.raises(GearmeshInputError, match="lead_slope_um"):
-        tca_dataset(seed000, lead_slope_um=(1.0, 2.0, 3.0))
+    with pytest.raises(GearmeshInputError, match=r"lead_slope_deviation_um\[0\]"):
+        read_deviations({"lead_slope_deviation_um": [float("nan"), 0.0]})
+    with pytest.raises(GearmeshInputError, match="lead_slope_deviation_um"):
+        read_deviations({"lead_slope_deviation_um": [1.0, 2.0, 3.0]})
     with pytest.raises(GearmeshInputError, match="positions"):
         tca_dataset(seed000, positions=0)
     bad = seed000.with_changes(modification=(Modification(tip_relief=-5e-6, tip_relief_length=1e-3), Modification()))

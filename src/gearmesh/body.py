@@ -9,12 +9,16 @@ pair's thin discs. This module gives that compliance from the pair file's body g
 * the **web**: an annular Kirchhoff plate of thickness t (``web_thickness_mm``; a solid disc,
   t = the face width, when only ``hub_diameter_mm`` is given), clamped at the hub radius b
   (``hub_diameter_mm``/2, default the bore: the 3-D reference holds the bore) and free at the
-  root radius a (the rim and teeth beyond the root circle rigid in this bending). A pair file
-  with neither key has solid discs (issue 28: the body every gear has unless it says otherwise;
-  the 3-D reference is a solid disc held at the bore). ``web_thickness_mm: rigid`` (one or per
-  gear) removes the body's bending: the tooth models' bore-held ring alone, the model of the source
-  documents and of ISO 6336-1's c' (its C_R = 1 for solid wheels has no axial tilt), so a study
-  can reproduce them. A pair without a bore or a hub has nothing to hold the web: none, stated;
+  root radius a (the rim and teeth beyond the root circle rigid in this bending). **A pair file
+  with neither key describes no body: the teeth alone**, the tooth models' bore-held ring — ISO
+  6336-1's model (C_R = 1 for solid wheels; its c' is measured on real gears in real gearboxes),
+  that of its worked example and of the commercial tools, where blank distortion is a switch of the
+  system deflection (a solid disc held exactly at its bore is an idealisation no outside reference
+  takes as its default: held at a hub of 1.5× or 2× the bore its tilt falls by a third or more).
+  ``web_thickness_mm: rigid`` (one or per gear) states the same explicitly. A described body's
+  bending is in series with the shafts and bearings that carry the same moment
+  (:mod:`gearmesh.deflection`): the pair file must state them. A pair without a bore or a hub has
+  nothing to hold the web: none, stated;
 * the **load**: F_a on the edge r = a, spread evenly over the arc the contact line spans across
   the face (its transverse projection b tan β_b, as an arc at r_w: the 3-D reference loads one
   contact line evenly), carried out to the operating pitch radius r_w by a rigid tooth (so the
@@ -42,9 +46,11 @@ In the mesh, both bodies act in series with the teeth along the transverse line 
 δ_t = w tan β_b and w = c_w F_n sin β_b = c_w F_bt tan β_b, so c_body = tan² β_b (c_w1 + c_w2)
 (m/N), added to 1/K of the mesh (:func:`mesh_body_compliance`) in the TVMS
 (:func:`gearmesh.stiffness.mesh_stiffness`), the LTCA (:func:`gearmesh.ltca.ltca`: the approach
-gains c_body·F, the loads do not change) and the contact table (:mod:`gearmesh.meshforce`). Not in
-it: the mesh-in impact model's own stiffness, and the web's effect on the body's mass and inertia
-(:func:`gearmesh.gear.gear_body_mass_inertia` keeps the solid disc).
+gains c_body·F, the loads do not change), the contact table (:mod:`gearmesh.meshforce`) and the
+entering pair's force–approach curve of the impact model. The rim's tilt (harmonic 1,
+:func:`web_tilt_compliance`) also turns the flank against its mate: a lead mismatch the system
+deflection adds to the shafts' tilt (:mod:`gearmesh.deflection`). Not in it: the web's effect on
+the body's mass and inertia (:func:`gearmesh.gear.gear_body_mass_inertia` keeps the solid disc).
 """
 
 from __future__ import annotations
@@ -59,7 +65,7 @@ from .errors import GearmeshInputError
 from .supports import per_gear_length
 
 __all__ = ["BODY_KEYS", "Body", "RIGID_WEBS", "read_body", "check_body", "describe_body", "plate_edge_compliance", "body_axial_compliance",
-           "mesh_body_compliance"]
+           "mesh_body_compliance", "web_tilt_compliance"]
 
 #: The pair-file keys of the gear bodies: one value or [pinion, gear], mm (a web also ``rigid``).
 BODY_KEYS = ("web_thickness_mm", "hub_diameter_mm")
@@ -115,9 +121,18 @@ def read_body(spec: Mapping[str, Any]) -> Body:
                 None if hub is None else per_gear_length(BODY_KEYS[1], hub))
 
 
-def check_body(body: Body, face_width, bore_radius, root_radius) -> None:
+def check_body(body: Body, face_width, bore_radius, root_radius, supports=None) -> None:
     """One :class:`GearmeshInputError` naming the key when a web is thicker than its face or a hub
-    is not between the bore and the root circle (all in m, [pinion, gear]; bore may be None)."""
+    is not between the bore and the root circle (all in m, [pinion, gear]; bore may be None), or
+    when a body is described without the shafts and bearings (``supports``,
+    :class:`gearmesh.supports.Supports`) that carry the same moment (module docstring)."""
+    described = (body.web_thickness is not None and not all(body.rigid)) or body.hub_diameter is not None
+    if described and supports is not None and supports.defaulted:
+        key = "web_thickness_mm" if body.web_thickness is not None else "hub_diameter_mm"
+        raise GearmeshInputError(key, body.to_dict()[key], "describes a gear body, whose tilt comes in series with the "
+                                 "shafts and bearings that carry the same moment: state the bearing stiffnesses "
+                                 "(rigid, or with shaft_diameter_mm and bearing_span_mm) too, or web_thickness_mm: "
+                                 "rigid")
     for i in range(2):
         if body.web_thickness is not None and math.isfinite(body.web_thickness[i]) \
                 and body.web_thickness[i] > face_width[i] * (1 + 1e-12):
@@ -191,24 +206,55 @@ def plate_edge_compliance(youngs_modulus: float, poisson_ratio: float, hub_radiu
     return w
 
 
-def body_axial_compliance(geom, gear: int) -> float:
-    """c_w (m/N) of one gear of ``geom`` (:class:`gearmesh.gear.PairGeometry`): the web of the pair
-    file's body (default a solid disc held at the bore; 0 for a rigid web), the load at the
-    operating pitch radius."""
+def _described_web(geom, gear: int) -> tuple[float, float, float] | None:
+    """(hub radius, edge radius, web thickness) (m) of a described body's web, None without one."""
     pair = geom.pair
     body = pair.body
     t = body.web_thickness[gear] if body.web_thickness is not None else pair.face_width[gear]
     if math.isinf(t):
-        return 0.0
+        return None
     hub = body.hub_diameter[gear] / 2 if body.hub_diameter is not None else pair.bore_radius[gear]
-    mat = pair.material
+    return hub, float(geom.root_radius[gear]), t
+
+
+def body_axial_compliance(geom, gear: int) -> float:
+    """c_w (m/N) of one gear of ``geom`` (:class:`gearmesh.gear.PairGeometry`): the web of the pair
+    file's body (a solid disc of the face width held at the bore when only a hub is stated; 0 for a
+    rigid web), the load at the operating pitch radius."""
+    web = _described_web(geom, gear)
+    if web is None:
+        return 0.0
+    mat = geom.pair.material
     r_w = float(geom.operating_pitch_radius[gear])
-    return plate_edge_compliance(mat.youngs_modulus, mat.poisson_ratio, hub, float(geom.root_radius[gear]), t, r_w,
+    return plate_edge_compliance(mat.youngs_modulus, mat.poisson_ratio, web[0], web[1], web[2], r_w,
                                  spread=geom.face_width * math.tan(geom.base_helix_angle) / r_w)
+
+
+def web_tilt_compliance(geom, gear: int) -> float:
+    """The rim's tilt (rad per N of axial force at the operating pitch radius) of a described body:
+    the plate's harmonic 1 at the edge, f₁(a)/a — the rigid tilt of the rim about the diameter
+    normal to the load's radius (module docstring; Timoshenko & Woinowsky-Krieger §29). 0 where the
+    bodies add nothing (:func:`describe_body`)."""
+    if _why_none(geom.pair) is not None:
+        return 0.0
+    web = _described_web(geom, gear)
+    if web is None:
+        return 0.0
+    hub, a, t = web
+    mat = geom.pair.material
+    r_w = float(geom.operating_pitch_radius[gear])
+    D = mat.youngs_modulus * t**3 / (12.0 * (1.0 - mat.poisson_ratio**2))
+    x = 0.5 * geom.face_width * math.tan(geom.base_helix_angle) / r_w  # half the load's arc
+    sinc = math.sin(x) / x if x else 1.0
+    q = 2.0 / (2 * math.pi * a) * sinc
+    f, _ = _harmonic_edge(1, hub, a, mat.poisson_ratio, D, q, q * (r_w - a))
+    return f / a
 
 
 def _why_none(pair) -> str | None:
     """Why the pair's bodies add no compliance (None: they do)."""
+    if pair.body.web_thickness is None and pair.body.hub_diameter is None:
+        return "the pair file describes no gear body (web_thickness_mm, hub_diameter_mm): the teeth alone"
     if all(pair.body.rigid):
         return "the pair file states rigid webs (web_thickness_mm: rigid)"
     if pair.material is None:
@@ -220,8 +266,8 @@ def _why_none(pair) -> str | None:
 
 def mesh_body_compliance(geom) -> float:
     """Both bodies' compliance in series with the mesh along the transverse line of action (m/N):
-    tan² β_b (c_w1 + c_w2) (module docstring); 0 where the bodies add none (rigid webs, or no
-    material, or neither bore nor hub: :func:`describe_body` says which)."""
+    tan² β_b (c_w1 + c_w2) (module docstring); 0 where the bodies add none (no body described,
+    rigid webs, or no material, or neither bore nor hub: :func:`describe_body` says which)."""
     if _why_none(geom.pair) is not None:
         return 0.0
     return math.tan(geom.base_helix_angle) ** 2 * (body_axial_compliance(geom, 0) + body_axial_compliance(geom, 1))
@@ -232,7 +278,6 @@ def describe_body(geom) -> str:
     why = _why_none(geom.pair)
     if why is not None:
         return f"none: {why}; the tooth model's ring held at the bore"
-    stated = geom.pair.body.to_dict()
-    where = f"pair file {stated}" if stated else "not stated in the pair file: solid discs held at the bore"
+    where = f"pair file {geom.pair.body.to_dict()}"
     return (f"the webs' axial bending in series with the teeth (gearmesh.body, {where}): "
             f"{mesh_body_compliance(geom) * 1e9:.4g} um/kN along the transverse line of action")

@@ -21,6 +21,7 @@ from . import __version__
 from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
+from .deviation import read_deviations
 from .errors import GearmeshInputError
 from .gear import NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
@@ -86,13 +87,38 @@ def _pair(args: argparse.Namespace, path: str | None = None):
     """The pair file of the command (``path``, else ``args.pair``; its ``name``, or its file
     stem without one) and its geometry, a ``--torque-Nm`` checked against the load limits of
     :func:`gearmesh.loads.check_load`. Kept on ``args`` for the notes :func:`main` prints."""
-    pair = load_pair(path or args.pair)
+    pair = _with_deviations(load_pair(path or args.pair), args)
     geom = pair_geometry(pair)
     torque = getattr(args, "torque_Nm", None)
     if torque is not None and torque > 0:
         check_load(geom, pinion_torque(pair, torque, args.on), "--torque-Nm", torque)
     args.loaded_pair = pair
     return pair, geom
+
+
+#: The deviation options of the commands that load the contact: each overrides its pair-file key.
+_DEVIATION_OPTIONS = (("--lead-slope-deviation-um", 2, "helix slope deviations f_Hbeta [pinion, gear] (um), positive "
+                       "where the flank stands proud at the leading face end"),
+                      ("--profile-slope-deviation-um", 2, "profile slope deviations f_Halpha [pinion, gear] (um), "
+                       "positive where the flank stands proud at the tip"),
+                      ("--mesh-misalignment-um", None, "mesh misalignment f_ma in the plane of action (um)"))
+
+
+def _deviation_options(p) -> None:
+    """The manufacturing deviations as options; each replaces the pair file's key (:mod:`gearmesh.deviation`)."""
+    for flag, nargs, text in _DEVIATION_OPTIONS:
+        p.add_argument(flag, type=float, nargs=nargs, metavar="UM", default=None,
+                       help=f"{text}; replaces the pair file's {flag[2:].replace('-', '_')}")
+
+
+def _with_deviations(pair, args: argparse.Namespace):
+    """``pair`` with the deviations the command line gives in place of its pair file's."""
+    given = {flag[2:].replace("-", "_"): getattr(args, flag[2:].replace("-", "_"), None)
+             for flag, _, _ in _DEVIATION_OPTIONS}
+    given = {k: v for k, v in given.items() if v is not None}
+    if not given:
+        return pair
+    return pair.with_changes(deviations=read_deviations({**pair.deviations.to_dict(), **given}))
 
 
 def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
@@ -577,6 +603,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = _command(sub, "ltca", cmd_ltca, "loaded tooth contact analysis at one torque: TE, LTE, line load, stiffness",
                  PAIR_HELP.replace(";", ", with its modification if any;"))
+    _deviation_options(p)
     _torque_options(p, required=True, section=Ltca)
     _setting_option(p, "--positions", Ltca, type=int, help="rotation positions per mesh cycle")
     _setting_option(p, "--points", Ltca, type=int, help="points per contact line")
@@ -587,6 +614,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = _command(sub, "rating", cmd_rating, "load capacity at one torque and speed: ISO 6336-2/-3 method B "
                  "(S_H, S_F) with the LTCA's contact pressure and root stress",
                  PAIR_HELP.replace(";", ", with its modification and rating inputs if any;"))
+    _deviation_options(p)
     _torque_options(p, required=True, section=Ltca)  # the rating's torques are the LTCA's
     p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True,
                    help="speed (rpm) of the gear the torque acts on")
@@ -596,14 +624,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--factor", type=_factor_option, action="append", metavar="NAME=VALUE",
                    help="a factor given instead of computed (K_v, K_Hbeta, K_Fbeta, K_Halpha, K_Falpha, Z_L, Z_v, "
                         "Z_R, Z_W, Z_X, Z_NT, Y_NT, Y_deltarelT, Y_RrelT, Y_X, S_Hmin, S_Fmin); repeatable")
-    p.add_argument("--method", choices=("iso", "ltca"), default="iso",
-                   help="where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the standard's methods B/C or the "
-                        "LTCA's load distribution (both are printed)")
+    _setting_option(p, "--method", Rating,
+                    help="where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the LTCA's load distribution under "
+                         "the mesh misalignment (f_sh + f_ma) or the standard's methods B/C (both are printed)")
     _setting_option(p, "--positions", Ltca, type=int, help="LTCA rotation positions per mesh cycle")
     _setting_option(p, "--points", Ltca, type=int, help="LTCA points per contact line")
 
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
                  "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
+    _deviation_options(p)
     _torque_options(p, required=True, section=Impact)
     p.add_argument("--speed-rpm", dest="speed_rpm", type=float, required=True, help="pinion speed (rpm)")
     _setting_option(p, "--driver", Impact, help="which gear drives")
@@ -615,6 +644,7 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = _command(sub, "dynamics", cmd_dynamics, "steady-state speed sweep of the 8-DOF bending-torsion-axial "
                  "model of the pair")
+    _deviation_options(p)
     _torque_options(p, required=True, section=Dynamics)
     p.add_argument("--speeds", required=True, help="pinion speeds START:STOP:STEP in rpm (stop included)")
     _setting_option(p, "--backlash-um", Dynamics, type=_backlash_option,
@@ -628,6 +658,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = _command(sub, "optimise", cmd_optimise, "GA optimisation of the six micro-geometry parameters (root and tip "
                  "relief amounts and lengths, crowning, unmodified lead length) against the mesh-in impact over a "
                  "load spectrum and the manufacturing tolerances")
+    _deviation_options(p)
     _setting_option(p, "--objective", Optimise,
                     help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
                         "dynamic: the dynamic factor (peak over static mesh force) of the contact-driven 8-DOF pair "

@@ -24,6 +24,7 @@ from .limits import (MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPT
                      MAX_MODIFICATION_TO_MODULE, MAX_TEETH, MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE)
 from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
 from .body import BODY_KEYS, Body, check_body, read_body
+from .deviation import DEVIATION_KEYS, Deviations, read_deviations
 from .supports import SUPPORT_KEYS, Supports, read_supports
 
 GEARS = ("pinion", "gear")
@@ -120,6 +121,7 @@ class GearPair:
     defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. DEFAULT_MATERIAL)
     supports: Supports = field(default_factory=lambda: read_supports({}))  # bearings and shafts (dynamics)
     body: Body = field(default_factory=Body)  # gear-body webs and hubs (gearmesh.body)
+    deviations: Deviations = field(default_factory=Deviations)  # manufacturing deviations (gearmesh.deviation)
     rating_inputs: tuple[tuple[str, Any], ...] = ()  # load-capacity inputs given ((name, value), ...), RATING_KEYS
 
     def with_changes(self, **changes: Any) -> "GearPair":
@@ -139,6 +141,7 @@ _PAIR_KEYS = {
     "tip_diameter_mm", "root_diameter_mm", "bore_diameter_mm", "basic_rack_profile",  # datasheet alternatives
     *SUPPORT_KEYS,  # the gearbox: bearings and shafts (gearmesh.supports)
     *BODY_KEYS,  # the gear bodies' webs and hubs (gearmesh.body)
+    *DEVIATION_KEYS,  # the manufactured gear's deviations (gearmesh.deviation)
     "accuracy_grade", "roughness_um", "lubricant", "tip_edge_radius_mm",  # load capacity (gearmesh.rating)
 }
 #: Keys that say the same thing: at most one of each group may be given (_one_of).
@@ -370,6 +373,7 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
         defaults=defaults,
         supports=read_supports(spec),
         body=read_body(spec),
+        deviations=read_deviations(spec),
         rating_inputs=rating,
     )
     return _datasheet_diameters(pair, spec)
@@ -729,6 +733,7 @@ def pair_to_dict(pair: GearPair) -> dict[str, Any]:
         }
     out.update(pair.supports.to_dict())
     out.update(pair.body.to_dict())
+    out.update(pair.deviations.to_dict())
     return out
 
 
@@ -1083,7 +1088,7 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
         raise GearmeshInputError("addendum_coefficient", [float(x) for x in ha],
                                  f"gives a transverse contact ratio eps_alpha = {eps_alpha:.4f} < 1: "
                                  "the mesh is not continuous")
-    check_body(pair.body, pair.face_width, pair.bore_radius, rf)
+    check_body(pair.body, pair.face_width, pair.bore_radius, rf, pair.supports)
     b = min(pair.face_width)
     eps_beta = b * math.sin(beta) / (math.pi * mn)  # eq. 91
 

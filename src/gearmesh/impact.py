@@ -76,9 +76,12 @@ from .gear import PairGeometry, involute
 from .limits import check_speeds
 from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, law_scales, log_universal_inverse,
                    ltca_model, point_compliance, solve_contact)
+from .body import mesh_body_compliance
+from .deflection import mesh_misalignment
+from .deviation import with_misalignment
 from .surface import body_rotation, flank_point, modification_parameters, plane_of_action_point, relief_depth
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, approach_tip_point, basis_gap,
-                  candidate_grid, engagement_point, point_centres, recess_tip_point, separation_basis)
+                  candidate_grid, engagement_point, pair_lead_slope, point_centres, recess_tip_point, separation_basis)
 from .contact import hand_sign
 
 __all__ = [
@@ -138,7 +141,12 @@ class ImpactModel:
     pairs ``window_pairs``), ``enter_fine_basis`` (R, Nz) the entering pair on
     ``z_fine`` (Nz,) points over the face. ``points`` the LTCA points per line (the other
     pairs), ``local_points`` / ``local_keep`` / ``local_law`` the entering line's own slicing
-    for its local stiffness; ``inertia`` (2,) kg m², ``equivalent_mass`` kg.
+    for its local stiffness; ``inertia`` (2,) kg m², ``equivalent_mass`` kg; ``lead_slope`` the
+    gears' lead slope deviations (m); ``body_compliance`` the described gear bodies' compliance in
+    series with the mesh (m/N, :func:`gearmesh.body.mesh_body_compliance`), in the entering pair's
+    force–approach curve as in the LTCA. The mesh misalignment of each torque (the stated f_ma and
+    the system deflection's f_sh, :func:`gearmesh.deflection.mesh_misalignment`) is added where a
+    torque is known (:func:`impact_static`, :func:`ltca_criteria`).
     """
 
     geom: PairGeometry
@@ -162,6 +170,7 @@ class ImpactModel:
     inertia: np.ndarray
     equivalent_mass: float
     lead_slope: tuple[float, float]
+    body_compliance: float = 0.0
 
     def roll(self, tau):
         """Pinion roll (m) of time-like roll ``tau`` (m)."""
@@ -252,7 +261,7 @@ def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
     return float(roll_e), j_e, float(z_e)
 
 
-def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), contact_law_name: str = DEFAULT_CONTACT_LAW,
+def impact_model(geom: PairGeometry, points: int = 50, lead_slope=None, contact_law_name: str = DEFAULT_CONTACT_LAW,
                  method: str = DEFAULT_TOOTH_METHOD, extension: float = DEFAULT_CORNER_EXTENSION, driver: str = "pinion",
                  added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 32, face_samples: int = 257,
                  cycle_positions: int = 32, local_points: int = 400, local_keep: int = 400,
@@ -262,7 +271,7 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
     Parameters
     ----------
     points : LTCA points per contact line (the other pairs and the local stiffness).
-    lead_slope : lead slope errors [pinion, gear] (m over the face width).
+    lead_slope : lead slope deviations [pinion, gear] (m over the face width); None: the pair's own.
     contact_law_name, method : local contact law and cantilever model (:mod:`gearmesh.ltca`).
     extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
     driver : 'pinion' or 'gear' (module docstring).
@@ -288,6 +297,7 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
                                    ("local_keep", local_keep, 2, 100000)):
         if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not low <= value <= high:
             raise GearmeshInputError(name, value, f"must be an integer in [{low}, {high}]")
+    lead_slope = pair_lead_slope(geom, lead_slope)
     if ltca is None:
         ltca = ltca_model(geom, positions=cycle_positions, points=points, lead_slope=lead_slope, contact_law_name=contact_law_name,
                           method=method, extension=extension)
@@ -318,7 +328,8 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=(0.0, 0.0), co
                        local_keep=int(local_keep),
                        local_law=contact_law(geom, geom.face_width / local_points, ltca.law.name) if ltca.law.name != "linear"
                        else ContactLaw("linear", 0.0, 1.0, 0.0, geom.face_width / local_points), inertia=inertia,
-                       equivalent_mass=equivalent_mass(geom, inertia), lead_slope=tuple(float(v) for v in lead_slope))
+                       equivalent_mass=equivalent_mass(geom, inertia), lead_slope=lead_slope,
+                       body_compliance=mesh_body_compliance(geom))
 
 
 # --------------------------------------------------------------------------------------
@@ -708,9 +719,11 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     """The speed-independent part of the impact for pinion torques ``torques`` (N m) and
     modification parameter sets ``params`` ((C, 2, 6) m; default the pair's own).
 
-    ``lead_slope`` (C, 2) the lead slope errors [pinion, gear] of each set (m over the face
+    ``lead_slope`` (C, 2) the lead slope deviations [pinion, gear] of each set (m over the face
     width; default the model's for all): additive to the separations
-    (:func:`gearmesh.tca.lead_deviation`), so a tolerance sample costs no new geometry.
+    (:func:`gearmesh.deviation.lead_gap`), so a tolerance sample costs no new geometry; each
+    torque adds its mesh misalignment (:func:`gearmesh.deflection.mesh_misalignment`: torques
+    of different misalignment are solved one at a time).
     ``curve_levels`` approaches of the entering pair's F–δ curve, geometric up to one at which
     it carries at least ``curve_force_min`` (N, (C, T) or scalar; default 4·F_bt) —
     :func:`impact_response` extends it where an impact needs more. ``engagement``: also the
@@ -720,9 +733,41 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
 
     g = model.geom
     params = model.params(params)
-    nc = params.shape[0]
-    lead = model.lead_slopes(lead_slope, nc)
+    lead = model.lead_slopes(lead_slope, params.shape[0])
     t1 = check_torques(torques)
+    mis = mesh_misalignment(g, t1 / float(g.base_radius[0]))
+    if np.all(mis == mis[0]):
+        return _static(model, t1, params, with_misalignment(lead, mis[0]), lead, curve_levels, curve_force_min,
+                       engagement)
+    cfm = None if curve_force_min is None else np.asarray(curve_force_min, dtype=float)
+    parts = [_static(model, t1[i:i + 1], params, with_misalignment(lead, mis[i]), lead, curve_levels,
+                     None if cfm is None else (cfm if cfm.ndim < 2 else cfm[:, i:i + 1]), engagement)
+             for i in range(t1.size)]
+    return _stack_torques(parts)
+
+
+def _stack_torques(parts: list["ImpactStatic"]) -> "ImpactStatic":
+    """One :class:`ImpactStatic` of several solved one torque at a time (torque axis 1; the
+    torques' own axis 0)."""
+    first = parts[0]
+    out = {}
+    for name in ImpactStatic.__dataclass_fields__:
+        if name in ("params", "lead_slope"):
+            out[name] = getattr(first, name)
+        elif name in ("torque", "force"):
+            out[name] = np.concatenate([getattr(p, name) for p in parts])
+        else:
+            out[name] = np.concatenate([getattr(p, name) for p in parts], axis=1)
+    return ImpactStatic(**out)
+
+
+def _static(model: ImpactModel, t1: np.ndarray, params: np.ndarray, lead: np.ndarray, lead_rows: np.ndarray,
+            curve_levels: int, curve_force_min, engagement: bool) -> "ImpactStatic":
+    """:func:`impact_static` at pinion torques ``t1`` (N m) whose separations share the lead rows
+    ``lead`` (C, 2) (m, the mesh misalignment of these torques included); ``lead_rows`` the rows'
+    own slopes, stored in the result."""
+    g = model.geom
+    nc = params.shape[0]
     force = t1 / float(g.base_radius[0])
     nt = force.size
     t_star, g_star, z_star, found, at_start, te0, at_touch = _crossing(model, params, lead, force)
@@ -797,7 +842,7 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
                         rho_pinion=np.where(found, bm.rho_pinion, np.nan), rho_gear=np.where(found, bm.rho_gear, np.nan),
                         region=region, te_engagement=np.broadcast_to(te0[:, None], (nc, nt)).copy(),
                         lte_engagement=lte0, curve_force=cf, curve_approach=ca, params=params,
-                        curve_separation=rel, curve_compliance=comp, lead_slope=np.array(lead))
+                        curve_separation=rel, curve_compliance=comp, lead_slope=np.array(lead_rows))
 
 
 def _without_column(basis: SeparationBasis, column: int) -> SeparationBasis:
@@ -877,7 +922,8 @@ def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, dmax: np
     else:
         q = x / c.reshape(-1)[flat]
     force = np.bincount(rk, weights=q, minlength=rows * levels).reshape(rel.shape[:-1] + (levels,))
-    return force, d.reshape(rel.shape[:-1] + (levels,))
+    # the described bodies in series: they bend under the entering pair's force too (gearmesh.body)
+    return force, d.reshape(rel.shape[:-1] + (levels,)) + model.body_compliance * force
 
 
 def _curve_reach(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, force: np.ndarray) -> np.ndarray:
@@ -1132,18 +1178,27 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
         raise GearmeshInputError("samples", samples, f"must be a positive integer dividing the {nc} parameter sets")
     lead = np.broadcast_to(np.asarray(lt.lead_slope if lead_slope is None else lead_slope, dtype=float), (nc, 2))
     force = check_torques(torques) / float(g.base_radius[0])
+    mis = mesh_misalignment(g, force)
     grid = lt.grid
     p = grid.gap.shape[0] - 1  # the last row is φ1A
     basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
-    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead[:, None, None, None, :],
-                    params[:, None, None, None, :, :])  # (C, P, J, N)
+    z = np.broadcast_to(grid.z, basis.base.shape)
     nt = force.size
-    gap = gap.reshape(nc, p, -1)
     # each position's candidate points first (the grid's, the same for every gear), the rest dropped
-    candidate = np.isfinite(gap).any(axis=0)  # (P, M)
+    candidate = np.isfinite(basis.base).reshape(p, -1)  # (P, M)
     cols = np.argsort(~candidate, axis=1, kind="stable")[:, :int(candidate.sum(axis=1).max())]  # (P, M')
-    q, delta = _cycle_loads(lt.law, np.take_along_axis(gap, cols[None], axis=2),
-                            np.take_along_axis(lt.compliance[:p].reshape(p, -1), cols, axis=1), force, samples)
+    comp = np.take_along_axis(lt.compliance[:p].reshape(p, -1), cols, axis=1)
+
+    def gaps(m: float) -> np.ndarray:  # (C, P, M') at mesh misalignment m
+        gp = basis_gap(g, basis, z, with_misalignment(lead, m)[:, None, None, None, :],
+                       params[:, None, None, None, :, :])  # (C, P, J, N)
+        return np.take_along_axis(gp.reshape(nc, p, -1), cols[None], axis=2)
+
+    if np.all(mis == mis[0]):
+        q, delta = _cycle_loads(lt.law, gaps(mis[0]), comp, force, samples)
+    else:  # each torque at its own misalignment (the system deflection grows with the load)
+        solved = [_cycle_loads(lt.law, gaps(mis[t]), comp, force[t:t + 1], samples) for t in range(nt)]
+        q, delta = (np.concatenate([s[i] for s in solved], axis=1) for i in (0, 1))
     w = q / grid.dz  # line loads (N/m), (C, T, P, M')
     nan = np.full((nc, nt), np.nan)
     flank = edge = root = nan
@@ -1154,7 +1209,7 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
         flank = np.where(edge_point, 0.0, p0).max(axis=(2, 3))
         edge = np.where(edge_point, p0, 0.0).max(axis=(2, 3))
         root = (w * root_stress).max(axis=(2, 3))
-    load = np.zeros((nc, nt, p, gap.shape[2]))
+    load = np.zeros((nc, nt, p, candidate.shape[1]))
     np.put_along_axis(load, np.broadcast_to(cols, q.shape), q, axis=3)
     return LTCACriteria(lte_peak_to_peak=np.ptp(delta, axis=-1), te_harmonics=lte_harmonics(delta),
                         max_line_load=w.max(axis=(2, 3)), flank_pressure=flank, edge_pressure=edge,
@@ -1446,9 +1501,10 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     t_star = float(st.tau[0, 0])
     m = model.equivalent_mass
     # tangent mesh stiffness at the touch (all pairs) for the time scale
-    grid0 = candidate_grid(g, np.array([float(st.roll[0, 0])]), model.points, model.lead_slope,
+    lead = with_misalignment(model.lead_slope, float(mesh_misalignment(g, f_bt)))  # this torque's mesh
+    grid0 = candidate_grid(g, np.array([float(st.roll[0, 0])]), model.points, lead,
                            model.extension / g.transverse_base_pitch, pairs=model.window_pairs)
-    gap0 = basis_gap(g, grid0.basis, np.broadcast_to(grid0.z, grid0.s.shape), model.lead_slope, params[0])
+    gap0 = basis_gap(g, grid0.basis, np.broadcast_to(grid0.z, grid0.s.shape), lead, params[0])
     comp0 = point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid0.s, grid0.region, grid0.rho_pinion,
                              grid0.rho_gear, with_hertz=law.name == "linear") / grid0.dz
     _, _, k0, _ = solve_contact(gap0.reshape(1, -1), comp0.reshape(1, -1), np.array([f_bt]), law)
@@ -1457,9 +1513,9 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     tau0 = t_star - max(0.02 * g.transverse_base_pitch, 0.5 * period * rate)
     tau1 = t_star + cycles_after * period * rate
     taus = np.linspace(tau0, tau1, int(samples))
-    grid = candidate_grid(g, model.roll(taus), model.points, model.lead_slope, model.extension / g.transverse_base_pitch,
+    grid = candidate_grid(g, model.roll(taus), model.points, lead, model.extension / g.transverse_base_pitch,
                           pairs=model.window_pairs)
-    gaps = basis_gap(g, grid.basis, np.broadcast_to(grid.z, grid.s.shape), model.lead_slope, params[0])
+    gaps = basis_gap(g, grid.basis, np.broadcast_to(grid.z, grid.s.shape), lead, params[0])
     comps = point_compliance(g, model.ltca.pair_table, model.ltca.tables, grid.s, grid.region, grid.rho_pinion,
                              grid.rho_gear, with_hertz=law.name == "linear") / grid.dz
     nr = taus.size
@@ -1489,7 +1545,7 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
 
     # static start: approach of all pairs at τ0 and its rate
     h = 1e-7 * g.transverse_base_pitch
-    d_lo, d0, d_hi = _approach_at(model, params, model.lead_slopes(None, 1), st.force, np.array([tau0 - h, tau0, tau0 + h])[:, None, None],
+    d_lo, d0, d_hi = _approach_at(model, params, lead[None], st.force, np.array([tau0 - h, tau0, tau0 + h])[:, None, None],
                                   others=False)[:, 0, 0]
     v0 = (d_hi - d_lo) / (2 * h) * rate
     t_end = (tau1 - tau0) / rate

@@ -73,17 +73,19 @@ from .gear import PairGeometry, pinion_torque
 from .limits import positive_values
 from .loads import check_loads
 from .body import mesh_body_compliance
+from .deflection import mesh_deflection, mesh_misalignment
+from .deviation import lead_gap
 from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
                         pair_slice_table, require_stiffness_data, slice_compliance_table)
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
                   check_count, first_contact, nanmin, candidate_grid, check_extension, check_modifications,
-                  engagement_point, engagement_separation)
+                  engagement_point, engagement_separation, pair_lead_slope)
 
 __all__ = [
     "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
     "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact",
     "solve_contact_tabulated", "load_sums", "LTCAResult", "ltca", "contact_tangent_compliance",
-    "edge_tangent_stiffness", "with_loaded_extension", "MESH_ORDERS", "lte_harmonics",
+    "edge_tangent_stiffness", "with_loaded_extension", "MESH_ORDERS", "lte_harmonics", "torque_gaps",
 ]
 
 #: Mesh orders of the loaded-TE harmonics (ltca.nc, the optimiser's TE criteria).
@@ -556,9 +558,10 @@ class LTCAModel:
     pair_table: PairSliceTable
     lead_slope: tuple[float, float]
     tables: tuple[SliceComplianceTable, SliceComplianceTable]
+    misalignment: float = 0.0  # the stated mesh misalignment f_ma in the grid's separations (m)
 
 
-def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
+def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=None,
                contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
                extension: float = DEFAULT_EXTENSION,
                tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
@@ -569,7 +572,10 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     :func:`gearmesh.stiffness.mesh_stiffness` interpolates it; tip-edge points take each
     tooth's table at its own touched roll length (the tip of the one, ρ_P of the other,
     both within the active flank). ``tables`` may be passed to reuse the per-gear
-    :class:`~gearmesh.stiffness.SliceComplianceTable` (same ``method``).
+    :class:`~gearmesh.stiffness.SliceComplianceTable` (same ``method``). ``lead_slope`` None: the
+    pair's own deviations (:func:`gearmesh.tca.pair_lead_slope`); the grid's separations carry
+    the pair's stated mesh misalignment too (the load-dependent f_sh is added per torque by
+    :func:`ltca`).
     """
     check_modifications(geom)
     require_stiffness_data(geom)
@@ -583,7 +589,9 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     pair_table = pair_slice_table(geom, tables)
     roll_a = engagement_point(geom)[0]
     roll = np.append(mesh_cycle_rolls(geom, positions), roll_a)
-    grid = candidate_grid(geom, roll, points, tuple(lead_slope), extension)
+    lead_slope = pair_lead_slope(geom, lead_slope)
+    mis = geom.pair.deviations.misalignment
+    grid = candidate_grid(geom, roll, points, lead_slope, extension, misalignment=mis)
     law = contact_law(geom, grid.dz, contact_law_name)
     if contact_law_name == "linear":  # the Hertz part sits in the tooth compliance, as the stiffness stage
         law = ContactLaw("linear", 0.0, 1.0, 0.0, grid.dz)
@@ -591,7 +599,7 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
                                  with_hertz=contact_law_name == "linear")
     compliance = per_width / grid.dz
     return LTCAModel(geom=geom, grid=grid, compliance=compliance, law=law, method=method, pair_table=pair_table,
-                     lead_slope=tuple(float(v) for v in lead_slope), tables=tables)
+                     lead_slope=lead_slope, tables=tables, misalignment=mis)
 
 
 # --------------------------------------------------------------------------------------
@@ -635,7 +643,11 @@ class LTCAResult:
     stiffness dF/dδ (N/m); pairs_in_contact (T, P); corner_load (T, P) load on tip edges
     (regions 2, 3) (N); lte_at_engagement, stiffness_at_engagement,
     corner_load_at_engagement (T,) at φ1A; tca the unloaded :class:`~gearmesh.tca.TCAResult`
-    on the same grid; model the :class:`LTCAModel`; iterations the Newton steps used.
+    on the same grid; model the :class:`LTCAModel`; iterations the Newton steps used;
+    misalignment (T,) the mesh's lead mismatch beyond the gears' lead slopes (m: the stated f_ma
+    and the system deflection's f_sh, :func:`gearmesh.deflection.mesh_misalignment`);
+    system_approach (T,) the supports' translation of the gear centres along the transverse line
+    of action (m, not in ``lte``: :mod:`gearmesh.deflection`).
     """
 
     torque: np.ndarray
@@ -651,6 +663,8 @@ class LTCAResult:
     tca: TCAResult
     model: LTCAModel
     iterations: int
+    misalignment: np.ndarray | None = None
+    system_approach: np.ndarray | None = None
 
     @property
     def grid(self) -> CandidateGrid:
@@ -675,20 +689,37 @@ def _tca_from_grid(model: LTCAModel, te_pair_full: np.ndarray, tol: float = 1e-9
     te_pair = te_pair_full[:p]
     cs, cz, c1, c2 = first_contact(grid, te_pair, tol)
     roll_a, j_a, z_a = engagement_point(geom)
-    te_a, next_a = engagement_separation(geom, g.z.size, model.lead_slope, g.extension / geom.transverse_base_pitch)
+    te_a, next_a = engagement_separation(geom, g.z.size, model.lead_slope, g.extension / geom.transverse_base_pitch,
+                                         model.misalignment)
     return TCAResult(grid=grid, te=nanmin(te_pair, axis=-1), te_pair=te_pair, contact_s=cs, contact_z=cz,
                      contact_rho_pinion=c1, contact_rho_gear=c2, roll_engagement=roll_a, pair_engagement=j_a,
                      z_engagement=z_a, te_at_engagement=te_a, te_next_pair_at_engagement=next_a,
-                     lead_slope=model.lead_slope)
+                     lead_slope=model.lead_slope, misalignment=model.misalignment)
 
 
-def _solve(model: LTCAModel, force: np.ndarray):
+def torque_gaps(model: LTCAModel, misalignment: np.ndarray) -> np.ndarray:
+    """The grid's separations (T, P+1, J, N) (m) at each torque's mesh misalignment ``misalignment``
+    (T,) m (the stated f_ma and the load's f_sh; the grid carries the stated one alone)."""
+    g, geom = model.grid, model.geom
+    mis = np.asarray(misalignment, dtype=float)
+    if np.all(mis == model.misalignment):
+        return np.broadcast_to(g.gap[None], (mis.size,) + g.gap.shape)
+    z = np.broadcast_to(g.z, g.gap.shape)
+    lead = np.asarray(model.lead_slope)
+    return (g.gap[None] - lead_gap(geom, lead, z, model.misalignment)[None]
+            + lead_gap(geom, lead, z[None], mis[:, None, None, None]))
+
+
+def _solve(model: LTCAModel, force: np.ndarray, misalignment: np.ndarray | None = None):
     """All torques and positions of ``model`` in one vectorised solve: loads (T, P+1, J, N),
-    approach (T, P+1), tangent stiffness (T, P+1), Newton iterations."""
+    approach (T, P+1), tangent stiffness (T, P+1), Newton iterations; ``misalignment`` (T,) m the
+    mesh misalignment per torque (None: the grid's)."""
     g = model.grid
     pp, jj, nn = g.gap.shape
     nt = force.size
-    gap = np.broadcast_to(g.gap.reshape(1, pp, jj * nn), (nt, pp, jj * nn)).reshape(nt * pp, jj * nn)
+    if misalignment is None:
+        misalignment = np.full(nt, model.misalignment)
+    gap = torque_gaps(model, misalignment).reshape(nt * pp, jj * nn)
     comp = np.broadcast_to(model.compliance.reshape(1, pp, jj * nn), (nt, pp, jj * nn)).reshape(nt * pp, jj * nn)
     q, delta, k, it = solve_contact(gap, comp, np.repeat(force, pp), model.law)
     return q.reshape(nt, pp, jj, nn), delta.reshape(nt, pp), k.reshape(nt, pp), it
@@ -704,9 +735,9 @@ def _reach_exceeded(model: LTCAModel, q: np.ndarray) -> bool:
     return bool(np.any((q > 0) & far[None]))
 
 
-def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
+def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lead_slope=None,
          on: str = "pinion", contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
-         extension: float = DEFAULT_EXTENSION, model: LTCAModel | None = None) -> LTCAResult:
+         extension: float = DEFAULT_EXTENSION, model: LTCAModel | None = None, misalignment=None) -> LTCAResult:
     """Loaded TCA at each torque over one mesh cycle (and at the start of engagement φ1A).
 
     Parameters
@@ -714,24 +745,34 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     geom : pair geometry (needs material and bore radius; carries the modifications).
     torques : torque(s) in N·m, on the pinion or, with ``on='gear'``, on the gear.
     positions, points : roll positions per mesh cycle and points per contact line.
-    lead_slope : lead slope errors [pinion, gear] (m over the face width).
+    lead_slope : lead slope deviations [pinion, gear] (m over the face width); None: the pair's
+        own (:mod:`gearmesh.deviation`).
     contact_law_name : 'palmgren' (default) or 'linear' (module docstring).
     method : cantilever model of the slice compliance (:mod:`gearmesh.stiffness`).
     extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
     model : a prepared :class:`LTCAModel` to reuse (then the grid arguments are ignored).
+    misalignment : the mesh misalignment (m) of each torque, instead of the pair's own
+        (:func:`gearmesh.deflection.mesh_misalignment`; e.g. the rating's with ISO's f_ma).
 
     When loaded tip edges reach the outer fifth of the candidate zone beyond the active
     profile, the zone is doubled (up to one base pitch) and the LTCA repeated; with a given
     ``model`` a RuntimeWarning is issued instead.
+
+    The mesh misalignment of each torque — the pair's stated f_ma and the system deflection's f_sh
+    under that torque's force (:func:`gearmesh.deflection.mesh_misalignment`) — adds to the
+    separations as a lead mismatch (:func:`torque_gaps`); the supports' translation along the line
+    of action is reported beside the LTE (``system_approach``), not in it.
     """
     t1 = pinion_torques(geom, torques, on)
-    lead_slope = tuple(float(v) for v in lead_slope)
+    lead_slope = pair_lead_slope(geom, lead_slope)
     force = t1 / geom.base_radius[0]
+    misalignment = (mesh_misalignment(geom, force) if misalignment is None
+                    else np.broadcast_to(np.asarray(misalignment, dtype=float), force.shape).copy())
     own = model is None
     while True:
         if own:
             model = ltca_model(geom, positions, points, lead_slope, contact_law_name, method, extension)
-        q, delta, k, it = _solve(model, force)
+        q, delta, k, it = _solve(model, force, misalignment)
         if not _reach_exceeded(model, q):
             break
         if not own or extension >= 1.0:
@@ -754,7 +795,8 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     return LTCAResult(torque=t1, force=force, load=q[:, :p], lte=delta[:, :p], stiffness=k[:, :p],
                       pairs_in_contact=in_contact[:, :p], corner_load=corner_load[:, :p],
                       lte_at_engagement=delta[:, p], stiffness_at_engagement=k[:, p],
-                      corner_load_at_engagement=corner_load[:, p], tca=tca_res, model=model, iterations=it)
+                      corner_load_at_engagement=corner_load[:, p], tca=tca_res, model=model, iterations=it,
+                      misalignment=misalignment, system_approach=mesh_deflection(geom).approach_per_force * force)
 
 
 def lte_harmonics(lte, orders=MESH_ORDERS) -> np.ndarray:

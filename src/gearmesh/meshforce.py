@@ -62,9 +62,12 @@ from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry
 from .body import mesh_body_compliance
+from .deflection import mesh_misalignment
+from .deviation import with_misalignment
 from .ltca import ContactLaw, load_sums, ltca_model, point_compliance, solve_contact
 from .stiffness import SliceComplianceTable
-from .tca import REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point
+from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point,
+                  pair_lead_slope)
 
 __all__ = ["MeshForceTable", "mesh_force_table", "TableLayout", "table_layout", "tabulate", "DEFAULT_TABLE_POSITIONS", "DEFAULT_TABLE_APPROACHES",
            "DEFAULT_TABLE_EXTENSION"]
@@ -324,9 +327,10 @@ def _with_body(u, force, stiff, enter, c_body: float, force_max: float):
 
 def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFAULT_TABLE_POSITIONS,
                      approaches: int = DEFAULT_TABLE_APPROACHES, points: int = DEFAULT_TABLE_POINTS,
-                     lead_slope=(0.0, 0.0), contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
+                     lead_slope=None, contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
                      extension: float = DEFAULT_TABLE_EXTENSION,
-                     tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None) -> MeshForceTable:
+                     tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
+                     static_force: float | None = None) -> MeshForceTable:
     """Tabulate the mesh force F(x, w) of ``geom`` (its modifications) over one mesh cycle.
 
     Parameters
@@ -336,17 +340,23 @@ def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFA
         with its tangent).
     positions, approaches : rows per mesh cycle and columns (module docstring).
     points : candidate points (slices) per contact line, as the LTCA's ``points``.
-    lead_slope : lead slope errors [pinion, gear] (m over the face width).
+    lead_slope : lead slope deviations [pinion, gear] (m over the face width); None: the pair's own.
     contact_law_name, method : local contact law and cantilever model (:mod:`gearmesh.ltca`).
     extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt, at
         most 0.5: the entering pair is followed over half a pitch before A).
     tables : per-gear slice compliance tables to reuse (same ``method``).
+    static_force : the static transverse force (N) whose mesh misalignment the separations carry
+        (the stated f_ma and the system deflection's f_sh at it,
+        :func:`gearmesh.deflection.mesh_misalignment`: the gearbox deflects with the mean load);
+        None: the stated f_ma alone.
 
     Several micro-geometries of one pair: :func:`table_layout` once, then :func:`tabulate` of
     :meth:`TableLayout.gaps` for each.
     """
     layout = table_layout(geom, positions, points, contact_law_name, method, extension, tables)
-    return tabulate(layout, layout.gaps(lead_slope=tuple(lead_slope)), force_max, approaches)
+    lead = with_misalignment(pair_lead_slope(geom, lead_slope),
+                             float(mesh_misalignment(geom, 0.0 if static_force is None else static_force)))
+    return tabulate(layout, layout.gaps(lead_slope=lead), force_max, approaches)
 
 
 def _warn_reach(grid, gap: np.ndarray, x_max: np.ndarray, ext: float, path: float) -> None:

@@ -49,7 +49,6 @@ SteadyState = Literal["shooting", "transient"]
 
 _METHOD = ("slice model of the tooth compliance: traditional, improved or transition (hob fillet) potential-energy "
            "cantilever, or fe (2-D finite elements)")
-_LEAD = "lead slope deviation f_Hβ of [pinion, gear] over the face width (positive: more contact at the face end z > 0)"
 _CORNER = "candidate tip-edge contacts beyond the active zone, in transverse base pitches"
 _LAW = "local contact law: palmgren (F ∝ δ^1.11 per slice) or linear"
 
@@ -72,10 +71,6 @@ def _positions(default: int = 360, maximum: int = 100000, what: str = "") -> Any
 
 def _points(default: int = 50, what: str = "") -> Any:
     return setting(default, f"points per contact line{what}", minimum=2, maximum=2000)
-
-
-def _lead_slope(what: str = "") -> Any:
-    return setting((0.0, 0.0), _LEAD + what, minimum=-MAX_LEAD_SLOPE_UM, maximum=MAX_LEAD_SLOPE_UM)
 
 
 def _contact_law(what: str = "") -> Any:
@@ -190,7 +185,6 @@ class Tca:
         figures="gearmesh.plots.ltca:tca_figures")
     positions: int = _positions(64, 10000)
     points: int = _points()
-    lead_slope_um: tuple[float, float] = _lead_slope()
     corner_extension: float = _corner_extension()
 
 
@@ -206,7 +200,6 @@ class Ltca:
     on: Gear = setting("pinion", "the gear the torques act on")
     positions: int = _positions(64, 10000)
     points: int = _points()
-    lead_slope_um: tuple[float, float] = _lead_slope()
     contact_law: ContactLaw = _contact_law()
     method: Method = _method()
     corner_extension: float = _corner_extension()
@@ -253,7 +246,6 @@ class Impact:
     simulate_torques_Nm: tuple[float, ...] = setting(
         (), "torques (among torques_Nm) whose engagement is also integrated in time at the design speed",
         exclusive_minimum=0, max_items=20)
-    lead_slope_um: tuple[float, float] = _lead_slope()
     contact_law: ContactLaw = _contact_law()
     method: Method = _method()
     corner_extension: float = _corner_extension()
@@ -442,7 +434,6 @@ class _Dynamics:
     contact_law: ContactLaw = _contact_law(" (contact table)")
     points: int = _points(200, " of the contact table (the first touch at the face-end corner converges as "
                                "1/points; 200 puts the default pair's within 0.03 mm of roll of 400's)")
-    lead_slope_um: tuple[float, float] = _lead_slope(" (contact table)")
     table_positions: int = setting(256, "positions per mesh cycle of the contact table", minimum=16, maximum=100000)
     table_approaches: int = setting(96, "approaches of the contact table", minimum=8, maximum=100000)
     table_force_factor: float = setting(4.0, "the contact table reaches this many times the largest static force",
@@ -816,12 +807,32 @@ class PairFile:
         exclusive_minimum=0)
     web_thickness_mm: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
         None, "thickness of each gear body's web, one, [pinion, gear] or rigid, at most the face width: the body's "
-        "axial bending under the helical load in series with the mesh (gearmesh.body; null: a solid disc, the face "
-        "width; rigid: no body bending, the model of ISO 6336-1's c' and of the source documents)",
+        "axial bending under the helical load in series with the mesh and its tilt with the shafts' (gearmesh.body; "
+        "needs the shafts and bearings; null with no hub_diameter_mm: no body described, the teeth alone, ISO "
+        "6336-1's model; null with a hub: a solid disc, the face width; rigid: no body bending)",
         exclusive_minimum=0)
     hub_diameter_mm: float | tuple[float, float] | None = setting(
         None, "diameter where each web meets its hub (held), one or [pinion, gear], from the bore up to below the "
         "root circle (gearmesh.body; null: the bore)", exclusive_minimum=0)
+    gear_offset_mm: float | tuple[float, float] | None = setting(
+        None, "offset of each gear's face centre from the middle of its bearing span, signed towards the leading "
+        "face end (the end where a tooth pair's contact line enters first), one or [pinion, gear] (null: mid-span; "
+        "with shaft_diameter_mm)")
+    torque_side: tuple[Literal["leading", "trailing"], Literal["leading", "trailing"]] | None = setting(
+        None, "the face end on whose side each shaft carries the torque, [pinion, gear] (null: the side that gives "
+        "the larger mesh misalignment, stated in the results; with shaft_diameter_mm)")
+    lead_slope_deviation_um: tuple[float, float] | None = setting(
+        None, "helix slope deviation f_Hβ of each gear over its face, [pinion, gear] (ISO 1328-1), positive where "
+        "the flank stands proud at the leading face end: the mesh sees the sum (null: none)",
+        minimum=-MAX_LEAD_SLOPE_UM, maximum=MAX_LEAD_SLOPE_UM)
+    profile_slope_deviation_um: tuple[float, float] | None = setting(
+        None, "profile slope deviation f_Hα of each gear over its active profile, [pinion, gear] (ISO 1328-1), "
+        "positive where the flank stands proud at the tip (null: none)",
+        minimum=-MAX_LEAD_SLOPE_UM, maximum=MAX_LEAD_SLOPE_UM)
+    mesh_misalignment_um: float | None = setting(
+        None, "mesh misalignment f_ma in the plane of action (ISO 6336-1), signed as the lead slope deviations "
+        "(null: none in the analyses; the rating takes ISO's f_ma of the accuracy grade)",
+        minimum=-MAX_LEAD_SLOPE_UM, maximum=MAX_LEAD_SLOPE_UM)
     modification: PairModification | None = setting(None, "micro-geometry of each gear")
     accuracy_grade: int | None = setting(None, "ISO 1328-1 accuracy grade of the rating (null: 6)", minimum=1,
                                          maximum=12)

@@ -76,7 +76,11 @@ def roller_bearing_stiffness(radial_load: float, axial_load: float, rollers: int
 #: Pair-file keys of the supports (engineering units), each one value, [pinion, gear] or (the
 #: stiffnesses) ``rigid``.
 SUPPORT_KEYS = ("bearing_radial_stiffness_N_per_um", "bearing_axial_stiffness_N_per_um", "shaft_diameter_mm",
-                "bearing_span_mm")
+                "bearing_span_mm", "gear_offset_mm", "torque_side")
+#: The shaft end (of the face) on whose side each gear's shaft carries the torque: the face end
+#: where a tooth pair's contact line enters first (pinion driving) is the leading one
+#: (:mod:`gearmesh.deviation`).
+TORQUE_SIDES = ("leading", "trailing")
 RIGID = "rigid"
 #: Supports of a pair file that says none: seed 001 §4's bearings (k_x = k_y = 1.5·10⁸ N/m,
 #: k_z = 10⁷ N/m, both gears), the only bearing values of the source documents. They belong to
@@ -97,15 +101,25 @@ class Supports:
     shaft_diameter: tuple[float, float] | None = None
     bearing_span: tuple[float, float] | None = None
     defaulted: bool = False
+    gear_offset: tuple[float, float] = (0.0, 0.0)
+    torque_side: tuple[str, str] | None = None
 
     def radial(self, youngs_modulus: float) -> tuple[float, float]:
         """Radial stiffness (N/m) at each gear centre: bearings in series with the shaft's bending
-        (:func:`shaft_bending_stiffness`, E of the pair's material); inf where both are rigid."""
+        (E of the pair's material); inf where both are rigid. With the gear at distances a and c
+        from its two bearings (a + c = L, ``gear_offset`` s from mid-span: a, c = L/2 ± s) the
+        shaft deflects F a²c²/(3EIL) under the load (Roark, Table 8.1 case 1e) and the two
+        bearings, each half the stated stiffness k, carry F c/L and F a/L: their deflections put
+        the gear at F (a² + c²)/(L² k/2) (at mid-span F/k and 48EI/L³: :func:`shaft_bending_stiffness`)."""
         if self.shaft_diameter is None:
             return self.bearing_radial
-        return tuple(in_series(kb, shaft_bending_stiffness(youngs_modulus, d, span)) if math.isfinite(kb)
-                     else shaft_bending_stiffness(youngs_modulus, d, span)
-                     for kb, d, span in zip(self.bearing_radial, self.shaft_diameter, self.bearing_span))
+        out = []
+        for kb, d, span, s in zip(self.bearing_radial, self.shaft_diameter, self.bearing_span, self.gear_offset):
+            a, c = 0.5 * span + s, 0.5 * span - s
+            shaft = 3.0 * youngs_modulus * math.pi * d**4 / 64.0 * span / (a * a * c * c)
+            bearings = kb * span * span / (2.0 * (a * a + c * c))
+            out.append(in_series(bearings, shaft) if math.isfinite(kb) else shaft)
+        return tuple(out)
 
     def axial(self) -> tuple[float, float]:
         """Axial stiffness (N/m) at each gear centre (the bearings'; inf: rigid)."""
@@ -121,6 +135,10 @@ class Supports:
         if self.shaft_diameter is not None:
             out["shaft_diameter_mm"] = [d * 1e3 for d in self.shaft_diameter]
             out["bearing_span_mm"] = [s * 1e3 for s in self.bearing_span]
+        if any(self.gear_offset):
+            out["gear_offset_mm"] = [s * 1e3 for s in self.gear_offset]
+        if self.torque_side is not None:
+            out["torque_side"] = list(self.torque_side)
         return out
 
     def describe(self, youngs_modulus: float) -> str:
@@ -185,11 +203,48 @@ def read_supports(spec: Mapping[str, Any]) -> Supports:
     if shaft and not stiff:
         raise GearmeshInputError(SUPPORT_KEYS[0], None, f"is required with {shaft[0]} (the bearings the shaft "
                                  "sits in)")
+    placed = [k for k in SUPPORT_KEYS[4:] if k in given]
+    if placed and not shaft:
+        raise GearmeshInputError(placed[0], given[placed[0]], "needs shaft_diameter_mm and bearing_span_mm (the shaft "
+                                 "it places the gear on)")
     if not stiff:
         d = DEFAULT_SUPPORTS_N_PER_UM
         return Supports(_stiffness(SUPPORT_KEYS[0], d[SUPPORT_KEYS[0]]),
                         _stiffness(SUPPORT_KEYS[1], d[SUPPORT_KEYS[1]]), defaulted=True)
+    span = per_gear_length(SUPPORT_KEYS[3], given[SUPPORT_KEYS[3]]) if shaft else None
+    offset = _offsets(given.get(SUPPORT_KEYS[4]), span) if shaft else (0.0, 0.0)
     return Supports(_stiffness(SUPPORT_KEYS[0], given[SUPPORT_KEYS[0]]),
                     _stiffness(SUPPORT_KEYS[1], given[SUPPORT_KEYS[1]]),
                     per_gear_length(SUPPORT_KEYS[2], given[SUPPORT_KEYS[2]]) if shaft else None,
-                    per_gear_length(SUPPORT_KEYS[3], given[SUPPORT_KEYS[3]]) if shaft else None)
+                    span, gear_offset=offset, torque_side=_torque_sides(given.get(SUPPORT_KEYS[5])))
+
+
+def _offsets(value: Any, span: tuple[float, float]) -> tuple[float, float]:
+    """``gear_offset_mm`` (one or [pinion, gear], signed towards the leading face end) → (m, m), each
+    gear centre strictly between its bearings (an overhung gear is outside this beam model)."""
+    key = SUPPORT_KEYS[4]
+    if value is None:
+        return 0.0, 0.0
+    items = list(value) if isinstance(value, (list, tuple)) else [value, value]
+    if len(items) != 2:
+        raise GearmeshInputError(key, value, "must be one value or a [pinion, gear] pair (mm)")
+    out = []
+    for i, v in enumerate(items):
+        if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise GearmeshInputError(f"{key}[{i}]", v, "must be a finite length (mm, signed)")
+        if abs(v) * 1e-3 >= 0.5 * span[i]:
+            raise GearmeshInputError(f"{key}[{i}]", v, f"must place the gear between its bearings: |offset| < half "
+                                     f"the bearing span, {0.5e3 * span[i]:.6g} mm")
+        out.append(float(v) * 1e-3)
+    return out[0], out[1]
+
+
+def _torque_sides(value: Any) -> tuple[str, str] | None:
+    """``torque_side`` [pinion, gear] of :data:`TORQUE_SIDES` (None: not stated)."""
+    key = SUPPORT_KEYS[5]
+    if value is None:
+        return None
+    if not isinstance(value, (list, tuple)) or len(value) != 2 or any(v not in TORQUE_SIDES for v in value):
+        raise GearmeshInputError(key, value, f"must be a [pinion, gear] pair of {list(TORQUE_SIDES)}: the face end on "
+                                 "whose side each shaft carries the torque")
+    return str(value[0]), str(value[1])

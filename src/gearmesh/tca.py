@@ -70,6 +70,7 @@ import numpy as np
 
 from .contact import hand_sign, mesh_cycle_rolls
 from .choices import DEFAULT_CORNER_EXTENSION
+from .deviation import lead_gap, profile_gap
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
 from .limits import MAX_LEAD_SLOPE_UM
@@ -77,9 +78,9 @@ from .surface import modification_parameters, relief_depth
 
 __all__ = [
     "REGION_NONE", "REGION_FLANK", "REGION_APPROACH_TIP", "REGION_RECESS_TIP",
-    "CandidateGrid", "TCAResult", "check_modifications", "check_lead_slope", "check_extension", "point_centres",
+    "CandidateGrid", "TCAResult", "check_modifications", "check_lead_slope", "check_extension", "point_centres", "pair_lead_slope",
     "SeparationBasis", "separation_basis", "basis_gap", "approach_tip_point", "recess_tip_point",
-    "lead_deviation", "flank_separation", "approach_tip_separation", "recess_tip_separation",
+    "flank_separation", "approach_tip_separation", "recess_tip_separation",
     "candidate_grid", "engagement_point", "engagement_separation", "tca",
 ]
 
@@ -143,6 +144,14 @@ def check_lead_slope(lead_slope_um) -> tuple[float, float]:
     return out[0], out[1]
 
 
+def pair_lead_slope(geom: PairGeometry, lead_slope=None) -> tuple[float, float]:
+    """The lead slope deviations (m) a model takes: ``lead_slope`` as given, or None: the pair's own
+    (``pair.deviations.lead_slope``, :mod:`gearmesh.deviation`)."""
+    if lead_slope is None:
+        return tuple(float(v) for v in geom.pair.deviations.lead_slope)
+    return tuple(float(v) for v in lead_slope)
+
+
 def check_count(name: str, value, minimum: int, maximum: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not minimum <= value <= maximum:
         raise GearmeshInputError(name, value, f"must be an integer in [{minimum}, {maximum}]")
@@ -167,23 +176,6 @@ def point_centres(geom: PairGeometry, n_points: int) -> tuple[np.ndarray, float]
     (as :func:`gearmesh.stiffness.slice_centres`)."""
     dz = geom.face_width / n_points
     return -0.5 * geom.face_width + dz * (np.arange(n_points) + 0.5), dz
-
-
-def lead_deviation(geom: PairGeometry, lead_slope: tuple[float, float], z) -> np.ndarray:
-    """Transverse gap (m) opened by lead slope errors of both gears at axial position z (m).
-
-    Each gear's helix slope deviation f (m over the face width b, signed; ISO 1328-1 helix
-    slope deviation fHβ, measured in the transverse plane along the base tangent) tilts its
-    flank by f·z/b; the mesh sees their sum, the misalignment f1 + f2, as the gap
-    (f1 + f2)·z/b + |f1 + f2|/2 ≥ 0 (zero at one face end). Equal and opposite errors of
-    pinion and gear cancel exactly: an aligned pair with matching errors has zero TE.
-
-    ``lead_slope`` is a pair (f1, f2) or an array (..., 2) of pairs whose leading axes
-    broadcast against ``z`` (one pair per row of a batch: tolerance samples of the impact model).
-    """
-    z = np.asarray(z, dtype=float)
-    f = np.sum(np.asarray(lead_slope, dtype=float), axis=-1)
-    return f * z / geom.face_width + 0.5 * np.abs(f)
 
 
 @dataclass(frozen=True)
@@ -348,31 +340,39 @@ def separation_basis(geom: PairGeometry, s, extension: float = np.inf) -> Separa
     return SeparationBasis(region=region, base=base, w_pinion=w1, w_gear=w2, rho_pinion=rho1, rho_gear=rho2)
 
 
-def basis_gap(geom: PairGeometry, basis: SeparationBasis, z, lead_slope=(0.0, 0.0), params=None) -> np.ndarray:
+def basis_gap(geom: PairGeometry, basis: SeparationBasis, z, lead_slope=(0.0, 0.0), params=None,
+              misalignment=0.0) -> np.ndarray:
     """Transverse gaps (m) of the points of ``basis`` at axial positions ``z`` (m, broadcast).
 
     ``params``: the modification parameters of both gears, (..., 2, 6) in m in the order of
     :data:`gearmesh.surface.MODIFICATION_FIELDS` (leading axes broadcast against the
-    points, e.g. (C, 1, 1, 2, 6) for C candidates); default the pair's own. NaN where the
-    basis has no candidate.
+    points, e.g. (C, 1, 1, 2, 6) for C candidates); default the pair's own. ``lead_slope``
+    (..., 2) the gears' lead slope deviations and ``misalignment`` the mesh's further lead
+    mismatch (m, broadcast like ``lead_slope[..., 0]``): :func:`gearmesh.deviation.lead_gap`;
+    the pair's own profile slope deviations (:func:`gearmesh.deviation.profile_gap`) are
+    always added. NaN where the basis has no candidate.
     """
     if params is None:
         params = modification_parameters(geom)
     params = np.asarray(params, dtype=float)
     lead = np.asarray(lead_slope, dtype=float)
-    shape = np.broadcast_shapes(basis.base.shape, params.shape[:-2], np.shape(z), lead.shape[:-1])
+    mis = np.asarray(misalignment, dtype=float)
+    shape = np.broadcast_shapes(basis.base.shape, params.shape[:-2], np.shape(z), lead.shape[:-1], mis.shape)
     gap = basis.base
     for gear, (w, rho) in enumerate(((basis.w_pinion, basis.rho_pinion), (basis.w_gear, basis.rho_gear))):
         p = params[..., gear, :]
         if np.any(p):  # an unmodified flank adds nothing (the common case for one of the gears)
             gap = gap + w * relief_depth(p, float(geom.rho_sap[gear]), float(geom.rho_eap[gear]), geom.face_width,
                                          np.nan_to_num(rho), z)
-    if np.any(lead):
-        gap = gap + lead_deviation(geom, lead, z)
+    if np.any(lead) or np.any(mis):
+        gap = gap + lead_gap(geom, lead, z, mis)
+    profile = geom.pair.deviations.profile_slope
+    if any(profile):
+        gap = gap + profile_gap(geom, profile, basis.rho_pinion, basis.rho_gear)
     return gap if gap.shape == shape else np.array(np.broadcast_to(gap, shape))
 
 
-def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)) -> np.ndarray:
+def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0), misalignment=0.0) -> np.ndarray:
     """Flank-to-flank transverse gap (m) at s ∈ [0, g_α] (m) and z (m), region 1.
 
     gap = (δ1(ρ1, z) + δ2(ρ2, z))/cos βb + lead deviation, ρ1 = ρ_SAP1 + s,
@@ -381,7 +381,7 @@ def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)) -> np.ndar
     """
     s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
     s = np.clip(s, 0.0, geom.path_of_contact)
-    return basis_gap(geom, separation_basis(geom, s, 0.0), z, lead_slope)
+    return basis_gap(geom, separation_basis(geom, s, 0.0), z, lead_slope, misalignment=misalignment)
 
 
 def approach_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
@@ -475,12 +475,14 @@ def _pair_range(geom: PairGeometry, roll: np.ndarray, ext: float) -> np.ndarray:
 
 
 def candidate_grid(geom: PairGeometry, roll, n_points: int = 50, lead_slope=(0.0, 0.0),
-                   extension: float = DEFAULT_EXTENSION, pairs: np.ndarray | None = None) -> CandidateGrid:
+                   extension: float = DEFAULT_EXTENSION, pairs: np.ndarray | None = None,
+                   misalignment: float = 0.0) -> CandidateGrid:
     """Candidate points and their unloaded separations at the pinion rolls ``roll`` (m).
 
     ``n_points`` slice centres across the face; ``lead_slope`` (m over the face width,
-    [pinion, gear]); ``extension`` the reach beyond the active zone as a fraction of the
-    transverse base pitch (0: flank contact only). Tooth pairs that never have a candidate
+    [pinion, gear]) and ``misalignment`` (m, the mesh's further lead mismatch,
+    :mod:`gearmesh.deviation`); ``extension`` the reach beyond the active zone as a fraction of
+    the transverse base pitch (0: flank contact only). Tooth pairs that never have a candidate
     are dropped unless ``pairs`` is given.
     """
     roll = np.atleast_1d(np.asarray(roll, dtype=float))
@@ -495,7 +497,7 @@ def candidate_grid(geom: PairGeometry, roll, n_points: int = 50, lead_slope=(0.0
     zz = np.broadcast_to(z, s.shape)
     basis = separation_basis(geom, s, ext)
     region = basis.region
-    gap = basis_gap(geom, basis, zz, lead_slope)
+    gap = basis_gap(geom, basis, zz, lead_slope, misalignment=misalignment)
     rho1, rho2 = basis.rho_pinion, basis.rho_gear
     if trim:
         keep = (region > 0).any(axis=(0, 2))
@@ -552,7 +554,8 @@ class TCAResult:
     te_at_engagement : TE (m) of the whole mesh at φ1A.
     te_next_pair_at_engagement : the entering pair's own separation (m) at φ1A — its TE
         curve there (seed 000's TE(φ1A), compared with LTE(φ1A)).
-    lead_slope : (2,) lead slope errors (m over the face width).
+    lead_slope : (2,) lead slope deviations (m over the face width); misalignment the mesh's
+        further lead mismatch (m; :mod:`gearmesh.deviation`).
     """
 
     grid: CandidateGrid
@@ -568,6 +571,7 @@ class TCAResult:
     te_at_engagement: float
     te_next_pair_at_engagement: float
     lead_slope: tuple[float, float]
+    misalignment: float = 0.0
 
     @property
     def te_peak_to_peak(self) -> float:
@@ -592,19 +596,20 @@ def nanmin(a, axis):
     return np.where(np.isinf(out), np.nan, out)
 
 
-def engagement_separation(geom: PairGeometry, n_points: int, lead_slope, extension: float) -> tuple[float, float]:
+def engagement_separation(geom: PairGeometry, n_points: int, lead_slope, extension: float,
+                          misalignment: float = 0.0) -> tuple[float, float]:
     """(TE of the mesh, separation of the entering pair) at φ1A (m): the grid points at
     roll_A and, exactly, the entering corner (s = 0, z = z_A)."""
     roll_a, j_a, z_a = engagement_point(geom)
-    grid = candidate_grid(geom, np.array([roll_a]), n_points, lead_slope, extension)
-    corner = float(flank_separation(geom, 0.0, z_a, lead_slope))
+    grid = candidate_grid(geom, np.array([roll_a]), n_points, lead_slope, extension, misalignment=misalignment)
+    corner = float(flank_separation(geom, 0.0, z_a, lead_slope, misalignment))
     per_pair = nanmin(grid.gap[0], axis=-1)
     k = np.flatnonzero(grid.pairs == j_a)
     nxt = corner if k.size == 0 or not np.isfinite(per_pair[k[0]]) else min(corner, float(per_pair[k[0]]))
     return float(min(np.nanmin(per_pair), nxt)), nxt
 
 
-def tca(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0.0, 0.0),
+def tca(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=None,
         extension: float = DEFAULT_EXTENSION, tolerance: float = 1e-9) -> TCAResult:
     """Unloaded tooth contact analysis over one mesh cycle.
 
@@ -613,8 +618,9 @@ def tca(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0
     geom : pair geometry (its pair carries the modifications of both gears).
     positions : pinion roll positions evenly over one transverse base pitch.
     points : points (slice centres) per contact line across the face width.
-    lead_slope : lead slope errors [pinion, gear] in m over the face width
-        (:func:`lead_deviation`).
+    lead_slope : lead slope deviations [pinion, gear] in m over the face width
+        (:func:`gearmesh.deviation.lead_gap`); None: the pair's own (``pair.deviations``, with
+        its stated mesh misalignment).
     extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
     tolerance : separation (m) within which points count as the first contact of a pair.
 
@@ -626,14 +632,16 @@ def tca(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=(0
     positions = check_count("positions", positions, 1, 100000)
     points = check_count("points", points, 1, 100000)
     extension = check_extension(extension)
-    lead_slope = tuple(float(v) for v in lead_slope)
+    lead_slope = pair_lead_slope(geom, lead_slope)
+    mis = geom.pair.deviations.misalignment
     roll = mesh_cycle_rolls(geom, positions)
-    grid = candidate_grid(geom, roll, points, lead_slope, extension)
+    grid = candidate_grid(geom, roll, points, lead_slope, extension, misalignment=mis)
     te_pair = nanmin(grid.gap, axis=-1)
     te = nanmin(te_pair, axis=-1)
     cs, cz, c1, c2 = first_contact(grid, te_pair, tolerance)
     roll_a, j_a, z_a = engagement_point(geom)
-    te_a, next_a = engagement_separation(geom, points, lead_slope, extension)
+    te_a, next_a = engagement_separation(geom, points, lead_slope, extension, mis)
     return TCAResult(grid=grid, te=te, te_pair=te_pair, contact_s=cs, contact_z=cz, contact_rho_pinion=c1,
                      contact_rho_gear=c2, roll_engagement=roll_a, pair_engagement=j_a, z_engagement=z_a,
-                     te_at_engagement=te_a, te_next_pair_at_engagement=next_a, lead_slope=lead_slope)
+                     te_at_engagement=te_a, te_next_pair_at_engagement=next_a, lead_slope=lead_slope,
+                     misalignment=mis)

@@ -82,7 +82,7 @@ class ToleranceModel:
         return dims + [("lead", g, -1) for g in range(2) if self.lead[g] > 0]
 
     def labels(self) -> list[str]:
-        return [f"{GEARS[g]}.{_KEYS[k]}" if kind == "modification" else f"{GEARS[g]}.lead_slope_um"
+        return [f"{GEARS[g]}.{_KEYS[k]}" if kind == "modification" else f"{GEARS[g]}.lead_slope_deviation_um"
                 for kind, g, k in self.dimensions]
 
 

@@ -44,8 +44,11 @@ from ..limits import (MAX_SPEED_STEPS, same_point, MAX_SPEEDS, MAX_TABLE_POINTS,
                       check_speeds, positive_values)
 from ..loads import check_load, check_loads
 from ..ltca import contact_tangent_compliance, with_loaded_extension
+from ..deflection import mesh_misalignment
+from ..deviation import with_misalignment
 from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable,
-                         mesh_force_table)
+                         table_layout, tabulate)
+from ..tca import pair_lead_slope
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
 from ..schema import check_arguments, check_value, defaults, settings_fields
 from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, pair_excitation
@@ -420,8 +423,8 @@ def _backlash(geom: PairGeometry, backlash_um) -> float | None:
 
 
 #: Settings of the contact table (:func:`contact_table`), with their defaults.
-_TABLE_KEYS = {k: _DEFAULTS[k] for k in ("contact_law", "points", "lead_slope_um", "table_positions",
-                                         "table_approaches", "table_force_factor")}
+_TABLE_KEYS = {k: _DEFAULTS[k] for k in ("contact_law", "points", "table_positions", "table_approaches",
+                                         "table_force_factor")}
 
 
 def _table_settings(**settings: Any) -> dict[str, Any]:
@@ -438,19 +441,37 @@ def _table_settings(**settings: Any) -> dict[str, Any]:
     if positions * approaches * points > MAX_TABLE_POINTS:
         raise GearmeshInputError("table_positions", positions, f"× table_approaches {approaches} × points {points} "
                                  f"must be at most {MAX_TABLE_POINTS:.0e} (the table's build time and memory)")
-    return {"contact_law_name": s["contact_law"], "points": points,
-            "lead_slope": tuple(v * 1e-6 for v in s["lead_slope_um"]), "positions": positions,
+    return {"contact_law_name": s["contact_law"], "points": points, "positions": positions,
             "approaches": approaches, "factor": float(s["table_force_factor"])}
 
 
 def contact_table(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOTH_METHOD, **settings) -> MeshForceTable:
-    """The mesh force table of ``geom`` (its micro-geometry) for the ``contact`` excitation:
-    every row reaches ``table_force_factor`` times the largest static force F_bt = T1/r_b1 of
-    ``pinion_torques`` (N m); ``settings`` as :data:`_TABLE_KEYS` (:mod:`gearmesh.meshforce`)."""
+    """The mesh force table of ``geom`` (its micro-geometry and deviations) for the ``contact``
+    excitation at the first of ``pinion_torques`` (N m): every row reaches ``table_force_factor``
+    times the largest static force F_bt = T1/r_b1 of them, the separations carry the mesh
+    misalignment of the first (:func:`contact_tables`); ``settings`` as :data:`_TABLE_KEYS`."""
+    return contact_tables(geom, np.atleast_1d(pinion_torques)[:1], method, **settings)[0]
+
+
+def contact_tables(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOTH_METHOD,
+                   **settings) -> list[MeshForceTable]:
+    """One mesh force table per pinion torque of ``pinion_torques`` (N m) (:mod:`gearmesh.meshforce`):
+    every row of each reaches ``table_force_factor`` times the largest static force F_bt of them;
+    each table's separations carry the mesh misalignment at its own static force (the stated f_ma
+    and the system deflection's f_sh, :func:`gearmesh.deflection.mesh_misalignment`: the gearbox
+    deflects with the mean load), so torques of one misalignment share one table."""
     t = _table_settings(**settings)
-    force = t["factor"] * float(np.max(pinion_torques)) / float(geom.base_radius[0])
-    return mesh_force_table(geom, force, t["positions"], t["approaches"], t["points"], t["lead_slope"],
-                            t["contact_law_name"], method)
+    rb1 = float(geom.base_radius[0])
+    torques = np.atleast_1d(np.asarray(pinion_torques, dtype=float))
+    force = t["factor"] * float(np.max(torques)) / rb1
+    layout = table_layout(geom, t["positions"], t["points"], t["contact_law_name"], method)
+    lead = pair_lead_slope(geom)
+    built: dict[float, MeshForceTable] = {}
+    for m in mesh_misalignment(geom, torques / rb1):
+        if float(m) not in built:
+            built[float(m)] = tabulate(layout, layout.gaps(lead_slope=with_misalignment(lead, float(m))), force,
+                                       t["approaches"])
+    return [built[float(m)] for m in mesh_misalignment(geom, torques / rb1)]
 
 
 @check_arguments(Dynamics)
@@ -719,7 +740,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
                      record_cycles: int = 8, steady_state: str = "shooting", points_per_cycle: int = 64,
                      max_order: int = 10, refine_resonances: bool = True, contact_law: str = DEFAULT_CONTACT_LAW,
-                     points: int = DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
+                     points: int = DEFAULT_TABLE_POINTS,
                      table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
                      table_force_factor: float = 4.0, variant: str = "", stiffness: xr.Dataset | None = None,
                      ltca: xr.Dataset | None = None, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
@@ -738,7 +759,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     damping_ratio : mesh damping ratio ζ (-), or ``mesh_damping_Ns_per_m`` directly.
     stiffness_form : 'fourier' (order ``fourier_order``, seed 004) or 'table'.
     excitation : 'contact' (the real tooth contact, :mod:`gearmesh.meshforce`: the table is built
-        once for all torques from ``method``, ``contact_law``, ``points``, ``lead_slope_um``,
+        per torque (its mesh misalignment) from ``method``, ``contact_law``, ``points``,
         ``table_positions``, ``table_approaches`` and ``table_force_factor`` × the largest static
         force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error at each torque),
         'tvms' (the slice stiffness with ``transmission_error_um`` or none, plus the tip-edge contact
@@ -774,15 +795,16 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     use_fe_tables(fe_compliance, geom)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
     exc = resolve_excitation(excitation, ltca)
-    table = None
+    tables = [None] * len(given)
     if exc == "contact":
-        table = contact_table(geom, t1, method, contact_law=contact_law, points=points, lead_slope_um=lead_slope_um,
-                              table_positions=table_positions, table_approaches=table_approaches,
-                              table_force_factor=table_force_factor)
+        tables = contact_tables(geom, t1, method, contact_law=contact_law, points=points,
+                                table_positions=table_positions, table_approaches=table_approaches,
+                                table_force_factor=table_force_factor)
+    table = tables[0]
     models = [build_pair_model(pair, float(t), on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
                                bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
                                mesh_damping_Ns_per_m, stiffness_form, fourier_order, exc, method, slices, positions,
-                               transmission_error_um, stiffness, ltca, table) for t in given]
+                               transmission_error_um, stiffness, ltca, tab) for t, tab in zip(given, tables)]
     speeds = np.unique(np.concatenate([resonance_refined(grid, m) for m in models])) if refine_resonances else grid
     if speeds.size > MAX_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds with the resonance points of every torque",
@@ -790,7 +812,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     parts = []
     for k, model in enumerate(models):
         logging.info("torque %d of %d: %.6g N m on the %s", k + 1, len(models), given[k], on)
-        parts.append(_pair_sweep(pair, model, speeds, grid, samples, settings, points_per_cycle, max_order, table))
+        parts.append(_pair_sweep(pair, model, speeds, grid, samples, settings, points_per_cycle, max_order, tables[k]))
     per_torque = [v for v in parts[0].data_vars if v not in _TORQUE_FREE]
     ds = xr.concat(parts, dim="torque", data_vars=per_torque, coords="minimal", compat="equals", join="exact")
     order_coord = np.arange(max_order * settings.record_cycles + 1) / settings.record_cycles
@@ -902,7 +924,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                   phase_offsets_cycles: Sequence[float] = (0.0, 0.0), courant: float = 0.25,
                   steps_per_cycle_min: int = 32, transient_tau: float = 10.0, record_cycles: int = 8,
                   steady_state: str = "shooting", points_per_cycle: int = 64, max_order: int = 10,
-                  contact_law: str = DEFAULT_CONTACT_LAW, points: int = DEFAULT_TABLE_POINTS, lead_slope_um=(0.0, 0.0),
+                  contact_law: str = DEFAULT_CONTACT_LAW, points: int = DEFAULT_TABLE_POINTS,
                   table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
                   table_force_factor: float = 4.0, stiffness: xr.Dataset | None = None,
                   fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
@@ -945,7 +967,7 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
     table = None
     if exc == "contact":
         table = contact_table(geom, [torque * float(geom.base_radius[0]) / rb], method, contact_law=contact_law,
-                              points=points, lead_slope_um=lead_slope_um, table_positions=table_positions,
+                              points=points, table_positions=table_positions,
                               table_approaches=table_approaches, table_force_factor=table_force_factor)
         K = None
     else:

@@ -21,7 +21,7 @@ from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactSta
 from ..io import name_force_lines, variable
 from ..limits import check_speeds, same_point
 from ..ltca import MESH_ORDERS, check_torques, loaded_pinion_torques, pinion_torques
-from ..tca import check_lead_slope, check_modifications
+from ..tca import check_modifications
 from ..tolerance import manufactured_population, study_tolerances, unit_deviations
 from ..schema import check_arguments, defaults
 from ..settings import Impact
@@ -31,14 +31,14 @@ UM = 1e-6
 __all__ = ["impact_dataset", "impact_table_dataset", "impact_summary"]
 
 
-def _model(pair: GearPair, points: int, lead_slope_um, contact_law: str, method: str, corner_extension: float,
+def _model(pair: GearPair, points: int, contact_law: str, method: str, corner_extension: float,
            driver: str, added_inertia_kg_m2, window_positions: int = 32, face_samples: int = 257) -> ImpactModel:
+    """The impact model of ``pair`` (its modification and deviations; :func:`gearmesh.impact.impact_model`)."""
     if not isinstance(pair, GearPair):
         raise GearmeshInputError("pair", type(pair).__name__, "must be a GearPair")
     check_modifications(pair)
     geom = pair_geometry(pair)
-    lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    return impact_model(geom, points=points, lead_slope=lead, contact_law_name=contact_law, method=method,
+    return impact_model(geom, points=points, contact_law_name=contact_law, method=method,
                         extension=corner_extension, driver=driver, added_inertia_kg_m2=added_inertia_kg_m2,
                         window_positions=window_positions, face_samples=face_samples)
 
@@ -64,7 +64,7 @@ def _scenario_var(dims, scenario) -> xr.Variable:
 
 @check_arguments(Impact)
 def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_speed_rpm: float, driver: str,
-                   points: int, energy_velocity: str, added_inertia_kg_m2, lead_slope_um, contact_law: str,
+                   points: int, energy_velocity: str, added_inertia_kg_m2, contact_law: str,
                    method: str, corner_extension: float, simulate_torques_Nm, variant: str = "",
                    fe_compliance: xr.Dataset | None = None, window_positions: int, face_samples: int,
                    design_torque_Nm: float | None, load_window_step_Nm: float | None,
@@ -94,7 +94,7 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
     anchor = _design_torque(given, design_torque_Nm)
     if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
         use_fe_tables(fe_compliance, pair_geometry(pair))
-    model = _model(pair, points, lead_slope_um, contact_law, method, corner_extension, driver, added_inertia_kg_m2,
+    model = _model(pair, points, contact_law, method, corner_extension, driver, added_inertia_kg_m2,
                    window_positions, face_samples)
     geom = model.geom
     sim_given = check_torques(simulate_torques_Nm, "simulate_torques_Nm") if len(simulate_torques_Nm) else np.array([])
@@ -387,7 +387,7 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str
         raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")
     t1, speed = _operating_points(pair, [torque_Nm], on, [speed_rpm], "torque_Nm", "speed_rpm")[1:]
     d = defaults(Impact)  # the study's impact model where the CLI gives no option
-    model = _model(pair, points, d["lead_slope_um"], d["contact_law"], d["method"], d["corner_extension"], driver,
+    model = _model(pair, points, d["contact_law"], d["method"], d["corner_extension"], driver,
                    d["added_inertia_kg_m2"], d["window_positions"], d["face_samples"])
     static = impact_static(model, t1)
     static, resp = impact_response(model, static, speed, energy_velocity)

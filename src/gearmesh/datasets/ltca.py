@@ -19,10 +19,11 @@ from ..gear import GEARS, GearPair, pair_geometry
 from . import variant_name
 from ..io import name_force_lines, variable
 from ..limits import check_contact_grid, same_point
-from ..ltca import LTCAResult, loaded_pinion_torques, ltca
-from ..tca import TCAResult, check_lead_slope, check_modifications, tca
+from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, ltca
+from ..tca import TCAResult, check_modifications, tca
 from ..schema import check_arguments
 from ..body import describe_body
+from ..deflection import describe_deflection
 from ..settings import Ltca, Tca
 
 UM = 1e-6
@@ -74,7 +75,13 @@ def _tca_variables(geom, res: TCAResult) -> dict[str, xr.Variable]:
                                               "unloaded separation of the entering pair at phi_1A "
                                               "(TE(phi_1A) of the mesh-in impact paper)"),
         "lead_slope": variable(("gear",), np.array(res.lead_slope), "m",
-                               "lead slope error over the face width (transverse, + removes material towards +z)"),
+                               "helix slope deviation f_Hbeta over the face width (transverse; + the flank stands "
+                               "proud at the leading face end)"),
+        "profile_slope": variable(("gear",), np.array(geom.pair.deviations.profile_slope), "m",
+                                  "profile slope deviation f_Halpha over the active profile (+ the flank stands proud "
+                                  "at the tip)"),
+        "stated_mesh_misalignment": _scalar(res.misalignment, "m", "mesh misalignment f_ma stated in the pair file "
+                                            "(the convention of the lead slope deviations; 0: none stated)"),
         "transverse_base_pitch": _scalar(geom.transverse_base_pitch, "m", "transverse base pitch (mesh cycle)"),
         "path_of_contact": _scalar(geom.path_of_contact, "m", "length of the transverse path of contact"),
         "face_width": _scalar(geom.face_width, "m", "meshing face width"),
@@ -97,17 +104,15 @@ def _coords(geom, res: TCAResult) -> dict[str, xr.Variable]:
 
 
 @check_arguments(Tca)
-def tca_dataset(pair: GearPair, *, positions: int, points: int, lead_slope_um, corner_extension: float) -> xr.Dataset:
+def tca_dataset(pair: GearPair, *, positions: int, points: int, corner_extension: float) -> xr.Dataset:
     """Unloaded TCA over one mesh cycle (dims position, line, point): separations of every
     candidate point (flank and tip edges), the TE curve of the mesh and of each pair, the
-    first-contact point of each pair and the values at the start of engagement φ1A.
-
-    ``lead_slope_um`` [pinion, gear] lead slope errors in µm over the face width.
+    first-contact point of each pair and the values at the start of engagement φ1A; the pair's
+    manufacturing deviations included (:mod:`gearmesh.deviation`).
     """
     geom = _geometry(pair)
     positions, points = check_contact_grid(positions, points)
-    lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    res = tca(geom, positions, points, lead, corner_extension)
+    res = tca(geom, positions, points, None, corner_extension)
     ds = xr.Dataset(data_vars=_tca_variables(geom, res), coords=_coords(geom, res))
     ds.attrs["displacement_convention"] = ("transverse along the line of action, r_b1 * dphi_1 with the gear held; "
                                            "normal depths divided by cos(beta_b)")
@@ -115,7 +120,7 @@ def tca_dataset(pair: GearPair, *, positions: int, points: int, lead_slope_um, c
 
 
 @check_arguments(Ltca)
-def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, lead_slope_um, on: str, contact_law: str,
+def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, on: str, contact_law: str,
                  method: str, corner_extension: float, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """LTCA at each torque over one mesh cycle (dims torque, position, line, point).
 
@@ -127,14 +132,15 @@ def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, lea
 
     ``torques_Nm`` torques (N·m) on the pinion, or on the gear with ``on='gear'`` (then
     T1 = T2·z1/z2); ``contact_law`` 'palmgren' or 'linear'; ``method`` the slice model
-    (with 'fe', ``fe_compliance`` supplies the FE tables: :func:`gearmesh.fe.seed_cache`).
+    (with 'fe', ``fe_compliance`` supplies the FE tables: :func:`gearmesh.fe.seed_cache`). The
+    pair's deviations and the system deflection of its stated supports are in the contact
+    (``mesh_misalignment``, ``system_approach``; :mod:`gearmesh.deflection`).
     """
     geom = _geometry(pair)
     positions, points = check_contact_grid(positions, points)
     given, t1 = loaded_pinion_torques(geom, torques_Nm, on)
     use_fe_tables(fe_compliance, geom)
-    lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    res = ltca(geom, t1, positions, points, lead, "pinion", contact_law, method, corner_extension)
+    res = ltca(geom, t1, positions, points, None, "pinion", contact_law, method, corner_extension)
     return _ltca_to_dataset(geom, res, given, on)
 
 
@@ -174,6 +180,15 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
                                                "mean loaded mesh stiffness over the mesh cycle"),
         "contact_force_exponent": _scalar(res.model.law.force_exponent, "1",
                                           "exponent n of the local contact law F ~ delta^n (contact alone)"),
+        "mesh_misalignment": variable(("torque",), res.misalignment, "m",
+                                      "mesh misalignment beyond the gears' lead slopes: f_ma stated and the system "
+                                      "deflection's f_sh (lead mismatch in the plane of action)"),
+        "shaft_misalignment": variable(("torque",), res.misalignment - res.tca.misalignment, "m",
+                                       "f_sh: the system deflection's lead mismatch in the plane of action "
+                                       "(shafts, bearings, described bodies)"),
+        "system_approach": variable(("torque",), res.system_approach, "m",
+                                    "the supports' translation of the gear centres along the transverse line of "
+                                    "action (not in lte: the dynamics carries it on its bearing springs)"),
     })
     data.update(_load_capacity_variables(geom, res))
     coords = _coords(geom, res.tca)
@@ -182,6 +197,7 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
     ds.attrs.update({
         "contact_law": res.model.law.name, "tooth_model": res.model.method, "torque_on": on,
         "gear_body": describe_body(geom),
+        "system_deflection": describe_deflection(geom),
         "slice_coupling": "independent slices (Smith slice theory, as the stiffness stage)",
         "displacement_convention": ("transverse along the line of action, r_b1 * dphi_1 with the gear held; "
                                     "normal depths divided by cos(beta_b)"),
@@ -197,18 +213,25 @@ def _load_capacity_variables(geom, res: LTCAResult) -> dict[str, xr.Variable]:
 
 
 @check_arguments(Ltca)
-def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: int, lead_slope_um, contact_law: str,
+def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: int, contact_law: str,
                  method: str) -> dict[str, Any]:
-    """Headline LTCA numbers at one torque in engineering units (the CLI's ``ltca --json``)."""
+    """Headline LTCA numbers at one torque in engineering units (the CLI's ``ltca --json``): the
+    loaded TE and stiffness, the sign-off quantities of this gear (loaded-TE mesh orders 1–3, peak
+    flank and tip-edge pressure, peak root stress [pinion, gear]) and the deviations and system
+    deflection in its contact."""
+    from .rating import load_capacity, reference_ltca
+
     if not (isinstance(torque_Nm, (int, float, np.floating, np.integer)) and not isinstance(torque_Nm, bool)):
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be one positive number (N m)")
     geom = _geometry(pair)
     positions, points = check_contact_grid(positions, points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
-    lead = tuple(v * UM for v in check_lead_slope(lead_slope_um))
-    res = ltca(geom, t1, positions, points, lead, "pinion", contact_law, method)
-    um = 1e6
+    res = ltca(geom, t1, positions, points, None, "pinion", contact_law, method)
+    lc = load_capacity(geom, res, reference_ltca(geom, res))
+    c = lc["contact"]
+    um, mpa = 1e6, 1e-6
     lte = res.lte[0]
+    orders = {f"lte_order_{k}_um": float(lc["te_harmonics"][0, i]) * um for i, k in enumerate(MESH_ORDERS)}
     return {
         "name": pair.name,
         "torque_Nm": float(torque_Nm),
@@ -234,6 +257,19 @@ def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: 
         "te_next_pair_at_engagement_um": res.tca.te_next_pair_at_engagement * um,
         "lte_at_engagement_um": float(res.lte_at_engagement[0]) * um,
         "edge_contact_at_engagement": bool(res.lte_at_engagement[0] > res.tca.te_next_pair_at_engagement),
+        **orders,
+        "peak_flank_pressure_MPa": float(np.where(c.edge[0], 0.0, c.pressure[0]).max()) * mpa,
+        "peak_edge_pressure_MPa": float(np.where(c.edge[0], c.pressure[0], 0.0).max()) * mpa,
+        "peak_root_stress_MPa": [float(lc["root"][0, ..., i].max()) * mpa for i in (0, 1)],
+        "K_Hbeta": float(lc["K_Hbeta"][0]),
+        "K_Hbeta_rated": float(lc["K_Hbeta_rated"][0]),
+        "lead_slope_deviation_um": [v * um for v in res.model.lead_slope],
+        "profile_slope_deviation_um": [v * um for v in pair.deviations.profile_slope],
+        "mesh_misalignment_um": float(res.misalignment[0]) * um,
+        "shaft_misalignment_um": float(res.misalignment[0] - res.tca.misalignment) * um,
+        "system_approach_um": float(res.system_approach[0]) * um,
+        "system_deflection": describe_deflection(geom),
+        "gear_body": describe_body(geom),
     }
 
 

@@ -76,8 +76,8 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
     are given on ``on`` (converted to the pinion); ``torques_Nm`` the load spectrum (None: the
     design torque alone). Refuses a bad value with GearmeshInputError naming the field.
 
-    The impact model is the study's: ``impact`` is its ``impact:`` section (driver, points, lead
-    slopes, contact law, slice method, corner extension, window and face sampling, added inertia,
+    The impact model is the study's: ``impact`` is its ``impact:`` section (driver, points,
+    contact law, slice method, corner extension, window and face sampling, added inertia,
     energy velocity), so the optimum is optimal for the model the impact stage evaluates it
     with; ``points``, ``contact_law``, ``corner_extension``, ``window_positions`` and
     ``face_samples`` given here override it (None: the section's, or the package defaults
@@ -85,8 +85,6 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
     ``dynamic_speeds_rpm`` and ``backlash_um`` ('pair': the pair's own, or µm) set the candidates'
     contact-driven dynamics of objective 'dynamic' and constraint ``dynamic_factor``
     (:mod:`gearmesh.dynamics.population`)."""
-    from ..tca import check_lead_slope
-
     geom = _geometry(pair)
     imp = {**defaults(Impact), **(impact or {})}  # the study's impact model, the declared defaults without one
     constraints = dict(constraints or {})
@@ -126,14 +124,13 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
                                  "needs tolerances (tolerances.grade or tolerances.modification): nothing deviates")
     genes = {"modify": modify, "bounds": bounds, "fixed": fixed}
     gene_table(geom, **genes)
-    lead = tuple(v * 1e-6 for v in check_lead_slope(imp["lead_slope_um"]))
 
     def pick(own, key):
         return imp[key] if own is None else own
 
     model = {"points": pick(points, "points"), "contact_law_name": pick(contact_law, "contact_law"),
              "extension": pick(corner_extension, "corner_extension"), "method": imp["method"],
-             "driver": imp["driver"], "lead_slope": lead, "added_inertia_kg_m2": imp["added_inertia_kg_m2"],
+             "driver": imp["driver"], "added_inertia_kg_m2": imp["added_inertia_kg_m2"],
              "window_positions": pick(window_positions, "window_positions"),
              "face_samples": pick(face_samples, "face_samples"), "cycle_positions": cycle_positions}
     return geom, settings, genes, model, tol_model
@@ -428,7 +425,7 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
             "tolerance_sample": variable(("tolerance_sample",), np.arange(prob.deviations.shape[0] + 1), "1",
                                          "manufactured sample (0: the nominal)"),
             "toleranced": variable(("toleranced",), np.array(prob.tolerance.labels(), dtype=str), "1",
-                                   "toleranced quantity: gear.pair-file key, or gear.lead_slope_um (ISO 1328-1 f_Hbeta)"),
+                                   "toleranced quantity: gear.pair-file key, or gear.lead_slope_deviation_um (ISO 1328-1 f_Hbeta)"),
             "bound": variable(("bound",), np.array(["low", "high"]), "1", "ends of the load window"),
         })
     ds = xr.Dataset(data_vars=data, coords=coords)

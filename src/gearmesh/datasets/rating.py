@@ -21,8 +21,11 @@ from . import variant_name
 from ..limits import check_contact_grid
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
 from ..rating import face_factor_root, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
-from ..schema import check_arguments
+from ..schema import check_arguments, defaults
 from ..settings import Rating
+
+#: The rating's load factors by default (the study's declaration, also the CLI's and the API's).
+RATING_METHOD = defaults(Rating)["method"]
 from ..stress import ContactStress, contact_stress, iso_root_stress_slices, pair_edge_radius
 
 __all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "reference_ltca", "rating_summary",
@@ -37,11 +40,38 @@ def _unmodified(geom: PairGeometry) -> PairGeometry | None:
     return pair_geometry(geom.pair.with_changes(modification=(Modification(), Modification())))
 
 
+def rated_mesh_misalignment(geom: PairGeometry, res: LTCAResult) -> tuple[np.ndarray | None, str]:
+    """The mesh misalignment (m) per torque of ``res`` under which the rating takes its face load
+    factor, and where f_ma comes from (ISO 6336-1:2019, 7.6: K_Hβ belongs to the mesh misalignment
+    f_sh + f_ma). The pair's stated ``mesh_misalignment_um`` is in ``res`` already (None returned:
+    rate ``res`` as it is); else f_ma = f_Hβ of the pair's accuracy grade (ISO 6336-1 method C's
+    f_ma = 1.0·f_Hβ for gears without provision for adjustment; f_HβT of ISO 1328-1:2013, eq. 10,
+    :func:`gearmesh.tolerance.helix_slope_tolerance`, of the gear with the larger tolerance), in the
+    sense that adds to the mesh's own mismatch at that torque (the lead slopes and the system
+    deflection's f_sh: ISO's F_βx adds the magnitudes), positive where that is zero."""
+    from ..deviation import mesh_lead_sum
+    from ..tolerance import helix_slope_tolerance
+
+    if geom.pair.deviations.mesh_misalignment is not None:
+        return None, "stated in the pair file (mesh_misalignment_um)"
+    grade = rating_inputs(dict(geom.pair.rating_inputs))["accuracy_grade"]
+    widths = np.broadcast_to(np.asarray(geom.pair.face_width, dtype=float), (2,))
+    f_ma = max(helix_slope_tolerance(2.0 * float(geom.reference_radius[i]), float(widths[i]), grade)
+               for i in (0, 1)) * geom.face_width / float(widths.max())
+    own = mesh_lead_sum(res.model.lead_slope, res.misalignment)
+    sense = np.where(own < 0, -1.0, 1.0)
+    return res.misalignment + sense * f_ma, (f"ISO 6336-1 f_ma = f_Hbeta of accuracy grade {grade} "
+                                             f"({f_ma * 1e6:.3g} um, ISO 1328-1:2013), in the unfavourable sense")
+
+
 def load_capacity(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | None = None) -> dict[str, Any]:
     """Stresses and load factors of an LTCA result (SI): ``contact`` (:class:`ContactStress`),
     ``root`` (T, P, J, N, 2) ISO 6336-3 local root stress of pinion and gear teeth (Pa),
-    ``K_Hbeta``, ``K_Fbeta``, ``K_Halpha`` (T,), ``te_harmonics`` (T, 3) amplitudes of the loaded
-    TE at mesh orders 1–3 (m). ``reference`` is the unmodified pair's LTCA (K_Hα; None: K_Hα = 1)."""
+    ``K_Hbeta``, ``K_Fbeta`` (T,) of the mesh as it is, ``K_Hbeta_rated``, ``K_Fbeta_rated`` (T,)
+    those of the mesh under the rating's misalignment (:func:`rated_mesh_misalignment`: one more
+    load solve on the same model when the pair states no f_ma), ``f_ma_source`` where that came
+    from, ``K_Halpha`` (T,), ``te_harmonics`` (T, 3) amplitudes of the loaded TE at mesh orders 1–3
+    (m). ``reference`` is the unmodified pair's LTCA (K_Hα; None: K_Hα = 1)."""
     g = res.grid
     w = res.line_load
     contact = contact_stress(geom, w, g.region, g.rho_pinion, g.rho_gear, pair_edge_radius(geom))
@@ -50,8 +80,15 @@ def load_capacity(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | N
     factors = ltca_load_factors(res.load, None if reference is None else reference.load)
     b_over_h = geom.face_width / max(float(geom.tip_radius[i] - geom.root_radius[i]) for i in (0, 1))
     k_fb = np.array([face_factor_root(k, b_over_h) for k in factors["K_Hbeta"]])
+    rated, source = rated_mesh_misalignment(geom, res)
+    k_hb_rated = factors["K_Hbeta"]
+    if rated is not None:
+        misaligned = ltca(geom, res.torque, model=res.model, misalignment=rated)
+        k_hb_rated = ltca_load_factors(misaligned.load)["K_Hbeta"]
     harm = lte_harmonics(res.lte)
     return {"contact": contact, "root": root, "K_Hbeta": factors["K_Hbeta"], "K_Fbeta": k_fb,
+            "K_Hbeta_rated": k_hb_rated, "K_Fbeta_rated": np.array([face_factor_root(k, b_over_h) for k in k_hb_rated]),
+            "rated_misalignment": res.misalignment if rated is None else rated, "f_ma_source": source,
             "K_Halpha": factors["K_Halpha"], "te_harmonics": harm}
 
 
@@ -80,6 +117,14 @@ def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCA
         "K_Hbeta_ltca": variable(("torque",), lc["K_Hbeta"], "1",
                                  "face load factor K_Hbeta from the LTCA (peak over mean of the cycle's face load)"),
         "K_Fbeta_ltca": variable(("torque",), lc["K_Fbeta"], "1", "face load factor K_Fbeta = K_Hbeta^N_F (ISO 6336-1)"),
+        "K_Hbeta_rated": variable(("torque",), lc["K_Hbeta_rated"], "1",
+                                  "face load factor K_Hbeta the rating takes: the LTCA's under the rating's mesh "
+                                  f"misalignment (f_ma {lc['f_ma_source']}, with f_sh; ISO 6336-1 method A)"),
+        "K_Fbeta_rated": variable(("torque",), lc["K_Fbeta_rated"], "1",
+                                  "face load factor K_Fbeta = K_Hbeta_rated^N_F the rating takes"),
+        "rated_mesh_misalignment": variable(("torque",), lc["rated_misalignment"], "m",
+                                            "mesh misalignment of the rating's K_Hbeta (f_sh + f_ma, the convention "
+                                            "of the lead slope deviations)"),
         "K_Halpha_ltca": variable(("torque",), k_ha, "1", "transverse load factor K_Halpha from the LTCA (largest "
                                   "tooth-pair load over the unmodified pair's, at least 1)"),
         "K_Falpha_ltca": variable(("torque",), k_ha, "1", "transverse load factor K_Falpha (= K_Halpha)"),
@@ -131,14 +176,15 @@ def _fe_root_check(geom: PairGeometry, res: LTCAResult, root: np.ndarray) -> dic
 
 
 def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", application_factor: float = 1.0,
-                   life_hours: float | None = None, factors: Mapping[str, float] | None = None, method: str = "iso",
-                   positions: int = 64, points: int = 50, lead_slope_um=(0.0, 0.0)) -> dict[str, Any]:
+                   life_hours: float | None = None, factors: Mapping[str, float] | None = None,
+                   method: str | None = None, positions: int = 64, points: int = 50) -> dict[str, Any]:
     """ISO 6336-2/-3 rating at one torque and speed with the LTCA's stresses (the CLI's ``rating --json``).
 
     Per-gear values are [pinion, gear]; ``factors_given`` names the factors given; ``factor_sources``
     where each load factor came from; ``ltca`` the LTCA's peak contact pressure (and whether on an
-    edge), peak root stress per gear and its K factors; ``notes`` the defaults taken."""
-    from ..tca import check_lead_slope
+    edge), peak root stress per gear and its K factors; ``notes`` the defaults taken. ``method`` None:
+    the study's declared default (:class:`gearmesh.settings.Rating`), one answer through every door."""
+    method = RATING_METHOD if method is None else method
 
     for name, value in (("torque_Nm", torque_Nm), ("speed_rpm", speed_rpm)):
         if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
@@ -154,12 +200,11 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
     positions, points = check_contact_grid(positions, points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     speed1 = speed_rpm if on == "pinion" else speed_rpm * pair.teeth[1] / pair.teeth[0]
-    lead = tuple(v * 1e-6 for v in check_lead_slope(lead_slope_um))
-    res = ltca(geom, t1, positions, points, lead, "pinion")
+    res = ltca(geom, t1, positions, points, None, "pinion")
     lc = load_capacity(geom, res, reference_ltca(geom, res))
     k_ha = float(rated_transverse_factor(lc["K_Halpha"][0]))
     r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method,
-               {"K_Hbeta": float(lc["K_Hbeta"][0]), "K_Halpha": k_ha})
+               {"K_Hbeta": float(lc["K_Hbeta_rated"][0]), "K_Halpha": k_ha})
     c: ContactStress = lc["contact"]
     g = res.grid
     k = np.unravel_index(int(c.pressure[0].argmax()), c.pressure[0].shape)
@@ -171,7 +216,9 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
                                      "z_mm": float(g.z[k[2]]) * 1e3},
         "tip_edge_radius_mm": c.edge_radius * 1e3,
         "peak_root_stress_MPa": [float(root[..., i].max()) * 1e-6 for i in (0, 1)],
-        "K_Hbeta": float(lc["K_Hbeta"][0]), "K_Fbeta": float(lc["K_Fbeta"][0]), "K_Halpha": k_ha, "K_Falpha": k_ha,
+        "K_Hbeta": float(lc["K_Hbeta_rated"][0]), "K_Fbeta": float(lc["K_Fbeta_rated"][0]), "K_Halpha": k_ha,
+        "K_Falpha": k_ha, "K_Hbeta_as_is": float(lc["K_Hbeta"][0]),
+        "mesh_misalignment_rated_um": float(lc["rated_misalignment"][0]) * 1e6, "f_ma_source": lc["f_ma_source"],
         "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
         **_fe_root_check(geom, res, root),
     }
@@ -191,7 +238,7 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
     the variables of :func:`load_capacity_variables`) and pinion speed ``speed_rpm`` (rating.nc): safety
     factors, stresses and the load factors by the standard and from the LTCA, beside the LTCA's peak
     contact pressure (and whether on an edge) and peak root stress."""
-    if not isinstance(ltca, xr.Dataset) or "K_Hbeta_ltca" not in ltca:
+    if not isinstance(ltca, xr.Dataset) or "K_Hbeta_rated" not in ltca:
         raise GearmeshInputError("ltca", type(ltca).__name__, "must be an ltca.nc dataset with its load-capacity "
                                  "variables")
     geom = pair_geometry(pair)
@@ -199,7 +246,7 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
     torques = ltca["torque"].values
     rows = []
     for k, t1 in enumerate(torques):
-        lf = {"K_Hbeta": float(ltca["K_Hbeta_ltca"].values[k]), "K_Halpha": float(ltca["K_Halpha_ltca"].values[k])}
+        lf = {"K_Hbeta": float(ltca["K_Hbeta_rated"].values[k]), "K_Halpha": float(ltca["K_Halpha_ltca"].values[k])}
         rows.append(rating(geom, float(t1), speed_rpm, inputs, application_factor, life_hours, None, method, lf))
     tg, t = ("torque", "gear"), ("torque",)
 

@@ -35,6 +35,8 @@ import numpy as np
 
 from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from ..errors import GearmeshInputError
+from ..deflection import mesh_misalignment
+from ..deviation import with_misalignment
 from ..gear import PairGeometry
 from ..meshforce import TableLayout, table_layout, tabulate
 from .integrate import SolverSettings, simulate
@@ -116,15 +118,18 @@ def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash
 
 def dynamic_factors(pd: PopulationDynamics, params: np.ndarray, lead_slope: np.ndarray) -> np.ndarray:
     """Dynamic factor K_v (N, T) of N micro-geometries ``params`` (N, 2, 6) m with lead slopes
-    ``lead_slope`` (N, 2) m at the setup's torques (module docstring)."""
+    ``lead_slope`` (N, 2) m at the setup's torques (module docstring); each torque's table carries
+    its mesh misalignment (:func:`gearmesh.deflection.mesh_misalignment`, as the study's tables),
+    torques of one misalignment share it."""
     params = np.asarray(params, dtype=float)
-    gaps = pd.layout.gaps(params, lead_slope)
+    misalignment = mesh_misalignment(pd.geom, pd.pinion_torques / float(pd.geom.base_radius[0]))
+    gaps = {float(m): pd.layout.gaps(params, with_misalignment(lead_slope, float(m))) for m in np.unique(misalignment)}
     lo, hi = float(pd.speeds_rpm[0]), float(pd.speeds_rpm[-1])
     out = np.empty((params.shape[0], pd.torques_out.size))
     for n in range(params.shape[0]):
-        table = tabulate(pd.layout, gaps[n], pd.force_max, pd.approaches)
+        tables = {m: tabulate(pd.layout, g[n], pd.force_max, pd.approaches) for m, g in gaps.items()}
         for t, torque in enumerate(pd.torques_out):
-            model = pair_model(pd.geom, float(torque), None, contact=table, backlash=pd.backlash,
+            model = pair_model(pd.geom, float(torque), None, contact=tables[float(misalignment[t])], backlash=pd.backlash,
                                damping_ratio=pd.damping_ratio)
             speeds = np.unique(np.concatenate([pd.speeds_rpm, resonance_band(model, lo, hi, POPULATION_HARMONICS, POPULATION_OFFSETS,
                                                                      POPULATION_MESH_ENERGY)]))
