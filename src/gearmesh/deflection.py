@@ -102,7 +102,7 @@ class MeshDeflection:
 
     @property
     def active(self) -> bool:
-        return self.included != "none"
+        return not self.included.startswith("none")
 
     def misalignment(self, force) -> np.ndarray:
         """f_sh (m) at transverse forces ``force`` (N)."""
