@@ -56,9 +56,9 @@ def test_population_member_equals_the_pair_with_that_modification_run_alone(pair
     geom = pair_geometry(_modified(pair, RELIEF))
     np.testing.assert_allclose(modification_parameters(geom), RELIEF, atol=1e-15)
     rb1, rb2 = (float(r) for r in geom.base_radius)
-    table = mesh_force_table(geom, setup.force_max, POPULATION_TABLE["positions"], POPULATION_TABLE["approaches"],
-                             POPULATION_TABLE["points"], lead_slope=tuple(lead[0]))
-    for t, torque in enumerate(TORQUES):
+    for t, torque in enumerate(TORQUES):  # each torque's table at its mesh misalignment, as the dynamics stage's
+        table = mesh_force_table(geom, setup.force_max, POPULATION_TABLE["positions"], POPULATION_TABLE["approaches"],
+                                 POPULATION_TABLE["points"], lead_slope=tuple(lead[0]), static_force=torque / rb1)
         model = pair_model(geom, torque * rb2 / rb1, None, contact=table, backlash=60e-6)
         speeds = np.unique(np.concatenate([SPEEDS, resonance_band(model, SPEEDS[0], SPEEDS[-1], POPULATION_HARMONICS,
                                                                   POPULATION_OFFSETS, POPULATION_MESH_ENERGY)]))

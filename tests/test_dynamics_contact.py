@@ -54,8 +54,11 @@ def teeth(pair):
 
 @pytest.fixture(scope="module")
 def table(geom):
-    """The default table (200 points per line) for forces up to 4 × F_bt(1600 N m)."""
-    return mesh_force_table(geom, 4 * 1600.0 / float(geom.base_radius[0]))
+    """The default table (200 points per line) for forces up to 4 × F_bt(1600 N m), its separations
+    at the mesh misalignment of 1000 N m (the system deflection of the pair's shafts and bearings,
+    as the LTCA at that torque)."""
+    return mesh_force_table(geom, 4 * 1600.0 / float(geom.base_radius[0]),
+                            static_force=1000.0 / float(geom.base_radius[0]))
 
 
 def _model(geom, table, torque_1: float, **kw):
@@ -354,16 +357,24 @@ def test_dataset_cli_and_refusals(pair, tmp_path):
             dynamics_dataset(pair, torques_Nm=1000.0, speeds_rpm=[5000.0], sample_speeds_rpm=[], **kw)
 
 
-def test_contact_table_is_built_once_for_all_torques(pair, geom, monkeypatch):
-    """One table per pair and variant: the sweep over three torques builds it once."""
+def test_contact_table_is_built_once_per_mesh_misalignment(pair, geom, monkeypatch):
+    """One table layout per pair and variant, and one tabulation per mesh misalignment: the sweep over
+    three torques tabulates three (each torque deflects the shafts its own amount), the pair without
+    its shafts and bearings one."""
     import gearmesh.datasets.dynamics as dd
+    from gearmesh.supports import read_supports
 
-    calls = []
-    real = dd.mesh_force_table
-    monkeypatch.setattr(dd, "mesh_force_table", lambda *a, **k: calls.append(1) or real(*a, **k))
-    dynamics_dataset(pair, torques_Nm=list(TORQUES), speeds_rpm=[5000.0], excitation="contact", sample_speeds_rpm=[],
-                     refine_resonances=False, points=30, table_positions=32, table_approaches=16, record_cycles=2)
-    assert len(calls) == 1
+    for p, expected in ((pair, 3), (pair.with_changes(supports=read_supports({})), 1)):
+        layouts, tabs = [], []
+        real_layout, real_tab = dd.table_layout, dd.tabulate
+        monkeypatch.setattr(dd, "table_layout", lambda *a, **k: layouts.append(1) or real_layout(*a, **k))
+        monkeypatch.setattr(dd, "tabulate", lambda *a, **k: tabs.append(1) or real_tab(*a, **k))
+        dynamics_dataset(p, torques_Nm=list(TORQUES), speeds_rpm=[5000.0], excitation="contact", sample_speeds_rpm=[],
+                         bearing_k_radial_N_per_m=1.5e8, bearing_k_axial_N_per_m=1e7, refine_resonances=False,
+                         points=30, table_positions=32, table_approaches=16, record_cycles=2)
+        assert (len(layouts), len(tabs)) == (1, expected)
+        monkeypatch.setattr(dd, "table_layout", real_layout)
+        monkeypatch.setattr(dd, "tabulate", real_tab)
     t = contact_table(geom, [1600.0], points=30, table_positions=32, table_approaches=16, table_force_factor=3.0)
     assert math.isclose(t.force_max, 3.0 * 1600.0 / float(geom.base_radius[0]))
 

@@ -222,10 +222,9 @@ def test_bad_study_settings_and_variants_are_refused_before_any_job(capsys):
 
 
 def test_the_impact_model_is_the_studys_impact_section(pair):
-    impact = {"points": 20, "energy_velocity": "normal", "lead_slope_um": [1.0, 0.0], "driver": "gear",
-              "window_positions": 24}
+    impact = {"points": 20, "energy_velocity": "normal", "driver": "gear", "window_positions": 24}
     _, settings, _, model, _ = run_settings(pair, impact=impact, objective="force", tolerance_statistic=None)
-    assert model["points"] == 20 and model["driver"] == "gear" and model["lead_slope"] == (1e-6, 0.0)
+    assert model["points"] == 20 and model["driver"] == "gear"
     assert model["window_positions"] == 24 and settings.energy_velocity == "normal"
     _, _, _, model, _ = run_settings(pair, points=16, impact=impact, objective="force", tolerance_statistic=None)
     assert model["points"] == 16

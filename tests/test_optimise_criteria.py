@@ -231,6 +231,7 @@ def _straightforward_criteria(model, torques, params, lead) -> dict[str, np.ndar
     """One manufactured gear's criteria (T, ...) the straightforward way, as main's ltca_criteria
     computed them: gaps from the separation basis, the exact solve (ltca.solve_contact, cold) on
     every grid point, the stresses by contact_stress and iso_root_stress_slices of the loads."""
+    from gearmesh.deflection import mesh_misalignment
     from gearmesh.ltca import solve_contact
     from gearmesh.stress import pair_edge_radius
     from gearmesh.tca import SeparationBasis, basis_gap
@@ -239,11 +240,13 @@ def _straightforward_criteria(model, torques, params, lead) -> dict[str, np.ndar
     grid = lt.grid
     p = grid.gap.shape[0] - 1
     basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
-    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead, params).reshape(p, -1)
     out = {k: [] for k in ("lte_peak_to_peak", "te_harmonics", "flank_pressure", "edge_pressure", "root_stress",
                            "max_line_load")}
     for t in torques:
-        q, delta, _, _ = solve_contact(gap, lt.compliance[:p].reshape(p, -1), np.full(p, t / g.base_radius[0]), lt.law)
+        force = t / g.base_radius[0]  # each torque at its mesh misalignment (the shafts' f_sh at its force)
+        gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead, params,
+                        misalignment=mesh_misalignment(g, force)).reshape(p, -1)
+        q, delta, _, _ = solve_contact(gap, lt.compliance[:p].reshape(p, -1), np.full(p, force), lt.law)
         w = q.reshape(basis.base.shape) / grid.dz
         c = contact_stress(g, w, grid.region[:p], grid.rho_pinion[:p], grid.rho_gear[:p], pair_edge_radius(g))
         out["lte_peak_to_peak"].append(np.ptp(delta))

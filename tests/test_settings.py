@@ -133,16 +133,22 @@ def test_the_solver_defaults_are_the_declared_ones():
         assert getattr(solver, name) == declared[name], name
 
 
-def test_the_lead_slope_bound_is_the_contact_models_own():
-    from gearmesh.tca import check_lead_slope
+def test_the_deviation_bounds_are_the_readers_own():
+    """The pair file's deviation keys: the schema's bounds are the reader's (gearmesh.deviation)."""
+    from gearmesh.deviation import read_deviations
+    from gearmesh.settings import PairFile
 
-    check_lead_slope((1000.0, -1000.0))
-    with pytest.raises(GearmeshInputError):
-        check_lead_slope((1000.001, 0.0))
-    for path in ("tca", "ltca", "impact", "dynamics", "train_dynamics"):
-        cls = dict(stage_sections())[path]
-        items = field_schema(cls, next(f for f in settings_fields(cls) if f.name == "lead_slope_um"))["items"]
-        assert (items["minimum"], items["maximum"]) == (-1000, 1000)
+    read_deviations({"lead_slope_deviation_um": [1000.0, -1000.0], "mesh_misalignment_um": -1000.0})
+    for key, value in (("lead_slope_deviation_um", [1000.001, 0.0]), ("profile_slope_deviation_um", [0.0, -1000.01]),
+                       ("mesh_misalignment_um", 1000.001)):
+        with pytest.raises(GearmeshInputError):
+            read_deviations({key: value})
+        schema = field_schema(PairFile, next(f for f in settings_fields(PairFile) if f.name == key))
+        bounds = schema.get("items", schema)
+        if "oneOf" in schema:
+            bounds = next(s for s in schema["oneOf"] if s.get("type") != "null")
+            bounds = bounds.get("items", bounds)
+        assert (bounds["minimum"], bounds["maximum"]) == (-1000, 1000), key
 
 
 def _violations(schema: dict) -> list:
@@ -287,7 +293,9 @@ def _reader_refusal(data) -> GearmeshInputError | None:
 #: centre distance against the pair's circles (teeth, module, helix angle, shifts).
 _RELATIONS = ("normal module", "pinion reference diameters", "is a 20° profile", "its reference circle shifted",
               "too small for any working pair", "zero-backlash",
-              "is required with")  # supports: both stiffnesses, shaft diameter and span together
+              "is required with",  # supports: both stiffnesses, shaft diameter and span together
+              "between its bearings", "needs shaft_diameter_mm",  # the gear on its shaft
+              "describes a gear body")  # a body with its shafts and bearings
 
 
 _BASE = yaml.safe_load((ROOT / "config/pairs/seed000_case.yaml").read_text())

@@ -43,8 +43,8 @@ def test_tolerance_model_of_the_case_pair(case):
     expected = [(0.05 * math.sqrt(di) + 0.35 * math.sqrt(42) + 4) * math.sqrt(2) for di in d]
     np.testing.assert_allclose(tol.lead * 1e6, expected, rtol=1e-12)  # 42 mm faces: no rescaling
     assert tol.modification[:, 1].tolist() == [2e-6, 2e-6]
-    assert [label for label in tol.labels()] == ["pinion.tip_relief_um", "gear.tip_relief_um", "pinion.lead_slope_um",
-                                                 "gear.lead_slope_um"]
+    assert [label for label in tol.labels()] == ["pinion.tip_relief_um", "gear.tip_relief_um", "pinion.lead_slope_deviation_um",
+                                                 "gear.lead_slope_deviation_um"]
     only_pinion = tolerance_model(case, grade=6, lead_on=["pinion"])
     assert only_pinion.lead[1] == 0 and only_pinion.lead[0] == tol.lead[0]
     assert tolerance_model(case).dimensions == []

@@ -155,10 +155,9 @@ def lead_gap(geom, lead_slope, z, misalignment=0.0) -> np.ndarray:
 
     ``lead_slope`` a pair (f1, f2) or an array (..., 2) whose leading axes broadcast against ``z``
     (one pair per row of a batch); ``misalignment`` (m) broadcasts like ``lead_slope[..., 0]``."""
-    from .contact import hand_sign
-
     f = mesh_lead_sum(lead_slope, misalignment)
-    zeta = hand_sign(geom) * np.asarray(z, dtype=float)
+    hand = 1.0 if geom.pair.helix_hand == "right" else -1.0  # gearmesh.contact.hand_sign (below it here)
+    zeta = hand * np.asarray(z, dtype=float)
     return -f * zeta / geom.face_width + 0.5 * np.abs(f)
 
 

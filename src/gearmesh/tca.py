@@ -73,12 +73,11 @@ from .choices import DEFAULT_CORNER_EXTENSION
 from .deviation import lead_gap, profile_gap
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry
-from .limits import MAX_LEAD_SLOPE_UM
 from .surface import modification_parameters, relief_depth
 
 __all__ = [
     "REGION_NONE", "REGION_FLANK", "REGION_APPROACH_TIP", "REGION_RECESS_TIP",
-    "CandidateGrid", "TCAResult", "check_modifications", "check_lead_slope", "check_extension", "point_centres", "pair_lead_slope",
+    "CandidateGrid", "TCAResult", "check_modifications", "check_extension", "point_centres", "pair_lead_slope",
     "SeparationBasis", "separation_basis", "basis_gap", "approach_tip_point", "recess_tip_point",
     "flank_separation", "approach_tip_separation", "recess_tip_separation",
     "candidate_grid", "engagement_point", "engagement_separation", "tca",
@@ -121,27 +120,6 @@ def check_modifications(pair_or_geom) -> None:
                 raise GearmeshInputError(f"modification.{gear}.{key}", v, "must be a finite number")
             if v < 0:
                 raise GearmeshInputError(f"modification.{gear}.{key}", v * scale, "must not be negative")
-
-
-def check_lead_slope(lead_slope_um) -> tuple[float, float]:
-    """The lead slope errors [pinion, gear] (µm over the face width) as two finite floats."""
-    if isinstance(lead_slope_um, (int, float)) and not isinstance(lead_slope_um, bool):
-        lead_slope_um = (lead_slope_um, 0.0)
-    try:
-        vals = [v for v in lead_slope_um]
-    except TypeError:
-        raise GearmeshInputError("lead_slope_um", lead_slope_um, "must be a [pinion, gear] list of two numbers") from None
-    if len(vals) != 2:
-        raise GearmeshInputError("lead_slope_um", lead_slope_um, "must be a [pinion, gear] list of two numbers")
-    out = []
-    for i, v in enumerate(vals):
-        if isinstance(v, bool) or not isinstance(v, (int, float, np.floating, np.integer)) or not math.isfinite(v):
-            raise GearmeshInputError(f"lead_slope_um[{i}]", v, "must be a finite number (µm over the face width)")
-        if abs(v) > MAX_LEAD_SLOPE_UM:
-            raise GearmeshInputError(f"lead_slope_um[{i}]", v,
-                                     f"must lie within ±{MAX_LEAD_SLOPE_UM} µm over the face width")
-        out.append(float(v))
-    return out[0], out[1]
 
 
 def pair_lead_slope(geom: PairGeometry, lead_slope=None) -> tuple[float, float]:
