@@ -257,3 +257,25 @@ def test_face_load_factor_of_a_misaligned_mesh_follows_isos_closed_form(lead_um)
         assert k_hb == pytest.approx(1.0, abs=0.02)
     else:
         assert k_hb - 1 == pytest.approx(iso - 1, rel=0.10)
+
+
+def test_beam_f_sh_against_isos_formula_for_the_case_pair():
+    """docs/load_capacity.md: ISO 6336-1 method C's f_sh at mid-span, F_m/b·0.023·(b/d1)², is 0.44 µm
+    for the case pair at 1000 N·m; the beam gives 0.01–0.55 µm on rigid bearings and 0.03–0.69 µm on
+    the pair's own, by the torque sides: ISO's figure inside the beam's range."""
+    base = pair_to_dict(load_pair(example_pair("seed000_case")))
+    sides = (["leading", "leading"], ["trailing", "leading"], ["leading", "trailing"], ["trailing", "trailing"])
+    out = {}
+    for label, ch in (("rigid", dict(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid")),
+                      ("own", {})):
+        values = []
+        for side in sides:
+            geom = pair_geometry(load_pair({**base, **ch, "torque_side": side}))
+            values.append(abs(mesh_deflection(geom).misalignment_per_force) * 1000.0 / float(geom.base_radius[0]) * 1e6)
+        out[label] = (round(min(values), 2), round(max(values), 2))
+    geom = pair_geometry(load_pair(base))
+    d1, b = 2e3 * float(geom.reference_radius[0]), geom.face_width * 1e3
+    iso = 2 * 1000.0 / (d1 * 1e-3) / b * 0.023 * (b / d1) ** 2
+    assert round(iso, 2) == 0.44
+    assert out == {"rigid": (0.01, 0.55), "own": (0.03, 0.69)}
+    assert out["rigid"][0] < iso < out["rigid"][1]

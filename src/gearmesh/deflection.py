@@ -268,7 +268,21 @@ def _rigid_shaft(geom, tilt: np.ndarray | None, pitch_point: np.ndarray) -> Shaf
 
 def mesh_deflection(geom) -> MeshDeflection:
     """The system deflection of ``geom``'s pair per newton of F_bt (module docstring); zero, with
-    the reason in ``included``, when the pair file states no shafts."""
+    the reason in ``included``, when the pair file states no shafts. Computed once per pair (the
+    pair, a frozen dataclass, is the key: its geometry follows from it)."""
+    known = _DEFLECTIONS.get(geom.pair)
+    if known is None:
+        if len(_DEFLECTIONS) >= 256:
+            _DEFLECTIONS.clear()
+        known = _DEFLECTIONS[geom.pair] = _deflection(geom)
+    return known
+
+
+#: Deflections computed, by pair (bounded: cleared when full).
+_DEFLECTIONS: dict = {}
+
+
+def _deflection(geom) -> MeshDeflection:
     pair = geom.pair
     why = _why_none(geom)
     if why is not None:

@@ -276,6 +276,10 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
                                                   "LTCA: 1 when the largest contact pressure sits on a tip edge"),
         "peak_root_stress": variable(tg, ltca["peak_root_stress"].values, "Pa",
                                      "LTCA: largest tooth-root stress (ISO 6336-3 local form, slice by slice)"),
+        "shaft_misalignment": variable(t, ltca["shaft_misalignment"].values, "m",
+                                       "f_sh: the system deflection's lead mismatch in the plane of action (LTCA)"),
+        "rated_mesh_misalignment": variable(t, ltca["rated_mesh_misalignment"].values, "m",
+                                            "mesh misalignment f_sh + f_ma of the rating's K_Hbeta"),
     })
     coords = {"torque": variable(t, torques, "N m", "pinion torque T1"),
               "gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair")}
@@ -306,5 +310,8 @@ def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
                                                   "1: the largest contact pressure sits on a tip edge, 0: on a flank"),
         "peak_root_stress": variable(dims, stack("peak_root_stress", lambda v: v.max(axis=1)), "Pa",
                                      "LTCA: largest tooth-root stress of either gear (ISO 6336-3 local form)"),
+        "K_Hbeta": variable(dims, stack("K_Hbeta", lambda v: v), "1", "face load factor K_Hbeta the rating used"),
+        "shaft_misalignment": variable(dims, stack("shaft_misalignment", lambda v: v), "m",
+                                       "f_sh: the system deflection's lead mismatch", engineering_units="µm"),
     }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
                "torque": variable(("torque",), torques, "N m", "pinion torque T1")})

@@ -17,6 +17,7 @@ from ..io import variable
 from ..limits import check_slice_grid
 from ..loads import check_load
 from ..body import describe_body
+from ..deflection import describe_deflection, mesh_deflection
 from ..ltca import contact_tangent_compliance
 from ..stiffness import (
     DEFAULT_RULE,
@@ -118,7 +119,15 @@ def stiffness_dataset(pair: GearPair, *, method: str, slices: int, positions: in
         "harmonic": variable(("harmonic",), np.arange(1, fourier_order + 1), "1", "harmonic of the mesh frequency"),
     })
     ds.attrs.update({"tooth_model": method, "slices": slices, "slice_rule": result.rule, "fourier_order": fourier_order,
-                     "contact_term": CONTACT_TERM_NOTE[t1 is not None], "gear_body": describe_body(geom)})
+                     "contact_term": CONTACT_TERM_NOTE[t1 is not None], "gear_body": describe_body(geom),
+                     "system_deflection": describe_deflection(geom)})
+    deflection = mesh_deflection(geom)
+    ds["system_approach_compliance"] = variable((), deflection.approach_per_force, "m N-1",
+                                                "the supports' translation of the gear centres along the transverse line "
+                                                "of action per unit F_bt (not in the mesh stiffness; gearmesh.deflection)")
+    ds["shaft_misalignment_compliance"] = variable((), deflection.misalignment_per_force, "m N-1",
+                                                   "the system deflection's lead mismatch f_sh per unit F_bt "
+                                                   "(gearmesh.deflection; the LTCA takes it per torque)")
     return ds
 
 
@@ -142,6 +151,9 @@ def stiffness_summary(pair: GearPair, *, method: str, slices: int, positions: in
         "fourier_mean_N_per_um": float(ds.fourier_mean) * 1e-6,
         "fourier_cos_N_per_um": (ds.fourier_cos.values * 1e-6).tolist(),
         "fourier_sin_N_per_um": (ds.fourier_sin.values * 1e-6).tolist(),
+        "gear_body": ds.attrs["gear_body"], "system_deflection": ds.attrs["system_deflection"],
+        "system_approach_um_per_kN": float(ds.system_approach_compliance) * 1e9,
+        "shaft_misalignment_um_per_kN": float(ds.shaft_misalignment_compliance) * 1e9,
     }
     if torque_Nm is not None:
         out.update({"pinion_torque_Nm": float(ds.pinion_torque), "lste_mean_um": float(ds.lste_mean) * 1e6,
