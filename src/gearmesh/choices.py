@@ -63,3 +63,18 @@ FORCE_LINES = {
     "normal": "normal to the flanks (F_bn = F_bt/cos beta_b)",
     "tangential": "tangential to the reference circle (ISO 6336's F_t = T1/r1)",
 }
+
+#: Long-life conditions of the ISO 6336-2/-3:2019 life factors Z_NT and Y_NT (pair-file key
+#: ``life_factor_conditions``): 'normal' takes the standards' line down to 0.85 at 10¹⁰ load
+#: cycles, 'optimum' (optimum lubrication, material, manufacturing and experience) holds 1.0
+#: beyond the knee (:func:`gearmesh.rating.life_factor_contact`).
+LIFE_FACTOR_CONDITIONS = ("normal", "optimum")
+DEFAULT_LIFE_FACTOR_CONDITIONS = "normal"
+
+#: The gear of a pair that is an idler (pair-file key ``idler_gear``): it meshes with a third gear
+#: on its other flank, so its teeth bend both ways (the mean stress factor Y_M of ISO 6336-3:2019).
+IDLER_GEARS = ("pinion", "gear")
+
+#: Load stages of the FZG scuffing test A/8.3/90 (ISO 14635-1:2000, Table 2): 1..12, the stage
+#: whose pinion torque first scuffs the test gears (pair-file key ``lubricant.fzg_load_stage``).
+FZG_LOAD_STAGES = tuple(range(1, 13))

@@ -620,10 +620,10 @@ def build_parser() -> argparse.ArgumentParser:
                    help="speed (rpm) of the gear the torque acts on")
     _setting_option(p, "--application-factor", Rating, type=float, help="application factor K_A (ISO 6336-1)")
     _setting_option(p, "--life-hours", Rating, type=float,
-                    help="required life (h) for the life factors Z_NT, Y_NT (default: endurance)")
+                    help="required life (h) for the life factors Z_NT, Y_NT (default: the long-life end, 1e10 cycles)")
     p.add_argument("--factor", type=_factor_option, action="append", metavar="NAME=VALUE",
                    help="a factor given instead of computed (K_v, K_Hbeta, K_Fbeta, K_Halpha, K_Falpha, Z_L, Z_v, "
-                        "Z_R, Z_W, Z_X, Z_NT, Y_NT, Y_deltarelT, Y_RrelT, Y_X, S_Hmin, S_Fmin); repeatable")
+                        "Z_R, Z_W, Z_X, Z_NT, Y_NT, Y_deltarelT, Y_RrelT, Y_X, Y_M, S_Hmin, S_Fmin); repeatable")
     _setting_option(p, "--method", Rating,
                     help="where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the LTCA's load distribution under "
                          "the mesh misalignment (f_sh + f_ma) or the standard's methods B/C (both are printed)")

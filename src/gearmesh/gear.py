@@ -19,6 +19,7 @@ from typing import Any, Mapping
 import numpy as np
 import yaml
 
+from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
 from .errors import GearmeshInputError
 from .limits import (MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPTH, MAX_INPUT_NODES,  # noqa: F401
                      MAX_MODIFICATION_TO_MODULE, MAX_TEETH, MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE)
@@ -143,6 +144,7 @@ _PAIR_KEYS = {
     *BODY_KEYS,  # the gear bodies' webs and hubs (gearmesh.body)
     *DEVIATION_KEYS,  # the manufactured gear's deviations (gearmesh.deviation)
     "accuracy_grade", "roughness_um", "lubricant", "tip_edge_radius_mm",  # load capacity (gearmesh.rating)
+    "life_factor_conditions", "idler_gear",
 }
 #: Keys that say the same thing: at most one of each group may be given (_one_of).
 _ALTERNATIVE_KEYS = (
@@ -171,7 +173,10 @@ RATING_KEYS = {
     ("lubricant", "viscosity_40C_mm2_s"): "viscosity_40C_mm2_s",
     ("lubricant", "viscosity_100C_mm2_s"): "viscosity_100C_mm2_s",
     ("lubricant", "oil_temperature_C"): "oil_temperature_C",
+    ("lubricant", "fzg_load_stage"): "fzg_load_stage",
     ("tip_edge_radius_mm",): "tip_edge_radius_mm",
+    ("life_factor_conditions",): "life_factor_conditions",
+    ("idler_gear",): "idler_gear",
 }
 #: Steel, for a pair file without ``material`` or without one of its keys (given keys override):
 #: E = 206 GPa and ν = 0.3 are the steel of the gear standards, ISO 6336-1:2019 (the single
@@ -379,16 +384,28 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
     return _datasheet_diameters(pair, spec)
 
 
-def check_rating_input(name: str, value: Any, field_name: str | None = None) -> float | int:
+def check_rating_input(name: str, value: Any, field_name: str | None = None) -> float | int | str:
     """One load-capacity input (a name of :data:`RATING_KEYS`' values) checked: the accuracy grade
-    an integer 1..12 (ISO 1328-1), the oil temperature in (−40, 200) °C, every other a positive
-    number; GearmeshInputError naming ``field_name`` (default ``name``)."""
+    an integer 1..12 (ISO 1328-1), the FZG load stage an integer 1..12 (ISO 14635-1), the oil
+    temperature in (−40, 200) °C, the life-factor conditions and the idler gear one of their words
+    (:mod:`gearmesh.choices`), every other a positive number; GearmeshInputError naming
+    ``field_name`` (default ``name``)."""
     key = field_name or name
+    words = {"life_factor_conditions": LIFE_FACTOR_CONDITIONS, "idler_gear": IDLER_GEARS}
+    if name in words:
+        if not isinstance(value, str) or value not in words[name]:
+            raise GearmeshInputError(key, value, f"must be one of {list(words[name])}")
+        return value
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
         raise GearmeshInputError(key, value, "must be a finite number")
     if name == "accuracy_grade":
         if not float(value).is_integer() or not 1 <= value <= 12:
             raise GearmeshInputError(key, value, "must be an ISO 1328-1 accuracy grade, an integer in 1..12")
+        return int(value)
+    if name == "fzg_load_stage":
+        if not float(value).is_integer() or int(value) not in FZG_LOAD_STAGES:
+            raise GearmeshInputError(key, value, f"must be an FZG load stage (ISO 14635-1), an integer in "
+                                                 f"{FZG_LOAD_STAGES[0]}..{FZG_LOAD_STAGES[-1]}")
         return int(value)
     if name == "oil_temperature_C":
         if not -40 < value < 200:
@@ -402,7 +419,7 @@ def check_rating_input(name: str, value: Any, field_name: str | None = None) -> 
 def _rating_inputs(spec: Mapping[str, Any], material: Mapping[str, Any]) -> tuple[tuple[str, Any], ...]:
     """The load-capacity inputs given in a pair file, checked (:data:`RATING_KEYS`)."""
     sections = {"roughness_um": {"flank_Ra", "flank_Rz", "root_Rz"},
-                "lubricant": {"viscosity_40C_mm2_s", "viscosity_100C_mm2_s", "oil_temperature_C"}}
+                "lubricant": {"viscosity_40C_mm2_s", "viscosity_100C_mm2_s", "oil_temperature_C", "fzg_load_stage"}}
     given = {"material": material}
     for sec, keys in sections.items():
         if spec.get(sec) is not None:

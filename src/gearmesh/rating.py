@@ -21,8 +21,9 @@ contact), σ_H0 = Z_H Z_E Z_ε Z_β √(F_t/(d1 b)·(u+1)/u), σ_H = Z_B,D σ_H0
 σ_HG = σ_Hlim Z_NT Z_L Z_v Z_R Z_W Z_X, σ_HP = σ_HG/S_Hmin, S_H = σ_HG/σ_H.
 Bending (ISO 6336-3:2006, method B): Y_F, Y_S at the outer point of single pair tooth contact
 (:func:`gearmesh.stress.gear_root_form`), Y_β, Y_B, Y_DT, σ_F0 = F_t/(b m_n) Y_F Y_S Y_β Y_B Y_DT,
-σ_F = σ_F0 K_A K_v K_Fβ K_Fα, σ_FG = σ_Flim Y_ST Y_NT Y_δrelT Y_RrelT Y_X, σ_FP = σ_FG/S_Fmin,
-S_F = σ_FG/σ_F.
+σ_F = σ_F0 K_A K_v K_Fβ K_Fα, σ_FG = σ_Flim Y_ST Y_NT Y_δrelT Y_RrelT Y_X Y_M, σ_FP = σ_FG/S_Fmin,
+S_F = σ_FG/σ_F. Life factors Z_NT, Y_NT by ISO 6336-2/-3:2019 (the 'normal' long-life line to 0.85
+at 10¹⁰ cycles unless the inputs say 'optimum'); Y_M = 0.7 for an idler gear.
 """
 
 from __future__ import annotations
@@ -33,8 +34,9 @@ from typing import Any, Mapping
 
 import numpy as np
 
+from .choices import DEFAULT_LIFE_FACTOR_CONDITIONS, LIFE_FACTOR_CONDITIONS
 from .errors import GearmeshInputError
-from .gear import PairGeometry, check_rating_input
+from .gear import GEARS, PairGeometry, check_rating_input
 from .stress import gear_root_form
 
 __all__ = [
@@ -44,18 +46,21 @@ __all__ = [
     "zone_factor", "elasticity_factor", "contact_ratio_factor", "single_pair_factors", "life_factor_contact",
     "life_factor_root", "lubrication_velocity_roughness", "helix_factor_root", "rim_factor",
     "deep_tooth_factor", "notch_sensitivity_factor", "root_roughness_factor", "size_factor_root",
-    "ltca_load_factors", "rating",
+    "ltca_load_factors", "rating", "LONG_LIFE_CYCLES", "IDLER_MEAN_STRESS_FACTOR", "mean_stress_factor",
 ]
 
 #: Inputs when the pair file gives none, each named in the result's notes.
 #: Case-hardened wrought steel, quality MQ, ISO 6336-5:2016 (σ_Hlim 1500 N/mm², σ_Flim 500 N/mm²);
 #: ISO 1328-1 grade 6 (ground gears); ground flanks Ra 0.4 / Rz 2.5 µm and a hobbed, unground
 #: root Rz 10 µm (assumed, typical of ground case-hardened gears); ISO VG 220 oil (ν40 220,
-#: ν100 19 mm²/s, ISO 3448 mid-points) at 70 °C (assumed).
+#: ν100 19 mm²/s, ISO 3448 mid-points) at 70 °C (assumed), FZG load stage 12 (ISO 14635-1; the
+#: least a CLP gear oil must reach by DIN 51517-3); life factors for 'normal' long-life conditions
+#: (ISO 6336-2/-3:2019: 0.85 at 10¹⁰ cycles); neither gear an idler (one-way bending, Y_M = 1).
 DEFAULT_INPUTS = {
     "contact_fatigue_limit_MPa": 1500.0, "bending_fatigue_limit_MPa": 500.0, "accuracy_grade": 6,
     "flank_Ra_um": 0.4, "flank_Rz_um": 2.5, "root_Rz_um": 10.0,
     "viscosity_40C_mm2_s": 220.0, "viscosity_100C_mm2_s": 19.0, "oil_temperature_C": 70.0,
+    "fzg_load_stage": 12, "life_factor_conditions": DEFAULT_LIFE_FACTOR_CONDITIONS, "idler_gear": "none",
 }
 _SOURCES = {
     "contact_fatigue_limit_MPa": "ISO 6336-5:2016 case-hardened wrought steel MQ",
@@ -64,11 +69,15 @@ _SOURCES = {
     "flank_Ra_um": "ground flank assumed", "flank_Rz_um": "ground flank assumed", "root_Rz_um": "hobbed root assumed",
     "viscosity_40C_mm2_s": "ISO VG 220 assumed", "viscosity_100C_mm2_s": "ISO VG 220 assumed",
     "oil_temperature_C": "assumed",
+    "fzg_load_stage": "the least of a CLP gear oil, DIN 51517-3 (scuffing)",
+    "life_factor_conditions": "ISO 6336-2/-3 long-life line, Z_NT = Y_NT = 0.85 at 1e10 cycles; 'optimum' "
+                              "holds 1.0 where optimum lubrication, material, manufacturing and experience apply",
+    "idler_gear": "one-way bending of both gears, Y_M = 1",
 }
 #: Factors that may be given instead of computed (``--factor NAME=VALUE``), with their lower bound.
 FACTOR_NAMES = {"K_A": 1.0, "K_v": 1.0, "K_Hbeta": 1.0, "K_Fbeta": 1.0, "K_Halpha": 1.0, "K_Falpha": 1.0,
                 "Z_NT": 0.0, "Z_L": 0.0, "Z_v": 0.0, "Z_R": 0.0, "Z_W": 0.0, "Z_X": 0.0,
-                "Y_NT": 0.0, "Y_deltarelT": 0.0, "Y_RrelT": 0.0, "Y_X": 0.0, "S_Hmin": 0.0, "S_Fmin": 0.0}
+                "Y_NT": 0.0, "Y_deltarelT": 0.0, "Y_RrelT": 0.0, "Y_X": 0.0, "Y_M": 0.0, "S_Hmin": 0.0, "S_Fmin": 0.0}
 FACTOR_SOURCES = ("iso", "ltca")
 
 #: ISO 6336-1:1996 method C, K1 by ISO 1328-1 grade 3..12 (spur, helical); K2 0.0193 spur, 0.0087 helical.
@@ -84,14 +93,18 @@ class RatingInputs:
     """Material, accuracy, roughness and lubricant of a rating (engineering units), and which
     were taken from :data:`DEFAULT_INPUTS` (``defaulted``)."""
 
-    values: Mapping[str, float]
+    values: Mapping[str, Any]
     defaulted: tuple[str, ...] = ()
 
-    def __getitem__(self, key: str) -> float:
+    def __getitem__(self, key: str) -> Any:
         return self.values[key]
 
     def notes(self) -> list[str]:
-        return [f"{k} = {self.values[k]:g} not given: {_SOURCES[k]}" for k in self.defaulted]
+        return [f"{k} = {_text(self.values[k])} not given: {_SOURCES[k]}" for k in self.defaulted]
+
+
+def _text(value: Any) -> str:
+    return f"{value:g}" if isinstance(value, (int, float)) else str(value)
 
 
 def rating_inputs(given: Mapping[str, Any] | None = None) -> RatingInputs:
@@ -100,7 +113,7 @@ def rating_inputs(given: Mapping[str, Any] | None = None) -> RatingInputs:
     rules (:func:`gearmesh.gear.check_rating_input`: grade an integer 1..12, limits, roughness and
     viscosities positive, ν100 < ν40) and the others filled from :data:`DEFAULT_INPUTS`."""
     given = {k: v for k, v in dict(given or {}).items() if k in DEFAULT_INPUTS}
-    out = {k: check_rating_input(k, given.get(k, default)) for k, default in DEFAULT_INPUTS.items()}
+    out = {k: check_rating_input(k, given[k]) if k in given else default for k, default in DEFAULT_INPUTS.items()}
     if out["viscosity_100C_mm2_s"] >= out["viscosity_40C_mm2_s"]:
         raise GearmeshInputError("viscosity_100C_mm2_s", out["viscosity_100C_mm2_s"],
                                  f"must be below viscosity_40C_mm2_s ({out['viscosity_40C_mm2_s']:g})")
@@ -238,17 +251,43 @@ def _log_interp(n: float, points: tuple[tuple[float, float], ...]) -> float:
     return points[-1][1]
 
 
-def life_factor_contact(cycles: float) -> float:
-    """Z_NT of case-hardened steel, no pitting permitted (ISO 6336-2, Table 2, method B): 1.6 up to
-    N_L = 10⁵, 1.0 at 5·10⁷ and beyond (the endurance value; the standard's 0.85 at 10¹⁰ applies
-    without optimum lubrication, not taken)."""
-    return _log_interp(cycles, ((1e5, 1.6), (5e7, 1.0)))
+#: N_L the rating takes without ``life_hours``: the long-life end of the standard's curves (10¹⁰).
+LONG_LIFE_CYCLES = 1e10
 
 
-def life_factor_root(cycles: float) -> float:
-    """Y_NT of case-hardened steel (ISO 6336-3, Table 3, method B): 2.5 up to N_L = 10³, 1.0 at
-    3·10⁶ and beyond (endurance)."""
-    return _log_interp(cycles, ((1e3, 2.5), (3e6, 1.0)))
+def life_factor_contact(cycles: float, conditions: str = DEFAULT_LIFE_FACTOR_CONDITIONS) -> float:
+    """Z_NT of case-hardened steel (Eh, IF), no pitting permitted: ISO 6336-2:2019 Table 2, line 2
+    (method B): 1.6 up to N_L = 10⁵, 1.0 at 5·10⁷, then ``conditions`` 'normal' 0.85 at 10¹⁰
+    (Z_NT = (5·10⁷/N_L)^0.0307 between, the standard's Figure 6), 'optimum' 1.0; log-log between
+    the points and constant beyond 10¹⁰, where the standard's table ends."""
+    return _log_interp(cycles, ((1e5, 1.6), (5e7, 1.0), (1e10, _long_life_value(conditions))))
+
+
+def life_factor_root(cycles: float, conditions: str = DEFAULT_LIFE_FACTOR_CONDITIONS) -> float:
+    """Y_NT of case-hardened steel (Eh, IF root): ISO 6336-3:2019 Table 3 (method B): 2.5 up to
+    N_L = 10³, 1.0 at 3·10⁶, then ``conditions`` 'normal' 0.85 at 10¹⁰ (Y_NT = (3·10⁶/N_L)^0.02
+    between, the standard's Figure 5), 'optimum' 1.0; log-log between the points, constant beyond 10¹⁰."""
+    return _log_interp(cycles, ((1e3, 2.5), (3e6, 1.0), (1e10, _long_life_value(conditions))))
+
+
+def _long_life_value(conditions: str) -> float:
+    """The life factors' value at 10¹⁰ cycles for the long-life ``conditions`` (:data:`gearmesh.choices.LIFE_FACTOR_CONDITIONS`)."""
+    if conditions not in LIFE_FACTOR_CONDITIONS:
+        raise GearmeshInputError("life_factor_conditions", conditions, f"must be one of {list(LIFE_FACTOR_CONDITIONS)}")
+    return 0.85 if conditions == "normal" else 1.0
+
+
+#: Y_M of an idler gear (reversed bending: one flank's mesh loads a fillet in tension, the other's
+#: in compression): ISO 6336-3:2006 clause 5 (σ_FE × 0.7 for idler gears) and ISO 6336-3:2019's
+#: method C value for idler gears of case-hardened steel; 1 for one-way bending.
+IDLER_MEAN_STRESS_FACTOR = 0.7
+
+
+def mean_stress_factor(idler: bool) -> float:
+    """Y_M, the mean stress influence factor of ISO 6336-3:2019 (σ_FG = σ_Flim Y_ST Y_NT Y_δrelT
+    Y_RrelT Y_X Y_M): :data:`IDLER_MEAN_STRESS_FACTOR` for an idler (alternating bending), 1 for a
+    gear loaded on one flank (the pulsating load, R = 0, of the σ_Flim tests)."""
+    return IDLER_MEAN_STRESS_FACTOR if idler else 1.0
 
 
 def lubrication_velocity_roughness(sigma_hlim: float, nu40: float, v: float, rz_mean: float,
@@ -369,7 +408,8 @@ def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: R
            application_factor: float = 1.0, life_hours: float | None = None, factors: Mapping[str, float] | None = None,
            method: str = "iso", ltca_factors: Mapping[str, float] | None = None, running_in: bool = True) -> Rating:
     """ISO 6336-2/-3 method B rating of ``geom`` at pinion torque ``pinion_torque`` (N·m) and pinion
-    speed ``speed_rpm`` (module docstring). ``life_hours`` None: endurance (Z_NT = Y_NT = 1);
+    speed ``speed_rpm`` (module docstring). ``life_hours`` None: the long-life end of the life factors
+    (N_L = 10¹⁰: 0.85 under the inputs' 'normal' ``life_factor_conditions``, 1 under 'optimum');
     ``factors`` given factors (:func:`check_factors`); ``method`` 'iso' or 'ltca' picks where
     K_Hβ, K_Fβ, K_Hα, K_Fα come from (``ltca_factors`` {K_Hbeta, K_Halpha}, needed for 'ltca')."""
     if method not in FACTOR_SOURCES:
@@ -431,14 +471,15 @@ def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: R
     k_h = k_a * k_v * k_hb * k_ha
     s_h = [z_b_ * s_h0 * math.sqrt(k_h), z_d_ * s_h0 * math.sqrt(k_h)]
     n_rev = (speed_rpm, speed_rpm / u)
-    cycles = [math.inf if life_hours is None else life_hours * 60.0 * n for n in n_rev]
+    cycles = [LONG_LIFE_CYCLES if life_hours is None else life_hours * 60.0 * n for n in n_rev]
+    conditions = inputs["life_factor_conditions"]
     s_hlim = inputs["contact_fatigue_limit_MPa"]
     rho_c = [1e3 * float(geom.base_radius[i]) * math.tan(geom.operating_pressure_angle) for i in (0, 1)]
     rho_red = rho_c[0] * rho_c[1] / (rho_c[0] + rho_c[1])  # mm, at the pitch point
     lvr = lubrication_velocity_roughness(s_hlim, inputs["viscosity_40C_mm2_s"], v, inputs["flank_Rz_um"], rho_red)
     z_l, z_v, z_r = pick("Z_L", lvr["Z_L"]), pick("Z_v", lvr["Z_v"]), pick("Z_R", lvr["Z_R"])
     z_w, z_x = pick("Z_W", 1.0), pick("Z_X", 1.0)
-    z_nt = [given.get("Z_NT", life_factor_contact(n)) for n in cycles]
+    z_nt = [given.get("Z_NT", life_factor_contact(n, conditions)) for n in cycles]
     sources["Z_NT"] = "given" if "Z_NT" in given else "iso"
     s_hmin = given.get("S_Hmin", 1.0)
     s_hg = [s_hlim * zn * z_l * z_v * z_r * z_w * z_x for zn in z_nt]
@@ -455,13 +496,15 @@ def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: R
     k_f = k_a * k_v * k_fb * k_fa
     s_f = [s * k_f for s in s_f0]
     s_flim = inputs["bending_fatigue_limit_MPa"]
-    y_nt = [given.get("Y_NT", life_factor_root(n)) for n in cycles]
+    y_nt = [given.get("Y_NT", life_factor_root(n, conditions)) for n in cycles]
     sources["Y_NT"] = "given" if "Y_NT" in given else "iso"
     y_d = [pick("Y_deltarelT", notch_sensitivity_factor(f.q_s)) for f in forms]
     y_r = pick("Y_RrelT", root_roughness_factor(inputs["root_Rz_um"]))
     y_x = pick("Y_X", size_factor_root(mn))
     s_fmin = given.get("S_Fmin", 1.0)
-    s_fg = [s_flim * 2.0 * yn * yd * y_r * y_x for yn, yd in zip(y_nt, y_d)]
+    y_m = [given.get("Y_M", mean_stress_factor(inputs["idler_gear"] == name)) for name in GEARS]
+    sources["Y_M"] = "given" if "Y_M" in given else "iso"
+    s_fg = [s_flim * 2.0 * yn * yd * y_r * y_x * ym for yn, yd, ym in zip(y_nt, y_d, y_m)]
 
     pg = lambda a: [float(a[0]), float(a[1])]  # noqa: E731
     values = {
@@ -474,9 +517,9 @@ def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: R
         "S_H": pg([g / s for g, s in zip(s_hg, s_h)]), "S_Hmin": s_hmin,
         "Y_F": pg([f.Y_F for f in forms]), "Y_S": pg([f.Y_S for f in forms]), "Y_beta": y_beta, "Y_B": pg(y_b),
         "Y_DT": y_dt, "sigma_F0_MPa": pg(s_f0), "sigma_F_MPa": pg(s_f), "Y_ST": 2.0, "Y_NT": pg(y_nt),
-        "Y_deltarelT": pg(y_d), "Y_RrelT": y_r, "Y_X": y_x, "sigma_FG_MPa": pg(s_fg),
+        "Y_deltarelT": pg(y_d), "Y_RrelT": y_r, "Y_X": y_x, "Y_M": pg(y_m), "sigma_FG_MPa": pg(s_fg),
         "sigma_FP_MPa": pg([s / s_fmin for s in s_fg]), "S_F": pg([g / s for g, s in zip(s_fg, s_f)]),
-        "S_Fmin": s_fmin, "load_cycles": [None if math.isinf(n) else n for n in cycles],
+        "S_Fmin": s_fmin, "load_cycles": pg(cycles), "life_factor_conditions": conditions,
         "iso_factors": {"K_v": dynamic_factor_c(grade, geom.eps_beta, v, z1, u, k_a * ft / b),
                         "K_Hbeta": k_hb_iso, "K_Fbeta": k_fb_iso, "K_Halpha": k_ha_iso, "K_Falpha": k_fa_iso,
                         **fb, "f_pb_um": f_pb, "f_Hbeta_um": tol["f_Hbeta"], "y_alpha_um": y_a,
@@ -488,7 +531,8 @@ def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: R
         notes.append(f"K_v by method C outside its range: z1 v/100 sqrt(u^2/(1+u^2)) = {speed_term:.3g} m/s > "
                      f"{METHOD_C_SPEED_LIMIT:g} m/s; give K_v (--factor K_v=...) from a dynamic analysis")
     if life_hours is None:
-        notes.append("life_hours not given: endurance (Z_NT = Y_NT = 1)")
+        notes.append(f"life_hours not given: the long-life end of the life factors, N_L = {LONG_LIFE_CYCLES:g} "
+                     f"({conditions} conditions: Z_NT = {z_nt[0]:g}, Y_NT = {y_nt[0]:g}; ISO 6336-2/-3:2019)")
     notes.append("Z_W = 1 (both gears case-hardened), Z_X = 1 (ISO 6336-2), S_Hmin = S_Fmin = 1 unless given")
     return Rating(values=values, given=sorted(given), sources=sources, notes=notes)
 

@@ -28,6 +28,7 @@ from typing import Any, ClassVar, Literal, Mapping
 
 import yaml
 
+from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
                       TOOTH_METHODS)
 from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN
@@ -215,7 +216,7 @@ class Rating:
         reads=(Read("ltca"),), figures="gearmesh.plots.rating:rating_figures")
     speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
     application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=1)
-    life_hours: float | None = setting(None, "required life for Z_NT, Y_NT (null: endurance)", exclusive_minimum=0)
+    life_hours: float | None = setting(None, "required life for Z_NT, Y_NT (null: the long-life end, 1e10 cycles)", exclusive_minimum=0)
     method: Literal["iso", "ltca"] = setting("ltca", "where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the "
                                                      "standard's methods B/C or the LTCA's load distribution")
 
@@ -715,7 +716,7 @@ class PairRoughness:
 
 @dataclass(frozen=True, kw_only=True)
 class PairLubricant:
-    """The oil of the rating (ISO 6336-2 Z_L)."""
+    """The oil of the rating (ISO 6336-2 Z_L; the scuffing rating's friction, bulk and scuffing temperatures)."""
 
     viscosity_40C_mm2_s: float | None = setting(None, "kinematic viscosity at 40 °C (null: 220, ISO VG 220)",
                                                 exclusive_minimum=0)
@@ -723,6 +724,9 @@ class PairLubricant:
                                                  exclusive_minimum=0)
     oil_temperature_C: float | None = setting(None, "oil temperature (null: 70)", exclusive_minimum=-40,
                                               exclusive_maximum=200)
+    fzg_load_stage: int | None = setting(None, "FZG load stage of the oil (ISO 14635-1 test A/8.3/90) for the "
+                                               "scuffing rating (null: 12, the least of a CLP oil by DIN 51517-3)",
+                                         minimum=FZG_LOAD_STAGES[0], maximum=FZG_LOAD_STAGES[-1])
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -840,6 +844,12 @@ class PairFile:
     lubricant: PairLubricant | None = setting(None, "the oil of the rating")
     tip_edge_radius_mm: float | None = setting(None, "tip-edge rounding radius of the edge-contact pressure (null: "
                                                      "0.1 m_n, an assumed edge break)", exclusive_minimum=0)
+    life_factor_conditions: Literal[LIFE_FACTOR_CONDITIONS] | None = setting(
+        None, "long-life conditions of the life factors Z_NT, Y_NT (ISO 6336-2/-3:2019): normal, the line to 0.85 at "
+        "1e10 cycles; optimum, 1.0 beyond the knee (null: normal)")
+    idler_gear: Literal[IDLER_GEARS] | None = setting(
+        None, "the gear that is an idler, meshing with a third gear on its other flank: bending both ways, "
+        "Y_M = 0.7 (ISO 6336-3; null: neither)")
     source: str = setting("", "where the data come from")
 
 

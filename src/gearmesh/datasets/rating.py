@@ -26,6 +26,7 @@ from ..settings import Rating
 
 #: The rating's load factors by default (the study's declaration, also the CLI's and the API's).
 RATING_METHOD = defaults(Rating)["method"]
+from .scuffing import scuffing_json, scuffing_of
 from ..stress import ContactStress, contact_stress, iso_root_stress_slices, pair_edge_radius
 
 __all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "reference_ltca", "rating_summary",
@@ -178,7 +179,9 @@ def _fe_root_check(geom: PairGeometry, res: LTCAResult, root: np.ndarray) -> dic
 def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", application_factor: float = 1.0,
                    life_hours: float | None = None, factors: Mapping[str, float] | None = None,
                    method: str | None = None, positions: int = 64, points: int = 50) -> dict[str, Any]:
-    """ISO 6336-2/-3 rating at one torque and speed with the LTCA's stresses (the CLI's ``rating --json``).
+    """ISO 6336-2/-3 rating at one torque and speed with the LTCA's stresses and its scuffing rating
+    (ISO/TS 6336-20/-21 from the LTCA's load along the path, :mod:`gearmesh.datasets.scuffing`; the
+    CLI's ``rating --json``).
 
     Per-gear values are [pinion, gear]; ``factors_given`` names the factors given; ``factor_sources``
     where each load factor came from; ``ltca`` the LTCA's peak contact pressure (and whether on an
@@ -205,6 +208,7 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
     k_ha = float(rated_transverse_factor(lc["K_Halpha"][0]))
     r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method,
                {"K_Hbeta": float(lc["K_Hbeta_rated"][0]), "K_Halpha": k_ha})
+    sc = scuffing_of(geom, res, float(speed1), inputs, [r.values])
     c: ContactStress = lc["contact"]
     g = res.grid
     k = np.unravel_index(int(c.pressure[0].argmax()), c.pressure[0].shape)
@@ -222,12 +226,12 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
         "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
         **_fe_root_check(geom, res, root),
     }
-    notes = pair_notes(pair) + r.notes
+    notes = pair_notes(pair) + r.notes + sc.notes()
     if not c.edge_radius_given:
         notes.append(f"tip_edge_radius_mm not given: {c.edge_radius * 1e3:g} mm (0.1 m_n, an assumed edge break)")
     notes.append("LTCA root stress: ISO 6336-3 local form per slice (Y_F, Y_S at the point's load, no Y_beta)")
     return {"name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "method": method, **r.values,
-            "factors_given": r.given, "factor_sources": r.sources, "ltca": ltca_part, "gears": list(GEARS),
+            **scuffing_json(sc), "factors_given": r.given, "factor_sources": r.sources, "ltca": ltca_part, "gears": list(GEARS),
             "notes": notes}
 
 
