@@ -189,7 +189,8 @@ def test_load_capacity_table_names_the_variants_from_the_jobs_wildcards():
         out = xr.Dataset({"S_H": (("torque", "gear"), [[s_h, s_h + 1]]), "S_F": (("torque", "gear"), [[3.0, 2.0]]),
                           "peak_contact_pressure": (("torque",), [1e9]),
                           "peak_contact_pressure_on_edge": (("torque",), [1]),
-                          "peak_root_stress": (("torque", "gear"), [[1e8, 2e8]])}, coords={"torque": [1000.0]})
+                          "peak_root_stress": (("torque", "gear"), [[1e8, 2e8]]), "K_Hbeta": (("torque",), [1.2]),
+                          "shaft_misalignment": (("torque",), [-1e-6])}, coords={"torque": [1000.0]})
         out.attrs["gearmesh_wildcards_json"] = json.dumps({"variant": variant})
         return out
 
