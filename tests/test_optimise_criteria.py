@@ -415,3 +415,49 @@ def test_every_door_judges_the_criteria_over_the_manufactured_population(pair, m
                   "--method", "nsga2"])
     assert [s.criteria_over_samples for s in seen] == [True, True]
     assert all(s.tolerance_statistic == "max" for s in seen)
+
+
+def _rows_of_candidates(model):
+    """Three parameter sets (a candidate, the unmodified pair, a tip relief) with lead slopes of
+    their own (m), as a manufactured population gives them."""
+    genes, base = op.gene_table(model.geom, ("pinion",))
+    params = op.decode(model.geom, genes, base, [CANDIDATE, [0, 0, 0, 0, 0, 0], [0, 30, 0, 3, 0, 0]])
+    lead = np.array([[4e-6, -2e-6], [0.0, 0.0], [-7e-6, 3e-6]])
+    return params, lead
+
+
+def test_torques_of_their_own_misalignment_solve_as_each_torque_alone(model):
+    """impact_static at torques whose mesh misalignments differ (the system deflection grows with
+    the load) solves every (set, torque) row in one batch: each field equals that torque solved
+    alone, to round-off (1e-12 relative; the approach rate, a one-sided difference over 1e-6 p_bt,
+    to 1e-11 absolute: the point loads' round-off divided by that step)."""
+    from gearmesh.deflection import mesh_misalignment
+
+    assert np.unique(mesh_misalignment(model.geom, np.array(TORQUES) / model.geom.base_radius[0])).size == 3
+    params, lead = _rows_of_candidates(model)
+    both = im.impact_static(model, TORQUES, params, lead_slope=lead)
+    alone = [im.impact_static(model, [t], params, lead_slope=lead) for t in TORQUES]
+    assert {im.SCENARIO_SURFACE, im.SCENARIO_EDGE} <= set(both.scenario.ravel())  # both kinds of touch covered
+    for name in im.ImpactStatic.__dataclass_fields__:
+        got = getattr(both, name)
+        if name in ("params", "lead_slope"):
+            np.testing.assert_array_equal(got, params if name == "params" else lead)
+            continue
+        want = np.concatenate([getattr(a, name) for a in alone], axis=0 if name in ("torque", "force") else 1)
+        if got.dtype.kind != "f":
+            np.testing.assert_array_equal(got, want, err_msg=name)
+        else:
+            np.testing.assert_allclose(got, want, rtol=1e-12, atol=1e-11 if name == "approach_rate" else 0.0,
+                                       err_msg=name)
+
+
+@pytest.mark.parametrize("samples", [1, 3])
+def test_ltca_criteria_at_torques_of_their_own_misalignment_are_each_torque_alone(model, samples):
+    """ltca_criteria solves every torque at its own mesh misalignment in one batch: bit for bit what
+    each torque alone gives (every row is its own contact problem, solved to its own tolerance)."""
+    params, lead = _rows_of_candidates(model)
+    both = im.ltca_criteria(model, TORQUES, params, lead_slope=lead, samples=samples)
+    alone = [im.ltca_criteria(model, [t], params, lead_slope=lead, samples=samples) for t in TORQUES]
+    for name in im.LTCACriteria.__dataclass_fields__:
+        np.testing.assert_array_equal(getattr(both, name), np.concatenate([getattr(a, name) for a in alone], axis=1),
+                                      err_msg=name)

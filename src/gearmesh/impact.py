@@ -543,8 +543,9 @@ _TOUCH_TOLERANCE = 1e-12
 
 def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: np.ndarray):
     """Touch roll τ*, the entering pair's smallest separation there and its face position for
-    every (C, T) (module docstring; NaN where the touch fell on a window roll), whether found and
-    whether at the window start, and the entering pair's separation at the theoretical engagement (C,).
+    every (C, T) of transverse forces ``force`` (C, T) N (module docstring; NaN where the touch fell
+    on a window roll), whether found and whether at the window start, and the entering pair's
+    separation at the theoretical engagement (C,).
 
     The touch condition g(τ) = δ_others(τ) is solved as F*(τ) = F_bt (:func:`_touch_force`):
     since the other pairs' force grows with their approach, g > δ_others exactly where
@@ -552,10 +553,10 @@ def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: n
     on the torque: one pass over the window grid brackets every torque's touch (the first
     roll with F* ≤ F_bt; :func:`_window_touch_force`), then a secant iteration with exact
     evaluations of F* pins it down inside its cell."""
-    nc, nt = params.shape[0], force.size
+    nc, nt = force.shape
     k0 = int(np.flatnonzero(model.tau == 0.0)[0])
-    f_win, g_win = _window_touch_force(model, params, lead, float(force.min()), k0)
-    below = f_win[:, None, :] <= force[None, :, None]  # NaN: not below
+    f_win, g_win = _window_touch_force(model, params, lead, force.min(axis=1), k0)
+    below = f_win[:, None, :] <= force[:, :, None]  # NaN: not below
     found = below.any(axis=-1)
     k = np.argmax(below, axis=-1)  # first roll at or past the touch
     at_start = found & (k == 0)
@@ -564,10 +565,11 @@ def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: n
     if cc.size:
         kk = k[cc, tt]
         a, b = model.tau[kk - 1], model.tau[kk]
-        fa, fb = f_win[cc, kk - 1] - force[tt], f_win[cc, kk] - force[tt]  # fa > 0 ≥ fb: the bracket
+        target = force[cc, tt]
+        fa, fb = f_win[cc, kk - 1] - target, f_win[cc, kk] - target  # fa > 0 ≥ fb: the bracket
         # secant iteration from the cubic estimate (its slope for the first step), kept inside the
         # bracket (bisection when a step would leave it); every evaluation exact
-        x_last, slope = _inverse_cubic(model.tau, f_win[cc], kk, force[tt], a, b, fa, fb)
+        x_last, slope = _inverse_cubic(model.tau, f_win[cc], kk, target, a, b, fa, fb)
         f_last, g_last, z_last = (np.full(cc.size, np.nan) for _ in range(3))
         last_others = _Others(None, None, None, None, cc.size)
         active = np.flatnonzero(fb != 0.0)
@@ -579,7 +581,7 @@ def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: n
             f_c, k_c, g_c, z_c, o_c = _touch_force(model, params[cc[active]], lead[cc[active]], c)
             g_last[active], z_last[active] = g_c, z_c
             last_others.put(active, o_c)
-            fc = f_c - force[tt[active]]
+            fc = f_c - target[active]
             up = fc > 0
             a[active] = np.where(up, c, a[active])
             fa[active] = np.where(up, fc, fa[active])
@@ -611,14 +613,14 @@ def _crossing(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force: n
 _WINDOW_CHUNK = 8
 
 
-def _window_touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force_min: float, k0: int):
+def _window_touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray, force_min: np.ndarray, k0: int):
     """F*(c, τ_k) and the entering pair's smallest separation g(c, τ_k) on the window rolls (C, R).
 
     The rolls are taken in passes of :data:`_WINDOW_CHUNK` from the window's start: a row is done
-    once its F* has fallen to the smallest force ``force_min`` and the roll after that crossing is
-    known (the first crossing of every larger force comes no later, since F* ≤ F_bt,min implies
-    F* ≤ F_bt), so the rolls after it are left NaN. Roll ``k0`` (the theoretical engagement) is
-    always evaluated."""
+    once its F* has fallen to its smallest force ``force_min`` (C,) and the roll after that
+    crossing is known (the first crossing of every larger force comes no later, since
+    F* ≤ F_bt,min implies F* ≤ F_bt), so the rolls after it are left NaN. Roll ``k0`` (the
+    theoretical engagement) is always evaluated."""
     w, g = model.window, model.geom
     nc, r = params.shape[0], model.tau.size
     f_win, g_win = np.full((nc, r), np.nan), np.full((nc, r), np.nan)
@@ -640,7 +642,7 @@ def _window_touch_force(model: ImpactModel, params: np.ndarray, lead: np.ndarray
             f[:, some] = np.add.reduceat(q, w.starts[lo:hi][some] - w.starts[lo], axis=-1)
         f_win[active, lo:hi] = np.where(np.isfinite(gap_e), f, np.nan)
         g_win[active, lo:hi] = gap_e
-        below = f_win[active, :hi] <= force_min
+        below = f_win[active, :hi] <= force_min[active, None]
         k = np.argmax(below, axis=1)
         done = (below.any(axis=1) & (k + 1 < hi)) | (hi == r)
         active, lo = active[~done], hi
@@ -723,7 +725,8 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     width; default the model's for all): additive to the separations
     (:func:`gearmesh.deviation.lead_gap`), so a tolerance sample costs no new geometry; each
     torque adds its mesh misalignment (:func:`gearmesh.deflection.mesh_misalignment`: torques
-    of different misalignment are solved one at a time).
+    of different misalignment are solved as one batch of a row per set and torque, each row
+    with its own lead slopes and force — what each torque alone gives, to round-off).
     ``curve_levels`` approaches of the entering pair's F–δ curve, geometric up to one at which
     it carries at least ``curve_force_min`` (N, (C, T) or scalar; default 4·F_bt) —
     :func:`impact_response` extends it where an impact needs more. ``engagement``: also the
@@ -735,41 +738,48 @@ def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 
     params = model.params(params)
     lead = model.lead_slopes(lead_slope, params.shape[0])
     t1 = check_torques(torques)
-    mis = mesh_misalignment(g, t1 / float(g.base_radius[0]))
+    force = t1 / float(g.base_radius[0])
+    mis = mesh_misalignment(g, force)
     if np.all(mis == mis[0]):
         return _static(model, t1, params, with_misalignment(lead, mis[0]), lead, curve_levels, curve_force_min,
                        engagement)
-    cfm = None if curve_force_min is None else np.asarray(curve_force_min, dtype=float)
-    parts = [_static(model, t1[i:i + 1], params, with_misalignment(lead, mis[i]), lead, curve_levels,
-                     None if cfm is None else (cfm if cfm.ndim < 2 else cfm[:, i:i + 1]), engagement)
-             for i in range(t1.size)]
-    return _stack_torques(parts)
+    # each torque at its own misalignment: one row per (set, torque), each with its own lead rows and
+    # force (the rows of a batch are solved independently, so this is each torque solved alone)
+    nc, nt = params.shape[0], t1.size
+    c, t = np.repeat(np.arange(nc), nt), np.tile(np.arange(nt), nc)
+    cfm = None if curve_force_min is None else \
+        np.broadcast_to(np.asarray(curve_force_min, dtype=float), (nc, nt)).reshape(-1, 1)
+    rows = _static(model, t1[:1], params[c], with_misalignment(lead[c], mis[t]), lead[c], curve_levels, cfm,
+                   engagement, force=force[t][:, None])
+    return _unstack_rows(rows, t1, force, params, lead)
 
 
-def _stack_torques(parts: list["ImpactStatic"]) -> "ImpactStatic":
-    """One :class:`ImpactStatic` of several solved one torque at a time (torque axis 1; the
-    torques' own axis 0)."""
-    first = parts[0]
-    out = {}
+def _unstack_rows(rows: "ImpactStatic", t1: np.ndarray, force: np.ndarray, params: np.ndarray,
+                  lead: np.ndarray) -> "ImpactStatic":
+    """The :class:`ImpactStatic` of C sets at T torques from one solved with a row per (set, torque)
+    (rows (C·T, 1, ...), set-major): pinion torques ``t1`` (T,) N m, forces ``force`` (T,) N, the
+    sets' ``params`` (C, 2, 6) and own lead slopes ``lead`` (C, 2) m."""
+    nc, nt = params.shape[0], t1.size
+    out = {"torque": t1, "force": force, "params": params, "lead_slope": np.array(lead)}
     for name in ImpactStatic.__dataclass_fields__:
-        if name in ("params", "lead_slope"):
-            out[name] = getattr(first, name)
-        elif name in ("torque", "force"):
-            out[name] = np.concatenate([getattr(p, name) for p in parts])
-        else:
-            out[name] = np.concatenate([getattr(p, name) for p in parts], axis=1)
+        if name not in out:
+            a = getattr(rows, name)
+            out[name] = a.reshape((nc, nt) + a.shape[2:])
     return ImpactStatic(**out)
 
 
 def _static(model: ImpactModel, t1: np.ndarray, params: np.ndarray, lead: np.ndarray, lead_rows: np.ndarray,
-            curve_levels: int, curve_force_min, engagement: bool) -> "ImpactStatic":
+            curve_levels: int, curve_force_min, engagement: bool, force: np.ndarray | None = None) -> "ImpactStatic":
     """:func:`impact_static` at pinion torques ``t1`` (N m) whose separations share the lead rows
     ``lead`` (C, 2) (m, the mesh misalignment of these torques included); ``lead_rows`` the rows'
-    own slopes, stored in the result."""
+    own slopes, stored in the result. ``force`` (C, T) N: each row's own transverse forces instead
+    of those of ``t1`` (a row per set and torque, :func:`impact_static`; ``torque``, ``force`` of the
+    result are then those of ``t1``)."""
     g = model.geom
     nc = params.shape[0]
-    force = t1 / float(g.base_radius[0])
-    nt = force.size
+    f_t = t1 / float(g.base_radius[0])
+    force = np.broadcast_to(f_t if force is None else np.asarray(force, dtype=float), (nc, f_t.size))
+    nt = force.shape[1]
     t_star, g_star, z_star, found, at_start, te0, at_touch = _crossing(model, params, lead, force)
     if np.any(at_start):
         warnings.warn("impact: the entering pair touches at the outer end of the tip-edge candidates; "
@@ -808,7 +818,7 @@ def _static(model: ImpactModel, t1: np.ndarray, params: np.ndarray, lead: np.nda
     q[~kept], dq[~kept] = _point_loads(model, gap_min[~kept, None], gap_o[2, ~kept], comp[2, ~kept])
     stiff = dq.sum(axis=1)
     with np.errstate(invalid="ignore", divide="ignore"):
-        resid = (q.sum(axis=1) - np.tile(force, nc)) / stiff  # g − δ_others at τ* (one Newton step)
+        resid = (q.sum(axis=1) - force.reshape(-1)) / stiff  # g − δ_others at τ* (one Newton step)
         # δ − g_i = c_i(τ)·q_i + δ_c(q_i) at fixed Σq_i = F_bt: dδ/dτ = Σk_i·(g_i' + c_i'·q_i)/Σk_i
         # (k_i = dq_i/dδ; the compliance changes as the points move along the profile)
         rate_o = (3 * (gap_o[2] + comp[2] * q) - 4 * (gap_o[1] + comp[1] * q) + gap_o[0] + comp[0] * q) / (2 * eps)
@@ -824,19 +834,19 @@ def _static(model: ImpactModel, t1: np.ndarray, params: np.ndarray, lead: np.nda
                         np.where((region == REGION_APPROACH_TIP) | (region == REGION_RECESS_TIP), SCENARIO_EDGE,
                                  SCENARIO_SURFACE)).astype(np.int8)
     # TE and LTE at the theoretical engagement (τ = 0, a window roll): all pairs at φ1A
-    lte0 = (_approach_at(model, params, lead, force[None, :], np.zeros((1, nc, nt)), others=False)[0]
+    lte0 = (_approach_at(model, params, lead, force[None], np.zeros((1, nc, nt)), others=False)[0]
             if engagement else np.full((nc, nt), np.nan))
     # F–δ curve of the entering pair alone from M
     # separations from the first slice to touch (→ M as local_points → ∞)
     rel, comp = _enter_points(model, params, lead, tt)
-    fmin = 4.0 * force[None, :] * np.ones((nc, 1)) if curve_force_min is None else \
+    fmin = 4.0 * force * np.ones((nc, 1)) if curve_force_min is None else \
         np.broadcast_to(np.asarray(curve_force_min, dtype=float), (nc, nt))
     cf, ca = _force_curve(model, rel, comp, _curve_reach(model, rel, comp, fmin), curve_levels)
     nan = ~found
     for arr in (delta, gap_rate, approach_rate, s_m, z_m):
         arr[nan] = np.nan
     cf[nan], ca[nan] = np.nan, np.nan
-    return ImpactStatic(torque=t1, force=force, scenario=scenario, tau=np.where(found, tt, np.nan),
+    return ImpactStatic(torque=t1, force=f_t, scenario=scenario, tau=np.where(found, tt, np.nan),
                         roll=np.where(found, model.roll(tt), np.nan), approach=delta, gap_rate=gap_rate,
                         approach_rate=approach_rate, s=s_m, z=z_m,
                         rho_pinion=np.where(found, bm.rho_pinion, np.nan), rho_gear=np.where(found, bm.rho_gear, np.nan),
@@ -1189,16 +1199,16 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     cols = np.argsort(~candidate, axis=1, kind="stable")[:, :int(candidate.sum(axis=1).max())]  # (P, M')
     comp = np.take_along_axis(lt.compliance[:p].reshape(p, -1), cols, axis=1)
 
-    def gaps(m: float) -> np.ndarray:  # (C, P, M') at mesh misalignment m
-        gp = basis_gap(g, basis, z, with_misalignment(lead, m)[:, None, None, None, :],
-                       params[:, None, None, None, :, :])  # (C, P, J, N)
-        return np.take_along_axis(gp.reshape(nc, p, -1), cols[None], axis=2)
-
-    if np.all(mis == mis[0]):
-        q, delta = _cycle_loads(lt.law, gaps(mis[0]), comp, force, samples)
-    else:  # each torque at its own misalignment (the system deflection grows with the load)
-        solved = [_cycle_loads(lt.law, gaps(mis[t]), comp, force[t:t + 1], samples) for t in range(nt)]
-        q, delta = (np.concatenate([s[i] for s in solved], axis=1) for i in (0, 1))
+    # (C, P, M') at one misalignment, or (C, T, P, M') at each torque's own (the system deflection
+    # grows with the load): every row of _cycle_loads is its own contact problem, so the torques
+    # solve together as they would one at a time
+    one = bool(np.all(mis == mis[0]))
+    m = np.asarray(mis[:1] if one else mis, dtype=float)
+    lead_t = with_misalignment(np.broadcast_to(lead[:, None], (nc, m.size, 2)), m[None, :])  # (C, T or 1, 2)
+    gp = basis_gap(g, basis, z, lead_t[:, :, None, None, None, :],
+                   params[:, None, None, None, None, :, :])  # (C, T or 1, P, J, N)
+    gp = np.take_along_axis(gp.reshape(nc, m.size, p, -1), cols[None, None], axis=3)
+    q, delta = _cycle_loads(lt.law, gp[:, 0] if one else gp, comp, force, samples)
     w = q / grid.dz  # line loads (N/m), (C, T, P, M')
     nan = np.full((nc, nt), np.nan)
     flank = edge = root = nan
@@ -1218,9 +1228,10 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
 
 def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force: np.ndarray,
                  samples: int = 1) -> tuple[np.ndarray, np.ndarray]:
-    """Loads (C, T, P, M) N and approach (C, T, P) m of C gears with separations ``gap`` (C, P, M)
-    at the points of P positions (compliance (P, M) m/N) under the transverse forces ``force`` (T,)
-    N: every row one contact problem of :func:`gearmesh.ltca.solve_contact_tabulated`.
+    """Loads (C, T, P, M) N and approach (C, T, P) m of C gears with separations ``gap`` (C, P, M),
+    or (C, T, P, M) each torque's own, at the points of P positions (compliance (P, M) m/N) under
+    the transverse forces ``force`` (T,) N: every row one contact problem of
+    :func:`gearmesh.ltca.solve_contact_tabulated`.
 
     With ``samples`` S > 1 the gears come in runs of S manufactured gears of one design, the
     first the nominal. A sample's separations differ from its nominal's by its deviations
@@ -1230,22 +1241,24 @@ def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force
     the loads at that δ carry at least F; Newton descends from it in a few steps."""
     from .ltca import solve_contact_tabulated
 
-    nc, p, m = gap.shape
     nt = force.size
+    if gap.ndim == 3:  # one set of separations for every torque
+        gap = gap[:, None]
+    nc, _, p, m = gap.shape
 
     def solve(gp: np.ndarray, start=None):
         k = gp.shape[0]
         rows = (k, nt, p, m)
-        q, d, dq = solve_contact_tabulated(np.broadcast_to(gp[:, None], rows).reshape(-1, m),
+        q, d, dq = solve_contact_tabulated(np.broadcast_to(gp, rows).reshape(-1, m),
                                            np.broadcast_to(compliance, rows).reshape(-1, m),
                                            np.broadcast_to(force[:, None], rows[:3]).reshape(-1), law, start)
         return q.reshape(rows), d.reshape(rows[:3]), dq.reshape(rows)
 
     if samples == 1:
         return solve(gap)[:2]
-    g = gap.reshape(nc // samples, samples, p, m)
+    g = gap.reshape(nc // samples, samples, *gap.shape[1:])
     qn, dn, kn = solve(g[:, 0])
-    qs, ds, _ = solve(g[:, 1:].reshape(-1, p, m), _tangent_start(g[:, 1:] - g[:, :1], dn, kn).reshape(-1))
+    qs, ds, _ = solve(g[:, 1:].reshape(-1, *gap.shape[1:]), _tangent_start(g[:, 1:] - g[:, :1], dn, kn).reshape(-1))
     q = np.concatenate([qn[:, None], qs.reshape(-1, samples - 1, nt, p, m)], axis=1).reshape(nc, nt, p, m)
     d = np.concatenate([dn[:, None], ds.reshape(-1, samples - 1, nt, p)], axis=1).reshape(nc, nt, p)
     return q, d
@@ -1253,11 +1266,14 @@ def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force
 
 def _tangent_start(change: np.ndarray, delta: np.ndarray, tangent: np.ndarray) -> np.ndarray:
     """Upper bound (C, S, T, P) m of the approach of gears whose separations differ from a solved
-    one's by ``change`` (C, S, P, M) m (inf/NaN where no point): δ + Σ k_i Δg_i / Σ k_i with the
-    solved gear's approach ``delta`` (C, T, P) and point tangents ``tangent`` k_i = dq_i/dδ
-    (C, T, P, M) (:func:`_cycle_loads`)."""
+    one's by ``change`` (C, S, T, P, M) m, or (C, S, P, M) the same at every torque (inf/NaN where
+    no point): δ + Σ k_i Δg_i / Σ k_i
+    with the solved gear's approach ``delta`` (C, T, P) and point tangents ``tangent``
+    k_i = dq_i/dδ (C, T, P, M) (:func:`_cycle_loads`)."""
+    if change.ndim == tangent.ndim:  # (C, S, P, M): the same change at every torque
+        change = change[:, :, None]
     with np.errstate(invalid="ignore"):  # inf − inf at points that are no candidates (k = 0 there)
-        dg = np.where(tangent[:, None] > 0, change[:, :, None], 0.0)  # (C, S, T, P, M)
+        dg = np.where(tangent[:, None] > 0, change, 0.0)  # (C, S, T, P, M)
     return delta[:, None] + (tangent[:, None] * dg).sum(axis=-1) / tangent.sum(axis=-1)[:, None]
 
 
