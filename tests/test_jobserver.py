@@ -28,14 +28,14 @@ pytestmark = pytest.mark.skipif(os.name != "posix", reason="the job server forks
 
 
 def _job(root: Path, out: Path, function: str, settings: dict, figures: str | None = None,
-         outputs: dict | None = None) -> Snakemake:
-    """The Snakemake object of a pair-stage job of seed001_pair1, as a script rule gets it."""
+         outputs: dict | None = None, pair: str = "seed001_pair1") -> Snakemake:
+    """The Snakemake object of a pair-stage job of ``pair``, as a script rule gets it."""
     params = {"function": versioned(function), "settings": settings}
     if figures:
         params["figures"] = versioned(figures)
-    return Snakemake(InputFiles(fromdict={"pair": str(root / "config/pairs/seed001_pair1.yaml")}),
+    return Snakemake(InputFiles(fromdict={"pair": str(root / f"config/pairs/{pair}.yaml")}),
                      OutputFiles(fromdict=outputs or {"nc": str(out / "result.nc")}), Params(fromdict=params),
-                     Wildcards(fromdict={"pair": "seed001_pair1"}), 1, None, Log([str(out / "job.log")]),
+                     Wildcards(fromdict={"pair": pair}), 1, None, Log([str(out / "job.log")]),
                      {"study": "test"}, "test_rule", None)
 
 
@@ -86,6 +86,27 @@ def test_a_job_on_the_server_equals_the_job_alone(root, tmp_path, server):
     for name in a.data_vars:
         np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
     assert a.attrs["config_json"] == b.attrs["config_json"]
+
+
+def test_a_job_on_the_server_rounds_as_the_one_thread_job_snakemake_runs(root, tmp_path, server):
+    """The system deflection of the default pair is an ill-conditioned solve (stiff bearings on a
+    slender shaft) whose last digits follow how BLAS splits it into threads: on the server it gives
+    bit for bit what the job gives in a process of its own with Snakemake's settings of a one-thread
+    job (its thread variables at 1), whatever the machine's cores."""
+    results = {}
+    alone = {**server.env, jobserver.ENV: "off", **dict.fromkeys(jobserver.THREAD_VARIABLES, "1")}
+    for where, env in (("server", server.env), ("alone", alone)):
+        out = tmp_path / where
+        job = _job(root, out, "gearmesh.datasets.stiffness:stiffness_dataset",
+                   {"slices": 20, "positions": 24, "method": "transition"}, pair="seed000_case")
+        proc = _script(job, tmp_path, env)
+        _, err = proc.communicate(timeout=300)
+        assert proc.returncode == 0, err
+        results[where] = read_dataset(out / "result.nc")
+    a, b = results["server"], results["alone"]
+    assert float(a["shaft_misalignment_compliance"]) != 0.0  # the pair's shafts deflect
+    for name in a.data_vars:
+        np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
 
 
 def test_a_failing_job_reports_its_error_and_exit_code(root, tmp_path, server):
@@ -146,3 +167,70 @@ def test_the_server_imports_the_modules_its_rules_name():
                                      {"positions": 3}]),
              SimpleNamespace(params=None)]
     assert jobserver.rule_modules(rules) == ["gearmesh.datasets.ltca", "gearmesh.pipeline", "gearmesh.plots.ltca"]
+
+
+def _function_level_imports() -> set[str]:
+    """Every third-party module the package imports inside a function (``from X import y`` also
+    names X.y when that is a module)."""
+    import ast
+    import importlib.util
+
+    found: set[str] = set()
+    for path in Path(jobserver.__file__).parent.rglob("*.py"):
+        for fn in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            for node in ast.walk(fn):
+                if isinstance(node, ast.Import):
+                    found.update(a.name for a in node.names)
+                elif isinstance(node, ast.ImportFrom) and not node.level and node.module:
+                    found.add(node.module)
+                    for a in node.names:
+                        name = f"{node.module}.{a.name}"
+                        try:
+                            if importlib.util.find_spec(name) is not None:
+                                found.add(name)
+                        except (ImportError, ValueError):
+                            pass
+    return {m for m in found if m.split(".")[0] not in sys.stdlib_module_names and m.split(".")[0] != "gearmesh"}
+
+
+def test_the_server_warms_every_module_the_package_imports_inside_functions():
+    """The server imports what jobs import inside functions, so that no job pays for it: every
+    function-level third-party import of the package is in WARM_MODULES (a package counts as
+    imported with any of its submodules)."""
+    warm = set(jobserver.WARM_MODULES)
+    missing = {m for m in _function_level_imports() if m not in warm and not any(w.startswith(m + ".") for w in warm)}
+    assert not missing, f"add to gearmesh.jobserver.WARM_MODULES: {sorted(missing)}"
+
+
+def test_after_the_warm_steps_a_job_loads_no_kernel_and_imports_nothing_heavy(root, tmp_path):
+    """In a process warmed as the server warms itself, a contact-driven dynamics job of another pair
+    and its figures load no compiled kernel (no new numba specialisation: the warm-up used the types
+    the jobs use) and import no module of the heavy libraries."""
+    code = f"""
+import sys, numpy as np
+from gearmesh import jobserver
+for step in jobserver.warm_steps():
+    step()
+from gearmesh.dynamics import integrate
+from gearmesh import ltca
+kernels = [integrate._sweep, ltca._COMPILED["loop"]]  # the others compile into _sweep
+before = [len(k.signatures) for k in kernels]
+modules = set(sys.modules)
+from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.meshforce import mesh_force_table
+from gearmesh.dynamics.model import pair_model
+from gearmesh.dynamics.integrate import simulate
+geom = pair_geometry(load_pair({str(root / 'config/pairs/seed001_pair1.yaml')!r}))
+table = mesh_force_table(geom, 4 * 300 / geom.base_radius[0], positions=32, approaches=16, points=10, method="transition")
+simulate(pair_model(geom, 300.0, None, contact=table), [2000.0, 3000.0])
+after = [len(k.signatures) for k in kernels]
+heavy = sorted(m for m in set(sys.modules) - modules
+               if m.split(".")[0] in ("scipy", "numba", "matplotlib", "PIL", "netCDF4", "jsonschema", "pygad"))
+print(before, after, heavy)
+assert before == after and all(before), (before, after)
+assert not heavy, heavy
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
+    assert out.returncode == 0, out.stderr[-3000:] + out.stdout

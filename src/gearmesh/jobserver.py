@@ -6,6 +6,9 @@ what the job needs: xarray and pandas, scipy.interpolate, matplotlib, numba — 
 CPU before any work, more than most jobs of a study then spend working. For a local run the
 Snakefile starts one server per run (:func:`start`, from ``onstart``): it imports the modules of
 the study's rules, then forks one child per job from that imported, otherwise untouched state.
+Between jobs it warms that state further (:func:`warm_steps`): it imports what jobs import inside
+functions (:data:`WARM_MODULES`) and loads the compiled kernels from numba's on-disk cache, which
+every job would otherwise do again (0.3–1 s of CPU a job on the default study, measured).
 A job's script (``workflow/scripts/*.py``) calls :func:`run`, which hands the job's Snakemake
 object and its standard streams to the server and exits with the child's exit code; the child
 runs the same :mod:`gearmesh.pipeline` function the script would have run, so a job's results
@@ -41,7 +44,7 @@ import tempfile
 import threading
 import time
 import traceback
-from typing import Any, Iterable
+from typing import Any, Callable, Iterable
 
 #: The environment variable that names the run's socket ("off" disables the server).
 ENV = "GEARMESH_JOBSERVER"
@@ -51,6 +54,20 @@ STARTED_ENV = "GEARMESH_JOB_STARTED"
 _HEADER = struct.Struct("!Q")
 _CODE = struct.Struct("!i")
 _server: subprocess.Popen | None = None
+#: What Snakemake sets to a job's thread count for the linear-algebra libraries (OpenBLAS reads it
+#: once, when numpy loads it): the server's children are one-thread jobs with the same settings as
+#: the job's own process would have, so that BLAS splits its work, and rounds, as it does there
+#: (a multi-threaded LAPACK solve of the system deflection differs in the 8th digit).
+THREAD_VARIABLES = ("OMP_NUM_THREADS", "GOTO_NUM_THREADS", "OPENBLAS_NUM_THREADS", "MKL_NUM_THREADS",
+                    "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")
+#: Third-party modules the package imports inside functions (``import gearmesh`` stays light for
+#: a command-line call), and those saving a PNG figure imports: imported once by the server
+#: instead of by every job (tests/test_jobserver.py: every function-level import of the package
+#: is here). One that is not installed is skipped.
+WARM_MODULES = ("jsonschema", "netCDF4", "numba", "numpy", "psutil", "pyamg", "pygad", "scipy.fft", "scipy.integrate",
+                "scipy.interpolate", "scipy.linalg", "scipy.optimize", "scipy.sparse", "scipy.sparse.linalg",
+                "scipy.stats", "scipy.stats.qmc", "skfem", "skfem.models.elasticity", "triangle", "yaml",
+                "matplotlib.backends.backend_agg", "PIL.Image")
 
 
 # --------------------------------------------------------------------------------------
@@ -76,8 +93,8 @@ def run(smk: Any, entry: str) -> None:
 def _run_on_server(smk: Any, entry: str) -> int | None:
     """The job's exit code from the server, or None when no server took the job."""
     path = os.environ.get(ENV, "")
-    if not path or path == "off" or not hasattr(socket, "send_fds"):
-        return None
+    if not path or path == "off" or not hasattr(socket, "send_fds") or getattr(smk, "threads", 1) != 1:
+        return None  # no server, or a job of several threads (the server's children have one)
     try:
         conn = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
         conn.connect(path)
@@ -153,7 +170,7 @@ def start(modules: Iterable[str], timeout: float = 5.0) -> str | None:
     folder = tempfile.mkdtemp(prefix="gearmesh-jobs-")  # mode 0700: this user's jobs only
     path = os.path.join(folder, "socket")
     _server = subprocess.Popen([sys.executable, "-m", "gearmesh.jobserver", path, str(os.getpid()), *modules],
-                               stdin=subprocess.DEVNULL)
+                               stdin=subprocess.DEVNULL, env={**os.environ, **dict.fromkeys(THREAD_VARIABLES, "1")})
     deadline = time.monotonic() + timeout
     while not os.path.exists(path):
         if _server.poll() is not None or time.monotonic() > deadline:
@@ -198,9 +215,40 @@ def rule_modules(rules: Iterable[Any]) -> list[str]:
 # --------------------------------------------------------------------------------------
 
 
+def warm_steps() -> list[Callable[[], Any]]:
+    """What the server does while no job waits, one step at a time (a job that arrives meanwhile
+    waits for one step at most): import :data:`WARM_MODULES`, then :func:`warm_kernels`."""
+    return [*(lambda m=m: importlib.import_module(m) for m in WARM_MODULES), _warm_png, warm_kernels]
+
+
+def _warm_png() -> None:
+    """The image plugins Pillow loads on its first save (matplotlib writes PNGs through it)."""
+    from PIL import Image
+
+    Image.preinit()
+
+
+def warm_kernels() -> None:
+    """Load every compiled kernel (numba, ``cache=True``) from its on-disk cache by running it once
+    on a tiny problem through the functions the jobs call, so that it loads with the types the jobs
+    use: the contact-driven dynamics of the shipped default pair (mesh force table: the load sums
+    of :func:`gearmesh.ltca.load_sums`; the RK4 sweep with its shooting,
+    :mod:`gearmesh.dynamics.integrate`). A fork inherits the loaded machine code."""
+    import numpy as np
+
+    from .dynamics.population import dynamic_factors, population_dynamics
+    from .gear import example_pair, load_pair, pair_geometry
+
+    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    setup = population_dynamics(geom, [1000.0], [1000.0, 5000.0], positions=16, approaches=8, points=5,
+                                method="transition")
+    dynamic_factors(setup, np.zeros((1, 2, 6)), np.zeros((1, 2)))
+
+
 def serve(path: str, parent: int, modules: Iterable[str]) -> None:
     """Listen on ``path``, import ``modules``, then fork a child per connection until the process
-    ``parent`` (the Snakemake run) is gone or a SIGTERM arrives."""
+    ``parent`` (the Snakemake run) is gone or a SIGTERM arrives; in between, the
+    :func:`warm_steps` (each in this one thread, so a fork never copies a half-done import)."""
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     listener.bind(path + ".tmp")
     listener.listen(128)
@@ -212,12 +260,18 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
             importlib.import_module(module)
         except Exception:  # noqa: BLE001
             pass
-    listener.settimeout(0.5)
+    steps = warm_steps()
     while not stopping and os.getppid() == parent:
         _reap()
+        listener.settimeout(0.01 if steps else 0.5)
         try:
             conn, _ = listener.accept()
         except (TimeoutError, InterruptedError):
+            if steps:
+                try:  # best effort: a step that fails leaves that work to the jobs
+                    steps.pop(0)()
+                except Exception:  # noqa: BLE001
+                    pass
             continue
         pid = os.fork()
         if pid == 0:
