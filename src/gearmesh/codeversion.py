@@ -37,12 +37,27 @@ def module_file(module: str, root: Path = PACKAGE_ROOT) -> Path | None:
     return None
 
 
+#: The fields of a node that hold statements (an import is a statement, so these lead to every one).
+_STATEMENT_FIELDS = ("body", "orelse", "finalbody", "handlers", "cases")
+
+
+def _statements(nodes):
+    """Every statement in and under ``nodes`` (exception handlers and match cases passed through),
+    without visiting expressions: what :func:`ast.walk` would find of them, in a tenth of the time."""
+    stack = list(nodes)
+    while stack:
+        node = stack.pop()
+        yield node
+        for name in _STATEMENT_FIELDS:
+            stack.extend(getattr(node, name, None) or ())
+
+
 def _import_nodes(tree: ast.Module, nested: bool):
     """Import statements of a module: all of them, or only those run at import time."""
     if nested:
-        return ast.walk(tree)
-    return (n for stmt in tree.body if not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef))
-            for n in ast.walk(stmt))
+        return _statements(tree.body)
+    return _statements(stmt for stmt in tree.body
+                       if not isinstance(stmt, (ast.FunctionDef, ast.AsyncFunctionDef, ast.ClassDef)))
 
 
 @lru_cache(maxsize=None)

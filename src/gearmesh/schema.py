@@ -287,8 +287,11 @@ def description_of(cls: type) -> str:
 # --------------------------------------------------------------------------------------
 
 
+@functools.lru_cache(maxsize=None)
 def _with_defaults(validator_class):
-    """A validator that fills ``default`` values while it validates (jsonschema FAQ recipe)."""
+    """A validator that fills ``default`` values while it validates (jsonschema FAQ recipe); the
+    class made once per validator class (making one costs a millisecond, and every setting checked
+    made one)."""
     validate_properties = validator_class.VALIDATORS["properties"]
 
     def set_defaults(validator, properties, instance, schema):
