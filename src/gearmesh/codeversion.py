@@ -14,10 +14,13 @@ module that fails to import is still defined and the check costs a few milliseco
 
 from __future__ import annotations
 
-import ast
 import hashlib
 from functools import lru_cache
 from pathlib import Path
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    import ast
 
 PACKAGE = "gearmesh"
 #: Every job goes through these (provenance, logging, writing).
@@ -54,6 +57,7 @@ def _statements(nodes):
 
 def _import_nodes(tree: ast.Module, nested: bool):
     """Import statements of a module: all of them, or only those run at import time."""
+    import ast  # here: every job's script unpickles a Versioned and so imports this module
     if nested:
         return _statements(tree.body)
     return _statements(stmt for stmt in tree.body
@@ -63,6 +67,8 @@ def _import_nodes(tree: ast.Module, nested: bool):
 @lru_cache(maxsize=None)
 def _parsed_imports(module: str, path: Path, stamp: tuple[int, int], nested: bool) -> frozenset[str]:
     """gearmesh modules named by the import statements of one file (cached per file version)."""
+    import ast
+
     is_package = path.name == "__init__.py"
     package = module if is_package else module.rpartition(".")[0]
     out: set[str] = set()

@@ -224,20 +224,27 @@ def relief_depth(params, rho_sap: float, rho_eap: float, face_width: float, rho,
     y1, y2, y3, y4, y5, y6 = np.moveaxis(np.asarray(params, dtype=float), -1, 0)
     rho = np.asarray(rho, dtype=float)
     z = np.asarray(z, dtype=float)
-    depth = np.zeros(np.broadcast_shapes(y1.shape, rho.shape, z.shape))
+    shape = np.broadcast_shapes(y1.shape, rho.shape, z.shape)
+    depth = np.zeros(shape)
     # each relief as amount·(max(0, distance into its zone)/length)², amount and reciprocal length
-    # taken zero where either is zero — on the small parameter arrays, not on the points
+    # taken zero where either is zero — on the small parameter arrays, not on the points; the
+    # point arrays (C × points for a population) worked on in place, one temporary per relief
     with np.errstate(invalid="ignore"):  # ρ = NaN propagates, set to 0 below
-        for amount, length, into in ((y2, y4, rho - (rho_eap - y4)), (y1, y3, (rho_sap + y3) - rho)):
+        for amount, length, into in ((y2, y4, lambda: rho - (rho_eap - y4)), (y1, y3, lambda: (rho_sap + y3) - rho)):
             on = (amount > 0) & (length > 0)
             if np.any(on):  # skipped where no set has this relief (the common case)
-                r = np.maximum(into, 0.0) * np.where(on, 1.0 / np.where(on, length, 1.0), 0.0)
-                depth = depth + np.where(on, amount, 0.0) * (r * r)
+                r = np.asarray(np.multiply(np.maximum(into(), 0.0), np.where(on, 1.0 / np.where(on, length, 1.0), 0.0)))
+                np.multiply(r, r, out=r)
+                np.multiply(r, np.where(on, amount, 0.0), out=r)
+                depth += r
     if np.any(y5 > 0):  # crowning
         r = np.maximum(np.abs(z) - 0.5 * y6, 0.0) / np.where(face_width > y6, 0.5 * (face_width - y6), 1.0)
-        depth = depth + np.where(y5 > 0, y5, 0.0) * (r * r)
+        depth += np.where(y5 > 0, y5, 0.0) * (r * r)
     nan = np.isnan(rho)
-    return np.where(nan, 0.0, depth) if nan.any() else depth
+    if nan.any():
+        depth[np.broadcast_to(nan, shape)] = 0.0
+        return depth
+    return depth if depth.ndim else depth[()]  # scalar arguments: a scalar, as numpy's arithmetic gives
 
 
 def fit_modifications(geom: PairGeometry, params) -> np.ndarray:

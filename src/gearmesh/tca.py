@@ -336,17 +336,30 @@ def basis_gap(geom: PairGeometry, basis: SeparationBasis, z, lead_slope=(0.0, 0.
     lead = np.asarray(lead_slope, dtype=float)
     mis = np.asarray(misalignment, dtype=float)
     shape = np.broadcast_shapes(basis.base.shape, params.shape[:-2], np.shape(z), lead.shape[:-1], mis.shape)
-    gap = basis.base
+    gap, own = basis.base, False  # own: gap is a fresh array of this call, added to in place
+
+    def add(term):
+        nonlocal gap, own
+        if own and np.shape(term) == () or own and np.broadcast_shapes(gap.shape, np.shape(term)) == gap.shape:
+            gap += term
+        else:
+            gap, own = gap + term, True
+
     for gear, (w, rho) in enumerate(((basis.w_pinion, basis.rho_pinion), (basis.w_gear, basis.rho_gear))):
         p = params[..., gear, :]
         if np.any(p):  # an unmodified flank adds nothing (the common case for one of the gears)
-            gap = gap + w * relief_depth(p, float(geom.rho_sap[gear]), float(geom.rho_eap[gear]), geom.face_width,
-                                         np.nan_to_num(rho), z)
+            depth = relief_depth(p, float(geom.rho_sap[gear]), float(geom.rho_eap[gear]), geom.face_width,
+                                 np.nan_to_num(rho), z)
+            if np.broadcast_shapes(depth.shape, w.shape) == depth.shape:
+                depth *= w  # the fresh depth array, scaled in place (w·depth, the same product)
+            else:
+                depth = w * depth
+            add(depth)
     if np.any(lead) or np.any(mis):
-        gap = gap + lead_gap(geom, lead, z, mis)
+        add(lead_gap(geom, lead, z, mis))
     profile = geom.pair.deviations.profile_slope
     if any(profile):
-        gap = gap + profile_gap(geom, profile, basis.rho_pinion, basis.rho_gear)
+        add(profile_gap(geom, profile, basis.rho_pinion, basis.rho_gear))
     return gap if gap.shape == shape else np.array(np.broadcast_to(gap, shape))
 
 
