@@ -215,7 +215,7 @@ for step in jobserver.warm_steps():
     step()
 from gearmesh.dynamics import integrate
 from gearmesh import ltca
-kernels = [integrate._sweep, ltca._COMPILED["loop"]]  # the others compile into _sweep
+kernels = [integrate._sweep, ltca._COMPILED["loop"], ltca._COMPILED["scales"]]  # the others compile into _sweep
 before = [len(k.signatures) for k in kernels]
 modules = set(sys.modules)
 from gearmesh.gear import load_pair, pair_geometry
@@ -225,6 +225,10 @@ from gearmesh.dynamics.integrate import simulate
 geom = pair_geometry(load_pair({str(root / 'config/pairs/seed001_pair1.yaml')!r}))
 table = mesh_force_table(geom, 4 * 300 / geom.base_radius[0], positions=32, approaches=16, points=10, method="transition")
 simulate(pair_model(geom, 300.0, None, contact=table), [2000.0, 3000.0])
+from gearmesh.ltca import solve_contact_tabulated
+from gearmesh.meshforce import table_layout
+layout = table_layout(geom, 32, 10, method="transition")
+solve_contact_tabulated(layout.gaps()[:3], layout.compliance[:3] - layout.law.linear, np.full(3, 1e4), layout.law)
 after = [len(k.signatures) for k in kernels]
 heavy = sorted(m for m in set(sys.modules) - modules
                if m.split(".")[0] in ("scipy", "numba", "matplotlib", "PIL", "netCDF4", "jsonschema", "pygad"))

@@ -11,7 +11,7 @@ import pytest
 
 from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import load_pair, pair_geometry
-from gearmesh.ltca import ContactLaw, _invert, load_sums
+from gearmesh.ltca import ContactLaw, _invert, law_point_scales, load_sums
 from gearmesh.meshforce import table_layout, tabulate
 
 PAIR = Path(__file__).resolve().parents[1] / "config" / "pairs" / "seed000_case.yaml"
@@ -58,3 +58,21 @@ def test_points_beyond_the_universal_table_are_inverted_exactly():
     np.testing.assert_allclose(stiff, dq.sum(axis=2), rtol=1e-12)
     np.testing.assert_allclose(masked, np.where(mask[:, None, :], q, 0.0).sum(axis=2), rtol=1e-12)
     assert force[0, 0] > 0
+
+
+@pytest.mark.parametrize("law", [ContactLaw("palmgren", 1e-9, 1 / 1.11, 0.0, 1e-3), ContactLaw("linear", 0.0, 1.0, 0.0, 1e-3)])
+def test_load_sums_of_chosen_rows_with_their_scales_are_those_of_the_rows_taken_out(law):
+    """load_sums over ``rows`` of the full arrays, with the points' scales computed once
+    (law_point_scales), gives bit for bit what it gives on those rows taken out and computing the
+    scales itself: the Newton iteration of the tabulated solve passes the same points many times."""
+    rng = np.random.default_rng(4)
+    gap = np.where(rng.random((12, 30)) < 0.2, np.inf, rng.random((12, 30)) * 2e-6)
+    comp = 1e-10 * (1 + rng.random((12, 30)))
+    mask = rng.random((12, 30)) < 0.3
+    rows = np.array([7, 2, 2, 11, 0])
+    x = np.sort(rng.random((rows.size, 4)) * 3e-6, axis=1)
+    alone = load_sums(gap[rows], comp[rows], x, law, mask[rows], points=True)
+    chosen = load_sums(gap, comp, x, law, mask, points=True, scales=law_point_scales(comp, law), rows=rows)
+    for a, b in zip(alone, chosen):
+        np.testing.assert_array_equal(a, b)
+    assert np.all(alone[0][:, -1] > 0) and np.any(alone[2] > 0)

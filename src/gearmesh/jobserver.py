@@ -233,16 +233,20 @@ def warm_kernels() -> None:
     on a tiny problem through the functions the jobs call, so that it loads with the types the jobs
     use: the contact-driven dynamics of the shipped default pair (mesh force table: the load sums
     of :func:`gearmesh.ltca.load_sums`; the RK4 sweep with its shooting,
-    :mod:`gearmesh.dynamics.integrate`). A fork inherits the loaded machine code."""
+    :mod:`gearmesh.dynamics.integrate`) and a tabulated contact solve of its points
+    (:func:`gearmesh.ltca.solve_contact_tabulated`). A fork inherits the loaded machine code."""
     import numpy as np
 
     from .dynamics.population import dynamic_factors, population_dynamics
     from .gear import example_pair, load_pair, pair_geometry
+    from .ltca import solve_contact_tabulated
 
     geom = pair_geometry(load_pair(example_pair("seed000_case")))
     setup = population_dynamics(geom, [1000.0], [1000.0, 5000.0], positions=16, approaches=8, points=5,
                                 method="transition")
     dynamic_factors(setup, np.zeros((1, 2, 6)), np.zeros((1, 2)))
+    layout = setup.layout
+    solve_contact_tabulated(layout.gaps()[:2], layout.compliance[:2] - layout.law.linear, np.full(2, 1e4), layout.law)
 
 
 def serve(path: str, parent: int, modules: Iterable[str]) -> None:

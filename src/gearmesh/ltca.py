@@ -84,7 +84,7 @@ from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, Can
 __all__ = [
     "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
     "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact",
-    "solve_contact_tabulated", "load_sums", "LTCAResult", "ltca", "contact_tangent_compliance",
+    "solve_contact_tabulated", "load_sums", "law_point_scales", "LTCAResult", "ltca", "contact_tangent_compliance",
     "edge_tangent_stiffness", "with_loaded_extension", "MESH_ORDERS", "lte_harmonics", "torque_gaps",
 ]
 
@@ -310,47 +310,71 @@ def invert_tabulated(d, c, coef: float, m: float):
 
 
 
+def _law_scales_loop(comp, coef, m, big_q, log_cq, cq):
+    """Each point's scales of the universal inverse (:func:`law_scales`) for the loop of
+    :func:`load_sums`: Q, ln(c·Q) and c·Q into ``big_q``, ``log_cq``, ``cq`` (the rows' shape), with
+    the loop's own expressions (compiled alike: the same values it would compute itself)."""
+    rows, npts = comp.shape
+    for k in range(rows):
+        for i in range(npts):
+            c = comp[k, i]
+            log_c = np.log(c)
+            log_q = (np.log(coef) - log_c) / (1.0 - m)
+            big_q[k, i] = np.exp(log_q)
+            log_cq[k, i] = log_c + log_q
+            cq[k, i] = c * big_q[k, i]
+
+
 def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, force, stiff, masked, outside,
-                    point_q, point_dq):
-    """The loop of :func:`load_sums` (compiled by numba on first use): for each row k, the sums
-    over its points i of q_i, dq_i/dd and (``mask``) q_i at every approach x_kj, d = x_kj − g_ki;
-    with ``point_q``, ``point_dq`` of the rows' shape (else (0, 0)) each point's q_i and dq_i/dd at
-    the last approach."""
-    rows, npts = gap.shape
+                    point_q, point_dq, scales, rows):
+    """The loop of :func:`load_sums` (compiled by numba on first use): for each row r of ``rows``
+    (indices k into ``gap``, ``comp``, ``mask``, ``scales``), the sums over its points i of q_i,
+    dq_i/dd and (``mask``; (0, 0): none) q_i at every approach x_rj, d = x_rj − g_ki, into row r of
+    the outputs; with ``point_q``, ``point_dq`` (len(rows), points) (else (0, 0)) each point's q_i
+    and dq_i/dd at the last approach; ``scales`` (3, R, points) the points' Q, ln(c·Q), c·Q from
+    :func:`_law_scales_loop` (else (0, 0, 0): computed here)."""
+    npts = gap.shape[1]
     nu = approach.shape[1]
     last = v_tab.size - 1
     inv_h = 1.0 / h
     points = point_q.shape[0] > 0
-    for k in range(rows):
+    scaled = scales.shape[0] > 0
+    masking = mask.shape[0] > 0
+    for r in range(rows.size):
+        k = rows[r]
         for i in range(npts):
             g = gap[k, i]
-            if not approach[k, nu - 1] - g > 0.0:  # not reached by the largest approach (or no point: inf)
+            if not approach[r, nu - 1] - g > 0.0:  # not reached by the largest approach (or no point: inf)
                 continue
             c = comp[k, i]
+            counted = masking and mask[k, i]
             if coef == 0.0:
                 for j in range(nu):
-                    d = approach[k, j] - g
+                    d = approach[r, j] - g
                     if d > 0.0:
-                        force[k, j] += d / c
-                        stiff[k, j] += 1.0 / c
-                        if mask[k, i]:
-                            masked[k, j] += d / c
+                        force[r, j] += d / c
+                        stiff[r, j] += 1.0 / c
+                        if counted:
+                            masked[r, j] += d / c
                 if points:
-                    point_q[k, i] = (approach[k, nu - 1] - g) / c
-                    point_dq[k, i] = 1.0 / c
+                    point_q[r, i] = (approach[r, nu - 1] - g) / c
+                    point_dq[r, i] = 1.0 / c
                 continue
-            log_c = np.log(c)
-            log_q = (np.log(coef) - log_c) / (1.0 - m)
-            big_q = np.exp(log_q)
-            log_cq = log_c + log_q
-            cq = c * big_q
+            if scaled:
+                big_q, log_cq, cq = scales[0, k, i], scales[1, k, i], scales[2, k, i]
+            else:
+                log_c = np.log(c)
+                log_q = (np.log(coef) - log_c) / (1.0 - m)
+                big_q = np.exp(log_q)
+                log_cq = log_c + log_q
+                cq = c * big_q
             for j in range(nu):
-                d = approach[k, j] - g
+                d = approach[r, j] - g
                 if d <= 0.0:
                     continue
                 t = (np.log(d) - log_cq - lo) * inv_h
                 if not (t >= 0.0 and t < last):
-                    outside[k] = True
+                    outside[r] = True
                     continue
                 ti = int(t)
                 t -= ti
@@ -360,53 +384,79 @@ def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, for
                 x = np.exp(v)
                 q = big_q * x
                 dq = x / (c * (x + m * (d / cq - x)))
-                force[k, j] += q
-                stiff[k, j] += dq
-                if mask[k, i]:
-                    masked[k, j] += q
+                force[r, j] += q
+                stiff[r, j] += dq
+                if counted:
+                    masked[r, j] += q
                 if points and j == nu - 1:
-                    point_q[k, i] = q
-                    point_dq[k, i] = dq
+                    point_q[r, i] = q
+                    point_dq[r, i] = dq
 
 
 _COMPILED: dict = {}
 
 
+def _kernel(name: str):
+    """The compiled loop ``name`` ('loop': :func:`_load_sums_loop`, 'scales': :func:`_law_scales_loop`),
+    compiled (or loaded from numba's on-disk cache) on first use."""
+    if name not in _COMPILED:
+        from numba import njit
+
+        _COMPILED[name] = njit(cache=True)({"loop": _load_sums_loop, "scales": _law_scales_loop}[name])
+    return _COMPILED[name]
+
+
+def law_point_scales(compliance: np.ndarray, law: ContactLaw) -> np.ndarray:
+    """Q, ln(c·Q) and c·Q (3, R, M) of points of compliance ``compliance`` (R, M) m/N (the law's
+    linear part included) under ``law``, as :func:`load_sums` computes them (its ``scales``: a
+    Newton iteration over the approach passes the same points many times); (0, 0, 0) for a
+    linear law, which needs none."""
+    comp = np.ascontiguousarray(compliance, dtype=float)
+    if not law.coefficient:
+        return np.zeros((0, 0, 0))
+    out = np.empty((3,) + comp.shape)
+    _kernel("scales")(comp, float(law.coefficient), float(law.exponent), out[0], out[1], out[2])
+    return out
+
+
 def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law: ContactLaw, mask=None,
-              points: bool = False):
+              points: bool = False, scales: np.ndarray | None = None, rows: np.ndarray | None = None):
     """Per row, the total load Σ q_i (N), its tangent Σ dq_i/dδ (N/m) and the load of the points
     in ``mask`` at each of several approaches: q_i the root of c_i·q + coef·q^m = δ − g_i (0 where
     δ ≤ g_i) for points of separation ``gap`` (R, M) m (inf: none) and compliance ``compliance``
     (R, M) m/N (the law's linear part included) at approaches ``approach`` (R, U) m, increasing
     along each row. Returns three (R, U) arrays; with ``points`` also each point's q_i and dq_i/dδ
-    (R, M) at the last approach.
+    (R, M) at the last approach. With ``rows`` (N,) only those rows of ``gap``, ``compliance``,
+    ``mask`` and ``scales``, ``approach`` (N, U) one row for each, and the results (N, ...): what the
+    same call on the rows taken out gives, without copying them.
 
     Each root by :func:`invert_tabulated`'s method — q = Q·X(y), Q = (coef/c)^(1/(1−m)) the load
     at which both terms are equal, y = d/(c·Q), X the root of X + X^m = y from its universal table
     by cubic Hermite interpolation, dq/dd = X/(c·(X + m·(y − X))) — in one compiled pass (numba):
-    Q and c·Q once per point, only the points the largest approach reaches. A row with a point
-    beyond the universal table is summed again by :func:`invert_tabulated` (Newton there)."""
+    Q and c·Q once per point (or taken from ``scales``, :func:`law_point_scales` of the same
+    points), only the points the largest approach reaches. A row with a point beyond the universal
+    table is summed again by :func:`invert_tabulated` (Newton there)."""
     gap, comp = np.ascontiguousarray(gap, dtype=float), np.ascontiguousarray(compliance, dtype=float)
     x = np.ascontiguousarray(approach, dtype=float)
-    mask = np.zeros(gap.shape, dtype=np.bool_) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
+    rows = np.arange(gap.shape[0]) if rows is None else np.ascontiguousarray(rows, dtype=np.int64)
+    mask = np.zeros((0, 0), dtype=np.bool_) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
     out = [np.zeros(x.shape) for _ in range(3)]
-    per_point = [np.zeros(gap.shape if points else (0, 0)) for _ in range(2)]
-    outside = np.zeros(gap.shape[0], dtype=np.bool_)
-    if "loop" not in _COMPILED:
-        from numba import njit
-
-        _COMPILED["loop"] = njit(cache=True)(_load_sums_loop)
+    per_point = [np.zeros((rows.size, gap.shape[1]) if points else (0, 0)) for _ in range(2)]
+    outside = np.zeros(rows.size, dtype=np.bool_)
+    scales = np.zeros((0, 0, 0)) if scales is None or not law.coefficient else np.ascontiguousarray(scales, dtype=float)
     lo, _, h = _TABLE_LOG_Y
     v_tab, s_tab = _universal_inverse(float(law.exponent))
-    _COMPILED["loop"](gap, comp, x, mask, float(law.coefficient), float(law.exponent), v_tab, s_tab, lo, h, *out,
-                      outside, *per_point)
-    for k in np.flatnonzero(outside):
-        d = x[k, :, None] - gap[k, None, :]
+    _kernel("loop")(gap, comp, x, mask, float(law.coefficient), float(law.exponent), v_tab, s_tab, lo, h, *out,
+                    outside, *per_point, scales, rows)
+    for r in np.flatnonzero(outside):
+        k = rows[r]
+        d = x[r, :, None] - gap[k, None, :]
         q, dq = invert_tabulated(np.where(np.isfinite(d), d, -1.0), np.broadcast_to(comp[k], d.shape),
                                  law.coefficient, law.exponent)
-        out[0][k], out[1][k], out[2][k] = q.sum(axis=1), dq.sum(axis=1), np.where(mask[k], q, 0.0).sum(axis=1)
+        masked = np.where(mask[k], q, 0.0).sum(axis=1) if mask.size else np.zeros(d.shape[0])
+        out[0][r], out[1][r], out[2][r] = q.sum(axis=1), dq.sum(axis=1), masked
         if points:
-            per_point[0][k], per_point[1][k] = q[-1], dq[-1]
+            per_point[0][r], per_point[1][r] = q[-1], dq[-1]
     return (*out, *per_point) if points else tuple(out)
 
 
@@ -443,8 +493,10 @@ def solve_contact_tabulated(gap: np.ndarray, compliance: np.ndarray, force: np.n
     delta = bound.copy() if delta_start is None else np.where(np.asarray(delta_start) < bound, delta_start, bound)
     q, dq = np.zeros(g.shape), np.zeros(g.shape)
     rows = np.arange(delta.size)
+    scales = law_point_scales(c_eff, law)  # once: the points are the same in every pass
     for _ in range(max_iter):
-        s, k, _, q_rows, dq_rows = load_sums(g[rows], c_eff[rows], delta[rows, None], law, points=True)
+        s, k, _, q_rows, dq_rows = load_sums(g, c_eff, delta[rows, None], law, points=True,
+                                             scales=scales if scales.size else None, rows=rows)
         resid = s[:, 0] - force[rows]
         done = np.abs(resid) <= 0.1 * rtol * force[rows]
         q[rows[done]], dq[rows[done]] = q_rows[done], dq_rows[done]

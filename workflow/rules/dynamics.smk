@@ -17,6 +17,9 @@ rule dynamics:
         **dynamics_figure_outputs(),
     log:
         "logs/{study}/{pair}/{variant}/dynamics.log",
+    # the longest stage of a variant (3 s of CPU in the default study): once an optimisation ends, its
+    # variant's dynamics starts first and the study's last jobs (sign-off, engagement) do not wait for it
+    priority: 5
     params:
         **stage_params("dynamics"),
     conda:

@@ -19,6 +19,7 @@ rule impact:
                                "impact_simulation", "Impact", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/impact.log",
+    priority: 3  # the next longest stage of a variant, beside its dynamics (rule dynamics)
     params:
         **stage_params("impact"),
     conda:
