@@ -217,8 +217,45 @@ def rule_modules(rules: Iterable[Any]) -> list[str]:
 
 def warm_steps() -> list[Callable[[], Any]]:
     """What the server does while no job waits, one step at a time (a job that arrives meanwhile
-    waits for one step at most): import :data:`WARM_MODULES`, then :func:`warm_kernels`."""
-    return [*(lambda m=m: importlib.import_module(m) for m in WARM_MODULES), _warm_png, warm_kernels]
+    waits for one step at most; a step that answers False is not done yet and is tried again):
+    import :data:`WARM_MODULES`, then load the compiled kernels (:func:`warm_kernels`). Where
+    numba's cache lacks one (a fresh clone, an edited kernel module), a child compiles them first,
+    writing the cache, while the server goes on forking jobs (compiling the dynamics sweep takes
+    seconds; jobs forked meanwhile compile what they need themselves, as they would without the
+    server)."""
+    helper: list[int] = []
+
+    def compile_aside() -> None:
+        if kernels_cached():
+            return
+        pid = os.fork()
+        if pid == 0:
+            try:
+                warm_kernels()
+            finally:
+                os._exit(0)
+        helper.append(pid)
+
+    def load() -> bool:
+        if helper and helper[0] not in _reaped:
+            return False
+        warm_kernels()
+        return True
+
+    return [*(lambda m=m: importlib.import_module(m) for m in WARM_MODULES), _warm_png, compile_aside, load]
+
+
+def kernels_cached() -> bool:
+    """Whether numba's on-disk cache holds every kernel of :func:`warm_kernels` for its module's
+    current source (then loading them costs a fraction of a second); False when it cannot tell."""
+    try:
+        from .dynamics import integrate
+        from . import ltca
+
+        kernels = (integrate._sweep, ltca._kernel("loop"), ltca._kernel("scales"))
+        return all(len(k._cache._cache_file._load_index()) > 0 for k in kernels)
+    except Exception:  # noqa: BLE001 - numba's cache internals: not knowing means compiling aside
+        return False
 
 
 def _warm_png() -> None:
@@ -273,9 +310,10 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
         except (TimeoutError, InterruptedError):
             if steps:
                 try:  # best effort: a step that fails leaves that work to the jobs
-                    steps.pop(0)()
+                    if steps[0]() is not False:
+                        steps.pop(0)
                 except Exception:  # noqa: BLE001
-                    pass
+                    steps.pop(0)
             continue
         pid = os.fork()
         if pid == 0:
@@ -288,6 +326,10 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
         pass
 
 
+#: Children of the server collected so far (a warm step waits for its helper among them).
+_reaped: set[int] = set()
+
+
 def _reap(block: bool = False) -> bool:
     """Collect finished children (their CPU time then counts for this process's parent); whether
     any child is left."""
@@ -298,6 +340,7 @@ def _reap(block: bool = False) -> bool:
             return False
         if pid == 0:
             return True
+        _reaped.add(pid)
         if block:
             return True
 
