@@ -18,7 +18,8 @@ rule dynamics:
     log:
         "logs/{study}/{pair}/{variant}/dynamics.log",
     # the longest stage of a variant (3 s of CPU in the default study): once an optimisation ends, its
-    # variant's dynamics starts first and the study's last jobs (sign-off, engagement) do not wait for it
+    # variant's dynamics starts first, its LTCA and rating (4) and impact (3) beside it, the study tables
+    # (0) after them, so the sign-off and engagement tables do not wait for a stage started last
     priority: 5
     params:
         **stage_params("dynamics"),

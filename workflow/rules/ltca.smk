@@ -14,6 +14,7 @@ rule ltca:
                                     "LTCA", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/ltca.log",
+    priority: 4  # with rule rating the chain the sign-off table waits for after an optimisation (rule dynamics)
     params:
         **stage_params("ltca"),
     conda:

@@ -15,6 +15,7 @@ rule rating:
                                      "root_stress_face", "Load capacity", BY_VARIANT),
     log:
         "logs/{study}/{pair}/{variant}/rating.log",
+    priority: 4  # after its variant's LTCA, before the study tables (rule dynamics)
     params:
         **stage_params("rating"),
     conda:
