@@ -260,6 +260,10 @@ class Impact:
     load_window_step_Nm: float | None = setting(
         None, "F_s also on a torque grid of this step up to 1.25 × the largest torque at the design speed: the "
         "variants' load windows in the impact table (null: none)", exclusive_minimum=0)
+    tolerance_torques_Nm: tuple[float, ...] | None = setting(
+        None, "torques (among torques_Nm) at which the manufactured gears are judged (the worst over the "
+        "tolerance box, the populations): the sign-off table's, the LTCA's (null: every one of torques_Nm)",
+        exclusive_minimum=0, min_items=1, max_items=100)
 
 
 # --------------------------------------------------------------------------------------
@@ -402,6 +406,13 @@ class Tolerances:
     sampling: Literal["lhs", "corners"] = setting("lhs", "seeded Latin hypercube, or the corners of the tolerance box")
     seed: int = setting(0, "seed of the samples: one manufactured population for every optimisation and the impact "
                            "stage", minimum=0, maximum=4294967295)
+    population: int = setting(256, "manufactured gears of the distributions beside the worst case (median, P90, "
+                                   "gear for gear against the reference), a seeded Latin hypercube (seed), the same "
+                                   "gears for every variant", minimum=0, maximum=4096)
+    heldout: int = setting(64, "manufactured gears of the held-out check of the verdict, drawn with heldout_seed "
+                               "(never seen by an optimiser)", minimum=0, maximum=4096)
+    heldout_seed: int = setting(1, "seed of the held-out gears (another population than seed's)", minimum=0,
+                                maximum=4294967295)
 
 
 # --------------------------------------------------------------------------------------

@@ -47,7 +47,8 @@ from .limits import MAX_CORNER_DIMENSIONS, MAX_SAMPLES
 from .surface import fit_modifications
 
 __all__ = ["GRADES", "SAMPLINGS", "STATISTICS", "helix_slope_tolerance", "ToleranceModel", "tolerance_model",
-           "unit_deviations", "apply_deviations", "manufactured_population", "sample_statistic", "check_statistic", "study_tolerances"]
+           "unit_deviations", "apply_deviations", "manufactured_population", "sample_statistic", "check_statistic", "study_tolerances",
+           "study_population"]
 
 GRADES = tuple(range(1, 12))
 SAMPLINGS = ("lhs", "corners")
@@ -212,6 +213,18 @@ def sample_statistic(values: np.ndarray, statistic: str, level_percent: float = 
         tail = s[..., k:].sum(axis=-1) / n + (k / n - alpha) * s[..., k - 1]
         return tail / (1.0 - alpha)
     raise GearmeshInputError("statistic", statistic, f"must be one of {list(STATISTICS)}")
+
+
+def study_population(tolerances: Mapping[str, Any] | None) -> tuple[int, int, int, int]:
+    """The study's ``tolerances:`` section's populations beside the optimisers' samples: (population,
+    seed, heldout, heldout_seed) (:class:`gearmesh.settings.Tolerances`; no section: none)."""
+    from .schema import object_schema, validate
+    from .settings import Tolerances
+
+    if not tolerances:
+        return 0, 0, 0, 0
+    tol = validate(tolerances, object_schema(Tolerances), prefix="tolerances")
+    return tol["population"], tol["seed"], tol["heldout"], tol["heldout_seed"]
 
 
 def study_tolerances(geom: PairGeometry, tolerances: Mapping[str, Any] | None):

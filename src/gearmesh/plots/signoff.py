@@ -80,9 +80,8 @@ def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
         ax.set_xlabel("pinion torque (N m)")
         ax.set_ylabel(f"over {ref}'s")
         ax.grid(alpha=0.3, which="both")
-    basis_text = (f"judged on the worst manufactured gear (nominal + {table.attrs.get('tolerance_samples', '?')} "
-                  f"tolerance samples, max), open markers: nominal gear" if basis == "population"
-                  else "judged on the nominal gear")
+    basis_text = ("judged on the worst manufactured gear (the tolerance box's, searched), open markers: nominal gear"
+                  if basis == "population" else "judged on the nominal gear")
     title = f"sign-off against {ref} (o meets, x fails); {basis_text}"
     if "meets_worst_impact" in table:
         worst = {v: int(table["meets_worst_impact"].sel(variant=v).values[0]) for v in others}
