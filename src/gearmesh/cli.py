@@ -23,7 +23,8 @@ from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
 from .deviation import read_deviations
 from .errors import GearmeshInputError
-from .gear import NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
+from .gear import (NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pair_to_dict,
+                   pinion_torque, read_yaml)
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
 from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
@@ -453,6 +454,18 @@ def cmd_example(args: argparse.Namespace) -> dict[str, Any] | None:
     return None
 
 
+def cmd_manufactured(args: argparse.Namespace) -> None:
+    """One manufactured gear of a variant's impact.nc printed as a pair file
+    (:func:`gearmesh.robust.manufactured_pair`)."""
+    import yaml
+
+    from .datasets.impact import manufactured_gear
+
+    pair = manufactured_gear(args.impact, heldout=args.heldout, population=args.population, worst=args.worst,
+                             torque_Nm=args.torque_Nm)
+    sys.stdout.write(yaml.safe_dump(pair_to_dict(pair), sort_keys=False, allow_unicode=True))
+
+
 def _source(path: Path) -> str:
     """The ``source`` of an example pair file (what it is taken from)."""
     data = read_yaml(path, "example")
@@ -563,6 +576,21 @@ def build_parser() -> argparse.ArgumentParser:
 
     _command(sub, "validate", cmd_validate, "check a gear pair file or a study config (exit 0, or 2 with the reason)",
              "a pair file or a study config")
+
+    p = sub.add_parser("manufactured", help="print a manufactured gear of a variant's impact.nc as a pair file: a "
+                       "held-out or population gear, or the worst gear of a criterion",
+                       description="Print one manufactured gear of a variant's results (impact.nc: the sign-off's "
+                                   "manufactured gears) as a pair file with its modification and lead slope "
+                                   "deviations: gearmesh manufactured impact.nc --heldout 17 > gear.yaml",
+                       formatter_class=_HelpFormatter)
+    p.add_argument("impact", help="a variant's impact.nc")
+    which = p.add_mutually_exclusive_group(required=True)
+    which.add_argument("--heldout", type=int, metavar="GEAR", help="a gear of the held-out population")
+    which.add_argument("--population", type=int, metavar="GEAR", help="a gear of the population (0: the nominal)")
+    which.add_argument("--worst", metavar="CRITERION", help="the worst gear over the tolerance box of a criterion "
+                       "(impact_force, lte_order_1, ..., peak_root_stress), with --torque-Nm")
+    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, help="pinion torque of --worst")
+    p.set_defaults(func=cmd_manufactured)
 
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 

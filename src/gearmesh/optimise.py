@@ -95,6 +95,7 @@ from .impact import (SCENARIO_NONE, ImpactModel, LTCACriteria, impact_response, 
 from .ltca import MESH_ORDERS
 from .stress import edge_pressure_reference
 from .surface import fit_modifications
+from .robust import CRITERIA, BoxWorst, box_scenarios, design_box_worst
 from .tolerance import (SAMPLINGS, ToleranceModel, check_statistic, manufactured_population, sample_statistic,
                         unit_deviations)
 
@@ -599,6 +600,7 @@ class Evaluation:
     violation: np.ndarray
     criteria: LTCACriteria | None = None
     pareto: np.ndarray | None = None
+    worst_force: np.ndarray | None = None  # (C, T) F_s of the worst manufactured gear evaluated (the standard: its box's)
 
 
 @dataclass(frozen=True)
@@ -616,6 +618,7 @@ class Problem:
     deviations: np.ndarray
     standard: Evaluation | None
     dynamics: PopulationDynamics | None = None
+    reference: BoxWorst | None = None  # the standard gear's worst over the tolerance box
 
     @property
     def geom(self) -> PairGeometry:
@@ -658,7 +661,8 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
     # crossing the impact model did not resolve: zero force would be an artefact, not an optimum)
     failed = (~np.isfinite(f) | np.any(scen == SCENARIO_NONE, axis=(1, 2)) | ~np.all(np.isfinite(value), axis=(1, 2))
               | np.any(~(vel > 0), axis=(1, 2)))
-    raw = Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc), crit)
+    raw = Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc), crit,
+                     worst_force=force.max(axis=1))
     return raw if standard is None else _score(prob, raw, standard)
 
 
@@ -668,7 +672,7 @@ def _score(prob: "Problem", raw: Evaluation, standard: Evaluation) -> Evaluation
     objectives (module docstring)."""
     s, crit, f = prob.settings, raw.criteria, raw.objective
     lte, line, kv, nc = raw.lte_peak_to_peak, raw.max_line_load, raw.dynamic_factor, raw.objective.shape[0]
-    ratios = _ratios(s, raw.force[:, 0], lte, line, kv, crit, standard)
+    ratios = _ratios(s, raw.worst_force, lte, line, kv, crit, standard)
     if s.S_Hmin is not None or s.S_Fmin is not None:
         sh, sf = safety_factors(prob, crit, standard.criteria)
         ratios.update(S_H=worst_ratio(np.divide(s.S_Hmin or 0.0, sh), 1.0),
@@ -686,7 +690,7 @@ def _score(prob: "Problem", raw: Evaluation, standard: Evaluation) -> Evaluation
         pareto = np.column_stack([j if k == "impact" else lte if k == "lte" else
                                   np.where(failed, FAILURE_FACTOR, ratios[k]) for k in s.pareto_objectives])
     return Evaluation(j, raw.value, raw.force, raw.velocity, raw.scenario, failed, lte, line, kv,
-                      np.where(failed, np.nan, violation), crit, pareto)
+                      np.where(failed, np.nan, violation), crit, pareto, raw.worst_force)
 
 
 def _criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray, lead: np.ndarray) -> LTCACriteria:
@@ -726,8 +730,8 @@ def worst_ratio(values: np.ndarray, reference: np.ndarray) -> np.ndarray:
 def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACriteria | None,
             standard: Evaluation) -> dict[str, np.ndarray]:
     """Each criterion's worst ratio (C,) to the standard gear's (:func:`worst_ratio`), per torque
-    of the spectrum unless said: nominal F_s per torque ('force') and its worst case over the
-    torques ('worst_force'), LTE p-p and the largest line load at the design torque, the dynamic
+    of the spectrum unless said: F_s of the worst manufactured gear per torque ('force'; the nominal
+    without a tolerance statistic) and its worst case over the torques ('worst_force'), LTE p-p and the largest line load at the design torque, the dynamic
     factor, and from the loaded contact the TE harmonics of ``harmonic_orders`` ('te_harmonics'), the
     flank pressure against the standard's flank pressure and the tip-edge pressure against its
     tip-edge pressure (its flank pressure where it has no edge contact) ('pressure'), and the
@@ -735,8 +739,8 @@ def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACri
     nc = force.shape[0]
     nan = np.full(nc, np.nan)
     ref = standard.criteria
-    out = {"force": worst_ratio(force, standard.force[0, 0]),
-           "worst_force": worst_ratio(force.max(axis=1), standard.force[0, 0].max()),
+    out = {"force": worst_ratio(force, standard.worst_force[0]),
+           "worst_force": worst_ratio(force.max(axis=1), standard.worst_force[0].max()),
            "lte": worst_ratio(lte[:, None], standard.lte_peak_to_peak[0]),
            "line_load": worst_ratio(line[:, None], standard.max_line_load[0]),
            "dynamic": worst_ratio(kv, standard.dynamic_factor[0])}
@@ -793,21 +797,49 @@ def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), 
     and the standard (unmodified) gear evaluated once, with the same population."""
     genes, base = gene_table(model.geom, modify, bounds, fixed)
     tolerance = tolerance or ToleranceModel(np.zeros((2, 6)), np.zeros(2))
-    deviations = unit_deviations(len(tolerance.dimensions), settings.tolerance_samples, settings.sampling,
-                                 settings.tolerance_seed)
+    robust = settings.tolerance_statistic is not None and bool(tolerance.dimensions)
+    reference = None
+    if robust and (settings.criteria_over_samples or settings.sampling == "box"):
+        reference = design_box_worst(model, tolerance, np.zeros((2, 6)), settings.objective_torques,
+                                     settings.speed_rpm, settings.energy_velocity)[0]
+    if settings.sampling == "box" and reference is not None:
+        deviations = box_scenarios(tolerance, reference)
+    else:
+        deviations = unit_deviations(len(tolerance.dimensions), settings.tolerance_samples,
+                                     "lhs" if settings.sampling == "box" else settings.sampling,
+                                     settings.tolerance_seed)
     if settings.tolerance_statistic is not None and deviations.shape[0] == 0:
         raise GearmeshInputError("tolerances", None, "define no deviation (no lead grade, no modification "
                                                      "tolerance): the tolerance statistic has nothing to sample")
     dynamics = population_dynamics(model.geom, settings.objective_torques, settings.dynamic_speed_grid,
                                    backlash=settings.backlash, tables=model.ltca.tables,
                                    contact_law_name=model.ltca.law.name) if settings.uses_dynamics else None
-    prob = Problem(model, genes, base, settings, tolerance, deviations, None, dynamics)
-    standard = _evaluate(prob, np.zeros((1, 2, 6)), None)
+    prob = Problem(model, genes, base, settings, tolerance, deviations, None, dynamics, reference)
+    standard = _with_reference(_evaluate(prob, np.zeros((1, 2, 6)), None), reference)
     if not np.all(np.isfinite(standard.objective)) or np.any(standard.scenario == SCENARIO_NONE):
         raise GearmeshInputError("torques_Nm" if len(settings.objective_torques) > 1 else "torque_Nm",
                                  list(settings.objective_torques),
                                  "gives the standard (unmodified) gear no mesh-in impact: nothing to reduce")
     return replace(prob, standard=standard)
+
+
+def _with_reference(standard: Evaluation, reference: BoxWorst | None) -> Evaluation:
+    """The standard gear's evaluation with its criteria and F_s those of its worst manufactured gear
+    over the tolerance box (``reference``, :func:`gearmesh.robust.design_box_worst`, columns
+    :data:`gearmesh.robust.CRITERIA` per objective torque; never below its evaluated samples'): the
+    reference every candidate's ratios are taken to, as the sign-off table's."""
+    if reference is None or standard.criteria is None:
+        return standard if reference is None else replace(standard, worst_force=np.maximum(
+            standard.worst_force, reference.values[None, :, CRITERIA.index("impact_force")]))
+    w = reference.values  # (T, K)
+    c = standard.criteria
+    orders = [CRITERIA.index(f"lte_order_{k}") for k in MESH_ORDERS]
+    crit = replace(c, te_harmonics=np.maximum(c.te_harmonics, w[None][..., orders]),
+                   flank_pressure=np.maximum(c.flank_pressure, w[None, :, CRITERIA.index("peak_flank_pressure")]),
+                   edge_pressure=np.maximum(c.edge_pressure, w[None, :, CRITERIA.index("peak_edge_pressure")]),
+                   root_stress=np.maximum(c.root_stress, w[None, :, CRITERIA.index("peak_root_stress")]))
+    return replace(standard, criteria=crit, worst_force=np.maximum(
+        standard.worst_force, w[None, :, CRITERIA.index("impact_force")]))
 
 
 def standard_penalised_objective(prob: Problem) -> float:
@@ -962,6 +994,7 @@ class OptimisationResult:
     baseline: "OptimisationResult | None" = None
     pareto: tuple[np.ndarray, np.ndarray] | None = None
     diagnostics: Diagnostics | None = None
+    verification: "Verification | None" = None
 
 
 def _gene_space(genes: tuple[Gene, ...]) -> list[dict[str, float]]:
@@ -1065,10 +1098,65 @@ def _finish(prob: Problem, method: str, history: History, ev: _Evaluator, wall: 
         best = int(keep[0])  # the front's member of least J (penalties included: a feasible one when any is)
     else:
         best = int(np.nanargmin(obj))  # first occurrence
+    verification = None
+    if prob.reference is not None:  # the run's best on the population it saw, checked on its own tolerance box
+        ranked = _ranked(genes, obj, failed, None if pareto is None else keep)
+        best, verification = _verified(prob, genes, ranked)
     optimum_genes = genes[best]
     optimum = prob.decode(optimum_genes)[0]
     return OptimisationResult(prob, method, history, optimum_genes, optimum, evaluate(prob, optimum[None]),
-                              ev.count, wall, None, pareto, diagnose(prob, optimum))
+                              ev.count, wall, None, pareto, diagnose(prob, optimum), verification)
+
+
+#: Candidates checked on their own tolerance box after a run, the best first, until one meets every
+#: constraint there (:func:`_verified`).
+VERIFY_LIMIT = 3
+
+
+@dataclass(frozen=True)
+class Verification:
+    """The optimum checked on its own tolerance box: ``worst`` its worst manufactured gear
+    (:func:`gearmesh.robust.design_box_worst`, columns :data:`gearmesh.robust.CRITERIA` per objective
+    torque), ``violation`` its constraints' summed relative excess there (0: every one met), ``rank``
+    its place among the run's candidates (0: the run's best) and ``tried`` how many were checked."""
+
+    worst: BoxWorst
+    violation: float
+    rank: int
+    tried: int
+
+
+def _ranked(genes: np.ndarray, objective: np.ndarray, failed: np.ndarray, front: np.ndarray | None) -> np.ndarray:
+    """Distinct candidates (indices into the history), best first: the Pareto front by J, then the
+    others by J (without a front: all by J); failed ones left out."""
+    _, first = np.unique(genes, axis=0, return_index=True)
+    first = np.sort(first)
+    first = first[~failed[first]]
+    by_j = first[np.argsort(objective[first], kind="stable")]
+    if front is None:
+        return by_j
+    return np.concatenate([front, by_j[~np.isin(by_j, front)]])
+
+
+def _verified(prob: Problem, genes: np.ndarray, ranked: np.ndarray) -> tuple[int, Verification]:
+    """The first of ``ranked`` (at most :data:`VERIFY_LIMIT`) whose worst gear over its own tolerance
+    box meets every constraint against the standard's box worst; else the one of least violation
+    there. The box is searched as the sign-off table searches it."""
+    s = prob.settings
+    checked = []
+    for rank, k in enumerate(ranked[:VERIFY_LIMIT]):
+        params = prob.decode(genes[k])[0]
+        worst = design_box_worst(prob.model, prob.tolerance, params, s.objective_torques, s.speed_rpm,
+                                 s.energy_velocity)[0]
+        raw = _with_reference(_evaluate(prob, params[None], None), worst)
+        violation = float(_score(prob, raw, prob.standard).violation[0])
+        checked.append((violation, rank, int(k), worst))
+        LOG.info("optimum check %d: the worst manufactured gear over its tolerance box violates the constraints by "
+                 "%.4g", rank + 1, violation)
+        if violation == 0.0:
+            break
+    violation, rank, k, worst = min(checked, key=lambda c: (np.nan_to_num(c[0], nan=np.inf), c[1]))
+    return k, Verification(worst, violation, rank, len(checked))
 
 
 def optimise(prob: Problem) -> OptimisationResult:

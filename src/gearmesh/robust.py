@@ -21,11 +21,11 @@ The search (:func:`box_worst`)
 ------------------------------
 Each criterion (per torque) is a column of one batched evaluation of many manufactured gears. The
 search evaluates every corner of the modification deviations at the mismatch levels
-u ∈ {−1, −¾, …, 1} (the mismatch acts most and its worst can lie inside the range: a loaded-TE
+u ∈ {−1, −½, 0, ½, 1} (the mismatch acts most and its worst can lie inside the range: a loaded-TE
 harmonic has its largest amplitude where the contact pattern just reaches a face end), then
-refines each column's best point by a compass search over every dimension with halving steps
-(Kolda, Lewis & Torczon 2003, *SIAM Review* 45:385, §3), all columns' trial points in one batch per
-step. Shown in a test to reach a dense grid's worst within 1 % on the default pair and on a random
+refines each column's best point by a compass search over every dimension, each column with its
+own halving step (Kolda, Lewis & Torczon 2003, *SIAM Review* 45:385, §3), all columns' trial points
+in one batch per poll. Shown in a test to reach a dense grid's worst within 1 % on the default pair and on a random
 valid pair (tests/test_robust.py).
 """
 
@@ -44,6 +44,7 @@ from .surface import fit_modifications
 from .tolerance import ToleranceModel, apply_deviations, unit_deviations
 
 __all__ = ["CRITERIA", "CRITERION_UNITS", "ToleranceBox", "tolerance_box", "GearCriteria", "gear_criteria", "BoxWorst", "box_worst", "design_box_worst", "population_units", "manufactured_pair",
+           "box_scenarios",
            "MISMATCH_LEVELS"]
 
 #: The sign-off criteria of one manufactured gear, per torque: the energy-method impact index F_s at
@@ -54,7 +55,7 @@ CRITERIA = ("impact_force", *(f"lte_order_{k}" for k in MESH_ORDERS), "peak_flan
 CRITERION_UNITS = {"impact_force": "N", **{f"lte_order_{k}": "m" for k in MESH_ORDERS}, "peak_flank_pressure": "Pa",
                    "peak_edge_pressure": "Pa", "peak_root_stress": "Pa"}
 #: Mismatch levels of the first stage of the search (module docstring).
-MISMATCH_LEVELS = np.linspace(-1.0, 1.0, 9)
+MISMATCH_LEVELS = np.linspace(-1.0, 1.0, 5)
 
 
 @dataclass(frozen=True)
@@ -152,10 +153,13 @@ def _first_stage(k: int, mismatch: bool) -> np.ndarray:
 
 
 def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bool = True,
-              steps: tuple[float, ...] = (0.5, 0.25, 0.125, 0.0625)) -> BoxWorst:
+              min_step: float = 1.0 / 32.0) -> BoxWorst:
     """The largest value of every column of ``evaluate`` (unit points (n, k) → values (n, M)) over
-    [−1, 1]^k (module docstring): the first stage, then a compass search from each column's best
-    point with the ``steps``; ``mismatch`` whether dimension 0 is the lead mismatch."""
+    [−1, 1]^k (module docstring): the first stage, then a compass search (Kolda, Lewis & Torczon
+    2003, §3) from each column's best point, each column with its own step — polled along every
+    dimension, kept while the poll improves the column, halved when it does not, down to
+    ``min_step`` — the trial points of every column evaluated in one batch per poll and shared
+    (a column takes the best point any poll found). ``mismatch``: dimension 0 is the lead mismatch."""
     seen: dict[bytes, int] = {}
     points: list[np.ndarray] = []
     values: list[np.ndarray] = []
@@ -172,26 +176,26 @@ def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bo
             points.extend(block)
             values.append(np.asarray(evaluate(block), dtype=float).reshape(block.shape[0], -1))
 
+    def best_of() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        vals = np.vstack(values)
+        idx = np.nanargmax(np.where(np.isfinite(vals), vals, -np.inf), axis=0)
+        return np.array(points), vals, idx
+
     run(_first_stage(k, mismatch))
-    pts = np.array(points)
-    vals = np.vstack(values)
-    best = np.nanargmax(np.where(np.isfinite(vals), vals, -np.inf), axis=0)
+    pts, vals, best = best_of()
+    m = vals.shape[1]
+    step = np.full(m, 0.5)
     moves = np.vstack([np.eye(k), -np.eye(k)]) if k else np.zeros((0, 0))
-    for h in steps:
-        for _ in range(2 * k):  # polls at this step until no column improves (bounded)
-            trial = (pts[best][:, None, :] + h * moves[None]).reshape(-1, k) if k else np.zeros((0, 0))
-            before = len(points)
-            run(trial)
-            if len(points) == before:
-                break
-            pts = np.array(points)
-            vals = np.vstack(values)
-            new = np.nanargmax(np.where(np.isfinite(vals), vals, -np.inf), axis=0)
-            if np.all(vals[new, np.arange(vals.shape[1])] <= vals[best, np.arange(vals.shape[1])]):
-                break
-            best = new
-    m = np.arange(vals.shape[1])
-    return BoxWorst(values=vals[best, m], points=pts[best], evaluated=len(points))
+    while k and np.any(step >= min_step):
+        active = np.flatnonzero(step >= min_step)
+        run((pts[best[active]][:, None, :] + step[active, None, None] * moves[None]).reshape(-1, k))
+        pts, vals, new = best_of()
+        cols = np.arange(m)
+        improved = vals[new, cols] > vals[best, cols]
+        step = np.where(improved | (step < min_step), step, 0.5 * step)
+        best = new
+    cols = np.arange(m)
+    return BoxWorst(values=vals[best, cols], points=pts[best], evaluated=len(points))
 
 
 def design_box_worst(model: ImpactModel, tolerance: ToleranceModel, params: np.ndarray, torques, speed_rpm: float,
@@ -230,3 +234,23 @@ def manufactured_pair(pair, params: np.ndarray, lead_slope):
     mods = tuple(Modification(**{f: float(p[g, k]) for k, f in enumerate(MODIFICATION_FIELDS)}) for g in range(2))
     lead = tuple(float(v) for v in np.asarray(lead_slope, dtype=float))
     return pair.with_changes(modification=mods, deviations=replace(pair.deviations, lead_slope=lead))
+
+
+def box_scenarios(tolerance: ToleranceModel, reference: BoxWorst) -> np.ndarray:
+    """The manufactured gears an optimiser evaluates each candidate on (S, K unit deviations): at
+    every lead mismatch where the reference design's worst gears lie (the box search's points of
+    the unmodified pair, all criteria and torques), the modification deviations all at their lower
+    and all at their upper tolerance — the structure of the box (the mismatch acts most; a relief
+    or crowning slightly thinner or thicker than drawn acts on every criterion the same way round).
+    A candidate's worst over these is checked on its own box afterwards
+    (:func:`gearmesh.optimise.optimise`)."""
+    points = np.asarray(reference.points)
+    mismatch = np.unique(np.round(points[..., 0].ravel(), 9)) if points.shape[-1] else np.zeros(1)
+    dims = tolerance.dimensions
+    out = []
+    for u in mismatch:
+        for side in (-1.0, 1.0):
+            row = np.array([u if kind == "lead" else side for kind, _, _ in dims])
+            if not any(np.array_equal(row, r) for r in out):
+                out.append(row)
+    return np.array(out).reshape(-1, len(dims))

@@ -403,7 +403,10 @@ class Tolerances:
     modification: dict[str, float] = setting({}, "{pair-file modification key: ± value} in µm / mm on every nonzero "
                                                  "parameter of either gear", minimum=0)
     samples: int = setting(8, "deviation samples beside the nominal (0: the nominal only)", minimum=0, maximum=4096)
-    sampling: Literal["lhs", "corners"] = setting("lhs", "seeded Latin hypercube, or the corners of the tolerance box")
+    sampling: Literal["lhs", "corners", "box"] = setting(
+        "lhs", "the optimisers' samples: a seeded Latin hypercube, the corners of the tolerance box, or box: the "
+        "unmodified pair's worst gears over the tolerance box at both ends of the modification tolerances (each "
+        "optimum then checked on its own box)")
     seed: int = setting(0, "seed of the samples: one manufactured population for every optimisation and the impact "
                            "stage", minimum=0, maximum=4294967295)
     population: int = setting(256, "manufactured gears of the distributions beside the worst case (median, P90, "

@@ -51,7 +51,7 @@ __all__ = ["GRADES", "SAMPLINGS", "STATISTICS", "helix_slope_tolerance", "Tolera
            "study_population"]
 
 GRADES = tuple(range(1, 12))
-SAMPLINGS = ("lhs", "corners")
+SAMPLINGS = ("lhs", "corners", "box")
 STATISTICS = ("max", "mean", "percentile", "cvar")
 #: Pair-file keys of the six parameters (order of :data:`gearmesh.surface.MODIFICATION_FIELDS`).
 _KEYS = ("root_relief_um", "tip_relief_um", "root_relief_length_mm", "tip_relief_length_mm", "crowning_um",
@@ -134,8 +134,8 @@ def unit_deviations(dimensions: int, samples: int, sampling: str = "lhs", seed: 
     """``samples`` deviation samples (S, k) in [−1, 1]^k, k = ``dimensions`` (module docstring):
     a seeded Latin hypercube (``lhs``) or corners of the box (``corners``: all 2^k when
     ``samples`` ≥ 2^k, else a seeded choice of them without repetition, in a fixed order)."""
-    if sampling not in SAMPLINGS:
-        raise GearmeshInputError("sampling", sampling, f"must be one of {list(SAMPLINGS)}")
+    if sampling not in SAMPLINGS or sampling == "box":  # box: a design's own worst gears (gearmesh.robust)
+        raise GearmeshInputError("sampling", sampling, f"must be one of {list(SAMPLINGS[:2])} here")
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or not 0 <= samples <= MAX_SAMPLES:
         raise GearmeshInputError("tolerance_samples", samples, f"must be an integer in [0, {MAX_SAMPLES}]")
     if samples == 0 or dimensions == 0:

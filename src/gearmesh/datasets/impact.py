@@ -6,6 +6,7 @@ carries ``units`` and ``long_name``. Physics: :mod:`gearmesh.impact`.
 
 from __future__ import annotations
 
+import json
 from typing import Any, Sequence
 
 import numpy as np
@@ -14,7 +15,7 @@ import xarray as xr
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from . import variant_name
-from ..gear import GEARS, GearPair, pair_geometry
+from ..gear import GEARS, GearPair, load_pair, pair_geometry, pair_to_dict
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
                       impact_response, impact_static, load_grid, load_window, ltca_criteria, mesh_in_point,
                       seed_edge_roll, simulate_engagement, vector_velocity)
@@ -30,7 +31,7 @@ from ..settings import Impact, Ltca
 
 UM = 1e-6
 
-__all__ = ["impact_dataset", "impact_table_dataset", "impact_summary"]
+__all__ = ["impact_dataset", "impact_table_dataset", "impact_summary", "manufactured_gear"]
 
 
 #: Positions per mesh cycle of the manufactured gears' loaded contact: the LTCA's declared default, so
@@ -314,6 +315,7 @@ def _add_tolerance_spread(ds: xr.Dataset, model: ImpactModel, t1, tolerances, de
             ds["population_impact_force_energy_balance"] = variable(
                 (gear, "judged_torque"), c.impact_force_energy_balance, "N", f"F_s by the energy balance, {what}")
             ds["population_scenario"] = _scenario_var((gear, "judged_torque"), c.scenario)
+    ds.attrs["design_pair_json"] = json.dumps(pair_to_dict(model.geom.pair))
     ds.attrs.update({"tolerance_population": int(population), "tolerance_seed": int(seed),
                      "tolerance_heldout": int(heldout), "tolerance_heldout_seed": int(heldout_seed),
                      "lead_grade_iso1328": -1 if tol.grade is None else tol.grade, "toleranced": ", ".join(dims)})
@@ -439,6 +441,44 @@ def _table_spread(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, x
         "tolerance_max_impact_force": variable(dims, worst, "N", "largest F_s over the tolerance box (the worst "
                                                "manufactured gear)"),
     }
+
+
+def manufactured_gear(path, heldout: int | None = None, population: int | None = None, worst: str | None = None,
+                      torque_Nm: float | None = None) -> GearPair:
+    """One manufactured gear of a variant's impact.nc (``path``) as a pair
+    (:func:`gearmesh.robust.manufactured_pair`): gear ``heldout`` of the held-out population, gear
+    ``population`` of the population, or the worst gear over the tolerance box of criterion ``worst``
+    at pinion torque ``torque_Nm``. Refused in one line naming the option otherwise."""
+    from pathlib import Path
+
+    from ..io import read_dataset
+    from ..robust import manufactured_pair
+
+    if not Path(path).is_file():
+        raise GearmeshInputError("impact", str(path), "must be a variant's impact.nc file")
+    try:
+        ds = read_dataset(path)
+    except (OSError, ValueError) as exc:
+        raise GearmeshInputError("impact", str(path), f"cannot be read as netCDF ({type(exc).__name__})") from None
+    if "design_pair_json" not in ds.attrs:
+        raise GearmeshInputError("impact", str(path), "holds no manufactured gears (a study with a tolerances section)")
+    design = load_pair(json.loads(ds.attrs["design_pair_json"]))
+    if worst is not None:
+        if worst not in CRITERIA:
+            raise GearmeshInputError("--worst", worst, f"must be one of {list(CRITERIA)}")
+        judged = ds["judged_torque"].values
+        k = np.flatnonzero(same_point(judged, torque_Nm)) if torque_Nm is not None else np.array([], dtype=int)
+        if not k.size:
+            raise GearmeshInputError("--torque-Nm", torque_Nm, f"must be one of the judged pinion torques "
+                                     f"{judged.tolist()} (N m)")
+        params, lead = (ds[f"box_worst_{what}_{worst}"].values[k[0]] for what in ("modification", "lead_slope"))
+        return manufactured_pair(design.with_changes(name=f"{design.name}_worst_{worst}"), params, lead)
+    prefix, gear = ("heldout", heldout) if heldout is not None else ("population", population)
+    size = ds.sizes.get(f"{prefix}_gear", 0)
+    if gear is None or not 0 <= gear < size:
+        raise GearmeshInputError(f"--{prefix}", gear, f"must be a gear 0 ... {size - 1} of the {prefix} population")
+    return manufactured_pair(design.with_changes(name=f"{design.name}_{prefix}_{gear}"),
+                             ds[f"{prefix}_modification"].values[gear], ds[f"{prefix}_lead_slope"].values[gear])
 
 
 @check_arguments(Impact)

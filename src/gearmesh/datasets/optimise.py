@@ -25,6 +25,7 @@ from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
+from ..robust import CRITERIA, CRITERION_UNITS
 from ..io import name_force_lines, variable
 from ..loads import check_load
 from ..ltca import MESH_ORDERS, loaded_pinion_torques, pinion_torques
@@ -299,6 +300,31 @@ def optimise_dataset(pair: GearPair, fe_compliance: xr.Dataset | None = None, **
     return result_dataset(optimise(run_problem(pair, **settings)), settings)
 
 
+def _verification_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
+    """The optimum checked on its own tolerance box (:class:`gearmesh.optimise.Verification`)."""
+    v = result.verification
+    if v is None:
+        return {}
+    t = ("objective_torque",)
+    out = {f"verified_worst_{name}": variable(t, v.worst.values[:, k], CRITERION_UNITS[name],
+                                              f"optimum: {name.replace('_', ' ')} of its worst manufactured gear over "
+                                              "the tolerance box (searched)")
+           for k, name in enumerate(CRITERIA)}
+    reference = result.problem.reference
+    out |= {f"reference_worst_{name}": variable(t, reference.values[:, k], CRITERION_UNITS[name],
+                                                f"standard gear: {name.replace('_', ' ')} of its worst manufactured "
+                                                "gear over the tolerance box")
+            for k, name in enumerate(CRITERIA)}
+    out |= {
+        "verified_violation": variable((), v.violation, "1", "optimum: the constraints' summed relative excess on "
+                                       "its worst manufactured gears (0: every constraint met on the tolerance box)"),
+        "verified_rank": variable((), np.int64(v.rank), "1", "optimum's place among the run's candidates, best "
+                                  "first (0: the run's best met the constraints on its tolerance box)"),
+        "verified_tried": variable((), np.int64(v.tried), "1", "candidates checked on their tolerance box"),
+    }
+    return out
+
+
 def _diagnostic_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
     d, prob = result.diagnostics, result.problem
     t, w, st = ("objective_torque",), ("window_torque",), ("tolerance_sample", "objective_torque")
@@ -393,6 +419,7 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
                                                "standard gear: largest line load at the design torque"),
         })
     data.update(_criteria_variables(result))
+    data.update(_verification_variables(result))
     if constraint_factors(s):  # the unmodified pair as a candidate of this run: its J with the penalties
         data["standard_penalised_objective"] = variable((), standard_penalised_objective(prob), units,
                                                         f"standard gear as a candidate: {what} with the "
@@ -428,6 +455,8 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
                                    "toleranced quantity: gear.pair-file key, or gear.lead_slope_deviation_um (ISO 1328-1 f_Hbeta)"),
             "bound": variable(("bound",), np.array(["low", "high"]), "1", "ends of the load window"),
         })
+    if result.verification is not None:
+        coords["criterion"] = variable(("criterion",), np.array(CRITERIA), "1", "sign-off criterion of one gear")
     ds = xr.Dataset(data_vars=data, coords=coords)
     ds.attrs.update({
         "method": s.method, "seed": s.seed, "objective": s.objective, "objective_statistic": s.statistic,
