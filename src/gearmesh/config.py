@@ -247,9 +247,10 @@ def _check_impact(impact: Mapping[str, Any] | None) -> None:
     design = impact["design_torque_Nm"]
     if design is not None and not same_point(torques, design).any():
         raise GearmeshInputError("impact.design_torque_Nm", design, f"must be one of impact.torques_Nm {torques}")
-    for k, t in enumerate(impact["simulate_torques_Nm"]):
-        if not same_point(torques, t).any():
-            raise GearmeshInputError(f"impact.simulate_torques_Nm[{k}]", t, f"must be one of impact.torques_Nm {torques}")
+    for key in ("simulate_torques_Nm", "tolerance_torques_Nm"):
+        for k, t in enumerate(impact.get(key) or ()):
+            if not same_point(torques, t).any():
+                raise GearmeshInputError(f"impact.{key}[{k}]", t, f"must be one of impact.torques_Nm {torques}")
 
 
 def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> None:
@@ -262,9 +263,12 @@ def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> 
     for section in (r.stage for r in stage_of("signoff").reads if r.when is always):  # what it always reads
         if section not in config:
             raise GearmeshInputError("signoff", dict(signoff), f"needs a {section} section in the study")
-    if signoff.get("basis") == "population" and not (config.get("tolerances") or {}).get("samples"):
-        raise GearmeshInputError("signoff.basis", "population", "needs a tolerances section with samples (the "
-                                 "manufactured gears it judges); or basis: nominal")
+    tolerances = config.get("tolerances") or {}
+    if signoff.get("basis") == "population" and not (tolerances.get("population") and (
+            tolerances.get("grade") is not None or tolerances.get("modification"))):
+        raise GearmeshInputError("signoff.basis", "population", "needs a tolerances section with a grade or "
+                                 "modification tolerances and a population (the manufactured gears it judges); or "
+                                 "basis: nominal")
     variants = list(config.get("variants", {}))
     if signoff["reference"] not in variants:
         raise GearmeshInputError("signoff.reference", signoff["reference"], f"must be one of the variants {variants}")
@@ -274,11 +278,15 @@ def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> 
         if sec is None:
             continue
         torques = sec["torques_Nm"]
+        judged = sec.get("tolerance_torques_Nm") if section == "impact" and signoff.get("basis") == "population" \
+            else None
+        field = "impact.tolerance_torques_Nm" if judged is not None else f"{section}.torques_Nm"
+        torques = torques if judged is None else judged
         own = {"torques_Nm": torques if isinstance(torques, list) else [torques], "on": sec.get("on", "pinion")}
         for name in config["pairs"]:
             for t in ltca["torques_Nm"]:
                 if not _among(pinion_torque(pairs[name], t, ltca["on"]), pairs[name], own):
-                    raise GearmeshInputError(f"{section}.torques_Nm", torques, f"must include every LTCA torque "
+                    raise GearmeshInputError(field, torques, f"must include every LTCA torque "
                                              f"({t} N m on the {ltca['on']}) for the sign-off table")
 
 

@@ -153,13 +153,14 @@ def _first_stage(k: int, mismatch: bool) -> np.ndarray:
 
 
 def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bool = True,
-              min_step: float = 1.0 / 32.0) -> BoxWorst:
+              min_step: float = 1.0 / 32.0, starts: int = 2) -> BoxWorst:
     """The largest value of every column of ``evaluate`` (unit points (n, k) → values (n, M)) over
     [−1, 1]^k (module docstring): the first stage, then a compass search (Kolda, Lewis & Torczon
-    2003, §3) from each column's best point, each column with its own step — polled along every
-    dimension, kept while the poll improves the column, halved when it does not, down to
-    ``min_step`` — the trial points of every column evaluated in one batch per poll and shared
-    (a column takes the best point any poll found). ``mismatch``: dimension 0 is the lead mismatch."""
+    2003, §3) from each column's ``starts`` best points of the first stage (a column can have more
+    than one local maximum), each walker with its own step — polled along every dimension, kept
+    while the poll improves its point, halved when it does not, down to ``min_step`` — the trial
+    points of every walker evaluated in one batch per poll. ``mismatch``: dimension 0 is the lead
+    mismatch."""
     seen: dict[bytes, int] = {}
     points: list[np.ndarray] = []
     values: list[np.ndarray] = []
@@ -182,18 +183,32 @@ def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bo
         return np.array(points), vals, idx
 
     run(_first_stage(k, mismatch))
-    pts, vals, best = best_of()
+    pts, vals, _ = best_of()
     m = vals.shape[1]
-    step = np.full(m, 0.5)
+    finite = np.where(np.isfinite(vals), vals, -np.inf)
+    order = np.argsort(-finite, axis=0, kind="stable")[:max(1, starts)]  # (starts, M) best first
+    column = np.tile(np.arange(m), order.shape[0])  # each walker's column
+    at = order.reshape(-1)  # each walker's point
+    step = np.full(at.size, 0.5)
     moves = np.vstack([np.eye(k), -np.eye(k)]) if k else np.zeros((0, 0))
     while k and np.any(step >= min_step):
         active = np.flatnonzero(step >= min_step)
-        run((pts[best[active]][:, None, :] + step[active, None, None] * moves[None]).reshape(-1, k))
-        pts, vals, new = best_of()
-        cols = np.arange(m)
-        improved = vals[new, cols] > vals[best, cols]
-        step = np.where(improved | (step < min_step), step, 0.5 * step)
-        best = new
+        before = len(points)
+        trial = (pts[at[active]][:, None, :] + step[active, None, None] * moves[None])  # (walkers, 2k, k)
+        run(trial.reshape(-1, k))
+        pts, vals, _ = best_of()
+        finite = np.where(np.isfinite(vals), vals, -np.inf)
+        for w in active:  # each walker moves to the best of its own poll, if better
+            key = [seen[np.round(np.clip(p, -1.0, 1.0), 12).tobytes()] for p in pts[at[w]] + step[w] * moves]
+            j = key[int(np.argmax(finite[key, column[w]]))]
+            if finite[j, column[w]] > finite[at[w], column[w]]:
+                at[w] = j
+            else:
+                step[w] *= 0.5
+        if len(points) == before and not np.any(step >= min_step):
+            break
+    best = np.array([at[column == c][np.argmax(finite[at[column == c], c])] for c in range(m)])
+    best = np.where(finite[best, np.arange(m)] >= finite.max(axis=0), best, np.argmax(finite, axis=0))
     cols = np.arange(m)
     return BoxWorst(values=vals[best, cols], points=pts[best], evaluated=len(points))
 
