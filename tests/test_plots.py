@@ -152,12 +152,16 @@ def test_contact_pattern_scale_per_panel_and_no_contact_on_the_colour_bar(data, 
 
 
 def test_te_lte_writes_the_separation_at_phi_1a(data, drawn, tmp_path):
+    """The separation at φ1A in the legend (not written over the curves), and each torque's entry
+    timing as the dataset's flag says it."""
     _draw("ltca", data, tmp_path)
     ax = drawn["te_lte"].axes[0]
-    value = float(data["ltca"]["te_next_pair_at_engagement"]) * 1e6
-    assert any(t.get_text() == f"TE(φ1A) = {number(value)} µm" for t in ax.texts)
+    ltca = data["ltca"]
+    value = float(ltca["te_next_pair_at_engagement"]) * 1e6
     labels = ax.get_legend_handles_labels()[1]
-    assert sum("touches before A" in s or "touches after A" in s for s in labels) == data["ltca"].sizes["torque"]
+    assert any(s.endswith(f"TE(φ1A) = {number(value)} µm") for s in labels) and not ax.texts
+    timing = [("before" if early else "after") for early in ltca["touches_before_engagement"].values]
+    assert [s.split("touches ")[1] for s in labels if "touches" in s] == [f"{t} A" for t in timing]
 
 
 def test_modification_title_in_words_and_convergence_states_a_reduction(data, drawn, tmp_path):
