@@ -349,3 +349,54 @@ def test_optimum_notes_name_a_single_point_optimum_and_an_open_load_window():
     for nominal in ({"criteria_over_samples": False}, {"tolerance_statistic": None}):
         said = notes("robust", (400.0, 1000.0), 8, (700.0, 1100.0), needs_criteria=True, **nominal)
         assert len(said) == 1 and said[0].startswith("nominal criteria")
+
+
+def _cli_text(value) -> str:
+    """A setting's value as the command line writes it (comma lists, true/false, none)."""
+    if isinstance(value, bool):
+        return str(value).lower()
+    if isinstance(value, (list, tuple)):
+        return ",".join(map(str, value))
+    return "none" if value is None else str(value)
+
+
+def test_the_cli_reproduces_the_studys_optimum_from_its_section(capsys):
+    """The default study's recommended optimisation, every key of its section that is not its
+    declared default given on the command line by the option the declaration made for it (its
+    constraints, the sign-off criteria, included), finds the optimum the workflow's function finds
+    from the section itself (tiny budget, same seed: the same genes)."""
+    import argparse
+
+    from gearmesh.cli import build_parser
+    from gearmesh.config import load_study
+    from gearmesh.datasets.optimise import optimise_dataset
+    from gearmesh.schema import defaults
+    from gearmesh.settings import Constraints, Optimise
+
+    study = load_study(ROOT / "config/config.yaml")
+    section = {**study["optimise"]["optimised"], "population": 4, "generations": 1}
+    tolerances = study["tolerances"]
+    action = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    parser = action.choices["optimise"]
+    flags = {a.dest: a.option_strings[0] for a in parser._actions if a.option_strings}
+    flags |= {key: flag for _, (_, key, flag) in parser.get_default("setting_options").items()}
+    declared = {**defaults(Optimise), **defaults(Constraints)}
+    given = [(k, v) for key, value in section.items()
+             for k, v in (value.items() if key == "constraints" else [(key, value)]) if declared.get(k) != v]
+    assert {"pressure_factor", "root_stress_factor", "harmonic_factor", "impact_factor", "worst_impact_factor",
+            "dynamic_factor", "pareto_objectives"} <= {k for k, _ in given}
+    argv = ["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--json"]
+    for key, value in given:
+        argv += [flags[key], _cli_text(value)]  # KeyError: a key of the section without an option
+    # the study's tolerances section: lead class, samples, sampling and ±2 µm on every amount
+    assert set(tolerances["modification"].values()) == {2} and tolerances["seed"] == 0
+    argv += ["--grade", str(tolerances["grade"]), "--tolerance-samples", str(tolerances["samples"]),
+             "--sampling", tolerances["sampling"], "--amount-tolerance-um", "2"]
+    assert cli_main(argv) == 0
+    cli = json.loads(capsys.readouterr().out)
+    workflow = optimise_dataset(load_pair(ROOT / "config/pairs/seed000_case.yaml"), **section,
+                                impact=study["impact"], tolerances=tolerances)
+    units = {"um": 1e-6, "mm": 1e-3}
+    genes = [v * units[k.rsplit("_", 1)[1]] for k, v in cli["genes"].items()]
+    np.testing.assert_allclose(genes, workflow["optimum_genes"].values, rtol=1e-12)
+    assert cli["objective_value"] == pytest.approx(float(workflow["optimum_objective"]), rel=1e-12)

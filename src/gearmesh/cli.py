@@ -26,7 +26,7 @@ from .gear import NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geo
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
 from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
-from .settings import Dynamics, Impact, Ltca, Optimise, Rating, Stiffness, Tolerances
+from .settings import Constraints, Dynamics, Impact, Ltca, Optimise, Rating, Stiffness, Tolerances
 
 EXIT_BAD_INPUT = 2
 
@@ -302,8 +302,8 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
                                    tolerances=tolerances, dynamic_speeds_rpm=_numbers("--dynamic-speeds-rpm",
                                                                                       args.dynamic_speeds_rpm),
                                    backlash_um=args.backlash_um,
-                                   constraints={"dynamic_factor": args.dynamic_factor}
-                                   if args.dynamic_factor is not None else None)
+                                   constraints={key: getattr(args, key) for key in args.constraint_keys},
+                                   **{key: getattr(args, key) for key in args.optimise_keys})
     summary["pinion_torque_Nm"] = float(pinion_torque(pair, design, args.on))
     if args.objective == "dynamic" or args.dynamic_factor is not None:  # the candidates' dynamics
         summary.update(_backlash(geom, args.backlash_um))
@@ -368,7 +368,8 @@ class _HelpFormatter(argparse.HelpFormatter):
         if (action.required or not action.option_strings or default is None or default is False
                 or default == argparse.SUPPRESS or "default" in text):
             return text
-        shown = " ".join(map(str, default)) if isinstance(default, (list, tuple)) else str(default)
+        apart = " " if action.nargs in ("+", "*") else ","  # as the option is written: words apart, or a comma list
+        shown = apart.join(map(str, default)) if isinstance(default, (list, tuple)) else str(default)
         return f"{text} (default: {shown.replace('%', '%%')})"
 
 
@@ -392,10 +393,61 @@ def _setting_option(p, flag: str, section: type, help: str, key: str | None = No
     field = next(f for f in settings_fields(section) if key_of(f) == key)
     schema = field_schema(section, field)
     choices = schema.get("enum") or schema.get("items", {}).get("enum")
-    if choices:
+    if choices and "choices" not in kwargs:
         kwargs["choices"] = [c for c in choices if c is not None]
     p.add_argument(flag, dest=dest, default=defaults(section).get(key), help=help, **kwargs)
     p.set_defaults(setting_options={**(p.get_default("setting_options") or {}), dest: (section, key, flag)})
+
+
+def _value_reader(schema: Mapping[str, Any]):
+    """How the command line writes a value of a setting whose JSON schema is ``schema``: a number,
+    an integer, true/false, a word, or comma-separated items for a list; 'none' for null where
+    the setting allows it. Its range is checked against the declaration afterwards."""
+    kinds = schema.get("type", "string")
+    kinds = {kinds} if isinstance(kinds, str) else set(kinds)
+    items = _value_reader(schema.get("items", {})) if "array" in kinds else None
+
+    def read(text: str) -> Any:
+        word = text.strip()
+        if "null" in kinds and word.lower() in ("none", "null"):
+            return None
+        if items is not None:
+            return [items(v) for v in word.split(",")]
+        if "boolean" in kinds:
+            if word.lower() not in ("true", "false"):
+                raise ValueError(text)
+            return word.lower() == "true"
+        if "integer" in kinds:
+            return int(word)
+        return float(word) if "number" in kinds else word
+
+    read.__name__ = ("comma-separated " if items is not None else "") + \
+        ("/".join(sorted(k for k in kinds if k not in ("null", "array"))) or "value") + " value"
+    return read
+
+
+def _declared_options(p, section: type, skip: Sequence[str] = ()) -> list[str]:
+    """An option for every setting of ``section`` but ``skip`` and those of a mapping type, each
+    made from its declaration (:func:`_setting_option`: ``--KEY-WITH-DASHES``, its default,
+    choices and bounds, its description as the help): the keys, so a setting added to the
+    declaration is an option of the command without a line here."""
+    keys = []
+    for field in settings_fields(section):
+        key = key_of(field)
+        schema = field_schema(section, field)
+        if key in skip or "object" in str(schema.get("type")) or "oneOf" in schema:
+            continue
+        words = schema.get("enum") or schema.get("items", {}).get("enum")
+        help = schema.get("description", key.replace("_", " "))
+        kwargs = {}
+        if words and ("array" in str(schema.get("type")) or None in words):  # a list or null: checked as a whole
+            help += " (" + ", ".join("none" if w is None else str(w) for w in words) + ")"
+            kwargs["choices"] = None
+        metavar = "{true,false}" if schema.get("type") == "boolean" else key.upper()
+        _setting_option(p, "--" + key.replace("_", "-"), section, key=key, help=help, type=_value_reader(schema),
+                        metavar=metavar, **kwargs)
+        keys.append(key)
+    return keys
 
 
 def _check_setting_options(args: argparse.Namespace) -> None:
@@ -632,9 +684,6 @@ def build_parser() -> argparse.ArgumentParser:
                     help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
                         "dynamic: the dynamic factor (peak over static mesh force) of the contact-driven 8-DOF pair "
                         "over the speed range")
-    p.add_argument("--dynamic-factor", dest="dynamic_factor", type=float, default=None,
-                   help="constraint: the dynamic factor at every torque at most this times the unmodified pair's "
-                        "(e.g. 1.0: never worse than unmodified in the dynamics)")
     p.add_argument("--dynamic-speeds-rpm", dest="dynamic_speeds_rpm", default=None,
                    help="speeds of the dynamic objective/constraint, comma-separated (rpm; default 0.2, 1 and 3 times "
                         "--speed-rpm), resonances within their range added per candidate")
@@ -668,6 +717,11 @@ def build_parser() -> argparse.ArgumentParser:
     _setting_option(p, "--generations", Optimise, type=int, help="generations")
     p.add_argument("--write-pair", dest="write_pair", default=None, metavar="OUT.yaml",
                    help="write the optimum as a pair file OUT.yaml (its name: OUT), readable by every subcommand")
+    # every other setting of a study's optimisation, and every constraint (the sign-off criteria),
+    # from their declarations: a study's optimum is reproduced by giving its section's keys
+    given = {a.dest for a in p._actions}
+    p.set_defaults(optimise_keys=_declared_options(p, Optimise, skip=tuple(given | {"constraints"})),
+                   constraint_keys=_declared_options(p, Constraints))
     return parser
 
 

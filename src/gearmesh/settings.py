@@ -290,7 +290,7 @@ class Constraints:
     """Constraints of an optimisation as penalties: J = f + penalty·f_std·Σ max(0, m/(factor·m_std) − 1),
     m against the unmodified pair's m_std."""
 
-    lte_factor: float | None = _ratio_limit("load transmission error peak-to-peak at the design torque")
+    lte_factor: float | None = _ratio_limit("loaded transmission error peak-to-peak at the design torque")
     line_load_factor: float | None = _ratio_limit("largest line load at the design torque")
     dynamic_factor: float | None = _ratio_limit("dynamic factor at every torque")
     harmonic_factor: float | None = _ratio_limit("amplitude of each loaded-TE mesh order of harmonic_orders at every "
