@@ -147,3 +147,51 @@ def test_help_shows_the_defaults(capsys):
         main(["stiffness", "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "(default: 200)" in text and "(default: fe)" in text
+
+
+def test_rating_text_starts_with_the_verdict_and_groups_the_factors(root, capsys):
+    """The first line says whether S_H and S_F of the weaker gear meet their minimums; then the
+    result by group, every number of the JSON output among them (nothing dropped); a minimum above
+    the rated safety factor turns the verdict to FAIL."""
+    pair = str(root / "config/pairs/seed000_case.yaml")
+    base = ["rating", pair, "--torque-Nm", "1000", "--speed-rpm", "5000", "--positions", "16", "--points", "20"]
+    assert main([*base, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert main(base) == 0
+    text = capsys.readouterr().out.splitlines()
+    s_h, s_f = min(data["S_H"]), min(data["S_F"])
+    assert text[0] == (f"PASS: S_H {s_h:.3g} >= S_Hmin {data['S_Hmin']:g}, S_F {s_f:.3g} >= S_Fmin "
+                       f"{data['S_Fmin']:g} (the weaker gear of each)")
+    headings = [line for line in text[1:] if line and not line.startswith(" ")]
+    assert headings[:4] == ["operating point", "load factors (ISO 6336-1)", "pitting (ISO 6336-2)",
+                            "tooth root (ISO 6336-3)"] and headings[-1] == "notes"
+    section = text.index("pitting (ISO 6336-2)")
+    assert any(line.split() == ["S_H", "pinion", f"{data['S_H'][0]:.6g},", "gear", f"{data['S_H'][1]:.6g}"]
+               for line in text[section:])
+    shown = {line.split()[0] for line in text if line.startswith("  ") and not line.startswith("  -")}
+    flat = {k.rsplit(".", 1)[-1] if "." not in k.split(".", 1)[-1] else k.split(".", 1)[1]
+            for k in _dotted(data) if not k.startswith("notes")}
+    assert flat <= shown, flat - shown
+    assert len([line for line in text if line.startswith("  - ")]) == len(data["notes"])
+    assert main([*base, "--factor", f"S_Hmin={s_h * 1.01}"]) == 0
+    assert capsys.readouterr().out.startswith(f"FAIL: S_H {s_h:.3g} < S_Hmin")
+
+
+def _dotted(data, prefix=""):
+    for key, value in data.items():
+        if isinstance(value, dict):
+            yield from _dotted(value, f"{prefix}{key}.")
+        else:
+            yield f"{prefix}{key}"
+
+
+def test_the_safety_verdict_reads_every_factor_with_a_minimum():
+    """A safety factor the rating gains (with its minimum) joins the verdict without a change."""
+    from gearmesh.cli import safety_verdict
+
+    ok, line = safety_verdict({"S_H": [1.2, 1.1], "S_Hmin": 1.0, "S_F": [2.0, 1.9], "S_Fmin": 1.4,
+                               "S_S": 1.5, "S_Smin": 1.8, "S_Hmin_note": "x"})
+    assert not ok and line == ("FAIL: S_H 1.1 >= S_Hmin 1, S_F 1.9 >= S_Fmin 1.4, S_S 1.5 < S_Smin 1.8 "
+                               "(the weaker gear of each)")
+    for values in ([float("nan"), 2.0], [2.0, float("nan")]):
+        assert safety_verdict({"S_H": values, "S_Hmin": 1.0})[0] is False

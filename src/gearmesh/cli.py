@@ -44,11 +44,15 @@ def _finite(obj: Any) -> Any:
     return obj
 
 
-def _emit(result: Mapping[str, Any], as_json: bool) -> None:
-    """Print a result: one JSON object, or one ``key  value`` line per number (nested keys
-    dotted) and, for a speed sweep, a table with one row per speed."""
+def _emit(result: Mapping[str, Any], as_json: bool, text=None) -> None:
+    """Print a result: one JSON object, or its text (``text(result)``: the command's own lines),
+    or one ``key  value`` line per number (nested keys dotted) and, for a speed sweep, a table
+    with one row per speed."""
     if as_json:
         print(json.dumps(_finite(result)))
+        return
+    if text is not None:
+        print("\n".join(text(result)))
         return
     rows = result.get("speeds") if isinstance(result.get("speeds"), list) else None
     lines = _flat(_finite({k: v for k, v in result.items() if rows is None or k != "speeds"}))
@@ -65,6 +69,79 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
         print("  ".join(f"{k:>18}" for k in keys))
         for row in _finite(rows):
             print("  ".join(f"{v:>18.6g}" if isinstance(v, float) else f"{v!s:>18}" for v in row.values()))
+
+
+def _value_text(value: Any, gears: Sequence[str] = ()) -> str:
+    """One value of the text output: a number to six digits, a list of sentences apart by "; ", a
+    list of numbers by ", " (per gear named, "pinion 1.98, gear 2.01", where ``gears`` names them)."""
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, list):
+        if all(isinstance(v, str) for v in value):
+            return "; ".join(value)
+        items = [_value_text(v) for v in value]
+        if gears and len(items) == len(gears):
+            items = [f"{g} {v}" for g, v in zip(gears, items)]
+        return ", ".join(items)
+    return str(value)
+
+
+#: The text output of ``gearmesh rating`` in groups, in this order: (heading, the keys it holds:
+#: exact dotted keys or patterns). A key of no group is printed under "other", so a key the rating
+#: gains is shown without a change here.
+RATING_GROUPS = (
+    ("operating point", r"name|torque_Nm|torque_on|pinion_torque_Nm|speed_rpm|pitch_line_speed_m_s|"
+                        r"force_tangential_N|method|accuracy_grade|load_cycles|gears|factors_given"),
+    ("load factors (ISO 6336-1)", r"K_\w+"),
+    ("pitting (ISO 6336-2)", r"(Z_|M_\d|sigma_H|S_H)\w*"),
+    ("tooth root (ISO 6336-3)", r"(Y_|sigma_F|S_F)\w*"),
+    ("inputs of the ISO 6336-1 factors", r"iso_factors\..+"),
+    ("where each factor comes from", r"factor_sources\..+"),
+    ("loaded tooth contact", r"ltca\..+"),
+)
+
+
+def safety_verdict(result: Mapping[str, Any]) -> tuple[bool, str]:
+    """Whether every safety factor of a rating meets its minimum, and the line that says so:
+    each ``S_X`` with an ``S_Xmin`` in ``result`` (the weaker gear's against the minimum), e.g.
+    "PASS: S_H 1.98 >= S_Hmin 1, S_F 4.83 >= S_Fmin 1 (the weaker gear of each)"."""
+    parts, ok = [], True
+    for key, value in result.items():
+        need = result.get(f"{key}min")
+        if not re.fullmatch(r"S_[A-Za-z]\w*", key) or key.endswith("min") or need is None:
+            continue
+        values = [float(v) for v in (value if isinstance(value, list) else [value]) if v is not None]
+        least = min(values) if values and all(map(math.isfinite, values)) else math.nan  # unrated: not met
+        meets = math.isfinite(least) and least >= float(need)
+        ok &= meets
+        parts.append(f"{key} {least:.3g} {'>=' if meets else '<'} {key}min {float(need):g}")
+    if not parts:
+        return False, "no safety factor with its minimum in the result"
+    return ok, f"{'PASS' if ok else 'FAIL'}: {', '.join(parts)} (the weaker gear of each)"
+
+
+def _rating_text(result: Mapping[str, Any]) -> list[str]:
+    """The text output of ``gearmesh rating``: the verdict line first, then the result by group
+    (:data:`RATING_GROUPS`), each key with its value (per-gear values named by gear), the notes
+    last, one a line."""
+    lines = _flat(_finite({k: v for k, v in result.items() if k != "notes"}))
+    gears = result.get("gears") if isinstance(result.get("gears"), list) else []
+    groups: dict[str, dict[str, Any]] = {title: {} for title, _ in RATING_GROUPS} | {"other": {}}
+    for key, value in lines.items():
+        groups[next((t for t, pattern in RATING_GROUPS if re.fullmatch(pattern, key)), "other")][key] = value
+    out = [safety_verdict(result)[1]]
+    for title, rows in groups.items():
+        if not rows:
+            continue
+        # a group of one nested result ("ltca.K_Hbeta", ...) under its heading without the prefix
+        head = os.path.commonprefix(list(rows)).rpartition(".")[0]
+        shown = {key[len(head) + 1:] if head else key: value for key, value in rows.items()}
+        width = max(len(k) for k in shown)
+        out += ["", f"{title} ({head})" if head else title,
+                *(f"  {key:<{width}}  {_value_text(value, gears)}" for key, value in shown.items())]
+    if result.get("notes"):
+        out += ["", "notes", *(f"  - {note}" for note in result["notes"])]
+    return out
 
 
 def _flat(result: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
@@ -653,6 +730,7 @@ def build_parser() -> argparse.ArgumentParser:
                         "LTCA's load distribution (both are printed)")
     _setting_option(p, "--positions", Ltca, type=int, help="LTCA rotation positions per mesh cycle")
     _setting_option(p, "--points", Ltca, type=int, help="LTCA points per contact line")
+    p.set_defaults(text=_rating_text)
 
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
                  "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
@@ -746,7 +824,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             own = [n for n in result.get("notes", []) if n not in pair_notes(args.loaded_pair)]
             result["notes"] = pair_notes(args.loaded_pair) + own
         if result is not None:
-            _emit(result, args.json)
+            _emit(result, args.json, getattr(args, "text", None))
         sys.stdout.flush()
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)
