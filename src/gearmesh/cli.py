@@ -22,7 +22,8 @@ from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
 from .errors import GearmeshInputError
-from .gear import NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
+from .gear import (NAME_PATTERN, example_pair, example_pairs, load_pair, missing_needs, pair_geometry, pair_notes,
+                   pinion_torque, read_yaml)
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
 from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
@@ -178,7 +179,9 @@ def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
     pair = _pair(args, args.file)[0]
-    return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
+    out = {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
+    needs = missing_needs(pair)  # what some commands need beyond a valid pair, and which key to add
+    return {**out, "needs": needs} if needs else out
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
@@ -350,7 +353,8 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     torques = _numbers("--torques-Nm", args.torques_Nm)
     weights = _numbers("--weights", args.weights)
     if args.torque_Nm is None and torques is None:
-        raise GearmeshInputError("--torque-Nm", None, "or --torques-Nm is required")
+        raise GearmeshInputError("--torque-Nm", None, "is required, or --torques-Nm (a load spectrum, its middle "
+                                                      "torque the design torque)")
     # the design torque: given, or the middle torque of the spectrum (the lower of two middles)
     design = args.torque_Nm if args.torque_Nm is not None else sorted(torques)[(len(torques) - 1) // 2]
     out = _output_pair_path(args.write_pair)
