@@ -173,6 +173,17 @@ def test_modification_title_in_words_and_convergence_states_a_reduction(data, dr
     assert "+" not in head and ("below the standard gear" in head or "above the standard gear" in head)
 
 
+def test_convergence_names_the_penalised_objective_j(data, drawn, tmp_path):
+    """With constraints the objective is J, F_s plus the penalty of the violated constraints (up to
+    many times F_s): labelled so, not as F_s; without, it is F_s itself."""
+    optimise.plot_convergence(data["nsga"], tmp_path / "nsga.png")
+    optimise.plot_convergence(data["ga"], tmp_path / "ga.png")
+    constrained, plain = drawn["nsga"].axes[0], drawn["ga"].axes[0]
+    assert constrained.get_ylabel().startswith("objective J = F_s + penalty of violated")
+    assert "optimum J " in constrained.get_title()
+    assert plain.get_ylabel() == "objective: F_s (N)" and "optimum J" not in plain.get_title()
+
+
 def test_over_precise_numbers_are_not_printed():
     assert [number(v) for v in (118.367, 170.045, 12500.0, 1000.0, 13.224, 0.01234, 2.5, 0.0)] == \
         ["118", "170", "12500", "1000", "13.2", "0.0123", "2.5", "0"]

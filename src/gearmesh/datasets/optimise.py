@@ -541,8 +541,8 @@ def optimum_notes(prob, diagnostics) -> list[str]:
     grid = diagnostics.window_torque
     if math.isfinite(high) and high >= grid[-1]:
         notes.append(f"load window: its upper end {high:g} N m (pinion) is the end of the window's torque grid, not "
-                     "where the optimum stops beating the standard gear; that lies beyond (raise load_window_top_Nm "
-                     "to find it)")
+                     "where the optimum stops beating the standard gear; that lies beyond (the grid ends at 1.25 "
+                     "times the largest spectrum torque, or below where the load limits stop it)")
     if math.isfinite(low) and low <= grid[0]:
         notes.append(f"load window: its lower end {low:g} N m (pinion) is the start of the window's torque grid")
     return notes
