@@ -215,7 +215,8 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], *, methods: Sequence[
         "model": variable(("model",), np.array(list(methods)), "1", "cantilever model of the tooth (method)"),
     })
     ds.attrs.update({"slices": slices, "positions": positions,
-                     "torque": "" if torque_Nm is None else f"{torque_Nm} N m on the {torque_on}"})
+                     "torque": "" if torque_Nm is None else f"{torque_Nm} N m on the {torque_on}",
+                     "contact_term": CONTACT_TERM_NOTE[False]})  # every model alike, at no load
     return ds
 
 
