@@ -93,3 +93,23 @@ def test_impact_doc_table_is_what_the_impact_stage_computes(root):
             standard = computed["standard"].sel(torque=float(row["T1 (N·m)"]))
             reduction = 100 * (1 - float(ds["impact_force"]) / float(standard["impact_force"]))
             assert float(row["reduction"].rstrip(" %")) == pytest.approx(reduction, abs=1), where
+
+
+def test_nothing_shipped_points_into_the_repository(root, capsys):
+    """What a pip install carries and shows (the example pair files, the published schemas, every
+    command's help) points to the documentation by name or says it in words: no path into a
+    checkout (docs/…, tests/…), no source-document or issue number (seed 00x, issue N)."""
+    import argparse
+
+    from gearmesh.cli import build_parser
+
+    pointer = re.compile(r"\b(docs|tests)/\S+|\b[Ss]eed 00\d|\b[Ii]ssues? \d+")
+    package = root / "src/gearmesh"
+    texts = {str(p.relative_to(root)): p.read_text(encoding="utf-8")
+             for p in sorted([*package.glob("pairs/*.yaml"), *package.glob("schemas/*")])}
+    parser = build_parser()
+    action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    texts["gearmesh --help"] = parser.format_help()
+    texts |= {f"gearmesh {name} --help": p.format_help() for name, p in action.choices.items()}
+    found = {where: pointer.findall(text) for where, text in texts.items() if pointer.search(text)}
+    assert not found, found

@@ -673,11 +673,14 @@ def build_parser() -> argparse.ArgumentParser:
 
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 
-    p = sub.add_parser("run", help="run the workflow: check every study config with the bounded loader, then "
-                       "snakemake with the same arguments", description="Run the workflow as 'snakemake ARGS' "
-                       "after reading every --configfile (or config/config.yaml) with gearmesh's bounded loader "
-                       "and validating it, so a config Snakemake would parse without limits (a huge or nested file, "
-                       "a FIFO, a __use_yte__ template that runs Python) never reaches Snakemake. Example: "
+    p = sub.add_parser("run", help="run the workflow of a gearmesh checkout: check every study config with the "
+                       "bounded loader, then snakemake with the same arguments", description="Run the workflow as "
+                       "'snakemake ARGS' in a checkout of the gearmesh repository (the Snakefile, the workflow and the "
+                       "study configs are not part of the installed package; the folder you run it in must hold "
+                       "them), after reading every --configfile (without one, the checkout's default study "
+                       "config/config.yaml) with gearmesh's bounded loader and validating it, so a config Snakemake "
+                       "would parse without limits (a huge or nested file, a FIFO, a __use_yte__ template that runs "
+                       "Python) never reaches Snakemake. Example, in the checkout: "
                        "gearmesh run --cores 2 --configfile config/studies/contact_lines.yaml",
                        formatter_class=_HelpFormatter)
     p.add_argument("snakemake_args", nargs=argparse.REMAINDER, help="the arguments for snakemake")

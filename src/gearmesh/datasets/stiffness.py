@@ -39,7 +39,7 @@ CONTACT_TERM_NOTE = {
     True: "the tangent of the LTCA's Palmgren contact law at the mean line load of torque_Nm "
           "(gearmesh.ltca.contact_tangent_compliance): one mesh stiffness with the LTCA and the contact dynamics",
     False: "Yang & Sun's constant line-contact stiffness pi E/(4(1-nu^2)) (no torque given: 2.8-3.3x stiffer than "
-           "the loaded contact, docs/validation.md)"}
+           "the loaded contact: the documentation's validation page)"}
 
 
 def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
