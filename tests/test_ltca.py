@@ -240,7 +240,7 @@ def test_dataset_and_summary(seed000):
     total, force = xr.broadcast(ds["load"].sum(("line", "point")), ds["force"])
     assert np.allclose(total.values, force.values, rtol=1e-11)
     summary = ltca_summary(seed000, 1000.0)
-    for key in ("te_peak_to_peak_um", "lte_mean_um", "lte_peak_to_peak_um", "max_line_load_N_per_mm",
-                "loaded_mesh_stiffness_mean_N_per_um"):
+    for key in ("te_peak_to_peak_um", "lte_mean_um", "lte_peak_to_peak_um", "max_line_load_normal_N_per_mm",
+                "loaded_mesh_stiffness_mean_transverse_N_per_um"):
         assert math.isfinite(summary[key])
     assert summary["te_peak_to_peak_um"] == 0.0 and summary["lte_mean_um"] > 0

@@ -214,6 +214,8 @@ _MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
     "crowning_um": ("crowning", 1e-6),
     "unmodified_lead_length_mm": ("unmodified_lead_length", 1e-3),
 }
+#: Each modification parameter's engineering unit, as its pair-file key names it ("um" or "mm").
+MODIFICATION_UNITS = {attr: key.rsplit("_", 1)[1] for key, (attr, _) in _MODIFICATION_KEYS.items()}
 
 
 def _number(field_name: str, value: Any) -> float:

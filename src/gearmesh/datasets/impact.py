@@ -423,9 +423,8 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str
         "scenario": scen,
         "impact_force_transverse_N": float(resp.force[0, 0, 0]),
         "impact_force_energy_balance_transverse_N": float(resp.force_energy_balance[0, 0, 0]),
-        "impact_velocity_m_per_s": float(resp.velocity_normal[0, 0, 0]),
+        "impact_velocity_normal_m_per_s": float(resp.velocity_normal[0, 0, 0]),
         "impact_velocity_transverse_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
-        "impact_velocity_closing_rate_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
         "approach_at_mesh_in_um": float(static.approach[0, 0]) * um,
         "te_at_engagement_um": float(static.te_engagement[0, 0]) * um,
         "lte_at_engagement_um": float(static.lte_engagement[0, 0]) * um,
@@ -438,7 +437,7 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str
     }
     if scen != "none":
         vec = vector_velocity(model, static, float(speed[0]))
-        out["impact_velocity_vector_form_m_per_s"] = vec["transverse_equivalent"]
+        out["impact_velocity_vector_form_transverse_m_per_s"] = vec["transverse_equivalent"]
         p = mesh_in_point(model, static)
         x, y, z = (float(v) * mm for v in p["point_pinion"])
         out["mesh_in_point"] = {"x_mm": x, "y_mm": y, "z_mm": z, "pinion_radius_mm": p["pinion_radius"] * mm,

@@ -178,7 +178,7 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
         "tip_edge_radius_mm": c.edge_radius * 1e3,
         "peak_root_stress_MPa": [float(root[..., i].max()) * 1e-6 for i in (0, 1)],
         "K_Hbeta": float(lc["K_Hbeta"][0]), "K_Fbeta": float(lc["K_Fbeta"][0]), "K_Halpha": k_ha, "K_Falpha": k_ha,
-        "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
+        "max_line_load_normal_N_per_mm": float(res.max_line_load.max()) * 1e-3,
         **_fe_root_check(geom, res, root),
     }
     notes = pair_notes(pair) + r.notes

@@ -131,17 +131,17 @@ def stiffness_summary(pair: GearPair, *, method: str, slices: int, positions: in
                            torque_on=torque_on)
     out = {
         "name": pair.name, "tooth_model": method, "contact_term": ds.attrs["contact_term"], "slices": slices,
-        "mean_mesh_stiffness_N_per_um": float(ds.mean_stiffness) * 1e-6,
-        "min_mesh_stiffness_N_per_um": float(ds.min_stiffness) * 1e-6,
-        "max_mesh_stiffness_N_per_um": float(ds.max_stiffness) * 1e-6,
+        "mean_mesh_stiffness_transverse_N_per_um": float(ds.mean_stiffness) * 1e-6,
+        "min_mesh_stiffness_transverse_N_per_um": float(ds.min_stiffness) * 1e-6,
+        "max_mesh_stiffness_transverse_N_per_um": float(ds.max_stiffness) * 1e-6,
         "fluctuation_percent": 100 * float(ds.fluctuation),
         "iso6336_c_single_N_per_mm_um": float(ds.iso6336_c_single) * 1e-9,
         "iso6336_c_gamma_alpha_N_per_mm_um": float(ds.iso6336_c_gamma_alpha) * 1e-9,
         "iso6336_c_gamma_beta_N_per_mm_um": float(ds.iso6336_c_gamma_beta) * 1e-9,
-        "iso6336_mesh_stiffness_N_per_um": float(ds.iso6336_mesh_stiffness) * 1e-6,
-        "fourier_mean_N_per_um": float(ds.fourier_mean) * 1e-6,
-        "fourier_cos_N_per_um": (ds.fourier_cos.values * 1e-6).tolist(),
-        "fourier_sin_N_per_um": (ds.fourier_sin.values * 1e-6).tolist(),
+        "iso6336_mesh_stiffness_transverse_N_per_um": float(ds.iso6336_mesh_stiffness) * 1e-6,
+        "fourier_mean_transverse_N_per_um": float(ds.fourier_mean) * 1e-6,
+        "fourier_cos_transverse_N_per_um": (ds.fourier_cos.values * 1e-6).tolist(),
+        "fourier_sin_transverse_N_per_um": (ds.fourier_sin.values * 1e-6).tolist(),
     }
     if torque_Nm is not None:
         out.update({"pinion_torque_Nm": float(ds.pinion_torque), "lste_mean_um": float(ds.lste_mean) * 1e6,
