@@ -81,7 +81,7 @@ def test_ltca_one_answer(doors):
     for door, summary in (("cli", cli), ("api", api)):
         assert summary["lte_mean_um"] == pytest.approx(lte["workflow"].mean() * 1e6, rel=1e-12), door
         assert summary["lte_peak_to_peak_um"] == pytest.approx(np.ptp(lte["workflow"]) * 1e6, rel=1e-12), door
-        assert summary["loaded_mesh_stiffness_mean_N_per_um"] == pytest.approx(k_mean, rel=1e-12), door
+        assert summary["loaded_mesh_stiffness_mean_transverse_N_per_um"] == pytest.approx(k_mean, rel=1e-12), door
         assert (summary["tooth_model"], summary["contact_law"]) == (DEFAULT_TOOTH_METHOD, DEFAULT_CONTACT_LAW)
     assert (flow.attrs["tooth_model"], flow.attrs["contact_law"]) == (DEFAULT_TOOTH_METHOD, DEFAULT_CONTACT_LAW)
     assert physics.model.method == DEFAULT_TOOTH_METHOD and physics.model.law.name == DEFAULT_CONTACT_LAW

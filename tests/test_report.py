@@ -38,7 +38,7 @@ NEEDS = {
     "low_fluctuation_design": ("low_fluctuation_design",), "slice_convergence": ("slice_convergence",),
     "stiffness_table": ("stiffness_table",), "fe_compliance": ("fe_compliance",), "train_spectrum": ("train_dynamics",),
     "pressure_map": ("ltca", "rating"), "root_stress_face": ("ltca", "rating"), "load_capacity_table": ("rating",),
-    "signoff_table": ("signoff",), "signoff": ("signoff",),
+    "signoff_table": ("signoff",), "signoff": ("signoff",), "signoff_verdict": ("signoff",),
 }
 
 

@@ -23,12 +23,13 @@ from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
 from .deviation import read_deviations
 from .errors import GearmeshInputError
-from .gear import (NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pair_to_dict,
+from .gear import (NAME_PATTERN, example_pair, example_pairs, load_pair, missing_needs, pair_geometry, pair_notes,
+                   pair_to_dict,
                    pinion_torque, read_yaml)
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
 from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
-from .settings import Dynamics, Impact, Ltca, Optimise, Rating, Stiffness, Tolerances
+from .settings import Constraints, Dynamics, Impact, Ltca, Optimise, Rating, Stiffness, Tolerances
 
 EXIT_BAD_INPUT = 2
 
@@ -46,11 +47,15 @@ def _finite(obj: Any) -> Any:
     return obj
 
 
-def _emit(result: Mapping[str, Any], as_json: bool) -> None:
-    """Print a result: one JSON object, or one ``key  value`` line per number (nested keys
-    dotted) and, for a speed sweep, a table with one row per speed."""
+def _emit(result: Mapping[str, Any], as_json: bool, text=None) -> None:
+    """Print a result: one JSON object, or its text (``text(result)``: the command's own lines),
+    or one ``key  value`` line per number (nested keys dotted) and, for a speed sweep, a table
+    with one row per speed."""
     if as_json:
         print(json.dumps(_finite(result)))
+        return
+    if text is not None:
+        print("\n".join(text(result)))
         return
     rows = result.get("speeds") if isinstance(result.get("speeds"), list) else None
     lines = _flat(_finite({k: v for k, v in result.items() if rows is None or k != "speeds"}))
@@ -67,6 +72,79 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
         print("  ".join(f"{k:>18}" for k in keys))
         for row in _finite(rows):
             print("  ".join(f"{v:>18.6g}" if isinstance(v, float) else f"{v!s:>18}" for v in row.values()))
+
+
+def _value_text(value: Any, gears: Sequence[str] = ()) -> str:
+    """One value of the text output: a number to six digits, a list of sentences apart by "; ", a
+    list of numbers by ", " (per gear named, "pinion 1.98, gear 2.01", where ``gears`` names them)."""
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, list):
+        if all(isinstance(v, str) for v in value):
+            return "; ".join(value)
+        items = [_value_text(v) for v in value]
+        if gears and len(items) == len(gears):
+            items = [f"{g} {v}" for g, v in zip(gears, items)]
+        return ", ".join(items)
+    return str(value)
+
+
+#: The text output of ``gearmesh rating`` in groups, in this order: (heading, the keys it holds:
+#: exact dotted keys or patterns). A key of no group is printed under "other", so a key the rating
+#: gains is shown without a change here.
+RATING_GROUPS = (
+    ("operating point", r"name|torque_Nm|torque_on|pinion_torque_Nm|speed_rpm|pitch_line_speed_m_s|"
+                        r"force_tangential_N|method|accuracy_grade|load_cycles|gears|factors_given"),
+    ("load factors (ISO 6336-1)", r"K_\w+"),
+    ("pitting (ISO 6336-2)", r"(Z_|M_\d|sigma_H|S_H)\w*"),
+    ("tooth root (ISO 6336-3)", r"(Y_|sigma_F|S_F)\w*"),
+    ("inputs of the ISO 6336-1 factors", r"iso_factors\..+"),
+    ("where each factor comes from", r"factor_sources\..+"),
+    ("loaded tooth contact", r"ltca\..+"),
+)
+
+
+def safety_verdict(result: Mapping[str, Any]) -> tuple[bool, str]:
+    """Whether every safety factor of a rating meets its minimum, and the line that says so:
+    each ``S_X`` with an ``S_Xmin`` in ``result`` (the weaker gear's against the minimum), e.g.
+    "PASS: S_H 1.98 >= S_Hmin 1, S_F 4.83 >= S_Fmin 1 (the weaker gear of each)"."""
+    parts, ok = [], True
+    for key, value in result.items():
+        need = result.get(f"{key}min")
+        if not re.fullmatch(r"S_[A-Za-z]\w*", key) or key.endswith("min") or need is None:
+            continue
+        values = [float(v) for v in (value if isinstance(value, list) else [value]) if v is not None]
+        least = min(values) if values and all(map(math.isfinite, values)) else math.nan  # unrated: not met
+        meets = math.isfinite(least) and least >= float(need)
+        ok &= meets
+        parts.append(f"{key} {least:.3g} {'>=' if meets else '<'} {key}min {float(need):g}")
+    if not parts:
+        return False, "no safety factor with its minimum in the result"
+    return ok, f"{'PASS' if ok else 'FAIL'}: {', '.join(parts)} (the weaker gear of each)"
+
+
+def _rating_text(result: Mapping[str, Any]) -> list[str]:
+    """The text output of ``gearmesh rating``: the verdict line first, then the result by group
+    (:data:`RATING_GROUPS`), each key with its value (per-gear values named by gear), the notes
+    last, one a line."""
+    lines = _flat(_finite({k: v for k, v in result.items() if k != "notes"}))
+    gears = result.get("gears") if isinstance(result.get("gears"), list) else []
+    groups: dict[str, dict[str, Any]] = {title: {} for title, _ in RATING_GROUPS} | {"other": {}}
+    for key, value in lines.items():
+        groups[next((t for t, pattern in RATING_GROUPS if re.fullmatch(pattern, key)), "other")][key] = value
+    out = [safety_verdict(result)[1]]
+    for title, rows in groups.items():
+        if not rows:
+            continue
+        # a group of one nested result ("ltca.K_Hbeta", ...) under its heading without the prefix
+        head = os.path.commonprefix(list(rows)).rpartition(".")[0]
+        shown = {key[len(head) + 1:] if head else key: value for key, value in rows.items()}
+        width = max(len(k) for k in shown)
+        out += ["", f"{title} ({head})" if head else title,
+                *(f"  {key:<{width}}  {_value_text(value, gears)}" for key, value in shown.items())]
+    if result.get("notes"):
+        out += ["", "notes", *(f"  - {note}" for note in result["notes"])]
+    return out
 
 
 def _flat(result: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
@@ -128,7 +206,9 @@ def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
     pair = _pair(args, args.file)[0]
-    return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
+    out = {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
+    needs = missing_needs(pair)  # what some commands need beyond a valid pair, and which key to add
+    return {**out, "needs": needs} if needs else out
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
@@ -300,7 +380,8 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     torques = _numbers("--torques-Nm", args.torques_Nm)
     weights = _numbers("--weights", args.weights)
     if args.torque_Nm is None and torques is None:
-        raise GearmeshInputError("--torque-Nm", None, "or --torques-Nm is required")
+        raise GearmeshInputError("--torque-Nm", None, "is required, or --torques-Nm (a load spectrum, its middle "
+                                                      "torque the design torque)")
     # the design torque: given, or the middle torque of the spectrum (the lower of two middles)
     design = args.torque_Nm if args.torque_Nm is not None else sorted(torques)[(len(torques) - 1) // 2]
     out = _output_pair_path(args.write_pair)
@@ -329,14 +410,16 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
                                    tolerances=tolerances, dynamic_speeds_rpm=_numbers("--dynamic-speeds-rpm",
                                                                                       args.dynamic_speeds_rpm),
                                    backlash_um=args.backlash_um,
-                                   constraints={"dynamic_factor": args.dynamic_factor}
-                                   if args.dynamic_factor is not None else None)
+                                   constraints={key: getattr(args, key) for key in args.constraint_keys},
+                                   **{key: getattr(args, key) for key in args.optimise_keys})
     summary["pinion_torque_Nm"] = float(pinion_torque(pair, design, args.on))
     if args.objective == "dynamic" or args.dynamic_factor is not None:  # the candidates' dynamics
         summary.update(_backlash(geom, args.backlash_um))
     if out is not None:
         write_pair(optimum_pair(pair, ds, name=out.stem), out)
         summary["pair_file"] = str(out)
+        summary["notes"] = [*summary.get("notes", []), f"{out} states the optimum to the drawing's resolution "
+                            f"(depths 0.01 µm, lengths 0.001 mm); genes above are the optimiser's own values"]
     return summary
 
 
@@ -395,7 +478,8 @@ class _HelpFormatter(argparse.HelpFormatter):
         if (action.required or not action.option_strings or default is None or default is False
                 or default == argparse.SUPPRESS or "default" in text):
             return text
-        shown = " ".join(map(str, default)) if isinstance(default, (list, tuple)) else str(default)
+        apart = " " if action.nargs in ("+", "*") else ","  # as the option is written: words apart, or a comma list
+        shown = apart.join(map(str, default)) if isinstance(default, (list, tuple)) else str(default)
         return f"{text} (default: {shown.replace('%', '%%')})"
 
 
@@ -419,10 +503,61 @@ def _setting_option(p, flag: str, section: type, help: str, key: str | None = No
     field = next(f for f in settings_fields(section) if key_of(f) == key)
     schema = field_schema(section, field)
     choices = schema.get("enum") or schema.get("items", {}).get("enum")
-    if choices:
+    if choices and "choices" not in kwargs:
         kwargs["choices"] = [c for c in choices if c is not None]
     p.add_argument(flag, dest=dest, default=defaults(section).get(key), help=help, **kwargs)
     p.set_defaults(setting_options={**(p.get_default("setting_options") or {}), dest: (section, key, flag)})
+
+
+def _value_reader(schema: Mapping[str, Any]):
+    """How the command line writes a value of a setting whose JSON schema is ``schema``: a number,
+    an integer, true/false, a word, or comma-separated items for a list; 'none' for null where
+    the setting allows it. Its range is checked against the declaration afterwards."""
+    kinds = schema.get("type", "string")
+    kinds = {kinds} if isinstance(kinds, str) else set(kinds)
+    items = _value_reader(schema.get("items", {})) if "array" in kinds else None
+
+    def read(text: str) -> Any:
+        word = text.strip()
+        if "null" in kinds and word.lower() in ("none", "null"):
+            return None
+        if items is not None:
+            return [items(v) for v in word.split(",")]
+        if "boolean" in kinds:
+            if word.lower() not in ("true", "false"):
+                raise ValueError(text)
+            return word.lower() == "true"
+        if "integer" in kinds:
+            return int(word)
+        return float(word) if "number" in kinds else word
+
+    read.__name__ = ("comma-separated " if items is not None else "") + \
+        ("/".join(sorted(k for k in kinds if k not in ("null", "array"))) or "value") + " value"
+    return read
+
+
+def _declared_options(p, section: type, skip: Sequence[str] = ()) -> list[str]:
+    """An option for every setting of ``section`` but ``skip`` and those of a mapping type, each
+    made from its declaration (:func:`_setting_option`: ``--KEY-WITH-DASHES``, its default,
+    choices and bounds, its description as the help): the keys, so a setting added to the
+    declaration is an option of the command without a line here."""
+    keys = []
+    for field in settings_fields(section):
+        key = key_of(field)
+        schema = field_schema(section, field)
+        if key in skip or "object" in str(schema.get("type")) or "oneOf" in schema:
+            continue
+        words = schema.get("enum") or schema.get("items", {}).get("enum")
+        help = schema.get("description", key.replace("_", " "))
+        kwargs = {}
+        if words and ("array" in str(schema.get("type")) or None in words):  # a list or null: checked as a whole
+            help += " (" + ", ".join("none" if w is None else str(w) for w in words) + ")"
+            kwargs["choices"] = None
+        metavar = "{true,false}" if schema.get("type") == "boolean" else key.upper()
+        _setting_option(p, "--" + key.replace("_", "-"), section, key=key, help=help, type=_value_reader(schema),
+                        metavar=metavar, **kwargs)
+        keys.append(key)
+    return keys
 
 
 def _check_setting_options(args: argparse.Namespace) -> None:
@@ -594,11 +729,14 @@ def build_parser() -> argparse.ArgumentParser:
 
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 
-    p = sub.add_parser("run", help="run the workflow: check every study config with the bounded loader, then "
-                       "snakemake with the same arguments", description="Run the workflow as 'snakemake ARGS' "
-                       "after reading every --configfile (or config/config.yaml) with gearmesh's bounded loader "
-                       "and validating it, so a config Snakemake would parse without limits (a huge or nested file, "
-                       "a FIFO, a __use_yte__ template that runs Python) never reaches Snakemake. Example: "
+    p = sub.add_parser("run", help="run the workflow of a gearmesh checkout: check every study config with the "
+                       "bounded loader, then snakemake with the same arguments", description="Run the workflow as "
+                       "'snakemake ARGS' in a checkout of the gearmesh repository (the Snakefile, the workflow and the "
+                       "study configs are not part of the installed package; the folder you run it in must hold "
+                       "them), after reading every --configfile (without one, the checkout's default study "
+                       "config/config.yaml) with gearmesh's bounded loader and validating it, so a config Snakemake "
+                       "would parse without limits (a huge or nested file, a FIFO, a __use_yte__ template that runs "
+                       "Python) never reaches Snakemake. Example, in the checkout: "
                        "gearmesh run --cores 2 --configfile config/studies/contact_lines.yaml",
                        formatter_class=_HelpFormatter)
     p.add_argument("snakemake_args", nargs=argparse.REMAINDER, help="the arguments for snakemake")
@@ -657,6 +795,7 @@ def build_parser() -> argparse.ArgumentParser:
                          "the mesh misalignment (f_sh + f_ma) or the standard's methods B/C (both are printed)")
     _setting_option(p, "--positions", Ltca, type=int, help="LTCA rotation positions per mesh cycle")
     _setting_option(p, "--points", Ltca, type=int, help="LTCA points per contact line")
+    p.set_defaults(text=_rating_text)
 
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
                  "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
@@ -691,9 +830,6 @@ def build_parser() -> argparse.ArgumentParser:
                     help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
                         "dynamic: the dynamic factor (peak over static mesh force) of the contact-driven 8-DOF pair "
                         "over the speed range")
-    p.add_argument("--dynamic-factor", dest="dynamic_factor", type=float, default=None,
-                   help="constraint: the dynamic factor at every torque at most this times the unmodified pair's "
-                        "(e.g. 1.0: never worse than unmodified in the dynamics)")
     p.add_argument("--dynamic-speeds-rpm", dest="dynamic_speeds_rpm", default=None,
                    help="speeds of the dynamic objective/constraint, comma-separated (rpm; default 0.2, 1 and 3 times "
                         "--speed-rpm), resonances within their range added per candidate")
@@ -727,6 +863,11 @@ def build_parser() -> argparse.ArgumentParser:
     _setting_option(p, "--generations", Optimise, type=int, help="generations")
     p.add_argument("--write-pair", dest="write_pair", default=None, metavar="OUT.yaml",
                    help="write the optimum as a pair file OUT.yaml (its name: OUT), readable by every subcommand")
+    # every other setting of a study's optimisation, and every constraint (the sign-off criteria),
+    # from their declarations: a study's optimum is reproduced by giving its section's keys
+    given = {a.dest for a in p._actions}
+    p.set_defaults(optimise_keys=_declared_options(p, Optimise, skip=tuple(given | {"constraints"})),
+                   constraint_keys=_declared_options(p, Constraints))
     return parser
 
 
@@ -751,7 +892,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             own = [n for n in result.get("notes", []) if n not in pair_notes(args.loaded_pair)]
             result["notes"] = pair_notes(args.loaded_pair) + own
         if result is not None:
-            _emit(result, args.json)
+            _emit(result, args.json, getattr(args, "text", None))
         sys.stdout.flush()
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)

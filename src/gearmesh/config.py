@@ -32,7 +32,7 @@ def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
         raise GearmeshInputError("__use_yte__", config["__use_yte__"], "turns on Snakemake's YTE template engine, "
                                  "which runs Python from the config when Snakemake loads it (before any check): a "
                                  "gearmesh study is plain data; remove the key, and run studies with 'gearmesh run' "
-                                 "(docs/workflow.md, trust model)")
+                                 "(the workflow documentation's trust model)")
     return validate(config, study_schema())
 
 

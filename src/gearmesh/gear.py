@@ -20,7 +20,7 @@ import numpy as np
 import yaml
 
 from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
-from .errors import GearmeshInputError
+from .errors import GearmeshInputError, unknown_key_rule
 from .limits import (MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPTH, MAX_INPUT_NODES,  # noqa: F401
                      MAX_MODIFICATION_TO_MODULE, MAX_TEETH, MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE)
 from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
@@ -153,6 +153,35 @@ _ALTERNATIVE_KEYS = (
     ("tool_tip_radius_coefficient", "basic_rack_profile"),
     ("bore_radius_mm", "bore_diameter_mm"),
 )
+#: What a valid pair file may leave out that some computations need, and which commands need it:
+#: {key: (what needs it, the commands that do)}. ``gearmesh validate`` names them for a pair that
+#: lacks the key; a command that needs it refuses with :func:`missing_key` (the key to add).
+#: Without a bore: the geometry and the ISO 6336 rating by the standard's factors run.
+OPTIONAL_NEEDS = {
+    "bore_radius_mm": ("the fillet foundation of the tooth stiffness (Sainsot, Velex & Duverger 2004, J. Mech. "
+                       "Design 126) and the gear bodies' masses",
+                       ("stiffness", "ltca", "impact", "rating --method ltca", "dynamics", "optimise")),
+}
+#: The pair-file keys that give a value of :data:`OPTIONAL_NEEDS` in other words (datasheet dimensions).
+_GIVEN_AS = {"bore_radius_mm": "bore_diameter_mm, a datasheet's inner diameter"}
+
+
+def missing_key(key: str, what: str | None = None) -> GearmeshInputError:
+    """The refusal of a computation that needs pair-file key ``key`` (:data:`OPTIONAL_NEEDS`), saying
+    what needs it and which key to add."""
+    need = what or OPTIONAL_NEEDS[key][0]
+    other = f" (or {_GIVEN_AS[key]})" if key in _GIVEN_AS else ""
+    return GearmeshInputError(key, None, f"is required for {need}: add {key}{other} to the pair file")
+
+
+def missing_needs(pair: "GearPair") -> dict[str, str]:
+    """{key: what a command needs it for and which commands} for each key of :data:`OPTIONAL_NEEDS`
+    that ``pair`` leaves out (what ``gearmesh validate`` reports beside "valid")."""
+    given = {"bore_radius_mm": pair.bore_radius is not None}
+    return {key: f"add {key}{f' (or {_GIVEN_AS[key]})' if key in _GIVEN_AS else ''} for {what}: needed by "
+                 f"{', '.join(commands)}" for key, (what, commands) in OPTIONAL_NEEDS.items() if not given[key]}
+
+
 #: ISO 53:1998 basic rack profiles (α_P = 20°, h_aP = 1.0 m): the dedendum h_fP and root fillet
 #: radius ρ_fP of the rack, in modules — the addendum and tip radius of the hob that generates
 #: the gear (``dedendum_coefficient``, ``tool_tip_radius_coefficient``). A for high torque, B and
@@ -193,6 +222,8 @@ _MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
     "crowning_um": ("crowning", 1e-6),
     "unmodified_lead_length_mm": ("unmodified_lead_length", 1e-3),
 }
+#: Each modification parameter's engineering unit, as its pair-file key names it ("um" or "mm").
+MODIFICATION_UNITS = {attr: key.rsplit("_", 1)[1] for key, (attr, _) in _MODIFICATION_KEYS.items()}
 
 
 def _number(field_name: str, value: Any) -> float:
@@ -235,7 +266,7 @@ def _mapping(field_name: str, value: Any, allowed: set[str]) -> Mapping[str, Any
     unknown = sorted(set(value) - allowed)
     if unknown:
         raise GearmeshInputError(f"{field_name}.{unknown[0]}", value[unknown[0]],
-                                 f"unknown key; allowed keys are {sorted(allowed)}")
+                                 unknown_key_rule(unknown[0], allowed, "gearmesh schema pair --format markdown"))
     return value
 
 

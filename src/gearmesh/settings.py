@@ -287,7 +287,7 @@ class Constraints:
     """Constraints of an optimisation as penalties: J = f + penalty·f_std·Σ max(0, m/(factor·m_std) − 1),
     m against the unmodified pair's m_std."""
 
-    lte_factor: float | None = _ratio_limit("load transmission error peak-to-peak at the design torque")
+    lte_factor: float | None = _ratio_limit("loaded transmission error peak-to-peak at the design torque")
     line_load_factor: float | None = _ratio_limit("largest line load at the design torque")
     dynamic_factor: float | None = _ratio_limit("dynamic factor at every torque")
     harmonic_factor: float | None = _ratio_limit("amplitude of each loaded-TE mesh order of harmonic_orders at every "
@@ -431,10 +431,10 @@ class _Dynamics:
         "pair", "total backlash 2b0 along the normal; pair: the pair's own (centre distance and shifts); null: none",
         minimum=0)
     bearing_k_radial_N_per_m: float | Literal["pair"] = setting(
-        "pair", "radial support stiffness of every gear (pair: the pair file's supports, seed 001's 1.5e8 when it "
+        "pair", "radial support stiffness of every gear (pair: the pair file's supports, the low-fluctuation paper's 1.5e8 when it "
         "gives none; gearmesh.supports)", exclusive_minimum=0)
     bearing_k_axial_N_per_m: float | Literal["pair"] = setting(
-        "pair", "axial support stiffness of every gear (pair: the pair file's supports, seed 001's 1e7 when it gives "
+        "pair", "axial support stiffness of every gear (pair: the pair file's supports, the low-fluctuation paper's 1e7 when it gives "
         "none)", exclusive_minimum=0)
     bearing_c_radial_Ns_per_m: float = setting(1000, "radial bearing damping", minimum=0)
     bearing_c_axial_Ns_per_m: float = setting(1000, "axial bearing damping", minimum=0)
@@ -813,10 +813,10 @@ class PairFile:
     material: PairMaterial | None = setting(None, "elastic material of both gears (null or left out: steel)")
     bearing_radial_stiffness_N_per_um: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
         None, "radial stiffness of each gear's bearings together at the gear centre, one, [pinion, gear] or rigid "
-        "(dynamics; null: seed 001's 150, stated in the results)", exclusive_minimum=0)
+        "(dynamics; null: the low-fluctuation paper's 150, stated in the results)", exclusive_minimum=0)
     bearing_axial_stiffness_N_per_um: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
         None, "axial stiffness of each gear's bearings at the gear centre, one, [pinion, gear] or rigid (dynamics; "
-        "null: seed 001's 10)", exclusive_minimum=0)
+        "null: the low-fluctuation paper's 10)", exclusive_minimum=0)
     shaft_diameter_mm: float | tuple[float, float] | None = setting(
         None, "shaft diameter, one or [pinion, gear]: shaft bending 48EI/L³ in series with the radial bearing "
         "stiffness (with bearing_span_mm; the gear at mid-span)", exclusive_minimum=0)

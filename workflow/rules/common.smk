@@ -172,6 +172,8 @@ def all_targets():
         targets += [f"results/{STUDY}/{name}/impact_table.nc" for name in config["pairs"]]
     if "rating" in config:
         targets += [f"results/{STUDY}/{name}/load_capacity_table.nc" for name in config["pairs"]]
+    if "signoff" in config:
+        targets += [f"results/{STUDY}/{name}/signoff_verdict.nc" for name in config["pairs"]]
     for run, section in (config.get("optimise") or {}).items():
         if section["method"] == "nsga2":
             targets += [f"results/{STUDY}/{name}/optimise/{run}/plots/pareto.png" for name in config["pairs"]]

@@ -23,8 +23,8 @@ rule ltca:
 
 
 rule lte_table:
-    """Loaded transmission error of every variant of a pair at every torque: mean, peak-to-peak and how
-    the entering pair meets (lte_table.nc); the report's landing page shows the table."""
+    """Loaded transmission error of every variant of a pair at every torque: mean, peak-to-peak and whether
+    the entering pair touches before the start of engagement A (lte_table.nc); the report's landing page shows the table."""
     localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
     input:
         ltca=every_variant("ltca"),

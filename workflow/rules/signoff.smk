@@ -23,3 +23,23 @@ if "signoff" in config:
             ENV
         script:
             "../scripts/collect.py"
+
+
+    rule signoff_verdict:
+        """The sign-off table as a reader takes it in at a glance (signoff_verdict.nc, .csv): per variant and
+        torque whether it meets every criterion, and per criterion meets or fails with its margin to the limit
+        and the gear it was judged on; the report's landing page shows it."""
+        localrule: True  # a study table or figure: on a cluster, run where Snakemake runs (SLURM profile)
+        input:
+            signoff="results/{study}/{pair}/signoff_table.nc",
+        output:
+            nc="results/{study}/{pair}/signoff_verdict.nc",
+            csv=report_item("results/{study}/{pair}/signoff_verdict.csv", "signoff_verdict", "Sign-off", BY_PAIR),
+        log:
+            "logs/{study}/{pair}/signoff_verdict.log",
+        params:
+            function=versioned_param("gearmesh.datasets.verdict:signoff_verdict_dataset"),
+        conda:
+            ENV
+        script:
+            "../scripts/collect.py"

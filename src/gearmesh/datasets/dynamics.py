@@ -51,7 +51,7 @@ from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT
 from ..tca import pair_lead_slope
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
 from ..schema import check_arguments, check_value, defaults, settings_fields
-from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, pair_excitation
+from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, IMPACT_INDEX, pair_excitation
 from ..settings import Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
@@ -1135,13 +1135,21 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
             cols["peak"][v, k] = float(d["mesh_force_max"]) * c
             cols["peak_all"][v, k] = float(dyn.isel(torque=j)["mesh_force_max"].max()) * c
     dims = ("variant", "torque")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        over = {key: np.where(cols[key] > 0, cols["fs"] / cols[key], np.nan) for key in ("sim", "impact")}
     ds = xr.Dataset({
-        "impact_force": variable(dims, cols["fs"], "N", "energy method F_s at the design speed (closed form)"),
+        "impact_force": variable(dims, cols["fs"], "N", f"{IMPACT_INDEX} at the design speed (closed form of the "
+                                                        f"energy method; an index of the impact, not a force the teeth "
+                                                        f"carry)"),
         "impact_force_energy_balance": variable(dims, cols["fs_eb"], "N",
-                                                "energy method by the energy balance at the design speed"),
+                                                f"{IMPACT_INDEX} by the energy balance at the design speed"),
         "simulated_entering_excess": variable(dims, cols["sim"], "N",
                                               "undamped engagement simulation: the entering pair's largest excess "
                                               "over its quasi-static load (NaN: not simulated)"),
+        "impact_index_over_simulated_excess": variable(dims, over["sim"], "1", "F_s over the simulated excess of the "
+                                                       "entering pair (NaN: not simulated)"),
+        "impact_index_over_dynamic_impact": variable(dims, over["impact"], "1", "F_s over the entering pair's excess in "
+                                                     "the steady-state dynamics (NaN: no excess)"),
         "dynamic_impact_force": variable(dims, cols["impact"], "N",
                                          "steady-state dynamics (contact excitation) at the speed nearest the design "
                                          "speed: the entering pair's largest excess over its quasi-static force "

@@ -12,6 +12,7 @@ from typing import Any, Sequence
 import numpy as np
 import xarray as xr
 
+from ..choices import IMPACT_INDEX
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from . import variant_name
@@ -190,9 +191,10 @@ def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, ve
                                          "points of the modified profiles, in the transverse line-of-action coordinate"),
         "kinetic_energy": variable(ts, rs.kinetic_energy[c], "J", "kinetic energy 1/2 m_eq v^2 of the impact"),
         "impact_force": variable(ts, rs.force[c], "N",
-                                 "mesh-in impact force F_s, closed form of the mesh-in impact paper with the fitted K_s, n (transverse)"),
+                                 f"{IMPACT_INDEX}: the mesh-in impact paper's energy method, closed form with the fitted "
+                                 f"K_s, n (transverse; an index of the impact, not a force the teeth carry)"),
         "impact_force_energy_balance": variable(ts, rs.force_energy_balance[c], "N",
-                                                "mesh-in impact force by the energy balance on the computed "
+                                                f"{IMPACT_INDEX} by the energy balance on the computed "
                                                 "force-approach curve (transverse)"),
         "impact_approach": variable(ts, rs.approach_energy_balance[c], "m", "peak approach of the entering pair"),
         "stiffness_coefficient": variable(ts, rs.stiffness_coefficient[c], "N m-n",
@@ -370,10 +372,11 @@ def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, de
 
 
 def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
-    """Seed 000 Table 4's shape: impact force of every variant at every torque at the design
-    speed, with the scenario and the reduction against the ``standard`` variant (%); and, where
-    the impact stage computed them, each variant's load window against ``standard`` and the range
-    of F_s under the study's tolerance samples."""
+    """The mesh-in impact paper's table of impact forces: the impact index F_s of every variant at
+    every torque at the design speed, with the scenario and the reduction against the ``standard``
+    variant (%); and, where the impact stage computed them, each variant's load window against
+    ``standard``, the range of F_s under the study's tolerance samples, and at the simulated
+    torques the entering pair's simulated excess over its quasi-static force with F_s over it."""
     names = [variant_name(ds, k) for k, ds in enumerate(impact)]
     torque = impact[0]["torque"].values
     for ds in impact[1:]:
@@ -388,11 +391,12 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     force = np.array([r[0] for r in rows])
     ref = force[names.index("standard")] if "standard" in names else np.full(torque.size, np.nan)
     dims = ("variant", "torque")
-    extra = _table_windows(impact, names) | _table_spread(impact, names)
+    extra = _table_windows(impact, names) | _table_spread(impact, names) | _table_simulated(impact, force)
     table = xr.Dataset(extra | {
-        "impact_force": variable(dims, force, "N", "mesh-in impact force F_s at the design speed (closed form)"),
+        "impact_force": variable(dims, force, "N", f"{IMPACT_INDEX} at the design speed (closed form of the energy "
+                                                   f"method; an index of the impact, not a force the teeth carry)"),
         "impact_force_energy_balance": variable(dims, np.array([r[1] for r in rows]), "N",
-                                                "impact force by the energy balance at the design speed"),
+                                                f"{IMPACT_INDEX} by the energy balance at the design speed"),
         "scenario": _scenario_var(dims, np.array([r[2] for r in rows])),
         "velocity_transverse": variable(dims, np.array([r[3] for r in rows]), "m s-1", "impact velocity (transverse)"),
         "reduction_percent": variable(dims, 100.0 * (1.0 - force / ref[None, :]), "%",
@@ -401,6 +405,26 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
                "torque": variable(("torque",), torque, "N m", "pinion torque T1")})
     table.attrs.update({key: str(impact[0].attrs.get(key, "")) for key in ("tooth_model", "contact_law")})
     return name_force_lines(table, "transverse")
+
+
+def _table_simulated(impact: Sequence[xr.Dataset], force: np.ndarray) -> dict[str, xr.Variable]:
+    """At the torques whose engagement was simulated in time (design speed; NaN elsewhere): the
+    entering pair's largest excess over its quasi-static force and F_s over it, beside F_s."""
+    if not all("simulated_entering_excess" in ds for ds in impact):
+        return {}
+    excess = np.array([ds["simulated_entering_excess"].values for ds in impact])
+    if not np.isfinite(excess).any():
+        return {}
+    dims = ("variant", "torque")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(excess > 0, force / excess, np.nan)
+    return {
+        "simulated_entering_excess": variable(dims, excess, "N", "direct time integration of the engagement: the "
+                                              "entering pair's largest excess over its quasi-static force"),
+        "impact_index_over_simulated_excess": variable(dims, ratio, "1", "F_s over the simulated excess of the "
+                                                       "entering pair: how far the energy method's index lies above "
+                                                       "what the teeth carry in the time integration"),
+    }
 
 
 def _table_windows(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, xr.Variable]:
@@ -504,9 +528,8 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str
         "scenario": scen,
         "impact_force_transverse_N": float(resp.force[0, 0, 0]),
         "impact_force_energy_balance_transverse_N": float(resp.force_energy_balance[0, 0, 0]),
-        "impact_velocity_m_per_s": float(resp.velocity_normal[0, 0, 0]),
+        "impact_velocity_normal_m_per_s": float(resp.velocity_normal[0, 0, 0]),
         "impact_velocity_transverse_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
-        "impact_velocity_closing_rate_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
         "approach_at_mesh_in_um": float(static.approach[0, 0]) * um,
         "te_at_engagement_um": float(static.te_engagement[0, 0]) * um,
         "lte_at_engagement_um": float(static.lte_engagement[0, 0]) * um,
@@ -519,7 +542,7 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str
     }
     if scen != "none":
         vec = vector_velocity(model, static, float(speed[0]))
-        out["impact_velocity_vector_form_m_per_s"] = vec["transverse_equivalent"]
+        out["impact_velocity_vector_form_transverse_m_per_s"] = vec["transverse_equivalent"]
         p = mesh_in_point(model, static)
         x, y, z = (float(v) * mm for v in p["point_pinion"])
         out["mesh_in_point"] = {"x_mm": x, "y_mm": y, "z_mm": z, "pinion_radius_mm": p["pinion_radius"] * mm,

@@ -23,7 +23,7 @@ import xarray as xr
 
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
-from ..gear import GEARS, GearPair, Modification, pair_geometry
+from ..gear import GEARS, MODIFICATION_UNITS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
 from ..robust import CRITERIA, CRITERION_UNITS
 from ..io import name_force_lines, variable
@@ -474,13 +474,37 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
     return name_force_lines(ds, "transverse")
 
 
+#: The resolution an optimum's pair file states its modification to, per gene unit (µm: depths,
+#: mm: lengths): 0.01 µm and 0.001 mm, a tenth of what a gear measuring machine resolves (0.1 µm)
+#: and far below a drawing's tolerance on a relief (±2 µm in the default study), so the file says
+#: what can be made and measured and no digits beyond (ga.nc keeps the optimiser's full values).
+MANUFACTURING_RESOLUTION = {"um": 0.01, "mm": 0.001}
+
+
+def _drawing_value(value: float, unit: str, down: bool = False) -> float:
+    """A modification parameter (m) to :data:`MANUFACTURING_RESOLUTION`: to the nearest step, or
+    the step below (a length that rounded up would leave the active flank)."""
+    step = MANUFACTURING_RESOLUTION[unit] * _TO_SI[unit]
+    n = math.floor(value / step) if down else round(value / step)
+    return float(np.round(n * MANUFACTURING_RESOLUTION[unit], 6)) * _TO_SI[unit]
+
+
 def optimum_pair(pair: GearPair, ds: xr.Dataset, name: str | None = None) -> GearPair:
-    """``pair`` carrying the optimum modification of ga.nc (both gears, as applied); ``name`` a new
-    pair name (a pair file's name is its file name)."""
+    """``pair`` carrying the optimum modification of ga.nc (both gears, as applied) to the drawing's
+    resolution (:data:`MANUFACTURING_RESOLUTION`); ``name`` a new pair name (a pair file's name is
+    its file name)."""
     p = ds["optimum_modification"].values
-    mods = tuple(Modification(**{f: float(p[g, k]) for k, f in enumerate(MODIFICATION_FIELDS)}) for g in range(2))
-    out = pair.with_changes(modification=mods, **({"name": name} if name else {}))
-    pair_geometry(out)  # validity (lengths, depths) by construction; checked here once more
+    units = [MODIFICATION_UNITS[f] for f in MODIFICATION_FIELDS]
+    for down in (False, True):
+        mods = tuple(Modification(**{f: _drawing_value(float(p[g, k]), units[k], down)
+                                     for k, f in enumerate(MODIFICATION_FIELDS)}) for g in range(2))
+        out = pair.with_changes(modification=mods, **({"name": name} if name else {}))
+        try:
+            pair_geometry(out)  # validity (lengths, depths) by construction; checked here once more
+            return out
+        except GearmeshInputError:
+            if down:
+                raise
     return out
 
 
@@ -567,8 +591,8 @@ def optimum_notes(prob, diagnostics) -> list[str]:
     grid = diagnostics.window_torque
     if math.isfinite(high) and high >= grid[-1]:
         notes.append(f"load window: its upper end {high:g} N m (pinion) is the end of the window's torque grid, not "
-                     "where the optimum stops beating the standard gear; that lies beyond (raise load_window_top_Nm "
-                     "to find it)")
+                     "where the optimum stops beating the standard gear; that lies beyond (the grid ends at 1.25 "
+                     "times the largest spectrum torque, or below where the load limits stop it)")
     if math.isfinite(low) and low <= grid[0]:
         notes.append(f"load window: its lower end {low:g} N m (pinion) is the start of the window's torque grid")
     return notes

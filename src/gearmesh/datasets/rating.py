@@ -15,7 +15,7 @@ import numpy as np
 import xarray as xr
 
 from ..errors import GearmeshInputError
-from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry, pair_notes
+from ..gear import GEARS, GearPair, Modification, PairGeometry, missing_key, pair_geometry, pair_notes
 from ..io import variable
 from . import variant_name
 from ..limits import check_contact_grid
@@ -203,6 +203,12 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
     positions, points = check_contact_grid(positions, points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     speed1 = speed_rpm if on == "pinion" else speed_rpm * pair.teeth[1] / pair.teeth[0]
+    if method == "iso" and pair.bore_radius is None:  # the standard's factors need no LTCA, the LTCA a bore
+        r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method)
+        return {"name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "method": method, **r.values,
+                "factors_given": r.given, "factor_sources": r.sources, "gears": list(GEARS),
+                "notes": pair_notes(pair) + r.notes + [f"the LTCA's contact pressure and root stress not computed: "
+                                                       f"{missing_key('bore_radius_mm').rule}"]}
     res = ltca(geom, t1, positions, points, None, "pinion")
     lc = load_capacity(geom, res, reference_ltca(geom, res))
     k_ha = float(rated_transverse_factor(lc["K_Halpha"][0]))
@@ -223,7 +229,7 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
         "K_Hbeta": float(lc["K_Hbeta_rated"][0]), "K_Fbeta": float(lc["K_Fbeta_rated"][0]), "K_Halpha": k_ha,
         "K_Falpha": k_ha, "K_Hbeta_as_is": float(lc["K_Hbeta"][0]),
         "mesh_misalignment_rated_um": float(lc["rated_misalignment"][0]) * 1e6, "f_ma_source": lc["f_ma_source"],
-        "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
+        "max_line_load_normal_N_per_mm": float(res.max_line_load.max()) * 1e-3,
         **_fe_root_check(geom, res, root),
     }
     notes = pair_notes(pair) + r.notes + sc.notes()
