@@ -401,10 +401,15 @@ def test_the_cli_reproduces_the_studys_optimum_from_its_section(capsys):
     argv = ["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--json"]
     for key, value in given:
         argv += [flags[key], _cli_text(value)]  # KeyError: a key of the section without an option
-    # the study's tolerances section: lead class, samples, sampling and ±2 µm on every amount
-    assert set(tolerances["modification"].values()) == {2} and tolerances["seed"] == 0
+    # the study's tolerances section: lead class, samples, sampling, ±2 µm on every amount, ±0.2 mm
+    # on every relief length
+    mod = tolerances["modification"]
+    assert {v for k, v in mod.items() if k.endswith("_um")} == {2} and tolerances["seed"] == 0
+    assert {v for k, v in mod.items() if k.endswith("_mm")} == {0.2}
+    assert set(mod) == {"root_relief_um", "tip_relief_um", "crowning_um", "root_relief_length_mm",
+                        "tip_relief_length_mm"}
     argv += ["--grade", str(tolerances["grade"]), "--tolerance-samples", str(tolerances["samples"]),
-             "--sampling", tolerances["sampling"], "--amount-tolerance-um", "2"]
+             "--sampling", tolerances["sampling"], "--amount-tolerance-um", "2", "--length-tolerance-mm", "0.2"]
     assert cli_main(argv) == 0
     cli = json.loads(capsys.readouterr().out)
     workflow = optimise_dataset(load_pair(ROOT / "config/pairs/seed000_case.yaml"), **section,

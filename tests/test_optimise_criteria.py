@@ -291,10 +291,15 @@ def test_criteria_over_samples_are_the_tolerance_statistic_of_each_manufactured_
     std_rows, std_lead = op._manufactured_rows(model, over.tolerance, np.zeros((1, 2, 6)), over.population_deviations)
     std_root = np.max([_straightforward_criteria(model, TORQUES, std_rows[k], std_lead[k])["root_stress"]
                        for k in range(3)], axis=0)
-    _assert_criterion("root_stress", over.standard.criteria.root_stress[0], std_root)
+    # the reference is the unmodified pair's worst gear of its tolerance box, never below its samples'
+    from gearmesh.robust import CRITERIA
+    box_root = over.reference.values[:, CRITERIA.index("peak_root_stress")]
+    assert np.all(box_root >= std_root * (1 - 1e-9))
+    std_ref = np.maximum(std_root, box_root)
+    _assert_criterion("root_stress", over.standard.criteria.root_stress[0], std_ref)
     ratios = op._ratios(over.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load, ev.dynamic_factor,
                         ev.criteria, over.standard)
-    assert ratios["root_stress"][0] == pytest.approx(np.max(ev.criteria.root_stress[0] / std_root), rel=1e-9)
+    assert ratios["root_stress"][0] == pytest.approx(np.max(ev.criteria.root_stress[0] / std_ref), rel=1e-9)
 
 
 def test_population_batch_equals_each_gear_solved_on_its_own(model):

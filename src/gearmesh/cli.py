@@ -398,9 +398,13 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
         LOG.setLevel(logging.INFO)
     samples = args.samples
     tolerances = {"grade": args.grade, "samples": samples, "sampling": args.sampling}
+    modification = {}
     if args.amount_tolerance_um:
-        tolerances["modification"] = {k: args.amount_tolerance_um for k in ("root_relief_um", "tip_relief_um",
-                                                                            "crowning_um")}
+        modification |= {k: args.amount_tolerance_um for k in ("root_relief_um", "tip_relief_um", "crowning_um")}
+    if args.length_tolerance_mm:
+        modification |= {k: args.length_tolerance_mm for k in ("root_relief_length_mm", "tip_relief_length_mm")}
+    if modification:
+        tolerances["modification"] = modification
     statistic = args.tolerance_statistic if samples else None
     summary, ds = optimise_summary(pair, objective=args.objective, torque_Nm=design, torques_Nm=torques,
                                    weights=weights, statistic="mean" if weights else args.statistic, on=args.on,
@@ -852,7 +856,10 @@ def build_parser() -> argparse.ArgumentParser:
                         f"no lead deviation); unless given, class {CLI_LEAD_GRADE} as in the shipped case study")
     p.add_argument("--amount-tolerance-um", dest="amount_tolerance_um", type=float, default=0.0,
                    help="± on every relief and crowning amount (µm)")
-    _setting_option(p, "--sampling", Tolerances, help="seeded Latin hypercube or corners of the tolerance box")
+    p.add_argument("--length-tolerance-mm", dest="length_tolerance_mm", type=float, default=0.0,
+                   help="± on every relief length (mm)")
+    _setting_option(p, "--sampling", Tolerances, help="seeded Latin hypercube (lhs), corners of the tolerance box, or "
+                    "the unmodified pair's worst gears of its box (box)")
     _setting_option(p, "--tolerance-statistic", Optimise, help="over the nominal and the samples")
     _setting_option(p, "--tolerance-level", Optimise, key="tolerance_level_percent", type=float, metavar="PERCENT",
                     help="level (%%) of percentile and cvar")

@@ -153,14 +153,15 @@ def _first_stage(k: int, mismatch: bool) -> np.ndarray:
 
 
 def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bool = True,
-              min_step: float = 1.0 / 32.0, starts: int = 2) -> BoxWorst:
+              min_step: float = 1.0 / 32.0, starts: int = 2, first_stage_only: bool = False) -> BoxWorst:
     """The largest value of every column of ``evaluate`` (unit points (n, k) → values (n, M)) over
     [−1, 1]^k (module docstring): the first stage, then a compass search (Kolda, Lewis & Torczon
     2003, §3) from each column's ``starts`` best points of the first stage (a column can have more
     than one local maximum), each walker with its own step — polled along every dimension, kept
     while the poll improves its point, halved when it does not, down to ``min_step`` — the trial
     points of every walker evaluated in one batch per poll. ``mismatch``: dimension 0 is the lead
-    mismatch."""
+    mismatch. ``first_stage_only``: the first stage's worst alone (a lower bound of the box's, for a
+    quick refusal)."""
     seen: dict[bytes, int] = {}
     points: list[np.ndarray] = []
     values: list[np.ndarray] = []
@@ -183,8 +184,10 @@ def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bo
         return np.array(points), vals, idx
 
     run(_first_stage(k, mismatch))
-    pts, vals, _ = best_of()
+    pts, vals, first = best_of()
     m = vals.shape[1]
+    if first_stage_only:
+        return BoxWorst(values=vals[first, np.arange(m)], points=pts[first], evaluated=len(points))
     finite = np.where(np.isfinite(vals), vals, -np.inf)
     order = np.argsort(-finite, axis=0, kind="stable")[:max(1, starts)]  # (starts, M) best first
     column = np.tile(np.arange(m), order.shape[0])  # each walker's column
@@ -214,7 +217,8 @@ def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bo
 
 
 def design_box_worst(model: ImpactModel, tolerance: ToleranceModel, params: np.ndarray, torques, speed_rpm: float,
-                     energy_velocity: str = "transverse") -> tuple[BoxWorst, ToleranceBox]:
+                     energy_velocity: str = "transverse", first_stage_only: bool = False
+                     ) -> tuple[BoxWorst, ToleranceBox]:
     """The box worst of every criterion and torque (M = T·K columns, torque-major) of design
     ``params`` (2, 6) (m) on ``model`` (its lead slopes the nominal), and its effective box."""
     box = tolerance_box(tolerance, params)
@@ -224,7 +228,7 @@ def design_box_worst(model: ImpactModel, tolerance: ToleranceModel, params: np.n
         rows, lead = box.gears(model.geom, params, model.lead_slope, units)
         return gear_criteria(model, rows, lead, torques, speed_rpm, energy_velocity).values.reshape(units.shape[0], -1)
 
-    worst = box_worst(evaluate, box.size, box.mismatch)
+    worst = box_worst(evaluate, box.size, box.mismatch, first_stage_only=first_stage_only)
     return BoxWorst(worst.values.reshape(nt, -1), worst.points.reshape(nt, len(CRITERIA), -1), worst.evaluated), box
 
 
