@@ -200,8 +200,8 @@ def test_the_safety_verdict_reads_every_factor_with_a_minimum():
 #: What each command needs on its command line besides its pair file (small grids where it runs).
 _COMMAND_LINES = {"geometry": [], "stiffness": ["--slices", "20", "--positions", "16"],
                   "ltca": ["--torque-Nm", "20000"], "impact": ["--torque-Nm", "20000", "--speed-rpm", "500"],
-                  "rating": ["--torque-Nm", "20000", "--speed-rpm", "500"],
-                  "rating --method ltca": ["--torque-Nm", "20000", "--speed-rpm", "500", "--method", "ltca"],
+                  "rating": ["--torque-Nm", "20000", "--speed-rpm", "500"],  # the declared default: ltca
+                  "rating --method iso": ["--torque-Nm", "20000", "--speed-rpm", "500", "--method", "iso"],
                   "dynamics": ["--torque-Nm", "20000", "--speeds", "500"],
                   "optimise": ["--torque-Nm", "20000", "--population", "4", "--generations", "1"]}
 
@@ -233,7 +233,7 @@ def test_what_validate_accepts_every_command_that_needs_nothing_more_runs(tmp_pa
             assert "add bore_radius_mm (or bore_diameter_mm" in err, err
         else:
             assert code == 0, (command, err)
-            assert "ltca" not in json.loads(out) if command == "rating" else True
+            assert "ltca" not in json.loads(out) if command == "rating --method iso" else True
 
 
 @pytest.mark.parametrize("kind, key", [("pair", "bore_radus_mm"), ("pair", "colour"), ("study", "bogus"),

@@ -173,12 +173,21 @@ def test_modification_title_in_words_and_convergence_states_a_reduction(data, dr
     assert "+" not in head and ("below the standard gear" in head or "above the standard gear" in head)
 
 
-def test_stiffness_figure_shows_what_is_in_series_and_adds_up_to_k(data, drawn, tmp_path):
+@pytest.mark.parametrize("bodies", [False, True], ids=["teeth alone", "solid-disc bodies"])
+def test_stiffness_figure_shows_what_is_in_series_and_adds_up_to_k(data, drawn, tmp_path, bodies):
     """The stiffness figure's series terms add up to 1/K; its one-pair curve, summed over the pairs
-    in mesh one base pitch apart, is the tooth pairs' stiffness it draws beside K; and K is those
-    pairs in series with the gear bodies (the dataset's own terms, whatever they are)."""
-    from gearmesh.plots.stiffness import _series_terms
+    in mesh one base pitch apart, is the tooth pairs' stiffness; and K is those pairs in series with
+    the mesh terms (the dataset's own: none for the default teeth alone, the gear bodies where the
+    pair file describes them), which the legend names."""
+    from gearmesh.plots.stiffness import PAIR_TERMS, _series_terms
 
+    if bodies:  # the case pair with solid-disc webs (its face width) held at the bore
+        from gearmesh.body import read_body
+
+        pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+        solid = pair.with_changes(body=read_body({"web_thickness_mm": [w * 1e3 for w in pair.face_width]}))
+        ds = st.stiffness_dataset(solid, slices=40, positions=60, torque_Nm=1000)
+        data = {**data, "stiffness": ds}
     ds = data["stiffness"]
     terms, pairs = _series_terms(ds)
     k = ds["mesh_stiffness"].values
@@ -188,14 +197,19 @@ def test_stiffness_figure_shows_what_is_in_series_and_adds_up_to_k(data, drawn, 
     summed = sum(np.interp(x + j * pitch, ds["pair_position"].values, ds["pair_stiffness"].values, left=0, right=0)
                  for j in range(-6, 7))
     np.testing.assert_allclose(summed, pairs, rtol=1e-9)
-    assert "gear bodies" in terms and np.all(pairs > k)
-    np.testing.assert_allclose(1.0 / (1.0 / pairs + terms["gear bodies"]), k, rtol=1e-10)
+    mesh = {t: c for t, c in terms.items() if t not in PAIR_TERMS.values()}
+    assert ("gear bodies" in mesh) == bodies and set(mesh) <= {"gear bodies"}
+    np.testing.assert_allclose(1.0 / (1.0 / pairs + sum(mesh.values(), np.zeros_like(k))), k, rtol=1e-10)
     _draw("stiffness", data, tmp_path)
     top, series = drawn["stiffness"].axes[:2]
     labels = top.get_legend_handles_labels()[1]
-    assert labels[0] == "K(φ): the tooth pairs, in series with the gear bodies"
-    drawn_pairs = next(line for line in top.lines if line.get_label().startswith("the tooth pairs in parallel"))
-    np.testing.assert_allclose(drawn_pairs.get_ydata(), pairs * 1e-6)
+    assert labels[0] == ("K(φ): the tooth pairs, in series with the gear bodies" if bodies else "K(φ): the tooth pairs")
+    if bodies:
+        assert np.all(pairs > k)
+        drawn_pairs = next(line for line in top.lines if line.get_label().startswith("the tooth pairs in parallel"))
+        np.testing.assert_allclose(drawn_pairs.get_ydata(), pairs * 1e-6)
+    else:
+        np.testing.assert_allclose(pairs, k, rtol=1e-10)
     assert len(series.collections) == len(terms)  # one stacked band per series term
 
 

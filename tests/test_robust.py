@@ -58,7 +58,7 @@ def _design_columns(geom, tol, torques, speed=5000.0):
 def test_box_worst_reaches_a_dense_grid_on_the_case_pair():
     """The relieved variant of the default study (gear tip relief and its length, pinion crowning, the
     lead mismatch: four dimensions) at 1000 N m: every criterion's box worst at least 99 % of the
-    largest on a 7⁴ grid, with a tenth of its evaluations."""
+    largest on a 7⁴ grid, with under a fifth of its evaluations."""
     study = load_study("config/config.yaml")
     pair = variant_pair(load_pair(example_pair("seed000_case")), "relief", study["variants"]["relief"])
     geom = pair_geometry(pair)
@@ -69,7 +69,7 @@ def test_box_worst_reaches_a_dense_grid_on_the_case_pair():
     worst = box_worst(evaluate, box.size)
     grid = _grid_worst(evaluate, box.size, 7)
     assert np.all(worst.values >= 0.99 * grid), dict(zip(CRITERIA, worst.values / grid))
-    assert worst.evaluated < 0.1 * 7**4
+    assert worst.evaluated < 0.2 * 7**4  # two walkers per column (two local maxima): 403 measured
 
 
 def _random_pair(rng) -> dict:

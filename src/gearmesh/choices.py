@@ -43,6 +43,14 @@ DEFAULT_TOOTH_METHOD = "fe"
 CONTACT_LAWS = ("palmgren", "linear")
 DEFAULT_CONTACT_LAW = "palmgren"
 
+#: Rotation positions over one mesh cycle of the loaded contact, declared once: the TCA and LTCA
+#: stages, the rating, and the criteria of every manufactured gear (the optimisers' and the impact
+#: stage's box worst and populations), so ``gearmesh ltca`` on any of those gears' pair files gives
+#: the value they were judged by. Against 128 positions on the default study's relieved variant:
+#: loaded-TE orders 1–2 within 0.3 %, pressures and root stress within 0.1 % (32 positions: 1 % and
+#: 0.3 %).
+DEFAULT_CYCLE_POSITIONS = 64
+
 #: Candidate tip-edge contacts beyond the active zone, in transverse base pitches
 #: (:func:`gearmesh.tca.candidate_grid`).
 DEFAULT_CORNER_EXTENSION = 0.25

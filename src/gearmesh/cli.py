@@ -94,10 +94,13 @@ def _value_text(value: Any, gears: Sequence[str] = ()) -> str:
 #: gains is shown without a change here.
 RATING_GROUPS = (
     ("operating point", r"name|torque_Nm|torque_on|pinion_torque_Nm|speed_rpm|pitch_line_speed_m_s|"
-                        r"force_tangential_N|method|accuracy_grade|load_cycles|gears|factors_given"),
+                        r"force_tangential_N|method|accuracy_grade|load_cycles|life_factor_conditions|gears|"
+                        r"factors_given"),
     ("load factors (ISO 6336-1)", r"K_\w+"),
     ("pitting (ISO 6336-2)", r"(Z_|M_\d|sigma_H|S_H)\w*"),
     ("tooth root (ISO 6336-3)", r"(Y_|sigma_F|S_F)\w*"),
+    ("scuffing (ISO/TS 6336-20/-21)", r"contact_temperature_max_C|integral_temperature_C|scuffing_safety_\w+"),
+    ("scuffing temperatures and inputs", r"scuffing\..+"),
     ("inputs of the ISO 6336-1 factors", r"iso_factors\..+"),
     ("where each factor comes from", r"factor_sources\..+"),
     ("loaded tooth contact", r"ltca\..+"),

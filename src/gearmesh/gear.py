@@ -160,7 +160,7 @@ _ALTERNATIVE_KEYS = (
 OPTIONAL_NEEDS = {
     "bore_radius_mm": ("the fillet foundation of the tooth stiffness (Sainsot, Velex & Duverger 2004, J. Mech. "
                        "Design 126) and the gear bodies' masses",
-                       ("stiffness", "ltca", "impact", "rating --method ltca", "dynamics", "optimise")),
+                       ("stiffness", "ltca", "impact", "rating", "dynamics", "optimise")),
 }
 #: The pair-file keys that give a value of :data:`OPTIONAL_NEEDS` in other words (datasheet dimensions).
 _GIVEN_AS = {"bore_radius_mm": "bore_diameter_mm, a datasheet's inner diameter"}

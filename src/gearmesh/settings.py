@@ -28,7 +28,7 @@ from typing import Any, ClassVar, Literal, Mapping
 
 import yaml
 
-from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
+from .choices import DEFAULT_CYCLE_POSITIONS, FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
                       TOOTH_METHODS)
 from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN
@@ -184,7 +184,7 @@ class Tca:
 
     STAGE: ClassVar = Stage("gearmesh.datasets.ltca:tca_dataset", "{pair}/{variant}/tca.nc", "variant",
         figures="gearmesh.plots.ltca:tca_figures")
-    positions: int = _positions(64, 10000)
+    positions: int = _positions(DEFAULT_CYCLE_POSITIONS, 10000)
     points: int = _points()
     corner_extension: float = _corner_extension()
 
@@ -199,7 +199,7 @@ class Ltca:
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques", exclusive_minimum=0, min_items=1,
                                             max_items=MAX_LTCA_TORQUES)
     on: Gear = setting("pinion", "the gear the torques act on")
-    positions: int = _positions(64, 10000)
+    positions: int = _positions(DEFAULT_CYCLE_POSITIONS, 10000)
     points: int = _points()
     contact_law: ContactLaw = _contact_law()
     method: Method = _method()
@@ -384,8 +384,10 @@ class Optimise:
                                            minimum=8, maximum=10000)
     face_samples: int | None = setting(None, "samples of the entering contact line across the face (null: the "
                                              "impact section's)", minimum=9, maximum=100000)
-    cycle_positions: int = setting(32, "rotation positions over one mesh cycle of the loaded contact (LTE, line "
-                                       "load)", minimum=8, maximum=10000)
+    cycle_positions: int = setting(DEFAULT_CYCLE_POSITIONS, "rotation positions over one mesh cycle of the loaded "
+                                                            "contact (LTE, line load; the LTCA stage's and the "
+                                                            "impact stage's manufactured gears')", minimum=8,
+                                   maximum=10000)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -28,17 +28,11 @@ from ..tca import check_modifications
 from ..robust import CRITERIA, CRITERION_UNITS, design_box_worst, gear_criteria, population_units
 from ..tolerance import manufactured_population, study_population, study_tolerances
 from ..schema import check_arguments, defaults
-from ..settings import Impact, Ltca
+from ..settings import Impact
 
 UM = 1e-6
 
 __all__ = ["impact_dataset", "impact_table_dataset", "impact_summary", "manufactured_gear"]
-
-
-#: Positions per mesh cycle of the manufactured gears' loaded contact: the LTCA's declared default, so
-#: that ``gearmesh ltca`` on any of them (a pair file, :func:`gearmesh.robust.manufactured_pair`)
-#: reproduces the impact stage's value for it.
-CONTACT_POSITIONS = defaults(Ltca)["positions"]
 
 
 def _model(pair: GearPair, points: int, contact_law: str, method: str, corner_extension: float,
@@ -49,7 +43,6 @@ def _model(pair: GearPair, points: int, contact_law: str, method: str, corner_ex
     check_modifications(pair)
     geom = pair_geometry(pair)
     return impact_model(geom, points=points, contact_law_name=contact_law, method=method,
-                        cycle_positions=CONTACT_POSITIONS,
                         extension=corner_extension, driver=driver, added_inertia_kg_m2=added_inertia_kg_m2,
                         window_positions=window_positions, face_samples=face_samples)
 

@@ -21,6 +21,7 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
+from ..choices import DEFAULT_CYCLE_POSITIONS
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, MODIFICATION_UNITS, GearPair, Modification, pair_geometry
@@ -68,7 +69,7 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
                  fixed: Mapping[str, Any] | None = None, constraints: Mapping[str, Any] | None = None,
                  random_baseline: bool = False, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
                  keep_elitism: int = 2, points: int | None = None, window_positions: int | None = None,
-                 face_samples: int | None = None, cycle_positions: int = 32, contact_law: str | None = None,
+                 face_samples: int | None = None, cycle_positions: int = DEFAULT_CYCLE_POSITIONS, contact_law: str | None = None,
                  corner_extension: float | None = None, impact: Mapping[str, Any] | None = None,
                  tolerances: Mapping[str, Any] | None = None, dynamic_speeds_rpm=None, backlash_um="pair",
                  pareto_objectives=("impact", "lte")):
