@@ -19,7 +19,8 @@ import yaml
 
 from gearmesh.io import read_dataset
 
-pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")
+pytestmark = [pytest.mark.workflow,
+              pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")]
 
 
 def _scratch_workflow(root: Path, tmp: Path, config: dict) -> Path:
