@@ -1,4 +1,5 @@
-"""LTCA speed benchmark: one torque over a mesh cycle (64 positions, 50 points per line).
+"""LTCA speed benchmark: one torque over a mesh cycle (64 positions, 50 points per line) of the
+default study's ``relief`` variant of the case pair.
 
 ``bench_ltca(repeats)`` returns one JSON-able dict in the style of ``benchmarks/run.py``:
 name, median_s (the whole :func:`gearmesh.ltca.ltca` call, tables and grid included),
@@ -18,17 +19,15 @@ from __future__ import annotations
 import json
 import sys
 
-from gearmesh.gear import Modification, load_pair, pair_geometry
+from gearmesh.gear import load_pair, pair_geometry, variant_pair
 from gearmesh.ltca import ltca, ltca_model
 
-from common import CASE_PAIR, equality, median_seconds, timed_calls
+from common import CASE_PAIR, equality, median_seconds, study_config, timed_calls
 from straightforward import replace_contact_solvers
 
 
 def bench_ltca(repeats: int = 7) -> dict:
-    pair = load_pair(CASE_PAIR)
-    mod = (Modification(tip_relief=20e-6, tip_relief_length=3e-3, crowning=10e-6), Modification())
-    geom = pair_geometry(pair.with_changes(modification=mod))
+    geom = pair_geometry(variant_pair(load_pair(CASE_PAIR), "relief", study_config()["variants"]["relief"]))
     torque = 1000.0
     fast, _, result, _ = timed_calls(lambda: ltca(geom, [torque], positions=64, points=50), repeats)
     model = ltca_model(geom, positions=64, points=50)
