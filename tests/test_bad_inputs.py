@@ -452,6 +452,7 @@ def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess:
                           cwd=cwd, timeout=60)
 
 
+@pytest.mark.workflow
 def test_hostile_files_in_a_fresh_process_stay_small(tmp_path):
     """Alias bomb, /dev/zero, 30000 nodes and a large file as separate processes: one line,
     exit 2, no traceback, and the largest child stays below 400 MB of resident memory."""
@@ -506,6 +507,7 @@ SNAKEMAKE_CASES = [  # (file name, content, field): a handful, each Snakemake st
 ]
 
 
+@pytest.mark.workflow
 @needs_snakemake
 def test_snakemake_refuses_the_same_configs_before_any_job(root, tmp_path, monkeypatch, capsys):
     work = _workflow_copy(root, tmp_path)
@@ -530,6 +532,7 @@ def _dead_pid() -> int:
     return proc.pid
 
 
+@pytest.mark.workflow
 @needs_snakemake
 def test_killed_run_rerun_leaves_no_temporary_files(root, tmp_path):
     """kill -9 of the whole run at a random moment, then --unlock and a rerun: every target

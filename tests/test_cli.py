@@ -46,6 +46,7 @@ def test_validate_accepts_pairs_and_studies(root, monkeypatch, capsys):
     ("study: s\npairs: [seed001_pair1]\ncontact_lines: {positions: 0}\n", "contact_lines.positions"),
     ("[not, a, mapping", "file"),
 ])
+@pytest.mark.workflow
 def test_bad_input_exits_2_with_one_message(tmp_path, root, monkeypatch, text, field):
     monkeypatch.chdir(root)
     path = tmp_path / "bad.yaml"

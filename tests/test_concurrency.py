@@ -29,6 +29,7 @@ def _study(name: str, pair: str) -> dict:
             "stiffness": {"slices": 40, "positions": 24}}
 
 
+@pytest.mark.workflow
 @needs_snakemake
 def test_two_studies_run_at_once_in_one_checkout_and_lose_no_job(root, tmp_path):
     """Each run's start-up removes only temporaries no live process writes: a temporary of a live
@@ -105,6 +106,7 @@ def _go(proc: subprocess.Popen, stdout) -> str:
     return stdout.readline().strip()
 
 
+@pytest.mark.workflow
 @pytest.mark.skipif(os.name != "posix", reason="process tree of a POSIX run")
 def test_a_job_writes_while_its_snakemake_lives(tmp_path):
     target = tmp_path / "results/ltca.nc"
@@ -117,6 +119,7 @@ def test_a_job_writes_while_its_snakemake_lives(tmp_path):
         proc.wait()
 
 
+@pytest.mark.workflow
 @pytest.mark.skipif(os.name != "posix", reason="process tree of a POSIX run")
 def test_a_job_whose_snakemake_was_killed_writes_nothing(tmp_path):
     """kill -9 of the controller leaves its jobs running as orphans, writing while a recovery run
@@ -130,6 +133,7 @@ def test_a_job_whose_snakemake_was_killed_writes_nothing(tmp_path):
     assert not target.exists() and list(target.parent.iterdir()) == []
 
 
+@pytest.mark.workflow
 @pytest.mark.skipif(os.name != "posix", reason="process tree of a POSIX run")
 def test_a_job_does_not_clobber_a_file_written_while_it_ran(tmp_path):
     """Snakemake removes a job's outputs before it starts: a file there at the rename was written

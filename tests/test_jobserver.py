@@ -61,6 +61,7 @@ def server(monkeypatch):
     assert not Path(path).exists()
 
 
+@pytest.mark.workflow
 def test_a_job_on_the_server_equals_the_job_alone(root, tmp_path, server):
     settings = {"positions": 24}
     results = {}
@@ -88,6 +89,7 @@ def test_a_job_on_the_server_equals_the_job_alone(root, tmp_path, server):
     assert a.attrs["config_json"] == b.attrs["config_json"]
 
 
+@pytest.mark.workflow
 def test_a_failing_job_reports_its_error_and_exit_code(root, tmp_path, server):
     job = _job(root, tmp_path, "gearmesh.datasets.geometry:contact_lines_dataset", {"positions": -3})
     proc = _script(job, tmp_path, server.env)
@@ -97,6 +99,7 @@ def test_a_failing_job_reports_its_error_and_exit_code(root, tmp_path, server):
     assert not (tmp_path / "result.nc").exists()
 
 
+@pytest.mark.workflow
 def test_a_killed_script_takes_its_job_with_it(root, tmp_path, server):
     # a stiffness job of many slices runs for seconds: kill its script while it works
     job = _job(root, tmp_path, "gearmesh.datasets.stiffness:stiffness_dataset",
@@ -113,6 +116,7 @@ def test_a_killed_script_takes_its_job_with_it(root, tmp_path, server):
     assert not (tmp_path / "result.nc").exists()
 
 
+@pytest.mark.workflow
 def test_without_a_server_the_script_runs_the_job_itself(root, tmp_path, monkeypatch):
     monkeypatch.setenv(jobserver.ENV, str(tmp_path / "no-such-socket"))
     job = _job(root, tmp_path, "gearmesh.datasets.geometry:contact_lines_dataset", {"positions": 12})

@@ -96,6 +96,7 @@ def test_optimum_beats_the_standard_gear_at_the_design_point(ga):
     assert np.all(np.diff(ga.history.best) <= 0)
 
 
+@pytest.mark.slow
 def test_ga_beats_random_search_with_the_same_budget_over_seeds(model, pair):
     """The robust objective (worst F_s over 400 and 1600 N m and over the nominal and two tolerance
     samples): over five seeds the GA's median best beats the median of a random search with the

@@ -302,6 +302,7 @@ def test_the_layout_checker_finds_each_fault(kind, message):
     assert layout_faults(_faulty("none")) == []
 
 
+@pytest.mark.workflow
 def test_plot_modules_do_not_use_pyplot():
     code = ("import sys; import gearmesh.plots.common, gearmesh.plots.dynamics, gearmesh.plots.fe, "
             "gearmesh.plots.geometry, gearmesh.plots.impact, gearmesh.plots.ltca, gearmesh.plots.optimise, "

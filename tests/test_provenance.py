@@ -213,6 +213,7 @@ needs_snakemake = pytest.mark.skipif(shutil.which("snakemake", path=str(Path(sys
                                      reason="snakemake not installed")
 
 
+@pytest.mark.workflow
 @needs_snakemake
 def test_snakemake_refuses_a_folder_where_a_result_belongs(root, tmp_path):
     """mkdir results/.../tca.nc: the job was skipped, exit 0, the result and its figure missing."""

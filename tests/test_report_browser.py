@@ -19,7 +19,8 @@ import yaml
 
 from test_workflow import _scratch_workflow, _snakemake
 
-pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")
+pytestmark = [pytest.mark.workflow, pytest.mark.browser,
+              pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")]
 
 #: Common laptop and desktop windows (CSS pixels).
 WINDOWS = ((1366, 768), (1920, 1080))
