@@ -648,9 +648,10 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
     per_gear = load_statistic(value, s.statistic, s.weights)  # (C, S): each manufactured gear over the spectrum
     f = per_gear[:, 0] if s.tolerance_statistic is None else sample_statistic(per_gear, s.tolerance_statistic,
                                                                               s.tolerance_level)
-    crit = _criteria(prob, params, rows, lead) if s.needs_criteria else None
-    d = s.design_index
-    lte, line = (np.full(nc, np.nan),) * 2 if crit is None else (crit.lte_peak_to_peak[:, d], crit.max_line_load[:, d])
+    # with the max over the samples, a candidate its nominal gear refuses is refused: its samples' contact is spared
+    screened = standard is not None and _over_samples(s) and s.tolerance_statistic == "max"
+    crit = _criteria(prob, params, rows, lead, over_samples=not screened) if s.needs_criteria else None
+    lte, line = _design_lte_line(s, crit, nc)
     # failed: no impact found, a non-finite value, or a touch without a closing velocity (a
     # crossing the impact model did not resolve: zero force would be an artefact, not an optimum)
     failed = (~np.isfinite(f) | np.any(scen == SCENARIO_NONE, axis=(1, 2)) | ~np.all(np.isfinite(value), axis=(1, 2))
@@ -660,9 +661,52 @@ def _evaluate(prob: "Problem", params: np.ndarray, standard: Evaluation | None) 
         kv = value[:, 0]
     raw = Evaluation(f, value, force, vel, scen, failed, lte, line, kv, np.zeros(nc), crit,
                      worst_force=force.max(axis=1))
+    if screened and crit is not None:
+        raw = _with_sample_criteria(prob, params, rows, lead, raw, standard)
     if s.dynamic_factor is not None and s.objective != "dynamic":
         raw = _with_dynamics(prob, params, raw, standard)
     return raw if standard is None else _score(prob, raw, standard)
+
+
+def _over_samples(s: "OptimiseSettings") -> bool:
+    """Whether the loaded-contact criteria are taken over the manufactured samples."""
+    return s.criteria_over_samples and s.tolerance_statistic is not None
+
+
+def _design_lte_line(s: "OptimiseSettings", crit: LTCACriteria | None, nc: int) -> tuple[np.ndarray, np.ndarray]:
+    """LTE peak-to-peak and largest line load at the design torque (NaN without criteria)."""
+    if crit is None:
+        return np.full(nc, np.nan), np.full(nc, np.nan)
+    return crit.lte_peak_to_peak[:, s.design_index], crit.max_line_load[:, s.design_index]
+
+
+def _with_sample_criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray, lead: np.ndarray, raw: Evaluation,
+                          standard: Evaluation) -> Evaluation:
+    """``raw`` (criteria of the nominal gears) with the criteria over the manufactured samples for
+    the candidates whose nominal gear meets every constraint (tolerance statistic max). The max over
+    the samples is never below the nominal gear's (sample 0), so a candidate its nominal gear already
+    refuses is refused: its violation, J and Pareto objectives stay the nominal gear's, lower bounds
+    of its own, and its samples' contact is never solved (issue 36: most candidates of a run)."""
+    nc = params.shape[0]
+    kv = np.array(raw.dynamic_factor, dtype=float)
+    kv[:] = standard.dynamic_factor[0]  # the dynamic constraint is checked after, on its own
+    pre = _score(prob, replace(raw, dynamic_factor=kv), standard)
+    need = np.flatnonzero(~pre.failed & (pre.violation == 0))
+    if not need.size:
+        return raw
+    ns = rows.shape[0] // nc
+    take = (need[:, None] * ns + np.arange(ns)).reshape(-1)
+    over = _criteria(prob, params[need], rows[take], lead[take])
+    crit = raw.criteria
+    merged = {}
+    for name in ("lte_peak_to_peak", "te_harmonics", "max_line_load", "flank_pressure", "edge_pressure",
+                 "root_stress"):
+        a = np.array(getattr(crit, name), dtype=float, copy=True)
+        a[need] = getattr(over, name)
+        merged[name] = a
+    crit = LTCACriteria(**merged, load=crit.load)
+    lte, line = _design_lte_line(prob.settings, crit, nc)
+    return replace(raw, criteria=crit, lte_peak_to_peak=lte, max_line_load=line)
 
 
 def _with_dynamics(prob: "Problem", params: np.ndarray, raw: Evaluation, standard: Evaluation | None) -> Evaluation:
@@ -710,14 +754,15 @@ def _score(prob: "Problem", raw: Evaluation, standard: Evaluation) -> Evaluation
                       np.where(failed, np.nan, violation), crit, pareto, raw.worst_force)
 
 
-def _criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray, lead: np.ndarray) -> LTCACriteria:
+def _criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray, lead: np.ndarray,
+              over_samples: bool = True) -> LTCACriteria:
     """The candidates' loaded-contact criteria (C, T, ...): of the nominal gears, or with
-    ``criteria_over_samples`` (and a tolerance statistic) of every manufactured gear ``rows``,
-    ``lead`` ((C·S, ...), sample 0 the nominal, as :func:`_manufactured_rows`), each quantity
-    reduced over the S gears by the tolerance statistic; the point loads stay the nominal gear's
-    (S_Hmin, S_Fmin are nominal)."""
+    ``criteria_over_samples`` (and a tolerance statistic, and ``over_samples``) of every manufactured
+    gear ``rows``, ``lead`` ((C·S, ...), sample 0 the nominal, as :func:`_manufactured_rows`), each
+    quantity reduced over the S gears by the tolerance statistic; the point loads stay the nominal
+    gear's (S_Hmin, S_Fmin are nominal)."""
     s, model = prob.settings, prob.model
-    if not s.criteria_over_samples or s.tolerance_statistic is None:
+    if not (over_samples and _over_samples(s)):
         return ltca_criteria(model, s.objective_torques, params, stresses=s.needs_stresses)
     nc = params.shape[0]
     ns = rows.shape[0] // nc
@@ -1136,12 +1181,16 @@ class Verification:
     """The optimum checked on its own tolerance box: ``worst`` its worst manufactured gear
     (:func:`gearmesh.robust.design_box_worst`, columns :data:`gearmesh.robust.CRITERIA` per objective
     torque), ``violation`` its constraints' summed relative excess there (0: every one met), ``rank``
-    its place among the run's candidates (0: the run's best) and ``tried`` how many were checked."""
+    its place among the run's candidates (0: the run's best), ``tried`` how many were checked and
+    ``searched`` whether its box was searched in full (else its first stage alone: the corners of
+    the modification deviations at five lead mismatches, a lower bound of the worst and of the
+    violation, enough to refuse it)."""
 
     worst: BoxWorst
     violation: float
     rank: int
     tried: int
+    searched: bool
 
 
 def _ranked(genes: np.ndarray, objective: np.ndarray, failed: np.ndarray, front: np.ndarray | None) -> np.ndarray:
@@ -1161,7 +1210,8 @@ def _verified(prob: Problem, genes: np.ndarray, ranked: np.ndarray) -> tuple[int
     box meets every constraint against the standard's box worst; else the one of least violation
     there. The box is searched as the sign-off table searches it; a candidate whose gears of the
     search's first stage already violate a constraint is refused on them (a lower bound of its
-    box's), and the one finally taken is searched in full."""
+    box's) and is not searched further: when every one is refused, the compromise taken keeps its
+    first stage's worst (the sign-off's impact stage searches its box in full)."""
     s = prob.settings
 
     def check(params: np.ndarray, quick: bool) -> tuple[float, BoxWorst]:
@@ -1183,9 +1233,7 @@ def _verified(prob: Problem, genes: np.ndarray, ranked: np.ndarray) -> tuple[int
         if full and violation == 0.0:
             break
     violation, rank, k, worst, full = min(checked, key=lambda c: (np.nan_to_num(c[0], nan=np.inf), c[1]))
-    if not full:  # the best compromise, its worst gears searched in full for the record
-        violation, worst = check(prob.decode(genes[k])[0], quick=False)
-    return k, Verification(worst, violation, rank, len(checked))
+    return k, Verification(worst, violation, rank, len(checked), full)
 
 
 def optimise(prob: Problem) -> OptimisationResult:
