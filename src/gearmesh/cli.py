@@ -13,7 +13,8 @@ import math
 import os
 import re
 import sys
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -459,22 +460,49 @@ class _Problems(GearmeshInputError):
         ValueError.__init__(self, "\ngearmesh: error: ".join(lines))
 
 
-def cmd_check(args) -> None:
-    """``gearmesh check RESULTS [--configfile C]``: every problem of a results folder
-    (:func:`gearmesh.upstream.check_tree`), one line each; nothing printed when all is well."""
+def cmd_check(args) -> dict[str, Any] | None:
+    """``gearmesh check RESULTS [--configfile C] [--json]``: every problem of a study's results
+    folder (:func:`gearmesh.upstream.check_tree`), one line each; nothing printed when all is well
+    (``--json``: one object, ``ok`` and ``problems``). The files record their paths relative to
+    the folder the run ran in, the one above ``results/``: the check runs there, whatever folder
+    it is called from and however RESULTS is written (relative or absolute)."""
     from .pipeline import study_pair
     from .upstream import check_tree
 
-    root = Path(args.results)
-    if not root.is_dir():
-        raise GearmeshInputError("results", args.results, "must be a study's results folder (results/STUDY)")
-    config = None
-    if args.configfile is not None:
-        config = load_study(args.configfile)
-    problems = check_tree(root, config, None if config is None else lambda name, v: study_pair(config, name, v))
+    workdir, results = _run_folder(args.results)
+    config = None if args.configfile is None else load_study(args.configfile)  # read where it was named
+    with _working_directory(workdir):
+        problems = check_tree(results, config, None if config is None else lambda name, v: study_pair(config, name, v))
+    if args.json:
+        print(json.dumps({"results": results.as_posix(), "run_folder": str(workdir), "ok": not problems,
+                          "problems": problems}))
     if problems:
         raise _Problems(problems)
     return None
+
+
+def _run_folder(results: str) -> tuple[Path, Path]:
+    """The folder a study ran in and its results folder relative to it (``results/STUDY``), from
+    the results folder as given (relative to here, or absolute)."""
+    path = Path(results)
+    if not path.is_dir():
+        raise GearmeshInputError("results", results, "must be a study's results folder (results/STUDY)")
+    path = path.resolve()
+    if path.parent.name != "results":
+        raise GearmeshInputError("results", results, "must be a study's results folder results/STUDY as a run wrote "
+                                 "it (its files name their paths from the folder above results/)")
+    return path.parent.parent, Path("results", path.name)
+
+
+@contextmanager
+def _working_directory(path: Path) -> Iterator[None]:
+    """Run the block in ``path`` as the working directory, then return."""
+    here = os.getcwd()
+    os.chdir(path)
+    try:
+        yield
+    finally:
+        os.chdir(here)
 
 
 #: The study config Snakemake reads when no --configfile is given (the Snakefile's configfile).
@@ -552,13 +580,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("check", help="check a study's results folder: name every damaged, foreign, edited or stale "
                        "file (exit 0, or 2 with one line per file)",
-                       description="Check every netCDF file and optimum pair file under RESULTS (e.g. "
-                       "results/impact_case): readable, a gearmesh result at its own path, its data matching its "
-                       "digest, made by the current code from inputs that are still the files it was made from; with "
-                       "--configfile also made with that study's settings and pair data. Each problem is one line "
-                       "naming the file and the command that remakes it.", formatter_class=_HelpFormatter)
+                       description="Check every netCDF file, CSV table, PNG figure and optimum pair file under "
+                       "RESULTS (e.g. results/impact_case, from any folder, relative or absolute): readable, a gearmesh "
+                       "result at its own path, its data matching its digest, made by the current code from inputs "
+                       "that are still the files it was made from (a table or figure: the one its job wrote or drew, "
+                       "unedited, from files unchanged since); with --configfile also made with that study's settings "
+                       "and pair data. Each problem is one line naming the file and the command that remakes it, to "
+                       "be run in the folder above results/.", formatter_class=_HelpFormatter)
     p.add_argument("results", help="a study's results folder (results/STUDY)")
     p.add_argument("--configfile", default=None, help="the study config the results must agree with")
+    p.add_argument("--json", action="store_true", help="print one JSON object: ok and the problems, one line each")
     p.set_defaults(func=cmd_check)
 
     p = sub.add_parser("schema", help="print the JSON schema of a study config or a pair file (for editors), or "

@@ -25,11 +25,13 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
-from .io import DATA_ATTR, add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
+from .io import (DATA_ATTR, add_provenance, atomic_output, figure_sources, job_outputs, normal_path, read_dataset,
+                 write_dataset)
 from .settings import stage_of
 from .stages import dependencies
 from .tables import write_csv
-from .upstream import (Expected, check_optimum, identify, optimum_header, read_input, normal_path, record_sources)
+from .upstream import (Expected, check_optimum, file_digest, identify, optimum_header, read_input, record_sources,
+                       record_tables)
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
@@ -117,11 +119,11 @@ def study_pair(config: Mapping[str, Any], name: str, variant: str | None) -> Gea
     from .config import pair_path
 
     spec = (config.get("variants") or {}).get(variant) if variant is not None else None
+    pair = load_pair(pair_path(config, name))
     if spec is not None and spec.get("from"):
         source = Path("results", str(config["study"]), name, "optimise", spec["from"].split(".", 1)[1], "pair.yaml")
-        check_optimum(source)
+        check_optimum(source, Expected(config, pair))
         return variant_pair(load_pair(source), variant, spec)
-    pair = load_pair(pair_path(config, name))
     return pair if spec is None else variant_pair(pair, variant, spec)
 
 
@@ -145,21 +147,26 @@ def _draw(smk: Any, inputs: dict[str, Any]) -> float:
     if not spec:
         return 0.0
     start = time.perf_counter()
-    written = {Path(path).stem: read_dataset(path) for path in _outputs(smk, ".nc").values()}
-    resolve(spec)({**inputs, **written}, _outputs(smk, ".png"))
+    written = {path: read_dataset(path) for path in _outputs(smk, ".nc").values()}
+    with figure_sources({path: ds.attrs[DATA_ATTR] for path, ds in written.items()}):
+        resolve(spec)({**inputs, **{Path(path).stem: ds for path, ds in written.items()}}, _outputs(smk, ".png"))
     return time.perf_counter() - start
 
 
 def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
-    """The dataset to the job's netCDF output (provenance, what it is and what it was made from
-    attached: :func:`gearmesh.upstream.record_sources`), and to its CSV output if any."""
+    """The dataset to its CSV output if any, then to the job's netCDF output (provenance, what it
+    is and what it was made from attached: :func:`gearmesh.upstream.record_sources`, and the
+    sha256 of each CSV written: :func:`gearmesh.upstream.record_tables`)."""
     (nc,) = _outputs(smk, ".nc").values()
-    identify(ds, nc, smk.rule, smk.wildcards, getattr(smk.params, "function", None))
-    record_sources(ds, _input_files(smk), _sections(smk))
-    finish(ds, nc, smk.config, pair, _title(smk))
+    tables = {}
     for csv in _outputs(smk, ".csv").values():
         with atomic_output(csv) as tmp:
             write_csv(ds, tmp)
+            tables[csv] = file_digest(tmp)
+    identify(ds, nc, smk.rule, smk.wildcards, getattr(smk.params, "function", None))
+    record_sources(ds, _input_files(smk), _sections(smk))
+    record_tables(ds, tables)
+    finish(ds, nc, smk.config, pair, _title(smk))
 
 
 def _input_files(smk: Any) -> list[str]:
@@ -182,8 +189,8 @@ def _job_pair(smk: Any) -> GearPair:
     names one (``params.variant``: the variant's spec from the study config); an optimisation's
     pair file (a variant ``{from: optimise.NAME}``) checked first (:func:`gearmesh.upstream.check_optimum`)."""
     spec = getattr(smk.params, "variant", None)
-    if spec is not None and spec.get("from"):
-        check_optimum(smk.input.pair)
+    if spec is not None and spec.get("from"):  # this study's optimum: its run made for the study's pair and settings
+        check_optimum(smk.input.pair, Expected(smk.config, study_pair(smk.config, smk.wildcards.pair, None)))
     pair = load_pair(smk.input.pair)
     return pair if spec is None else variant_pair(pair, smk.wildcards.variant, spec)
 
@@ -246,7 +253,9 @@ def run_plot(smk: Any) -> None:
     """Figures alone: ``function({input name: Dataset}, {output name: path})`` writes the PNGs."""
     def body(smk: Any) -> float:
         start = time.perf_counter()
-        resolve(smk.params.function)(_read_inputs(smk), dict(smk.output.items()))
+        inputs = _read_inputs(smk)
+        with figure_sources({path: file_digest(path) for path in _input_files(smk)}):
+            resolve(smk.params.function)(inputs, dict(smk.output.items()))
         return time.perf_counter() - start
 
     _run(smk, body)
