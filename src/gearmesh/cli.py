@@ -505,40 +505,17 @@ def _working_directory(path: Path) -> Iterator[None]:
         os.chdir(here)
 
 
-#: The study config Snakemake reads when no --configfile is given (the Snakefile's configfile).
-DEFAULT_STUDY = "config/config.yaml"
-
-
-def snakemake_configfiles(argv: Sequence[str]) -> list[str]:
-    """The config files a Snakemake command line names (``--configfile(s) A B``, ``--configfile=A``),
-    or the workflow's default study when it names none."""
-    files: list[str] = []
-    taking = False
-    for arg in argv:
-        if arg in ("--configfile", "--configfiles"):
-            taking = True
-        elif arg.startswith(("--configfile=", "--configfiles=")):
-            files.append(arg.split("=", 1)[1])
-            taking = False
-        elif taking and not arg.startswith("-"):
-            files.append(arg)
-        else:
-            taking = False
-    return files or [DEFAULT_STUDY]
-
-
 def cmd_run(args) -> None:
-    """``gearmesh run SNAKEMAKE-ARGS``: read every study config of the command line with the
-    package's bounded loader (a regular file, at most MAX_INPUT_BYTES, MAX_INPUT_NODES nodes and
-    MAX_INPUT_DEPTH levels, no alias, no ``__use_yte__``) and validate it, then hand the command
-    line to Snakemake, whose own loader (and template engine) never sees a file that failed."""
+    """``gearmesh run SNAKEMAKE-ARGS``: every config Snakemake would read before the Snakefile runs
+    (the command line's config files, every profile and the config files it names,
+    ``$SNAKEMAKE_PROFILE`` and the workflow's default profile included) read with the package's
+    bounded loader and validated (:mod:`gearmesh.launch`), then Snakemake started with the same
+    arguments: its own loader (and template engine) never sees a file that failed."""
     import shutil
 
-    for path in snakemake_configfiles(args.snakemake_args):
-        data = read_yaml(path, "config file")
-        if not isinstance(data, Mapping):
-            raise GearmeshInputError("config file", path, "must be a YAML mapping (a study config)")
-        validate_study(data)
+    from .launch import check_inputs, snakemake_inputs
+
+    check_inputs(snakemake_inputs(args.snakemake_args))
     exe = shutil.which("snakemake", path=str(Path(sys.executable).parent)) or shutil.which("snakemake")
     if exe is None:
         raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'")
@@ -568,12 +545,14 @@ def build_parser() -> argparse.ArgumentParser:
 
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 
-    p = sub.add_parser("run", help="run the workflow: check every study config with the bounded loader, then "
-                       "snakemake with the same arguments", description="Run the workflow as 'snakemake ARGS' "
-                       "after reading every --configfile (or config/config.yaml) with gearmesh's bounded loader "
-                       "and validating it, so a config Snakemake would parse without limits (a huge or nested file, "
-                       "a FIFO, a __use_yte__ template that runs Python) never reaches Snakemake. Example: "
-                       "gearmesh run --cores 2 --configfile config/studies/contact_lines.yaml",
+    p = sub.add_parser("run", help="run the workflow: check every study config and profile with the bounded loader, "
+                       "then snakemake with the same arguments", description="Run the workflow as 'snakemake ARGS' "
+                       "after reading every config Snakemake would read before the workflow's own checks (each "
+                       "--configfile, or config/config.yaml; every profile: --profile, $SNAKEMAKE_PROFILE, "
+                       "--workflow-profile or the workflow's profiles/default, and the config files a profile names) "
+                       "with gearmesh's bounded loader and validating it, so a file Snakemake would parse without "
+                       "limits (a huge or nested file, a FIFO, a __use_yte__ template that runs Python) never reaches "
+                       "Snakemake. Example: gearmesh run --cores 2 --configfile config/studies/contact_lines.yaml",
                        formatter_class=_HelpFormatter)
     p.add_argument("snakemake_args", nargs=argparse.REMAINDER, help="the arguments for snakemake")
     p.set_defaults(func=cmd_run)
