@@ -20,6 +20,7 @@ import logging
 import math
 import os
 import re
+import signal
 import socket
 import struct
 import time
@@ -159,6 +160,58 @@ def job_outputs() -> Iterator[None]:
         yield
     finally:
         _before_rename = previous
+
+
+#: Seconds between two looks of a job's watcher (:func:`stop_with_controller`) at its controller.
+WATCH_INTERVAL = 0.5
+
+
+@contextmanager
+def stop_with_controller(interval: float = WATCH_INTERVAL) -> Iterator[None]:
+    """Inside a workflow job: a watcher process (forked, so it costs no start-up) that kills the
+    job (SIGKILL) within ``interval`` seconds once the Snakemake process that started it is gone
+    (killed with ``kill -9``: nobody waits for the job, and a recovery run may be remaking its
+    files), and ends with the block. A thread could not do it: a compiled loop (the dynamics' RK4,
+    seconds to minutes) holds the interpreter. Outside a local run (no Snakemake ancestor, no
+    ``fork``: a cluster job, whose controller runs elsewhere) it does nothing; :func:`job_outputs`
+    still keeps an orphan from writing."""
+    controller = controller_process() if hasattr(os, "fork") else None
+    watcher = _watch(controller, interval) if controller is not None else None
+    try:
+        yield
+    finally:
+        if watcher is not None:
+            try:
+                os.kill(watcher, signal.SIGKILL)
+                os.waitpid(watcher, 0)
+            except (ProcessLookupError, ChildProcessError):
+                pass
+
+
+def _watch(controller: tuple[int, float], interval: float) -> int:
+    """Fork the watcher of :func:`stop_with_controller`; its process id. The watcher holds none of
+    the job's files open (a reader waiting for the job's output must not wait for it)."""
+    job = os.getpid()
+    pid = os.fork()
+    if pid:
+        return pid
+    try:  # the watcher: no Python-level cleanup of the job's state, ever (os._exit)
+        null = os.open(os.devnull, os.O_RDWR)
+        for fd in (0, 1, 2):
+            os.dup2(null, fd)
+        for fd in map(int, os.listdir("/proc/self/fd")) if os.path.isdir("/proc/self/fd") else ():
+            if fd > 2:
+                try:
+                    os.close(fd)
+                except OSError:
+                    pass
+        while os.getppid() == job:
+            if not _running(*controller):
+                os.kill(job, signal.SIGKILL)
+                break
+            time.sleep(interval)
+    finally:
+        os._exit(0)
 
 
 def controller_process() -> tuple[int, float] | None:

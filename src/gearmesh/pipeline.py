@@ -26,7 +26,7 @@ import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
 from .io import (DATA_ATTR, add_provenance, atomic_output, figure_sources, job_outputs, normal_path, read_dataset,
-                 write_dataset)
+                 stop_with_controller, write_dataset)
 from .settings import stage_of
 from .stages import dependencies
 from .tables import write_csv
@@ -95,7 +95,8 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
                 resolve(getattr(smk.params, name))
         age, cpu = _process_age(), _cpu_seconds()
         start = time.perf_counter()
-        with job_outputs():  # an orphan of a killed run, or a clobbered output, writes nothing
+        # killed with its controller (kill -9: no orphan runs on); an orphan or a clobbered output writes nothing
+        with stop_with_controller(), job_outputs():
             figures = body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
         logging.exception("job failed")
