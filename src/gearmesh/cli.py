@@ -98,11 +98,26 @@ def _pair(args: argparse.Namespace, path: str | None = None):
 
 def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     data = read_yaml(args.file, "file")
-    if isinstance(data, Mapping) and ("study" in data or "pairs" in data or "__use_yte__" in data):  # not a pair file
+    if not data:
+        raise GearmeshInputError("file", args.file, "is empty: neither a gear pair file (teeth, normal_module_mm, ...) "
+                                 "nor a study config (study, pairs, ...); 'gearmesh example NAME' prints a pair file, "
+                                 "'gearmesh schema study --format markdown' lists a study's keys")
+    if _is_study(data):
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
     pair = _pair(args, args.file)[0]
     return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
+
+
+def _is_study(data: Any) -> bool:
+    """Whether a document is meant as a study config: a mapping with a key of a study config that no
+    pair file has (or ``__use_yte__``, which only Snakemake reads), so its errors are a study's."""
+    from .settings import pair_schema, study_schema
+
+    if not isinstance(data, Mapping):
+        return False
+    study_only = set(study_schema()["properties"]) - set(pair_schema()["properties"])
+    return "__use_yte__" in data or bool(study_only & set(map(str, data)))
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:

@@ -241,7 +241,7 @@ def _running(pid: int, started: float) -> bool:
         return False
 
 
-def _space_errno(exc: BaseException) -> int | None:
+def space_errno(exc: BaseException) -> int | None:
     """ENOSPC or EDQUOT when ``exc`` or an exception that caused it is one, else None."""
     seen: BaseException | None = exc
     while seen is not None:
@@ -254,7 +254,7 @@ def _space_errno(exc: BaseException) -> int | None:
 def disk_full(exc: BaseException, folder: Path) -> bool:
     """Whether ``exc`` (or what caused it) is a full disk or quota (ENOSPC, EDQUOT), or a library
     error on a file system with less than :data:`FULL_DISK_BYTES` left."""
-    if _space_errno(exc) is not None:
+    if space_errno(exc) is not None:
         return True
     return isinstance(exc, (OSError, RuntimeError)) and _free_bytes(folder) < FULL_DISK_BYTES
 
@@ -270,7 +270,7 @@ def _free_bytes(folder: Path) -> float:
 
 def _reason(exc: BaseException) -> str:
     """The failed write's cause in a few words (the system's text for ENOSPC/EDQUOT)."""
-    code = _space_errno(exc)
+    code = space_errno(exc)
     return os.strerror(code) if code is not None else " ".join(str(exc).split())[:80] or type(exc).__name__
 
 

@@ -16,6 +16,7 @@ from __future__ import annotations
 import importlib
 import logging
 import os
+import re
 import resource
 import sys
 import time
@@ -25,8 +26,8 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
-from .io import (DATA_ATTR, add_provenance, atomic_output, figure_sources, job_outputs, normal_path, read_dataset,
-                 stop_with_controller, write_dataset)
+from .io import (DATA_ATTR, OutputError, add_provenance, atomic_output, figure_sources, job_outputs, normal_path,
+                 read_dataset, space_errno, stop_with_controller, write_dataset)
 from .settings import stage_of
 from .stages import dependencies
 from .tables import write_csv
@@ -100,7 +101,7 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
             figures = body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
         logging.exception("job failed")
-        print(f"gearmesh: error: {exc}", file=sys.stderr)
+        print(f"gearmesh: error: {error_line(exc)}", file=sys.stderr)
         sys.exit(2 if isinstance(exc, ValueError) else 1)
     # wall time and peak memory of every job, the measurements behind the profiles' resources
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # Linux: kB
@@ -108,6 +109,37 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
     logging.info("done in %.2f s (figures %.2f s)%s, CPU %.2f s + %.2f s, peak RSS %.0f MB (threads %s): %s",
                  time.perf_counter() - start, figures or 0.0, startup, cpu, _cpu_seconds() - cpu, peak_mb,
                  getattr(smk, "threads", 1), ", ".join(map(str, smk.output)))
+
+
+def error_line(exc: BaseException) -> str:
+    """The one line a failed job prints: the exception's text; for a full disk reported without a
+    path (a library's own write: numba's cache of compiled code under the package's
+    ``__pycache__`` or ``NUMBA_CACHE_DIR``), the file being written, from the traceback."""
+    code = space_errno(exc)
+    if code is None or isinstance(exc, OutputError) or getattr(exc, "filename", None):
+        return str(exc)
+    path, where = _file_being_written(exc)
+    if path is None:
+        return f"{exc} (the disk is full: free space and rerun)"
+    numba = " (numba's cache of compiled code; NUMBA_CACHE_DIR moves it)" if "numba" in where else ""
+    return f"{path} = 'not written': the disk is full ({os.strerror(code)}){numba}; free space and rerun"
+
+
+def _file_being_written(exc: BaseException) -> tuple[str | None, str]:
+    """The file a failed write was writing: the last file opened for writing among the locals of
+    the frames ``exc`` passed through (innermost wins), its name without a temporary's suffix
+    (numba writes ``NAME.tmp.UID``), and the source file of that frame."""
+    found: tuple[str | None, str] = (None, "")
+    tb = exc.__traceback__
+    while tb is not None:
+        for local, value in tb.tb_frame.f_locals.items():
+            if local == "self":  # the file's own method, not the code writing to it
+                continue
+            name, mode = getattr(value, "name", None), getattr(value, "mode", "")
+            if isinstance(name, str) and isinstance(mode, str) and any(c in mode for c in "wax+"):
+                found = (re.sub(r"\.tmp\.[0-9a-f]+$", "", name), tb.tb_frame.f_code.co_filename)
+        tb = tb.tb_next
+    return found
 
 
 def _title(smk: Any) -> str:

@@ -44,7 +44,7 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .errors import GearmeshInputError, excerpt
-from .gear import GearPair, pair_to_dict
+from .gear import _REQUIRED_KEYS, GearPair, pair_to_dict
 from .io import DATA_ATTR, FIGURE_KEY, config_digest, data_digest, figure_provenance, normal_path
 
 #: Global attributes :func:`identify` writes: the file as written (relative POSIX path), the
@@ -363,11 +363,18 @@ def check_dataset_pair(argument: str, ds: xr.Dataset, pair: GearPair) -> None:
         wanted.pop("modification", None)
     recorded = made.get("pair", {})
     key = first_difference(recorded, wanted)
-    if key is not None:
-        raise GearmeshInputError(argument, f"a dataset of {recorded.get('name')!r}",
-                                 f"was computed with {key} = {_value(recorded, key)}, this pair "
-                                 f"{pair.name!r} has {key} = {_value(wanted, key)}: pass this pair's own "
-                                 f"{argument} dataset (or none)")
+    if key is None:
+        return
+    if recorded.get("name") != pair.name:  # another pair's: say so, and where its gears differ first
+        key = next((k for k in _REQUIRED_KEYS if first_difference(recorded.get(k), wanted.get(k)) is not None), None)
+        where = "" if key is None else f" ({key} = {_value(recorded, key)}, this pair's {_value(wanted, key)})"
+        raise GearmeshInputError(argument, f"a dataset of {recorded.get('name')!r}", f"was computed for pair "
+                                 f"{recorded.get('name')!r}{where}, not for this pair {pair.name!r}: pass this pair's "
+                                 f"own {argument} dataset (or none)")
+    raise GearmeshInputError(argument, f"a dataset of {recorded.get('name')!r}",
+                             f"was computed with {key} = {_value(recorded, key)}, this pair "
+                             f"{pair.name!r} has {key} = {_value(wanted, key)}: pass this pair's own "
+                             f"{argument} dataset (or none)")
 
 
 #: Global attribute of :func:`identify`: the function that made the file, with the digest of

@@ -13,7 +13,7 @@ import xarray as xr
 
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
-from . import variant_name
+from . import variant_names
 from ..gear import GEARS, GearPair, pair_geometry
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
                       impact_response, impact_static, load_grid, load_window, ltca_criteria, mesh_in_point,
@@ -315,7 +315,7 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     speed, with the scenario and the reduction against the ``standard`` variant (%); and, where
     the impact stage computed them, each variant's load window against ``standard`` and the range
     of F_s under the study's tolerance samples."""
-    names = [variant_name(ds, k) for k, ds in enumerate(impact)]
+    names = variant_names("impact", impact)
     torque = impact[0]["torque"].values
     for ds in impact[1:]:
         if not np.array_equal(ds["torque"].values, torque):
