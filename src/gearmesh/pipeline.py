@@ -13,6 +13,7 @@ each file is written atomically, so a failing job leaves no output with its fina
 
 from __future__ import annotations
 
+import functools
 import importlib
 import logging
 import os
@@ -163,8 +164,8 @@ def study_pair(config: Mapping[str, Any], name: str, variant: str | None) -> Gea
 def _expected(smk: Any, pair: GearPair | None = None) -> Expected:
     """What this job expects of the files it reads (:mod:`gearmesh.upstream`); a stage over
     several pairs or variants (a study table) expects each file's own pair and variant."""
-    return Expected(smk.config, pair, getattr(smk.wildcards, "variant", None),
-                    None if pair is not None else lambda name, variant: study_pair(smk.config, name, variant))
+    pair_of = functools.lru_cache(maxsize=None)(lambda name, variant: study_pair(smk.config, name, variant))
+    return Expected(smk.config, pair, getattr(smk.wildcards, "variant", None), None if pair is not None else pair_of)
 
 
 def _outputs(smk: Any, suffix: str) -> dict[str, str]:

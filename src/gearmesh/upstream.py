@@ -33,6 +33,7 @@ and runs told to ignore their rerun triggers.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -205,12 +206,13 @@ def record_tables(ds: xr.Dataset, tables: Mapping[str, str]) -> xr.Dataset:
     return ds
 
 
-def check_figure(path: str | Path) -> None:
+def check_figure(path: str | Path, digest_of: Callable[[str], str] | None = None) -> None:
     """Refuse a figure (PNG) that is not the one its job drew at ``path``: without provenance
     (not drawn by a gearmesh job, or replaced), a copy of another job's figure (another
     variant's, moved or copied here), edited since it was drawn, or drawn from a file that has
     changed or gone since (stale). One line naming the file and how to remake it
-    (:func:`gearmesh.io.stamp_figure` writes what this reads)."""
+    (:func:`gearmesh.io.stamp_figure` writes what this reads). ``digest_of``: :func:`file_digest`,
+    or a memo of it over many figures drawn from the same files."""
     try:
         data = Path(path).read_bytes()
     except OSError as exc:
@@ -227,7 +229,7 @@ def check_figure(path: str | Path) -> None:
         raise GearmeshInputError(str(path), "an edited figure", "does not match the digest it was drawn with; "
                                  f"{_recovery(path)}")
     for source, recorded in (meta.get("drawn_from") or {}).items():
-        now = file_digest(source)
+        now = (digest_of or file_digest)(source)
         if now != recorded:
             what = "is missing or unreadable now" if not now else "has changed since"
             raise GearmeshInputError(str(path), f"the figure drawn from {source}", f"that file {what}: this figure is "
@@ -424,6 +426,7 @@ def check_tree(root: str | Path, config: Mapping[str, Any] | None = None,
 
     problems: list[str] = []
     root = Path(root)
+    pair_of = functools.lru_cache(maxsize=None)(pair_of) if pair_of is not None else None  # a pair (optimum) once
     tables: dict[str, tuple[str, str]] = {}
     for path in sorted(root.rglob("*.nc")):
         if any(part.startswith(".") for part in path.relative_to(root).parts):
@@ -454,11 +457,12 @@ def check_tree(root: str | Path, config: Mapping[str, Any] | None = None,
         except GearmeshInputError as exc:
             problems.append(str(exc))
     problems += _check_tables(tables, root)
+    digest_of = functools.lru_cache(maxsize=None)(file_digest)  # a file several figures were drawn from, read once
     for path in sorted(root.rglob("*.png")):
         if any(part.startswith(".") for part in path.relative_to(root).parts):
             continue
         try:
-            check_figure(normal_path(path))
+            check_figure(normal_path(path), digest_of)
         except GearmeshInputError as exc:
             problems.append(str(exc))
     for path in sorted(root.rglob("optimise/*/pair.yaml")):
