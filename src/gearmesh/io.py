@@ -20,7 +20,6 @@ import logging
 import math
 import os
 import re
-import signal
 import socket
 import struct
 import time
@@ -164,54 +163,70 @@ def job_outputs() -> Iterator[None]:
 
 #: Seconds between two looks of a job's watcher (:func:`stop_with_controller`) at its controller.
 WATCH_INTERVAL = 0.5
+#: The watcher of :func:`stop_with_controller`: a bare interpreter (no site, no imports but os and
+#: time) given the job's and the controller's process ids, each with its start (field 22 of
+#: /proc/PID/stat, so a reused process id is not taken for it), and the interval. A zombie is
+#: gone: a killed controller whose parent does not reap it (a container's first process) stays
+#: in the process table.
+_WATCHER = """
+import os, sys, time
+job, job_started, controller, started, interval = sys.argv[1:6]
+def alive(pid, started):
+    try:
+        os.kill(int(pid), 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        pass
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            fields = stat.read().rsplit(")", 1)[1].split()
+    except OSError:  # no /proc (not Linux): kill's answer; with /proc, the process has just gone
+        return not os.path.isdir("/proc")
+    return fields[0] != "Z" and (not started or fields[19] == started)
+while alive(job, job_started):
+    if not alive(controller, started):
+        os.kill(int(job), 9)
+        break
+    time.sleep(float(interval))
+"""
 
 
 @contextmanager
 def stop_with_controller(interval: float = WATCH_INTERVAL) -> Iterator[None]:
-    """Inside a workflow job: a watcher process (forked, so it costs no start-up) that kills the
-    job (SIGKILL) within ``interval`` seconds once the Snakemake process that started it is gone
-    (killed with ``kill -9``: nobody waits for the job, and a recovery run may be remaking its
-    files), and ends with the block. A thread could not do it: a compiled loop (the dynamics' RK4,
-    seconds to minutes) holds the interpreter. Outside a local run (no Snakemake ancestor, no
-    ``fork``: a cluster job, whose controller runs elsewhere) it does nothing; :func:`job_outputs`
-    still keeps an orphan from writing."""
-    controller = controller_process() if hasattr(os, "fork") else None
-    watcher = _watch(controller, interval) if controller is not None else None
+    """Inside a workflow job that runs in a process of its own (no job server): a watcher process
+    that kills the job (SIGKILL) within ``interval`` seconds once the Snakemake process that started
+    it is gone (killed with ``kill -9``: nobody waits for the job, and a recovery run may be
+    remaking its files), and ends with the block. A thread could not do it: a compiled loop (the
+    dynamics' RK4, seconds to minutes) holds the interpreter; a fork would cost the job the copy
+    of every page it then writes. (A job on the run's job server is stopped by the server:
+    :mod:`gearmesh.jobserver`.) Without a Snakemake ancestor (a cluster job, whose controller runs
+    elsewhere) it does nothing; :func:`job_outputs` still keeps an orphan from writing."""
+    import subprocess
+    import sys
+
+    controller = controller_process()
+    watcher = None
+    if controller is not None:
+        job = os.getpid()
+        watcher = subprocess.Popen([sys.executable, "-I", "-S", "-c", _WATCHER, str(job), _start_ticks(job),
+                                    str(controller[0]), _start_ticks(controller[0]), repr(interval)],
+                                   stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
     try:
         yield
     finally:
         if watcher is not None:
-            try:
-                os.kill(watcher, signal.SIGKILL)
-                os.waitpid(watcher, 0)
-            except (ProcessLookupError, ChildProcessError):
-                pass
+            watcher.kill()
+            watcher.wait()
 
 
-def _watch(controller: tuple[int, float], interval: float) -> int:
-    """Fork the watcher of :func:`stop_with_controller`; its process id. The watcher holds none of
-    the job's files open (a reader waiting for the job's output must not wait for it)."""
-    job = os.getpid()
-    pid = os.fork()
-    if pid:
-        return pid
-    try:  # the watcher: no Python-level cleanup of the job's state, ever (os._exit)
-        null = os.open(os.devnull, os.O_RDWR)
-        for fd in (0, 1, 2):
-            os.dup2(null, fd)
-        for fd in map(int, os.listdir("/proc/self/fd")) if os.path.isdir("/proc/self/fd") else ():
-            if fd > 2:
-                try:
-                    os.close(fd)
-                except OSError:
-                    pass
-        while os.getppid() == job:
-            if not _running(*controller):
-                os.kill(job, signal.SIGKILL)
-                break
-            time.sleep(interval)
-    finally:
-        os._exit(0)
+def _start_ticks(pid: int) -> str:
+    """When process ``pid`` started (field 22 of /proc/PID/stat, clock ticks since boot), '' off Linux."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="ascii") as stat:
+            return stat.read().rsplit(")", 1)[1].split()[19]
+    except (OSError, IndexError):
+        return ""
 
 
 def controller_process() -> tuple[int, float] | None:
@@ -232,11 +247,13 @@ def controller_process() -> tuple[int, float] | None:
 
 
 def _running(pid: int, started: float) -> bool:
-    """Whether process ``pid`` still runs and is the one that started at ``started`` (not a reuse)."""
+    """Whether process ``pid`` still runs and is the one that started at ``started`` (not a reuse, not
+    a zombie: a killed process its parent has not reaped)."""
     import psutil
 
     try:
-        return psutil.Process(pid).create_time() == started
+        process = psutil.Process(pid)
+        return process.create_time() == started and process.status() != psutil.STATUS_ZOMBIE
     except psutil.Error:
         return False
 

@@ -18,8 +18,8 @@ Lifetimes: the server exits when the run ends (:func:`stop`, from ``onsuccess``/
 its running children finish their jobs) or when the Snakemake process that started it is gone
 (killed: it kills its running children first, within half a second); a child is killed when its
 job's script is (Snakemake cancelling the job, Ctrl-C), so no job goes on working after its
-controller stopped waiting for it (and each job's own watcher, :func:`gearmesh.io.stop_with_controller`,
-kills it too). The socket lives in a private temporary directory (mode 0700): only the user who
+controller stopped waiting for it. A job its script runs itself (no server) has a watcher of its
+own that does the same (:func:`gearmesh.io.stop_with_controller`). The socket lives in a private temporary directory (mode 0700): only the user who
 started the run can hand the server a job.
 
 Protocol (one connection per job): the script sends its standard streams' descriptors with an
@@ -71,8 +71,10 @@ def run(smk: Any, entry: str) -> None:
     if started is not None:  # what the job's log measures its start-up from (gearmesh.pipeline)
         os.environ[STARTED_ENV] = repr(started)
     from . import pipeline
+    from .io import stop_with_controller
 
-    getattr(pipeline, entry)(smk)
+    with stop_with_controller():  # killed with its Snakemake (kill -9), as a job on the server is
+        getattr(pipeline, entry)(smk)
 
 
 def _run_on_server(smk: Any, entry: str) -> int | None:

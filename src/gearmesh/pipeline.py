@@ -28,7 +28,7 @@ import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
 from .io import (DATA_ATTR, OutputError, add_provenance, atomic_output, figure_sources, job_outputs, normal_path,
-                 read_dataset, space_errno, stop_with_controller, write_dataset)
+                 read_dataset, space_errno, write_dataset)
 from .settings import stage_of
 from .stages import dependencies
 from .tables import write_csv
@@ -97,8 +97,7 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
                 resolve(getattr(smk.params, name))
         age, cpu = _process_age(), _cpu_seconds()
         start = time.perf_counter()
-        # killed with its controller (kill -9: no orphan runs on); an orphan or a clobbered output writes nothing
-        with stop_with_controller(), job_outputs():
+        with job_outputs():  # an orphan of a killed run, or a clobbered output, writes nothing
             figures = body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
         logging.exception("job failed")
