@@ -117,7 +117,7 @@ BAD_FILES = [
     ("not YAML", "[not, a, mapping", "file"),
     ("tab indentation", "name: p\n\tteeth: [29, 49]\n", "file"),
     ("duplicate key", yaml.safe_dump(_pair()) + "teeth: [20, 40]\n", "teeth"),
-    ("empty file", "", "pair"),
+    ("empty file", "", "file"),  # neither a pair file nor a study config: validate says so, not "pair file"
 ]
 
 BASE_STUDY = {"study": "s", "pairs": ["p"]}

@@ -150,3 +150,35 @@ def test_the_server_imports_the_modules_its_rules_name():
                                      {"positions": 3}]),
              SimpleNamespace(params=None)]
     assert jobserver.rule_modules(rules) == ["gearmesh.datasets.ltca", "gearmesh.pipeline", "gearmesh.plots.ltca"]
+
+
+#: A stand-in for the Snakemake run: starts a server as the Snakefile's onstart does, says its
+#: socket, then waits to be killed.
+PARENT = ("import sys, time; from gearmesh import jobserver; "
+          "print(jobserver.start(['gearmesh.pipeline', 'gearmesh.datasets.stiffness']), flush=True); time.sleep(600)")
+
+
+def test_killing_the_controller_stops_the_jobs_on_its_server(root, tmp_path, monkeypatch):
+    """After kill -9 of Snakemake up to five jobs ran on to completion: the server, seeing its run
+    gone, kills its running children, and their scripts end (exit 1, one line)."""
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    parent = subprocess.Popen([sys.executable, "-c", PARENT], stdout=subprocess.PIPE, text=True)
+    try:
+        path = parent.stdout.readline().strip()
+        assert Path(path).exists(), path
+        server = psutil.Process(parent.pid).children()[0]
+        job = _job(root, tmp_path, "gearmesh.datasets.stiffness:stiffness_dataset", {"slices": 4000, "positions": 720})
+        script = _script(job, tmp_path, {**os.environ, jobserver.ENV: path})
+        deadline = time.monotonic() + 60
+        while not server.children() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        (child,) = server.children()
+        parent.kill()
+        parent.wait()
+        child.wait(timeout=5)  # psutil.TimeoutExpired if the job ran on
+        _, err = script.communicate(timeout=10)
+        assert script.returncode == 1 and "died before it finished" in err, err
+        server.wait(timeout=5)
+        assert not (tmp_path / "result.nc").exists()
+    finally:
+        parent.kill()

@@ -13,7 +13,8 @@ import math
 import os
 import re
 import sys
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -205,13 +206,28 @@ def _with_deviations(pair, args: argparse.Namespace):
 
 def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     data = read_yaml(args.file, "file")
-    if isinstance(data, Mapping) and ("study" in data or "pairs" in data or "__use_yte__" in data):  # not a pair file
+    if not data:
+        raise GearmeshInputError("file", args.file, "is empty: neither a gear pair file (teeth, normal_module_mm, ...) "
+                                 "nor a study config (study, pairs, ...); 'gearmesh example NAME' prints a pair file, "
+                                 "'gearmesh schema study --format markdown' lists a study's keys")
+    if _is_study(data):
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
     pair = _pair(args, args.file)[0]
     out = {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
     needs = missing_needs(pair)  # what some commands need beyond a valid pair, and which key to add
     return {**out, "needs": needs} if needs else out
+
+
+def _is_study(data: Any) -> bool:
+    """Whether a document is meant as a study config: a mapping with a key of a study config that no
+    pair file has (or ``__use_yte__``, which only Snakemake reads), so its errors are a study's."""
+    from .settings import pair_schema, study_schema
+
+    if not isinstance(data, Mapping):
+        return False
+    study_only = set(study_schema()["properties"]) - set(pair_schema()["properties"])
+    return "__use_yte__" in data or bool(study_only & set(map(str, data)))
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
@@ -640,58 +656,62 @@ class _Problems(GearmeshInputError):
         ValueError.__init__(self, "\ngearmesh: error: ".join(lines))
 
 
-def cmd_check(args) -> None:
-    """``gearmesh check RESULTS [--configfile C]``: every problem of a results folder
-    (:func:`gearmesh.upstream.check_tree`), one line each; nothing printed when all is well."""
+def cmd_check(args) -> dict[str, Any] | None:
+    """``gearmesh check RESULTS [--configfile C] [--json]``: every problem of a study's results
+    folder (:func:`gearmesh.upstream.check_tree`), one line each; nothing printed when all is well
+    (``--json``: one object, ``ok`` and ``problems``). The files record their paths relative to
+    the folder the run ran in, the one above ``results/``: the check runs there, whatever folder
+    it is called from and however RESULTS is written (relative or absolute)."""
     from .pipeline import study_pair
     from .upstream import check_tree
 
-    root = Path(args.results)
-    if not root.is_dir():
-        raise GearmeshInputError("results", args.results, "must be a study's results folder (results/STUDY)")
-    config = None
-    if args.configfile is not None:
-        config = load_study(args.configfile)
-    problems = check_tree(root, config, None if config is None else lambda name, v: study_pair(config, name, v))
+    workdir, results = _run_folder(args.results)
+    config = None if args.configfile is None else load_study(args.configfile)  # read where it was named
+    with _working_directory(workdir):
+        problems = check_tree(results, config, None if config is None else lambda name, v: study_pair(config, name, v))
+    if args.json:
+        print(json.dumps({"results": results.as_posix(), "run_folder": str(workdir), "ok": not problems,
+                          "problems": problems}))
     if problems:
         raise _Problems(problems)
     return None
 
 
-#: The study config Snakemake reads when no --configfile is given (the Snakefile's configfile).
-DEFAULT_STUDY = "config/config.yaml"
+def _run_folder(results: str) -> tuple[Path, Path]:
+    """The folder a study ran in and its results folder relative to it (``results/STUDY``), from
+    the results folder as given (relative to here, or absolute)."""
+    path = Path(results)
+    if not path.is_dir():
+        raise GearmeshInputError("results", results, "must be a study's results folder (results/STUDY)")
+    path = path.resolve()
+    if path.parent.name != "results":
+        raise GearmeshInputError("results", results, "must be a study's results folder results/STUDY as a run wrote "
+                                 "it (its files name their paths from the folder above results/)")
+    return path.parent.parent, Path("results", path.name)
 
 
-def snakemake_configfiles(argv: Sequence[str]) -> list[str]:
-    """The config files a Snakemake command line names (``--configfile(s) A B``, ``--configfile=A``),
-    or the workflow's default study when it names none."""
-    files: list[str] = []
-    taking = False
-    for arg in argv:
-        if arg in ("--configfile", "--configfiles"):
-            taking = True
-        elif arg.startswith(("--configfile=", "--configfiles=")):
-            files.append(arg.split("=", 1)[1])
-            taking = False
-        elif taking and not arg.startswith("-"):
-            files.append(arg)
-        else:
-            taking = False
-    return files or [DEFAULT_STUDY]
+@contextmanager
+def _working_directory(path: Path) -> Iterator[None]:
+    """Run the block in ``path`` as the working directory, then return."""
+    here = os.getcwd()
+    os.chdir(path)
+    try:
+        yield
+    finally:
+        os.chdir(here)
 
 
 def cmd_run(args) -> None:
-    """``gearmesh run SNAKEMAKE-ARGS``: read every study config of the command line with the
-    package's bounded loader (a regular file, at most MAX_INPUT_BYTES, MAX_INPUT_NODES nodes and
-    MAX_INPUT_DEPTH levels, no alias, no ``__use_yte__``) and validate it, then hand the command
-    line to Snakemake, whose own loader (and template engine) never sees a file that failed."""
+    """``gearmesh run SNAKEMAKE-ARGS``: every config Snakemake would read before the Snakefile runs
+    (the command line's config files, every profile and the config files it names,
+    ``$SNAKEMAKE_PROFILE`` and the workflow's default profile included) read with the package's
+    bounded loader and validated (:mod:`gearmesh.launch`), then Snakemake started with the same
+    arguments: its own loader (and template engine) never sees a file that failed."""
     import shutil
 
-    for path in snakemake_configfiles(args.snakemake_args):
-        data = read_yaml(path, "config file")
-        if not isinstance(data, Mapping):
-            raise GearmeshInputError("config file", path, "must be a YAML mapping (a study config)")
-        validate_study(data)
+    from .launch import check_inputs, snakemake_inputs
+
+    check_inputs(snakemake_inputs(args.snakemake_args))
     exe = shutil.which("snakemake", path=str(Path(sys.executable).parent)) or shutil.which("snakemake")
     if exe is None:
         raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'")
@@ -736,12 +756,14 @@ def build_parser() -> argparse.ArgumentParser:
 
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 
-    p = sub.add_parser("run", help="run the workflow of a gearmesh checkout: check every study config with the "
-                       "bounded loader, then snakemake with the same arguments", description="Run the workflow as "
-                       "'snakemake ARGS' in a checkout of the gearmesh repository (the Snakefile, the workflow and the "
-                       "study configs are not part of the installed package; the folder you run it in must hold "
-                       "them), after reading every --configfile (without one, the checkout's default study "
-                       "config/config.yaml) with gearmesh's bounded loader and validating it, so a config Snakemake "
+    p = sub.add_parser("run", help="run the workflow of a gearmesh checkout: check every study config and profile "
+                       "with the bounded loader, then snakemake with the same arguments", description="Run the "
+                       "workflow as 'snakemake ARGS' in a checkout of the gearmesh repository (the Snakefile, the "
+                       "workflow and the study configs are not part of the installed package; the folder you run it "
+                       "in must hold them), after reading every config Snakemake would read before the workflow's own "
+                       "checks (each --configfile, or config/config.yaml; every profile: --profile, "
+                       "$SNAKEMAKE_PROFILE, --workflow-profile or the workflow's profiles/default, and the config "
+                       "files a profile names) with gearmesh's bounded loader and validating it, so a file Snakemake "
                        "would parse without limits (a huge or nested file, a FIFO, a __use_yte__ template that runs "
                        "Python) never reaches Snakemake. Example, in the checkout: "
                        "gearmesh run --cores 2 --configfile config/studies/contact_lines.yaml",
@@ -751,13 +773,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("check", help="check a study's results folder: name every damaged, foreign, edited or stale "
                        "file (exit 0, or 2 with one line per file)",
-                       description="Check every netCDF file and optimum pair file under RESULTS (e.g. "
-                       "results/impact_case): readable, a gearmesh result at its own path, its data matching its "
-                       "digest, made by the current code from inputs that are still the files it was made from; with "
-                       "--configfile also made with that study's settings and pair data. Each problem is one line "
-                       "naming the file and the command that remakes it.", formatter_class=_HelpFormatter)
+                       description="Check every netCDF file, CSV table, PNG figure and optimum pair file under "
+                       "RESULTS (e.g. results/impact_case, from any folder, relative or absolute): readable, a gearmesh "
+                       "result at its own path, its data matching its digest, made by the current code from inputs "
+                       "that are still the files it was made from (a table or figure: the one its job wrote or drew, "
+                       "unedited, from files unchanged since); with --configfile also made with that study's settings "
+                       "and pair data. Each problem is one line naming the file and the command that remakes it, to "
+                       "be run in the folder above results/.", formatter_class=_HelpFormatter)
     p.add_argument("results", help="a study's results folder (results/STUDY)")
     p.add_argument("--configfile", default=None, help="the study config the results must agree with")
+    p.add_argument("--json", action="store_true", help="print one JSON object: ok and the problems, one line each")
     p.set_defaults(func=cmd_check)
 
     p = sub.add_parser("schema", help="print the JSON schema of a study config or a pair file (for editors), or "

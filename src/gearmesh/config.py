@@ -187,6 +187,9 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
                        MAX_CONTACT_POINTS, "contact candidates per line")
     if "ltca" in config:
         loads("ltca", "torques_Nm", config["ltca"]["on"], config["pairs"])
+    if "rating" in config:  # the README's promise: no rating above the burst speed
+        for name in config["pairs"]:
+            check_speeds(geoms[name], config["rating"]["speed_rpm"], "rating.speed_rpm")
     if "impact" in config:
         loads("impact", "torques_Nm", config["impact"]["on"], config["pairs"])
         with _section("impact"):

@@ -14,10 +14,12 @@ do not depend on where it ran (tested bit for bit). Without a server — a clust
 ``fork``, ``GEARMESH_JOBSERVER=off``, or a server that is not there — the script runs the
 function itself.
 
-Lifetimes: the server exits when the run ends (:func:`stop`, from ``onsuccess``/``onerror``) or
-when the Snakemake process that started it is gone; a child is killed when its job's script is
-(Snakemake cancelling the job, Ctrl-C), so no job goes on writing after its controller stopped
-waiting for it. The socket lives in a private temporary directory (mode 0700): only the user who
+Lifetimes: the server exits when the run ends (:func:`stop`, from ``onsuccess``/``onerror``:
+its running children finish their jobs) or when the Snakemake process that started it is gone
+(killed: it kills its running children first, within half a second); a child is killed when its
+job's script is (Snakemake cancelling the job, Ctrl-C), so no job goes on working after its
+controller stopped waiting for it. A job its script runs itself (no server) has a watcher of its
+own that does the same (:func:`gearmesh.io.stop_with_controller`). The socket lives in a private temporary directory (mode 0700): only the user who
 started the run can hand the server a job.
 
 Protocol (one connection per job): the script sends its standard streams' descriptors with an
@@ -69,8 +71,10 @@ def run(smk: Any, entry: str) -> None:
     if started is not None:  # what the job's log measures its start-up from (gearmesh.pipeline)
         os.environ[STARTED_ENV] = repr(started)
     from . import pipeline
+    from .io import stop_with_controller
 
-    getattr(pipeline, entry)(smk)
+    with stop_with_controller():  # killed with its Snakemake (kill -9), as a job on the server is
+        getattr(pipeline, entry)(smk)
 
 
 def _run_on_server(smk: Any, entry: str) -> int | None:
@@ -213,8 +217,9 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
         except Exception:  # noqa: BLE001
             pass
     listener.settimeout(0.5)
+    children: set[int] = set()
     while not stopping and os.getppid() == parent:
-        _reap()
+        _reap(children)
         try:
             conn, _ = listener.accept()
         except (TimeoutError, InterruptedError):
@@ -223,25 +228,34 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
         if pid == 0:
             listener.close()
             _child(conn)
+        children.add(pid)
         conn.close()
     listener.close()
     shutil.rmtree(os.path.dirname(path), ignore_errors=True)  # also when the run was killed
-    while _reap(block=True):
-        pass
+    if not stopping:  # the run's Snakemake is gone (kill -9): nobody waits for its jobs, they stop now
+        for pid in children:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+    while children:
+        _reap(children, block=True)
 
 
-def _reap(block: bool = False) -> bool:
-    """Collect finished children (their CPU time then counts for this process's parent); whether
-    any child is left."""
-    while True:
+def _reap(children: set[int], block: bool = False) -> None:
+    """Collect finished ``children`` (their CPU time then counts for this process's parent) and
+    forget them; ``block``: wait for one."""
+    while children:
         try:
             pid, _ = os.waitpid(-1, 0 if block else os.WNOHANG)
         except ChildProcessError:
-            return False
+            children.clear()
+            return
         if pid == 0:
-            return True
+            return
+        children.discard(pid)
         if block:
-            return True
+            return
 
 
 def _child(conn: socket.socket) -> None:

@@ -32,7 +32,7 @@ from .choices import DEFAULT_CYCLE_POSITIONS, FZG_LOAD_STAGES, IDLER_GEARS, LIFE
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
                       TOOTH_METHODS)
 from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN
-from .limits import MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE
+from .limits import FACTOR_RANGES, MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
 from .stages import Read, Stage, always, ltca_drives, method_fe, runs
 
@@ -215,7 +215,8 @@ class Rating:
     STAGE: ClassVar = Stage("gearmesh.datasets.rating:rating_dataset", "{pair}/{variant}/rating.nc", "variant",
         reads=(Read("ltca"),), figures="gearmesh.plots.rating:rating_figures")
     speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
-    application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=1)
+    application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=FACTOR_RANGES["K_A"][0],
+                                        maximum=FACTOR_RANGES["K_A"][1])
     life_hours: float | None = setting(None, "required life for Z_NT, Y_NT (null: the long-life end, 1e10 cycles)", exclusive_minimum=0)
     method: Literal["iso", "ltca"] = setting("ltca", "where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the "
                                                      "standard's methods B/C or the LTCA's load distribution")

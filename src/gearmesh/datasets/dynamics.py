@@ -36,12 +36,12 @@ from ..dynamics import (
     train_model,
 )
 from ..errors import GearmeshInputError
-from . import variant_name
+from . import one_pair, variant_names
 from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import name_force_lines, variable
-from ..limits import (MAX_SPEED_STEPS, same_point, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS, check_slice_grid,
-                      check_speeds, positive_values)
+from ..limits import (BEARING_STIFFNESS, MAX_SPEED_STEPS, same_point, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS,
+                      check_slice_grid, check_speeds, positive_values)
 from ..loads import check_load, check_loads
 from ..ltca import contact_tangent_compliance, with_loaded_extension
 from ..deflection import mesh_misalignment
@@ -136,6 +136,8 @@ def _bearing(k_radial_N_per_m, k_axial_N_per_m, c_radial_Ns_per_m, c_axial_Ns_pe
                 or (positive and v == 0):
             raise GearmeshInputError(name, v, "must be a positive finite number" if positive
                                      else "must be a non-negative finite number")
+        if positive:  # a stiffness: within what bearings have, in the key's N/m
+            BEARING_STIFFNESS.check(v, name, "N/m")
         out[key] = float(v)
     return out
 
@@ -1092,8 +1094,9 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
     sweep. Every force transverse (the impact stage's direction: normal × cos βb), so F_s and
     the dynamics stand in one unit. Torques are those both stages ran (pinion torques).
     """
-    names = [variant_name(ds, k) for k, ds in enumerate(impact)]
-    by_name = {variant_name(d, k): d for k, d in enumerate(dynamics)}
+    names = variant_names("impact", impact)
+    by_name = dict(zip(variant_names("dynamics", dynamics), dynamics))
+    one_pair(impact=impact, dynamics=dynamics)
     if set(by_name) != set(names):
         raise GearmeshInputError("variants", sorted(by_name), f"impact and dynamics must cover the same variants "
                                  f"({sorted(names)})")

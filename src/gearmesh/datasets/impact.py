@@ -15,7 +15,7 @@ import xarray as xr
 from ..choices import IMPACT_INDEX
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
-from . import variant_name
+from . import variant_names
 from ..gear import GEARS, GearPair, load_pair, pair_geometry, pair_to_dict
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
                       impact_response, impact_static, load_grid, load_window, ltca_criteria, mesh_in_point,
@@ -370,7 +370,7 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     variant (%); and, where the impact stage computed them, each variant's load window against
     ``standard``, the range of F_s under the study's tolerance samples, and at the simulated
     torques the entering pair's simulated excess over its quasi-static force with F_s over it."""
-    names = [variant_name(ds, k) for k, ds in enumerate(impact)]
+    names = variant_names("impact", impact)
     torque = impact[0]["torque"].values
     for ds in impact[1:]:
         if not np.array_equal(ds["torque"].values, torque):

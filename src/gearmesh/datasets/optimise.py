@@ -229,7 +229,6 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
         f"{prefix}population": variable(("generation", "candidate", "gene"), _si(result, h["genes"]), "m",
                                         f"{label}: gene values of each candidate (before the validity repair)"),
         f"{prefix}evaluations": variable((), np.int64(result.evaluations), "1", f"{label}: distinct candidates evaluated"),
-        f"{prefix}wall_time": variable((), result.wall_s, "s", f"{label}: wall time of the run"),
     }
     if np.isfinite(h["lte"]).any():
         out[f"{prefix}lte_peak_to_peak"] = variable(gc, h["lte"], "m", f"{label}: peak-to-peak LTE at the design "
@@ -476,6 +475,9 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "pareto_objectives": ",".join(s.pareto_objectives) if s.method == "nsga2" else "",
         "constraints": json.dumps(constraint_factors(s), sort_keys=True),
         "settings_json": json.dumps(dict(settings or {}), sort_keys=True, default=str),
+        # measured times: attributes, not data (gearmesh.io.TIMING_SUFFIX: the job's log, not the file)
+        "wall_seconds": result.wall_s,
+        **({"random_wall_seconds": result.baseline.wall_s} if result.baseline is not None else {}),
     })
     return name_force_lines(ds, "transverse")
 

@@ -17,10 +17,11 @@ import xarray as xr
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, PairGeometry, missing_key, pair_geometry, pair_notes
 from ..io import variable
-from . import variant_name
-from ..limits import check_contact_grid
+from . import variant_names
+from ..limits import check_contact_grid, check_speeds
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
-from ..rating import face_factor_root, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
+from ..rating import (check_factors, face_factor_root, ltca_load_factors, rated_transverse_factor, rating,
+                      rating_inputs)
 from ..schema import check_arguments, defaults
 from ..settings import Rating
 
@@ -195,11 +196,16 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
     if life_hours is not None and (isinstance(life_hours, bool) or not isinstance(life_hours, (int, float))
                                    or not math.isfinite(life_hours) or life_hours <= 0):
         raise GearmeshInputError("life_hours", life_hours, "must be a positive number (h)")
-    if isinstance(application_factor, bool) or not isinstance(application_factor, (int, float)) \
-            or not math.isfinite(application_factor) or application_factor < 1:
+    if isinstance(application_factor, bool) or not isinstance(application_factor, (int, float)):
         raise GearmeshInputError("application_factor", application_factor, "must be a number ≥ 1 (ISO 6336-1 K_A)")
+    try:
+        check_factors({"K_A": application_factor})
+    except GearmeshInputError as exc:
+        raise GearmeshInputError("application_factor", application_factor, exc.rule) from None
+    check_factors(factors)  # every input checked before the LTCA, the expensive step
     inputs = rating_inputs(dict(pair.rating_inputs))
     geom = pair_geometry(pair)
+    check_speeds(geom, speed_rpm, "speed_rpm", on=on)  # not above the burst speed of the faster tip circle
     positions, points = check_contact_grid(positions, points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     speed1 = speed_rpm if on == "pinion" else speed_rpm * pair.teeth[1] / pair.teeth[0]
@@ -252,6 +258,7 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
         raise GearmeshInputError("ltca", type(ltca).__name__, "must be an ltca.nc dataset with its load-capacity "
                                  "variables")
     geom = pair_geometry(pair)
+    check_speeds(geom, speed_rpm, "speed_rpm")  # not above the burst speed of the faster tip circle
     inputs = rating_inputs(dict(pair.rating_inputs))
     torques = ltca["torque"].values
     rows = []
@@ -302,7 +309,7 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
 def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
     """The load capacity of every variant of a pair side by side (variant × torque): S_H and S_F of the
     weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear."""
-    names = [variant_name(ds, k) for k, ds in enumerate(rating)]
+    names = variant_names("rating", rating)
     torques = rating[0]["torque"].values
     for name, ds in zip(names, rating):
         if ds.sizes["torque"] != torques.size or not np.allclose(ds["torque"].values, torques, rtol=1e-12):

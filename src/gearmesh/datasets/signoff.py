@@ -53,7 +53,7 @@ from ..schema import check_arguments
 from ..settings import Signoff
 from ..stress import edge_pressure_reference
 from ..robust import CRITERION_UNITS
-from . import variant_name
+from . import one_pair, variant_names
 
 __all__ = ["BASES", "CRITERIA", "signoff_table_dataset"]
 
@@ -187,10 +187,11 @@ def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Datase
     ``meets_all`` holds them together (and, on the population basis, the held-out check). The
     variants' datasets may come in any order; they must cover the same variants (``dynamics`` may
     be empty: no dynamic criterion)."""
-    names = [variant_name(ds, k) for k, ds in enumerate(ltca)]
+    names = variant_names("ltca", ltca)
+    one_pair(ltca=ltca, impact=impact, rating=rating, dynamics=dynamics)
     by = {}
     for stage, datasets in (("impact", impact), ("rating", rating), ("dynamics", dynamics)):
-        by[stage] = {variant_name(ds, k): ds for k, ds in enumerate(datasets)}
+        by[stage] = dict(zip(variant_names(stage, datasets, empty_ok=stage == "dynamics"), datasets))
         if datasets and set(by[stage]) != set(names):
             raise GearmeshInputError("variants", sorted(by[stage]), f"{stage} and ltca must cover the same variants "
                                      f"({sorted(names)})")

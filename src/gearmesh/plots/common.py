@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter
 
 from ..gear import example_pairs
-from ..io import atomic_output
+from ..io import atomic_output, stamp_figure
 
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
@@ -42,9 +42,14 @@ def palette(n: int, name: str = "viridis", low: float = 0.1, high: float = 0.85)
 
 
 def save(fig: Figure, path: str | Path) -> Path:
-    """Write ``fig`` as PNG atomically (parent folders created)."""
+    """Write ``fig`` as PNG atomically (parent folders created), inside a workflow job with the
+    provenance of the figure (:func:`gearmesh.io.stamp_figure`)."""
     with atomic_output(path) as tmp:
         fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png")
+        png = tmp.read_bytes()
+        stamped = stamp_figure(png, path)
+        if stamped is not png:
+            tmp.write_bytes(stamped)
     return Path(path)
 
 
