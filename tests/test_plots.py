@@ -22,7 +22,7 @@ from gearmesh.datasets import ltca as lt
 from gearmesh.datasets import optimise as opd
 from gearmesh.datasets import stiffness as st
 from gearmesh.datasets.fe import fe_compliance_dataset
-from gearmesh.gear import load_pair
+from gearmesh.gear import load_pair, variant_pair
 from gearmesh.plots import dynamics, fe, geometry, impact, ltca, optimise, stiffness
 from gearmesh.plots.common import coinciding, end_labels, number, pair_label, subplots, title
 
@@ -38,7 +38,7 @@ def data():
     """Every stage's dataset of the impact case pair (standard and relieved) at coarse settings,
     the three-gear train and the study tables: a few seconds."""
     pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
-    relief = st.apply_variant(pair, "relief", RELIEF)
+    relief = variant_pair(pair, "relief", RELIEF)  # a micro-geometry variant of the same pair, as the workflow makes it
     out = {"geometry": geo.geometry_dataset(pair), "contact_lines": geo.contact_lines_dataset(pair, positions=60),
            "stiffness": st.stiffness_dataset(pair, slices=40, positions=60, torque_Nm=1000),
            "tca": lt.tca_dataset(relief, positions=24, points=15),

@@ -32,7 +32,9 @@ from .choices import DEFAULT_CYCLE_POSITIONS, FZG_LOAD_STAGES, IDLER_GEARS, LIFE
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
                       TOOTH_METHODS)
 from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN
-from .limits import FACTOR_RANGES, MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE
+from .limits import (BEARING_STIFFNESS, BENDING_FATIGUE_LIMIT, CONTACT_FATIGUE_LIMIT, DENSITY, FACTOR_RANGES,
+                     MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE, ROUGHNESS_RA, ROUGHNESS_RZ, VISCOSITY_40C,
+                     VISCOSITY_100C, YOUNGS_MODULUS, Plausible)
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
 from .stages import Read, Stage, always, ltca_drives, method_fe, runs
 
@@ -703,32 +705,39 @@ def study_keys() -> list[str]:
 # --------------------------------------------------------------------------------------
 
 
+def _within(plausible: Plausible) -> dict[str, float]:
+    """The schema bounds of a pair-file key checked against a plausible range (in the key's unit,
+    the first of the range's units: :class:`gearmesh.limits.Plausible`)."""
+    return {"minimum": plausible.low, "maximum": plausible.high}
+
+
 @dataclass(frozen=True, kw_only=True)
 class PairMaterial:
     """Isotropic elastic material of both gears; a key left out is steel's (the reader's
     ``DEFAULT_MATERIAL``, stated in every result)."""
 
     youngs_modulus_GPa: float = setting(DEFAULT_MATERIAL["youngs_modulus_GPa"], "Young's modulus",
-                                        exclusive_minimum=0)
+                                        **_within(YOUNGS_MODULUS))
     poisson_ratio: float = setting(DEFAULT_MATERIAL["poisson_ratio"], "Poisson's ratio", minimum=0,
                                    exclusive_maximum=0.5)
-    density_kg_m3: float = setting(DEFAULT_MATERIAL["density_kg_m3"], "density", exclusive_minimum=0)
+    density_kg_m3: float = setting(DEFAULT_MATERIAL["density_kg_m3"], "density", **_within(DENSITY))
     contact_fatigue_limit_MPa: float | None = setting(
         None, "contact fatigue limit σ_Hlim of the rating (null: 1500, case-hardened steel MQ, ISO 6336-5)",
-        exclusive_minimum=0)
+        **_within(CONTACT_FATIGUE_LIMIT))
     bending_fatigue_limit_MPa: float | None = setting(
         None, "bending fatigue limit σ_Flim of the rating (null: 500, case-hardened steel MQ, ISO 6336-5)",
-        exclusive_minimum=0)
+        **_within(BENDING_FATIGUE_LIMIT))
 
 
 @dataclass(frozen=True, kw_only=True)
 class PairRoughness:
     """Surface roughness of the rating (ISO 6336-2/-3), the same on both gears."""
 
-    flank_Ra: float | None = setting(None, "flank arithmetic mean roughness Ra (null: 0.4, ground)", exclusive_minimum=0)
+    flank_Ra: float | None = setting(None, "flank arithmetic mean roughness Ra (null: 0.4, ground)",
+                                     **_within(ROUGHNESS_RA))
     flank_Rz: float | None = setting(None, "flank mean peak-to-valley roughness Rz (null: 2.5, ground)",
-                                     exclusive_minimum=0)
-    root_Rz: float | None = setting(None, "tooth-root roughness Rz (null: 10, hobbed)", exclusive_minimum=0)
+                                     **_within(ROUGHNESS_RZ))
+    root_Rz: float | None = setting(None, "tooth-root roughness Rz (null: 10, hobbed)", **_within(ROUGHNESS_RZ))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -736,9 +745,9 @@ class PairLubricant:
     """The oil of the rating (ISO 6336-2 Z_L; the scuffing rating's friction, bulk and scuffing temperatures)."""
 
     viscosity_40C_mm2_s: float | None = setting(None, "kinematic viscosity at 40 °C (null: 220, ISO VG 220)",
-                                                exclusive_minimum=0)
+                                                **_within(VISCOSITY_40C))
     viscosity_100C_mm2_s: float | None = setting(None, "kinematic viscosity at 100 °C (null: 19, ISO VG 220)",
-                                                 exclusive_minimum=0)
+                                                 **_within(VISCOSITY_100C))
     oil_temperature_C: float | None = setting(None, "oil temperature (null: 70)", exclusive_minimum=-40,
                                               exclusive_maximum=200)
     fzg_load_stage: int | None = setting(None, "FZG load stage of the oil (ISO 14635-1 test A/8.3/90) for the "
@@ -816,10 +825,10 @@ class PairFile:
     material: PairMaterial | None = setting(None, "elastic material of both gears (null or left out: steel)")
     bearing_radial_stiffness_N_per_um: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
         None, "radial stiffness of each gear's bearings together at the gear centre, one, [pinion, gear] or rigid "
-        "(dynamics; null: the low-fluctuation paper's 150, stated in the results)", exclusive_minimum=0)
+        "(dynamics; null: the low-fluctuation paper's 150, stated in the results)", **_within(BEARING_STIFFNESS))
     bearing_axial_stiffness_N_per_um: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
         None, "axial stiffness of each gear's bearings at the gear centre, one, [pinion, gear] or rigid (dynamics; "
-        "null: the low-fluctuation paper's 10)", exclusive_minimum=0)
+        "null: the low-fluctuation paper's 10)", **_within(BEARING_STIFFNESS))
     shaft_diameter_mm: float | tuple[float, float] | None = setting(
         None, "shaft diameter, one or [pinion, gear]: shaft bending 48EI/L³ in series with the radial bearing "
         "stiffness (with bearing_span_mm; the gear at mid-span)", exclusive_minimum=0)
