@@ -132,4 +132,4 @@ def test_every_rule_of_a_study_runs_its_declared_function_and_writes_its_declare
         for output in rule.outputs.values():
             if output.caption:
                 assert (ROOT / "workflow/report" / f"{output.caption}.rst").is_file(), output.caption
-        assert (ROOT / "workflow/rules" / rule.script).resolve().is_file()
+    assert (ROOT / "workflow/rules" / plan.SCRIPT).resolve().is_file()

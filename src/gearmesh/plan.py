@@ -25,8 +25,11 @@ from .schema import defaults
 from .settings import stage_sections, stages
 from .stages import Job, Read, Stage, Table
 
-#: The pipeline scripts, relative to the rules' file ``workflow/rules/stages.smk``.
-SCRIPTS = "../scripts"
+#: The script of every job, relative to the rules' file ``workflow/rules/stages.smk``: it runs the
+#: job as its declaration says (:func:`gearmesh.pipeline.run_job`). One script for every rule: a
+#: ``script:`` directive is evaluated again when the job runs, after the loop that defines the
+#: rules has moved on, so it cannot name a loop variable.
+SCRIPT = "../scripts/job.py"
 #: The report's captions, relative to the rules' file.
 CAPTIONS = "../report"
 
@@ -82,7 +85,7 @@ class Output:
 class Rule:
     """One rule of the workflow (``stages.smk`` defines it): its ``name``, ``input`` function
     (of the wildcards; Snakemake's ``unpack``), outputs by name, ``log``, ``params``,
-    ``localrule``, ``priority`` and the pipeline ``runner`` its script calls."""
+    ``localrule`` and ``priority``."""
 
     name: str
     input: Callable[[Any], dict[str, Any]]
@@ -91,7 +94,6 @@ class Rule:
     params: Mapping[str, Any]
     localrule: bool
     priority: int
-    runner: str
 
     def output(self, report: Callable[..., Any]) -> dict[str, Any]:
         """The outputs as Snakemake takes them: each report item marked with ``report`` (Snakemake's
@@ -99,10 +101,6 @@ class Rule:
         return {name: report(o.path, caption=f"{CAPTIONS}/{o.caption}.rst", category=o.category,
                              subcategory=o.subcategory) if o.caption else o.path
                 for name, o in self.outputs.items()}
-
-    @property
-    def script(self) -> str:
-        return f"{SCRIPTS}/{self.runner}.py"
 
 
 def versioned_param(spec: str) -> Callable[[Any], str]:
@@ -260,8 +258,7 @@ def _table_params(table: Table) -> dict[str, Any]:
 
 def _rule(config: Mapping[str, Any], name: str, section: str, job: Stage | Table, params: dict[str, Any]) -> Rule:
     return Rule(name=name, input=_inputs(config, section, job), outputs=_outputs(config, section, job),
-                log=job.log_path(name), params=params, localrule=job.localrule, priority=job.priority,
-                runner=job.runner)
+                log=job.log_path(name), params=params, localrule=job.localrule, priority=job.priority)
 
 
 def rules(config: Mapping[str, Any]) -> list[Rule]:

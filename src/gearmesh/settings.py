@@ -770,6 +770,14 @@ def stage_of(section: str) -> Stage | None:
     return stages().get(section)
 
 
+def job_of(name: str) -> Stage | Table | None:
+    """The job whose rule is ``name``: the stage of that config section, or the table of that name."""
+    declared = stages()
+    if name in declared:
+        return declared[name]
+    return next((t for stage in declared.values() for t in stage.tables if t.name == name), None)
+
+
 def study_keys() -> list[str]:
     """Every key path of a study config (``dynamics.speeds_rpm.start``; named entries as ``NAME``)."""
     return all_keys(Study)

@@ -51,8 +51,8 @@ WILDCARDS = ("study", "pair", "variant", "run")
 #: made (``config``, the section of the stage declaring it). A read's condition sees a section
 #: the study leaves out as its declared defaults (:func:`gearmesh.plan.filled`).
 When = Callable[[Mapping[str, Any], str], bool]
-#: Which names a job's pipeline entry has (:mod:`gearmesh.pipeline` ``run_*``; the script
-#: ``workflow/scripts/{runner}.py``).
+#: How a job runs (:data:`gearmesh.pipeline.RUNNERS`): a stage of one pair, a stage over the
+#: study's pairs, a table of results, the optimiser, a figure job.
 Runner = Literal["pair_stage", "study_stage", "collect", "optimise", "plot"]
 
 

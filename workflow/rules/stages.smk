@@ -31,4 +31,4 @@ for job in plan.rules(config):
         conda:
             ENV
         script:
-            job.script
+            "../scripts/job.py"  # every rule (gearmesh.plan.SCRIPT): a loop variable here is read when the job runs
