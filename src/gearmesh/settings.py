@@ -264,6 +264,23 @@ class Rating:
 
 
 @dataclass(frozen=True, kw_only=True)
+class Scuffing:
+    """Scuffing load capacity of every pair and variant at the rating's speed and load factors:
+    Blok's flash temperature of every contact point from the LTCA's line load along the path of
+    contact, and the rated values of ISO/TS 6336-20 (flash temperature method: θ_B, S_B) and
+    ISO/TS 6336-21 (integral temperature method: θ_int, S_intS) at each LTCA torque (scuffing.nc).
+    Oil, roughness and FZG load stage are the pair file's (defaults named in the dataset's notes)."""
+
+    STAGE: ClassVar = Stage("gearmesh.datasets.scuffing:scuffing_dataset", "scuffing.nc", "variant",
+        reads=(Read("ltca"), Read("rating")), category="Load capacity", draws="gearmesh.plots.scuffing:scuffing_figures",
+        figures=(Figure("flash_temperature"),),
+        tables=(Table("scuffing_table", "gearmesh.datasets.scuffing:scuffing_table_dataset", "scuffing_table.nc",
+                      "pair", "Load capacity", (Read("scuffing", every_variant=True),), csv=True),))
+    path_bins: int = setting(48, "bins of the path of contact A–E in which the figure keeps the largest flash "
+                                 "temperature over the face", minimum=4, maximum=10000)
+
+
+@dataclass(frozen=True, kw_only=True)
 class Impact:
     """Mesh-in impact of every pair and variant over a torque × speed grid: where the entering
     pair first touches, edge or surface contact, impact velocity and force by the energy method,
@@ -736,6 +753,7 @@ class Study:
     tca: Tca | None = setting(None, "", fill=False)
     ltca: Ltca | None = setting(None, "", fill=False)
     rating: Rating | None = setting(None, "", fill=False)
+    scuffing: Scuffing | None = setting(None, "", fill=False)
     impact: Impact | None = setting(None, "", fill=False)
     signoff: Signoff | None = setting(None, "", fill=False)
     optimise: dict[str, Optimise] | None = setting(
