@@ -49,12 +49,6 @@ class Filled(Mapping[str, Any]):
             return defaults(self._defaults[key])
         raise KeyError(key)
 
-    def get(self, key: str, default: Any = None) -> Any:
-        try:
-            return self[key]
-        except KeyError:
-            return default
-
     def __contains__(self, key: object) -> bool:
         return key in self._config
 
