@@ -79,7 +79,7 @@ class Output:
 class Rule:
     """One rule of the workflow (``stages.smk`` defines it): its ``name``, ``input`` function
     (of the wildcards; Snakemake's ``unpack``), outputs by name, ``log``, ``params``,
-    ``localrule`` and ``priority``."""
+    ``localrule``, ``priority`` and what it makes (``doc``, ``snakemake --list-rules``)."""
 
     name: str
     input: Callable[[Any], dict[str, Any]]
@@ -88,6 +88,7 @@ class Rule:
     params: Mapping[str, Any]
     localrule: bool
     priority: int
+    doc: str
 
     def output(self, report: Callable[..., Any]) -> dict[str, Any]:
         """The outputs as Snakemake takes them: each report item marked with ``report`` (Snakemake's
@@ -252,7 +253,20 @@ def _table_params(table: Table) -> dict[str, Any]:
 
 def _rule(config: Mapping[str, Any], name: str, section: str, job: Stage | Table, params: dict[str, Any]) -> Rule:
     return Rule(name=name, input=_inputs(config, section, job), outputs=_outputs(config, section, job),
-                log=job.log_path(name), params=params, localrule=job.localrule, priority=job.priority)
+                log=job.log_path(name), params=params, localrule=job.localrule, priority=job.priority,
+                doc=_doc(config, section, job))
+
+
+def _doc(config: Mapping[str, Any], section: str, job: Stage | Table) -> str:
+    """What the job makes: a stage's settings class's description; a table's file (or figures) and
+    the results it is made from."""
+    if isinstance(job, Stage):
+        return " ".join((dict(stage_sections())[section if job.scope != "run" else f"{section}.NAME"].__doc__ or
+                         "").split())
+    made = job.writes or ", ".join(f"{f.stem}.png" for f in job.figures if f.when(config, section))
+    sources = ", ".join(r.stage + (" of every variant of the pair" if r.every_variant else
+                                   " of every pair" if r.every_pair else "") for r in job.reads)
+    return f"{made}, from the results of {sources}"
 
 
 def rules(config: Mapping[str, Any]) -> list[Rule]:

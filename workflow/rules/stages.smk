@@ -32,3 +32,5 @@ for job in plan.rules(config):
             ENV
         script:
             "../scripts/job.py"  # every rule (gearmesh.plan.SCRIPT): a loop variable here is read when the job runs
+
+    workflow.get_rule(job.name).docstring = job.doc  # snakemake --list-rules (a docstring must be a literal)
