@@ -1,9 +1,9 @@
 """The glue between a Snakemake job and the package: logging, provenance, atomic output.
 
 Every rule names the one package function it runs in ``params.function``
-("module:function") and passes its settings in ``params.settings``; generic scripts
-(``workflow/scripts/{pair_stage,study_stage,collect,optimise,plot}.py``) call the ``run_*``
-function of the same name. A job's outputs are told apart by suffix: one ``.nc`` (the
+("module:function") and passes its settings in ``params.settings``; its script
+(``workflow/scripts/job.py``) calls :func:`run_job`, which runs the ``run_*`` function its stage
+declaration names (:attr:`gearmesh.stages.Stage.runner`). A job's outputs are told apart by suffix: one ``.nc`` (the
 dataset), an optional ``.csv`` copy, and ``.png`` figures drawn by the plot function
 ``params.figures`` from the netCDF file just written, in the same process (a figure job of
 its own would cost a Python start-up and the imports for a fraction of a second's drawing).
@@ -29,7 +29,7 @@ import xarray as xr
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
 from .io import (DATA_ATTR, OutputError, add_provenance, atomic_output, figure_sources, job_outputs, normal_path,
                  read_dataset, space_errno, write_dataset)
-from .settings import stage_of
+from .settings import job_of, stage_of
 from .stages import dependencies
 from .tables import write_csv
 from .upstream import (Expected, check_optimum, file_digest, identify, optimum_header, read_input, record_sources,
@@ -245,6 +245,12 @@ def _pair_stage(smk: Any, then: Callable[[GearPair, xr.Dataset], None] | None = 
     _run(smk, body)
 
 
+def run_job(smk: Any) -> None:
+    """The job of rule ``smk.rule`` as its declaration says (:func:`gearmesh.settings.job_of`):
+    ``run_pair_stage``, ``run_study_stage``, ``run_collect``, ``run_optimise`` or ``run_plot``."""
+    RUNNERS[job_of(smk.rule).runner](smk)
+
+
 def run_pair_stage(smk: Any) -> None:
     """A stage of one pair (:func:`_pair_stage`)."""
     _pair_stage(smk)
@@ -348,3 +354,7 @@ def check_results(config: Mapping[str, Any]) -> list[str]:
     root = Path("results", str(config["study"]))
     return check_tree(root, config, lambda name, variant: study_pair(config, name, variant)) if root.is_dir() else []
 
+
+#: The job runners by the name a declaration gives (:data:`gearmesh.stages.Runner`).
+RUNNERS: dict[str, Callable[[Any], None]] = {"pair_stage": run_pair_stage, "study_stage": run_study_stage,
+                                             "collect": run_collect, "optimise": run_optimise, "plot": run_plot}

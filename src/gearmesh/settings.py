@@ -36,7 +36,9 @@ from .limits import (BEARING_STIFFNESS, BENDING_FATIGUE_LIMIT, CONTACT_FATIGUE_L
                      MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE, ROUGHNESS_RA, ROUGHNESS_RZ, VISCOSITY_40C,
                      VISCOSITY_100C, YOUNGS_MODULUS, Plausible)
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
-from .stages import Read, Stage, always, ltca_drives, method_fe, runs
+from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS
+from .stages import (Figure, Grid, Read, Speeds, Stage, Table, Torques, always, contact_drives, ltca_drives, method_fe,
+                     runs)
 
 #: Names of studies and of the pairs a study uses: a folder of results/{study}/{pair}/, no path characters.
 NAME = r"^[A-Za-z0-9_-]+$"
@@ -93,6 +95,28 @@ def _pairs() -> Any:
                    workflow=True)
 
 
+def lste_compared(config: Mapping[str, Any], section: str) -> bool:
+    """Whether the study compares the LTCA with F/K: it runs the LTCA on the standard variant and
+    the stiffness stage has an LSTE torque."""
+    return "ltca" in config and "standard" in config.get("variants", {}) and "torque_Nm" in config.get("stiffness", {})
+
+
+def engagement_tabled(config: Mapping[str, Any], section: str) -> bool:
+    """Whether the study sets the energy method's F_s beside the dynamics (the engagement table):
+    the real tooth contact drives its dynamics and it has an impact section."""
+    return contact_drives(config, section) and "impact" in config
+
+
+def nsga2_run(run: Mapping[str, Any]) -> bool:
+    """Whether an optimisation (its settings) is NSGA-II's, with a Pareto front to draw."""
+    return run["method"] == "nsga2"
+
+
+#: The work limits of a stage's contact grid and of its slice grid (gearmesh.limits).
+_CONTACT_GRID = Grid("points", "positions", MAX_CONTACT_POINTS, "contact candidates per line", extra=1)
+_SLICE_GRID = Grid("slices", "positions", MAX_STIFFNESS_POINTS, "slice-positions")
+
+
 def fe_wanted(config: Mapping[str, Any], section: str) -> bool:
     """Whether a study gets the pair's finite-element tooth tables (its ``section``,
     fe_compliance, is always filled): when a stage of it uses the FE tooth (its ``method``, or
@@ -120,8 +144,8 @@ class Geometry:
     """Grids of the geometry stage: the transverse tooth profile with its hob fillet and the
     flank surface of each gear (geometry.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:geometry_dataset", "{pair}/geometry.nc", "pair",
-        figures="gearmesh.plots.geometry:geometry_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:geometry_dataset", "geometry.nc", "pair", category="Geometry",
+        draws="gearmesh.plots.geometry:geometry_figures", figures=(Figure("tooth_profile"),))
     involute_points: int = setting(120, "points on each involute flank of the transverse profile", minimum=8,
                                    maximum=5000)
     fillet_points: int = setting(60, "points on each root fillet (the hob's trochoid)", minimum=4, maximum=5000)
@@ -132,8 +156,9 @@ class Geometry:
 class ContactLines:
     """Contact lines in the plane of action and their total length over one mesh cycle (contact_lines.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:contact_lines_dataset", "{pair}/contact_lines.nc", "pair",
-        figures="gearmesh.plots.geometry:contact_lines_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:contact_lines_dataset", "contact_lines.nc", "pair",
+        category="Contact lines", draws="gearmesh.plots.geometry:contact_lines_figures",
+        figures=(Figure("contact_length"), Figure("contact_lines")))
     positions: int = _positions(what=" (one transverse base pitch)")
 
 
@@ -142,8 +167,10 @@ class Stiffness:
     """Time-varying mesh stiffness by the slice potential-energy method, its Fourier series and
     ISO 6336-1's value; with a torque the loaded static transmission error F/K (stiffness.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_dataset", "{pair}/stiffness.nc", "pair",
-        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.stiffness:stiffness_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_dataset", "stiffness.nc", "pair",
+        reads=(Read("fe_compliance", method_fe()),), category="Stiffness",
+        draws="gearmesh.plots.stiffness:stiffness_figures", figures=(Figure("stiffness"),),
+        limits=(_SLICE_GRID, Torques("torque_Nm", "torque_on")))
     method: Method = _method()
     slices: int = _slices()
     positions: int = _positions()
@@ -159,8 +186,9 @@ class FeCompliance:
     beside the three potential-energy cantilevers (fe_compliance.nc); stiffness method fe uses
     these settings too."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.fe:fe_compliance_dataset", "{pair}/fe_compliance.nc", "pair",
-        figures="gearmesh.plots.fe:fe_compliance_figures", wanted=fe_wanted)
+    STAGE: ClassVar = Stage("gearmesh.datasets.fe:fe_compliance_dataset", "fe_compliance.nc", "pair",
+        category="Stiffness", draws="gearmesh.plots.fe:fe_compliance_figures", figures=(Figure("fe_compliance"),),
+        wanted=fe_wanted, priority=10)  # with method fe the optimiser (priority 10, the longest job) waits for it
     plane: Literal["strain", "stress"] = setting("strain", "plane strain (a wide face) or plane stress (a thin disc)")
     size: float = setting(0.05, "element edge on the loaded tooth", units="normal modules", minimum=0.01,
                           maximum=0.5)
@@ -184,8 +212,8 @@ class Variant:
 class Tca:
     """Unloaded tooth contact analysis of every pair and variant over one mesh cycle (tca.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:tca_dataset", "{pair}/{variant}/tca.nc", "variant",
-        figures="gearmesh.plots.ltca:tca_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:tca_dataset", "tca.nc", "variant", category="TCA",
+        draws="gearmesh.plots.ltca:tca_figures", figures=(Figure("tca"),), limits=(_CONTACT_GRID,))
     positions: int = _positions(DEFAULT_CYCLE_POSITIONS, 10000)
     points: int = _points()
     corner_extension: float = _corner_extension()
@@ -196,8 +224,14 @@ class Ltca:
     """Loaded tooth contact analysis of every pair and variant at each torque over one mesh
     cycle: loaded and load transmission error, contact pattern, loaded mesh stiffness (ltca.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:ltca_dataset", "{pair}/{variant}/ltca.nc", "variant",
-        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.ltca:ltca_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:ltca_dataset", "ltca.nc", "variant",
+        reads=(Read("fe_compliance", method_fe()),), category="LTCA", draws="gearmesh.plots.ltca:ltca_figures",
+        figures=(Figure("te_lte"), Figure("contact_pattern")), limits=(_CONTACT_GRID, Torques("torques_Nm")),
+        tables=(Table("lte_table", "gearmesh.datasets.ltca:lte_table_dataset", "lte_table.nc", "pair", "LTCA",
+                      (Read("ltca", every_variant=True),), csv=True),
+                Table("lste_comparison", "gearmesh.datasets.ltca:lste_comparison_dataset", "lste_comparison.nc",
+                      "study", "LTCA", (Read("stiffness", every_pair=True), Read("ltca", every_pair=True)), csv=True,
+                      wanted=lste_compared)))
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques", exclusive_minimum=0, min_items=1,
                                             max_items=MAX_LTCA_TORQUES)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -214,8 +248,13 @@ class Rating:
     (S_H, S_F) with the LTCA's contact pressure, root stress and load factors (rating.nc). Material,
     accuracy, roughness and oil are the pair file's (defaults named in the dataset's notes)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.rating:rating_dataset", "{pair}/{variant}/rating.nc", "variant",
-        reads=(Read("ltca"),), figures="gearmesh.plots.rating:rating_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.rating:rating_dataset", "rating.nc", "variant", reads=(Read("ltca"),),
+        category="Load capacity", draws="gearmesh.plots.rating:rating_figures",
+        figures=(Figure("pressure_map"), Figure("root_stress_face")),
+        limits=(Speeds("speed_rpm"),),  # the README's promise: no rating above the burst speed
+        tables=(Table("load_capacity_table", "gearmesh.datasets.rating:load_capacity_table_dataset",
+                      "load_capacity_table.nc", "pair", "Load capacity", (Read("rating", every_variant=True),),
+                      csv=True),))
     speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
     application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=FACTOR_RANGES["K_A"][0],
                                         maximum=FACTOR_RANGES["K_A"][1])
@@ -225,15 +264,38 @@ class Rating:
 
 
 @dataclass(frozen=True, kw_only=True)
+class Scuffing:
+    """Scuffing load capacity of every pair and variant at the rating's speed and load factors:
+    Blok's flash temperature of every contact point from the LTCA's line load along the path of
+    contact, and the rated values of ISO/TS 6336-20 (flash temperature method: θ_B, S_B) and
+    ISO/TS 6336-21 (integral temperature method: θ_int, S_intS) at each LTCA torque (scuffing.nc).
+    Oil, roughness and FZG load stage are the pair file's (defaults named in the dataset's notes)."""
+
+    STAGE: ClassVar = Stage("gearmesh.datasets.scuffing:scuffing_dataset", "scuffing.nc", "variant",
+        reads=(Read("ltca"), Read("rating")), category="Load capacity", draws="gearmesh.plots.scuffing:scuffing_figures",
+        figures=(Figure("flash_temperature"),),
+        tables=(Table("scuffing_table", "gearmesh.datasets.scuffing:scuffing_table_dataset", "scuffing_table.nc",
+                      "pair", "Load capacity", (Read("scuffing", every_variant=True),), csv=True),))
+    path_bins: int = setting(48, "bins of the path of contact A–E in which the figure keeps the largest flash "
+                                 "temperature over the face", minimum=4, maximum=10000)
+
+
+@dataclass(frozen=True, kw_only=True)
 class Impact:
     """Mesh-in impact of every pair and variant over a torque × speed grid: where the entering
     pair first touches, edge or surface contact, impact velocity and force by the energy method,
     the variants side by side at the design speed, and a direct simulation of the engagement
     as a check (impact.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.impact:impact_dataset", "{pair}/{variant}/impact.nc", "variant",
-        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.impact:impact_figures",
-        carries=("tolerances",), variant_name=True)
+    STAGE: ClassVar = Stage("gearmesh.datasets.impact:impact_dataset", "impact.nc", "variant",
+        reads=(Read("fe_compliance", method_fe()),), category="Impact", draws="gearmesh.plots.impact:impact_figures",
+        figures=(Figure("force_speed", "impact_speed"), Figure("trajectory", "mesh_in_trajectory"),
+                 Figure("simulation", "impact_simulation")),
+        carries=("tolerances",), variant_name=True, limits=(Torques("torques_Nm"), Speeds("speeds_rpm")),
+        tables=(Table("impact_table", "gearmesh.datasets.impact:impact_table_dataset", "impact_table.nc", "pair",
+                      "Impact", (Read("impact", every_variant=True),), csv=True,
+                      draws="gearmesh.plots.impact:impact_study_figures",
+                      figures=(Figure("impact_force"), Figure("robustness"))),))
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques of the map", exclusive_minimum=0,
                                             min_items=1, max_items=100)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -325,9 +387,18 @@ class Optimise:
     impact section; points, contact_law, corner_extension, window_positions and face_samples
     given here override it."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.optimise:optimise_dataset", "{pair}/optimise/{run}/ga.nc", "run",
-        reads=(Read("fe_compliance", method_fe("impact")),), figures="gearmesh.plots.optimise:optimise_figures",
-        carries=("impact", "tolerances"))
+    STAGE: ClassVar = Stage("gearmesh.datasets.optimise:optimise_dataset", "ga.nc", "run",
+        reads=(Read("fe_compliance", method_fe("impact")),), category="Optimisation",
+        draws="gearmesh.plots.optimise:optimise_figures",
+        figures=(Figure("convergence", caption="optimise_convergence"),
+                 Figure("modification", caption="optimise_modification")),
+        carries=("impact", "tolerances"), also_writes=(("pair", "pair.yaml"),), entry="optimise",
+        priority=10,  # the longest job, and the variants it writes wait for it: start it first
+        log="{pair}/optimise/{run}",
+        limits=(Speeds("speed_rpm"), Speeds("dynamic_speeds_rpm"), Torques("torque_Nm"), Torques("torques_Nm")),
+        tables=(Table("plot_pareto", "gearmesh.plots.optimise:pareto_figures", None, "run", "Optimisation",
+                      (Read("optimise", name="ga"),), figures=(Figure("pareto", caption="optimise_pareto"),),
+                      of_runs=nsga2_run, log="{pair}/optimise/pareto_{run}"),))
     method: Literal["ga", "random", "nsga2"] = setting("ga", "genetic algorithm (pygad), random search of the same "
                                                              "budget, or NSGA-II (the objective against pareto_objectives)")
     objective: Literal["force", "velocity", "robust", "dynamic"] = setting(
@@ -480,9 +551,22 @@ class Dynamics(_Dynamics):
     stage, the ltca excitation from the variant's LTCA, the contact table from the variant's
     micro-geometry."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_dataset", "{pair}/{variant}/dynamics.nc", "variant",
-        reads=(Read("stiffness"), Read("ltca", ltca_drives), Read("fe_compliance", method_fe())),
-        figures="gearmesh.plots.dynamics:dynamics_figures", variant_name=True)
+    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_dataset", "dynamics.nc", "variant",
+        reads=(Read("stiffness"), Read("ltca", ltca_drives), Read("fe_compliance", method_fe())), category="Dynamics",
+        draws="gearmesh.plots.dynamics:dynamics_figures",
+        figures=(Figure("rms", "dynamics_rms"), Figure("spectrum", "dynamics_spectrum"),
+                 Figure("engagement", "dynamics_engagement", when=contact_drives)),
+        variant_name=True, limits=(Torques("torques_Nm"),),
+        # the peak dynamic mesh force against speed of every variant: drawn by the engagement table's
+        # job where the study has one, else by a figure job of its own
+        tables=(Table("engagement_table", "gearmesh.datasets.dynamics:engagement_table_dataset",
+                      "engagement_table.nc", "pair", "Dynamics",
+                      (Read("impact", every_variant=True), Read("dynamics", every_variant=True)), csv=True,
+                      draws="gearmesh.plots.dynamics:dynamics_variants_figures",
+                      figures=(Figure("dynamics_variants"),), wanted=engagement_tabled),
+                Table("plot_dynamics_variants", "gearmesh.plots.dynamics:dynamics_variants_figures", None, "pair",
+                      "Dynamics", (Read("dynamics", every_variant=True),), figures=(Figure("dynamics_variants"),),
+                      wanted=lambda config, section: not engagement_tabled(config, section))))
     torques_Nm: float | tuple[float, ...] = setting(200.0, "one torque or a list", exclusive_minimum=0, min_items=1,
                                                     max_items=20)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -508,9 +592,10 @@ class TrainDynamics(_Dynamics):
     """The 9-DOF plate–blanket–impression train of the printing-press source: three gears alike
     (the pair's gear), the pair's mesh in both meshes, at one load and speed (train.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:train_dataset", "{pair}/{variant}/train.nc", "variant",
-        reads=(Read("stiffness"), Read("fe_compliance", method_fe())),
-        figures="gearmesh.plots.dynamics:train_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:train_dataset", "train.nc", "variant",
+        reads=(Read("stiffness"), Read("fe_compliance", method_fe())), category="Dynamics",
+        draws="gearmesh.plots.dynamics:train_figures", figures=(Figure("spectrum", "train_spectrum"),),
+        limits=(Torques("torque_Nm", None),))
     static_force_N: float | None = setting(2832, "static normal mesh force, the load when torque_Nm is null",
                                            exclusive_minimum=0)
     torque_Nm: float | None = setting(None, "torque on the plate gear (null: from static_force_N)",
@@ -534,10 +619,13 @@ class Signoff:
     impact sections (basis population also tolerance samples); the dynamic criterion needs a
     dynamics section."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.signoff:signoff_table_dataset", "{pair}/signoff_table.nc", "pair",
+    STAGE: ClassVar = Stage("gearmesh.datasets.signoff:signoff_table_dataset", "signoff_table.nc", "pair",
         reads=tuple(Read(s, when, every_variant=True) for s, when in (
             ("impact", always), ("ltca", always), ("rating", always), ("dynamics", runs("dynamics")))),
-        figures="gearmesh.plots.signoff:signoff_figures", pair_file=False)
+        category="Sign-off", csv=True, draws="gearmesh.plots.signoff:signoff_figures", figures=(Figure("signoff"),),
+        pair_file=False, localrule=True,
+        tables=(Table("signoff_verdict", "gearmesh.datasets.verdict:signoff_verdict_dataset", "signoff_verdict.nc",
+                      "pair", "Sign-off", (Read("signoff"),), csv=True),))
     reference: str = setting("standard", "the variant the others are held against (the unmodified pair)",
                              pattern=r"^[A-Za-z0-9_]+$", max_length=NAME_LENGTH)
     basis: Literal["population", "nominal"] = setting(
@@ -565,7 +653,9 @@ class DynamicsComparison:
     """RMS changes between the study's pairs over their speed sweeps (dynamics_comparison.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_comparison_dataset", "dynamics_comparison.nc", "study",
-        figures="gearmesh.plots.dynamics:dynamics_comparison_figures")
+        reads=(Read("dynamics", every_pair=True),), category="Dynamics", csv=True,
+        draws="gearmesh.plots.dynamics:dynamics_comparison_figures", figures=(Figure("dynamics_comparison"),),
+        pair_file=False, localrule=True)
     couples: tuple[tuple[str, str], ...] | None = setting(
         None, "[pair, reference] couples; left out: every pair against the first", min_items=1, fill=False)
 
@@ -580,7 +670,7 @@ class HelixSweep:
     zero-backlash centre distance (helix_sweep.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.geometry:helix_sweep_dataset", "helix_sweep.nc", "study",
-        figures="gearmesh.plots.geometry:helix_sweep_figures")
+        category="Contact lines", draws="gearmesh.plots.geometry:helix_sweep_figures", figures=(Figure("helix_sweep"),))
     pairs: tuple[str, ...] = _pairs()
     start_deg: float = setting(REQUIRED, "first helix angle", minimum=0, maximum=59)
     stop_deg: float = setting(REQUIRED, "last helix angle (not below start_deg)", minimum=0, maximum=59)
@@ -594,7 +684,7 @@ class LowFluctuationDesign:
     width that makes the overlap ratio an integer (low_fluctuation_design.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.geometry:low_fluctuation_design_dataset", "low_fluctuation_design.nc",
-                            "study")
+                            "study", category="Geometry", csv=True, localrule=True)
     pairs: tuple[str, ...] = _pairs()
 
 
@@ -603,7 +693,8 @@ class StiffnessTable:
     """Mesh stiffness over pairs, pair-file variants and cantilever methods, one table (stiffness_table.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_table_dataset", "stiffness_table.nc", "study",
-        figures="gearmesh.plots.stiffness:stiffness_table_figures")
+        category="Stiffness", csv=True, draws="gearmesh.plots.stiffness:stiffness_table_figures",
+        figures=(Figure("stiffness_table"),), limits=(_SLICE_GRID, Torques("torque_Nm", "torque_on")))
     pairs: tuple[str, ...] = _pairs()
     methods: tuple[Method, ...] = setting(("transition",), "slice models compared", min_items=1)
     variants: dict[str, dict[str, Any]] | None = setting(
@@ -621,7 +712,8 @@ class SliceConvergence:
     """Mean mesh stiffness against the slice count, whole and clipped end slices (slice_convergence.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:slice_convergence_dataset", "slice_convergence.nc", "study",
-        figures="gearmesh.plots.stiffness:slice_convergence_figures")
+        category="Stiffness", csv=True, draws="gearmesh.plots.stiffness:slice_convergence_figures",
+        figures=(Figure("slice_convergence"),), limits=(_SLICE_GRID,))
     pairs: tuple[str, ...] = _pairs()
     slices: tuple[int, ...] = setting((25, 50, 100, 200, 400, 1000), "slice counts", minimum=1, maximum=20000,
                                       min_items=2)
@@ -661,6 +753,7 @@ class Study:
     tca: Tca | None = setting(None, "", fill=False)
     ltca: Ltca | None = setting(None, "", fill=False)
     rating: Rating | None = setting(None, "", fill=False)
+    scuffing: Scuffing | None = setting(None, "", fill=False)
     impact: Impact | None = setting(None, "", fill=False)
     signoff: Signoff | None = setting(None, "", fill=False)
     optimise: dict[str, Optimise] | None = setting(
@@ -693,6 +786,14 @@ def stages() -> dict[str, Stage]:
 def stage_of(section: str) -> Stage | None:
     """The stage of config ``section`` (a rule's name), or None (a table, a figure)."""
     return stages().get(section)
+
+
+def job_of(name: str) -> Stage | Table | None:
+    """The job whose rule is ``name``: the stage of that config section, or the table of that name."""
+    declared = stages()
+    if name in declared:
+        return declared[name]
+    return next((t for stage in declared.values() for t in stage.tables if t.name == name), None)
 
 
 def study_keys() -> list[str]:
