@@ -372,6 +372,29 @@ def test_the_scuffing_table_sets_the_variants_side_by_side(stage_datasets):
         scuffing_table_dataset([a, b.assign_coords(torque=b["torque"] + 1)])
 
 
+def test_the_load_capacity_table_carries_each_variants_scuffing_safety(stage_datasets):
+    """The load-capacity table with the variants' scuffing.nc: S_B and S_intS of each variant, matched
+    by variant name whatever the order of the files, the numbers of its scuffing.nc; without them,
+    no scuffing column; a variant missing on one side refused naming the variants."""
+    from gearmesh.datasets.rating import load_capacity_table_dataset
+    from gearmesh.errors import GearmeshInputError
+
+    _, _, rated, ds = stage_datasets
+    ra, rb, sa, sb = rated.copy(), rated.copy(), ds.copy(), ds.copy()
+    sb["scuffing_safety_flash"] = ds["scuffing_safety_flash"].copy(data=2.0 * ds["scuffing_safety_flash"].values)
+    for d, v in ((ra, "standard"), (rb, "relief"), (sa, "standard"), (sb, "relief")):
+        d.attrs = {**d.attrs, "variant": v}
+    table = load_capacity_table_dataset([ra, rb], [sb, sa])
+    assert table["scuffing_safety_flash"].sel(variant="relief").values.tolist() == \
+        sb["scuffing_safety_flash"].values.tolist()
+    assert table["scuffing_safety_integral"].sel(variant="standard").values.tolist() == \
+        sa["scuffing_safety_integral"].values.tolist()
+    assert table["scuffing_safety_flash"].attrs["units"] and table["scuffing_safety_flash"].attrs["long_name"]
+    assert "scuffing_safety_flash" not in load_capacity_table_dataset([ra, rb])
+    with pytest.raises(GearmeshInputError, match="variants"):
+        load_capacity_table_dataset([ra, rb], [sa])
+
+
 def test_a_study_rating_scuffing_without_a_rating_section_is_refused(root):
     from gearmesh.config import check_study, validate_study
     from gearmesh.errors import GearmeshInputError

@@ -253,7 +253,8 @@ class Rating:
         figures=(Figure("pressure_map"), Figure("root_stress_face")),
         limits=(Speeds("speed_rpm"),),  # the README's promise: no rating above the burst speed
         tables=(Table("load_capacity_table", "gearmesh.datasets.rating:load_capacity_table_dataset",
-                      "load_capacity_table.nc", "pair", "Load capacity", (Read("rating", every_variant=True),),
+                      "load_capacity_table.nc", "pair", "Load capacity",
+                      (Read("rating", every_variant=True), Read("scuffing", runs("scuffing"), every_variant=True)),
                       csv=True),))
     speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
     application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=FACTOR_RANGES["K_A"][0],

@@ -47,6 +47,22 @@ def variant_names(argument: str, datasets: Any, empty_ok: bool = False) -> list[
     return names
 
 
+def shared_torques(field: str, names: Sequence[str], datasets: Sequence[Any], dim: str = "torque"):
+    """The torques (coordinate ``dim``) every variant's dataset shares, refused naming ``field``
+    (the config key that sets them) and the first variant that has others: a table of the
+    variants sets them side by side at the same operating points."""
+    import numpy as np
+
+    from ..errors import GearmeshInputError
+
+    first = np.asarray(datasets[0][dim].values, dtype=float)
+    for name, ds in zip(names, datasets):
+        other = np.asarray(ds[dim].values, dtype=float)
+        if other.shape != first.shape or not np.allclose(other, first, rtol=1e-12, atol=0.0):
+            raise GearmeshInputError(field, other.tolist(), f"must be the same for every variant ({name})")
+    return first
+
+
 def one_pair(**lists: Sequence[Any]) -> None:
     """Refuse (GearmeshInputError naming the list and the first differing pair key) datasets that
     were not all computed for one pair: the variants of a pair differ in their micro-geometry

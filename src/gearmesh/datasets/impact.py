@@ -15,10 +15,10 @@ import xarray as xr
 from ..choices import IMPACT_INDEX
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
-from . import variant_names
+from . import shared_torques, variant_names
 from ..gear import GEARS, GearPair, load_pair, pair_geometry, pair_to_dict
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
-                      impact_response, impact_static, load_grid, load_window, ltca_criteria, mesh_in_point,
+                      impact_response, impact_static, load_grid, load_window, mesh_in_point,
                       seed_edge_roll, simulate_engagement, vector_velocity)
 from ..io import name_force_lines, variable
 from ..limits import check_speeds, same_point
@@ -371,10 +371,7 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     ``standard``, the range of F_s under the study's tolerance samples, and at the simulated
     torques the entering pair's simulated excess over its quasi-static force with F_s over it."""
     names = variant_names("impact", impact)
-    torque = impact[0]["torque"].values
-    for ds in impact[1:]:
-        if not np.array_equal(ds["torque"].values, torque):
-            raise GearmeshInputError("impact.torques_Nm", None, "must be the same for every variant")
+    torque = shared_torques("impact.torques_Nm", names, impact)
     rows = []
     for ds in impact:
         design = float(ds.attrs["design_speed_rpm"])
@@ -444,11 +441,7 @@ def _table_spread(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, x
     if not all("population_impact_force" in ds for ds in impact):
         return {}
     dims = ("variant", "judged_torque")
-    judged = impact[0]["judged_torque"].values
-    for name, ds in zip(names, impact):
-        if not np.array_equal(ds["judged_torque"].values, judged):
-            raise GearmeshInputError("impact.tolerance_torques_Nm", ds["judged_torque"].values.tolist(),
-                                     f"must be the same for every variant ({name})")
+    judged = shared_torques("impact.tolerance_torques_Nm", names, impact, "judged_torque")
     spread = np.array([ds["population_impact_force"].values for ds in impact])  # (V, S, T)
     worst = np.maximum(spread.max(axis=1), np.array([ds["box_worst_impact_force"].values for ds in impact]))
     return {

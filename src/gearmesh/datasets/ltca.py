@@ -16,7 +16,7 @@ import xarray as xr
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
-from . import variant_names
+from . import shared_torques, variant_names
 from ..io import name_force_lines, variable
 from ..limits import check_contact_grid, same_point
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, ltca
@@ -311,10 +311,7 @@ def lte_table_dataset(ltca: Sequence[xr.Dataset]) -> xr.Dataset:
     start of engagement A, taken from the variants' ``ltca.nc`` as they are (the report's
     landing page quotes this table). The variants must share their torques."""
     names = variant_names("ltca", ltca)
-    torque = ltca[0]["torque"].values
-    for ds in ltca[1:]:
-        if not np.array_equal(ds["torque"].values, torque):
-            raise GearmeshInputError("ltca.torques_Nm", None, "must be the same for every variant")
+    torque = shared_torques("ltca.torques_Nm", names, ltca)
     dims = ("variant", "torque")
     first_touch = _before_a_flag(dims, np.array([ds["touches_before_engagement"].values for ds in ltca]))
     return xr.Dataset({

@@ -17,7 +17,7 @@ import xarray as xr
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, PairGeometry, missing_key, pair_geometry, pair_notes
 from ..io import variable
-from . import variant_names
+from . import shared_torques, variant_names
 from ..limits import check_contact_grid, check_speeds
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
 from ..rating import (check_factors, face_factor_root, ltca_load_factors, rated_transverse_factor, rating,
@@ -306,15 +306,13 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
     return ds
 
 
-def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
+def load_capacity_table_dataset(rating: Sequence[xr.Dataset], scuffing: Sequence[xr.Dataset] = ()) -> xr.Dataset:
     """The load capacity of every variant of a pair side by side (variant × torque): S_H and S_F of the
-    weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear."""
+    weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear, and
+    with the variants' ``scuffing`` datasets (the study runs the scuffing stage) S_B and S_intS."""
     names = variant_names("rating", rating)
-    torques = rating[0]["torque"].values
-    for name, ds in zip(names, rating):
-        if ds.sizes["torque"] != torques.size or not np.allclose(ds["torque"].values, torques, rtol=1e-12):
-            raise GearmeshInputError("ltca.torques_Nm", ds["torque"].values.tolist(),
-                                     f"must be the same for every variant ({name})")
+    torques = shared_torques("ltca.torques_Nm", names, rating)
+    scuffed = _scuffing_columns(names, torques, scuffing)
     stack = lambda key, f: np.array([f(ds[key].values) for ds in rating])  # noqa: E731
     dims = ("variant", "torque")
     return xr.Dataset({
@@ -330,5 +328,26 @@ def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
         "K_Hbeta": variable(dims, stack("K_Hbeta", lambda v: v), "1", "face load factor K_Hbeta the rating used"),
         "shaft_misalignment": variable(dims, stack("shaft_misalignment", lambda v: v), "m",
                                        "f_sh: the system deflection's lead mismatch", engineering_units="µm"),
+        **scuffed,
     }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
                "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
+
+
+def _scuffing_columns(names: Sequence[str], torques: np.ndarray, scuffing: Sequence[xr.Dataset]) -> dict:
+    """S_B and S_intS of each variant (``names``, in order) at ``torques`` from the variants' scuffing.nc."""
+    if not scuffing:
+        return {}
+    by = dict(zip(variant_names("scuffing", scuffing), scuffing))
+    if set(by) != set(names):
+        raise GearmeshInputError("variants", sorted(by), f"scuffing and rating must cover the same variants "
+                                 f"({sorted(names)})")
+    ordered = [by[n] for n in names]
+    if not np.allclose(shared_torques("ltca.torques_Nm", names, ordered), torques, rtol=1e-12):
+        raise GearmeshInputError("ltca.torques_Nm", ordered[0]["torque"].values.tolist(),
+                                 "must be the same for the scuffing and the rating stages")
+    out = {}
+    for key in ("scuffing_safety_flash", "scuffing_safety_integral"):
+        first = ordered[0][key]
+        out[key] = variable(("variant", "torque"), np.array([ds[key].values for ds in ordered]),
+                            first.attrs["units"], first.attrs["long_name"])
+    return out

@@ -16,7 +16,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from . import variant_names
+from . import shared_torques, variant_names
 from ..gear import GearPair, PairGeometry, pair_geometry
 from ..io import variable
 from ..errors import GearmeshInputError
@@ -187,11 +187,7 @@ def scuffing_table_dataset(scuffing: Sequence[xr.Dataset]) -> xr.Dataset:
     largest flash and contact temperatures and S_B (ISO/TS 6336-20), the integral temperature and
     S_intS (ISO/TS 6336-21)."""
     names = variant_names("scuffing", scuffing)
-    torques = scuffing[0]["torque"].values
-    for name, ds in zip(names, scuffing):
-        if ds.sizes["torque"] != torques.size or not np.allclose(ds["torque"].values, torques, rtol=1e-12):
-            raise GearmeshInputError("ltca.torques_Nm", ds["torque"].values.tolist(),
-                                     f"must be the same for every variant ({name})")
+    torques = shared_torques("ltca.torques_Nm", names, scuffing)
     dims = ("variant", "torque")
     keys = ("flash_temperature_max", "contact_temperature_max", "scuffing_safety_flash", "integral_temperature",
             "scuffing_safety_integral")
