@@ -1,4 +1,4 @@
-"""Every limit of the package, in one module, each with where it comes from (issue 25).
+"""Every limit of the package, in one module, each with where it comes from.
 
 Input documents (size, nodes, nesting), pair data (teeth, face width, modification depth,
 helix angle), the plausible range of every physical input with its units (:class:`Plausible`:

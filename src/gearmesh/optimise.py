@@ -686,7 +686,7 @@ def _with_sample_criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray,
     the candidates whose nominal gear meets every constraint (tolerance statistic max). The max over
     the samples is never below the nominal gear's (sample 0), so a candidate its nominal gear already
     refuses is refused: its violation, J and Pareto objectives stay the nominal gear's, lower bounds
-    of its own, and its samples' contact is never solved (issue 36: most candidates of a run)."""
+    of its own, and its samples' contact is never solved (most candidates of a run)."""
     nc = params.shape[0]
     kv = np.array(raw.dynamic_factor, dtype=float)
     kv[:] = standard.dynamic_factor[0]  # the dynamic constraint is checked after, on its own

@@ -1,4 +1,4 @@
-"""What a workflow stage is, declared once beside its settings (issue 25 item 4, issue 37 item 2).
+"""What a workflow stage is, declared once beside its settings.
 
 A stage's declaration is its settings dataclass in :mod:`gearmesh.settings` (its keys: type,
 default, bounds, description) with a ``STAGE`` class attribute, a :class:`Stage`: the function

@@ -1,4 +1,4 @@
-"""What a workflow stage reads, checked before it is used (issue 20).
+"""What a workflow stage reads, checked before it is used.
 
 Every netCDF file a job writes records what it is (:func:`identify`): the path it was written
 as, the rule that made it and that job's wildcards, beside the provenance of
@@ -14,7 +14,7 @@ what it is, what was expected and how to regenerate it, when
   modification changed, and the file was not remade);
 * it was made with other settings of its own stage (its config section), of another section it
   depends on (the impact stage's tolerances), or for another study;
-* its data do not match the digest it claims (an edited value, a forged file: issue 29);
+* its data do not match the digest it claims (an edited value, a forged file);
 * an input it was made from has changed or is gone since (:func:`record_sources`): it is stale.
 
 A study table (no pair of its own) checks each file against that file's own pair and variant.

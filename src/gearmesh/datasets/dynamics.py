@@ -1084,7 +1084,7 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
 
 def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr.Dataset]) -> xr.Dataset:
     """The energy method beside the dynamics driven by the real contact, per variant and torque at
-    the impact stage's design speed (issue 15): does F_s rank the variants as the dynamics does?
+    the impact stage's design speed: does F_s rank the variants as the dynamics does?
 
     From ``impact.nc``: F_s (closed form and energy balance), the quasi-static mesh-in roll, and
     the undamped engagement simulation's largest excess of the entering pair over its

@@ -1,5 +1,5 @@
 """FE-compliance dataset: the finite-element tooth compliance of both gears of a pair along
-the active profile, beside the three potential-energy cantilevers (issue 12)."""
+the active profile, beside the three potential-energy cantilevers."""
 
 from __future__ import annotations
 
