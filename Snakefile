@@ -45,23 +45,12 @@ if any(arg == "--report" or arg.startswith("--report=") for arg in sys.argv):
 
 
 include: "workflow/rules/common.smk"
-include: "workflow/rules/geometry.smk"
-include: "workflow/rules/contact_lines.smk"
-include: "workflow/rules/stiffness.smk"
-include: "workflow/rules/fe.smk"
-include: "workflow/rules/optimise.smk"
-include: "workflow/rules/tca.smk"
-include: "workflow/rules/ltca.smk"
-include: "workflow/rules/impact.smk"
-include: "workflow/rules/rating.smk"
-include: "workflow/rules/signoff.smk"
-include: "workflow/rules/dynamics.smk"
-include: "workflow/rules/studies.smk"
+include: "workflow/rules/stages.smk"
 
 
 rule all:
     input:
-        all_targets(),
+        plan.targets(config),
     default_target: True
 
 

@@ -1,182 +1,152 @@
-"""Optimiser benchmarks (seed 000's case pair, the default study), today's code against the code
-before issue 17's kernel work (:mod:`bench_baseline`) in the same run.
+"""Optimiser benchmarks on the default study's two optimisations of seed 000's case pair
+(config/config.yaml's ``optimise`` section, each set up as its optimise job sets it up:
+:func:`bench_impact.study_problem`), each against a baseline that computes the same thing.
 
 ``bench_optimise(repeats)``:
 
-* ``optimise_generation_40_candidates``: one GA generation of seed 000's single-point objective —
-  40 candidates (seed 0 draws within the gene bounds) evaluated as one batch on the prepared
-  impact model at 1000 N·m and 5000 rpm (:func:`gearmesh.optimise.evaluate`, as the GA calls it);
-  max_rel_diff of F_s.
-* ``robust_generation_with_dynamic_constraint``: one generation of the default study's
-  ``optimised`` run as the GA evaluates it — 40 candidates × 9 manufactured gears × 3 torques of
-  impact, and the dynamic factor of each candidate at the 3 torques; max_rel_diff of the
-  objective J.
-* ``default_study_ga_runs``: both GA runs of the default study (``optimised``: robust, dynamic
-  constraint, 30 × 12; ``design_point``: 40 × 30), set-up included, as the optimise jobs run them
-  (without writing the files): the summed time, whether the GA took the same path (every
-  generation's genes identical) and the optimum, and max_rel_diff of the optima's objective J.
-  Issue 17's target: ≤ 20 s on the issue's machine (≤ 8.5 s on the machine of the work).
+* ``optimise_generation_<N>_candidates``: one generation of the ``design_point`` run (the single-point
+  objective) — its population's candidates (seed 0 draws within the gene bounds) evaluated as one
+  batch (:func:`gearmesh.optimise.evaluate`, as the GA calls it).
+* ``robust_generation_<N>_candidates``: one generation of the ``optimised`` run as the GA evaluates
+  it — every candidate × manufactured gear × spectrum torque of impact, the loaded-contact criteria
+  over the manufactured gears and the dynamic factor of each candidate at the spectrum torques.
+  Baseline of both: the same :func:`gearmesh.optimise.evaluate` one candidate at a time (the
+  batching switched off), over the first ``subset`` candidates, its time scaled to all; equality of
+  the objective J, F_s, the constraints' violation and the dynamic factor.
+* ``default_study_ga_runs``: both GA runs of the default study, set-up included, as the optimise
+  jobs run them (without writing the files): the summed time; equality of each run's optimum J as
+  the run's batch evaluation found it against the optimum evaluated alone afterwards.
 
-``bench_population_criteria(repeats)``: ``population_criteria_generation_30_candidates``, the
-loaded-contact criteria of one generation of the default study's ``optimised`` run over its
-manufactured population (30 candidates × 9 gears × 3 torques × 32 positions, the study's impact
-model: :func:`gearmesh.impact.ltca_criteria` with its samples started from their nominal), against
-the straightforward evaluation in the same run (:func:`straightforward_criteria`: one exact
-:func:`gearmesh.ltca.solve_contact` over every grid point of every gear, the stresses by
-:func:`gearmesh.stress.contact_stress` and :func:`gearmesh.stress.iso_root_stress_slices` of the
-loads, as ltca_criteria did before issue 27's population default); max_rel_diff over LTE p-p,
-flank, edge and root stress.
+``bench_population_criteria(repeats)``: ``population_criteria_generation_<N>_candidates``, the
+loaded-contact criteria of one generation of the ``optimised`` run over its manufactured population
+(:func:`gearmesh.impact.ltca_criteria` with its samples started from their nominal, the tabulated
+contact law). Baseline: the same function with the tabulated solve replaced by the package's exact
+:func:`gearmesh.ltca.solve_contact` (Newton on every point's own inversion) and every gear solved
+from scratch (``samples=1``); equality of LTE p-p, flank and edge pressure and root stress.
 
-``bench_dynamic_objective(repeats)``: ``dynamic_objective_generation_40_candidates``, the dynamic
-factor K_v of 40 candidates at the 3 torques of the default study (nominal gears; the
-contact-driven 8-DOF pair over 1000–15000 rpm and each candidate's resonances), the default
-study's constraint; max_rel_diff of K_v.
+``bench_dynamic_objective(repeats)``: ``dynamic_objective_generation_<N>_candidates``, the dynamic
+factor K_v of the ``optimised`` run's candidates at the spectrum torques (nominal gears; the
+contact-driven 8-DOF pair over the run's speed range and each candidate's resonances,
+:func:`gearmesh.dynamics.population.dynamic_factors`). Baseline: the same function with every speed's
+steady state found by the physical-time transient instead of by shooting (``steady_state:
+transient``), over the first ``subset`` candidates, its time scaled to all; equality of K_v.
 
-Every row has median_s / cpu_s (today) and baseline_median_s / baseline_cpu_s (before), their
-ratios, and the differences; every model the slice cantilever tooth (:data:`bench_impact.TOOTH_METHOD`). Run by hand: ``python benchmarks/run.py optimise dynamic_objective``.
+Every row has median_s / cpu_s (today) and baseline_median_s / baseline_cpu_s, their ratios and
+the equality. Run by hand: ``python benchmarks/run.py optimise population_criteria dynamic_objective``.
 """
 
 from __future__ import annotations
 
 import json
 import sys
+from dataclasses import replace
 
 import numpy as np
 
-from bench_baseline import baseline_call
-from bench_impact import TOOTH_METHOD, compare, robust_problem, study_section
-from common import ROOT, timed_calls
-
-TORQUE, SPEED = 1000.0, 5000.0
+from bench_impact import row, study_problem
+from common import equality, timed_calls
+from straightforward import exact_for_tabulated
 
 
-def point_generation(repeats: int):
-    """(wall s, CPU s, F_s (40,)) of one generation of the single-point objective."""
-    from gearmesh.gear import load_pair, pair_geometry
-    from gearmesh.impact import impact_model
-    from gearmesh.optimise import check_settings, evaluate, problem
-
-    model = impact_model(pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml")), method=TOOTH_METHOD)
-    prob = problem(model, check_settings(population=40, generations=30, seed=0, torque=TORQUE, speed_rpm=SPEED))
-    low = np.array([g.low for g in prob.genes])
-    high = np.array([g.high for g in prob.genes])
-    params = prob.decode(low + (high - low) * np.random.default_rng(0).random((40, low.size)))
-    return timed_calls(lambda: np.asarray(evaluate(prob, params).force).reshape(40, -1)[:, 0], repeats)
+def _evaluated(ev) -> list[np.ndarray]:
+    """The compared quantities of an :class:`gearmesh.optimise.Evaluation`."""
+    return [ev.objective, ev.force, ev.violation, ev.dynamic_factor]
 
 
-def robust_generation(repeats: int):
-    """(wall s, CPU s, J (40,)) of one generation of the default study's ``optimised`` run."""
+def generation(run: str, repeats: int, subset: int) -> dict:
+    """One generation of ``run`` in one batch against one candidate at a time (module docstring)."""
     from gearmesh.optimise import evaluate
 
-    prob, params = robust_problem()
-    return timed_calls(lambda: evaluate(prob, params).objective, repeats)
+    prob, params = study_problem(run)
+    part = min(subset, params.shape[0])
+    new = timed_calls(lambda: _evaluated(evaluate(prob, params)), repeats)
+    old = timed_calls(lambda: [np.concatenate(v) for v in zip(*(_evaluated(evaluate(prob, params[i:i + 1]))
+                                                                  for i in range(part)))], 1, warm_up=False)
+    name = "optimise_generation" if run == "design_point" else "robust_generation"
+    return row(f"{name}_{params.shape[0]}_candidates", new, old, scale=params.shape[0] / part,
+               evaluations=params.shape[0], run=run,
+               baseline=f"the same evaluate one candidate at a time, the first {part} of {params.shape[0]}, "
+                        "time scaled to all",
+               **equality([a[:part] for a in new[2]], old[2]))
 
 
-def dynamic_generation(repeats: int):
-    """(wall s, CPU s, K_v (40, 3)) of the dynamic factors of 40 candidates (module docstring)."""
-    from gearmesh.dynamics.population import dynamic_factors
-
-    prob, params = robust_problem()
-    lead = np.zeros((params.shape[0], 2))
-    return timed_calls(lambda: dynamic_factors(prob.dynamics, params, lead), repeats)
-
-
-def study_runs(repeats: int):
-    """(wall s, CPU s, (genes of every generation, optimum genes, optimum J) per run) of both GA runs
-    of the default study, set-up included."""
+def study_runs():
+    """(wall s, CPU s, {run: (optimum J of the run, optimum J evaluated alone)}, CPU s) of both GA
+    runs of the default study, set-up included (module docstring)."""
     from gearmesh.datasets.optimise import run_problem
     from gearmesh.gear import load_pair
-    from gearmesh.optimise import optimise
+    from gearmesh.optimise import evaluate, optimise
 
-    pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    from common import CASE_PAIR, stage_settings, study_config
+
+    pair = load_pair(CASE_PAIR)
+    results = {}
 
     def both():
-        out = {}
-        for name in ("optimised", "design_point"):
-            result = optimise(run_problem(pair, **study_section(name)))
-            out[name] = (result.history.arrays()["genes"], result.optimum_genes,
-                         float(result.optimum_evaluation.objective[0]))
-        return out
+        for name in study_config()["optimise"]:
+            results[name] = optimise(run_problem(pair, **stage_settings("optimise", name)))
 
-    return timed_calls(both, repeats, warm_up=False)  # as a job runs them: once, compiled loops from the cache
+    wall, cpu, _, cpu_min = timed_calls(both, 1, warm_up=False)  # as a job runs them: once
+    found = {}
+    for name, result in results.items():
+        h = result.history.arrays()
+        genes, objective = h["genes"].reshape(-1, h["genes"].shape[-1]), h["objective"].reshape(-1)
+        at = int(np.flatnonzero(np.all(genes == result.optimum_genes, axis=1))[0])
+        found[name] = (objective[at], float(evaluate(result.problem, result.optimum[None]).objective[0]))
+    return wall, cpu, found, cpu_min
 
 
-def bench_optimise(repeats: int = 3) -> list[dict]:
-    n = max(3, repeats)
-    rows = [compare("optimise_generation_40_candidates", point_generation(n),
-                    baseline_call("bench_optimise", "point_generation", n), evaluations=40),
-            compare("robust_generation_with_dynamic_constraint", robust_generation(1),
-                    baseline_call("bench_optimise", "robust_generation", 1), evaluations=40)]
-    new, old = study_runs(1), baseline_call("bench_optimise", "study_runs", 1)
-    summary = lambda runs: np.array([runs[k][2] for k in ("optimised", "design_point")])  # noqa: E731
-    row = compare("default_study_ga_runs", (new[0], new[1], summary(new[2]), new[3]),
-                  None if old is None else (old[0], old[1], summary(old[2]), old[3]),
-                  runs="optimised (robust, dynamic constraint, 30 x 12) + design_point (40 x 30)")
-    if old is not None:
-        row["same_path"] = all(np.array_equal(new[2][k][0], old[2][k][0], equal_nan=True) for k in new[2])
-        row["same_optimum"] = all(np.array_equal(new[2][k][1], old[2][k][1]) for k in new[2])
-    rows.append(row)
+def bench_optimise(repeats: int = 3, subset: int = 4) -> list[dict]:
+    n = max(1, repeats)
+    rows = [generation("design_point", n, subset), generation("optimised", 1, subset)]
+    wall, cpu, found, cpu_min = study_runs()
+    runs = sorted(found)
+    rows.append({"name": "default_study_ga_runs", "median_s": wall, "cpu_s": cpu, "cpu_min_s": cpu_min,
+                 "runs": runs, "compared": "each run's optimum J as its batch evaluation found it against the "
+                                           "optimum evaluated alone afterwards",
+                 **equality([found[k][0] for k in runs], [found[k][1] for k in runs])})
     return rows
 
 
-def straightforward_criteria(model, torques, params, lead) -> np.ndarray:
-    """(C, 4, T) LTE p-p, flank and edge pressure, root stress of gears ``params`` (C, 2, 6) with
-    lead slopes ``lead`` (C, 2): every grid point of every gear in one exact solve, stresses of the
-    loads (the baseline of :func:`population_criteria`)."""
-    from gearmesh.ltca import solve_contact
-    from gearmesh.stress import contact_stress, iso_root_stress_slices, pair_edge_radius
-    from gearmesh.tca import SeparationBasis, basis_gap
-
-    g, lt = model.geom, model.ltca
-    grid, nc, nt = lt.grid, params.shape[0], len(torques)
-    p = grid.gap.shape[0] - 1
-    basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
-    gap = basis_gap(g, basis, np.broadcast_to(grid.z, basis.base.shape), lead[:, None, None, None, :],
-                    params[:, None, None, None, :, :]).reshape(nc, 1, p, -1)
-    m = gap.shape[-1]
-    force = np.asarray(torques) / g.base_radius[0]
-    q, delta, _, _ = solve_contact(np.broadcast_to(gap, (nc, nt, p, m)).reshape(-1, m),
-                                   np.broadcast_to(lt.compliance[:p].reshape(p, m), (nc, nt, p, m)).reshape(-1, m),
-                                   np.broadcast_to(force[:, None], (nc, nt, p)).reshape(-1), lt.law)
-    w = q.reshape(nc, nt, *basis.base.shape) / grid.dz
-    r1, r2 = grid.rho_pinion[:p], grid.rho_gear[:p]
-    c = contact_stress(g, w, grid.region[:p], r1, r2, pair_edge_radius(g))
-    root = np.maximum(iso_root_stress_slices(g, 0, w, r1), iso_root_stress_slices(g, 1, w, r2))
-    return np.stack([np.ptp(delta.reshape(nc, nt, p), axis=-1), np.where(c.edge, 0.0, c.pressure).max(axis=(2, 3, 4)),
-                     np.where(c.edge, c.pressure, 0.0).max(axis=(2, 3, 4)), root.max(axis=(2, 3, 4))], axis=1)
-
-
-def population_criteria(repeats: int) -> tuple:
-    """Today's and the straightforward (wall s, CPU s, criteria (30, 4, 3), least CPU s) of one
-    generation's criteria over the manufactured population (module docstring)."""
+def bench_population_criteria(repeats: int = 3, subset: int = 4) -> dict:
     from gearmesh.impact import ltca_criteria
     from gearmesh.optimise import _manufactured_rows
 
-    prob, params = robust_problem()
-    params = params[:30]
+    prob, params = study_problem()
     rows, lead = _manufactured_rows(prob.model, prob.tolerance, params, prob.population_deviations)
     torques, samples = prob.settings.objective_torques, rows.shape[0] // params.shape[0]
 
-    def today():
-        c = ltca_criteria(prob.model, torques, rows, lead_slope=lead, samples=samples)
-        return np.stack([c.lte_peak_to_peak, c.flank_pressure, c.edge_pressure, c.root_stress], axis=1)
+    def criteria(n: int, samples: int):
+        c = ltca_criteria(prob.model, torques, rows[:n], lead_slope=lead[:n], samples=samples)
+        return [c.lte_peak_to_peak, c.flank_pressure, c.edge_pressure, c.root_stress]
 
-    return (timed_calls(today, repeats),
-            timed_calls(lambda: straightforward_criteria(prob.model, torques, rows, lead), repeats))
+    new = timed_calls(lambda: criteria(rows.shape[0], samples), repeats)
+    with exact_for_tabulated() as replaced:
+        old = timed_calls(lambda: criteria(rows.shape[0], 1), 1, warm_up=False)
+    return row(f"population_criteria_generation_{params.shape[0]}_candidates", new, old,
+               evaluations=rows.shape[0], baseline="the same ltca_criteria, every gear solved from scratch by the "
+                                                   "exact solve_contact (no tabulated law, no start from the nominal)",
+               baseline_replaced=replaced, **equality(new[2], old[2]))
 
 
-def bench_population_criteria(repeats: int = 3) -> dict:
-    new, old = population_criteria(repeats)
-    row = compare("population_criteria_generation_30_candidates", new, old, evaluations=30 * 9)
-    return {**row, "baseline": "straightforward: one exact solve_contact over every grid point, stresses of the loads"}
+def bench_dynamic_objective(repeats: int = 3, subset: int = 4) -> dict:
+    from gearmesh.dynamics.population import dynamic_factors
 
-
-def bench_dynamic_objective(repeats: int = 3) -> dict:
-    return compare("dynamic_objective_generation_40_candidates", dynamic_generation(repeats),
-                   baseline_call("bench_optimise", "dynamic_generation", repeats), evaluations=40)
+    prob, params = study_problem()
+    pd = prob.dynamics
+    lead = np.broadcast_to(np.asarray(prob.model.lead_slope, dtype=float), (params.shape[0], 2))
+    part = min(subset, params.shape[0])
+    transient = replace(pd, settings=replace(pd.settings, steady_state="transient"))
+    new = timed_calls(lambda: dynamic_factors(pd, params, lead), repeats)
+    old = timed_calls(lambda: dynamic_factors(transient, params[:part], lead[:part]), 1, warm_up=False)
+    return row(f"dynamic_objective_generation_{params.shape[0]}_candidates", new, old, scale=params.shape[0] / part,
+               evaluations=params.shape[0],
+               baseline=f"the same dynamic_factors, every steady state by the physical-time transient instead of "
+                        f"shooting, the first {part} of {params.shape[0]} candidates, time scaled to all",
+               **equality(new[2][:part], old[2]))
 
 
 if __name__ == "__main__":
-    for row in bench_optimise(int(sys.argv[1]) if len(sys.argv) > 1 else 3) + [bench_population_criteria(),
-                                                                               bench_dynamic_objective()]:
-        print(json.dumps(row), flush=True)
+    for r in bench_optimise(int(sys.argv[1]) if len(sys.argv) > 1 else 3) + [bench_population_criteria(),
+                                                                             bench_dynamic_objective()]:
+        print(json.dumps(r), flush=True)

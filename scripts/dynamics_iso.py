@@ -3,9 +3,9 @@
 For the default study's pair at one torque: ISO's n_E1 and K_v(n) for perfect gears (and with a
 tip relief), the model's mesh-mode resonance and peak dynamic factor (maximum over static mesh
 force) over a speed sweep, with rigid supports, the pair file's and seed 001's, for the
-``contact`` and ``tvms`` excitations, with the pair file's gear bodies (by default solid discs,
-their compliance in series, :mod:`gearmesh.body`) or ``--web-thickness-mm T`` (mm, or ``rigid``: the
-teeth alone, ISO's model). Writes results/dynamics_iso/seed000_case[_web<T>].json and prints a table. Run: ``python scripts/dynamics_iso.py`` (about 2 min on a quiet 2-core machine).
+``contact`` and ``tvms`` excitations, with the pair file's gear bodies (by default none described:
+the teeth alone, ISO's model) or ``--web-thickness-mm T`` (mm: a web of that thickness held at the
+bore, its compliance in series, :mod:`gearmesh.body`; the face width a solid disc). Writes results/dynamics_iso/seed000_case[_web<T>].json and prints a table. Run: ``python scripts/dynamics_iso.py`` (about 2 min on a quiet 2-core machine).
 """
 
 from __future__ import annotations

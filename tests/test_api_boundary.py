@@ -317,9 +317,68 @@ def test_gearmesh_run_reads_configs_bounded_before_snakemake(tmp_path, monkeypat
     assert peak < REFUSAL_BYTES
 
 
-def test_gearmesh_run_finds_every_config_file():
-    from gearmesh.cli import snakemake_configfiles
+def test_gearmesh_run_finds_every_config_file(tmp_path, monkeypatch):
+    from gearmesh.launch import snakemake_inputs
 
-    assert snakemake_configfiles(["--cores", "2"]) == ["config/config.yaml"]
-    assert snakemake_configfiles(["-n", "--configfile", "a.yaml", "b.yaml", "--cores", "2", "--configfile=c.yaml"]) \
-        == ["a.yaml", "b.yaml", "c.yaml"]
+    monkeypatch.chdir(tmp_path)  # no Snakefile, no profiles/default
+    monkeypatch.delenv("SNAKEMAKE_PROFILE", raising=False)
+    assert snakemake_inputs(["--cores", "2"]).configfiles == ["config/config.yaml"]
+    assert snakemake_inputs(["-n", "--configfile", "a.yaml", "b.yaml", "--cores", "2"]).configfiles == ["a.yaml", "b.yaml"]
+    # as Snakemake's parser reads them: a second --configfile replaces the first
+    assert snakemake_inputs(["-n", "--configfile", "a.yaml", "--configfile=c.yaml"]).configfiles == ["c.yaml"]
+    assert snakemake_inputs(["-n", "--configfiles", "a.yaml"]).configfiles == ["a.yaml"]
+
+
+YTE_STUDY = "study: s\npairs: [seed001_pair1]\n__use_yte__: true\n"
+
+
+def _profile(folder, text: str):
+    folder.mkdir(parents=True, exist_ok=True)
+    (folder / "config.yaml").write_text(text)
+    return folder
+
+
+@pytest.mark.parametrize("how", ["--profile", "SNAKEMAKE_PROFILE", "profiles/default", "--workflow-profile",
+                                 "profile.yaml", "configfiles list"])
+def test_gearmesh_run_refuses_a_template_a_profile_names(tmp_path, monkeypatch, capsys, how):
+    """'gearmesh run -n --profile P' (P's config.yaml: configfile: yte.yaml), or SNAKEMAKE_PROFILE=P,
+    executed the template's Python: every profile Snakemake reads is followed to its config files."""
+    import os
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.delenv("SNAKEMAKE_PROFILE", raising=False)
+    (tmp_path / "yte.yaml").write_text(YTE_STUDY)
+    (tmp_path / "Snakefile").write_text("rule all:\n    input: []\n")
+    monkeypatch.setattr(os, "execv", lambda *a: pytest.fail("snakemake was started"))
+    argv = ["run", "-n"]
+    if how == "--profile":
+        argv += ["--profile", str(_profile(tmp_path / "P", "configfile: yte.yaml\ncores: 1\n"))]
+    elif how == "SNAKEMAKE_PROFILE":
+        monkeypatch.setenv("SNAKEMAKE_PROFILE", str(_profile(tmp_path / "P", "configfile: yte.yaml\n")))
+    elif how == "profiles/default":  # the workflow profile, applied without a flag
+        _profile(tmp_path / "profiles" / "default", "configfile: yte.yaml\n")
+    elif how == "--workflow-profile":
+        argv += ["--workflow-profile", str(_profile(tmp_path / "W", "configfile: ../yte.yaml\n"))]
+    elif how == "profile.yaml":  # the profile itself a template
+        argv += ["--profile", str(_profile(tmp_path / "P", "__use_yte__: true\ncores: 1\n"))]
+    else:
+        argv += ["--profile", str(_profile(tmp_path / "P", "configfiles: [yte.yaml]\n"))]
+    assert main(argv) == 2
+    err = capsys.readouterr().err
+    assert len(err.strip().splitlines()) == 1 and err.startswith("gearmesh: error: __use_yte__ = True"), err
+
+
+def test_gearmesh_run_refuses_what_snakemake_would(tmp_path, monkeypatch, capsys):
+    """An abbreviated --configfile is still a config file to Snakemake; arguments it refuses are refused here."""
+    import os
+
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(os, "execv", lambda *a: pytest.fail("snakemake was started"))
+    (tmp_path / "yte.yaml").write_text(YTE_STUDY)
+    assert main(["run", "-n", "--configfile", "yte.yaml"]) == 2
+    assert "in config file yte.yaml" in capsys.readouterr().err
+    assert main(["run", "-n", "--no-such-option"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("gearmesh: error: snakemake arguments = ") and "--no-such-option" in err
+    assert main(["run", "-n", "--profile", str(tmp_path / "nowhere")]) == 2
+    assert "profile" in capsys.readouterr().err

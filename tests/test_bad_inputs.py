@@ -117,7 +117,7 @@ BAD_FILES = [
     ("not YAML", "[not, a, mapping", "file"),
     ("tab indentation", "name: p\n\tteeth: [29, 49]\n", "file"),
     ("duplicate key", yaml.safe_dump(_pair()) + "teeth: [20, 40]\n", "teeth"),
-    ("empty file", "", "pair"),
+    ("empty file", "", "file"),  # neither a pair file nor a study config: validate says so, not "pair file"
 ]
 
 BASE_STUDY = {"study": "s", "pairs": ["p"]}
@@ -317,7 +317,14 @@ BAD_ARGS = [
     ("optimise weights text", ["optimise", "--torques-Nm", "100,200", "--weights", "1,x"], "--weights"),
     ("optimise objective", ["optimise", "--torque-Nm", "100", "--objective", "noise"], "--objective"),
     ("optimise dynamic factor zero", ["optimise", "--torque-Nm", "100", "--dynamic-factor", "0"],
-     "constraints.dynamic_factor"),
+     "--dynamic-factor"),
+    ("optimise constraint text", ["optimise", "--torque-Nm", "100", "--pressure-factor", "tight"], "--pressure-factor"),
+    ("optimise orders out of range", ["optimise", "--torque-Nm", "100", "--harmonic-orders", "1,7"],
+     "--harmonic-orders"),
+    ("optimise flag word", ["optimise", "--torque-Nm", "100", "--criteria-over-samples", "maybe"],
+     "--criteria-over-samples"),
+    ("optimise pareto word", ["optimise", "--torque-Nm", "100", "--pareto-objectives", "impact,noise"],
+     "--pareto-objectives"),
     ("optimise robust single point", ["optimise", "--torque-Nm", "100", "--objective", "robust",
                                       "--tolerance-samples", "0"], "objective"),
     ("optimise grade text", ["optimise", "--torque-Nm", "100", "--grade", "six"], "--grade"),
@@ -445,6 +452,7 @@ def _cli(*args: str, cwd: Path) -> subprocess.CompletedProcess:
                           cwd=cwd, timeout=60)
 
 
+@pytest.mark.workflow
 def test_hostile_files_in_a_fresh_process_stay_small(tmp_path):
     """Alias bomb, /dev/zero, 30000 nodes and a large file as separate processes: one line,
     exit 2, no traceback, and the largest child stays below 400 MB of resident memory."""
@@ -499,6 +507,7 @@ SNAKEMAKE_CASES = [  # (file name, content, field): a handful, each Snakemake st
 ]
 
 
+@pytest.mark.workflow
 @needs_snakemake
 def test_snakemake_refuses_the_same_configs_before_any_job(root, tmp_path, monkeypatch, capsys):
     work = _workflow_copy(root, tmp_path)
@@ -523,6 +532,7 @@ def _dead_pid() -> int:
     return proc.pid
 
 
+@pytest.mark.workflow
 @needs_snakemake
 def test_killed_run_rerun_leaves_no_temporary_files(root, tmp_path):
     """kill -9 of the whole run at a random moment, then --unlock and a rerun: every target

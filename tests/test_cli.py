@@ -46,6 +46,7 @@ def test_validate_accepts_pairs_and_studies(root, monkeypatch, capsys):
     ("study: s\npairs: [seed001_pair1]\ncontact_lines: {positions: 0}\n", "contact_lines.positions"),
     ("[not, a, mapping", "file"),
 ])
+@pytest.mark.workflow
 def test_bad_input_exits_2_with_one_message(tmp_path, root, monkeypatch, text, field):
     monkeypatch.chdir(root)
     path = tmp_path / "bad.yaml"
@@ -147,3 +148,114 @@ def test_help_shows_the_defaults(capsys):
         main(["stiffness", "--help"])
     text = " ".join(capsys.readouterr().out.split())
     assert "(default: 200)" in text and "(default: fe)" in text
+
+
+def test_rating_text_starts_with_the_verdict_and_groups_the_factors(root, capsys):
+    """The first line says whether S_H and S_F of the weaker gear meet their minimums; then the
+    result by group, every number of the JSON output among them (nothing dropped); a minimum above
+    the rated safety factor turns the verdict to FAIL."""
+    pair = str(root / "config/pairs/seed000_case.yaml")
+    base = ["rating", pair, "--torque-Nm", "1000", "--speed-rpm", "5000", "--positions", "16", "--points", "20"]
+    assert main([*base, "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert main(base) == 0
+    text = capsys.readouterr().out.splitlines()
+    s_h, s_f = min(data["S_H"]), min(data["S_F"])
+    assert text[0] == (f"PASS: S_H {s_h:.3g} >= S_Hmin {data['S_Hmin']:g}, S_F {s_f:.3g} >= S_Fmin "
+                       f"{data['S_Fmin']:g} (the weaker gear of each)")
+    headings = [line for line in text[1:] if line and not line.startswith(" ")]
+    assert headings[:4] == ["operating point", "load factors (ISO 6336-1)", "pitting (ISO 6336-2)",
+                            "tooth root (ISO 6336-3)"] and headings[-1] == "notes"
+    section = text.index("pitting (ISO 6336-2)")
+    assert any(line.split() == ["S_H", "pinion", f"{data['S_H'][0]:.6g},", "gear", f"{data['S_H'][1]:.6g}"]
+               for line in text[section:])
+    shown = {line.split()[0] for line in text if line.startswith("  ") and not line.startswith("  -")}
+    flat = {k.rsplit(".", 1)[-1] if "." not in k.split(".", 1)[-1] else k.split(".", 1)[1]
+            for k in _dotted(data) if not k.startswith("notes")}
+    assert flat <= shown, flat - shown
+    assert len([line for line in text if line.startswith("  - ")]) == len(data["notes"])
+    assert main([*base, "--factor", f"S_Hmin={s_h * 1.01}"]) == 0
+    assert capsys.readouterr().out.startswith(f"FAIL: S_H {s_h:.3g} < S_Hmin")
+
+
+def _dotted(data, prefix=""):
+    for key, value in data.items():
+        if isinstance(value, dict):
+            yield from _dotted(value, f"{prefix}{key}.")
+        else:
+            yield f"{prefix}{key}"
+
+
+def test_the_safety_verdict_reads_every_factor_with_a_minimum():
+    """A safety factor the rating gains (with its minimum) joins the verdict without a change."""
+    from gearmesh.cli import safety_verdict
+
+    ok, line = safety_verdict({"S_H": [1.2, 1.1], "S_Hmin": 1.0, "S_F": [2.0, 1.9], "S_Fmin": 1.4,
+                               "S_S": 1.5, "S_Smin": 1.8, "S_Hmin_note": "x"})
+    assert not ok and line == ("FAIL: S_H 1.1 >= S_Hmin 1, S_F 1.9 >= S_Fmin 1.4, S_S 1.5 < S_Smin 1.8 "
+                               "(the weaker gear of each)")
+    for values in ([float("nan"), 2.0], [2.0, float("nan")]):
+        assert safety_verdict({"S_H": values, "S_Hmin": 1.0})[0] is False
+
+
+#: What each command needs on its command line besides its pair file (small grids where it runs).
+_COMMAND_LINES = {"geometry": [], "stiffness": ["--slices", "20", "--positions", "16"],
+                  "ltca": ["--torque-Nm", "20000"], "impact": ["--torque-Nm", "20000", "--speed-rpm", "500"],
+                  "rating": ["--torque-Nm", "20000", "--speed-rpm", "500"],  # the declared default: ltca
+                  "rating --method iso": ["--torque-Nm", "20000", "--speed-rpm", "500", "--method", "iso"],
+                  "dynamics": ["--torque-Nm", "20000", "--speeds", "500"],
+                  "optimise": ["--torque-Nm", "20000", "--population", "4", "--generations", "1"]}
+
+
+def test_what_validate_accepts_every_command_that_needs_nothing_more_runs(tmp_path, capsys):
+    """One rule for required inputs: a datasheet pair without a bore is valid; validate names the
+    key it lacks and the commands that need it; each of those refuses naming the key to add, and
+    every other command runs (the geometry, the ISO rating by the standard's factors)."""
+    import argparse
+
+    from gearmesh.cli import build_parser
+
+    pair = tmp_path / "stage.yaml"
+    pair.write_text("teeth: [24, 95]\nnormal_module_mm: 14\nnormal_pressure_angle_deg: 20\nhelix_angle_deg: 10\n"
+                    "face_width_mm: 200\nprofile_shift: [0.48, 0.6691]\ncenter_distance_mm: 861.0\n"
+                    "tip_diameter_mm: [380.747, 1395.376]\nbasic_rack_profile: ISO 53 A\n")
+    assert main(["validate", str(pair), "--json"]) == 0
+    needs = json.loads(capsys.readouterr().out)["needs"]
+    assert list(needs) == ["bore_radius_mm"] and "bore_diameter_mm" in needs["bore_radius_mm"]
+    needing = needs["bore_radius_mm"].split("needed by ", 1)[1].split(", ")
+    action = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction))
+    takes_a_pair = {name for name, p in action.choices.items() if any(a.dest == "pair" for a in p._actions)}
+    assert {c.split()[0] for c in _COMMAND_LINES} == takes_a_pair  # every command is judged here
+    for command, options in _COMMAND_LINES.items():
+        code = main([command.split()[0], str(pair), *options, "--json"])
+        out, err = capsys.readouterr()
+        if command in needing:
+            assert code == 2 and err.startswith("gearmesh: error: bore_radius_mm = None: is required for "), err
+            assert "add bore_radius_mm (or bore_diameter_mm" in err, err
+        else:
+            assert code == 0, (command, err)
+            assert "ltca" not in json.loads(out) if command == "rating --method iso" else True
+
+
+@pytest.mark.parametrize("kind, key", [("pair", "bore_radus_mm"), ("pair", "colour"), ("study", "bogus"),
+                                       ("study", "ltca.torque_Nm")])
+def test_an_unknown_key_is_refused_in_whole_words(root, tmp_path, capsys, kind, key):
+    """The message lists the allowed keys when they fit in a line, else the closest ones and the
+    command that lists them all: never a list cut off in the middle of a word."""
+    import yaml
+
+    if kind == "pair":
+        data = {**yaml.safe_load((root / "config/pairs/seed000_case.yaml").read_text()), key: 1}
+    else:
+        data = {"study": "x", "pairs": ["seed000_case"]}
+        section, _, name = key.rpartition(".")
+        data.update({section: {name: 1}} if section else {name: 1})
+    path = tmp_path / "file.yaml"
+    path.write_text(yaml.safe_dump(data))
+    assert main(["validate", str(path)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "…" not in err and "unknown key" in err, err
+    if key == "bore_radus_mm":
+        assert "did you mean bore_radius_mm" in err and "gearmesh schema pair --format markdown" in err
+    if key == "ltca.torque_Nm":
+        assert "allowed keys are contact_law, corner_extension" in err and "torques_Nm" in err

@@ -119,6 +119,7 @@ def test_help_speaks_plainly_and_shows_each_default_once(capsys):
     assert "(default: 0)" in commands["optimise"].format_help()  # --seed: a zero default is shown
 
 
+@pytest.mark.workflow
 def test_a_pip_install_ships_the_examples_every_command_reads(tmp_path, root):
     """From a NON-editable install (the package built into a folder of its own, run without the
     editable finder): `gearmesh example NAME` written to a file is read by `gearmesh geometry`."""

@@ -11,6 +11,7 @@ import signal
 import subprocess
 import sys
 import textwrap
+import time
 from pathlib import Path
 
 import pytest
@@ -29,6 +30,7 @@ def _study(name: str, pair: str) -> dict:
             "stiffness": {"slices": 40, "positions": 24}}
 
 
+@pytest.mark.workflow
 @needs_snakemake
 def test_two_studies_run_at_once_in_one_checkout_and_lose_no_job(root, tmp_path):
     """Each run's start-up removes only temporaries no live process writes: a temporary of a live
@@ -105,6 +107,7 @@ def _go(proc: subprocess.Popen, stdout) -> str:
     return stdout.readline().strip()
 
 
+@pytest.mark.workflow
 @pytest.mark.skipif(os.name != "posix", reason="process tree of a POSIX run")
 def test_a_job_writes_while_its_snakemake_lives(tmp_path):
     target = tmp_path / "results/ltca.nc"
@@ -117,6 +120,7 @@ def test_a_job_writes_while_its_snakemake_lives(tmp_path):
         proc.wait()
 
 
+@pytest.mark.workflow
 @pytest.mark.skipif(os.name != "posix", reason="process tree of a POSIX run")
 def test_a_job_whose_snakemake_was_killed_writes_nothing(tmp_path):
     """kill -9 of the controller leaves its jobs running as orphans, writing while a recovery run
@@ -130,6 +134,7 @@ def test_a_job_whose_snakemake_was_killed_writes_nothing(tmp_path):
     assert not target.exists() and list(target.parent.iterdir()) == []
 
 
+@pytest.mark.workflow
 @pytest.mark.skipif(os.name != "posix", reason="process tree of a POSIX run")
 def test_a_job_does_not_clobber_a_file_written_while_it_ran(tmp_path):
     """Snakemake removes a job's outputs before it starts: a file there at the rename was written
@@ -146,3 +151,32 @@ def test_a_job_does_not_clobber_a_file_written_while_it_ran(tmp_path):
     finally:
         proc.kill()
         proc.wait()
+
+
+#: A long job under its controller's watch (gearmesh.io.stop_with_controller): says its pid, then
+#: works in a loop that never yields the interpreter.
+LONG_JOB = textwrap.dedent("""
+    import os
+    from gearmesh.io import stop_with_controller
+    with stop_with_controller(interval=0.1):
+        print(os.getpid(), flush=True)
+        while True:
+            pass
+""")
+
+
+@pytest.mark.skipif(os.name != "posix", reason="process tree of a POSIX run")
+def test_a_job_stops_when_its_snakemake_is_killed(tmp_path):
+    """kill -9 of the controller left its jobs running to completion (issue 39 item 8)."""
+    import psutil
+
+    controller = tmp_path / "bin" / "snakemake"
+    controller.parent.mkdir(exist_ok=True)
+    controller.write_text(CONTROLLER.replace("sys.argv[2]]", "'x']"))
+    proc = subprocess.Popen([sys.executable, str(controller), LONG_JOB], stdout=subprocess.PIPE, text=True)
+    job = psutil.Process(int(proc.stdout.readline()))
+    time.sleep(0.5)
+    assert job.is_running() and job.status() != psutil.STATUS_ZOMBIE  # the watcher leaves a live controller's job
+    os.kill(proc.pid, signal.SIGKILL)
+    proc.wait()
+    job.wait(timeout=5)  # psutil.TimeoutExpired if the job ran on

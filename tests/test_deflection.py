@@ -125,14 +125,16 @@ def test_mismatch_grows_with_the_load_and_vanishes_without_shafts():
 
 
 def test_spur_pinion_body_twist_is_isos_torsion_term():
-    """A spur pair at mid-span on rigid bearings and very stiff shafts: no axial force, no tilt; the
-    mismatch is the bodies' twist across the face, r_b·T·b/(2GJ) of each (the torsion part of ISO
+    """A spur pair at mid-span on rigid bearings, shafts as thick as the bores: no axial force, no
+    tilt (the shafts bend symmetrically under the gear); the mismatch is the bodies' twist across
+    the face, r_b·T·b/(2GJ) of each (the torsion part of ISO
     6336-1's f_sh, a solid cylinder of the reference diameter). Each body lags most at the face end
     away from its torque side: with both torques on one side the two twists add, on opposite sides
     they cancel in part."""
     base = pair_to_dict(load_pair(example_pair("seed000_case")))
     base.update(helix_angle_deg=0.0, bearing_radial_stiffness_N_per_um="rigid",
-                bearing_axial_stiffness_N_per_um="rigid", shaft_diameter_mm=[400, 900], bearing_span_mm=[150, 180])
+                bearing_axial_stiffness_N_per_um="rigid", bearing_span_mm=[150, 180],
+                shaft_diameter_mm=[2 * r for r in base["bore_radius_mm"]])
     out = {}
     for side in (["leading", "leading"], ["trailing", "leading"]):
         geom = pair_geometry(load_pair({**base, "torque_side": side}))

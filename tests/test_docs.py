@@ -6,6 +6,7 @@ from __future__ import annotations
 import importlib
 import re
 
+import numpy as np
 import pytest
 import yaml
 
@@ -49,12 +50,12 @@ def test_references_name_every_source_document_once(root, number):
 
 def _markdown_table(text: str, heading: str) -> list[dict[str, str]]:
     """The first Markdown table after ``heading`` as rows of {column: cell}."""
-    lines = [ln for ln in text[text.index(heading):].splitlines() if ln.startswith("|")]
     block = []
-    for ln in lines:
+    for ln in text[text.index(heading):].splitlines():
         if block and not ln.startswith("|"):
-            break
-        block.append([c.strip() for c in ln.strip("|").split("|")])
+            break  # the table's end: the next table is another's
+        if ln.startswith("|"):
+            block.append([c.strip() for c in ln.strip("|").split("|")])
     header, rows = block[0], [r for r in block[2:]]
     return [dict(zip(header, r)) for r in rows]
 
@@ -93,3 +94,60 @@ def test_impact_doc_table_is_what_the_impact_stage_computes(root):
             standard = computed["standard"].sel(torque=float(row["T1 (N·m)"]))
             reduction = 100 * (1 - float(ds["impact_force"]) / float(standard["impact_force"]))
             assert float(row["reduction"].rstrip(" %")) == pytest.approx(reduction, abs=1), where
+
+
+def test_nothing_shipped_points_into_the_repository(root, capsys):
+    """What a pip install carries and shows (the example pair files, the published schemas, every
+    command's help) points to the documentation by name or says it in words: no path into a
+    checkout (docs/…, tests/…), no source-document or issue number (seed 00x, issue N)."""
+    import argparse
+
+    from gearmesh.cli import build_parser
+
+    pointer = re.compile(r"\b(docs|tests)/\S+|\b[Ss]eed 00\d|\b[Ii]ssues? \d+")
+    package = root / "src/gearmesh"
+    texts = {str(p.relative_to(root)): p.read_text(encoding="utf-8")
+             for p in sorted([*package.glob("pairs/*.yaml"), *package.glob("schemas/*")])}
+    parser = build_parser()
+    action = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    texts["gearmesh --help"] = parser.format_help()
+    texts |= {f"gearmesh {name} --help": p.format_help() for name, p in action.choices.items()}
+    found = {where: pointer.findall(text) for where, text in texts.items() if pointer.search(text)}
+    assert not found, found
+
+
+def test_validation_doc_loaded_contact_rows_are_what_the_ltca_computes(root):
+    """docs/validation.md's loaded-contact rows of the default study's pair (standard and relief,
+    the study's grid and tooth model) are recomputed here: the LTE mean and peak-to-peak of both tooth
+    models (the teeth alone: the study's default body), and the relief's entry (the teeth's LTE at φ1A
+    against the entering pair's separation, and the timing the LTCA and lte_table.csv state). A
+    number copied by hand that drifts fails."""
+    from gearmesh.body import mesh_body_compliance
+    from gearmesh.config import load_study
+    from gearmesh.datasets.ltca import ltca_dataset
+    from gearmesh.gear import pair_geometry
+    from gearmesh.pipeline import study_pair
+
+    rows = _markdown_table((root / "docs/validation.md").read_text(encoding="utf-8"), "## TCA / LTCA")
+    ours = {r["quantity"]: r["ours"] for r in rows}
+    study = load_study(root / "config/config.yaml")
+    grid = {k: study["ltca"][k] for k in ("torques_Nm", "positions", "points")}
+    assert grid["torques_Nm"] == [400, 1000, 1600]
+    numbers = lambda text: [float(v) for v in re.findall(r"\d+\.\d+", text)]  # noqa: E731
+    standard = study_pair(study, study["pairs"][0], "standard")
+    assert mesh_body_compliance(pair_geometry(standard)) == 0.0  # "the teeth alone"
+    lte = next(text for q, text in ours.items() if q.startswith("LTE mean / p-p, standard"))
+    fe, transition = (ltca_dataset(standard, method=method, **grid) for method in ("fe", "transition"))
+    printed = numbers(lte)
+    for k, ds in enumerate((fe, transition)):
+        np.testing.assert_allclose(printed[6 * k:6 * k + 6], np.ravel([ds["lte_mean"].values * 1e6,
+                                                                       ds["lte_peak_to_peak"].values * 1e6],
+                                                                      order="F"), atol=0.0051)
+    assert fe["touches_before_engagement"].values.all()  # "edge contact at every load"
+    assert "edge contact at every load" in ours["mesh-in, standard"]
+    relief = ltca_dataset(study_pair(study, study["pairs"][0], "relief"), method="fe", **grid)
+    text = ours["mesh-in with tip relief"]
+    np.testing.assert_allclose(numbers(text)[:3], relief["lte_teeth_at_engagement"].values * 1e6, atol=0.051)
+    assert f"separation {float(relief['te_next_pair_at_engagement']) * 1e6:.1f} µm" in text
+    entry = ["edge" if early else "surface" for early in relief["touches_before_engagement"].values]
+    assert entry == ["surface", "surface", "edge"] and "surface entry at 400 and 1000, edge at 1600" in text

@@ -138,7 +138,7 @@ def test_cli_dynamic_constraint_reports_the_dynamic_factors(tmp_path, capsys):
 
 
 @pytest.mark.parametrize("flags, field", [(["--dynamic-speeds-rpm", "5000"], "dynamic_speeds_rpm"),
-                                          (["--dynamic-factor", "-1"], "constraints.dynamic_factor")])
+                                          (["--dynamic-factor", "-1"], "--dynamic-factor")])
 def test_bad_dynamic_settings_are_refused(flags, field, capsys):
     code = cli_main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000",
                      "--population", "4", "--generations", "1", *flags])

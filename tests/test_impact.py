@@ -241,6 +241,7 @@ def test_convergence_in_local_slices(case):
     assert np.ptp(cf) < 2e-2 * cf[-1]
 
 
+@pytest.mark.slow
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(valid_pairs(), st.floats(0.05, 1.0))
 def test_random_pairs_crossing_equals_seed_equation_and_velocities_agree(pair, load):

@@ -154,6 +154,7 @@ def test_the_netcdf_librarys_hdf_error_on_a_full_disk_is_called_a_full_disk(tmp_
     assert list(tmp_path.iterdir()) == []
 
 
+@pytest.mark.workflow
 def test_a_workflow_job_on_a_full_disk_prints_one_line_naming_the_file(root, tmp_path):
     """The job's stderr is the one line (the log cannot be written either: no logging traceback)."""
     pytest.importorskip("snakemake")
@@ -220,6 +221,7 @@ def test_an_empty_or_complete_tree_is_accepted(tmp_path):
     assert Path("results/s/p/relief/plots") in study_folders(STUDY)
 
 
+@pytest.mark.workflow
 def test_snakemake_and_validate_refuse_a_results_path_that_is_a_file_up_front(root, tmp_path):
     """results/STUDY/PAIR/standard a file crashed Snakemake mid-run with a traceback."""
     pytest.importorskip("snakemake")

@@ -49,6 +49,17 @@ def _script(job: Snakemake, tmp: Path, env: dict) -> subprocess.Popen:
                             text=True)
 
 
+@pytest.fixture(scope="module", autouse=True)
+def kernels_in_numba_cache():
+    """numba's on-disk cache holding the kernels, so that a server compiles nothing aside and its
+    only children are the tests' jobs (a fresh clone's first server forks a helper to compile them,
+    which the tests below would take for a job)."""
+    if not jobserver.kernels_cached():
+        subprocess.run([sys.executable, "-c", "from gearmesh.jobserver import warm_kernels; warm_kernels()"],
+                       check=True, timeout=600)
+    assert jobserver.kernels_cached()
+
+
 @pytest.fixture
 def server(monkeypatch):
     """A server for this test, as the Snakefile's onstart starts one; stopped afterwards."""
@@ -61,6 +72,7 @@ def server(monkeypatch):
     assert not Path(path).exists()
 
 
+@pytest.mark.workflow
 def test_a_job_on_the_server_equals_the_job_alone(root, tmp_path, server):
     settings = {"positions": 24}
     results = {}
@@ -88,6 +100,7 @@ def test_a_job_on_the_server_equals_the_job_alone(root, tmp_path, server):
     assert a.attrs["config_json"] == b.attrs["config_json"]
 
 
+@pytest.mark.workflow
 def test_a_job_on_the_server_rounds_as_the_one_thread_job_snakemake_runs(root, tmp_path, server):
     """The system deflection of the default pair is an ill-conditioned solve (stiff bearings on a
     slender shaft) whose last digits follow how BLAS splits it into threads: on the server it gives
@@ -109,6 +122,7 @@ def test_a_job_on_the_server_rounds_as_the_one_thread_job_snakemake_runs(root, t
         np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
 
 
+@pytest.mark.workflow
 def test_a_failing_job_reports_its_error_and_exit_code(root, tmp_path, server):
     job = _job(root, tmp_path, "gearmesh.datasets.geometry:contact_lines_dataset", {"positions": -3})
     proc = _script(job, tmp_path, server.env)
@@ -118,6 +132,7 @@ def test_a_failing_job_reports_its_error_and_exit_code(root, tmp_path, server):
     assert not (tmp_path / "result.nc").exists()
 
 
+@pytest.mark.workflow
 def test_a_killed_script_takes_its_job_with_it(root, tmp_path, server):
     # a stiffness job of many slices runs for seconds: kill its script while it works
     job = _job(root, tmp_path, "gearmesh.datasets.stiffness:stiffness_dataset",
@@ -134,6 +149,7 @@ def test_a_killed_script_takes_its_job_with_it(root, tmp_path, server):
     assert not (tmp_path / "result.nc").exists()
 
 
+@pytest.mark.workflow
 def test_without_a_server_the_script_runs_the_job_itself(root, tmp_path, monkeypatch):
     monkeypatch.setenv(jobserver.ENV, str(tmp_path / "no-such-socket"))
     job = _job(root, tmp_path, "gearmesh.datasets.geometry:contact_lines_dataset", {"positions": 12})
@@ -169,15 +185,30 @@ def test_the_server_imports_the_modules_its_rules_name():
     assert jobserver.rule_modules(rules) == ["gearmesh.datasets.ltca", "gearmesh.pipeline", "gearmesh.plots.ltca"]
 
 
+def _job_modules() -> set[str]:
+    """Every gearmesh module a job can run: the closure (imports inside functions included) of
+    every stage's and table's function and plot function, and of the pipeline."""
+    from gearmesh.codeversion import module_closure
+    from gearmesh.settings import stages
+
+    specs = {"gearmesh.pipeline:run"}
+    for stage in stages().values():
+        for job in (stage, *stage.tables):
+            specs.update(s for s in (job.function, job.draws) if s)
+    return {name for spec in specs for name in module_closure(spec.partition(":")[0])}
+
+
 def _function_level_imports() -> set[str]:
-    """Every third-party module the package imports inside a function (``from X import y`` also
-    names X.y when that is a module)."""
+    """Every third-party module the modules a job can run import inside a function (``from X
+    import y`` also names X.y when that is a module)."""
     import ast
     import importlib.util
 
+    from gearmesh.codeversion import module_file
+
     found: set[str] = set()
-    for path in Path(jobserver.__file__).parent.rglob("*.py"):
-        for fn in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+    for module in _job_modules():
+        for fn in ast.walk(ast.parse(module_file(module).read_text(encoding="utf-8"))):
             if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 continue
             for node in ast.walk(fn):
@@ -197,13 +228,15 @@ def _function_level_imports() -> set[str]:
 
 def test_the_server_warms_every_module_the_package_imports_inside_functions():
     """The server imports what jobs import inside functions, so that no job pays for it: every
-    function-level third-party import of the package is in WARM_MODULES (a package counts as
-    imported with any of its submodules)."""
+    function-level third-party import of the modules a job can run is in WARM_MODULES (a package
+    counts as imported with any of its submodules)."""
+    assert {"gearmesh.datasets.dynamics", "gearmesh.plots.impact", "gearmesh.tolerance"} <= _job_modules()
     warm = set(jobserver.WARM_MODULES)
     missing = {m for m in _function_level_imports() if m not in warm and not any(w.startswith(m + ".") for w in warm)}
     assert not missing, f"add to gearmesh.jobserver.WARM_MODULES: {sorted(missing)}"
 
 
+@pytest.mark.workflow
 def test_after_the_warm_steps_a_job_loads_no_kernel_and_imports_nothing_heavy(root, tmp_path):
     """In a process warmed as the server warms itself, a contact-driven dynamics job of another pair
     and its figures load no compiled kernel (no new numba specialisation: the warm-up used the types
@@ -211,9 +244,10 @@ def test_after_the_warm_steps_a_job_loads_no_kernel_and_imports_nothing_heavy(ro
     code = f"""
 import sys, time, numpy as np
 from gearmesh import jobserver
-steps = jobserver.warm_steps()
+children = set()
+steps = jobserver.warm_steps(children)
 while steps:  # as the server runs them (a step answering False waits for its helper child)
-    jobserver._reap()
+    jobserver._reap(children)
     if steps[0]() is not False:
         steps.pop(0)
     else:
@@ -244,3 +278,35 @@ assert not heavy, heavy
 """
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
     assert out.returncode == 0, out.stderr[-3000:] + out.stdout
+
+
+#: A stand-in for the Snakemake run: starts a server as the Snakefile's onstart does, says its
+#: socket, then waits to be killed.
+PARENT = ("import sys, time; from gearmesh import jobserver; "
+          "print(jobserver.start(['gearmesh.pipeline', 'gearmesh.datasets.stiffness']), flush=True); time.sleep(600)")
+
+
+def test_killing_the_controller_stops_the_jobs_on_its_server(root, tmp_path, monkeypatch):
+    """After kill -9 of Snakemake up to five jobs ran on to completion: the server, seeing its run
+    gone, kills its running children, and their scripts end (exit 1, one line)."""
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    parent = subprocess.Popen([sys.executable, "-c", PARENT], stdout=subprocess.PIPE, text=True)
+    try:
+        path = parent.stdout.readline().strip()
+        assert Path(path).exists(), path
+        server = psutil.Process(parent.pid).children()[0]
+        job = _job(root, tmp_path, "gearmesh.datasets.stiffness:stiffness_dataset", {"slices": 4000, "positions": 720})
+        script = _script(job, tmp_path, {**os.environ, jobserver.ENV: path})
+        deadline = time.monotonic() + 60
+        while not server.children() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        (child,) = server.children()
+        parent.kill()
+        parent.wait()
+        child.wait(timeout=5)  # psutil.TimeoutExpired if the job ran on
+        _, err = script.communicate(timeout=10)
+        assert script.returncode == 1 and "died before it finished" in err, err
+        server.wait(timeout=5)
+        assert not (tmp_path / "result.nc").exists()
+    finally:
+        parent.kill()

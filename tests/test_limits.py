@@ -116,9 +116,9 @@ def test_the_speed_limit_is_the_hoop_stress_of_the_faster_tip_circle(pair):
     assert max(stress) == pytest.approx(MAX_RIM_STRESS, rel=1e-12)
     assert min(stress) < MAX_RIM_STRESS
     assert max_speed_rpm(geom, "gear") == pytest.approx(n1 * z1 / z2, rel=1e-12)
-    heavy = pair_geometry(pair_from_dict(seed001_pair1(material={"youngs_modulus_GPa": 210, "poisson_ratio": 0.3,
-                                                                 "density_kg_m3": 4 * STEEL_DENSITY})))
-    assert max_speed_rpm(heavy) == pytest.approx(n1 / 2, rel=1e-12)
+    light = pair_geometry(pair_from_dict(seed001_pair1(material={"youngs_modulus_GPa": 210, "poisson_ratio": 0.3,
+                                                                 "density_kg_m3": STEEL_DENSITY / 4})))
+    assert max_speed_rpm(light) == pytest.approx(2 * n1, rel=1e-12)
     check_speeds(geom, [n1 * (1 - 1e-9)], "speeds_rpm")
     with pytest.raises(GearmeshInputError):
         check_speeds(geom, [n1 * (1 + 1e-9)], "speeds_rpm")

@@ -16,7 +16,7 @@ from gearmesh.body import mesh_body_compliance
 from gearmesh import stiffness as st
 from gearmesh.datasets.ltca import ltca_dataset, ltca_summary
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import Modification, load_pair, pair_from_dict, pair_geometry
+from gearmesh.gear import Modification, load_pair, pair_from_dict, pair_geometry, pair_to_dict
 from gearmesh.io import check_documented
 from gearmesh.supports import read_supports
 from gearmesh.ltca import PALMGREN_COEFFICIENT, contact_law, ltca, ltca_model, solve_contact
@@ -181,6 +181,41 @@ def test_unmodified_pair_meets_with_an_edge_and_modification_delays_it(seed000):
     assert mod.lte_at_engagement[0] < mod.tca.te_next_pair_at_engagement  # surface-to-surface entry
 
 
+@pytest.mark.parametrize("modification", [
+    {}, {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 3}, "pinion": {"crowning_um": 10}},
+    {"pinion": {"tip_relief_um": 12, "tip_relief_length_mm": 2, "root_relief_um": 15, "root_relief_length_mm": 2.5}},
+    {"gear": {"tip_relief_um": 35, "tip_relief_length_mm": 4}}], ids=["standard", "relief", "pinion", "deep"])
+def test_the_entry_is_one_answer_with_the_impact_stage(seed000, modification):
+    """Whether the entering pair touches before A is one answer in the LTCA (the mesh-in impact
+    paper's criterion on the teeth's LTE at φ1A) and the impact stage (its search for the first
+    touch, an independent formulation): the gear bodies' deflection, in series with the teeth in
+    the LTCA, turns the entering tooth with the loaded ones and is left out of the criterion, so the
+    teeth's LTE at φ1A is the impact stage's, and the two agree on the timing wherever the margin is
+    above the grids' resolution (0.3 µm)."""
+    from gearmesh.datasets.impact import impact_dataset
+
+    # solid discs held at the bore (described: hub = bore) on rigid supports: a body term in the LTE
+    pair = pair_from_dict({**pair_to_dict(seed000), "modification": modification or None, "hub_diameter_mm": [60, 140],
+                           "bearing_radial_stiffness_N_per_um": "rigid", "bearing_axial_stiffness_N_per_um": "rigid"})
+    torques = [400.0, 1000.0, 1600.0]
+    ltca_ds = ltca_dataset(pair, torques_Nm=torques, method="transition", positions=64, points=50)
+    impact = impact_dataset(pair, torques_Nm=torques, method="transition", simulate_torques_Nm=[],
+                            design_torque_Nm=None, load_window_step_Nm=None)
+    teeth = ltca_ds["lte_teeth_at_engagement"].values
+    np.testing.assert_allclose(teeth, impact["lte_at_engagement"].values, rtol=1e-6)
+    body = mesh_body_compliance(pair_geometry(pair)) * ltca_ds["force"].values
+    assert np.all(body > 0)  # the case pair's solid discs: the LTE holds a body term the criterion leaves out
+    np.testing.assert_allclose(ltca_ds["lte_at_engagement"].values - teeth, body, rtol=1e-9)
+    margin = teeth - float(ltca_ds["te_next_pair_at_engagement"])
+    clear = np.abs(margin) > 0.3e-6
+    assert clear.sum() >= 2
+    early = ltca_ds["touches_before_engagement"].values.astype(bool)
+    np.testing.assert_array_equal(early, margin > 0)
+    np.testing.assert_array_equal(early[clear], impact["roll_before_engagement"].values[clear] > 0)
+    # touching before A is off the line of action: on the mating gear's tip edge (the impact's scenario)
+    assert np.all(impact["scenario"].values[early & clear] == 2)
+
+
 def test_bad_torques_and_modifications_are_refused(seed000):
     for bad in (0.0, -5.0, float("nan"), float("inf"), [], [100.0, -1.0], "100", True, None):
         with pytest.raises(GearmeshInputError, match="torques_Nm"):
@@ -210,7 +245,7 @@ def test_dataset_and_summary(seed000):
     total, force = xr.broadcast(ds["load"].sum(("line", "point")), ds["force"])
     assert np.allclose(total.values, force.values, rtol=1e-11)
     summary = ltca_summary(seed000, 1000.0)
-    for key in ("te_peak_to_peak_um", "lte_mean_um", "lte_peak_to_peak_um", "max_line_load_N_per_mm",
-                "loaded_mesh_stiffness_mean_N_per_um"):
+    for key in ("te_peak_to_peak_um", "lte_mean_um", "lte_peak_to_peak_um", "max_line_load_normal_N_per_mm",
+                "loaded_mesh_stiffness_mean_transverse_N_per_um"):
         assert math.isfinite(summary[key])
     assert summary["te_peak_to_peak_um"] == 0.0 and summary["lte_mean_um"] > 0

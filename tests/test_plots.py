@@ -22,7 +22,7 @@ from gearmesh.datasets import ltca as lt
 from gearmesh.datasets import optimise as opd
 from gearmesh.datasets import stiffness as st
 from gearmesh.datasets.fe import fe_compliance_dataset
-from gearmesh.gear import load_pair
+from gearmesh.gear import load_pair, variant_pair
 from gearmesh.plots import dynamics, fe, geometry, impact, ltca, optimise, stiffness
 from gearmesh.plots.common import coinciding, end_labels, number, pair_label, subplots, title
 
@@ -38,7 +38,7 @@ def data():
     """Every stage's dataset of the impact case pair (standard and relieved) at coarse settings,
     the three-gear train and the study tables: a few seconds."""
     pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
-    relief = st.apply_variant(pair, "relief", RELIEF)
+    relief = variant_pair(pair, "relief", RELIEF)  # a micro-geometry variant of the same pair, as the workflow makes it
     out = {"geometry": geo.geometry_dataset(pair), "contact_lines": geo.contact_lines_dataset(pair, positions=60),
            "stiffness": st.stiffness_dataset(pair, slices=40, positions=60, torque_Nm=1000),
            "tca": lt.tca_dataset(relief, positions=24, points=15),
@@ -152,12 +152,16 @@ def test_contact_pattern_scale_per_panel_and_no_contact_on_the_colour_bar(data, 
 
 
 def test_te_lte_writes_the_separation_at_phi_1a(data, drawn, tmp_path):
+    """The separation at φ1A in the legend (not written over the curves), and each torque's entry
+    timing as the dataset's flag says it."""
     _draw("ltca", data, tmp_path)
     ax = drawn["te_lte"].axes[0]
-    value = float(data["ltca"]["te_next_pair_at_engagement"]) * 1e6
-    assert any(t.get_text() == f"TE(φ1A) = {number(value)} µm" for t in ax.texts)
+    ltca = data["ltca"]
+    value = float(ltca["te_next_pair_at_engagement"]) * 1e6
     labels = ax.get_legend_handles_labels()[1]
-    assert sum("touches before A" in s or "touches after A" in s for s in labels) == data["ltca"].sizes["torque"]
+    assert any(s.endswith(f"TE(φ1A) = {number(value)} µm") for s in labels) and not ax.texts
+    timing = [("before" if early else "after") for early in ltca["touches_before_engagement"].values]
+    assert [s.split("touches ")[1] for s in labels if "touches" in s] == [f"{t} A" for t in timing]
 
 
 def test_modification_title_in_words_and_convergence_states_a_reduction(data, drawn, tmp_path):
@@ -167,6 +171,80 @@ def test_modification_title_in_words_and_convergence_states_a_reduction(data, dr
     assert not any(f"y{k}" in title for k in range(1, 7))
     head = drawn["convergence"].axes[0].get_title()
     assert "+" not in head and ("below the standard gear" in head or "above the standard gear" in head)
+
+
+@pytest.mark.parametrize("bodies", [False, True], ids=["teeth alone", "solid-disc bodies"])
+def test_stiffness_figure_shows_what_is_in_series_and_adds_up_to_k(data, drawn, tmp_path, bodies):
+    """The stiffness figure's series terms add up to 1/K; its one-pair curve, summed over the pairs
+    in mesh one base pitch apart, is the tooth pairs' stiffness; and K is those pairs in series with
+    the mesh terms (the dataset's own: none for the default teeth alone, the gear bodies where the
+    pair file describes them), which the legend names."""
+    from gearmesh.plots.stiffness import PAIR_TERMS, _series_terms
+
+    if bodies:  # the case pair with solid-disc webs (its face width) held at the bore
+        from gearmesh.body import read_body
+
+        pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+        solid = pair.with_changes(body=read_body({"web_thickness_mm": [w * 1e3 for w in pair.face_width]}))
+        ds = st.stiffness_dataset(solid, slices=40, positions=60, torque_Nm=1000)
+        data = {**data, "stiffness": ds}
+    ds = data["stiffness"]
+    terms, pairs = _series_terms(ds)
+    k = ds["mesh_stiffness"].values
+    np.testing.assert_allclose(sum(terms.values()), 1.0 / k, rtol=1e-10)
+    x = ds["position"].values
+    pitch = x[-1] - x[0] + (x[1] - x[0])
+    summed = sum(np.interp(x + j * pitch, ds["pair_position"].values, ds["pair_stiffness"].values, left=0, right=0)
+                 for j in range(-6, 7))
+    np.testing.assert_allclose(summed, pairs, rtol=1e-9)
+    mesh = {t: c for t, c in terms.items() if t not in PAIR_TERMS.values()}
+    assert ("gear bodies" in mesh) == bodies and set(mesh) <= {"gear bodies"}
+    np.testing.assert_allclose(1.0 / (1.0 / pairs + sum(mesh.values(), np.zeros_like(k))), k, rtol=1e-10)
+    _draw("stiffness", data, tmp_path)
+    top, series = drawn["stiffness"].axes[:2]
+    labels = top.get_legend_handles_labels()[1]
+    assert labels[0] == ("K(φ): the tooth pairs, in series with the gear bodies" if bodies else "K(φ): the tooth pairs")
+    if bodies:
+        assert np.all(pairs > k)
+        drawn_pairs = next(line for line in top.lines if line.get_label().startswith("the tooth pairs in parallel"))
+        np.testing.assert_allclose(drawn_pairs.get_ydata(), pairs * 1e-6)
+    else:
+        np.testing.assert_allclose(pairs, k, rtol=1e-10)
+    assert len(series.collections) == len(terms)  # one stacked band per series term
+
+
+def test_the_impact_index_is_named_and_set_beside_the_simulated_excess(data, drawn, tmp_path):
+    """F_s is called the energy method's impact index in the figure and the table, and its ratio
+    to the entering pair's simulated excess stands beside it, the same number in both."""
+    from gearmesh.choices import IMPACT_INDEX
+
+    sets = [data["impact_standard"], data["impact_relief"]]
+    table = im.impact_table_dataset(sets)
+    ratio = table["impact_index_over_simulated_excess"]
+    simulated = np.isfinite(table["simulated_entering_excess"].values)
+    assert simulated.any() and not simulated.all()  # the simulated torque only
+    np.testing.assert_allclose(ratio.values[simulated], (table["impact_force"] / table["simulated_entering_excess"])
+                               .values[simulated], rtol=1e-12)
+    assert table["impact_force"].attrs["long_name"].startswith(IMPACT_INDEX)
+    _draw("impact_variants", data, tmp_path)
+    fig = drawn["impact_force"]
+    assert all(ax.get_ylabel().startswith(IMPACT_INDEX) for ax in fig.axes[:2])
+    labels = fig.axes[0].get_legend_handles_labels()[1]
+    for k, variant in enumerate(table["variant"].values):
+        t = table["torque"].values[simulated[k]][0]
+        expected = f"{number(float(ratio.sel(variant=variant, torque=t)), 2)}× at {number(t)} N m"
+        assert any(lab.startswith(str(variant)) and expected in lab for lab in labels), (expected, labels)
+
+
+def test_convergence_names_the_penalised_objective_j(data, drawn, tmp_path):
+    """With constraints the objective is J, F_s plus the penalty of the violated constraints (up to
+    many times F_s): labelled so, not as F_s; without, it is F_s itself."""
+    optimise.plot_convergence(data["nsga"], tmp_path / "nsga.png")
+    optimise.plot_convergence(data["ga"], tmp_path / "ga.png")
+    constrained, plain = drawn["nsga"].axes[0], drawn["ga"].axes[0]
+    assert constrained.get_ylabel().startswith("objective J = F_s + penalty of violated")
+    assert "optimum J " in constrained.get_title()
+    assert plain.get_ylabel() == "objective: F_s (N)" and "optimum J" not in plain.get_title()
 
 
 def test_over_precise_numbers_are_not_printed():
@@ -224,6 +302,7 @@ def test_the_layout_checker_finds_each_fault(kind, message):
     assert layout_faults(_faulty("none")) == []
 
 
+@pytest.mark.workflow
 def test_plot_modules_do_not_use_pyplot():
     code = ("import sys; import gearmesh.plots.common, gearmesh.plots.dynamics, gearmesh.plots.fe, "
             "gearmesh.plots.geometry, gearmesh.plots.impact, gearmesh.plots.ltca, gearmesh.plots.optimise, "
@@ -246,3 +325,66 @@ def test_figures_are_headed_by_the_pair_as_a_reader_knows_it():
     ds.attrs["pair_name"] = "stage_2"
     assert pair_label(ds) == "stage_2: 29/71 teeth, module 5 mm, helix 27.5°, face 42 mm"
     assert pair_label(xr.Dataset(attrs={"pair_name": "stage_2"})) == "stage_2"
+
+
+def test_signoff_figure_says_what_its_markers_mean_in_legible_type(tmp_path, drawn):
+    """Filled circles meet, crosses fail, open circles are the nominal gear (shown, not judged):
+    the figure's legend says so (it said 'o meets' of the open circles too); two panels a row and
+    every text at least 9 pt, so the report's page-wide image keeps them legible."""
+    from matplotlib.text import Text
+    from test_signoff import _table, _variant
+
+    from gearmesh.plots.signoff import plot_signoff
+
+    variants = [_variant("standard", {}), _variant("a", {"p": 0.7, "w_p": 1.3}), _variant("b", {"sf": 1.3})]
+    plot_signoff(_table(variants, reference="standard", basis="population"), tmp_path / "population.png")
+    plot_signoff(_table(variants, reference="standard", basis="nominal"), tmp_path / "nominal.png")
+    for name, nominal_shown in (("population", True), ("nominal", False)):
+        fig = drawn[name]
+        (legend,) = fig.legends
+        labels = [t.get_text() for t in legend.get_texts()]
+        assert {"a", "b", "meets the criterion", "fails it", "the criterion's limit"} <= set(labels)
+        assert ("nominal gear (shown, not judged)" in labels) == nominal_shown
+        assert fig.get_figwidth() <= 10 and max(len(ax.get_lines()) > 0 for ax in fig.axes)
+        sizes = [t.get_fontsize() for t in fig.findobj(Text) if t.get_text().strip()]
+        assert min(sizes) >= 9, min(sizes)
+        panel = fig.axes[0]
+        markers = {line.get_marker() for line in panel.get_lines() if len(line.get_xdata())}
+        assert "x" in markers or "o" in markers
+
+
+def test_pressure_map_names_and_shows_its_lines_and_peak(data, drawn, tmp_path):
+    """The SAP and tip lines in a colour of their own inside the frame, the peak's circle inside it
+    and in the legend; the 3-D directions of the dynamics figure named."""
+    from gearmesh.plots.rating import plot_pressure_map
+
+    plot_pressure_map(data["ltca"], None, tmp_path / "pressure_map.png")
+    fig = drawn["pressure_map"]
+    (legend,) = fig.legends
+    assert [t.get_text() for t in legend.get_texts()] == ["start of active profile (SAP)", "tip",
+                                                          "the largest pressure (title)"]
+    for ax in fig.axes[:data["ltca"].sizes["torque"]]:
+        lo, hi = ax.get_ylim()
+        lines = {line.get_label(): line for line in ax.get_lines()}
+        for name in ("start of active profile (SAP)", "tip", "the largest pressure (title)"):
+            y = np.asarray(lines[name].get_ydata(), dtype=float)
+            assert np.all((y > lo) & (y < hi)), (name, y, lo, hi)
+        assert lines["tip"].get_color() not in ("white", "w")
+    _draw("dynamics", data, tmp_path)
+    rms = drawn["rms"]
+    assert "standard deviations" in rms.axes[0].get_title()
+    titles = [ax.get_legend().get_title().get_text() for ax in rms.axes[1:3]]
+    assert all("x: along the line of centres" in t and "z: axial" in t for t in titles)
+
+
+def test_trajectory_labels_of_close_points_do_not_overlap(data, drawn, tmp_path):
+    """Mesh-in points a few hundredths of a millimetre apart (the design_point variant's 400 and
+    1300 N m) get labels moved apart, not printed on one another."""
+    ds = data["impact_relief"].copy(deep=True)
+    rho = ds["mesh_in_rho_pinion"].values
+    ds["mesh_in_rho_pinion"].values[:] = rho[0] + np.arange(rho.size) * 0.05e-3  # apart, closer than a text line
+    ds["mesh_in_face_position"].values[:] = ds["mesh_in_face_position"].values[0]
+    impact.plot_mesh_in_trajectory(ds, tmp_path / "trajectory.png")
+    fig = drawn["trajectory"]
+    assert len(fig.axes[1].texts) == rho.size  # one label each: apart on the page, though close
+    assert not layout_faults(fig), layout_faults(fig)

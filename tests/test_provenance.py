@@ -213,6 +213,7 @@ needs_snakemake = pytest.mark.skipif(shutil.which("snakemake", path=str(Path(sys
                                      reason="snakemake not installed")
 
 
+@pytest.mark.workflow
 @needs_snakemake
 def test_snakemake_refuses_a_folder_where_a_result_belongs(root, tmp_path):
     """mkdir results/.../tca.nc: the job was skipped, exit 0, the result and its figure missing."""
@@ -244,3 +245,156 @@ def test_a_file_made_by_older_code_of_its_function_is_named(work, capsys):
         nc.setncattr(FUNCTION_ATTR, "gearmesh.datasets.geometry:geometry_dataset@0123456789abcdef")
     assert main(["check", "results/s"]) == 2
     assert "older code" in capsys.readouterr().err
+
+
+# --- issue 39 item 3: the optimum belongs to this study ---------------------------------------------
+
+
+def test_an_optimum_of_other_optimise_settings_is_refused(work):
+    """Another run's pair.yaml with its own ga.nc put in place together passed every job (the
+    optimised row flipped, exit 0): the optimum is checked against this study's optimisation."""
+    from gearmesh.upstream import check_optimum
+
+    ours = {**STUDY, "optimise": {"a": {"generations": 4}}}
+    theirs = {**STUDY, "optimise": {"a": {"generations": 9}}}
+    ga = _write(f"{BASE}/optimise/a/ga.nc", "optimise", None, _pair(), study=theirs, sections=["optimise"])
+    made = {"ga": ga, "data_sha256": xr.load_dataset(ga).attrs["gearmesh_data_sha256"]}
+    path = f"{BASE}/optimise/a/pair.yaml"
+    write_pair(_pair({"pinion": {"crowning_um": 5}}), path, made)
+    check_optimum(path)  # the file itself is the run's unedited optimum
+    check_optimum(path, Expected(theirs, _pair()))
+    _refused(lambda: check_optimum(path, Expected(ours, _pair())), path, "not this study's optimisation",
+             "optimise.a.generations = 9", "this run has optimise.a.generations = 4")
+    other = _pair().with_changes(face_width=(0.021, 0.021))  # made for another pair's data
+    _refused(lambda: check_optimum(path, Expected(theirs, other)), path, "face_width_mm")
+
+
+# --- issue 39 item 2: every published file checked ----------------------------------------------------
+
+
+def _figure(path: str, sources: dict[str, str]) -> str:
+    """A figure as a job draws it: saved inside the job's figure_sources."""
+    from gearmesh.io import figure_sources
+    from gearmesh.plots.common import save, subplots
+
+    fig, ax = subplots(figsize=(3, 2))
+    ax.plot([0, 1], [0, len(path) % 7])
+    with figure_sources(sources):
+        save(fig, path)
+    return path
+
+
+def _with_table(path: str, rule: str, variant, pair) -> tuple[str, str]:
+    """A stage's output with its CSV copy, as pipeline._write_outputs writes them."""
+    from gearmesh.io import atomic_output
+    from gearmesh.tables import write_csv
+    from gearmesh.upstream import file_digest, identify, record_sources, record_tables
+    from gearmesh.pipeline import finish
+    from gearmesh.io import variable
+    import numpy as np
+
+    ds = xr.Dataset({"x": variable(("i",), np.arange(3.0), "m", "a number")})
+    csv = path.replace(".nc", ".csv")
+    with atomic_output(csv) as tmp:
+        write_csv(ds, tmp)
+        digest = file_digest(tmp)
+    identify(ds, path, rule, {"study": "s", "pair": pair.name, **({"variant": variant} if variant else {})})
+    record_sources(ds, [], [rule])
+    record_tables(ds, {csv: digest})
+    finish(ds, path, STUDY, pair, f"gearmesh {rule}")
+    return path, csv
+
+
+@pytest.mark.parametrize("fault, words", [
+    ("swapped", "copy of that figure"),
+    ("moved", "copy of that figure"),
+    ("edited", "edited figure"),
+    ("stale", "stale"),
+    ("foreign", "without provenance"),
+])
+def test_gearmesh_check_names_a_bad_figure(work, capsys, fault, words):
+    """Another variant's te_lte.png over this one's (cp -p, mv), an edited one, one drawn from a file
+    remade since, one not drawn by a job: each was published as it was."""
+    geometry, standard, relief, table = _tree()
+    ours = _figure(f"{BASE}/standard/plots/te_lte.png", {standard: xr.load_dataset(standard).attrs[
+        "gearmesh_data_sha256"]})
+    other = _figure(f"{BASE}/relief/plots/te_lte.png", {relief: xr.load_dataset(relief).attrs["gearmesh_data_sha256"]})
+    assert main(["check", "results/s"]) == 0
+    if fault == "swapped":
+        shutil.copy2(other, ours)
+    elif fault == "moved":
+        shutil.move(other, ours)
+    elif fault == "edited":
+        data = bytearray(Path(ours).read_bytes())
+        data[-20] ^= 0xFF  # a byte of the image data
+        Path(ours).write_bytes(bytes(data))
+    elif fault == "stale":  # standard's TCA remade after its figure was drawn from it
+        _write(standard, "tca", "standard", _pair(), data=(5.0, 6.0, 7.0))
+    elif fault == "foreign":
+        Path(ours).write_bytes(Path(ours).read_bytes().replace(b"gearmesh\0", b"gearmeshX"))
+    capsys.readouterr()
+    assert main(["check", "results/s"]) == 2
+    lines = [line for line in capsys.readouterr().err.strip().splitlines() if line.startswith(f"gearmesh: error: {ours}")]
+    assert len(lines) == 1 and words in lines[0] and f"snakemake --forcerun {ours}" in lines[0], lines
+
+
+@pytest.mark.parametrize("fault, words", [
+    ("edited", "edited table"),
+    ("foreign", "no result lists"),
+    ("missing", "missing"),
+])
+def test_gearmesh_check_names_a_bad_table(work, capsys, fault, words):
+    """signoff_table.csv with a True turned False (or S_H 2.76 -> 9.76) was published as it was."""
+    nc, csv = _with_table(f"{BASE}/signoff_table.nc", "signoff_table", None, _pair())
+    assert main(["check", "results/s"]) == 0
+    target = csv
+    if fault == "edited":
+        Path(csv).write_text(Path(csv).read_text().replace("1000", "9000"))
+    elif fault == "foreign":
+        target = f"{BASE}/standard/extra.csv"
+        Path(target).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy2(csv, target)
+    elif fault == "missing":
+        Path(csv).unlink()
+    capsys.readouterr()
+    assert main(["check", "results/s"]) == 2
+    lines = [line for line in capsys.readouterr().err.strip().splitlines() if line.startswith(f"gearmesh: error: {target}")]
+    assert len(lines) == 1 and words in lines[0], lines
+
+
+def test_a_figure_drawn_outside_a_job_carries_nothing(tmp_path):
+    """The CLI and the API draw figures as they are: the provenance belongs to a job's drawing."""
+    from gearmesh.io import figure_provenance
+    from gearmesh.plots.common import save, subplots
+
+    fig, _ = subplots(figsize=(2, 2))
+    path = save(fig, tmp_path / "a.png")
+    assert figure_provenance(path.read_bytes())[0] is None
+
+
+# --- issue 38 item 2: gearmesh check from any folder, and --json --------------------------------------
+
+
+def test_gearmesh_check_works_from_any_folder_and_with_an_absolute_path(work, capsys, monkeypatch):
+    """From results/ or with an absolute path every file was called a copy ("regenerate it")."""
+    _tree()
+    _figure(f"{BASE}/plots/x.png", {f"{BASE}/geometry.nc": xr.load_dataset(f"{BASE}/geometry.nc").attrs[
+        "gearmesh_data_sha256"]})
+    absolute = str(work / "results" / "s")
+    monkeypatch.chdir(work / "results")
+    assert main(["check", "s"]) == 0
+    monkeypatch.chdir(work / "results" / "s" / "seed001_pair1")
+    assert main(["check", absolute]) == 0
+    assert main(["check", ".."]) == 0
+    capsys.readouterr()
+    assert main(["check", "..", "--json"]) == 0
+    out = json.loads(capsys.readouterr().out)
+    assert out == {"results": "results/s", "run_folder": str(work), "ok": True, "problems": []}
+    shutil.copy2(work / BASE / "relief/tca.nc", work / BASE / "standard/tca.nc")
+    assert main(["check", absolute, "--json"]) == 2
+    captured = capsys.readouterr()
+    out = json.loads(captured.out)
+    assert not out["ok"] and [p.split(" = ")[0] for p in out["problems"]] == [f"{BASE}/standard/tca.nc"]
+    assert captured.err.strip() == f"gearmesh: error: {out['problems'][0]}"
+    assert main(["check", str(work / "results")]) == 2  # not a study's folder
+    assert "results/STUDY" in capsys.readouterr().err

@@ -138,7 +138,7 @@ def test_cli_rating_json(root, capsys):
 
 
 @pytest.mark.parametrize("args, message", [
-    (["--factor", "K_v=0.9"], "factor K_v = 0.9: must be at least 1"),
+    (["--factor", "K_v=0.9"], "factor K_v = 0.9: must lie in [1, 10]"),
     (["--factor", "K_v"], "--factor"),
     (["--application-factor", "0.5"], "--application-factor = 0.5: must be at least 1"),  # the option, as typed
     (["--speed-rpm", "-5"], "speed_rpm"),

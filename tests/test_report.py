@@ -15,6 +15,7 @@ import xarray as xr
 from docutils.core import publish_parts
 from jinja2 import Environment
 
+from gearmesh import plan
 from gearmesh.config import load_study
 from gearmesh.io import variable
 from gearmesh.tables import write_csv
@@ -25,22 +26,6 @@ pytestmark = pytest.mark.filterwarnings("ignore:Argument \"writer_name\":Pending
 ROOT = Path(__file__).resolve().parents[1]
 CAPTIONS = sorted((ROOT / "workflow/report").glob("*.rst"))
 STUDIES = [ROOT / "config/config.yaml", *sorted((ROOT / "config/studies").glob("*.yaml"))]
-
-#: The config sections a caption's figure or table needs (no entry: every study has it).
-NEEDS = {
-    "contact_pattern": ("ltca",), "te_lte": ("ltca",), "lte_table": ("ltca",), "lste_comparison": ("ltca",), "tca": ("tca",),
-    "impact_force": ("impact",), "impact_simulation": ("impact",), "impact_speed": ("impact",),
-    "impact_table": ("impact",), "mesh_in_trajectory": ("impact",), "robustness": ("impact",),
-    "dynamics_rms": ("dynamics",), "dynamics_spectrum": ("dynamics",), "dynamics_variants": ("dynamics",),
-    "dynamics_engagement": ("dynamics",), "engagement_table": ("impact", "dynamics"),
-    "dynamics_comparison": ("dynamics_comparison",), "optimise_convergence": ("optimise",),
-    "optimise_modification": ("optimise",), "optimise_pareto": ("optimise",), "helix_sweep": ("helix_sweep",),
-    "low_fluctuation_design": ("low_fluctuation_design",), "slice_convergence": ("slice_convergence",),
-    "stiffness_table": ("stiffness_table",), "fe_compliance": ("fe_compliance",), "train_spectrum": ("train_dynamics",),
-    "pressure_map": ("ltca", "rating"), "root_stress_face": ("ltca", "rating"), "load_capacity_table": ("rating",),
-    "signoff_table": ("signoff",), "signoff": ("signoff",),
-}
-
 
 @pytest.fixture(scope="module")
 def csv_file(tmp_path_factory) -> str:
@@ -65,10 +50,12 @@ def _render(caption: Path, config: dict, output: SimpleNamespace, files=()) -> s
 
 
 def _cases():
+    """Every caption of every study's report items (the study's rules, from the stage declarations)."""
     for study in STUDIES:
         config = load_study(study)
+        used = {o.caption for rule in plan.rules(config) for o in rule.outputs.values() if o.caption}
         for caption in CAPTIONS:
-            if all(section in config for section in NEEDS.get(caption.stem, ())):
+            if caption.stem in used:
                 yield pytest.param(study, caption, id=f"{config['study']}-{caption.stem}")
 
 

@@ -10,6 +10,7 @@ GEARMESH_REQUIRE_BROWSER=1 (CI's ``.ci/run`` sets it), where it fails instead.""
 from __future__ import annotations
 
 import os
+import re
 import shutil
 from pathlib import Path
 
@@ -18,7 +19,8 @@ import yaml
 
 from test_workflow import _scratch_workflow, _snakemake
 
-pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")
+pytestmark = [pytest.mark.workflow, pytest.mark.browser,
+              pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")]
 
 #: Common laptop and desktop windows (CSS pixels).
 WINDOWS = ((1366, 768), (1920, 1080))
@@ -42,14 +44,25 @@ def _browser(playwright):
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory) -> Path:
-    """report.html of the default study's landing page: its config with only the stages every
-    pair gets (geometry, contact lines, stiffness), on small grids, so the run takes seconds."""
+    """report.html of the default study's landing page: its config with the stages every pair gets
+    (geometry, contact lines, stiffness) and what its verdict reads (the standard and relief
+    variants' TCA, LTCA, impact and rating, and the sign-off, on nominal gears), on small grids, so
+    the run takes seconds."""
     root = Path(__file__).resolve().parents[1]
     tmp = tmp_path_factory.mktemp("report")
     default = yaml.safe_load((root / "config/config.yaml").read_text())
     config = {key: default[key] for key in ("study", "description", "source", "pairs")}
+    torques = [400, 1000, 1600]
     config.update(geometry={"involute_points": 20, "fillet_points": 10, "face_points": 5},
-                  contact_lines={"positions": 24}, stiffness={"method": "transition", "slices": 20, "positions": 24})
+                  contact_lines={"positions": 24}, stiffness={"method": "transition", "slices": 20, "positions": 24},
+                  variants={"standard": {}, "relief": default["variants"]["relief"]},
+                  tca={"positions": 16, "points": 12},
+                  ltca={"torques_Nm": list(torques), "on": "pinion", "positions": 16, "points": 12, "method": "transition"},
+                  impact={"torques_Nm": list(torques), "on": "pinion", "speeds_rpm": [5000], "design_speed_rpm": 5000,
+                          "simulate_torques_Nm": [], "method": "transition", "points": 12, "window_positions": 16,
+                          "face_samples": 33},
+                  rating={"speed_rpm": 5000, "method": "ltca"},
+                  signoff={**default["signoff"], "basis": "nominal"})
     work = _scratch_workflow(root, tmp, config)
     (work / "profiles").symlink_to("workflow/profiles")  # the workflow profile (report-stylesheet), as in the repository
     for args in ((), ("--report", "report.html")):
@@ -83,3 +96,46 @@ def test_the_landing_page_scrolls_to_its_title(report, width, height, tmp_path):
     # the case the fix is for: the landing page is taller than the window
     assert box["pageHeight"] > height, box
     assert 0 <= box["top"] and box["bottom"] <= height and box["left"] >= 0, box
+
+
+def test_the_verdict_fits_the_page_and_says_what_a_reader_needs(report, tmp_path):
+    """At 1366 px no table of the landing page is wider than its text column (the sign-off table of
+    34 columns used to be 5049 px wide in a 490 px column), and its first table is the verdict:
+    variant, torque, the verdict, and per criterion meets or fails with its margin and the gear it
+    was judged on."""
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as playwright:
+        browser = _browser(playwright)
+        try:
+            page = browser.new_page(viewport={"width": 1366, "height": 768})
+            page.goto(report.as_uri())
+            page.locator(".prose table").first.wait_for(timeout=60_000)
+            found = page.evaluate("""() => {
+                const prose = document.querySelector('.prose');
+                const style = getComputedStyle(prose);
+                const column = prose.clientWidth - parseFloat(style.paddingLeft) - parseFloat(style.paddingRight);
+                const tables = [...prose.querySelectorAll('table')].map(t => ({
+                    caption: (t.querySelector('caption') || {}).textContent || '',
+                    width: t.getBoundingClientRect().width, scroll: t.scrollWidth,
+                    header: [...t.querySelectorAll('thead th')].map(th => th.textContent.trim()),
+                    rows: [...t.querySelectorAll('tbody tr')].map(tr => [...tr.children].map(td => td.textContent.trim()))}));
+                return {column, tables, window: document.documentElement.scrollWidth};
+            }""")
+            page.screenshot(path=str(tmp_path / "landing_1366x768.png"))
+        finally:
+            browser.close()
+    assert found["window"] <= 1366
+    wide = [(t["caption"], t["width"]) for t in found["tables"] if max(t["width"], t["scroll"]) > found["column"] + 0.5]
+    assert len(found["tables"]) >= 2 and not wide, (found["column"], wide)
+    verdict = found["tables"][0]
+    assert verdict["caption"] == "Sign-off verdict"
+    assert verdict["header"][:3] == ["variant", "torque [N m]", "verdict"]
+    criteria = verdict["header"][3:]
+    assert "pressure (nominal)" in criteria and "F_s (nominal)" in criteria and len(criteria) >= 5
+    assert {row[0] for row in verdict["rows"]} == {"relief"} and {row[1] for row in verdict["rows"]} == \
+        {"400", "1000", "1600"}
+    for row in verdict["rows"]:
+        assert row[2] in ("meets", "fails")
+        for cell in row[3:]:  # ✓ or ✗ and the margin in percent of the limit
+            assert re.fullmatch(r"[✓✗]\s[+−]\d+\s%", cell), cell
+        assert (row[2] == "meets") == all(cell.startswith("✓") for cell in row[3:])

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -146,14 +147,23 @@ def test_friction_and_scuffing_temperatures_move_as_the_standards_say():
         assert integral_scuffing_temperature(b) > integral_scuffing_temperature(a)
 
 
+def _variables(geom, res, speed_rpm, inputs=None):
+    """The scuffing variables of an LTCA result with the rating's factors (method iso) at each torque."""
+    from gearmesh.datasets.scuffing import LoadedContact, scuffing_of, scuffing_variables
+    from gearmesh.rating import rating
+
+    inputs = inputs or rating_inputs()
+    rated = [rating(geom, float(t), speed_rpm, inputs).values for t in res.torque]
+    return scuffing_variables(geom, LoadedContact.of(res), scuffing_of(geom, res, speed_rpm, inputs, rated), 48)
+
+
 @pytest.fixture(scope="module")
 def spur_scuffing():
-    from gearmesh.datasets.scuffing import scuffing_variables
     from gearmesh.ltca import ltca
 
     geom = pair_geometry(pair_from_dict({**SPUR, "material": {"youngs_modulus_GPa": 206}}))
     res = ltca(geom, [300.0, 900.0], positions=48, points=6, contact_law_name="linear")
-    return geom, res, scuffing_variables(geom, res, 3000.0)
+    return geom, res, _variables(geom, res, 3000.0)
 
 
 def test_ltca_flash_temperature_in_single_contact_is_the_closed_form(spur_scuffing):
@@ -204,35 +214,63 @@ def test_roughness_viscosity_and_oil_temperature_move_the_scuffing_rating(spur_s
     """The pair file's flank Ra, ν100 and oil temperature are used (issue 39 item 5): Ra doubled
     raises μ and every flash temperature by 2^0.25 (X_R); ν100 and the oil temperature change the
     viscosity at the oil temperature and with it μ."""
-    from gearmesh.datasets.scuffing import scuffing_variables
-
     geom, res, base = spur_scuffing
-    rough = scuffing_variables(geom, res, 3000.0, rating_inputs({"flank_Ra_um": 0.8}))
+    rough = _variables(geom, res, 3000.0, rating_inputs({"flank_Ra_um": 0.8}))
     assert rough["friction_coefficient"].values == pytest.approx(base["friction_coefficient"].values * 2**0.25)
     assert rough["flash_temperature_max"].values == pytest.approx(base["flash_temperature_max"].values * 2**0.25)
     for change in ({"viscosity_100C_mm2_s": 30.0}, {"oil_temperature_C": 95.0}):
-        other = scuffing_variables(geom, res, 3000.0, rating_inputs(change))
+        other = _variables(geom, res, 3000.0, rating_inputs(change))
         assert not np.allclose(other["friction_coefficient"].values, base["friction_coefficient"].values)
-    hot = scuffing_variables(geom, res, 3000.0, rating_inputs({"oil_temperature_C": 95.0}))
+    hot = _variables(geom, res, 3000.0, rating_inputs({"oil_temperature_C": 95.0}))
     assert np.all(hot["scuffing_safety_flash"].values < base["scuffing_safety_flash"].values)
-    weak = scuffing_variables(geom, res, 3000.0, rating_inputs({"fzg_load_stage": 6}))
+    weak = _variables(geom, res, 3000.0, rating_inputs({"fzg_load_stage": 6}))
     assert np.all(weak["scuffing_safety_integral"].values < base["scuffing_safety_integral"].values)
 
 
-def test_flash_temperature_figure_has_no_layout_faults(spur_scuffing, tmp_path):
-    import matplotlib.pyplot as plt
+def test_flash_temperature_figure_has_no_layout_faults(spur_scuffing, tmp_path, monkeypatch):
+    """The figure drawn (the one saved, caught as the plots' tests catch theirs: plots.common's
+    figures are not pyplot's, so pyplot's current figure would be an empty one) has no layout fault."""
     import xarray as xr
+    from matplotlib.figure import Figure
 
     from gearmesh.plots.scuffing import plot_flash_temperature
 
+    saved = []
+    save = Figure.savefig
+    monkeypatch.setattr(Figure, "savefig", lambda self, *a, **k: (saved.append(self), save(self, *a, **k))[1])
     _, _, v = spur_scuffing
     ds = xr.Dataset(v)
-    ds.attrs["pair_name"] = "spur"
+    ds.attrs.update(pair_name="spur", speed_rpm=3000.0)
     out = plot_flash_temperature(ds, tmp_path / "flash_temperature.png")
     assert out.stat().st_size > 10_000
-    fig = plt.gcf()
+    (fig,) = saved
+    assert len(fig.axes[0].lines) >= 2 * ds.sizes["torque"] + 1  # a curve and a mean per torque, the pitch point
+    assert "3000 r/min" in fig.axes[0].get_title()
     assert layout_faults(fig) == []
-    plt.close("all")
+
+
+def test_the_path_curve_is_the_largest_loaded_flash_temperature_of_each_bin_and_broken_without_contact(
+        spur_scuffing):
+    """flash_temperature_path against the points it bins, counted afresh: in each bin of the path
+    the largest flash temperature of the points that carry load; NaN where none does (no contact is
+    no flash temperature of zero). Spur: every contact point of a bin shares its s, so the curve is
+    zero only near the pitch point C and rises towards A and E."""
+    geom, res, v = spur_scuffing
+    edges = np.linspace(0, geom.path_of_contact, v["flash_temperature_path"].shape[1] + 1)
+    s, on = res.grid.s, res.grid.region == 1
+    for t in range(res.torque.size):
+        loaded = on & (res.line_load[t] > 0)
+        for b in range(edges.size - 1):
+            inside = loaded & (s >= edges[b]) & ((s < edges[b + 1]) | (b == edges.size - 2))
+            got = float(v["flash_temperature_path"].values[t, b])
+            if inside.any():
+                assert got == pytest.approx(float(v["flash_temperature"].values[t][inside].max()), rel=1e-12)
+            else:
+                assert math.isnan(got)
+    c = float(v["pitch_point"])
+    assert c == pytest.approx(float(geom.base_radius[0]) * math.tan(geom.operating_pressure_angle)
+                              - float(geom.rho_sap[0]))
+    assert 0 < c < geom.path_of_contact
 
 
 def test_cli_rating_json_has_the_scuffing_keys(root, capsys):
@@ -248,3 +286,122 @@ def test_cli_rating_json_has_the_scuffing_keys(root, capsys):
     assert out["scuffing"]["scuffing_temperature_C"] == pytest.approx(80 + 2.25 * 144)
     assert any("scuffing" in n and "X_W" in n for n in out["notes"])
     assert any(n.startswith("fzg_load_stage = 12 not given") for n in out["notes"])
+
+
+# --------------------------------------------------------------------------------------
+# The scuffing stage (scuffing.nc from ltca.nc and rating.nc) and its table
+# --------------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def stage_datasets():
+    """The default pair's ltca.nc, rating.nc and scuffing.nc at 1000 N·m and 5000 r/min as the stages
+    make them (the stage functions, their declared defaults), on the CLI's small grid below."""
+    from gearmesh.datasets.ltca import ltca_dataset
+    from gearmesh.datasets.rating import rating_dataset
+    from gearmesh.datasets.scuffing import scuffing_dataset
+    from gearmesh.gear import load_pair
+
+    pair = load_pair(Path(__file__).resolve().parents[1] / "config/pairs/seed000_case.yaml")
+    ltca = ltca_dataset(pair, torques_Nm=[1000.0], positions=16, points=12)
+    rated = rating_dataset(pair, 5000.0, ltca=ltca)
+    return pair, ltca, rated, scuffing_dataset(pair, ltca=ltca, rating=rated)
+
+
+def test_the_stage_and_rating_json_give_the_same_scuffing_numbers(stage_datasets):
+    """One computation through two doors: the scuffing stage, from the LTCA's and the rating's files,
+    and ``gearmesh rating --json`` (gearmesh.datasets.rating.rating_summary), from its own LTCA in
+    memory at the same torque, speed and grid, rate the same contact alike."""
+    from gearmesh.datasets.rating import rating_summary
+
+    pair, _, _, ds = stage_datasets
+    out = rating_summary(pair, 1000.0, 5000.0, positions=16, points=12)
+    for key, name in (("contact_temperature_max_C", "contact_temperature_max"),
+                      ("scuffing_safety_flash", "scuffing_safety_flash"),
+                      ("integral_temperature_C", "integral_temperature"),
+                      ("scuffing_safety_integral", "scuffing_safety_integral")):
+        assert float(ds[name].values[0]) == pytest.approx(out[key], rel=1e-9), key
+    for key, name in (("flash_temperature_max_K", "flash_temperature_max"),
+                      ("flash_temperature_mean_K", "flash_temperature_mean"),
+                      ("friction_coefficient", "friction_coefficient"),
+                      ("scuffing_temperature_C", "scuffing_temperature")):
+        assert float(np.ravel(ds[name].values)[0]) == pytest.approx(out["scuffing"][key], rel=1e-9), key
+
+
+def test_the_scuffing_dataset_names_every_variable_and_rates_at_the_ratings_speed(stage_datasets):
+    _, ltca, rated, ds = stage_datasets
+    for name, var in ds.variables.items():
+        assert {"units", "long_name"} <= set(var.attrs), name
+    assert ds.attrs["speed_rpm"] == rated.attrs["speed_rpm"] == 5000.0
+    assert ds["torque"].values.tolist() == ltca["torque"].values.tolist()
+    assert "X_W" in ds.attrs["scuffing_notes"]
+    # the safety factors are the ratios of the standards to the dataset's own temperatures
+    theta_oil = 70.0
+    assert float(ds["scuffing_safety_flash"][0]) == pytest.approx(
+        (float(ds["scuffing_temperature"]) - theta_oil) / (float(ds["contact_temperature_max"][0]) - theta_oil))
+    assert np.nanmax(ds["flash_temperature_path"].values) == pytest.approx(float(ds["flash_temperature_max"][0]))
+
+
+def test_the_scuffing_stage_refuses_a_rating_of_other_torques(stage_datasets):
+    from gearmesh.datasets.scuffing import scuffing_dataset
+    from gearmesh.errors import GearmeshInputError
+
+    pair, ltca, rated, _ = stage_datasets
+    other = rated.assign_coords(torque=rated["torque"] * 2)
+    with pytest.raises(GearmeshInputError, match="rating"):
+        scuffing_dataset(pair, ltca=ltca, rating=other)
+    with pytest.raises(GearmeshInputError, match="ltca"):
+        scuffing_dataset(pair, ltca=rated, rating=rated)
+
+
+def test_the_scuffing_table_sets_the_variants_side_by_side(stage_datasets):
+    from gearmesh.datasets.scuffing import scuffing_table_dataset
+    from gearmesh.errors import GearmeshInputError
+
+    *_, ds = stage_datasets
+    a, b = ds.copy(), ds.copy()
+    a.attrs["variant"], b.attrs["variant"] = "standard", "relief"
+    table = scuffing_table_dataset([a, b])
+    assert table["variant"].values.tolist() == ["standard", "relief"]
+    for name, var in table.variables.items():
+        assert {"units", "long_name"} <= set(var.attrs), name
+    for key in ("flash_temperature_max", "contact_temperature_max", "scuffing_safety_flash", "integral_temperature",
+                "scuffing_safety_integral"):
+        assert table[key].sel(variant="relief").values.tolist() == ds[key].values.tolist()
+    with pytest.raises(GearmeshInputError, match="ltca.torques_Nm"):
+        scuffing_table_dataset([a, b.assign_coords(torque=b["torque"] + 1)])
+
+
+def test_the_load_capacity_table_carries_each_variants_scuffing_safety(stage_datasets):
+    """The load-capacity table with the variants' scuffing.nc: S_B and S_intS of each variant, matched
+    by variant name whatever the order of the files, the numbers of its scuffing.nc; without them,
+    no scuffing column; a variant missing on one side refused naming the variants."""
+    from gearmesh.datasets.rating import load_capacity_table_dataset
+    from gearmesh.errors import GearmeshInputError
+
+    _, _, rated, ds = stage_datasets
+    ra, rb, sa, sb = rated.copy(), rated.copy(), ds.copy(), ds.copy()
+    sb["scuffing_safety_flash"] = ds["scuffing_safety_flash"].copy(data=2.0 * ds["scuffing_safety_flash"].values)
+    for d, v in ((ra, "standard"), (rb, "relief"), (sa, "standard"), (sb, "relief")):
+        d.attrs = {**d.attrs, "variant": v}
+    table = load_capacity_table_dataset([ra, rb], [sb, sa])
+    assert table["scuffing_safety_flash"].sel(variant="relief").values.tolist() == \
+        sb["scuffing_safety_flash"].values.tolist()
+    assert table["scuffing_safety_integral"].sel(variant="standard").values.tolist() == \
+        sa["scuffing_safety_integral"].values.tolist()
+    assert table["scuffing_safety_flash"].attrs["units"] and table["scuffing_safety_flash"].attrs["long_name"]
+    assert "scuffing_safety_flash" not in load_capacity_table_dataset([ra, rb])
+    with pytest.raises(GearmeshInputError, match="variants"):
+        load_capacity_table_dataset([ra, rb], [sa])
+
+
+def test_a_study_rating_scuffing_without_a_rating_section_is_refused(root):
+    from gearmesh.config import check_study, validate_study
+    from gearmesh.errors import GearmeshInputError
+
+    config = {"study": "s", "pairs": ["seed000_case"], "ltca": {"torques_Nm": [1000]}, "scuffing": {}}
+    with pytest.raises(GearmeshInputError) as err:
+        check_study(validate_study(config), root)
+    assert err.value.field == "scuffing"
+    assert err.value.rule == "needs a rating section in the study: the scuffing stage reads its results"
+    check_study(validate_study({**config, "rating": {"speed_rpm": 5000}}), root)

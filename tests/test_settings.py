@@ -295,7 +295,8 @@ _RELATIONS = ("normal module", "pinion reference diameters", "is a 20° profile"
               "too small for any working pair", "zero-backlash",
               "is required with",  # supports: both stiffnesses, shaft diameter and span together
               "between its bearings", "needs shaft_diameter_mm",  # the gear on its shaft
-              "describes a gear body")  # a body with its shafts and bearings
+              "describes a gear body",  # a body with its shafts and bearings
+              "the bore diameter", "the face width")  # a shaft in its bore, a web against its face
 
 
 _BASE = yaml.safe_load((ROOT / "config/pairs/seed000_case.yaml").read_text())

@@ -75,11 +75,11 @@ def test_cli_stiffness_json(root, capsys):
     assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), "--torque-Nm", "200", "--on", "gear",
                  "--positions", "90", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
-    for key in ("mean_mesh_stiffness_N_per_um", "min_mesh_stiffness_N_per_um", "max_mesh_stiffness_N_per_um",
+    for key in ("mean_mesh_stiffness_transverse_N_per_um", "min_mesh_stiffness_transverse_N_per_um", "max_mesh_stiffness_transverse_N_per_um",
                 "fluctuation_percent", "iso6336_c_single_N_per_mm_um", "iso6336_c_gamma_alpha_N_per_mm_um",
                 "lste_mean_um", "lste_peak_to_peak_um"):
         assert key in out
-    assert out["min_mesh_stiffness_N_per_um"] < out["mean_mesh_stiffness_N_per_um"] < out["max_mesh_stiffness_N_per_um"]
+    assert out["min_mesh_stiffness_transverse_N_per_um"] < out["mean_mesh_stiffness_transverse_N_per_um"] < out["max_mesh_stiffness_transverse_N_per_um"]
 
 
 @pytest.mark.parametrize("args, field", [
@@ -103,4 +103,4 @@ def test_cli_stiffness_without_material_is_steel_and_says_so(tmp_path, capsys):
     assert main(["stiffness", str(path), "--slices", "40", "--positions", "40", "--json"]) == 0
     given = json.loads(capsys.readouterr().out)
     assert given["notes"] == []
-    assert given["mean_mesh_stiffness_N_per_um"] == default["mean_mesh_stiffness_N_per_um"]
+    assert given["mean_mesh_stiffness_transverse_N_per_um"] == default["mean_mesh_stiffness_transverse_N_per_um"]

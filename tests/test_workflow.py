@@ -10,6 +10,7 @@ import os
 import shutil
 import subprocess
 import sys
+import tempfile
 from pathlib import Path
 
 import numpy as np
@@ -19,7 +20,8 @@ import yaml
 
 from gearmesh.io import read_dataset
 
-pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")
+pytestmark = [pytest.mark.workflow,
+              pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")]
 
 
 def _scratch_workflow(root: Path, tmp: Path, config: dict) -> Path:
@@ -29,9 +31,26 @@ def _scratch_workflow(root: Path, tmp: Path, config: dict) -> Path:
     (tmp / "test_config.yaml").write_text(yaml.safe_dump(config))
     # the package as it is now, first on the jobs' path: rules carry the digest of the code they
     # run, so a checkout edited while the test runs must not change it between run and dry run
-    shutil.copytree(root / "src" / "gearmesh", tmp / "package" / "gearmesh",
-                    ignore=shutil.ignore_patterns("__pycache__"))
+    (tmp / "package").symlink_to(_package_copy(root), target_is_directory=True)
     return tmp
+
+
+def _package_copy(root: Path) -> Path:
+    """A copy of ``src/gearmesh`` as it is now, in a folder named by its content and never written
+    after it is made: every workflow test (and every run of the suite) of the same code shares it,
+    and with it the loops numba compiles and caches beside the source, which each fresh copy would
+    compile again (about 5 s for the dynamics, in every job process that runs it)."""
+    partial = Path(tempfile.mkdtemp(prefix="gearmesh-test-package-"))
+    shutil.copytree(root / "src" / "gearmesh", partial / "gearmesh", ignore=shutil.ignore_patterns("__pycache__"))
+    digest = hashlib.sha256()
+    for path in sorted(p for p in (partial / "gearmesh").rglob("*") if p.is_file()):
+        digest.update(str(path.relative_to(partial)).encode() + b"\0" + path.read_bytes() + b"\0")
+    target = partial.with_name(f"gearmesh-test-package-{digest.hexdigest()[:16]}")
+    try:
+        partial.rename(target)
+    except OSError:  # made by an earlier test or run (or another worker meanwhile): the same content
+        shutil.rmtree(partial)
+    return target
 
 
 def _package_env(package: Path) -> dict:

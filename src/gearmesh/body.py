@@ -62,6 +62,7 @@ from typing import Any, Mapping
 import numpy as np
 
 from .errors import GearmeshInputError
+from .limits import LENGTH_UNITS_MM, MIN_WEB_TO_FACE, Plausible
 from .supports import per_gear_length
 
 __all__ = ["BODY_KEYS", "Body", "RIGID_WEBS", "read_body", "check_body", "describe_body", "plate_edge_compliance", "body_axial_compliance",
@@ -81,6 +82,22 @@ class Body:
 
     web_thickness: tuple[float, float] | None = None
     hub_diameter: tuple[float, float] | None = None
+
+    def __post_init__(self) -> None:
+        """The pair file's rules, however the body was made (a file, code or ``dataclasses.replace``):
+        each web a positive length or inf (rigid), each hub a positive length, [pinion, gear];
+        refused naming the pair-file key in mm. Their fit to the gear: :func:`check_body`."""
+        for key, values, rigid_ok in ((BODY_KEYS[0], self.web_thickness, True), (BODY_KEYS[1], self.hub_diameter, False)):
+            if values is None:
+                continue
+            if not isinstance(values, (list, tuple)) or len(values) != 2:
+                raise GearmeshInputError(key, values, "must be a [pinion, gear] pair")
+            for i, v in enumerate(values):
+                if rigid_ok and isinstance(v, float) and math.isinf(v) and v > 0:
+                    continue
+                if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                    raise GearmeshInputError(f"{key}[{i}]", v * 1e3 if isinstance(v, (int, float)) else v,
+                                             "must be a positive length (mm)" + (f" or '{RIGID}'" if rigid_ok else ""))
 
     @property
     def rigid(self) -> tuple[bool, bool]:
@@ -122,9 +139,10 @@ def read_body(spec: Mapping[str, Any]) -> Body:
 
 
 def check_body(body: Body, face_width, bore_radius, root_radius, supports=None) -> None:
-    """One :class:`GearmeshInputError` naming the key when a web is thicker than its face or a hub
-    is not between the bore and the root circle (all in m, [pinion, gear]; bore may be None), or
-    when a body is described without the shafts and bearings (``supports``,
+    """One :class:`GearmeshInputError` naming the key when a web is thicker than its face or thinner
+    than :data:`gearmesh.limits.MIN_WEB_TO_FACE` of it (naming a likely unit slip), a hub is not
+    between the bore and the root circle (all in m, [pinion, gear]; bore may be None), or when a
+    body is described without the shafts and bearings (``supports``,
     :class:`gearmesh.supports.Supports`) that carry the same moment (module docstring)."""
     described = (body.web_thickness is not None and not all(body.rigid)) or body.hub_diameter is not None
     if described and supports is not None and supports.defaulted:
@@ -134,10 +152,11 @@ def check_body(body: Body, face_width, bore_radius, root_radius, supports=None) 
                                  "(rigid, or with shaft_diameter_mm and bearing_span_mm) too, or web_thickness_mm: "
                                  "rigid")
     for i in range(2):
-        if body.web_thickness is not None and math.isfinite(body.web_thickness[i]) \
-                and body.web_thickness[i] > face_width[i] * (1 + 1e-12):
-            raise GearmeshInputError(f"web_thickness_mm[{i}]", body.web_thickness[i] * 1e3,
-                                     f"must not exceed the face width {face_width[i] * 1e3:.6g} mm")
+        if body.web_thickness is not None and math.isfinite(body.web_thickness[i]):
+            b = face_width[i] * 1e3
+            Plausible(MIN_WEB_TO_FACE * b, b * (1 + 1e-12), LENGTH_UNITS_MM,
+                      f"from {MIN_WEB_TO_FACE:g} x the face width (thinner: no plate, gearmesh.limits.MIN_WEB_TO_FACE) "
+                      "to the face width").check(body.web_thickness[i] * 1e3, f"web_thickness_mm[{i}]")
         if body.hub_diameter is not None:
             d = body.hub_diameter[i]
             if d >= 2 * root_radius[i]:

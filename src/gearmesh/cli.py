@@ -13,7 +13,8 @@ import math
 import os
 import re
 import sys
-from collections.abc import Mapping, Sequence
+from collections.abc import Iterator, Mapping, Sequence
+from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
@@ -23,11 +24,13 @@ from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
 from .deviation import read_deviations
 from .errors import GearmeshInputError
-from .gear import NAME_PATTERN, example_pair, example_pairs, load_pair, pair_geometry, pair_notes, pinion_torque, read_yaml
+from .gear import (NAME_PATTERN, example_pair, example_pairs, load_pair, missing_needs, pair_geometry, pair_notes,
+                   pair_to_dict,
+                   pinion_torque, read_yaml)
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
 from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields
-from .settings import Dynamics, Impact, Ltca, Optimise, Rating, Stiffness, Tolerances
+from .settings import Constraints, Dynamics, Impact, Ltca, Optimise, Rating, Stiffness, Tolerances
 
 EXIT_BAD_INPUT = 2
 
@@ -45,11 +48,15 @@ def _finite(obj: Any) -> Any:
     return obj
 
 
-def _emit(result: Mapping[str, Any], as_json: bool) -> None:
-    """Print a result: one JSON object, or one ``key  value`` line per number (nested keys
-    dotted) and, for a speed sweep, a table with one row per speed."""
+def _emit(result: Mapping[str, Any], as_json: bool, text=None) -> None:
+    """Print a result: one JSON object, or its text (``text(result)``: the command's own lines),
+    or one ``key  value`` line per number (nested keys dotted) and, for a speed sweep, a table
+    with one row per speed."""
     if as_json:
         print(json.dumps(_finite(result)))
+        return
+    if text is not None:
+        print("\n".join(text(result)))
         return
     rows = result.get("speeds") if isinstance(result.get("speeds"), list) else None
     lines = _flat(_finite({k: v for k, v in result.items() if rows is None or k != "speeds"}))
@@ -66,6 +73,82 @@ def _emit(result: Mapping[str, Any], as_json: bool) -> None:
         print("  ".join(f"{k:>18}" for k in keys))
         for row in _finite(rows):
             print("  ".join(f"{v:>18.6g}" if isinstance(v, float) else f"{v!s:>18}" for v in row.values()))
+
+
+def _value_text(value: Any, gears: Sequence[str] = ()) -> str:
+    """One value of the text output: a number to six digits, a list of sentences apart by "; ", a
+    list of numbers by ", " (per gear named, "pinion 1.98, gear 2.01", where ``gears`` names them)."""
+    if isinstance(value, float):
+        return f"{value:.6g}"
+    if isinstance(value, list):
+        if all(isinstance(v, str) for v in value):
+            return "; ".join(value)
+        items = [_value_text(v) for v in value]
+        if gears and len(items) == len(gears):
+            items = [f"{g} {v}" for g, v in zip(gears, items)]
+        return ", ".join(items)
+    return str(value)
+
+
+#: The text output of ``gearmesh rating`` in groups, in this order: (heading, the keys it holds:
+#: exact dotted keys or patterns). A key of no group is printed under "other", so a key the rating
+#: gains is shown without a change here.
+RATING_GROUPS = (
+    ("operating point", r"name|torque_Nm|torque_on|pinion_torque_Nm|speed_rpm|pitch_line_speed_m_s|"
+                        r"force_tangential_N|method|accuracy_grade|load_cycles|life_factor_conditions|gears|"
+                        r"factors_given"),
+    ("load factors (ISO 6336-1)", r"K_\w+"),
+    ("pitting (ISO 6336-2)", r"(Z_|M_\d|sigma_H|S_H)\w*"),
+    ("tooth root (ISO 6336-3)", r"(Y_|sigma_F|S_F)\w*"),
+    ("scuffing (ISO/TS 6336-20/-21)", r"contact_temperature_max_C|integral_temperature_C|scuffing_safety_\w+"),
+    ("scuffing temperatures and inputs", r"scuffing\..+"),
+    ("inputs of the ISO 6336-1 factors", r"iso_factors\..+"),
+    ("where each factor comes from", r"factor_sources\..+"),
+    ("loaded tooth contact", r"ltca\..+"),
+)
+
+
+def safety_verdict(result: Mapping[str, Any]) -> tuple[bool, str]:
+    """Whether every safety factor of a rating meets its minimum, and the line that says so:
+    each ``S_X`` with an ``S_Xmin`` in ``result`` (the weaker gear's against the minimum), e.g.
+    "PASS: S_H 1.98 >= S_Hmin 1, S_F 4.83 >= S_Fmin 1 (the weaker gear of each)"."""
+    parts, ok = [], True
+    for key, value in result.items():
+        need = result.get(f"{key}min")
+        if not re.fullmatch(r"S_[A-Za-z]\w*", key) or key.endswith("min") or need is None:
+            continue
+        values = [float(v) for v in (value if isinstance(value, list) else [value]) if v is not None]
+        least = min(values) if values and all(map(math.isfinite, values)) else math.nan  # unrated: not met
+        meets = math.isfinite(least) and least >= float(need)
+        ok &= meets
+        parts.append(f"{key} {least:.3g} {'>=' if meets else '<'} {key}min {float(need):g}")
+    if not parts:
+        return False, "no safety factor with its minimum in the result"
+    return ok, f"{'PASS' if ok else 'FAIL'}: {', '.join(parts)} (the weaker gear of each)"
+
+
+def _rating_text(result: Mapping[str, Any]) -> list[str]:
+    """The text output of ``gearmesh rating``: the verdict line first, then the result by group
+    (:data:`RATING_GROUPS`), each key with its value (per-gear values named by gear), the notes
+    last, one a line."""
+    lines = _flat(_finite({k: v for k, v in result.items() if k != "notes"}))
+    gears = result.get("gears") if isinstance(result.get("gears"), list) else []
+    groups: dict[str, dict[str, Any]] = {title: {} for title, _ in RATING_GROUPS} | {"other": {}}
+    for key, value in lines.items():
+        groups[next((t for t, pattern in RATING_GROUPS if re.fullmatch(pattern, key)), "other")][key] = value
+    out = [safety_verdict(result)[1]]
+    for title, rows in groups.items():
+        if not rows:
+            continue
+        # a group of one nested result ("ltca.K_Hbeta", ...) under its heading without the prefix
+        head = os.path.commonprefix(list(rows)).rpartition(".")[0]
+        shown = {key[len(head) + 1:] if head else key: value for key, value in rows.items()}
+        width = max(len(k) for k in shown)
+        out += ["", f"{title} ({head})" if head else title,
+                *(f"  {key:<{width}}  {_value_text(value, gears)}" for key, value in shown.items())]
+    if result.get("notes"):
+        out += ["", "notes", *(f"  - {note}" for note in result["notes"])]
+    return out
 
 
 def _flat(result: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
@@ -123,11 +206,28 @@ def _with_deviations(pair, args: argparse.Namespace):
 
 def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
     data = read_yaml(args.file, "file")
-    if isinstance(data, Mapping) and ("study" in data or "pairs" in data or "__use_yte__" in data):  # not a pair file
+    if not data:
+        raise GearmeshInputError("file", args.file, "is empty: neither a gear pair file (teeth, normal_module_mm, ...) "
+                                 "nor a study config (study, pairs, ...); 'gearmesh example NAME' prints a pair file, "
+                                 "'gearmesh schema study --format markdown' lists a study's keys")
+    if _is_study(data):
         pairs = check_study(validate_study(data))
         return {"file": args.file, "kind": "study config", "valid": True, "pairs": list(pairs)}
     pair = _pair(args, args.file)[0]
-    return {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
+    out = {"file": args.file, "kind": "gear pair", "valid": True, "name": pair.name}
+    needs = missing_needs(pair)  # what some commands need beyond a valid pair, and which key to add
+    return {**out, "needs": needs} if needs else out
+
+
+def _is_study(data: Any) -> bool:
+    """Whether a document is meant as a study config: a mapping with a key of a study config that no
+    pair file has (or ``__use_yte__``, which only Snakemake reads), so its errors are a study's."""
+    from .settings import pair_schema, study_schema
+
+    if not isinstance(data, Mapping):
+        return False
+    study_only = set(study_schema()["properties"]) - set(pair_schema()["properties"])
+    return "__use_yte__" in data or bool(study_only & set(map(str, data)))
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
@@ -299,7 +399,8 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     torques = _numbers("--torques-Nm", args.torques_Nm)
     weights = _numbers("--weights", args.weights)
     if args.torque_Nm is None and torques is None:
-        raise GearmeshInputError("--torque-Nm", None, "or --torques-Nm is required")
+        raise GearmeshInputError("--torque-Nm", None, "is required, or --torques-Nm (a load spectrum, its middle "
+                                                      "torque the design torque)")
     # the design torque: given, or the middle torque of the spectrum (the lower of two middles)
     design = args.torque_Nm if args.torque_Nm is not None else sorted(torques)[(len(torques) - 1) // 2]
     out = _output_pair_path(args.write_pair)
@@ -316,9 +417,13 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
         LOG.setLevel(logging.INFO)
     samples = args.samples
     tolerances = {"grade": args.grade, "samples": samples, "sampling": args.sampling}
+    modification = {}
     if args.amount_tolerance_um:
-        tolerances["modification"] = {k: args.amount_tolerance_um for k in ("root_relief_um", "tip_relief_um",
-                                                                            "crowning_um")}
+        modification |= {k: args.amount_tolerance_um for k in ("root_relief_um", "tip_relief_um", "crowning_um")}
+    if args.length_tolerance_mm:
+        modification |= {k: args.length_tolerance_mm for k in ("root_relief_length_mm", "tip_relief_length_mm")}
+    if modification:
+        tolerances["modification"] = modification
     statistic = args.tolerance_statistic if samples else None
     summary, ds = optimise_summary(pair, objective=args.objective, torque_Nm=design, torques_Nm=torques,
                                    weights=weights, statistic="mean" if weights else args.statistic, on=args.on,
@@ -328,14 +433,16 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
                                    tolerances=tolerances, dynamic_speeds_rpm=_numbers("--dynamic-speeds-rpm",
                                                                                       args.dynamic_speeds_rpm),
                                    backlash_um=args.backlash_um,
-                                   constraints={"dynamic_factor": args.dynamic_factor}
-                                   if args.dynamic_factor is not None else None)
+                                   constraints={key: getattr(args, key) for key in args.constraint_keys},
+                                   **{key: getattr(args, key) for key in args.optimise_keys})
     summary["pinion_torque_Nm"] = float(pinion_torque(pair, design, args.on))
     if args.objective == "dynamic" or args.dynamic_factor is not None:  # the candidates' dynamics
         summary.update(_backlash(geom, args.backlash_um))
     if out is not None:
         write_pair(optimum_pair(pair, ds, name=out.stem), out)
         summary["pair_file"] = str(out)
+        summary["notes"] = [*summary.get("notes", []), f"{out} states the optimum to the drawing's resolution "
+                            f"(depths 0.01 µm, lengths 0.001 mm); genes above are the optimiser's own values"]
     return summary
 
 
@@ -394,7 +501,8 @@ class _HelpFormatter(argparse.HelpFormatter):
         if (action.required or not action.option_strings or default is None or default is False
                 or default == argparse.SUPPRESS or "default" in text):
             return text
-        shown = " ".join(map(str, default)) if isinstance(default, (list, tuple)) else str(default)
+        apart = " " if action.nargs in ("+", "*") else ","  # as the option is written: words apart, or a comma list
+        shown = apart.join(map(str, default)) if isinstance(default, (list, tuple)) else str(default)
         return f"{text} (default: {shown.replace('%', '%%')})"
 
 
@@ -418,10 +526,61 @@ def _setting_option(p, flag: str, section: type, help: str, key: str | None = No
     field = next(f for f in settings_fields(section) if key_of(f) == key)
     schema = field_schema(section, field)
     choices = schema.get("enum") or schema.get("items", {}).get("enum")
-    if choices:
+    if choices and "choices" not in kwargs:
         kwargs["choices"] = [c for c in choices if c is not None]
     p.add_argument(flag, dest=dest, default=defaults(section).get(key), help=help, **kwargs)
     p.set_defaults(setting_options={**(p.get_default("setting_options") or {}), dest: (section, key, flag)})
+
+
+def _value_reader(schema: Mapping[str, Any]):
+    """How the command line writes a value of a setting whose JSON schema is ``schema``: a number,
+    an integer, true/false, a word, or comma-separated items for a list; 'none' for null where
+    the setting allows it. Its range is checked against the declaration afterwards."""
+    kinds = schema.get("type", "string")
+    kinds = {kinds} if isinstance(kinds, str) else set(kinds)
+    items = _value_reader(schema.get("items", {})) if "array" in kinds else None
+
+    def read(text: str) -> Any:
+        word = text.strip()
+        if "null" in kinds and word.lower() in ("none", "null"):
+            return None
+        if items is not None:
+            return [items(v) for v in word.split(",")]
+        if "boolean" in kinds:
+            if word.lower() not in ("true", "false"):
+                raise ValueError(text)
+            return word.lower() == "true"
+        if "integer" in kinds:
+            return int(word)
+        return float(word) if "number" in kinds else word
+
+    read.__name__ = ("comma-separated " if items is not None else "") + \
+        ("/".join(sorted(k for k in kinds if k not in ("null", "array"))) or "value") + " value"
+    return read
+
+
+def _declared_options(p, section: type, skip: Sequence[str] = ()) -> list[str]:
+    """An option for every setting of ``section`` but ``skip`` and those of a mapping type, each
+    made from its declaration (:func:`_setting_option`: ``--KEY-WITH-DASHES``, its default,
+    choices and bounds, its description as the help): the keys, so a setting added to the
+    declaration is an option of the command without a line here."""
+    keys = []
+    for field in settings_fields(section):
+        key = key_of(field)
+        schema = field_schema(section, field)
+        if key in skip or "object" in str(schema.get("type")) or "oneOf" in schema:
+            continue
+        words = schema.get("enum") or schema.get("items", {}).get("enum")
+        help = schema.get("description", key.replace("_", " "))
+        kwargs = {}
+        if words and ("array" in str(schema.get("type")) or None in words):  # a list or null: checked as a whole
+            help += " (" + ", ".join("none" if w is None else str(w) for w in words) + ")"
+            kwargs["choices"] = None
+        metavar = "{true,false}" if schema.get("type") == "boolean" else key.upper()
+        _setting_option(p, "--" + key.replace("_", "-"), section, key=key, help=help, type=_value_reader(schema),
+                        metavar=metavar, **kwargs)
+        keys.append(key)
+    return keys
 
 
 def _check_setting_options(args: argparse.Namespace) -> None:
@@ -451,6 +610,18 @@ def cmd_example(args: argparse.Namespace) -> dict[str, Any] | None:
         return {name: _source(path) for name, path in example_pairs().items()}
     sys.stdout.write(example_pair(args.name).read_text(encoding="utf-8"))
     return None
+
+
+def cmd_manufactured(args: argparse.Namespace) -> None:
+    """One manufactured gear of a variant's impact.nc printed as a pair file
+    (:func:`gearmesh.robust.manufactured_pair`)."""
+    import yaml
+
+    from .datasets.impact import manufactured_gear
+
+    pair = manufactured_gear(args.impact, heldout=args.heldout, population=args.population, worst=args.worst,
+                             torque_Nm=args.torque_Nm)
+    sys.stdout.write(yaml.safe_dump(pair_to_dict(pair), sort_keys=False, allow_unicode=True))
 
 
 def _source(path: Path) -> str:
@@ -485,58 +656,62 @@ class _Problems(GearmeshInputError):
         ValueError.__init__(self, "\ngearmesh: error: ".join(lines))
 
 
-def cmd_check(args) -> None:
-    """``gearmesh check RESULTS [--configfile C]``: every problem of a results folder
-    (:func:`gearmesh.upstream.check_tree`), one line each; nothing printed when all is well."""
+def cmd_check(args) -> dict[str, Any] | None:
+    """``gearmesh check RESULTS [--configfile C] [--json]``: every problem of a study's results
+    folder (:func:`gearmesh.upstream.check_tree`), one line each; nothing printed when all is well
+    (``--json``: one object, ``ok`` and ``problems``). The files record their paths relative to
+    the folder the run ran in, the one above ``results/``: the check runs there, whatever folder
+    it is called from and however RESULTS is written (relative or absolute)."""
     from .pipeline import study_pair
     from .upstream import check_tree
 
-    root = Path(args.results)
-    if not root.is_dir():
-        raise GearmeshInputError("results", args.results, "must be a study's results folder (results/STUDY)")
-    config = None
-    if args.configfile is not None:
-        config = load_study(args.configfile)
-    problems = check_tree(root, config, None if config is None else lambda name, v: study_pair(config, name, v))
+    workdir, results = _run_folder(args.results)
+    config = None if args.configfile is None else load_study(args.configfile)  # read where it was named
+    with _working_directory(workdir):
+        problems = check_tree(results, config, None if config is None else lambda name, v: study_pair(config, name, v))
+    if args.json:
+        print(json.dumps({"results": results.as_posix(), "run_folder": str(workdir), "ok": not problems,
+                          "problems": problems}))
     if problems:
         raise _Problems(problems)
     return None
 
 
-#: The study config Snakemake reads when no --configfile is given (the Snakefile's configfile).
-DEFAULT_STUDY = "config/config.yaml"
+def _run_folder(results: str) -> tuple[Path, Path]:
+    """The folder a study ran in and its results folder relative to it (``results/STUDY``), from
+    the results folder as given (relative to here, or absolute)."""
+    path = Path(results)
+    if not path.is_dir():
+        raise GearmeshInputError("results", results, "must be a study's results folder (results/STUDY)")
+    path = path.resolve()
+    if path.parent.name != "results":
+        raise GearmeshInputError("results", results, "must be a study's results folder results/STUDY as a run wrote "
+                                 "it (its files name their paths from the folder above results/)")
+    return path.parent.parent, Path("results", path.name)
 
 
-def snakemake_configfiles(argv: Sequence[str]) -> list[str]:
-    """The config files a Snakemake command line names (``--configfile(s) A B``, ``--configfile=A``),
-    or the workflow's default study when it names none."""
-    files: list[str] = []
-    taking = False
-    for arg in argv:
-        if arg in ("--configfile", "--configfiles"):
-            taking = True
-        elif arg.startswith(("--configfile=", "--configfiles=")):
-            files.append(arg.split("=", 1)[1])
-            taking = False
-        elif taking and not arg.startswith("-"):
-            files.append(arg)
-        else:
-            taking = False
-    return files or [DEFAULT_STUDY]
+@contextmanager
+def _working_directory(path: Path) -> Iterator[None]:
+    """Run the block in ``path`` as the working directory, then return."""
+    here = os.getcwd()
+    os.chdir(path)
+    try:
+        yield
+    finally:
+        os.chdir(here)
 
 
 def cmd_run(args) -> None:
-    """``gearmesh run SNAKEMAKE-ARGS``: read every study config of the command line with the
-    package's bounded loader (a regular file, at most MAX_INPUT_BYTES, MAX_INPUT_NODES nodes and
-    MAX_INPUT_DEPTH levels, no alias, no ``__use_yte__``) and validate it, then hand the command
-    line to Snakemake, whose own loader (and template engine) never sees a file that failed."""
+    """``gearmesh run SNAKEMAKE-ARGS``: every config Snakemake would read before the Snakefile runs
+    (the command line's config files, every profile and the config files it names,
+    ``$SNAKEMAKE_PROFILE`` and the workflow's default profile included) read with the package's
+    bounded loader and validated (:mod:`gearmesh.launch`), then Snakemake started with the same
+    arguments: its own loader (and template engine) never sees a file that failed."""
     import shutil
 
-    for path in snakemake_configfiles(args.snakemake_args):
-        data = read_yaml(path, "config file")
-        if not isinstance(data, Mapping):
-            raise GearmeshInputError("config file", path, "must be a YAML mapping (a study config)")
-        validate_study(data)
+    from .launch import check_inputs, snakemake_inputs
+
+    check_inputs(snakemake_inputs(args.snakemake_args))
     exe = shutil.which("snakemake", path=str(Path(sys.executable).parent)) or shutil.which("snakemake")
     if exe is None:
         raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'")
@@ -564,13 +739,33 @@ def build_parser() -> argparse.ArgumentParser:
     _command(sub, "validate", cmd_validate, "check a gear pair file or a study config (exit 0, or 2 with the reason)",
              "a pair file or a study config")
 
+    p = sub.add_parser("manufactured", help="print a manufactured gear of a variant's impact.nc as a pair file: a "
+                       "held-out or population gear, or the worst gear of a criterion",
+                       description="Print one manufactured gear of a variant's results (impact.nc: the sign-off's "
+                                   "manufactured gears) as a pair file with its modification and lead slope "
+                                   "deviations: gearmesh manufactured impact.nc --heldout 17 > gear.yaml",
+                       formatter_class=_HelpFormatter)
+    p.add_argument("impact", help="a variant's impact.nc")
+    which = p.add_mutually_exclusive_group(required=True)
+    which.add_argument("--heldout", type=int, metavar="GEAR", help="a gear of the held-out population")
+    which.add_argument("--population", type=int, metavar="GEAR", help="a gear of the population (0: the nominal)")
+    which.add_argument("--worst", metavar="CRITERION", help="the worst gear over the tolerance box of a criterion "
+                       "(impact_force, lte_order_1, ..., peak_root_stress), with --torque-Nm")
+    p.add_argument("--torque-Nm", dest="torque_Nm", type=float, help="pinion torque of --worst")
+    p.set_defaults(func=cmd_manufactured)
+
     _command(sub, "geometry", cmd_geometry, "contact ratios, radii, backlash, masses and contact-line lengths")
 
-    p = sub.add_parser("run", help="run the workflow: check every study config with the bounded loader, then "
-                       "snakemake with the same arguments", description="Run the workflow as 'snakemake ARGS' "
-                       "after reading every --configfile (or config/config.yaml) with gearmesh's bounded loader "
-                       "and validating it, so a config Snakemake would parse without limits (a huge or nested file, "
-                       "a FIFO, a __use_yte__ template that runs Python) never reaches Snakemake. Example: "
+    p = sub.add_parser("run", help="run the workflow of a gearmesh checkout: check every study config and profile "
+                       "with the bounded loader, then snakemake with the same arguments", description="Run the "
+                       "workflow as 'snakemake ARGS' in a checkout of the gearmesh repository (the Snakefile, the "
+                       "workflow and the study configs are not part of the installed package; the folder you run it "
+                       "in must hold them), after reading every config Snakemake would read before the workflow's own "
+                       "checks (each --configfile, or config/config.yaml; every profile: --profile, "
+                       "$SNAKEMAKE_PROFILE, --workflow-profile or the workflow's profiles/default, and the config "
+                       "files a profile names) with gearmesh's bounded loader and validating it, so a file Snakemake "
+                       "would parse without limits (a huge or nested file, a FIFO, a __use_yte__ template that runs "
+                       "Python) never reaches Snakemake. Example, in the checkout: "
                        "gearmesh run --cores 2 --configfile config/studies/contact_lines.yaml",
                        formatter_class=_HelpFormatter)
     p.add_argument("snakemake_args", nargs=argparse.REMAINDER, help="the arguments for snakemake")
@@ -578,13 +773,16 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("check", help="check a study's results folder: name every damaged, foreign, edited or stale "
                        "file (exit 0, or 2 with one line per file)",
-                       description="Check every netCDF file and optimum pair file under RESULTS (e.g. "
-                       "results/impact_case): readable, a gearmesh result at its own path, its data matching its "
-                       "digest, made by the current code from inputs that are still the files it was made from; with "
-                       "--configfile also made with that study's settings and pair data. Each problem is one line "
-                       "naming the file and the command that remakes it.", formatter_class=_HelpFormatter)
+                       description="Check every netCDF file, CSV table, PNG figure and optimum pair file under "
+                       "RESULTS (e.g. results/impact_case, from any folder, relative or absolute): readable, a gearmesh "
+                       "result at its own path, its data matching its digest, made by the current code from inputs "
+                       "that are still the files it was made from (a table or figure: the one its job wrote or drew, "
+                       "unedited, from files unchanged since); with --configfile also made with that study's settings "
+                       "and pair data. Each problem is one line naming the file and the command that remakes it, to "
+                       "be run in the folder above results/.", formatter_class=_HelpFormatter)
     p.add_argument("results", help="a study's results folder (results/STUDY)")
     p.add_argument("--configfile", default=None, help="the study config the results must agree with")
+    p.add_argument("--json", action="store_true", help="print one JSON object: ok and the problems, one line each")
     p.set_defaults(func=cmd_check)
 
     p = sub.add_parser("schema", help="print the JSON schema of a study config or a pair file (for editors), or "
@@ -629,6 +827,7 @@ def build_parser() -> argparse.ArgumentParser:
                          "the mesh misalignment (f_sh + f_ma) or the standard's methods B/C (both are printed)")
     _setting_option(p, "--positions", Ltca, type=int, help="LTCA rotation positions per mesh cycle")
     _setting_option(p, "--points", Ltca, type=int, help="LTCA points per contact line")
+    p.set_defaults(text=_rating_text)
 
     p = _command(sub, "impact", cmd_impact, "mesh-in impact at one torque and speed: scenario, mesh-in point, "
                  "velocity, local stiffness, impact force", PAIR_HELP.replace(";", ", with its modification if any;"))
@@ -663,9 +862,6 @@ def build_parser() -> argparse.ArgumentParser:
                     help="force: F_s; velocity: |v_n|; robust: F_s over the spectrum and tolerances (needs either); "
                         "dynamic: the dynamic factor (peak over static mesh force) of the contact-driven 8-DOF pair "
                         "over the speed range")
-    p.add_argument("--dynamic-factor", dest="dynamic_factor", type=float, default=None,
-                   help="constraint: the dynamic factor at every torque at most this times the unmodified pair's "
-                        "(e.g. 1.0: never worse than unmodified in the dynamics)")
     p.add_argument("--dynamic-speeds-rpm", dest="dynamic_speeds_rpm", default=None,
                    help="speeds of the dynamic objective/constraint, comma-separated (rpm; default 0.2, 1 and 3 times "
                         "--speed-rpm), resonances within their range added per candidate")
@@ -688,7 +884,10 @@ def build_parser() -> argparse.ArgumentParser:
                         f"no lead deviation); unless given, class {CLI_LEAD_GRADE} as in the shipped case study")
     p.add_argument("--amount-tolerance-um", dest="amount_tolerance_um", type=float, default=0.0,
                    help="± on every relief and crowning amount (µm)")
-    _setting_option(p, "--sampling", Tolerances, help="seeded Latin hypercube or corners of the tolerance box")
+    p.add_argument("--length-tolerance-mm", dest="length_tolerance_mm", type=float, default=0.0,
+                   help="± on every relief length (mm)")
+    _setting_option(p, "--sampling", Tolerances, help="seeded Latin hypercube (lhs), corners of the tolerance box, or "
+                    "the unmodified pair's worst gears of its box (box)")
     _setting_option(p, "--tolerance-statistic", Optimise, help="over the nominal and the samples")
     _setting_option(p, "--tolerance-level", Optimise, key="tolerance_level_percent", type=float, metavar="PERCENT",
                     help="level (%%) of percentile and cvar")
@@ -699,6 +898,11 @@ def build_parser() -> argparse.ArgumentParser:
     _setting_option(p, "--generations", Optimise, type=int, help="generations")
     p.add_argument("--write-pair", dest="write_pair", default=None, metavar="OUT.yaml",
                    help="write the optimum as a pair file OUT.yaml (its name: OUT), readable by every subcommand")
+    # every other setting of a study's optimisation, and every constraint (the sign-off criteria),
+    # from their declarations: a study's optimum is reproduced by giving its section's keys
+    given = {a.dest for a in p._actions}
+    p.set_defaults(optimise_keys=_declared_options(p, Optimise, skip=tuple(given | {"constraints"})),
+                   constraint_keys=_declared_options(p, Constraints))
     return parser
 
 
@@ -723,7 +927,7 @@ def main(argv: Sequence[str] | None = None) -> int:
             own = [n for n in result.get("notes", []) if n not in pair_notes(args.loaded_pair)]
             result["notes"] = pair_notes(args.loaded_pair) + own
         if result is not None:
-            _emit(result, args.json)
+            _emit(result, args.json, getattr(args, "text", None))
         sys.stdout.flush()
     except GearmeshInputError as exc:
         print(f"gearmesh: error: {exc}", file=sys.stderr)

@@ -141,7 +141,7 @@ class Versioned(str):
     Snakemake compares a job's params by ``repr`` (its params rerun trigger: the digest is what
     reruns a job whose code changed) and writes them into the report's job panel by ``format``
     (where a reader wants the function's name, not a hash). The workflow hands it to Snakemake
-    from a param function (``versioned_param`` in ``workflow/rules/common.smk``): a plain string
+    from a param function (:func:`gearmesh.plan.versioned_param`): a plain string
     param is formatted with the wildcards, which would make it a plain ``str``. The end-to-end test
     checks both: a changed module reruns its jobs, and the report shows no digest."""
 

@@ -19,8 +19,8 @@ from .errors import GearmeshInputError
 from .gear import GearPair, load_named_pair, pinion_torque, read_yaml, variant_pair
 from .limits import same_point
 from .schema import validate
-from .settings import stage_of, study_schema
-from .stages import always
+from .settings import lste_compared, stages, study_schema
+from .stages import Grid, Speeds, Torques, required_sections
 
 
 def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
@@ -32,7 +32,7 @@ def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
         raise GearmeshInputError("__use_yte__", config["__use_yte__"], "turns on Snakemake's YTE template engine, "
                                  "which runs Python from the config when Snakemake loads it (before any check): a "
                                  "gearmesh study is plain data; remove the key, and run studies with 'gearmesh run' "
-                                 "(docs/workflow.md, trust model)")
+                                 "(the workflow documentation's trust model)")
     return validate(config, study_schema())
 
 
@@ -104,7 +104,8 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
                     raise GearmeshInputError(f"stiffness_table.variants.{variant}.{exc.field}", exc.value,
                                              exc.rule) from None
                 raise GearmeshInputError(f"stiffness_table.variants.{variant}", dict(overrides), str(exc)) from None
-    if lste_comparison_wanted(config):
+    check_required_sections(config)
+    if lste_compared(config, "ltca"):
         stiffness, ltca = config["stiffness"], config["ltca"]
         for name in config["pairs"]:
             t_k = pinion_torque(pairs[name], stiffness["torque_Nm"], stiffness["torque_on"])
@@ -148,60 +149,45 @@ def _section(prefix: str) -> Iterator[None]:
         raise GearmeshInputError(f"{prefix}.{exc.field}", exc.value, exc.rule) from None
 
 
+def check_required_sections(config: Mapping[str, Any]) -> None:
+    """Every stage the study runs has the sections it needs (:func:`gearmesh.stages.required_sections`:
+    those of the stages it reads in every study, and those it declares): a study with a rating
+    section and no ltca section is refused here, before any job runs."""
+    for section, stage in stages().items():
+        if section not in config:
+            continue
+        for needed in required_sections(stage):
+            if needed not in config:
+                raise GearmeshInputError(section, dict(config[section]), f"needs a {needed} section in the study: the "
+                                         f"{section} stage reads its results" if needed in {r.stage for r in stage.reads}
+                                         else f"needs a {needed} section in the study")
+
+
 def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> None:
-    """The stage settings the schema cannot judge, checked with each stage's own boundary
-    checks and work limits (:mod:`gearmesh.limits`) before any job runs: grid sizes, lead
-    slopes, every torque against the contact-stress and deflection limits of every pair it
-    loads, helix-sweep size, dynamics comparison couples and the full dynamics and train
-    settings with their work estimate (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`)."""
+    """The stage settings the schema cannot judge, checked before any job runs: each stage's
+    declared work limits (:attr:`gearmesh.stages.Stage.limits`: grid sizes, every torque against
+    the contact-stress and deflection limits of every pair it loads, every speed against the
+    burst speed), the stiffness Fourier order, helix-sweep size, dynamics comparison couples and
+    the full dynamics and train settings with their work estimate
+    (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`)."""
     from .datasets.dynamics import check_dynamics_settings
     from .gear import pair_geometry
-    from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid, check_speeds, check_sweep
+    from .limits import check_sweep
     from .loads import check_load
 
     geoms = {name: pair_geometry(pair) for name, pair in pairs.items()}
-
-    def loads(section: str, key: str, on: str, names: Any) -> None:
-        values = config[section][key]
-        for k, value in enumerate(values if isinstance(values, list) else [values]):
-            field = f"{section}.{key}" + (f"[{k}]" if isinstance(values, list) else "")
-            for name in names:
-                check_load(geoms[name], pinion_torque(pairs[name], value, on), field, value)
-
     stiffness = config["stiffness"]
     if not 2 * stiffness["fourier_order"] < stiffness["positions"]:
         raise GearmeshInputError("stiffness.fourier_order", stiffness["fourier_order"],
                                  f"needs more than twice as many positions ({stiffness['positions']})")
-    for section in ("stiffness", "stiffness_table", "slice_convergence"):
-        if section in config:
-            sec = config[section]
-            slices = max(sec["slices"]) if isinstance(sec["slices"], list) else sec["slices"]
-            check_grid(f"{section}.slices", sec["slices"], slices * sec["positions"], MAX_STIFFNESS_POINTS,
-                       "slice-positions")
-            if sec.get("torque_Nm") is not None:
-                loads(section, "torque_Nm", sec["torque_on"], sec.get("pairs", config["pairs"]))
-    for section in ("tca", "ltca"):
-        if section in config:
-            sec = config[section]
-            check_grid(f"{section}.points", sec["points"], (sec["positions"] + 1) * sec["points"],
-                       MAX_CONTACT_POINTS, "contact candidates per line")
-    if "ltca" in config:
-        loads("ltca", "torques_Nm", config["ltca"]["on"], config["pairs"])
-    if "impact" in config:
-        loads("impact", "torques_Nm", config["impact"]["on"], config["pairs"])
-        with _section("impact"):
-            for name in config["pairs"]:
-                check_speeds(geoms[name], config["impact"]["speeds_rpm"], "speeds_rpm")
-    for run, section in (config.get("optimise") or {}).items():
-        for key in ("speed_rpm", "dynamic_speeds_rpm"):
-            for name in config["pairs"] if section.get(key) is not None else ():
-                check_speeds(geoms[name], section[key], f"optimise.{run}.{key}")
-        for key in ("torque_Nm", "torques_Nm"):
-            values = section.get(key)
-            for k, value in enumerate(values if isinstance(values, list) else [] if values is None else [values]):
-                field = f"optimise.{run}.{key}" + (f"[{k}]" if isinstance(values, list) else "")
-                for name in config["pairs"]:
-                    check_load(geoms[name], pinion_torque(pairs[name], value, section["on"]), field, value)
+    for section, stage in stages().items():
+        if section not in config:
+            continue
+        named = config[section].items() if stage.scope == "run" else [(None, config[section])]
+        for run, settings in named:
+            prefix = section if run is None else f"{section}.{run}"
+            for limit in stage.limits:
+                _check_limit(limit, settings, prefix, pairs, geoms, settings.get("pairs", config["pairs"]))
     if sweep := config.get("helix_sweep"):
         check_sweep(sweep["start_deg"], sweep["stop_deg"], sweep["step_deg"], "helix_sweep.")
     for k, couple in enumerate(config.get("dynamics_comparison", {}).get("couples") or []):
@@ -215,23 +201,44 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     if "ltca" in config and config.get("dynamics", {}).get("transmission_error_um") is not None:
         raise GearmeshInputError("dynamics.transmission_error_um", config["dynamics"]["transmission_error_um"],
                                  "must be null when the study runs the LTCA: the LTCA excites the dynamics")
-    for section, train in (("dynamics", False), ("train_dynamics", True)):
+    train = config.get("train_dynamics")
+    if train and train.get("torque_Nm") is None and train.get("static_force_N") is not None:
+        force = train["static_force_N"]  # normal force -> gear torque F r_b2 cos βb
+        for name in config["pairs"]:
+            g = geoms[name]
+            t2 = force * float(g.base_radius[1]) * math.cos(g.base_helix_angle)
+            check_load(g, pinion_torque(pairs[name], t2, "gear"), "train_dynamics.static_force_N", force)
+    for section, is_train in (("dynamics", False), ("train_dynamics", True)):
         if section in config:
-            sec = config[section]
             points = config["ltca"]["positions"] if section == "dynamics" and "ltca" in config \
                 else config["stiffness"]["positions"]
-            key = "torque_Nm" if train else "torques_Nm"
-            if sec.get(key) is not None:
-                loads(section, key, sec.get("on", "pinion"), config["pairs"])
-            elif train and sec.get("static_force_N") is not None:  # normal force -> gear torque F r_b2 cos βb
-                force = sec["static_force_N"]
-                for name in config["pairs"]:
-                    g = geoms[name]
-                    t2 = force * float(g.base_radius[1]) * math.cos(g.base_helix_angle)
-                    check_load(g, pinion_torque(pairs[name], t2, "gear"), f"{section}.static_force_N", force)
             for name in config["pairs"]:
                 with _section(section):
-                    check_dynamics_settings(pairs[name], sec, train=train, excitation_points=points)
+                    check_dynamics_settings(pairs[name], config[section], train=is_train, excitation_points=points)
+
+
+def _check_limit(limit: Torques | Speeds | Grid, settings: Mapping[str, Any], prefix: str,
+                 pairs: Mapping[str, GearPair], geoms: Mapping[str, Any], names: Any) -> None:
+    """One declared work limit of a stage's ``settings`` (config section ``prefix``) on the pairs ``names``."""
+    from .limits import check_grid, check_speeds
+    from .loads import check_load
+
+    if isinstance(limit, Grid):
+        check_grid(f"{prefix}.{limit.size}", settings[limit.size], limit.points(settings), limit.limit, limit.what)
+        return
+    values = settings.get(limit.key)
+    if values is None:
+        return
+    field = f"{prefix}.{limit.key}"
+    if isinstance(limit, Speeds):
+        for name in names:
+            check_speeds(geoms[name], values, field)
+        return
+    on = settings.get(limit.on, "pinion") if limit.on else "pinion"
+    for k, value in enumerate(values if isinstance(values, list) else [values]):
+        for name in names:
+            check_load(geoms[name], pinion_torque(pairs[name], value, on), field + (f"[{k}]" if isinstance(values, list)
+                                                                                  else ""), value)
 
 
 def _check_impact(impact: Mapping[str, Any] | None) -> None:
@@ -247,24 +254,25 @@ def _check_impact(impact: Mapping[str, Any] | None) -> None:
     design = impact["design_torque_Nm"]
     if design is not None and not same_point(torques, design).any():
         raise GearmeshInputError("impact.design_torque_Nm", design, f"must be one of impact.torques_Nm {torques}")
-    for k, t in enumerate(impact["simulate_torques_Nm"]):
-        if not same_point(torques, t).any():
-            raise GearmeshInputError(f"impact.simulate_torques_Nm[{k}]", t, f"must be one of impact.torques_Nm {torques}")
+    for key in ("simulate_torques_Nm", "tolerance_torques_Nm"):
+        for k, t in enumerate(impact.get(key) or ()):
+            if not same_point(torques, t).any():
+                raise GearmeshInputError(f"impact.{key}[{k}]", t, f"must be one of impact.torques_Nm {torques}")
 
 
 def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> None:
-    """The sign-off table has what it reads: the ltca, rating and impact sections (basis population:
-    the tolerances section with samples), its reference among the variants, and every LTCA torque
-    among the impact's (and the dynamics') torques."""
+    """The sign-off table has what it reads (basis population: the tolerances section with samples),
+    its reference among the variants, and every LTCA torque among the impact's (and the dynamics')
+    torques."""
     signoff = config.get("signoff")
     if signoff is None:
-        return
-    for section in (r.stage for r in stage_of("signoff").reads if r.when is always):  # what it always reads
-        if section not in config:
-            raise GearmeshInputError("signoff", dict(signoff), f"needs a {section} section in the study")
-    if signoff.get("basis") == "population" and not (config.get("tolerances") or {}).get("samples"):
-        raise GearmeshInputError("signoff.basis", "population", "needs a tolerances section with samples (the "
-                                 "manufactured gears it judges); or basis: nominal")
+        return  # the sections it reads: check_required_sections
+    tolerances = config.get("tolerances") or {}
+    if signoff.get("basis") == "population" and not (tolerances.get("population") and (
+            tolerances.get("grade") is not None or tolerances.get("modification"))):
+        raise GearmeshInputError("signoff.basis", "population", "needs a tolerances section with a grade or "
+                                 "modification tolerances and a population (the manufactured gears it judges); or "
+                                 "basis: nominal")
     variants = list(config.get("variants", {}))
     if signoff["reference"] not in variants:
         raise GearmeshInputError("signoff.reference", signoff["reference"], f"must be one of the variants {variants}")
@@ -274,11 +282,15 @@ def _check_signoff(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> 
         if sec is None:
             continue
         torques = sec["torques_Nm"]
+        judged = sec.get("tolerance_torques_Nm") if section == "impact" and signoff.get("basis") == "population" \
+            else None
+        field = "impact.tolerance_torques_Nm" if judged is not None else f"{section}.torques_Nm"
+        torques = torques if judged is None else judged
         own = {"torques_Nm": torques if isinstance(torques, list) else [torques], "on": sec.get("on", "pinion")}
         for name in config["pairs"]:
             for t in ltca["torques_Nm"]:
                 if not _among(pinion_torque(pairs[name], t, ltca["on"]), pairs[name], own):
-                    raise GearmeshInputError(f"{section}.torques_Nm", torques, f"must include every LTCA torque "
+                    raise GearmeshInputError(field, torques, f"must include every LTCA torque "
                                              f"({t} N m on the {ltca['on']}) for the sign-off table")
 
 
@@ -293,9 +305,3 @@ def study_excitation(config: Mapping[str, Any]) -> str | None:
     if "dynamics" not in config:
         return None
     return pair_excitation((config.get("dynamics") or {}).get("excitation"), "ltca" in config)
-
-
-def lste_comparison_wanted(config: Mapping[str, Any]) -> bool:
-    """The study compares the LTCA with F/K: it runs the LTCA on the standard variant and the
-    stiffness stage has an LSTE torque."""
-    return "ltca" in config and "standard" in config.get("variants", {}) and "torque_Nm" in config.get("stiffness", {})

@@ -103,8 +103,8 @@ class Deviations:
 
 
 def _um(value: float) -> float:
-    """m → µm to the resolution a deviation is measured to (0.001 µm; ISO 1328-1 reports 0.1 µm)."""
-    return round(float(value) * 1e6, 3)
+    """m → µm, the float as it is (a manufactured gear written out reads back bit for bit)."""
+    return float(value) * 1e6
 
 
 def _check(field: str, value: Any) -> None:

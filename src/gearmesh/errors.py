@@ -18,6 +18,21 @@ def excerpt(text: str, limit: int = MAX_EXCERPT) -> str:
     return text if len(text) <= limit else text[:limit - 1] + "…"
 
 
+def unknown_key_rule(key: object, allowed, reference: str) -> str:
+    """The rule an unknown ``key`` breaks, whole words only within the message's excerpt: every
+    allowed key where they fit in a terminal line, else the closest ones and the command that
+    lists them all (``reference``, e.g. "gearmesh schema pair --format markdown")."""
+    import difflib
+
+    names = sorted(map(str, allowed))
+    listed = ", ".join(names)
+    if len(listed) <= 3 * MAX_EXCERPT:
+        return f"unknown key; allowed keys are {listed}"
+    close = difflib.get_close_matches(str(key), names, n=3, cutoff=0.5)
+    guess = f"did you mean {' or '.join(close)}? " if close else ""
+    return f"unknown key; {guess}every allowed key: {reference}"
+
+
 def short_repr(value: object) -> str:
     """repr of ``value`` in bounded time and length (reprlib: nested levels, items and long
     strings are elided), so that the error path never formats a huge input in full."""

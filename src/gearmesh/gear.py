@@ -20,13 +20,14 @@ import numpy as np
 import yaml
 
 from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
-from .errors import GearmeshInputError
-from .limits import (MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPTH, MAX_INPUT_NODES,  # noqa: F401
-                     MAX_MODIFICATION_TO_MODULE, MAX_TEETH, MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE)
+from .errors import GearmeshInputError, unknown_key_rule
+from .limits import (DENSITY, MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPTH,  # noqa: F401
+                     MAX_INPUT_NODES, MAX_MODIFICATION_TO_MODULE, MAX_TEETH, MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE,
+                     RATING_INPUT_RANGES, YOUNGS_MODULUS)
 from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
 from .body import BODY_KEYS, Body, check_body, read_body
 from .deviation import DEVIATION_KEYS, Deviations, read_deviations
-from .supports import SUPPORT_KEYS, Supports, read_supports
+from .supports import SUPPORT_KEYS, Supports, check_supports, read_supports
 
 GEARS = ("pinion", "gear")
 
@@ -57,11 +58,14 @@ class Material:
     def __post_init__(self) -> None:
         """The pair file's material rules, however the material was made (a file, code or
         ``dataclasses.replace``): E > 0, 0 <= ν < 0.5 (a positive bulk modulus, E/(3(1 − 2ν))),
-        density > 0, all finite; refused naming the pair-file key in its units."""
-        for key, value, scale in (("youngs_modulus_GPa", self.youngs_modulus, 1e-9),
-                                  ("density_kg_m3", self.density, 1.0)):
+        density > 0, all finite, E and density within what gear materials have
+        (:data:`gearmesh.limits.YOUNGS_MODULUS`, :data:`gearmesh.limits.DENSITY`); refused naming the
+        pair-file key in its units."""
+        for key, value, scale, plausible in (("youngs_modulus_GPa", self.youngs_modulus, 1e-9, YOUNGS_MODULUS),
+                                             ("density_kg_m3", self.density, 1.0, DENSITY)):
             if _number(f"material.{key}", value * scale if _is_number(value) else value) <= 0:
                 raise GearmeshInputError(f"material.{key}", value * scale, "must be positive")
+            plausible.check(value * scale, f"material.{key}")
         nu = _number("material.poisson_ratio", self.poisson_ratio)
         if not 0 <= nu < 0.5:
             raise GearmeshInputError("material.poisson_ratio", nu, "must lie in [0, 0.5)")
@@ -153,6 +157,35 @@ _ALTERNATIVE_KEYS = (
     ("tool_tip_radius_coefficient", "basic_rack_profile"),
     ("bore_radius_mm", "bore_diameter_mm"),
 )
+#: What a valid pair file may leave out that some computations need, and which commands need it:
+#: {key: (what needs it, the commands that do)}. ``gearmesh validate`` names them for a pair that
+#: lacks the key; a command that needs it refuses with :func:`missing_key` (the key to add).
+#: Without a bore: the geometry and the ISO 6336 rating by the standard's factors run.
+OPTIONAL_NEEDS = {
+    "bore_radius_mm": ("the fillet foundation of the tooth stiffness (Sainsot, Velex & Duverger 2004, J. Mech. "
+                       "Design 126) and the gear bodies' masses",
+                       ("stiffness", "ltca", "impact", "rating", "dynamics", "optimise")),
+}
+#: The pair-file keys that give a value of :data:`OPTIONAL_NEEDS` in other words (datasheet dimensions).
+_GIVEN_AS = {"bore_radius_mm": "bore_diameter_mm, a datasheet's inner diameter"}
+
+
+def missing_key(key: str, what: str | None = None) -> GearmeshInputError:
+    """The refusal of a computation that needs pair-file key ``key`` (:data:`OPTIONAL_NEEDS`), saying
+    what needs it and which key to add."""
+    need = what or OPTIONAL_NEEDS[key][0]
+    other = f" (or {_GIVEN_AS[key]})" if key in _GIVEN_AS else ""
+    return GearmeshInputError(key, None, f"is required for {need}: add {key}{other} to the pair file")
+
+
+def missing_needs(pair: "GearPair") -> dict[str, str]:
+    """{key: what a command needs it for and which commands} for each key of :data:`OPTIONAL_NEEDS`
+    that ``pair`` leaves out (what ``gearmesh validate`` reports beside "valid")."""
+    given = {"bore_radius_mm": pair.bore_radius is not None}
+    return {key: f"add {key}{f' (or {_GIVEN_AS[key]})' if key in _GIVEN_AS else ''} for {what}: needed by "
+                 f"{', '.join(commands)}" for key, (what, commands) in OPTIONAL_NEEDS.items() if not given[key]}
+
+
 #: ISO 53:1998 basic rack profiles (α_P = 20°, h_aP = 1.0 m): the dedendum h_fP and root fillet
 #: radius ρ_fP of the rack, in modules — the addendum and tip radius of the hob that generates
 #: the gear (``dedendum_coefficient``, ``tool_tip_radius_coefficient``). A for high torque, B and
@@ -193,6 +226,8 @@ _MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
     "crowning_um": ("crowning", 1e-6),
     "unmodified_lead_length_mm": ("unmodified_lead_length", 1e-3),
 }
+#: Each modification parameter's engineering unit, as its pair-file key names it ("um" or "mm").
+MODIFICATION_UNITS = {attr: key.rsplit("_", 1)[1] for key, (attr, _) in _MODIFICATION_KEYS.items()}
 
 
 def _number(field_name: str, value: Any) -> float:
@@ -235,7 +270,7 @@ def _mapping(field_name: str, value: Any, allowed: set[str]) -> Mapping[str, Any
     unknown = sorted(set(value) - allowed)
     if unknown:
         raise GearmeshInputError(f"{field_name}.{unknown[0]}", value[unknown[0]],
-                                 f"unknown key; allowed keys are {sorted(allowed)}")
+                                 unknown_key_rule(unknown[0], allowed, "gearmesh schema pair --format markdown"))
     return value
 
 
@@ -388,8 +423,9 @@ def check_rating_input(name: str, value: Any, field_name: str | None = None) -> 
     """One load-capacity input (a name of :data:`RATING_KEYS`' values) checked: the accuracy grade
     an integer 1..12 (ISO 1328-1), the FZG load stage an integer 1..12 (ISO 14635-1), the oil
     temperature in (−40, 200) °C, the life-factor conditions and the idler gear one of their words
-    (:mod:`gearmesh.choices`), every other a positive number; GearmeshInputError naming
-    ``field_name`` (default ``name``)."""
+    (:mod:`gearmesh.choices`), every other a positive number within its plausible range
+    (:data:`gearmesh.limits.RATING_INPUT_RANGES`: fatigue limits of ISO 6336-5's materials,
+    roughness, viscosities); GearmeshInputError naming ``field_name`` (default ``name``)."""
     key = field_name or name
     words = {"life_factor_conditions": LIFE_FACTOR_CONDITIONS, "idler_gear": IDLER_GEARS}
     if name in words:
@@ -413,6 +449,8 @@ def check_rating_input(name: str, value: Any, field_name: str | None = None) -> 
         return float(value)
     if value <= 0:
         raise GearmeshInputError(key, value, "must be positive")
+    if name in RATING_INPUT_RANGES:  # within what materials, surfaces and oils have
+        RATING_INPUT_RANGES[name].check(value, key)
     return float(value)
 
 
@@ -1106,6 +1144,10 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
                                  f"gives a transverse contact ratio eps_alpha = {eps_alpha:.4f} < 1: "
                                  "the mesh is not continuous")
     check_body(pair.body, pair.face_width, pair.bore_radius, rf, pair.supports)
+    check_supports(pair.supports, pair.face_width, pair.bore_radius)
+    edge_radius = dict(pair.rating_inputs).get("tip_edge_radius_mm")
+    if edge_radius is not None:
+        check_tip_edge_radius(edge_radius * 1e-3, san)
     b = min(pair.face_width)
     eps_beta = b * math.sin(beta) / (math.pi * mn)  # eq. 91
 
@@ -1135,6 +1177,17 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     return geom
 
 
+
+
+def check_tip_edge_radius(edge_radius: float, normal_tip_thickness) -> None:
+    """Refuse a tip-edge rounding radius (m) above half the thinner normal tip thickness (m, per
+    gear): the rounding would take the whole tip (GearmeshInputError on ``tip_edge_radius_mm``).
+    The pair's own radius is checked with its geometry (:func:`pair_geometry`, so ``validate``
+    refuses what the rating would), one given to a stress function by it too."""
+    limit = 0.5 * float(np.min(normal_tip_thickness))
+    if edge_radius > limit:
+        raise GearmeshInputError("tip_edge_radius_mm", edge_radius * 1e3,
+                                 f"must not exceed half the normal tip thickness ({limit * 1e3:.3g} mm)")
 
 
 def validate_modifications(geom: PairGeometry) -> None:

@@ -70,7 +70,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from .choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
+from .choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_CYCLE_POSITIONS, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry, involute
 from .limits import check_speeds
@@ -264,7 +264,7 @@ def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
 def impact_model(geom: PairGeometry, points: int = 50, lead_slope=None, contact_law_name: str = DEFAULT_CONTACT_LAW,
                  method: str = DEFAULT_TOOTH_METHOD, extension: float = DEFAULT_CORNER_EXTENSION, driver: str = "pinion",
                  added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 32, face_samples: int = 257,
-                 cycle_positions: int = 32, local_points: int = 400, local_keep: int = 400,
+                 cycle_positions: int = DEFAULT_CYCLE_POSITIONS, local_points: int = 400, local_keep: int = 400,
                  ltca: LTCAModel | None = None) -> ImpactModel:
     """Prepare the impact objective of ``geom`` (its modification is only the default).
 

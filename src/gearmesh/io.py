@@ -16,12 +16,16 @@ from __future__ import annotations
 import errno
 import hashlib
 import json
+import logging
 import math
 import os
 import re
 import socket
+import struct
 import time
+import zlib
 from contextlib import contextmanager
+from contextvars import ContextVar
 from functools import lru_cache
 from pathlib import Path
 from typing import Any, Callable, Iterator, Mapping
@@ -157,6 +161,74 @@ def job_outputs() -> Iterator[None]:
         _before_rename = previous
 
 
+#: Seconds between two looks of a job's watcher (:func:`stop_with_controller`) at its controller.
+WATCH_INTERVAL = 0.5
+#: The watcher of :func:`stop_with_controller`: a bare interpreter (no site, no imports but os and
+#: time) given the job's and the controller's process ids, each with its start (field 22 of
+#: /proc/PID/stat, so a reused process id is not taken for it), and the interval. A zombie is
+#: gone: a killed controller whose parent does not reap it (a container's first process) stays
+#: in the process table.
+_WATCHER = """
+import os, sys, time
+job, job_started, controller, started, interval = sys.argv[1:6]
+def alive(pid, started):
+    try:
+        os.kill(int(pid), 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        pass
+    try:
+        with open(f"/proc/{pid}/stat") as stat:
+            fields = stat.read().rsplit(")", 1)[1].split()
+    except OSError:  # no /proc (not Linux): kill's answer; with /proc, the process has just gone
+        return not os.path.isdir("/proc")
+    return fields[0] != "Z" and (not started or fields[19] == started)
+while alive(job, job_started):
+    if not alive(controller, started):
+        os.kill(int(job), 9)
+        break
+    time.sleep(float(interval))
+"""
+
+
+@contextmanager
+def stop_with_controller(interval: float = WATCH_INTERVAL) -> Iterator[None]:
+    """Inside a workflow job that runs in a process of its own (no job server): a watcher process
+    that kills the job (SIGKILL) within ``interval`` seconds once the Snakemake process that started
+    it is gone (killed with ``kill -9``: nobody waits for the job, and a recovery run may be
+    remaking its files), and ends with the block. A thread could not do it: a compiled loop (the
+    dynamics' RK4, seconds to minutes) holds the interpreter; a fork would cost the job the copy
+    of every page it then writes. (A job on the run's job server is stopped by the server:
+    :mod:`gearmesh.jobserver`.) Without a Snakemake ancestor (a cluster job, whose controller runs
+    elsewhere) it does nothing; :func:`job_outputs` still keeps an orphan from writing."""
+    import subprocess
+    import sys
+
+    controller = controller_process()
+    watcher = None
+    if controller is not None:
+        job = os.getpid()
+        watcher = subprocess.Popen([sys.executable, "-I", "-S", "-c", _WATCHER, str(job), _start_ticks(job),
+                                    str(controller[0]), _start_ticks(controller[0]), repr(interval)],
+                                   stdin=subprocess.DEVNULL, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        yield
+    finally:
+        if watcher is not None:
+            watcher.kill()
+            watcher.wait()
+
+
+def _start_ticks(pid: int) -> str:
+    """When process ``pid`` started (field 22 of /proc/PID/stat, clock ticks since boot), '' off Linux."""
+    try:
+        with open(f"/proc/{pid}/stat", encoding="ascii") as stat:
+            return stat.read().rsplit(")", 1)[1].split()[19]
+    except (OSError, IndexError):
+        return ""
+
+
 def controller_process() -> tuple[int, float] | None:
     """(pid, start time) of the nearest ancestor that is a Snakemake process (``.../snakemake``
     or ``python -m snakemake``), or None (no such ancestor, or no psutil)."""
@@ -175,16 +247,18 @@ def controller_process() -> tuple[int, float] | None:
 
 
 def _running(pid: int, started: float) -> bool:
-    """Whether process ``pid`` still runs and is the one that started at ``started`` (not a reuse)."""
+    """Whether process ``pid`` still runs and is the one that started at ``started`` (not a reuse, not
+    a zombie: a killed process its parent has not reaped)."""
     import psutil
 
     try:
-        return psutil.Process(pid).create_time() == started
+        process = psutil.Process(pid)
+        return process.create_time() == started and process.status() != psutil.STATUS_ZOMBIE
     except psutil.Error:
         return False
 
 
-def _space_errno(exc: BaseException) -> int | None:
+def space_errno(exc: BaseException) -> int | None:
     """ENOSPC or EDQUOT when ``exc`` or an exception that caused it is one, else None."""
     seen: BaseException | None = exc
     while seen is not None:
@@ -197,7 +271,7 @@ def _space_errno(exc: BaseException) -> int | None:
 def disk_full(exc: BaseException, folder: Path) -> bool:
     """Whether ``exc`` (or what caused it) is a full disk or quota (ENOSPC, EDQUOT), or a library
     error on a file system with less than :data:`FULL_DISK_BYTES` left."""
-    if _space_errno(exc) is not None:
+    if space_errno(exc) is not None:
         return True
     return isinstance(exc, (OSError, RuntimeError)) and _free_bytes(folder) < FULL_DISK_BYTES
 
@@ -213,7 +287,7 @@ def _free_bytes(folder: Path) -> float:
 
 def _reason(exc: BaseException) -> str:
     """The failed write's cause in a few words (the system's text for ENOSPC/EDQUOT)."""
-    code = _space_errno(exc)
+    code = space_errno(exc)
     return os.strerror(code) if code is not None else " ".join(str(exc).split())[:80] or type(exc).__name__
 
 
@@ -367,18 +441,106 @@ def check_documented(ds: xr.Dataset) -> None:
             raise ValueError(f"netCDF variable {name!r} lacks {', '.join(missing)}")
 
 
+#: Suffix of a dataset attribute that is a measured time (s, e.g. the GA's ``wall_seconds``): it
+#: differs from run to run, so it is no datum (outside :func:`data_digest`, which covers the
+#: variables) and :func:`write_dataset` leaves it out of the file, whose bytes then depend on the
+#: inputs and the code alone (two runs give the same file), and logs it (a job's log).
+TIMING_SUFFIX = "_seconds"
+
+
 def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write ``ds`` to ``path`` atomically: a temporary file in the same folder, then rename."""
+    """Write ``ds`` to ``path`` atomically: a temporary file in the same folder, then rename; its
+    measured times (attributes ending in :data:`TIMING_SUFFIX`) to the log instead of the file."""
     check_documented(ds)
     for attr in ("gearmesh_version", "config_sha256"):
         if attr not in ds.attrs:
             raise ValueError(f"dataset lacks the provenance attribute {attr!r}")
     ds.attrs[DATA_ATTR] = data_digest(ds)
+    timings = {k: v for k, v in ds.attrs.items() if k.endswith(TIMING_SUFFIX)}
+    if timings:
+        logging.getLogger(__name__).info("%s: %s", path, ", ".join(f"{k} {float(v):.3f}" for k, v in timings.items()))
+    out = ds.copy(deep=False)
+    out.attrs = {k: v for k, v in ds.attrs.items() if k not in timings}
     encoding = {name: {"zlib": True, "complevel": 4} for name in ds.data_vars
                 if ds[name].dtype.kind in "fiu" and ds[name].ndim > 0}
     with atomic_output(path) as tmp:
-        ds.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
+        out.to_netcdf(tmp, engine="netcdf4", encoding=encoding)
     return Path(path)
+
+
+def normal_path(path: str | Path) -> str:
+    """``path`` as written in the provenance: normalised, relative as given, POSIX separators."""
+    return Path(os.path.normpath(path)).as_posix()
+
+
+# --------------------------------------------------------------------------------------
+# Figures carry their provenance
+# --------------------------------------------------------------------------------------
+
+#: Keyword of the PNG text chunk (tEXt) in which a figure a workflow job drew carries its
+#: provenance (:func:`stamp_figure`): JSON {file, drawn_from, image_sha256}.
+FIGURE_KEY = b"gearmesh"
+_PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+#: The files the figures being drawn come from, {path: digest} (:func:`figure_sources`); None
+#: outside a workflow job's drawing.
+_figure_sources: ContextVar[dict[str, str] | None] = ContextVar("gearmesh_figure_sources", default=None)
+
+
+@contextmanager
+def figure_sources(sources: Mapping[str, str]) -> Iterator[None]:
+    """Inside the block every figure saved (:func:`gearmesh.plots.common.save`) records that it
+    was drawn from ``sources`` ({path: digest}: the netCDF files of the job, by their data digest,
+    or the input files of a figure job), beside its own path and digest (:func:`stamp_figure`)."""
+    token = _figure_sources.set({normal_path(k): str(v) for k, v in sorted(sources.items())})
+    try:
+        yield
+    finally:
+        _figure_sources.reset(token)
+
+
+def _png_chunks(data: bytes) -> Iterator[tuple[int, int, bytes, bytes]]:
+    """(start, end, type, payload) of each chunk of the PNG ``data``; stops at the first chunk
+    that does not fit (a truncated or foreign file)."""
+    at = len(_PNG_SIGNATURE)
+    while at + 12 <= len(data):
+        (length,) = struct.unpack(">I", data[at:at + 4])
+        end = at + 12 + length
+        if end > len(data):
+            return
+        yield at, end, data[at + 4:at + 8], data[at + 8:at + 8 + length]
+        at = end
+
+
+def stamp_figure(png: bytes, path: str | Path) -> bytes:
+    """``png`` (a PNG file's bytes) with its provenance as a tEXt chunk :data:`FIGURE_KEY` after
+    the header when it is drawn inside :func:`figure_sources`: the file it is written as, the files
+    it was drawn from with their digests and the sha256 of the PNG without that chunk (so an edited
+    or replaced figure, a copy of another job's and one drawn from a file that has changed since
+    are told apart: :func:`gearmesh.upstream.check_figure`). Outside a job's drawing, as it is.
+    Nothing in it depends on the run (no time or host): two runs give the same bytes."""
+    sources = _figure_sources.get()
+    if sources is None or not png.startswith(_PNG_SIGNATURE):
+        return png
+    meta = {"file": normal_path(path), "drawn_from": sources, "image_sha256": hashlib.sha256(png).hexdigest()}
+    payload = FIGURE_KEY + b"\0" + json.dumps(meta, sort_keys=True).encode("ascii")
+    chunk = struct.pack(">I", len(payload)) + b"tEXt" + payload + struct.pack(">I", zlib.crc32(b"tEXt" + payload))
+    _, header_end, _, _ = next(_png_chunks(png))  # IHDR, always the first chunk
+    return png[:header_end] + chunk + png[header_end:]
+
+
+def figure_provenance(data: bytes) -> tuple[dict[str, Any] | None, str]:
+    """The provenance a figure's bytes ``data`` carry (:func:`stamp_figure`; None when it carries
+    none or is not a PNG) and the sha256 of the bytes without it."""
+    if data.startswith(_PNG_SIGNATURE):
+        for start, end, kind, payload in _png_chunks(data):
+            if kind == b"tEXt" and payload.startswith(FIGURE_KEY + b"\0"):
+                rest = data[:start] + data[end:]
+                try:
+                    meta = json.loads(payload[len(FIGURE_KEY) + 1:].decode("ascii"))
+                except ValueError:
+                    meta = None
+                return (meta if isinstance(meta, dict) else None), hashlib.sha256(rest).hexdigest()
+    return None, hashlib.sha256(data).hexdigest()
 
 
 def read_dataset(path: str | Path) -> xr.Dataset:

@@ -17,10 +17,12 @@ do not depend on where it ran (tested bit for bit). Without a server — a clust
 ``fork``, ``GEARMESH_JOBSERVER=off``, or a server that is not there — the script runs the
 function itself.
 
-Lifetimes: the server exits when the run ends (:func:`stop`, from ``onsuccess``/``onerror``) or
-when the Snakemake process that started it is gone; a child is killed when its job's script is
-(Snakemake cancelling the job, Ctrl-C), so no job goes on writing after its controller stopped
-waiting for it. The socket lives in a private temporary directory (mode 0700): only the user who
+Lifetimes: the server exits when the run ends (:func:`stop`, from ``onsuccess``/``onerror``:
+its running children finish their jobs) or when the Snakemake process that started it is gone
+(killed: it kills its running children first, within half a second); a child is killed when its
+job's script is (Snakemake cancelling the job, Ctrl-C), so no job goes on working after its
+controller stopped waiting for it. A job its script runs itself (no server) has a watcher of its
+own that does the same (:func:`gearmesh.io.stop_with_controller`). The socket lives in a private temporary directory (mode 0700): only the user who
 started the run can hand the server a job.
 
 Protocol (one connection per job): the script sends its standard streams' descriptors with an
@@ -62,12 +64,12 @@ THREAD_VARIABLES = ("OMP_NUM_THREADS", "GOTO_NUM_THREADS", "OPENBLAS_NUM_THREADS
                     "VECLIB_MAXIMUM_THREADS", "NUMEXPR_NUM_THREADS")
 #: Third-party modules the package imports inside functions (``import gearmesh`` stays light for
 #: a command-line call), and those saving a PNG figure imports: imported once by the server
-#: instead of by every job (tests/test_jobserver.py: every function-level import of the package
-#: is here). One that is not installed is skipped.
+#: instead of by every job (tests/test_jobserver.py: every function-level import of the modules a
+#: job can run is here). One that is not installed is skipped.
 WARM_MODULES = ("jsonschema", "netCDF4", "numba", "numpy", "psutil", "pyamg", "pygad", "scipy.fft", "scipy.integrate",
                 "scipy.interpolate", "scipy.linalg", "scipy.optimize", "scipy.sparse", "scipy.sparse.linalg",
-                "scipy.stats", "scipy.stats.qmc", "skfem", "skfem.models.elasticity", "triangle", "yaml",
-                "matplotlib.backends.backend_agg", "PIL.Image")
+                "scipy.stats", "scipy.stats.qmc", "skfem", "skfem.models.elasticity", "triangle", "xarray", "yaml",
+                "matplotlib.backends.backend_agg", "mpl_toolkits.axes_grid1", "PIL.Image")
 
 
 # --------------------------------------------------------------------------------------
@@ -86,8 +88,10 @@ def run(smk: Any, entry: str) -> None:
     if started is not None:  # what the job's log measures its start-up from (gearmesh.pipeline)
         os.environ[STARTED_ENV] = repr(started)
     from . import pipeline
+    from .io import stop_with_controller
 
-    getattr(pipeline, entry)(smk)
+    with stop_with_controller():  # killed with its Snakemake (kill -9), as a job on the server is
+        getattr(pipeline, entry)(smk)
 
 
 def _run_on_server(smk: Any, entry: str) -> int | None:
@@ -215,14 +219,15 @@ def rule_modules(rules: Iterable[Any]) -> list[str]:
 # --------------------------------------------------------------------------------------
 
 
-def warm_steps() -> list[Callable[[], Any]]:
+def warm_steps(children: set[int]) -> list[Callable[[], Any]]:
     """What the server does while no job waits, one step at a time (a job that arrives meanwhile
     waits for one step at most; a step that answers False is not done yet and is tried again):
     import :data:`WARM_MODULES`, then load the compiled kernels (:func:`warm_kernels`). Where
     numba's cache lacks one (a fresh clone, an edited kernel module), a child compiles them first,
     writing the cache, while the server goes on forking jobs (compiling the dynamics sweep takes
     seconds; jobs forked meanwhile compile what they need themselves, as they would without the
-    server)."""
+    server). ``children``: the server's running children, which the helper joins (reaped with
+    them, killed with them when the run is)."""
     helper: list[int] = []
 
     def compile_aside() -> None:
@@ -235,9 +240,10 @@ def warm_steps() -> list[Callable[[], Any]]:
             finally:
                 os._exit(0)
         helper.append(pid)
+        children.add(pid)
 
     def load() -> bool:
-        if helper and helper[0] not in _reaped:
+        if helper and helper[0] in children:
             return False
         warm_kernels()
         return True
@@ -301,9 +307,10 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
             importlib.import_module(module)
         except Exception:  # noqa: BLE001
             pass
-    steps = warm_steps()
+    children: set[int] = set()
+    steps = warm_steps(children)
     while not stopping and os.getppid() == parent:
-        _reap()
+        _reap(children)
         listener.settimeout(0.01 if steps else 0.5)
         try:
             conn, _ = listener.accept()
@@ -319,30 +326,34 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
         if pid == 0:
             listener.close()
             _child(conn)
+        children.add(pid)
         conn.close()
     listener.close()
     shutil.rmtree(os.path.dirname(path), ignore_errors=True)  # also when the run was killed
-    while _reap(block=True):
-        pass
+    if not stopping:  # the run's Snakemake is gone (kill -9): nobody waits for its jobs, they stop now
+        for pid in children:
+            try:
+                os.kill(pid, signal.SIGKILL)
+            except ProcessLookupError:
+                pass
+    while children:
+        _reap(children, block=True)
 
 
-#: Children of the server collected so far (a warm step waits for its helper among them).
-_reaped: set[int] = set()
-
-
-def _reap(block: bool = False) -> bool:
-    """Collect finished children (their CPU time then counts for this process's parent); whether
-    any child is left."""
-    while True:
+def _reap(children: set[int], block: bool = False) -> None:
+    """Collect finished ``children`` (their CPU time then counts for this process's parent) and
+    forget them; ``block``: wait for one."""
+    while children:
         try:
             pid, _ = os.waitpid(-1, 0 if block else os.WNOHANG)
         except ChildProcessError:
-            return False
+            children.clear()
+            return
         if pid == 0:
-            return True
-        _reaped.add(pid)
+            return
+        children.discard(pid)
         if block:
-            return True
+            return
 
 
 def _child(conn: socket.socket) -> None:

@@ -1,7 +1,10 @@
-"""Every limit of the package, in one module, each with where it comes from (issue 25).
+"""Every limit of the package, in one module, each with where it comes from.
 
 Input documents (size, nodes, nesting), pair data (teeth, face width, modification depth,
-helix angle), list lengths, loads, speeds and work sizes. The limits that need a pair's
+helix angle), the plausible range of every physical input with its units (:class:`Plausible`:
+material data, fatigue limits, bearings, roughness, oil, the ISO 6336 factors a user may give;
+a value outside it is refused naming the unit slip that would bring it inside), list lengths,
+loads, speeds and work sizes. The limits that need a pair's
 geometry and a load, a speed or a stage's grid are checked here too: the nominal contact
 stress and deflection of a torque, the rim speed of a rotational speed, and the size of the
 grids and sweeps a stage would allocate. The functions that compute (``gearmesh.datasets.*``)
@@ -17,6 +20,7 @@ limits from here), so every module can take its limits from here without an impo
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -84,6 +88,110 @@ MAX_HELIX_ANGLE = math.radians(60.0)
 #: Most corners of a tolerance box (2^k) that are enumerated, and most manufactured samples.
 MAX_CORNER_DIMENSIONS = 12
 MAX_SAMPLES = 4096
+
+# --------------------------------------------------------------------------------------
+# Plausible values of physical inputs
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class Plausible:
+    """The range ``[low, high]`` a physical input has in practice, in the first of ``units``
+    (name, factor to that unit; the others are the units it is likely given in by mistake), and
+    where the range comes from (``source``). :meth:`check` refuses a value outside it in one line
+    with the range in the unit of the key and, where one of the other units brings the value
+    inside the range, that slip ("did you give N/m?")."""
+
+    low: float
+    high: float
+    units: tuple[tuple[str, float], ...]
+    source: str
+
+    def check(self, value: float, field: str, unit: str | None = None) -> float:
+        """``value`` (given in ``unit``, default the first of :attr:`units`) when it lies in the
+        range, else GearmeshInputError naming ``field``."""
+        factors = dict(self.units)
+        unit = unit or self.units[0][0]
+        scale = factors[unit]
+        if self.low <= value * scale <= self.high:
+            return value
+        slip = next((f"; did you give {name}? ({value:g} {name} = {value * f / scale:.4g} {unit})"
+                     for name, f in self.units if name != unit and self.low <= value * f <= self.high), "")
+        raise GearmeshInputError(field, value, f"must lie in [{self.low / scale:g}, {self.high / scale:g}] {unit}, "
+                                 f"{self.source}{slip}")
+
+
+_STRESS_UNITS = (("MPa", 1.0), ("GPa", 1e3), ("Pa", 1e-6), ("ksi", 6.894757), ("psi", 6.894757e-3), ("kPa", 1e-3))
+#: Fatigue limits of ISO 6336-5:2016 (its graphs of σ_Hlim and σ_Flim against hardness, qualities
+#: ML to ME, every material class): σ_Hlim from about 300 N/mm² (grey cast iron, normalised steel
+#: ML) to 1650 N/mm² (case-hardened ME); σ_Flim from about 40 N/mm² (grey cast iron) to 525 N/mm²
+#: (case-hardened ME; σ_FE = 2 σ_Flim). The ranges leave room for materials beyond the graphs.
+CONTACT_FATIGUE_LIMIT = Plausible(200.0, 2000.0, _STRESS_UNITS,
+                                  "the span of materials (ISO 6336-5: about 300 to 1650 MPa)")
+BENDING_FATIGUE_LIMIT = Plausible(30.0, 800.0, _STRESS_UNITS,
+                                  "the span of materials (ISO 6336-5: about 40 to 525 MPa, sigma_Flim = sigma_FE/2)")
+#: Young's modulus of gear materials: plastics (POM, PA 66, PEEK: 2.5–4 GPa) to cemented carbide
+#: (about 600 GPa); beyond diamond's 1050 GPa nothing is solid.
+YOUNGS_MODULUS = Plausible(0.5, 1200.0, (("GPa", 1.0), ("MPa", 1e-3), ("Pa", 1e-9), ("psi", 6.894757e-6)),
+                           "from plastics to cemented carbide")
+#: Density of gear materials: plastics (about 1000 kg/m³) to tungsten alloys (19 300 kg/m³).
+DENSITY = Plausible(500.0, 25000.0, (("kg/m3", 1.0), ("g/cm3", 1e3), ("lb/in3", 27679.9)),
+                    "from plastics to tungsten")
+#: Stiffness of a gear's bearings at the gear centre: from a miniature ball bearing lightly loaded
+#: (a few N/µm) to large roller bearings (10³–10⁴ N/µm; the default study's tapered roller bearings:
+#: 230–3166 N/µm by Palmgren's law, gearmesh.supports); beyond 10⁵ N/µm a support is rigid for any
+#: mesh (give ``rigid``).
+BEARING_STIFFNESS = Plausible(1.0, 1e5, (("N/um", 1.0), ("N/m", 1e-6), ("N/mm", 1e-3), ("lbf/in", 1.751268e-4)),
+                              "what rolling bearings have ('rigid' for none)")
+#: Kinematic viscosity of gear oils: ISO 3448 grades VG 2 to VG 3200 at 40 °C, and their values
+#: at 100 °C (about 1 to 200 mm²/s).
+VISCOSITY_40C = Plausible(1.5, 5000.0, (("mm2/s", 1.0), ("m2/s", 1e6)), "ISO 3448 grades VG 2 to VG 3200")
+VISCOSITY_100C = Plausible(0.5, 500.0, (("mm2/s", 1.0), ("m2/s", 1e6)), "gear oils at 100 degC")
+#: Flank and root roughness of gears: superfinished (Ra 0.02, Rz 0.1 µm) to cast or rough-hobbed
+#: (Ra 25, Rz 100 µm).
+ROUGHNESS_RA = Plausible(0.01, 25.0, (("um", 1.0), ("mm", 1e3), ("nm", 1e-3)), "superfinished to rough-hobbed")
+ROUGHNESS_RZ = Plausible(0.05, 100.0, (("um", 1.0), ("mm", 1e3), ("nm", 1e-3)), "superfinished to rough-hobbed")
+#: The plausible range of each pair-file rating input (gearmesh.gear.check_rating_input).
+RATING_INPUT_RANGES = {
+    "contact_fatigue_limit_MPa": CONTACT_FATIGUE_LIMIT, "bending_fatigue_limit_MPa": BENDING_FATIGUE_LIMIT,
+    "flank_Ra_um": ROUGHNESS_RA, "flank_Rz_um": ROUGHNESS_RZ, "root_Rz_um": ROUGHNESS_RZ,
+    "viscosity_40C_mm2_s": VISCOSITY_40C, "viscosity_100C_mm2_s": VISCOSITY_100C,
+}
+#: Lengths given in mm, and the units a length is likely given in by mistake.
+LENGTH_UNITS_MM = (("mm", 1.0), ("m", 1e3), ("cm", 10.0), ("in", 25.4))
+#: Thinnest web of a gear body, as a fraction of its face width. ISO 6336-1's gear blank factor
+#: C_R of the single stiffness c' takes webs from b_s/b = 0.2 (thinner ones as 0.2); thin-webbed
+#: aerospace gears go to about 0.15 b.
+#: Thinner, the web carries the tooth load by stretching, not by the bending of gearmesh.body's
+#: Kirchhoff plate (its deflection passes its thickness), and the body's compliance grows as 1/t³
+#: without bound (a 1 nm web: a mesh stiffness of 10⁻²⁰ N/µm).
+MIN_WEB_TO_FACE = 0.1
+
+#: The ISO 6336 factors a user may give instead of the computed ones (``--factor NAME=VALUE``,
+#: :func:`gearmesh.rating.check_factors`) and the range each has in the standard:
+#:
+#: * the load factors K_A, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα are at least 1 (ISO 6336-1 defines none
+#:   below); the standard caps none of them, its methods give below about 3 for a gear worth
+#:   rating (K_A: ISO 6336-1:2006 Annex B, 1.0 to 2.25 for heavy shocks on both sides), so 10 refuses
+#:   only what no method gives a working gear;
+#: * the life factors over every material of ISO 6336-2 Table 2 (Z_NT: 0.85 at 10¹⁰ cycles to 1.6
+#:   static) and ISO 6336-3 Table 3 (Y_NT: 0.85 to 2.5 static);
+#: * Z_L, Z_v over their formulas' span (ISO 6336-2 clause 11: C_ZL 0.83–0.91, any ν40 and v),
+#:   Z_R over R_z10 of 0.5–40 µm, Z_W 1 to 1.2 (clause 12), Z_X 0.75 to 1 (clause 13);
+#: * Y_δrelT, Y_RrelT, Y_X over ISO 6336-3 clauses 12–14 (every material, static values included);
+#: * Y_M, the mean stress factor of ISO 6336-3:2019 (1 for one-way bending, 0.7 for an idler gear's
+#:   reversed bending, :mod:`gearmesh.choices` IDLER_GEARS), from 0.5 (below the standard's values
+#:   for reversed bending of any material, with margin) to 1;
+#: * the minimum safety factors S_Hmin, S_Fmin from 1 (below, failure is accepted) to 5.
+FACTOR_RANGES = {
+    "K_A": (1.0, 10.0), "K_v": (1.0, 10.0), "K_Hbeta": (1.0, 10.0), "K_Fbeta": (1.0, 10.0),
+    "K_Halpha": (1.0, 10.0), "K_Falpha": (1.0, 10.0),
+    "Z_NT": (0.85, 1.6), "Y_NT": (0.85, 2.5), "Z_L": (0.83, 1.31), "Z_v": (0.85, 1.19), "Z_R": (0.65, 1.35),
+    "Z_W": (1.0, 1.2), "Z_X": (0.75, 1.0), "Y_deltarelT": (0.7, 1.5), "Y_RrelT": (0.9, 1.12), "Y_X": (0.7, 1.0),
+    "Y_M": (0.5, 1.0),
+    "S_Hmin": (1.0, 5.0), "S_Fmin": (1.0, 5.0),
+}
+
 
 # --------------------------------------------------------------------------------------
 # Loads, speeds and work sizes

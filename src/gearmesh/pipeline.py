@@ -1,9 +1,9 @@
 """The glue between a Snakemake job and the package: logging, provenance, atomic output.
 
 Every rule names the one package function it runs in ``params.function``
-("module:function") and passes its settings in ``params.settings``; generic scripts
-(``workflow/scripts/{pair_stage,study_stage,collect,optimise,plot}.py``) call the ``run_*``
-function of the same name. A job's outputs are told apart by suffix: one ``.nc`` (the
+("module:function") and passes its settings in ``params.settings``; its script
+(``workflow/scripts/job.py``) calls :func:`run_job`, which runs the ``run_*`` function its stage
+declaration names (:attr:`gearmesh.stages.Stage.runner`). A job's outputs are told apart by suffix: one ``.nc`` (the
 dataset), an optional ``.csv`` copy, and ``.png`` figures drawn by the plot function
 ``params.figures`` from the netCDF file just written, in the same process (a figure job of
 its own would cost a Python start-up and the imports for a fraction of a second's drawing).
@@ -13,9 +13,11 @@ each file is written atomically, so a failing job leaves no output with its fina
 
 from __future__ import annotations
 
+import functools
 import importlib
 import logging
 import os
+import re
 import resource
 import sys
 import time
@@ -25,11 +27,13 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
-from .io import DATA_ATTR, add_provenance, atomic_output, job_outputs, read_dataset, write_dataset
-from .settings import stage_of
+from .io import (DATA_ATTR, OutputError, add_provenance, atomic_output, figure_sources, job_outputs, normal_path,
+                 read_dataset, space_errno, write_dataset)
+from .settings import job_of, stage_of
 from .stages import dependencies
 from .tables import write_csv
-from .upstream import (Expected, check_optimum, identify, optimum_header, read_input, normal_path, record_sources)
+from .upstream import (Expected, check_optimum, file_digest, identify, optimum_header, read_input, record_sources,
+                       record_tables)
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
@@ -97,7 +101,7 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
             figures = body(smk)
     except Exception as exc:  # the log and stderr get the reason; Snakemake sees the exit code
         logging.exception("job failed")
-        print(f"gearmesh: error: {exc}", file=sys.stderr)
+        print(f"gearmesh: error: {error_line(exc)}", file=sys.stderr)
         sys.exit(2 if isinstance(exc, ValueError) else 1)
     # wall time and peak memory of every job, the measurements behind the profiles' resources
     peak_mb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024  # Linux: kB
@@ -105,6 +109,37 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
     logging.info("done in %.2f s (figures %.2f s)%s, CPU %.2f s + %.2f s, peak RSS %.0f MB (threads %s): %s",
                  time.perf_counter() - start, figures or 0.0, startup, cpu, _cpu_seconds() - cpu, peak_mb,
                  getattr(smk, "threads", 1), ", ".join(map(str, smk.output)))
+
+
+def error_line(exc: BaseException) -> str:
+    """The one line a failed job prints: the exception's text; for a full disk reported without a
+    path (a library's own write: numba's cache of compiled code under the package's
+    ``__pycache__`` or ``NUMBA_CACHE_DIR``), the file being written, from the traceback."""
+    code = space_errno(exc)
+    if code is None or isinstance(exc, OutputError) or getattr(exc, "filename", None):
+        return str(exc)
+    path, where = _file_being_written(exc)
+    if path is None:
+        return f"{exc} (the disk is full: free space and rerun)"
+    numba = " (numba's cache of compiled code; NUMBA_CACHE_DIR moves it)" if "numba" in where else ""
+    return f"{path} = 'not written': the disk is full ({os.strerror(code)}){numba}; free space and rerun"
+
+
+def _file_being_written(exc: BaseException) -> tuple[str | None, str]:
+    """The file a failed write was writing: the last file opened for writing among the locals of
+    the frames ``exc`` passed through (innermost wins), its name without a temporary's suffix
+    (numba writes ``NAME.tmp.UID``), and the source file of that frame."""
+    found: tuple[str | None, str] = (None, "")
+    tb = exc.__traceback__
+    while tb is not None:
+        for local, value in tb.tb_frame.f_locals.items():
+            if local == "self":  # the file's own method, not the code writing to it
+                continue
+            name, mode = getattr(value, "name", None), getattr(value, "mode", "")
+            if isinstance(name, str) and isinstance(mode, str) and any(c in mode for c in "wax+"):
+                found = (re.sub(r"\.tmp\.[0-9a-f]+$", "", name), tb.tb_frame.f_code.co_filename)
+        tb = tb.tb_next
+    return found
 
 
 def _title(smk: Any) -> str:
@@ -117,19 +152,19 @@ def study_pair(config: Mapping[str, Any], name: str, variant: str | None) -> Gea
     from .config import pair_path
 
     spec = (config.get("variants") or {}).get(variant) if variant is not None else None
+    pair = load_pair(pair_path(config, name))
     if spec is not None and spec.get("from"):
         source = Path("results", str(config["study"]), name, "optimise", spec["from"].split(".", 1)[1], "pair.yaml")
-        check_optimum(source)
+        check_optimum(source, Expected(config, pair))
         return variant_pair(load_pair(source), variant, spec)
-    pair = load_pair(pair_path(config, name))
     return pair if spec is None else variant_pair(pair, variant, spec)
 
 
 def _expected(smk: Any, pair: GearPair | None = None) -> Expected:
     """What this job expects of the files it reads (:mod:`gearmesh.upstream`); a stage over
     several pairs or variants (a study table) expects each file's own pair and variant."""
-    return Expected(smk.config, pair, getattr(smk.wildcards, "variant", None),
-                    None if pair is not None else lambda name, variant: study_pair(smk.config, name, variant))
+    pair_of = functools.lru_cache(maxsize=None)(lambda name, variant: study_pair(smk.config, name, variant))
+    return Expected(smk.config, pair, getattr(smk.wildcards, "variant", None), None if pair is not None else pair_of)
 
 
 def _outputs(smk: Any, suffix: str) -> dict[str, str]:
@@ -145,21 +180,26 @@ def _draw(smk: Any, inputs: dict[str, Any]) -> float:
     if not spec:
         return 0.0
     start = time.perf_counter()
-    written = {Path(path).stem: read_dataset(path) for path in _outputs(smk, ".nc").values()}
-    resolve(spec)({**inputs, **written}, _outputs(smk, ".png"))
+    written = {path: read_dataset(path) for path in _outputs(smk, ".nc").values()}
+    with figure_sources({path: ds.attrs[DATA_ATTR] for path, ds in written.items()}):
+        resolve(spec)({**inputs, **{Path(path).stem: ds for path, ds in written.items()}}, _outputs(smk, ".png"))
     return time.perf_counter() - start
 
 
 def _write_outputs(smk: Any, ds: xr.Dataset, pair: GearPair | None) -> None:
-    """The dataset to the job's netCDF output (provenance, what it is and what it was made from
-    attached: :func:`gearmesh.upstream.record_sources`), and to its CSV output if any."""
+    """The dataset to its CSV output if any, then to the job's netCDF output (provenance, what it
+    is and what it was made from attached: :func:`gearmesh.upstream.record_sources`, and the
+    sha256 of each CSV written: :func:`gearmesh.upstream.record_tables`)."""
     (nc,) = _outputs(smk, ".nc").values()
-    identify(ds, nc, smk.rule, smk.wildcards, getattr(smk.params, "function", None))
-    record_sources(ds, _input_files(smk), _sections(smk))
-    finish(ds, nc, smk.config, pair, _title(smk))
+    tables = {}
     for csv in _outputs(smk, ".csv").values():
         with atomic_output(csv) as tmp:
             write_csv(ds, tmp)
+            tables[csv] = file_digest(tmp)
+    identify(ds, nc, smk.rule, smk.wildcards, getattr(smk.params, "function", None))
+    record_sources(ds, _input_files(smk), _sections(smk))
+    record_tables(ds, tables)
+    finish(ds, nc, smk.config, pair, _title(smk))
 
 
 def _input_files(smk: Any) -> list[str]:
@@ -182,8 +222,8 @@ def _job_pair(smk: Any) -> GearPair:
     names one (``params.variant``: the variant's spec from the study config); an optimisation's
     pair file (a variant ``{from: optimise.NAME}``) checked first (:func:`gearmesh.upstream.check_optimum`)."""
     spec = getattr(smk.params, "variant", None)
-    if spec is not None and spec.get("from"):
-        check_optimum(smk.input.pair)
+    if spec is not None and spec.get("from"):  # this study's optimum: its run made for the study's pair and settings
+        check_optimum(smk.input.pair, Expected(smk.config, study_pair(smk.config, smk.wildcards.pair, None)))
     pair = load_pair(smk.input.pair)
     return pair if spec is None else variant_pair(pair, smk.wildcards.variant, spec)
 
@@ -203,6 +243,12 @@ def _pair_stage(smk: Any, then: Callable[[GearPair, xr.Dataset], None] | None = 
         return _draw(smk, upstream)
 
     _run(smk, body)
+
+
+def run_job(smk: Any) -> None:
+    """The job of rule ``smk.rule`` as its declaration says (:func:`gearmesh.settings.job_of`):
+    ``run_pair_stage``, ``run_study_stage``, ``run_collect``, ``run_optimise`` or ``run_plot``."""
+    RUNNERS[job_of(smk.rule).runner](smk)
 
 
 def run_pair_stage(smk: Any) -> None:
@@ -246,7 +292,9 @@ def run_plot(smk: Any) -> None:
     """Figures alone: ``function({input name: Dataset}, {output name: path})`` writes the PNGs."""
     def body(smk: Any) -> float:
         start = time.perf_counter()
-        resolve(smk.params.function)(_read_inputs(smk), dict(smk.output.items()))
+        inputs = _read_inputs(smk)
+        with figure_sources({path: file_digest(path) for path in _input_files(smk)}):
+            resolve(smk.params.function)(inputs, dict(smk.output.items()))
         return time.perf_counter() - start
 
     _run(smk, body)
@@ -306,3 +354,7 @@ def check_results(config: Mapping[str, Any]) -> list[str]:
     root = Path("results", str(config["study"]))
     return check_tree(root, config, lambda name, variant: study_pair(config, name, variant)) if root.is_dir() else []
 
+
+#: The job runners by the name a declaration gives (:data:`gearmesh.stages.Runner`).
+RUNNERS: dict[str, Callable[[Any], None]] = {"pair_stage": run_pair_stage, "study_stage": run_study_stage,
+                                             "collect": run_collect, "optimise": run_optimise, "plot": run_plot}

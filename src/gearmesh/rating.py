@@ -37,6 +37,7 @@ import numpy as np
 from .choices import DEFAULT_LIFE_FACTOR_CONDITIONS, LIFE_FACTOR_CONDITIONS
 from .errors import GearmeshInputError
 from .gear import GEARS, PairGeometry, check_rating_input
+from .limits import FACTOR_RANGES
 from .stress import gear_root_form
 
 __all__ = [
@@ -74,10 +75,9 @@ _SOURCES = {
                               "holds 1.0 where optimum lubrication, material, manufacturing and experience apply",
     "idler_gear": "one-way bending of both gears, Y_M = 1",
 }
-#: Factors that may be given instead of computed (``--factor NAME=VALUE``), with their lower bound.
-FACTOR_NAMES = {"K_A": 1.0, "K_v": 1.0, "K_Hbeta": 1.0, "K_Fbeta": 1.0, "K_Halpha": 1.0, "K_Falpha": 1.0,
-                "Z_NT": 0.0, "Z_L": 0.0, "Z_v": 0.0, "Z_R": 0.0, "Z_W": 0.0, "Z_X": 0.0,
-                "Y_NT": 0.0, "Y_deltarelT": 0.0, "Y_RrelT": 0.0, "Y_X": 0.0, "Y_M": 0.0, "S_Hmin": 0.0, "S_Fmin": 0.0}
+#: Factors that may be given instead of computed (``--factor NAME=VALUE``), with their lower bound
+#: (their ranges in the standard: :data:`gearmesh.limits.FACTOR_RANGES`).
+FACTOR_NAMES = {name: low for name, (low, _) in FACTOR_RANGES.items()}
 FACTOR_SOURCES = ("iso", "ltca")
 
 #: ISO 6336-1:1996 method C, K1 by ISO 1328-1 grade 3..12 (spur, helical); K2 0.0193 spur, 0.0087 helical.
@@ -121,16 +121,21 @@ def rating_inputs(given: Mapping[str, Any] | None = None) -> RatingInputs:
 
 
 def check_factors(factors: Mapping[str, Any] | None) -> dict[str, float]:
-    """Given factors {name: value}: names of :data:`FACTOR_NAMES`, finite, positive, and ≥ 1 for
-    the load factors K_* (ISO 6336-1 defines none below 1)."""
+    """Given factors {name: value} (a mapping): names of :data:`FACTOR_NAMES`, each a finite number
+    within its range in the standard (:data:`gearmesh.limits.FACTOR_RANGES`: the load factors K_*
+    at least 1, the life factors within ISO 6336-2/-3's tables, ...)."""
+    if factors is not None and not isinstance(factors, Mapping):
+        raise GearmeshInputError("factors", factors, "must be a mapping {name: value}, e.g. {'K_v': 1.2}")
     out = {}
     for name, value in dict(factors or {}).items():
-        if name not in FACTOR_NAMES:
-            raise GearmeshInputError(f"factor {name}", value, f"must be one of {sorted(FACTOR_NAMES)}")
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-            raise GearmeshInputError(f"factor {name}", value, "must be a positive number")
-        if value < FACTOR_NAMES[name]:
-            raise GearmeshInputError(f"factor {name}", value, f"must be at least {FACTOR_NAMES[name]:g} (ISO 6336-1)")
+        if name not in FACTOR_RANGES:
+            raise GearmeshInputError(f"factor {name}", value, f"must be one of {sorted(FACTOR_RANGES)}")
+        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
+            raise GearmeshInputError(f"factor {name}", value, "must be a finite number")
+        low, high = FACTOR_RANGES[name]
+        if not low <= value <= high:
+            raise GearmeshInputError(f"factor {name}", value, f"must lie in [{low:g}, {high:g}], its range in ISO 6336 "
+                                     "(gearmesh.limits.FACTOR_RANGES)")
         out[name] = float(value)
     return out
 

@@ -29,7 +29,7 @@ import typing
 from collections.abc import Mapping
 from typing import Any, Callable, Literal, Union
 
-from .errors import GearmeshInputError
+from .errors import GearmeshInputError, unknown_key_rule
 from .limits import MAX_LIST_ITEMS
 
 #: Key of a field's :class:`Spec` in ``dataclasses.field(metadata=...)``.
@@ -394,11 +394,11 @@ def schema_error(err, prefix: str = "") -> GearmeshInputError:
     if err.validator == "additionalProperties" and err.validator_value is False and isinstance(instance, Mapping):
         extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
         if extra:
-            allowed = sorted(err.schema.get("properties", {}))
-            hint = " (YAML 1.1 reads on/off/yes/no as true/false: quote the key, e.g. \"on\")" \
-                if isinstance(extra[0], bool) else ""
-            return GearmeshInputError(_field(path + [str(extra[0])]), instance[extra[0]],
-                                      f"unknown key{hint}; allowed keys are {allowed}")
+            rule = unknown_key_rule(extra[0], err.schema.get("properties", {}), "gearmesh schema study --format markdown")
+            if isinstance(extra[0], bool):
+                rule = rule.replace("unknown key", "unknown key (YAML 1.1 reads on/off/yes/no as true/false: quote the "
+                                                   "key, e.g. \"on\")", 1)
+            return GearmeshInputError(_field(path + [str(extra[0])]), instance[extra[0]], rule)
     if err.validator == "required" and isinstance(instance, Mapping):
         missing = [k for k in err.validator_value if k not in instance]
         if missing:

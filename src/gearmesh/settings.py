@@ -28,13 +28,17 @@ from typing import Any, ClassVar, Literal, Mapping
 
 import yaml
 
-from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
+from .choices import DEFAULT_CYCLE_POSITIONS, FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, PAIR_EXCITATIONS,  # noqa: F401
                       TOOTH_METHODS)
 from .gear import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN
-from .limits import MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE
+from .limits import (BEARING_STIFFNESS, BENDING_FATIGUE_LIMIT, CONTACT_FATIGUE_LIMIT, DENSITY, FACTOR_RANGES,
+                     MAX_LEAD_SLOPE_UM, MAX_LTCA_TORQUES, MODULE_RANGE, ROUGHNESS_RA, ROUGHNESS_RZ, VISCOSITY_40C,
+                     VISCOSITY_100C, YOUNGS_MODULUS, Plausible)
 from .schema import REQUIRED, all_keys, description_of, markdown_table, nested_sections, object_schema, setting
-from .stages import Read, Stage, always, ltca_drives, method_fe, runs
+from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS
+from .stages import (Figure, Grid, Read, Speeds, Stage, Table, Torques, always, contact_drives, ltca_drives, method_fe,
+                     runs)
 
 #: Names of studies and of the pairs a study uses: a folder of results/{study}/{pair}/, no path characters.
 NAME = r"^[A-Za-z0-9_-]+$"
@@ -91,6 +95,28 @@ def _pairs() -> Any:
                    workflow=True)
 
 
+def lste_compared(config: Mapping[str, Any], section: str) -> bool:
+    """Whether the study compares the LTCA with F/K: it runs the LTCA on the standard variant and
+    the stiffness stage has an LSTE torque."""
+    return "ltca" in config and "standard" in config.get("variants", {}) and "torque_Nm" in config.get("stiffness", {})
+
+
+def engagement_tabled(config: Mapping[str, Any], section: str) -> bool:
+    """Whether the study sets the energy method's F_s beside the dynamics (the engagement table):
+    the real tooth contact drives its dynamics and it has an impact section."""
+    return contact_drives(config, section) and "impact" in config
+
+
+def nsga2_run(run: Mapping[str, Any]) -> bool:
+    """Whether an optimisation (its settings) is NSGA-II's, with a Pareto front to draw."""
+    return run["method"] == "nsga2"
+
+
+#: The work limits of a stage's contact grid and of its slice grid (gearmesh.limits).
+_CONTACT_GRID = Grid("points", "positions", MAX_CONTACT_POINTS, "contact candidates per line", extra=1)
+_SLICE_GRID = Grid("slices", "positions", MAX_STIFFNESS_POINTS, "slice-positions")
+
+
 def fe_wanted(config: Mapping[str, Any], section: str) -> bool:
     """Whether a study gets the pair's finite-element tooth tables (its ``section``,
     fe_compliance, is always filled): when a stage of it uses the FE tooth (its ``method``, or
@@ -118,8 +144,8 @@ class Geometry:
     """Grids of the geometry stage: the transverse tooth profile with its hob fillet and the
     flank surface of each gear (geometry.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:geometry_dataset", "{pair}/geometry.nc", "pair",
-        figures="gearmesh.plots.geometry:geometry_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:geometry_dataset", "geometry.nc", "pair", category="Geometry",
+        draws="gearmesh.plots.geometry:geometry_figures", figures=(Figure("tooth_profile"),))
     involute_points: int = setting(120, "points on each involute flank of the transverse profile", minimum=8,
                                    maximum=5000)
     fillet_points: int = setting(60, "points on each root fillet (the hob's trochoid)", minimum=4, maximum=5000)
@@ -130,8 +156,9 @@ class Geometry:
 class ContactLines:
     """Contact lines in the plane of action and their total length over one mesh cycle (contact_lines.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:contact_lines_dataset", "{pair}/contact_lines.nc", "pair",
-        figures="gearmesh.plots.geometry:contact_lines_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.geometry:contact_lines_dataset", "contact_lines.nc", "pair",
+        category="Contact lines", draws="gearmesh.plots.geometry:contact_lines_figures",
+        figures=(Figure("contact_length"), Figure("contact_lines")))
     positions: int = _positions(what=" (one transverse base pitch)")
 
 
@@ -140,8 +167,10 @@ class Stiffness:
     """Time-varying mesh stiffness by the slice potential-energy method, its Fourier series and
     ISO 6336-1's value; with a torque the loaded static transmission error F/K (stiffness.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_dataset", "{pair}/stiffness.nc", "pair",
-        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.stiffness:stiffness_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_dataset", "stiffness.nc", "pair",
+        reads=(Read("fe_compliance", method_fe()),), category="Stiffness",
+        draws="gearmesh.plots.stiffness:stiffness_figures", figures=(Figure("stiffness"),),
+        limits=(_SLICE_GRID, Torques("torque_Nm", "torque_on")))
     method: Method = _method()
     slices: int = _slices()
     positions: int = _positions()
@@ -157,8 +186,9 @@ class FeCompliance:
     beside the three potential-energy cantilevers (fe_compliance.nc); stiffness method fe uses
     these settings too."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.fe:fe_compliance_dataset", "{pair}/fe_compliance.nc", "pair",
-        figures="gearmesh.plots.fe:fe_compliance_figures", wanted=fe_wanted)
+    STAGE: ClassVar = Stage("gearmesh.datasets.fe:fe_compliance_dataset", "fe_compliance.nc", "pair",
+        category="Stiffness", draws="gearmesh.plots.fe:fe_compliance_figures", figures=(Figure("fe_compliance"),),
+        wanted=fe_wanted, priority=10)  # with method fe the optimiser (priority 10, the longest job) waits for it
     plane: Literal["strain", "stress"] = setting("strain", "plane strain (a wide face) or plane stress (a thin disc)")
     size: float = setting(0.05, "element edge on the loaded tooth", units="normal modules", minimum=0.01,
                           maximum=0.5)
@@ -182,9 +212,9 @@ class Variant:
 class Tca:
     """Unloaded tooth contact analysis of every pair and variant over one mesh cycle (tca.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:tca_dataset", "{pair}/{variant}/tca.nc", "variant",
-        figures="gearmesh.plots.ltca:tca_figures")
-    positions: int = _positions(64, 10000)
+    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:tca_dataset", "tca.nc", "variant", category="TCA",
+        draws="gearmesh.plots.ltca:tca_figures", figures=(Figure("tca"),), limits=(_CONTACT_GRID,))
+    positions: int = _positions(DEFAULT_CYCLE_POSITIONS, 10000)
     points: int = _points()
     corner_extension: float = _corner_extension()
 
@@ -194,12 +224,19 @@ class Ltca:
     """Loaded tooth contact analysis of every pair and variant at each torque over one mesh
     cycle: loaded and load transmission error, contact pattern, loaded mesh stiffness (ltca.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:ltca_dataset", "{pair}/{variant}/ltca.nc", "variant",
-        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.ltca:ltca_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.ltca:ltca_dataset", "ltca.nc", "variant",
+        priority=4,  # with the rating the chain the sign-off table waits for after an optimisation (Dynamics)
+        reads=(Read("fe_compliance", method_fe()),), category="LTCA", draws="gearmesh.plots.ltca:ltca_figures",
+        figures=(Figure("te_lte"), Figure("contact_pattern")), limits=(_CONTACT_GRID, Torques("torques_Nm")),
+        tables=(Table("lte_table", "gearmesh.datasets.ltca:lte_table_dataset", "lte_table.nc", "pair", "LTCA",
+                      (Read("ltca", every_variant=True),), csv=True),
+                Table("lste_comparison", "gearmesh.datasets.ltca:lste_comparison_dataset", "lste_comparison.nc",
+                      "study", "LTCA", (Read("stiffness", every_pair=True), Read("ltca", every_pair=True)), csv=True,
+                      wanted=lste_compared)))
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques", exclusive_minimum=0, min_items=1,
                                             max_items=MAX_LTCA_TORQUES)
     on: Gear = setting("pinion", "the gear the torques act on")
-    positions: int = _positions(64, 10000)
+    positions: int = _positions(DEFAULT_CYCLE_POSITIONS, 10000)
     points: int = _points()
     contact_law: ContactLaw = _contact_law()
     method: Method = _method()
@@ -212,13 +249,38 @@ class Rating:
     (S_H, S_F) with the LTCA's contact pressure, root stress and load factors (rating.nc). Material,
     accuracy, roughness and oil are the pair file's (defaults named in the dataset's notes)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.rating:rating_dataset", "{pair}/{variant}/rating.nc", "variant",
-        reads=(Read("ltca"),), figures="gearmesh.plots.rating:rating_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.rating:rating_dataset", "rating.nc", "variant", reads=(Read("ltca"),),
+        priority=4,  # after its variant's LTCA, before the study tables (Dynamics)
+        category="Load capacity", draws="gearmesh.plots.rating:rating_figures",
+        figures=(Figure("pressure_map"), Figure("root_stress_face")),
+        limits=(Speeds("speed_rpm"),),  # the README's promise: no rating above the burst speed
+        tables=(Table("load_capacity_table", "gearmesh.datasets.rating:load_capacity_table_dataset",
+                      "load_capacity_table.nc", "pair", "Load capacity",
+                      (Read("rating", every_variant=True), Read("scuffing", runs("scuffing"), every_variant=True)),
+                      csv=True),))
     speed_rpm: float = setting(REQUIRED, "pinion speed of the rating", exclusive_minimum=0)
-    application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=1)
+    application_factor: float = setting(1.0, "application factor K_A (ISO 6336-1)", minimum=FACTOR_RANGES["K_A"][0],
+                                        maximum=FACTOR_RANGES["K_A"][1])
     life_hours: float | None = setting(None, "required life for Z_NT, Y_NT (null: the long-life end, 1e10 cycles)", exclusive_minimum=0)
     method: Literal["iso", "ltca"] = setting("ltca", "where K_Hbeta, K_Fbeta, K_Halpha, K_Falpha come from: the "
                                                      "standard's methods B/C or the LTCA's load distribution")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Scuffing:
+    """Scuffing load capacity of every pair and variant at the rating's speed and load factors:
+    Blok's flash temperature of every contact point from the LTCA's line load along the path of
+    contact, and the rated values of ISO/TS 6336-20 (flash temperature method: θ_B, S_B) and
+    ISO/TS 6336-21 (integral temperature method: θ_int, S_intS) at each LTCA torque (scuffing.nc).
+    Oil, roughness and FZG load stage are the pair file's (defaults named in the dataset's notes)."""
+
+    STAGE: ClassVar = Stage("gearmesh.datasets.scuffing:scuffing_dataset", "scuffing.nc", "variant",
+        reads=(Read("ltca"), Read("rating")), category="Load capacity", draws="gearmesh.plots.scuffing:scuffing_figures",
+        figures=(Figure("flash_temperature"),),
+        tables=(Table("scuffing_table", "gearmesh.datasets.scuffing:scuffing_table_dataset", "scuffing_table.nc",
+                      "pair", "Load capacity", (Read("scuffing", every_variant=True),), csv=True),))
+    path_bins: int = setting(48, "bins of the path of contact A–E in which the figure keeps the largest flash "
+                                 "temperature over the face", minimum=4, maximum=10000)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -228,9 +290,16 @@ class Impact:
     the variants side by side at the design speed, and a direct simulation of the engagement
     as a check (impact.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.impact:impact_dataset", "{pair}/{variant}/impact.nc", "variant",
-        reads=(Read("fe_compliance", method_fe()),), figures="gearmesh.plots.impact:impact_figures",
-        carries=("tolerances",), variant_name=True)
+    STAGE: ClassVar = Stage("gearmesh.datasets.impact:impact_dataset", "impact.nc", "variant",
+        priority=3,  # the next longest stage of a variant, beside its dynamics (Dynamics)
+        reads=(Read("fe_compliance", method_fe()),), category="Impact", draws="gearmesh.plots.impact:impact_figures",
+        figures=(Figure("force_speed", "impact_speed"), Figure("trajectory", "mesh_in_trajectory"),
+                 Figure("simulation", "impact_simulation")),
+        carries=("tolerances",), variant_name=True, limits=(Torques("torques_Nm"), Speeds("speeds_rpm")),
+        tables=(Table("impact_table", "gearmesh.datasets.impact:impact_table_dataset", "impact_table.nc", "pair",
+                      "Impact", (Read("impact", every_variant=True),), csv=True,
+                      draws="gearmesh.plots.impact:impact_study_figures",
+                      figures=(Figure("impact_force"), Figure("robustness"))),))
     torques_Nm: tuple[float, ...] = setting((400, 1000, 1600), "torques of the map", exclusive_minimum=0,
                                             min_items=1, max_items=100)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -260,6 +329,10 @@ class Impact:
     load_window_step_Nm: float | None = setting(
         None, "F_s also on a torque grid of this step up to 1.25 × the largest torque at the design speed: the "
         "variants' load windows in the impact table (null: none)", exclusive_minimum=0)
+    tolerance_torques_Nm: tuple[float, ...] | None = setting(
+        None, "torques (among torques_Nm) at which the manufactured gears are judged (the worst over the "
+        "tolerance box, the populations): the sign-off table's, the LTCA's (null: every one of torques_Nm)",
+        exclusive_minimum=0, min_items=1, max_items=100)
 
 
 # --------------------------------------------------------------------------------------
@@ -283,7 +356,7 @@ class Constraints:
     """Constraints of an optimisation as penalties: J = f + penalty·f_std·Σ max(0, m/(factor·m_std) − 1),
     m against the unmodified pair's m_std."""
 
-    lte_factor: float | None = _ratio_limit("load transmission error peak-to-peak at the design torque")
+    lte_factor: float | None = _ratio_limit("loaded transmission error peak-to-peak at the design torque")
     line_load_factor: float | None = _ratio_limit("largest line load at the design torque")
     dynamic_factor: float | None = _ratio_limit("dynamic factor at every torque")
     harmonic_factor: float | None = _ratio_limit("amplitude of each loaded-TE mesh order of harmonic_orders at every "
@@ -318,9 +391,18 @@ class Optimise:
     impact section; points, contact_law, corner_extension, window_positions and face_samples
     given here override it."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.optimise:optimise_dataset", "{pair}/optimise/{run}/ga.nc", "run",
-        reads=(Read("fe_compliance", method_fe("impact")),), figures="gearmesh.plots.optimise:optimise_figures",
-        carries=("impact", "tolerances"))
+    STAGE: ClassVar = Stage("gearmesh.datasets.optimise:optimise_dataset", "ga.nc", "run",
+        reads=(Read("fe_compliance", method_fe("impact")),), category="Optimisation",
+        draws="gearmesh.plots.optimise:optimise_figures",
+        figures=(Figure("convergence", caption="optimise_convergence"),
+                 Figure("modification", caption="optimise_modification")),
+        carries=("impact", "tolerances"), also_writes=(("pair", "pair.yaml"),), entry="optimise",
+        priority=10,  # the longest job, and the variants it writes wait for it: start it first
+        log="{pair}/optimise/{run}",
+        limits=(Speeds("speed_rpm"), Speeds("dynamic_speeds_rpm"), Torques("torque_Nm"), Torques("torques_Nm")),
+        tables=(Table("plot_pareto", "gearmesh.plots.optimise:pareto_figures", None, "run", "Optimisation",
+                      (Read("optimise", name="ga"),), figures=(Figure("pareto", caption="optimise_pareto"),),
+                      of_runs=nsga2_run, log="{pair}/optimise/pareto_{run}"),))
     method: Literal["ga", "random", "nsga2"] = setting("ga", "genetic algorithm (pygad), random search of the same "
                                                              "budget, or NSGA-II (the objective against pareto_objectives)")
     objective: Literal["force", "velocity", "robust", "dynamic"] = setting(
@@ -380,8 +462,10 @@ class Optimise:
                                            minimum=8, maximum=10000)
     face_samples: int | None = setting(None, "samples of the entering contact line across the face (null: the "
                                              "impact section's)", minimum=9, maximum=100000)
-    cycle_positions: int = setting(32, "rotation positions over one mesh cycle of the loaded contact (LTE, line "
-                                       "load)", minimum=8, maximum=10000)
+    cycle_positions: int = setting(DEFAULT_CYCLE_POSITIONS, "rotation positions over one mesh cycle of the loaded "
+                                                            "contact (LTE, line load; the LTCA stage's and the "
+                                                            "impact stage's manufactured gears')", minimum=8,
+                                   maximum=10000)
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -399,9 +483,19 @@ class Tolerances:
     modification: dict[str, float] = setting({}, "{pair-file modification key: ± value} in µm / mm on every nonzero "
                                                  "parameter of either gear", minimum=0)
     samples: int = setting(8, "deviation samples beside the nominal (0: the nominal only)", minimum=0, maximum=4096)
-    sampling: Literal["lhs", "corners"] = setting("lhs", "seeded Latin hypercube, or the corners of the tolerance box")
+    sampling: Literal["lhs", "corners", "box"] = setting(
+        "lhs", "the optimisers' samples: a seeded Latin hypercube, the corners of the tolerance box, or box: the "
+        "unmodified pair's worst gears over the tolerance box at both ends of the modification tolerances (each "
+        "optimum then checked on its own box)")
     seed: int = setting(0, "seed of the samples: one manufactured population for every optimisation and the impact "
                            "stage", minimum=0, maximum=4294967295)
+    population: int = setting(256, "manufactured gears of the distributions beside the worst case (median, P90, "
+                                   "gear for gear against the reference), a seeded Latin hypercube (seed), the same "
+                                   "gears for every variant", minimum=0, maximum=4096)
+    heldout: int = setting(64, "manufactured gears of the held-out check of the verdict, drawn with heldout_seed "
+                               "(never seen by an optimiser)", minimum=0, maximum=4096)
+    heldout_seed: int = setting(1, "seed of the held-out gears (another population than seed's)", minimum=0,
+                                maximum=4294967295)
 
 
 # --------------------------------------------------------------------------------------
@@ -417,10 +511,10 @@ class _Dynamics:
         "pair", "total backlash 2b0 along the normal; pair: the pair's own (centre distance and shifts); null: none",
         minimum=0)
     bearing_k_radial_N_per_m: float | Literal["pair"] = setting(
-        "pair", "radial support stiffness of every gear (pair: the pair file's supports, seed 001's 1.5e8 when it "
+        "pair", "radial support stiffness of every gear (pair: the pair file's supports, the low-fluctuation paper's 1.5e8 when it "
         "gives none; gearmesh.supports)", exclusive_minimum=0)
     bearing_k_axial_N_per_m: float | Literal["pair"] = setting(
-        "pair", "axial support stiffness of every gear (pair: the pair file's supports, seed 001's 1e7 when it gives "
+        "pair", "axial support stiffness of every gear (pair: the pair file's supports, the low-fluctuation paper's 1e7 when it gives "
         "none)", exclusive_minimum=0)
     bearing_c_radial_Ns_per_m: float = setting(1000, "radial bearing damping", minimum=0)
     bearing_c_axial_Ns_per_m: float = setting(1000, "axial bearing damping", minimum=0)
@@ -461,9 +555,26 @@ class Dynamics(_Dynamics):
     stage, the ltca excitation from the variant's LTCA, the contact table from the variant's
     micro-geometry."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_dataset", "{pair}/{variant}/dynamics.nc", "variant",
-        reads=(Read("stiffness"), Read("ltca", ltca_drives), Read("fe_compliance", method_fe())),
-        figures="gearmesh.plots.dynamics:dynamics_figures", variant_name=True)
+    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_dataset", "dynamics.nc", "variant",
+        # the longest stage of a variant (3 s of CPU in the default study): once an optimisation ends,
+        # its variant's dynamics starts first, its LTCA and rating (4) and impact (3) beside it, the
+        # study tables (0) after them, so the sign-off and engagement tables wait for no stage started last
+        priority=5,
+        reads=(Read("stiffness"), Read("ltca", ltca_drives), Read("fe_compliance", method_fe())), category="Dynamics",
+        draws="gearmesh.plots.dynamics:dynamics_figures",
+        figures=(Figure("rms", "dynamics_rms"), Figure("spectrum", "dynamics_spectrum"),
+                 Figure("engagement", "dynamics_engagement", when=contact_drives)),
+        variant_name=True, limits=(Torques("torques_Nm"),),
+        # the peak dynamic mesh force against speed of every variant: drawn by the engagement table's
+        # job where the study has one, else by a figure job of its own
+        tables=(Table("engagement_table", "gearmesh.datasets.dynamics:engagement_table_dataset",
+                      "engagement_table.nc", "pair", "Dynamics",
+                      (Read("impact", every_variant=True), Read("dynamics", every_variant=True)), csv=True,
+                      draws="gearmesh.plots.dynamics:dynamics_variants_figures",
+                      figures=(Figure("dynamics_variants"),), wanted=engagement_tabled),
+                Table("plot_dynamics_variants", "gearmesh.plots.dynamics:dynamics_variants_figures", None, "pair",
+                      "Dynamics", (Read("dynamics", every_variant=True),), figures=(Figure("dynamics_variants"),),
+                      wanted=lambda config, section: not engagement_tabled(config, section))))
     torques_Nm: float | tuple[float, ...] = setting(200.0, "one torque or a list", exclusive_minimum=0, min_items=1,
                                                     max_items=20)
     on: Gear = setting("pinion", "the gear the torques act on")
@@ -489,9 +600,10 @@ class TrainDynamics(_Dynamics):
     """The 9-DOF plate–blanket–impression train of the printing-press source: three gears alike
     (the pair's gear), the pair's mesh in both meshes, at one load and speed (train.nc)."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:train_dataset", "{pair}/{variant}/train.nc", "variant",
-        reads=(Read("stiffness"), Read("fe_compliance", method_fe())),
-        figures="gearmesh.plots.dynamics:train_figures")
+    STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:train_dataset", "train.nc", "variant",
+        reads=(Read("stiffness"), Read("fe_compliance", method_fe())), category="Dynamics",
+        draws="gearmesh.plots.dynamics:train_figures", figures=(Figure("spectrum", "train_spectrum"),),
+        limits=(Torques("torque_Nm", None),))
     static_force_N: float | None = setting(2832, "static normal mesh force, the load when torque_Nm is null",
                                            exclusive_minimum=0)
     torque_Nm: float | None = setting(None, "torque on the plate gear (null: from static_force_N)",
@@ -515,10 +627,13 @@ class Signoff:
     impact sections (basis population also tolerance samples); the dynamic criterion needs a
     dynamics section."""
 
-    STAGE: ClassVar = Stage("gearmesh.datasets.signoff:signoff_table_dataset", "{pair}/signoff_table.nc", "pair",
+    STAGE: ClassVar = Stage("gearmesh.datasets.signoff:signoff_table_dataset", "signoff_table.nc", "pair",
         reads=tuple(Read(s, when, every_variant=True) for s, when in (
             ("impact", always), ("ltca", always), ("rating", always), ("dynamics", runs("dynamics")))),
-        figures="gearmesh.plots.signoff:signoff_figures", pair_file=False)
+        category="Sign-off", csv=True, draws="gearmesh.plots.signoff:signoff_figures", figures=(Figure("signoff"),),
+        pair_file=False, localrule=True,
+        tables=(Table("signoff_verdict", "gearmesh.datasets.verdict:signoff_verdict_dataset", "signoff_verdict.nc",
+                      "pair", "Sign-off", (Read("signoff"),), csv=True),))
     reference: str = setting("standard", "the variant the others are held against (the unmodified pair)",
                              pattern=r"^[A-Za-z0-9_]+$", max_length=NAME_LENGTH)
     basis: Literal["population", "nominal"] = setting(
@@ -546,7 +661,9 @@ class DynamicsComparison:
     """RMS changes between the study's pairs over their speed sweeps (dynamics_comparison.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_comparison_dataset", "dynamics_comparison.nc", "study",
-        figures="gearmesh.plots.dynamics:dynamics_comparison_figures")
+        reads=(Read("dynamics", every_pair=True),), category="Dynamics", csv=True,
+        draws="gearmesh.plots.dynamics:dynamics_comparison_figures", figures=(Figure("dynamics_comparison"),),
+        pair_file=False, localrule=True)
     couples: tuple[tuple[str, str], ...] | None = setting(
         None, "[pair, reference] couples; left out: every pair against the first", min_items=1, fill=False)
 
@@ -561,7 +678,7 @@ class HelixSweep:
     zero-backlash centre distance (helix_sweep.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.geometry:helix_sweep_dataset", "helix_sweep.nc", "study",
-        figures="gearmesh.plots.geometry:helix_sweep_figures")
+        category="Contact lines", draws="gearmesh.plots.geometry:helix_sweep_figures", figures=(Figure("helix_sweep"),))
     pairs: tuple[str, ...] = _pairs()
     start_deg: float = setting(REQUIRED, "first helix angle", minimum=0, maximum=59)
     stop_deg: float = setting(REQUIRED, "last helix angle (not below start_deg)", minimum=0, maximum=59)
@@ -575,7 +692,7 @@ class LowFluctuationDesign:
     width that makes the overlap ratio an integer (low_fluctuation_design.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.geometry:low_fluctuation_design_dataset", "low_fluctuation_design.nc",
-                            "study")
+                            "study", category="Geometry", csv=True, localrule=True)
     pairs: tuple[str, ...] = _pairs()
 
 
@@ -584,7 +701,8 @@ class StiffnessTable:
     """Mesh stiffness over pairs, pair-file variants and cantilever methods, one table (stiffness_table.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_table_dataset", "stiffness_table.nc", "study",
-        figures="gearmesh.plots.stiffness:stiffness_table_figures")
+        category="Stiffness", csv=True, draws="gearmesh.plots.stiffness:stiffness_table_figures",
+        figures=(Figure("stiffness_table"),), limits=(_SLICE_GRID, Torques("torque_Nm", "torque_on")))
     pairs: tuple[str, ...] = _pairs()
     methods: tuple[Method, ...] = setting(("transition",), "slice models compared", min_items=1)
     variants: dict[str, dict[str, Any]] | None = setting(
@@ -602,7 +720,8 @@ class SliceConvergence:
     """Mean mesh stiffness against the slice count, whole and clipped end slices (slice_convergence.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:slice_convergence_dataset", "slice_convergence.nc", "study",
-        figures="gearmesh.plots.stiffness:slice_convergence_figures")
+        category="Stiffness", csv=True, draws="gearmesh.plots.stiffness:slice_convergence_figures",
+        figures=(Figure("slice_convergence"),), limits=(_SLICE_GRID,))
     pairs: tuple[str, ...] = _pairs()
     slices: tuple[int, ...] = setting((25, 50, 100, 200, 400, 1000), "slice counts", minimum=1, maximum=20000,
                                       min_items=2)
@@ -642,6 +761,7 @@ class Study:
     tca: Tca | None = setting(None, "", fill=False)
     ltca: Ltca | None = setting(None, "", fill=False)
     rating: Rating | None = setting(None, "", fill=False)
+    scuffing: Scuffing | None = setting(None, "", fill=False)
     impact: Impact | None = setting(None, "", fill=False)
     signoff: Signoff | None = setting(None, "", fill=False)
     optimise: dict[str, Optimise] | None = setting(
@@ -676,6 +796,14 @@ def stage_of(section: str) -> Stage | None:
     return stages().get(section)
 
 
+def job_of(name: str) -> Stage | Table | None:
+    """The job whose rule is ``name``: the stage of that config section, or the table of that name."""
+    declared = stages()
+    if name in declared:
+        return declared[name]
+    return next((t for stage in declared.values() for t in stage.tables if t.name == name), None)
+
+
 def study_keys() -> list[str]:
     """Every key path of a study config (``dynamics.speeds_rpm.start``; named entries as ``NAME``)."""
     return all_keys(Study)
@@ -686,32 +814,39 @@ def study_keys() -> list[str]:
 # --------------------------------------------------------------------------------------
 
 
+def _within(plausible: Plausible) -> dict[str, float]:
+    """The schema bounds of a pair-file key checked against a plausible range (in the key's unit,
+    the first of the range's units: :class:`gearmesh.limits.Plausible`)."""
+    return {"minimum": plausible.low, "maximum": plausible.high}
+
+
 @dataclass(frozen=True, kw_only=True)
 class PairMaterial:
     """Isotropic elastic material of both gears; a key left out is steel's (the reader's
     ``DEFAULT_MATERIAL``, stated in every result)."""
 
     youngs_modulus_GPa: float = setting(DEFAULT_MATERIAL["youngs_modulus_GPa"], "Young's modulus",
-                                        exclusive_minimum=0)
+                                        **_within(YOUNGS_MODULUS))
     poisson_ratio: float = setting(DEFAULT_MATERIAL["poisson_ratio"], "Poisson's ratio", minimum=0,
                                    exclusive_maximum=0.5)
-    density_kg_m3: float = setting(DEFAULT_MATERIAL["density_kg_m3"], "density", exclusive_minimum=0)
+    density_kg_m3: float = setting(DEFAULT_MATERIAL["density_kg_m3"], "density", **_within(DENSITY))
     contact_fatigue_limit_MPa: float | None = setting(
         None, "contact fatigue limit σ_Hlim of the rating (null: 1500, case-hardened steel MQ, ISO 6336-5)",
-        exclusive_minimum=0)
+        **_within(CONTACT_FATIGUE_LIMIT))
     bending_fatigue_limit_MPa: float | None = setting(
         None, "bending fatigue limit σ_Flim of the rating (null: 500, case-hardened steel MQ, ISO 6336-5)",
-        exclusive_minimum=0)
+        **_within(BENDING_FATIGUE_LIMIT))
 
 
 @dataclass(frozen=True, kw_only=True)
 class PairRoughness:
     """Surface roughness of the rating (ISO 6336-2/-3), the same on both gears."""
 
-    flank_Ra: float | None = setting(None, "flank arithmetic mean roughness Ra (null: 0.4, ground)", exclusive_minimum=0)
+    flank_Ra: float | None = setting(None, "flank arithmetic mean roughness Ra (null: 0.4, ground)",
+                                     **_within(ROUGHNESS_RA))
     flank_Rz: float | None = setting(None, "flank mean peak-to-valley roughness Rz (null: 2.5, ground)",
-                                     exclusive_minimum=0)
-    root_Rz: float | None = setting(None, "tooth-root roughness Rz (null: 10, hobbed)", exclusive_minimum=0)
+                                     **_within(ROUGHNESS_RZ))
+    root_Rz: float | None = setting(None, "tooth-root roughness Rz (null: 10, hobbed)", **_within(ROUGHNESS_RZ))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -719,9 +854,9 @@ class PairLubricant:
     """The oil of the rating (ISO 6336-2 Z_L; the scuffing rating's friction, bulk and scuffing temperatures)."""
 
     viscosity_40C_mm2_s: float | None = setting(None, "kinematic viscosity at 40 °C (null: 220, ISO VG 220)",
-                                                exclusive_minimum=0)
+                                                **_within(VISCOSITY_40C))
     viscosity_100C_mm2_s: float | None = setting(None, "kinematic viscosity at 100 °C (null: 19, ISO VG 220)",
-                                                 exclusive_minimum=0)
+                                                 **_within(VISCOSITY_100C))
     oil_temperature_C: float | None = setting(None, "oil temperature (null: 70)", exclusive_minimum=-40,
                                               exclusive_maximum=200)
     fzg_load_stage: int | None = setting(None, "FZG load stage of the oil (ISO 14635-1 test A/8.3/90) for the "
@@ -799,10 +934,10 @@ class PairFile:
     material: PairMaterial | None = setting(None, "elastic material of both gears (null or left out: steel)")
     bearing_radial_stiffness_N_per_um: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
         None, "radial stiffness of each gear's bearings together at the gear centre, one, [pinion, gear] or rigid "
-        "(dynamics; null: seed 001's 150, stated in the results)", exclusive_minimum=0)
+        "(dynamics; null: the low-fluctuation paper's 150, stated in the results)", **_within(BEARING_STIFFNESS))
     bearing_axial_stiffness_N_per_um: float | Literal["rigid"] | tuple[float | Literal["rigid"], float | Literal["rigid"]] | None = setting(
         None, "axial stiffness of each gear's bearings at the gear centre, one, [pinion, gear] or rigid (dynamics; "
-        "null: seed 001's 10)", exclusive_minimum=0)
+        "null: the low-fluctuation paper's 10)", **_within(BEARING_STIFFNESS))
     shaft_diameter_mm: float | tuple[float, float] | None = setting(
         None, "shaft diameter, one or [pinion, gear]: shaft bending 48EI/L³ in series with the radial bearing "
         "stiffness (with bearing_span_mm; the gear at mid-span)", exclusive_minimum=0)

@@ -51,7 +51,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import GearmeshInputError
-from .gear import PairGeometry, tool_tip_radius
+from .gear import PairGeometry, check_tip_edge_radius, tool_tip_radius
 
 __all__ = [
     "DEFAULT_TIP_EDGE_RADIUS_COEFFICIENT", "contact_modulus", "hertz_line_contact", "flank_relative_radius",
@@ -117,10 +117,7 @@ def check_edge_radius(geom: PairGeometry, edge_radius: float | None) -> tuple[fl
             or edge_radius <= 0:
         raise GearmeshInputError("tip_edge_radius_mm", edge_radius if not isinstance(edge_radius, (int, float))
                                  else edge_radius * 1e3, "must be a positive number (mm)")
-    limit = 0.5 * float(np.min(geom.normal_tip_thickness))
-    if edge_radius > limit:
-        raise GearmeshInputError("tip_edge_radius_mm", edge_radius * 1e3,
-                                 f"must not exceed half the normal tip thickness ({limit * 1e3:.3g} mm)")
+    check_tip_edge_radius(edge_radius, geom.normal_tip_thickness)
     return float(edge_radius), True
 
 

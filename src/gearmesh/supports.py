@@ -31,6 +31,7 @@ from dataclasses import dataclass
 from typing import Any, Mapping
 
 from .errors import GearmeshInputError
+from .limits import BEARING_STIFFNESS
 
 #: Palmgren's line-contact constant: δ (mm) = PALMGREN_LINE · Q^0.9 (N) / l^0.8 (mm), one raceway.
 PALMGREN_LINE = 3.84e-5
@@ -104,6 +105,28 @@ class Supports:
     gear_offset: tuple[float, float] = (0.0, 0.0)
     torque_side: tuple[str, str] | None = None
 
+    def __post_init__(self) -> None:
+        """The pair file's rules, however the supports were made (a file, code or
+        ``dataclasses.replace``): each bearing stiffness positive and within what bearings have
+        (:data:`gearmesh.limits.BEARING_STIFFNESS`, N/µm; inf: rigid), the shaft's diameter and span
+        positive lengths, given together; refused naming the pair-file key in its units."""
+        for key, values in ((SUPPORT_KEYS[0], self.bearing_radial), (SUPPORT_KEYS[1], self.bearing_axial)):
+            for i, k in enumerate(_two(key, values)):
+                if math.isinf(k) and k > 0:
+                    continue
+                if isinstance(k, bool) or not isinstance(k, (int, float)) or not math.isfinite(k) or k <= 0:
+                    raise GearmeshInputError(f"{key}[{i}]", k if not isinstance(k, (int, float)) else k * 1e-6,
+                                             f"must be a positive number (N/um) or '{RIGID}'")
+                BEARING_STIFFNESS.check(k * 1e-6, f"{key}[{i}]")
+        if (self.shaft_diameter is None) != (self.bearing_span is None):
+            given, missing = (SUPPORT_KEYS[2], SUPPORT_KEYS[3]) if self.bearing_span is None else SUPPORT_KEYS[3:1:-1]
+            raise GearmeshInputError(missing, None, f"is required with {given} (the shaft's bending needs both)")
+        for key, values in ((SUPPORT_KEYS[2], self.shaft_diameter), (SUPPORT_KEYS[3], self.bearing_span)):
+            for i, v in enumerate(_two(key, values) if values is not None else ()):
+                if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v) or v <= 0:
+                    raise GearmeshInputError(f"{key}[{i}]", v if not isinstance(v, (int, float)) else v * 1e3,
+                                             "must be a positive length (mm)")
+
     def radial(self, youngs_modulus: float) -> tuple[float, float]:
         """Radial stiffness (N/m) at each gear centre: bearings in series with the shaft's bending
         (E of the pair's material); inf where both are rigid. With the gear at distances a and c
@@ -151,6 +174,30 @@ class Supports:
         shaft = "" if self.shaft_diameter is None else " (bearings in series with the shaft's bending)"
         return (f"supports radial [{n(r[0])}, {n(r[1])}] N/um{shaft}, axial [{n(a[0])}, {n(a[1])}] N/um "
                 f"[pinion, gear], {where}")
+
+
+def _two(key: str, values: Any) -> tuple[Any, Any]:
+    """A [pinion, gear] pair of a :class:`Supports` field, refused naming ``key`` otherwise."""
+    if not isinstance(values, (list, tuple)) or len(values) != 2:
+        raise GearmeshInputError(key, values, "must be a [pinion, gear] pair")
+    return tuple(values)
+
+
+def check_supports(supports: Supports, face_width, bore_radius) -> None:
+    """One :class:`GearmeshInputError` naming the key when a shaft does not fit its gear: thicker
+    than the bore it passes through, or its bearings closer together than the gear is wide (they
+    sit either side of it). Face width and bore radius in m, [pinion, gear]; bore may be None."""
+    if supports.shaft_diameter is None:
+        return
+    for i in range(2):
+        d, span = supports.shaft_diameter[i], supports.bearing_span[i]
+        if bore_radius is not None and d > 2 * bore_radius[i] * (1 + 1e-12):
+            raise GearmeshInputError(f"shaft_diameter_mm[{i}]", d * 1e3, "must not exceed the bore diameter "
+                                     f"{2e3 * bore_radius[i]:.6g} mm (2 x bore_radius_mm): the shaft passes through the "
+                                     "gear's bore")
+        if span < face_width[i] * (1 - 1e-12):
+            raise GearmeshInputError(f"bearing_span_mm[{i}]", span * 1e3, f"must be at least the face width "
+                                     f"{face_width[i] * 1e3:.6g} mm: the bearings sit either side of the gear")
 
 
 def _stiffness(key: str, value: Any) -> tuple[float, float]:

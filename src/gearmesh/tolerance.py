@@ -47,10 +47,11 @@ from .limits import MAX_CORNER_DIMENSIONS, MAX_SAMPLES
 from .surface import fit_modifications
 
 __all__ = ["GRADES", "SAMPLINGS", "STATISTICS", "helix_slope_tolerance", "ToleranceModel", "tolerance_model",
-           "unit_deviations", "apply_deviations", "manufactured_population", "sample_statistic", "check_statistic", "study_tolerances"]
+           "unit_deviations", "apply_deviations", "manufactured_population", "sample_statistic", "check_statistic", "study_tolerances",
+           "study_population"]
 
 GRADES = tuple(range(1, 12))
-SAMPLINGS = ("lhs", "corners")
+SAMPLINGS = ("lhs", "corners", "box")
 STATISTICS = ("max", "mean", "percentile", "cvar")
 #: Pair-file keys of the six parameters (order of :data:`gearmesh.surface.MODIFICATION_FIELDS`).
 _KEYS = ("root_relief_um", "tip_relief_um", "root_relief_length_mm", "tip_relief_length_mm", "crowning_um",
@@ -133,8 +134,8 @@ def unit_deviations(dimensions: int, samples: int, sampling: str = "lhs", seed: 
     """``samples`` deviation samples (S, k) in [−1, 1]^k, k = ``dimensions`` (module docstring):
     a seeded Latin hypercube (``lhs``) or corners of the box (``corners``: all 2^k when
     ``samples`` ≥ 2^k, else a seeded choice of them without repetition, in a fixed order)."""
-    if sampling not in SAMPLINGS:
-        raise GearmeshInputError("sampling", sampling, f"must be one of {list(SAMPLINGS)}")
+    if sampling not in SAMPLINGS or sampling == "box":  # box: a design's own worst gears (gearmesh.robust)
+        raise GearmeshInputError("sampling", sampling, f"must be one of {list(SAMPLINGS[:2])} here")
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or not 0 <= samples <= MAX_SAMPLES:
         raise GearmeshInputError("tolerance_samples", samples, f"must be an integer in [0, {MAX_SAMPLES}]")
     if samples == 0 or dimensions == 0:
@@ -212,6 +213,18 @@ def sample_statistic(values: np.ndarray, statistic: str, level_percent: float = 
         tail = s[..., k:].sum(axis=-1) / n + (k / n - alpha) * s[..., k - 1]
         return tail / (1.0 - alpha)
     raise GearmeshInputError("statistic", statistic, f"must be one of {list(STATISTICS)}")
+
+
+def study_population(tolerances: Mapping[str, Any] | None) -> tuple[int, int, int, int]:
+    """The study's ``tolerances:`` section's populations beside the optimisers' samples: (population,
+    seed, heldout, heldout_seed) (:class:`gearmesh.settings.Tolerances`; no section: none)."""
+    from .schema import object_schema, validate
+    from .settings import Tolerances
+
+    if not tolerances:
+        return 0, 0, 0, 0
+    tol = validate(tolerances, object_schema(Tolerances), prefix="tolerances")
+    return tol["population"], tol["seed"], tol["heldout"], tol["heldout_seed"]
 
 
 def study_tolerances(geom: PairGeometry, tolerances: Mapping[str, Any] | None):

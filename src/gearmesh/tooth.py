@@ -20,7 +20,7 @@ import numpy as np
 
 from .choices import PEM_TOOTH_METHODS
 from .errors import GearmeshInputError
-from .gear import PairGeometry, involute
+from .gear import PairGeometry, involute, missing_key
 
 if TYPE_CHECKING:  # scipy is imported where it is used: importing it costs ~0.5 s of a job's start-up
     from scipy.interpolate import CubicSpline
@@ -41,9 +41,8 @@ def require_stiffness_data(geom: PairGeometry, need_bore: bool = True) -> None:
         raise GearmeshInputError("material", None,
                                  "is required for the mesh stiffness (Young's modulus and Poisson ratio)")
     if need_bore and pair.bore_radius is None:
-        raise GearmeshInputError("bore_radius_mm", None,
-                                 "is required for the fillet-foundation stiffness (Sainsot et al. 2004 uses "
-                                 "h_f = r_f / r_int)")
+        raise missing_key("bore_radius_mm", "the fillet-foundation stiffness (Sainsot, Velex & Duverger 2004, "
+                                            "J. Mech. Design 126, use h_f = r_f / r_int)")
     if need_bore:
         for i in range(2):
             if not pair.bore_radius[i] > 0:

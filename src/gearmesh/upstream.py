@@ -1,4 +1,4 @@
-"""What a workflow stage reads, checked before it is used (issue 20).
+"""What a workflow stage reads, checked before it is used.
 
 Every netCDF file a job writes records what it is (:func:`identify`): the path it was written
 as, the rule that made it and that job's wildcards, beside the provenance of
@@ -14,14 +14,17 @@ what it is, what was expected and how to regenerate it, when
   modification changed, and the file was not remade);
 * it was made with other settings of its own stage (its config section), of another section it
   depends on (the impact stage's tolerances), or for another study;
-* its data do not match the digest it claims (an edited value, a forged file: issue 29);
+* its data do not match the digest it claims (an edited value, a forged file);
 * an input it was made from has changed or is gone since (:func:`record_sources`): it is stale.
 
 A study table (no pair of its own) checks each file against that file's own pair and variant.
-The optimum's pair file is checked against the run that wrote it (:func:`check_optimum`), and
-:func:`check_tree` (``gearmesh check``, and ``snakemake --report`` first) checks every file of a
-results folder, those nothing downstream reads included. A stage function handed another
-pair's dataset refuses it (:func:`check_dataset_pair`).
+The optimum's pair file is checked against the run that wrote it and that run against the
+reading job's study (:func:`check_optimum`), and :func:`check_tree` (``gearmesh check``, and
+``snakemake --report`` first) checks every file of a results folder, those nothing downstream
+reads included: each CSV table against the digest its netCDF file recorded
+(:func:`record_tables`), each PNG figure against the provenance it carries
+(:func:`check_figure`). A stage function handed another pair's dataset refuses it
+(:func:`check_dataset_pair`).
 
 Snakemake reruns a job whose inputs, code or params changed, so none of these happens in a run
 that Snakemake alone drives; they catch the files a person or another program put in place,
@@ -30,6 +33,7 @@ and runs told to ignore their rerun triggers.
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
@@ -41,8 +45,8 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .errors import GearmeshInputError, excerpt
-from .gear import GearPair, pair_to_dict
-from .io import DATA_ATTR, config_digest, data_digest
+from .gear import _REQUIRED_KEYS, GearPair, pair_to_dict
+from .io import DATA_ATTR, FIGURE_KEY, config_digest, data_digest, figure_provenance, normal_path
 
 #: Global attributes :func:`identify` writes: the file as written (relative POSIX path), the
 #: rule that made it and its job's wildcards (JSON).
@@ -102,10 +106,16 @@ def check_input(ds: xr.Dataset, path: str | Path, expected: Expected) -> None:
     those its digest claims, made for the expected study, pair data and variant, with the
     current settings of every section it depends on, from inputs that are still the files it
     was made from (module docstring)."""
-    attrs = ds.attrs
-    _check_identity(ds, path)
+    _check_identity(ds.attrs, path)
+    _check_digests(ds, path, ds.attrs.get(RULE_ATTR, "?"))
+    check_made_for(ds.attrs, path, expected)
+
+
+def check_made_for(attrs: Mapping[str, Any], path: str | Path, expected: Expected) -> None:
+    """Refuse a result by its attributes ``attrs`` alone (a header read of ``path``) unless it was
+    made for the expected study, pair data and variant, with the current settings of every
+    section it depends on, from inputs that are still the files it was made from."""
     rule = attrs.get(RULE_ATTR, "?")
-    _check_digests(ds, path, rule)
     made = json.loads(attrs["config_json"])
     study = made.get("study", {})
     if study.get("study") != expected.config.get("study"):
@@ -120,7 +130,7 @@ def check_input(ds: xr.Dataset, path: str | Path, expected: Expected) -> None:
     for section in json.loads(attrs.get(SECTIONS_ATTR, "[]")):
         if section != rule:
             _check_section(study, section, path, rule, expected.config)
-    check_sources(ds, path)
+    _check_sources(attrs, path)
 
 
 def _check_digests(ds: xr.Dataset, path, rule: str) -> None:
@@ -148,6 +158,18 @@ def _check_section(made_study: Mapping[str, Any], section: str, path, rule: str,
                                  f"this run has {field} = {_value(_plain(config.get(section)), key)}; {_recovery(path)}")
 
 
+def _header(path: str | Path) -> dict[str, Any]:
+    """The global attributes of a netCDF file, read from its header alone."""
+    import netCDF4
+
+    try:
+        with netCDF4.Dataset(path) as nc:
+            return {k: nc.getncattr(k) for k in nc.ncattrs()}
+    except (OSError, RuntimeError, ValueError) as exc:
+        raise GearmeshInputError(str(path), "damaged", f"cannot be read as netCDF ({_reason(exc, path)}); "
+                                 f"{_recovery(path)}") from None
+
+
 def file_digest(path: str | Path) -> str:
     """What a file is as an input: a netCDF result's data digest (its attribute, read from the
     header only), any other file's sha256; '' for a file that is missing or cannot be read."""
@@ -172,11 +194,81 @@ def record_sources(ds: xr.Dataset, files, sections) -> xr.Dataset:
     return ds
 
 
+#: Global attribute of :func:`record_tables`: every CSV copy of the file's dataset its job wrote,
+#: with its sha256 (JSON {path: sha256}), compared by :func:`check_tree`.
+TABLES_ATTR = "gearmesh_tables_json"
+
+
+def record_tables(ds: xr.Dataset, tables: Mapping[str, str]) -> xr.Dataset:
+    """Record in ``ds`` the CSV tables its job wrote from it ({path: sha256}, written before the
+    netCDF file), so an edited or replaced table is named (:func:`check_tree`)."""
+    ds.attrs[TABLES_ATTR] = json.dumps({normal_path(k): v for k, v in tables.items()}, sort_keys=True)
+    return ds
+
+
+def check_figure(path: str | Path, digest_of: Callable[[str], str] | None = None) -> None:
+    """Refuse a figure (PNG) that is not the one its job drew at ``path``: without provenance
+    (not drawn by a gearmesh job, or replaced), a copy of another job's figure (another
+    variant's, moved or copied here), edited since it was drawn, or drawn from a file that has
+    changed or gone since (stale). One line naming the file and how to remake it
+    (:func:`gearmesh.io.stamp_figure` writes what this reads). ``digest_of``: :func:`file_digest`,
+    or a memo of it over many figures drawn from the same files."""
+    try:
+        data = Path(path).read_bytes()
+    except OSError as exc:
+        raise GearmeshInputError(str(path), "unreadable", f"cannot be read ({exc.strerror}); {_recovery(path)}") from None
+    meta, digest = figure_provenance(data)
+    if meta is None:
+        raise GearmeshInputError(str(path), "a figure without provenance", "is not a figure a gearmesh job drew (no "
+                                 f"{FIGURE_KEY.decode()!r} text chunk: replaced, or drawn by an older gearmesh); "
+                                 f"{_recovery(path)}")
+    if not _same_file(str(meta.get("file", "")), path):
+        raise GearmeshInputError(str(path), f"the figure drawn as {meta.get('file')}", "is a copy of that figure (or was "
+                                 f"moved here), not the one drawn for this place; {_recovery(path)}")
+    if digest != meta.get("image_sha256"):
+        raise GearmeshInputError(str(path), "an edited figure", "does not match the digest it was drawn with; "
+                                 f"{_recovery(path)}")
+    for source, recorded in (meta.get("drawn_from") or {}).items():
+        now = (digest_of or file_digest)(source)
+        if now != recorded:
+            what = "is missing or unreadable now" if not now else "has changed since"
+            raise GearmeshInputError(str(path), f"the figure drawn from {source}", f"that file {what}: this figure is "
+                                     f"stale; {_recovery(path)}")
+
+
+def _check_tables(listed: Mapping[str, tuple[str, str]], root: Path) -> list[str]:
+    """Every CSV under ``root`` against the digests the netCDF files recorded for their tables
+    (``listed``: {csv path: (sha256, the netCDF file that lists it)}), and every listed table
+    present: one problem line each."""
+    problems = []
+    for path in sorted(root.rglob("*.csv")):
+        if any(part.startswith(".") for part in path.relative_to(root).parts):
+            continue  # a temporary of a write in flight
+        rel = normal_path(path)
+        if rel not in listed:
+            problems.append(str(GearmeshInputError(rel, "a table no result lists", "was not written by a job of these "
+                                                   f"results (copied here or renamed?); {_recovery(rel)}")))
+            continue
+        digest, nc = listed[rel]
+        if file_digest(path) != digest:
+            problems.append(str(GearmeshInputError(rel, "an edited table", f"does not match the digest {nc} recorded "
+                                                   f"when its job wrote both (edited or replaced); {_recovery(rel)}")))
+    for rel, (_, nc) in sorted(listed.items()):
+        if not Path(rel).exists():
+            problems.append(str(GearmeshInputError(rel, "missing", f"{nc} lists it but it is gone; {_recovery(rel)}")))
+    return problems
+
+
 def check_sources(ds: xr.Dataset, path) -> None:
     """Refuse ``ds`` (read from ``path``) when an input it was made from is gone or is no longer
     the file it was made from (remade, replaced or edited since, and ``path`` not remade)."""
-    rule = ds.attrs.get(RULE_ATTR, "?")
-    for source, digest in json.loads(ds.attrs.get(SOURCES_ATTR, "{}")).items():
+    _check_sources(ds.attrs, path)
+
+
+def _check_sources(attrs: Mapping[str, Any], path) -> None:
+    """:func:`check_sources` of a result's attributes."""
+    rule = attrs.get(RULE_ATTR, "?")
+    for source, digest in json.loads(attrs.get(SOURCES_ATTR, "{}")).items():
         now = file_digest(source)
         if now != digest:
             what = "is missing or unreadable now" if not now else "has changed since"
@@ -192,10 +284,14 @@ def optimum_header(path: str | Path, body: str, made_by: Mapping[str, Any]) -> s
     return OPTIMUM_HEADER + json.dumps(meta, sort_keys=True) + "\n"
 
 
-def check_optimum(path: str | Path) -> None:
+def check_optimum(path: str | Path, expected: Expected | None = None) -> None:
     """Refuse an optimisation's pair file that is not the optimum its run wrote at ``path``:
     without the provenance line (hand-made), copied from another run or place, edited after it
-    was written, or older than its run's ga.nc. One line naming the file and how to remake it."""
+    was written, or older than its run's ga.nc; with ``expected`` (the reading job's study config
+    and the study's pair file of that pair) also one whose ga.nc was not made for this study: with
+    other settings of that optimisation, tolerances or impact model, or for other pair data
+    (another run's pair.yaml and ga.nc put in place together; :func:`check_input`). One line
+    naming the file and how to remake it."""
     from .gear import read_input_text
 
     text = read_input_text(path, "pair file")
@@ -215,9 +311,18 @@ def check_optimum(path: str | Path) -> None:
         raise GearmeshInputError(str(path), "an edited optimum", "was changed after its optimisation wrote it (its "
                                  "content does not match its digest); to try a hand-made design give it as a variant's "
                                  f"modification instead; {redo}")
-    if file_digest(str(meta.get("ga", ""))) != meta.get("data_sha256"):
-        raise GearmeshInputError(str(path), f"the optimum of an older {meta.get('ga')}",
+    ga = str(meta.get("ga", ""))
+    if file_digest(ga) != meta.get("data_sha256"):
+        raise GearmeshInputError(str(path), f"the optimum of an older {ga}",
                                  f"that run's result has changed since this file was written; {redo}")
+    if expected is not None:
+        try:  # the header is enough: its data are the digest the line above compared
+            attrs = _header(ga)
+            _check_identity(attrs, ga)
+            check_made_for(attrs, ga, expected)
+        except GearmeshInputError as exc:  # the run's own line names what differs and the --forcerun of its job
+            raise GearmeshInputError(str(path), f"the optimum of {ga}", f"not this study's optimisation ({exc.value}: "
+                                     f"{_without_recovery(exc.rule)}); {redo}") from None
 
 
 def _check_pair(made: Mapping[str, Any] | None, path, rule: str, wildcards: Mapping[str, str],
@@ -285,11 +390,18 @@ def check_dataset_pair(argument: str, ds: xr.Dataset, pair: GearPair) -> None:
         wanted.pop("modification", None)
     recorded = made.get("pair", {})
     key = first_difference(recorded, wanted)
-    if key is not None:
-        raise GearmeshInputError(argument, f"a dataset of {recorded.get('name')!r}",
-                                 f"was computed with {key} = {_value(recorded, key)}, this pair "
-                                 f"{pair.name!r} has {key} = {_value(wanted, key)}: pass this pair's own "
-                                 f"{argument} dataset (or none)")
+    if key is None:
+        return
+    if recorded.get("name") != pair.name:  # another pair's: say so, and where its gears differ first
+        key = next((k for k in _REQUIRED_KEYS if first_difference(recorded.get(k), wanted.get(k)) is not None), None)
+        where = "" if key is None else f" ({key} = {_value(recorded, key)}, this pair's {_value(wanted, key)})"
+        raise GearmeshInputError(argument, f"a dataset of {recorded.get('name')!r}", f"was computed for pair "
+                                 f"{recorded.get('name')!r}{where}, not for this pair {pair.name!r}: pass this pair's "
+                                 f"own {argument} dataset (or none)")
+    raise GearmeshInputError(argument, f"a dataset of {recorded.get('name')!r}",
+                             f"was computed with {key} = {_value(recorded, key)}, this pair "
+                             f"{pair.name!r} has {key} = {_value(wanted, key)}: pass this pair's own "
+                             f"{argument} dataset (or none)")
 
 
 #: Global attribute of :func:`identify`: the function that made the file, with the digest of
@@ -303,14 +415,19 @@ def check_tree(root: str | Path, config: Mapping[str, Any] | None = None,
     naming the file, what is wrong and how to remake it: each netCDF file readable (not
     truncated, not empty), a gearmesh result at its own path (not a copy of another variant's,
     stage's or study's file), its data matching its digest, made by the current code of its
-    function, from inputs that are still the files it was made from (none missing); each
-    optimisation's pair file its run's unedited optimum; with the study ``config`` (and
-    ``pair_of``, the pair each file must be of) also the settings and pair data of each file.
-    The files nothing downstream reads (geometry, contact lines, TCA, tables, ga.nc) included."""
+    function, from inputs that are still the files it was made from (none missing); each CSV the
+    table its job wrote (:func:`record_tables`: listed, unedited) and each PNG the figure drawn for
+    its place from files unchanged since (:func:`check_figure`); each optimisation's pair file its
+    run's unedited optimum; with the study ``config`` (and ``pair_of``, the pair each file must be
+    of) also the settings and pair data of each file, and of each optimum's run. The files nothing
+    downstream reads (geometry, contact lines, TCA, tables, ga.nc, figures) included. Paths are
+    relative to the working directory, the folder the study ran in."""
     from .codeversion import versioned
 
     problems: list[str] = []
     root = Path(root)
+    pair_of = functools.lru_cache(maxsize=None)(pair_of) if pair_of is not None else None  # a pair (optimum) once
+    tables: dict[str, tuple[str, str]] = {}
     for path in sorted(root.rglob("*.nc")):
         if any(part.startswith(".") for part in path.relative_to(root).parts):
             continue  # a temporary of a write in flight
@@ -325,11 +442,12 @@ def check_tree(root: str | Path, config: Mapping[str, Any] | None = None,
             problems.append(f"{rel}: damaged (cannot be read as netCDF: {_reason(exc, path)}, truncated or empty); "
                             f"{_recovery(rel)}")
             continue
+        tables.update({csv: (digest, rel) for csv, digest in _listed_tables(ds).items()})
         try:
             if config is not None:
                 check_input(ds, rel, Expected(config, None, None, pair_of))
             else:
-                _check_identity(ds, rel)
+                _check_identity(ds.attrs, rel)
                 _check_digests(ds, rel, ds.attrs.get(RULE_ATTR, "?"))
                 check_sources(ds, rel)
             spec = ds.attrs.get(FUNCTION_ATTR)
@@ -338,17 +456,36 @@ def check_tree(root: str | Path, config: Mapping[str, Any] | None = None,
                                          f"{_recovery(rel)}")
         except GearmeshInputError as exc:
             problems.append(str(exc))
-    for path in sorted(root.rglob("optimise/*/pair.yaml")):
+    problems += _check_tables(tables, root)
+    digest_of = functools.lru_cache(maxsize=None)(file_digest)  # a file several figures were drawn from, read once
+    for path in sorted(root.rglob("*.png")):
+        if any(part.startswith(".") for part in path.relative_to(root).parts):
+            continue
         try:
-            check_optimum(normal_path(path))
+            check_figure(normal_path(path), digest_of)
         except GearmeshInputError as exc:
             problems.append(str(exc))
-    return list(dict.fromkeys(problems))  # a bad optimum is named once, not once per file of its variant
+    for path in sorted(root.rglob("optimise/*/pair.yaml")):
+        try:
+            pair = pair_of(path.parent.parent.parent.name, None) if config is not None and pair_of else None
+            check_optimum(normal_path(path), None if pair is None else Expected(config, pair))
+        except GearmeshInputError as exc:
+            problems.append(str(exc))
+    return list(dict.fromkeys(problems))
 
 
-def _check_identity(ds: xr.Dataset, path) -> None:
-    """The file is a gearmesh result (provenance) written as ``path`` (not a copy or a move)."""
-    attrs = ds.attrs
+def _listed_tables(ds: xr.Dataset) -> dict[str, str]:
+    """The CSV tables a result's job wrote with it ({path: sha256}, :func:`record_tables`)."""
+    try:
+        listed = json.loads(ds.attrs.get(TABLES_ATTR, "{}"))
+    except ValueError:
+        return {}
+    return {str(k): str(v) for k, v in listed.items()} if isinstance(listed, dict) else {}  # a bad optimum is named once, not once per file of its variant
+
+
+def _check_identity(attrs: Mapping[str, Any], path) -> None:
+    """The file (its attributes ``attrs``) is a gearmesh result (provenance) written as ``path``
+    (not a copy or a move)."""
     if "config_json" not in attrs or OUTPUT_ATTR not in attrs:
         raise GearmeshInputError(str(path), "no gearmesh provenance", "is not a result of a gearmesh workflow job "
                                  f"(no {OUTPUT_ATTR} attribute); {_recovery(path)}")
@@ -402,11 +539,6 @@ def _plain(value: Any) -> Any:
     return json.loads(config_digest({"v": value})[0])["v"]
 
 
-def normal_path(path: str | Path) -> str:
-    """``path`` as written in the provenance: normalised, relative as given, POSIX separators."""
-    return Path(os.path.normpath(path)).as_posix()
-
-
 def _same_file(written: str, path: str | Path) -> bool:
     """Whether the recorded ``written`` names ``path`` (both relative to the working directory,
     or either absolute)."""
@@ -421,5 +553,13 @@ def _reason(exc: BaseException, path: str | Path) -> str:
     return excerpt(" ".join(text.split()).strip(" :") or type(exc).__name__, 80)
 
 
+_RECOVERY = "regenerate it: snakemake --forcerun"
+
+
 def _recovery(path: str | Path) -> str:
-    return f"regenerate it: snakemake --forcerun {normal_path(path)} (with this run's --configfile)"
+    return f"{_RECOVERY} {normal_path(path)} (with this run's --configfile)"
+
+
+def _without_recovery(rule: str) -> str:
+    """A refusal's rule without its closing :func:`_recovery` (when another file's line takes it)."""
+    return rule.split(f"; {_RECOVERY}", 1)[0]

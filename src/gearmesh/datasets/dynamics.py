@@ -36,12 +36,12 @@ from ..dynamics import (
     train_model,
 )
 from ..errors import GearmeshInputError
-from . import variant_name
+from . import one_pair, variant_names
 from ..fe import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import name_force_lines, variable
-from ..limits import (MAX_SPEED_STEPS, same_point, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS, check_slice_grid,
-                      check_speeds, positive_values)
+from ..limits import (BEARING_STIFFNESS, MAX_SPEED_STEPS, same_point, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS,
+                      check_slice_grid, check_speeds, positive_values)
 from ..loads import check_load, check_loads
 from ..ltca import contact_tangent_compliance, with_loaded_extension
 from ..deflection import mesh_misalignment
@@ -51,7 +51,7 @@ from ..meshforce import (DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT
 from ..tca import pair_lead_slope
 from ..stiffness import DEFAULT_SLICES, mesh_stiffness
 from ..schema import check_arguments, check_value, defaults, settings_fields
-from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, pair_excitation
+from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, IMPACT_INDEX, pair_excitation
 from ..settings import Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
@@ -136,6 +136,8 @@ def _bearing(k_radial_N_per_m, k_axial_N_per_m, c_radial_Ns_per_m, c_axial_Ns_pe
                 or (positive and v == 0):
             raise GearmeshInputError(name, v, "must be a positive finite number" if positive
                                      else "must be a non-negative finite number")
+        if positive:  # a stiffness: within what bearings have, in the key's N/m
+            BEARING_STIFFNESS.check(v, name, "N/m")
         out[key] = float(v)
     return out
 
@@ -1082,7 +1084,7 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
 
 def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr.Dataset]) -> xr.Dataset:
     """The energy method beside the dynamics driven by the real contact, per variant and torque at
-    the impact stage's design speed (issue 15): does F_s rank the variants as the dynamics does?
+    the impact stage's design speed: does F_s rank the variants as the dynamics does?
 
     From ``impact.nc``: F_s (closed form and energy balance), the quasi-static mesh-in roll, and
     the undamped engagement simulation's largest excess of the entering pair over its
@@ -1092,8 +1094,9 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
     sweep. Every force transverse (the impact stage's direction: normal × cos βb), so F_s and
     the dynamics stand in one unit. Torques are those both stages ran (pinion torques).
     """
-    names = [variant_name(ds, k) for k, ds in enumerate(impact)]
-    by_name = {variant_name(d, k): d for k, d in enumerate(dynamics)}
+    names = variant_names("impact", impact)
+    by_name = dict(zip(variant_names("dynamics", dynamics), dynamics))
+    one_pair(impact=impact, dynamics=dynamics)
     if set(by_name) != set(names):
         raise GearmeshInputError("variants", sorted(by_name), f"impact and dynamics must cover the same variants "
                                  f"({sorted(names)})")
@@ -1135,13 +1138,21 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
             cols["peak"][v, k] = float(d["mesh_force_max"]) * c
             cols["peak_all"][v, k] = float(dyn.isel(torque=j)["mesh_force_max"].max()) * c
     dims = ("variant", "torque")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        over = {key: np.where(cols[key] > 0, cols["fs"] / cols[key], np.nan) for key in ("sim", "impact")}
     ds = xr.Dataset({
-        "impact_force": variable(dims, cols["fs"], "N", "energy method F_s at the design speed (closed form)"),
+        "impact_force": variable(dims, cols["fs"], "N", f"{IMPACT_INDEX} at the design speed (closed form of the "
+                                                        f"energy method; an index of the impact, not a force the teeth "
+                                                        f"carry)"),
         "impact_force_energy_balance": variable(dims, cols["fs_eb"], "N",
-                                                "energy method by the energy balance at the design speed"),
+                                                f"{IMPACT_INDEX} by the energy balance at the design speed"),
         "simulated_entering_excess": variable(dims, cols["sim"], "N",
                                               "undamped engagement simulation: the entering pair's largest excess "
                                               "over its quasi-static load (NaN: not simulated)"),
+        "impact_index_over_simulated_excess": variable(dims, over["sim"], "1", "F_s over the simulated excess of the "
+                                                       "entering pair (NaN: not simulated)"),
+        "impact_index_over_dynamic_impact": variable(dims, over["impact"], "1", "F_s over the entering pair's excess in "
+                                                     "the steady-state dynamics (NaN: no excess)"),
         "dynamic_impact_force": variable(dims, cols["impact"], "N",
                                          "steady-state dynamics (contact excitation) at the speed nearest the design "
                                          "speed: the entering pair's largest excess over its quasi-static force "

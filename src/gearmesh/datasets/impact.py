@@ -6,29 +6,33 @@ carries ``units`` and ``long_name``. Physics: :mod:`gearmesh.impact`.
 
 from __future__ import annotations
 
+import json
 from typing import Any, Sequence
 
 import numpy as np
 import xarray as xr
 
+from ..choices import IMPACT_INDEX
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
-from . import variant_name
-from ..gear import GEARS, GearPair, pair_geometry
+from . import shared_torques, variant_names
+from ..gear import GEARS, GearPair, load_pair, pair_geometry, pair_to_dict
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
-                      impact_response, impact_static, load_grid, load_window, ltca_criteria, mesh_in_point,
+                      impact_response, impact_static, load_grid, load_window, mesh_in_point,
                       seed_edge_roll, simulate_engagement, vector_velocity)
 from ..io import name_force_lines, variable
 from ..limits import check_speeds, same_point
 from ..ltca import MESH_ORDERS, check_torques, loaded_pinion_torques, pinion_torques
+from ..surface import MODIFICATION_FIELDS
 from ..tca import check_modifications
-from ..tolerance import manufactured_population, study_tolerances, unit_deviations
+from ..robust import CRITERIA, CRITERION_UNITS, design_box_worst, gear_criteria, population_units
+from ..tolerance import manufactured_population, study_population, study_tolerances
 from ..schema import check_arguments, defaults
 from ..settings import Impact
 
 UM = 1e-6
 
-__all__ = ["impact_dataset", "impact_table_dataset", "impact_summary"]
+__all__ = ["impact_dataset", "impact_table_dataset", "impact_summary", "manufactured_gear"]
 
 
 def _model(pair: GearPair, points: int, contact_law: str, method: str, corner_extension: float,
@@ -68,7 +72,7 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
                    method: str, corner_extension: float, simulate_torques_Nm, variant: str = "",
                    fe_compliance: xr.Dataset | None = None, window_positions: int, face_samples: int,
                    design_torque_Nm: float | None, load_window_step_Nm: float | None,
-                   tolerances: dict[str, Any] | None = None) -> xr.Dataset:
+                   tolerance_torques_Nm=None, tolerances: dict[str, Any] | None = None) -> xr.Dataset:
     """Mesh-in impact over a torque × speed grid (dims torque, speed): scenario, mesh-in point
     M (3-D, profile and face position, common normal), impact velocity (closing rate and seed
     000's vector form), local stiffness fit, kinetic energy, impact force (closed form and
@@ -129,7 +133,8 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
     if load_window_step_Nm is not None:
         _add_load_grid(ds, model, t1, float(pinion_torques(geom, [load_window_step_Nm], on, "load_window_step_Nm")[0]),
                        design, energy_velocity)
-    _add_tolerance_spread(ds, model, t1, tolerances, design, energy_velocity)
+    judged = t1 if tolerance_torques_Nm is None else _among(given, t1, tolerance_torques_Nm, "tolerance_torques_Nm")
+    _add_tolerance_spread(ds, model, judged, tolerances, design, energy_velocity)
     ds.attrs.update({"variant": variant, "driver": driver, "torque_on": on, "energy_velocity": energy_velocity,
                      "contact_law": model.ltca.law.name, "tooth_model": model.ltca.method,
                      "design_speed_rpm": design,
@@ -179,9 +184,10 @@ def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, ve
                                          "points of the modified profiles, in the transverse line-of-action coordinate"),
         "kinetic_energy": variable(ts, rs.kinetic_energy[c], "J", "kinetic energy 1/2 m_eq v^2 of the impact"),
         "impact_force": variable(ts, rs.force[c], "N",
-                                 "mesh-in impact force F_s, closed form of the mesh-in impact paper with the fitted K_s, n (transverse)"),
+                                 f"{IMPACT_INDEX}: the mesh-in impact paper's energy method, closed form with the fitted "
+                                 f"K_s, n (transverse; an index of the impact, not a force the teeth carry)"),
         "impact_force_energy_balance": variable(ts, rs.force_energy_balance[c], "N",
-                                                "mesh-in impact force by the energy balance on the computed "
+                                                f"{IMPACT_INDEX} by the energy balance on the computed "
                                                 "force-approach curve (transverse)"),
         "impact_approach": variable(ts, rs.approach_energy_balance[c], "m", "peak approach of the entering pair"),
         "stiffness_coefficient": variable(ts, rs.stiffness_coefficient[c], "N m-n",
@@ -199,6 +205,17 @@ def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, ve
         "rho_eap": variable(("gear",), geom.rho_eap, "m", "roll length of the end of active profile"),
         "face_width": variable((), geom.face_width, "m", "meshing face width"),
     }
+
+
+def _among(given: np.ndarray, t1: np.ndarray, torques, field: str) -> np.ndarray:
+    """The pinion torques of ``torques`` (as given, on the section's gear), each one of ``given``."""
+    out = []
+    for k, t in enumerate(check_torques(torques, field)):
+        match = np.flatnonzero(same_point(given, t))
+        if not match.size:
+            raise GearmeshInputError(f"{field}[{k}]", float(t), "must be one of torques_Nm")
+        out.append(t1[match[0]])
+    return np.array(out)
 
 
 def _design_torque(given: np.ndarray, design_torque_Nm: float | None) -> float:
@@ -233,45 +250,82 @@ def _add_load_grid(ds: xr.Dataset, model: ImpactModel, t1, step: float, design: 
 
 def _add_tolerance_spread(ds: xr.Dataset, model: ImpactModel, t1, tolerances, design: float,
                           energy_velocity: str) -> None:
-    tol, samples, sampling, seed = study_tolerances(model.geom, tolerances)
-    units = unit_deviations(len(tol.dimensions), samples, sampling, seed)
-    if units.shape[0] == 0:
+    """The manufactured gears of the study's ``tolerances`` (:mod:`gearmesh.robust`) at every torque and
+    the design speed: the worst of each criterion over the tolerance box (``box_worst_*``, and the
+    gear, as unit deviations, where it was found), a seeded population beside it for the
+    distributions (``population_*``, gear 0 the nominal; the same deviations for every variant, so
+    the sign-off table compares gear for gear) and a held-out population (``heldout_*``, its own
+    seed) that checks the verdict on gears no optimiser saw; every gear is a pair file again with
+    :func:`gearmesh.robust.manufactured_pair` (``gearmesh manufactured``)."""
+    tol = study_tolerances(model.geom, tolerances)[0]
+    population, seed, heldout, heldout_seed = study_population(tolerances)
+    if not tol.dimensions:
         return
-    rows, lead = manufactured_population(model.geom, tol, model.params(), model.lead_slope, units)
-    force, force_eb, scen = _design_response(model, t1, rows, lead, design, energy_velocity)
-    st = ("tolerance_sample", "torque")
-    ds.coords["tolerance_sample"] = variable(("tolerance_sample",), np.arange(units.shape[0] + 1), "1",
-                                             "manufactured sample (0: the nominal)")
-    ds["tolerance_impact_force"] = variable(st, force, "N", "F_s (closed form) of the nominal (sample 0) and each "
-                                                            "tolerance sample at the design speed")
-    ds["tolerance_impact_force_energy_balance"] = variable(st, force_eb, "N", "F_s (energy balance) of each "
-                                                                              "tolerance sample")
-    ds["tolerance_scenario"] = _scenario_var(st, scen)
-    _add_population_contact(ds, model, t1, rows, lead)
-    ds.attrs.update({"tolerance_samples": int(units.shape[0]), "tolerance_sampling": sampling,
-                     "lead_grade_iso1328": -1 if tol.grade is None else tol.grade,
-                     "toleranced": ", ".join(tol.labels())})
+    params = model.params()[0]
+    dims = tol.labels()
+    ds.coords["criterion"] = variable(("criterion",), np.array(CRITERIA), "1", "sign-off criterion of one gear")
+    ds.coords["judged_torque"] = variable(("judged_torque",), t1, "N m", "pinion torques at which the manufactured "
+                                          "gears are judged")
+    ds.coords["tolerance_dimension"] = variable(("tolerance_dimension",), np.array(dims), "1",
+                                                "toleranced quantity (unit deviation: ±1 its tolerance)")
+    worst, box = design_box_worst(model, tol, params, t1, design, energy_velocity)
+    of = "over the tolerance box at the design speed (the worst manufactured gear, searched)"
+    for k, name in enumerate(CRITERIA):
+        ds[f"box_worst_{name}"] = variable(("judged_torque",), worst.values[:, k], CRITERION_UNITS[name],
+                                           f"{_CRITERION_NAMES[name]}, largest {of}")
+        ds[f"box_worst_units_{name}"] = variable(("judged_torque", "tolerance_dimension"),
+                                                 box.full_units(worst.points[:, k]), "1",
+                                                 f"the manufactured gear of box_worst_{name}: its unit deviations")
+    ds.coords["parameter"] = variable(("parameter",), np.array(MODIFICATION_FIELDS), "1", "modification parameter")
+    for k, name in enumerate(CRITERIA):
+        rows, lead = box.gears(model.geom, params, model.lead_slope, worst.points[:, k])
+        ds[f"box_worst_modification_{name}"] = variable(("judged_torque", "gear", "parameter"), rows, "m",
+                                                        f"modification of the manufactured gear of box_worst_{name}")
+        ds[f"box_worst_lead_slope_{name}"] = variable(("judged_torque", "gear"), lead, "m",
+                                                      f"lead slope deviations of the gear of box_worst_{name}")
+    ds.attrs.update({"box_evaluated": int(worst.evaluated), "box_dimensions": int(box.size)})
+    for prefix, count, seed_, what in (("population", population, seed, "seeded population (gear 0 the nominal)"),
+                                       ("heldout", heldout, heldout_seed, "held-out population")):
+        units = population_units(tol, count, seed_)
+        if prefix == "population":
+            units = np.vstack([np.zeros((1, len(dims))), units])
+        if not units.shape[0]:
+            continue
+        rows, lead = manufactured_population(model.geom, tol, params[None], model.lead_slope, units)
+        rows, lead = rows[1:], lead[1:]  # manufactured_population puts the nominal before the units' gears
+        c = gear_criteria(model, rows, lead, t1, design, energy_velocity,
+                          samples=rows.shape[0] if prefix == "population" else 1)
+        gear = f"{prefix}_gear"
+        ds.coords[gear] = variable((gear,), np.arange(units.shape[0]), "1", f"manufactured gear of the {what}")
+        ds[f"{prefix}_units"] = variable((gear, "tolerance_dimension"), units, "1",
+                                         f"unit deviations of each gear of the {what}")
+        ds[f"{prefix}_modification"] = variable((gear, "gear", "parameter"), rows, "m",
+                                                f"modification of each gear of the {what}, as made")
+        ds[f"{prefix}_lead_slope"] = variable((gear, "gear"), lead, "m",
+                                              f"lead slope deviations of each gear of the {what}")
+        for k, name in enumerate(CRITERIA):
+            ds[f"{prefix}_{name}"] = variable((gear, "judged_torque"), c.values[..., k], CRITERION_UNITS[name],
+                                              f"{_CRITERION_NAMES[name]} of each gear of the {what}")
+        if prefix == "population":
+            ds["population_impact_force_energy_balance"] = variable(
+                (gear, "judged_torque"), c.impact_force_energy_balance, "N", f"F_s by the energy balance, {what}")
+            ds["population_scenario"] = _scenario_var((gear, "judged_torque"), c.scenario)
+    ds.attrs["design_pair_json"] = json.dumps(pair_to_dict(model.geom.pair))
+    ds.attrs.update({"tolerance_population": int(population), "tolerance_seed": int(seed),
+                     "tolerance_heldout": int(heldout), "tolerance_heldout_seed": int(heldout_seed),
+                     "lead_grade_iso1328": -1 if tol.grade is None else tol.grade, "toleranced": ", ".join(dims)})
 
 
-def _add_population_contact(ds: xr.Dataset, model: ImpactModel, t1, rows: np.ndarray, lead: np.ndarray) -> None:
-    """The loaded contact over one mesh cycle of every manufactured gear (``rows``, ``lead``; sample
-    0 the nominal) at each torque: :func:`gearmesh.impact.ltca_criteria` on the impact model's
-    mesh-cycle grid, as the optimiser evaluates its criteria."""
-    c = ltca_criteria(model, t1, rows, lead_slope=lead, samples=rows.shape[0])  # the samples start from the nominal
-    st, sto = ("tolerance_sample", "torque"), ("tolerance_sample", "torque", "mesh_order")
-    of = "of the nominal (sample 0) and each tolerance sample over one mesh cycle (impact model's LTCA)"
-    ds.coords["mesh_order"] = variable(("mesh_order",), np.array(MESH_ORDERS), "1",
-                                       "harmonic order of the mesh frequency")
-    ds["tolerance_lte_peak_to_peak"] = variable(st, c.lte_peak_to_peak, "m", f"peak-to-peak loaded transmission "
-                                                f"error {of}", engineering_units="µm")
-    ds["tolerance_lte_harmonics"] = variable(sto, c.te_harmonics, "m", f"amplitudes of the loaded transmission "
-                                             f"error at the mesh orders {of}", engineering_units="µm")
-    ds["tolerance_peak_flank_pressure"] = variable(st, c.flank_pressure, "Pa", f"largest Hertzian contact pressure "
-                                                   f"on the flanks' active zone (tip edges left out) {of}")
-    ds["tolerance_peak_edge_pressure"] = variable(st, c.edge_pressure, "Pa", f"largest Hertzian contact pressure "
-                                                  f"of a tip edge on the mating flank (0: no edge contact) {of}")
-    ds["tolerance_peak_root_stress"] = variable(st, c.root_stress, "Pa", f"largest tooth-root stress of either gear "
-                                                f"(ISO 6336-3 local form, slice by slice) {of}")
+#: The long names of the sign-off criteria of one gear (:data:`gearmesh.robust.CRITERIA`).
+_CRITERION_NAMES = {"impact_force": "energy-method impact index F_s (closed form, transverse)",
+                    **{f"lte_order_{k}": f"amplitude of the loaded transmission error at mesh order {k}"
+                       for k in MESH_ORDERS},
+                    "peak_flank_pressure": "largest Hertzian contact pressure on the flanks' active zone (tip edges "
+                                           "left out) over one mesh cycle",
+                    "peak_edge_pressure": "largest Hertzian contact pressure of a tip edge on the mating flank "
+                                          "(0: no edge contact) over one mesh cycle",
+                    "peak_root_stress": "largest tooth-root stress of either gear (ISO 6336-3 local form, slice by "
+                                        "slice) over one mesh cycle"}
 
 
 def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, design: float) -> None:
@@ -311,15 +365,13 @@ def _add_simulation(ds: xr.Dataset, model: ImpactModel, given, t1, sim_given, de
 
 
 def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
-    """Seed 000 Table 4's shape: impact force of every variant at every torque at the design
-    speed, with the scenario and the reduction against the ``standard`` variant (%); and, where
-    the impact stage computed them, each variant's load window against ``standard`` and the range
-    of F_s under the study's tolerance samples."""
-    names = [variant_name(ds, k) for k, ds in enumerate(impact)]
-    torque = impact[0]["torque"].values
-    for ds in impact[1:]:
-        if not np.array_equal(ds["torque"].values, torque):
-            raise GearmeshInputError("impact.torques_Nm", None, "must be the same for every variant")
+    """The mesh-in impact paper's table of impact forces: the impact index F_s of every variant at
+    every torque at the design speed, with the scenario and the reduction against the ``standard``
+    variant (%); and, where the impact stage computed them, each variant's load window against
+    ``standard``, the range of F_s under the study's tolerance samples, and at the simulated
+    torques the entering pair's simulated excess over its quasi-static force with F_s over it."""
+    names = variant_names("impact", impact)
+    torque = shared_torques("impact.torques_Nm", names, impact)
     rows = []
     for ds in impact:
         design = float(ds.attrs["design_speed_rpm"])
@@ -329,11 +381,12 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     force = np.array([r[0] for r in rows])
     ref = force[names.index("standard")] if "standard" in names else np.full(torque.size, np.nan)
     dims = ("variant", "torque")
-    extra = _table_windows(impact, names) | _table_spread(impact, names)
+    extra = _table_windows(impact, names) | _table_spread(impact, names) | _table_simulated(impact, force)
     table = xr.Dataset(extra | {
-        "impact_force": variable(dims, force, "N", "mesh-in impact force F_s at the design speed (closed form)"),
+        "impact_force": variable(dims, force, "N", f"{IMPACT_INDEX} at the design speed (closed form of the energy "
+                                                   f"method; an index of the impact, not a force the teeth carry)"),
         "impact_force_energy_balance": variable(dims, np.array([r[1] for r in rows]), "N",
-                                                "impact force by the energy balance at the design speed"),
+                                                f"{IMPACT_INDEX} by the energy balance at the design speed"),
         "scenario": _scenario_var(dims, np.array([r[2] for r in rows])),
         "velocity_transverse": variable(dims, np.array([r[3] for r in rows]), "m s-1", "impact velocity (transverse)"),
         "reduction_percent": variable(dims, 100.0 * (1.0 - force / ref[None, :]), "%",
@@ -342,6 +395,26 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
                "torque": variable(("torque",), torque, "N m", "pinion torque T1")})
     table.attrs.update({key: str(impact[0].attrs.get(key, "")) for key in ("tooth_model", "contact_law")})
     return name_force_lines(table, "transverse")
+
+
+def _table_simulated(impact: Sequence[xr.Dataset], force: np.ndarray) -> dict[str, xr.Variable]:
+    """At the torques whose engagement was simulated in time (design speed; NaN elsewhere): the
+    entering pair's largest excess over its quasi-static force and F_s over it, beside F_s."""
+    if not all("simulated_entering_excess" in ds for ds in impact):
+        return {}
+    excess = np.array([ds["simulated_entering_excess"].values for ds in impact])
+    if not np.isfinite(excess).any():
+        return {}
+    dims = ("variant", "torque")
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.where(excess > 0, force / excess, np.nan)
+    return {
+        "simulated_entering_excess": variable(dims, excess, "N", "direct time integration of the engagement: the "
+                                              "entering pair's largest excess over its quasi-static force"),
+        "impact_index_over_simulated_excess": variable(dims, ratio, "1", "F_s over the simulated excess of the "
+                                                       "entering pair: how far the energy method's index lies above "
+                                                       "what the teeth carry in the time integration"),
+    }
 
 
 def _table_windows(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, xr.Variable]:
@@ -363,17 +436,59 @@ def _table_windows(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, 
 
 
 def _table_spread(impact: Sequence[xr.Dataset], names: list[str]) -> dict[str, xr.Variable]:
-    """F_s of each variant under the tolerance samples: smallest, largest and nominal at each torque."""
-    if not all("tolerance_impact_force" in ds for ds in impact):
+    """F_s of each variant over its manufactured gears at each torque: the smallest of the population,
+    and the largest over the tolerance box (the box worst, or the population's where larger)."""
+    if not all("population_impact_force" in ds for ds in impact):
         return {}
-    dims = ("variant", "torque")
-    spread = np.array([ds["tolerance_impact_force"].values for ds in impact])  # (V, S, T)
+    dims = ("variant", "judged_torque")
+    judged = shared_torques("impact.tolerance_torques_Nm", names, impact, "judged_torque")
+    spread = np.array([ds["population_impact_force"].values for ds in impact])  # (V, S, T)
+    worst = np.maximum(spread.max(axis=1), np.array([ds["box_worst_impact_force"].values for ds in impact]))
     return {
+        "judged_torque": variable(("judged_torque",), judged, "N m", "pinion torques of the manufactured gears"),
         "tolerance_min_impact_force": variable(dims, spread.min(axis=1), "N",
-                                               "smallest F_s over the nominal and the tolerance samples"),
-        "tolerance_max_impact_force": variable(dims, spread.max(axis=1), "N",
-                                               "largest F_s over the nominal and the tolerance samples"),
+                                               "smallest F_s over the manufactured population"),
+        "tolerance_max_impact_force": variable(dims, worst, "N", "largest F_s over the tolerance box (the worst "
+                                               "manufactured gear)"),
     }
+
+
+def manufactured_gear(path, heldout: int | None = None, population: int | None = None, worst: str | None = None,
+                      torque_Nm: float | None = None) -> GearPair:
+    """One manufactured gear of a variant's impact.nc (``path``) as a pair
+    (:func:`gearmesh.robust.manufactured_pair`): gear ``heldout`` of the held-out population, gear
+    ``population`` of the population, or the worst gear over the tolerance box of criterion ``worst``
+    at pinion torque ``torque_Nm``. Refused in one line naming the option otherwise."""
+    from pathlib import Path
+
+    from ..io import read_dataset
+    from ..robust import manufactured_pair
+
+    if not Path(path).is_file():
+        raise GearmeshInputError("impact", str(path), "must be a variant's impact.nc file")
+    try:
+        ds = read_dataset(path)
+    except (OSError, ValueError) as exc:
+        raise GearmeshInputError("impact", str(path), f"cannot be read as netCDF ({type(exc).__name__})") from None
+    if "design_pair_json" not in ds.attrs:
+        raise GearmeshInputError("impact", str(path), "holds no manufactured gears (a study with a tolerances section)")
+    design = load_pair(json.loads(ds.attrs["design_pair_json"]))
+    if worst is not None:
+        if worst not in CRITERIA:
+            raise GearmeshInputError("--worst", worst, f"must be one of {list(CRITERIA)}")
+        judged = ds["judged_torque"].values
+        k = np.flatnonzero(same_point(judged, torque_Nm)) if torque_Nm is not None else np.array([], dtype=int)
+        if not k.size:
+            raise GearmeshInputError("--torque-Nm", torque_Nm, f"must be one of the judged pinion torques "
+                                     f"{judged.tolist()} (N m)")
+        params, lead = (ds[f"box_worst_{what}_{worst}"].values[k[0]] for what in ("modification", "lead_slope"))
+        return manufactured_pair(design.with_changes(name=f"{design.name}_worst_{worst}"), params, lead)
+    prefix, gear = ("heldout", heldout) if heldout is not None else ("population", population)
+    size = ds.sizes.get(f"{prefix}_gear", 0)
+    if gear is None or not 0 <= gear < size:
+        raise GearmeshInputError(f"--{prefix}", gear, f"must be a gear 0 ... {size - 1} of the {prefix} population")
+    return manufactured_pair(design.with_changes(name=f"{design.name}_{prefix}_{gear}"),
+                             ds[f"{prefix}_modification"].values[gear], ds[f"{prefix}_lead_slope"].values[gear])
 
 
 @check_arguments(Impact)
@@ -399,9 +514,8 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str
         "scenario": scen,
         "impact_force_transverse_N": float(resp.force[0, 0, 0]),
         "impact_force_energy_balance_transverse_N": float(resp.force_energy_balance[0, 0, 0]),
-        "impact_velocity_m_per_s": float(resp.velocity_normal[0, 0, 0]),
+        "impact_velocity_normal_m_per_s": float(resp.velocity_normal[0, 0, 0]),
         "impact_velocity_transverse_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
-        "impact_velocity_closing_rate_m_per_s": float(resp.velocity_transverse[0, 0, 0]),
         "approach_at_mesh_in_um": float(static.approach[0, 0]) * um,
         "te_at_engagement_um": float(static.te_engagement[0, 0]) * um,
         "lte_at_engagement_um": float(static.lte_engagement[0, 0]) * um,
@@ -414,7 +528,7 @@ def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str
     }
     if scen != "none":
         vec = vector_velocity(model, static, float(speed[0]))
-        out["impact_velocity_vector_form_m_per_s"] = vec["transverse_equivalent"]
+        out["impact_velocity_vector_form_transverse_m_per_s"] = vec["transverse_equivalent"]
         p = mesh_in_point(model, static)
         x, y, z = (float(v) * mm for v in p["point_pinion"])
         out["mesh_in_point"] = {"x_mm": x, "y_mm": y, "z_mm": z, "pinion_radius_mm": p["pinion_radius"] * mm,

@@ -16,13 +16,13 @@ import xarray as xr
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
-from . import variant_name
+from . import shared_torques, variant_names
 from ..io import name_force_lines, variable
 from ..limits import check_contact_grid, same_point
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, ltca
 from ..tca import TCAResult, check_modifications, tca
 from ..schema import check_arguments
-from ..body import describe_body
+from ..body import describe_body, mesh_body_compliance
 from ..deflection import describe_deflection
 from ..settings import Ltca, Tca
 
@@ -127,8 +127,9 @@ def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, on:
     Loaded TE, load and line load of every point (the contact pattern), load per tooth
     pair, maximum line load, tangent mesh stiffness dF/dδ, pairs in contact, load on tip
     edges, and LTE at the start of engagement φ1A beside the entering pair's unloaded
-    separation there (seed 000: edge contact when LTE(φ1A) > TE(φ1A)). Also carries the
-    TCA variables of :func:`tca_dataset` on the same grid.
+    separation there and whether the entering pair touches before A
+    (:func:`teeth_approach_at_engagement`). Also carries the TCA variables of
+    :func:`tca_dataset` on the same grid.
 
     ``torques_Nm`` torques (N·m) on the pinion, or on the gear with ``on='gear'`` (then
     T1 = T2·z1/z2); ``contact_law`` 'palmgren' or 'linear'; ``method`` the slice model
@@ -144,11 +145,28 @@ def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, on:
     return _ltca_to_dataset(geom, res, given, on)
 
 
+def teeth_approach_at_engagement(geom, res: LTCAResult) -> np.ndarray:
+    """The loaded approach at the start of engagement φ1A that closes the entering pair's
+    separation (T,), m: the LTE there less what the gear bodies' deflection adds in series
+    (c_body·F, :mod:`gearmesh.body`). The bodies carry every tooth of a gear alike, the entering
+    tooth with the loaded ones, so their deflection turns the gears without closing the entering
+    pair's gap; the teeth's deflection does. It is the approach the impact stage compares with
+    the same separation (``lte_at_engagement`` of impact.nc). The mesh-in impact paper's
+    criterion (Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears): the
+    entering pair touches before A when this approach exceeds its unloaded separation TE(φ1A)."""
+    return res.lte_at_engagement - mesh_body_compliance(geom) * res.force
+
+
+def _touches_before_engagement(geom, res: LTCAResult) -> np.ndarray:
+    """Per torque: does the entering pair touch before A (:func:`teeth_approach_at_engagement`)."""
+    return teeth_approach_at_engagement(geom, res) > res.tca.te_next_pair_at_engagement
+
+
 def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Dataset:
     data = _tca_variables(geom, res.tca)
     tp, tpjn = ("torque", "position"), ("torque", "position", "line", "point")
     lte_pp = np.ptp(res.lte, axis=1)
-    edge = res.lte_at_engagement > res.tca.te_next_pair_at_engagement
+    early = _touches_before_engagement(geom, res)
     data.update({
         "torque_input": variable(("torque",), given, "N m", f"torque as given, on the {on}"),
         "force": variable(("torque",), res.force, "N", "transverse force along the line of action F_bt = T1/r_b1"),
@@ -169,9 +187,10 @@ def _ltca_to_dataset(geom, res: LTCAResult, given: np.ndarray, on: str) -> xr.Da
                                                         "loaded mesh stiffness at phi_1A"),
         "corner_load_at_engagement": variable(("torque",), res.corner_load_at_engagement, "N",
                                               "load on tip edges at phi_1A"),
-        "edge_contact_at_engagement": variable(("torque",), edge.astype(np.int8), "1",
-                                               "1 when LTE(phi_1A) exceeds the entering pair's separation "
-                                               "(tip-to-flank edge contact)"),
+        "lte_teeth_at_engagement": variable(("torque",), teeth_approach_at_engagement(geom, res), "m",
+                                            "loaded TE of the teeth at phi_1A (the bodies' deflection, which moves "
+                                            "the entering tooth with the loaded ones, left out)"),
+        "touches_before_engagement": _before_a_flag(("torque",), early),
         "lte_mean": variable(("torque",), res.lte.mean(axis=1), "m", "mean loaded TE over the mesh cycle"),
         "lte_peak_to_peak": variable(("torque",), lte_pp, "m", "peak-to-peak loaded TE"),
         "max_line_load_cycle": variable(("torque",), res.max_line_load.max(axis=1), "N m-1",
@@ -245,10 +264,10 @@ def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: 
         "te_max_um": float(np.nanmax(res.tca.te)) * um,
         "lte_mean_um": float(lte.mean()) * um,
         "lte_peak_to_peak_um": float(np.ptp(lte)) * um,
-        "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
-        "loaded_mesh_stiffness_mean_N_per_um": float(res.stiffness.mean()) * 1e-6,
-        "loaded_mesh_stiffness_min_N_per_um": float(res.stiffness.min()) * 1e-6,
-        "loaded_mesh_stiffness_max_N_per_um": float(res.stiffness.max()) * 1e-6,
+        "max_line_load_normal_N_per_mm": float(res.max_line_load.max()) * 1e-3,
+        "loaded_mesh_stiffness_mean_transverse_N_per_um": float(res.stiffness.mean()) * 1e-6,
+        "loaded_mesh_stiffness_min_transverse_N_per_um": float(res.stiffness.min()) * 1e-6,
+        "loaded_mesh_stiffness_max_transverse_N_per_um": float(res.stiffness.max()) * 1e-6,
         "pairs_in_contact_min": int(res.pairs_in_contact.min()),
         "pairs_in_contact_max": int(res.pairs_in_contact.max()),
         "corner_load_max_transverse_N": float(res.corner_load.max()),
@@ -256,7 +275,8 @@ def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: 
         "te_at_engagement_um": res.tca.te_at_engagement * um,
         "te_next_pair_at_engagement_um": res.tca.te_next_pair_at_engagement * um,
         "lte_at_engagement_um": float(res.lte_at_engagement[0]) * um,
-        "edge_contact_at_engagement": bool(res.lte_at_engagement[0] > res.tca.te_next_pair_at_engagement),
+        "lte_teeth_at_engagement_um": float(teeth_approach_at_engagement(geom, res)[0]) * um,
+        "touches_before_engagement": bool(_touches_before_engagement(geom, res)[0]),
         **orders,
         "peak_flank_pressure_MPa": float(np.where(c.edge[0], 0.0, c.pressure[0]).max()) * mpa,
         "peak_edge_pressure_MPa": float(np.where(c.edge[0], c.pressure[0], 0.0).max()) * mpa,
@@ -273,27 +293,33 @@ def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: 
     }
 
 
+def _before_a_flag(dims: tuple[str, ...], early: np.ndarray) -> xr.Variable:
+    """When the entering pair first touches, as a CF flag: before the theoretical start of
+    engagement A (off the line of action, on the mating gear's tip edge) or at or after it. Where
+    on the flank it touches (tip edge or modified flank, the ``scenario`` of impact.nc) is the
+    impact stage's answer: near a face end a tip edge can also touch just after A."""
+    flag = variable(dims, np.asarray(early, dtype=np.int8), "1",
+                    "when the entering pair first touches: before the start of engagement A (the teeth's loaded TE "
+                    "at phi_1A exceeds its unloaded separation there) or at or after A")
+    flag.attrs.update(flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="after_A before_A")
+    return flag
+
+
 def lte_table_dataset(ltca: Sequence[xr.Dataset]) -> xr.Dataset:
     """The loaded transmission error of every micro-geometry variant of a pair at every torque:
-    mean and peak-to-peak over the mesh cycle and how the entering pair meets (tip-to-flank edge
-    or flank-to-flank surface contact at the start of engagement), taken from the variants'
-    ``ltca.nc`` as they are (the report's landing page quotes this table). The variants must
-    share their torques."""
-    names = [variant_name(ds, k) for k, ds in enumerate(ltca)]
-    torque = ltca[0]["torque"].values
-    for ds in ltca[1:]:
-        if not np.array_equal(ds["torque"].values, torque):
-            raise GearmeshInputError("ltca.torques_Nm", None, "must be the same for every variant")
+    mean and peak-to-peak over the mesh cycle and whether the entering pair touches before the
+    start of engagement A, taken from the variants' ``ltca.nc`` as they are (the report's
+    landing page quotes this table). The variants must share their torques."""
+    names = variant_names("ltca", ltca)
+    torque = shared_torques("ltca.torques_Nm", names, ltca)
     dims = ("variant", "torque")
-    entry = variable(dims, np.array([ds["edge_contact_at_engagement"].values for ds in ltca], dtype=np.int8), "1",
-                     "how the entering pair meets at the start of engagement phi_1A")
-    entry.attrs.update(flag_values=np.array([0, 1], dtype=np.int8), flag_meanings="surface edge")
+    first_touch = _before_a_flag(dims, np.array([ds["touches_before_engagement"].values for ds in ltca]))
     return xr.Dataset({
         "lte_mean": variable(dims, np.array([ds["lte_mean"].values for ds in ltca]), "m",
                              "mean loaded transmission error over the mesh cycle", engineering_units="µm"),
         "lte_peak_to_peak": variable(dims, np.array([ds["lte_peak_to_peak"].values for ds in ltca]), "m",
                                      "peak-to-peak loaded transmission error", engineering_units="µm"),
-        "entry": entry,
+        "first_touch": first_touch,
     }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
                "torque": variable(("torque",), torque, "N m", "pinion torque T1")})
 

@@ -21,10 +21,12 @@ from typing import Any, Mapping
 import numpy as np
 import xarray as xr
 
+from ..choices import DEFAULT_CYCLE_POSITIONS
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
-from ..gear import GEARS, GearPair, Modification, pair_geometry
+from ..gear import GEARS, MODIFICATION_UNITS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model
+from ..robust import CRITERIA, CRITERION_UNITS
 from ..io import name_force_lines, variable
 from ..loads import check_load
 from ..ltca import MESH_ORDERS, loaded_pinion_torques, pinion_torques
@@ -67,7 +69,7 @@ def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", 
                  fixed: Mapping[str, Any] | None = None, constraints: Mapping[str, Any] | None = None,
                  random_baseline: bool = False, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
                  keep_elitism: int = 2, points: int | None = None, window_positions: int | None = None,
-                 face_samples: int | None = None, cycle_positions: int = 32, contact_law: str | None = None,
+                 face_samples: int | None = None, cycle_positions: int = DEFAULT_CYCLE_POSITIONS, contact_law: str | None = None,
                  corner_extension: float | None = None, impact: Mapping[str, Any] | None = None,
                  tolerances: Mapping[str, Any] | None = None, dynamic_speeds_rpm=None, backlash_um="pair",
                  pareto_objectives=("impact", "lte")):
@@ -227,7 +229,6 @@ def _history_variables(result: OptimisationResult, prefix: str, label: str) -> d
         f"{prefix}population": variable(("generation", "candidate", "gene"), _si(result, h["genes"]), "m",
                                         f"{label}: gene values of each candidate (before the validity repair)"),
         f"{prefix}evaluations": variable((), np.int64(result.evaluations), "1", f"{label}: distinct candidates evaluated"),
-        f"{prefix}wall_time": variable((), result.wall_s, "s", f"{label}: wall time of the run"),
     }
     if np.isfinite(h["lte"]).any():
         out[f"{prefix}lte_peak_to_peak"] = variable(gc, h["lte"], "m", f"{label}: peak-to-peak LTE at the design "
@@ -297,6 +298,36 @@ def optimise_dataset(pair: GearPair, fe_compliance: xr.Dataset | None = None, **
     if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
         use_fe_tables(fe_compliance, pair_geometry(pair))
     return result_dataset(optimise(run_problem(pair, **settings)), settings)
+
+
+def _verification_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
+    """The optimum checked on its own tolerance box (:class:`gearmesh.optimise.Verification`)."""
+    v = result.verification
+    if v is None:
+        return {}
+    t = ("objective_torque",)
+    how = ("searched" if v.searched else "the search's first stage, the corners at five lead mismatches: a lower "
+           "bound")
+    out = {f"verified_worst_{name}": variable(t, v.worst.values[:, k], CRITERION_UNITS[name],
+                                              f"optimum: {name.replace('_', ' ')} of its worst manufactured gear over "
+                                              f"the tolerance box ({how})")
+           for k, name in enumerate(CRITERIA)}
+    reference = result.problem.reference
+    out |= {f"reference_worst_{name}": variable(t, reference.values[:, k], CRITERION_UNITS[name],
+                                                f"standard gear: {name.replace('_', ' ')} of its worst manufactured "
+                                                "gear over the tolerance box")
+            for k, name in enumerate(CRITERIA)}
+    out |= {
+        "verified_violation": variable((), v.violation, "1", "optimum: the constraints' summed relative excess on "
+                                       "its worst manufactured gears (0: every constraint met on the tolerance box)"),
+        "verified_rank": variable((), np.int64(v.rank), "1", "optimum's place among the run's candidates, best "
+                                  "first (0: the run's best met the constraints on its tolerance box)"),
+        "verified_tried": variable((), np.int64(v.tried), "1", "candidates checked on their tolerance box"),
+        "verified_searched": variable((), np.int8(v.searched), "1", "optimum's tolerance box searched in full (1), or "
+                                      "its first stage alone (0: refused on it, its worst and violation lower bounds; "
+                                      "the sign-off's impact stage searches it in full)"),
+    }
+    return out
 
 
 def _diagnostic_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
@@ -393,6 +424,7 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
                                                "standard gear: largest line load at the design torque"),
         })
     data.update(_criteria_variables(result))
+    data.update(_verification_variables(result))
     if constraint_factors(s):  # the unmodified pair as a candidate of this run: its J with the penalties
         data["standard_penalised_objective"] = variable((), standard_penalised_objective(prob), units,
                                                         f"standard gear as a candidate: {what} with the "
@@ -428,6 +460,8 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
                                    "toleranced quantity: gear.pair-file key, or gear.lead_slope_deviation_um (ISO 1328-1 f_Hbeta)"),
             "bound": variable(("bound",), np.array(["low", "high"]), "1", "ends of the load window"),
         })
+    if result.verification is not None:
+        coords["criterion"] = variable(("criterion",), np.array(CRITERIA), "1", "sign-off criterion of one gear")
     ds = xr.Dataset(data_vars=data, coords=coords)
     ds.attrs.update({
         "method": s.method, "seed": s.seed, "objective": s.objective, "objective_statistic": s.statistic,
@@ -441,17 +475,44 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         "pareto_objectives": ",".join(s.pareto_objectives) if s.method == "nsga2" else "",
         "constraints": json.dumps(constraint_factors(s), sort_keys=True),
         "settings_json": json.dumps(dict(settings or {}), sort_keys=True, default=str),
+        # measured times: attributes, not data (gearmesh.io.TIMING_SUFFIX: the job's log, not the file)
+        "wall_seconds": result.wall_s,
+        **({"random_wall_seconds": result.baseline.wall_s} if result.baseline is not None else {}),
     })
     return name_force_lines(ds, "transverse")
 
 
+#: The resolution an optimum's pair file states its modification to, per gene unit (µm: depths,
+#: mm: lengths): 0.01 µm and 0.001 mm, a tenth of what a gear measuring machine resolves (0.1 µm)
+#: and far below a drawing's tolerance on a relief (±2 µm in the default study), so the file says
+#: what can be made and measured and no digits beyond (ga.nc keeps the optimiser's full values).
+MANUFACTURING_RESOLUTION = {"um": 0.01, "mm": 0.001}
+
+
+def _drawing_value(value: float, unit: str, down: bool = False) -> float:
+    """A modification parameter (m) to :data:`MANUFACTURING_RESOLUTION`: to the nearest step, or
+    the step below (a length that rounded up would leave the active flank)."""
+    step = MANUFACTURING_RESOLUTION[unit] * _TO_SI[unit]
+    n = math.floor(value / step) if down else round(value / step)
+    return float(np.round(n * MANUFACTURING_RESOLUTION[unit], 6)) * _TO_SI[unit]
+
+
 def optimum_pair(pair: GearPair, ds: xr.Dataset, name: str | None = None) -> GearPair:
-    """``pair`` carrying the optimum modification of ga.nc (both gears, as applied); ``name`` a new
-    pair name (a pair file's name is its file name)."""
+    """``pair`` carrying the optimum modification of ga.nc (both gears, as applied) to the drawing's
+    resolution (:data:`MANUFACTURING_RESOLUTION`); ``name`` a new pair name (a pair file's name is
+    its file name)."""
     p = ds["optimum_modification"].values
-    mods = tuple(Modification(**{f: float(p[g, k]) for k, f in enumerate(MODIFICATION_FIELDS)}) for g in range(2))
-    out = pair.with_changes(modification=mods, **({"name": name} if name else {}))
-    pair_geometry(out)  # validity (lengths, depths) by construction; checked here once more
+    units = [MODIFICATION_UNITS[f] for f in MODIFICATION_FIELDS]
+    for down in (False, True):
+        mods = tuple(Modification(**{f: _drawing_value(float(p[g, k]), units[k], down)
+                                     for k, f in enumerate(MODIFICATION_FIELDS)}) for g in range(2))
+        out = pair.with_changes(modification=mods, **({"name": name} if name else {}))
+        try:
+            pair_geometry(out)  # validity (lengths, depths) by construction; checked here once more
+            return out
+        except GearmeshInputError:
+            if down:
+                raise
     return out
 
 
@@ -538,8 +599,8 @@ def optimum_notes(prob, diagnostics) -> list[str]:
     grid = diagnostics.window_torque
     if math.isfinite(high) and high >= grid[-1]:
         notes.append(f"load window: its upper end {high:g} N m (pinion) is the end of the window's torque grid, not "
-                     "where the optimum stops beating the standard gear; that lies beyond (raise load_window_top_Nm "
-                     "to find it)")
+                     "where the optimum stops beating the standard gear; that lies beyond (the grid ends at 1.25 "
+                     "times the largest spectrum torque, or below where the load limits stop it)")
     if math.isfinite(low) and low <= grid[0]:
         notes.append(f"load window: its lower end {low:g} N m (pinion) is the start of the window's torque grid")
     return notes

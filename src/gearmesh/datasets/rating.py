@@ -15,12 +15,13 @@ import numpy as np
 import xarray as xr
 
 from ..errors import GearmeshInputError
-from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry, pair_notes
+from ..gear import GEARS, GearPair, Modification, PairGeometry, missing_key, pair_geometry, pair_notes
 from ..io import variable
-from . import variant_name
-from ..limits import check_contact_grid
+from . import shared_torques, variant_names
+from ..limits import check_contact_grid, check_speeds
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
-from ..rating import face_factor_root, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
+from ..rating import (check_factors, face_factor_root, ltca_load_factors, rated_transverse_factor, rating,
+                      rating_inputs)
 from ..schema import check_arguments, defaults
 from ..settings import Rating
 
@@ -195,14 +196,25 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
     if life_hours is not None and (isinstance(life_hours, bool) or not isinstance(life_hours, (int, float))
                                    or not math.isfinite(life_hours) or life_hours <= 0):
         raise GearmeshInputError("life_hours", life_hours, "must be a positive number (h)")
-    if isinstance(application_factor, bool) or not isinstance(application_factor, (int, float)) \
-            or not math.isfinite(application_factor) or application_factor < 1:
+    if isinstance(application_factor, bool) or not isinstance(application_factor, (int, float)):
         raise GearmeshInputError("application_factor", application_factor, "must be a number ≥ 1 (ISO 6336-1 K_A)")
+    try:
+        check_factors({"K_A": application_factor})
+    except GearmeshInputError as exc:
+        raise GearmeshInputError("application_factor", application_factor, exc.rule) from None
+    check_factors(factors)  # every input checked before the LTCA, the expensive step
     inputs = rating_inputs(dict(pair.rating_inputs))
     geom = pair_geometry(pair)
+    check_speeds(geom, speed_rpm, "speed_rpm", on=on)  # not above the burst speed of the faster tip circle
     positions, points = check_contact_grid(positions, points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     speed1 = speed_rpm if on == "pinion" else speed_rpm * pair.teeth[1] / pair.teeth[0]
+    if method == "iso" and pair.bore_radius is None:  # the standard's factors need no LTCA, the LTCA a bore
+        r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method)
+        return {"name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "method": method, **r.values,
+                "factors_given": r.given, "factor_sources": r.sources, "gears": list(GEARS),
+                "notes": pair_notes(pair) + r.notes + [f"the LTCA's contact pressure and root stress not computed: "
+                                                       f"{missing_key('bore_radius_mm').rule}"]}
     res = ltca(geom, t1, positions, points, None, "pinion")
     lc = load_capacity(geom, res, reference_ltca(geom, res))
     k_ha = float(rated_transverse_factor(lc["K_Halpha"][0]))
@@ -223,7 +235,7 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
         "K_Hbeta": float(lc["K_Hbeta_rated"][0]), "K_Fbeta": float(lc["K_Fbeta_rated"][0]), "K_Halpha": k_ha,
         "K_Falpha": k_ha, "K_Hbeta_as_is": float(lc["K_Hbeta"][0]),
         "mesh_misalignment_rated_um": float(lc["rated_misalignment"][0]) * 1e6, "f_ma_source": lc["f_ma_source"],
-        "max_line_load_N_per_mm": float(res.max_line_load.max()) * 1e-3,
+        "max_line_load_normal_N_per_mm": float(res.max_line_load.max()) * 1e-3,
         **_fe_root_check(geom, res, root),
     }
     notes = pair_notes(pair) + r.notes + sc.notes()
@@ -246,6 +258,7 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
         raise GearmeshInputError("ltca", type(ltca).__name__, "must be an ltca.nc dataset with its load-capacity "
                                  "variables")
     geom = pair_geometry(pair)
+    check_speeds(geom, speed_rpm, "speed_rpm")  # not above the burst speed of the faster tip circle
     inputs = rating_inputs(dict(pair.rating_inputs))
     torques = ltca["torque"].values
     rows = []
@@ -293,15 +306,13 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
     return ds
 
 
-def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
+def load_capacity_table_dataset(rating: Sequence[xr.Dataset], scuffing: Sequence[xr.Dataset] = ()) -> xr.Dataset:
     """The load capacity of every variant of a pair side by side (variant × torque): S_H and S_F of the
-    weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear."""
-    names = [variant_name(ds, k) for k, ds in enumerate(rating)]
-    torques = rating[0]["torque"].values
-    for name, ds in zip(names, rating):
-        if ds.sizes["torque"] != torques.size or not np.allclose(ds["torque"].values, torques, rtol=1e-12):
-            raise GearmeshInputError("ltca.torques_Nm", ds["torque"].values.tolist(),
-                                     f"must be the same for every variant ({name})")
+    weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear, and
+    with the variants' ``scuffing`` datasets (the study runs the scuffing stage) S_B and S_intS."""
+    names = variant_names("rating", rating)
+    torques = shared_torques("ltca.torques_Nm", names, rating)
+    scuffed = _scuffing_columns(names, torques, scuffing)
     stack = lambda key, f: np.array([f(ds[key].values) for ds in rating])  # noqa: E731
     dims = ("variant", "torque")
     return xr.Dataset({
@@ -317,5 +328,26 @@ def load_capacity_table_dataset(rating: Sequence[xr.Dataset]) -> xr.Dataset:
         "K_Hbeta": variable(dims, stack("K_Hbeta", lambda v: v), "1", "face load factor K_Hbeta the rating used"),
         "shaft_misalignment": variable(dims, stack("shaft_misalignment", lambda v: v), "m",
                                        "f_sh: the system deflection's lead mismatch", engineering_units="µm"),
+        **scuffed,
     }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
                "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
+
+
+def _scuffing_columns(names: Sequence[str], torques: np.ndarray, scuffing: Sequence[xr.Dataset]) -> dict:
+    """S_B and S_intS of each variant (``names``, in order) at ``torques`` from the variants' scuffing.nc."""
+    if not scuffing:
+        return {}
+    by = dict(zip(variant_names("scuffing", scuffing), scuffing))
+    if set(by) != set(names):
+        raise GearmeshInputError("variants", sorted(by), f"scuffing and rating must cover the same variants "
+                                 f"({sorted(names)})")
+    ordered = [by[n] for n in names]
+    if not np.allclose(shared_torques("ltca.torques_Nm", names, ordered), torques, rtol=1e-12):
+        raise GearmeshInputError("ltca.torques_Nm", ordered[0]["torque"].values.tolist(),
+                                 "must be the same for the scuffing and the rating stages")
+    out = {}
+    for key in ("scuffing_safety_flash", "scuffing_safety_integral"):
+        first = ordered[0][key]
+        out[key] = variable(("variant", "torque"), np.array([ds[key].values for ds in ordered]),
+                            first.attrs["units"], first.attrs["long_name"])
+    return out

@@ -1,35 +1,69 @@
-"""Scuffing load capacity of an LTCA (:mod:`gearmesh.scuffing`): its variables, ready for a
-per-variant stage, and the keys of ``gearmesh rating --json``.
+"""Scuffing load capacity of an LTCA (:mod:`gearmesh.scuffing`): the scuffing stage's dataset
+(scuffing.nc, per variant, from the variant's ltca.nc and rating.nc), the table of a pair's
+variants, and the keys of ``gearmesh rating --json``. The stage and the CLI compute through the
+one function :func:`scuffing_of`.
 
-The load factors are the rating's (:func:`gearmesh.rating.rating`, method 'ltca' with the LTCA's
-own K_Hβ and K_Hα): the LTCA's line load is scaled by K_A K_v, and μ_mC takes the rating's
-w_Bt = K_A K_v K_Hβ K_Hα F_t/b.
+The load factors are the rating's (:func:`gearmesh.rating.rating`; the study's rating section:
+its speed, K_A and where K_Hβ, K_Hα come from): the LTCA's line load is scaled by K_A K_v, and
+μ_mC takes the rating's w_Bt = K_A K_v K_Hβ K_Hα F_t/b.
 """
 
 from __future__ import annotations
 
-from typing import Any, Mapping
+from dataclasses import dataclass
+from typing import Any, Mapping, Sequence
 
 import numpy as np
 import xarray as xr
 
-from ..gear import PairGeometry
+from . import shared_torques, variant_names
+from ..gear import GearPair, PairGeometry, pair_geometry
 from ..io import variable
+from ..errors import GearmeshInputError
 from ..ltca import LTCAResult
-from ..rating import RatingInputs, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
+from ..rating import RatingInputs, rating_inputs
+from ..schema import check_arguments
 from ..scuffing import ScuffingRating, scuffing_rating
+from ..settings import Scuffing
 
-__all__ = ["PATH_BINS", "scuffing_of", "scuffing_json", "scuffing_variables"]
-
-#: Bins of the path of contact A–E in which the flash temperature's largest value over the face
-#: is drawn (``flash_temperature_path``).
-PATH_BINS = 48
+__all__ = ["LoadedContact", "scuffing_of", "scuffing_json", "rated_factors", "scuffing_variables",
+           "scuffing_dataset", "scuffing_table_dataset"]
 
 
-def scuffing_of(geom: PairGeometry, res: LTCAResult, speed_rpm: float, inputs: RatingInputs,
-                rated: list[Mapping[str, Any]]) -> ScuffingRating:
-    """:func:`gearmesh.scuffing.scuffing_rating` of ``res`` at pinion speed ``speed_rpm`` with the load
-    factors of ``rated`` (the rating's values at each of ``res``'s torques)."""
+@dataclass(frozen=True)
+class _PathGrid:
+    """An LTCA's candidate grid as far as the path of contact needs it (arrays (P, J, N)):
+    ``region`` (1: flank between A and E), ``s`` (m from A), the roll lengths ``rho_pinion``,
+    ``rho_gear`` (m)."""
+
+    region: np.ndarray
+    s: np.ndarray
+    rho_pinion: np.ndarray
+    rho_gear: np.ndarray
+
+
+@dataclass(frozen=True)
+class LoadedContact:
+    """An LTCA's ``line_load`` (T, P, J, N) N/m on its ``grid`` at its pinion torques ``torque``
+    (N·m): what :func:`scuffing_of` rates, from an LTCA result or read back from ltca.nc."""
+
+    line_load: np.ndarray
+    grid: Any
+    torque: np.ndarray
+
+    @classmethod
+    def of(cls, ltca: LTCAResult | xr.Dataset) -> "LoadedContact":
+        if isinstance(ltca, xr.Dataset):
+            grid = _PathGrid(*(ltca[k].values for k in ("region", "s", "rho_pinion", "rho_gear")))
+            return cls(ltca["line_load"].values, grid, ltca["torque"].values)
+        return cls(ltca.line_load, ltca.grid, np.asarray(ltca.torque, dtype=float))
+
+
+def scuffing_of(geom: PairGeometry, res: LTCAResult | LoadedContact, speed_rpm: float, inputs: RatingInputs,
+                rated: Sequence[Mapping[str, Any]]) -> ScuffingRating:
+    """:func:`gearmesh.scuffing.scuffing_rating` of the LTCA ``res`` (a result, or ltca.nc read
+    back: :class:`LoadedContact`) at pinion speed ``speed_rpm`` with the load factors of ``rated``
+    (the rating's values at each of its torques: K_A, K_v, K_Hbeta, K_Halpha, force_tangential_N)."""
     load_factor = [v["K_A"] * v["K_v"] for v in rated]
     w_bt = [v["K_A"] * v["K_v"] * v["K_Hbeta"] * v["K_Halpha"] * v["force_tangential_N"] / (geom.face_width * 1e3)
             for v in rated]
@@ -51,35 +85,43 @@ def scuffing_json(sc: ScuffingRating, k: int = 0) -> dict[str, Any]:
                          "oil_viscosity_mm2_s": sc.viscosity_oil}}
 
 
-def _along_path(geom: PairGeometry, sc: ScuffingRating) -> tuple[np.ndarray, np.ndarray]:
-    """Bin centres (m from A) and the largest flash temperature over the face in each bin (T, bins)."""
-    edges = np.linspace(0.0, geom.path_of_contact, PATH_BINS + 1)
-    where = np.clip(np.digitize(sc.path.s, edges) - 1, 0, PATH_BINS - 1)
-    out = np.full((sc.flash.shape[0], PATH_BINS), np.nan)
-    on = sc.path.on_path
+def rated_factors(geom: PairGeometry, rating: xr.Dataset) -> list[dict[str, float]]:
+    """The rating's load factors at each torque of rating.nc (its ``K_v``, ``K_Hbeta``,
+    ``K_Halpha`` and K_A, as :func:`gearmesh.datasets.rating.rating_dataset` rated them) with the
+    nominal tangential force F_t = 2 T1/d1 at the reference circle (ISO 6336-1:2019, 6.1), the
+    values :func:`scuffing_of` takes."""
+    k_a = float(rating.attrs["application_factor"])
+    return [{"K_A": k_a, "K_v": float(rating["K_v"].values[k]), "K_Hbeta": float(rating["K_Hbeta"].values[k]),
+             "K_Halpha": float(rating["K_Halpha"].values[k]),
+             "force_tangential_N": float(t1) / float(geom.reference_radius[0])}
+            for k, t1 in enumerate(rating["torque"].values)]
+
+
+def _along_path(geom: PairGeometry, sc: ScuffingRating, line_load: np.ndarray, bins: int
+                ) -> tuple[np.ndarray, np.ndarray]:
+    """Bin centres (m from A) and the largest flash temperature over the face in each bin of the
+    path A–E (T, bins): NaN where no point of the bin carries load (no contact there, e.g. under a
+    tip relief), which is not a flash temperature of zero."""
+    edges = np.linspace(0.0, geom.path_of_contact, bins + 1)
+    where = np.clip(np.digitize(sc.path.s, edges) - 1, 0, bins - 1)
+    out = np.full((sc.flash.shape[0], bins), -np.inf)
     for t in range(out.shape[0]):
-        np.fmax.at(out[t], where[on], sc.flash[t][on])
-    return 0.5 * (edges[:-1] + edges[1:]), out
+        loaded = sc.path.on_path & (line_load[t] > 0)
+        np.maximum.at(out[t], where[loaded], sc.flash[t][loaded])
+    return 0.5 * (edges[:-1] + edges[1:]), np.where(np.isfinite(out), out, np.nan)
 
 
-def scuffing_variables(geom: PairGeometry, ltca_result: LTCAResult, speed_rpm: float,
-                       inputs: RatingInputs | None = None, application_factor: float = 1.0,
-                       reference: LTCAResult | None = None) -> dict[str, xr.DataArray]:
-    """The scuffing rating of an LTCA at pinion speed ``speed_rpm`` as variables (units and long
-    names; temperatures in °C, their rises in K): the flash temperature of every point and its
-    largest value over the face along the path, the flash and integral methods' temperatures and
-    safety factors per torque. ``inputs`` the rating inputs (default: the pair's); K_v by ISO
-    6336-1 method C and K_Hβ, K_Hα from the LTCA (``reference`` the unmodified pair's LTCA)."""
-    inputs = inputs or rating_inputs(dict(geom.pair.rating_inputs))
-    lf = ltca_load_factors(ltca_result.load, None if reference is None else reference.load)
-    rated = [rating(geom, float(t), speed_rpm, inputs, application_factor, None, None, "ltca",
-                    {"K_Hbeta": float(lf["K_Hbeta"][k]), "K_Halpha": float(rated_transverse_factor(lf["K_Halpha"][k]))}
-                    ).values for k, t in enumerate(ltca_result.torque)]
-    sc = scuffing_of(geom, ltca_result, speed_rpm, inputs, rated)
-    centres, path_max = _along_path(geom, sc)
+def scuffing_variables(geom: PairGeometry, contact: LoadedContact, sc: ScuffingRating, bins: int
+                       ) -> dict[str, xr.DataArray]:
+    """The scuffing rating ``sc`` of ``contact`` as variables (units and long names; temperatures
+    in °C, their rises in K): the flash temperature of every point and its largest value over the
+    face in ``bins`` bins of the path, the pitch point's place on it, the flash and integral
+    methods' temperatures and safety factors per torque."""
+    centres, path_max = _along_path(geom, sc, contact.line_load, bins)
     t, tpjn = ("torque",), ("torque", "position", "line", "point")
-    torque = {"torque": variable(t, ltca_result.torque, "N m", "pinion torque T1")}
+    torque = {"torque": variable(t, contact.torque, "N m", "pinion torque T1")}
     path = {"path": variable(("path",), centres, "m", "distance along the path of contact from A (bin centre)")}
+    pitch = float(geom.base_radius[0]) * np.tan(geom.operating_pressure_angle) - float(geom.rho_sap[0])
 
     def da(dims, data, units, long_name, coords=None):
         return xr.DataArray(variable(dims, data, units, long_name), coords=coords)
@@ -88,7 +130,8 @@ def scuffing_variables(geom: PairGeometry, ltca_result: LTCAResult, speed_rpm: f
         "flash_temperature": da(tpjn, sc.flash, "K", "flash temperature of each contact point by Blok, NaN off the "
                                 "path of contact (LTCA line load times K_A K_v)", torque),
         "flash_temperature_path": da(("torque", "path"), path_max, "K", "largest flash temperature over the face "
-                                     "along the path of contact", {**torque, **path}),
+                                     "along the path of contact (NaN: no contact in the bin)", {**torque, **path}),
+        "pitch_point": da((), pitch, "m", "distance of the pitch point C from A along the path of contact"),
         "friction_coefficient": da(t, sc.mu, "1", "mean coefficient of friction mu_mC (ISO/TR 13989-2)", torque),
         "flash_temperature_max": da(t, sc.flash_max, "K", "largest flash temperature over the mesh cycle", torque),
         "flash_temperature_mean": da(t, sc.flash_mean, "K", "mean flash temperature over the path of contact "
@@ -110,3 +153,46 @@ def scuffing_variables(geom: PairGeometry, ltca_result: LTCAResult, speed_rpm: f
         "scuffing_safety_integral": da(t, sc.safety_integral, "1", "scuffing safety factor S_intS = theta_intS/"
                                        "theta_int (ISO/TS 6336-21)", torque),
     }
+
+
+@check_arguments(Scuffing)
+def scuffing_dataset(pair: GearPair, *, path_bins: int, ltca: xr.Dataset | None = None,
+                     rating: xr.Dataset | None = None) -> xr.Dataset:
+    """The scuffing rating of a pair (a variant) at each torque of its ``ltca`` dataset (ltca.nc)
+    with the load factors and speed of its ``rating`` dataset (rating.nc): Blok's flash
+    temperature of every contact point from the LTCA's line load, its largest value over the face
+    along the path of contact (``path_bins`` bins), and the flash temperature method's (ISO/TS
+    6336-20: θ_B,max, S_B) and the integral temperature method's (ISO/TS 6336-21: θ_int, S_intS)
+    temperatures and safety factors (scuffing.nc). Oil, roughness and FZG load stage are the pair
+    file's (defaults named in the notes)."""
+    for name, ds, needed in (("ltca", ltca, "line_load"), ("rating", rating, "K_v")):
+        if not isinstance(ds, xr.Dataset) or needed not in ds:
+            raise GearmeshInputError(name, type(ds).__name__, f"must be the variant's {name}.nc dataset")
+    contact = LoadedContact.of(ltca)
+    if contact.torque.shape != rating["torque"].shape or not np.allclose(contact.torque, rating["torque"].values,
+                                                                         rtol=1e-12):
+        raise GearmeshInputError("rating", rating["torque"].values.tolist(), "must be rated at the LTCA's torques "
+                                 f"{contact.torque.tolist()}")
+    geom = pair_geometry(pair)
+    speed = float(rating.attrs["speed_rpm"])
+    sc = scuffing_of(geom, contact, speed, rating_inputs(dict(pair.rating_inputs)), rated_factors(geom, rating))
+    ds = xr.Dataset(scuffing_variables(geom, contact, sc, path_bins))
+    ds.attrs.update({"speed_rpm": speed, "application_factor": float(rating.attrs["application_factor"]),
+                     "factor_method": rating.attrs.get("factor_method", ""), "scuffing_notes": "; ".join(sc.notes())})
+    return ds
+
+
+def scuffing_table_dataset(scuffing: Sequence[xr.Dataset]) -> xr.Dataset:
+    """The scuffing load capacity of every variant of a pair side by side (variant × torque): the
+    largest flash and contact temperatures and S_B (ISO/TS 6336-20), the integral temperature and
+    S_intS (ISO/TS 6336-21)."""
+    names = variant_names("scuffing", scuffing)
+    torques = shared_torques("ltca.torques_Nm", names, scuffing)
+    dims = ("variant", "torque")
+    keys = ("flash_temperature_max", "contact_temperature_max", "scuffing_safety_flash", "integral_temperature",
+            "scuffing_safety_integral")
+    return xr.Dataset(
+        {key: variable(dims, np.array([ds[key].values for ds in scuffing]), scuffing[0][key].attrs["units"],
+                       scuffing[0][key].attrs["long_name"]) for key in keys},
+        coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+                "torque": variable(("torque",), torques, "N m", "pinion torque T1")})

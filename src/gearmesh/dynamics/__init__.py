@@ -72,8 +72,8 @@ Vijayakar & Imajo 2000, J. Sound Vib. 237:435) is the *modal damping ratio of th
 (the mode with the largest share of its strain energy in the mesh; −Re λ/|λ| of the complex
 eigenvalues of the linearised model, bearing damping included): c_m = s·2ζ√(k̄_n m_e),
 m_e = 1/[cos²βb·(r_b1²/I_p + r_b2²/I_g)] the torsional equivalent mass along δ, with the scale s
-found so (s = 1 with rigid supports; before issue 28 s was 1 always, and on the default pair
-the mesh mode, which also moves the bodies on their bearings, had ζ = 0.095).
+found so (s = 1 with rigid supports; with s = 1 always, on the default pair the mesh mode, which also moves
+the bodies on their bearings, would have ζ = 0.095).
 
 Supports (:mod:`gearmesh.supports`): each gear body sits on a radial (x, y) and an axial (z)
 spring from the pair file (bearings, with the shaft's bending in series); a rigid direction is

@@ -11,7 +11,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from ..errors import GearmeshInputError
-from ..gear import PairGeometry
+from ..gear import PairGeometry, missing_key
 from ..meshforce import MeshForceTable
 from ..supports import DEFAULT_SUPPORTS_N_PER_UM
 from .excitation import MeshLaw, contact_mesh_law, mesh_law
@@ -153,8 +153,8 @@ def require_dynamics_data(geom: PairGeometry) -> None:
         raise GearmeshInputError("material", None, "is required for the dynamics (density for the masses, "
                                  "Young's modulus for the mesh stiffness)")
     if geom.pair.bore_radius is None:
-        raise GearmeshInputError("bore_radius_mm", None, "is required for the dynamics (gear body masses and "
-                                 "inertias, as the low-fluctuation paper's Table 1)")
+        raise missing_key("bore_radius_mm", "the dynamics (gear body masses and inertias, as the low-fluctuation "
+                                            "paper's Table 1)")
 
 
 #: Points of the fine table that holds a Fourier-represented error e(phase).

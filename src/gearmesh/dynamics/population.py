@@ -71,7 +71,8 @@ class PopulationDynamics:
     """What every member's dynamics shares (SI): the table ``layout``, the gear torques
     ``torques_out`` (T,) N·m of the pinion torques ``pinion_torques`` (T,), the speed grid
     ``speeds_rpm`` (rpm) and its range, the table's ``force_max`` (N) and ``approaches``, the
-    backlash (m), the mesh damping ratio and the solver settings."""
+    backlash (m), the mesh damping ratio and the solver settings; ``misalignment_torque`` the pinion
+    torque (N m) whose mesh misalignment every table carries (None: each torque's own)."""
 
     layout: TableLayout
     pinion_torques: np.ndarray
@@ -82,6 +83,7 @@ class PopulationDynamics:
     backlash: float
     damping_ratio: float
     settings: SolverSettings
+    misalignment_torque: float | None = None
 
     @property
     def geom(self) -> PairGeometry:
@@ -93,11 +95,15 @@ def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash
                         positions: int = POPULATION_TABLE["positions"],
                         approaches: int = POPULATION_TABLE["approaches"],
                         points: int = POPULATION_TABLE["points"], contact_law_name: str = DEFAULT_CONTACT_LAW,
-                        settings: SolverSettings = POPULATION_SOLVER, tables=None) -> PopulationDynamics:
+                        settings: SolverSettings = POPULATION_SOLVER, tables=None,
+                        misalignment_torque: float | None = None) -> PopulationDynamics:
     """Set up :func:`dynamic_factors` for ``geom`` at pinion torques ``pinion_torques`` (N·m) over
     the speed grid ``speeds_rpm`` (rpm, ≥ 2 speeds: its range bounds the resonance speeds added);
     ``backlash`` 2b0 (m; default the pair's own normal backlash j_bn); ``tables`` the per-gear slice
-    compliance tables to reuse (:func:`gearmesh.meshforce.table_layout`)."""
+    compliance tables to reuse (:func:`gearmesh.meshforce.table_layout`); ``misalignment_torque``
+    a pinion torque (N m) whose mesh misalignment every member's one table carries (None: one table
+    per torque at its own, as the dynamics stage; a screening can take the design torque's: the
+    system deflection's f_sh moves with the load by a fraction of the modifications)."""
     require_dynamics_data(geom)
     torques = np.atleast_1d(np.asarray(pinion_torques, dtype=float))
     speeds = np.unique(np.atleast_1d(np.asarray(speeds_rpm, dtype=float)))
@@ -113,7 +119,8 @@ def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash
     layout = table_layout(geom, positions, points, contact_law_name, method, tables=tables)
     return PopulationDynamics(layout=layout, pinion_torques=torques, torques_out=torques * rb2 / rb1, speeds_rpm=speeds,
                               force_max=POPULATION_FORCE_FACTOR * float(torques.max()) / rb1, approaches=approaches,
-                              backlash=backlash, damping_ratio=float(damping_ratio), settings=settings)
+                              backlash=backlash, damping_ratio=float(damping_ratio), settings=settings,
+                              misalignment_torque=misalignment_torque)
 
 
 def dynamic_factors(pd: PopulationDynamics, params: np.ndarray, lead_slope: np.ndarray) -> np.ndarray:
@@ -122,7 +129,9 @@ def dynamic_factors(pd: PopulationDynamics, params: np.ndarray, lead_slope: np.n
     its mesh misalignment (:func:`gearmesh.deflection.mesh_misalignment`, as the study's tables),
     torques of one misalignment share it."""
     params = np.asarray(params, dtype=float)
-    misalignment = mesh_misalignment(pd.geom, pd.pinion_torques / float(pd.geom.base_radius[0]))
+    torques = pd.pinion_torques if pd.misalignment_torque is None else np.full(pd.pinion_torques.size,
+                                                                                 pd.misalignment_torque)
+    misalignment = mesh_misalignment(pd.geom, torques / float(pd.geom.base_radius[0]))
     gaps = {float(m): pd.layout.gaps(params, with_misalignment(lead_slope, float(m))) for m in np.unique(misalignment)}
     lo, hi = float(pd.speeds_rpm[0]), float(pd.speeds_rpm[-1])
     out = np.empty((params.shape[0], pd.torques_out.size))

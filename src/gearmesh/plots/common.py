@@ -14,13 +14,13 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter
 
 from ..gear import example_pairs
-from ..io import atomic_output
+from ..io import atomic_output, stamp_figure
 
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["MM", "UM", "Figure", "coinciding", "end_labels", "figure", "figure_legend", "legend_below", "number", "pair_label", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
-           "title"]
+__all__ = ["MM", "UM", "Figure", "apart", "coinciding", "end_labels", "figure", "figure_legend", "legend_below", "number", "pair_label", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
+           "text_line", "title"]
 
 
 def figure(figsize: tuple[float, float], layout: str | None = None) -> Figure:
@@ -42,9 +42,14 @@ def palette(n: int, name: str = "viridis", low: float = 0.1, high: float = 0.85)
 
 
 def save(fig: Figure, path: str | Path) -> Path:
-    """Write ``fig`` as PNG atomically (parent folders created)."""
+    """Write ``fig`` as PNG atomically (parent folders created), inside a workflow job with the
+    provenance of the figure (:func:`gearmesh.io.stamp_figure`)."""
     with atomic_output(path) as tmp:
         fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png")
+        png = tmp.read_bytes()
+        stamped = stamp_figure(png, path)
+        if stamped is not png:
+            tmp.write_bytes(stamped)
     return Path(path)
 
 
@@ -150,24 +155,33 @@ def coinciding(curves, span: float | None = None) -> list[list[int]]:
     return groups
 
 
+def text_line(ax, fontsize: float) -> float:
+    """The height of one line of text of ``fontsize`` points (with its spacing) as a fraction of
+    the height of ``ax``."""
+    height_pt = ax.get_position().height * ax.get_figure().get_figheight() * 72.0
+    return 1.25 * fontsize / max(height_pt, 1.0)
+
+
+def apart(positions, gap: float, top: float = 1.0) -> np.ndarray:
+    """Label positions (axes fractions) moved up as little as needed to be ``gap`` apart, in the
+    order of ``positions``; a stack pushed above ``top`` shifted down as a whole."""
+    pos = np.asarray(positions, dtype=float)
+    placed = np.empty_like(pos)
+    last = -np.inf
+    for k in np.argsort(pos, kind="stable"):
+        placed[k] = max(pos[k], last + gap)
+        last = placed[k]
+    if pos.size and last > top:
+        placed -= last - top
+    return placed
+
+
 def end_labels(ax, ends, texts, fontsize: float = 6.5, color: str = "0.3") -> None:
     """Label lines at their right ends, outside the axes (where no data or frame cuts them),
     moved apart vertically where they would overlap. ``ends``: the lines' last y values (data
     units, linear y axis); call after the y limits are final."""
     lo, hi = ax.get_ylim()
-    fig = ax.get_figure()
-    height_pt = ax.get_position().height * fig.get_figheight() * 72.0
-    gap = 1.25 * fontsize / max(height_pt, 1.0)  # one text line, in axes fractions
-    pos = (np.asarray(ends, dtype=float) - lo) / (hi - lo)
-    order = np.argsort(pos)
-    placed = np.empty_like(pos)
-    last = -np.inf
-    for k in order:
-        placed[k] = max(pos[k], last + gap)
-        last = placed[k]
-    overflow = last - 1.0
-    if overflow > 0:  # pushed above the top: shift the stack down, keeping the gaps
-        placed -= overflow
+    placed = apart((np.asarray(ends, dtype=float) - lo) / (hi - lo), text_line(ax, fontsize))
     for y, text in zip(placed, texts):
         ax.annotate(text, (1.0, y), xycoords="axes fraction", xytext=(3, 0), textcoords="offset points",
                     fontsize=fontsize, color=color, va="center", annotation_clip=False)

@@ -68,9 +68,15 @@ def _resonances(ax, ds: xr.Dataset, labelled: bool = True) -> None:
                 label = None
 
 
+#: The translations of the 8-degree-of-freedom pair, as the dynamics dataset's ``direction`` says.
+DIRECTIONS = "x: along the line of centres\ny: across it (the common tangent)\nz: axial"
+
+
 def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     """Dynamic TE and mesh deflection (standard deviation, transverse line of action),
-    displacement and velocity RMS against speed for both gears (seed 001 §4 figures).
+    displacement standard deviation and velocity RMS (the same: a periodic motion has no mean
+    velocity) against speed for both gears (the low-fluctuation paper's section 4 figures), the
+    directions named in the legends (x along the line of centres, y across it, z axial).
 
     Displacements are shown as their standard deviation (the vibration about the static
     bearing deflection); vertical lines: speeds where mesh harmonics 1 (dotted), 2 (dashed),
@@ -104,8 +110,8 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     ax.set_ylabel(f"standard deviation along the\ntransverse line of action ({unit})")
     dir_colors = {"x": "tab:blue", "y": "tab:orange", "z": "tab:green"}
     at = f" at {_torque_label(mid)}" if _torque_label(mid) else ""
-    for ax, var, unit, scale, label in ((axes[1], "displacement_std", "µm", UM, "displacement (std)"),
-                                        (axes[2], "velocity_rms", "mm/s", 1e3, "velocity RMS")):
+    for ax, var, unit, scale, label in ((axes[1], "displacement_std", "µm", UM, "displacement, standard deviation"),
+                                        (axes[2], "velocity_rms", "mm/s", 1e3, "velocity, standard deviation")):
         for g, ls in zip(ds.gear.values, ("-", "--")):
             for d in ds.direction.values:
                 ax.plot(speed, mid[var].sel(gear=g, direction=d).values * scale, color=dir_colors.get(str(d), None),
@@ -115,9 +121,11 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     for ax in axes:
         _resonances(ax, mid, labelled=ax is axes[0])
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), ncol=1 if ax is axes[0] else 2)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), ncol=1 if ax is axes[0] else 2,
+                  title=None if ax is axes[0] else DIRECTIONS, title_fontsize=7)
     axes[-1].set_xlabel("pinion speed (rpm)")
-    axes[0].set_title(_title(ds, "steady-state RMS against speed") + subtitle, fontsize=11 if not subtitle else 9)
+    axes[0].set_title(_title(ds, "steady-state vibration against speed (standard deviations over the period)")
+                      + subtitle, fontsize=11 if not subtitle else 9)
     return _save(fig, path)
 
 

@@ -25,9 +25,11 @@ CONTACT_LAWS = {"palmgren": "Palmgren line", "linear": "linear Hertz"}
 
 def plot_te_lte(ds: xr.Dataset, path: str | Path) -> Path:
     """Unloaded TE and the LTE of every torque over one mesh cycle (µm along the transverse
-    line of action, + gear lags), with the start of engagement φ1A, LTE(φ1A) (dots) and the
-    entering pair's separation TE(φ1A) (square, its value written beside it): seed 000's
-    criterion, an LTE at φ1A above that separation means the entering pair touches before A."""
+    line of action, + gear lags), with the start of engagement φ1A, LTE(φ1A) (dots), the teeth's
+    part of it (open circles, where the gear bodies add a deflection in series) and the entering
+    pair's separation TE(φ1A) (square): the mesh-in impact paper's criterion, the teeth's LTE at
+    φ1A above that separation means the entering pair touches before A (the bodies turn the
+    entering tooth with the loaded ones: :func:`gearmesh.datasets.ltca.teeth_approach_at_engagement`)."""
     fig, ax = subplots(figsize=(7.5, 4.5))
     x = _angle_mrad(ds)
     xa = float(ds["pinion_angle_engagement"]) * 1e3
@@ -35,17 +37,23 @@ def plot_te_lte(ds: xr.Dataset, path: str | Path) -> Path:
     ax.plot(x, ds["te"].values * UM, color="k", lw=1.6, label="TE (unloaded)")
     colors = palette(ds.sizes["torque"])
     at_a = ds["lte_at_engagement"].values * UM
+    teeth = ds["lte_teeth_at_engagement"].values * UM
+    early = ds["touches_before_engagement"].values.astype(bool)
     for k, color in enumerate(colors):
         sel = ds.isel(torque=k)
         ax.plot(x, sel["lte"].values * UM, color=color, lw=1.6,
                 label=f"LTE, T1 = {number(float(sel.torque))} N m, p-p {number(float(sel.lte_peak_to_peak) * UM)} µm: "
-                      f"entering pair touches {'before' if at_a[k] > separation else 'after'} A")
+                      f"entering pair touches {'before' if early[k] else 'after'} A")
+    bodies = not np.allclose(teeth, at_a, rtol=0, atol=1e-3)
     for k, color in enumerate(colors):
         ax.plot([xa], [at_a[k]], "o", color=color, ms=5, label="LTE at φ1A" if k == 0 else None)
+        if bodies:
+            ax.plot([xa], [teeth[k]], "o", mfc="white", mec=color, mew=1.3, ms=6,
+                    label="the teeth's part of LTE at φ1A: what closes the entering pair's gap\n"
+                          "(the gear bodies' deflection turns the entering tooth too)" if k == 0 else None)
     ax.axvline(xa, color="0.4", ls=":", lw=1.0, label="start of engagement φ1A")
-    ax.plot([xa], [separation], "s", color="k", ms=5, label="entering pair's unloaded separation TE(φ1A)")
-    ax.annotate(f"TE(φ1A) = {number(separation)} µm", (xa, separation), xytext=(7, 5), textcoords="offset points",
-                va="bottom", fontsize=8, bbox={"facecolor": "white", "edgecolor": "none", "alpha": 0.8, "pad": 1})
+    ax.plot([xa], [separation], "s", color="k", ms=5,
+            label=f"entering pair's unloaded separation TE(φ1A) = {number(separation)} µm")
     ax.set_xlabel("pinion rotation φ1 over one mesh cycle (mrad)")
     ax.set_ylabel("transmission error along the line of action (µm)")
     law = str(ds.attrs.get("contact_law", ""))

@@ -53,7 +53,9 @@ def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     if not tol.startswith("none"):
         where += f", {tol} over nominal + {ds.attrs.get('tolerance_samples', 0)} tolerance samples"
     quantity = "|v_n|" if ds.attrs.get("objective") == "velocity" else "F_s"
-    ax.set_ylabel(f"objective: {quantity} ({unit})")
+    penalised = ds.attrs.get("constraints", "{}") not in ("", "{}")  # J = objective + the constraints' penalty
+    ax.set_ylabel(f"objective J = {quantity} + penalty of violated\nconstraints ({unit})" if penalised
+                  else f"objective: {quantity} ({unit})")
     ax.grid(alpha=0.3, which="both")
     ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
     opt, std = float(ds["optimum_objective"]) * k, float(ds["standard_objective"]) * k
@@ -62,8 +64,9 @@ def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
         return f"{v:.0f}" if abs(v) >= 100 else f"{v:.3g}"
 
     plain_log_axis(ax)
-    ax.set_title(_title(ds, f"{ds.attrs.get('objective', '')} objective ({quantity}, {where}), random seed "
-                            f"{ds.attrs.get('seed', '')}\noptimum {value(opt)} {unit}, {_change(opt, std)} "
+    name = "J" if penalised else quantity
+    ax.set_title(_title(ds, f"{ds.attrs.get('objective', '')} objective {name} ({quantity}, {where}), random seed "
+                            f"{ds.attrs.get('seed', '')}\noptimum {name} {value(opt)} {unit}, {_change(opt, std)} "
                             f"({value(std)} {unit})"), fontsize=9)
     return _save(fig, path)
 

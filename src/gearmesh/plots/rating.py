@@ -37,12 +37,20 @@ def plot_pressure_map(ltca: xr.Dataset, rating: xr.Dataset | None, path: str | P
         above = bool(np.nanmax(grid) > top * (1 + 1e-9)) if np.isfinite(grid).any() else False
         mesh = ax.pcolormesh(z_edges, edges * MM, np.where(np.isfinite(grid), grid, -1.0), cmap=cmap, vmin=0,
                              vmax=top, shading="flat")
-        for name, ls in (("rho_sap", "--"), ("rho_eap", "-")):
-            ax.axhline(float(ltca[name][0]) * MM, color="tab:cyan", ls=ls, lw=0.9)
+        sap, eap = (float(ltca[name][0]) * MM for name in ("rho_sap", "rho_eap"))
+        # the SAP and tip in a colour no cell has (the map runs black to pale yellow, white and grey),
+        # the frame a little beyond them and beyond the cells so neither the lines nor the peak's
+        # circle lie on it
+        ax.axhline(sap, color="tab:blue", ls="--", lw=1.5, zorder=3, label="start of active profile (SAP)")
+        ax.axhline(eap, color="tab:blue", ls="-", lw=1.5, zorder=3, label="tip")
+        low, high = min(sap, edges[0] * MM), max(eap, edges[-1] * MM)
+        ax.set_facecolor("#e6edf5")  # off the flank (the margin): a tint no cell of the map has
+        ax.set_ylim(low - 0.04 * (high - low), high + 0.04 * (high - low))
         sel = ltca.isel(torque=k)
         p = sel["contact_pressure"].values
         i = np.unravel_index(int(np.argmax(p)), p.shape)
-        ax.plot(z[i[2]], float(ltca["rho_pinion"].values[i]) * MM, "o", mfc="none", mec="tab:green", ms=10, mew=1.6)
+        ax.plot(z[i[2]], float(ltca["rho_pinion"].values[i]) * MM, "o", mfc="none", mec="tab:green", ms=11, mew=2,
+                zorder=4, clip_on=False, label="the largest pressure (title)")
         where = "tip edge" if int(sel["peak_contact_pressure_on_edge"]) else "flank"
         head = (f"T1 = {number(float(sel.torque))} N m\npeak {number(float(sel.peak_contact_pressure) * MPA)} MPa on a "
                 f"{where}, flank {number(p_flank)} MPa")
@@ -57,7 +65,8 @@ def plot_pressure_map(ltca: xr.Dataset, rating: xr.Dataset | None, path: str | P
         keys = [k for k, show in (("grey: no contact", apart), ("white: above the flank's peak", above)) if show]
         bar.set_label("largest contact pressure over the cycle (MPa)" + ("\n" + "; ".join(keys) if keys else ""),
                       fontsize=8)
-    axes[0][0].set_ylabel("pinion roll length ρ1 (mm); dashed SAP, solid tip")
+    axes[0][0].set_ylabel("pinion roll length ρ1 (mm)")
+    fig.legend(handles=axes[0][0].get_legend_handles_labels()[0], loc="outside lower center", ncol=3, fontsize=9)
     r_e = float(ltca["tip_edge_radius"]) * MM
     fig.suptitle(_title(ltca, f"contact pressure on the pinion flank (Hertz; tip edges rounded r = {number(r_e)} mm)"))
     return _save(fig, path)

@@ -10,6 +10,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from matplotlib.lines import Line2D
+
+from ..choices import IMPACT_INDEX
 from .common import palette, plain_log_axis, save as _save, subplots
 
 __all__ = ["plot_signoff", "signoff_figures"]
@@ -23,7 +26,7 @@ def _panels(table: xr.Dataset) -> list[tuple[str, str, float, str]]:
               ("peak_root_stress", "peak root stress", a["root_stress_factor"], "≤")]
     panels += [(f"lte_order_{int(n)}", f"loaded TE, mesh order {int(n)}", a["harmonic_factor"], "≤")
                for n in np.atleast_1d(a["harmonic_orders"])]
-    panels += [("impact_force", "mesh-in impact force F_s", a["impact_factor"], "<")]
+    panels += [("impact_force", IMPACT_INDEX, a["impact_factor"], "<")]
     if "dynamic_mesh_force_peak" in table:
         panels += [("dynamic_mesh_force_peak", "swept peak dynamic mesh force", a["dynamic_factor"], "≤")]
     return panels
@@ -37,15 +40,17 @@ def _judged(table: xr.Dataset, name: str) -> str:
 
 def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
     """One panel per criterion: every variant's value over the reference's against torque on the
-    table's basis, the criterion's limit dashed, a failing point as a cross; on the population
-    basis the nominal gear's ratios as open markers, dotted. The worst-case F_s criterion in the
-    title."""
+    table's basis, the criterion's limit dashed, a met point a filled circle and a failing one a
+    cross; on the population basis the nominal gear's ratios as open markers, dotted (shown, not
+    judged). Two panels a row and type of 10–11 pt, so the text stays legible where the report
+    shows the figure at the width of its page; one legend under the panels says what every colour,
+    marker and line means. The worst-case F_s criterion in the title."""
     ref = str(table.attrs["reference"])
     basis = str(table.attrs.get("basis", "nominal"))
     panels = _panels(table)
-    ncol = 3
+    ncol = 2
     nrow = -(-len(panels) // ncol)
-    fig, axes = subplots(nrow, ncol, figsize=(4.3 * ncol, 3.4 * nrow), squeeze=False, layout="constrained")
+    fig, axes = subplots(nrow, ncol, figsize=(4.6 * ncol, 3.1 * nrow + 1.2), squeeze=False, layout="constrained")
     torque = table["torque"].values
     others = [v for v in table["variant"].values.tolist() if v != ref]
     colors = palette(max(len(others), 1), "tab10", 0.0, 0.9)
@@ -76,23 +81,31 @@ def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
             ax.set_yscale("log")
             plain_log_axis(ax)
         on = ", worst manufactured gear" if judged != name else ""
-        ax.set_title(f"{what}{on}\n(limit {op} {limit:g} × {ref}'s)", fontsize=9)
-        ax.set_xlabel("pinion torque (N m)")
-        ax.set_ylabel(f"over {ref}'s")
+        ax.set_title(f"{what}{on}\n(limit {op} {limit:g} × {ref}'s)", fontsize=10)
+        ax.set_xlabel("pinion torque (N m)", fontsize=10)
+        ax.set_ylabel(f"over {ref}'s", fontsize=10)
+        ax.tick_params(labelsize=9)
         ax.grid(alpha=0.3, which="both")
-    basis_text = (f"judged on the worst manufactured gear (nominal + {table.attrs.get('tolerance_samples', '?')} "
-                  f"tolerance samples, max), open markers: nominal gear" if basis == "population"
-                  else "judged on the nominal gear")
-    title = f"sign-off against {ref} (o meets, x fails); {basis_text}"
+    basis_text = ("judged on the worst manufactured gear (the tolerance box's, searched), open markers: nominal gear"
+                  if basis == "population" else "judged on the nominal gear")
+    title = f"sign-off against {ref}, {basis_text}"
     if "meets_worst_impact" in table:
         worst = {v: int(table["meets_worst_impact"].sel(variant=v).values[0]) for v in others}
         text = ", ".join(f"{v}: {'meets' if f == 1 else 'fails'}" for v, f in worst.items())
         title += (f"\nworst F_s over the torques at most {table.attrs['worst_impact_factor']:g} × {ref}'s: "
                   f"{text}")
-    fig.suptitle(title, fontsize=9)
+    fig.suptitle(title, fontsize=11)
     for ax in list(axes.flat)[len(panels):]:
         ax.axis("off")
-    axes.flat[0].legend(fontsize=8)
+    key = [Line2D([], [], color="0.3", marker="o", ls="none", ms=6, label="meets the criterion"),
+           Line2D([], [], color="0.3", marker="x", ls="none", ms=8, mew=2, label="fails it"),
+           Line2D([], [], color="k", ls="--", lw=1, label="the criterion's limit"),
+           Line2D([], [], color="0.6", lw=0.8, label=f"equal to {ref}'s")]
+    if basis == "population":
+        key.insert(2, Line2D([], [], color="0.3", marker="o", mfc="none", ls=":", lw=0.8, ms=6,
+                             label="nominal gear (shown, not judged)"))
+    variants = [Line2D([], [], color=c, lw=1.6, label=v) for c, v in zip(colors, others)]
+    fig.legend(handles=variants + key, loc="outside lower center", ncol=3, fontsize=10)
     return _save(fig, path)
 
 

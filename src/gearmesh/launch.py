@@ -1,0 +1,144 @@
+"""``gearmesh run``: Snakemake started only after every config it would read has been read bounded.
+
+Snakemake reads configuration before the Snakefile runs, so before any check of the workflow's
+own: every ``--configfile`` (parsed by its own YAML loader, with no limit on size, nesting or
+what it opens), and every profile (``--profile``, ``$SNAKEMAKE_PROFILE``, ``--workflow-profile``
+and the workflow's default ``profiles/default``), whose ``config.yaml`` (or ``profile.yaml``) it
+reads as a YTE template — Python, run at load time, when the file says ``__use_yte__: true`` —
+and whose ``configfile``/``configfiles`` keys name more config files. :func:`snakemake_inputs`
+finds all of them the way Snakemake does (its own argument parser and profile lookup, so an
+abbreviated option or an environment variable is no way around), and :func:`check_inputs` reads
+each with the package's bounded loader (:func:`gearmesh.gear.read_yaml`: a regular file of at
+most MAX_INPUT_BYTES, MAX_INPUT_NODES nodes, MAX_INPUT_DEPTH levels, no alias, no duplicated
+key), refuses ``__use_yte__`` in any of them and validates each config file as a study
+(:func:`gearmesh.config.validate_study`). Whatever fails is refused in one line, exit 2, before
+Snakemake starts (docs/workflow.md, trust model).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from .errors import GearmeshInputError, excerpt
+
+#: The study config Snakemake reads when nothing names one (the Snakefile's ``configfile``).
+DEFAULT_STUDY = "config/config.yaml"
+#: Profile keys that name config files (Snakemake's ``--configfile`` and its alias).
+CONFIGFILE_KEYS = ("configfile", "configfiles")
+
+
+@dataclass
+class SnakemakeInputs:
+    """What a Snakemake command line makes Snakemake read before the Snakefile runs: the profile
+    files (in the order Snakemake applies them) and the config files (the command line's and
+    every profile's; the default study when none names one)."""
+
+    profiles: list[Path] = field(default_factory=list)
+    configfiles: list[str] = field(default_factory=list)
+
+
+def snakemake_inputs(argv: Sequence[str]) -> SnakemakeInputs:
+    """The profiles and config files of the Snakemake command line ``argv`` (and of the
+    environment: ``$SNAKEMAKE_PROFILE``), found by Snakemake's own parser and profile lookup
+    (``snakemake.cli``); GearmeshInputError for arguments Snakemake would refuse and for a profile
+    it would not find."""
+    from snakemake.cli import get_argument_parser, get_profile_dir
+
+    args = _parse(get_argument_parser(), argv)
+    profiles = [] if args.profile in (None, ["none"]) else list(args.profile)
+    workflow_profile = _workflow_profile(args)
+    if workflow_profile is not None:
+        profiles.append(workflow_profile)
+    out = SnakemakeInputs()
+    for profile in profiles:
+        found = get_profile_dir(str(profile))
+        if found is None:
+            raise GearmeshInputError("--profile", str(profile), "has no profile.yaml or config.yaml (Snakemake looks in "
+                                     "the working directory and its configuration folders)")
+        folder, path = found
+        out.profiles.append(Path(path))
+        out.configfiles += _profile_configfiles(Path(folder), Path(path))
+    out.configfiles = [str(p) for p in args.configfile or ()] + out.configfiles
+    if not out.configfiles:
+        out.configfiles = [DEFAULT_STUDY]
+    return out
+
+
+def _parse(parser, argv: Sequence[str]):
+    """``argv`` parsed by Snakemake's parser, its refusal (argparse's usage and exit) as one line."""
+    err = io.StringIO()
+    try:
+        with contextlib.redirect_stderr(err):
+            return parser.parse_args(list(argv))
+    except SystemExit:
+        reason = err.getvalue().strip().splitlines()[-1:] or ["not snakemake's arguments"]
+        raise GearmeshInputError("snakemake arguments", " ".join(argv), excerpt(reason[0].split("error: ", 1)[-1],
+                                 120) + " (snakemake --help)") from None
+
+
+def _workflow_profile(args) -> Path | None:
+    """The workflow profile Snakemake applies (``snakemake.cli.parse_args``): ``--workflow-profile``,
+    else ``profiles/default`` in the working directory or beside the Snakefile; None with
+    ``--workflow-profile none`` or none found."""
+    from snakemake.api import resolve_snakefile
+
+    if args.workflow_profile == "none":
+        return None
+    given = Path(args.workflow_profile) if args.workflow_profile else None
+    snakefile = resolve_snakefile(args.snakefile, allow_missing=True)
+    if snakefile is None or (given is not None and given.is_file()):
+        return given
+    name = given or Path("default")
+    candidates = [name, Path("profiles") / name]
+    if isinstance(snakefile, Path):
+        candidates.append(snakefile.parent / "profiles" / name)
+    return next((c for c in candidates if c.exists()), None)
+
+
+def _profile_configfiles(folder: Path, path: Path) -> list[str]:
+    """The config files a profile names (``configfile``/``configfiles``; a single path as
+    Snakemake's profile parser resolves it: variables expanded, relative to the profile's folder
+    where it exists there), after the profile itself is read bounded, a mapping without
+    ``__use_yte__``."""
+    from .gear import read_yaml
+
+    data = read_yaml(path, "profile")
+    if not isinstance(data, Mapping):
+        raise GearmeshInputError("profile", str(path), "must be a YAML mapping of snakemake options")
+    if "__use_yte__" in data:
+        raise GearmeshInputError("__use_yte__", data["__use_yte__"], f"in the profile {path} turns on Snakemake's YTE "
+                                 "template engine, which runs Python from the profile when Snakemake loads it (before "
+                                 "any check): remove the key")
+    out = []
+    for key in CONFIGFILE_KEYS:
+        value = data.get(key)
+        if value is None:
+            continue
+        if isinstance(value, list):
+            out += [str(v) for v in value]
+            continue
+        value = os.path.expanduser(os.path.expandvars(str(value)))
+        out.append(str(folder / value) if (folder / value).exists() else value)
+    return out
+
+
+def check_inputs(inputs: SnakemakeInputs) -> None:
+    """Every config file of ``inputs`` read bounded, a mapping, valid as a study
+    (:func:`gearmesh.config.validate_study`, which names ``__use_yte__``); the profiles were read
+    bounded by :func:`snakemake_inputs`. GearmeshInputError naming the first that fails."""
+    from .config import validate_study
+    from .gear import read_yaml
+
+    for path in inputs.configfiles:
+        data = read_yaml(path, "config file")
+        if not isinstance(data, Mapping):
+            raise GearmeshInputError("config file", path, "must be a YAML mapping (a study config)")
+        try:
+            validate_study(data)
+        except GearmeshInputError as exc:
+            raise GearmeshInputError(exc.field, exc.value, f"{exc.rule} (in config file {path})") from None
