@@ -1,12 +1,12 @@
 """Benchmarks of the dynamics stage: the compiled step loop with shooting against the numpy batch
 RK4 it replaced, for the three excitations, in one run.
 
-* ``dynamics_default_sweep_<excitation>``: the default study's sweep (seed 000 case pair,
+* ``dynamics_default_sweep_<excitation>``: the default study's sweep (the mesh-in impact paper case pair,
   1000 N·m on the pinion, 1000:15000:500 rpm plus the speeds the sweep adds around the predicted
   resonances, the pair file's bearings, backlash 60 µm, the study's solver settings) excited by
   ``tvms`` (slice stiffness), ``ltca`` (the LTCA's loaded stiffness and error) or ``contact``
   (the mesh-force table). The model (stiffness, LTCA, table) is built outside the timing.
-* ``dynamics_sweep_496_speeds``: seed 001 pair 1, 500:50000:100 rpm, where the numpy batch
+* ``dynamics_sweep_496_speeds``: the low-fluctuation paper pair 1, 500:50000:100 rpm, where the numpy batch
   amortised its overhead best.
 * ``dynamics_contact_over_ltca``: the contact sweep's time over the ltca sweep's (issue 15: ≤ 1.5).
 
@@ -123,8 +123,8 @@ def bench_default_sweep(repeats: int = 3, subset: int = 2, baseline_speeds: int 
 
 
 def bench_dynamics(repeats: int = 3, baseline_speeds: int | None = None) -> dict:
-    """The 496-speed sweep of seed 001 pair 1: the compiled loop against the numpy batch."""
-    pair = load_pair(ROOT / "config/pairs/seed001_pair1.yaml")
+    """The 496-speed sweep of the low-fluctuation paper pair 1: the compiled loop against the numpy batch."""
+    pair = load_pair(ROOT / "config/pairs/low_fluctuation_pair1.yaml")
     speeds = np.arange(500.0, 50000.0 + 1.0, 100.0)
     geom = pair_geometry(pair)
     model = dy.pair_model(geom, 200.0, mesh_stiffness(geom, components=False).K)

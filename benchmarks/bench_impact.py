@@ -1,4 +1,4 @@
-"""Impact benchmarks on the default study's robust optimisation problem (seed 000's case pair,
+"""Impact benchmarks on the default study's robust optimisation problem (the mesh-in impact paper's case pair,
 config/config.yaml's ``optimise.optimised`` with the study's impact model and tolerances, built as
 the optimise job builds it), each against a baseline that computes the same thing on the same model.
 

@@ -24,7 +24,7 @@ import yaml
 
 from common import ROOT
 
-RESULTS = ROOT / "results/impact_case/seed000_case"
+RESULTS = ROOT / "results/impact_case/helical_z29_71_m5"
 
 
 def _job(variant: str, config: dict):
@@ -36,7 +36,7 @@ def _job(variant: str, config: dict):
     if "from" in spec:
         pair = load_pair(RESULTS / "optimise" / spec["from"].split(".", 1)[1] / "pair.yaml")
     else:
-        pair = variant_pair(load_pair(ROOT / "config/pairs/seed000_case.yaml"), variant, spec)
+        pair = variant_pair(load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml"), variant, spec)
     section = {k: v for k, v in config["impact"].items()}
     fe = RESULTS / "fe_compliance.nc"
     if fe.exists():
@@ -68,7 +68,7 @@ def _addition_alone(config: dict) -> dict:
     from gearmesh.settings import Impact
     from gearmesh.tolerance import manufactured_population, study_tolerances, unit_deviations
 
-    pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    pair = load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml")
     d = defaults(Impact)
     fe = RESULTS / "fe_compliance.nc"
     method = "fe" if fe.exists() else "transition"

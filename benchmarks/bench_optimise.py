@@ -1,4 +1,4 @@
-"""Optimiser benchmarks on the default study's two optimisations of seed 000's case pair
+"""Optimiser benchmarks on the default study's two optimisations of the mesh-in impact paper's case pair
 (config/config.yaml's ``optimise`` section, each set up as its optimise job sets it up:
 :func:`bench_impact.study_problem`), each against a baseline that computes the same thing.
 

@@ -18,7 +18,7 @@ from pathlib import Path
 import numpy as np
 
 ROOT = Path(__file__).resolve().parents[1]
-CASE_PAIR = ROOT / "config/pairs/seed000_case.yaml"
+CASE_PAIR = ROOT / "config/pairs/helical_z29_71_m5.yaml"
 #: The equality every baseline must meet unless a row states why a difference is expected.
 TOLERANCE = 1e-6
 

@@ -33,12 +33,12 @@ from common import ROOT, bounded_difference, equality, median_seconds, timed_cal
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
 from gearmesh.gear import load_pair, pair_geometry
 
-#: Slices of the pointwise contact-line sum (seed 002's algorithm).
+#: Slices of the pointwise contact-line sum (the contact-line paper's algorithm).
 POINTWISE_SLICES = 200
 
 
 def contact_length_pointwise(geom, roll, n_points: int = POINTWISE_SLICES) -> np.ndarray:
-    """Seed 002's algorithm, written plainly: for every position and tooth pair, march across
+    """The contact-line paper's algorithm, written plainly: for every position and tooth pair, march across
     the face in ``n_points`` slices, keep the slices whose contact lies in the active zone and
     sum the distances between consecutive contact points (x, y, z)."""
     tb = math.tan(geom.base_helix_angle)
@@ -61,12 +61,12 @@ def contact_length_pointwise(geom, roll, n_points: int = POINTWISE_SLICES) -> np
 
 
 def bench_contact_lines(repeats: int, smoke: bool = False) -> dict:
-    """Contact lines at 360 positions against seed 002's pointwise sum. The sum of chords of a
+    """Contact lines at 360 positions against the contact-line paper's pointwise sum. The sum of chords of a
     straight line between its first and last slice inside the active zone is shorter than the line
     by less than one slice spacing Δz/cos βb at each end (a line shorter than that may hold no two
     slices and count nothing): 0 ≤ exact − pointwise ≤ 2·J·Δz/cos βb at each position, J the tooth
     pairs that can be in contact. That bound is checked (relative to the exact length)."""
-    geom = pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml"))
+    geom = pair_geometry(load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml"))
     roll = mesh_cycle_rolls(geom, 360)
     fast, _, result, _ = timed_calls(lambda: contact_lines(geom, roll).total_length, repeats)
     base, reference = median_seconds(lambda: contact_length_pointwise(geom, roll), 1 if smoke else max(3, repeats // 3))
@@ -74,7 +74,7 @@ def bench_contact_lines(repeats: int, smoke: bool = False) -> dict:
     bound = 2 * tooth_pair_indices(geom).size * slice_line
     short = result - reference
     holds = bool(np.all(short >= -1e-12 * result) and np.all(short <= bound))
-    return {"name": "contact_lines_360_positions", "median_s": fast, "baseline": "seed 002 pointwise sum, 200 slices",
+    return {"name": "contact_lines_360_positions", "median_s": fast, "baseline": "the contact-line paper pointwise sum, 200 slices",
             "baseline_median_s": base, "ratio": base / fast,
             **bounded_difference(float(np.max(np.abs(short) / result)), float(np.max(bound / result)),
                                  "the pointwise sum misses the part of each line beyond its last slice at either "
@@ -86,13 +86,13 @@ def bench_tvms(repeats: int, smoke: bool = False) -> dict:
     """Helical TVMS, 1000 slices x 360 positions (issue 3 target: under 0.2 s), tables built
     inside the timing, against the straightforward per-slice scipy quad (no tables) at one
     position, scaled to 360 positions; both with whole slices (rule 'centre'), the teeth alone:
-    seed 001's pair file holds its gear bodies rigid, as the quadrature does."""
+    the low-fluctuation paper's pair file holds its gear bodies rigid, as the quadrature does."""
     from gearmesh.body import mesh_body_compliance
     from gearmesh.stiffness import mesh_stiffness, mesh_stiffness_reference
 
-    geom = pair_geometry(load_pair(ROOT / "config/pairs/seed001_pair1.yaml"))
+    geom = pair_geometry(load_pair(ROOT / "config/pairs/low_fluctuation_pair1.yaml"))
     if mesh_body_compliance(geom):
-        raise RuntimeError("seed001_pair1 no longer holds its gear bodies rigid: the quadrature baseline has the "
+        raise RuntimeError("low_fluctuation_pair1 no longer holds its gear bodies rigid: the quadrature baseline has the "
                            "teeth alone; give the benchmark a pair whose bodies are rigid")
     method = "transition"  # the quad baseline is the potential-energy cantilever's
     t_fast, _ = median_seconds(lambda: mesh_stiffness(geom, 360, 1000, method, components=False, rule="centre"),

@@ -27,7 +27,7 @@ def main(root: str, fe_tables: str) -> None:
     from gearmesh.gear import load_pair
 
     config = yaml.safe_load((root_path / "config/config.yaml").read_text())
-    pair = load_pair(root_path / "config/pairs/seed000_case.yaml")
+    pair = load_pair(root_path / "config/pairs/helical_z29_71_m5.yaml")
     fe = xr.load_dataset(fe_tables)
     out = []
     for name, section in config["optimise"].items():

@@ -3,7 +3,7 @@
 Run from the repository root (a minute per pair):
 
     python scripts/stiffness_decomposition.py                       # every shipped pair
-    python scripts/stiffness_decomposition.py seed001_pair1 --line-load-N-per-mm 300
+    python scripts/stiffness_decomposition.py low_fluctuation_pair1 --line-load-N-per-mm 300
 
 From the default potential-energy model (transition cantilever, Sainsot foundation, plane
 stress E and G, Yang & Sun's constant Hertz term) to the 2-D finite-element tooth, one part
@@ -37,8 +37,8 @@ from gearmesh import stiffness as st
 from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import load_pair, pair_geometry
 
-PAIRS = ("seed000_case", "seed001_pair1", "seed001_pair2", "seed001_pair3", "seed001_pair4", "seed002_input",
-         "seed002_output", "seed003_pair", "seed004_pair")
+PAIRS = ("helical_z29_71_m5", "low_fluctuation_pair1", "low_fluctuation_pair2", "low_fluctuation_pair3", "low_fluctuation_pair4", "contact_lines_input_z29_36",
+         "contact_lines_output_z15_65", "transition_curve_z23_62", "printing_train_z88")
 ROLL_NODES = 17
 SIZE = fe.DEFAULT_SIZE
 

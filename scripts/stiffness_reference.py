@@ -32,11 +32,11 @@ from gearmesh import fe, fe3d
 from gearmesh import stiffness as st
 from gearmesh.gear import load_pair, pair_geometry, pair_to_dict
 
-PAIR1 = {"name": "seed001_pair1", "teeth": [29, 49], "normal_module_mm": 1.75, "normal_pressure_angle_deg": 25,
+PAIR1 = {"name": "low_fluctuation_pair1", "teeth": [29, 49], "normal_module_mm": 1.75, "normal_pressure_angle_deg": 25,
          "helix_angle_deg": 10, "face_width_mm": 20, "addendum_coefficient": 1.0, "dedendum_coefficient": 1.25,
          "bore_radius_mm": [15, 25], "material": {"youngs_modulus_GPa": 210, "poisson_ratio": 0.3,
                                                   "density_kg_m3": 7850}}
-SEED000 = {"name": "seed000_case", "teeth": [29, 71], "normal_module_mm": 5, "normal_pressure_angle_deg": 20,
+HELICAL_Z29_71 = {"name": "helical_z29_71_m5", "teeth": [29, 71], "normal_module_mm": 5, "normal_pressure_angle_deg": 20,
            "helix_angle_deg": 27.5, "helix_hand": "right", "face_width_mm": 42, "addendum_coefficient": 1.0,
            "dedendum_coefficient": 1.25, "tool_tip_radius_coefficient": 0.38, "bore_radius_mm": [30, 70],
            "material": {"youngs_modulus_GPa": 210, "poisson_ratio": 0.3, "density_kg_m3": 7850}}
@@ -47,7 +47,7 @@ CASES = {
     "spur_b5": ({**PAIR1, "name": "pair1_spur_b5", "helix_angle_deg": 0, "face_width_mm": 5.25}, 0, (0.1, 0.5, 0.9)),
     "spur_b60": ({**PAIR1, "name": "pair1_spur_b60", "helix_angle_deg": 0, "face_width_mm": 60}, 0, (0.5,)),
     "helical_pair1": (PAIR1, 0, (0.25, 0.5, 0.75)),
-    "helical_seed000": (SEED000, 0, (0.5,)),
+    "helical_z29_71_m5": (HELICAL_Z29_71, 0, (0.5,)),
 }
 LEVELS = (0.56, 0.4, 0.28)
 LAYER_ASPECT = 2.0  # layer thickness over the in-plane edge (P2 in z; the field varies slowly along the face)
@@ -127,8 +127,8 @@ def run_case(name: str, levels, out_dir: Path, solver: str = "auto") -> dict:
     return out
 
 
-SHIPPED = ("seed000_case", "seed001_pair1", "seed001_pair2", "seed001_pair3", "seed001_pair4", "seed002_input",
-           "seed002_output", "seed003_pair", "seed004_pair")
+SHIPPED = ("helical_z29_71_m5", "low_fluctuation_pair1", "low_fluctuation_pair2", "low_fluctuation_pair3", "low_fluctuation_pair4", "contact_lines_input_z29_36",
+           "contact_lines_output_z15_65", "transition_curve_z23_62", "printing_train_z88")
 
 
 def run_shipped(size: float, out_dir: Path, solver: str = "auto") -> dict:

@@ -5,10 +5,10 @@ from __future__ import annotations
 STEEL = {"youngs_modulus_GPa": 210, "poisson_ratio": 0.3, "density_kg_m3": 7850}
 
 
-def seed001_pair1(**changes) -> dict:
-    """Seed 001, Table 1, gear pair 1 (29/49, mn 1.75, 25°, β 10°, b 20; standard distance)."""
+def low_fluctuation_pair1(**changes) -> dict:
+    """The low-fluctuation paper, Table 1, gear pair 1 (29/49, mn 1.75, 25°, β 10°, b 20; standard distance)."""
     data = {
-        "name": "seed001_pair1", "teeth": [29, 49], "normal_module_mm": 1.75,
+        "name": "low_fluctuation_pair1", "teeth": [29, 49], "normal_module_mm": 1.75,
         "normal_pressure_angle_deg": 25, "helix_angle_deg": 10, "face_width_mm": 20,
         "addendum_coefficient": 1.0, "dedendum_coefficient": 1.25,
         "bore_radius_mm": [15, 25], "material": dict(STEEL),

@@ -25,14 +25,14 @@ from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import GearPair, Material, load_pair, pair_from_dict, pair_geometry, variant_pair
 from gearmesh.optimise import check_settings
 from gearmesh.stiffness import mesh_stiffness
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 from test_limits import REFUSAL_BYTES, _refused  # one line on the field, bounded memory
 PACKAGE = Path(gearmesh.__file__).parent
 
 
 @pytest.fixture(scope="module")
 def pair() -> GearPair:
-    return pair_from_dict(seed001_pair1())
+    return pair_from_dict(low_fluctuation_pair1())
 
 
 # --- item 5: the material of a GearPair however it was built -----------------------------------
@@ -60,7 +60,7 @@ def test_a_material_built_in_code_obeys_the_pair_file_rules(pair, material, fiel
 
 def test_a_pair_file_material_is_refused_by_the_same_rule():
     with pytest.raises(GearmeshInputError, match="must lie in"):
-        pair_from_dict(seed001_pair1(material={"youngs_modulus_GPa": 210, "poisson_ratio": 0.5,
+        pair_from_dict(low_fluctuation_pair1(material={"youngs_modulus_GPa": 210, "poisson_ratio": 0.5,
                                                "density_kg_m3": 7850}))
 
 
@@ -69,7 +69,7 @@ def test_a_pair_file_material_is_refused_by_the_same_rule():
 
 @pytest.fixture(scope="module")
 def other_stiffness():
-    other = pair_from_dict(seed001_pair1(name="other", helix_angle_deg=15))
+    other = pair_from_dict(low_fluctuation_pair1(name="other", helix_angle_deg=15))
     return stiffness_dataset(other, slices=20, positions=24, method="traditional")
 
 
@@ -165,7 +165,7 @@ def test_every_list_setting_declares_a_maximum_length():
 def test_validate_refuses_a_long_list_by_its_count(tmp_path, capsys):
     """The study config's lists too (gearmesh validate; the workflow uses the same schema)."""
     config = tmp_path / "c.yaml"
-    config.write_text("study: s\npairs: [seed001_pair1]\nltca:\n  torques_Nm: [" + ", ".join(["100"] * 15003) + "]\n")
+    config.write_text("study: s\npairs: [low_fluctuation_pair1]\nltca:\n  torques_Nm: [" + ", ".join(["100"] * 15003) + "]\n")
     assert main(["validate", str(config)]) == 2
     err = capsys.readouterr().err
     assert "ltca.torques_Nm" in err and "at most 100 items" in err
@@ -283,7 +283,7 @@ def test_no_import_circle():
 def test_validate_names_the_template_engine(tmp_path, capsys):
     """A config with __use_yte__: true runs Python when Snakemake loads it."""
     config = tmp_path / "yte.yaml"
-    config.write_text("study: s\npairs: [seed001_pair1]\n__use_yte__: true\n")
+    config.write_text("study: s\npairs: [low_fluctuation_pair1]\n__use_yte__: true\n")
     assert main(["validate", str(config)]) == 2
     err = capsys.readouterr().err
     assert err.startswith("gearmesh: error: __use_yte__ = True:") and "runs Python" in err
@@ -291,9 +291,9 @@ def test_validate_names_the_template_engine(tmp_path, capsys):
 
 @pytest.mark.parametrize("content, words", [
     (None, "not a regular file"),  # a FIFO: Snakemake's loader blocked on it forever
-    ("study: s\npairs: [seed001_pair1]\nx: " + "[" * 100 + "]" * 100 + "\n", "nests deeper"),
-    ("study: s\npairs: [seed001_pair1]\n" + "# padding\n" * 40000, "larger than"),
-    ("study: s\npairs: [seed001_pair1]\n__use_yte__: true\n", "__use_yte__"),
+    ("study: s\npairs: [low_fluctuation_pair1]\nx: " + "[" * 100 + "]" * 100 + "\n", "nests deeper"),
+    ("study: s\npairs: [low_fluctuation_pair1]\n" + "# padding\n" * 40000, "larger than"),
+    ("study: s\npairs: [low_fluctuation_pair1]\n__use_yte__: true\n", "__use_yte__"),
 ])
 def test_gearmesh_run_reads_configs_bounded_before_snakemake(tmp_path, monkeypatch, capsys, content, words):
     """A 200 MB config parsed for minutes at 6.5 GB, a deep one printed a 2985-line RecursionError:
@@ -329,7 +329,7 @@ def test_gearmesh_run_finds_every_config_file(tmp_path, monkeypatch):
     assert snakemake_inputs(["-n", "--configfiles", "a.yaml"]).configfiles == ["a.yaml"]
 
 
-YTE_STUDY = "study: s\npairs: [seed001_pair1]\n__use_yte__: true\n"
+YTE_STUDY = "study: s\npairs: [low_fluctuation_pair1]\n__use_yte__: true\n"
 
 
 def _profile(folder, text: str):

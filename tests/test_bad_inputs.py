@@ -21,7 +21,7 @@ import yaml
 
 from gearmesh.cli import main
 from gearmesh.io import host_name
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 
 # Bounded work without a clock (timings differ 2x between machines): a refusal allocates less than
 # this much (tracemalloc traces numpy's buffers too), and a hang (a FIFO opened for reading)
@@ -32,7 +32,7 @@ MAX_LINE = 800  # characters of the one error line (field, excerpt of the value,
 
 
 def _pair(**changes) -> dict:
-    return seed001_pair1(**{"name": "p", **changes})
+    return low_fluctuation_pair1(**{"name": "p", **changes})
 
 
 def _without(key: str) -> dict:
@@ -496,14 +496,14 @@ def _snakemake(cwd: Path, *args: str, **kwargs) -> subprocess.Popen | subprocess
 
 
 SNAKEMAKE_CASES = [  # (file name, content, field): a handful, each Snakemake start costs ~2 s
-    ("nan.yaml", "study: s\npairs: [seed001_pair1]\nltca: {torques_Nm: [.nan]}\n", "ltca.torques_Nm[0]"),
-    ("speeds.yaml", "study: s\npairs: [seed001_pair1]\ndynamics: {speeds_rpm: {start: 5000, stop: 1000, step: 10}}\n",
+    ("nan.yaml", "study: s\npairs: [low_fluctuation_pair1]\nltca: {torques_Nm: [.nan]}\n", "ltca.torques_Nm[0]"),
+    ("speeds.yaml", "study: s\npairs: [low_fluctuation_pair1]\ndynamics: {speeds_rpm: {start: 5000, stop: 1000, step: 10}}\n",
      "dynamics.speeds_rpm.stop"),
-    ("twice.yaml", "study: s\nstudy: t\npairs: [seed001_pair1]\n", "study"),
-    ("long.yaml", f"study: {'s' * 300}\npairs: [seed001_pair1]\n", "study"),
-    ("nostudy.yaml", "pairs: [seed001_pair1]\n", "study"),
-    ("comparison.yaml", "study: s\npairs: [seed001_pair1]\ndynamics_comparison: {}\n", "dynamics_comparison"),
-    ("bomb.yaml", "study: s\npairs: [seed001_pair1]\n" + ALIAS_BOMB.replace("name: p\n", ""), "file"),
+    ("twice.yaml", "study: s\nstudy: t\npairs: [low_fluctuation_pair1]\n", "study"),
+    ("long.yaml", f"study: {'s' * 300}\npairs: [low_fluctuation_pair1]\n", "study"),
+    ("nostudy.yaml", "pairs: [low_fluctuation_pair1]\n", "study"),
+    ("comparison.yaml", "study: s\npairs: [low_fluctuation_pair1]\ndynamics_comparison: {}\n", "dynamics_comparison"),
+    ("bomb.yaml", "study: s\npairs: [low_fluctuation_pair1]\n" + ALIAS_BOMB.replace("name: p\n", ""), "file"),
 ]
 
 
@@ -538,11 +538,11 @@ def test_killed_run_rerun_leaves_no_temporary_files(root, tmp_path):
     """kill -9 of the whole run at a random moment, then --unlock and a rerun: every target
     exists and no .NAME.HOST.PID.tmp.* is left (some planted as if from an earlier killed run)."""
     work = _workflow_copy(root, tmp_path)
-    config = {"study": "k", "pairs": ["seed001_pair1"], "contact_lines": {"positions": 24},
+    config = {"study": "k", "pairs": ["low_fluctuation_pair1"], "contact_lines": {"positions": 24},
               "geometry": {"involute_points": 20, "fillet_points": 10, "face_points": 5},
               "stiffness": {"slices": 40, "positions": 24}}
     (work / "k.yaml").write_text(yaml.safe_dump(config))
-    base = work / "results/k/seed001_pair1"
+    base = work / "results/k/low_fluctuation_pair1"
     (base / "plots").mkdir(parents=True)
     (base / f".geometry.{host_name()}.{_dead_pid()}.tmp.nc").write_bytes(b"CDF\x01truncated")
     (base / f"plots/.stiffness.{host_name()}.{_dead_pid()}.tmp.png").write_bytes(b"")

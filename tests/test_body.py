@@ -17,13 +17,13 @@ from gearmesh.stiffness import mesh_stiffness
 E, NU = 210e9, 0.3
 
 
-def _pair(name="seed000_case", **body):
+def _pair(name="helical_z29_71_m5", **body):
     data = pair_to_dict(load_pair(example_pair(name)))
     data.update(body)
     return load_pair(data)
 
 
-def _solid_discs(name="seed000_case", **more):
+def _solid_discs(name="helical_z29_71_m5", **more):
     """The pair's gears as solid discs of the face width held at the bore (hub = bore), on stated shafts
     and bearings (a body never comes without them: the pair's own, or rigid bearings on a shaft of the
     bore's diameter spanning three face widths)."""
@@ -73,14 +73,14 @@ def test_harmonic_series_has_converged():
 
 
 @pytest.mark.parametrize("name, k_transverse, k_normal, rel", [
-    ("seed004_pair", 1347.0, 1039.0, 0.03),
-    ("seed000_case", 974.0, 509.0, 0.10),
+    ("printing_train_z88", 1347.0, 1039.0, 0.03),
+    ("helical_z29_71_m5", 974.0, 509.0, 0.10),
 ])
 def test_mesh_body_compliance_against_the_3d_reference(name, k_transverse, k_normal, rel):
     """The 3-D reference (gearmesh.fe3d, bore held; docs/validation.md "Verdict": the mesh stiffness
     under the slice model's transverse load and under the flank-normal load, N/µm) attributes the
     difference to the body bending under the axial load. The solid disc held at the bore (the pair
-    file's body by default) gives it within 3 % of the stiffness for seed 004 (b/(r_f − r_bore) =
+    file's body by default) gives it within 3 % of the stiffness for the improved potential-energy paper (b/(r_f − r_bore) =
     0.51) and 10 % for the default pair's thinner discs (the Kirchhoff plate has no shear: a
     lower bound on the compliance)."""
     geom = pair_geometry(_solid_discs(name))
@@ -127,7 +127,7 @@ def test_no_body_described_is_the_teeth_alone_and_a_hub_alone_is_the_solid_disc(
                                         rel=1e-12)
     assert "the webs' axial bending" in describe_body(default)
     with pytest.raises(GearmeshInputError, match="shafts and bearings") as err:
-        pair_geometry(_pair("seed004_pair", web_thickness_mm=10.0))
+        pair_geometry(_pair("printing_train_z88", web_thickness_mm=10.0))
     assert err.value.field == "web_thickness_mm"
     c_gear = mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=["rigid", 42.0])))
     c_pinion = mesh_body_compliance(pair_geometry(_pair(web_thickness_mm=[42.0, "rigid"])))
@@ -156,9 +156,9 @@ def test_bad_body_geometry_gets_one_error_naming_the_key(body, field):
 
 
 def test_bad_body_in_a_pair_file_exits_2(tmp_path, capsys):
-    data = yaml.safe_load(example_pair("seed000_case").read_text())
+    data = yaml.safe_load(example_pair("helical_z29_71_m5").read_text())
     data["web_thickness_mm"] = 60
-    path = tmp_path / "seed000_case.yaml"
+    path = tmp_path / "helical_z29_71_m5.yaml"
     path.write_text(yaml.safe_dump(data))
     assert main(["validate", str(path)]) == 2
     err = capsys.readouterr().err

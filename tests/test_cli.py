@@ -19,7 +19,7 @@ GEOMETRY_KEYS = {
 
 
 def test_geometry_json_has_the_documented_keys(root, capsys):
-    assert main(["geometry", str(root / "config/pairs/seed001_pair1.yaml"), "--json"]) == 0
+    assert main(["geometry", str(root / "config/pairs/low_fluctuation_pair1.yaml"), "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     assert GEOMETRY_KEYS <= set(out)
     for key in ("base_radius_mm", "tip_radius_mm", "root_radius_mm", "form_radius_mm", "mass_kg", "inertia_kg_m2"):
@@ -32,7 +32,7 @@ def test_geometry_json_has_the_documented_keys(root, capsys):
 
 def test_validate_accepts_pairs_and_studies(root, monkeypatch, capsys):
     monkeypatch.chdir(root)
-    assert main(["validate", "config/pairs/seed003_pair.yaml"]) == 0
+    assert main(["validate", "config/pairs/transition_curve_z23_62.yaml"]) == 0
     assert main(["validate", "config/studies/low_fluctuation.yaml"]) == 0
 
 
@@ -43,7 +43,7 @@ def test_validate_accepts_pairs_and_studies(root, monkeypatch, capsys):
      "helix_angle_deg: 10\nface_width_mm: 20\n", "normal_module_mm"),
     ("name: x\nteeth: [29, 49]\nnormal_module_mm: 2\nnormal_pressure_angle_deg: 20\n"
      "helix_angle_deg: 10\nface_width_mm: 20\ncolour: red\n", "pair.colour"),
-    ("study: s\npairs: [seed001_pair1]\ncontact_lines: {positions: 0}\n", "contact_lines.positions"),
+    ("study: s\npairs: [low_fluctuation_pair1]\ncontact_lines: {positions: 0}\n", "contact_lines.positions"),
     ("[not, a, mapping", "file"),
 ])
 @pytest.mark.workflow
@@ -60,11 +60,11 @@ def test_bad_input_exits_2_with_one_message(tmp_path, root, monkeypatch, text, f
 
 
 def test_dynamics_json_per_speed(root, capsys):
-    assert main(["dynamics", str(root / "config/pairs/seed001_pair1.yaml"), "--torque-Nm", "200",
+    assert main(["dynamics", str(root / "config/pairs/low_fluctuation_pair1.yaml"), "--torque-Nm", "200",
                  "--speeds", "4000:6000:1000", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     rows = out["speeds"]
-    # the supports and the damping it used, stated (issue 28): seed 001's pair file gives its bearings
+    # the supports and the damping it used, stated (issue 28): the low-fluctuation paper's pair file gives its bearings
     assert out["supports"].startswith("supports radial [150, 150] N/um") and "from the pair file" in out["supports"]
     assert out["damping_ratio"] == 0.07 and "mesh mode" in out["damping_ratio_meaning"]
     assert [r["speed_rpm"] for r in rows] == [4000.0, 5000.0, 6000.0]
@@ -80,7 +80,7 @@ def test_dynamics_json_per_speed(root, capsys):
     (["--torque-Nm", "200", "--speeds", "fast"], "speeds_rpm"),
 ])
 def test_dynamics_refuses_bad_options(root, capsys, args, field):
-    assert main(["dynamics", str(root / "config/pairs/seed001_pair1.yaml"), *args]) == 2
+    assert main(["dynamics", str(root / "config/pairs/low_fluctuation_pair1.yaml"), *args]) == 2
     assert capsys.readouterr().err.startswith(f"gearmesh: error: {field}")
 
 
@@ -130,7 +130,7 @@ def test_study_pair_without_bore_is_refused_up_front(tmp_path, capsys):
 
 
 def test_cli_bounds_grid_sizes(root, capsys):
-    assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), "--slices", "100000000"]) == 2
+    assert main(["stiffness", str(root / "config/pairs/low_fluctuation_pair1.yaml"), "--slices", "100000000"]) == 2
     assert capsys.readouterr().err.startswith("gearmesh: error: --slices")
 
 
@@ -154,7 +154,7 @@ def test_rating_text_starts_with_the_verdict_and_groups_the_factors(root, capsys
     """The first line says whether S_H and S_F of the weaker gear meet their minimums; then the
     result by group, every number of the JSON output among them (nothing dropped); a minimum above
     the rated safety factor turns the verdict to FAIL."""
-    pair = str(root / "config/pairs/seed000_case.yaml")
+    pair = str(root / "config/pairs/helical_z29_71_m5.yaml")
     base = ["rating", pair, "--torque-Nm", "1000", "--speed-rpm", "5000", "--positions", "16", "--points", "20"]
     assert main([*base, "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
@@ -245,9 +245,9 @@ def test_an_unknown_key_is_refused_in_whole_words(root, tmp_path, capsys, kind, 
     import yaml
 
     if kind == "pair":
-        data = {**yaml.safe_load((root / "config/pairs/seed000_case.yaml").read_text()), key: 1}
+        data = {**yaml.safe_load((root / "config/pairs/helical_z29_71_m5.yaml").read_text()), key: 1}
     else:
-        data = {"study": "x", "pairs": ["seed000_case"]}
+        data = {"study": "x", "pairs": ["helical_z29_71_m5"]}
         section, _, name = key.rpartition(".")
         data.update({section: {name: 1}} if section else {name: 1})
     path = tmp_path / "file.yaml"

@@ -29,7 +29,7 @@ def test_ltca_and_dynamics_with_the_same_flags_act_on_the_same_gear(root, capsys
     """Same flags, same load: the dynamics' mean normal mesh force at a low speed is the static
     normal force T1/(r_b1 cos β_b) of the LTCA's transverse force T1/r_b1 (issue 18: the
     dynamics once took the torque on the gear, 65.5 kN instead of 259 kN)."""
-    path = str(root / "config/pairs/seed001_pair1.yaml")
+    path = str(root / "config/pairs/low_fluctuation_pair1.yaml")
     ltca = _json(capsys, ["ltca", path, "--torque-Nm", "200", *on, "--positions", "16", "--points", "10"])
     dyn = _json(capsys, ["dynamics", path, "--torque-Nm", "200", *on, "--speeds", "200:200:100"])
     geom = pair_geometry(load_pair(path))
@@ -47,14 +47,14 @@ def test_ltca_and_dynamics_with_the_same_flags_act_on_the_same_gear(root, capsys
     ["impact", "--speed-rpm", "3000"],
 ])
 def test_every_torque_result_states_the_torque_and_its_gear(root, capsys, command):
-    path = str(root / "config/pairs/seed001_pair1.yaml")
+    path = str(root / "config/pairs/low_fluctuation_pair1.yaml")
     out = _json(capsys, [command[0], path, "--torque-Nm", "200", "--on", "gear", *command[1:]])
     assert (out["torque_Nm"], out["torque_on"]) == (200.0, "gear")
     assert out["pinion_torque_Nm"] == pytest.approx(200.0 * 29 / 49)
 
 
 def test_optimise_states_the_backlash_of_its_dynamics(root, capsys):
-    path = str(root / "config/pairs/seed001_pair1.yaml")
+    path = str(root / "config/pairs/low_fluctuation_pair1.yaml")
     out = _json(capsys, ["optimise", path, "--torque-Nm", "200", "--population", "4", "--generations", "1",
                          "--dynamic-factor", "1.0", "--dynamic-speeds-rpm", "1000,3000", "--backlash-um", "40"])
     assert (out["backlash_um"], out["backlash_source"]) == (40.0, "given")
@@ -62,7 +62,7 @@ def test_optimise_states_the_backlash_of_its_dynamics(root, capsys):
 
 
 def test_dynamics_backlash_defaults_to_the_pairs_own(tmp_path, root, capsys):
-    text = (root / "config/pairs/seed001_pair1.yaml").read_text() + "profile_shift: [0.1, 0.1]\ncenter_distance_mm: 69.7\n"
+    text = (root / "config/pairs/low_fluctuation_pair1.yaml").read_text() + "profile_shift: [0.1, 0.1]\ncenter_distance_mm: 69.7\n"
     path = tmp_path / "wide.yaml"
     path.write_text(text)
     own = pair_geometry(load_pair(path)).backlash_normal * 1e6
@@ -78,12 +78,12 @@ def test_dynamics_backlash_defaults_to_the_pairs_own(tmp_path, root, capsys):
 
 def test_example_lists_the_shipped_pairs_and_prints_one_every_command_reads(tmp_path, capsys):
     listing = _json(capsys, ["example"])
-    assert set(listing) == set(example_pairs()) and "seed000_case" in listing
+    assert set(listing) == set(example_pairs()) and "helical_z29_71_m5" in listing
     assert all(source for source in listing.values())
-    assert main(["example", "seed000_case"]) == 0
+    assert main(["example", "helical_z29_71_m5"]) == 0
     path = tmp_path / "mine.yaml"
     path.write_text(capsys.readouterr().out)
-    assert _json(capsys, ["geometry", str(path)])["name"] == "seed000_case"
+    assert _json(capsys, ["geometry", str(path)])["name"] == "helical_z29_71_m5"
     assert main(["example", "seed999"]) == 2
     assert capsys.readouterr().err.startswith("gearmesh: error: example = 'seed999': must be one of")
 
@@ -146,7 +146,7 @@ def test_a_pip_install_ships_the_examples_every_command_reads(tmp_path, root):
     where = subprocess.run([sys.executable, "-S", "-c", "import gearmesh; print(gearmesh.__file__)"],
                            capture_output=True, text=True, env=env, timeout=60)
     assert where.stdout.startswith(str(target)), where
-    example = gearmesh("example", "seed001_pair1")
+    example = gearmesh("example", "low_fluctuation_pair1")
     assert example.returncode == 0, example.stderr
     (tmp_path / "pair.yaml").write_text(example.stdout)
     geometry = gearmesh("geometry", "pair.yaml", "--json")

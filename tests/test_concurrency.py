@@ -36,9 +36,9 @@ def test_two_studies_run_at_once_in_one_checkout_and_lose_no_job(root, tmp_path)
     """Each run's start-up removes only temporaries no live process writes: a temporary of a live
     writer planted in the other study's folder (as a job in flight) survives both start-ups, one of
     a dead writer goes; both runs finish every job."""
-    work = _scratch_workflow(root, tmp_path, _study("one", "seed001_pair1"))
-    (work / "two.yaml").write_text(yaml.safe_dump(_study("two", "seed001_pair2")))
-    folder = work / "results/one/seed001_pair1"
+    work = _scratch_workflow(root, tmp_path, _study("one", "low_fluctuation_pair1"))
+    (work / "two.yaml").write_text(yaml.safe_dump(_study("two", "low_fluctuation_pair2")))
+    folder = work / "results/one/low_fluctuation_pair1"
     folder.mkdir(parents=True)
     writer = subprocess.Popen([sys.executable, "-c", "import time; time.sleep(600)"])  # a job in flight
     dead = subprocess.Popen([sys.executable, "-c", ""])
@@ -60,7 +60,7 @@ def test_two_studies_run_at_once_in_one_checkout_and_lose_no_job(root, tmp_path)
     for run, output in zip(runs, outputs):
         assert run.returncode == 0, output[-3000:]
     assert not debris.exists()
-    for study, pair in (("one", "seed001_pair1"), ("two", "seed001_pair2")):
+    for study, pair in (("one", "low_fluctuation_pair1"), ("two", "low_fluctuation_pair2")):
         base = work / "results" / study / pair
         for name in ("geometry.nc", "contact_lines.nc", "stiffness.nc", "plots/stiffness.png"):
             assert (base / name).stat().st_size > 0, (study, name)

@@ -1,8 +1,8 @@
 """Contact lines in the plane of action (gearmesh.contact): physics invariants.
 
 The numeric total length (exactly clipped lines summed) is checked against independent
-closed forms (l_mean = b εα / cos βb, docs/modelling.md; min/max of seed 001 §1) over random valid
-pairs; the 3-D end points are checked against the involute-helicoid equations (seed 002).
+closed forms (l_mean = b εα / cos βb, docs/modelling.md; min/max of the low-fluctuation paper §1) over random valid
+pairs; the 3-D end points are checked against the involute-helicoid equations (the contact-line paper).
 """
 
 from __future__ import annotations
@@ -83,7 +83,7 @@ def test_total_length_mean_min_max_match_closed_form(pair):
     assert s.numeric_mean == pytest.approx(mean, rel=1e-9)
     assert s.numeric_min == pytest.approx(lo, rel=1e-9, abs=1e-12)
     assert s.numeric_max == pytest.approx(hi, rel=1e-9, abs=1e-12)
-    # A fine even grid (seed 002's L_ave = ΣL_k/N_k) converges to the same mean and stays
+    # A fine even grid (the contact-line paper's L_ave = ΣL_k/N_k) converges to the same mean and stays
     # within the closed-form bounds.
     L = contact_lines(geom, mesh_cycle_rolls(geom, 2000)).total_length
     tol = 2 * (hi - lo) / 2000 + 1e-12
@@ -167,7 +167,7 @@ def test_total_length_period_is_one_base_pitch(pair, k):
 @given(st.integers(17, 40), st.integers(40, 90), st.sampled_from([1.5, 2.0, 3.0]),
        st.integers(1, 3), st.floats(8.0, 35.0), st.sampled_from(["right", "left"]))
 def test_integer_overlap_ratio_gives_constant_length(z1, z2, mn, n, beta_deg, hand):
-    b_mm = math.pi * mn * n / math.sin(math.radians(beta_deg))  # εβ = N exactly (seed 001 §1)
+    b_mm = math.pi * mn * n / math.sin(math.radians(beta_deg))  # εβ = N exactly (the low-fluctuation paper §1)
     assume(b_mm <= 200)
     geom = geometry_or_skip(make_pair(z1, z2, mn, 20.0, beta_deg, b_mm, hand=hand))
     assert geom.eps_beta == pytest.approx(n, rel=1e-12)

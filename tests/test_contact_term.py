@@ -12,7 +12,7 @@ from gearmesh.stiffness import hertz_compliance_transverse, mesh_stiffness
 
 @pytest.fixture(scope="module")
 def geom():
-    return pair_geometry(load_pair(example_pair("seed000_case")))
+    return pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
 
 
 def test_tvms_with_the_tangent_is_the_ltcas_stiffness(geom):
@@ -56,7 +56,7 @@ def test_edge_tangent_is_the_ltcas_stiffness_beyond_the_active_zone(geom):
                 misalignment=res.misalignment)
     fd = (res2.force[0] - res.force[0]) / (res2.lte[0] - res.lte[0])
     np.testing.assert_allclose(res.stiffness[0], fd, rtol=1e-4)
-    pair = load_pair(example_pair("seed000_case"))
+    pair = load_pair(example_pair("helical_z29_71_m5"))
     relieved = pair_geometry(pair.with_changes(modification=tuple(_relief(m) for m in pair.modification)))
     k_rel = edge_tangent_stiffness(ltca(relieved, [1000.0], positions=32, points=50, method="transition"))[0]
     assert np.mean(k_rel) < 0.5 * np.mean(k_edge)
@@ -89,7 +89,7 @@ def test_tvms_and_contact_put_the_mesh_mode_within_3_percent():
     from gearmesh.dynamics import mesh_mode
     from gearmesh.gear import pair_to_dict
 
-    data = pair_to_dict(load_pair(example_pair("seed000_case")))
+    data = pair_to_dict(load_pair(example_pair("helical_z29_71_m5")))
     rigid = {k: v for k, v in data.items() if k not in ("shaft_diameter_mm", "bearing_span_mm")}
     rigid.update(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid")
     for pair in (load_pair(data), load_pair(rigid)):

@@ -101,7 +101,7 @@ def test_translation_agrees_with_the_supports_radial_stiffness():
 
 
 def _case(**changes):
-    data = pair_to_dict(load_pair(example_pair("seed000_case")))
+    data = pair_to_dict(load_pair(example_pair("helical_z29_71_m5")))
     data.update(changes)
     return load_pair(data)
 
@@ -131,7 +131,7 @@ def test_spur_pinion_body_twist_is_isos_torsion_term():
     6336-1's f_sh, a solid cylinder of the reference diameter). Each body lags most at the face end
     away from its torque side: with both torques on one side the two twists add, on opposite sides
     they cancel in part."""
-    base = pair_to_dict(load_pair(example_pair("seed000_case")))
+    base = pair_to_dict(load_pair(example_pair("helical_z29_71_m5")))
     base.update(helix_angle_deg=0.0, bearing_radial_stiffness_N_per_um="rigid",
                 bearing_axial_stiffness_N_per_um="rigid", bearing_span_mm=[150, 180],
                 shaft_diameter_mm=[2 * r for r in base["bore_radius_mm"]])
@@ -265,7 +265,7 @@ def test_beam_f_sh_against_isos_formula_for_the_case_pair():
     """docs/load_capacity.md: ISO 6336-1 method C's f_sh at mid-span, F_m/b·0.023·(b/d1)², is 0.44 µm
     for the case pair at 1000 N·m; the beam gives 0.01–0.55 µm on rigid bearings and 0.03–0.69 µm on
     the pair's own, by the torque sides: ISO's figure inside the beam's range."""
-    base = pair_to_dict(load_pair(example_pair("seed000_case")))
+    base = pair_to_dict(load_pair(example_pair("helical_z29_71_m5")))
     sides = (["leading", "leading"], ["trailing", "leading"], ["leading", "trailing"], ["trailing", "trailing"])
     out = {}
     for label, ch in (("rigid", dict(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid")),

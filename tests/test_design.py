@@ -1,6 +1,6 @@
 """Low-fluctuation design (gearmesh.design): integer overlap / transverse contact ratio.
 
-Reference numbers are seed 001 Table 1 and §5, derived by hand in the comments.
+Reference numbers are the low-fluctuation paper Table 1 and §5, derived by hand in the comments.
 """
 
 from __future__ import annotations
@@ -58,7 +58,7 @@ def test_seed001_pair1_face_width():
 
 def test_seed001_pair4_backward_helix_angle():
     # pair 4: εβ = 20 sin21.84°/(π·1.75) = 7.44068/5.49779 = 1.3534 (Table 1: 1.353);
-    # backward to N = 1 -> 15.9554° (the same minimum as forward from pair 1, seed 001 §5)
+    # backward to N = 1 -> 15.9554° (the same minimum as forward from pair 1, the low-fluctuation paper §5)
     p4 = seed001(21.84)
     assert pair_geometry(p4).eps_beta == pytest.approx(1.353, abs=5e-4)
     res = integer_overlap_helix_angle(p4, "backward")

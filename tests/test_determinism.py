@@ -21,14 +21,14 @@ pytestmark = [pytest.mark.workflow,
 OPTIMISE = {"population": 4, "generations": 2, "torque_Nm": 100, "torques_Nm": [50, 100], "objective": "robust",
             "tolerance_statistic": "max", "speed_rpm": 3000, "points": 10, "window_positions": 16,
             "face_samples": 33, "cycle_positions": 8, "load_window_step_Nm": 25}
-CONFIG = {"study": "det", "pairs": ["seed001_pair1"], "contact_lines": {"positions": 24},
+CONFIG = {"study": "det", "pairs": ["low_fluctuation_pair1"], "contact_lines": {"positions": 24},
           "geometry": {"involute_points": 20, "fillet_points": 10, "face_points": 5},
           "stiffness": {"slices": 40, "positions": 24},
           "variants": {"standard": {}, "optimised": {"from": "optimise.robust"}},
           "tolerances": {"grade": 6, "samples": 2}, "optimise": {"robust": OPTIMISE},
           "tca": {"positions": 8, "points": 6}, "ltca": {"torques_Nm": [100], "positions": 8, "points": 6},
           "rating": {"speed_rpm": 3000}}
-BASE = "results/det/seed001_pair1"
+BASE = "results/det/low_fluctuation_pair1"
 
 
 def _files(work: Path) -> dict[str, bytes]:
@@ -51,7 +51,7 @@ def test_two_clean_runs_give_the_same_bytes_and_check_what_they_publish(root, tm
     differ = [p for p in one if one[p] != two[p]]
     assert not differ, differ
     work = runs[0]
-    assert "wall_seconds" in (work / f"logs/det/seed001_pair1/optimise/robust.log").read_text()
+    assert "wall_seconds" in (work / f"logs/det/low_fluctuation_pair1/optimise/robust.log").read_text()
 
     # gearmesh check passes on the genuine results from results/ and with an absolute path
     monkeypatch.chdir(work / "results")

@@ -116,6 +116,20 @@ def test_nothing_shipped_points_into_the_repository(root, capsys):
     assert not found, found
 
 
+def test_source_documents_are_cited_as_papers_everywhere_a_user_reads(root):
+    """The README, the docs, the study configs, the workflow and the package's own text (docstrings,
+    messages, pair files) name the source documents as papers and the example pairs by what they
+    are: no file number of a source document (seed 00x, seed000_case, seed001_pair1, ...)."""
+    number = re.compile(r"\b[Ss]eed[ _]?00[0-4]\b|\bseed00\d_\w+")
+    files = [root / "README.md", *(root / "docs").rglob("*.md"), *(root / "config").rglob("*.yaml"),
+             *(root / "workflow").rglob("*"), *(root / "src/gearmesh").rglob("*.py"),
+             *(root / "src/gearmesh").rglob("*.yaml")]
+    found = {str(f.relative_to(root)): sorted(set(number.findall(f.read_text(encoding="utf-8"))))
+             for f in files if f.is_file() and f.suffix in {".md", ".yaml", ".py", ".smk", ".rst", ""}
+             and number.search(f.read_text(encoding="utf-8"))}
+    assert not found, found
+
+
 def test_validation_doc_loaded_contact_rows_are_what_the_ltca_computes(root):
     """docs/validation.md's loaded-contact rows of the default study's pair (standard and relief,
     the study's grid and tooth model) are recomputed here: the LTE mean and peak-to-peak of both tooth

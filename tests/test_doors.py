@@ -29,7 +29,7 @@ from test_workflow import _scratch_workflow, _snakemake
 
 pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")
 
-PAIR, SOFT = "seed001_pair1", "seed001_pair1_206GPa"
+PAIR, SOFT = "low_fluctuation_pair1", "seed001_pair1_206GPa"
 TORQUE_NM, SPEED_RPM, QUASI_STATIC_RPM = 20.0, 3000.0, 100.0
 STUDY = {"study": "doors", "pairs": [PAIR],
          "ltca": {"torques_Nm": [TORQUE_NM]},

@@ -27,7 +27,7 @@ TORQUES = (400.0, 1000.0)
 
 @pytest.fixture(scope="module")
 def pair():
-    return load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    return load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml")
 
 
 @pytest.fixture(scope="module")
@@ -128,7 +128,7 @@ def test_dynamic_objective_and_constraint_drive_the_evaluation(geom):
 
 
 def test_cli_dynamic_constraint_reports_the_dynamic_factors(tmp_path, capsys):
-    code = cli_main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torques-Nm", "400,1000",
+    code = cli_main(["optimise", str(ROOT / "config/pairs/helical_z29_71_m5.yaml"), "--torques-Nm", "400,1000",
                      "--objective", "robust", "--dynamic-factor", "1", "--dynamic-speeds-rpm", "2000,9000",
                      "--population", "4", "--generations", "1", "--json"])
     assert code == 0
@@ -140,7 +140,7 @@ def test_cli_dynamic_constraint_reports_the_dynamic_factors(tmp_path, capsys):
 @pytest.mark.parametrize("flags, field", [(["--dynamic-speeds-rpm", "5000"], "dynamic_speeds_rpm"),
                                           (["--dynamic-factor", "-1"], "--dynamic-factor")])
 def test_bad_dynamic_settings_are_refused(flags, field, capsys):
-    code = cli_main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000",
+    code = cli_main(["optimise", str(ROOT / "config/pairs/helical_z29_71_m5.yaml"), "--torque-Nm", "1000",
                      "--population", "4", "--generations", "1", *flags])
     assert code == 2
     assert f"gearmesh: error: {field}" in capsys.readouterr().err

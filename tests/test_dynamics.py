@@ -16,12 +16,12 @@ from gearmesh.gear import load_pair, pair_from_dict, pair_geometry
 from gearmesh.io import check_documented
 from gearmesh.stiffness import mesh_stiffness
 
-from pairs import seed001_pair1, torsional_mesh_damping
+from pairs import low_fluctuation_pair1, torsional_mesh_damping
 
 
 @pytest.fixture(scope="module")
 def geom():
-    return pair_geometry(pair_from_dict(seed001_pair1(center_distance_mm=69.30)))
+    return pair_geometry(pair_from_dict(low_fluctuation_pair1(center_distance_mm=69.30)))
 
 
 @pytest.fixture(scope="module")
@@ -31,7 +31,7 @@ def K(geom):
 
 @pytest.fixture(scope="module")
 def model(geom, K):
-    """Seed 001's pair and bearings with the mesh damper these solver tests were written for
+    """The low-fluctuation paper's pair and bearings with the mesh damper these solver tests were written for
     (:func:`pairs.torsional_mesh_damping`)."""
     k_mean = dy.pair_model(geom, 200.0, K).meshes[0].k_mean
     return dy.pair_model(geom, 200.0, K, mesh_damping=torsional_mesh_damping(geom, k_mean))
@@ -40,7 +40,7 @@ def model(geom, K):
 FAST = dy.SolverSettings(transient_tau=8.0, record_cycles=4)
 
 
-def full_matrices(geom, k_normal: float, bearing=dy.SEED001_BEARING):
+def full_matrices(geom, k_normal: float, bearing=dy.LOW_FLUCTUATION_BEARING):
     """The 8-DOF mass and stiffness matrices written out independently from the equations of
     motion in the module docstring (x, y, z, θ per gear; meshes closed at k_normal)."""
     a, bb = geom.operating_pressure_angle, geom.base_helix_angle
@@ -156,7 +156,7 @@ def test_contact_loss_only_where_the_linear_force_turns_negative(geom, K):
 
 
 def test_train_meshes_balance_the_torque():
-    pair = load_pair(_root() / "config/pairs/seed004_pair.yaml")
+    pair = load_pair(_root() / "config/pairs/printing_train_z88.yaml")
     ds = train_dataset(pair, transient_tau=6.0, record_cycles=4, points_per_cycle=32, max_order=4)
     check_documented(ds)
     geom = pair_geometry(pair)
@@ -173,7 +173,7 @@ def test_train_meshes_balance_the_torque():
 
 
 def _train_model():
-    geom4 = pair_geometry(load_pair(_root() / "config/pairs/seed004_pair.yaml"))
+    geom4 = pair_geometry(load_pair(_root() / "config/pairs/printing_train_z88.yaml"))
     return geom4, dy.train_model(geom4, 400.0, mesh_stiffness(geom4, components=False).K)
 
 
@@ -185,7 +185,7 @@ def test_screw_motion_of_any_gear_changes_no_mesh_deflection(K, hand, which):
     which gears of opposite hand and opposite rotation have the same screw sense): every δ is
     unchanged (the rule behind every axial term of both models)."""
     if which == "pair":
-        g = pair_geometry(pair_from_dict(seed001_pair1(helix_hand=hand)))
+        g = pair_geometry(pair_from_dict(low_fluctuation_pair1(helix_hand=hand)))
         mdl = dy.pair_model(g, 200.0, K)
         radii = dict(zip(("pinion", "gear"), g.base_radius))
     else:
@@ -229,7 +229,7 @@ def test_batch_rk4_matches_solve_ivp(model, speed):
 
 def test_lste_excitation_counts_the_fluctuation_twice(geom, K):
     """Quasi-static (mesh frequency ≪ lowest mode): with e = 0 the approach of the bodies
-    (r_b1 θ_p − r_b2 θ_g) cos βb is the LSTE F/K(t); seed 001's literal e = F/K(t) with k(t)
+    (r_b1 θ_p − r_b2 θ_g) cos βb is the LSTE F/K(t); the low-fluctuation paper's literal e = F/K(t) with k(t)
     doubles it (module docstring), while δ = approach − e stays F/K(t) in both."""
     s = dy.SolverSettings(courant=0.5, transient_tau=3.0, record_cycles=2, min_transient_cycles=1)
     a = dy.simulate(dy.pair_model(geom, 200.0, K, excitation="tvms"), [60.0], s)
@@ -245,7 +245,7 @@ def test_lste_excitation_counts_the_fluctuation_twice(geom, K):
 
 
 def test_dataset_summary_and_inputs():
-    pair = pair_from_dict(seed001_pair1(center_distance_mm=69.30))
+    pair = pair_from_dict(low_fluctuation_pair1(center_distance_mm=69.30))
     ds = dynamics_dataset(pair, speeds_rpm={"start": 20000, "stop": 30000, "step": 5000},
                           sample_speeds_rpm=[27000], transient_tau=4.0, record_cycles=4, points_per_cycle=32,
                           max_order=4)
@@ -287,7 +287,7 @@ def test_ltca_excitation_reproduces_the_loaded_te_and_sees_the_modification():
 
     std = []
     for mod in (None, {"gear": {"tip_relief_um": 15, "tip_relief_length_mm": 1.0}}):
-        data = seed001_pair1(**({"modification": mod} if mod else {}))
+        data = low_fluctuation_pair1(**({"modification": mod} if mod else {}))
         pair = load_pair(data)
         g = pair_geometry(pair)
         ltca = ltca_dataset(pair, torques_Nm=[200], on="gear", positions=64, points=30)
@@ -318,7 +318,7 @@ def test_low_speed_dynamic_te_is_the_mean_lte_and_mesh_deflection_is_f_over_k():
     from the model; the dataset records the LTCA as its excitation."""
     from gearmesh.datasets.ltca import ltca_dataset
 
-    pair = pair_from_dict(seed001_pair1(modification={"gear": {"tip_relief_um": 15, "tip_relief_length_mm": 1.0}}))
+    pair = pair_from_dict(low_fluctuation_pair1(modification={"gear": {"tip_relief_um": 15, "tip_relief_length_mm": 1.0}}))
     ltca = ltca_dataset(pair, torques_Nm=[200], on="gear", positions=32, points=12)
     ds = dynamics_dataset(pair, 200.0, "gear", speeds_rpm=[40.0], sample_speeds_rpm=[], stiffness_form="table",
                           refine_resonances=False, transient_tau=6.0, record_cycles=2, ltca=ltca)
@@ -359,5 +359,5 @@ def test_encoder_rotation_adds_the_static_bearing_deflection(geom, K):
     y = model.static_state()
     cb, tb = math.cos(geom.base_helix_angle), math.tan(geom.base_helix_angle)
     f_bt = float(model.static_force[0]) * cb
-    bearing = 2 * f_bt * (1 / dy.SEED001_BEARING["k_radial"] + tb**2 / dy.SEED001_BEARING["k_axial"])
+    bearing = 2 * f_bt * (1 / dy.LOW_FLUCTUATION_BEARING["k_radial"] + tb**2 / dy.LOW_FLUCTUATION_BEARING["k_axial"])
     np.testing.assert_allclose(y[model.n_trans] - (model.G @ y)[0] / cb, bearing, rtol=1e-9)

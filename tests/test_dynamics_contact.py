@@ -23,9 +23,9 @@ from gearmesh.io import check_documented
 from gearmesh.ltca import ltca
 from gearmesh.meshforce import mesh_force_table
 
-from pairs import seed001_pair1, torsional_mesh_damping
+from pairs import low_fluctuation_pair1, torsional_mesh_damping
 
-#: Seed 001's bearings, which the tests of issue 15 were written with.
+#: The low-fluctuation paper's bearings, which the tests of issue 15 were written with.
 ISSUE15_BEARING = {"k_radial": 1.5e8, "k_axial": 1.0e7}
 
 RELIEF = {"modification": {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 3},
@@ -37,7 +37,7 @@ TORQUES = (400.0, 1000.0, 1600.0)
 def pair():
     from pathlib import Path
 
-    return load_pair(Path(__file__).resolve().parents[1] / "config" / "pairs" / "seed000_case.yaml")
+    return load_pair(Path(__file__).resolve().parents[1] / "config" / "pairs" / "helical_z29_71_m5.yaml")
 
 
 @pytest.fixture(scope="module")
@@ -62,7 +62,7 @@ def table(geom):
 
 
 def _model(geom, table, torque_1: float, **kw):
-    """The contact-driven pair as issue 15 built it, which these tests pin: seed 001's bearings
+    """The contact-driven pair as issue 15 built it, which these tests pin: the low-fluctuation paper's bearings
     (1.5e8 / 1e7 N/m, not the pair file's supports) and the torsional mesh damper
     (:func:`pairs.torsional_mesh_damping`)."""
     torque_out = torque_1 * geom.base_radius[1] / geom.base_radius[0]
@@ -270,7 +270,7 @@ def test_compiled_loop_equals_the_numpy_kernel(excitation):
     backlash) with the same physical-time transient, contact loss included."""
     from gearmesh.datasets.ltca import ltca_dataset
 
-    pair = load_pair(seed001_pair1(center_distance_mm=69.30))
+    pair = load_pair(low_fluctuation_pair1(center_distance_mm=69.30))
     if excitation == "ltca":
         kw = {"ltca": ltca_dataset(pair, torques_Nm=[30.0], on="gear", positions=32, points=12)}
     else:  # a kinematic error large enough to open the backlash at this load
@@ -309,7 +309,7 @@ def test_train_driven_by_contact_balances_the_torque():
     the static force (torque balance), and the idler's two meshes carry the same mean force."""
     from pathlib import Path
 
-    pair = load_pair(Path(__file__).resolve().parents[1] / "config" / "pairs" / "seed004_pair.yaml")
+    pair = load_pair(Path(__file__).resolve().parents[1] / "config" / "pairs" / "printing_train_z88.yaml")
     ds = train_dataset(pair, excitation="contact", backlash_um=60, points=30, table_positions=64,
                        table_approaches=32, record_cycles=4, points_per_cycle=16, max_order=4)
     check_documented(ds)
@@ -334,7 +334,7 @@ def test_dataset_cli_and_refusals(pair, tmp_path):
     import io
 
     out = io.StringIO()
-    path = tmp_path / "seed000_case.yaml"
+    path = tmp_path / "helical_z29_71_m5.yaml"
     import yaml
 
     from gearmesh.gear import pair_to_dict

@@ -12,7 +12,7 @@ import pytest
 pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
-from pairs import STEEL, seed001_pair1  # noqa: E402
+from pairs import STEEL, low_fluctuation_pair1  # noqa: E402
 from gearmesh import fe  # noqa: E402
 from gearmesh import stiffness as st  # noqa: E402
 from gearmesh.errors import GearmeshInputError  # noqa: E402
@@ -23,7 +23,7 @@ E, NU = 210e9, 0.3
 
 @pytest.fixture(scope="module")
 def p1():
-    return pair_geometry(load_pair(seed001_pair1()))
+    return pair_geometry(load_pair(low_fluctuation_pair1()))
 
 
 def _mid_rolls(geom, gear, n=3):
@@ -174,7 +174,7 @@ def test_fe_is_a_stiffness_method(p1):
 
     tabs = (st.slice_compliance_table(p1, 0, "fe"), st.slice_compliance_table(p1, 1, "fe"))
     assert tabs[0].method == "fe" and isinstance(tabs[0], st.SliceComplianceTable)
-    variant = pair_geometry(load_pair(seed001_pair1(name="renamed", face_width_mm=25)))
+    variant = pair_geometry(load_pair(low_fluctuation_pair1(name="renamed", face_width_mm=25)))
     assert fe.fe_tooth_compliance_cached(p1, 0) is fe.fe_tooth_compliance_cached(variant, 0)  # same section
     assert np.all(np.diff(tabs[0].total(tabs[0].rho)) > 0)  # more compliant towards the tip
     k = st.mesh_stiffness(p1, 60, method="fe", tables=tabs)
@@ -202,7 +202,7 @@ def test_fe_compliance_dataset(tmp_path):
     from gearmesh.datasets.fe import fe_compliance_dataset
     from gearmesh.plots.fe import plot_fe_compliance
 
-    pair = load_pair(seed001_pair1())
+    pair = load_pair(low_fluctuation_pair1())
     ds = fe_compliance_dataset(pair, size=0.3, roll_nodes=5)
     for name in ds.variables:
         assert ds[name].attrs.get("units") and ds[name].attrs.get("long_name"), name
@@ -219,7 +219,7 @@ def test_workflow_tables_are_read_not_recomputed(monkeypatch):
     from gearmesh.datasets.fe import fe_compliance_dataset
     from gearmesh.datasets.stiffness import stiffness_dataset
 
-    pair = load_pair(seed001_pair1())
+    pair = load_pair(low_fluctuation_pair1())
     geom = pair_geometry(pair)
     ds = fe_compliance_dataset(pair, size=0.3, roll_nodes=5)
     monkeypatch.setattr(fe, "_CACHE", {})
@@ -228,7 +228,7 @@ def test_workflow_tables_are_read_not_recomputed(monkeypatch):
     for gear in (0, 1):
         table = fe.fe_slice_compliance_table(geom, gear, n_roll=5, size=0.3)
         np.testing.assert_array_equal(table.values["bending"] + table.values["fillet"], ds["fe_compliance"].values[gear])
-    other = pair_geometry(load_pair(seed001_pair1(teeth=[31, 49])))
+    other = pair_geometry(load_pair(low_fluctuation_pair1(teeth=[31, 49])))
     with pytest.raises(GearmeshInputError, match="fe_compliance"):
         fe.seed_cache(ds, other)
     # through a stage: the default settings' file, then stiffness_dataset(method='fe') reads it

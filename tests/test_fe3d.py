@@ -11,7 +11,7 @@ import pytest
 pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
-from pairs import seed001_pair1  # noqa: E402
+from pairs import low_fluctuation_pair1  # noqa: E402
 from gearmesh import fe, fe3d  # noqa: E402
 from gearmesh import stiffness as st  # noqa: E402
 from gearmesh.errors import GearmeshInputError  # noqa: E402
@@ -45,7 +45,7 @@ def test_helical_contact_line_lies_in_the_plane_of_action_normal_to_the_load():
     """The load points of a line (roll ρ(z) in the section turned by θ(z)) lie on one plane
     tangent to the base cylinder, and the load direction (n cos βb, a sin βb) is normal to the
     line: the involute helicoid's generator and normal (geometry, not a convention)."""
-    geom = pair_geometry(load_pair(seed001_pair1(helix_angle_deg=20)))
+    geom = pair_geometry(load_pair(low_fluctuation_pair1(helix_angle_deg=20)))
     z = np.linspace(-0.01, 0.01, 9)
     rho = fe3d.line_rolls(geom, 0, [0.5 * (geom.rho_sap[0] + geom.rho_eap[0])], z)[0]
     x, y, a1, _ = st.contact_point(st.tooth_model(geom, 0, "transition"), rho)
@@ -65,8 +65,8 @@ def test_helical_contact_line_lies_in_the_plane_of_action_normal_to_the_load():
 
 @pytest.fixture(scope="module")
 def narrow_spur():
-    """Seed 001 pair 1's pinion as a spur gear of face width 3 m_n: a few layers."""
-    return pair_geometry(load_pair(seed001_pair1(helix_angle_deg=0, face_width_mm=5.25)))
+    """The low-fluctuation paper pair 1's pinion as a spur gear of face width 3 m_n: a few layers."""
+    return pair_geometry(load_pair(low_fluctuation_pair1(helix_angle_deg=0, face_width_mm=5.25)))
 
 
 def _levels(geom, sizes, rho0):

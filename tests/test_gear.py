@@ -23,7 +23,7 @@ from gearmesh.gear import (
     pair_to_dict,
 )
 
-from pairs import STEEL, seed001_pair1
+from pairs import STEEL, low_fluctuation_pair1
 
 
 def spur_20_40(**over):
@@ -46,7 +46,7 @@ def refusal(data=None, pair=None) -> GearmeshInputError:
 
 
 def test_seed001_pair1_contact_ratios_mass_inertia():
-    g = pair_geometry(pair_from_dict(seed001_pair1()))
+    g = pair_geometry(pair_from_dict(low_fluctuation_pair1()))
     # Hand derivation (mm):
     #   mt = 1.75/cos10° = 1.75/0.984808 = 1.776997
     #   αt = atan(tan25°/cos10°) = atan(0.466308/0.984808) = atan(0.473501) = 25.3376°
@@ -65,7 +65,7 @@ def test_seed001_pair1_contact_ratios_mass_inertia():
     assert g.eps_alpha == pytest.approx(1.470, abs=5e-4)
     assert g.eps_beta == pytest.approx(0.632, abs=5e-4)
     assert g.eps_gamma == pytest.approx(2.102, abs=1e-3)  # Table 1 εγ = 2.102
-    # Mass and inertia of the disc of reference radius minus the bore (seed 001 convention):
+    # Mass and inertia of the disc of reference radius minus the bore (the low-fluctuation paper convention):
     #   m1 = 7850·π·(25.76645² − 15²)·20·1e-9 = 7850·π·438.910·20e-9 = 0.21648 kg  (0.2165)
     #   m2 = 7850·π·(43.53642² − 25²)·20e-9 = 7850·π·1270.42·20e-9 = 0.62661 kg     (0.6266)
     #   J1 = m1(r1² + ri²)/2 = 0.21648·(663.910 + 225)e-6/2 = 0.962e-4 kg m²      (0.96e-4)
@@ -124,10 +124,10 @@ def test_shift_inferred_and_split_from_centre_distance():
 
 
 def test_seed001_pair_file_and_round_trip():
-    path = Path(__file__).resolve().parents[1] / "config" / "pairs" / "seed001_pair1.yaml"
+    path = Path(__file__).resolve().parents[1] / "config" / "pairs" / "low_fluctuation_pair1.yaml"
     if path.exists():  # the library file gives the standard distance rounded to 69.30 mm
         assert pair_geometry(load_pair(path)).eps_alpha == pytest.approx(1.470, abs=5e-4)
-    q = pair_from_dict(seed001_pair1(profile_shift=[0.1, -0.1]))
+    q = pair_from_dict(low_fluctuation_pair1(profile_shift=[0.1, -0.1]))
     assert pair_from_dict(pair_to_dict(q)) == q
 
 
@@ -138,45 +138,45 @@ def test_seed001_pair_file_and_round_trip():
 
 @pytest.mark.parametrize("data, field", [
     ([1, 2], "pair"),
-    (seed001_pair1(colour="red"), "pair.colour"),
-    (seed001_pair1(name=""), "name"),
-    (seed001_pair1(name=3), "name"),
-    (seed001_pair1(teeth=29), "teeth"),
-    (seed001_pair1(teeth=[29, 49, 3]), "teeth"),
-    (seed001_pair1(teeth=[29.0, 49]), "teeth[0]"),
-    (seed001_pair1(teeth=[29, True]), "teeth[1]"),
-    (seed001_pair1(teeth=[4, 49]), "teeth[0]"),
-    (seed001_pair1(normal_module_mm=0), "normal_module_mm"),
-    (seed001_pair1(normal_module_mm=-1.75), "normal_module_mm"),
-    (seed001_pair1(normal_module_mm="1.75"), "normal_module_mm"),
-    (seed001_pair1(normal_module_mm=float("nan")), "normal_module_mm"),
-    (seed001_pair1(normal_pressure_angle_deg=0), "normal_pressure_angle_deg"),
-    (seed001_pair1(normal_pressure_angle_deg=45), "normal_pressure_angle_deg"),
-    (seed001_pair1(normal_pressure_angle_deg=True), "normal_pressure_angle_deg"),
-    (seed001_pair1(helix_angle_deg=-1), "helix_angle_deg"),
-    (seed001_pair1(helix_angle_deg=60), "helix_angle_deg"),
-    (seed001_pair1(helix_hand="up"), "helix_hand"),
-    (seed001_pair1(face_width_mm=0), "face_width_mm"),
-    (seed001_pair1(face_width_mm=[20, -1]), "face_width_mm[1]"),
-    (seed001_pair1(face_width_mm=[20, 20, 20]), "face_width_mm"),
-    (seed001_pair1(profile_shift=[0.1, 3.0]), "profile_shift[1]"),
-    (seed001_pair1(profile_shift="0.1"), "profile_shift"),
-    (seed001_pair1(center_distance_mm=0), "center_distance_mm"),
-    (seed001_pair1(center_distance_mm=-69.3), "center_distance_mm"),
-    (seed001_pair1(addendum_coefficient=0), "addendum_coefficient"),
-    (seed001_pair1(dedendum_coefficient=[1.25, -1]), "dedendum_coefficient[1]"),
-    (seed001_pair1(tool_tip_radius_coefficient=-0.1), "tool_tip_radius_coefficient"),
-    (seed001_pair1(bore_radius_mm=[-1, 25]), "bore_radius_mm[0]"),
-    (seed001_pair1(material="steel"), "material"),
-    (seed001_pair1(material={**STEEL, "colour": 1}), "material.colour"),
-    (seed001_pair1(material={**STEEL, "poisson_ratio": 0.5}), "material.poisson_ratio"),
-    (seed001_pair1(material={**STEEL, "youngs_modulus_GPa": 0}), "material.youngs_modulus_GPa"),
-    (seed001_pair1(material={**STEEL, "density_kg_m3": -1}), "material.density_kg_m3"),
-    (seed001_pair1(modification=[1]), "modification"),
-    (seed001_pair1(modification={"wheel": {}}), "modification.wheel"),
-    (seed001_pair1(modification={"pinion": 5}), "modification.pinion"),
-    (seed001_pair1(modification={"pinion": {"tip_relief_mm": 1}}), "modification.pinion.tip_relief_mm"),
-    (seed001_pair1(modification={"gear": {"crowning_um": -1}}), "modification.gear.crowning_um"),
+    (low_fluctuation_pair1(colour="red"), "pair.colour"),
+    (low_fluctuation_pair1(name=""), "name"),
+    (low_fluctuation_pair1(name=3), "name"),
+    (low_fluctuation_pair1(teeth=29), "teeth"),
+    (low_fluctuation_pair1(teeth=[29, 49, 3]), "teeth"),
+    (low_fluctuation_pair1(teeth=[29.0, 49]), "teeth[0]"),
+    (low_fluctuation_pair1(teeth=[29, True]), "teeth[1]"),
+    (low_fluctuation_pair1(teeth=[4, 49]), "teeth[0]"),
+    (low_fluctuation_pair1(normal_module_mm=0), "normal_module_mm"),
+    (low_fluctuation_pair1(normal_module_mm=-1.75), "normal_module_mm"),
+    (low_fluctuation_pair1(normal_module_mm="1.75"), "normal_module_mm"),
+    (low_fluctuation_pair1(normal_module_mm=float("nan")), "normal_module_mm"),
+    (low_fluctuation_pair1(normal_pressure_angle_deg=0), "normal_pressure_angle_deg"),
+    (low_fluctuation_pair1(normal_pressure_angle_deg=45), "normal_pressure_angle_deg"),
+    (low_fluctuation_pair1(normal_pressure_angle_deg=True), "normal_pressure_angle_deg"),
+    (low_fluctuation_pair1(helix_angle_deg=-1), "helix_angle_deg"),
+    (low_fluctuation_pair1(helix_angle_deg=60), "helix_angle_deg"),
+    (low_fluctuation_pair1(helix_hand="up"), "helix_hand"),
+    (low_fluctuation_pair1(face_width_mm=0), "face_width_mm"),
+    (low_fluctuation_pair1(face_width_mm=[20, -1]), "face_width_mm[1]"),
+    (low_fluctuation_pair1(face_width_mm=[20, 20, 20]), "face_width_mm"),
+    (low_fluctuation_pair1(profile_shift=[0.1, 3.0]), "profile_shift[1]"),
+    (low_fluctuation_pair1(profile_shift="0.1"), "profile_shift"),
+    (low_fluctuation_pair1(center_distance_mm=0), "center_distance_mm"),
+    (low_fluctuation_pair1(center_distance_mm=-69.3), "center_distance_mm"),
+    (low_fluctuation_pair1(addendum_coefficient=0), "addendum_coefficient"),
+    (low_fluctuation_pair1(dedendum_coefficient=[1.25, -1]), "dedendum_coefficient[1]"),
+    (low_fluctuation_pair1(tool_tip_radius_coefficient=-0.1), "tool_tip_radius_coefficient"),
+    (low_fluctuation_pair1(bore_radius_mm=[-1, 25]), "bore_radius_mm[0]"),
+    (low_fluctuation_pair1(material="steel"), "material"),
+    (low_fluctuation_pair1(material={**STEEL, "colour": 1}), "material.colour"),
+    (low_fluctuation_pair1(material={**STEEL, "poisson_ratio": 0.5}), "material.poisson_ratio"),
+    (low_fluctuation_pair1(material={**STEEL, "youngs_modulus_GPa": 0}), "material.youngs_modulus_GPa"),
+    (low_fluctuation_pair1(material={**STEEL, "density_kg_m3": -1}), "material.density_kg_m3"),
+    (low_fluctuation_pair1(modification=[1]), "modification"),
+    (low_fluctuation_pair1(modification={"wheel": {}}), "modification.wheel"),
+    (low_fluctuation_pair1(modification={"pinion": 5}), "modification.pinion"),
+    (low_fluctuation_pair1(modification={"pinion": {"tip_relief_mm": 1}}), "modification.pinion.tip_relief_mm"),
+    (low_fluctuation_pair1(modification={"gear": {"crowning_um": -1}}), "modification.gear.crowning_um"),
 ])
 def test_pair_from_dict_refusals(data, field):
     with pytest.raises(GearmeshInputError) as info:
@@ -188,7 +188,7 @@ def test_pair_from_dict_refusals(data, field):
 @pytest.mark.parametrize("missing", ["name", "teeth", "normal_module_mm", "normal_pressure_angle_deg",
                                      "helix_angle_deg", "face_width_mm"])
 def test_missing_required_key(missing):
-    data = seed001_pair1()
+    data = low_fluctuation_pair1()
     del data[missing]
     with pytest.raises(GearmeshInputError) as info:
         pair_from_dict(data)
@@ -216,7 +216,7 @@ def test_centre_distance_below_zero_backlash():
     err = refusal(spur_20_40(profile_shift=[0.3, 0.2], center_distance_mm=121.8))
     assert err.field == "center_distance_mm"
     # standard pair 29/49 (a0 = 69.30287 mm) with explicit zero shifts at 69.2 mm
-    err = refusal(seed001_pair1(profile_shift=[0, 0], center_distance_mm=69.2))
+    err = refusal(low_fluctuation_pair1(profile_shift=[0, 0], center_distance_mm=69.2))
     assert err.field == "center_distance_mm"
 
 
@@ -227,7 +227,7 @@ def test_centre_distance_below_base_circles():
 
 
 def test_seed000_centre_distance_cannot_exist():
-    """Seed 000 Table 1: 29/71, mn 5, αn 20°, β 27.5°, b 42, a = 261.0 mm.
+    """The mesh-in impact paper Table 1: 29/71, mn 5, αn 20°, β 27.5°, b 42, a = 261.0 mm.
 
     αt = atan(tan20°/cos27.5°) = 22.3100°; standard a = 100·5/(2 cos27.5°) = 281.85 mm;
     Σ rb = 281.85·cos αt = 260.748 mm, so 261.0 mm needs αwt = acos(260.748/261) = 2.5° and a
@@ -264,7 +264,7 @@ def test_pointed_teeth():
 def test_fillet_interference():
     # 29/49 standard at αn 25° with addendum 1.2 and a 0.38 mn tool tip: the gear tip
     # (ρ_SAP1 = a sin αt − ρa2) reaches below the pinion's form point (h_FfP = 1.25 − 0.38(1 − sin25°) = 1.03 mn)
-    err = refusal(seed001_pair1(addendum_coefficient=[1.0, 1.2]))
+    err = refusal(low_fluctuation_pair1(addendum_coefficient=[1.0, 1.2]))
     assert err.field == "profile_shift[0]"
     assert "fillet interference" in err.rule
 
@@ -312,7 +312,7 @@ def test_root_at_or_below_axis():
 def test_eps_alpha_below_one():
     # addendum 0.4 on 29/49, αn 25°: ρa1 = √(26.4664² − 23.2878²) = 12.576, ρa2 = √(44.2364² −
     # 39.3483²) = 20.211, gα = 12.576 + 20.211 − 29.659 = 3.128 mm < pbt = 5.046 mm: εα = 0.62
-    err = refusal(seed001_pair1(addendum_coefficient=0.4))
+    err = refusal(low_fluctuation_pair1(addendum_coefficient=0.4))
     assert err.field == "addendum_coefficient"
 
 
@@ -329,9 +329,9 @@ def test_negative_tip_clearance():
 
 def test_bore_not_below_root():
     # pinion root r_f1 = 25.76645 − 1.25·1.75 = 23.579 mm: a 23.6 mm bore reaches past it
-    err = refusal(seed001_pair1(bore_radius_mm=[23.6, 25]))
+    err = refusal(low_fluctuation_pair1(bore_radius_mm=[23.6, 25]))
     assert err.field == "bore_radius_mm[0]"
-    err = refusal(seed001_pair1(bore_radius_mm=[15, 41.4]))  # gear root 41.349 mm
+    err = refusal(low_fluctuation_pair1(bore_radius_mm=[15, 41.4]))  # gear root 41.349 mm
     assert err.field == "bore_radius_mm[1]"
 
 
@@ -341,7 +341,7 @@ def test_bore_not_below_root():
 
 
 def _with_mod(**mod):
-    return pair_from_dict(seed001_pair1(modification={"pinion": mod}))
+    return pair_from_dict(low_fluctuation_pair1(modification={"pinion": mod}))
 
 
 def test_modification_refusals():
@@ -366,6 +366,6 @@ def test_modification_refusals():
 
 def test_involute_function():
     assert float(involute(math.radians(20))) == pytest.approx(0.0149044, abs=1e-7)  # table value
-    pair = pair_from_dict(seed001_pair1())
+    pair = pair_from_dict(low_fluctuation_pair1())
     assert pair.teeth == (29, 49) and pair.normal_module == pytest.approx(1.75e-3)
     assert pair.face_width == pytest.approx((20e-3, 20e-3)) and pair.material.density == 7850

@@ -1,4 +1,4 @@
-"""Mesh-in impact (seed 000): the crossing, the two velocity formulations, the reverse-rotation
+"""Mesh-in impact (the mesh-in impact paper): the crossing, the two velocity formulations, the reverse-rotation
 equation, the energy method and its limits, the scenarios, convergence and refusals."""
 
 from __future__ import annotations
@@ -19,10 +19,10 @@ from gearmesh.impact import (SCENARIOS, closed_form_force, energy_balance, fit_p
 from gearmesh.io import write_dataset, add_provenance
 
 from conftest import ROOT
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 from test_contact import geometry_or_skip, valid_pairs
 
-ROOT_PAIR = "config/pairs/seed000_case.yaml"
+ROOT_PAIR = "config/pairs/helical_z29_71_m5.yaml"
 POINTS = 24
 
 
@@ -49,14 +49,14 @@ def _scenario(st, k=0):
 
 
 def test_crossing_agrees_with_seed_reverse_rotation_equation(case, case_model, root):
-    """Unmodified pairs: the grid crossing and seed 000's (corrected) equation are the same event."""
+    """Unmodified pairs: the grid crossing and the mesh-in impact paper's (corrected) equation are the same event."""
     st = impact_static(case_model, [100, 400, 1000, 1600])
     for k in range(4):
         assert _scenario(st, k) == "edge"
         ours = -float(st.tau[0, k])
         seed = seed_edge_roll(case, float(st.approach[0, k]))
         assert ours == pytest.approx(seed, rel=1e-7, abs=1e-12)
-    other = pair_geometry(load_pair(seed001_pair1()))
+    other = pair_geometry(load_pair(low_fluctuation_pair1()))
     st = impact_static(impact_model(other, points=POINTS, window_positions=40, face_samples=129), [150])
     assert -float(st.tau[0, 0]) == pytest.approx(seed_edge_roll(other, float(st.approach[0, 0])), rel=1e-7)
 
@@ -209,7 +209,7 @@ def test_dataset_is_documented(root, tmp_path):
 
 
 def test_random_modifications_give_a_resolved_impact_with_a_closing_velocity(case_model, case):
-    """Invariant over seed 000's design space: every crossing found is pinned down (h = 0) and
+    """Invariant over the mesh-in impact paper's design space: every crossing found is pinned down (h = 0) and
     approached from above (closing rate > 0), its force finite and positive."""
     rng = np.random.default_rng(7)
     mn, b = case.pair.normal_module, case.face_width
@@ -245,7 +245,7 @@ def test_convergence_in_local_slices(case):
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.filter_too_much])
 @given(valid_pairs(), st.floats(0.05, 1.0))
 def test_random_pairs_crossing_equals_seed_equation_and_velocities_agree(pair, load):
-    """Over random valid unmodified pairs: the crossing is seed 000's (corrected) reverse-rotation
+    """Over random valid unmodified pairs: the crossing is the mesh-in impact paper's (corrected) reverse-rotation
     solution, the scenario is an edge, and the vector form equals the closing rate."""
     r = np.array(pair.teeth) * pair.normal_module / (2 * math.cos(pair.helix_angle))
     pair = pair.with_changes(bore_radius=tuple(0.3 * r), material=Material(210e9, 0.3, 7850.0))

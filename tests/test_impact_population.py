@@ -32,7 +32,7 @@ SETS = ("box_worst", "population", "heldout")
 @pytest.fixture(scope="module")
 def relief():
     """The default study's hand-chosen variant: gear tip relief and pinion crowning."""
-    pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    pair = load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml")
     return pair.with_changes(modification=(Modification(crowning=10e-6),
                                            Modification(tip_relief=20e-6, tip_relief_length=3e-3)))
 
@@ -151,7 +151,7 @@ def test_the_optimiser_sees_the_same_manufactured_gears(relief, impact):
     from gearmesh.datasets.optimise import run_problem
     from gearmesh.optimise import evaluate
 
-    base = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    base = load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml")
     prob = run_problem(base, torques_Nm=list(TORQUES), tolerance_statistic="max", population=4, generations=1,
                        speed_rpm=SPEED, constraints={"root_stress_factor": 1.1, "criteria_over_samples": True},
                        impact={"method": "improved", "points": POINTS}, tolerances=TOLERANCES)

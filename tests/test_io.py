@@ -30,7 +30,7 @@ def _dataset():
 
 def test_round_trip_keeps_units_and_provenance(tmp_path):
     config = {"study": "t", "n": 3}
-    ds = add_provenance(_dataset(), config, "seed 000", "test")
+    ds = add_provenance(_dataset(), config, "the mesh-in impact paper", "test")
     path = write_dataset(ds, tmp_path / "a" / "out.nc")
     back = read_dataset(path)
     np.testing.assert_array_equal(back["k"].values, np.arange(3.0))
@@ -162,12 +162,12 @@ def test_a_workflow_job_on_a_full_disk_prints_one_line_naming_the_file(root, tmp
 
     from gearmesh.codeversion import versioned
 
-    nc = tmp_path / "results/s/seed001_pair1/contact_lines.nc"
-    job = Snakemake(InputFiles(fromdict={"pair": str(root / "config/pairs/seed001_pair1.yaml")}),
+    nc = tmp_path / "results/s/low_fluctuation_pair1/contact_lines.nc"
+    job = Snakemake(InputFiles(fromdict={"pair": str(root / "config/pairs/low_fluctuation_pair1.yaml")}),
                     OutputFiles(fromdict={"nc": str(nc)}),
                     Params(fromdict={"function": versioned("gearmesh.datasets.geometry:contact_lines_dataset"),
                                      "settings": {"positions": 12}}),
-                    Wildcards(fromdict={"study": "s", "pair": "seed001_pair1"}), 1, None,
+                    Wildcards(fromdict={"study": "s", "pair": "low_fluctuation_pair1"}), 1, None,
                     Log([str(tmp_path / "job.log")]), {"study": "s"}, "contact_lines", None)
     blob = tmp_path / "job.pickle"
     blob.write_bytes(pickle.dumps(job))
@@ -227,12 +227,12 @@ def test_snakemake_and_validate_refuse_a_results_path_that_is_a_file_up_front(ro
     pytest.importorskip("snakemake")
     from test_workflow import _package_env, _scratch_workflow, _snakemake
 
-    config = {"study": "f", "pairs": ["seed001_pair1"], "stiffness": {"slices": 20, "positions": 24}}
+    config = {"study": "f", "pairs": ["low_fluctuation_pair1"], "stiffness": {"slices": 20, "positions": 24}}
     work = _scratch_workflow(root, tmp_path, config)
-    blocker = work / "results/f/seed001_pair1/standard"
+    blocker = work / "results/f/low_fluctuation_pair1/standard"
     blocker.parent.mkdir(parents=True)
     blocker.write_text("")
-    line = "gearmesh: error: results/f/seed001_pair1/standard = 'a file': must be a folder"
+    line = "gearmesh: error: results/f/low_fluctuation_pair1/standard = 'a file': must be a folder"
     proc = _snakemake(work)
     assert proc.returncode == 2 and line in proc.stderr, proc.stderr[-2000:]
     assert sorted(p.name for p in blocker.parent.iterdir()) == ["standard"]  # nothing written

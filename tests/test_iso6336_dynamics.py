@@ -13,7 +13,7 @@ from gearmesh.stiffness import iso6336_stiffness
 
 @pytest.fixture(scope="module")
 def geom():
-    return pair_geometry(load_pair(example_pair("seed000_case")))
+    return pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
 
 
 def test_resonance_speed_is_the_torsional_frequency(geom):

@@ -28,7 +28,7 @@ pytestmark = pytest.mark.skipif(os.name != "posix", reason="the job server forks
 
 
 def _job(root: Path, out: Path, function: str, settings: dict, figures: str | None = None,
-         outputs: dict | None = None, pair: str = "seed001_pair1") -> Snakemake:
+         outputs: dict | None = None, pair: str = "low_fluctuation_pair1") -> Snakemake:
     """The Snakemake object of a pair-stage job of ``pair``, as a script rule gets it."""
     params = {"function": versioned(function), "settings": settings}
     if figures:
@@ -111,7 +111,7 @@ def test_a_job_on_the_server_rounds_as_the_one_thread_job_snakemake_runs(root, t
     for where, env in (("server", server.env), ("alone", alone)):
         out = tmp_path / where
         job = _job(root, out, "gearmesh.datasets.stiffness:stiffness_dataset",
-                   {"slices": 20, "positions": 24, "method": "transition"}, pair="seed000_case")
+                   {"slices": 20, "positions": 24, "method": "transition"}, pair="helical_z29_71_m5")
         proc = _script(job, tmp_path, env)
         _, err = proc.communicate(timeout=300)
         assert proc.returncode == 0, err
@@ -262,7 +262,7 @@ from gearmesh.gear import load_pair, pair_geometry
 from gearmesh.meshforce import mesh_force_table
 from gearmesh.dynamics.model import pair_model
 from gearmesh.dynamics.integrate import simulate
-geom = pair_geometry(load_pair({str(root / 'config/pairs/seed001_pair1.yaml')!r}))
+geom = pair_geometry(load_pair({str(root / 'config/pairs/low_fluctuation_pair1.yaml')!r}))
 table = mesh_force_table(geom, 4 * 300 / geom.base_radius[0], positions=32, approaches=16, points=10, method="transition")
 simulate(pair_model(geom, 300.0, None, contact=table), [2000.0, 3000.0])
 from gearmesh.ltca import solve_contact_tabulated

@@ -19,7 +19,7 @@ from gearmesh.dynamics import SolverSettings, step_plan
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import MAX_TEETH, pair_from_dict, pair_geometry
 from gearmesh.limits import MAX_RIM_STRESS, STEEL_DENSITY, check_speeds, max_speed_rpm
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 
 #: Most memory (bytes) a refusal may trace: the pair geometry and the checks, nothing of the grid.
 REFUSAL_BYTES = 50e6
@@ -27,7 +27,7 @@ REFUSAL_BYTES = 50e6
 
 @pytest.fixture(scope="module")
 def pair():
-    return pair_from_dict(seed001_pair1())
+    return pair_from_dict(low_fluctuation_pair1())
 
 
 def _refused(call, field: str, *words: str) -> str:
@@ -84,12 +84,12 @@ def test_a_contact_grid_beyond_memory_is_refused_before_allocation(pair):
 def test_an_absurd_tooth_count_names_the_teeth(teeth):
     """10**9 teeth blamed a profile shift, 2**63 reported eps_alpha = -610, 10**400 raised a raw
     OverflowError: each is now the teeth limit, compared as an integer (no conversion to float)."""
-    message = _refused(lambda: pair_from_dict(seed001_pair1(teeth=[teeth, 49])), "teeth[0]", f"at most {MAX_TEETH}")
+    message = _refused(lambda: pair_from_dict(low_fluctuation_pair1(teeth=[teeth, 49])), "teeth[0]", f"at most {MAX_TEETH}")
     assert len(message) < 400
 
 
 def test_the_largest_tooth_count_is_accepted():
-    geom = pair_geometry(pair_from_dict(seed001_pair1(teeth=[29, MAX_TEETH], face_width_mm=20)))
+    geom = pair_geometry(pair_from_dict(low_fluctuation_pair1(teeth=[29, MAX_TEETH], face_width_mm=20)))
     assert geom.eps_alpha > 1
 
 
@@ -116,7 +116,7 @@ def test_the_speed_limit_is_the_hoop_stress_of_the_faster_tip_circle(pair):
     assert max(stress) == pytest.approx(MAX_RIM_STRESS, rel=1e-12)
     assert min(stress) < MAX_RIM_STRESS
     assert max_speed_rpm(geom, "gear") == pytest.approx(n1 * z1 / z2, rel=1e-12)
-    light = pair_geometry(pair_from_dict(seed001_pair1(material={"youngs_modulus_GPa": 210, "poisson_ratio": 0.3,
+    light = pair_geometry(pair_from_dict(low_fluctuation_pair1(material={"youngs_modulus_GPa": 210, "poisson_ratio": 0.3,
                                                                  "density_kg_m3": STEEL_DENSITY / 4})))
     assert max_speed_rpm(light) == pytest.approx(2 * n1, rel=1e-12)
     check_speeds(geom, [n1 * (1 - 1e-9)], "speeds_rpm")
@@ -125,7 +125,7 @@ def test_the_speed_limit_is_the_hoop_stress_of_the_faster_tip_circle(pair):
 
 
 def test_the_shipped_studies_stay_within_the_speed_limit(pair):
-    """Seed 001's sweep to 50 000 rpm is within the limit of its pair (about 175 000 rpm)."""
+    """The low-fluctuation paper's sweep to 50 000 rpm is within the limit of its pair (about 175 000 rpm)."""
     assert max_speed_rpm(pair_geometry(pair)) > 50000
 
 

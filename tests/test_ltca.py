@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 from scipy.optimize import brentq
 
 from gearmesh.body import mesh_body_compliance
@@ -26,20 +26,20 @@ MOD = (Modification(tip_relief=20e-6, tip_relief_length=3e-3, crowning=10e-6), M
 
 
 @pytest.fixture(scope="module")
-def seed000():
+def helical_z29_71_m5():
     """The case pair without its shafts and bearings: the mesh alone, so that the separations are the
     grid's (the system deflection's misalignment per torque is tested in tests/test_deflection.py)."""
-    return load_pair(ROOT / "config/pairs/seed000_case.yaml").with_changes(supports=read_supports({}))
+    return load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml").with_changes(supports=read_supports({}))
 
 
 @pytest.fixture(scope="module")
-def modified(seed000):
-    return ltca(pair_geometry(seed000.with_changes(modification=MOD)), [400.0, 1000.0, 1600.0])
+def modified(helical_z29_71_m5):
+    return ltca(pair_geometry(helical_z29_71_m5.with_changes(modification=MOD)), [400.0, 1000.0, 1600.0])
 
 
-def test_loads_sum_to_the_applied_force_and_complementarity_holds(modified, seed000):
+def test_loads_sum_to_the_applied_force_and_complementarity_holds(modified, helical_z29_71_m5):
     res = modified
-    c_body = mesh_body_compliance(pair_geometry(seed000))  # the solid discs in series: δ = δ_teeth + c_body F
+    c_body = mesh_body_compliance(pair_geometry(helical_z29_71_m5))  # the solid discs in series: δ = δ_teeth + c_body F
     total = res.load.sum(axis=(2, 3))
     assert np.allclose(total, res.force[:, None], rtol=1e-11, atol=0)
     assert np.all(res.load >= 0)
@@ -64,11 +64,11 @@ def test_lte_exceeds_te_and_grows_with_torque(modified):
     assert np.all(np.diff(modified.stiffness.mean(axis=1)) > 0)
 
 
-def test_linearised_lte_equals_F_over_K_of_the_stiffness_stage(seed000):
+def test_linearised_lte_equals_F_over_K_of_the_stiffness_stage(helical_z29_71_m5):
     """Same compliances (the stiffness stage's pair table, Hertz linear, same slices and
     positions, no tip-edge candidates): LTE = F/K(φ) to round-off and dF/dδ = K; against the
     stage's default (200 clipped slices) within 1.5 % (the 50-point slice rule's O(Δz) ends)."""
-    geom = pair_geometry(seed000)
+    geom = pair_geometry(helical_z29_71_m5)
     model = ltca_model(geom, positions=64, points=50, contact_law_name="linear", extension=0.0)
     res = ltca(geom, [1000.0], model=model)
     K = st.mesh_stiffness(geom, n_positions=64, n_slices=50, rule="centre", pair_table=model.pair_table)
@@ -78,8 +78,8 @@ def test_linearised_lte_equals_F_over_K_of_the_stiffness_stage(seed000):
     assert np.max(np.abs(res.lte[0] / st.lste(K_default, 1000.0) - 1)) < 0.015
 
 
-def test_tangent_stiffness_is_dF_ddelta(seed000):
-    geom = pair_geometry(seed000.with_changes(modification=MOD))
+def test_tangent_stiffness_is_dF_ddelta(helical_z29_71_m5):
+    geom = pair_geometry(helical_z29_71_m5.with_changes(modification=MOD))
     model = ltca_model(geom, positions=8, points=30)
     a, b = ltca(geom, [1000.0, 1000.0 * (1 + 1e-6)], model=model).lte
     mid = ltca(geom, [1000.0 * (1 + 0.5e-6)], model=model)
@@ -94,7 +94,7 @@ def test_solver_against_bisection_reference():
     gap = rng.uniform(0, 20e-6, size=(1, 40))
     gap[0, :5] = np.nan
     comp = rng.uniform(2e-9, 6e-9, size=(1, 40))
-    pair = pair_from_dict(seed001_pair1())
+    pair = pair_from_dict(low_fluctuation_pair1())
     law = contact_law(pair_geometry(pair), 0.4e-3)
     force = np.array([3000.0])
     q, delta, k, _ = solve_contact(gap, comp, force, law)
@@ -114,7 +114,7 @@ def test_solver_against_bisection_reference():
 
 def test_palmgren_law_matches_the_published_formula():
     """δ_n = 3.84e-5 Q^0.9 / l^0.8 (mm, N) for a whole line of length l under Q, transverse /cos βb."""
-    geom = pair_geometry(pair_from_dict(seed001_pair1()))
+    geom = pair_geometry(pair_from_dict(low_fluctuation_pair1()))
     cb = math.cos(geom.base_helix_angle)
     dz = geom.face_width / 50
     law = contact_law(geom, dz)
@@ -129,7 +129,7 @@ def test_palmgren_law_matches_the_published_formula():
 
 @pytest.mark.parametrize("beta", [0.0])
 def test_symmetric_crowning_gives_a_symmetric_pattern_for_spur(beta):
-    pair = pair_from_dict(seed001_pair1(helix_angle_deg=beta))
+    pair = pair_from_dict(low_fluctuation_pair1(helix_angle_deg=beta))
     geom = pair_geometry(pair.with_changes(modification=(Modification(crowning=10e-6, unmodified_lead_length=4e-3),
                                                          Modification(crowning=5e-6))))
     res = ltca(geom, [150.0], positions=16, points=40)
@@ -140,7 +140,7 @@ def test_symmetric_crowning_gives_a_symmetric_pattern_for_spur(beta):
 
 
 def _asymmetry(beta):
-    pair = pair_from_dict(seed001_pair1(helix_angle_deg=beta))
+    pair = pair_from_dict(low_fluctuation_pair1(helix_angle_deg=beta))
     geom = pair_geometry(pair.with_changes(modification=(Modification(crowning=10e-6), Modification())))
     res = ltca(geom, [150.0], positions=16, points=40)
     pattern = res.line_load[0].max(axis=(0, 1))  # envelope over the cycle at each z
@@ -152,8 +152,8 @@ def test_crowned_pattern_becomes_symmetric_as_beta_goes_to_zero():
     assert a[0] > a[1] > a[2] and a[2] < 0.05
 
 
-def test_convergence_in_points_per_line(seed000):
-    geom = pair_geometry(seed000.with_changes(modification=MOD))
+def test_convergence_in_points_per_line(helical_z29_71_m5):
+    geom = pair_geometry(helical_z29_71_m5.with_changes(modification=MOD))
     out = {}
     for n in (25, 50, 100, 200):
         res = ltca(geom, [1000.0], positions=16, points=n)
@@ -165,19 +165,19 @@ def test_convergence_in_points_per_line(seed000):
         assert d3 / abs(out[200][k]) < 5e-3
 
 
-def test_gear_torque_is_converted_by_the_ratio(seed000):
-    geom = pair_geometry(seed000)
+def test_gear_torque_is_converted_by_the_ratio(helical_z29_71_m5):
+    geom = pair_geometry(helical_z29_71_m5)
     a = ltca(geom, [1000.0], positions=8, points=20)
     b = ltca(geom, [1000.0 * 71 / 29], positions=8, points=20, on="gear")
     assert np.allclose(a.lte, b.lte, rtol=1e-12) and b.torque[0] == pytest.approx(1000.0)
 
 
-def test_unmodified_pair_meets_with_an_edge_and_modification_delays_it(seed000):
-    std = ltca(pair_geometry(seed000), [400.0], positions=8, points=30)
+def test_unmodified_pair_meets_with_an_edge_and_modification_delays_it(helical_z29_71_m5):
+    std = ltca(pair_geometry(helical_z29_71_m5), [400.0], positions=8, points=30)
     assert std.lte_at_engagement[0] > std.tca.te_next_pair_at_engagement == 0.0
     assert std.corner_load.max() > 0  # tip edges carry load outside the active zone
     gear_relief = (Modification(), Modification(tip_relief=30e-6, tip_relief_length=4e-3))
-    mod = ltca(pair_geometry(seed000.with_changes(modification=gear_relief)), [400.0], positions=8, points=30)
+    mod = ltca(pair_geometry(helical_z29_71_m5.with_changes(modification=gear_relief)), [400.0], positions=8, points=30)
     assert mod.lte_at_engagement[0] < mod.tca.te_next_pair_at_engagement  # surface-to-surface entry
 
 
@@ -185,7 +185,7 @@ def test_unmodified_pair_meets_with_an_edge_and_modification_delays_it(seed000):
     {}, {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 3}, "pinion": {"crowning_um": 10}},
     {"pinion": {"tip_relief_um": 12, "tip_relief_length_mm": 2, "root_relief_um": 15, "root_relief_length_mm": 2.5}},
     {"gear": {"tip_relief_um": 35, "tip_relief_length_mm": 4}}], ids=["standard", "relief", "pinion", "deep"])
-def test_the_entry_is_one_answer_with_the_impact_stage(seed000, modification):
+def test_the_entry_is_one_answer_with_the_impact_stage(helical_z29_71_m5, modification):
     """Whether the entering pair touches before A is one answer in the LTCA (the mesh-in impact
     paper's criterion on the teeth's LTE at φ1A) and the impact stage (its search for the first
     touch, an independent formulation): the gear bodies' deflection, in series with the teeth in
@@ -195,7 +195,7 @@ def test_the_entry_is_one_answer_with_the_impact_stage(seed000, modification):
     from gearmesh.datasets.impact import impact_dataset
 
     # solid discs held at the bore (described: hub = bore) on rigid supports: a body term in the LTE
-    pair = pair_from_dict({**pair_to_dict(seed000), "modification": modification or None, "hub_diameter_mm": [60, 140],
+    pair = pair_from_dict({**pair_to_dict(helical_z29_71_m5), "modification": modification or None, "hub_diameter_mm": [60, 140],
                            "bearing_radial_stiffness_N_per_um": "rigid", "bearing_axial_stiffness_N_per_um": "rigid"})
     torques = [400.0, 1000.0, 1600.0]
     ltca_ds = ltca_dataset(pair, torques_Nm=torques, method="transition", positions=64, points=50)
@@ -216,35 +216,35 @@ def test_the_entry_is_one_answer_with_the_impact_stage(seed000, modification):
     assert np.all(impact["scenario"].values[early & clear] == 2)
 
 
-def test_bad_torques_and_modifications_are_refused(seed000):
+def test_bad_torques_and_modifications_are_refused(helical_z29_71_m5):
     for bad in (0.0, -5.0, float("nan"), float("inf"), [], [100.0, -1.0], "100", True, None):
         with pytest.raises(GearmeshInputError, match="torques_Nm"):
-            ltca_dataset(seed000, torques_Nm=bad, positions=8, points=5)
+            ltca_dataset(helical_z29_71_m5, torques_Nm=bad, positions=8, points=5)
     with pytest.raises(GearmeshInputError, match="torque_Nm"):
-        ltca_summary(seed000, -1.0)
+        ltca_summary(helical_z29_71_m5, -1.0)
     with pytest.raises(GearmeshInputError, match="on"):
-        ltca_dataset(seed000, torques_Nm=[100.0], on="wheel", positions=8, points=5)
+        ltca_dataset(helical_z29_71_m5, torques_Nm=[100.0], on="wheel", positions=8, points=5)
     with pytest.raises(GearmeshInputError, match="corner_extension"):
-        ltca_dataset(seed000, torques_Nm=[100.0], corner_extension=-0.1, positions=8, points=5)
+        ltca_dataset(helical_z29_71_m5, torques_Nm=[100.0], corner_extension=-0.1, positions=8, points=5)
     with pytest.raises(GearmeshInputError, match="points"):
-        ltca_dataset(seed000, torques_Nm=[100.0], positions=8, points=0)
+        ltca_dataset(helical_z29_71_m5, torques_Nm=[100.0], positions=8, points=0)
     with pytest.raises(GearmeshInputError, match="contact_law"):
-        ltca_dataset(seed000, torques_Nm=[100.0], contact_law="hertz", positions=8, points=5)
-    neg = seed000.with_changes(modification=(Modification(), Modification(root_relief=-1e-6, root_relief_length=1e-3)))
+        ltca_dataset(helical_z29_71_m5, torques_Nm=[100.0], contact_law="hertz", positions=8, points=5)
+    neg = helical_z29_71_m5.with_changes(modification=(Modification(), Modification(root_relief=-1e-6, root_relief_length=1e-3)))
     with pytest.raises(GearmeshInputError, match="modification.gear.root_relief_um"):
         ltca_dataset(neg, torques_Nm=[100.0], positions=8, points=5)
-    crown = seed000.with_changes(modification=(Modification(crowning=5e-6, unmodified_lead_length=50e-3), Modification()))
+    crown = helical_z29_71_m5.with_changes(modification=(Modification(crowning=5e-6, unmodified_lead_length=50e-3), Modification()))
     with pytest.raises(GearmeshInputError, match="unmodified_lead_length_mm"):
         ltca_dataset(crown, torques_Nm=[100.0], positions=8, points=5)
 
 
-def test_dataset_and_summary(seed000):
-    ds = ltca_dataset(seed000.with_changes(modification=MOD), torques_Nm=[500.0, 1000.0], positions=8, points=20)
+def test_dataset_and_summary(helical_z29_71_m5):
+    ds = ltca_dataset(helical_z29_71_m5.with_changes(modification=MOD), torques_Nm=[500.0, 1000.0], positions=8, points=20)
     check_documented(ds)
     assert ds["load"].dims == ("torque", "position", "line", "point")
     total, force = xr.broadcast(ds["load"].sum(("line", "point")), ds["force"])
     assert np.allclose(total.values, force.values, rtol=1e-11)
-    summary = ltca_summary(seed000, 1000.0)
+    summary = ltca_summary(helical_z29_71_m5, 1000.0)
     for key in ("te_peak_to_peak_um", "lte_mean_um", "lte_peak_to_peak_um", "max_line_load_normal_N_per_mm",
                 "loaded_mesh_stiffness_mean_transverse_N_per_um"):
         assert math.isfinite(summary[key])

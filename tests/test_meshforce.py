@@ -14,7 +14,7 @@ from gearmesh.gear import load_pair, pair_geometry
 from gearmesh.ltca import ContactLaw, _invert, law_point_scales, load_sums
 from gearmesh.meshforce import table_layout, tabulate
 
-PAIR = Path(__file__).resolve().parents[1] / "config" / "pairs" / "seed000_case.yaml"
+PAIR = Path(__file__).resolve().parents[1] / "config" / "pairs" / "helical_z29_71_m5.yaml"
 
 
 @pytest.fixture(scope="module")

@@ -33,7 +33,7 @@ COARSE = {"points": 16, "window_positions": 24, "face_samples": 65}
 
 @pytest.fixture(scope="module")
 def pair():
-    return load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    return load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml")
 
 
 @pytest.fixture(scope="module")
@@ -72,7 +72,7 @@ def test_genes_stay_in_bounds_and_every_candidate_is_a_valid_modification(pair, 
     low = np.array([g.low for g in ga.problem.genes])
     high = np.array([g.high for g in ga.problem.genes])
     assert np.all(genes >= low) and np.all(genes <= high)
-    # seed 000's bounds in mn = 5 mm and B = 42 mm
+    # the mesh-in impact paper's bounds in mn = 5 mm and B = 42 mm
     np.testing.assert_allclose(low, [5, 5, 0.5, 0.5, 5, 0])
     np.testing.assert_allclose(high, [75, 75, 4, 4, 75, 21])
     for params in ga.problem.decode(genes[::7]):
@@ -127,7 +127,7 @@ def test_fixed_genes_robust_objective_and_constraints(model):
     assert [g.name for g in fixed.genes] == [f"pinion.{k}" for k in op.GENE_KEYS[:4]]
     both = op.problem(model, op.check_settings(population=4, generations=1), modify=["pinion", "gear"])
     assert len(both.genes) == 12 and {g.gear for g in both.genes} == {0, 1}
-    # seed 000's alternative objective, |v_n| at the design point
+    # the mesh-in impact paper's alternative objective, |v_n| at the design point
     slow = op.problem(model, op.check_settings(population=4, generations=1, objective="velocity"))
     ev = op.evaluate(slow, slow.decode([[40, 40, 2, 2, 20, 10]]))
     assert ev.objective[0] == ev.velocity[0, 0, 0] > 0
@@ -144,7 +144,7 @@ def test_nsga2_front_is_non_dominated_and_the_dataset_documents_it(model, tmp_pa
     assert len(f) >= 1 and np.all(np.diff(f) >= 0)
     assert op.pareto_mask(pts).all()
     ds = result_dataset(res)
-    ds.attrs["pair_name"] = "seed000_case"
+    ds.attrs["pair_name"] = "helical_z29_71_m5"
     check_documented(ds)
     assert plot_pareto(ds, tmp_path / "pareto.png").stat().st_size > 1000
 
@@ -164,7 +164,7 @@ def test_dataset_figures_and_the_optimum_as_a_pair(pair, ga, tmp_path):
                                rtol=0, atol=max(steps))
     assert np.all(np.abs([getattr(best.pair.modification[0], f) for f in MODIFICATION_FIELDS] - ga.optimum[0])
                   <= np.array(steps) * (1 + 1e-9))
-    ds.attrs["pair_name"] = "seed000_case"
+    ds.attrs["pair_name"] = "helical_z29_71_m5"
     for plot, name in ((plot_convergence, "convergence"), (plot_modification, "modification")):
         assert plot(ds, tmp_path / f"{name}.png").stat().st_size > 1000
 
@@ -211,7 +211,7 @@ def test_bad_settings_are_refused_with_the_field_named(pair, settings, field):
 
 
 def test_bad_study_settings_and_variants_are_refused_before_any_job(capsys):
-    base = {"study": "s", "pairs": ["seed000_case"], "variants": {"standard": {},
+    base = {"study": "s", "pairs": ["helical_z29_71_m5"], "variants": {"standard": {},
                                                                  "optimised": {"from": "optimise.best"}}}
     with pytest.raises(GearmeshInputError, match="must be optimise.NAME"):
         check_study(validate_study(base), ROOT)
@@ -223,7 +223,7 @@ def test_bad_study_settings_and_variants_are_refused_before_any_job(capsys):
     with pytest.raises(GearmeshInputError) as err:
         validate_study({**base, "optimise": {"best": {"population": 2}}})
     assert err.value.field.startswith("optimise.best.population")
-    assert cli_main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000",
+    assert cli_main(["optimise", str(ROOT / "config/pairs/helical_z29_71_m5.yaml"), "--torque-Nm", "1000",
                      "--speed-rpm", "5000", "--population", "2"]) == 2
     assert capsys.readouterr().err.strip() == "gearmesh: error: --population = 2: must be at least 4"
 
@@ -295,7 +295,7 @@ def test_diagnostics_window_spread_and_scenarios(robust):
 def test_cli_json_by_torque_load_window_and_write_pair_round_trip(tmp_path, capsys):
     """--write-pair writes the optimum as a pair named after its file; every subcommand reads it."""
     out = tmp_path / "best_gear.yaml"
-    case = str(ROOT / "config/pairs/seed000_case.yaml")
+    case = str(ROOT / "config/pairs/helical_z29_71_m5.yaml")
     assert cli_main(["optimise", case, "--objective", "robust", "--torques-Nm", "400,1000,1600", "--tolerance-samples",
                      "2", "--grade", "6", "--population", "4", "--generations", "1", "--write-pair", str(out),
                      "--json"]) == 0
@@ -399,7 +399,7 @@ def test_the_cli_reproduces_the_studys_optimum_from_its_section(capsys):
              for k, v in (value.items() if key == "constraints" else [(key, value)]) if declared.get(k) != v]
     assert {"pressure_factor", "root_stress_factor", "harmonic_factor", "impact_factor", "worst_impact_factor",
             "dynamic_factor", "pareto_objectives"} <= {k for k, _ in given}
-    argv = ["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--json"]
+    argv = ["optimise", str(ROOT / "config/pairs/helical_z29_71_m5.yaml"), "--json"]
     for key, value in given:
         argv += [flags[key], _cli_text(value)]  # KeyError: a key of the section without an option
     # the study's tolerances section: lead class, samples, sampling, ±2 µm on every amount, ±0.2 mm
@@ -413,7 +413,7 @@ def test_the_cli_reproduces_the_studys_optimum_from_its_section(capsys):
              "--sampling", tolerances["sampling"], "--amount-tolerance-um", "2", "--length-tolerance-mm", "0.2"]
     assert cli_main(argv) == 0
     cli = json.loads(capsys.readouterr().out)
-    workflow = optimise_dataset(load_pair(ROOT / "config/pairs/seed000_case.yaml"), **section,
+    workflow = optimise_dataset(load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml"), **section,
                                 impact=study["impact"], tolerances=tolerances)
     units = {"um": 1e-6, "mm": 1e-3}
     genes = [v * units[k.rsplit("_", 1)[1]] for k, v in cli["genes"].items()]

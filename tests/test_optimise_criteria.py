@@ -158,7 +158,7 @@ def test_nsga2_front_over_three_objectives_is_non_dominated_and_drawn(model, tmp
         assert np.any(np.all(pts <= row, axis=1))
     np.testing.assert_array_equal(res.optimum_genes, genes[0])  # the chosen design: the front's least J
     ds = result_dataset(res)
-    ds.attrs["pair_name"] = "seed000_case"
+    ds.attrs["pair_name"] = "helical_z29_71_m5"
     check_documented(ds)
     assert {"pareto_te_harmonics_ratio", "pareto_root_stress_ratio", "optimum_lte_harmonics",
             "standard_root_stress", "violation", "standard_penalised_objective"} <= set(ds.data_vars)
@@ -416,7 +416,7 @@ def test_every_door_judges_the_criteria_over_the_manufactured_population(pair, m
     with pytest.raises(Seen):
         dop.optimise_dataset(pair, torque_Nm=1000, torques_Nm=[400, 1000], tolerances={"grade": 6, "samples": 2})
     with pytest.raises(Seen):
-        cli.main(["optimise", str(ROOT / "config/pairs/seed000_case.yaml"), "--torques-Nm", "400,1000",
+        cli.main(["optimise", str(ROOT / "config/pairs/helical_z29_71_m5.yaml"), "--torques-Nm", "400,1000",
                   "--method", "nsga2"])
     assert [s.criteria_over_samples for s in seen] == [True, True]
     assert all(s.tolerance_statistic == "max" for s in seen)

@@ -21,7 +21,7 @@ from gearmesh.gear import (
     shift_rounding_center_distance,
 )
 
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 
 
 def _write(path, data) -> str:
@@ -35,13 +35,13 @@ def _write(path, data) -> str:
 
 
 def test_a_renamed_pair_file_keeps_its_name(tmp_path, capsys):
-    path = _write(tmp_path / "copy_of_the_pair.yaml", seed001_pair1())
+    path = _write(tmp_path / "copy_of_the_pair.yaml", low_fluctuation_pair1())
     assert main(["geometry", path, "--json"]) == 0
-    assert json.loads(capsys.readouterr().out)["name"] == "seed001_pair1"
+    assert json.loads(capsys.readouterr().out)["name"] == "low_fluctuation_pair1"
 
 
 def test_a_pair_file_without_name_is_named_after_its_file(tmp_path, capsys):
-    data = seed001_pair1()
+    data = low_fluctuation_pair1()
     del data["name"]
     path = _write(tmp_path / "my_pair.yaml", data)
     assert load_pair(path).name == "my_pair"
@@ -50,7 +50,7 @@ def test_a_pair_file_without_name_is_named_after_its_file(tmp_path, capsys):
 
 
 def test_a_file_name_that_is_no_pair_name_needs_a_name(tmp_path, capsys):
-    data = seed001_pair1()
+    data = low_fluctuation_pair1()
     del data["name"]
     path = _write(tmp_path / "my pair.yaml", data)
     assert main(["geometry", path]) == 2
@@ -62,7 +62,7 @@ def test_a_file_name_that_is_no_pair_name_needs_a_name(tmp_path, capsys):
 
 def test_the_study_library_keeps_name_equal_to_file(tmp_path, capsys):
     (tmp_path / "pairs").mkdir()
-    _write(tmp_path / "pairs" / "p.yaml", seed001_pair1(name="other"))
+    _write(tmp_path / "pairs" / "p.yaml", low_fluctuation_pair1(name="other"))
     study = tmp_path / "study.yaml"
     study.write_text(f"study: s\npairs: [p]\npairs_dir: {tmp_path / 'pairs'}\n")
     assert main(["validate", str(study)]) == 2
@@ -75,7 +75,7 @@ def test_the_study_library_keeps_name_equal_to_file(tmp_path, capsys):
 
 
 def test_missing_material_is_steel_and_stated(tmp_path, capsys):
-    data = seed001_pair1()
+    data = low_fluctuation_pair1()
     del data["material"]
     pair = pair_from_dict(data)
     assert (pair.material.youngs_modulus, pair.material.poisson_ratio, pair.material.density) == (206e9, 0.3, 7850)
@@ -89,11 +89,11 @@ def test_missing_material_is_steel_and_stated(tmp_path, capsys):
 
 
 def test_explicit_material_values_override_key_by_key():
-    pair = pair_from_dict(seed001_pair1(material={"density_kg_m3": 7800}))
+    pair = pair_from_dict(low_fluctuation_pair1(material={"density_kg_m3": 7800}))
     assert (pair.material.youngs_modulus, pair.material.density) == (206e9, 7800)
     note = pair_notes(pair)[0]
     assert "youngs_modulus_GPa" in note and "poisson_ratio" in note and "density" not in note.split("(")[0]
-    assert pair_notes(pair_from_dict(seed001_pair1())) == []
+    assert pair_notes(pair_from_dict(low_fluctuation_pair1())) == []
     # written back: only what was given, so reading it fills (and states) the same defaults
     assert pair_to_dict(pair)["material"] == {"density_kg_m3": 7800}
     assert pair_from_dict(pair_to_dict(pair)) == pair
@@ -107,7 +107,7 @@ def test_dataset_attrs_state_the_material_defaults(tmp_path):
     from gearmesh.io import read_dataset
     from gearmesh.pipeline import finish
 
-    data = seed001_pair1()
+    data = low_fluctuation_pair1()
     del data["material"]
     pair = pair_from_dict(data)
     path = finish(geometry_dataset(pair), tmp_path / "geometry.nc", {"study": "s"}, pair, "geometry")
@@ -132,9 +132,9 @@ def _zero_backlash_distance(data) -> float:
 
 def test_rounding_tolerance_is_the_printed_shifts_effect_on_a0():
     """Independent check of the closed-form ∂a0/∂Σx: a0 of the shifts each raised by 0.5e-4."""
-    data = seed001_pair1(profile_shift=[0.3, 0.2])
+    data = low_fluctuation_pair1(profile_shift=[0.3, 0.2])
     geom = pair_geometry(pair_from_dict(data))
-    raised = _zero_backlash_distance(seed001_pair1(profile_shift=[0.30005, 0.20005]))
+    raised = _zero_backlash_distance(low_fluctuation_pair1(profile_shift=[0.30005, 0.20005]))
     allowed = shift_rounding_center_distance(geom.pair, geom.transverse_pressure_angle, geom.operating_pressure_angle)
     assert allowed == pytest.approx(raised - geom.center_distance, rel=1e-4)
     assert 0.5e-4 < allowed / geom.pair.normal_module < 2e-4  # about 1e-4 m_n

@@ -15,7 +15,7 @@ from gearmesh.datasets.optimise import optimise_summary, optimum_pair
 from gearmesh.gear import load_pair, pair_from_dict, pair_geometry, variant_pair
 from gearmesh.pipeline import write_pair
 
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 
 SMALL_GA = ["--population", "4", "--generations", "1"]
 
@@ -32,7 +32,7 @@ COMMANDS = {
 
 
 def _example(folder, capsys):
-    assert main(["example", "seed001_pair1"]) == 0
+    assert main(["example", "low_fluctuation_pair1"]) == 0
     path = folder / "example.yaml"
     path.write_text(capsys.readouterr().out)
     return path
@@ -49,7 +49,7 @@ def _write_pair_option(folder, capsys):
 
 def _workflow_optimum(folder, capsys):
     """As the workflow's optimise rule writes it: the pair's own name in a file called pair.yaml."""
-    pair = pair_from_dict(seed001_pair1())
+    pair = pair_from_dict(low_fluctuation_pair1())
     ds = optimise_summary(pair, torque_Nm=100.0, speed_rpm=3000.0, population=4, generations=1, objective="force",
                           tolerance_statistic=None)[1]
     path = folder / "optimise" / "force" / "pair.yaml"
@@ -57,7 +57,7 @@ def _workflow_optimum(folder, capsys):
 
 
 def _variant(folder, capsys):
-    pair = pair_from_dict(seed001_pair1())
+    pair = pair_from_dict(low_fluctuation_pair1())
     spec = {"modification": {"pinion": {"tip_relief_um": 8, "tip_relief_length_mm": 1.0, "crowning_um": 3,
                                         "unmodified_lead_length_mm": 10}}}
     return write_pair(variant_pair(pair, "relief", spec), folder / "relief" / "pair.yaml")
@@ -66,7 +66,7 @@ def _variant(folder, capsys):
 def _datasheet(folder, capsys):
     """Tip and bore diameters, no material, shifts and a centre distance: written back as
     coefficients (the material left out again, so its defaults are stated again)."""
-    data = seed001_pair1(profile_shift=[0.2, 0.1], center_distance_mm=69.9, tip_diameter_mm=[55.0, 91.5],
+    data = low_fluctuation_pair1(profile_shift=[0.2, 0.1], center_distance_mm=69.9, tip_diameter_mm=[55.0, 91.5],
                          bore_diameter_mm=[30, 50])
     del data["material"], data["addendum_coefficient"], data["bore_radius_mm"]
     return write_pair(pair_from_dict(data), folder / "datasheet.yaml")
@@ -102,7 +102,7 @@ def test_every_written_pair_is_read_by_every_command(tmp_path, capsys, writer, c
 def test_a_written_pair_has_no_round_trip_digits(tmp_path):
     """Amounts pass through SI (5 µm -> 5e-06 m -> 5.000000000000001 µm): the file rounds them
     back to what was meant (issue 25), and a real optimum's digits to 12 significant ones."""
-    pair = pair_from_dict(seed001_pair1())
+    pair = pair_from_dict(low_fluctuation_pair1())
     spec = {"modification": {"pinion": {"crowning_um": 5, "tip_relief_um": 24.861413680690358,
                                         "tip_relief_length_mm": 0.7}}}
     text = write_pair(variant_pair(pair, "relief", spec), tmp_path / "pair.yaml").read_text()

@@ -19,12 +19,12 @@ from gearmesh.config import check_study, validate_study
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import example_pair, load_pair, pair_from_dict, pair_geometry
 from gearmesh.supports import Supports
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 
 
 def _case(**changes) -> dict:
     """The default study's pair (supports, bore, 42 mm face) with ``changes``."""
-    data = yaml.safe_load(example_pair("seed000_case").read_text())
+    data = yaml.safe_load(example_pair("helical_z29_71_m5").read_text())
     return {**data, **changes}
 
 
@@ -77,7 +77,7 @@ def test_the_shipped_pairs_are_plausible():
 def test_supports_and_body_check_themselves():
     """Code-built supports with negative bearings gave a dynamic factor of 2.6e17; a code-built body
     with a negative web a raw ValueError deep in the plate solution."""
-    pair = load_pair(example_pair("seed000_case"))
+    pair = load_pair(example_pair("helical_z29_71_m5"))
     with pytest.raises(GearmeshInputError, match=r"bearing_radial_stiffness_N_per_um\[0\] = -1"):
         dataclasses.replace(pair.supports, bearing_radial=(-1e6, 1e9))
     with pytest.raises(GearmeshInputError, match="did you give N/m"):
@@ -117,7 +117,7 @@ def no_ltca(monkeypatch):
 def test_the_rating_door_refuses_before_the_ltca(capsys, no_ltca, args, words):
     """A rating at 1e9 rpm gave S_H 0.008 (the README says speeds above the burst speed are refused);
     --factor refusals came 20-35 s after the LTCA."""
-    pair = str(example_pair("seed000_case"))
+    pair = str(example_pair("helical_z29_71_m5"))
     line = _one_line(["rating", pair, "--torque-Nm", "1000", "--speed-rpm", "5000", *args], capsys)
     for word in words:
         assert word in line, line
@@ -126,13 +126,13 @@ def test_the_rating_door_refuses_before_the_ltca(capsys, no_ltca, args, words):
 def test_the_rating_api_refuses_factors_given_as_a_list(no_ltca):
     from gearmesh.datasets.rating import rating_summary
 
-    pair = load_pair(example_pair("seed000_case"))
+    pair = load_pair(example_pair("helical_z29_71_m5"))
     with pytest.raises(GearmeshInputError, match="factors = "):
         rating_summary(pair, 1000, 5000, factors=[("K_v", 1.2)])
 
 
 def _study(**sections) -> dict:
-    return validate_study({"study": "s", "pairs": ["seed000_case"], **sections})
+    return validate_study({"study": "s", "pairs": ["helical_z29_71_m5"], **sections})
 
 
 def test_a_study_is_refused_before_any_job():
@@ -156,9 +156,9 @@ def _stage(pair, variant: str) -> xr.Dataset:
 
 @pytest.fixture
 def pairs():
-    one = pair_from_dict(seed001_pair1())
-    relief = pair_from_dict(seed001_pair1(modification={"gear": {"tip_relief_um": 10, "tip_relief_length_mm": 1}}))
-    other = pair_from_dict(seed001_pair1(name="other", face_width_mm=21))
+    one = pair_from_dict(low_fluctuation_pair1())
+    relief = pair_from_dict(low_fluctuation_pair1(modification={"gear": {"tip_relief_um": 10, "tip_relief_length_mm": 1}}))
+    other = pair_from_dict(low_fluctuation_pair1(name="other", face_width_mm=21))
     return one, relief, other
 
 
@@ -192,7 +192,7 @@ def test_another_pairs_fe_table_is_named_as_such(pairs):
     with pytest.raises(GearmeshInputError) as info:
         stiffness_dataset(one, method="fe", fe_compliance=fe)
     assert str(info.value) == ("fe_compliance = \"a dataset of 'other'\": was computed for pair 'other' (face_width_mm "
-                               "= [21.0, 21.0], this pair's [20.0, 20.0]), not for this pair 'seed001_pair1': pass this pair's own "
+                               "= [21.0, 21.0], this pair's [20.0, 20.0]), not for this pair 'low_fluctuation_pair1': pass this pair's own "
                                "fe_compliance dataset (or none)")
 
 

@@ -37,7 +37,7 @@ RELIEF = {"modification": {"gear": {"tip_relief_um": 20, "tip_relief_length_mm":
 def data():
     """Every stage's dataset of the impact case pair (standard and relieved) at coarse settings,
     the three-gear train and the study tables: a few seconds."""
-    pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+    pair = load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml")
     relief = variant_pair(pair, "relief", RELIEF)  # a micro-geometry variant of the same pair, as the workflow makes it
     out = {"geometry": geo.geometry_dataset(pair), "contact_lines": geo.contact_lines_dataset(pair, positions=60),
            "stiffness": st.stiffness_dataset(pair, slices=40, positions=60, torque_Nm=1000),
@@ -48,7 +48,7 @@ def data():
                                                          slices=40, positions=60),
            "slice_convergence": st.slice_convergence_dataset({"case": pair}, slices=(10, 20, 40), positions=60),
            "fe_compliance": fe_compliance_dataset(pair, size=0.3, roll_nodes=5),
-           "train": dy.train_dataset(load_pair(ROOT / "config/pairs/seed004_pair.yaml"), slices=40, positions=60),
+           "train": dy.train_dataset(load_pair(ROOT / "config/pairs/printing_train_z88.yaml"), slices=40, positions=60),
            "ga": opd.optimise_dataset(pair, population=6, generations=2, random_baseline=True, **SINGLE_POINT,
                                       **COARSE_IMPACT),
            "nsga": opd.optimise_dataset(pair, method="nsga2", population=6, generations=2, **SINGLE_POINT,
@@ -65,7 +65,7 @@ def data():
         for key in (f"impact_{name}", f"dynamics_{name}"):
             out[key].attrs["variant"] = name
     for ds in out.values():
-        ds.attrs["pair_name"] = "seed000_case"
+        ds.attrs["pair_name"] = "helical_z29_71_m5"
     return out
 
 
@@ -184,7 +184,7 @@ def test_stiffness_figure_shows_what_is_in_series_and_adds_up_to_k(data, drawn, 
     if bodies:  # the case pair with solid-disc webs (its face width) held at the bore
         from gearmesh.body import read_body
 
-        pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
+        pair = load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml")
         solid = pair.with_changes(body=read_body({"web_thickness_mm": [w * 1e3 for w in pair.face_width]}))
         ds = st.stiffness_dataset(solid, slices=40, positions=60, torque_Nm=1000)
         data = {**data, "stiffness": ds}
@@ -312,15 +312,15 @@ def test_plot_modules_do_not_use_pyplot():
 
 
 def test_figures_are_headed_by_the_pair_as_a_reader_knows_it():
-    """A shipped example pair by its data (its name, seed000_case, is a source file number); a
+    """A shipped example pair by its data (its name, helical_z29_71_m5, is a source file number); a
     pair of the user's own by its name and data; a result without pair data by its name."""
     import json
 
     import xarray as xr
     from gearmesh.pipeline import provenance_config
 
-    pair = load_pair(ROOT / "config/pairs/seed000_case.yaml")
-    ds = xr.Dataset(attrs={"pair_name": "seed000_case", "config_json": json.dumps(provenance_config({}, pair))})
+    pair = load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml")
+    ds = xr.Dataset(attrs={"pair_name": "helical_z29_71_m5", "config_json": json.dumps(provenance_config({}, pair))})
     assert title(ds, "LTE") == "29/71 teeth, module 5 mm, helix 27.5°, face 42 mm — LTE"
     ds.attrs["pair_name"] = "stage_2"
     assert pair_label(ds) == "stage_2: 29/71 teeth, module 5 mm, helix 27.5°, face 42 mm"

@@ -20,12 +20,12 @@ from gearmesh.profile import (
     form_point,
 )
 
-from pairs import STEEL, seed001_pair1
+from pairs import STEEL, low_fluctuation_pair1
 
 
 def pair(**changes):
-    """Seed 001 pair 1 at a 20° pressure angle (the ISO 53 tip radius fits), no bore."""
-    return load_pair(seed001_pair1(**{"normal_pressure_angle_deg": 20, "bore_radius_mm": None, **changes}))
+    """The low-fluctuation paper pair 1 at a 20° pressure angle (the ISO 53 tip radius fits), no bore."""
+    return load_pair(low_fluctuation_pair1(**{"normal_pressure_angle_deg": 20, "bore_radius_mm": None, **changes}))
 
 
 # An undercut pinion that still works: z 12 (z_min ≈ 17 at 20°), gear tip shortened to 0.8 m_n.

@@ -21,13 +21,13 @@ from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_from_dict
 from gearmesh.pipeline import write_pair
 from gearmesh.upstream import Expected, read_input
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 from test_upstream import _write as _write_upstream
 
-STUDY = {"study": "s", "pairs": ["seed001_pair1"], "tolerances": {"samples": 4},
+STUDY = {"study": "s", "pairs": ["low_fluctuation_pair1"], "tolerances": {"samples": 4},
          "impact": {"torques_Nm": [100], "points": 10}, "variants": {"standard": {}, "relief": {}}}
 RELIEF = {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 1}}
-BASE = "results/s/seed001_pair1"
+BASE = "results/s/low_fluctuation_pair1"
 
 
 def _write(*args, **kwargs) -> str:
@@ -36,7 +36,7 @@ def _write(*args, **kwargs) -> str:
 
 
 def _pair(modification=None):
-    return pair_from_dict(seed001_pair1(**({"modification": modification} if modification else {})))
+    return pair_from_dict(low_fluctuation_pair1(**({"modification": modification} if modification else {})))
 
 
 @pytest.fixture
@@ -220,13 +220,13 @@ def test_snakemake_refuses_a_folder_where_a_result_belongs(root, tmp_path):
     for item in ("Snakefile", "workflow", "config"):
         src = root / item
         (shutil.copytree(src, tmp_path / item, symlinks=False) if src.is_dir() else shutil.copy(src, tmp_path / item))
-    (tmp_path / "k.yaml").write_text(json.dumps({"study": "k", "pairs": ["seed001_pair1"]}))
-    (tmp_path / "results/k/seed001_pair1/stiffness.nc").mkdir(parents=True)
+    (tmp_path / "k.yaml").write_text(json.dumps({"study": "k", "pairs": ["low_fluctuation_pair1"]}))
+    (tmp_path / "results/k/low_fluctuation_pair1/stiffness.nc").mkdir(parents=True)
     exe = shutil.which("snakemake", path=str(Path(sys.executable).parent))
     proc = subprocess.run([exe, "-n", "--cores", "1", "--configfile", "k.yaml"], cwd=tmp_path, capture_output=True,
                           text=True, timeout=300)
     assert proc.returncode == 2, proc.stderr[-2000:]
-    assert proc.stderr.strip() == ("gearmesh: error: results/k/seed001_pair1/stiffness.nc = 'a folder': must be a "
+    assert proc.stderr.strip() == ("gearmesh: error: results/k/low_fluctuation_pair1/stiffness.nc = 'a folder': must be a "
                                    "file: the study writes one of its results there; move or delete the folder, "
                                    "then rerun")
 
@@ -383,7 +383,7 @@ def test_gearmesh_check_works_from_any_folder_and_with_an_absolute_path(work, ca
     absolute = str(work / "results" / "s")
     monkeypatch.chdir(work / "results")
     assert main(["check", "s"]) == 0
-    monkeypatch.chdir(work / "results" / "s" / "seed001_pair1")
+    monkeypatch.chdir(work / "results" / "s" / "low_fluctuation_pair1")
     assert main(["check", absolute]) == 0
     assert main(["check", ".."]) == 0
     capsys.readouterr()

@@ -121,7 +121,7 @@ CLI_KEYS = {"Z_H", "Z_E", "Z_epsilon", "Z_beta", "sigma_H0_MPa", "sigma_H_MPa", 
 
 
 def test_cli_rating_json(root, capsys):
-    pair = str(root / "config/pairs/seed000_case.yaml")
+    pair = str(root / "config/pairs/helical_z29_71_m5.yaml")
     assert main(["rating", pair, "--torque-Nm", "1000", "--speed-rpm", "5000", "--factor", "K_v=1.2",
                  "--application-factor", "1.25", "--points", "20", "--positions", "16", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
@@ -144,7 +144,7 @@ def test_cli_rating_json(root, capsys):
     (["--speed-rpm", "-5"], "speed_rpm"),
 ])
 def test_cli_rating_refuses_bad_input_in_one_line(root, capsys, args, message):
-    base = ["rating", str(root / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000", "--speed-rpm", "5000"]
+    base = ["rating", str(root / "config/pairs/helical_z29_71_m5.yaml"), "--torque-Nm", "1000", "--speed-rpm", "5000"]
     try:
         code = main(base + args)
     except SystemExit as exc:  # argparse's own refusals (the one line of gearmesh.cli._Parser)
@@ -159,7 +159,7 @@ def test_ltca_dataset_carries_the_load_capacity_variables():
     from gearmesh.datasets.rating import reference_ltca
     from gearmesh.gear import example_pair, load_pair, variant_pair
 
-    base = load_pair(example_pair("seed000_case"))
+    base = load_pair(example_pair("helical_z29_71_m5"))
     relief = variant_pair(base, "relief", {"modification": {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 3}}})
     kw = dict(torques_Nm=[400.0, 1600.0], positions=16, points=20, method="transition")
     std, mod = ltca_dataset(base, **kw), ltca_dataset(relief, **kw)

@@ -60,7 +60,7 @@ def test_box_worst_reaches_a_dense_grid_on_the_case_pair():
     lead mismatch: four dimensions) at 1000 N m: every criterion's box worst at least 99 % of the
     largest on a 7⁴ grid, with under a fifth of its evaluations."""
     study = load_study("config/config.yaml")
-    pair = variant_pair(load_pair(example_pair("seed000_case")), "relief", study["variants"]["relief"])
+    pair = variant_pair(load_pair(example_pair("helical_z29_71_m5")), "relief", study["variants"]["relief"])
     geom = pair_geometry(pair)
     tol = tolerance_model(geom, 6, ("pinion", "gear"), {"tip_relief_um": 2, "crowning_um": 2,
                                                         "tip_relief_length_mm": 0.2})
@@ -117,7 +117,7 @@ def test_box_worst_reaches_a_dense_grid_on_random_valid_pairs(seed):
 def test_only_the_lead_mismatch_acts():
     """The same net lead mismatch split two ways between the gears gives the same gear: the box's
     lead dimension is their sum."""
-    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     tol = tolerance_model(geom, 6)
     model = impact_model(geom, points=20, method="transition", cycle_positions=16)
     p = np.zeros((1, 2, 6))
@@ -134,7 +134,7 @@ def test_a_manufactured_gear_as_a_pair_file_gives_the_same_numbers_through_gearm
     read back) through the LTCA command's function at its default grid: the loaded-TE orders, the
     pressures and the root stress the robust evaluation computed for it."""
     study = load_study("config/config.yaml")
-    design = variant_pair(load_pair(example_pair("seed000_case")), "relief", study["variants"]["relief"])
+    design = variant_pair(load_pair(example_pair("helical_z29_71_m5")), "relief", study["variants"]["relief"])
     geom = pair_geometry(design)
     tol = tolerance_model(geom, 6, ("pinion", "gear"), {"tip_relief_um": 2, "crowning_um": 2})
     params = modification_parameters(geom)

@@ -276,7 +276,7 @@ def test_the_path_curve_is_the_largest_loaded_flash_temperature_of_each_bin_and_
 def test_cli_rating_json_has_the_scuffing_keys(root, capsys):
     from gearmesh.cli import main
 
-    assert main(["rating", str(root / "config/pairs/seed000_case.yaml"), "--torque-Nm", "1000", "--speed-rpm",
+    assert main(["rating", str(root / "config/pairs/helical_z29_71_m5.yaml"), "--torque-Nm", "1000", "--speed-rpm",
                  "5000", "--points", "12", "--positions", "16", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     for key in ("contact_temperature_max_C", "scuffing_safety_flash", "integral_temperature_C",
@@ -302,7 +302,7 @@ def stage_datasets():
     from gearmesh.datasets.scuffing import scuffing_dataset
     from gearmesh.gear import load_pair
 
-    pair = load_pair(Path(__file__).resolve().parents[1] / "config/pairs/seed000_case.yaml")
+    pair = load_pair(Path(__file__).resolve().parents[1] / "config/pairs/helical_z29_71_m5.yaml")
     ltca = ltca_dataset(pair, torques_Nm=[1000.0], positions=16, points=12)
     rated = rating_dataset(pair, 5000.0, ltca=ltca)
     return pair, ltca, rated, scuffing_dataset(pair, ltca=ltca, rating=rated)
@@ -399,7 +399,7 @@ def test_a_study_rating_scuffing_without_a_rating_section_is_refused(root):
     from gearmesh.config import check_study, validate_study
     from gearmesh.errors import GearmeshInputError
 
-    config = {"study": "s", "pairs": ["seed000_case"], "ltca": {"torques_Nm": [1000]}, "scuffing": {}}
+    config = {"study": "s", "pairs": ["helical_z29_71_m5"], "ltca": {"torques_Nm": [1000]}, "scuffing": {}}
     with pytest.raises(GearmeshInputError) as err:
         check_study(validate_study(config), root)
     assert err.value.field == "scuffing"

@@ -241,7 +241,7 @@ def test_tolerances_take_the_declared_defaults():
     from gearmesh.gear import load_pair, pair_geometry
     from gearmesh.tolerance import study_tolerances
 
-    geom = pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml"))
+    geom = pair_geometry(load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml"))
     model, samples, sampling, seed = study_tolerances(geom, {"grade": 6})
     assert (samples, sampling, seed) == tuple(defaults(dict(stage_sections())["tolerances"])[k]
                                               for k in ("samples", "sampling", "seed"))
@@ -299,7 +299,7 @@ _RELATIONS = ("normal module", "pinion reference diameters", "is a 20° profile"
               "the bore diameter", "the face width")  # a shaft in its bore, a web against its face
 
 
-_BASE = yaml.safe_load((ROOT / "config/pairs/seed000_case.yaml").read_text())
+_BASE = yaml.safe_load((ROOT / "config/pairs/helical_z29_71_m5.yaml").read_text())
 _VALUES = st.one_of(st.none(), st.booleans(), st.integers(-10, 300), st.floats(-1e3, 1e3, allow_nan=False),
                     st.sampled_from([0, 0.05, 0.1, 100, 100.5, 45, 60, 59.99, 0.5, -3, 3, 2.99, 5, 4, "right", "left",
                                      "x", "a.b", ".a", "", "1e6", "ISO 53 A", "ISO 53 D", "ISO 53"]),
@@ -462,7 +462,7 @@ _REQUIRED_OPTIONS = {"stiffness": [], "ltca": ["--torque-Nm", "100"], "impact": 
 def test_every_setting_option_refuses_what_the_schema_refuses_naming_the_option(capsys, tmp_path):
     from gearmesh.cli import main
 
-    pair = ROOT / "config/pairs/seed000_case.yaml"
+    pair = ROOT / "config/pairs/helical_z29_71_m5.yaml"
     checked = 0
     for command, parser in _subparsers().items():
         for _, (section, key, flag) in (parser.get_default("setting_options") or {}).items():

@@ -249,7 +249,7 @@ def test_the_figure_is_drawn_from_the_table(tmp_path):
     assert nominal.stat().st_size > 10000
 
 
-STUDY = {"study": "s", "pairs": ["seed001_pair1"], "variants": {"standard": {}},
+STUDY = {"study": "s", "pairs": ["low_fluctuation_pair1"], "variants": {"standard": {}},
          "ltca": {"torques_Nm": [100]}, "rating": {"speed_rpm": 3000},
          "impact": {"torques_Nm": [100, 200], "speeds_rpm": [3000], "design_speed_rpm": 3000},
          "tolerances": {"grade": 6}}

@@ -9,7 +9,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st_
 
-from pairs import STEEL, seed001_pair1
+from pairs import STEEL, low_fluctuation_pair1
 from gearmesh.body import mesh_body_compliance
 from gearmesh import stiffness as st
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
@@ -18,7 +18,7 @@ from gearmesh.gear import load_pair, pair_geometry
 
 
 def geom_of(**changes):
-    return pair_geometry(load_pair(seed001_pair1(**changes)))
+    return pair_geometry(load_pair(low_fluctuation_pair1(**changes)))
 
 
 @pytest.fixture(scope="module")
@@ -187,12 +187,12 @@ def _cantilever(geom, gear, method, rho):
 
 
 def test_methods_order_when_base_circle_is_below_root_circle(p1, p1_tables):
-    """r_b < r_f (both gears of seed 001 pair 1, αn = 25°).
+    """r_b < r_f (both gears of the low-fluctuation paper pair 1, αn = 25°).
 
     The traditional cantilever adds a fictitious involute segment between base and root
     circles inside the gear body: it is MORE compliant than the improved one at every
     contact point, so K_traditional < K_improved. The transition model (real fillet, root
-    thickness S_f from the real fillet) is stiffer still. Seed 003 claims the classical
+    thickness S_f from the real fillet) is stiffer still. The transition-curve paper claims the classical
     method is stiffer than the transition one for r_b < r_f: not so for these models.
     """
     assert np.all(p1.base_radius < p1.root_radius)
@@ -205,7 +205,7 @@ def test_methods_order_when_base_circle_is_below_root_circle(p1, p1_tables):
 
 def test_methods_order_when_base_circle_is_above_root_circle():
     """r_b > r_f (20 teeth at 20°): traditional ignores the root-to-base material, so it is
-    STIFFER than improved at every contact point (seed 004's claim holds only here)."""
+    STIFFER than improved at every contact point (the improved potential-energy paper's claim holds only here)."""
     geom = pair_geometry(load_pair({
         "name": "z20", "teeth": [20, 40], "normal_module_mm": 2, "normal_pressure_angle_deg": 20,
         "helix_angle_deg": 15, "face_width_mm": 20, "bore_radius_mm": [10, 20], "material": dict(STEEL)}))
@@ -374,7 +374,7 @@ def test_convergence_in_positions(p1, p1_tables):
 
 
 def test_integer_overlap_ratio_lowers_the_fluctuation(p1, p1_tables):
-    """Seed 001: pair 1 (εβ = 0.632) against pair 2 (β = 15.95°, εβ = 0.9997) and pair 3
+    """The low-fluctuation paper: pair 1 (εβ = 0.632) against pair 2 (β = 15.95°, εβ = 0.9997) and pair 3
     (b = 31.66 mm, εβ = 1.0000): the fluctuation ε_k falls from 36 % to almost nothing.
 
     With εβ = 1 the contact lines of all pairs together cover every position s of the path
@@ -388,13 +388,13 @@ def test_integer_overlap_ratio_lowers_the_fluctuation(p1, p1_tables):
     assert p2.eps_beta == pytest.approx(1.0, abs=1e-3) and p3.eps_beta == pytest.approx(1.0, abs=1e-4)
     for g in (p2, p3):
         assert st.mesh_stiffness(g, 360, method="transition", components=False).fluctuation < 1e-3
-    # and the fluctuation grows again away from the integer (seed 001 pair 4, εβ = 1.353)
+    # and the fluctuation grows again away from the integer (the low-fluctuation paper pair 4, εβ = 1.353)
     assert st.mesh_stiffness(geom_of(helix_angle_deg=21.84), 360, method="transition",
                              components=False).fluctuation > 0.1
 
 
 def test_iso_and_pem_means_agree_within_a_factor_1_3(p1, p1_tables):
-    """Seed 001 pair 1: ISO 6336-1 cγα·b against the PEM mean of every method."""
+    """The low-fluctuation paper pair 1: ISO 6336-1 cγα·b against the PEM mean of every method."""
     iso = st.iso6336_stiffness(p1)["K_gamma_alpha"]
     for m in st.PEM_METHODS:
         mean = st.mesh_stiffness(p1, 90, method=m, tables=p1_tables[m], components=False).mean
@@ -441,7 +441,7 @@ def test_fourier_fit_of_the_tvms(p1_result):
 
 
 def test_missing_bore_radius_is_refused():
-    data = seed001_pair1()
+    data = low_fluctuation_pair1()
     del data["bore_radius_mm"]
     geom = pair_geometry(load_pair(data))
     with pytest.raises(GearmeshInputError) as info:
@@ -450,7 +450,7 @@ def test_missing_bore_radius_is_refused():
 
 
 def test_missing_material_is_refused():
-    geom = pair_geometry(load_pair(seed001_pair1()).with_changes(material=None))  # a pair built in code
+    geom = pair_geometry(load_pair(low_fluctuation_pair1()).with_changes(material=None))  # a pair built in code
     for call in (lambda: st.mesh_stiffness(geom), lambda: st.slice_compliance_table(geom, 0, "improved"),
                  lambda: st.hertz_compliance_transverse(geom)):
         with pytest.raises(GearmeshInputError) as info:

@@ -6,7 +6,7 @@ import json
 
 import numpy as np
 import pytest
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 
 from gearmesh.cli import main
 from gearmesh.datasets.stiffness import (
@@ -22,7 +22,7 @@ from gearmesh.io import add_provenance, read_dataset, write_dataset
 
 @pytest.fixture(scope="module")
 def pair1():
-    return load_pair(seed001_pair1())
+    return load_pair(low_fluctuation_pair1())
 
 
 def test_dataset_is_documented_and_consistent(pair1, tmp_path):
@@ -41,16 +41,16 @@ def test_dataset_is_documented_and_consistent(pair1, tmp_path):
 
 
 def test_integer_overlap_pairs_have_flat_stiffness(pair1):
-    """Seed 001 Table 1: pairs 2 (beta 15.95) and 3 (b 31.66) have eps_beta = 1 -> eps_k ~ 0."""
+    """The low-fluctuation paper Table 1: pairs 2 (beta 15.95) and 3 (b 31.66) have eps_beta = 1 -> eps_k ~ 0."""
     pairs = {"p1": pair1,
-             "p2": load_pair(seed001_pair1(helix_angle_deg=15.9554207)),
-             "p3": load_pair(seed001_pair1(face_width_mm=31.6604943))}
+             "p2": load_pair(low_fluctuation_pair1(helix_angle_deg=15.9554207)),
+             "p3": load_pair(low_fluctuation_pair1(face_width_mm=31.6604943))}
     table = stiffness_table_dataset(pairs, positions=120, torque_Nm=200, torque_on="gear")
     eps_k = table["fluctuation"].values[:, 0]
     lste_pp = table["lste_peak_to_peak"].values[:, 0]
     assert eps_k[0] > 0.2 and eps_k[1] < 1e-3 and eps_k[2] < 1e-3
     assert lste_pp[1] < 0.01 * lste_pp[0] and lste_pp[2] < 0.01 * lste_pp[0]
-    # a wider face is stiffer: lower mean LSTE (seed 001 section 5)
+    # a wider face is stiffer: lower mean LSTE (the low-fluctuation paper section 5)
     assert table["lste_mean"].values[2, 0] < table["lste_mean"].values[0, 0]
 
 
@@ -72,7 +72,7 @@ def test_clipped_slices_converge_at_second_order(pair1):
 
 
 def test_cli_stiffness_json(root, capsys):
-    assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), "--torque-Nm", "200", "--on", "gear",
+    assert main(["stiffness", str(root / "config/pairs/low_fluctuation_pair1.yaml"), "--torque-Nm", "200", "--on", "gear",
                  "--positions", "90", "--json"]) == 0
     out = json.loads(capsys.readouterr().out)
     for key in ("mean_mesh_stiffness_transverse_N_per_um", "min_mesh_stiffness_transverse_N_per_um", "max_mesh_stiffness_transverse_N_per_um",
@@ -87,7 +87,7 @@ def test_cli_stiffness_json(root, capsys):
     (["--slices", "0"], "--slices"),
 ])
 def test_cli_stiffness_refuses_bad_options(root, capsys, args, field):
-    assert main(["stiffness", str(root / "config/pairs/seed001_pair1.yaml"), *args]) == 2
+    assert main(["stiffness", str(root / "config/pairs/low_fluctuation_pair1.yaml"), *args]) == 2
     assert capsys.readouterr().err.startswith(f"gearmesh: error: {field}")
 
 

@@ -36,7 +36,7 @@ def test_hertz_pressure_satisfies_equilibrium_and_the_half_space_slope():
 
 
 def test_flank_pressure_is_iso_z_e_times_root_of_line_load_over_radius():
-    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     rho1, rho2, w = 0.02, 0.05, 2.0e5
     r = flank_relative_radius(rho1, rho2, geom.base_helix_angle)
     p0 = contact_stress(geom, np.array([[[w]]]), np.array([[[1]]]), np.array([[[rho1]]]), np.array([[[rho2]]])).pressure
@@ -87,7 +87,7 @@ def test_iso_local_root_stress_of_a_uniform_load_is_the_nominal_one():
 
 
 def test_ltca_pressure_field_peaks_on_the_unmodified_pairs_tip_edge():
-    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     res = ltca(geom, [400.0, 1600.0], positions=32, points=30)
     g = res.grid
     c = contact_stress(geom, res.line_load, g.region, g.rho_pinion, g.rho_gear)
@@ -103,6 +103,6 @@ def test_ltca_pressure_field_peaks_on_the_unmodified_pairs_tip_edge():
 
 @pytest.mark.parametrize("value", [0.0, -1e-3, float("nan"), 1.0])
 def test_bad_edge_radius_is_refused(value):
-    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     with pytest.raises(GearmeshInputError, match="tip_edge_radius_mm"):
         contact_stress(geom, np.zeros((1, 1, 1)), np.ones((1, 1, 1)), np.ones((1, 1, 1)), np.ones((1, 1, 1)), value)

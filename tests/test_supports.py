@@ -23,7 +23,7 @@ SUPPORT_KEYS = ("bearing_radial_stiffness_N_per_um", "bearing_axial_stiffness_N_
 
 
 def _default_pair(**supports):
-    data = {k: v for k, v in pair_to_dict(load_pair(example_pair("seed000_case"))).items() if k not in SUPPORT_KEYS}
+    data = {k: v for k, v in pair_to_dict(load_pair(example_pair("helical_z29_71_m5"))).items() if k not in SUPPORT_KEYS}
     data.update(supports)
     return load_pair(data)
 
@@ -57,9 +57,9 @@ def test_roller_bearing_stiffness_is_the_tangent_of_palmgrens_law():
 
 
 def test_default_pair_supports_follow_from_their_stated_inputs():
-    """seed000_case.yaml's numbers recomputed from its comment: tapered roller bearings 30212 / 30228
+    """helical_z29_71_m5.yaml's numbers recomputed from its comment: tapered roller bearings 30212 / 30228
     (α 15°, roller (D − d)/4, length = diameter, pitch 1.4 diameters), the design load, spans 150/180 mm."""
-    pair = load_pair(example_pair("seed000_case"))
+    pair = load_pair(example_pair("helical_z29_71_m5"))
     geom = pair_geometry(pair)
     f_bt = 1000.0 / float(geom.base_radius[0])
     f_a = f_bt * math.tan(geom.base_helix_angle)
@@ -92,6 +92,9 @@ def test_default_pair_supports_follow_from_their_stated_inputs():
     ({"shaft_diameter_mm": 60, "bearing_span_mm": 100}, "bearing_radial_stiffness_N_per_um"),
     ({"bearing_radial_stiffness_N_per_um": 100, "bearing_axial_stiffness_N_per_um": 10, "shaft_diameter_mm": 0,
       "bearing_span_mm": 100}, "shaft_diameter_mm"),
+    # a span with the gear's placement but no shaft: the shaft's diameter is named, not a KeyError
+    ({"bearing_radial_stiffness_N_per_um": 100, "bearing_axial_stiffness_N_per_um": 10, "bearing_span_mm": 100,
+      "torque_side": "leading"}, "shaft_diameter_mm"),
 ])
 def test_bad_supports_get_one_error_naming_the_key(spec, field):
     with pytest.raises(GearmeshInputError) as err:
@@ -100,9 +103,9 @@ def test_bad_supports_get_one_error_naming_the_key(spec, field):
 
 
 def test_bad_supports_in_a_pair_file_exit_2(tmp_path, capsys):
-    text = example_pair("seed000_case").read_text().replace("bearing_axial_stiffness_N_per_um: [230, 458]",
+    text = example_pair("helical_z29_71_m5").read_text().replace("bearing_axial_stiffness_N_per_um: [230, 458]",
                                                               "bearing_axial_stiffness_N_per_um: [230, stiff]")
-    path = tmp_path / "seed000_case.yaml"
+    path = tmp_path / "helical_z29_71_m5.yaml"
     path.write_text(text)
     assert main(["validate", str(path)]) == 2
     err = capsys.readouterr().err
@@ -115,7 +118,7 @@ def test_supports_round_trip_and_default():
     assert pair.supports.bearing_radial == (math.inf, 5e8)
     default = _default_pair()
     assert default.supports.defaulted and default.supports.bearing_radial == (1.5e8, 1.5e8)
-    assert "seed 001" in default.supports.describe(210e9)
+    assert "the low-fluctuation paper" in default.supports.describe(210e9)
 
 
 def test_rigid_supports_give_the_torsional_model_and_isos_resonance():
@@ -160,7 +163,7 @@ def test_rigid_supports_give_the_torsional_model_and_isos_resonance():
 def test_mesh_damping_is_the_mesh_modes_modal_damping(excitation):
     """The stated ζ is found in the complex eigenvalues of the *unreduced* system (rigid-body
     rotation kept, its zero eigenvalues dropped), built from the model's full matrices."""
-    pair = load_pair(example_pair("seed000_case"))
+    pair = load_pair(example_pair("helical_z29_71_m5"))
     model = build_pair_model(pair, 1000.0, "pinion", 60, excitation=excitation, damping_ratio=0.07)
     full = model.full
     g = full["G"][0]
@@ -207,7 +210,7 @@ def test_damping_search_by_the_determinant_lemma_matches_the_eigenvalue_secant(s
 
     from gearmesh.dynamics import model as dm
 
-    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     sup = geom.pair.supports
     kr, ka = np.mean(sup.radial(geom.pair.material.youngs_modulus)), np.mean(sup.axial())
     bare = dm.pair_model(geom, 1000.0, np.full(64, 7e8), excitation="tvms", mesh_damping=0.0,
@@ -222,7 +225,7 @@ def test_damping_search_by_the_determinant_lemma_matches_the_eigenvalue_secant(s
 def test_bearings_that_damp_the_mesh_mode_enough_leave_no_mesh_damper():
     """Bearing dampers of 10⁵ N·s/m already damp the mesh mode beyond ζ = 0.02: the search falls back
     to the eigenvalue secant, which returns no damper (not a negative one)."""
-    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     from gearmesh.dynamics import model as dm
 
     model = dm.pair_model(geom, 1000.0, np.full(64, 3e8), excitation="tvms", damping_ratio=0.02,

@@ -23,11 +23,11 @@ from gearmesh.surface import (
     tooth_surface,
 )
 
-from pairs import STEEL, seed001_pair1
+from pairs import STEEL, low_fluctuation_pair1
 
 
 def pair_dict(**changes):
-    return seed001_pair1(**{"name": "t", **changes})
+    return low_fluctuation_pair1(**{"name": "t", **changes})
 
 
 def geometry(**changes):
@@ -71,7 +71,7 @@ def test_helicoid_matches_seed002_equations_and_spur_limit():
     rb, p, sigma = 0.03, 0.08, 0.3
     u, th = np.linspace(0, 1, 5), np.linspace(-0.2, 0.2, 5)
     pt, _ = involute_helicoid(rb, p, u, th, sigma, side=1)
-    A = sigma + u + th  # seed 002: x' = r_b u sin(σ+u+θ) + r_b cos(σ+u+θ), y' = r_b sin(…) − r_b u cos(…)
+    A = sigma + u + th  # the contact-line paper: x' = r_b u sin(σ+u+θ) + r_b cos(σ+u+θ), y' = r_b sin(…) − r_b u cos(…)
     np.testing.assert_allclose(pt[:, 0], rb * u * np.sin(A) + rb * np.cos(A), rtol=1e-15, atol=1e-18)
     np.testing.assert_allclose(pt[:, 1], rb * np.sin(A) - rb * u * np.cos(A), rtol=1e-15, atol=1e-18)
     np.testing.assert_allclose(pt[:, 2], p * th, rtol=1e-15)

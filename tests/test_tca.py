@@ -8,7 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
-from pairs import seed001_pair1
+from pairs import low_fluctuation_pair1
 
 from gearmesh.datasets.ltca import tca_dataset
 from gearmesh.deviation import Deviations, read_deviations
@@ -21,16 +21,16 @@ from gearmesh.tca import (REGION_APPROACH_TIP, REGION_FLANK, REGION_RECESS_TIP, 
 
 
 @pytest.fixture(scope="module")
-def seed000():
-    return load_pair(Path(__file__).resolve().parents[1] / "config/pairs/seed000_case.yaml")
+def helical_z29_71_m5():
+    return load_pair(Path(__file__).resolve().parents[1] / "config/pairs/helical_z29_71_m5.yaml")
 
 
 def _geom(pair, **mods):
     return pair_geometry(pair.with_changes(**mods)) if mods else pair_geometry(pair)
 
 
-@pytest.mark.parametrize("data", [seed001_pair1(), seed001_pair1(helix_angle_deg=0),
-                                  seed001_pair1(helix_angle_deg=21.84, helix_hand="left")])
+@pytest.mark.parametrize("data", [low_fluctuation_pair1(), low_fluctuation_pair1(helix_angle_deg=0),
+                                  low_fluctuation_pair1(helix_angle_deg=21.84, helix_hand="left")])
 def test_unmodified_aligned_pair_has_zero_te(data):
     geom = pair_geometry(pair_from_dict(data))
     res = tca(geom, positions=32, points=40)
@@ -42,8 +42,8 @@ def test_unmodified_aligned_pair_has_zero_te(data):
     assert res.te_next_pair_at_engagement == 0.0 and res.te_at_engagement == 0.0
 
 
-def test_seed000_unmodified_zero_te_and_engagement(seed000):
-    geom = pair_geometry(seed000)
+def test_seed000_unmodified_zero_te_and_engagement(helical_z29_71_m5):
+    geom = pair_geometry(helical_z29_71_m5)
     res = tca(geom)
     assert res.te_peak_to_peak == 0.0
     roll_a, j_a, z_a = engagement_point(geom)
@@ -68,10 +68,10 @@ def _pinion_involute_distance(geom, px, py, s):
     return float(best.fun)
 
 
-def test_approach_tip_separation_is_the_true_distance_to_the_pinion_flank(seed000):
+def test_approach_tip_separation_is_the_true_distance_to_the_pinion_flank(helical_z29_71_m5):
     """The gear tip point, rotated back by −s/r_b2, stands off the pinion involute by the gap
     (brute-force distance to the sampled involute: independent of the σ = θ + inv u formula)."""
-    geom = pair_geometry(seed000)
+    geom = pair_geometry(helical_z29_71_m5)
     a, rb2 = geom.center_distance, geom.base_radius[1]
     awt = geom.operating_pressure_angle
     for s in (-0.2e-3, -1e-3, -3e-3):
@@ -85,10 +85,10 @@ def test_approach_tip_separation_is_the_true_distance_to_the_pinion_flank(seed00
         assert math.hypot(px, py) == pytest.approx(math.hypot(geom.base_radius[0], float(rho)), rel=1e-12)
 
 
-def test_recess_tip_separation_is_the_pinion_turn_that_closes_it(seed000):
+def test_recess_tip_separation_is_the_pinion_turn_that_closes_it(helical_z29_71_m5):
     """Turn the pinion on by gap/r_b1 (gear held): its tip point then lies on the gear flank
     (brute-force distance to the gear involute)."""
-    geom = pair_geometry(seed000)
+    geom = pair_geometry(helical_z29_71_m5)
     a, (rb1, rb2) = geom.center_distance, geom.base_radius
     awt, g = geom.operating_pressure_angle, geom.path_of_contact
     ex = rb1 * math.cos(awt) + geom.rho_eap[0] * math.sin(awt)
@@ -119,8 +119,8 @@ def test_recess_tip_separation_is_the_pinion_turn_that_closes_it(seed000):
         assert abs(below - above) < 1e-4 * below
 
 
-def test_tip_separations_are_continuous_and_grow_quadratically(seed000):
-    geom = pair_geometry(seed000)
+def test_tip_separations_are_continuous_and_grow_quadratically(helical_z29_71_m5):
+    geom = pair_geometry(helical_z29_71_m5)
     g = geom.path_of_contact
     for fun, base in ((approach_tip_separation, lambda e: -e), (recess_tip_separation, lambda e: g + e)):
         eps = np.array([1e-6, 1e-4, 1e-3, 2e-3])
@@ -131,37 +131,37 @@ def test_tip_separations_are_continuous_and_grow_quadratically(seed000):
         assert np.ptp(ratio) / ratio.mean() < 0.1
 
 
-def test_more_tip_relief_on_the_gear_opens_the_entering_corner(seed000):
+def test_more_tip_relief_on_the_gear_opens_the_entering_corner(helical_z29_71_m5):
     """The gear tip enters first (pinion drives): its relief y2 opens TE(φ1A) by ≈ y2/cos βb."""
     values = []
     for y2 in (0.0, 5e-6, 10e-6, 20e-6):
         mod = Modification(tip_relief=y2, tip_relief_length=3e-3 if y2 else 0.0)
-        geom = pair_geometry(seed000.with_changes(modification=(Modification(), mod)))
+        geom = pair_geometry(helical_z29_71_m5.with_changes(modification=(Modification(), mod)))
         values.append(tca(geom, positions=8, points=30).te_next_pair_at_engagement)
     values = np.array(values)
     assert np.all(np.diff(values) > 0)
-    cb = math.cos(pair_geometry(seed000).base_helix_angle)
+    cb = math.cos(pair_geometry(helical_z29_71_m5).base_helix_angle)
     assert values[-1] == pytest.approx(20e-6 / cb, rel=0.02)
 
 
-def test_pinion_root_relief_and_crowning_also_open_the_entry(seed000):
-    base = tca(pair_geometry(seed000), positions=8, points=30).te_next_pair_at_engagement
+def test_pinion_root_relief_and_crowning_also_open_the_entry(helical_z29_71_m5):
+    base = tca(pair_geometry(helical_z29_71_m5), positions=8, points=30).te_next_pair_at_engagement
     root = Modification(root_relief=10e-6, root_relief_length=2e-3)
     crown = Modification(crowning=10e-6)
     for mod in (root, crown):
-        geom = pair_geometry(seed000.with_changes(modification=(mod, Modification())))
+        geom = pair_geometry(helical_z29_71_m5.with_changes(modification=(mod, Modification())))
         assert tca(geom, positions=8, points=30).te_next_pair_at_engagement > base + 5e-6
 
 
-def test_flank_separation_converts_normal_depth_to_the_transverse_direction(seed000):
+def test_flank_separation_converts_normal_depth_to_the_transverse_direction(helical_z29_71_m5):
     mod = Modification(tip_relief=20e-6, tip_relief_length=3e-3)
-    geom = pair_geometry(seed000.with_changes(modification=(mod, Modification())))
+    geom = pair_geometry(helical_z29_71_m5.with_changes(modification=(mod, Modification())))
     gap = flank_separation(geom, geom.path_of_contact, 0.0)  # pinion tip
     assert gap == pytest.approx(20e-6 / math.cos(geom.base_helix_angle), rel=1e-12)
 
 
 def test_crowned_pair_te_and_first_contact_at_face_centre_for_spur():
-    pair = pair_from_dict(seed001_pair1(helix_angle_deg=0))
+    pair = pair_from_dict(low_fluctuation_pair1(helix_angle_deg=0))
     geom = pair_geometry(pair.with_changes(modification=(Modification(crowning=8e-6), Modification())))
     res = tca(geom, positions=16, points=41)
     active = np.isfinite(res.contact_z)
@@ -170,7 +170,7 @@ def test_crowned_pair_te_and_first_contact_at_face_centre_for_spur():
 
 
 def test_lead_slope_errors_of_both_gears_cancel_and_add():
-    pair = pair_from_dict(seed001_pair1(helix_angle_deg=0))
+    pair = pair_from_dict(low_fluctuation_pair1(helix_angle_deg=0))
     geom = pair_geometry(pair)
     b = geom.face_width
     opposite = candidate_grid(geom, np.array([0.3e-3]), 20, (10e-6, -10e-6), 0.0)
@@ -187,8 +187,8 @@ def test_lead_slope_errors_of_both_gears_cancel_and_add():
         assert slope == pytest.approx(sign * 10e-6 / b, rel=1e-9)
 
 
-def test_tca_dataset_is_documented_and_refuses_bad_input(seed000):
-    ds = tca_dataset(seed000.with_changes(deviations=Deviations(lead_slope=(5e-6, 0.0))), positions=8, points=10)
+def test_tca_dataset_is_documented_and_refuses_bad_input(helical_z29_71_m5):
+    ds = tca_dataset(helical_z29_71_m5.with_changes(deviations=Deviations(lead_slope=(5e-6, 0.0))), positions=8, points=10)
     check_documented(ds)
     assert set(ds["separation"].dims) == {"position", "line", "point"}
     assert float(ds["lead_slope"][0]) == pytest.approx(5e-6)
@@ -197,13 +197,13 @@ def test_tca_dataset_is_documented_and_refuses_bad_input(seed000):
     with pytest.raises(GearmeshInputError, match="lead_slope_deviation_um"):
         read_deviations({"lead_slope_deviation_um": [1.0, 2.0, 3.0]})
     with pytest.raises(GearmeshInputError, match="positions"):
-        tca_dataset(seed000, positions=0)
-    bad = seed000.with_changes(modification=(Modification(tip_relief=-5e-6, tip_relief_length=1e-3), Modification()))
+        tca_dataset(helical_z29_71_m5, positions=0)
+    bad = helical_z29_71_m5.with_changes(modification=(Modification(tip_relief=-5e-6, tip_relief_length=1e-3), Modification()))
     with pytest.raises(GearmeshInputError, match="modification.pinion.tip_relief_um"):
         tca_dataset(bad)
-    nan = seed000.with_changes(modification=(Modification(), Modification(crowning=float("nan"))))
+    nan = helical_z29_71_m5.with_changes(modification=(Modification(), Modification(crowning=float("nan"))))
     with pytest.raises(GearmeshInputError, match="modification.gear.crowning_um"):
         tca_dataset(nan)
-    long = seed000.with_changes(modification=(Modification(tip_relief=5e-6, tip_relief_length=40e-3), Modification()))
+    long = helical_z29_71_m5.with_changes(modification=(Modification(tip_relief=5e-6, tip_relief_length=40e-3), Modification()))
     with pytest.raises(GearmeshInputError, match="relief_length"):
         tca_dataset(long)

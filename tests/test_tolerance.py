@@ -23,7 +23,7 @@ POPULATION = np.array([[1.0, 3.0, 2.0, 10.0], [5.0, 5.0, 5.0, 5.0]])
 
 @pytest.fixture(scope="module")
 def case():
-    return pair_geometry(load_pair(ROOT / "config/pairs/seed000_case.yaml"))
+    return pair_geometry(load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml"))
 
 
 def test_helix_slope_tolerance_is_iso_1328_formula_10():
@@ -48,7 +48,7 @@ def test_tolerance_model_of_the_case_pair(case):
     only_pinion = tolerance_model(case, grade=6, lead_on=["pinion"])
     assert only_pinion.lead[1] == 0 and only_pinion.lead[0] == tol.lead[0]
     assert tolerance_model(case).dimensions == []
-    tiny = load_pair(ROOT / "config/pairs/seed001_pair1.yaml").with_changes(
+    tiny = load_pair(ROOT / "config/pairs/low_fluctuation_pair1.yaml").with_changes(
         normal_module=1e-4, face_width=(5e-4, 5e-4), bore_radius=(2e-4, 2e-4), center_distance=None)
     with pytest.raises(GearmeshInputError, match="ISO 1328-1 does not cover the pinion's reference diameter"):
         tolerance_model(pair_geometry(tiny), grade=6)  # d1 = 2.9 mm, below the standard's 5 mm

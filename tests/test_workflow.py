@@ -91,7 +91,7 @@ def _check_report(work: Path) -> None:
     assert not missing, f"not in the report: {missing}"
     assert "Where our results differ from the source document" in html  # the workflow page
     assert "<strong>relief</strong>" in html  # captions rendered with the job's wildcards
-    assert '"seed001_pair1 / relief"' in html  # subcategory per pair and variant
+    assert '"low_fluctuation_pair1 / relief"' in html  # subcategory per pair and variant
     # the job panel names each job's function, without the digest that reruns it when its code changes
     assert "gearmesh.datasets.ltca:ltca_dataset" in html
     assert not re.search(r"gearmesh\.[\w.]+:\w+@[0-9a-f]{16}", html)
@@ -122,7 +122,7 @@ def _check_slurm_profile_dry_run(work: Path) -> None:
 
 
 def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
-    config = {"study": "e2e", "pairs": ["seed001_pair1"], "contact_lines": {"positions": 24},
+    config = {"study": "e2e", "pairs": ["low_fluctuation_pair1"], "contact_lines": {"positions": 24},
               "geometry": {"involute_points": 20, "fillet_points": 10, "face_points": 5},
               "stiffness": {"slices": 40, "positions": 24, "torque_Nm": 100, "torque_on": "pinion"},
               "variants": {"standard": {}, "relief": {"modification": {
@@ -136,18 +136,18 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
               "ltca": {"torques_Nm": [100], "positions": 8, "points": 6},
               "dynamics": {"torques_Nm": 100, "on": "pinion", "speeds_rpm": {"start": 2000, "stop": 4000, "step": 1000},
                            "sample_speeds_rpm": [3000], "record_cycles": 4},
-              "helix_sweep": {"pairs": ["seed001_pair1"], "start_deg": 8, "stop_deg": 16, "step_deg": 4,
+              "helix_sweep": {"pairs": ["low_fluctuation_pair1"], "start_deg": 8, "stop_deg": 16, "step_deg": 4,
                               "positions": 16}}
     work = _scratch_workflow(root, tmp_path, config)
     proc = _snakemake(work)
     assert proc.returncode == 0, proc.stderr[-3000:]
-    base = work / "results/e2e/seed001_pair1"
+    base = work / "results/e2e/low_fluctuation_pair1"
     lines = read_dataset(base / "contact_lines.nc")
     assert lines.sizes["position"] == 24
     assert lines.attrs["config_sha256"] == hashlib.sha256(lines.attrs["config_json"].encode()).hexdigest()
-    assert "seed001_pair1" in lines.attrs["config_json"]
+    assert "low_fluctuation_pair1" in lines.attrs["config_json"]
     geometry = read_dataset(base / "geometry.nc")
-    assert abs(float(geometry["eps_alpha"]) - 1.4702) < 1e-3  # seed 001 Table 1: 1.470
+    assert abs(float(geometry["eps_alpha"]) - 1.4702) < 1e-3  # the low-fluctuation paper Table 1: 1.470
     stiffness = read_dataset(base / "stiffness.nc")
     assert stiffness.attrs["tooth_model"] == "fe" and float(stiffness.mean_stiffness) > 0  # the default (issue 19)
     for png in ("tooth_profile", "contact_length", "contact_lines", "stiffness"):
@@ -193,7 +193,7 @@ def test_workflow_runs_end_to_end_and_reruns_nothing(root, tmp_path):
 
 def _check_descriptions_in_the_readers_language(results: Path) -> None:
     """Every variable's long_name in every result file says what it means (issue 25): the source
-    documents by subject, not "seed 000"; contact scenarios and modification parameters
+    documents by subject, not "the mesh-in impact paper"; contact scenarios and modification parameters
     physically, not "scenario 2" or "y1..y6"."""
     jargon = re.compile(r"\b[Ss]eed \d{3}|\bscenario \d|y1\.\.y6|withheld")
     found = {f"{path.name}:{name}": var.attrs.get("long_name", "")
@@ -205,20 +205,20 @@ def _check_descriptions_in_the_readers_language(results: Path) -> None:
 def _check_swapped_input_is_refused(work: Path) -> None:
     """Another variant's LTCA copied over standard's (issue 20): the jobs that read it refuse it
     with one line naming the file and how to regenerate it, and write nothing from it."""
-    base = work / "results/e2e/seed001_pair1"
+    base = work / "results/e2e/low_fluctuation_pair1"
     before = shutil.copy(base / "standard/dynamics.nc", work / "dynamics_before.nc")
     shutil.copy(base / "relief/ltca.nc", base / "standard/ltca.nc")
     proc = _snakemake(work)
     assert proc.returncode != 0
-    wanted = ("gearmesh: error: results/e2e/seed001_pair1/standard/ltca.nc = 'the ltca result written as "
-              "results/e2e/seed001_pair1/relief/ltca.nc'")
+    wanted = ("gearmesh: error: results/e2e/low_fluctuation_pair1/standard/ltca.nc = 'the ltca result written as "
+              "results/e2e/low_fluctuation_pair1/relief/ltca.nc'")
     assert wanted in proc.stderr, proc.stderr[-3000:]
-    assert "snakemake --forcerun results/e2e/seed001_pair1/standard/ltca.nc" in proc.stderr
+    assert "snakemake --forcerun results/e2e/low_fluctuation_pair1/standard/ltca.nc" in proc.stderr
     # nothing made from it: the dynamics either refused it (Snakemake removed its output first) or never ran
     assert not (base / "standard/dynamics.nc").exists() or \
         (base / "standard/dynamics.nc").read_bytes() == before.read_bytes()
     # the advice works: the file is remade and what reads it with it, bit-identical to the first run
-    proc = _snakemake(work, "--forcerun", "results/e2e/seed001_pair1/standard/ltca.nc")
+    proc = _snakemake(work, "--forcerun", "results/e2e/low_fluctuation_pair1/standard/ltca.nc")
     assert proc.returncode == 0, proc.stderr[-3000:]
     assert read_dataset(base / "standard/dynamics.nc").identical(read_dataset(before))
 

@@ -74,15 +74,15 @@ def test_a_section_left_out_is_read_as_its_defaults_and_its_fe_tables_are_made(r
     """An optimisation without an impact section takes the declared impact model (the FE tooth):
     its job reads the pair's FE tables, and the study makes them, as it does when the impact section
     says method fe. With the slice-model tooth it reads none."""
-    base = {"study": "s", "pairs": ["seed001_pair1"], "stiffness": {"method": "transition"},
+    base = {"study": "s", "pairs": ["low_fluctuation_pair1"], "stiffness": {"method": "transition"},
             "optimise": {"run": {"population": 4, "generations": 1, "tolerance_statistic": None, "objective": "force",
                                  "torque_Nm": 100}}}
     config = validate_study(base)
     check_study(config, root)
-    wildcards = SimpleNamespace(study="s", pair="seed001_pair1", run="run",
-                                items=lambda: {"study": "s", "pair": "seed001_pair1", "run": "run"}.items())
+    wildcards = SimpleNamespace(study="s", pair="low_fluctuation_pair1", run="run",
+                                items=lambda: {"study": "s", "pair": "low_fluctuation_pair1", "run": "run"}.items())
     inputs = _rule(config, "optimise").input(wildcards)
-    assert inputs["fe_compliance"] == "results/s/seed001_pair1/fe_compliance.nc"
+    assert inputs["fe_compliance"] == "results/s/low_fluctuation_pair1/fe_compliance.nc"
     assert "fe_compliance" in {r.name for r in plan.rules(config)}
     slice_model = validate_study({**base, "impact": {"method": "transition"}})
     assert "fe_compliance" not in _rule(slice_model, "optimise").input(wildcards)
@@ -93,7 +93,7 @@ def test_the_targets_are_the_wanted_stages_results_and_tables(root):
     config = load_study(root / "config/config.yaml")
     targets = plan.targets(config)
     assert len(targets) == len(set(targets))
-    base = "results/impact_case/seed000_case"
+    base = "results/impact_case/helical_z29_71_m5"
     for path in ("geometry.nc", "fe_compliance.nc", "optimised/ltca.nc", "optimise/optimised/ga.nc",
                  "optimise/optimised/plots/pareto.png", "lte_table.nc", "signoff_table.nc", "signoff_verdict.nc",
                  "engagement_table.nc"):

@@ -3,7 +3,7 @@
 A helical tooth load has an axial component F_a = F_n sin β_b at the contact line. The tooth
 models (:mod:`gearmesh.stiffness`, :mod:`gearmesh.fe`) hold the body's ring in its plane; the
 3-D reference (:mod:`gearmesh.fe3d`, docs/validation.md) shows F_a bending the body out of its
-plane (dishing and tilting), +35 % compliance for seed 004's gears and +58…147 % for the default
+plane (dishing and tilting), +35 % compliance for the improved potential-energy paper's gears and +58…147 % for the default
 pair's thin discs. This module gives that compliance from the pair file's body geometry:
 
 * the **web**: an annular Kirchhoff plate of thickness t (``web_thickness_mm``; a solid disc,
@@ -39,7 +39,7 @@ Checks (tests/test_body.py): every harmonic of a narrow annulus against the cant
 it becomes (edge load and edge moment, Maxwell–Betti), the series converged, thick discs → 0, and
 the mesh compliance against the 3-D reference's normal-minus-transverse-load compliance (seed
 004 within 0.6 % of the stiffness, the default pair 5.7 % (the plate 97 % and 89 % of the 3-D
-compliance); 11–36 % of it for seed 001's small thick discs, whose radial span is below their
+compliance); 11–36 % of it for the low-fluctuation paper's small thick discs, whose radial span is below their
 thickness, outside a plate theory, and 53–83 % for the β ≈ 30° pairs of seeds 002 and 003).
 
 In the mesh, both bodies act in series with the teeth along the transverse line of action:

@@ -7,7 +7,7 @@ T1 = r_b1 (cos αwt, −sin αwt) in the direction d = (sin αwt, cos αwt), thr
 (r_w1, 0), to T2. The face runs over z ∈ [−b/2, b/2] with its centre at z = 0.
 
 In the plane of action a contact line is straight and inclined at the base helix angle βb
-to the axis (seed 002; Litvin & Fuentes, Gear Geometry and Applied Theory, 2nd ed., §14).
+to the axis (the contact-line paper; Litvin & Fuentes, Gear Geometry and Applied Theory, 2nd ed., §14).
 Measure ``s`` from the start of active profile A (pinion roll length ρ1 = ρ_SAP1) along the
 line of action; the active zone is 0 ≤ s ≤ g_α. For tooth pair j at pinion roll distance
 ``roll`` = r_b1·φ1 the contact in the transverse slice at z sits at
@@ -120,7 +120,7 @@ def contact_lines(geom: PairGeometry, roll: np.ndarray) -> ContactLines:
     """Every contact line clipped to the active zone, exactly, at each pinion roll distance.
 
     Each line is the segment {s = roll + j p_bt + h z tan βb, 0 ≤ s ≤ g_α, |z| ≤ b/2}; its
-    length is its axial extent divided by cos βb (seed 002's sum of segment lengths, here in
+    length is its axial extent divided by cos βb (the contact-line paper's sum of segment lengths, here in
     closed form per line). For β = 0 a line covers the whole face or none of it.
     ``roll`` may lie outside [0, p_bt): the tooth-pair set is widened to cover it (for
     rolls within one base pitch it is :func:`tooth_pair_indices`).
@@ -160,7 +160,7 @@ def contact_length_closed_form(geom: PairGeometry) -> tuple[float, float, float]
     In base-pitch units each line covers ε_β of the line of action clipped to [0, ε_α], so
     L·sin βb/p_bt = ⌊ε_β⌋ε_α + ⌊ε_α⌋f_β + μ, where f = frac(ε) and μ, the overlap of a
     window of length f_α with a periodic set of duty f_β, ranges over
-    [max(0, f_α + f_β − 1), min(f_α, f_β)] (derivation in docs of seed 001 §1, written out
+    [max(0, f_α + f_β − 1), min(f_α, f_β)] (derivation in docs of the low-fluctuation paper §1, written out
     here because the document only names the piecewise phases). The mean is exactly
     l_mean = b ε_α / cos βb (docs/modelling.md). For β = 0: L ∈ {⌊ε_α⌋b, ⌈ε_α⌉b}.
     """
@@ -214,7 +214,7 @@ def flank_reference_angles(geom: PairGeometry) -> tuple[float, float]:
     (the pinion drives counter-clockwise with its leading flank; the gear turns clockwise
     and is pushed on its trailing flank, so on both the tooth body lies at smaller θ and
     the tooth centre line in the slice z = 0 is at σ − inv(αt) − s_t/(2r)). Derived from the
-    involute-helicoid equations of seed 002 (x = r_b cos(σ+u) + r_b u sin(σ+u), …) with
+    involute-helicoid equations of the contact-line paper (x = r_b cos(σ+u) + r_b u sin(σ+u), …) with
     the unwinding sense of these flanks; Litvin & Fuentes (2004) §10, §14.
 
     The body frames of :mod:`gearmesh.surface` (tooth 0 centre line on +y) are these frames
@@ -322,7 +322,7 @@ def contact_line_end_points(geom: PairGeometry, roll: np.ndarray | ContactLines)
     ``roll`` is an array of pinion roll distances (m) or a :class:`ContactLines` already
     computed by :func:`contact_lines`. Vectorised over positions and lines; the mapping is
     :func:`plane_of_action_points` applied to the exactly clipped ends (s, z) of
-    :func:`contact_lines` (seed 002: contact points on the involute helicoids; the
+    :func:`contact_lines` (the contact-line paper: contact points on the involute helicoids; the
     involute parameter at the ends is u = ρ/r_b for each gear).
     """
     lines = roll if isinstance(roll, ContactLines) else contact_lines(geom, roll)
@@ -362,7 +362,7 @@ def contact_length_breakpoints(geom: PairGeometry) -> np.ndarray:
 @dataclass(frozen=True)
 class ContactLengthSummary:
     """Mean, minimum and maximum of the total contact length L(φ) over a mesh cycle (m),
-    and the contact-line fluctuation coefficient ε_l = (L_max − L_min)/b (-) of seed 001 §5.
+    and the contact-line fluctuation coefficient ε_l = (L_max − L_min)/b (-) of the low-fluctuation paper §5.
 
     ``closed_form`` values come from :func:`contact_length_closed_form`; ``numeric`` values
     from :func:`contact_lines` evaluated at every slope change of L (exact, since L is
@@ -384,7 +384,7 @@ class ContactLengthSummary:
 
 
 def contact_length_fluctuation(geom: PairGeometry) -> float:
-    """ε_l = (L_max − L_min)/b (-), closed form (seed 001 §5; zero for integer ε_α or ε_β)."""
+    """ε_l = (L_max − L_min)/b (-), closed form (the low-fluctuation paper §5; zero for integer ε_α or ε_β)."""
     _, lo, hi = contact_length_closed_form(geom)
     return (hi - lo) / geom.face_width
 
@@ -394,7 +394,7 @@ def contact_length_summary(geom: PairGeometry, n_positions: int | None = None) -
 
     The numeric mean integrates the piecewise-linear L exactly (trapezoids between
     breakpoints; for β = 0 the midpoint value of each step). ``n_positions`` adds the
-    statistics of L on :func:`mesh_cycle_rolls` (the plain mean of seed 002, L_ave = ΣL_k/N_k).
+    statistics of L on :func:`mesh_cycle_rolls` (the plain mean of the contact-line paper, L_ave = ΣL_k/N_k).
     """
     mean, lo, hi = contact_length_closed_form(geom)
     b = geom.face_width

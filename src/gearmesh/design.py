@@ -1,21 +1,21 @@
 """Low-fluctuation design of a helical pair: integer overlap or transverse contact ratio.
 
-Seed 001 §1 and §5 (and seed 002): the total contact-line length L(φ) of a helical pair,
+The low-fluctuation paper §1 and §5 (and the contact-line paper): the total contact-line length L(φ) of a helical pair,
 and with it the mesh stiffness, is constant over the mesh cycle when ε_α or ε_β is a
 positive integer, ε_α = N⁺ or ε_β = N⁺. Since ε_β = b sin β / (π m_n) (ISO 21771:2007
 eq. 91), an integer overlap ratio N is reached by the helix angle
 
-    β = arcsin(π m_n N / b)                    (seed 002; seed 001 §1)
+    β = arcsin(π m_n N / b)                    (the contact-line paper; the low-fluctuation paper §1)
 
 ("forward": the next integer above the current ε_β, i.e. a larger β; "backward": the
 integer below, a smaller β) or by the face width
 
-    b = π m_n N / sin β                        (seed 001 §1, their eq. for b).
+    b = π m_n N / sin β                        (the low-fluctuation paper §1, their eq. for b).
 
 Changing β changes the transverse pressure angle α_t, the base helix angle β_b and the
 radii, hence ε_α: every candidate pair is re-derived with :func:`gearmesh.gear.pair_geometry`
 (and refused by it if it cannot work). The contact-line fluctuation coefficient
-ε_l = (L_max − L_min)/b (seed 001 §5) against β is the V-curve of seed 001 §5, whose
+ε_l = (L_max − L_min)/b (the low-fluctuation paper §5) against β is the V-curve of the low-fluctuation paper §5, whose
 minimum (zero) is at integer ε_β.
 
 All inputs and outputs are SI (m, rad); errors are :class:`GearmeshInputError` naming the
@@ -120,11 +120,11 @@ def pair_with_helix_angle(pair: GearPair, helix_angle: float, center_distance: s
 
 def integer_overlap_helix_angle(pair: GearPair, direction: str = "forward", n: int | None = None,
                                 center_distance: str = "zero_backlash") -> DesignResult:
-    """Helix angle giving an integer overlap ratio ε_β = N (seed 001 §1, §5; seed 002).
+    """Helix angle giving an integer overlap ratio ε_β = N (the low-fluctuation paper §1, §5; the contact-line paper).
 
     β = arcsin(π m_n N / b) with b the meshing face width (m) and m_n the normal module (m).
     ``direction`` "forward" takes N = the next integer above the current ε_β (β grows),
-    "backward" the integer below (β shrinks, N ≥ 1); ``n`` sets N directly. Seed 001
+    "backward" the integer below (β shrinks, N ≥ 1); ``n`` sets N directly. The low-fluctuation paper
     Table 1: pair 1 (β 10°, b 20 mm, ε_β 0.632) forward → 15.95°; pair 4 (21.84°, ε_β 1.353)
     backward → 15.95°. ``center_distance`` as in :func:`pair_with_helix_angle`.
 
@@ -152,11 +152,11 @@ def integer_overlap_helix_angle(pair: GearPair, direction: str = "forward", n: i
 
 
 def integer_overlap_face_width(pair: GearPair, direction: str = "forward", n: int | None = None) -> DesignResult:
-    """Face width giving an integer overlap ratio ε_β = N (seed 001 §1: b = π m_n N / sin β).
+    """Face width giving an integer overlap ratio ε_β = N (the low-fluctuation paper §1: b = π m_n N / sin β).
 
     b in m, m_n in m, β in rad. ``direction`` "forward" widens the face to the next
     integer above the current ε_β, "backward" narrows it to the integer below (N ≥ 1).
-    Both face widths move by the same amount (a wider pinion stays wider). Seed 001
+    Both face widths move by the same amount (a wider pinion stays wider). The low-fluctuation paper
     Table 1: pair 1 (β 10°, b 20 mm) → b = 31.66 mm. Refuses a spur pair (field
     ``helix_angle_deg``: ε_β = 0 for any face width).
     """
@@ -219,7 +219,7 @@ def transverse_ratio_addendum(pair: GearPair, eps_alpha: float, keep_clearance: 
 
 def integer_transverse_addendum(pair: GearPair, direction: str = "forward", n: int | None = None,
                                 keep_clearance: bool = True) -> DesignResult:
-    """Addendum coefficient giving an integer ε_α = N (seed 001 §1): N is the next integer
+    """Addendum coefficient giving an integer ε_α = N (the low-fluctuation paper §1): N is the next integer
     above (forward) or below (backward) the current ε_α; see :func:`transverse_ratio_addendum`."""
     target = _target_integer(pair_geometry(pair).eps_alpha, direction, n, "addendum_coefficient",
                              list(pair.addendum_coefficient), "eps_alpha")
@@ -229,8 +229,8 @@ def integer_transverse_addendum(pair: GearPair, direction: str = "forward", n: i
 def pair_with_contact_ratios(pair: GearPair, eps_alpha: float | None = None,
                              eps_beta: float | None = None) -> GearPair:
     """``pair`` redesigned to the given contact ratios: ε_β by the face width
-    (b = π m_n ε_β / sin β, seed 001 §1), ε_α by the addendum at constant tip clearance
-    (:func:`transverse_ratio_addendum`); seed 003's contact-ratio study."""
+    (b = π m_n ε_β / sin β, the low-fluctuation paper §1), ε_α by the addendum at constant tip clearance
+    (:func:`transverse_ratio_addendum`); the transition-curve paper's contact-ratio study."""
     if eps_beta is not None:
         if pair.helix_angle == 0 or eps_beta <= 0:
             raise GearmeshInputError("eps_beta", eps_beta, "needs a helical pair and a positive target")
@@ -245,7 +245,7 @@ def pair_with_contact_ratios(pair: GearPair, eps_alpha: float | None = None,
 
 @dataclass(frozen=True)
 class FluctuationCurve:
-    """ε_l against helix angle (seed 001 §5, the V-curve); arrays of the sweep length.
+    """ε_l against helix angle (the low-fluctuation paper §5, the V-curve); arrays of the sweep length.
 
     ``helix_angle`` (rad); ``eps_alpha``, ``eps_beta`` (-) of each β's own geometry;
     ``l_mean``, ``l_min``, ``l_max`` (m) in closed form; ``eps_l`` = (l_max − l_min)/b (-)
@@ -276,7 +276,7 @@ def overlap_fluctuation_curve(pair: GearPair, helix_angles: Sequence[float] | np
     Each β gets its own pair geometry (α_t, β_b, radii, ε_α all change with β;
     ``center_distance`` as in :func:`pair_with_helix_angle`), then L_min, L_max from
     :func:`gearmesh.contact.contact_length_closed_form` and, independently, from the
-    clipped contact lines (:func:`gearmesh.contact.contact_length_summary`). Seed 001 §5:
+    clipped contact lines (:func:`gearmesh.contact.contact_length_summary`). The low-fluctuation paper §5:
     a V-shaped curve with its minimum ε_l = 0 at integer ε_β.
     """
     betas = np.asarray(helix_angles, dtype=float)

@@ -70,12 +70,12 @@ DEFAULT_PLANE = "strain"
 #: of a mesh 4× finer (0.0125 m_n) for seeds 001/003/004, under a second per gear (docs)
 DEFAULT_SIZE = 0.05
 #: None = the whole gear. A sector with free radial cuts converges slowly with the number of
-#: teeth it keeps (seed 001 pair 1's pinion, load at the SAP: 3 teeth +150 %, 7 teeth +0.4 %
+#: teeth it keeps (the low-fluctuation paper pair 1's pinion, load at the SAP: 3 teeth +150 %, 7 teeth +0.4 %
 #: against the whole gear), and the whole gear costs under a second.
 DEFAULT_NEIGHBOURS = None
 DEFAULT_ROLL_NODES = 17
 #: largest triangle area as a multiple of (the coarsest spacing)²: the rim interior 4× coarser
-#: than the bore; 0.07 % from a mesh 4× finer there (seed 004)
+#: than the bore; 0.07 % from a mesh 4× finer there (the improved potential-energy paper)
 AREA_FACTOR = 16.0
 #: boundary spacing on the loaded tooth, the next, ... in units of ``size`` (the last: all others)
 GRADING = (1, 2, 4, 8)

@@ -69,7 +69,7 @@ __all__ = ["DEFAULT_NEIGHBOURS", "extrude", "gear_model_3d", "GearModel3D", "lin
            "LineCompliance3D", "richardson"]
 
 #: teeth kept each side of the loaded one on the ring (2-D: 2 teeth within 0.4 %, 3 within 0.1 %
-#: of the whole gear for seed 001 pair 1's pinion, docs/validation.md)
+#: of the whole gear for the low-fluctuation paper pair 1's pinion, docs/validation.md)
 DEFAULT_NEIGHBOURS = 3
 #: element edge on the loaded tooth's boundary in normal modules, then 2x, 4x, 8x away (fe.GRADING)
 DEFAULT_SIZE = 0.2
@@ -77,7 +77,7 @@ DEFAULT_SIZE = 0.2
 TOLERANCE = 1e-10
 SOLVERS = ("auto", "direct", "amg")
 #: largest system factorised directly: about 1 GB of LU factors (88 M entries measured at 82 k
-#: unknowns, seed 001 pair 1's pinion); above, CG + algebraic multigrid (bounded memory)
+#: unknowns, the low-fluctuation paper pair 1's pinion); above, CG + algebraic multigrid (bounded memory)
 DIRECT_LIMIT = 150_000
 #: read-out points of C per layer along a loaded line (their mean is the line's deflection)
 READ = 8

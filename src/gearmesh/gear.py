@@ -78,7 +78,7 @@ class Material:
 
 @dataclass(frozen=True)
 class Modification:
-    """The six micro-geometry parameters of seed 000 for one gear (all in m).
+    """The six micro-geometry parameters of the mesh-in impact paper for one gear (all in m).
 
     ``root_relief`` y1 and ``tip_relief`` y2 are the maximum profile reliefs; the relief
     lengths y3, y4 are roll lengths along the transverse path of contact, measured from the
@@ -678,7 +678,7 @@ def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
     if not isinstance(data, Mapping):
         what = "is empty" if data is None else f"holds a {type(data).__name__}, not a mapping of keys"
         raise GearmeshInputError("pair file", str(path_or_data), f"{what}: a pair file maps keys such as teeth and "
-                                 "normal_module_mm to values; `gearmesh example seed001_pair1` prints one to start from")
+                                 "normal_module_mm to values; `gearmesh example low_fluctuation_pair1` prints one to start from")
     try:
         return pair_from_dict(data, source=str(path_or_data), default_name=Path(path_or_data).stem)
     except GearmeshInputError as exc:  # the field and rule as they were, and the file they are in
@@ -730,7 +730,7 @@ def example_pairs() -> dict[str, Path]:
 
 
 def example_pair(name: str) -> Path:
-    """The file of the shipped example pair ``name`` (e.g. ``seed000_case``), for :func:`load_pair`."""
+    """The file of the shipped example pair ``name`` (e.g. ``helical_z29_71_m5``), for :func:`load_pair`."""
     pairs = example_pairs()
     if name not in pairs:
         raise GearmeshInputError("example", name, f"must be one of {sorted(pairs)}")
@@ -999,7 +999,7 @@ def tool_tip_radius(pair: GearPair, gear: int) -> float:
 
     Given: ρ*·m_n, refused when it does not fit (> :func:`max_tool_tip_radius`). Not given:
     the ISO 53 value 0.38 m_n, or the full-radius tip where 0.38 m_n does not fit (e.g. αn =
-    25° with h_aP0 = 1.25 m_n, seed 001: ρ_max = 0.318 m_n). A rack tooth pointed before
+    25° with h_aP0 = 1.25 m_n, the low-fluctuation paper: ρ_max = 0.318 m_n). A rack tooth pointed before
     its tip line (π/4 ≤ h_f*·tan αn) is refused on ``dedendum_coefficient``.
     """
     mn, an = pair.normal_module, pair.normal_pressure_angle
@@ -1033,7 +1033,7 @@ def gear_body_mass_inertia(reference_radius, bore_radius, face_width, density):
     """Mass (kg) and polar moment (kg m²) of a solid disc of the reference (pitch) radius
     minus the bore over the face width: m = ρπ(r² − r_i²)b, J = m(r² + r_i²)/2.
 
-    This is the body convention of seed 001 (Table 1: pair 1 gives 0.2165/0.6266 kg and
+    This is the body convention of the low-fluctuation paper (Table 1: pair 1 gives 0.2165/0.6266 kg and
     0.96/7.90 ·10⁻⁴ kg m²).
     """
     r, ri, b = np.asarray(reference_radius), np.asarray(bore_radius), np.asarray(face_width)

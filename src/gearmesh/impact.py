@@ -1,4 +1,4 @@
-"""Mesh-in impact of a modified helical pair (seed 000): mesh-in point, impact velocity,
+"""Mesh-in impact of a modified helical pair (the mesh-in impact paper): mesh-in point, impact velocity,
 local stiffness and the energy-method impact force — in the TCA/LTCA framework.
 
 Everything inside is SI (m, N, s, rad, kg). Displacements, separations and forces follow the
@@ -16,12 +16,12 @@ the first roll where
     min_z g(roll, z) = δ_others(roll),
 
 δ_others the approach of the other pairs alone (the entering pair carries nothing before it
-touches). This is seed 000's TE(φ)/LTE(φ) intersection, solved in roll by a bracketing
+touches). This is the mesh-in impact paper's TE(φ)/LTE(φ) intersection, solved in roll by a bracketing
 root-finder (a grid over a window from the outer end of the tip-edge candidates to one
 base pitch past the theoretical start of engagement φ1A, then Illinois regula falsi with
 the exact separation and a final Newton step on the exact δ). The point of the entering pair
-where it happens is the mesh-in point M; seed 000's two scenarios are where M lies:
-``edge`` — a tip edge outside the active zone (seed 000 scenario 1: "tip point to tooth
+where it happens is the mesh-in point M; the mesh-in impact paper's two scenarios are where M lies:
+``edge`` — a tip edge outside the active zone (the mesh-in impact paper scenario 1: "tip point to tooth
 surface") — or ``surface`` — two (modified) flanks inside it (scenario 2). One formulation,
 no separate code paths.
 
@@ -38,20 +38,20 @@ Impact velocity
 ---------------
 The closing rate of g − δ at the touch, v_t = −d(g − δ)/dτ · r_b1·ω1, is the relative
 velocity in the transverse line-of-action coordinate — the coordinate of the equivalent mass
-m_eq = J1·J2/(J1·r_b2² + J2·r_b1²) (seed 000). Independently, :func:`vector_velocity`
-evaluates seed 000's v = (ω1 − ω2) × r − E × ω2 at the true closest points of the two exact
+m_eq = J1·J2/(J1·r_b2² + J2·r_b1²) (the mesh-in impact paper). Independently, :func:`vector_velocity`
+evaluates the mesh-in impact paper's v = (ω1 − ω2) × r − E × ω2 at the true closest points of the two exact
 (modified) transverse profiles with their common normal. In the edge case they are the same
 quantity exactly (the pinion flank's normal is tangent to its base circle, so the pinion
 point's normal velocity is r_b1·ω1 and the gap of the tip edge closes at v·n); in the
 surface case they agree to first order in the relief slopes (the true closest points lie off
 the line of action by slope/curvature). The 3-D normal velocity is v·n with the helicoid
-normal, smaller by cos βb; seed 000 puts it into E_k = ½·m_eq·v², which mixes a normal
+normal, smaller by cos βb; the mesh-in impact paper puts it into E_k = ½·m_eq·v², which mixes a normal
 velocity with a transverse mass: the consistent form is v_t (default,
 ``energy_velocity='transverse'``), the seed's literal form is kept as ``'normal'``.
 
 Local stiffness and force
 -------------------------
-Seed 000 loads the entering pair alone, quasi-statically, with its points' separations
+The mesh-in impact paper loads the entering pair alone, quasi-statically, with its points' separations
 relative to M at the touch instant: here exactly that, with the LTCA's point compliances
 (:func:`gearmesh.ltca.point_compliance`) and contact law, giving the F–δ curve of the
 impact. The energy balance ½·m_eq·v² = ∫F dδ is solved on that curve (piecewise power-law
@@ -85,7 +85,7 @@ from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, appro
 from .contact import hand_sign
 
 __all__ = [
-    "SCENARIOS", "DRIVERS", "seed000_inertia", "equivalent_mass", "ImpactModel", "impact_model",
+    "SCENARIOS", "DRIVERS", "impact_paper_inertia", "equivalent_mass", "ImpactModel", "impact_model",
     "ImpactStatic", "impact_static", "ImpactResponse", "impact_response", "closed_form_force",
     "energy_balance", "fit_power_law", "vector_velocity", "seed_edge_roll", "simulate_engagement",
     "LTCACriteria", "ltca_criteria", "ltca_metrics", "load_grid", "load_window",
@@ -99,12 +99,12 @@ _FIT_POINTS = 24
 
 
 # --------------------------------------------------------------------------------------
-# Inertia and equivalent mass (seed 000)
+# Inertia and equivalent mass (the mesh-in impact paper)
 # --------------------------------------------------------------------------------------
 
 
-def seed000_inertia(geom: PairGeometry) -> np.ndarray:
-    """Polar moments (kg m²) of both gears by seed 000: J_i = πρB_i(r_bi⁴ − r_hi⁴)/2 — a solid
+def impact_paper_inertia(geom: PairGeometry) -> np.ndarray:
+    """Polar moments (kg m²) of both gears by the mesh-in impact paper: J_i = πρB_i(r_bi⁴ − r_hi⁴)/2 — a solid
     disc of the base radius r_b over the face width B, less the hub bore r_h."""
     pair = geom.pair
     if pair.material is None or pair.bore_radius is None:
@@ -116,7 +116,7 @@ def seed000_inertia(geom: PairGeometry) -> np.ndarray:
 
 def equivalent_mass(geom: PairGeometry, inertia) -> float:
     """m_eq = J1·J2/(J1·r_b2² + J2·r_b1²) (kg): the mass of the relative coordinate
-    r_b1·θ1 + r_b2·θ2 along the transverse line of action (seed 000)."""
+    r_b1·θ1 + r_b2·θ2 along the transverse line of action (the mesh-in impact paper)."""
     j1, j2 = (float(v) for v in inertia)
     rb1, rb2 = (float(v) for v in geom.base_radius)
     return j1 * j2 / (j1 * rb2**2 + j2 * rb1**2)
@@ -275,7 +275,7 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=None, contact_
     contact_law_name, method : local contact law and cantilever model (:mod:`gearmesh.ltca`).
     extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
     driver : 'pinion' or 'gear' (module docstring).
-    added_inertia_kg_m2 : inertia (kg m²) of what hangs on each shaft, added to seed 000's discs.
+    added_inertia_kg_m2 : inertia (kg m²) of what hangs on each shaft, added to the mesh-in impact paper's discs.
     window_positions : grid rolls over the search window (−extension … +1 base pitch).
     face_samples : samples of the entering line over the face for min_z (refined by a parabola).
     cycle_positions : rolls per mesh cycle of the LTCA grid kept for :func:`ltca_criteria`.
@@ -301,7 +301,7 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=None, contact_
     if ltca is None:
         ltca = ltca_model(geom, positions=cycle_positions, points=points, lead_slope=lead_slope, contact_law_name=contact_law_name,
                           method=method, extension=extension)
-    inertia = seed000_inertia(geom) + added
+    inertia = impact_paper_inertia(geom) + added
     pbt = geom.transverse_base_pitch
     ext = float(extension) * pbt
     sigma = 1 if driver == "pinion" else -1
@@ -499,7 +499,7 @@ class ImpactStatic:
     g − δ per unit roll is their sum (:attr:`slope`);
     ``s``, ``z``, ``rho_pinion``, ``rho_gear`` where M lies (m); ``region`` its candidate
     region; ``te_engagement`` the entering pair's separation at the theoretical engagement
-    (m; seed 000's TE(φ1A)), ``lte_engagement`` the approach of all pairs there (LTE(φ1A);
+    (m; the mesh-in impact paper's TE(φ1A)), ``lte_engagement`` the approach of all pairs there (LTE(φ1A);
     NaN unless asked for); ``curve_force`` / ``curve_approach`` (C, T, K) the F–δ curve of the
     entering pair alone from M (N, m; F = 0 at δ = 0 implied), from the separations and
     compliances of its slices ``curve_separation`` / ``curve_compliance`` (C, T, L);
@@ -961,7 +961,7 @@ def _curve_reach(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, force: n
 
 
 def closed_form_force(mass, velocity, k_s, n):
-    """Seed 000's energy-method peak force F_s = ((n+1)/2·m·v²)^(n/(n+1))·K_s^(1/(n+1)) (N),
+    """The mesh-in impact paper's energy-method peak force F_s = ((n+1)/2·m·v²)^(n/(n+1))·K_s^(1/(n+1)) (N),
     from ½·m·v² = ∫₀^δs K_s·δ^n dδ; m (kg), v (m/s), K_s (N/m^n), n (-)."""
     n = np.asarray(n, dtype=float)
     return ((n + 1) / 2 * mass * np.asarray(velocity) ** 2) ** (n / (n + 1)) * np.asarray(k_s) ** (1 / (n + 1))
@@ -1043,7 +1043,7 @@ class ImpactResponse:
     velocity selected by ``energy_velocity``; ``force_energy_balance`` and
     ``approach_energy_balance`` from the computed F–δ curve; ``stiffness_coefficient`` K_s
     (N/m^n), ``stiffness_exponent`` n and ``fit_error`` of F = K_s·δ^n over that range;
-    ``force`` seed 000's closed form with them (N).
+    ``force`` the mesh-in impact paper's closed form with them (N).
     """
 
     speed_rpm: np.ndarray
@@ -1374,7 +1374,7 @@ def _profile(model: ImpactModel, params: np.ndarray, gear: int, rho, z: float, p
 
 def vector_velocity(model: ImpactModel, static: ImpactStatic, speed_rpm: float, c: int = 0,
                     t: int = 0) -> dict[str, float]:
-    """Seed 000's impact velocity v = ((ω1 − ω2) × r − E × ω2)·n, computed independently of the
+    """The mesh-in impact paper's impact velocity v = ((ω1 − ω2) × r − E × ω2)·n, computed independently of the
     separation functions: the true closest points of the two exact modified transverse profiles
     in the slice of M at the touch roll (a tip edge against a flank, or flank against flank),
     their common normal n, and the relative velocity of the two material points along it.
@@ -1446,18 +1446,18 @@ def vector_velocity(model: ImpactModel, static: ImpactStatic, speed_rpm: float, 
 
 
 def seed_edge_roll(geom: PairGeometry, approach: float) -> float:
-    """Seed 000's 'reverse rotation' solution for an unmodified pair, pinion driving: the pinion
+    """The mesh-in impact paper's 'reverse rotation' solution for an unmodified pair, pinion driving: the pinion
     roll (m) before the theoretical start of engagement at which the gear's tip corner meets the
     pinion flank when the pairs in mesh are compressed by ``approach`` δ (m).
 
-    Seed 000: arcsin(r_a2 sin(γ2 + LTE0 + Δφk2)/r_O1D) − Δφk2/i − arcsin(r_a2 sin γ2/r_O1E)
+    The mesh-in impact paper: arcsin(r_a2 sin(γ2 + LTE0 + Δφk2)/r_O1D) − Δφk2/i − arcsin(r_a2 sin γ2/r_O1E)
     = inv(arccos(r_b1/r_O1D)) − inv(arccos(r_b1/r_O1E')), r_O1D² = a² + r_a2² −
     2·a·r_a2·cos(γ2 + LTE0 + Δφk2), with γ2 the angle at O2 between the centre line and the
     start of engagement A (= E = E', the gear tip on the line of action) and LTE0 = δ/r_b2 the
     gear's lag. It states that the tip point D, turned back by LTE0 + Δφk2, lies on the pinion
     involute through A turned back by the pinion angle of Δφk2. That angle is Δφk2·z2/z1, so
     the printed "Δφk2/i" holds only with i = z1/z2; with the usual ratio i = z2/z1 it must read
-    Δφk2·i (corrected here). Returns r_b2·(LTE0 + Δφk2), seed 000's total deviation Δφ as
+    Δφk2·i (corrected here). Returns r_b2·(LTE0 + Δφk2), the mesh-in impact paper's total deviation Δφ as
     roll, which :func:`impact_static` must reproduce for an unmodified pair (the same event).
     """
     from scipy.optimize import brentq

@@ -284,7 +284,7 @@ def warm_kernels() -> None:
     from .gear import example_pair, load_pair, pair_geometry
     from .ltca import solve_contact_tabulated
 
-    geom = pair_geometry(load_pair(example_pair("seed000_case")))
+    geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     setup = population_dynamics(geom, [1000.0], [1000.0, 5000.0], positions=16, approaches=8, points=5,
                                 method="transition")
     dynamic_factors(setup, np.zeros((1, 2, 6)), np.zeros((1, 2)))

@@ -219,7 +219,7 @@ MAX_STEPS_PER_SPEED = 2_000_000
 #: Work limits of one dynamics job, checked before any job runs
 #: (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`).
 #: RK4 speed-steps (steps of the longest speed × speeds, one vectorised batch): measured about
-#: 5e6 per second (seed 001 pair, 496 speeds × 17664 steps in 2 s), so 1e9 is a few minutes.
+#: 5e6 per second (the low-fluctuation paper pair, 496 speeds × 17664 steps in 2 s), so 1e9 is a few minutes.
 MAX_SPEED_STEPS = 1_000_000_000
 #: Most (window positions × approaches × points per line) of a contact table: its build costs
 #: about 0.4 s per 10⁶ (256 × 96 × 50 with the default pair's 4–5 tooth pairs: 0.4 s, measured),
@@ -242,7 +242,7 @@ MAX_DEFLECTION_TO_MODULE = 0.1
 ISO6336_STEEL_MODULUS = 206e9
 
 #: Most slice × position points of one slice-model stiffness run: measured about 400 bytes per
-#: point (seed 001 pair, 1000 slices × 2000 positions: 0.9 GB, 2.5 s), so 4e6 points stay under
+#: point (the low-fluctuation paper pair, 1000 slices × 2000 positions: 0.9 GB, 2.5 s), so 4e6 points stay under
 #: about 1.6 GB.
 MAX_STIFFNESS_POINTS = 4_000_000
 #: Most position × point candidates of one TCA/LTCA torque: measured about 1 kB per candidate

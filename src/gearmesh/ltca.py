@@ -50,7 +50,7 @@ Local contact laws (``contact_law``)
   factor is taken at the full contact-line length l_ref = b/cos βb so that the law is
   local (independent of how finely the line is sliced). For another material the load is
   scaled by E'_steel/E' (E' = E/(1 − ν²), steel 207 GPa, 0.3). It gives F ∝ δ^(1/0.9),
-  n ≈ 1.11 — the exponent seed 000 reports for the fitted local stiffness (n ≈ 1.1).
+  n ≈ 1.11 — the exponent the mesh-in impact paper reports for the fitted local stiffness (n ≈ 1.1).
 * ``'linear'``: the linear Hertz line-contact stiffness per unit length πE/(4(1−ν²)) of
   the stiffness stage (:func:`gearmesh.stiffness.hertz_compliance_transverse`),
   for the comparison LTE = F/K(φ).

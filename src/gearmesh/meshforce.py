@@ -23,7 +23,7 @@ and the mesh force is their sum F(x, r) = Σ_i q_i. For a given force its invers
 a simulation driven by F(x, r) is the LTCA's loaded TE, and its tangent dF/dx at the static
 approach is the LTCA's loaded mesh stiffness. What the table adds is everything away from the
 static state: an entering tooth pair whose tip edge touches *before* A when the pairs in mesh
-are deflected further than their static approach (the mesh-in impact of seed 000), a pair that
+are deflected further than their static approach (the mesh-in impact of the mesh-in impact paper), a pair that
 lets go earlier when the approach drops, and contact loss when x falls below every separation.
 This is the "mesh force from the instantaneous contact of all tooth pairs" formulation of the
 gear-dynamics literature (Velex & Maatar 1996, J. Sound Vib. 191:629 — the time-varying

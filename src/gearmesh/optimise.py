@@ -1,12 +1,12 @@
-"""Micro-geometry optimisation against the mesh-in impact (seed 000) over a load spectrum and the
+"""Micro-geometry optimisation against the mesh-in impact (the mesh-in impact paper) over a load spectrum and the
 manufacturing tolerances, with pygad.
 
 Genes
 -----
-Seed 000's six modification parameters y1..y6 (root and tip relief amounts, their lengths,
+The mesh-in impact paper's six modification parameters y1..y6 (root and tip relief amounts, their lengths,
 lead crowning, unmodified lead length; :data:`gearmesh.surface.MODIFICATION_FIELDS`) of
 the gear(s) being modified, in engineering units (µm for amounts, mm for lengths: the
-pair-file keys). Seed 000's bounds, in terms of the normal module m_n and the face width B:
+pair-file keys). The mesh-in impact paper's bounds, in terms of the normal module m_n and the face width B:
 
     0.001 m_n ≤ y1, y2, y5 ≤ 0.015 m_n,   0.1 m_n ≤ y3, y4 ≤ 0.8 m_n,   0 < y6 ≤ 0.5 B,
 
@@ -19,9 +19,9 @@ stops on one.
 
 Objective
 ---------
-A quantity per (torque, manufactured sample) — ``force``: seed 000's F_s^max
+A quantity per (torque, manufactured sample) — ``force``: the mesh-in impact paper's F_s^max
 (:func:`gearmesh.impact.impact_response`, closed form) at the pinion speed ``speed_rpm``;
-``velocity``: the impact velocity |v_n| (seed 000's alternative); ``robust``: F_s like
+``velocity``: the impact velocity |v_n| (the mesh-in impact paper's alternative); ``robust``: F_s like
 ``force``, the name for its load-spectrum and tolerance form (refused without either);
 ``dynamic``: the peak dynamic mesh force (not available yet: one function, added to
 :data:`OBJECTIVE_VALUES`) — reduced in two steps:
@@ -34,7 +34,7 @@ A quantity per (torque, manufactured sample) — ``force``: seed 000's F_s^max
    CVaR at ``tolerance_level`` %; None evaluates the nominal alone.
 
 Every gear of the population is scored over the whole spectrum first, because a gear is made
-once and then runs the whole duty cycle. Seed 000 asks for the modification that minimises the
+once and then runs the whole duty cycle. The mesh-in impact paper asks for the modification that minimises the
 impact "across a specified operational load range" and warns that a single-load optimum
 degrades off-design; a single-torque nominal objective finds grazing touches (zero closing
 velocity at exactly one load) that are worse elsewhere. A candidate whose entering pair never
@@ -105,7 +105,7 @@ LOG = logging.getLogger(__name__)
 
 __all__ = [
     "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "PARETO_OBJECTIVES", "OBJECTIVE_VALUES", "FAILURE_FACTOR", "Gene",
-    "OptimiseSettings", "check_settings", "check_positive", "seed000_bounds", "gene_table", "decode", "Problem",
+    "OptimiseSettings", "check_settings", "check_positive", "impact_paper_bounds", "gene_table", "decode", "Problem",
     "problem", "Evaluation", "evaluate", "load_statistic", "load_grid", "load_window", "Diagnostics", "diagnose",
     "History", "OptimisationResult", "optimise", "random_search", "pareto_mask", "worst_ratio", "constraint_factors",
     "safety_factors", "ImpactValues", "impact_values",
@@ -444,8 +444,8 @@ class Gene:
         return GENE_UNITS[self.field]
 
 
-def seed000_bounds(geom: PairGeometry) -> np.ndarray:
-    """Seed 000's bounds (6, 2) of y1..y6 in µm / mm: y1, y2, y5 in [0.001, 0.015]·m_n, y3, y4 in
+def impact_paper_bounds(geom: PairGeometry) -> np.ndarray:
+    """The mesh-in impact paper's bounds (6, 2) of y1..y6 in µm / mm: y1, y2, y5 in [0.001, 0.015]·m_n, y3, y4 in
     [0.1, 0.8]·m_n, y6 in (0, 0.5·B] (B the meshing face width)."""
     mn, b = geom.pair.normal_module, geom.face_width
     si = np.array([[0.001 * mn, 0.015 * mn]] * 2 + [[0.1 * mn, 0.8 * mn]] * 2 + [[0.001 * mn, 0.015 * mn],
@@ -467,7 +467,7 @@ def gene_table(geom: PairGeometry, modify=("pinion",), bounds: Mapping[str, Any]
     modified gears' parameters set to their ``fixed`` values (0 until a gene sets them).
 
     ``modify`` the gears whose six parameters are optimised ('pinion', 'gear' or both);
-    ``bounds`` {pair-file key: [low, high]} overrides seed 000's bounds (µm / mm, on every
+    ``bounds`` {pair-file key: [low, high]} overrides the mesh-in impact paper's bounds (µm / mm, on every
     modified gear); ``fixed`` {key: value} fixes a parameter instead of optimising it.
     """
     from .surface import modification_parameters
@@ -487,7 +487,7 @@ def gene_table(geom: PairGeometry, modify=("pinion",), bounds: Mapping[str, Any]
     if both:
         key = sorted(both)[0]
         raise GearmeshInputError(f"fixed.{key}", fixed[key], "is also given bounds: a gene is either free or fixed")
-    table = seed000_bounds(geom)
+    table = impact_paper_bounds(geom)
     base = modification_parameters(geom).copy()
     genes = []
     for gear in sorted(GEARS.index(g) for g in modify):

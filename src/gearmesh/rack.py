@@ -81,7 +81,7 @@ def rack_from(teeth: int, normal_module: float, normal_pressure_angle: float, he
     """The transverse generating rack of a gear of ``teeth`` teeth (lengths m, angles rad):
     flank ξ = s_t/2 − η tan αt with s_t = m_t(π/2 + 2x tan αn) (ISO 21771 eq. 64); tip
     rounding centre in the normal section (ξ_n, η_c) = (s_n/2 − η_c tan αn + ρ/cos αn,
-    x m_n − h_aP0 + ρ), stretched to the transverse section by 1/cos β (seed 003 §1)."""
+    x m_n − h_aP0 + ρ), stretched to the transverse section by 1/cos β (the transition-curve paper §1)."""
     z = int(teeth)
     mn, an, beta = normal_module, normal_pressure_angle, helix_angle
     cb = math.cos(beta)
@@ -166,7 +166,7 @@ def involute_half_angle(rack: GeneratingRack, radius: np.ndarray) -> np.ndarray:
 def _undercut_crossing(rack: GeneratingRack, n: int = 4001) -> tuple[float, float] | None:
     """(t, ρ) where the trochoid fillet cuts the involute, or None when it never does.
 
-    Seed 003 §1: the intersection of transition curve and involute is the true start of the
+    The transition-curve paper §1: the intersection of transition curve and involute is the true start of the
     involute. Along the rounding t ∈ [αn, π/2], g(t) = polar angle − ψ(R) changes sign where
     the trochoid crosses the involute; the crossing of largest R bounds the involute. Below
     the base circle the involute is continued by its radial tangent at the cusp (ψ(r_b)), so

@@ -22,7 +22,7 @@ thesis, U. Alberta; Chaari, Fakhfakh & Haddar 2009, Eur. J. Mech. A 28:461)::
 from the cantilever root y_root to y_P; the moment arm x_P is the real half-thickness
 at the contact point. The fillet-foundation (body) compliance is Sainsot, Velex &
 Duverger (2004, J. Mech. Des. 126:748) per unit width, and the local (Hertz) contact
-is πE/(4(1−ν²)) per unit length of contact line (docs/modelling.md; seed 003).
+is πE/(4(1−ν²)) per unit length of contact line (docs/modelling.md; the transition-curve paper).
 
 The three cantilever models (``method``):
 
@@ -30,26 +30,26 @@ The three cantilever models (``method``):
   root circle. When r_b > r_f the material between root and base circles is ignored
   (too stiff); when r_b < r_f the involute below the root circle is *fictitious* tooth
   inside the gear body (too compliant), on top of the foundation term.
-* ``'improved'`` — the cantilever always starts at the root circle (seed 004's aim):
+* ``'improved'`` — the cantilever always starts at the root circle (the improved potential-energy paper's aim):
   r_b ≥ r_f: a straight segment of constant half-thickness r_b sin ψ_b from the root
   circle to the base circle, then the involute; r_b < r_f: the involute from the root
-  circle. Seed 004 writes that for r_b < r_f "the integration starts from the base
+  circle. The improved potential-energy paper writes that for r_b < r_f "the integration starts from the base
   circle, as the segment between the base and root circles is not part of the ...
   cantilever" — that sentence contradicts itself (starting at the base circle *includes*
   that segment); the physically right reading, used here, starts at the root circle.
-* ``'transition'`` (default) — seed 003: the hob-generated trochoid fillet from the root
+* ``'transition'`` (default) — the transition-curve paper: the hob-generated trochoid fillet from the root
   circle to the true start of the involute (form circle), integrating the real
-  half-thickness of :mod:`gearmesh.profile`, then the involute. Seed 003's fillet
+  half-thickness of :mod:`gearmesh.profile`, then the involute. The transition-curve paper's fillet
   bending integral divides by 2E(2y₁)³; with I = (2y₁)³/12 the right factor is
-  12/(E(2y₁)³) = 3/(2E·y₁³), i.e. seed 003's term is 8× too small. Used here: 1/(E·I).
+  12/(E(2y₁)³) = 3/(2E·y₁³), i.e. the transition-curve paper's term is 8× too small. Used here: 1/(E·I).
 
 Fillet-foundation term: per slice. Sainsot's formula is for a tooth of width L loaded
 uniformly; the slice theory cuts the tooth into uncoupled transverse slices, each loaded
-at its own height, so its per-unit-width form (L → 1, local α1 and u_f, as seed 003 does)
+at its own height, so its per-unit-width form (L → 1, local α1 and u_f, as the transition-curve paper does)
 is the consistent choice and reduces exactly to Sainsot's spur formula for β = 0. Seed
 004's single per-tooth term with the face width B and the nominal pressure angle ignores
 where the load sits and how much of the face is loaded (wrong while a line enters or
-leaves the face); seed 001's single k_f in series with *all* contact lines is
+leaves the face); the low-fluctuation paper's single k_f in series with *all* contact lines is
 dimensionally a series element shared by parallel paths, which is not physical.
 Its geometry: h_f = r_f/r_int, u_f = distance along the centre line from the root circle
 to where the load line crosses it, S_f = 2 r_f θ_f with θ_f the half angle of the tooth
@@ -69,8 +69,8 @@ gear tooth are springs in series::
     1/k_slice = (c_1(ρ1) + c_2(ρ2) + c_h) / Δz,    c_i = c_b + c_s + c_a + c_f
 
 and all slices of all lines in contact are in parallel: K(φ) = Σ_lines Σ_slices k_slice.
-(Seed 001 writes K = 1/(Σ_i 1/k_t^i + 1/k_f), a series sum of lines: wrong, the lines
-share the deflection, not the load. Seed 003 first sums each component along a line and
+(The low-fluctuation paper writes K = 1/(Σ_i 1/k_t^i + 1/k_f), a series sum of lines: wrong, the lines
+share the deflection, not the load. The transition-curve paper first sums each component along a line and
 then combines components in series; that assumes each component deflects uniformly along
 the line, which is not so: here each slice is in series first.)
 
@@ -85,7 +85,7 @@ For β = 0 every convention coincides with the spur model.
 Slices: rule 'centre' takes a slice when its centre is in the active zone (the points of
 contact_roll_positions; the line ends are rounded to whole slices, error O(Δz)); rule
 'clip' (default) clips the end slices to the active zone (error O(Δz²); then 200 slices
-are within 1e-6 of the limit for seed 001 pair 1, where 'centre' needs ~1000 for 1e-3).
+are within 1e-6 of the limit for the low-fluctuation paper pair 1, where 'centre' needs ~1000 for 1e-3).
 
 Speed (docs/modelling.md): each gear's slice compliance is evaluated by Gauss–Legendre at a few
 hundred roll lengths once (:func:`slice_compliance_table`), resampled as one pair table on
@@ -156,7 +156,7 @@ def _check_method(method: str) -> str:
 def hertz_stiffness_per_width(youngs_modulus: float, poisson_ratio: float) -> float:
     """Hertzian line-contact stiffness per unit contact-line length, k_h0 = πE/(4(1−ν²)).
 
-    Yang & Sun (1985); docs/modelling.md and seed 003 (two bodies of the same material).
+    Yang & Sun (1985); docs/modelling.md and the transition-curve paper (two bodies of the same material).
 
     Parameters
     ----------
@@ -173,7 +173,7 @@ def hertz_stiffness_per_width(youngs_modulus: float, poisson_ratio: float) -> fl
 def sainsot_coefficients(h_f: float, theta_f: float) -> np.ndarray:
     """The four coefficients (L*, M*, P*, Q*) of Sainsot, Velex & Duverger (2004).
 
-    X* = A/θf² + B·hf² + C·hf/θf + D/θf + E·hf + F with Sainsot's table (:data:`SAINSOT_COEFFICIENTS`; seed 003
+    X* = A/θf² + B·hf² + C·hf/θf + D/θf + E·hf + F with Sainsot's table (:data:`SAINSOT_COEFFICIENTS`; the transition-curve paper
     prints A·θf² and D·θf, a typo: the fitted variables are 1/θf² and 1/θf).
 
     Parameters
@@ -605,7 +605,7 @@ class MeshStiffness:
 
     @property
     def fluctuation(self) -> float:
-        """ε_k = (K_max − K_min)/K_min (-), seed 001 (as a fraction, not %)."""
+        """ε_k = (K_max − K_min)/K_min (-), the low-fluctuation paper (as a fraction, not %)."""
         return (self.max - self.min) / self.min
 
     @property
@@ -621,8 +621,8 @@ class MeshStiffness:
 
 #: Default slice count and rule, from the convergence study (tests/test_stiffness.py and the
 #: report): with the 'clip' rule the error falls as N⁻² and N = 200 is within 1e-6 of the
-#: N → ∞ limit for seed 001 pair 1 (pointwise); the 'centre' rule converges as N⁻¹ and
-#: needs N ≈ 1000 for 1e-3 (seed 004's N = 1000 cures the artefact of that rule).
+#: N → ∞ limit for the low-fluctuation paper pair 1 (pointwise); the 'centre' rule converges as N⁻¹ and
+#: needs N ≈ 1000 for 1e-3 (the improved potential-energy paper's N = 1000 cures the artefact of that rule).
 DEFAULT_SLICES = 200
 DEFAULT_RULE = "clip"
 
@@ -749,7 +749,7 @@ def lste(result: MeshStiffness, torque: float) -> np.ndarray:
     """Loaded static transmission error (m) along the transverse line of action.
 
     e = F_bt / K(φ) with F_bt = T1/r_b1 the transverse load along the line of action
-    (seed 001 e = F/K; seed 003 x = T_p/(R_p k_c) with R_p the pinion base radius).
+    (the low-fluctuation paper e = F/K; the transition-curve paper x = T_p/(R_p k_c) with R_p the pinion base radius).
     Multiply by cos βb for the approach along the flank normal (= F_n/K_n).
 
     Parameters
@@ -786,7 +786,7 @@ def fourier_fit(values, order: int = 3) -> FourierFit:
     """Least-squares Fourier series of ``order`` of samples evenly spaced over one period.
 
     For evenly spaced samples the least-squares coefficients are the DFT ones
-    (scipy.fft.rfft); seed 004 uses order 3 for the TVMS (k_m + Σ a_j cos + b_j sin).
+    (scipy.fft.rfft); the improved potential-energy paper uses order 3 for the TVMS (k_m + Σ a_j cos + b_j sin).
 
     Parameters
     ----------
@@ -831,7 +831,7 @@ def iso6336_stiffness(geom: PairGeometry) -> dict[str, float]:
     003/004), whose profile thickens with β, while ISO scales by cos β on the virtual spur
     gear. The ratio PEM/ISO therefore grows with β: 1.18, 1.21, 1.29, 1.42, 1.62 at β =
     0, 10, 20, 30, 40° for 29/49 teeth, m_n 1.75, αn 20°. The CB formula is also used
-    here outside the usual basic-rack range (seed 003's 2.2 m_n deep hobs give CB 0.57);
+    here outside the usual basic-rack range (the transition-curve paper's 2.2 m_n deep hobs give CB 0.57);
     both are reported as computed, not corrected.
     """
     pair = geom.pair

@@ -3,7 +3,7 @@
 The dynamics (:mod:`gearmesh.dynamics`) hold each gear body on a radial spring (x, y) and an
 axial spring (z). The pair file says what they are (:class:`Supports`, keys
 ``bearing_radial_stiffness_N_per_um``, ``bearing_axial_stiffness_N_per_um`` and optionally
-``shaft_diameter_mm``, ``bearing_span_mm``); left out, seed 001 §4's values (stated as a
+``shaft_diameter_mm``, ``bearing_span_mm``); left out, the low-fluctuation paper §4's values (stated as a
 default in every result). ``rigid`` removes the direction from the model: both directions
 rigid is the torsional model of ISO 6336-1's resonance speed n_E1.
 
@@ -83,9 +83,9 @@ SUPPORT_KEYS = ("bearing_radial_stiffness_N_per_um", "bearing_axial_stiffness_N_
 #: (:mod:`gearmesh.deviation`).
 TORQUE_SIDES = ("leading", "trailing")
 RIGID = "rigid"
-#: Supports of a pair file that says none: seed 001 §4's bearings (k_x = k_y = 1.5·10⁸ N/m,
+#: Supports of a pair file that says none: the low-fluctuation paper §4's bearings (k_x = k_y = 1.5·10⁸ N/m,
 #: k_z = 10⁷ N/m, both gears), the only bearing values of the source documents. They belong to
-#: seed 001's small pair (d ≈ 50/130 mm), not to every gearbox: a pair file should say its own
+#: the low-fluctuation paper's small pair (d ≈ 50/130 mm), not to every gearbox: a pair file should say its own
 #: (the default study's does); which applied is stated in every dynamics result.
 DEFAULT_SUPPORTS_N_PER_UM = {"bearing_radial_stiffness_N_per_um": 150.0, "bearing_axial_stiffness_N_per_um": 10.0}
 
@@ -169,7 +169,7 @@ class Supports:
         def n(k):
             return RIGID if math.isinf(k) else f"{k * 1e-6:.4g}"
         r, a = self.radial(youngs_modulus), self.axial()
-        where = ("not given in the pair file: seed 001 §4's bearings (gearmesh.supports.DEFAULT_SUPPORTS_N_PER_UM)"
+        where = ("not given in the pair file: the low-fluctuation paper §4's bearings (gearmesh.supports.DEFAULT_SUPPORTS_N_PER_UM)"
                  if self.defaulted else "from the pair file")
         shaft = "" if self.shaft_diameter is None else " (bearings in series with the shaft's bending)"
         return (f"supports radial [{n(r[0])}, {n(r[1])}] N/um{shaft}, axial [{n(a[0])}, {n(a[1])}] N/um "
@@ -243,7 +243,7 @@ def read_supports(spec: Mapping[str, Any]) -> Supports:
     if len(stiff) == 1:
         other = SUPPORT_KEYS[1] if stiff[0] == SUPPORT_KEYS[0] else SUPPORT_KEYS[0]
         raise GearmeshInputError(other, None, f"is required with {stiff[0]} (both directions of the supports)")
-    shaft = [k for k in SUPPORT_KEYS[2:] if k in given]
+    shaft = [k for k in SUPPORT_KEYS[2:4] if k in given]
     if len(shaft) == 1:
         other = SUPPORT_KEYS[3] if shaft[0] == SUPPORT_KEYS[2] else SUPPORT_KEYS[2]
         raise GearmeshInputError(other, None, f"is required with {shaft[0]} (the shaft's bending needs both)")

@@ -22,7 +22,7 @@ These put the contact of tooth pair j = 0 in slice z = 0 at s = 0 (pinion ρ1 = 
 
 Helix: slice z of a gear is slice 0 turned CCW by z·k/r_b, k the signed tan βb of the flank:
 k1 = h tan βb for the pinion (h = +1 right hand: CCW as z grows, contact.py), k2 = −h tan βb
-for the gear (opposite hand). This is seed 002's helicoid z = pθ with lead parameter
+for the gear (opposite hand). This is the contact-line paper's helicoid z = pθ with lead parameter
 p = r_b/k (p = r_b/tan βb in magnitude).
 """
 
@@ -56,19 +56,19 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------------------
-# Involute helicoid (seed 002)
+# Involute helicoid (the contact-line paper)
 # --------------------------------------------------------------------------------------
 
 
 def involute_helicoid_z(base_radius: float, tan_beta_b: float, u, z, sigma: float = 0.0, side: int = 1):
     """Involute helicoid point and outward unit normal at roll angle ``u`` and axial ``z``.
 
-    Seed 002 with the side sign s: A = σ + s·u + θ, θ = z·k/r_b (k = ``tan_beta_b``, signed:
+    The contact-line paper with the side sign s: A = σ + s·u + θ, θ = z·k/r_b (k = ``tan_beta_b``, signed:
     k > 0 turns slices CCW as z grows, k = 0 a spur flank),
 
         r = r_b [cos A + s u sin A,  sin A − s u cos A,  z/r_b]        (r_b·(e(A) − s u t(A)))
 
-    s = +1 is seed 002's orientation (string unwound clockwise; a flank on the CW side of its
+    s = +1 is the contact-line paper's orientation (string unwound clockwise; a flank on the CW side of its
     tooth), s = −1 the mirror image (CCW side). The unit normal pointing out of the tooth,
     along the unwound string and tilted by the base helix angle (Litvin & Fuentes, Gear
     Geometry and Applied Theory, 2nd ed., §10.4), is
@@ -93,10 +93,10 @@ def involute_helicoid_z(base_radius: float, tan_beta_b: float, u, z, sigma: floa
 
 
 def involute_helicoid(base_radius: float, lead_parameter: float, u, theta, sigma: float = 0.0, side: int = 1):
-    """Seed 002's involute helicoid r(u, θ): z = pθ with lead parameter p = r_b/tan βb (m/rad).
+    """The contact-line paper's involute helicoid r(u, θ): z = pθ with lead parameter p = r_b/tan βb (m/rad).
 
     x = r_b cos(σ + s u + θ) + s r_b u sin(σ + s u + θ),
-    y = r_b sin(σ + s u + θ) − s r_b u cos(σ + s u + θ),  z = p θ   (s = ``side``, seed 002: s = 1).
+    y = r_b sin(σ + s u + θ) − s r_b u cos(σ + s u + θ),  z = p θ   (s = ``side``, the contact-line paper: s = 1).
 
     ``lead_parameter`` p (m/rad, signed; p < 0 is a left-hand flank, must be finite);
     ``u`` roll angle (rad); ``theta`` helical parameter (rad). Returns (points, unit outward
@@ -198,7 +198,7 @@ def gear_contact_point(geom: PairGeometry, rho1, z, phi1) -> np.ndarray:
 
 
 # --------------------------------------------------------------------------------------
-# Micro-geometry modification (seed 000, six parameters)
+# Micro-geometry modification (the mesh-in impact paper, six parameters)
 # --------------------------------------------------------------------------------------
 
 
@@ -207,13 +207,13 @@ MODIFICATION_FIELDS = ("root_relief", "tip_relief", "root_relief_length", "tip_r
 
 
 def modification_parameters(geom: PairGeometry) -> np.ndarray:
-    """Seed 000's six parameters y1..y6 of both gears as a (2, 6) array (m), in the order of
+    """The mesh-in impact paper's six parameters y1..y6 of both gears as a (2, 6) array (m), in the order of
     :data:`MODIFICATION_FIELDS` (pinion row 0, gear row 1)."""
     return np.array([[float(getattr(mod, f)) for f in MODIFICATION_FIELDS] for mod in geom.pair.modification])
 
 
 def relief_depth(params, rho_sap: float, rho_eap: float, face_width: float, rho, z) -> np.ndarray:
-    """Material removed (m) by seed 000's six parameters ``params`` (last axis y1..y6, m, in the
+    """Material removed (m) by the mesh-in impact paper's six parameters ``params`` (last axis y1..y6, m, in the
     order of :data:`MODIFICATION_FIELDS`) at roll length ρ and axial position z (m).
 
     The formulas of :func:`modification_depth`, vectorised over modifications: the leading
@@ -269,7 +269,7 @@ def fit_modifications(geom: PairGeometry, params) -> np.ndarray:
 def modification_depth(geom: PairGeometry, gear: int, rho, z) -> np.ndarray:
     """Material removed (m, ≥ 0, along the surface normal) at roll length ρ (m) and z (m).
 
-    The sum of three parabolic reliefs with seed 000's six parameters
+    The sum of three parabolic reliefs with the mesh-in impact paper's six parameters
     (:class:`gearmesh.gear.Modification`, y1..y6):
 
     * tip relief  δ = y2·((ρ − (ρ_tip − y4))/y4)²  for ρ > ρ_tip − y4, ρ_tip = ρ_EAP;
@@ -278,7 +278,7 @@ def modification_depth(geom: PairGeometry, gear: int, rho, z) -> np.ndarray:
 
     so each relief is 0 where it starts and reaches its amount at the tip, at the start of
     active profile and at the face ends (ISO 21771:2007 §7 profile and helix modifications;
-    the usual parabolic forms, e.g. Litvin & Fuentes §9.6). Seed 000 prints
+    the usual parabolic forms, e.g. Litvin & Fuentes §9.6). The mesh-in impact paper prints
     δ_p = Δ(1 − (1 − 2h/L)²), a bump that vanishes at both ends of the relief zone (zero at
     the tip), and δ_l = y5(1 − (2|w|/(B − L_w))²), which falls towards the face ends; both
     contradict "tip relief", "root relief" and "crowning" and are replaced here. Below the

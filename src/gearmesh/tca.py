@@ -18,7 +18,7 @@ cos βb along d; :func:`gearmesh.surface.plane_of_action_normal`). A lead slope 
 the base tangent, so it adds to the transverse gap unchanged.
 
 Positive TE means the gear lags its conjugate position (the pinion has to turn further by
-TE/r_b1 before the flanks touch); as a gear angle it is TE/r_b2, and seed 000's
+TE/r_b1 before the flanks touch); as a gear angle it is TE/r_b2, and the mesh-in impact paper's
 θ_TE = φ2 − (N1/N2)φ1 equals −TE/r_b2 with φ2 counted in the gear's direction of travel.
 
 Candidate points
@@ -28,7 +28,7 @@ face (the 'centre' rule of :func:`gearmesh.stiffness.slice_samples`: the same po
 for bit, as :func:`gearmesh.contact.contact_roll_positions`). A point is a candidate when
 its s lies within the active zone [0, g_α] (flank-to-flank, region 1) or up to
 ``extension`` beyond it, where load can bring a tip corner into contact before SAP or
-after EAP (seed 000, scenario 1):
+after EAP (the mesh-in impact paper, scenario 1):
 
 * region 2, s < 0 (approach): the gear's tip edge, not yet at the start of the path of
   contact A, against the pinion flank;
@@ -544,7 +544,7 @@ class TCAResult:
         (:func:`engagement_point`).
     te_at_engagement : TE (m) of the whole mesh at φ1A.
     te_next_pair_at_engagement : the entering pair's own separation (m) at φ1A — its TE
-        curve there (seed 000's TE(φ1A), compared with LTE(φ1A)).
+        curve there (the mesh-in impact paper's TE(φ1A), compared with LTE(φ1A)).
     lead_slope : (2,) lead slope deviations (m over the face width); misalignment the mesh's
         further lead mismatch (m; :mod:`gearmesh.deviation`).
     """

@@ -3,7 +3,7 @@ the statistics over them.
 
 A gear is never made to its nominal micro-geometry. The deviation model here has two parts:
 
-* each modification parameter of seed 000 (relief and crowning amounts, their lengths) lies
+* each modification parameter of the mesh-in impact paper (relief and crowning amounts, their lengths) lies
   within ± its tolerance (a study setting, µm / mm per pair-file key) — on every flank where the
   nominal parameter is not zero (a relief that is not designed is not made: zero stays zero);
 * the lead (helix) slope deviation of each gear lies within ±f_Hβ of an ISO 1328-1 flank

@@ -160,7 +160,7 @@ def tooth_model(geom: PairGeometry, gear: int, method: str, profile=None) -> Too
 
 
 def _transition_model(geom: PairGeometry, gear: int, profile, common: dict) -> ToothModel:
-    """Seed 003's segmented cantilever: trochoid fillet (profile.py) then involute."""
+    """The transition-curve paper's segmented cantilever: trochoid fillet (profile.py) then involute."""
     from . import profile as prof  # written alongside; imported lazily
 
     if profile is None:

@@ -1,10 +1,10 @@
-"""Dynamics-stage datasets: the speed sweep of the 8-DOF pair (seed 001 §4–5) and the 9-DOF
-plate–blanket–impression train (seed 004), from :mod:`gearmesh.dynamics`.
+"""Dynamics-stage datasets: the speed sweep of the 8-DOF pair (the low-fluctuation paper §4–5) and the 9-DOF
+plate–blanket–impression train (the improved potential-energy paper), from :mod:`gearmesh.dynamics`.
 
 Engineering units at the boundary (rpm, N·m, µm, N·s/m), SI inside and in the datasets. Every
 variable has ``units`` and ``long_name``. Statistics are over the steady-state record window
 (whole mesh periods, :func:`gearmesh.dynamics.simulate`): ``*_rms`` is sqrt(mean(x²)) with the
-mean included (as seed 001's RMS), ``*_std`` the fluctuation about the mean.
+mean included (as the low-fluctuation paper's RMS), ``*_std`` the fluctuation about the mean.
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from ..dynamics import (
     DAMPING_MEANING,
     DEFAULT_DAMPING_RATIO,
     FIRST_PART_AFTER_A,
-    SEED001_BEARING,
+    LOW_FLUCTUATION_BEARING,
     TRAIN_GEARS,
     GearModel,
     full_translations,
@@ -55,9 +55,9 @@ from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, IMPACT_INDEX, p
 from ..settings import Dynamics, DynamicsComparison, PairExcitation, SteadyState, TrainDynamics
 
 DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
-#: Seed 004: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
-SEED004_MESH_FREQUENCY_HZ = 249.4
-SEED004_STATIC_FORCE_N = 2832.0
+#: The improved potential-energy paper: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
+PRINTING_TRAIN_MESH_FREQUENCY_HZ = 249.4
+PRINTING_TRAIN_STATIC_FORCE_N = 2832.0
 
 
 # --------------------------------------------------------------------------------------
@@ -406,7 +406,7 @@ def _grid(ds: xr.Dataset) -> xr.Dataset:
 
 
 # --------------------------------------------------------------------------------------
-# 8-DOF pair sweep (seed 001)
+# 8-DOF pair sweep (the low-fluctuation paper)
 # --------------------------------------------------------------------------------------
 
 _PAIR_GEARS = ("pinion", "gear")
@@ -480,8 +480,8 @@ def contact_tables(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOO
 def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion", backlash_um="pair",
                      bearing_k_radial_N_per_m: float | str = "pair",
                      bearing_k_axial_N_per_m: float | str = "pair",
-                     bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
-                     bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
+                     bearing_c_radial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_radial"],
+                     bearing_c_axial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                      stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
                      method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
@@ -494,7 +494,7 @@ def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion
     error of the ``ltca`` dataset (:func:`ltca_excitation`, the variant's micro-geometry
     included); 'tvms' / 'lste' the slice stiffness (``stiffness`` dataset or computed) with
     ``transmission_error_um`` (or none), 'tvms' with the loaded extension of contact beyond the
-    active zone at the torque (:func:`gearmesh.ltca.with_loaded_extension`; 'lste' is seed 001's
+    active zone at the torque (:func:`gearmesh.ltca.with_loaded_extension`; 'lste' is the low-fluctuation paper's
     literal form without it).
     """
     geom = pair_geometry(pair)
@@ -733,8 +733,8 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      backlash_um="pair",
                      bearing_k_radial_N_per_m: float | str = "pair",
                      bearing_k_axial_N_per_m: float | str = "pair",
-                     bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
-                     bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
+                     bearing_c_radial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_radial"],
+                     bearing_c_axial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_axial"],
                      damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                      stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
                      method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
@@ -746,7 +746,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                      table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
                      table_force_factor: float = 4.0, variant: str = "", stiffness: xr.Dataset | None = None,
                      ltca: xr.Dataset | None = None, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
-    """Speed sweeps of the 8-DOF helical pair at one or more torques (seed 001 §4; model and
+    """Speed sweeps of the 8-DOF helical pair at one or more torques (the low-fluctuation paper §4; model and
     solver in :mod:`gearmesh.dynamics`). Dimensions (torque, speed) and, for the kept series,
     (torque, sample_speed, sample).
 
@@ -757,15 +757,15 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     backlash_um : total backlash 2b0 (µm) along the normal; 'pair' the pair's own (from its
         centre distance and shifts; the dataset says which); null = none.
     bearing_* : bearing stiffness (N/m) and damping (N·s/m), radial (x, y) and axial (z),
-        seed 001 values by default.
+        the low-fluctuation paper values by default.
     damping_ratio : mesh damping ratio ζ (-), or ``mesh_damping_Ns_per_m`` directly.
-    stiffness_form : 'fourier' (order ``fourier_order``, seed 004) or 'table'.
+    stiffness_form : 'fourier' (order ``fourier_order``, the improved potential-energy paper) or 'table'.
     excitation : 'contact' (the real tooth contact, :mod:`gearmesh.meshforce`: the table is built
         per torque (its mesh misalignment) from ``method``, ``contact_law``, ``points``,
         ``table_positions``, ``table_approaches`` and ``table_force_factor`` × the largest static
         force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error at each torque),
         'tvms' (the slice stiffness with ``transmission_error_um`` or none, plus the tip-edge contact
-        the LTCA loads beyond the active zone at the torque), 'lste' (seed 001 literal); null: 'ltca' with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
+        the LTCA loads beyond the active zone at the torque), 'lste' (the low-fluctuation paper literal); null: 'ltca' with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
     method, slices, positions : slice model (and the TVMS grid when no upstream ``stiffness``).
     sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
         the record window) and spectra (to ``max_order`` mesh orders) are kept.
@@ -908,18 +908,18 @@ def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEF
 
 
 # --------------------------------------------------------------------------------------
-# 9-DOF train (seed 004)
+# 9-DOF train (the improved potential-energy paper)
 # --------------------------------------------------------------------------------------
 
 
 @check_arguments(TrainDynamics)
-def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_FORCE_N,
+def train_dataset(pair: GearPair, static_force_N: float | None = PRINTING_TRAIN_STATIC_FORCE_N,
                   torque_Nm: float | None = None, speeds_rpm: Any = None,
-                  mesh_frequency_Hz: float = SEED004_MESH_FREQUENCY_HZ, backlash_um="pair",
+                  mesh_frequency_Hz: float = PRINTING_TRAIN_MESH_FREQUENCY_HZ, backlash_um="pair",
                   bearing_k_radial_N_per_m: float | str = "pair",
                   bearing_k_axial_N_per_m: float | str = "pair",
-                  bearing_c_radial_Ns_per_m: float = SEED001_BEARING["c_radial"],
-                  bearing_c_axial_Ns_per_m: float = SEED001_BEARING["c_axial"],
+                  bearing_c_radial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_radial"],
+                  bearing_c_axial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_axial"],
                   damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
                   stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
                   method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
@@ -930,14 +930,14 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
                   table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
                   table_force_factor: float = 4.0, stiffness: xr.Dataset | None = None,
                   fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
-    """The 9-DOF plate–blanket–impression train of seed 004 (:func:`gearmesh.dynamics.train_model`).
+    """The 9-DOF plate–blanket–impression train of the improved potential-energy paper (:func:`gearmesh.dynamics.train_model`).
 
-    Assumptions (seed 004 gives neither torque nor speed nor bearings): the three gears are
-    the pair file's gear repeated (seed 004: alike, 88 teeth) with the pair's TVMS for both
-    meshes; the load is given as the static normal mesh force ``static_force_N`` (seed 004:
+    Assumptions (the improved potential-energy paper gives neither torque nor speed nor bearings): the three gears are
+    the pair file's gear repeated (the improved potential-energy paper: alike, 88 teeth) with the pair's TVMS for both
+    meshes; the load is given as the static normal mesh force ``static_force_N`` (the improved potential-energy paper:
     2832 N; T = F r_b cos βb) unless ``torque_Nm`` is given; the speed is the one whose mesh
-    frequency is ``mesh_frequency_Hz`` (seed 004: 249.4 Hz → 170.05 rpm) unless
-    ``speeds_rpm`` is given; bearings are seed 001's, the backlash the pair's own unless
+    frequency is ``mesh_frequency_Hz`` (the improved potential-energy paper: 249.4 Hz → 170.05 rpm) unless
+    ``speeds_rpm`` is given; bearings are the low-fluctuation paper's, the backlash the pair's own unless
     given; meshes in phase. ``excitation`` 'tvms' (default), 'lste' or 'contact' (both meshes
     driven by the pair's mesh force table, settings as :func:`dynamics_dataset`).
     Time series and spectra are kept at every speed (give few).
@@ -1025,14 +1025,14 @@ def train_dataset(pair: GearPair, static_force_N: float | None = SEED004_STATIC_
 @check_arguments(DynamicsComparison)
 def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
                                 couples: Sequence[Sequence[str]] | None = None) -> xr.Dataset:
-    """RMS changes between pairs over a common speed sweep (seed 001 §4–5, its comparisons).
+    """RMS changes between pairs over a common speed sweep (the low-fluctuation paper §4–5, its comparisons).
 
     Over the configured speeds (``on_grid``; each pair's added resonance speeds differ), at each
     sweep's first torque. For
     each (pair, reference) couple: the mean over speeds of the relative change of the
-    mesh-deflection standard deviation (seed 001's "DTE"), and for each gear and direction the mean relative change and the
+    mesh-deflection standard deviation (the low-fluctuation paper's "DTE"), and for each gear and direction the mean relative change and the
     change of the highest peak of the displacement standard deviation and velocity RMS
-    (seed 001 reports "across most speeds" and "at the resonance peaks"). Default couples:
+    (the low-fluctuation paper reports "across most speeds" and "at the resonance peaks"). Default couples:
     every pair against the first.
     """
     by_name = {d.attrs.get("pair_name", str(i)): d for i, d in enumerate(dynamics)}

@@ -90,8 +90,8 @@ def geometry_dataset(pair: GearPair, *, involute_points: int, fillet_points: int
     (modified) flank surface of each gear on a (profile, face) grid, in each gear's body frame.
 
     Profile and surface come from :mod:`gearmesh.profile` (rack-generated involute and
-    trochoid fillet, seed 003) and :mod:`gearmesh.surface` (involute helicoid, seed 002, with
-    the six-parameter modification of seed 000 along the normal).
+    trochoid fillet, the transition-curve paper) and :mod:`gearmesh.surface` (involute helicoid, the contact-line paper, with
+    the six-parameter modification of the mesh-in impact paper along the normal).
     """
     geom = pair_geometry(pair)
     profiles = [tooth_profile(geom, g, n_fillet=fillet_points, n_involute=involute_points) for g in range(2)]
@@ -128,7 +128,7 @@ def geometry_dataset(pair: GearPair, *, involute_points: int, fillet_points: int
 
 @check_arguments(ContactLines)
 def contact_lines_dataset(pair: GearPair, *, positions: int) -> xr.Dataset:
-    """Contact lines and total length L(φ) over one mesh cycle (seed 002; seed 001 §1, §5).
+    """Contact lines and total length L(φ) over one mesh cycle (the contact-line paper; the low-fluctuation paper §1, §5).
 
     Positions are pinion roll distances over one transverse base pitch. Each line is given
     by its clipped end points in the plane of action (s, z) and in 3-D, in the fixed frame
@@ -186,7 +186,7 @@ def contact_lines_dataset(pair: GearPair, *, positions: int) -> xr.Dataset:
 @check_arguments(HelixSweep)
 def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_deg: float, step_deg: float, *,
                         positions: int) -> xr.Dataset:
-    """Contact-length statistics against helix angle for each pair (seed 002; seed 001 §5).
+    """Contact-length statistics against helix angle for each pair (the contact-line paper; the low-fluctuation paper §5).
 
     Each helix angle is a full new pair geometry at its zero-backlash centre distance
     (:func:`gearmesh.design.overlap_fluctuation_curve`); angles whose pair cannot work are
@@ -236,7 +236,7 @@ DESIGN_ROUTES = {  # name -> (design function, direction)
 
 @check_arguments(LowFluctuationDesign)
 def low_fluctuation_design_dataset(pairs: Mapping[str, GearPair]) -> xr.Dataset:
-    """Integer-overlap-ratio designs of each pair (seed 001 §1, §5): the original and its
+    """Integer-overlap-ratio designs of each pair (the low-fluctuation paper §1, §5): the original and its
     helix-angle (forward/backward) and face-width (forward/backward) redesigns, with εα,
     εβ and the contact-line fluctuation ε_l of each. Routes with no solution are NaN and
     the reason is in the ``refused`` attribute."""

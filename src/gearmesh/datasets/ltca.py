@@ -325,7 +325,7 @@ def lte_table_dataset(ltca: Sequence[xr.Dataset]) -> xr.Dataset:
 
 
 def lste_comparison_dataset(stiffness: Sequence[xr.Dataset], ltca: Sequence[xr.Dataset]) -> xr.Dataset:
-    """LSTE of each pair by the LTCA next to F/K(φ) of the stiffness stage (seed 001 §3).
+    """LSTE of each pair by the LTCA next to F/K(φ) of the stiffness stage (the low-fluctuation paper §3).
 
     ``stiffness`` and ``ltca`` are the per-pair datasets in the same pair order; the LTCA
     torque equal to the stiffness stage's LSTE torque (pinion torques) is compared.

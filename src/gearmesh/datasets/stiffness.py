@@ -57,8 +57,8 @@ def stiffness_dataset(pair: GearPair, *, method: str, slices: int, positions: in
                       torque_Nm: float | None, torque_on: str, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
     """K(φ) of ``pair`` by the slice potential energy method (:func:`gearmesh.stiffness.mesh_stiffness`),
     with its components, one tooth pair's k over its engagement, the Fourier series of K to
-    ``fourier_order`` (seed 004) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
-    torque the LSTE F/K(φ) (seed 001). Stiffness is along the transverse line of action
+    ``fourier_order`` (the improved potential-energy paper) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
+    torque the LSTE F/K(φ) (the low-fluctuation paper). Stiffness is along the transverse line of action
     (force F = T1/r_b1); multiply by 1/cos²βb for the normal direction. With ``method='fe'``,
     ``fe_compliance`` (the pair's fe_compliance.nc) supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
     """
@@ -184,7 +184,7 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], *, methods: Sequence[
                             torque_Nm: float | None, torque_on: str) -> xr.Dataset:
     """A comparison table over pairs (and pair-file variants of each) and cantilever methods:
     mean/min/max K, ε_k, ISO 6336-1 mesh stiffness and, with a torque, LSTE mean and
-    peak-to-peak (seed 001 Table/§3, seed 003 parametric tables, seed 004 method table)."""
+    peak-to-peak (the low-fluctuation paper Table/§3, the transition-curve paper parametric tables, the improved potential-energy paper method table)."""
     cases: dict[str, GearPair] = {}
     for name, pair in pairs.items():
         for vname, overrides in (variants or {"as_given": {}}).items():
@@ -235,7 +235,7 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], *, methods: Sequence[
 @check_arguments(SliceConvergence)
 def slice_convergence_dataset(pairs: Mapping[str, GearPair], *, slices: Sequence[int], method: str,
                               positions: int) -> xr.Dataset:
-    """K statistics against the slice count for both slice rules (seed 004 argues N = 1000):
+    """K statistics against the slice count for both slice rules (the improved potential-energy paper argues N = 1000):
     'centre' (whole slices, the documents' sampling) and 'clip' (end slices clipped), with
     the relative difference of the mean to the finest 'clip' result."""
     rules = ("centre", DEFAULT_RULE) if DEFAULT_RULE != "centre" else ("centre",)

@@ -1,5 +1,5 @@
-"""Lumped-parameter gear dynamics: the 8-DOF helical pair (seed 001 §4) and the 9-DOF
-three-gear train (seed 004), with time-varying mesh stiffness or the real tooth contact and
+"""Lumped-parameter gear dynamics: the 8-DOF helical pair (the low-fluctuation paper §4) and the 9-DOF
+three-gear train (the improved potential-energy paper), with time-varying mesh stiffness or the real tooth contact and
 backlash, integrated over a whole speed sweep.
 
 The subpackage, data flowing one way: :mod:`~gearmesh.dynamics.excitation` (what drives a mesh:
@@ -14,7 +14,7 @@ pinion turning counter-clockwise about +z, the transverse line of action along
 d = (sin αwt, cos αwt). Every rotation θ is measured positive in the sense in which that gear
 turns (pinion counter-clockwise, gear clockwise), as φ1, φ2 of :mod:`gearmesh.contact`.
 
-8-DOF pair (seed 001 §4, corrected)
+8-DOF pair (the low-fluctuation paper §4, corrected)
 -----------------------------------
 Coordinates x_p, y_p, z_p, θ_p, x_g, y_g, z_g, θ_g. The dynamic transmission error along the
 *normal* to the flanks (the seed's "mesh line") is::
@@ -34,7 +34,7 @@ and the equations of motion follow from the virtual work −F ∂δ/∂q::
     m_p z̈_p + c_z ż_p + k_z z_p = +h F sin βb            m_g z̈_g + … = −h F sin βb
     I_p θ̈_p = T_in − F r_b1 cos βb                        I_g θ̈_g = F r_b2 cos βb − T_out
 
-What was changed from seed 001's printed equations, and why:
+What was changed from the low-fluctuation paper's printed equations, and why:
 
 * The projections use the transverse operating pressure angle αwt and the base helix angle
   βb, where the seed writes αn and β: the normal to an involute helicoid lies in the plane
@@ -53,19 +53,19 @@ What was changed from seed 001's printed equations, and why:
   drive-side contact, so that δ is the elastic approach (mean F/k for a steady load), the gap
   is −2b0 < δ < 0 and back-side contact is δ < −2b0. The mesh damper acts only while the
   teeth touch (a viscous damper across an open gap would transmit force without contact).
-* Static transmission error e(t): seed 001 puts the loaded static TE e = F/K(t) into (1)
+* Static transmission error e(t): the low-fluctuation paper puts the loaded static TE e = F/K(t) into (1)
   *and* keeps k_m(t) in (2). Then the quasi-static solution still has δ = F/K(t), but the
   approach of the bodies, δ + e (what the rotations and bearings see), is 2F/K(t): the
   stiffness fluctuation is counted twice. The default here (``excitation='tvms'``) is the
   consistent form: e(t) is the *unloaded* (kinematic) TE, zero for unmodified flanks, and
   the fluctuation of k_m(t) is the excitation, whose quasi-static response is an approach
-  δ = F/K(t), the LSTE of seed 001 §2. ``excitation='lste'`` reproduces the seed literally;
+  δ = F/K(t), the LSTE of the low-fluctuation paper §2. ``excitation='lste'`` reproduces the seed literally;
   a tabulated unloaded TE (e.g. from LTCA) can be added with ``transmission_error``.
 
 Stiffness: k_m(t) is the stiffness along the normal, K_n = K/cos²βb, with K the transverse
 TVMS of :func:`gearmesh.stiffness.mesh_stiffness`, as a function of the pinion roll
 r_b1·Ω·t (Ω the nominal speed; the vibration does not change the mesh phase, the usual
-assumption). Either its Fourier series of order 3 (seed 004) or the full tabulated curve
+assumption). Either its Fourier series of order 3 (the improved potential-energy paper) or the full tabulated curve
 (periodic linear interpolation). Mesh damping: ζ = 0.07 by default (a mid value of the range
 0.03–0.17 used in gear-pair models, e.g. Kahraman & Singh 1990, J. Sound Vib. 142:49; Parker,
 Vijayakar & Imajo 2000, J. Sound Vib. 237:435) is the *modal damping ratio of the mesh mode*
@@ -85,7 +85,7 @@ The rigid-body rotation is removed: the rotations enter only through the relativ
 inertias and R the map θ → q, q̈ = R J⁻¹ τ − R J⁻¹ Rᵀ (∂δ/∂q)ᵀ F. The mean rotation never
 appears, so long runs cannot drift.
 
-9-DOF train (seed 004)
+9-DOF train (the improved potential-energy paper)
 ----------------------
 Plate (P) drives blanket (B) drives impression (I): coordinates y, z, θ per gear, y along
 the line of centres (the seed's "radial" direction), the three centres on one line. Mesh 1
@@ -99,7 +99,7 @@ a screw motion of a helical gear (axial slide dz with the turn dθ = tan βb dz 
 helicoid mapped onto itself) changes no δ. The blanket has the other hand *and* turns the
 other way, so in its own coordinates its screw has the same sense as the plate's and the
 impression's, and its two meshes load it on opposite sides: the idler carries no net
-thrust (its two axial forces cancel), plate and impression carry ±F sin βb. Seed 004
+thrust (its two axial forces cancel), plate and impression carry ±F sin βb. The improved potential-energy paper
 prints δ_1 = (y_P − y_B) cos βb +
 (z_P − z_B) sin βb + r_bP θ_P − r_bB θ_B − e_1: its y term has no pressure-angle projection
 and its rotation term no cos βb, which do not follow from one normal direction; the form
@@ -141,13 +141,13 @@ check. The step loop is compiled (numba; :mod:`gearmesh.dynamics.integrate`).
 
 from .excitation import EXCITATIONS, FOURIER_TABLE_POINTS, STIFFNESS_FORMS, MeshLaw, contact_mesh_law, mesh_law
 from .integrate import FIRST_PART_AFTER_A, MAX_STEPS_PER_SPEED, SolverSettings, SweepResult, simulate, step_plan
-from .model import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, RESONANCE_OFFSETS, full_translations, mesh_mode, SEED001_BEARING, TRAIN_GEARS, GearModel, mesh_energy_fraction,
+from .model import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, RESONANCE_OFFSETS, full_translations, mesh_mode, LOW_FLUCTUATION_BEARING, TRAIN_GEARS, GearModel, mesh_energy_fraction,
                     pair_model, require_dynamics_data, resonance_band, resonance_speeds, train_model)
 from .reference import reference_solution, simulate_numpy
 
 __all__ = [
     "EXCITATIONS", "FOURIER_TABLE_POINTS", "STIFFNESS_FORMS", "MeshLaw", "contact_mesh_law", "mesh_law",
     "FIRST_PART_AFTER_A", "MAX_STEPS_PER_SPEED", "SolverSettings", "SweepResult", "simulate", "step_plan",
-    "DAMPING_MEANING", "DEFAULT_DAMPING_RATIO", "full_translations", "mesh_mode", "SEED001_BEARING", "TRAIN_GEARS", "GearModel", "pair_model", "require_dynamics_data",
+    "DAMPING_MEANING", "DEFAULT_DAMPING_RATIO", "full_translations", "mesh_mode", "LOW_FLUCTUATION_BEARING", "TRAIN_GEARS", "GearModel", "pair_model", "require_dynamics_data",
     "resonance_speeds", "resonance_band", "mesh_energy_fraction", "RESONANCE_OFFSETS", "train_model", "reference_solution", "simulate_numpy",
 ]

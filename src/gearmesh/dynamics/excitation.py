@@ -5,7 +5,7 @@ flanks (the models' coordinate δ = cos βb × transverse):
 
 * ``tvms`` — a time-varying stiffness k(t) of the slice model and a kinematic error e(t) (zero
   for perfect flanks, or a tabulated unloaded TE): F = k(t)·(δ − e(t)) + c(δ̇ − ė);
-* ``lste`` — seed 001's literal form, e = F/K(t) as well as k(t) (counts the fluctuation twice;
+* ``lste`` — the low-fluctuation paper's literal form, e = F/K(t) as well as k(t) (counts the fluctuation twice;
   kept to reproduce the document);
 * ``ltca`` — the LTCA's loaded stiffness k_L(t) and equivalent error e = LTE − F/k_L (Velex &
   Ajmi 2006, J. Sound Vib. 290:882): the linearisation of the real contact about its static
@@ -96,9 +96,9 @@ def mesh_law(geom: PairGeometry, K_transverse: np.ndarray, torque: float, stiffn
     K_transverse : (P,) transverse mesh stiffness K (N/m) at evenly spaced pinion rolls over
         one base pitch (:attr:`gearmesh.stiffness.MeshStiffness.K`, or the LTCA's k_L).
     torque : pinion torque T1 (N·m), for the seed-001 excitation e = F/K.
-    stiffness_form : 'fourier' (series of ``order``, seed 004) or 'table' (full curve).
+    stiffness_form : 'fourier' (series of ``order``, the improved potential-energy paper) or 'table' (full curve).
     excitation : 'tvms' or 'ltca' (e = the given ``transmission_error``, or none) or 'lste'
-        (seed 001 literal: e = F_bt/K(t) along the transverse line of action, × cos βb along the
+        (the low-fluctuation paper literal: e = F_bt/K(t) along the transverse line of action, × cos βb along the
         normal). For 'contact' use :func:`contact_mesh_law`.
     transmission_error : optional (Q,) static TE (m) along the *transverse* line of action at
         evenly spaced rolls over one base pitch (unloaded TE, or the LTCA's e = LTE − F/k_L),

@@ -1,5 +1,5 @@
-"""The linear multi-body gear models with nonlinear meshes: the 8-DOF helical pair (seed 001 §4)
-and the 9-DOF plate–blanket–impression train (seed 004); equations and the corrections made to
+"""The linear multi-body gear models with nonlinear meshes: the 8-DOF helical pair (the low-fluctuation paper §4)
+and the 9-DOF plate–blanket–impression train (the improved potential-energy paper); equations and the corrections made to
 the documents in the package docstring (:mod:`gearmesh.dynamics`)."""
 
 from __future__ import annotations
@@ -16,10 +16,10 @@ from ..meshforce import MeshForceTable
 from ..supports import DEFAULT_SUPPORTS_N_PER_UM
 from .excitation import MeshLaw, contact_mesh_law, mesh_law
 
-#: Seed 001 §4 bearing values: k_x = k_y = 1.5e8 N/m, k_z = 1e7 N/m, c = 1000 N·s/m. The
+#: The low-fluctuation paper §4 bearing values: k_x = k_y = 1.5e8 N/m, k_z = 1e7 N/m, c = 1000 N·s/m. The
 #: stiffnesses are the supports of a pair file that gives none (:mod:`gearmesh.supports`); the
 #: damping values are the bearing damping of every model unless the call says otherwise.
-SEED001_BEARING = {"k_radial": DEFAULT_SUPPORTS_N_PER_UM["bearing_radial_stiffness_N_per_um"] * 1e6,
+LOW_FLUCTUATION_BEARING = {"k_radial": DEFAULT_SUPPORTS_N_PER_UM["bearing_radial_stiffness_N_per_um"] * 1e6,
                    "k_axial": DEFAULT_SUPPORTS_N_PER_UM["bearing_axial_stiffness_N_per_um"] * 1e6,
                    "c_radial": 1.0e3, "c_axial": 1.0e3}
 #: Mesh damping ratio ζ: a mid value of the 0.03–0.17 range of gear-pair models (package docstring).
@@ -227,11 +227,11 @@ def _bearing_settings(geom: PairGeometry, bearing: Mapping[str, float] | None) -
     """The supports of each gear: the pair file's (:class:`gearmesh.supports.Supports`, shaft
     bending included) with any of ``bearing``'s keys overriding them for both gears (stiffness
     > 0 in N/m or inf for rigid: an unsupported direction would leave a rigid-body mode), and
-    the bearing damping (≥ 0, N·s/m; default seed 001's). Stiffnesses as [pinion, gear] tuples."""
+    the bearing damping (≥ 0, N·s/m; default the low-fluctuation paper's). Stiffnesses as [pinion, gear] tuples."""
     given = dict(bearing or {})
     for key, v in given.items():
-        if key not in SEED001_BEARING:
-            raise GearmeshInputError(f"bearing.{key}", v, f"unknown key; allowed {sorted(SEED001_BEARING)}")
+        if key not in LOW_FLUCTUATION_BEARING:
+            raise GearmeshInputError(f"bearing.{key}", v, f"unknown key; allowed {sorted(LOW_FLUCTUATION_BEARING)}")
         if key.startswith("k_"):
             if not (isinstance(v, (int, float, np.floating)) and v == math.inf):
                 _check_positive(f"bearing.{key}", v)
@@ -239,7 +239,7 @@ def _bearing_settings(geom: PairGeometry, bearing: Mapping[str, float] | None) -
             _check_nonneg(f"bearing.{key}", v)
     sup = geom.pair.supports
     out: dict[str, Any] = {"k_radial": sup.radial(geom.pair.material.youngs_modulus), "k_axial": sup.axial(),
-                           "c_radial": SEED001_BEARING["c_radial"], "c_axial": SEED001_BEARING["c_axial"]}
+                           "c_radial": LOW_FLUCTUATION_BEARING["c_radial"], "c_axial": LOW_FLUCTUATION_BEARING["c_axial"]}
     for key, v in given.items():
         out[key] = (float(v), float(v)) if key.startswith("k_") else float(v)
     return out
@@ -273,7 +273,7 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
                backlash: float | None = 60e-6, stiffness_form: str = "fourier", order: int = 3,
                excitation: str = "tvms", transmission_error=None, mesh_damping: float | None = None,
                contact: MeshForceTable | None = None) -> GearModel:
-    """The 8-DOF bending–torsion–axial helical pair of seed 001 §4 (package docstring, eqs. 1–2).
+    """The 8-DOF bending–torsion–axial helical pair of the low-fluctuation paper §4 (package docstring, eqs. 1–2).
 
     Parameters
     ----------
@@ -282,7 +282,7 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
     K_transverse : (P,) transverse TVMS K (N/m) evenly over one base pitch.
     bearing : overrides for both gears of k_radial, k_axial (N/m, inf: rigid), c_radial, c_axial
         (N·s/m); the stiffnesses default to the pair file's supports (:mod:`gearmesh.supports`, seed
-        001's 1.5e8 / 1e7 when it gives none), the damping to seed 001's 1000 N·s/m.
+        001's 1.5e8 / 1e7 when it gives none), the damping to the low-fluctuation paper's 1000 N·s/m.
     damping_ratio : modal damping ratio ζ (-) of the mesh mode, the mesh damper sized to give it
         (:func:`_with_mesh_damping`; ignored when ``mesh_damping`` (N·s/m) is given).
     backlash : total backlash 2b0 (m) along the normal; None = no backlash (contact never
@@ -446,14 +446,14 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | No
                 stiffness_form: str = "fourier", order: int = 3, excitation: str = "tvms",
                 phase_offsets: Sequence[float] = (0.0, 0.0), mesh_damping: float | None = None,
                 contact: MeshForceTable | None = None) -> GearModel:
-    """The 9-DOF plate–blanket–impression train of seed 004 (package docstring).
+    """The 9-DOF plate–blanket–impression train of the improved potential-energy paper (package docstring).
 
     The three gears are the pair file's gear (index 1) repeated, the pair's TVMS serving both
-    meshes (assumption: seed 004's gears are alike, 88 teeth each), the plate driven by
+    meshes (assumption: the improved potential-energy paper's gears are alike, 88 teeth each), the plate driven by
     ``torque`` (N·m) and the impression loaded by it; y along the line of centres, each gear on
     the pair file's gear supports (radial for y, axial for z; ``bearing`` overrides them as in
     :func:`pair_model`). ``phase_offsets`` (mesh cycles) shift each mesh's
-    TVMS (default in phase: seed 004 finds the two mesh forces nearly identical). With
+    TVMS (default in phase: the improved potential-energy paper finds the two mesh forces nearly identical). With
     ``contact`` (the pair's mesh force table) both meshes are driven by the real contact.
     """
     require_dynamics_data(geom)

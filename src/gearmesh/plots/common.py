@@ -56,8 +56,8 @@ def save(fig: Figure, path: str | Path) -> Path:
 def pair_label(ds: xr.Dataset) -> str:
     """The dataset's gear pair as a reader knows it: its data ("29/71 teeth, module 5 mm, helix
     27.5°, face 42 mm", from the pair data the result was computed with), after its name for a
-    pair of the user's own; the shipped example pairs' names (seed000_case, ...) are the source
-    documents' file numbers, which say nothing to a reader, so they are left out. Empty for a
+    pair of the user's own; the shipped example pairs' names (helical_z29_71_m5, ...) only restate
+    their data, so they are left out. Empty for a
     result of no single pair."""
     name = ds.attrs.get("pair_name", "")
     try:

@@ -96,7 +96,7 @@ def plot_contact_lines(ds: xr.Dataset, path: str | Path, snapshots: int = 4) -> 
 
 
 def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
-    """ε_l and mean contact length against helix angle for each pair (the V-curve, seed 001 §5):
+    """ε_l and mean contact length against helix angle for each pair (the V-curve, the low-fluctuation paper §5):
     the closed form solid, the sampled lines dashed where they differ from it visibly (where they
     do not, the legend gives their largest difference instead of a hidden curve)."""
     fig, (ax1, ax2) = subplots(2, 1, figsize=(7, 6.8), sharex=True)

@@ -47,7 +47,7 @@ def plot_force_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_mesh_in_trajectory(ds: xr.Dataset, path: str | Path) -> Path:
     """Where M lies on the pinion flank (face position against roll length) for every torque,
-    coloured by scenario, with SAP, tip and face ends (seed 000 Table 3): the whole flank on
+    coloured by scenario, with SAP, tip and face ends (the mesh-in impact paper Table 3): the whole flank on
     the left, a close-up around the points (labelled with their torque) on the right."""
     fig, axes = subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1, 1.3]})
     b = float(ds["face_width"]) * MM

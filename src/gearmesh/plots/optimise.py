@@ -82,7 +82,7 @@ def _depth_map(ds: xr.Dataset, gear: int, n_profile: int = 161, n_face: int = 12
 
 
 def _words(p_gear) -> str:
-    """Seed 000's six parameters of one gear (y1..y6, m) in words."""
+    """The mesh-in impact paper's six parameters of one gear (y1..y6, m) in words."""
     y1, y2, y3, y4, y5, y6 = p_gear
     parts = [f"tip relief {number(y2 * UM)} µm over {number(y4 * MM)} mm" if y2 > 0 and y4 > 0 else "no tip relief",
              f"root relief {number(y1 * UM)} µm over {number(y3 * MM)} mm" if y1 > 0 and y3 > 0 else "no root relief",
@@ -117,7 +117,7 @@ def plot_modification(ds: xr.Dataset, path: str | Path) -> Path:
     colour bar above it), the profile δ(ρ) at the face centre and at a face end beside it with
     each relief zone named, the lead δ(z) at the tip and at mid-profile below it, dashed lines
     where the reliefs and the crowning begin, and the six parameters in words in the title
-    (seed 000's parabolic tip and root reliefs and lead crowning,
+    (the mesh-in impact paper's parabolic tip and root reliefs and lead crowning,
     :func:`gearmesh.surface.modification_depth`)."""
     p = ds["optimum_modification"].values
     gears = [g for g in range(2) if g == 0 or np.any(p[g] > 0)]
