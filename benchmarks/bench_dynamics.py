@@ -40,7 +40,8 @@ import xarray as xr
 from gearmesh import dynamics as dy
 from gearmesh.datasets.dynamics import build_pair_model, contact_table, resonance_refined, speed_grid
 from gearmesh.datasets.ltca import ltca_dataset
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.stiffness import mesh_stiffness
 
 from common import CASE_PAIR, ROOT, Swap, bounded_difference, equality, max_rel_diff, median_seconds, timed_calls
@@ -147,7 +148,8 @@ def bench_damping_search(repeats: int = 5) -> dict:
     c61da5b) decides; equality of the dampers."""
     from gearmesh.dynamics import model as dm
     from gearmesh.dynamics.population import population_dynamics
-    from gearmesh.gear import load_pair, pair_geometry
+    from gearmesh.gear import pair_geometry
+    from gearmesh.pairfile import load_pair
     from gearmesh.meshforce import tabulate
 
     from common import swapped

@@ -36,7 +36,7 @@ def study_problem(run: str = "optimised"):
     (:func:`gearmesh.datasets.optimise.run_problem` with the stage's settings), and one
     generation's candidates' parameters (the run's population, seed 0 draws within the gene bounds)."""
     from gearmesh.datasets.optimise import run_problem
-    from gearmesh.gear import load_pair
+    from gearmesh.pairfile import load_pair
 
     prob = run_problem(load_pair(CASE_PAIR), **stage_settings("optimise", run))
     low = np.array([g.low for g in prob.genes])

@@ -30,7 +30,7 @@ RESULTS = ROOT / "results/impact_case/helical_z29_71_m5"
 def _job(variant: str, config: dict):
     """The impact job of ``variant``: a no-argument call of impact_dataset as the workflow makes it."""
     from gearmesh.datasets.impact import impact_dataset
-    from gearmesh.gear import load_pair, variant_pair
+    from gearmesh.pairfile import load_pair, variant_pair
 
     spec = config["variants"][variant]
     if "from" in spec:
@@ -62,7 +62,8 @@ def _addition_alone(config: dict) -> dict:
     from common import timed_calls
     from gearmesh.datasets.impact import _model
     from gearmesh.fe import use_fe_tables
-    from gearmesh.gear import load_pair, pair_geometry
+    from gearmesh.gear import pair_geometry
+    from gearmesh.pairfile import load_pair
     from gearmesh.impact import ltca_criteria
     from gearmesh.schema import defaults
     from gearmesh.settings import Impact

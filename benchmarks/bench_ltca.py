@@ -19,7 +19,8 @@ from __future__ import annotations
 import json
 import sys
 
-from gearmesh.gear import load_pair, pair_geometry, variant_pair
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair, variant_pair
 from gearmesh.ltca import ltca, ltca_model
 
 from common import CASE_PAIR, equality, median_seconds, study_config, timed_calls

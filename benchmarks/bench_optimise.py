@@ -74,7 +74,7 @@ def study_runs():
     """(wall s, CPU s, {run: (optimum J of the run, optimum J evaluated alone)}, CPU s) of both GA
     runs of the default study, set-up included (module docstring)."""
     from gearmesh.datasets.optimise import run_problem
-    from gearmesh.gear import load_pair
+    from gearmesh.pairfile import load_pair
     from gearmesh.optimise import evaluate, optimise
 
     from common import CASE_PAIR, stage_settings, study_config

@@ -31,7 +31,8 @@ from bench_optimise import bench_dynamic_objective, bench_optimise, bench_popula
 from bench_workflow import bench_imports, bench_study
 from common import ROOT, bounded_difference, equality, median_seconds, timed_calls
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 
 #: Slices of the pointwise contact-line sum (the contact-line paper's algorithm).
 POINTWISE_SLICES = 200

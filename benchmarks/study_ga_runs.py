@@ -24,7 +24,7 @@ def main(root: str, fe_tables: str) -> None:
     import yaml
 
     from gearmesh.datasets.optimise import optimise_dataset
-    from gearmesh.gear import load_pair
+    from gearmesh.pairfile import load_pair
 
     config = yaml.safe_load((root_path / "config/config.yaml").read_text())
     pair = load_pair(root_path / "config/pairs/helical_z29_71_m5.yaml")

@@ -18,7 +18,8 @@ import numpy as np
 
 from gearmesh.datasets.dynamics import build_pair_model, dynamics_dataset
 from gearmesh.dynamics import iso6336, mesh_mode
-from gearmesh.gear import example_pair, load_pair, pair_geometry, pair_to_dict, variant_pair
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair, pair_to_dict, variant_pair
 from gearmesh.stiffness import iso6336_stiffness
 from gearmesh.supports import SUPPORT_KEYS
 

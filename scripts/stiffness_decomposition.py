@@ -35,7 +35,8 @@ import numpy as np
 from gearmesh import fe
 from gearmesh import stiffness as st
 from gearmesh.body import RIGID_WEBS
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 
 PAIRS = ("helical_z29_71_m5", "low_fluctuation_pair1", "low_fluctuation_pair2", "low_fluctuation_pair3", "low_fluctuation_pair4", "contact_lines_input_z29_36",
          "contact_lines_output_z15_65", "transition_curve_z23_62", "printing_train_z88")

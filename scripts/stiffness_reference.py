@@ -30,7 +30,8 @@ import numpy as np
 
 from gearmesh import fe, fe3d
 from gearmesh import stiffness as st
-from gearmesh.gear import load_pair, pair_geometry, pair_to_dict
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair, pair_to_dict
 
 PAIR1 = {"name": "low_fluctuation_pair1", "teeth": [29, 49], "normal_module_mm": 1.75, "normal_pressure_angle_deg": 25,
          "helix_angle_deg": 10, "face_width_mm": 20, "addendum_coefficient": 1.0, "dedendum_coefficient": 1.25,

@@ -22,7 +22,8 @@ from gearmesh.datasets.ltca import ltca_dataset, tca_dataset
 from gearmesh.datasets.optimise import run_settings
 from gearmesh.datasets.stiffness import stiffness_dataset
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import GearPair, Material, load_pair, pair_from_dict, pair_geometry, variant_pair
+from gearmesh.gear import GearPair, Material, pair_geometry
+from gearmesh.pairfile import load_pair, pair_from_dict, variant_pair
 from gearmesh.optimise import check_settings
 from gearmesh.stiffness import mesh_stiffness
 from pairs import low_fluctuation_pair1

@@ -10,7 +10,8 @@ import yaml
 from gearmesh.body import _harmonic_edge, describe_body, mesh_body_compliance, plate_edge_compliance
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import example_pair, load_pair, pair_geometry, pair_to_dict
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair, pair_to_dict
 from gearmesh.ltca import ltca
 from gearmesh.stiffness import mesh_stiffness
 

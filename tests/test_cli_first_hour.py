@@ -16,7 +16,8 @@ import sysconfig
 import pytest
 
 from gearmesh.cli import build_parser, main
-from gearmesh.gear import example_pairs, load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pairs, load_pair
 
 
 def _json(capsys, argv) -> dict:

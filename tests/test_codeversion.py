@@ -26,8 +26,8 @@ def test_closure_follows_relative_and_nested_imports():
             "gearmesh.io"} <= set(closure)
     # the contact excitation drives the dynamics with the LTCA's contact model: a change to it reruns the dynamics
     assert {"gearmesh.meshforce", "gearmesh.ltca"} <= set(closure) and "gearmesh.plots.ltca" not in closure
-    # every job applies its variant's micro-geometry with gear.variant_pair: the glue imports it
-    assert "gearmesh.gear" in module_closure("gearmesh.pipeline", shallow=("gearmesh.pipeline",))
+    # every job applies its variant's micro-geometry with pairfile.variant_pair: the glue imports it
+    assert "gearmesh.pairfile" in module_closure("gearmesh.pipeline", shallow=("gearmesh.pipeline",))
 
 
 def test_versioned_spec_resolves_to_the_same_function():

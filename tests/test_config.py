@@ -51,7 +51,7 @@ def test_shipped_studies_and_their_pairs_are_valid(root, monkeypatch, name):
 
 
 def test_every_pair_file_is_a_working_pair(root):
-    from gearmesh.gear import load_pair
+    from gearmesh.pairfile import load_pair
 
     files = sorted((root / "config/pairs").glob("*.yaml"))
     assert len(files) >= 9  # one per pair of every seed

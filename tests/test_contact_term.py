@@ -5,7 +5,8 @@ LTCA's own loaded (tangent) stiffness on the same contact lines, and the tangent
 import numpy as np
 import pytest
 
-from gearmesh.gear import example_pair, load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair
 from gearmesh.ltca import contact_law, contact_tangent_compliance, ltca
 from gearmesh.stiffness import hertz_compliance_transverse, mesh_stiffness
 
@@ -87,7 +88,7 @@ def test_tvms_and_contact_put_the_mesh_mode_within_3_percent():
     """Issue 28's 'done when': the default pair at 1000 N·m, its own supports and rigid ones."""
     from gearmesh.datasets.dynamics import build_pair_model
     from gearmesh.dynamics import mesh_mode
-    from gearmesh.gear import pair_to_dict
+    from gearmesh.pairfile import pair_to_dict
 
     data = pair_to_dict(load_pair(example_pair("helical_z29_71_m5")))
     rigid = {k: v for k, v in data.items() if k not in ("shaft_diameter_mm", "bearing_span_mm")}

@@ -14,7 +14,8 @@ from scipy.integrate import cumulative_trapezoid
 from gearmesh.deflection import mesh_deflection, mesh_misalignment, shaft_deflection
 from gearmesh.deviation import Deviations, lead_gap, profile_gap, read_deviations
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import example_pair, load_pair, pair_from_dict, pair_geometry, pair_to_dict
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair, pair_from_dict, pair_to_dict
 from gearmesh.impact import impact_model, impact_static
 from gearmesh.ltca import ltca
 from gearmesh.rating import ltca_load_factors

@@ -21,7 +21,8 @@ from gearmesh.design import (
     pair_with_helix_angle,
 )
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import GearPair, pair_from_dict, pair_geometry
+from gearmesh.gear import GearPair, pair_geometry
+from gearmesh.pairfile import pair_from_dict
 
 from pairs import STEEL
 

@@ -66,7 +66,7 @@ def test_impact_doc_table_is_what_the_impact_stage_computes(root):
     (issue 25). Its columns: F_s closed form and energy balance, v_t, vector v, n, scenario, reduction."""
     from gearmesh.config import load_study
     from gearmesh.datasets.impact import impact_dataset
-    from gearmesh.gear import example_pair, load_pair, variant_pair
+    from gearmesh.pairfile import example_pair, load_pair, variant_pair
 
     text = (root / "docs/impact.md").read_text(encoding="utf-8")
     heading = "## Numbers of the default study"

@@ -22,7 +22,8 @@ import pytest
 import yaml
 
 from gearmesh.choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, FORCE_LINES
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.io import read_dataset
 
 from test_workflow import _scratch_workflow, _snakemake

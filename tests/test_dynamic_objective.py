@@ -16,7 +16,8 @@ from gearmesh.cli import main as cli_main
 from gearmesh.dynamics import pair_model, resonance_band, simulate
 from gearmesh.dynamics.population import (POPULATION_HARMONICS, POPULATION_MESH_ENERGY, POPULATION_OFFSETS,
                                           POPULATION_TABLE, dynamic_factors, population_dynamics)
-from gearmesh.gear import Modification, load_pair, pair_geometry
+from gearmesh.gear import Modification, pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.meshforce import mesh_force_table
 from gearmesh.surface import MODIFICATION_FIELDS, modification_parameters
 

@@ -12,7 +12,8 @@ import scipy.linalg
 from gearmesh import dynamics as dy
 from gearmesh.datasets.dynamics import dynamics_dataset, dynamics_summary, speed_grid, train_dataset
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import load_pair, pair_from_dict, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair, pair_from_dict
 from gearmesh.io import check_documented
 from gearmesh.stiffness import mesh_stiffness
 

@@ -17,7 +17,8 @@ from gearmesh.config import variant_pair
 from gearmesh.contact import mesh_cycle_rolls
 from gearmesh.datasets.dynamics import build_pair_model, contact_table, dynamics_dataset, train_dataset
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.impact import impact_model, impact_static
 from gearmesh.io import check_documented
 from gearmesh.ltca import ltca
@@ -337,7 +338,7 @@ def test_dataset_cli_and_refusals(pair, tmp_path):
     path = tmp_path / "helical_z29_71_m5.yaml"
     import yaml
 
-    from gearmesh.gear import pair_to_dict
+    from gearmesh.pairfile import pair_to_dict
 
     path.write_text(yaml.safe_dump(pair_to_dict(pair)))
     with contextlib.redirect_stdout(out):

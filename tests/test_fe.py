@@ -16,7 +16,8 @@ from pairs import STEEL, low_fluctuation_pair1  # noqa: E402
 from gearmesh import fe  # noqa: E402
 from gearmesh import stiffness as st  # noqa: E402
 from gearmesh.errors import GearmeshInputError  # noqa: E402
-from gearmesh.gear import load_pair, pair_geometry  # noqa: E402
+from gearmesh.gear import pair_geometry  # noqa: E402
+from gearmesh.pairfile import load_pair
 
 E, NU = 210e9, 0.3
 

@@ -15,7 +15,8 @@ from pairs import low_fluctuation_pair1  # noqa: E402
 from gearmesh import fe, fe3d  # noqa: E402
 from gearmesh import stiffness as st  # noqa: E402
 from gearmesh.errors import GearmeshInputError  # noqa: E402
-from gearmesh.gear import load_pair, pair_geometry  # noqa: E402
+from gearmesh.gear import pair_geometry  # noqa: E402
+from gearmesh.pairfile import load_pair
 
 
 def test_extruded_mesh_is_conforming_and_keeps_the_volume():

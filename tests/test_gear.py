@@ -13,15 +13,8 @@ import numpy as np
 import pytest
 
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import (
-    GearPair,
-    Modification,
-    involute,
-    load_pair,
-    pair_from_dict,
-    pair_geometry,
-    pair_to_dict,
-)
+from gearmesh.gear import GearPair, Modification, involute, pair_geometry
+from gearmesh.pairfile import load_pair, pair_from_dict, pair_to_dict
 
 from pairs import STEEL, low_fluctuation_pair1
 

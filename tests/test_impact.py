@@ -13,7 +13,8 @@ from hypothesis import strategies as st
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
 from gearmesh.supports import read_supports
-from gearmesh.gear import Material, Modification, load_pair, pair_geometry
+from gearmesh.gear import Material, Modification, pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.impact import (SCENARIOS, closed_form_force, energy_balance, fit_power_law, impact_model,
                              impact_response, impact_static, seed_edge_roll, simulate_engagement, vector_velocity)
 from gearmesh.io import write_dataset, add_provenance

@@ -13,7 +13,8 @@ import pytest
 
 from gearmesh.datasets.impact import impact_dataset
 from gearmesh.datasets.ltca import ltca_dataset
-from gearmesh.gear import Modification, load_pair, pair_geometry
+from gearmesh.gear import Modification, pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.impact import impact_model
 from gearmesh.robust import CRITERIA, gear_criteria
 from gearmesh.surface import MODIFICATION_FIELDS, fit_modifications, modification_parameters

@@ -7,7 +7,8 @@ import numpy as np
 import pytest
 
 from gearmesh.dynamics import iso6336
-from gearmesh.gear import example_pair, load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair
 from gearmesh.stiffness import iso6336_stiffness
 
 

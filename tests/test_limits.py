@@ -17,7 +17,9 @@ from gearmesh.datasets.ltca import ltca_dataset, tca_dataset
 from gearmesh.datasets.stiffness import stiffness_dataset
 from gearmesh.dynamics import SolverSettings, step_plan
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import MAX_TEETH, pair_from_dict, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.limits import MAX_TEETH
+from gearmesh.pairfile import pair_from_dict
 from gearmesh.limits import MAX_RIM_STRESS, STEEL_DENSITY, check_speeds, max_speed_rpm
 from pairs import low_fluctuation_pair1
 

@@ -16,7 +16,8 @@ from gearmesh.body import mesh_body_compliance
 from gearmesh import stiffness as st
 from gearmesh.datasets.ltca import ltca_dataset, ltca_summary
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import Modification, load_pair, pair_from_dict, pair_geometry, pair_to_dict
+from gearmesh.gear import Modification, pair_geometry
+from gearmesh.pairfile import load_pair, pair_from_dict, pair_to_dict
 from gearmesh.io import check_documented
 from gearmesh.supports import read_supports
 from gearmesh.ltca import PALMGREN_COEFFICIENT, contact_law, ltca, ltca_model, solve_contact

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from gearmesh.body import RIGID_WEBS
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.ltca import ContactLaw, _invert, law_point_scales, load_sums
 from gearmesh.meshforce import table_layout, tabulate
 

@@ -21,7 +21,8 @@ from gearmesh.cli import main as cli_main
 from gearmesh.config import check_study, validate_study
 from gearmesh.datasets.optimise import optimum_pair, result_dataset, run_settings
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import MODIFICATION_UNITS, Modification, load_pair, pair_geometry, validate_modifications
+from gearmesh.gear import Modification, pair_geometry, validate_modifications
+from gearmesh.pairfile import MODIFICATION_UNITS, load_pair
 from gearmesh.io import check_documented
 from gearmesh.plots.optimise import plot_convergence, plot_modification, plot_pareto
 from gearmesh.surface import MODIFICATION_FIELDS

@@ -11,15 +11,8 @@ import yaml
 
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import (
-    Material,
-    load_pair,
-    pair_from_dict,
-    pair_geometry,
-    pair_notes,
-    pair_to_dict,
-    shift_rounding_center_distance,
-)
+from gearmesh.gear import Material, pair_geometry, shift_rounding_center_distance
+from gearmesh.pairfile import load_pair, pair_from_dict, pair_notes, pair_to_dict
 
 from pairs import low_fluctuation_pair1
 

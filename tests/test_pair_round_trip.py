@@ -12,7 +12,8 @@ import pytest
 
 from gearmesh.cli import main
 from gearmesh.datasets.optimise import optimise_summary, optimum_pair
-from gearmesh.gear import load_pair, pair_from_dict, pair_geometry, variant_pair
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair, pair_from_dict, variant_pair
 from gearmesh.pipeline import write_pair
 
 from pairs import low_fluctuation_pair1

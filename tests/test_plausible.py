@@ -17,7 +17,8 @@ from gearmesh.body import Body
 from gearmesh.cli import main
 from gearmesh.config import check_study, validate_study
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import example_pair, load_pair, pair_from_dict, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair, pair_from_dict
 from gearmesh.supports import Supports
 from pairs import low_fluctuation_pair1
 
@@ -68,7 +69,7 @@ def test_an_implausible_pair_file_is_refused_in_one_line(tmp_path, capsys, chang
 
 
 def test_the_shipped_pairs_are_plausible():
-    from gearmesh.gear import example_pairs
+    from gearmesh.pairfile import example_pairs
 
     for name, path in example_pairs().items():
         pair_geometry(load_pair(path))

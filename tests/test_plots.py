@@ -22,7 +22,7 @@ from gearmesh.datasets import ltca as lt
 from gearmesh.datasets import optimise as opd
 from gearmesh.datasets import stiffness as st
 from gearmesh.datasets.fe import fe_compliance_dataset
-from gearmesh.gear import load_pair, variant_pair
+from gearmesh.pairfile import load_pair, variant_pair
 from gearmesh.plots import dynamics, fe, geometry, impact, ltca, optimise, stiffness
 from gearmesh.plots.common import coinciding, end_labels, number, pair_label, subplots, title
 

@@ -10,7 +10,8 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import involute, load_pair, max_tool_tip_radius, pair_geometry
+from gearmesh.gear import involute, max_tool_tip_radius, pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.profile import (
     generating_rack,
     half_thickness,

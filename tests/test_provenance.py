@@ -18,7 +18,7 @@ import xarray as xr
 
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import pair_from_dict
+from gearmesh.pairfile import pair_from_dict
 from gearmesh.pipeline import write_pair
 from gearmesh.upstream import Expected, read_input
 from pairs import low_fluctuation_pair1

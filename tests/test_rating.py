@@ -11,7 +11,8 @@ import pytest
 
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import pair_from_dict, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import pair_from_dict
 from gearmesh.ltca import ltca
 from gearmesh.rating import (check_factors, contact_ratio_factor, dynamic_factor_c, face_factor_root,
                              face_load_factor_c, ltca_load_factors, rating, rating_inputs, single_pair_factors,
@@ -157,7 +158,7 @@ def test_cli_rating_refuses_bad_input_in_one_line(root, capsys, args, message):
 def test_ltca_dataset_carries_the_load_capacity_variables():
     from gearmesh.datasets.ltca import ltca_dataset
     from gearmesh.datasets.rating import reference_ltca
-    from gearmesh.gear import example_pair, load_pair, variant_pair
+    from gearmesh.pairfile import example_pair, load_pair, variant_pair
 
     base = load_pair(example_pair("helical_z29_71_m5"))
     relief = variant_pair(base, "relief", {"modification": {"gear": {"tip_relief_um": 20, "tip_relief_length_mm": 3}}})

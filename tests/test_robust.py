@@ -14,7 +14,8 @@ import yaml
 from gearmesh.config import load_study
 from gearmesh.datasets.ltca import ltca_summary
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import example_pair, load_pair, pair_from_dict, pair_geometry, pair_to_dict, variant_pair
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair, pair_from_dict, pair_to_dict, variant_pair
 from gearmesh.impact import impact_model
 from gearmesh.robust import (CRITERIA, box_worst, gear_criteria, manufactured_pair, tolerance_box)
 from gearmesh.surface import modification_parameters

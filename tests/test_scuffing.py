@@ -20,7 +20,8 @@ from scipy.optimize import minimize_scalar
 from scipy.special import k0e
 
 from figure_checks import layout_faults
-from gearmesh.gear import pair_from_dict, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import pair_from_dict
 from gearmesh.rating import rating_inputs
 from gearmesh.scuffing import (BLOK_COEFFICIENT, FZG_PINION_TORQUE_NM, STEEL_THERMAL_CONTACT_COEFFICIENT,
                                flash_scuffing_temperature, flash_temperature, friction_coefficient,
@@ -300,7 +301,7 @@ def stage_datasets():
     from gearmesh.datasets.ltca import ltca_dataset
     from gearmesh.datasets.rating import rating_dataset
     from gearmesh.datasets.scuffing import scuffing_dataset
-    from gearmesh.gear import load_pair
+    from gearmesh.pairfile import load_pair
 
     pair = load_pair(Path(__file__).resolve().parents[1] / "config/pairs/helical_z29_71_m5.yaml")
     ltca = ltca_dataset(pair, torques_Nm=[1000.0], positions=16, points=12)

@@ -16,7 +16,7 @@ import yaml
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from gearmesh import gear
+from gearmesh import gear, pairfile
 from gearmesh.config import validate_study
 from gearmesh.errors import GearmeshInputError
 from gearmesh.pipeline import resolve
@@ -238,7 +238,8 @@ def test_the_api_refuses_the_values_of_the_issue():
 
 
 def test_tolerances_take_the_declared_defaults():
-    from gearmesh.gear import load_pair, pair_geometry
+    from gearmesh.gear import pair_geometry
+    from gearmesh.pairfile import load_pair
     from gearmesh.tolerance import study_tolerances
 
     geom = pair_geometry(load_pair(ROOT / "config/pairs/helical_z29_71_m5.yaml"))
@@ -256,10 +257,10 @@ def test_tolerances_take_the_declared_defaults():
 
 
 def test_the_pair_schema_has_the_readers_keys():
-    assert {key_of(f) for f in settings_fields(PairFile)} == gear._PAIR_KEYS
-    assert {key_of(f) for f in settings_fields(PairFile) if not has_default(f)} == set(gear._REQUIRED_KEYS)
-    assert {key_of(f) for f in settings_fields(PairMaterial)} == gear._MATERIAL_KEYS
-    assert {key_of(f) for f in settings_fields(GearModification)} == set(gear._MODIFICATION_KEYS)
+    assert {key_of(f) for f in settings_fields(PairFile)} == pairfile._PAIR_KEYS
+    assert {key_of(f) for f in settings_fields(PairFile) if not has_default(f)} == set(pairfile._REQUIRED_KEYS)
+    assert {key_of(f) for f in settings_fields(PairMaterial)} == pairfile._MATERIAL_KEYS
+    assert {key_of(f) for f in settings_fields(GearModification)} == set(pairfile._MODIFICATION_KEYS)
 
 
 def _pair_files() -> list[Path]:
@@ -282,7 +283,7 @@ def _reader_refusal(data) -> GearmeshInputError | None:
     """The refusal of the reader's checks of the form of a pair file (keys, types, ranges; not
     its physics), or None."""
     try:
-        gear.validate_pair(gear.pair_from_dict(data, default_name="the_file_stem"))
+        gear.validate_pair(pairfile.pair_from_dict(data, default_name="the_file_stem"))
     except GearmeshInputError as exc:
         return exc
     return None
@@ -305,7 +306,7 @@ _VALUES = st.one_of(st.none(), st.booleans(), st.integers(-10, 300), st.floats(-
                                      "x", "a.b", ".a", "", "1e6", "ISO 53 A", "ISO 53 D", "ISO 53"]),
                     st.lists(st.one_of(st.integers(-10, 300), st.floats(-10, 1e3, allow_nan=False)), max_size=3))
 # source: text in the schema; the reader takes any value as text (str(value)), so it is left out here
-_KEYS = sorted(gear._PAIR_KEYS - {"source"}) + ["material.youngs_modulus_GPa", "material.poisson_ratio",
+_KEYS = sorted(pairfile._PAIR_KEYS - {"source"}) + ["material.youngs_modulus_GPa", "material.poisson_ratio",
                                                 "material.density_kg_m3", "modification.pinion.tip_relief_um",
                                                 "modification.gear.crowning_um", "unknown"]
 _EDITS = st.lists(st.tuples(st.sampled_from(_KEYS), _VALUES, st.booleans()), min_size=1, max_size=3)

@@ -14,7 +14,8 @@ from gearmesh.body import mesh_body_compliance
 from gearmesh import stiffness as st
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 
 
 def geom_of(**changes):

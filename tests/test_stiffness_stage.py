@@ -16,7 +16,8 @@ from gearmesh.datasets.stiffness import (
     stiffness_table_dataset,
 )
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.io import add_provenance, read_dataset, write_dataset
 
 

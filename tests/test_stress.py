@@ -10,7 +10,8 @@ import pytest
 from scipy.integrate import quad
 
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import example_pair, load_pair, pair_from_dict, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair, pair_from_dict
 from gearmesh.ltca import ltca
 from gearmesh.stress import (contact_modulus, contact_stress, fe_fillet_stress, flank_relative_radius, gear_root_form,
                              hertz_line_contact, iso_root_stress_slices, root_form_factors)

@@ -14,7 +14,8 @@ from gearmesh.cli import main
 from gearmesh.datasets.dynamics import build_pair_model
 from gearmesh.dynamics import mesh_mode
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import example_pair, load_pair, pair_geometry, pair_to_dict
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import example_pair, load_pair, pair_to_dict
 from gearmesh.stiffness import iso6336_stiffness
 from gearmesh.supports import in_series, read_supports, roller_bearing_stiffness, shaft_bending_stiffness
 

@@ -10,7 +10,8 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from gearmesh.contact import contact_roll_positions, tooth_pair_indices
-from gearmesh.gear import involute, load_pair, pair_geometry
+from gearmesh.gear import involute, pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.surface import (
     body_rotation,
     flank_point,

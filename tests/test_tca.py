@@ -13,7 +13,8 @@ from pairs import low_fluctuation_pair1
 from gearmesh.datasets.ltca import tca_dataset
 from gearmesh.deviation import Deviations, read_deviations
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import Modification, load_pair, pair_from_dict, pair_geometry
+from gearmesh.gear import Modification, pair_geometry
+from gearmesh.pairfile import load_pair, pair_from_dict
 from gearmesh.io import check_documented
 from gearmesh.tca import (REGION_APPROACH_TIP, REGION_FLANK, REGION_RECESS_TIP, approach_tip_separation,
                           candidate_grid, engagement_point, flank_separation, recess_tip_separation, tca)

@@ -10,7 +10,8 @@ import numpy as np
 import pytest
 
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.optimise import load_statistic
 from gearmesh.tolerance import (apply_deviations, helix_slope_tolerance, sample_statistic, study_tolerances,
                                 tolerance_model, unit_deviations)

@@ -12,7 +12,7 @@ import pytest
 import xarray as xr
 
 from gearmesh.errors import GearmeshInputError
-from gearmesh.gear import pair_from_dict
+from gearmesh.pairfile import pair_from_dict
 from gearmesh.io import variable, write_dataset
 from gearmesh.pipeline import finish
 from gearmesh.upstream import Expected, first_difference, identify, read_input, record_sources

@@ -13,8 +13,8 @@ _LAZY = {
     "Material": "gear",
     "Modification": "gear",
     "PairGeometry": "gear",
-    "load_pair": "gear",
-    "example_pair": "gear",
+    "load_pair": "pairfile",
+    "example_pair": "pairfile",
     "pair_geometry": "gear",
 }
 

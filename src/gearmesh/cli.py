@@ -24,9 +24,9 @@ from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
 from .deviation import read_deviations
 from .errors import GearmeshInputError
-from .gear import (NAME_PATTERN, example_pair, example_pairs, load_pair, missing_needs, pair_geometry, pair_notes,
-                   pair_to_dict,
-                   pinion_torque, read_yaml)
+from .gear import pair_geometry, pinion_torque
+from .inputfile import read_yaml
+from .pairfile import NAME_PATTERN, example_pair, example_pairs, load_pair, missing_needs, pair_notes, pair_to_dict
 from .limits import MAX_CONTACT_POINTS, MAX_STIFFNESS_POINTS, check_grid
 from .loads import check_load
 from .schema import check_value, defaults, field_schema, key_of, settings_fields

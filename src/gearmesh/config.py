@@ -16,7 +16,9 @@ from typing import Any, Iterator, Mapping
 
 from .choices import pair_excitation
 from .errors import GearmeshInputError
-from .gear import GearPair, load_named_pair, pinion_torque, read_yaml, variant_pair
+from .gear import GearPair, pinion_torque
+from .inputfile import read_yaml
+from .pairfile import load_named_pair, variant_pair
 from .limits import same_point
 from .schema import validate
 from .settings import lste_compared, stages, study_schema

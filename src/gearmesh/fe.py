@@ -54,7 +54,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from .errors import GearmeshInputError
-from .gear import GEARS, PairGeometry, pair_to_dict
+from .gear import GEARS, PairGeometry
+from .pairfile import pair_to_dict
 from .tooth import SliceComplianceTable, contact_point, require_stiffness_data, tooth_model
 
 __all__ = [

@@ -1,7 +1,7 @@
-"""Gear pair data, the pair-file format, validation and basic cylindrical-gear geometry.
+"""Gear pair data, its validation and basic cylindrical-gear geometry.
 
-Everything inside is SI (m, rad, kg, Pa). The pair file (``config/pairs/*.yaml``) uses
-engineering units with the unit in the key name; :func:`load_pair` converts once, here.
+Everything here is SI (m, rad, kg, Pa). The pair file (``config/pairs/*.yaml``, engineering
+units) is read and written by :mod:`gearmesh.pairfile`.
 
 Geometry follows ISO 21771:2007 (cylindrical involute gears and gear pairs, concepts and
 geometry) and DIN 3960; the equation of each quantity is given where it is computed.
@@ -11,23 +11,18 @@ Index 0 is the pinion (the driver), index 1 the gear.
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass, field, replace
-from pathlib import Path
-from typing import Any, Mapping
+from typing import Any
 
 import numpy as np
-import yaml
 
-from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
-from .errors import GearmeshInputError, unknown_key_rule
-from .limits import (DENSITY, MAX_FACE_WIDTH_TO_DIAMETER, MAX_INPUT_BYTES, MAX_INPUT_DEPTH,  # noqa: F401
-                     MAX_INPUT_NODES, MAX_MODIFICATION_TO_MODULE, MAX_TEETH, MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE,
-                     RATING_INPUT_RANGES, YOUNGS_MODULUS)
+from .errors import GearmeshInputError
+from .limits import (DENSITY, MAX_FACE_WIDTH_TO_DIAMETER, MAX_MODIFICATION_TO_MODULE, MAX_TEETH,
+                     MIN_FACE_WIDTH_TO_MODULE, MODULE_RANGE, YOUNGS_MODULUS)
 from .rack import form_roll, involute, rack_from  # the rack and the form point live below gear
-from .body import BODY_KEYS, Body, check_body, read_body
-from .deviation import DEVIATION_KEYS, Deviations, read_deviations
-from .supports import SUPPORT_KEYS, Supports, check_supports, read_supports
+from .body import Body, check_body
+from .deviation import Deviations
+from .supports import Supports, check_supports, read_supports
 
 GEARS = ("pinion", "gear")
 
@@ -123,11 +118,11 @@ class GearPair:
     modification: tuple[Modification, Modification] = (Modification(), Modification())
     helix_hand: str = "right"
     source: str = ""
-    defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. DEFAULT_MATERIAL)
+    defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. pairfile.DEFAULT_MATERIAL)
     supports: Supports = field(default_factory=lambda: read_supports({}))  # bearings and shafts (dynamics)
     body: Body = field(default_factory=Body)  # gear-body webs and hubs (gearmesh.body)
     deviations: Deviations = field(default_factory=Deviations)  # manufacturing deviations (gearmesh.deviation)
-    rating_inputs: tuple[tuple[str, Any], ...] = ()  # load-capacity inputs given ((name, value), ...), RATING_KEYS
+    rating_inputs: tuple[tuple[str, Any], ...] = ()  # load-capacity inputs given ((name, value), ...), pairfile.RATING_KEYS
 
     def with_changes(self, **changes: Any) -> "GearPair":
         """A copy with some fields replaced (e.g. a helix-angle sweep)."""
@@ -135,99 +130,8 @@ class GearPair:
 
 
 # --------------------------------------------------------------------------------------
-# The pair file: engineering units -> SI, with schema-level checks
+# Checks of a pair's data (field names are the pair-file keys)
 # --------------------------------------------------------------------------------------
-
-_PAIR_KEYS = {
-    "name", "teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg",
-    "face_width_mm", "profile_shift", "center_distance_mm", "addendum_coefficient",
-    "dedendum_coefficient", "tool_tip_radius_coefficient", "bore_radius_mm", "material",
-    "modification", "helix_hand", "source",
-    "tip_diameter_mm", "root_diameter_mm", "bore_diameter_mm", "basic_rack_profile",  # datasheet alternatives
-    *SUPPORT_KEYS,  # the gearbox: bearings and shafts (gearmesh.supports)
-    *BODY_KEYS,  # the gear bodies' webs and hubs (gearmesh.body)
-    *DEVIATION_KEYS,  # the manufactured gear's deviations (gearmesh.deviation)
-    "accuracy_grade", "roughness_um", "lubricant", "tip_edge_radius_mm",  # load capacity (gearmesh.rating)
-    "life_factor_conditions", "idler_gear",
-}
-#: Keys that say the same thing: at most one of each group may be given (_one_of).
-_ALTERNATIVE_KEYS = (
-    ("addendum_coefficient", "tip_diameter_mm"),
-    ("dedendum_coefficient", "root_diameter_mm", "basic_rack_profile"),
-    ("tool_tip_radius_coefficient", "basic_rack_profile"),
-    ("bore_radius_mm", "bore_diameter_mm"),
-)
-#: What a valid pair file may leave out that some computations need, and which commands need it:
-#: {key: (what needs it, the commands that do)}. ``gearmesh validate`` names them for a pair that
-#: lacks the key; a command that needs it refuses with :func:`missing_key` (the key to add).
-#: Without a bore: the geometry and the ISO 6336 rating by the standard's factors run.
-OPTIONAL_NEEDS = {
-    "bore_radius_mm": ("the fillet foundation of the tooth stiffness (Sainsot, Velex & Duverger 2004, J. Mech. "
-                       "Design 126) and the gear bodies' masses",
-                       ("stiffness", "ltca", "impact", "rating", "dynamics", "optimise")),
-}
-#: The pair-file keys that give a value of :data:`OPTIONAL_NEEDS` in other words (datasheet dimensions).
-_GIVEN_AS = {"bore_radius_mm": "bore_diameter_mm, a datasheet's inner diameter"}
-
-
-def missing_key(key: str, what: str | None = None) -> GearmeshInputError:
-    """The refusal of a computation that needs pair-file key ``key`` (:data:`OPTIONAL_NEEDS`), saying
-    what needs it and which key to add."""
-    need = what or OPTIONAL_NEEDS[key][0]
-    other = f" (or {_GIVEN_AS[key]})" if key in _GIVEN_AS else ""
-    return GearmeshInputError(key, None, f"is required for {need}: add {key}{other} to the pair file")
-
-
-def missing_needs(pair: "GearPair") -> dict[str, str]:
-    """{key: what a command needs it for and which commands} for each key of :data:`OPTIONAL_NEEDS`
-    that ``pair`` leaves out (what ``gearmesh validate`` reports beside "valid")."""
-    given = {"bore_radius_mm": pair.bore_radius is not None}
-    return {key: f"add {key}{f' (or {_GIVEN_AS[key]})' if key in _GIVEN_AS else ''} for {what}: needed by "
-                 f"{', '.join(commands)}" for key, (what, commands) in OPTIONAL_NEEDS.items() if not given[key]}
-
-
-#: ISO 53:1998 basic rack profiles (α_P = 20°, h_aP = 1.0 m): the dedendum h_fP and root fillet
-#: radius ρ_fP of the rack, in modules — the addendum and tip radius of the hob that generates
-#: the gear (``dedendum_coefficient``, ``tool_tip_radius_coefficient``). A for high torque, B and
-#: C for normal service (smaller fillets), D for gears finished by grinding or shaving.
-ISO53_PROFILES = {"ISO 53 A": (1.25, 0.38), "ISO 53 B": (1.25, 0.30), "ISO 53 C": (1.25, 0.25),
-                  "ISO 53 D": (1.40, 0.39)}
-_REQUIRED_KEYS = ("teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg", "face_width_mm")
-_MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3", "contact_fatigue_limit_MPa",
-                  "bending_fatigue_limit_MPa"}
-#: Pair-file keys of the load-capacity rating (path in the file → input name of gearmesh.rating, which
-#: fills and names the defaults of those not given). Checked here, on reading, by :func:`check_rating_input`.
-RATING_KEYS = {
-    ("material", "contact_fatigue_limit_MPa"): "contact_fatigue_limit_MPa",
-    ("material", "bending_fatigue_limit_MPa"): "bending_fatigue_limit_MPa",
-    ("accuracy_grade",): "accuracy_grade",
-    ("roughness_um", "flank_Ra"): "flank_Ra_um", ("roughness_um", "flank_Rz"): "flank_Rz_um",
-    ("roughness_um", "root_Rz"): "root_Rz_um",
-    ("lubricant", "viscosity_40C_mm2_s"): "viscosity_40C_mm2_s",
-    ("lubricant", "viscosity_100C_mm2_s"): "viscosity_100C_mm2_s",
-    ("lubricant", "oil_temperature_C"): "oil_temperature_C",
-    ("lubricant", "fzg_load_stage"): "fzg_load_stage",
-    ("tip_edge_radius_mm",): "tip_edge_radius_mm",
-    ("life_factor_conditions",): "life_factor_conditions",
-    ("idler_gear",): "idler_gear",
-}
-#: Steel, for a pair file without ``material`` or without one of its keys (given keys override):
-#: E = 206 GPa and ν = 0.3 are the steel of the gear standards, ISO 6336-1:2019 (the single
-#: stiffness c' refers to E_st = 206 000 N/mm²) and ISO 6336-2:2019 (Z_E = √(E/(2π(1 − ν²))) =
-#: 189.8 √(N/mm²) for steel on steel); ρ = 7850 kg/m³ is EN 1993-1-1:2005 §3.2.6 (which gives
-#: E = 210 GPa for structural steel: the gear standards' 206 GPa is taken because the stiffness
-#: and load limits here refer to it). Which keys were filled is stated (:func:`pair_notes`).
-DEFAULT_MATERIAL = {"youngs_modulus_GPa": 206.0, "poisson_ratio": 0.3, "density_kg_m3": 7850.0}
-_MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
-    "root_relief_um": ("root_relief", 1e-6),
-    "tip_relief_um": ("tip_relief", 1e-6),
-    "root_relief_length_mm": ("root_relief_length", 1e-3),
-    "tip_relief_length_mm": ("tip_relief_length", 1e-3),
-    "crowning_um": ("crowning", 1e-6),
-    "unmodified_lead_length_mm": ("unmodified_lead_length", 1e-3),
-}
-#: Each modification parameter's engineering unit, as its pair-file key names it ("um" or "mm").
-MODIFICATION_UNITS = {attr: key.rsplit("_", 1)[1] for key, (attr, _) in _MODIFICATION_KEYS.items()}
 
 
 def _number(field_name: str, value: Any) -> float:
@@ -247,304 +151,12 @@ def _is_number(value: Any) -> bool:
     return isinstance(value, (int, float, np.number)) and not isinstance(value, bool)
 
 
-def _positive(field_name: str, value: Any) -> float:
-    v = _number(field_name, value)
-    if v <= 0:
-        raise GearmeshInputError(field_name, value, "must be positive")
-    return v
-
-
-def _per_gear(field_name: str, value: Any, check) -> tuple[float, float]:
-    """One number for both gears, or a [pinion, gear] list of two."""
-    if isinstance(value, (list, tuple)):
-        if len(value) != 2:
-            raise GearmeshInputError(field_name, value, "must be one number or a [pinion, gear] pair")
-        return (check(f"{field_name}[0]", value[0]), check(f"{field_name}[1]", value[1]))
-    v = check(field_name, value)
-    return (v, v)
-
-
-def _mapping(field_name: str, value: Any, allowed: set[str]) -> Mapping[str, Any]:
-    if not isinstance(value, Mapping):
-        raise GearmeshInputError(field_name, value, "must be a mapping")
-    unknown = sorted(set(value) - allowed)
-    if unknown:
-        raise GearmeshInputError(f"{field_name}.{unknown[0]}", value[unknown[0]],
-                                 unknown_key_rule(unknown[0], allowed, "gearmesh schema pair --format markdown"))
-    return value
-
-
-def _teeth(value: Any) -> tuple[int, int]:
-    if not isinstance(value, (list, tuple)) or len(value) != 2:
-        raise GearmeshInputError("teeth", value, "must be a [pinion, gear] list of two integers")
-    out = []
-    for i, z in enumerate(value):
-        if isinstance(z, bool) or not isinstance(z, int):
-            raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer")
-        check_teeth(f"teeth[{i}]", z)
-        out.append(z)
-    return (out[0], out[1])
-
-
-
-
 def check_teeth(field_name: str, z: int) -> None:
     """Refuse a tooth count outside [5, :data:`MAX_TEETH`] (compared as integers: no overflow)."""
     if z < 5:
         raise GearmeshInputError(field_name, z, "must be at least 5 (external gears)")
     if z > MAX_TEETH:
         raise GearmeshInputError(field_name, z, f"must be at most {MAX_TEETH} (ISO 1328-1 scope)")
-
-
-def _pair_name(given: Any, default_name: str | None) -> str:
-    """The pair's name: as given, else ``default_name`` (the file stem); either must be a
-    :data:`NAME_PATTERN` name."""
-    rule = "1 to 160 letters, digits, '_', '-' or '.' (not first): a file name, no path characters"
-    if given is None:
-        if default_name is None:
-            raise GearmeshInputError("name", None, "is required")
-        if not NAME_PATTERN.fullmatch(default_name):
-            raise GearmeshInputError("name", None, f"is required: the file name {default_name!r} cannot be one ({rule})")
-        return default_name
-    if not isinstance(given, str) or not NAME_PATTERN.fullmatch(given):
-        raise GearmeshInputError("name", given, f"must be {rule}")
-    return given
-
-
-def _modification(field_name: str, value: Any) -> Modification:
-    if value is None:
-        return Modification()
-    spec = _mapping(field_name, value, set(_MODIFICATION_KEYS))
-    kwargs = {}
-    for key, (attr, factor) in _MODIFICATION_KEYS.items():
-        if key in spec:
-            v = _number(f"{field_name}.{key}", spec[key])
-            if v < 0:
-                raise GearmeshInputError(f"{field_name}.{key}", spec[key], "must not be negative")
-            kwargs[attr] = v * factor
-    return Modification(**kwargs)
-
-
-def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str | None = None) -> GearPair:
-    """Build a :class:`GearPair` (SI) from a pair-file mapping in engineering units.
-
-    Checks the form of the data (keys, types, signs, ranges); the physics of the pair
-    (contact ratio, interference, centre distance) is checked by :func:`pair_geometry`.
-    ``name`` may be left out when ``default_name`` is given (a file's stem, :func:`load_pair`).
-    """
-    spec = _mapping("pair", data, _PAIR_KEYS)
-    for key in _REQUIRED_KEYS:
-        if key not in spec:
-            raise GearmeshInputError(key, None, "is required")
-    name = _pair_name(spec.get("name"), default_name)
-    for group in _ALTERNATIVE_KEYS:
-        _one_of(spec, group)
-    alpha_n = _number("normal_pressure_angle_deg", spec["normal_pressure_angle_deg"])
-    if not 0 < alpha_n < 45:
-        raise GearmeshInputError("normal_pressure_angle_deg", alpha_n, "must lie in (0, 45) degrees")
-    beta = _number("helix_angle_deg", spec["helix_angle_deg"])
-    if not 0 <= beta < 60:
-        raise GearmeshInputError("helix_angle_deg", beta,
-                                 "must lie in [0, 60) degrees; give the hand with helix_hand")
-    hand = spec.get("helix_hand", "right")
-    if hand not in ("right", "left"):
-        raise GearmeshInputError("helix_hand", hand, "must be 'right' or 'left' (of the pinion)")
-
-    shift = None
-    if spec.get("profile_shift") is not None:
-        shift = _per_gear("profile_shift", spec["profile_shift"], _number)
-        for i, x in enumerate(shift):
-            if not -3 < x < 3:
-                raise GearmeshInputError(f"profile_shift[{i}]", x, "must lie in (-3, 3)")
-    center = None
-    if spec.get("center_distance_mm") is not None:
-        center = _positive("center_distance_mm", spec["center_distance_mm"]) * 1e-3
-
-    def nonneg(f, v):
-        x = _number(f, v)
-        if x < 0:
-            raise GearmeshInputError(f, v, "must not be negative")
-        return x
-
-    bore = None
-    if spec.get("bore_radius_mm") is not None:
-        bore = tuple(b * 1e-3 for b in _per_gear("bore_radius_mm", spec["bore_radius_mm"], nonneg))
-    elif spec.get("bore_diameter_mm") is not None:  # a datasheet's inner (bore) diameter: r = d/2
-        bore = tuple(d / 2 * 1e-3 for d in _per_gear("bore_diameter_mm", spec["bore_diameter_mm"], nonneg))
-    rack = _basic_rack(spec.get("basic_rack_profile"), alpha_n)
-
-    given_material = {} if spec.get("material") is None else _mapping("material", spec["material"], _MATERIAL_KEYS)
-    m = {**DEFAULT_MATERIAL, **{k: v for k, v in given_material.items() if k in DEFAULT_MATERIAL}}
-    defaults = tuple(f"material.{key}" for key in DEFAULT_MATERIAL if key not in given_material)
-    rating = _rating_inputs(spec, given_material)
-    material = Material(  # its own checks: the rules of the file's keys
-        youngs_modulus=_number("material.youngs_modulus_GPa", m["youngs_modulus_GPa"]) * 1e9,
-        poisson_ratio=_number("material.poisson_ratio", m["poisson_ratio"]),
-        density=_number("material.density_kg_m3", m["density_kg_m3"]),
-    )
-
-    mods = (Modification(), Modification())
-    if spec.get("modification") is not None:
-        mm = _mapping("modification", spec["modification"], set(GEARS))
-        mods = (_modification("modification.pinion", mm.get("pinion")),
-                _modification("modification.gear", mm.get("gear")))
-
-    pair = GearPair(
-        name=name,
-        teeth=_teeth(spec["teeth"]),
-        normal_module=_positive("normal_module_mm", spec["normal_module_mm"]) * 1e-3,
-        normal_pressure_angle=math.radians(alpha_n),
-        helix_angle=math.radians(beta),
-        face_width=tuple(b * 1e-3 for b in _per_gear("face_width_mm", spec["face_width_mm"], _positive)),
-        profile_shift=shift,
-        center_distance=center,
-        addendum_coefficient=_per_gear("addendum_coefficient", spec.get("addendum_coefficient", 1.0), _positive),
-        dedendum_coefficient=(_per_gear("dedendum_coefficient", spec.get("dedendum_coefficient", 1.25), _positive)
-                              if rack is None else (rack[0], rack[0])),
-        tool_tip_radius_coefficient=(
-            _per_gear("tool_tip_radius_coefficient", spec["tool_tip_radius_coefficient"], nonneg)
-            if spec.get("tool_tip_radius_coefficient") is not None
-            else (rack[1], rack[1]) if rack is not None else (None, None)),
-        bore_radius=bore,
-        material=material,
-        modification=mods,
-        helix_hand=hand,
-        source=str(spec.get("source", source)),
-        defaults=defaults,
-        supports=read_supports(spec),
-        body=read_body(spec),
-        deviations=read_deviations(spec),
-        rating_inputs=rating,
-    )
-    return _datasheet_diameters(pair, spec)
-
-
-def check_rating_input(name: str, value: Any, field_name: str | None = None) -> float | int | str:
-    """One load-capacity input (a name of :data:`RATING_KEYS`' values) checked: the accuracy grade
-    an integer 1..12 (ISO 1328-1), the FZG load stage an integer 1..12 (ISO 14635-1), the oil
-    temperature in (−40, 200) °C, the life-factor conditions and the idler gear one of their words
-    (:mod:`gearmesh.choices`), every other a positive number within its plausible range
-    (:data:`gearmesh.limits.RATING_INPUT_RANGES`: fatigue limits of ISO 6336-5's materials,
-    roughness, viscosities); GearmeshInputError naming ``field_name`` (default ``name``)."""
-    key = field_name or name
-    words = {"life_factor_conditions": LIFE_FACTOR_CONDITIONS, "idler_gear": IDLER_GEARS}
-    if name in words:
-        if not isinstance(value, str) or value not in words[name]:
-            raise GearmeshInputError(key, value, f"must be one of {list(words[name])}")
-        return value
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise GearmeshInputError(key, value, "must be a finite number")
-    if name == "accuracy_grade":
-        if not float(value).is_integer() or not 1 <= value <= 12:
-            raise GearmeshInputError(key, value, "must be an ISO 1328-1 accuracy grade, an integer in 1..12")
-        return int(value)
-    if name == "fzg_load_stage":
-        if not float(value).is_integer() or int(value) not in FZG_LOAD_STAGES:
-            raise GearmeshInputError(key, value, f"must be an FZG load stage (ISO 14635-1), an integer in "
-                                                 f"{FZG_LOAD_STAGES[0]}..{FZG_LOAD_STAGES[-1]}")
-        return int(value)
-    if name == "oil_temperature_C":
-        if not -40 < value < 200:
-            raise GearmeshInputError(key, value, "must lie in (-40, 200) °C")
-        return float(value)
-    if value <= 0:
-        raise GearmeshInputError(key, value, "must be positive")
-    if name in RATING_INPUT_RANGES:  # within what materials, surfaces and oils have
-        RATING_INPUT_RANGES[name].check(value, key)
-    return float(value)
-
-
-def _rating_inputs(spec: Mapping[str, Any], material: Mapping[str, Any]) -> tuple[tuple[str, Any], ...]:
-    """The load-capacity inputs given in a pair file, checked (:data:`RATING_KEYS`)."""
-    sections = {"roughness_um": {"flank_Ra", "flank_Rz", "root_Rz"},
-                "lubricant": {"viscosity_40C_mm2_s", "viscosity_100C_mm2_s", "oil_temperature_C", "fzg_load_stage"}}
-    given = {"material": material}
-    for sec, keys in sections.items():
-        if spec.get(sec) is not None:
-            given[sec] = _mapping(sec, spec[sec], keys)
-    out = []
-    for path, name in RATING_KEYS.items():
-        value = spec.get(path[0]) if len(path) == 1 else given.get(path[0], {}).get(path[1])
-        if value is not None:
-            out.append((name, check_rating_input(name, value, ".".join(path))))
-    values = dict(out)
-    if values.get("viscosity_100C_mm2_s", 0) >= values.get("viscosity_40C_mm2_s", math.inf):
-        raise GearmeshInputError("lubricant.viscosity_100C_mm2_s", values["viscosity_100C_mm2_s"],
-                                 "must be below lubricant.viscosity_40C_mm2_s")
-    return tuple(out)
-
-
-def _one_of(spec: Mapping[str, Any], keys: tuple[str, ...]) -> None:
-    """Refuse two keys of one group of :data:`_ALTERNATIVE_KEYS` given together."""
-    given = [k for k in keys if spec.get(k) is not None]
-    if len(given) > 1:
-        raise GearmeshInputError(given[1], spec[given[1]], f"conflicts with {given[0]} = {spec[given[0]]!r}: "
-                                 "both set the same dimension, give one of them")
-
-
-def _basic_rack(value: Any, alpha_n_deg: float) -> tuple[float, float] | None:
-    """(dedendum, tool tip radius) coefficients of an :data:`ISO53_PROFILES` name, or None."""
-    if value is None:
-        return None
-    if value not in ISO53_PROFILES:
-        raise GearmeshInputError("basic_rack_profile", value, f"must be one of {list(ISO53_PROFILES)}")
-    if not math.isclose(alpha_n_deg, 20.0, abs_tol=1e-9):
-        raise GearmeshInputError("basic_rack_profile", value, f"is a 20° profile (ISO 53:1998), the pair has "
-                                 f"normal_pressure_angle_deg = {alpha_n_deg:g}: give dedendum_coefficient and "
-                                 "tool_tip_radius_coefficient instead")
-    return ISO53_PROFILES[value]
-
-
-def _datasheet_diameters(pair: GearPair, spec: Mapping[str, Any]) -> GearPair:
-    """``pair`` with the coefficients that the datasheet diameters ``tip_diameter_mm`` and
-    ``root_diameter_mm`` (one number or [pinion, gear]) give, exactly (ISO 21771 eqs. 45, 47):
-
-        h_a* = (d_a − d)/(2 m_n) − x,    h_f* = (d − d_f)/(2 m_n) + x,
-
-    d = z m_n/cos β the reference diameter and x the profile shift as :func:`pair_geometry`
-    resolves it (given, inferred from the centre distance, or zero). A tip diameter thus
-    includes any tip shortening; a root diameter is that of the generating hob's addendum
-    h_f*·m_n (a tooth-thickness allowance cut by a deeper infeed is not modelled).
-    """
-    if spec.get("tip_diameter_mm") is None and spec.get("root_diameter_mm") is None:
-        return pair
-    mn = pair.normal_module
-    d = np.array(pair.teeth) * mn / math.cos(pair.helix_angle)
-    shift = _resolve_shift_and_center(pair, *_transverse_angle_and_radius_sum(pair))[0]
-    changes = {}
-    if spec.get("tip_diameter_mm") is not None:
-        tip = np.array(_per_gear("tip_diameter_mm", spec["tip_diameter_mm"], _positive)) * 1e-3
-        changes["addendum_coefficient"] = _coefficient("tip_diameter_mm", tip, (tip - d) / (2 * mn) - shift,
-                                                       "addendum coefficient", "tip at or below")
-    if spec.get("root_diameter_mm") is not None:
-        root = np.array(_per_gear("root_diameter_mm", spec["root_diameter_mm"], _positive)) * 1e-3
-        changes["dedendum_coefficient"] = _coefficient("root_diameter_mm", root, (d - root) / (2 * mn) + shift,
-                                                       "dedendum coefficient", "root at or above")
-    return pair.with_changes(**changes)
-
-
-def _transverse_angle_and_radius_sum(pair: GearPair) -> tuple[float, float]:
-    """αt = atan(tan αn/cos β) (rad) and r1 + r2 = (z1 + z2) m_n/(2 cos β) (m), ISO 21771 eqs. 9, 11:
-    what :func:`_resolve_shift_and_center` needs, for a pair not yet through :func:`pair_geometry`."""
-    beta = pair.helix_angle
-    return (math.atan(math.tan(pair.normal_pressure_angle) / math.cos(beta)),
-            sum(pair.teeth) * pair.normal_module / (2 * math.cos(beta)))
-
-
-def _coefficient(key: str, diameters: np.ndarray, values: np.ndarray, what: str, where: str) -> tuple[float, float]:
-    """The per-gear ``values`` converted from ``diameters`` (m) of pair-file ``key``, each > 0."""
-    for i, v in enumerate(values):
-        if not v > 0:
-            raise GearmeshInputError(f"{key}[{i}]", float(diameters[i]) * 1e3,
-                                     f"puts the {GEARS[i]} {where} its reference circle shifted by the profile "
-                                     f"shift ({what} {v:.4f} <= 0)")
-    return (float(values[0]), float(values[1]))
-
-
-#: Name of a pair: usable as a file name (letters, digits, '_', '-' and '.', not first; no
-#: path characters), short enough to stay far below the 255-byte limit of one path component
-#: (Linux NAME_MAX) with any suffix. Study configs restrict the names they use further (schema).
-NAME_PATTERN = re.compile(r"[A-Za-z0-9_-][A-Za-z0-9_.-]{0,159}")
 
 
 def validate_pair(pair: GearPair) -> None:
@@ -583,236 +195,10 @@ def validate_pair(pair: GearPair) -> None:
             raise GearmeshInputError(name, value, rule)
 
 
-
-
-class _InputRefused(yaml.YAMLError):
-    """Raised by the loader for a document that cannot be a gearmesh input (reason as text)."""
-
-
-class _UniqueKeyLoader(yaml.SafeLoader):
-    """A safe YAML loader for small input documents: refuses a mapping with the same key twice
-    (PyYAML keeps the last), aliases (``*name``: a "billion laughs" document expands
-    exponentially when walked), more than :data:`MAX_INPUT_NODES` nodes and nesting deeper
-    than :data:`MAX_INPUT_DEPTH`."""
-
-    _nodes = 0
-    _depth = 0
-
-    def compose_node(self, parent, index):
-        if self.check_event(yaml.AliasEvent):
-            mark = self.peek_event().start_mark
-            raise _InputRefused(f"uses a YAML alias (line {mark.line + 1}); write the value out")
-        self._nodes += 1
-        if self._nodes > MAX_INPUT_NODES:
-            raise _InputRefused(f"has more than {MAX_INPUT_NODES} YAML nodes")
-        self._depth += 1
-        try:
-            if self._depth > MAX_INPUT_DEPTH:
-                raise _InputRefused(f"nests deeper than {MAX_INPUT_DEPTH} levels")
-            return super().compose_node(parent, index)
-        finally:
-            self._depth -= 1
-
-
-def _unique_mapping(loader: _UniqueKeyLoader, node: yaml.MappingNode, deep: bool = False):
-    keys = [loader.construct_object(k, deep=deep) for k, _ in node.value]
-    seen, duplicates = set(), set()
-    for key in keys:
-        try:
-            (duplicates if key in seen else seen).add(key)
-        except TypeError:  # an unhashable key: construct_mapping refuses it below
-            pass
-    if duplicates:
-        raise GearmeshInputError(min(map(str, duplicates)), None,
-                                 f"is given twice in one mapping (line {node.start_mark.line + 1})")
-    return loader.construct_mapping(node, deep=deep)
-
-
-_UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG, _unique_mapping)
-
-
-def read_input_text(path: str | Path, what: str) -> str:
-    """The text of a small input file, read bounded: refuses anything but a regular file (a
-    directory, FIFO or device such as /dev/zero, checked before opening), more than
-    :data:`MAX_INPUT_BYTES` and non-UTF-8 bytes, each as one :class:`GearmeshInputError`."""
-    import stat
-
-    path = Path(path)
-    try:
-        mode = path.stat().st_mode
-        if not stat.S_ISREG(mode):
-            raise GearmeshInputError(what, str(path), "is not a regular file")
-        with path.open("rb") as f:
-            data = f.read(MAX_INPUT_BYTES + 1)
-    except OSError as exc:
-        raise GearmeshInputError(what, str(path), f"cannot be read ({exc.strerror})") from None
-    if len(data) > MAX_INPUT_BYTES:
-        raise GearmeshInputError(what, str(path), f"is larger than {MAX_INPUT_BYTES // 1024} kB: not a gearmesh input")
-    try:
-        return data.decode("utf-8")
-    except UnicodeDecodeError:
-        raise GearmeshInputError(what, str(path), "is not UTF-8 text") from None
-
-
-def read_yaml(path: str | Path, what: str) -> Any:
-    """Parse a small YAML input file (:func:`read_input_text`); a malformed file, a key given
-    twice, an alias or an oversized document is a one-line :class:`GearmeshInputError`."""
-    text = read_input_text(path, what)
-    try:
-        return yaml.load(text, Loader=_UniqueKeyLoader)
-    except _InputRefused as exc:
-        raise GearmeshInputError(what, str(path), str(exc)) from None
-    except yaml.YAMLError as exc:
-        raise GearmeshInputError(what, str(path), "is not valid YAML: " + " ".join(str(exc).split())) from None
-    except RecursionError:  # pragma: no cover - MAX_INPUT_DEPTH refuses first
-        raise GearmeshInputError(what, str(path), "nests too deep") from None
-
-
-def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
-    """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`; a file
-    without ``name`` is named after its stem (``my_pair.yaml``: ``my_pair``), a different
-    ``name`` is kept as given."""
-    if isinstance(path_or_data, Mapping):
-        return pair_from_dict(path_or_data)
-    data = read_yaml(path_or_data, "pair file")
-    if not isinstance(data, Mapping):
-        what = "is empty" if data is None else f"holds a {type(data).__name__}, not a mapping of keys"
-        raise GearmeshInputError("pair file", str(path_or_data), f"{what}: a pair file maps keys such as teeth and "
-                                 "normal_module_mm to values; `gearmesh example low_fluctuation_pair1` prints one to start from")
-    try:
-        return pair_from_dict(data, source=str(path_or_data), default_name=Path(path_or_data).stem)
-    except GearmeshInputError as exc:  # the field and rule as they were, and the file they are in
-        raise GearmeshInputError(exc.field, exc.value, f"{exc.rule} (in pair file {path_or_data})") from None
-
-
-def pair_notes(pair: GearPair) -> list[str]:
-    """What the results of ``pair`` rest on that its file did not say: a centre distance taken
-    as the zero-backlash one (:func:`shift_rounding_center_distance`) and the material values
-    filled by :data:`DEFAULT_MATERIAL`. One sentence each, for the output (JSON, dataset attrs)."""
-    notes = []
-    if pair.center_distance is not None and pair.profile_shift is not None:
-        a0 = _resolve_shift_and_center(pair, *_transverse_angle_and_radius_sum(pair))[3]
-        if pair.center_distance < a0:
-            notes.append(f"center_distance_mm = {pair.center_distance * 1e3:.6g} lies {(a0 - pair.center_distance) * 1e6:.2g}"
-                         f" µm below the zero-backlash distance {a0 * 1e3:.6f} mm of the shifts as printed, within "
-                         "their rounding to four decimals: zero backlash, computed at that distance")
-    filled = _defaulted_material(pair)
-    if filled:
-        values = ", ".join(f"{key} = {DEFAULT_MATERIAL[key]:g}" for key in filled)
-        notes.append(f"material not given: steel {values} (ISO 6336-1/-2 steel, EN 1993-1-1 density)")
-    return notes
-
-
 def material_values(material: Material) -> dict[str, float]:
     """``material`` as the pair file's ``material`` mapping (GPa, -, kg/m³)."""
     return {"youngs_modulus_GPa": material.youngs_modulus * 1e-9, "poisson_ratio": material.poisson_ratio,
             "density_kg_m3": material.density}
-
-
-def _defaulted_material(pair: GearPair) -> list[str]:
-    """The material keys of ``pair`` filled by :data:`DEFAULT_MATERIAL` and still at that value
-    (a material set in code since replaces them)."""
-    if pair.material is None:
-        return []
-    values = material_values(pair.material)
-    return [key for key, default in DEFAULT_MATERIAL.items()
-            if f"material.{key}" in pair.defaults and math.isclose(values[key], default, rel_tol=1e-12)]
-
-
-#: The example pairs shipped with the package, one file each: every pair of the source documents
-#: (docs/references.md), also the workflow's pair library (the repository's config/pairs links here).
-EXAMPLES_DIR = Path(__file__).parent / "pairs"
-
-
-def example_pairs() -> dict[str, Path]:
-    """{name: file} of the example pairs shipped with the package (:data:`EXAMPLES_DIR`)."""
-    return {f.stem: f for f in sorted(EXAMPLES_DIR.glob("*.yaml"))}
-
-
-def example_pair(name: str) -> Path:
-    """The file of the shipped example pair ``name`` (e.g. ``helical_z29_71_m5``), for :func:`load_pair`."""
-    pairs = example_pairs()
-    if name not in pairs:
-        raise GearmeshInputError("example", name, f"must be one of {sorted(pairs)}")
-    return pairs[name]
-
-
-def check_pair_name(pair: GearPair, path: str | Path) -> GearPair:
-    """Refuse a pair whose ``name`` differs from the name of its file ``path``: the rule of
-    a study's pair library (``pairs_dir/NAME.yaml``), whose results are filed under the name.
-    The command line has no such rule (:func:`load_pair`)."""
-    if pair.name != Path(path).stem:
-        raise GearmeshInputError("name", pair.name, f"must equal the file name {Path(path).stem!r} of {path}")
-    return pair
-
-
-def load_named_pair(path: str | Path) -> GearPair:
-    """Read a pair file whose ``name`` equals its file name (:func:`check_pair_name`)."""
-    return check_pair_name(load_pair(path), path)
-
-
-def pair_to_dict(pair: GearPair) -> dict[str, Any]:
-    """The inverse of :func:`pair_from_dict`: a pair-file mapping in engineering units."""
-    out: dict[str, Any] = {
-        "name": pair.name,
-        "teeth": list(pair.teeth),
-        "normal_module_mm": pair.normal_module * 1e3,
-        "normal_pressure_angle_deg": math.degrees(pair.normal_pressure_angle),
-        "helix_angle_deg": math.degrees(pair.helix_angle),
-        "face_width_mm": [b * 1e3 for b in pair.face_width],
-        "addendum_coefficient": list(pair.addendum_coefficient),
-        "dedendum_coefficient": list(pair.dedendum_coefficient),
-        "helix_hand": pair.helix_hand,
-    }
-    if any(c is not None for c in pair.tool_tip_radius_coefficient):
-        out["tool_tip_radius_coefficient"] = list(pair.tool_tip_radius_coefficient)
-    if pair.profile_shift is not None:
-        out["profile_shift"] = list(pair.profile_shift)
-    if pair.center_distance is not None:
-        out["center_distance_mm"] = pair.center_distance * 1e3
-    if pair.bore_radius is not None:
-        out["bore_radius_mm"] = [r * 1e3 for r in pair.bore_radius]
-    if pair.material is not None:  # the keys given; defaulted ones are filled again on reading
-        defaulted = _defaulted_material(pair)
-        material = {k: v for k, v in material_values(pair.material).items() if k not in defaulted}
-        if material:
-            out["material"] = material
-    for (*path, last), name in RATING_KEYS.items():
-        value = dict(pair.rating_inputs).get(name)
-        if value is not None:
-            (out.setdefault(path[0], {}) if path else out)[last] = value
-    if any(not m.is_zero for m in pair.modification):
-        out["modification"] = {
-            gear: {key: getattr(mod, attr) / factor for key, (attr, factor) in _MODIFICATION_KEYS.items()}
-            for gear, mod in zip(GEARS, pair.modification)
-        }
-    out.update(pair.supports.to_dict())
-    out.update(pair.body.to_dict())
-    out.update(pair.deviations.to_dict())
-    return out
-
-
-#: The keys of a variant (gearmesh.settings.Variant).
-_VARIANT_KEYS = {"modification", "from"}
-
-
-def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearPair:
-    """``pair`` carrying the modification of micro-geometry ``variant`` (none for 'standard'
-    or a variant without one); the variant's modification replaces the pair file's. A variant
-    ``{from: optimise.NAME}`` is ``pair`` as given: the optimisation's pair file, its optimum
-    (the workflow hands that file to the variant's stages). A key other than ``modification`` and
-    ``from``, or both, is refused naming it (a misspelt key must not give the unmodified pair)."""
-    spec = _mapping(f"variants.{variant}", spec, _VARIANT_KEYS)
-    if spec.get("from") and spec.get("modification"):
-        raise GearmeshInputError(f"variants.{variant}.from", spec["from"], "and modification are exclusive: a variant "
-                                 "is the optimum of a run or a modification of its own; keep one")
-    if spec.get("from"):
-        return pair
-    data = pair_to_dict(pair)
-    data.pop("modification", None)
-    if spec.get("modification"):
-        data["modification"] = spec["modification"]
-    return pair_from_dict(data, source=pair.source)
 
 
 # --------------------------------------------------------------------------------------
@@ -909,6 +295,14 @@ class PairGeometry:
         }
 
 
+def _transverse_angle_and_radius_sum(pair: GearPair) -> tuple[float, float]:
+    """αt = atan(tan αn/cos β) (rad) and r1 + r2 = (z1 + z2) m_n/(2 cos β) (m), ISO 21771 eqs. 9, 11:
+    what :func:`_resolve_shift_and_center` needs, for a pair not yet through :func:`pair_geometry`."""
+    beta = pair.helix_angle
+    return (math.atan(math.tan(pair.normal_pressure_angle) / math.cos(beta)),
+            sum(pair.teeth) * pair.normal_module / (2 * math.cos(beta)))
+
+
 def _resolve_shift_and_center(pair: GearPair, alpha_t: float, r_sum: float):
     """Profile shifts, operating centre distance and αwt (ISO 21771 §5.3, eqs. 57–59).
 
@@ -942,7 +336,7 @@ def _resolve_shift_and_center(pair: GearPair, alpha_t: float, r_sum: float):
     if pair.center_distance is None:
         return shift, False, a0, a0, alpha_wt0
     a = pair.center_distance
-    if a < a0:  # within the shifts' rounding: zero backlash at a0 (pair_notes says so); beyond: refused
+    if a < a0:  # within the shifts' rounding: zero backlash at a0 (pairfile.pair_notes says so); beyond: refused
         allowed = shift_rounding_center_distance(pair, alpha_t, alpha_wt0)
         if a0 - a > allowed:
             raise GearmeshInputError("center_distance_mm", a * 1e3,
@@ -1082,59 +476,17 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     ra = r + (ha + shift) * mn  # eq. 45, no tip shortening
     rf = r - (hf - shift) * mn  # eq. 47
     rw = rb / math.cos(alpha_wt)
-
-    gear_names = GEARS
-    for i in range(2):
-        if pair.bore_radius is not None and rf[i] <= pair.bore_radius[i]:
-            raise GearmeshInputError(f"bore_radius_mm[{i}]", pair.bore_radius[i] * 1e3,
-                                     f"must be below the {gear_names[i]} root radius {rf[i] * 1e3:.3f} mm")
-        if rf[i] <= 0:
-            raise GearmeshInputError(f"dedendum_coefficient[{i}]", float(hf[i]),
-                                     f"puts the {gear_names[i]} root circle at or below its axis")
-        if ra[i] <= rb[i]:
-            raise GearmeshInputError(f"addendum_coefficient[{i}]", float(ha[i]),
-                                     f"puts the {gear_names[i]} tip circle ({ra[i] * 1e3:.3f} mm) inside its base "
-                                     f"circle ({rb[i] * 1e3:.3f} mm): no involute flank")
-
-    # Tooth thickness on the reference circle and at the tip (ISO 21771 eqs. 64, 70).
-    st = mt * (np.pi / 2 + 2 * shift * math.tan(an))
-    sn = st * math.cos(beta)
-    alpha_at = np.arccos(rb / ra)
-    sat = 2 * ra * (st / (2 * r) + involute(alpha_t) - involute(alpha_at))
-    beta_a = np.arctan(np.tan(beta) * ra / r)
-    san = sat * np.cos(beta_a)
-    for i in range(2):
-        if san[i] <= 0:
-            raise GearmeshInputError(f"profile_shift[{i}]", float(shift[i]),
-                                     f"makes the {gear_names[i]} tooth pointed (normal tip thickness "
-                                     f"{san[i] * 1e3:.3f} mm <= 0); reduce the shift or the addendum")
+    _check_circles(pair, rb, ra, rf, ha, hf)
+    st, sn, san = _tooth_thicknesses(pair, mt, alpha_t, r, rb, ra, shift)
 
     # Roll lengths along the transverse line of action (ISO 21771 §5.4.1).
     rho_a = np.sqrt(ra**2 - rb**2)
     line_of_action = a * math.sin(alpha_wt)  # T1T2
     rho_sap = line_of_action - rho_a[::-1]
-    racks = [rack_from(z[i], mn, an, beta, pair.dedendum_coefficient[i] * mn, tool_tip_radius(pair, i), shift[i])
-             for i in range(2)]
-    rho_form, undercut = (np.array(v) for v in zip(*(form_roll(rack) for rack in racks)))
+    rho_form, undercut = _form_rolls(pair, z, shift)
     r_form = np.sqrt(rb**2 + rho_form**2)
-    for i in range(2):
-        other = 1 - i
-        if rho_sap[i] < 0:
-            raise GearmeshInputError(f"addendum_coefficient[{other}]", float(ha[other]),
-                                     f"the {gear_names[other]} tip reaches past the {gear_names[i]} base tangent "
-                                     "point of the line of action (involute interference)")
-        if rho_sap[i] < rho_form[i] - 1e-12:
-            raise GearmeshInputError(f"profile_shift[{i}]", float(shift[i]),
-                                     f"the {gear_names[other]} tip (start of active profile at roll length "
-                                     f"{rho_sap[i] * 1e3:.3f} mm) reaches below the {gear_names[i]} form circle "
-                                     f"(involute starts at {rho_form[i] * 1e3:.3f} mm{', undercut' if undercut[i] else ''}): "
-                                     "fillet interference")
-    clearance = a - ra[::-1] - rf
-    for i in range(2):
-        if clearance[i] < 0:
-            raise GearmeshInputError(f"addendum_coefficient[{1 - i}]", float(ha[1 - i]),
-                                     f"the {gear_names[1 - i]} tip circle cuts the {gear_names[i]} root circle "
-                                     f"(tip clearance {clearance[i] * 1e3:.3f} mm < 0)")
+    _check_active_profiles(ha, shift, rho_sap, rho_form, undercut)
+    clearance = _tip_clearance(a, ra, rf, ha)
 
     pbt = math.pi * mt * math.cos(alpha_t)
     path = rho_a.sum() - line_of_action  # g_α, eq. 87
@@ -1150,17 +502,8 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
         check_tip_edge_radius(edge_radius * 1e-3, san)
     b = min(pair.face_width)
     eps_beta = b * math.sin(beta) / (math.pi * mn)  # eq. 91
-
-    # Backlash: thicknesses on the operating pitch circles (ISO 21771 §5.5; j = 0 at a0).
-    swt = 2 * rw * (st / (2 * r) + involute(alpha_t) - involute(alpha_wt))
-    j_wt = 2 * math.pi * rw[0] / z[0] - swt.sum() if a != a0 else 0.0  # at a0 zero by construction, not ±1e-17
-    j_bn = j_wt * math.cos(alpha_wt) * math.cos(beta_b)
-
-    if pair.bore_radius is not None and pair.material is not None:
-        mass, inertia = gear_body_mass_inertia(r, np.array(pair.bore_radius), np.array(pair.face_width),
-                                               pair.material.density)
-    else:
-        mass = inertia = np.full(2, np.nan)
+    j_wt, j_bn = _backlash(z, r, rw, st, alpha_t, alpha_wt, beta_b, a, a0)
+    mass, inertia = _body_mass_inertia(pair, r)
 
     geom = PairGeometry(
         pair=pair, profile_shift=shift, shift_inferred=inferred, transverse_module=mt,
@@ -1177,6 +520,101 @@ def _pair_geometry(pair: GearPair) -> PairGeometry:
     return geom
 
 
+def _check_circles(pair: GearPair, rb: np.ndarray, ra: np.ndarray, rf: np.ndarray, ha: np.ndarray,
+                   hf: np.ndarray) -> None:
+    """Refuse a root circle (radius ``rf``, m) at or inside the bore or the axis, and a tip circle
+    (``ra``) inside the base circle (``rb``): no involute flank. ``ha``, ``hf``: the addendum and
+    dedendum coefficients."""
+    for i in range(2):
+        if pair.bore_radius is not None and rf[i] <= pair.bore_radius[i]:
+            raise GearmeshInputError(f"bore_radius_mm[{i}]", pair.bore_radius[i] * 1e3,
+                                     f"must be below the {GEARS[i]} root radius {rf[i] * 1e3:.3f} mm")
+        if rf[i] <= 0:
+            raise GearmeshInputError(f"dedendum_coefficient[{i}]", float(hf[i]),
+                                     f"puts the {GEARS[i]} root circle at or below its axis")
+        if ra[i] <= rb[i]:
+            raise GearmeshInputError(f"addendum_coefficient[{i}]", float(ha[i]),
+                                     f"puts the {GEARS[i]} tip circle ({ra[i] * 1e3:.3f} mm) inside its base "
+                                     f"circle ({rb[i] * 1e3:.3f} mm): no involute flank")
+
+
+def _tooth_thicknesses(pair: GearPair, mt: float, alpha_t: float, r: np.ndarray, rb: np.ndarray, ra: np.ndarray,
+                       shift: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Tooth thickness on the reference circle, transverse s_t and normal s_n, and the normal tip
+    thickness s_an (m) (ISO 21771 eqs. 64, 70); a pointed tooth (s_an ≤ 0) is refused."""
+    beta = pair.helix_angle
+    st = mt * (np.pi / 2 + 2 * shift * math.tan(pair.normal_pressure_angle))
+    sn = st * math.cos(beta)
+    alpha_at = np.arccos(rb / ra)
+    sat = 2 * ra * (st / (2 * r) + involute(alpha_t) - involute(alpha_at))
+    beta_a = np.arctan(np.tan(beta) * ra / r)
+    san = sat * np.cos(beta_a)
+    for i in range(2):
+        if san[i] <= 0:
+            raise GearmeshInputError(f"profile_shift[{i}]", float(shift[i]),
+                                     f"makes the {GEARS[i]} tooth pointed (normal tip thickness "
+                                     f"{san[i] * 1e3:.3f} mm <= 0); reduce the shift or the addendum")
+    return st, sn, san
+
+
+def _form_rolls(pair: GearPair, z: np.ndarray, shift: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Roll length (m) of the true form point of each gear, where its generated involute starts,
+    and whether the gear is undercut (:func:`gearmesh.rack.form_roll` of its generating rack)."""
+    mn, an, beta = pair.normal_module, pair.normal_pressure_angle, pair.helix_angle
+    racks = [rack_from(z[i], mn, an, beta, pair.dedendum_coefficient[i] * mn, tool_tip_radius(pair, i), shift[i])
+             for i in range(2)]
+    rho_form, undercut = (np.array(v) for v in zip(*(form_roll(rack) for rack in racks)))
+    return rho_form, undercut
+
+
+def _check_active_profiles(ha: np.ndarray, shift: np.ndarray, rho_sap: np.ndarray, rho_form: np.ndarray,
+                           undercut: np.ndarray) -> None:
+    """Refuse a mate's tip that reaches past the base tangent point of the line of action
+    (involute interference) or below the form circle (fillet interference): the start of active
+    profile ``rho_sap`` (roll length, m) must lie on the involute, at or above ``rho_form``."""
+    for i in range(2):
+        other = 1 - i
+        if rho_sap[i] < 0:
+            raise GearmeshInputError(f"addendum_coefficient[{other}]", float(ha[other]),
+                                     f"the {GEARS[other]} tip reaches past the {GEARS[i]} base tangent "
+                                     "point of the line of action (involute interference)")
+        if rho_sap[i] < rho_form[i] - 1e-12:
+            raise GearmeshInputError(f"profile_shift[{i}]", float(shift[i]),
+                                     f"the {GEARS[other]} tip (start of active profile at roll length "
+                                     f"{rho_sap[i] * 1e3:.3f} mm) reaches below the {GEARS[i]} form circle "
+                                     f"(involute starts at {rho_form[i] * 1e3:.3f} mm{', undercut' if undercut[i] else ''}): "
+                                     "fillet interference")
+
+
+def _tip_clearance(a: float, ra: np.ndarray, rf: np.ndarray, ha: np.ndarray) -> np.ndarray:
+    """Tip clearance c = a − r_a(other) − r_f (m) of each gear's root circle; negative refused."""
+    clearance = a - ra[::-1] - rf
+    for i in range(2):
+        if clearance[i] < 0:
+            raise GearmeshInputError(f"addendum_coefficient[{1 - i}]", float(ha[1 - i]),
+                                     f"the {GEARS[1 - i]} tip circle cuts the {GEARS[i]} root circle "
+                                     f"(tip clearance {clearance[i] * 1e3:.3f} mm < 0)")
+    return clearance
+
+
+def _backlash(z: np.ndarray, r: np.ndarray, rw: np.ndarray, st: np.ndarray, alpha_t: float, alpha_wt: float,
+              beta_b: float, a: float, a0: float) -> tuple[float, float]:
+    """Circumferential backlash j_wt on the operating pitch circle and normal backlash j_bn (m),
+    from the thicknesses on the operating pitch circles (ISO 21771 §5.5; j = 0 at a0)."""
+    swt = 2 * rw * (st / (2 * r) + involute(alpha_t) - involute(alpha_wt))
+    j_wt = 2 * math.pi * rw[0] / z[0] - swt.sum() if a != a0 else 0.0  # at a0 zero by construction, not ±1e-17
+    j_bn = j_wt * math.cos(alpha_wt) * math.cos(beta_b)
+    return j_wt, j_bn
+
+
+def _body_mass_inertia(pair: GearPair, r: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The gear bodies' masses (kg) and inertias (kg m²) (:func:`gear_body_mass_inertia`); NaN
+    without a bore or a material."""
+    if pair.bore_radius is not None and pair.material is not None:
+        return gear_body_mass_inertia(r, np.array(pair.bore_radius), np.array(pair.face_width),
+                                      pair.material.density)
+    mass = inertia = np.full(2, np.nan)
+    return mass, inertia
 
 
 def check_tip_edge_radius(edge_radius: float, normal_tip_thickness) -> None:

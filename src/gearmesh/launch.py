@@ -105,7 +105,7 @@ def _profile_configfiles(folder: Path, path: Path) -> list[str]:
     Snakemake's profile parser resolves it: variables expanded, relative to the profile's folder
     where it exists there), after the profile itself is read bounded, a mapping without
     ``__use_yte__``."""
-    from .gear import read_yaml
+    from .inputfile import read_yaml
 
     data = read_yaml(path, "profile")
     if not isinstance(data, Mapping):
@@ -132,7 +132,7 @@ def check_inputs(inputs: SnakemakeInputs) -> None:
     (:func:`gearmesh.config.validate_study`, which names ``__use_yte__``); the profiles were read
     bounded by :func:`snakemake_inputs`. GearmeshInputError naming the first that fails."""
     from .config import validate_study
-    from .gear import read_yaml
+    from .inputfile import read_yaml
 
     for path in inputs.configfiles:
         data = read_yaml(path, "config file")

@@ -26,7 +26,8 @@ from typing import Any, Callable, Mapping
 
 import xarray as xr
 
-from .gear import GearPair, load_pair, pair_notes, pair_to_dict, variant_pair
+from .gear import GearPair
+from .pairfile import load_pair, pair_notes, pair_to_dict, variant_pair
 from .io import (DATA_ATTR, OutputError, add_provenance, atomic_output, figure_sources, job_outputs, normal_path,
                  read_dataset, space_errno, write_dataset)
 from .settings import job_of, stage_of

@@ -36,7 +36,8 @@ import numpy as np
 
 from .choices import DEFAULT_LIFE_FACTOR_CONDITIONS, LIFE_FACTOR_CONDITIONS
 from .errors import GearmeshInputError
-from .gear import GEARS, PairGeometry, check_rating_input
+from .gear import GEARS, PairGeometry
+from .pairfile import check_rating_input
 from .limits import FACTOR_RANGES
 from .stress import gear_root_form
 

@@ -20,7 +20,8 @@ import numpy as np
 
 from .choices import PEM_TOOTH_METHODS
 from .errors import GearmeshInputError
-from .gear import PairGeometry, involute, missing_key
+from .gear import PairGeometry, involute
+from .pairfile import missing_key
 
 if TYPE_CHECKING:  # scipy is imported where it is used: importing it costs ~0.5 s of a job's start-up
     from scipy.interpolate import CubicSpline

@@ -45,7 +45,8 @@ from typing import Any, Callable, Mapping
 import xarray as xr
 
 from .errors import GearmeshInputError, excerpt
-from .gear import _REQUIRED_KEYS, GearPair, pair_to_dict
+from .gear import GearPair
+from .pairfile import _REQUIRED_KEYS, pair_to_dict
 from .io import DATA_ATTR, FIGURE_KEY, config_digest, data_digest, figure_provenance, normal_path
 
 #: Global attributes :func:`identify` writes: the file as written (relative POSIX path), the
@@ -292,7 +293,7 @@ def check_optimum(path: str | Path, expected: Expected | None = None) -> None:
     other settings of that optimisation, tolerances or impact model, or for other pair data
     (another run's pair.yaml and ga.nc put in place together; :func:`check_input`). One line
     naming the file and how to remake it."""
-    from .gear import read_input_text
+    from .inputfile import read_input_text
 
     text = read_input_text(path, "pair file")
     first, _, body = text.partition("\n")

@@ -16,7 +16,8 @@ from ..choices import IMPACT_INDEX
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from . import shared_torques, variant_names
-from ..gear import GEARS, GearPair, load_pair, pair_geometry, pair_to_dict
+from ..gear import GEARS, GearPair, pair_geometry
+from ..pairfile import load_pair, pair_to_dict
 from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
                       impact_response, impact_static, load_grid, load_window, mesh_in_point,
                       seed_edge_roll, simulate_engagement, vector_velocity)

@@ -24,7 +24,8 @@ import xarray as xr
 from ..choices import DEFAULT_CYCLE_POSITIONS
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
-from ..gear import GEARS, MODIFICATION_UNITS, GearPair, Modification, pair_geometry
+from ..gear import GEARS, GearPair, Modification, pair_geometry
+from ..pairfile import MODIFICATION_UNITS
 from ..impact import SCENARIOS, impact_model
 from ..robust import CRITERIA, CRITERION_UNITS
 from ..io import name_force_lines, variable

@@ -15,7 +15,8 @@ import numpy as np
 import xarray as xr
 
 from ..errors import GearmeshInputError
-from ..gear import GEARS, GearPair, Modification, PairGeometry, missing_key, pair_geometry, pair_notes
+from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry
+from ..pairfile import missing_key, pair_notes
 from ..io import variable
 from . import shared_torques, variant_names
 from ..limits import check_contact_grid, check_speeds

@@ -11,7 +11,8 @@ import xarray as xr
 from ..fe import use_fe_tables
 from ..design import pair_with_contact_ratios
 from ..errors import GearmeshInputError
-from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_to_dict
+from ..gear import GearPair, PairGeometry, pair_geometry
+from ..pairfile import pair_from_dict, pair_to_dict
 from ..gear import pinion_torque as gear_pinion_torque
 from ..io import variable
 from ..limits import check_slice_grid

@@ -11,7 +11,8 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 
 from ..errors import GearmeshInputError
-from ..gear import PairGeometry, missing_key
+from ..gear import PairGeometry
+from ..pairfile import missing_key
 from ..meshforce import MeshForceTable
 from ..supports import DEFAULT_SUPPORTS_N_PER_UM
 from .excitation import MeshLaw, contact_mesh_law, mesh_law

@@ -13,7 +13,7 @@ from matplotlib import colormaps
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter
 
-from ..gear import example_pairs
+from ..pairfile import example_pairs
 from ..io import atomic_output, stamp_figure
 
 MM = 1e3  # m -> mm
