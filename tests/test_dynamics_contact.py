@@ -362,7 +362,7 @@ def test_contact_table_is_built_once_per_mesh_misalignment(pair, geom, monkeypat
     """One table layout per pair and variant, and one tabulation per mesh misalignment: the sweep over
     three torques tabulates three (each torque deflects the shafts its own amount), the pair without
     its shafts and bearings one."""
-    import gearmesh.datasets.dynamics as dd
+    import gearmesh.datasets.dynamics.excitation as dd
     from gearmesh.supports import read_supports
 
     for p, expected in ((pair, 3), (pair.with_changes(supports=read_supports({})), 1)):

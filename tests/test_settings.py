@@ -217,7 +217,7 @@ def test_every_bound_is_the_stages_own(path, cls):
 def test_a_value_the_schema_accepts_passes_the_stage_check():
     """The other direction for the solver, the instance of the issue (courant 1.5 passed the
     schema, then the stage refused it): the bounds themselves pass both."""
-    from gearmesh.datasets.dynamics import _solver, _table_settings
+    from gearmesh.datasets.dynamics.inputs import _solver, _table_settings
 
     _solver(1.0, 8, 1.0, 2, "transient")
     _table_settings(points=2000, table_positions=16, table_approaches=8, table_force_factor=100)

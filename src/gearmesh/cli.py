@@ -297,8 +297,10 @@ def cmd_rating(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
-    from .datasets.dynamics import (check_dynamics_settings, dynamics_summary, model_choices, parse_speeds,
-                                    positive_torque, supports_note)
+    from .datasets.dynamics.checks import check_dynamics_settings
+    from .datasets.dynamics.excitation import model_choices
+    from .datasets.dynamics.inputs import parse_speeds, positive_torque, supports_note
+    from .datasets.dynamics.pair import dynamics_summary
 
     positive_torque("torque_Nm", args.torque_Nm)
     pair, geom = _pair(args)

@@ -172,7 +172,7 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     burst speed), the stiffness Fourier order, helix-sweep size, dynamics comparison couples and
     the full dynamics and train settings with their work estimate
     (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`)."""
-    from .datasets.dynamics import check_dynamics_settings
+    from .datasets.dynamics.checks import check_dynamics_settings
     from .gear import pair_geometry
     from .limits import check_sweep
     from .loads import check_load

@@ -1,0 +1,132 @@
+"""What drives the mesh of a dynamics model, from the stage's settings and upstream datasets: the
+slice stiffness, a tabulated TE, the LTCA's loaded stiffness and error, the mesh force tables of
+the real contact (:mod:`gearmesh.meshforce`); and how a result names them.
+"""
+
+from __future__ import annotations
+
+
+import numpy as np
+import xarray as xr
+
+from ...errors import GearmeshInputError
+from ...gear import PairGeometry
+from ...limits import same_point
+from ...ltca import contact_tangent_compliance
+from ...deflection import mesh_misalignment
+from ...deviation import with_misalignment
+from ...meshforce import MeshForceTable, table_layout, tabulate
+from ...tca import pair_lead_slope
+from ...stiffness import mesh_stiffness
+from ...choices import DEFAULT_TOOTH_METHOD, pair_excitation
+from .inputs import PAIR_EXCITATIONS, _table_settings
+
+def _stiffness_curve(geom: PairGeometry, stiffness: xr.Dataset | None, method: str, slices: int,
+                     positions: int, pinion_torque: float) -> np.ndarray:
+    """Transverse TVMS K (N/m) at evenly spaced rolls over one base pitch: from the upstream
+    stiffness dataset (``mesh_stiffness`` on ``position``; its contact term at its own torque) or
+    computed here with the contact law's tangent at ``pinion_torque`` (N·m)."""
+    if stiffness is not None:
+        if "mesh_stiffness" not in stiffness:
+            raise GearmeshInputError("stiffness", "dataset", "has no 'mesh_stiffness' variable")
+        return np.asarray(stiffness["mesh_stiffness"].values, dtype=float)
+    return mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method, components=False,
+                          contact_compliance=contact_tangent_compliance(geom, pinion_torque)).K
+
+
+def _transmission_error(transmission_error_um) -> np.ndarray | None:
+    """A tabulated unloaded TE (µm, transverse, evenly over one mesh cycle) in m."""
+    if transmission_error_um is None:
+        return None
+    te = np.asarray(transmission_error_um, dtype=float)
+    if te.ndim != 1 or te.size < 2 or not np.all(np.isfinite(te)):
+        raise GearmeshInputError("transmission_error_um", transmission_error_um,
+                                 "must be a list of >= 2 finite values (µm) over one mesh cycle")
+    return te * 1e-6
+
+
+def ltca_excitation(geom: PairGeometry, ltca: xr.Dataset, pinion_torque: float) -> tuple[np.ndarray, np.ndarray]:
+    """Mesh stiffness and equivalent error (both transverse, over one mesh cycle) from the LTCA.
+
+    At the LTCA torque equal to ``pinion_torque`` (N m): k(t) = the loaded tangent mesh
+    stiffness k_L and e(t) = LTE(t) − F/k_L(t), F = T1/r_b1, so that the static solution of
+    F = k(δ − e) is δ = LTE: the quasi-static excitation of Velex & Ajmi (2006, J. Sound Vib.
+    290:882) built from the loaded TE. Micro-geometry, edge contact and the nonlinear contact
+    law thus enter the dynamics through the LTCA of each variant.
+    """
+    torques = np.asarray(ltca["torque"].values, dtype=float)
+    match = np.flatnonzero(same_point(torques, pinion_torque))
+    if not match.size:
+        raise GearmeshInputError("ltca.torques_Nm", torques.tolist(),
+                                 f"must include the dynamics torque ({pinion_torque:.6g} N m on the pinion)")
+    k_l = np.asarray(ltca["loaded_mesh_stiffness"].values[match[0]], dtype=float)
+    lte = np.asarray(ltca["lte"].values[match[0]], dtype=float)
+    force = pinion_torque / float(geom.base_radius[0])
+    return k_l, lte - force / k_l
+
+
+def resolve_excitation(excitation: str | None, ltca: xr.Dataset | None) -> str:
+    """The excitation to run (:func:`gearmesh.choices.pair_excitation`): as given, or (None) 'ltca'
+    when an LTCA dataset is at hand, else 'tvms'."""
+    if excitation is not None and excitation not in PAIR_EXCITATIONS:
+        raise GearmeshInputError("excitation", excitation, f"must be one of {list(PAIR_EXCITATIONS)} or null")
+    return pair_excitation(excitation, ltca is not None)
+
+
+def contact_table(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOTH_METHOD, **settings) -> MeshForceTable:
+    """The mesh force table of ``geom`` (its micro-geometry and deviations) for the ``contact``
+    excitation at the first of ``pinion_torques`` (N m): every row reaches ``table_force_factor``
+    times the largest static force F_bt = T1/r_b1 of them, the separations carry the mesh
+    misalignment of the first (:func:`contact_tables`); ``settings`` as :data:`_TABLE_KEYS`."""
+    return contact_tables(geom, np.atleast_1d(pinion_torques)[:1], method, **settings)[0]
+
+
+def contact_tables(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOTH_METHOD,
+                   **settings) -> list[MeshForceTable]:
+    """One mesh force table per pinion torque of ``pinion_torques`` (N m) (:mod:`gearmesh.meshforce`):
+    every row of each reaches ``table_force_factor`` times the largest static force F_bt of them;
+    each table's separations carry the mesh misalignment at its own static force (the stated f_ma
+    and the system deflection's f_sh, :func:`gearmesh.deflection.mesh_misalignment`: the gearbox
+    deflects with the mean load), so torques of one misalignment share one table."""
+    t = _table_settings(**settings)
+    rb1 = float(geom.base_radius[0])
+    torques = np.atleast_1d(np.asarray(pinion_torques, dtype=float))
+    force = t["factor"] * float(np.max(torques)) / rb1
+    layout = table_layout(geom, t["positions"], t["points"], t["contact_law_name"], method)
+    lead = pair_lead_slope(geom)
+    built: dict[float, MeshForceTable] = {}
+    for m in mesh_misalignment(geom, torques / rb1):
+        if float(m) not in built:
+            built[float(m)] = tabulate(layout, layout.gaps(lead_slope=with_misalignment(lead, float(m))), force,
+                                       t["approaches"])
+    return [built[float(m)] for m in mesh_misalignment(geom, torques / rb1)]
+
+
+def excitation_used(excitation: str, ltca: xr.Dataset | None = None, transmission_error_um=None,
+                    table: MeshForceTable | None = None) -> str:
+    """What excited the model, for the ``excitation`` attribute of the dataset."""
+    if excitation == "contact":
+        return ("contact: the mesh force of the real tooth contact F(x, w) of every tooth pair (flanks and tip edges, "
+                f"modifications and lead slopes; gearmesh.meshforce, {table.positions} positions x "
+                f"{table.approach.size} approaches per mesh cycle)" if table is not None else "contact")
+    if excitation == "ltca":
+        return ("ltca: loaded mesh stiffness k_L(t) and equivalent error e = LTE - F/k_L of the variant's "
+                f"LTCA ({ltca.attrs.get('contact_law', 'palmgren') if ltca is not None else 'palmgren'} contact)")
+    if excitation == "lste":
+        return "lste: slice-model stiffness K(t) and the low-fluctuation paper's error e = F/K(t)"
+    te = " and the tabulated unloaded TE" if transmission_error_um is not None else " (unloaded TE zero)"
+    return f"tvms: slice-model stiffness K(t){te}"
+
+
+def model_choices(excitation: str, method: str, contact_law: str, stiffness: xr.Dataset | None = None,
+                  ltca: xr.Dataset | None = None) -> dict[str, str]:
+    """The tooth model and contact law behind a dynamics result (its ``tooth_model`` and
+    ``contact_law`` attributes): the given stiffness dataset's tooth model or ``method`` for
+    ``tvms``/``lste``; the LTCA's for ``ltca``; ``method`` and ``contact_law`` of the tabulated
+    contact for ``contact``."""
+    if excitation == "ltca" and ltca is not None:
+        return {"tooth_model": str(ltca.attrs.get("tooth_model", method)),
+                "contact_law": str(ltca.attrs.get("contact_law", contact_law))}
+    if excitation == "contact":
+        return {"tooth_model": method, "contact_law": contact_law}
+    return {"tooth_model": str(stiffness.attrs.get("tooth_model", method)) if stiffness is not None else method}

@@ -1,0 +1,142 @@
+"""The 9-DOF plate–blanket–impression train (the improved potential-energy paper) as a dataset.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ...body import describe_body
+from ...dynamics import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, LOW_FLUCTUATION_BEARING, TRAIN_GEARS,
+                         require_dynamics_data, simulate, train_model)
+from ...errors import GearmeshInputError
+from ...fe import use_fe_tables
+from ...gear import GearPair, pair_geometry, pinion_torque
+from ...io import name_force_lines, variable
+from ...limits import MAX_TRAIN_SPEEDS, check_speeds
+from ...loads import check_load
+from ...meshforce import DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS
+from ...stiffness import DEFAULT_SLICES
+from ...schema import check_arguments
+from ...choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
+from ...settings import TrainDynamics
+from .excitation import _stiffness_curve, contact_table, excitation_used, model_choices
+from .inputs import _backlash, _bearing, _solver, positive_torque, speed_grid, supports_note
+from .variables import _common_vars, _modal_vars, _series_arrays, _series_vars, _vibration_vars
+
+#: The improved potential-energy paper: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
+PRINTING_TRAIN_MESH_FREQUENCY_HZ = 249.4
+PRINTING_TRAIN_STATIC_FORCE_N = 2832.0
+
+
+@check_arguments(TrainDynamics)
+def train_dataset(pair: GearPair, static_force_N: float | None = PRINTING_TRAIN_STATIC_FORCE_N,
+                  torque_Nm: float | None = None, speeds_rpm: Any = None,
+                  mesh_frequency_Hz: float = PRINTING_TRAIN_MESH_FREQUENCY_HZ, backlash_um="pair",
+                  bearing_k_radial_N_per_m: float | str = "pair",
+                  bearing_k_axial_N_per_m: float | str = "pair",
+                  bearing_c_radial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_radial"],
+                  bearing_c_axial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_axial"],
+                  damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
+                  stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
+                  method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
+                  phase_offsets_cycles: Sequence[float] = (0.0, 0.0), courant: float = 0.25,
+                  steps_per_cycle_min: int = 32, transient_tau: float = 10.0, record_cycles: int = 8,
+                  steady_state: str = "shooting", points_per_cycle: int = 64, max_order: int = 10,
+                  contact_law: str = DEFAULT_CONTACT_LAW, points: int = DEFAULT_TABLE_POINTS,
+                  table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
+                  table_force_factor: float = 4.0, stiffness: xr.Dataset | None = None,
+                  fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+    """The 9-DOF plate–blanket–impression train of the improved potential-energy paper (:func:`gearmesh.dynamics.train_model`).
+
+    Assumptions (the improved potential-energy paper gives neither torque nor speed nor bearings): the three gears are
+    the pair file's gear repeated (the improved potential-energy paper: alike, 88 teeth) with the pair's TVMS for both
+    meshes; the load is given as the static normal mesh force ``static_force_N`` (the improved potential-energy paper:
+    2832 N; T = F r_b cos βb) unless ``torque_Nm`` is given; the speed is the one whose mesh
+    frequency is ``mesh_frequency_Hz`` (the improved potential-energy paper: 249.4 Hz → 170.05 rpm) unless
+    ``speeds_rpm`` is given; bearings are the low-fluctuation paper's, the backlash the pair's own unless
+    given; meshes in phase. ``excitation`` 'tvms' (default), 'lste' or 'contact' (both meshes
+    driven by the pair's mesh force table, settings as :func:`dynamics_dataset`).
+    Time series and spectra are kept at every speed (give few).
+    """
+    geom = pair_geometry(pair)
+    require_dynamics_data(geom)
+    rb, cb = float(geom.base_radius[1]), math.cos(geom.base_helix_angle)
+    if torque_Nm is not None:
+        torque = positive_torque("torque_Nm", torque_Nm)
+        check_load(geom, pinion_torque(pair, torque, "gear"), "torque_Nm", torque_Nm)
+    elif static_force_N is not None:
+        torque = positive_torque("static_force_N", static_force_N) * rb * cb
+        check_load(geom, pinion_torque(pair, torque, "gear"), "static_force_N", static_force_N)
+    else:
+        raise GearmeshInputError("torque_Nm", None, "give torque_Nm or static_force_N")
+    if speeds_rpm is None:
+        f = positive_torque("mesh_frequency_Hz", mesh_frequency_Hz)
+        speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
+    else:
+        speeds = speed_grid(speeds_rpm)
+    check_speeds(geom, speeds, "speeds_rpm" if speeds_rpm is not None else "mesh_frequency_Hz", on="gear")
+    if len(speeds) > MAX_TRAIN_SPEEDS:
+        raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds",
+                                 f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
+    use_fe_tables(fe_compliance, geom)
+    exc = "tvms" if excitation is None else excitation
+    if exc not in ("tvms", "lste", "contact"):
+        raise GearmeshInputError("excitation", excitation, "must be 'tvms', 'lste', 'contact' or null for the train")
+    table = None
+    if exc == "contact":
+        table = contact_table(geom, [torque * float(geom.base_radius[0]) / rb], method, contact_law=contact_law,
+                              points=points, table_positions=table_positions,
+                              table_approaches=table_approaches, table_force_factor=table_force_factor)
+        K = None
+    else:
+        K = _stiffness_curve(geom, stiffness, method, slices, positions, torque * float(geom.base_radius[0]) / rb)
+    model = train_model(geom, torque, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
+                                                          bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
+                        damping_ratio=damping_ratio, backlash=_backlash(geom, backlash_um),
+                        stiffness_form=stiffness_form, order=fourier_order,
+                        excitation="lste" if exc == "lste" else "tvms", contact=table,
+                        phase_offsets=tuple(phase_offsets_cycles), mesh_damping=mesh_damping_Ns_per_m)
+    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
+    res = simulate(model, speeds, settings, series=True)
+    shape = (3, 2)
+    cb = math.cos(geom.base_helix_angle)
+    data = _common_vars(model, res, mesh_dim=True, cos_beta_b=cb)
+    data.update(_vibration_vars(res, model, shape))
+    data["torque"] = variable((), torque, "N m", "torque on the plate gear (= load on the impression gear)")
+    data["backlash"] = variable((), float(model.backlash) if math.isfinite(model.backlash) else np.nan, "m",
+                                "total backlash 2b0 along the normal (NaN: none, contact never lost)")
+    data.update(_modal_vars(model))
+    arr = _series_arrays(res, points_per_cycle, max_order, settings.record_cycles)
+    data.update(_series_vars(res, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
+                             shape, mesh_dim=True, cos_beta_b=cb, model=model))
+    coords = {
+        "speed": variable(("speed",), speeds, "rpm", "speed of the gears"),
+        "sample_speed": variable(("sample_speed",), speeds, "rpm", "speed of the kept time series"),
+        "gear": variable(("gear",), np.array(TRAIN_GEARS), "1", "gear of the train"),
+        "direction": variable(("direction",), np.array(["y", "z"]), "1", "direction: y along the centres, z axial"),
+        "mesh": variable(("mesh",), np.array(["plate-blanket", "blanket-impression"]), "1", "mesh of the train"),
+        "harmonic": variable(("harmonic",), np.array([1, 2, 3]), "1", "harmonic of the mesh frequency"),
+        "mode": variable(("mode",), np.arange(model.n), "1", "mode number, by frequency"),
+        "order": variable(("order",), np.arange(max_order * settings.record_cycles + 1) / settings.record_cycles,
+                          "1", "spectral line in mesh orders (f / f_mesh)"),
+    }
+    ds = xr.Dataset(data, coords=coords)
+    ds.attrs.update({
+        "model": "9-DOF plate-blanket-impression helical train (the improved potential-energy paper, projections corrected; gearmesh.dynamics)",
+        "excitation": excitation_used(exc, None, None, table), "excitation_name": exc,
+        **model_choices(exc, method, contact_law, stiffness), "stiffness_form": stiffness_form,
+        "fourier_order": fourier_order,
+        "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
+        else ("none" if backlash_um is None else "given"),
+        "assumptions": "three alike gears (the pair file's gear, its supports for all three); plate drives, "
+                       "impression loaded, blanket idles; meshes in phase unless phase_offsets_cycles; centres on "
+                       "one line",
+        "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
+        "gear_body": describe_body(geom),
+        "damping_ratio_meaning": DAMPING_MEANING,
+    })
+    return name_force_lines(ds, "normal")
