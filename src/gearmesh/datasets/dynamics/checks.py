@@ -38,8 +38,6 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
     or LTCA positions); a Fourier form needs more than twice its order. GearmeshInputError
     names the setting (as in the config section).
     """
-    import inspect
-
     from ...dynamics import step_plan
 
     section = TrainDynamics if train else Dynamics
@@ -53,49 +51,9 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
     if excitation == "contact":
         _table_settings(**{k: s[k] for k in _TABLE_KEYS})
     if s["stiffness_form"] == "fourier" and excitation != "contact":
-        for what, points in (("the excitation k(t)", excitation_points),
-                             ("transmission_error_um", len(s.get("transmission_error_um") or []) or None)):
-            if points is not None and not 2 * order < points:
-                raise GearmeshInputError("fourier_order", order, f"needs more than {2 * order} samples of {what} "
-                                         f"over a mesh cycle; it has {points}")
+        _check_fourier_samples(order, excitation_points, s)
     coarse = max(_ESTIMATE_POSITIONS, 2 * order + 2)
-    if not train:
-        speeds = speed_grid(s["speeds_rpm"])
-        check_speeds(pair_geometry(pair), speeds, "speeds_rpm")
-        try:
-            samples = speed_grid(list(s["sample_speeds_rpm"]) or 1.0)
-        except GearmeshInputError as exc:
-            raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
-        check_speeds(pair_geometry(pair), samples, "sample_speeds_rpm")
-        known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca", "table",
-                                                                       "torque_Nm", "excitation"}
-        models = [build_pair_model(pair, float(t), **{k: v for k, v in s.items() if k in known},
-                                   excitation="tvms" if excitation in ("ltca", "contact") else excitation,
-                                   slices=_ESTIMATE_SLICES, positions=coarse)
-                  for t in positive_values(s["torques_Nm"], "torques_Nm", "N m")]
-    else:
-        geom = pair_geometry(pair)
-        require_dynamics_data(geom)
-        if s["speeds_rpm"] is None:
-            speeds = np.array([positive_torque("mesh_frequency_Hz", s["mesh_frequency_Hz"]) * 60.0 / pair.teeth[1]])
-        else:
-            speeds = speed_grid(s["speeds_rpm"])
-        check_speeds(geom, speeds, "speeds_rpm", on="gear")
-        if s["torque_Nm"] is not None:
-            torque = positive_torque("torque_Nm", s["torque_Nm"])
-        else:
-            torque = positive_torque("static_force_N", s["static_force_N"]) \
-                * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
-        if speeds.size > MAX_TRAIN_SPEEDS:
-            raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",
-                                     f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
-        K = mesh_stiffness(geom, n_positions=coarse, n_slices=_ESTIMATE_SLICES, components=False).K
-        bearing = _bearing(*(s[f"bearing_{key}_{unit}"] for key, unit in (
-            ("k_radial", "N_per_m"), ("k_axial", "N_per_m"), ("c_radial", "Ns_per_m"), ("c_axial", "Ns_per_m"))))
-        models = [train_model(geom, torque, K, bearing=bearing, damping_ratio=s["damping_ratio"],
-                              backlash=_backlash(geom, s["backlash_um"]), stiffness_form=s["stiffness_form"],
-                              order=order, excitation="tvms" if excitation in (None, "contact") else excitation,
-                              phase_offsets=tuple(s["phase_offsets_cycles"]), mesh_damping=s["mesh_damping_Ns_per_m"])]
+    speeds, models = (_train_estimate(pair, s, coarse) if train else _pair_estimate(pair, s, coarse))
     steps = 0
     for model in models:
         _, m, n_tr, _ = step_plan(model, speeds, solver)
@@ -105,3 +63,65 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
                                  f"needs {len(models)} torques × {speeds.size} speeds × {steps} RK4 steps = "
                                  f"{steps * speeds.size * len(models):.3g} speed-steps; at most {MAX_SPEED_STEPS:.0e} "
                                  "(fewer or faster speeds)")
+
+
+def _check_fourier_samples(order: int, excitation_points: int | None, s: Mapping[str, Any]) -> None:
+    """Refuse a Fourier form of ``order`` without more than 2·order samples over a mesh cycle of
+    the excitation k(t) (``excitation_points``) or of the tabulated TE."""
+    for what, points in (("the excitation k(t)", excitation_points),
+                         ("transmission_error_um", len(s.get("transmission_error_um") or []) or None)):
+        if points is not None and not 2 * order < points:
+            raise GearmeshInputError("fourier_order", order, f"needs more than {2 * order} samples of {what} "
+                                     f"over a mesh cycle; it has {points}")
+
+
+def _pair_estimate(pair: GearPair, s: Mapping[str, Any], coarse: int) -> tuple[np.ndarray, list]:
+    """The speeds of a pair sweep (its grid and sample speeds checked) and one model per torque
+    on the coarse slice stiffness (``coarse`` positions): what its work estimate needs."""
+    import inspect
+
+    speeds = speed_grid(s["speeds_rpm"])
+    check_speeds(pair_geometry(pair), speeds, "speeds_rpm")
+    try:
+        samples = speed_grid(list(s["sample_speeds_rpm"]) or 1.0)
+    except GearmeshInputError as exc:
+        raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
+    check_speeds(pair_geometry(pair), samples, "sample_speeds_rpm")
+    known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca", "table",
+                                                                   "torque_Nm", "excitation"}
+    excitation = s["excitation"]
+    models = [build_pair_model(pair, float(t), **{k: v for k, v in s.items() if k in known},
+                               excitation="tvms" if excitation in ("ltca", "contact") else excitation,
+                               slices=_ESTIMATE_SLICES, positions=coarse)
+              for t in positive_values(s["torques_Nm"], "torques_Nm", "N m")]
+    return speeds, models
+
+
+def _train_estimate(pair: GearPair, s: Mapping[str, Any], coarse: int) -> tuple[np.ndarray, list]:
+    """The speeds of a train run (checked, at most :data:`MAX_TRAIN_SPEEDS`) and its model on the
+    coarse slice stiffness (``coarse`` positions): what its work estimate needs."""
+    geom = pair_geometry(pair)
+    require_dynamics_data(geom)
+    if s["speeds_rpm"] is None:
+        speeds = np.array([positive_torque("mesh_frequency_Hz", s["mesh_frequency_Hz"]) * 60.0 / pair.teeth[1]])
+    else:
+        speeds = speed_grid(s["speeds_rpm"])
+    check_speeds(geom, speeds, "speeds_rpm", on="gear")
+    if s["torque_Nm"] is not None:
+        torque = positive_torque("torque_Nm", s["torque_Nm"])
+    else:
+        torque = positive_torque("static_force_N", s["static_force_N"]) \
+            * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
+    if speeds.size > MAX_TRAIN_SPEEDS:
+        raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",
+                                 f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
+    K = mesh_stiffness(geom, n_positions=coarse, n_slices=_ESTIMATE_SLICES, components=False).K
+    bearing = _bearing(*(s[f"bearing_{key}_{unit}"] for key, unit in (
+        ("k_radial", "N_per_m"), ("k_axial", "N_per_m"), ("c_radial", "Ns_per_m"), ("c_axial", "Ns_per_m"))))
+    excitation = s["excitation"]
+    return speeds, [train_model(geom, torque, K, bearing=bearing, damping_ratio=s["damping_ratio"],
+                                backlash=_backlash(geom, s["backlash_um"]), stiffness_form=s["stiffness_form"],
+                                order=s["fourier_order"],
+                                excitation="tvms" if excitation in (None, "contact") else excitation,
+                                phase_offsets=tuple(s["phase_offsets_cycles"]),
+                                mesh_damping=s["mesh_damping_Ns_per_m"])]

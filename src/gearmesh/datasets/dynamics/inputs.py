@@ -142,6 +142,12 @@ def _backlash(geom: PairGeometry, backlash_um) -> float | None:
     return None if backlash_um is None else float(backlash_um) * 1e-6
 
 
+def backlash_source(backlash_um) -> str:
+    """Where the backlash of a result came from, for its ``backlash_source`` attribute."""
+    return ("the pair's own (centre distance and shifts)" if backlash_um == "pair"
+            else ("none" if backlash_um is None else "given"))
+
+
 #: Settings of the contact table (:func:`contact_table`), with their defaults.
 _TABLE_KEYS = {k: _DEFAULTS[k] for k in ("contact_law", "points", "table_positions", "table_approaches",
                                          "table_force_factor")}

@@ -30,7 +30,7 @@ from ...settings import Dynamics
 from .excitation import (_stiffness_curve, _transmission_error, contact_table, contact_tables, excitation_used,
                          ltca_excitation, model_choices, resolve_excitation)
 from .inputs import (DEFAULT_SPEEDS, _DEFAULTS, _SOLVER_KEYS, _TABLE_KEYS, _backlash, _bearing, _solver,
-                     positive_torque, speed_grid, supports_note)
+                     backlash_source, positive_torque, speed_grid, supports_note)
 from .variables import _common_vars, _modal_vars, _series_arrays, _series_vars, _vibration_vars
 
 _PAIR_GEARS = ("pinion", "gear")
@@ -237,33 +237,68 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     """
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
+    given, t1 = _pair_torques(pair, geom, torques_Nm, on)
+    grid, samples = _sweep_speeds(geom, speeds_rpm, sample_speeds_rpm)
+    check_slice_grid(slices, positions)
+    use_fe_tables(fe_compliance, geom)
+    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
+    exc = resolve_excitation(excitation, ltca)
+    tables = (contact_tables(geom, t1, method, contact_law=contact_law, points=points, table_positions=table_positions,
+                             table_approaches=table_approaches, table_force_factor=table_force_factor)
+              if exc == "contact" else [None] * len(given))
+    models = [build_pair_model(pair, float(t), on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
+                               bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
+                               mesh_damping_Ns_per_m, stiffness_form, fourier_order, exc, method, slices, positions,
+                               transmission_error_um, stiffness, ltca, tab) for t, tab in zip(given, tables)]
+    speeds = _resonance_refined_speeds(grid, models) if refine_resonances else grid
+    ds = _torque_sweeps(pair, models, tables, given, on, speeds, grid, samples, settings, points_per_cycle, max_order)
+    ds = _with_pair_scalars(ds, geom, t1, models[0], tables[0])
+    ds.attrs.update(_sweep_attrs(
+        pair, geom, exc, settings, ltca=ltca, transmission_error_um=transmission_error_um, table=tables[0],
+        method=method, contact_law=contact_law, stiffness=stiffness, refine_resonances=refine_resonances,
+        stiffness_form=stiffness_form, fourier_order=fourier_order, on=on, variant=variant, backlash_um=backlash_um,
+        damping_ratio=damping_ratio, bearing_k_radial_N_per_m=bearing_k_radial_N_per_m,
+        bearing_k_axial_N_per_m=bearing_k_axial_N_per_m, steady_state=steady_state, transient_tau=transient_tau,
+        record_cycles=record_cycles))
+    return name_force_lines(ds, "normal")
+
+
+def _pair_torques(pair: GearPair, geom: PairGeometry, torques_Nm, on: str) -> tuple[np.ndarray, np.ndarray]:
+    """The torques as given (N·m, on ``on``) and the pinion torques T1, checked against the load
+    limits (:func:`gearmesh.loads.check_loads`)."""
     given = positive_values(torques_Nm, "torques_Nm", "N m")
     if on not in _PAIR_GEARS:
         raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torques_Nm act)")
     t1 = pinion_torque(pair, given, on)
     check_loads(geom, t1, "torques_Nm", given)
+    return given, t1
+
+
+def _sweep_speeds(geom: PairGeometry, speeds_rpm, sample_speeds_rpm: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
+    """The configured grid of pinion speeds and the speeds whose series are kept (rpm; none: an
+    empty array), each checked against the pair's speed limits."""
     grid = speed_grid(speeds_rpm)
     check_speeds(geom, grid, "speeds_rpm")
     samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
     check_speeds(geom, samples, "sample_speeds_rpm", empty_ok=True)
-    check_slice_grid(slices, positions)
-    use_fe_tables(fe_compliance, geom)
-    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
-    exc = resolve_excitation(excitation, ltca)
-    tables = [None] * len(given)
-    if exc == "contact":
-        tables = contact_tables(geom, t1, method, contact_law=contact_law, points=points,
-                                table_positions=table_positions, table_approaches=table_approaches,
-                                table_force_factor=table_force_factor)
-    table = tables[0]
-    models = [build_pair_model(pair, float(t), on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
-                               bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
-                               mesh_damping_Ns_per_m, stiffness_form, fourier_order, exc, method, slices, positions,
-                               transmission_error_um, stiffness, ltca, tab) for t, tab in zip(given, tables)]
-    speeds = np.unique(np.concatenate([resonance_refined(grid, m) for m in models])) if refine_resonances else grid
+    return grid, samples
+
+
+def _resonance_refined_speeds(grid: np.ndarray, models: Sequence[GearModel]) -> np.ndarray:
+    """``grid`` with the resonance speeds of every torque's model (:func:`resonance_refined`), at
+    most :data:`MAX_SPEEDS`."""
+    speeds = np.unique(np.concatenate([resonance_refined(grid, m) for m in models]))
     if speeds.size > MAX_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds with the resonance points of every torque",
                                  f"at most {MAX_SPEEDS} (refine_resonances: false, or a coarser grid)")
+    return speeds
+
+
+def _torque_sweeps(pair: GearPair, models: Sequence[GearModel], tables: Sequence[MeshForceTable | None],
+                   given: np.ndarray, on: str, speeds: np.ndarray, grid: np.ndarray, samples: np.ndarray,
+                   settings: SolverSettings, points_per_cycle: int, max_order: int) -> xr.Dataset:
+    """The sweep of each torque's model (:func:`_pair_sweep`) joined along ``torque``, with the
+    coordinates of the dataset."""
     parts = []
     for k, model in enumerate(models):
         logging.info("torque %d of %d: %.6g N m on the %s", k + 1, len(models), given[k], on)
@@ -283,23 +318,37 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     if samples.size:
         coords["sample_speed"] = variable(("sample_speed",), samples, "rpm", "pinion speed of the kept time series")
         coords["order"] = variable(("order",), order_coord, "1", "spectral line in mesh orders (f / f_mesh)")
-    ds = ds.assign_coords(coords)
+    return ds.assign_coords(coords)
+
+
+def _with_pair_scalars(ds: xr.Dataset, geom: PairGeometry, t1: np.ndarray, model: GearModel,
+                       table: MeshForceTable | None) -> xr.Dataset:
+    """``ds`` with the pinion torques T1 and the sweep's scalars: backlash, base pitch and the roll
+    of the start of engagement A (of ``table`` when the contact drives, else of the geometry)."""
     ds["pinion_torque"] = variable(("torque",), t1, "N m", "pinion torque T1")
-    ds["backlash"] = variable((), float(models[0].backlash) if math.isfinite(models[0].backlash) else np.nan, "m",
+    ds["backlash"] = variable((), float(model.backlash) if math.isfinite(model.backlash) else np.nan, "m",
                               "total backlash 2b0 along the normal (NaN: none, contact never lost)")
     ds["transverse_base_pitch"] = variable((), geom.transverse_base_pitch, "m", "transverse base pitch (mesh cycle)")
     ds["roll_engagement"] = variable((), float(table.roll_engagement) if table is not None else
                                      float(_engagement_roll(geom)), "m",
                                      "pinion roll of the theoretical start of engagement A (mesh phase x p_bt)")
-    ds.attrs.update({
+    return ds
+
+
+def _sweep_attrs(pair: GearPair, geom: PairGeometry, exc: str, settings: SolverSettings, *, ltca, transmission_error_um,
+                 table, method, contact_law, stiffness, refine_resonances, stiffness_form, fourier_order, on, variant,
+                 backlash_um, damping_ratio, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m, steady_state,
+                 transient_tau, record_cycles) -> dict[str, Any]:
+    """The attributes of a pair sweep: its model, excitation and model choices, settings, supports
+    and how the steady state was reached (the keywords: those of :func:`dynamics_dataset`)."""
+    return {
         "model": "8-DOF bending-torsion-axial helical pair (the low-fluctuation paper, section 4, projections corrected; "
                  "gearmesh.dynamics)",
         "excitation": excitation_used(exc, ltca, transmission_error_um, table), "excitation_name": exc,
         **model_choices(exc, method, contact_law, stiffness, ltca),
         "resonance_refinement": "on" if refine_resonances else "off", "stiffness_form": stiffness_form,
         "fourier_order": fourier_order, "torque_on": on, "variant": variant,
-        "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
-        else ("none" if backlash_um is None else "given"),
+        "backlash_source": backlash_source(backlash_um),
         "damping_ratio": float(damping_ratio),
         "damping_ratio_meaning": DAMPING_MEANING,
         "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
@@ -310,8 +359,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
                          "converge to a stable orbit") if steady_state == "shooting" else
                         (f"{transient_tau} time constants 1/sigma_min of the slowest linearised mode, then "
                          f"{record_cycles} mesh periods recorded"),
-    })
-    return name_force_lines(ds, "normal")
+    }
 
 
 def _engagement_roll(geom: PairGeometry) -> float:

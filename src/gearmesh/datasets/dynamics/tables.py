@@ -96,6 +96,24 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
     sweep. Every force transverse (the impact stage's direction: normal × cos βb), so F_s and
     the dynamics stand in one unit. Torques are those both stages ran (pinion torques).
     """
+    names, by_name = _engagement_inputs(impact, dynamics)
+    torques = _shared_torques(impact, dynamics)
+    design = float(impact[0].attrs["design_speed_rpm"])
+    cols, speed_used = _engagement_columns(impact, [by_name[name] for name in names], torques, design)
+    ds = xr.Dataset(_engagement_variables(cols),
+                    coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+                            "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
+    ds.attrs.update({"design_speed_rpm": design, "dynamics_speed_rpm": speed_used,
+                     "force_direction": "transverse (F_bt convention of the LTCA and the impact model)",
+                     **{f"{key}_{stage}": str(sets[0].attrs.get(key, "")) for stage, sets in
+                        (("impact", impact), ("dynamics", dynamics)) for key in ("tooth_model", "contact_law")}})
+    return name_force_lines(ds, "transverse")
+
+
+def _engagement_inputs(impact: Sequence[xr.Dataset], dynamics: Sequence[xr.Dataset]) -> tuple[list[str], dict]:
+    """The variants of the impact results, in their order, and the dynamics result of each name;
+    refused unless both cover the same variants of one pair and every dynamics was driven by the
+    contact."""
     names = variant_names("impact", impact)
     by_name = dict(zip(variant_names("dynamics", dynamics), dynamics))
     one_pair(impact=impact, dynamics=dynamics)
@@ -106,19 +124,29 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
         if d.attrs.get("excitation_name") != "contact":
             raise GearmeshInputError("dynamics.excitation", d.attrs.get("excitation_name"),
                                      "must be 'contact' for the engagement table")
-    ref = dynamics[0]
-    t_dyn = np.asarray(ref["pinion_torque"].values, dtype=float)
+    return names, by_name
+
+
+def _shared_torques(impact: Sequence[xr.Dataset], dynamics: Sequence[xr.Dataset]) -> np.ndarray:
+    """The pinion torques (N·m) of the first dynamics result that the impact stage ran too."""
+    t_dyn = np.asarray(dynamics[0]["pinion_torque"].values, dtype=float)
     t_imp = np.asarray(impact[0]["torque"].values, dtype=float)
     torques = np.array([t for t in t_dyn if same_point(t_imp, t).any()])
     if not torques.size:
         raise GearmeshInputError("dynamics.torques_Nm", t_dyn.tolist(), f"share no torque with impact.torques_Nm "
                                  f"{t_imp.tolist()} (pinion torques)")
-    design = float(impact[0].attrs["design_speed_rpm"])
-    cols = {k: np.full((len(names), torques.size), np.nan) for k in (
+    return torques
+
+
+def _engagement_columns(impact: Sequence[xr.Dataset], dynamics: Sequence[xr.Dataset], torques: np.ndarray,
+                        design: float) -> tuple[dict[str, np.ndarray], float]:
+    """Per variant (``impact`` and ``dynamics`` in one order) and torque: the impact stage's values
+    at the design speed and the dynamics' at the speed of its grid nearest it (returned too), its
+    forces made transverse; NaN where not run."""
+    cols = {k: np.full((len(impact), torques.size), np.nan) for k in (
         "fs", "fs_eb", "sim", "static_roll", "impact", "enter", "roll", "peak", "peak_all")}
     speed_used = np.nan
-    for v, name in enumerate(names):
-        imp, dyn = impact[v], by_name[name]
+    for v, (imp, dyn) in enumerate(zip(impact, dynamics)):
         # normal -> transverse: cos βb = F_bt / F_normal of the static mesh force (F_bt = T1/r_b1)
         c = float(dyn["pinion_torque"].values[0]) / float(imp["base_radius"].values[0]) \
             / float(dyn["static_mesh_force"].values[0])
@@ -139,10 +167,16 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
             cols["roll"][v, k] = float(d["mesh_in_roll_before_A"])
             cols["peak"][v, k] = float(d["mesh_force_max"]) * c
             cols["peak_all"][v, k] = float(dyn.isel(torque=j)["mesh_force_max"].max()) * c
+    return cols, speed_used
+
+
+def _engagement_variables(cols: dict[str, np.ndarray]) -> dict[str, xr.Variable]:
+    """The engagement table's variables (variant, torque) from its columns, with the ratios of the
+    impact index F_s to the simulated and to the dynamic excess."""
     dims = ("variant", "torque")
     with np.errstate(divide="ignore", invalid="ignore"):
         over = {key: np.where(cols[key] > 0, cols["fs"] / cols[key], np.nan) for key in ("sim", "impact")}
-    ds = xr.Dataset({
+    return {
         "impact_force": variable(dims, cols["fs"], "N", f"{IMPACT_INDEX} at the design speed (closed form of the "
                                                         f"energy method; an index of the impact, not a force the teeth "
                                                         f"carry)"),
@@ -174,10 +208,4 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
         "peak_mesh_force_sweep": variable(dims, cols["peak_all"], "N",
                                           "steady-state dynamics: peak mesh force over the whole speed sweep "
                                           "(transverse)"),
-    }, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
-               "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
-    ds.attrs.update({"design_speed_rpm": design, "dynamics_speed_rpm": speed_used,
-                     "force_direction": "transverse (F_bt convention of the LTCA and the impact model)",
-                     **{f"{key}_{stage}": str(sets[0].attrs.get(key, "")) for stage, sets in
-                        (("impact", impact), ("dynamics", dynamics)) for key in ("tooth_model", "contact_law")}})
-    return name_force_lines(ds, "transverse")
+    }

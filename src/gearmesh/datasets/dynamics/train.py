@@ -1,5 +1,4 @@
-"""The 9-DOF plate–blanket–impression train (the improved potential-energy paper) as a dataset.
-"""
+"""The 9-DOF plate–blanket–impression train (the improved potential-energy paper) as a dataset."""
 
 from __future__ import annotations
 
@@ -10,11 +9,11 @@ import numpy as np
 import xarray as xr
 
 from ...body import describe_body
-from ...dynamics import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, LOW_FLUCTUATION_BEARING, TRAIN_GEARS,
-                         require_dynamics_data, simulate, train_model)
+from ...dynamics import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, LOW_FLUCTUATION_BEARING, TRAIN_GEARS, GearModel,
+                         SolverSettings, SweepResult, require_dynamics_data, simulate, train_model)
 from ...errors import GearmeshInputError
 from ...fe import use_fe_tables
-from ...gear import GearPair, pair_geometry, pinion_torque
+from ...gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ...io import name_force_lines, variable
 from ...limits import MAX_TRAIN_SPEEDS, check_speeds
 from ...loads import check_load
@@ -24,7 +23,7 @@ from ...schema import check_arguments
 from ...choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from ...settings import TrainDynamics
 from .excitation import _stiffness_curve, contact_table, excitation_used, model_choices
-from .inputs import _backlash, _bearing, _solver, positive_torque, speed_grid, supports_note
+from .inputs import _backlash, _bearing, _solver, backlash_source, positive_torque, speed_grid, supports_note
 from .variables import _common_vars, _modal_vars, _series_arrays, _series_vars, _vibration_vars
 
 #: The improved potential-energy paper: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
@@ -64,24 +63,9 @@ def train_dataset(pair: GearPair, static_force_N: float | None = PRINTING_TRAIN_
     """
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
-    rb, cb = float(geom.base_radius[1]), math.cos(geom.base_helix_angle)
-    if torque_Nm is not None:
-        torque = positive_torque("torque_Nm", torque_Nm)
-        check_load(geom, pinion_torque(pair, torque, "gear"), "torque_Nm", torque_Nm)
-    elif static_force_N is not None:
-        torque = positive_torque("static_force_N", static_force_N) * rb * cb
-        check_load(geom, pinion_torque(pair, torque, "gear"), "static_force_N", static_force_N)
-    else:
-        raise GearmeshInputError("torque_Nm", None, "give torque_Nm or static_force_N")
-    if speeds_rpm is None:
-        f = positive_torque("mesh_frequency_Hz", mesh_frequency_Hz)
-        speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
-    else:
-        speeds = speed_grid(speeds_rpm)
-    check_speeds(geom, speeds, "speeds_rpm" if speeds_rpm is not None else "mesh_frequency_Hz", on="gear")
-    if len(speeds) > MAX_TRAIN_SPEEDS:
-        raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds",
-                                 f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
+    rb = float(geom.base_radius[1])
+    torque = _train_torque(pair, geom, torque_Nm, static_force_N)
+    speeds = _train_speeds(geom, speeds_rpm, mesh_frequency_Hz)
     use_fe_tables(fe_compliance, geom)
     exc = "tvms" if excitation is None else excitation
     if exc not in ("tvms", "lste", "contact"):
@@ -102,6 +86,58 @@ def train_dataset(pair: GearPair, static_force_N: float | None = PRINTING_TRAIN_
                         phase_offsets=tuple(phase_offsets_cycles), mesh_damping=mesh_damping_Ns_per_m)
     settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
     res = simulate(model, speeds, settings, series=True)
+    data = _train_variables(geom, model, res, torque, settings, points_per_cycle, max_order)
+    ds = xr.Dataset(data, coords=_train_coords(speeds, model, max_order, settings.record_cycles))
+    ds.attrs.update({
+        "model": "9-DOF plate-blanket-impression helical train (the improved potential-energy paper, projections corrected; gearmesh.dynamics)",
+        "excitation": excitation_used(exc, None, None, table), "excitation_name": exc,
+        **model_choices(exc, method, contact_law, stiffness), "stiffness_form": stiffness_form,
+        "fourier_order": fourier_order,
+        "backlash_source": backlash_source(backlash_um),
+        "assumptions": "three alike gears (the pair file's gear, its supports for all three); plate drives, "
+                       "impression loaded, blanket idles; meshes in phase unless phase_offsets_cycles; centres on "
+                       "one line",
+        "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
+        "gear_body": describe_body(geom),
+        "damping_ratio_meaning": DAMPING_MEANING,
+    })
+    return name_force_lines(ds, "normal")
+
+
+def _train_torque(pair: GearPair, geom: PairGeometry, torque_Nm: float | None, static_force_N: float | None) -> float:
+    """The torque (N·m) on the plate gear: ``torque_Nm``, else that of the static normal mesh force
+    ``static_force_N``, T = F r_b cos βb; checked against the load limits."""
+    rb, cb = float(geom.base_radius[1]), math.cos(geom.base_helix_angle)
+    if torque_Nm is not None:
+        torque = positive_torque("torque_Nm", torque_Nm)
+        check_load(geom, pinion_torque(pair, torque, "gear"), "torque_Nm", torque_Nm)
+    elif static_force_N is not None:
+        torque = positive_torque("static_force_N", static_force_N) * rb * cb
+        check_load(geom, pinion_torque(pair, torque, "gear"), "static_force_N", static_force_N)
+    else:
+        raise GearmeshInputError("torque_Nm", None, "give torque_Nm or static_force_N")
+    return torque
+
+
+def _train_speeds(geom: PairGeometry, speeds_rpm: Any, mesh_frequency_Hz: float) -> np.ndarray:
+    """The speeds (rpm) of the gears: ``speeds_rpm``, else the one whose mesh frequency is
+    ``mesh_frequency_Hz``; checked, at most :data:`MAX_TRAIN_SPEEDS`."""
+    if speeds_rpm is None:
+        f = positive_torque("mesh_frequency_Hz", mesh_frequency_Hz)
+        speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
+    else:
+        speeds = speed_grid(speeds_rpm)
+    check_speeds(geom, speeds, "speeds_rpm" if speeds_rpm is not None else "mesh_frequency_Hz", on="gear")
+    if len(speeds) > MAX_TRAIN_SPEEDS:
+        raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds",
+                                 f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
+    return speeds
+
+
+def _train_variables(geom: PairGeometry, model: GearModel, res: SweepResult, torque: float, settings: SolverSettings,
+                     points_per_cycle: int, max_order: int) -> dict[str, xr.Variable]:
+    """The variables of the train's result ``res``: mesh statistics per mesh, vibration of the
+    three gears, torque, backlash, modes, and the series and spectra of every speed."""
     shape = (3, 2)
     cb = math.cos(geom.base_helix_angle)
     data = _common_vars(model, res, mesh_dim=True, cos_beta_b=cb)
@@ -113,7 +149,13 @@ def train_dataset(pair: GearPair, static_force_N: float | None = PRINTING_TRAIN_
     arr = _series_arrays(res, points_per_cycle, max_order, settings.record_cycles)
     data.update(_series_vars(res, arr, settings.record_cycles, max_order, points_per_cycle, ("gear", "direction"),
                              shape, mesh_dim=True, cos_beta_b=cb, model=model))
-    coords = {
+    return data
+
+
+def _train_coords(speeds: np.ndarray, model: GearModel, max_order: int, record_cycles: int) -> dict[str, xr.Variable]:
+    """The coordinates of the train's dataset: speeds (each kept), gears, directions, meshes,
+    harmonics, modes and spectral orders over ``record_cycles`` mesh periods."""
+    return {
         "speed": variable(("speed",), speeds, "rpm", "speed of the gears"),
         "sample_speed": variable(("sample_speed",), speeds, "rpm", "speed of the kept time series"),
         "gear": variable(("gear",), np.array(TRAIN_GEARS), "1", "gear of the train"),
@@ -121,22 +163,6 @@ def train_dataset(pair: GearPair, static_force_N: float | None = PRINTING_TRAIN_
         "mesh": variable(("mesh",), np.array(["plate-blanket", "blanket-impression"]), "1", "mesh of the train"),
         "harmonic": variable(("harmonic",), np.array([1, 2, 3]), "1", "harmonic of the mesh frequency"),
         "mode": variable(("mode",), np.arange(model.n), "1", "mode number, by frequency"),
-        "order": variable(("order",), np.arange(max_order * settings.record_cycles + 1) / settings.record_cycles,
+        "order": variable(("order",), np.arange(max_order * record_cycles + 1) / record_cycles,
                           "1", "spectral line in mesh orders (f / f_mesh)"),
     }
-    ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update({
-        "model": "9-DOF plate-blanket-impression helical train (the improved potential-energy paper, projections corrected; gearmesh.dynamics)",
-        "excitation": excitation_used(exc, None, None, table), "excitation_name": exc,
-        **model_choices(exc, method, contact_law, stiffness), "stiffness_form": stiffness_form,
-        "fourier_order": fourier_order,
-        "backlash_source": "the pair's own (centre distance and shifts)" if backlash_um == "pair"
-        else ("none" if backlash_um is None else "given"),
-        "assumptions": "three alike gears (the pair file's gear, its supports for all three); plate drives, "
-                       "impression loaded, blanket idles; meshes in phase unless phase_offsets_cycles; centres on "
-                       "one line",
-        "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
-        "gear_body": describe_body(geom),
-        "damping_ratio_meaning": DAMPING_MEANING,
-    })
-    return name_force_lines(ds, "normal")
