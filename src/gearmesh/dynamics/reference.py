@@ -69,7 +69,7 @@ def _contact_force(table, delta, ddot, tab, cb: float, c_m: float, bl: float):
 
 
 def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = SolverSettings(),
-             series: bool = False, y0: np.ndarray | None = None, progress=None) -> SweepResult:
+                   series: bool = False, y0: np.ndarray | None = None, progress=None) -> SweepResult:
     """Steady-state response of ``model`` at every speed (rpm), one RK4 batch in numpy (the
     kernel the compiled loop replaced), always with the physical-time transient. ``contact``
     meshes read their table as the compiled loop does (bilinear, the same stage phases), written
@@ -85,184 +85,224 @@ def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = Solve
     if settings.record_cycles < 2 or settings.record_cycles % 2:
         raise GearmeshInputError("record_cycles", settings.record_cycles, "must be an even number >= 2")
     f_mesh, m, n_tr, dt = step_plan(model, speed_rpm, settings)
-    S, n, nm = speed_rpm.size, model.n, model.m
     n_rec = settings.record_cycles
     total = (n_tr + n_rec) * m
     n_steps = int(total.max())
     start = n_steps - total  # idle (Δt = 0) before
-    rec_start = n_steps - n_rec * m
-    half_start = n_steps - (n_rec // 2) * m
-    ktab, etab, edtab = _phase_tables(model, m)
-    L = ktab.shape[2]
-    has_e = any(ml.e is not None for ml in model.meshes)
-    edtab = edtab * f_mesh[None, :, None]  # de/dt (m/s)
-    kflat, eflat, edflat = (t.reshape(nm, S * L) for t in (ktab, etab, edtab))
-    row = np.arange(S) * L
-    c_m = model.damping[:, None]
-    bl = model.backlash
-    linear = not math.isfinite(bl)
-    # state Y (2n, S); A_lin (n, 2n) = [−Kr, −Cr]
-    A_lin = np.hstack([-model.Kr, -model.Cr])
-    G2 = np.zeros((2 * nm, 2 * n))
-    G2[:nm, :n] = model.G
-    G2[nm:, n:] = model.G
-    Bneg = -model.B
-    f0 = model.f0[:, None]
+    system = _BatchSystem(model, m, f_mesh)
     ys = model.static_state() if y0 is None else np.asarray(y0, dtype=float)
-    Y = np.zeros((2 * n, S))
-    Y[:n] = ys[:, None]
-    ys_col = ys[:, None]
-    d_ref = (model.G @ ys)[:, None]
-    contact = [i for i, ml in enumerate(model.meshes) if ml.contact is not None]
-    ctab = _contact_phase_tables(model, m, f_mesh, contact, L)  # (4, meshes, S·L): row, weight, g_min, ġ_min
-    cb = model.cos_beta_b
-
-    def force(Y, k, e, ed, idx):
-        d = G2 @ Y
-        delta, ddot = d[:nm], d[nm:]
-        if has_e:
-            delta = delta - e
-            ddot = ddot - ed
-        if linear:
-            F = k * delta + c_m * ddot
-        else:
-            f = delta - np.clip(delta, -bl, 0.0)
-            F = k * f + c_m * ddot
-            F *= (f != 0.0)
-        apart = back = None
-        if contact:
-            delta, F, apart, back = delta.copy(), F.copy(), np.zeros((nm, S)), np.zeros((nm, S))
-            for i in contact:
-                F[i], delta[i], apart[i], back[i] = _contact_force(model.meshes[i].contact, d[i], d[nm + i],
-                                                                   np.take(ctab[:, i], idx + row, axis=1), cb,
-                                                                   float(c_m[i, 0]), bl)
-        return delta, F, apart, back
-
-    def deriv(Y, F):
-        dY = np.empty_like(Y)
-        dY[:n] = Y[n:]
-        acc = A_lin @ Y
-        acc += Bneg @ F
-        acc += f0
-        dY[n:] = acc
-        return dY
-
-    # accumulators
-    z = lambda *shape: np.zeros(shape)  # noqa: E731
-    sy, syy, svv = z(n, S), z(n, S), z(n, S)
-    sd, sdd, sf, sff = z(nm, S), z(nm, S), z(nm, S), z(nm, S)
-    sd_h, sdd_h = z(nm, S), z(nm, S)  # second half of the window
-    sa, saa = z(nm, S), z(nm, S)  # approach δ + e of the bodies
-    fmin, fmax = np.full((nm, S), np.inf), np.full((nm, S), -np.inf)
-    dmin, dmax = np.full((nm, S), np.inf), np.full((nm, S), -np.inf)
-    ngap, nback = z(nm, S), z(nm, S)
-    rec_first = int(rec_start.min())
-    store = [dict(t=[], delta=[], F=[], y=[], v=[]) for _ in range(S)] if series else None
-    dt_s = dt[None, :]
+    Y = np.zeros((2 * model.n, speed_rpm.size))
+    Y[:model.n] = ys[:, None]
+    stats = _WindowStats(system, ys, n_steps - n_rec * m, n_steps - (n_rec // 2) * m, dt, series)
     report_every = max(1, n_steps // 20)
     for b0 in range(0, n_steps, settings.block):
         if progress is not None and b0 // report_every != (b0 + settings.block) // report_every:
             progress(b0 / n_steps)
         nb = min(settings.block, n_steps - b0)
+        idx, k, e, hdt_b, dt_b = system.block_phases(b0, nb, start, m, dt)
+        for j in range(nb):
+            step = b0 + j
+            ej = [(e[0][q][:, j], e[1][q][:, j]) if system.has_e else (None, None) for q in range(3)]
+            delta, F, apart, back = system.force(Y, k[0][:, j], *ej[0], idx[0][j])
+            if step >= stats.rec_first:
+                stats.add(step, Y, delta, F, apart, back, ej[0][0])
+            Y = system.rk4_step(Y, F, hdt_b[j], dt_b[j], k[1][:, j], k[2][:, j], ej[1], ej[2], idx[1][j], idx[2][j])
+    if progress is not None:
+        progress(1.0)
+    return stats.result(speed_rpm, f_mesh, m, n_tr, dt, n_rec, n_steps)
+
+
+class _BatchSystem:
+    """The equations of ``model`` over a batch of S speeds at once, state Y (2n, S): the mesh
+    forces (linear, with backlash, or from the contact table) and the RK4 step, with the
+    stiffness, error and contact tables at the 2m half-step phases of each speed."""
+
+    def __init__(self, model: GearModel, m: np.ndarray, f_mesh: np.ndarray):
+        S, n, nm = m.size, model.n, model.m
+        self.model, self.n, self.nm, self.S = model, n, nm, S
+        ktab, etab, edtab = _phase_tables(model, m)
+        L = ktab.shape[2]
+        self.has_e = any(ml.e is not None for ml in model.meshes)
+        edtab = edtab * f_mesh[None, :, None]  # de/dt (m/s)
+        self.kflat, self.eflat, self.edflat = (t.reshape(nm, S * L) for t in (ktab, etab, edtab))
+        self.row = np.arange(S) * L
+        self.c_m = model.damping[:, None]
+        self.bl = model.backlash
+        self.linear = not math.isfinite(self.bl)
+        # A_lin (n, 2n) = [−Kr, −Cr]
+        self.A_lin = np.hstack([-model.Kr, -model.Cr])
+        self.G2 = np.zeros((2 * nm, 2 * n))
+        self.G2[:nm, :n] = model.G
+        self.G2[nm:, n:] = model.G
+        self.Bneg = -model.B
+        self.f0 = model.f0[:, None]
+        self.contact = [i for i, ml in enumerate(model.meshes) if ml.contact is not None]
+        # (4, meshes, S·L): row, weight, g_min, ġ_min
+        self.ctab = _contact_phase_tables(model, m, f_mesh, self.contact, L)
+        self.cb = model.cos_beta_b
+
+    def block_phases(self, b0: int, nb: int, start: np.ndarray, m: np.ndarray, dt: np.ndarray):
+        """For steps b0 … b0+nb−1 of each speed (idle before its ``start``): the half-step phase
+        indices 2·loc, 2·loc+1, 2·loc+2 (mod 2m), the stiffness and (error, de/dt) at them, and the
+        half and whole time steps (0 while idle)."""
         steps = np.arange(b0, b0 + nb)
         local = steps[:, None] - start[None, :]  # (nb, S) step index within each speed's run
         active = local >= 0
         loc = np.maximum(local, 0)
-        # half-step phase indices 2·loc and 2·loc+1, 2·loc+2 (mod 2m)
-        i0 = (2 * loc) % (2 * m)[None, :]
-        i1 = (2 * loc + 1) % (2 * m)[None, :]
-        i2 = (2 * loc + 2) % (2 * m)[None, :]
-        k0, k1, k2 = (np.take(kflat, idx + row[None, :], axis=1) for idx in (i0, i1, i2))  # (nm, nb, S)
-        if has_e:
-            e0, e1, e2 = (np.take(eflat, idx + row[None, :], axis=1) for idx in (i0, i1, i2))
-            d0, d1, d2 = (np.take(edflat, idx + row[None, :], axis=1) for idx in (i0, i1, i2))
+        idx = tuple((2 * loc + q) % (2 * m)[None, :] for q in range(3))
+        k = tuple(np.take(self.kflat, i + self.row[None, :], axis=1) for i in idx)  # (nm, nb, S)
+        if self.has_e:
+            e = (tuple(np.take(self.eflat, i + self.row[None, :], axis=1) for i in idx),
+                 tuple(np.take(self.edflat, i + self.row[None, :], axis=1) for i in idx))
         else:
-            e0 = e1 = e2 = d0 = d1 = d2 = None
-        hdt_b = np.where(active, 0.5 * dt_s, 0.0)
-        dt_b = np.where(active, dt_s, 0.0)
-        for j in range(nb):
-            step = b0 + j
-            ej = (e0[:, j], d0[:, j]) if has_e else (None, None)
-            delta, F, apart, back = force(Y, k0[:, j], *ej, i0[j])
-            if step >= rec_first:
-                w = (step >= rec_start)
-                wf = w.astype(float)
-                wh = (step >= half_start).astype(float)
-                yc = Y[:n] - ys_col  # shifted by the static state: no cancellation in the variance
-                yw = yc * wf
-                sy += yw
-                syy += yw * yc
-                svv += Y[n:] * Y[n:] * wf
-                dc = delta - d_ref
-                dw = dc * wf
-                sd += dw
-                sdd += dw * dc
-                sd_h += dc * wh
-                sdd_h += dc * dc * wh
-                ac = dc + e0[:, j] if has_e else dc
-                for i in contact:  # the bodies' approach G·y (δ is the deflection beyond the first touch)
-                    ac[i] = (G2[i] @ Y) - d_ref[i]
-                sa += ac * wf
-                saa += ac * ac * wf
-                sf += F * wf
-                sff += F * F * wf
-                fmin = np.minimum(fmin, np.where(w, F, np.inf))
-                fmax = np.maximum(fmax, np.where(w, F, -np.inf))
-                dmin = np.minimum(dmin, np.where(w, delta, np.inf))
-                dmax = np.maximum(dmax, np.where(w, delta, -np.inf))
-                if not linear or contact:
-                    gap_f, back_f = (delta < 0) & (delta > -bl), delta <= -bl
-                    for i in contact:
-                        gap_f[i], back_f[i] = apart[i], back[i]
-                    ngap += gap_f * wf
-                    nback += back_f * wf
-                if series:
-                    for s in np.flatnonzero(w):
-                        st = store[s]
-                        st["t"].append((step - rec_start[s]) * dt[s])
-                        st["delta"].append(delta[:, s].copy())
-                        st["F"].append(F[:, s].copy())
-                        st["y"].append(Y[:n, s].copy())
-                        st["v"].append(Y[n:, s].copy())
-            h2, h = hdt_b[j], dt_b[j]
-            K1 = deriv(Y, F)
-            ej = (e1[:, j], d1[:, j]) if has_e else (None, None)
-            K2 = deriv(Y + h2 * K1, force(Y + h2 * K1, k1[:, j], *ej, i1[j])[1])
-            Yt = Y + h2 * K2
-            K3 = deriv(Yt, force(Yt, k1[:, j], *ej, i1[j])[1])
-            Yt = Y + h * K3
-            ej = (e2[:, j], d2[:, j]) if has_e else (None, None)
-            K4 = deriv(Yt, force(Yt, k2[:, j], *ej, i2[j])[1])
-            Y = Y + (h / 6.0) * (K1 + 2.0 * K2 + 2.0 * K3 + K4)
-    if progress is not None:
-        progress(1.0)
-    N = (n_rec * m).astype(float)[None, :]
-    Nh = N / 2
-    yc_mean = sy / N
-    y_mean = yc_mean + ys_col
-    dc_mean = sd / N
-    dte_mean = dc_mean + d_ref
-    dte_var = np.maximum(sdd / N - dc_mean**2, 0.0)
-    m1 = (sd - sd_h) / Nh
-    v1 = np.maximum((sdd - sdd_h) / Nh - m1**2, 0.0)
-    m2 = sd_h / Nh
-    v2 = np.maximum(sdd_h / Nh - m2**2, 0.0)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        change = np.abs(np.sqrt(v2) - np.sqrt(v1)) / np.maximum(np.sqrt(dte_var), 1e-300)
-    ac_mean = sa / N
-    f_mean = sf / N
-    out_series = None
-    if series:
-        out_series = [{k: np.asarray(v) for k, v in st.items()} for st in store]
-    return SweepResult(
-        speed_rpm=speed_rpm, mesh_frequency=f_mesh, steps_per_cycle=m, transient_cycles=n_tr, dt=dt,
-        y_mean=y_mean, y_std=np.sqrt(np.maximum(syy / N - yc_mean**2, 0.0)), v_rms=np.sqrt(svv / N),
-        dte_mean=dte_mean, dte_std=np.sqrt(dte_var), dte_rms=np.sqrt(dte_var + dte_mean**2),
-        dte_min=dmin, dte_max=dmax, approach_mean=ac_mean + d_ref,
-        approach_std=np.sqrt(np.maximum(saa / N - ac_mean**2, 0.0)),
-        force_mean=f_mean, force_min=fmin, force_max=fmax, force_std=np.sqrt(np.maximum(sff / N - f_mean**2, 0.0)),
-        gap_fraction=ngap / N, back_fraction=nback / N, steady_change=change, n_steps=n_steps,
-        series=out_series)
+            e = ((None,) * 3, (None,) * 3)
+        dt_s = dt[None, :]
+        return idx, k, e, np.where(active, 0.5 * dt_s, 0.0), np.where(active, dt_s, 0.0)
+
+    def force(self, Y, k, e, ed, idx):
+        """Deflection statistic δ, mesh force F (N), contact loss and back contact of each mesh."""
+        nm = self.nm
+        d = self.G2 @ Y
+        delta, ddot = d[:nm], d[nm:]
+        if self.has_e:
+            delta = delta - e
+            ddot = ddot - ed
+        if self.linear:
+            F = k * delta + self.c_m * ddot
+        else:
+            f = delta - np.clip(delta, -self.bl, 0.0)
+            F = k * f + self.c_m * ddot
+            F *= (f != 0.0)
+        apart = back = None
+        if self.contact:
+            S = self.S
+            delta, F, apart, back = delta.copy(), F.copy(), np.zeros((nm, S)), np.zeros((nm, S))
+            for i in self.contact:
+                F[i], delta[i], apart[i], back[i] = _contact_force(self.model.meshes[i].contact, d[i], d[nm + i],
+                                                                   np.take(self.ctab[:, i], idx + self.row, axis=1),
+                                                                   self.cb, float(self.c_m[i, 0]), self.bl)
+        return delta, F, apart, back
+
+    def deriv(self, Y, F):
+        """dY/dt of the state Y under the mesh forces F."""
+        n = self.n
+        dY = np.empty_like(Y)
+        dY[:n] = Y[n:]
+        acc = self.A_lin @ Y
+        acc += self.Bneg @ F
+        acc += self.f0
+        dY[n:] = acc
+        return dY
+
+    def rk4_step(self, Y, F, h2, h, k1, k2, ej1, ej2, i1, i2):
+        """One classical RK4 step of length ``h`` (``h2`` = h/2) from Y, whose mesh forces are F:
+        the stiffness (and error) ``k1`` at the half step, ``k2`` at the end."""
+        K1 = self.deriv(Y, F)
+        K2 = self.deriv(Y + h2 * K1, self.force(Y + h2 * K1, k1, *ej1, i1)[1])
+        Yt = Y + h2 * K2
+        K3 = self.deriv(Yt, self.force(Yt, k1, *ej1, i1)[1])
+        Yt = Y + h * K3
+        K4 = self.deriv(Yt, self.force(Yt, k2, *ej2, i2)[1])
+        return Y + (h / 6.0) * (K1 + 2.0 * K2 + 2.0 * K3 + K4)
+
+
+class _WindowStats:
+    """The sums over the record window of each speed (from ``rec_start``; its second half from
+    ``half_start``) that the statistics of :class:`SweepResult` come from, shifted by the static
+    state so that no variance cancels; with ``series`` every recorded step kept."""
+
+    def __init__(self, system: _BatchSystem, ys: np.ndarray, rec_start: np.ndarray, half_start: np.ndarray,
+                 dt: np.ndarray, series: bool):
+        n, nm, S = system.n, system.nm, system.S
+        self.system, self.rec_start, self.half_start, self.dt = system, rec_start, half_start, dt
+        self.ys_col = ys[:, None]
+        self.d_ref = (system.model.G @ ys)[:, None]
+        z = lambda *shape: np.zeros(shape)  # noqa: E731
+        self.sy, self.syy, self.svv = z(n, S), z(n, S), z(n, S)
+        self.sd, self.sdd, self.sf, self.sff = z(nm, S), z(nm, S), z(nm, S), z(nm, S)
+        self.sd_h, self.sdd_h = z(nm, S), z(nm, S)  # second half of the window
+        self.sa, self.saa = z(nm, S), z(nm, S)  # approach δ + e of the bodies
+        self.fmin, self.fmax = np.full((nm, S), np.inf), np.full((nm, S), -np.inf)
+        self.dmin, self.dmax = np.full((nm, S), np.inf), np.full((nm, S), -np.inf)
+        self.ngap, self.nback = z(nm, S), z(nm, S)
+        self.rec_first = int(rec_start.min())
+        self.store = [dict(t=[], delta=[], F=[], y=[], v=[]) for _ in range(S)] if series else None
+
+    def add(self, step: int, Y, delta, F, apart, back, e) -> None:
+        """Step ``step`` of the state Y, its δ, F, contact loss and back contact, and error ``e``
+        (None without one), into the sums of the speeds whose window it lies in."""
+        system, n = self.system, self.system.n
+        w = (step >= self.rec_start)
+        wf = w.astype(float)
+        wh = (step >= self.half_start).astype(float)
+        yc = Y[:n] - self.ys_col  # shifted by the static state: no cancellation in the variance
+        yw = yc * wf
+        self.sy += yw
+        self.syy += yw * yc
+        self.svv += Y[n:] * Y[n:] * wf
+        dc = delta - self.d_ref
+        dw = dc * wf
+        self.sd += dw
+        self.sdd += dw * dc
+        self.sd_h += dc * wh
+        self.sdd_h += dc * dc * wh
+        ac = dc + e if system.has_e else dc
+        for i in system.contact:  # the bodies' approach G·y (δ is the deflection beyond the first touch)
+            ac[i] = (system.G2[i] @ Y) - self.d_ref[i]
+        self.sa += ac * wf
+        self.saa += ac * ac * wf
+        self.sf += F * wf
+        self.sff += F * F * wf
+        self.fmin = np.minimum(self.fmin, np.where(w, F, np.inf))
+        self.fmax = np.maximum(self.fmax, np.where(w, F, -np.inf))
+        self.dmin = np.minimum(self.dmin, np.where(w, delta, np.inf))
+        self.dmax = np.maximum(self.dmax, np.where(w, delta, -np.inf))
+        if not system.linear or system.contact:
+            gap_f, back_f = (delta < 0) & (delta > -system.bl), delta <= -system.bl
+            for i in system.contact:
+                gap_f[i], back_f[i] = apart[i], back[i]
+            self.ngap += gap_f * wf
+            self.nback += back_f * wf
+        if self.store is not None:
+            for s in np.flatnonzero(w):
+                st = self.store[s]
+                st["t"].append((step - self.rec_start[s]) * self.dt[s])
+                st["delta"].append(delta[:, s].copy())
+                st["F"].append(F[:, s].copy())
+                st["y"].append(Y[:n, s].copy())
+                st["v"].append(Y[n:, s].copy())
+
+    def result(self, speed_rpm, f_mesh, m, n_tr, dt, n_rec: int, n_steps: int) -> SweepResult:
+        """The statistics of the record window (means, standard deviations, RMS, extremes, the
+        fractions apart and on the back flanks, the steady-state check between its halves)."""
+        N = (n_rec * m).astype(float)[None, :]
+        Nh = N / 2
+        yc_mean = self.sy / N
+        y_mean = yc_mean + self.ys_col
+        dc_mean = self.sd / N
+        dte_mean = dc_mean + self.d_ref
+        dte_var = np.maximum(self.sdd / N - dc_mean**2, 0.0)
+        m1 = (self.sd - self.sd_h) / Nh
+        v1 = np.maximum((self.sdd - self.sdd_h) / Nh - m1**2, 0.0)
+        m2 = self.sd_h / Nh
+        v2 = np.maximum(self.sdd_h / Nh - m2**2, 0.0)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            change = np.abs(np.sqrt(v2) - np.sqrt(v1)) / np.maximum(np.sqrt(dte_var), 1e-300)
+        ac_mean = self.sa / N
+        f_mean = self.sf / N
+        out_series = None
+        if self.store is not None:
+            out_series = [{k: np.asarray(v) for k, v in st.items()} for st in self.store]
+        return SweepResult(
+            speed_rpm=speed_rpm, mesh_frequency=f_mesh, steps_per_cycle=m, transient_cycles=n_tr, dt=dt,
+            y_mean=y_mean, y_std=np.sqrt(np.maximum(self.syy / N - yc_mean**2, 0.0)), v_rms=np.sqrt(self.svv / N),
+            dte_mean=dte_mean, dte_std=np.sqrt(dte_var), dte_rms=np.sqrt(dte_var + dte_mean**2),
+            dte_min=self.dmin, dte_max=self.dmax, approach_mean=ac_mean + self.d_ref,
+            approach_std=np.sqrt(np.maximum(self.saa / N - ac_mean**2, 0.0)),
+            force_mean=f_mean, force_min=self.fmin, force_max=self.fmax,
+            force_std=np.sqrt(np.maximum(self.sff / N - f_mean**2, 0.0)),
+            gap_fraction=self.ngap / N, back_fraction=self.nback / N, steady_change=change, n_steps=n_steps,
+            series=out_series)
 
 
 # --------------------------------------------------------------------------------------
