@@ -281,7 +281,8 @@ def warm_kernels() -> None:
     import numpy as np
 
     from .dynamics.population import dynamic_factors, population_dynamics
-    from .gear import example_pair, load_pair, pair_geometry
+    from .gear import pair_geometry
+    from .pairfile import example_pair, load_pair
     from .ltca import solve_contact_tabulated
 
     geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))

@@ -8,7 +8,7 @@ reads as a YTE template — Python, run at load time, when the file says ``__use
 and whose ``configfile``/``configfiles`` keys name more config files. :func:`snakemake_inputs`
 finds all of them the way Snakemake does (its own argument parser and profile lookup, so an
 abbreviated option or an environment variable is no way around), and :func:`check_inputs` reads
-each with the package's bounded loader (:func:`gearmesh.gear.read_yaml`: a regular file of at
+each with the package's bounded loader (:func:`gearmesh.inputfile.read_yaml`: a regular file of at
 most MAX_INPUT_BYTES, MAX_INPUT_NODES nodes, MAX_INPUT_DEPTH levels, no alias, no duplicated
 key), refuses ``__use_yte__`` in any of them and validates each config file as a study
 (:func:`gearmesh.config.validate_study`). Whatever fails is refused in one line, exit 2, before

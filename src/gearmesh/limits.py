@@ -83,7 +83,7 @@ MAX_FACE_WIDTH_TO_DIAMETER = 2.0
 #: is small against the tooth (normal tip thickness ≈ 0.4–1 m_n). 0.1 m_n allows ten times the
 #: usual depth and refuses what would reshape the tooth (e.g. 5 mm of crowning on 1.75 mm).
 MAX_MODIFICATION_TO_MODULE = 0.1
-#: Largest helix angle (rad): the limit of :func:`gearmesh.gear.pair_from_dict` (0 <= β < 60°).
+#: Largest helix angle (rad): the limit of :func:`gearmesh.pairfile.pair_from_dict` (0 <= β < 60°).
 MAX_HELIX_ANGLE = math.radians(60.0)
 #: Most corners of a tolerance box (2^k) that are enumerated, and most manufactured samples.
 MAX_CORNER_DIMENSIONS = 12
@@ -151,7 +151,7 @@ VISCOSITY_100C = Plausible(0.5, 500.0, (("mm2/s", 1.0), ("m2/s", 1e6)), "gear oi
 #: (Ra 25, Rz 100 µm).
 ROUGHNESS_RA = Plausible(0.01, 25.0, (("um", 1.0), ("mm", 1e3), ("nm", 1e-3)), "superfinished to rough-hobbed")
 ROUGHNESS_RZ = Plausible(0.05, 100.0, (("um", 1.0), ("mm", 1e3), ("nm", 1e-3)), "superfinished to rough-hobbed")
-#: The plausible range of each pair-file rating input (gearmesh.gear.check_rating_input).
+#: The plausible range of each pair-file rating input (gearmesh.pairfile.check_rating_input).
 RATING_INPUT_RANGES = {
     "contact_fatigue_limit_MPa": CONTACT_FATIGUE_LIMIT, "bending_fatigue_limit_MPa": BENDING_FATIGUE_LIMIT,
     "flank_Ra_um": ROUGHNESS_RA, "flank_Rz_um": ROUGHNESS_RZ, "root_Rz_um": ROUGHNESS_RZ,

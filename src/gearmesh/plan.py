@@ -201,7 +201,7 @@ def _inputs(config: Mapping[str, Any], section: str, job: Stage | Table) -> Call
 def _source_pair(config: Mapping[str, Any], wildcards: Mapping[str, str]) -> str:
     """The pair file a variant's stages read: the study's pair file, or for a variant
     {from: optimise.NAME} that optimisation's pair file (its optimum). The stage applies the
-    variant's micro-geometry itself (params.variant, gearmesh.gear.variant_pair): a job of its own
+    variant's micro-geometry itself (params.variant, gearmesh.pairfile.variant_pair): a job of its own
     per variant would cost a Python start-up to copy a pair file."""
     source = config["variants"][wildcards["variant"]].get("from")
     if source:
