@@ -258,7 +258,8 @@ from gearmesh import ltca
 kernels = [integrate._sweep, ltca._COMPILED["loop"], ltca._COMPILED["scales"]]  # the others compile into _sweep
 before = [len(k.signatures) for k in kernels]
 modules = set(sys.modules)
-from gearmesh.gear import load_pair, pair_geometry
+from gearmesh.gear import pair_geometry
+from gearmesh.pairfile import load_pair
 from gearmesh.meshforce import mesh_force_table
 from gearmesh.dynamics.model import pair_model
 from gearmesh.dynamics.integrate import simulate
