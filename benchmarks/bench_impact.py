@@ -61,7 +61,8 @@ def row(name: str, new, old, scale: float = 1.0, evaluations: int = 1, **extra) 
 
 def bench_impact(repeats: int, subset: int = 4) -> list[dict]:
     from gearmesh.impact import impact_response, impact_static
-    from gearmesh.optimise import _manufactured_rows, impact_values
+    from gearmesh.optimise.evaluation import impact_values
+    from gearmesh.optimise.objective import _manufactured_rows
 
     prob, params = study_problem()
     model = prob.model

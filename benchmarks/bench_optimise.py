@@ -110,7 +110,7 @@ def bench_optimise(repeats: int = 3, subset: int = 4) -> list[dict]:
 
 def bench_population_criteria(repeats: int = 3, subset: int = 4) -> dict:
     from gearmesh.impact import ltca_criteria
-    from gearmesh.optimise import _manufactured_rows
+    from gearmesh.optimise.objective import _manufactured_rows
 
     prob, params = study_problem()
     rows, lead = _manufactured_rows(prob.model, prob.tolerance, params, prob.population_deviations)

@@ -12,6 +12,7 @@ import pytest
 
 from gearmesh import impact as im
 from gearmesh import optimise as op
+from gearmesh.optimise.search import _Evaluator
 from gearmesh.cli import main as cli_main
 from gearmesh.dynamics import pair_model, resonance_band, simulate
 from gearmesh.dynamics.population import (POPULATION_HARMONICS, POPULATION_MESH_ENERGY, POPULATION_OFFSETS,
@@ -90,13 +91,13 @@ def test_models_share_cached_matrices_only_where_their_inputs_are_equal(geom, se
     np.testing.assert_array_equal(b.modes()["eigenvalue"], b.modes(np.array([b.meshes[0].k_mean]))["eigenvalue"])
     model = im.impact_model(geom, points=16, window_positions=24, face_samples=65)
     prob = op.problem(model, op.check_settings(population=4, generations=1))
-    ev = op._Evaluator(prob)
+    ev = _Evaluator(prob)
     genes = np.array([[g.low + 0.3 * (g.high - g.low) for g in prob.genes], [g.high for g in prob.genes]])
     first = ev(genes)
     again = ev(np.vstack([genes[::-1], genes[:1]]))
     assert ev.count == 2
     np.testing.assert_equal(again, [first[1], first[0], first[0]])
-    np.testing.assert_equal(op._Evaluator(prob)(genes[:1]), first[:1])  # a fresh cache: the same values
+    np.testing.assert_equal(_Evaluator(prob)(genes[:1]), first[:1])  # a fresh cache: the same values
 
 
 def test_dynamic_factor_is_converged_in_the_table_and_exceeds_one(geom, setup):

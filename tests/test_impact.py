@@ -300,7 +300,7 @@ def test_lead_slopes_per_row_equal_models_built_with_them(case, case_model):
 def test_touch_is_where_the_separation_meets_the_solved_approach(case_model):
     """The crossing solved as F*(τ) = F_bt (one inversion per point, no load iteration) against an
     independent exact load solve of the pairs in mesh at the touch roll: the same approach."""
-    from gearmesh.impact import _approach_at
+    from gearmesh.impact.static import _approach_at
 
     params = np.zeros((2, 2, 6))
     params[1, 1] = [0, 20e-6, 0, 3e-3, 0, 0]

@@ -14,7 +14,11 @@ import pytest
 from hypothesis import given, settings as hsettings, strategies as st
 
 from gearmesh import impact as im
+from gearmesh.impact.criteria import _tangent_start
 from gearmesh import optimise as op
+from gearmesh.optimise.constraints import _ratios, _score
+from gearmesh.optimise.objective import _evaluate, _manufactured_rows
+from gearmesh.optimise.search import _verified
 from gearmesh.datasets.optimise import result_dataset, run_settings
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_geometry
@@ -108,9 +112,9 @@ def test_worst_ratio_is_at_most_one_exactly_when_no_value_exceeds_its_reference(
 def test_penalty_is_zero_exactly_when_the_criterion_holds(model, name, factor):
     free = _problem(model)
     params = free.decode([CANDIDATE])
-    ev = op._evaluate(_problem(model, pressure_factor=1e6), params, None)  # the criteria, no penalty yet
+    ev = _evaluate(_problem(model, pressure_factor=1e6), params, None)  # the criteria, no penalty yet
     std = _problem(model, pressure_factor=1e6).standard
-    ratio = float(op._ratios(free.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load,
+    ratio = float(_ratios(free.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load,
                              ev.dynamic_factor, ev.criteria, std)[name][0])
     assert math.isfinite(ratio) and ratio > 0
     loose = _problem(model, **{factor: ratio * (1 + 1e-9)})
@@ -128,7 +132,7 @@ def test_safety_factor_penalty_is_zero_exactly_when_the_minimum_holds(model, key
     unmodified pair's (whose own K_Hα is 1 by definition)."""
     probe = _problem(model, pressure_factor=1e6)
     params = probe.decode([CANDIDATE])
-    crit = op._evaluate(probe, params, None).criteria
+    crit = _evaluate(probe, params, None).criteria
     s = op.safety_factors(probe, crit, probe.standard.criteria)[which]
     s_std = op.safety_factors(probe, probe.standard.criteria, probe.standard.criteria)[which]
     assert s.shape == (1, 3) and np.all(s < s_std) and np.all(np.diff(s_std[0]) < 0)  # more torque, less safety
@@ -280,7 +284,7 @@ def test_criteria_over_samples_are_the_tolerance_statistic_of_each_manufactured_
     over = op.problem(model, op.check_settings(**common, criteria_over_samples=True), tolerance=tol)
     nominal = op.problem(model, op.check_settings(**common, criteria_over_samples=False), tolerance=tol)
     params = over.decode([CANDIDATE])
-    rows, lead = op._manufactured_rows(model, over.tolerance, params, over.population_deviations)
+    rows, lead = _manufactured_rows(model, over.tolerance, params, over.population_deviations)
     assert rows.shape[0] == 3  # the nominal and two samples
     each = [_straightforward_criteria(model, TORQUES, rows[k], lead[k]) for k in range(3)]
     ev = op.evaluate(over, params)
@@ -288,7 +292,7 @@ def test_criteria_over_samples_are_the_tolerance_statistic_of_each_manufactured_
         worst = np.max([c[name] for c in each], axis=0)
         _assert_criterion(name, getattr(ev.criteria, name)[0], worst)
         _assert_criterion(name, getattr(op.evaluate(nominal, params).criteria, name)[0], each[0][name])
-    std_rows, std_lead = op._manufactured_rows(model, over.tolerance, np.zeros((1, 2, 6)), over.population_deviations)
+    std_rows, std_lead = _manufactured_rows(model, over.tolerance, np.zeros((1, 2, 6)), over.population_deviations)
     std_root = np.max([_straightforward_criteria(model, TORQUES, std_rows[k], std_lead[k])["root_stress"]
                        for k in range(3)], axis=0)
     # the reference is the unmodified pair's worst gear of its tolerance box, never below its samples'
@@ -297,7 +301,7 @@ def test_criteria_over_samples_are_the_tolerance_statistic_of_each_manufactured_
     assert np.all(box_root >= std_root * (1 - 1e-9))
     std_ref = np.maximum(std_root, box_root)
     _assert_criterion("root_stress", over.standard.criteria.root_stress[0], std_ref)
-    ratios = op._ratios(over.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load, ev.dynamic_factor,
+    ratios = _ratios(over.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load, ev.dynamic_factor,
                         ev.criteria, over.standard)
     assert ratios["root_stress"][0] == pytest.approx(np.max(ev.criteria.root_stress[0] / std_ref), rel=1e-9)
 
@@ -348,7 +352,7 @@ def test_tangent_start_of_a_sample_is_an_upper_bound_of_its_approach(model):
                     rows[:, None, None, None, :, :]).reshape(7, p, -1)
     comp, force = lt.compliance[:p].reshape(p, -1), 1600.0 / g.base_radius[0]
     _, dn, kn = solve_contact_tabulated(gap[0], comp, np.full(p, force), lt.law)
-    start = im._tangent_start((gap[1:] - gap[:1])[None], dn[None, None], kn[None, None])[0, :, 0]  # (6, P)
+    start = _tangent_start((gap[1:] - gap[:1])[None], dn[None, None], kn[None, None])[0, :, 0]  # (6, P)
     for s in range(6):
         _, exact, _, _ = solve_contact(gap[s + 1], comp, np.full(p, force), lt.law)
         assert np.all(start[s] >= exact * (1 - 1e-12))
@@ -484,7 +488,7 @@ def test_a_candidate_its_nominal_gear_refuses_is_refused_without_its_samples_con
                       for row in rng.uniform(0.0, 1.0, (12, len(prob.genes)))])
     params = np.vstack([prob.decode(genes), prob.decode([CANDIDATE]), np.zeros((1, 2, 6))])
     screened = op.evaluate(prob, params)
-    full = op._score(prob, op._evaluate(prob, params, None), prob.standard)  # every candidate's samples solved
+    full = _score(prob, _evaluate(prob, params, None), prob.standard)  # every candidate's samples solved
     ok = ~full.failed & (full.violation == 0)
     assert ok.any() and (~ok & ~full.failed).any()  # both kinds among the candidates
     np.testing.assert_array_equal(screened.failed, full.failed)
@@ -509,8 +513,8 @@ def test_the_optimum_is_checked_on_its_own_box_and_a_refused_one_is_not_searched
     crowned = [0, 0, 0, 0, 25, 0]  # 25 µm of crowning: the flank pressure rises well above the reference's
     genes = np.array([crowned, [0] * 6], dtype=float)
     assert np.all(prob.decode(genes[1:]) == 0.0)
-    k, v = op._verified(prob, genes, np.array([0, 1]))
+    k, v = _verified(prob, genes, np.array([0, 1]))
     assert (k, v.rank, v.tried, v.searched, v.violation) == (1, 1, 2, True, 0.0)
     np.testing.assert_array_equal(v.worst.values, prob.reference.values)
-    k, v = op._verified(prob, genes[:1], np.array([0]))
+    k, v = _verified(prob, genes[:1], np.array([0]))
     assert (k, v.rank, v.tried, v.searched) == (0, 0, 1, False) and v.violation > 0.0

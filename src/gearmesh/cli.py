@@ -395,7 +395,7 @@ def _numbers(option: str, text: str | None) -> list[float] | None:
 
 def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.optimise import optimise_summary, optimum_pair
-    from .optimise import LOG
+    from .optimise.search import LOG
     from .pipeline import write_pair
 
     torques = _numbers("--torques-Nm", args.torques_Nm)

@@ -38,7 +38,10 @@ from typing import Callable
 import numpy as np
 
 from .gear import PairGeometry
-from .impact import ImpactModel, impact_response, impact_static, ltca_criteria
+from .impact.criteria import ltca_criteria
+from .impact.energy import impact_response
+from .impact.model import ImpactModel
+from .impact.static import impact_static
 from .ltca import MESH_ORDERS
 from .surface import fit_modifications
 from .tolerance import ToleranceModel, apply_deviations, unit_deviations

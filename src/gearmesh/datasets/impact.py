@@ -17,10 +17,12 @@ from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from . import shared_torques, variant_names
 from ..gear import GEARS, GearPair, pair_geometry
+from ..impact.energy import ImpactResponse, impact_response, load_grid, load_window
+from ..impact.engagement import simulate_engagement
+from ..impact.kinematics import mesh_in_point, seed_edge_roll, vector_velocity
+from ..impact.model import DRIVERS, SCENARIOS, ImpactModel, impact_model
+from ..impact.static import ImpactStatic, impact_static
 from ..pairfile import load_pair, pair_to_dict
-from ..impact import (DRIVERS, SCENARIOS, ImpactModel, ImpactResponse, ImpactStatic, impact_model,
-                      impact_response, impact_static, load_grid, load_window, mesh_in_point,
-                      seed_edge_roll, simulate_engagement, vector_velocity)
 from ..io import name_force_lines, variable
 from ..limits import check_speeds, same_point
 from ..ltca import MESH_ORDERS, check_torques, loaded_pinion_torques, pinion_torques

@@ -25,14 +25,18 @@ from ..choices import DEFAULT_CYCLE_POSITIONS
 from ..fe import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, pair_geometry
+from ..impact.model import SCENARIOS, impact_model
 from ..pairfile import MODIFICATION_UNITS
-from ..impact import SCENARIOS, impact_model
 from ..robust import CRITERIA, CRITERION_UNITS
 from ..io import name_force_lines, variable
 from ..loads import check_load
 from ..ltca import MESH_ORDERS, loaded_pinion_torques, pinion_torques
-from ..optimise import (GENE_SYMBOLS, OptimisationResult, Problem, check_positive, check_settings, constraint_factors,
-                        gene_table, optimise, problem, standard_penalised_objective)
+from ..optimise.checks import check_positive, check_settings
+from ..optimise.constraints import constraint_factors
+from ..optimise.evaluation import Problem
+from ..optimise.genes import GENE_SYMBOLS, gene_table
+from ..optimise.objective import problem, standard_penalised_objective
+from ..optimise.search import OptimisationResult, optimise
 from ..surface import MODIFICATION_FIELDS
 from ..tolerance import study_tolerances
 from ..schema import check_arguments, defaults, settings_fields

@@ -14,7 +14,7 @@ from matplotlib import colormaps
 from matplotlib.patches import Rectangle
 
 from ..choices import IMPACT_INDEX
-from ..impact import SCENARIOS
+from ..impact.model import SCENARIOS
 from .common import (MM, apart, coinciding, legend_below, number, palette, plain_log_axis, save as _save, subplots,
                      text_line, title as _title)
 
@@ -229,7 +229,7 @@ def _load_windows(ax, sets, colors) -> None:
     each variant's load window against ``standard`` as a bar (its ends in the legend)."""
     from mpl_toolkits.axes_grid1 import make_axes_locatable
 
-    from ..impact import load_window
+    from ..impact.energy import load_window
 
     names = [ds.attrs.get("variant", "") for ds in sets]
     std = sets[names.index("standard")] if "standard" in names else None
