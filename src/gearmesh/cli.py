@@ -222,7 +222,8 @@ def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
 def _is_study(data: Any) -> bool:
     """Whether a document is meant as a study config: a mapping with a key of a study config that no
     pair file has (or ``__use_yte__``, which only Snakemake reads), so its errors are a study's."""
-    from .settings import pair_schema, study_schema
+    from .pair_keys import pair_schema
+    from .settings import study_schema
 
     if not isinstance(data, Mapping):
         return False
@@ -338,7 +339,9 @@ def _backlash(geom, option) -> dict[str, Any]:
 def cmd_schema(args: argparse.Namespace) -> None:
     """Print the JSON schema of a study config or a pair file, or their keys as Markdown tables
     (:mod:`gearmesh.settings`: the files published under ``schemas/`` and ``config/README.md``)."""
-    from .settings import pair_reference, pair_schema, pair_schema_text, study_reference, study_schema, study_schema_text
+    from .pair_keys import pair_schema
+    from .published import pair_reference, pair_schema_text, study_reference, study_schema_text
+    from .settings import study_schema
 
     form = args.format or ("yaml" if args.kind == "study" else "json")
     if form == "markdown":
