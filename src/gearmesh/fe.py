@@ -31,7 +31,7 @@ Model
   along n, of the point C where the line of action crosses the tooth centre line; the
   approach of P towards C (the flattening under the load, log-singular for a point load in
   2-D) is the local contact part, which the slice model carries in its Hertz term
-  (:func:`gearmesh.stiffness.hertz_compliance_transverse`). So c_FE = n·u(C)/F replaces
+  (:func:`gearmesh.slice_compliance.hertz_compliance_transverse`). So c_FE = n·u(C)/F replaces
   exactly c_b + c_s + c_a + c_f of the PEM tables.
 * Split of c_FE into body and tooth (for the table's components): the rigid motion of the
   root section — the chord y = y_root of the transition cantilever, between the points

@@ -18,8 +18,8 @@ as :mod:`gearmesh.stiffness`): point i of width Δz deflects
     δ − g_i = f_i(q_i) = c_i·q_i + δ_c(q_i),   c_i = (c_1(ρ1) + c_2(ρ2))/Δz,
 
 with c_1, c_2 the per-unit-width bending + shear + axial + fillet-foundation compliances of
-both teeth from :func:`gearmesh.stiffness.slice_compliance_table` resampled by
-:func:`gearmesh.stiffness.pair_slice_table` (Yang & Lin 1987, Tian 2004, Sainsot et al.
+both teeth from :func:`gearmesh.slice_compliance.slice_compliance_table` resampled by
+:func:`gearmesh.slice_compliance.pair_slice_table` (Yang & Lin 1987, Tian 2004, Sainsot et al.
 2004; the tip-edge points of regions 2/3 take each tooth's compliance at its own touched
 roll length — the tip of one, ρ_P of the other — for a load along the line of action: the
 small inclination of an edge load off the line of action is neglected) and δ_c the local
@@ -52,7 +52,7 @@ Local contact laws (``contact_law``)
   scaled by E'_steel/E' (E' = E/(1 − ν²), steel 207 GPa, 0.3). It gives F ∝ δ^(1/0.9),
   n ≈ 1.11 — the exponent the mesh-in impact paper reports for the fitted local stiffness (n ≈ 1.1).
 * ``'linear'``: the linear Hertz line-contact stiffness per unit length πE/(4(1−ν²)) of
-  the stiffness stage (:func:`gearmesh.stiffness.hertz_compliance_transverse`),
+  the stiffness stage (:func:`gearmesh.slice_compliance.hertz_compliance_transverse`),
   for the comparison LTE = F/K(φ).
 """
 
@@ -75,8 +75,9 @@ from .loads import check_loads
 from .body import mesh_body_compliance
 from .deflection import mesh_deflection, mesh_misalignment
 from .deviation import lead_gap
-from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
-                        pair_slice_table, require_stiffness_data, slice_compliance_table)
+from .slice_compliance import (METHODS, PairSliceTable, hertz_compliance_transverse, pair_slice_table,
+                               slice_compliance_table)
+from .tooth import SliceComplianceTable, require_stiffness_data
 from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
                   check_count, first_contact, nanmin, candidate_grid, check_extension, check_modifications,
                   engagement_point, engagement_separation, pair_lead_slope)
@@ -120,7 +121,7 @@ def contact_law(geom: PairGeometry, dz: float, name: str = DEFAULT_CONTACT_LAW) 
 
     Palmgren: δ_n [mm] = 3.84e-5·(w·E'_steel/E')^0.9·l_ref^0.1 with w = q/Δz the normal load
     per unit length (N/mm) and l_ref = b/cos βb (mm); transverse δ_t = δ_n/cos βb.
-    Linear: δ_t = c_h·q/Δz, c_h of :func:`gearmesh.stiffness.hertz_compliance_transverse`.
+    Linear: δ_t = c_h·q/Δz, c_h of :func:`gearmesh.slice_compliance.hertz_compliance_transverse`.
     """
     if name not in CONTACT_LAWS:
         raise GearmeshInputError("contact_law", name, f"must be one of {list(CONTACT_LAWS)}")
@@ -138,7 +139,7 @@ def contact_law(geom: PairGeometry, dz: float, name: str = DEFAULT_CONTACT_LAW) 
 
 def contact_tangent_compliance(geom: PairGeometry, pinion_torque: float) -> float:
     """The linear mesh stiffness's contact compliance (m²/N per unit transverse width, the role of
-    :func:`gearmesh.stiffness.hertz_compliance_transverse`): the tangent of the LTCA's Palmgren
+    :func:`gearmesh.slice_compliance.hertz_compliance_transverse`): the tangent of the LTCA's Palmgren
     law (:func:`contact_law`) at the mean line load of ``pinion_torque`` (N·m), c = 0.9 δ_t(f)/f
     with f = F_bt/(b εα) the transverse force per unit of contact width (the contact lines'
     transverse widths sum to b εα on average, l_mean = b εα/cos βb). So the stiffness stage's
@@ -624,7 +625,7 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     :func:`gearmesh.stiffness.mesh_stiffness` interpolates it; tip-edge points take each
     tooth's table at its own touched roll length (the tip of the one, ρ_P of the other,
     both within the active flank). ``tables`` may be passed to reuse the per-gear
-    :class:`~gearmesh.stiffness.SliceComplianceTable` (same ``method``). ``lead_slope`` None: the
+    :class:`~gearmesh.tooth.SliceComplianceTable` (same ``method``). ``lead_slope`` None: the
     pair's own deviations (:func:`gearmesh.tca.pair_lead_slope`); the grid's separations carry
     the pair's stated mesh misalignment too (the load-dependent f_sh is added per torque by
     :func:`ltca`).

@@ -65,7 +65,7 @@ from .body import mesh_body_compliance
 from .deflection import mesh_misalignment
 from .deviation import with_misalignment
 from .ltca import ContactLaw, load_sums, ltca_model, point_compliance, solve_contact
-from .stiffness import SliceComplianceTable
+from .tooth import SliceComplianceTable
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point,
                   pair_lead_slope)
 

@@ -19,14 +19,13 @@ from ..loads import check_load
 from ..body import describe_body
 from ..deflection import describe_deflection, mesh_deflection
 from ..ltca import contact_tangent_compliance
+from ..slice_compliance import pair_slice_table, slice_compliance_table
 from ..stiffness import (
     DEFAULT_RULE,
     fourier_fit,
     iso6336_stiffness,
     lste,
     mesh_stiffness,
-    pair_slice_table,
-    slice_compliance_table,
 )
 from ..schema import check_arguments
 from ..choices import PEM_TOOTH_METHODS
