@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from gearmesh.gear import example_pair, load_pair, pair_geometry
-from gearmesh.ltca import contact_law, contact_tangent_compliance, ltca
+from gearmesh.ltca import contact_tangent_compliance, ltca
+from gearmesh.ltca_model import contact_law
 from gearmesh.stiffness import hertz_compliance_transverse, mesh_stiffness
 
 

@@ -171,7 +171,7 @@ def test_sector_converges_to_the_whole_gear(p1):
 def test_fe_is_a_stiffness_method(p1):
     """``method='fe'`` builds the same SliceComplianceTable and runs through mesh_stiffness
     and the LTCA's model; the table is computed once per gear (cache)."""
-    from gearmesh.ltca import ltca_model
+    from gearmesh.ltca_model import ltca_model
 
     tabs = (sc.slice_compliance_table(p1, 0, "fe"), sc.slice_compliance_table(p1, 1, "fe"))
     assert tabs[0].method == "fe" and isinstance(tabs[0], sc.SliceComplianceTable)

@@ -11,7 +11,8 @@ import pytest
 
 from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import load_pair, pair_geometry
-from gearmesh.ltca import ContactLaw, _invert, law_point_scales, load_sums
+from gearmesh.ltca import _invert, law_point_scales, load_sums
+from gearmesh.ltca_model import ContactLaw
 from gearmesh.meshforce import table_layout, tabulate
 
 PAIR = Path(__file__).resolve().parents[1] / "config" / "pairs" / "helical_z29_71_m5.yaml"

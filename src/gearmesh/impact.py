@@ -74,8 +74,8 @@ from .choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_CYCL
 from .errors import GearmeshInputError
 from .gear import PairGeometry, involute
 from .limits import check_speeds
-from .ltca import (LTCAModel, ContactLaw, _invert, check_torques, contact_law, law_scales, log_universal_inverse,
-                   ltca_model, point_compliance, solve_contact)
+from .ltca import _invert, check_torques, law_scales, log_universal_inverse, solve_contact
+from .ltca_model import LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance
 from .body import mesh_body_compliance
 from .deflection import mesh_misalignment
 from .deviation import with_misalignment

@@ -64,7 +64,8 @@ from .gear import PairGeometry
 from .body import mesh_body_compliance
 from .deflection import mesh_misalignment
 from .deviation import with_misalignment
-from .ltca import ContactLaw, load_sums, ltca_model, point_compliance, solve_contact
+from .ltca import load_sums, solve_contact
+from .ltca_model import ContactLaw, ltca_model, point_compliance
 from .tooth import SliceComplianceTable
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point,
                   pair_lead_slope)
