@@ -32,7 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
-from gearmesh import fe
+from gearmesh import fe, fe_tables
 from gearmesh import slice_compliance as sc
 from gearmesh import stiffness as st
 from gearmesh.body import RIGID_WEBS
@@ -98,7 +98,7 @@ def decompose(name: str, line_load: float) -> dict:
         mixed = fe.tooth_body_split(geom, gear, rho, "strain", SIZE, body_plane="stress").total
 
         def table(tooth, body):
-            return fe.compliance_table(geom, gear, rho, tooth, body, alpha)
+            return fe_tables.compliance_table(geom, gear, rho, tooth, body, alpha)
 
         pem.append(sc.slice_compliance_table(geom, gear, "transition"))
         steps["beam_fe"].append(table(split.tooth_rigid_base, c["fillet"]))
@@ -154,7 +154,7 @@ def reference_k(name: str, ratios: dict, line_load: float) -> dict:
     out = {}
     for load, key in (("normal", "c3d"), ("transverse", "c3d_transverse")):
         ratio = [ratios[f"{name}_{g}"][key] / ratios[f"{name}_{g}"]["strain"] for g in (0, 1)]
-        tables = tuple(fe.compliance_table(geom, g, strain[g][0], strain[g][1] * ratio[g], 0 * strain[g][0], alpha[g])
+        tables = tuple(fe_tables.compliance_table(geom, g, strain[g][0], strain[g][1] * ratio[g], 0 * strain[g][0], alpha[g])
                        for g in (0, 1))
         out.update({f"3d_{load}_ratio_pinion": ratio[0], f"3d_{load}_ratio_gear": ratio[1],
                     f"3d_{load}_yang_sun": mean_k(geom, tables), f"3d_{load}_weber": mean_k(geom, tables, weber)})

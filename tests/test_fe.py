@@ -13,7 +13,7 @@ pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
 from pairs import STEEL, low_fluctuation_pair1  # noqa: E402
-from gearmesh import fe  # noqa: E402
+from gearmesh import fe, fe_tables  # noqa: E402
 from gearmesh import slice_compliance as sc  # noqa: E402
 from gearmesh import stiffness as st  # noqa: E402
 from gearmesh.errors import GearmeshInputError  # noqa: E402
@@ -176,7 +176,7 @@ def test_fe_is_a_stiffness_method(p1):
     tabs = (sc.slice_compliance_table(p1, 0, "fe"), sc.slice_compliance_table(p1, 1, "fe"))
     assert tabs[0].method == "fe" and isinstance(tabs[0], sc.SliceComplianceTable)
     variant = pair_geometry(load_pair(low_fluctuation_pair1(name="renamed", face_width_mm=25)))
-    assert fe.fe_tooth_compliance_cached(p1, 0) is fe.fe_tooth_compliance_cached(variant, 0)  # same section
+    assert fe_tables.fe_tooth_compliance_cached(p1, 0) is fe_tables.fe_tooth_compliance_cached(variant, 0)  # same section
     assert np.all(np.diff(tabs[0].total(tabs[0].rho)) > 0)  # more compliant towards the tip
     k = st.mesh_stiffness(p1, 60, method="fe", tables=tabs)
     assert np.isinf(k.components["shear_pinion"]).all()  # no separate shear compliance in 2-D
@@ -223,20 +223,20 @@ def test_workflow_tables_are_read_not_recomputed(monkeypatch):
     pair = load_pair(low_fluctuation_pair1())
     geom = pair_geometry(pair)
     ds = fe_compliance_dataset(pair, size=0.3, roll_nodes=5)
-    monkeypatch.setattr(fe, "_CACHE", {})
-    monkeypatch.setattr(fe, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
-    fe.seed_cache(ds, geom)
+    monkeypatch.setattr(fe_tables, "_CACHE", {})
+    monkeypatch.setattr(fe_tables, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
+    fe_tables.seed_cache(ds, geom)
     for gear in (0, 1):
-        table = fe.fe_slice_compliance_table(geom, gear, n_roll=5, size=0.3)
+        table = fe_tables.fe_slice_compliance_table(geom, gear, n_roll=5, size=0.3)
         np.testing.assert_array_equal(table.values["bending"] + table.values["fillet"], ds["fe_compliance"].values[gear])
     other = pair_geometry(load_pair(low_fluctuation_pair1(teeth=[31, 49])))
     with pytest.raises(GearmeshInputError, match="fe_compliance"):
-        fe.seed_cache(ds, other)
+        fe_tables.seed_cache(ds, other)
     # through a stage: the default settings' file, then stiffness_dataset(method='fe') reads it
     monkeypatch.undo()
     full = fe_compliance_dataset(pair)
-    monkeypatch.setattr(fe, "_CACHE", {})
-    monkeypatch.setattr(fe, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
+    monkeypatch.setattr(fe_tables, "_CACHE", {})
+    monkeypatch.setattr(fe_tables, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
     out = stiffness_dataset(pair, method="fe", slices=20, positions=24, fe_compliance=full)
     assert float(out["mean_stiffness"]) > 0
 

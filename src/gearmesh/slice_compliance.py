@@ -325,11 +325,11 @@ def slice_compliance_table(geom: PairGeometry, gear: int, method: str = DEFAULT_
     n_gauss : Gauss–Legendre nodes on the involute segment.
     profile : optional tooth profile for 'transition'.
 
-    ``method='fe'``: the finite-element tooth (:func:`gearmesh.fe.fe_slice_compliance_table`,
+    ``method='fe'``: the finite-element tooth (:func:`gearmesh.fe_tables.fe_slice_compliance_table`,
     its own roll nodes and mesh; ``n_nodes`` and ``n_gauss`` do not apply).
     """
     if check_method(method) == "fe":
-        from .fe import fe_slice_compliance_table
+        from .fe_tables import fe_slice_compliance_table
 
         return fe_slice_compliance_table(geom, gear, profile=profile)
     from scipy.interpolate import CubicSpline

@@ -37,7 +37,7 @@ from ..dynamics import (
 )
 from ..errors import GearmeshInputError
 from . import one_pair, variant_names
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ..io import name_force_lines, variable
 from ..limits import (BEARING_STIFFNESS, MAX_SPEED_STEPS, same_point, MAX_SPEEDS, MAX_TABLE_POINTS, MAX_TRAIN_SPEEDS,

@@ -13,7 +13,7 @@ import numpy as np
 import xarray as xr
 
 from ..choices import IMPACT_INDEX
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from . import shared_torques, variant_names
 from ..gear import GEARS, GearPair, load_pair, pair_geometry, pair_to_dict

@@ -13,7 +13,7 @@ from typing import Sequence, Any
 import numpy as np
 import xarray as xr
 
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from . import shared_torques, variant_names

@@ -22,7 +22,7 @@ import numpy as np
 import xarray as xr
 
 from ..choices import DEFAULT_CYCLE_POSITIONS
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, MODIFICATION_UNITS, GearPair, Modification, pair_geometry
 from ..impact import SCENARIOS, impact_model

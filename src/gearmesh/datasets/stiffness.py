@@ -8,7 +8,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..design import pair_with_contact_ratios
 from ..errors import GearmeshInputError
 from ..gear import GearPair, PairGeometry, pair_from_dict, pair_geometry, pair_to_dict
