@@ -61,7 +61,7 @@ def _addition_alone(config: dict) -> dict:
 
     from common import timed_calls
     from gearmesh.datasets.impact import _model
-    from gearmesh.fe import use_fe_tables
+    from gearmesh.fe_tables import use_fe_tables
     from gearmesh.gear import pair_geometry
     from gearmesh.pairfile import load_pair
     from gearmesh.impact import ltca_criteria

@@ -37,7 +37,7 @@ def _point_load(d: float, c: float, coef: float, m: float) -> float:
 
 def solve_rows(gap, compliance, force, law):
     """Loads (B, M) N, approach δ (B,) m and each point's dq/dδ (B, M) N/m (0 where unloaded) of the
-    rows (module docstring); ``law`` a :class:`gearmesh.ltca.ContactLaw`."""
+    rows (module docstring); ``law`` a :class:`gearmesh.ltca_model.ContactLaw`."""
     gap = np.asarray(gap, dtype=float)
     comp = np.asarray(compliance, dtype=float) + law.linear
     force = np.broadcast_to(np.asarray(force, dtype=float), gap.shape[:1])

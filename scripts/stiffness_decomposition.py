@@ -32,7 +32,8 @@ from pathlib import Path
 
 import numpy as np
 
-from gearmesh import fe
+from gearmesh import fe, fe_tables
+from gearmesh import slice_compliance as sc
 from gearmesh import stiffness as st
 from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import pair_geometry
@@ -57,7 +58,7 @@ def weber_pair_contact(geom, rho1, rho2, gear_tables, line_load):
     a = np.sqrt(4 * line_load * radius / (math.pi * e_star))
     out = 0.0
     for model, rho in zip(gear_tables, (rho1, rho2)):
-        x_p, _, a1, _ = st.contact_point(model, rho)
+        x_p, _, a1, _ = sc.contact_point(model, rho)
         depth = x_p / np.cos(a1)  # |PC| along the line of action
         out = out + fe.weber_approach(depth, a, mat.youngs_modulus, mat.poisson_ratio, "strain")
     # normal approach per normal load per unit contact length -> transverse per unit face width
@@ -69,10 +70,10 @@ def mean_k(geom, tables, extra=None):
     added to the pair's slice compliance (the contact term swapped)."""
     if extra is None:
         return st.mesh_stiffness(geom, 360, method=tables[0].method, tables=tables, components=False).mean * 1e-6
-    pt = st.pair_slice_table(geom, tables)
+    pt = sc.pair_slice_table(geom, tables)
     s = pt.s0 + pt.ds * np.arange(pt.total.size)
-    total = pt.total - st.hertz_compliance_transverse(geom) + extra(s)
-    pt = st.PairSliceTable(s0=pt.s0, ds=pt.ds, columns=pt.columns, values=pt.values, total=total, slopes=pt.slopes,
+    total = pt.total - sc.hertz_compliance_transverse(geom) + extra(s)
+    pt = sc.PairSliceTable(s0=pt.s0, ds=pt.ds, columns=pt.columns, values=pt.values, total=total, slopes=pt.slopes,
                            total_slope=np.diff(total))
     return st.mesh_stiffness(geom, 360, method=tables[0].method, pair_table=pt, components=False).mean * 1e-6
 
@@ -90,23 +91,23 @@ def decompose(name: str, line_load: float) -> dict:
     pem = []
     for gear in (0, 1):
         rho = np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], ROLL_NODES)
-        model = st.tooth_model(geom, gear, "transition")
-        c = st.tooth_slice_compliance(model, rho)
-        alpha = st.contact_point(model, rho)[2]
+        model = sc.tooth_model(geom, gear, "transition")
+        c = sc.tooth_slice_compliance(model, rho)
+        alpha = sc.contact_point(model, rho)[2]
         split = fe.tooth_body_split(geom, gear, rho, "stress", SIZE)
         strain = fe.tooth_compliance(geom, gear, rho, "strain", SIZE).total
         mixed = fe.tooth_body_split(geom, gear, rho, "strain", SIZE, body_plane="stress").total
 
         def table(tooth, body):
-            return fe.compliance_table(geom, gear, rho, tooth, body, alpha)
+            return fe_tables.compliance_table(geom, gear, rho, tooth, body, alpha)
 
-        pem.append(st.slice_compliance_table(geom, gear, "transition"))
+        pem.append(sc.slice_compliance_table(geom, gear, "transition"))
         steps["beam_fe"].append(table(split.tooth_rigid_base, c["fillet"]))
         steps["body_fe"].append(table(split.tooth_rigid_base, split.body_rigid_tooth))
         steps["stress"].append(table(split.total, 0 * rho))
         steps["strain"].append(table(strain, 0 * rho))
         steps["mixed"].append(table(mixed, 0 * rho))
-    models = (st.tooth_model(geom, 0, "transition"), st.tooth_model(geom, 1, "transition"))
+    models = (sc.tooth_model(geom, 0, "transition"), sc.tooth_model(geom, 1, "transition"))
 
     def weber(s):
         return weber_pair_contact(geom, geom.rho_sap[0] + s, geom.rho_eap[1] - s, models, line_load)
@@ -124,7 +125,7 @@ def decompose(name: str, line_load: float) -> dict:
         "pem_transition_weber_contact": mean_k(geom, tuple(pem), weber),
         "fe_strain_weber_contact": mean_k(geom, tuple(steps["strain"]), weber),
         "iso6336_K_gamma_alpha": iso["K_gamma_alpha"] * 1e-6,
-        "yang_sun_contact_m2_per_N": st.hertz_compliance_transverse(geom),
+        "yang_sun_contact_m2_per_N": sc.hertz_compliance_transverse(geom),
         "weber_contact_mid_m2_per_N": float(weber(np.array([0.5 * geom.path_of_contact]))[0]),
     }
     for m in ("traditional", "improved"):
@@ -144,9 +145,9 @@ def reference_k(name: str, ratios: dict, line_load: float) -> dict:
     strain, alpha = [], []
     for gear in (0, 1):
         rho = np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], ROLL_NODES)
-        alpha.append(st.contact_point(st.tooth_model(geom, gear, "transition"), rho)[2])
+        alpha.append(sc.contact_point(sc.tooth_model(geom, gear, "transition"), rho)[2])
         strain.append((rho, fe.tooth_compliance(geom, gear, rho, "strain", SIZE).total))
-    models = (st.tooth_model(geom, 0, "transition"), st.tooth_model(geom, 1, "transition"))
+    models = (sc.tooth_model(geom, 0, "transition"), sc.tooth_model(geom, 1, "transition"))
 
     def weber(s):
         return weber_pair_contact(geom, geom.rho_sap[0] + s, geom.rho_eap[1] - s, models, line_load)
@@ -154,7 +155,7 @@ def reference_k(name: str, ratios: dict, line_load: float) -> dict:
     out = {}
     for load, key in (("normal", "c3d"), ("transverse", "c3d_transverse")):
         ratio = [ratios[f"{name}_{g}"][key] / ratios[f"{name}_{g}"]["strain"] for g in (0, 1)]
-        tables = tuple(fe.compliance_table(geom, g, strain[g][0], strain[g][1] * ratio[g], 0 * strain[g][0], alpha[g])
+        tables = tuple(fe_tables.compliance_table(geom, g, strain[g][0], strain[g][1] * ratio[g], 0 * strain[g][0], alpha[g])
                        for g in (0, 1))
         out.update({f"3d_{load}_ratio_pinion": ratio[0], f"3d_{load}_ratio_gear": ratio[1],
                     f"3d_{load}_yang_sun": mean_k(geom, tables), f"3d_{load}_weber": mean_k(geom, tables, weber)})

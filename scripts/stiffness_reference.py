@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from gearmesh import fe, fe3d
-from gearmesh import stiffness as st
+from gearmesh import slice_compliance as sc
 from gearmesh.gear import pair_geometry
 from gearmesh.pairfile import load_pair, pair_to_dict
 
@@ -74,11 +74,11 @@ def slice_model_mean(geom, gear, rho, weights, size, plane, body_plane=None):
 
 def pem_mean(geom, gear, rho, weights, method="transition"):
     """The potential-energy slice compliance (bending + shear + axial + fillet) over each line."""
-    model = st.tooth_model(geom, gear, method)
+    model = sc.tooth_model(geom, gear, method)
     out = []
     for r in range(rho.shape[0]):
         k = weights[r] > 0
-        c = st.tooth_slice_compliance(model, rho[r, k])
+        c = sc.tooth_slice_compliance(model, rho[r, k])
         out.append(float(np.sum(weights[r, k] * sum(c.values())) / np.sum(weights[r, k])))
     return np.array(out)
 

@@ -188,7 +188,7 @@ def _dotted(data, prefix=""):
 
 def test_the_safety_verdict_reads_every_factor_with_a_minimum():
     """A safety factor the rating gains (with its minimum) joins the verdict without a change."""
-    from gearmesh.cli import safety_verdict
+    from gearmesh.commands import safety_verdict
 
     ok, line = safety_verdict({"S_H": [1.2, 1.1], "S_Hmin": 1.0, "S_F": [2.0, 1.9], "S_Fmin": 1.4,
                                "S_S": 1.5, "S_Smin": 1.8, "S_Hmin_note": "x"})

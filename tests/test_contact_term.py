@@ -6,8 +6,9 @@ import numpy as np
 import pytest
 
 from gearmesh.gear import pair_geometry
+from gearmesh.ltca import contact_tangent_compliance, ltca
+from gearmesh.ltca_model import contact_law
 from gearmesh.pairfile import example_pair, load_pair
-from gearmesh.ltca import contact_law, contact_tangent_compliance, ltca
 from gearmesh.stiffness import hertz_compliance_transverse, mesh_stiffness
 
 

@@ -201,9 +201,9 @@ def test_iso_stiffness_follows_the_modulus_through_every_door(doors):
 
 
 def test_contact_laws_are_declared_once():
-    from gearmesh import ltca, settings
+    from gearmesh import ltca_model, settings
 
-    assert ltca.CONTACT_LAWS is CONTACT_LAWS
+    assert ltca_model.CONTACT_LAWS is CONTACT_LAWS
     assert settings.DEFAULT_TOOTH_METHOD == DEFAULT_TOOTH_METHOD
 
 

@@ -13,7 +13,8 @@ pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
 from pairs import STEEL, low_fluctuation_pair1  # noqa: E402
-from gearmesh import fe  # noqa: E402
+from gearmesh import fe, fe_tables  # noqa: E402
+from gearmesh import slice_compliance as sc  # noqa: E402
 from gearmesh import stiffness as st  # noqa: E402
 from gearmesh.errors import GearmeshInputError  # noqa: E402
 from gearmesh.gear import pair_geometry  # noqa: E402
@@ -139,7 +140,7 @@ def test_fe_agrees_with_pem_for_thin_long_teeth():
         "bore_radius_mm": [30, 30], "material": dict(STEEL)}))
     rho = np.array([geom.rho_eap[0]])
     res = fe.tooth_compliance(geom, 0, rho, plane="stress", size=0.1)
-    pem = st.tooth_slice_compliance(st.tooth_model(geom, 0, "transition"), rho)
+    pem = sc.tooth_slice_compliance(sc.tooth_model(geom, 0, "transition"), rho)
     beam = pem["bending"] + pem["shear"] + pem["axial"]
     assert res.tooth[0] == pytest.approx(beam[0], rel=0.02)
     assert res.body[0] == pytest.approx(pem["fillet"][0], rel=0.12)
@@ -151,7 +152,7 @@ def test_load_direction_is_the_line_of_action(p1):
     tangent to the base circle (distance r_b from the centre)."""
     rho = _mid_rolls(p1, 0, 5)
     profile, sector = fe.gear_sector(p1, 0, rho, size=0.3)
-    x, y, a1, _ = st.contact_point(st.tooth_model(p1, 0, "transition"), rho)
+    x, y, a1, _ = sc.contact_point(sc.tooth_model(p1, 0, "transition"), rho)
     assert np.allclose(sector.vertices[sector.right_loads], np.column_stack([x, y]), rtol=0, atol=1e-12)
     assert np.allclose(np.abs(x * np.sin(a1) - y * np.cos(a1)), p1.base_radius[0], rtol=1e-12)
 
@@ -171,12 +172,12 @@ def test_sector_converges_to_the_whole_gear(p1):
 def test_fe_is_a_stiffness_method(p1):
     """``method='fe'`` builds the same SliceComplianceTable and runs through mesh_stiffness
     and the LTCA's model; the table is computed once per gear (cache)."""
-    from gearmesh.ltca import ltca_model
+    from gearmesh.ltca_model import ltca_model
 
-    tabs = (st.slice_compliance_table(p1, 0, "fe"), st.slice_compliance_table(p1, 1, "fe"))
-    assert tabs[0].method == "fe" and isinstance(tabs[0], st.SliceComplianceTable)
+    tabs = (sc.slice_compliance_table(p1, 0, "fe"), sc.slice_compliance_table(p1, 1, "fe"))
+    assert tabs[0].method == "fe" and isinstance(tabs[0], sc.SliceComplianceTable)
     variant = pair_geometry(load_pair(low_fluctuation_pair1(name="renamed", face_width_mm=25)))
-    assert fe.fe_tooth_compliance_cached(p1, 0) is fe.fe_tooth_compliance_cached(variant, 0)  # same section
+    assert fe_tables.fe_tooth_compliance_cached(p1, 0) is fe_tables.fe_tooth_compliance_cached(variant, 0)  # same section
     assert np.all(np.diff(tabs[0].total(tabs[0].rho)) > 0)  # more compliant towards the tip
     k = st.mesh_stiffness(p1, 60, method="fe", tables=tabs)
     assert np.isinf(k.components["shear_pinion"]).all()  # no separate shear compliance in 2-D
@@ -194,7 +195,7 @@ def test_refusals(p1):
     with pytest.raises(GearmeshInputError):
         fe.tooth_compliance(p1, 0, [p1.rho_eap[0]], size=0)
     with pytest.raises(GearmeshInputError):
-        st.tooth_model(p1, 0, "fe")  # no cantilever behind the FE method
+        sc.tooth_model(p1, 0, "fe")  # no cantilever behind the FE method
 
 
 def test_fe_compliance_dataset(tmp_path):
@@ -223,20 +224,20 @@ def test_workflow_tables_are_read_not_recomputed(monkeypatch):
     pair = load_pair(low_fluctuation_pair1())
     geom = pair_geometry(pair)
     ds = fe_compliance_dataset(pair, size=0.3, roll_nodes=5)
-    monkeypatch.setattr(fe, "_CACHE", {})
-    monkeypatch.setattr(fe, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
-    fe.seed_cache(ds, geom)
+    monkeypatch.setattr(fe_tables, "_CACHE", {})
+    monkeypatch.setattr(fe_tables, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
+    fe_tables.seed_cache(ds, geom)
     for gear in (0, 1):
-        table = fe.fe_slice_compliance_table(geom, gear, n_roll=5, size=0.3)
+        table = fe_tables.fe_slice_compliance_table(geom, gear, n_roll=5, size=0.3)
         np.testing.assert_array_equal(table.values["bending"] + table.values["fillet"], ds["fe_compliance"].values[gear])
     other = pair_geometry(load_pair(low_fluctuation_pair1(teeth=[31, 49])))
     with pytest.raises(GearmeshInputError, match="fe_compliance"):
-        fe.seed_cache(ds, other)
+        fe_tables.seed_cache(ds, other)
     # through a stage: the default settings' file, then stiffness_dataset(method='fe') reads it
     monkeypatch.undo()
     full = fe_compliance_dataset(pair)
-    monkeypatch.setattr(fe, "_CACHE", {})
-    monkeypatch.setattr(fe, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
+    monkeypatch.setattr(fe_tables, "_CACHE", {})
+    monkeypatch.setattr(fe_tables, "tooth_compliance", lambda *a, **k: pytest.fail("meshed although the table was given"))
     out = stiffness_dataset(pair, method="fe", slices=20, positions=24, fe_compliance=full)
     assert float(out["mean_stiffness"]) > 0
 
@@ -280,7 +281,7 @@ def test_beam_and_foundation_against_their_fe_problems():
     geom = _slender()
     rho = np.array([geom.rho_eap[0]])
     res = fe.tooth_body_split(geom, 0, rho, size=0.1)
-    pem = st.tooth_slice_compliance(st.tooth_model(geom, 0, "transition"), rho)
+    pem = sc.tooth_slice_compliance(sc.tooth_model(geom, 0, "transition"), rho)
     beam = pem["bending"] + pem["shear"] + pem["axial"]
     assert 0.92 < res.tooth_rigid_base[0] / beam[0] < 1.0
     assert 0.75 < res.body_rigid_tooth[0] / pem["fillet"][0] < 1.0

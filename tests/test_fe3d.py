@@ -13,7 +13,7 @@ pytest.importorskip("triangle")
 
 from pairs import low_fluctuation_pair1  # noqa: E402
 from gearmesh import fe, fe3d  # noqa: E402
-from gearmesh import stiffness as st  # noqa: E402
+from gearmesh import slice_compliance as sc  # noqa: E402
 from gearmesh.errors import GearmeshInputError  # noqa: E402
 from gearmesh.gear import pair_geometry  # noqa: E402
 from gearmesh.pairfile import load_pair
@@ -49,7 +49,7 @@ def test_helical_contact_line_lies_in_the_plane_of_action_normal_to_the_load():
     geom = pair_geometry(load_pair(low_fluctuation_pair1(helix_angle_deg=20)))
     z = np.linspace(-0.01, 0.01, 9)
     rho = fe3d.line_rolls(geom, 0, [0.5 * (geom.rho_sap[0] + geom.rho_eap[0])], z)[0]
-    x, y, a1, _ = st.contact_point(st.tooth_model(geom, 0, "transition"), rho)
+    x, y, a1, _ = sc.contact_point(sc.tooth_model(geom, 0, "transition"), rho)
     twist = math.tan(geom.pair.helix_angle) / geom.reference_radius[0]
     th = twist * z
     pts = np.vstack([x * np.cos(th) - y * np.sin(th), x * np.sin(th) + y * np.cos(th), z])

@@ -20,7 +20,8 @@ from gearmesh.gear import Modification, pair_geometry
 from gearmesh.pairfile import load_pair, pair_from_dict, pair_to_dict
 from gearmesh.io import check_documented
 from gearmesh.supports import read_supports
-from gearmesh.ltca import PALMGREN_COEFFICIENT, contact_law, ltca, ltca_model, solve_contact
+from gearmesh.ltca import ltca, solve_contact
+from gearmesh.ltca_model import PALMGREN_COEFFICIENT, contact_law, ltca_model
 
 ROOT = Path(__file__).resolve().parents[1]
 MOD = (Modification(tip_relief=20e-6, tip_relief_length=3e-3, crowning=10e-6), Modification())

@@ -11,8 +11,9 @@ import pytest
 
 from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import pair_geometry
+from gearmesh.ltca import _invert, law_point_scales, load_sums
+from gearmesh.ltca_model import ContactLaw
 from gearmesh.pairfile import load_pair
-from gearmesh.ltca import ContactLaw, _invert, law_point_scales, load_sums
 from gearmesh.meshforce import table_layout, tabulate
 
 PAIR = Path(__file__).resolve().parents[1] / "config" / "pairs" / "helical_z29_71_m5.yaml"

@@ -23,7 +23,8 @@ from gearmesh.datasets.optimise import result_dataset, run_settings
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_geometry
 from gearmesh.io import check_documented
-from gearmesh.ltca import MESH_ORDERS, lte_harmonics, ltca, ltca_model
+from gearmesh.ltca import MESH_ORDERS, lte_harmonics, ltca
+from gearmesh.ltca_model import ltca_model
 from gearmesh.plots.optimise import plot_pareto
 from gearmesh.stress import contact_stress, iso_root_stress_slices
 
@@ -364,7 +365,8 @@ def test_tabulated_solve_equals_the_exact_solve_from_any_start(pair, law_name):
     """solve_contact_tabulated: the loads and approach of solve_contact to its tolerance, the load
     sum equal to F, from the default bound, from a start right of the root and from one left of
     every point (no load there: back to the bound)."""
-    from gearmesh.ltca import contact_law, solve_contact, solve_contact_tabulated
+    from gearmesh.ltca import solve_contact, solve_contact_tabulated
+    from gearmesh.ltca_model import contact_law
 
     geom = pair_geometry(pair)
     law = contact_law(geom, geom.face_width / 40, law_name)

@@ -21,9 +21,9 @@ from gearmesh.config import validate_study
 from gearmesh.errors import GearmeshInputError
 from gearmesh.pipeline import resolve
 from gearmesh.schema import defaults, field_schema, has_default, jsonable, key_of, settings_fields, spec_of
-from gearmesh.settings import (Dynamics, GearModification, PairFile, PairMaterial, Study, pair_schema,
-                               pair_schema_text, stage_sections, study_keys, study_reference, study_schema,
-                               study_schema_text)
+from gearmesh.pair_keys import GearModification, PairFile, PairMaterial, pair_schema
+from gearmesh.published import pair_schema_text, study_reference, study_schema_text
+from gearmesh.settings import Dynamics, Study, stage_sections, study_keys, study_schema
 
 ROOT = Path(__file__).resolve().parents[1]
 STAGED = [(path, cls) for path, cls in stage_sections() if getattr(cls, "STAGE", None) is not None]
@@ -136,7 +136,7 @@ def test_the_solver_defaults_are_the_declared_ones():
 def test_the_deviation_bounds_are_the_readers_own():
     """The pair file's deviation keys: the schema's bounds are the reader's (gearmesh.deviation)."""
     from gearmesh.deviation import read_deviations
-    from gearmesh.settings import PairFile
+    from gearmesh.pair_keys import PairFile
 
     read_deviations({"lead_slope_deviation_um": [1000.0, -1000.0], "mesh_misalignment_um": -1000.0})
     for key, value in (("lead_slope_deviation_um", [1000.001, 0.0]), ("profile_slope_deviation_um", [0.0, -1000.01]),

@@ -11,6 +11,7 @@ from hypothesis import strategies as st_
 
 from pairs import STEEL, low_fluctuation_pair1
 from gearmesh.body import mesh_body_compliance
+from gearmesh import slice_compliance as sc
 from gearmesh import stiffness as st
 from gearmesh.contact import contact_lines, mesh_cycle_rolls, tooth_pair_indices
 from gearmesh.errors import GearmeshInputError
@@ -29,7 +30,7 @@ def p1():
 
 @pytest.fixture(scope="module")
 def p1_tables(p1):
-    return {m: (st.slice_compliance_table(p1, 0, m), st.slice_compliance_table(p1, 1, m)) for m in st.PEM_METHODS}
+    return {m: (sc.slice_compliance_table(p1, 0, m), sc.slice_compliance_table(p1, 1, m)) for m in sc.PEM_METHODS}
 
 
 @pytest.fixture(scope="module")
@@ -39,22 +40,22 @@ def p1_result(p1, p1_tables):
 
 def _pair_total_compliance(geom, s, method):
     """c1(ρ1) + c2(ρ2) + c_h (m²/N) at positions s, straight from Gauss (no tables)."""
-    c1 = st.tooth_slice_compliance(st.tooth_model(geom, 0, method), geom.rho_sap[0] + s)
-    c2 = st.tooth_slice_compliance(st.tooth_model(geom, 1, method), geom.rho_eap[1] - s)
-    return sum(c1.values()) + sum(c2.values()) + st.hertz_compliance_transverse(geom)
+    c1 = sc.tooth_slice_compliance(sc.tooth_model(geom, 0, method), geom.rho_sap[0] + s)
+    c2 = sc.tooth_slice_compliance(sc.tooth_model(geom, 1, method), geom.rho_eap[1] - s)
+    return sum(c1.values()) + sum(c2.values()) + sc.hertz_compliance_transverse(geom)
 
 
 # ----------------------------------------------------------------------------- closed forms
 
 
 def test_hertz_per_width_is_pi_e_over_4_one_minus_nu_squared():
-    assert st.hertz_stiffness_per_width(210e9, 0.3) == pytest.approx(math.pi * 210e9 / (4 * 0.91), rel=1e-15)
-    assert st.hertz_stiffness_per_width(200e9, 0.0) == pytest.approx(math.pi * 50e9, rel=1e-15)
+    assert sc.hertz_stiffness_per_width(210e9, 0.3) == pytest.approx(math.pi * 210e9 / (4 * 0.91), rel=1e-15)
+    assert sc.hertz_stiffness_per_width(200e9, 0.0) == pytest.approx(math.pi * 50e9, rel=1e-15)
 
 
 def test_hertz_in_the_transverse_convention_is_projected_by_cos_beta_b(p1):
     kh0 = math.pi * 210e9 / (4 * (1 - 0.3**2))
-    assert 1 / st.hertz_compliance_transverse(p1) == pytest.approx(kh0 * math.cos(p1.base_helix_angle), rel=1e-14)
+    assert 1 / sc.hertz_compliance_transverse(p1) == pytest.approx(kh0 * math.cos(p1.base_helix_angle), rel=1e-14)
 
 
 def test_sainsot_coefficients_match_the_table_by_hand():
@@ -64,12 +65,12 @@ def test_sainsot_coefficients_match_the_table_by_hand():
     m_hand = 60.111e-5 / th**2 + 28.100e-3 * hf**2 - 83.431e-4 * hf / th - 9.9256e-3 / th + 0.1624 * hf + 0.9086
     p_hand = -50.952e-5 / th**2 + 185.50e-3 * hf**2 + 0.0538e-4 * hf / th + 53.300e-3 / th + 0.2895 * hf + 0.9236
     q_hand = -6.2042e-5 / th**2 + 9.0889e-3 * hf**2 - 4.0964e-4 * hf / th + 7.8297e-3 / th - 0.1472 * hf + 0.6904
-    coeff = st.sainsot_coefficients(hf, th)
+    coeff = sc.sainsot_coefficients(hf, th)
     np.testing.assert_allclose(coeff, [l_hand, m_hand, p_hand, q_hand], rtol=1e-14)
     alpha, u, sf, e = 0.3, 2.1e-3, 4.0e-3, 210e9
     lm, mm, pm, qm = coeff
     hand = math.cos(alpha) ** 2 / e * (lm * (u / sf) ** 2 + mm * u / sf + pm * (1 + qm * math.tan(alpha) ** 2))
-    assert st.fillet_foundation_compliance(alpha, u, sf, th, hf, e) == pytest.approx(hand, rel=1e-14)
+    assert sc.fillet_foundation_compliance(alpha, u, sf, th, hf, e) == pytest.approx(hand, rel=1e-14)
 
 
 def test_iso6336_by_hand(p1):
@@ -123,24 +124,24 @@ def test_lste_is_transverse_load_over_k(p1_result, p1):
 # ----------------------------------------------------------------------------- one slice
 
 
-@pytest.mark.parametrize("method", st.PEM_METHODS)
+@pytest.mark.parametrize("method", sc.PEM_METHODS)
 def test_gauss_equals_adaptive_quadrature_per_component(p1, method):
     for gear in (0, 1):
-        model = st.tooth_model(p1, gear, method)
-        moments = st.fixed_moments_quad(model)
+        model = sc.tooth_model(p1, gear, method)
+        moments = sc.fixed_moments_quad(model)
         rho = np.array([p1.rho_sap[gear], 0.5 * (p1.rho_sap[gear] + p1.rho_eap[gear]), p1.rho_eap[gear]])
-        fast = st.tooth_slice_compliance(model, rho)
+        fast = sc.tooth_slice_compliance(model, rho)
         for k, r in enumerate(rho):
-            ref = st.tooth_slice_compliance_quad(model, float(r), moments=moments)
-            for name in st.COMPONENTS:
+            ref = sc.tooth_slice_compliance_quad(model, float(r), moments=moments)
+            for name in sc.COMPONENTS:
                 assert fast[name][k] == pytest.approx(ref[name], rel=1e-9), (gear, name, k)
 
 
 def test_load_angle_satisfies_tian_relation(p1):
     """α1 + α2 = ρ/r_b with α2 = ψ_b (Tian 2004), and the load line is tangent to the base circle."""
-    model = st.tooth_model(p1, 0, "improved")
+    model = sc.tooth_model(p1, 0, "improved")
     rho = np.linspace(p1.rho_sap[0], p1.rho_eap[0], 7)
-    x, y, a1, _ = st.contact_point(model, rho)
+    x, y, a1, _ = sc.contact_point(model, rho)
     assert np.allclose(a1 + model.psi_b, rho / model.base_radius, rtol=1e-13)
     # distance from the gear centre to the load line = r_b
     d = np.abs(x * np.sin(a1) - y * np.cos(a1))
@@ -150,15 +151,15 @@ def test_load_angle_satisfies_tian_relation(p1):
 def test_compliance_grows_towards_the_tip(p1_tables):
     for tab in p1_tables["transition"]:
         assert np.all(np.diff(tab.values["bending"]) > 0)
-        assert np.all(np.diff(sum(tab.values[k] for k in st.COMPONENTS)) > 0)
+        assert np.all(np.diff(sum(tab.values[k] for k in sc.COMPONENTS)) > 0)
 
 
 def test_table_interpolation_matches_direct_gauss(p1, p1_tables):
     tab = p1_tables["transition"][1]
     rho = np.linspace(p1.rho_sap[1], p1.rho_eap[1], 1001)[1:-1:7]
-    direct = st.tooth_slice_compliance(tab.model, rho)
+    direct = sc.tooth_slice_compliance(tab.model, rho)
     interp = tab(rho)
-    for k in st.COMPONENTS:
+    for k in sc.COMPONENTS:
         assert np.allclose(interp[k], direct[k], rtol=1e-9)
 
 
@@ -167,9 +168,9 @@ def test_transition_fillet_is_the_generated_profile(p1):
     from gearmesh import profile as prof
 
     for gear in (0, 1):
-        model = st.tooth_model(p1, gear, "transition")
+        model = sc.tooth_model(p1, gear, "transition")
         (y_lo, y_hi, xf), = model.fixed
-        x_form, y_form = st._involute_xy(model.base_radius, model.psi_b, model.a_start)
+        x_form, y_form = sc._involute_xy(model.base_radius, model.psi_b, model.a_start)
         assert y_hi == pytest.approx(float(y_form), rel=1e-12)
         assert float(xf(np.array([y_hi]))[0]) == pytest.approx(float(x_form), rel=1e-9)
         # the fillet root is on the root circle at θ_f
@@ -183,7 +184,7 @@ def test_transition_fillet_is_the_generated_profile(p1):
 
 
 def _cantilever(geom, gear, method, rho):
-    c = st.tooth_slice_compliance(st.tooth_model(geom, gear, method), rho)
+    c = sc.tooth_slice_compliance(sc.tooth_model(geom, gear, method), rho)
     return c["bending"] + c["shear"] + c["axial"]
 
 
@@ -200,7 +201,7 @@ def test_methods_order_when_base_circle_is_below_root_circle(p1, p1_tables):
     for gear in (0, 1):
         rho = np.linspace(p1.rho_sap[gear], p1.rho_eap[gear], 9)
         assert np.all(_cantilever(p1, gear, "traditional", rho) > _cantilever(p1, gear, "improved", rho))
-    means = {m: st.mesh_stiffness(p1, 60, method=m, tables=p1_tables[m], components=False).mean for m in st.PEM_METHODS}
+    means = {m: st.mesh_stiffness(p1, 60, method=m, tables=p1_tables[m], components=False).mean for m in sc.PEM_METHODS}
     assert means["traditional"] < means["improved"] < means["transition"]
 
 
@@ -300,7 +301,7 @@ def test_clip_rule_sums_contact_length_exactly_for_random_pairs(beta, b, z1, han
 def test_components_add_up_in_series(p1_result):
     inv = sum(1.0 / v for v in p1_result.components.values())
     assert np.allclose(inv, 1.0 / p1_result.K, rtol=1e-10)
-    assert set(p1_result.components) == {f"{c}_{g}" for c in st.COMPONENTS for g in ("pinion", "gear")} | {"hertz"}
+    assert set(p1_result.components) == {f"{c}_{g}" for c in sc.COMPONENTS for g in ("pinion", "gear")} | {"hertz"}
     # the bodies' foundation and the contact are the soft parts; axial compression is tiny
     comp = {k: v.mean() for k, v in p1_result.components.items()}
     assert comp["axial_pinion"] > 10 * comp["fillet_pinion"]
@@ -348,7 +349,7 @@ def _observed_order(ns, errors):
 def test_convergence_in_slices(p1, p1_tables):
     """Pointwise error against a 16000-slice solution: O(N⁻²) with the clip rule, O(N⁻¹) with
     the centre rule (contact_roll_positions' points)."""
-    pt = st.pair_slice_table(p1, p1_tables["transition"])
+    pt = sc.pair_slice_table(p1, p1_tables["transition"])
     ref = st.mesh_stiffness(p1, 90, 16000, pair_table=pt, components=False).K
     ns = np.array([25, 50, 100, 200, 400])
     err = {rule: [np.max(np.abs(st.mesh_stiffness(p1, 90, n, pair_table=pt, rule=rule,
@@ -362,7 +363,7 @@ def test_convergence_in_slices(p1, p1_tables):
 
 def test_convergence_in_positions(p1, p1_tables):
     """The mean over the cycle and the smooth minimum converge as positions are refined."""
-    pt = st.pair_slice_table(p1, p1_tables["transition"])
+    pt = sc.pair_slice_table(p1, p1_tables["transition"])
     ref = st.mesh_stiffness(p1, 11520, 100, pair_table=pt, components=False)
     ps = np.array([90, 180, 360, 720, 1440])
     res = [st.mesh_stiffness(p1, p, 100, pair_table=pt, components=False) for p in ps]
@@ -397,7 +398,7 @@ def test_integer_overlap_ratio_lowers_the_fluctuation(p1, p1_tables):
 def test_iso_and_pem_means_agree_within_a_factor_1_3(p1, p1_tables):
     """The low-fluctuation paper pair 1: ISO 6336-1 cγα·b against the PEM mean of every method."""
     iso = st.iso6336_stiffness(p1)["K_gamma_alpha"]
-    for m in st.PEM_METHODS:
+    for m in sc.PEM_METHODS:
         mean = st.mesh_stiffness(p1, 90, method=m, tables=p1_tables[m], components=False).mean
         assert 1 / 1.3 < mean / iso < 1.3, m
 
@@ -452,8 +453,8 @@ def test_missing_bore_radius_is_refused():
 
 def test_missing_material_is_refused():
     geom = pair_geometry(load_pair(low_fluctuation_pair1()).with_changes(material=None))  # a pair built in code
-    for call in (lambda: st.mesh_stiffness(geom), lambda: st.slice_compliance_table(geom, 0, "improved"),
-                 lambda: st.hertz_compliance_transverse(geom)):
+    for call in (lambda: st.mesh_stiffness(geom), lambda: sc.slice_compliance_table(geom, 0, "improved"),
+                 lambda: sc.hertz_compliance_transverse(geom)):
         with pytest.raises(GearmeshInputError) as info:
             call()
         assert info.value.field == "material"

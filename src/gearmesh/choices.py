@@ -39,7 +39,7 @@ TOOTH_MODEL_NAMES = {
 DEFAULT_TOOTH_METHOD = "fe"
 
 #: Local contact laws of a slice: Palmgren's line-contact approach δ ∝ F^0.9 (F ∝ δ^1.11) or the
-#: linear Hertz strip (:func:`gearmesh.ltca.contact_law`).
+#: linear Hertz strip (:func:`gearmesh.ltca_model.contact_law`).
 CONTACT_LAWS = ("palmgren", "linear")
 DEFAULT_CONTACT_LAW = "palmgren"
 

@@ -86,7 +86,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     from .datasets.stiffness import apply_variant
     from .io import check_output_tree, study_folders
     from .gear import pair_geometry
-    from .stiffness import require_stiffness_data
+    from .tooth import require_stiffness_data
 
     pairs = study_pairs(config, root)
     for name, pair in pairs.items():

@@ -31,7 +31,7 @@ Model
   along n, of the point C where the line of action crosses the tooth centre line; the
   approach of P towards C (the flattening under the load, log-singular for a point load in
   2-D) is the local contact part, which the slice model carries in its Hertz term
-  (:func:`gearmesh.stiffness.hertz_compliance_transverse`). So c_FE = n·u(C)/F replaces
+  (:func:`gearmesh.slice_compliance.hertz_compliance_transverse`). So c_FE = n·u(C)/F replaces
   exactly c_b + c_s + c_a + c_f of the PEM tables.
 * Split of c_FE into body and tooth (for the table's components): the rigid motion of the
   root section — the chord y = y_root of the transition cantilever, between the points
@@ -47,22 +47,20 @@ No factor is fitted: the only inputs are the profile, E, ν and the bore radius.
 
 from __future__ import annotations
 
-import json
 import math
 from dataclasses import dataclass
 
 import numpy as np
 
 from .errors import GearmeshInputError
-from .gear import GEARS, PairGeometry
-from .pairfile import pair_to_dict
-from .tooth import SliceComplianceTable, contact_point, require_stiffness_data, tooth_model
+from .gear import PairGeometry
+from .tooth import contact_point, require_stiffness_data, tooth_model
 
 __all__ = [
     "PLANES", "DEFAULT_SIZE", "DEFAULT_NEIGHBOURS", "DEFAULT_PLANE", "DEFAULT_ROLL_NODES",
     "lame_parameters", "triangulate", "ElasticSolver", "elastic_solver", "point_load_matrix",
     "probe_displacements", "section_rigid_motion", "resample_polyline", "sector_outline",
-    "GearSector", "gear_sector", "ToothCompliance", "loaded_tooth", "tooth_compliance", "fe_slice_compliance_table",
+    "GearSector", "gear_sector", "ToothCompliance", "loaded_tooth", "tooth_compliance",
 ]
 
 PLANES = ("strain", "stress")
@@ -720,106 +718,3 @@ def tooth_profile_rolls(geom: PairGeometry, gear: int) -> np.ndarray:
     from .profile import tooth_profile
 
     return tooth_profile(geom, gear, n_fillet=400, n_involute=50).roll
-
-
-# --------------------------------------------------------------------------------------
-# The slice compliance table of the stiffness stage
-# --------------------------------------------------------------------------------------
-
-
-#: pair-file keys the transverse section does not depend on (a renamed variant, another face
-#: width or hand shares the mesh); modifications are not in pair_to_dict (they are gaps, not shape)
-_NOT_IN_SECTION = ("name", "face_width_mm", "helix_hand")
-
-
-def _cache_key(geom: PairGeometry, gear: int, settings: tuple) -> str:
-    """Everything the FE table depends on: the pair's section data (profile, shifts, bore,
-    material) and the settings."""
-    data = {k: v for k, v in pair_to_dict(geom.pair).items() if k not in _NOT_IN_SECTION}
-    data["profile_shift"] = [float(x) for x in geom.profile_shift]  # as resolved (centre distance)
-    return json.dumps([data, gear, settings], sort_keys=True, default=str)
-
-
-_CACHE: dict[str, ToothCompliance] = {}
-_CACHE_SIZE = 32
-
-
-def fe_tooth_compliance_cached(geom: PairGeometry, gear: int, n_roll: int = DEFAULT_ROLL_NODES,
-                               plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
-                               neighbours: int | None = DEFAULT_NEIGHBOURS) -> ToothCompliance:
-    """:func:`tooth_compliance` at ``n_roll`` equally spaced roll lengths over [ρ_SAP, ρ_EAP],
-    kept in an in-process LRU cache keyed by the pair data and the settings, so that the
-    stages of one process (stiffness, LTCA, impact, the GA's candidates of one pair) mesh
-    and solve each gear once."""
-    if int(n_roll) != n_roll or n_roll < 4:
-        raise GearmeshInputError("n_roll", n_roll, "must be a whole number >= 4 (cubic spline)")
-    settings = (int(n_roll), plane, float(size), neighbours)
-    key = _cache_key(geom, gear, settings)
-    rho = np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], int(n_roll))
-    hit = _CACHE.get(key)
-    if hit is None:
-        hit = tooth_compliance(geom, gear, rho, plane, size, neighbours)
-        if len(_CACHE) >= _CACHE_SIZE:
-            _CACHE.pop(next(iter(_CACHE)))  # oldest first
-        _CACHE[key] = hit
-    return hit
-
-
-def seed_cache(ds, geom: PairGeometry) -> None:
-    """Put the FE tooth compliances of a ``fe_compliance.nc`` (rule ``fe_compliance``,
-    :func:`gearmesh.datasets.fe.fe_compliance_dataset` of the same pair) into the in-process
-    cache under the settings they were computed with, so a stage of the same pair with the
-    same settings reads them instead of meshing again: the table is computed once per gear
-    geometry in the workflow, and every stage using ``method: fe`` takes it from the file."""
-    settings = (int(ds.attrs["roll_nodes"]), str(ds.attrs["plane"]), float(ds.attrs["size_normal_modules"]),
-                DEFAULT_NEIGHBOURS)
-    for gear, name in enumerate(GEARS):
-        def var(key):
-            return np.asarray(ds[key].values[gear], dtype=float)
-
-        rho = var("roll")
-        if not np.allclose(rho, np.linspace(geom.rho_sap[gear], geom.rho_eap[gear], settings[0]), rtol=0, atol=1e-12):
-            raise GearmeshInputError("fe_compliance", ds.attrs.get("pair_name", ""),
-                                     f"was computed for another {name} geometry than this pair's")
-        total = var("fe_compliance")
-        _CACHE[_cache_key(geom, gear, settings)] = ToothCompliance(
-            rho=rho, total=total, body=var("fe_body"), tooth=var("fe_tooth"), total_left=total,
-            wind_up=var("fe_wind_up"), ring_shift=var("fe_ring_shift"), local=var("fe_local"),
-            wind_up_radius=float("nan"), load_angle=var("load_angle"), plane=settings[1], size=settings[2],
-            neighbours=DEFAULT_NEIGHBOURS, n_elements=int(ds.attrs.get(f"{name}_elements", 0)),
-            n_dofs=int(ds.attrs.get(f"{name}_dofs", 0)))
-
-
-def use_fe_tables(ds, geom: PairGeometry) -> None:
-    """:func:`seed_cache` when a stage was handed its pair's ``fe_compliance.nc`` (else nothing)."""
-    if ds is not None:
-        seed_cache(ds, geom)
-
-
-def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAULT_ROLL_NODES,
-                              plane: str = DEFAULT_PLANE, size: float = DEFAULT_SIZE,
-                              neighbours: int | None = DEFAULT_NEIGHBOURS, profile=None):
-    """The :class:`gearmesh.tooth.SliceComplianceTable` of ``method='fe'`` (the same
-    object the potential-energy methods build, so the stiffness stage, the LTCA, the impact
-    and the dynamics use it unchanged).
-
-    Components: 'bending' the tooth's own deflection (bending + shear + axial of the 2-D
-    continuum), 'fillet' the body part (root-section rigid motion), 'shear' and 'axial'
-    zero (module docstring); cubic splines over ``n_roll`` FE roll positions.
-    """
-    res = fe_tooth_compliance_cached(geom, gear, n_roll, plane, size, neighbours)
-    return compliance_table(geom, gear, res.rho, res.tooth, res.body, res.load_angle, profile)
-
-
-def compliance_table(geom: PairGeometry, gear: int, rho: np.ndarray, tooth: np.ndarray, body: np.ndarray,
-                     load_angle: np.ndarray, profile=None):
-    """A :class:`gearmesh.tooth.SliceComplianceTable` (method 'fe') of a tooth compliance
-    per unit width (m²/N) given at roll lengths ``rho`` (m): ``tooth`` as 'bending', ``body``
-    as 'fillet', 'shear' and 'axial' zero; cubic splines."""
-    from scipy.interpolate import CubicSpline
-
-    zero = np.zeros_like(rho)
-    values = {"bending": np.asarray(tooth, float), "shear": zero, "axial": zero.copy(), "fillet": np.asarray(body, float)}
-    splines = {k: CubicSpline(rho, v) for k, v in values.items()}
-    return SliceComplianceTable(gear=gear, method="fe", model=tooth_model(geom, gear, "transition", profile),
-                                rho=rho, values=values, load_angle=load_angle, _splines=splines)

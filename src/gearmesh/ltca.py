@@ -18,8 +18,8 @@ as :mod:`gearmesh.stiffness`): point i of width Δz deflects
     δ − g_i = f_i(q_i) = c_i·q_i + δ_c(q_i),   c_i = (c_1(ρ1) + c_2(ρ2))/Δz,
 
 with c_1, c_2 the per-unit-width bending + shear + axial + fillet-foundation compliances of
-both teeth from :func:`gearmesh.stiffness.slice_compliance_table` resampled by
-:func:`gearmesh.stiffness.pair_slice_table` (Yang & Lin 1987, Tian 2004, Sainsot et al.
+both teeth from :func:`gearmesh.slice_compliance.slice_compliance_table` resampled by
+:func:`gearmesh.slice_compliance.pair_slice_table` (Yang & Lin 1987, Tian 2004, Sainsot et al.
 2004; the tip-edge points of regions 2/3 take each tooth's compliance at its own touched
 roll length — the tip of one, ρ_P of the other — for a load along the line of action: the
 small inclination of an edge load off the line of action is neglected) and δ_c the local
@@ -41,19 +41,8 @@ two stages cannot drift apart; neighbouring-slice coupling (the tooth as a plate
 Schmidt's/Seager's influence coefficients) spreads load across the face and softens
 edge peaks — left out, see the report.
 
-Local contact laws (``contact_law``)
------------------------------------
-* ``'palmgren'`` (default): Palmgren's line-contact approach of two steel bodies,
-  δ_n = 3.84·10⁻⁵ Q^0.9 / l^0.8 (mm, N, mm; Palmgren, Ball and Roller Bearing
-  Engineering, 1959; Harris & Kotzalas, Rolling Bearing Analysis, 5th ed., 2007, eq.
-  6.41). With Q = w·l it is δ_n = 3.84·10⁻⁵ w^0.9 l^0.1 (w in N/mm); the weak length
-  factor is taken at the full contact-line length l_ref = b/cos βb so that the law is
-  local (independent of how finely the line is sliced). For another material the load is
-  scaled by E'_steel/E' (E' = E/(1 − ν²), steel 207 GPa, 0.3). It gives F ∝ δ^(1/0.9),
-  n ≈ 1.11 — the exponent the mesh-in impact paper reports for the fitted local stiffness (n ≈ 1.1).
-* ``'linear'``: the linear Hertz line-contact stiffness per unit length πE/(4(1−ν²)) of
-  the stiffness stage (:func:`gearmesh.stiffness.hertz_compliance_transverse`),
-  for the comparison LTE = F/K(φ).
+The local contact law and the load-independent model (points, separations, compliances) are
+:mod:`gearmesh.ltca_model`'s; this module solves the contact at each load.
 """
 
 from __future__ import annotations
@@ -65,81 +54,33 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .contact import mesh_cycle_rolls
-from .choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
+from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
-from .supports import PALMGREN_LINE, PALMGREN_LINE_EXPONENT
 from .gear import PairGeometry, pinion_torque
 from .limits import positive_values
 from .loads import check_loads
 from .body import mesh_body_compliance
 from .deflection import mesh_deflection, mesh_misalignment
 from .deviation import lead_gap
-from .stiffness import (METHODS, PairSliceTable, SliceComplianceTable, hertz_compliance_transverse,
-                        pair_slice_table, require_stiffness_data, slice_compliance_table)
-from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult,
-                  check_count, first_contact, nanmin, candidate_grid, check_extension, check_modifications,
-                  engagement_point, engagement_separation, pair_lead_slope)
+from .ltca_model import ContactLaw, LTCAModel, contact_law, ltca_model
+from .tooth import require_stiffness_data
+from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult, first_contact,
+                  nanmin, engagement_point, engagement_separation, pair_lead_slope)
 
 __all__ = [
-    "CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
-    "point_compliance", "LTCAModel", "ltca_model", "check_torques", "pinion_torques", "solve_contact",
-    "solve_contact_tabulated", "load_sums", "law_point_scales", "LTCAResult", "ltca", "contact_tangent_compliance",
+    "check_torques", "pinion_torques", "solve_contact", "solve_contact_tabulated", "load_sums", "law_point_scales",
+    "LTCAResult", "ltca", "contact_tangent_compliance",
     "edge_tangent_stiffness", "with_loaded_extension", "MESH_ORDERS", "lte_harmonics", "torque_gaps",
 ]
 
 #: Mesh orders of the loaded-TE harmonics (ltca.nc, the optimiser's TE criteria).
 MESH_ORDERS = (1, 2, 3)
 
-# Palmgren's line-contact law (Palmgren 1959; Harris & Kotzalas 2007), mm·N^-0.9·mm^0.8: declared
-# once, with the rolling bearings that use it too (gearmesh.supports, the lowest module).
-PALMGREN_COEFFICIENT = PALMGREN_LINE
-PALMGREN_EXPONENT = PALMGREN_LINE_EXPONENT
-_STEEL_E_PRIME = 207e9 / (1.0 - 0.3**2)
-
-
-@dataclass(frozen=True)
-class ContactLaw:
-    """Local contact approach of one point of width ``dz`` (m): δ_c(q) = coefficient·q^exponent
-    (m, q in N, transverse), plus a linear compliance ``linear`` (m/N) added to the teeth."""
-
-    name: str
-    coefficient: float
-    exponent: float
-    linear: float
-    dz: float
-
-    @property
-    def force_exponent(self) -> float:
-        """n of F ∝ δ^n for the contact alone (1/exponent; 1 for the linear law)."""
-        return 1.0 / self.exponent if self.coefficient > 0 else 1.0
-
-
-def contact_law(geom: PairGeometry, dz: float, name: str = DEFAULT_CONTACT_LAW) -> ContactLaw:
-    """The local contact law of a point of width ``dz`` (m) in transverse units (module docstring).
-
-    Palmgren: δ_n [mm] = 3.84e-5·(w·E'_steel/E')^0.9·l_ref^0.1 with w = q/Δz the normal load
-    per unit length (N/mm) and l_ref = b/cos βb (mm); transverse δ_t = δ_n/cos βb.
-    Linear: δ_t = c_h·q/Δz, c_h of :func:`gearmesh.stiffness.hertz_compliance_transverse`.
-    """
-    if name not in CONTACT_LAWS:
-        raise GearmeshInputError("contact_law", name, f"must be one of {list(CONTACT_LAWS)}")
-    require_stiffness_data(geom, need_bore=False)
-    if name == "linear":
-        return ContactLaw(name, 0.0, 1.0, hertz_compliance_transverse(geom) / dz, dz)
-    mat = geom.pair.material
-    cb = math.cos(geom.base_helix_angle)
-    scale = _STEEL_E_PRIME / (mat.youngs_modulus / (1.0 - mat.poisson_ratio**2))
-    l_ref_mm = geom.face_width / cb * 1e3
-    # δ_t [m] = 1e-3/cb · C · (q·scale/(Δz·1e3))^0.9 · l_ref_mm^0.1
-    coef = 1e-3 / cb * PALMGREN_COEFFICIENT * (scale / (dz * 1e3)) ** PALMGREN_EXPONENT * l_ref_mm**0.1
-    return ContactLaw(name, coef, PALMGREN_EXPONENT, 0.0, dz)
-
 
 def contact_tangent_compliance(geom: PairGeometry, pinion_torque: float) -> float:
     """The linear mesh stiffness's contact compliance (m²/N per unit transverse width, the role of
-    :func:`gearmesh.stiffness.hertz_compliance_transverse`): the tangent of the LTCA's Palmgren
-    law (:func:`contact_law`) at the mean line load of ``pinion_torque`` (N·m), c = 0.9 δ_t(f)/f
+    :func:`gearmesh.slice_compliance.hertz_compliance_transverse`): the tangent of the LTCA's Palmgren
+    law (:func:`~gearmesh.ltca_model.contact_law`) at the mean line load of ``pinion_torque`` (N·m), c = 0.9 δ_t(f)/f
     with f = F_bt/(b εα) the transverse force per unit of contact width (the contact lines'
     transverse widths sum to b εα on average, l_mean = b εα/cos βb). So the stiffness stage's
     TVMS, the LTCA's loaded stiffness and the contact table's tangent are one stiffness at one
@@ -517,7 +458,7 @@ def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, la
     gap : (B, M) unloaded separations (m); NaN or inf for points that cannot touch.
     compliance : (B, M) linear compliance of each point (m/N): teeth (+ linear contact).
     force : (B,) total transverse force (N), > 0.
-    law : the local contact law (:func:`contact_law`).
+    law : the local contact law (:func:`~gearmesh.ltca_model.contact_law`).
     rtol, inner_tol : relative tolerances of the load sum and of each point's inversion.
     delta_start : (B,) optional guesses of the approach (m), used where they are an upper bound
         closer than the default one (a warm start: fewer Newton steps, same root).
@@ -555,103 +496,6 @@ def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, la
     if not np.all(np.abs(q.sum(axis=1) - force) <= max(1e-9, 10 * rtol) * force):
         raise RuntimeError("LTCA load solve did not converge (load sum differs from the applied force)")
     return q, delta, dq.sum(axis=1), it
-
-
-# --------------------------------------------------------------------------------------
-# Model set-up (everything that does not depend on the load)
-# --------------------------------------------------------------------------------------
-
-
-def point_compliance(geom: PairGeometry, pair_table: PairSliceTable,
-                     tables: tuple[SliceComplianceTable, SliceComplianceTable], s, region, rho_pinion, rho_gear,
-                     with_hertz: bool = False) -> np.ndarray:
-    """Per-unit-width compliance (m²/N: m of transverse deflection per N/m of load) of candidate
-    points at line-of-action positions ``s`` (m) of ``region`` (arrays of one shape).
-
-    Flank points take the pair table at s by linear interpolation, exactly as the stiffness
-    stage (:func:`gearmesh.stiffness.mesh_stiffness`); tip-edge points take each tooth's
-    table at its own touched roll length (the tip of one, ρ_P of the other). Bending,
-    shear, axial compression and fillet foundation of both teeth; with ``with_hertz`` the
-    linear Hertz line-contact compliance as well (the stiffness stage's slice sum).
-    """
-    s = np.clip(np.nan_to_num(np.asarray(s, dtype=float)), 0.0, geom.path_of_contact)
-    n_int = pair_table.total.size - 1
-    t = s * (1.0 / pair_table.ds)
-    i = np.minimum(t.astype(np.intp), n_int - 1)
-    w = t - i
-    if with_hertz:
-        per_width = np.take(pair_table.total, i) + w * np.take(pair_table.total_slope, i)
-    else:
-        tooth_rows = [k for k, name in enumerate(pair_table.columns) if name != "hertz"]
-        vals = pair_table.values[tooth_rows].sum(axis=0)
-        per_width = np.take(vals, i) + w * np.take(np.diff(vals), i)
-    edge = (region == REGION_APPROACH_TIP) | (region == REGION_RECESS_TIP)
-    if np.any(edge):
-        rho1 = np.clip(rho_pinion[edge], tables[0].rho[0], tables[0].rho[-1])
-        rho2 = np.clip(rho_gear[edge], tables[1].rho[0], tables[1].rho[-1])
-        c_edge = tables[0].total(rho1) + tables[1].total(rho2)
-        if with_hertz:
-            c_edge = c_edge + hertz_compliance_transverse(geom)
-        per_width = np.array(per_width)
-        per_width[edge] = c_edge
-    return per_width
-
-
-@dataclass(frozen=True)
-class LTCAModel:
-    """The load-independent part of an LTCA: per-gear slice tables and their pair table, grid of
-    points (incl. the start of engagement as the last position), compliances and the contact law."""
-
-    geom: PairGeometry
-    grid: CandidateGrid  # positions = mesh cycle + [roll_A]
-    compliance: np.ndarray  # (P+1, J, N) linear compliance of each point (m/N)
-    law: ContactLaw
-    method: str
-    pair_table: PairSliceTable
-    lead_slope: tuple[float, float]
-    tables: tuple[SliceComplianceTable, SliceComplianceTable]
-    misalignment: float = 0.0  # the stated mesh misalignment f_ma in the grid's separations (m)
-
-
-def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=None,
-               contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
-               extension: float = DEFAULT_EXTENSION,
-               tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
-               n_nodes: int = 257) -> LTCAModel:
-    """Grid, separations and point compliances (module docstring) for :func:`ltca`.
-
-    Flank points (region 1) take the stiffness stage's pair table at their s, exactly as
-    :func:`gearmesh.stiffness.mesh_stiffness` interpolates it; tip-edge points take each
-    tooth's table at its own touched roll length (the tip of the one, ρ_P of the other,
-    both within the active flank). ``tables`` may be passed to reuse the per-gear
-    :class:`~gearmesh.stiffness.SliceComplianceTable` (same ``method``). ``lead_slope`` None: the
-    pair's own deviations (:func:`gearmesh.tca.pair_lead_slope`); the grid's separations carry
-    the pair's stated mesh misalignment too (the load-dependent f_sh is added per torque by
-    :func:`ltca`).
-    """
-    check_modifications(geom)
-    require_stiffness_data(geom)
-    if method not in METHODS:
-        raise GearmeshInputError("method", method, f"must be one of {list(METHODS)}")
-    positions = check_count("positions", positions, 1, 100000)
-    points = check_count("points", points, 1, 100000)
-    extension = check_extension(extension)
-    if tables is None:
-        tables = (slice_compliance_table(geom, 0, method, n_nodes), slice_compliance_table(geom, 1, method, n_nodes))
-    pair_table = pair_slice_table(geom, tables)
-    roll_a = engagement_point(geom)[0]
-    roll = np.append(mesh_cycle_rolls(geom, positions), roll_a)
-    lead_slope = pair_lead_slope(geom, lead_slope)
-    mis = geom.pair.deviations.misalignment
-    grid = candidate_grid(geom, roll, points, lead_slope, extension, misalignment=mis)
-    law = contact_law(geom, grid.dz, contact_law_name)
-    if contact_law_name == "linear":  # the Hertz part sits in the tooth compliance, as the stiffness stage
-        law = ContactLaw("linear", 0.0, 1.0, 0.0, grid.dz)
-    per_width = point_compliance(geom, pair_table, tables, grid.s, grid.region, grid.rho_pinion, grid.rho_gear,
-                                 with_hertz=contact_law_name == "linear")
-    compliance = per_width / grid.dz
-    return LTCAModel(geom=geom, grid=grid, compliance=compliance, law=law, method=method, pair_table=pair_table,
-                     lead_slope=lead_slope, tables=tables, misalignment=mis)
 
 
 # --------------------------------------------------------------------------------------
@@ -695,7 +539,7 @@ class LTCAResult:
     stiffness dF/dδ (N/m); pairs_in_contact (T, P); corner_load (T, P) load on tip edges
     (regions 2, 3) (N); lte_at_engagement, stiffness_at_engagement,
     corner_load_at_engagement (T,) at φ1A; tca the unloaded :class:`~gearmesh.tca.TCAResult`
-    on the same grid; model the :class:`LTCAModel`; iterations the Newton steps used;
+    on the same grid; model the :class:`~gearmesh.ltca_model.LTCAModel`; iterations the Newton steps used;
     misalignment (T,) the mesh's lead mismatch beyond the gears' lead slopes (m: the stated f_ma
     and the system deflection's f_sh, :func:`gearmesh.deflection.mesh_misalignment`);
     system_approach (T,) the supports' translation of the gear centres along the transverse line
@@ -802,7 +646,7 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     contact_law_name : 'palmgren' (default) or 'linear' (module docstring).
     method : cantilever model of the slice compliance (:mod:`gearmesh.stiffness`).
     extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
-    model : a prepared :class:`LTCAModel` to reuse (then the grid arguments are ignored).
+    model : a prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (then the grid arguments are ignored).
     misalignment : the mesh misalignment (m) of each torque, instead of the pair's own
         (:func:`gearmesh.deflection.mesh_misalignment`; e.g. the rating's with ISO's f_ma).
 

@@ -11,9 +11,9 @@ At a pinion roll r the candidate contact points i of every tooth pair in and aro
 zone — flank points and the tip edges before A and after E, both gears' modifications and lead
 slope errors — have unloaded separations g_i(r) (:func:`gearmesh.tca.candidate_grid`, the
 separation basis shared with the LTCA and the impact model) and linear compliances c_i
-(:func:`gearmesh.ltca.point_compliance`: bending, shear, axial compression and fillet
+(:func:`gearmesh.ltca_model.point_compliance`: bending, shear, axial compression and fillet
 foundation of both teeth) in series with the local contact law δ_c(q) (Palmgren's line contact
-or linear Hertz, :func:`gearmesh.ltca.contact_law`). With independent slices each point's load
+or linear Hertz, :func:`gearmesh.ltca_model.contact_law`). With independent slices each point's load
 at an approach x is its own law inverted,
 
     q_i(x, r) = f_i⁻¹((x − g_i(r))₊),   f_i(q) = c_i·q + δ_c(q),
@@ -64,8 +64,9 @@ from .gear import PairGeometry
 from .body import mesh_body_compliance
 from .deflection import mesh_misalignment
 from .deviation import with_misalignment
-from .ltca import ContactLaw, load_sums, ltca_model, point_compliance, solve_contact
-from .stiffness import SliceComplianceTable
+from .ltca import load_sums, solve_contact
+from .ltca_model import ContactLaw, ltca_model, point_compliance
+from .tooth import SliceComplianceTable
 from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point,
                   pair_lead_slope)
 

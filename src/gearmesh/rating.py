@@ -111,7 +111,7 @@ def _text(value: Any) -> str:
 def rating_inputs(given: Mapping[str, Any] | None = None) -> RatingInputs:
     """The given inputs (names of :data:`DEFAULT_INPUTS`, e.g. a pair's ``rating_inputs``; others such
     as ``tip_edge_radius_mm`` are not the rating's and are skipped) checked by the pair reader's
-    rules (:func:`gearmesh.gear.check_rating_input`: grade an integer 1..12, limits, roughness and
+    rules (:func:`gearmesh.pairfile.check_rating_input`: grade an integer 1..12, limits, roughness and
     viscosities positive, ν100 < ν40) and the others filled from :data:`DEFAULT_INPUTS`."""
     given = {k: v for k, v in dict(given or {}).items() if k in DEFAULT_INPUTS}
     out = {k: check_rating_input(k, given[k]) if k in given else default for k, default in DEFAULT_INPUTS.items()}
@@ -423,124 +423,189 @@ def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: R
     given = check_factors({**({"K_A": application_factor} if application_factor != 1.0 else {}), **(factors or {})})
     check_factors({"K_A": application_factor})
     inputs = inputs or rating_inputs()
+    op = _operating_point(geom, pinion_torque, speed_rpm, inputs)
+    pick = _FactorChoice(given, method, {"K_A": "given"})
+    load, z_eps, iso_factors = _load_factors(geom, op, given.get("K_A", application_factor), pick,
+                                             dict(ltca_factors or {}), running_in)
+    cycles = [LONG_LIFE_CYCLES if life_hours is None else life_hours * 60.0 * n for n in (speed_rpm, speed_rpm / op.u)]
+    conditions = inputs["life_factor_conditions"]
+    pitting = _pitting(geom, op, load, z_eps, inputs, pick, cycles)
+    bending = _bending(geom, op, load, inputs, pick, cycles)
+    values = {
+        "pinion_torque_Nm": float(pinion_torque), "speed_rpm": float(speed_rpm), "pitch_line_speed_m_s": op.v,
+        "force_tangential_N": op.ft, "accuracy_grade": op.grade, **load, **pitting, **bending,
+        "load_cycles": _per_gear(cycles), "life_factor_conditions": conditions, "iso_factors": iso_factors,
+    }
+    notes = inputs.notes()
+    speed_term = op.z1 * op.v / 100.0 * math.sqrt(op.u**2 / (1 + op.u**2))
+    if pick.sources["K_v"] == "iso" and speed_term > METHOD_C_SPEED_LIMIT:
+        notes.append(f"K_v by method C outside its range: z1 v/100 sqrt(u^2/(1+u^2)) = {speed_term:.3g} m/s > "
+                     f"{METHOD_C_SPEED_LIMIT:g} m/s; give K_v (--factor K_v=...) from a dynamic analysis")
+    if life_hours is None:
+        notes.append(f"life_hours not given: the long-life end of the life factors, N_L = {LONG_LIFE_CYCLES:g} "
+                     f"({conditions} conditions: Z_NT = {pitting['Z_NT'][0]:g}, Y_NT = {bending['Y_NT'][0]:g}; "
+                     f"ISO 6336-2/-3:2019)")
+    notes.append("Z_W = 1 (both gears case-hardened), Z_X = 1 (ISO 6336-2), S_Hmin = S_Fmin = 1 unless given")
+    return Rating(values=values, given=sorted(given), sources=pick.sources, notes=notes)
+
+
+def _per_gear(a) -> list[float]:
+    """[pinion, gear] as floats."""
+    return [float(a[0]), float(a[1])]
+
+
+@dataclass(frozen=True)
+class _OperatingPoint:
+    """What every part of a rating takes of the pair and its load (ISO 6336 units: mm, N, m/s):
+    teeth z1, ratio u, normal module mn, face width b, reference diameter d1, tangential force ft
+    at the reference circle, pitch-line speed v, accuracy grade and its ISO 1328-1 tolerances (µm)."""
+
+    z1: int
+    u: float
+    mn: float
+    b: float
+    d1: float
+    ft: float
+    v: float
+    grade: int
+    tol: dict[str, float]
+
+
+def _operating_point(geom: PairGeometry, pinion_torque: float, speed_rpm: float,
+                     inputs: RatingInputs) -> _OperatingPoint:
+    """The pair's rating dimensions and load at pinion torque ``pinion_torque`` (N·m) and speed ``speed_rpm``."""
     p = geom.pair
-    mat = p.material
     z1, z2 = p.teeth
-    u = z2 / z1
     mn = p.normal_module * 1e3
     b = geom.face_width * 1e3
     d1 = 2 * float(geom.reference_radius[0]) * 1e3
-    ft = 2 * pinion_torque / (d1 * 1e-3)  # N, at the reference circle
     v = math.pi * d1 * 1e-3 * speed_rpm / 60.0
     grade = inputs["accuracy_grade"]
-    tol = iso1328_tolerances(grade, d1, b, mn)
-    stiff = _iso_stiffness(geom)
-    c_ga, c_gb = stiff["c_gamma_alpha"], stiff["c_gamma_beta"]
-    k_a = given.get("K_A", application_factor)
-    sources = {"K_A": "given"}
+    return _OperatingPoint(z1=z1, u=z2 / z1, mn=mn, b=b, d1=d1, ft=2 * pinion_torque / (d1 * 1e-3), v=v, grade=grade,
+                           tol=iso1328_tolerances(grade, d1, b, mn))
 
-    def pick(name, iso_value, ltca_value=None):
-        if name in given:
-            sources[name] = "given"
-            return given[name]
-        if method == "ltca" and ltca_value is not None:
-            sources[name] = "ltca"
+
+@dataclass(frozen=True)
+class _FactorChoice:
+    """Where each factor of a rating comes from, recorded in ``sources``: given (``given``), the
+    LTCA's (``method`` 'ltca', where it has one) or ISO 6336's."""
+
+    given: Mapping[str, float]
+    method: str
+    sources: dict[str, str]
+
+    def __call__(self, name: str, iso_value, ltca_value=None):
+        if name in self.given:
+            self.sources[name] = "given"
+            return self.given[name]
+        if self.method == "ltca" and ltca_value is not None:
+            self.sources[name] = "ltca"
             return ltca_value
-        sources[name] = "iso"
+        self.sources[name] = "iso"
         return iso_value
 
-    k_v = pick("K_v", dynamic_factor_c(grade, geom.eps_beta, v, z1, u, k_a * ft / b))
+
+def _load_factors(geom: PairGeometry, op: _OperatingPoint, k_a: float, pick: _FactorChoice,
+                  ltca_factors: dict[str, float], running_in: bool) -> tuple[dict[str, float], float, dict[str, Any]]:
+    """The load factors K_A, K_v, K_Hβ, K_Fβ, K_Hα, K_Fα (ISO 6336-1: K_v method C, K_Hβ method C,
+    K_Hα method B, or the LTCA's/given), the contact ratio factor Z_ε they use, and the ISO
+    values with their inputs (``iso_factors`` of the result)."""
+    p = geom.pair
+    ft, b, d1 = op.ft, op.b, op.d1
+    stiff = _iso_stiffness(geom)
+    c_ga, c_gb = stiff["c_gamma_alpha"], stiff["c_gamma_beta"]
+    k_v = pick("K_v", dynamic_factor_c(op.grade, geom.eps_beta, op.v, op.z1, op.u, k_a * ft / b))
     fm = ft * k_a * k_v / b
     crowned = any(m.crowning > 0 for m in p.modification)
-    k_hb_iso, fb = face_load_factor_c(fm, c_gb, tol["f_Hbeta"], b / d1, crowned, running_in)
-    ltca_factors = dict(ltca_factors or {})
-    if method == "ltca" and not {"K_Hbeta", "K_Halpha"} <= set(ltca_factors):
-        raise GearmeshInputError("method", method, "needs the LTCA's K_Hbeta and K_Halpha")
+    k_hb_iso, fb = face_load_factor_c(fm, c_gb, op.tol["f_Hbeta"], b / d1, crowned, running_in)
+    if pick.method == "ltca" and not {"K_Hbeta", "K_Halpha"} <= set(ltca_factors):
+        raise GearmeshInputError("method", pick.method, "needs the LTCA's K_Hbeta and K_Halpha")
     k_hb = pick("K_Hbeta", k_hb_iso, ltca_factors.get("K_Hbeta"))
     b_over_h = b / (1e3 * max(float(geom.tip_radius[i] - geom.root_radius[i]) for i in (0, 1)))
     k_fb_iso = face_factor_root(k_hb_iso, b_over_h)
     k_fb = pick("K_Fbeta", k_fb_iso, face_factor_root(ltca_factors["K_Hbeta"], b_over_h) if "K_Hbeta" in ltca_factors
                 else None)
     z_eps = contact_ratio_factor(geom.eps_alpha, geom.eps_beta)
-    f_pb = tol["f_pt"] * math.cos(geom.transverse_pressure_angle)
+    f_pb = op.tol["f_pt"] * math.cos(geom.transverse_pressure_angle)
     k_ha_iso, k_fa_iso, y_a = transverse_load_factor_b(geom.eps_alpha, geom.eps_gamma, z_eps, c_ga, f_pb,
                                                        ft * k_a * k_v * k_hb / b)
     k_ha = pick("K_Halpha", k_ha_iso, ltca_factors.get("K_Halpha"))
     k_fa = pick("K_Falpha", k_fa_iso, ltca_factors.get("K_Halpha"))
+    factors = {"K_A": k_a, "K_v": k_v, "K_Hbeta": k_hb, "K_Fbeta": k_fb, "K_Halpha": k_ha, "K_Falpha": k_fa}
+    iso = {"K_v": dynamic_factor_c(op.grade, geom.eps_beta, op.v, op.z1, op.u, k_a * ft / b),
+           "K_Hbeta": k_hb_iso, "K_Fbeta": k_fb_iso, "K_Halpha": k_ha_iso, "K_Falpha": k_fa_iso,
+           **fb, "f_pb_um": f_pb, "f_Hbeta_um": op.tol["f_Hbeta"], "y_alpha_um": y_a,
+           "c_gamma_alpha_N_mm_um": c_ga, "c_gamma_beta_N_mm_um": c_gb}
+    return factors, z_eps, iso
 
-    # pitting
+
+def _pitting(geom: PairGeometry, op: _OperatingPoint, load: Mapping[str, float], z_eps: float,
+             inputs: RatingInputs, pick: _FactorChoice, cycles: list[float]) -> dict[str, Any]:
+    """Contact stress σ_H, permissible σ_HG, σ_HP and safety S_H of each gear (ISO 6336-2 method B)
+    with their factors, at ``cycles`` load cycles of each gear."""
+    p, given = geom.pair, pick.given
+    mat = p.material
+    ft, b, d1, u = op.ft, op.b, op.d1, op.u
     z_h = zone_factor(geom)
     z_e = elasticity_factor(mat.youngs_modulus, mat.poisson_ratio)
     z_b_, z_d_, m1, m2 = single_pair_factors(geom)
     z_beta = 1 / math.sqrt(math.cos(p.helix_angle))
     s_h0 = z_h * z_e * z_eps * z_beta * math.sqrt(ft / (d1 * b) * (u + 1) / u)
-    k_h = k_a * k_v * k_hb * k_ha
+    k_h = load["K_A"] * load["K_v"] * load["K_Hbeta"] * load["K_Halpha"]
     s_h = [z_b_ * s_h0 * math.sqrt(k_h), z_d_ * s_h0 * math.sqrt(k_h)]
-    n_rev = (speed_rpm, speed_rpm / u)
-    cycles = [LONG_LIFE_CYCLES if life_hours is None else life_hours * 60.0 * n for n in n_rev]
     conditions = inputs["life_factor_conditions"]
     s_hlim = inputs["contact_fatigue_limit_MPa"]
     rho_c = [1e3 * float(geom.base_radius[i]) * math.tan(geom.operating_pressure_angle) for i in (0, 1)]
     rho_red = rho_c[0] * rho_c[1] / (rho_c[0] + rho_c[1])  # mm, at the pitch point
-    lvr = lubrication_velocity_roughness(s_hlim, inputs["viscosity_40C_mm2_s"], v, inputs["flank_Rz_um"], rho_red)
+    lvr = lubrication_velocity_roughness(s_hlim, inputs["viscosity_40C_mm2_s"], op.v, inputs["flank_Rz_um"], rho_red)
     z_l, z_v, z_r = pick("Z_L", lvr["Z_L"]), pick("Z_v", lvr["Z_v"]), pick("Z_R", lvr["Z_R"])
     z_w, z_x = pick("Z_W", 1.0), pick("Z_X", 1.0)
     z_nt = [given.get("Z_NT", life_factor_contact(n, conditions)) for n in cycles]
-    sources["Z_NT"] = "given" if "Z_NT" in given else "iso"
+    pick.sources["Z_NT"] = "given" if "Z_NT" in given else "iso"
     s_hmin = given.get("S_Hmin", 1.0)
     s_hg = [s_hlim * zn * z_l * z_v * z_r * z_w * z_x for zn in z_nt]
+    return {
+        "Z_H": z_h, "Z_E": z_e, "Z_epsilon": z_eps, "Z_beta": z_beta, "Z_B": z_b_, "Z_D": z_d_, "M_1": m1, "M_2": m2,
+        "sigma_H0_MPa": s_h0, "sigma_H_MPa": _per_gear(s_h), "Z_NT": _per_gear(z_nt), "Z_L": z_l, "Z_v": z_v,
+        "Z_R": z_r, "Z_W": z_w, "Z_X": z_x, "sigma_HG_MPa": _per_gear(s_hg),
+        "sigma_HP_MPa": _per_gear([s / s_hmin for s in s_hg]), "S_H": _per_gear([g / s for g, s in zip(s_hg, s_h)]),
+        "S_Hmin": s_hmin,
+    }
 
-    # bending
+
+def _bending(geom: PairGeometry, op: _OperatingPoint, load: Mapping[str, float], inputs: RatingInputs,
+             pick: _FactorChoice, cycles: list[float]) -> dict[str, Any]:
+    """Tooth-root stress σ_F, permissible σ_FG, σ_FP and safety S_F of each gear (ISO 6336-3
+    method B) with their factors, at ``cycles`` load cycles of each gear."""
+    p, given = geom.pair, pick.given
     forms = [gear_root_form(geom, i) for i in (0, 1)]
     y_beta = helix_factor_root(geom.eps_beta, p.helix_angle)
     h_t = [float(geom.tip_radius[i] - geom.root_radius[i]) for i in (0, 1)]
     bore = p.bore_radius or (0.0, 0.0)
     y_b = [rim_factor(float(geom.root_radius[i]) - bore[i], h_t[i]) for i in (0, 1)]
     eps_an = geom.eps_alpha / math.cos(geom.base_helix_angle) ** 2
-    y_dt = deep_tooth_factor(eps_an, grade)
-    s_f0 = [ft / (b * mn) * f.Y_F * f.Y_S * y_beta * yb * y_dt for f, yb in zip(forms, y_b)]
-    k_f = k_a * k_v * k_fb * k_fa
+    y_dt = deep_tooth_factor(eps_an, op.grade)
+    s_f0 = [op.ft / (op.b * op.mn) * f.Y_F * f.Y_S * y_beta * yb * y_dt for f, yb in zip(forms, y_b)]
+    k_f = load["K_A"] * load["K_v"] * load["K_Fbeta"] * load["K_Falpha"]
     s_f = [s * k_f for s in s_f0]
     s_flim = inputs["bending_fatigue_limit_MPa"]
+    conditions = inputs["life_factor_conditions"]
     y_nt = [given.get("Y_NT", life_factor_root(n, conditions)) for n in cycles]
-    sources["Y_NT"] = "given" if "Y_NT" in given else "iso"
+    pick.sources["Y_NT"] = "given" if "Y_NT" in given else "iso"
     y_d = [pick("Y_deltarelT", notch_sensitivity_factor(f.q_s)) for f in forms]
     y_r = pick("Y_RrelT", root_roughness_factor(inputs["root_Rz_um"]))
-    y_x = pick("Y_X", size_factor_root(mn))
+    y_x = pick("Y_X", size_factor_root(op.mn))
     s_fmin = given.get("S_Fmin", 1.0)
     y_m = [given.get("Y_M", mean_stress_factor(inputs["idler_gear"] == name)) for name in GEARS]
-    sources["Y_M"] = "given" if "Y_M" in given else "iso"
+    pick.sources["Y_M"] = "given" if "Y_M" in given else "iso"
     s_fg = [s_flim * 2.0 * yn * yd * y_r * y_x * ym for yn, yd, ym in zip(y_nt, y_d, y_m)]
-
-    pg = lambda a: [float(a[0]), float(a[1])]  # noqa: E731
-    values = {
-        "pinion_torque_Nm": float(pinion_torque), "speed_rpm": float(speed_rpm), "pitch_line_speed_m_s": v,
-        "force_tangential_N": ft, "accuracy_grade": grade,
-        "K_A": k_a, "K_v": k_v, "K_Hbeta": k_hb, "K_Fbeta": k_fb, "K_Halpha": k_ha, "K_Falpha": k_fa,
-        "Z_H": z_h, "Z_E": z_e, "Z_epsilon": z_eps, "Z_beta": z_beta, "Z_B": z_b_, "Z_D": z_d_, "M_1": m1, "M_2": m2,
-        "sigma_H0_MPa": s_h0, "sigma_H_MPa": pg(s_h), "Z_NT": pg(z_nt), "Z_L": z_l, "Z_v": z_v, "Z_R": z_r,
-        "Z_W": z_w, "Z_X": z_x, "sigma_HG_MPa": pg(s_hg), "sigma_HP_MPa": pg([s / s_hmin for s in s_hg]),
-        "S_H": pg([g / s for g, s in zip(s_hg, s_h)]), "S_Hmin": s_hmin,
-        "Y_F": pg([f.Y_F for f in forms]), "Y_S": pg([f.Y_S for f in forms]), "Y_beta": y_beta, "Y_B": pg(y_b),
-        "Y_DT": y_dt, "sigma_F0_MPa": pg(s_f0), "sigma_F_MPa": pg(s_f), "Y_ST": 2.0, "Y_NT": pg(y_nt),
-        "Y_deltarelT": pg(y_d), "Y_RrelT": y_r, "Y_X": y_x, "Y_M": pg(y_m), "sigma_FG_MPa": pg(s_fg),
-        "sigma_FP_MPa": pg([s / s_fmin for s in s_fg]), "S_F": pg([g / s for g, s in zip(s_fg, s_f)]),
-        "S_Fmin": s_fmin, "load_cycles": pg(cycles), "life_factor_conditions": conditions,
-        "iso_factors": {"K_v": dynamic_factor_c(grade, geom.eps_beta, v, z1, u, k_a * ft / b),
-                        "K_Hbeta": k_hb_iso, "K_Fbeta": k_fb_iso, "K_Halpha": k_ha_iso, "K_Falpha": k_fa_iso,
-                        **fb, "f_pb_um": f_pb, "f_Hbeta_um": tol["f_Hbeta"], "y_alpha_um": y_a,
-                        "c_gamma_alpha_N_mm_um": c_ga, "c_gamma_beta_N_mm_um": c_gb},
+    return {
+        "Y_F": _per_gear([f.Y_F for f in forms]), "Y_S": _per_gear([f.Y_S for f in forms]), "Y_beta": y_beta,
+        "Y_B": _per_gear(y_b), "Y_DT": y_dt, "sigma_F0_MPa": _per_gear(s_f0), "sigma_F_MPa": _per_gear(s_f),
+        "Y_ST": 2.0, "Y_NT": _per_gear(y_nt), "Y_deltarelT": _per_gear(y_d), "Y_RrelT": y_r, "Y_X": y_x,
+        "Y_M": _per_gear(y_m), "sigma_FG_MPa": _per_gear(s_fg), "sigma_FP_MPa": _per_gear([s / s_fmin for s in s_fg]),
+        "S_F": _per_gear([g / s for g, s in zip(s_fg, s_f)]), "S_Fmin": s_fmin,
     }
-    notes = inputs.notes()
-    speed_term = z1 * v / 100.0 * math.sqrt(u**2 / (1 + u**2))
-    if sources["K_v"] == "iso" and speed_term > METHOD_C_SPEED_LIMIT:
-        notes.append(f"K_v by method C outside its range: z1 v/100 sqrt(u^2/(1+u^2)) = {speed_term:.3g} m/s > "
-                     f"{METHOD_C_SPEED_LIMIT:g} m/s; give K_v (--factor K_v=...) from a dynamic analysis")
-    if life_hours is None:
-        notes.append(f"life_hours not given: the long-life end of the life factors, N_L = {LONG_LIFE_CYCLES:g} "
-                     f"({conditions} conditions: Z_NT = {z_nt[0]:g}, Y_NT = {y_nt[0]:g}; ISO 6336-2/-3:2019)")
-    notes.append("Z_W = 1 (both gears case-hardened), Z_X = 1 (ISO 6336-2), S_Hmin = S_Fmin = 1 unless given")
-    return Rating(values=values, given=sorted(given), sources=sources, notes=notes)
 
 
 def _iso_stiffness(geom: PairGeometry) -> dict[str, float]:

@@ -6,8 +6,8 @@ The potential-energy cantilevers (:mod:`gearmesh.stiffness`) and the finite-elem
 the involute half-thickness, the contact point and load angle at a roll length, the root
 section of the cantilever (the transition model's root chord, Sainsot's θ_f) — and both hand
 the stages a :class:`SliceComplianceTable`. They live here, below both, so that the data
-flows one way: ``tooth`` → ``fe`` → ``stiffness`` (which chooses the method). Formulas and
-sources: the module docstring of :mod:`gearmesh.stiffness`.
+flows one way: ``tooth`` → ``fe`` → ``slice_compliance`` (which chooses the method). Formulas and
+sources: the module docstring of :mod:`gearmesh.slice_compliance`.
 """
 
 from __future__ import annotations

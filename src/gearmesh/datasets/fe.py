@@ -11,7 +11,8 @@ import xarray as xr
 from .. import fe
 from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
-from ..stiffness import PEM_METHODS, tooth_model, tooth_slice_compliance
+from ..slice_compliance import tooth_slice_compliance
+from ..tooth import PEM_METHODS, tooth_model
 from ..schema import check_arguments
 from ..settings import FeCompliance
 

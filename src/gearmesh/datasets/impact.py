@@ -13,7 +13,7 @@ import numpy as np
 import xarray as xr
 
 from ..choices import IMPACT_INDEX
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from . import shared_torques, variant_names
 from ..gear import GEARS, GearPair, pair_geometry
@@ -84,7 +84,7 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
 
     Torques (N·m) on the ``on`` gear, speeds (rpm) of the pinion; ``driver`` which gear drives;
     ``variant`` the micro-geometry variant's name (recorded for the study table); with
-    ``method='fe'``, ``fe_compliance`` supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
+    ``method='fe'``, ``fe_compliance`` supplies the FE tables (:func:`gearmesh.fe_tables.seed_cache`).
     ``window_positions``, ``face_samples``: the search window's rolls and the entering line's
     face samples (:func:`gearmesh.impact.impact_model`).
 

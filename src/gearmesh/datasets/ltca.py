@@ -13,7 +13,7 @@ from typing import Sequence, Any
 import numpy as np
 import xarray as xr
 
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, pair_geometry
 from . import shared_torques, variant_names
@@ -133,7 +133,7 @@ def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, on:
 
     ``torques_Nm`` torques (N·m) on the pinion, or on the gear with ``on='gear'`` (then
     T1 = T2·z1/z2); ``contact_law`` 'palmgren' or 'linear'; ``method`` the slice model
-    (with 'fe', ``fe_compliance`` supplies the FE tables: :func:`gearmesh.fe.seed_cache`). The
+    (with 'fe', ``fe_compliance`` supplies the FE tables: :func:`gearmesh.fe_tables.seed_cache`). The
     pair's deviations and the system deflection of its stated supports are in the contact
     (``mesh_misalignment``, ``system_approach``; :mod:`gearmesh.deflection`).
     """

@@ -22,7 +22,7 @@ import numpy as np
 import xarray as xr
 
 from ..choices import DEFAULT_CYCLE_POSITIONS
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, pair_geometry
 from ..impact.model import SCENARIOS, impact_model
@@ -379,15 +379,34 @@ def _half_widths(prob: Problem) -> np.ndarray:
 def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | None = None) -> xr.Dataset:
     """ga.nc of a finished run (:func:`optimise_dataset`)."""
     prob, s = result.problem, result.problem.settings
-    geom = prob.geom
-    genes = prob.genes
     units, what = _objective_units(result)
-    opt, std = result.optimum_evaluation, prob.standard
     data = _history_variables(result, "", s.method)
     if result.baseline is not None:
         data.update(_history_variables(result.baseline, "random_", "random search of the same budget"))
+    data.update(_optimum_variables(result, units, what))
+    if result.diagnostics is not None:
+        data.update(_diagnostic_variables(result))
+    data.update(_design_torque_variables(result))
+    data.update(_criteria_variables(result))
+    data.update(_verification_variables(result))
+    if constraint_factors(s):  # the unmodified pair as a candidate of this run: its J with the penalties
+        data["standard_penalised_objective"] = variable((), standard_penalised_objective(prob), units,
+                                                        f"standard gear as a candidate: {what} with the "
+                                                        "constraints' penalties")
+    data.update(_pareto_variables(result, units, what))
+    ds = xr.Dataset(data_vars=data, coords=_result_coordinates(result))
+    ds.attrs.update(_result_attributes(result, settings))
+    return name_force_lines(ds, "transverse")
+
+
+def _optimum_variables(result: OptimisationResult, units: str, what: str) -> dict[str, xr.Variable]:
+    """The genes' bounds and the optimum against the standard gear: objective, nominal F_s, |v_n| and
+    scenario at each spectrum torque; the pair's dimensions and the run's operating point."""
+    prob, s = result.problem, result.problem.settings
+    geom, genes = prob.geom, prob.genes
+    opt, std = result.optimum_evaluation, prob.standard
     t = ("objective_torque",)
-    data.update({
+    return {
         "gene_low": variable(("gene",), _si(result, [g.low for g in genes]), "m", "lower bound of each gene"),
         "gene_high": variable(("gene",), _si(result, [g.high for g in genes]), "m", "upper bound of each gene"),
         "optimum_genes": variable(("gene",), _si(result, result.optimum_genes), "m", "gene values of the optimum"),
@@ -414,26 +433,31 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
                                                        "the load window's anchor)"),
         "torque_weight": variable(t, np.asarray(s.weights if s.weights else [np.nan] * len(s.torques)), "1",
                                   "time share of each spectrum torque (statistic mean; NaN: equal shares or max)"),
-    })
-    if result.diagnostics is not None:
-        data.update(_diagnostic_variables(result))
-    if np.isfinite(std.lte_peak_to_peak).all():
-        data.update({
-            "optimum_lte_peak_to_peak": variable((), float(opt.lte_peak_to_peak[0]), "m",
-                                                 "optimum: peak-to-peak LTE at the design torque"),
-            "standard_lte_peak_to_peak": variable((), float(std.lte_peak_to_peak[0]), "m",
-                                                  "standard gear: peak-to-peak LTE at the design torque"),
-            "optimum_max_line_load": variable((), float(opt.max_line_load[0]), "N m-1",
-                                              "optimum: largest line load over the mesh cycle at the design torque"),
-            "standard_max_line_load": variable((), float(std.max_line_load[0]), "N m-1",
-                                               "standard gear: largest line load at the design torque"),
-        })
-    data.update(_criteria_variables(result))
-    data.update(_verification_variables(result))
-    if constraint_factors(s):  # the unmodified pair as a candidate of this run: its J with the penalties
-        data["standard_penalised_objective"] = variable((), standard_penalised_objective(prob), units,
-                                                        f"standard gear as a candidate: {what} with the "
-                                                        "constraints' penalties")
+    }
+
+
+def _design_torque_variables(result: OptimisationResult) -> dict[str, xr.Variable]:
+    """Peak-to-peak LTE and largest line load of the optimum and the standard gear at the design
+    torque (none when the run did not evaluate them)."""
+    opt, std = result.optimum_evaluation, result.problem.standard
+    if not np.isfinite(std.lte_peak_to_peak).all():
+        return {}
+    return {
+        "optimum_lte_peak_to_peak": variable((), float(opt.lte_peak_to_peak[0]), "m",
+                                             "optimum: peak-to-peak LTE at the design torque"),
+        "standard_lte_peak_to_peak": variable((), float(std.lte_peak_to_peak[0]), "m",
+                                              "standard gear: peak-to-peak LTE at the design torque"),
+        "optimum_max_line_load": variable((), float(opt.max_line_load[0]), "N m-1",
+                                          "optimum: largest line load over the mesh cycle at the design torque"),
+        "standard_max_line_load": variable((), float(std.max_line_load[0]), "N m-1",
+                                           "standard gear: largest line load at the design torque"),
+    }
+
+
+def _pareto_variables(result: OptimisationResult, units: str, what: str) -> dict[str, xr.Variable]:
+    """NSGA-II's Pareto front: its genes and each objective (none for another method)."""
+    s = result.problem.settings
+    data: dict[str, xr.Variable] = {}
     if result.pareto is not None:
         pg, po = result.pareto
         data["pareto_genes"] = variable(("front", "gene"), _si(result, pg), "m", "Pareto front: gene values "
@@ -441,6 +465,15 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         for k, name in enumerate(s.pareto_objectives):
             key, unit, long_name = _pareto_variable(name, units, what)
             data[key] = variable(("front",), po[:, k], unit, f"Pareto front: {long_name}")
+    return data
+
+
+def _result_coordinates(result: OptimisationResult) -> dict[str, xr.Variable]:
+    """The coordinates of ga.nc: generations, candidates, genes, gears, parameters, spectrum torques,
+    mesh orders and, where the run has them, the diagnostics' and the verification's."""
+    prob, s = result.problem, result.problem.settings
+    genes = prob.genes
+    t = ("objective_torque",)
     coords = {
         "generation": variable(("generation",), np.arange(s.generations + 1), "1", "generation (0: initial population)"),
         "candidate": variable(("candidate",), np.arange(s.population), "1", "candidate in the generation"),
@@ -467,8 +500,14 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         })
     if result.verification is not None:
         coords["criterion"] = variable(("criterion",), np.array(CRITERIA), "1", "sign-off criterion of one gear")
-    ds = xr.Dataset(data_vars=data, coords=coords)
-    ds.attrs.update({
+    return coords
+
+
+def _result_attributes(result: OptimisationResult, settings: Mapping[str, Any] | None) -> dict[str, Any]:
+    """ga.nc's attributes: the run's method, objective, tolerances, budget, constraints and settings,
+    its measured times."""
+    prob, s = result.problem, result.problem.settings
+    return {
         "method": s.method, "seed": s.seed, "objective": s.objective, "objective_statistic": s.statistic,
         "tooth_model": prob.model.ltca.method, "contact_law": prob.model.ltca.law.name,
         "notes": "; ".join(optimum_notes(prob, result.diagnostics)),
@@ -483,8 +522,7 @@ def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | Non
         # measured times: attributes, not data (gearmesh.io.TIMING_SUFFIX: the job's log, not the file)
         "wall_seconds": result.wall_s,
         **({"random_wall_seconds": result.baseline.wall_s} if result.baseline is not None else {}),
-    })
-    return name_force_lines(ds, "transverse")
+    }
 
 
 #: The resolution an optimum's pair file states its modification to, per gene unit (µm: depths,

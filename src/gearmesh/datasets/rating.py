@@ -139,7 +139,7 @@ def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCA
 
 def reference_ltca(geom: PairGeometry, res: LTCAResult) -> LTCAResult | None:
     """The LTCA of the unmodified pair on ``res``'s grid and torques (None when unmodified)."""
-    from ..ltca import ltca_model
+    from ..ltca_model import ltca_model
 
     base = _unmodified(geom)
     if base is None:

@@ -189,12 +189,7 @@ def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Datase
     be empty: no dynamic criterion)."""
     names = variant_names("ltca", ltca)
     one_pair(ltca=ltca, impact=impact, rating=rating, dynamics=dynamics)
-    by = {}
-    for stage, datasets in (("impact", impact), ("rating", rating), ("dynamics", dynamics)):
-        by[stage] = dict(zip(variant_names(stage, datasets, empty_ok=stage == "dynamics"), datasets))
-        if datasets and set(by[stage]) != set(names):
-            raise GearmeshInputError("variants", sorted(by[stage]), f"{stage} and ltca must cover the same variants "
-                                     f"({sorted(names)})")
+    by = _by_variant(names, impact, rating, dynamics)
     if reference not in names:
         raise GearmeshInputError("signoff.reference", reference, f"must be one of the study's variants {names}")
     ref = names.index(reference)
@@ -205,6 +200,61 @@ def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Datase
         raise GearmeshInputError("signoff.harmonic_orders", list(harmonic_orders),
                                  f"must be among the LTCA's mesh orders {orders}")
     dims = ("variant", "torque")
+    c, made = _variant_columns(names, ltca, by, torques, orders, basis, bool(dynamics))
+    k_orders = [orders.index(n) for n in harmonic_orders]
+    factors = (pressure_factor, root_stress_factor, harmonic_factor)
+    nominal_ref = {k: c[k][ref] for k in ("p_flank", "p_edge", "sigma_f", "harm")}
+    pressure_ratio, flags = _judge(c, nominal_ref, k_orders, *factors)
+    flags |= _impact_flags(c["fs"], c["fs"][ref], impact_factor, worst_impact_factor)
+    out: dict[str, xr.Variable] = {}
+    if basis == "population":
+        basis_flags, out, holds = _population_verdict(names, made, ref, k_orders, factors, impact_factor,
+                                                      worst_impact_factor, orders, dims)
+        flags |= basis_flags
+    if dynamics:
+        flags["meets_dynamics"] = c["dyn_peak"] <= dynamic_factor * c["dyn_peak"][ref]
+    verdict = np.all(list(flags.values()), axis=0)
+    if "heldout_holds" in out:
+        verdict &= holds
+    flags["meets_all"] = verdict
+    out = _nominal_columns(c, pressure_ratio, orders, dims, basis) | out
+    out |= _safety_and_dynamics_columns(c, dims, bool(dynamics))
+    out |= _flag_columns(flags, ref, basis, dims, "heldout_holds" in out)
+    ds = xr.Dataset(out, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
+                                 "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
+    ds.attrs.update(reference=reference, basis=basis, pressure_factor=pressure_factor,
+                    root_stress_factor=root_stress_factor,
+                    harmonic_orders=np.array(harmonic_orders, dtype=np.int64), harmonic_factor=harmonic_factor,
+                    impact_factor=impact_factor, worst_impact_factor=worst_impact_factor,
+                    dynamic_factor=dynamic_factor,
+                    design_speed_rpm=float(by["impact"][reference].attrs["design_speed_rpm"]))
+    if basis == "population":
+        imp = by["impact"][reference]
+        ds.attrs.update({key: int(imp.attrs.get(f"tolerance_{key}", 0)) for key in ("population", "heldout")} |
+                        {"heldout_seed": int(imp.attrs.get("tolerance_heldout_seed", 0))})
+    return ds
+
+
+def _by_variant(names: list[str], impact: Sequence[xr.Dataset], rating: Sequence[xr.Dataset],
+                dynamics: Sequence[xr.Dataset]) -> dict[str, dict[str, xr.Dataset]]:
+    """The impact, rating and dynamics datasets of each variant (stage -> variant -> dataset), refused
+    unless each stage covers the LTCA's variants ``names`` (dynamics may be empty)."""
+    by = {}
+    for stage, datasets in (("impact", impact), ("rating", rating), ("dynamics", dynamics)):
+        by[stage] = dict(zip(variant_names(stage, datasets, empty_ok=stage == "dynamics"), datasets))
+        if datasets and set(by[stage]) != set(names):
+            raise GearmeshInputError("variants", sorted(by[stage]), f"{stage} and ltca must cover the same variants "
+                                     f"({sorted(names)})")
+    return by
+
+
+def _variant_columns(names: list[str], ltca: Sequence[xr.Dataset], by: dict[str, dict[str, xr.Dataset]],
+                     torques: np.ndarray, orders: list[int], basis: str, with_dynamics: bool
+                     ) -> tuple[dict[str, np.ndarray], list[dict]]:
+    """Each variant's nominal values at the LTCA ``torques`` (key -> (variant, torque, ...)): F_s at
+    the design speed, loaded TE, flank and tip-edge pressures, root stress, safety factors and,
+    ``with_dynamics``, the dynamic peaks; on the population basis also its manufactured gears
+    (:func:`_manufactured`, one per variant)."""
     cols: dict[str, list[np.ndarray]] = {k: [] for k in (
         "fs", "lte_pp", "harm", "p", "p_flank", "p_edge", "on_edge", "sigma_f", "S_H", "S_F", "dyn_peak", "kv_peak")}
     made = []
@@ -227,72 +277,67 @@ def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Datase
         cols["sigma_f"].append(rat["peak_root_stress"].values.max(axis=1))
         cols["S_H"].append(rat["S_H"].values.min(axis=1))
         cols["S_F"].append(rat["S_F"].values.min(axis=1))
-        if dynamics:
+        if with_dynamics:
             dyn = by["dynamics"][name]
             t_dyn = np.asarray(dyn["pinion_torque"].values, dtype=float)
             cols["dyn_peak"].append(_by_torque(dyn["mesh_force_max"].values.max(axis=1), t_dyn, torques,
                                                "dynamics.torques_Nm", name))
             cols["kv_peak"].append(_by_torque(dyn["dynamic_factor"].values.max(axis=1), t_dyn, torques,
                                               "dynamics.torques_Nm", name))
-    c = {k: np.array(v) for k, v in cols.items()}
-    k_orders = [orders.index(n) for n in harmonic_orders]
-    factors = (pressure_factor, root_stress_factor, harmonic_factor)
-    nominal_ref = {k: c[k][ref] for k in ("p_flank", "p_edge", "sigma_f", "harm")}
-    pressure_ratio, flags = _judge(c, nominal_ref, k_orders, *factors)
-    flags |= _impact_flags(c["fs"], c["fs"][ref], impact_factor, worst_impact_factor)
-    out: dict[str, xr.Variable] = {}
-    if basis == "population":
-        w = {k: np.array([m["worst"][k] for m in made]) for k in made[ref]["worst"]}
-        w_ref = {k: v[ref] for k, v in w.items()}
-        worst_ratio, basis_flags = _judge(w, w_ref, k_orders, *factors)
-        flags |= basis_flags | _impact_flags(w["fs"], w_ref["fs"], impact_factor, worst_impact_factor)
-        out |= _population_columns(names, made, ref, w, worst_ratio, orders, dims)
-        if all(m["heldout"] for m in made):
-            held = [_heldout_verdict(m["heldout"], w_ref, k_orders, factors, impact_factor, worst_impact_factor)
-                    for m in made]
-            holds = np.array([h[0] for h in held])
-            out["heldout_holds"] = variable(dims, _flag(holds, ref), "1", "the verdict on the basis holds on every "
-                                            "held-out gear (their own seed, never seen by an optimiser)",
-                                            flag_values=_FLAG_VALUES, flag_meanings=_FLAG_MEANINGS)
-            out["heldout_breaking_gear"] = variable(dims, np.array([h[1] for h in held], dtype=np.int64), "1",
-                                                    "the first held-out gear that breaks the verdict (-1: none; "
-                                                    "gearmesh manufactured writes it as a pair file)")
-    if dynamics:
-        flags["meets_dynamics"] = c["dyn_peak"] <= dynamic_factor * c["dyn_peak"][ref]
-    verdict = np.all(list(flags.values()), axis=0)
-    if "heldout_holds" in out:
-        verdict &= np.array([h[0] for h in held])
-    flags["meets_all"] = verdict
-    out = _nominal_columns(c, pressure_ratio, orders, dims, basis) | out
-    out |= {
+    return {k: np.array(v) for k, v in cols.items()}, made
+
+
+def _population_verdict(names: list[str], made: list[dict], ref: int, k_orders: list[int], factors,
+                        impact_factor: float, worst_impact_factor: float, orders: list[int], dims
+                        ) -> tuple[dict[str, np.ndarray], dict[str, xr.Variable], np.ndarray | None]:
+    """The criteria on the population basis (each variant's worst manufactured gear against the
+    reference's worst), the population's columns and, when every variant has held-out gears,
+    whether the verdict holds on them (per variant; None without them)."""
+    w = {k: np.array([m["worst"][k] for m in made]) for k in made[ref]["worst"]}
+    w_ref = {k: v[ref] for k, v in w.items()}
+    worst_ratio, basis_flags = _judge(w, w_ref, k_orders, *factors)
+    basis_flags |= _impact_flags(w["fs"], w_ref["fs"], impact_factor, worst_impact_factor)
+    out = _population_columns(names, made, ref, w, worst_ratio, orders, dims)
+    holds = None
+    if all(m["heldout"] for m in made):
+        held = [_heldout_verdict(m["heldout"], w_ref, k_orders, factors, impact_factor, worst_impact_factor)
+                for m in made]
+        holds = np.array([h[0] for h in held])
+        out["heldout_holds"] = variable(dims, _flag(holds, ref), "1", "the verdict on the basis holds on every "
+                                        "held-out gear (their own seed, never seen by an optimiser)",
+                                        flag_values=_FLAG_VALUES, flag_meanings=_FLAG_MEANINGS)
+        out["heldout_breaking_gear"] = variable(dims, np.array([h[1] for h in held], dtype=np.int64), "1",
+                                                "the first held-out gear that breaks the verdict (-1: none; "
+                                                "gearmesh manufactured writes it as a pair file)")
+    return basis_flags, out, holds
+
+
+def _safety_and_dynamics_columns(c: dict[str, np.ndarray], dims, with_dynamics: bool) -> dict[str, xr.Variable]:
+    """The nominal gears' safety factors and, ``with_dynamics``, their dynamic peaks over the sweep."""
+    out = {
         "S_H": variable(dims, c["S_H"], "1", "safety factor against pitting, weaker gear (ISO 6336-2), nominal gear"),
         "S_F": variable(dims, c["S_F"], "1", "safety factor against tooth breakage, weaker gear (ISO 6336-3), "
                                              "nominal gear"),
     }
-    if dynamics:
+    if with_dynamics:
         out["dynamic_mesh_force_peak"] = variable(dims, c["dyn_peak"], "N", "largest dynamic mesh force over the "
                                                   "speed sweep, nominal gear", force_line="normal")
         out["dynamic_factor_peak"] = variable(dims, c["kv_peak"], "1", "largest dynamic factor (peak over static "
                                               "mesh force) over the speed sweep, nominal gear")
+    return out
+
+
+def _flag_columns(flags: dict[str, np.ndarray], ref: int, basis: str, dims, heldout: bool) -> dict[str, xr.Variable]:
+    """Each criterion's flags (``reference``/``fails``/``meets``) with the basis it was judged on
+    (``heldout``: ``meets_all`` includes the held-out gears)."""
+    out = {}
     for key, meets in flags.items():
         on = "nominal" if basis == "nominal" or key in NOMINAL_ONLY else basis
         why = NOMINAL_ONLY.get(key, BASES[basis]) if key != "meets_all" else \
-            BASES[basis] + ("; and the held-out gears" if "heldout_holds" in out else "")
+            BASES[basis] + ("; and the held-out gears" if heldout else "")
         out[key] = variable(dims, _flag(np.asarray(meets), ref), "1", CRITERIA.get(key, "every criterion met"),
                             flag_values=_FLAG_VALUES, flag_meanings=_FLAG_MEANINGS, basis=on, judged_on=why)
-    ds = xr.Dataset(out, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
-                                 "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
-    ds.attrs.update(reference=reference, basis=basis, pressure_factor=pressure_factor,
-                    root_stress_factor=root_stress_factor,
-                    harmonic_orders=np.array(harmonic_orders, dtype=np.int64), harmonic_factor=harmonic_factor,
-                    impact_factor=impact_factor, worst_impact_factor=worst_impact_factor,
-                    dynamic_factor=dynamic_factor,
-                    design_speed_rpm=float(by["impact"][reference].attrs["design_speed_rpm"]))
-    if basis == "population":
-        imp = by["impact"][reference]
-        ds.attrs.update({key: int(imp.attrs.get(f"tolerance_{key}", 0)) for key in ("population", "heldout")} |
-                        {"heldout_seed": int(imp.attrs.get("tolerance_heldout_seed", 0))})
-    return ds
+    return out
 
 
 def _nominal_columns(c: dict[str, np.ndarray], pressure_ratio: np.ndarray, orders: list[int], dims, basis: str

@@ -8,7 +8,7 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from ..fe import use_fe_tables
+from ..fe_tables import use_fe_tables
 from ..design import pair_with_contact_ratios
 from ..errors import GearmeshInputError
 from ..gear import GearPair, PairGeometry, pair_geometry
@@ -20,14 +20,13 @@ from ..loads import check_load
 from ..body import describe_body
 from ..deflection import describe_deflection, mesh_deflection
 from ..ltca import contact_tangent_compliance
+from ..slice_compliance import pair_slice_table, slice_compliance_table
 from ..stiffness import (
     DEFAULT_RULE,
     fourier_fit,
     iso6336_stiffness,
     lste,
     mesh_stiffness,
-    pair_slice_table,
-    slice_compliance_table,
 )
 from ..schema import check_arguments
 from ..choices import PEM_TOOTH_METHODS
@@ -61,7 +60,7 @@ def stiffness_dataset(pair: GearPair, *, method: str, slices: int, positions: in
     ``fourier_order`` (the improved potential-energy paper) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
     torque the LSTE F/K(φ) (the low-fluctuation paper). Stiffness is along the transverse line of action
     (force F = T1/r_b1); multiply by 1/cos²βb for the normal direction. With ``method='fe'``,
-    ``fe_compliance`` (the pair's fe_compliance.nc) supplies the FE tables (:func:`gearmesh.fe.seed_cache`).
+    ``fe_compliance`` (the pair's fe_compliance.nc) supplies the FE tables (:func:`gearmesh.fe_tables.seed_cache`).
     """
     geom = pair_geometry(pair)
     slices, positions = check_slice_grid(slices, positions)

@@ -53,7 +53,7 @@ Local stiffness and force
 -------------------------
 The mesh-in impact paper loads the entering pair alone, quasi-statically, with its points' separations
 relative to M at the touch instant: here exactly that, with the LTCA's point compliances
-(:func:`gearmesh.ltca.point_compliance`) and contact law, giving the F–δ curve of the
+(:func:`gearmesh.ltca_model.point_compliance`) and contact law, giving the F–δ curve of the
 impact. The energy balance ½·m_eq·v² = ∫F dδ is solved on that curve (piecewise power-law
 integration, exact for a pure power law), and F = K_s·δ^n is fitted (log-log least squares
 on 24 points evenly spaced in δ over [δ_s/24, δ_s], the range the impact reaches) for seed

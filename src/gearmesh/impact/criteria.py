@@ -14,7 +14,8 @@ import numpy as np
 from ..errors import GearmeshInputError
 from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
-from ..ltca import ContactLaw, check_torques
+from ..ltca import check_torques
+from ..ltca_model import ContactLaw
 from ..tca import SeparationBasis, basis_gap
 from .model import ImpactModel
 

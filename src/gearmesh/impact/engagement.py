@@ -14,7 +14,8 @@ from ..errors import GearmeshInputError
 from ..limits import check_speeds
 from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
-from ..ltca import ContactLaw, _invert, point_compliance, solve_contact
+from ..ltca import _invert, solve_contact
+from ..ltca_model import ContactLaw, point_compliance
 from ..tca import basis_gap, candidate_grid
 from .model import SCENARIO_NONE, ImpactModel
 from .static import _approach_at, impact_static

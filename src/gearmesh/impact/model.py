@@ -16,7 +16,7 @@ import numpy as np
 from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_CYCLE_POSITIONS, DEFAULT_TOOTH_METHOD
 from ..errors import GearmeshInputError
 from ..gear import PairGeometry
-from ..ltca import LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance
+from ..ltca_model import LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance
 from ..body import mesh_body_compliance
 from ..surface import modification_parameters
 from ..tca import SeparationBasis, candidate_grid, engagement_point, pair_lead_slope, separation_basis

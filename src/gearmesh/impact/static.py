@@ -17,7 +17,8 @@ import numpy as np
 
 from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
-from ..ltca import ContactLaw, _invert, check_torques, law_scales, log_universal_inverse, point_compliance, solve_contact
+from ..ltca import _invert, check_torques, law_scales, log_universal_inverse, solve_contact
+from ..ltca_model import ContactLaw, point_compliance
 from ..tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, basis_gap, candidate_grid, point_centres,
                    separation_basis)
 from ..contact import hand_sign

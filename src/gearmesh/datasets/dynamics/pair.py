@@ -16,7 +16,7 @@ from ...dynamics import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, FIRST_PART_AFTE
                          GearModel, SolverSettings, SweepResult, pair_model, require_dynamics_data, resonance_band,
                          simulate)
 from ...errors import GearmeshInputError
-from ...fe import use_fe_tables
+from ...fe_tables import use_fe_tables
 from ...gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ...io import name_force_lines, variable
 from ...limits import MAX_SPEEDS, check_slice_grid, check_speeds, positive_values

@@ -12,7 +12,7 @@ from ...body import describe_body
 from ...dynamics import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, LOW_FLUCTUATION_BEARING, TRAIN_GEARS, GearModel,
                          SolverSettings, SweepResult, require_dynamics_data, simulate, train_model)
 from ...errors import GearmeshInputError
-from ...fe import use_fe_tables
+from ...fe_tables import use_fe_tables
 from ...gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ...io import name_force_lines, variable
 from ...limits import MAX_TRAIN_SPEEDS, check_speeds

@@ -1,0 +1,184 @@
+"""The load-independent model of the LTCA (:mod:`gearmesh.ltca`): the local contact law of a
+point, and the candidate points of a pair with their unloaded separations and linear
+compliances (the slice compliance of both teeth, :mod:`gearmesh.slice_compliance`). The
+LTCA solves it at each load; the mesh-in impact and the mesh force take the same model.
+
+Everything inside is SI (m, N, rad), in the transverse line-of-action convention of
+:mod:`gearmesh.ltca` (its module docstring: the model of independent slices).
+
+Local contact laws (``contact_law``)
+-----------------------------------
+* ``'palmgren'`` (default): Palmgren's line-contact approach of two steel bodies,
+  δ_n = 3.84·10⁻⁵ Q^0.9 / l^0.8 (mm, N, mm; Palmgren, Ball and Roller Bearing
+  Engineering, 1959; Harris & Kotzalas, Rolling Bearing Analysis, 5th ed., 2007, eq.
+  6.41). With Q = w·l it is δ_n = 3.84·10⁻⁵ w^0.9 l^0.1 (w in N/mm); the weak length
+  factor is taken at the full contact-line length l_ref = b/cos βb so that the law is
+  local (independent of how finely the line is sliced). For another material the load is
+  scaled by E'_steel/E' (E' = E/(1 − ν²), steel 207 GPa, 0.3). It gives F ∝ δ^(1/0.9),
+  n ≈ 1.11 — the exponent the mesh-in impact paper reports for the fitted local stiffness (n ≈ 1.1).
+* ``'linear'``: the linear Hertz line-contact stiffness per unit length πE/(4(1−ν²)) of
+  the stiffness stage (:func:`gearmesh.slice_compliance.hertz_compliance_transverse`),
+  for the comparison LTE = F/K(φ).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from .contact import mesh_cycle_rolls
+from .choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
+from .errors import GearmeshInputError
+from .supports import PALMGREN_LINE, PALMGREN_LINE_EXPONENT
+from .gear import PairGeometry
+from .slice_compliance import (METHODS, PairSliceTable, hertz_compliance_transverse, pair_slice_table,
+                               slice_compliance_table)
+from .tooth import SliceComplianceTable, require_stiffness_data
+from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, check_count,
+                  candidate_grid, check_extension, check_modifications, engagement_point, pair_lead_slope)
+
+__all__ = ["CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
+           "point_compliance", "LTCAModel", "ltca_model"]
+
+# Palmgren's line-contact law (Palmgren 1959; Harris & Kotzalas 2007), mm·N^-0.9·mm^0.8: declared
+# once, with the rolling bearings that use it too (gearmesh.supports, the lowest module).
+PALMGREN_COEFFICIENT = PALMGREN_LINE
+PALMGREN_EXPONENT = PALMGREN_LINE_EXPONENT
+_STEEL_E_PRIME = 207e9 / (1.0 - 0.3**2)
+
+
+@dataclass(frozen=True)
+class ContactLaw:
+    """Local contact approach of one point of width ``dz`` (m): δ_c(q) = coefficient·q^exponent
+    (m, q in N, transverse), plus a linear compliance ``linear`` (m/N) added to the teeth."""
+
+    name: str
+    coefficient: float
+    exponent: float
+    linear: float
+    dz: float
+
+    @property
+    def force_exponent(self) -> float:
+        """n of F ∝ δ^n for the contact alone (1/exponent; 1 for the linear law)."""
+        return 1.0 / self.exponent if self.coefficient > 0 else 1.0
+
+
+def contact_law(geom: PairGeometry, dz: float, name: str = DEFAULT_CONTACT_LAW) -> ContactLaw:
+    """The local contact law of a point of width ``dz`` (m) in transverse units (module docstring).
+
+    Palmgren: δ_n [mm] = 3.84e-5·(w·E'_steel/E')^0.9·l_ref^0.1 with w = q/Δz the normal load
+    per unit length (N/mm) and l_ref = b/cos βb (mm); transverse δ_t = δ_n/cos βb.
+    Linear: δ_t = c_h·q/Δz, c_h of :func:`gearmesh.slice_compliance.hertz_compliance_transverse`.
+    """
+    if name not in CONTACT_LAWS:
+        raise GearmeshInputError("contact_law", name, f"must be one of {list(CONTACT_LAWS)}")
+    require_stiffness_data(geom, need_bore=False)
+    if name == "linear":
+        return ContactLaw(name, 0.0, 1.0, hertz_compliance_transverse(geom) / dz, dz)
+    mat = geom.pair.material
+    cb = math.cos(geom.base_helix_angle)
+    scale = _STEEL_E_PRIME / (mat.youngs_modulus / (1.0 - mat.poisson_ratio**2))
+    l_ref_mm = geom.face_width / cb * 1e3
+    # δ_t [m] = 1e-3/cb · C · (q·scale/(Δz·1e3))^0.9 · l_ref_mm^0.1
+    coef = 1e-3 / cb * PALMGREN_COEFFICIENT * (scale / (dz * 1e3)) ** PALMGREN_EXPONENT * l_ref_mm**0.1
+    return ContactLaw(name, coef, PALMGREN_EXPONENT, 0.0, dz)
+
+
+# --------------------------------------------------------------------------------------
+# Model set-up (everything that does not depend on the load)
+# --------------------------------------------------------------------------------------
+
+
+def point_compliance(geom: PairGeometry, pair_table: PairSliceTable,
+                     tables: tuple[SliceComplianceTable, SliceComplianceTable], s, region, rho_pinion, rho_gear,
+                     with_hertz: bool = False) -> np.ndarray:
+    """Per-unit-width compliance (m²/N: m of transverse deflection per N/m of load) of candidate
+    points at line-of-action positions ``s`` (m) of ``region`` (arrays of one shape).
+
+    Flank points take the pair table at s by linear interpolation, exactly as the stiffness
+    stage (:func:`gearmesh.stiffness.mesh_stiffness`); tip-edge points take each tooth's
+    table at its own touched roll length (the tip of one, ρ_P of the other). Bending,
+    shear, axial compression and fillet foundation of both teeth; with ``with_hertz`` the
+    linear Hertz line-contact compliance as well (the stiffness stage's slice sum).
+    """
+    s = np.clip(np.nan_to_num(np.asarray(s, dtype=float)), 0.0, geom.path_of_contact)
+    n_int = pair_table.total.size - 1
+    t = s * (1.0 / pair_table.ds)
+    i = np.minimum(t.astype(np.intp), n_int - 1)
+    w = t - i
+    if with_hertz:
+        per_width = np.take(pair_table.total, i) + w * np.take(pair_table.total_slope, i)
+    else:
+        tooth_rows = [k for k, name in enumerate(pair_table.columns) if name != "hertz"]
+        vals = pair_table.values[tooth_rows].sum(axis=0)
+        per_width = np.take(vals, i) + w * np.take(np.diff(vals), i)
+    edge = (region == REGION_APPROACH_TIP) | (region == REGION_RECESS_TIP)
+    if np.any(edge):
+        rho1 = np.clip(rho_pinion[edge], tables[0].rho[0], tables[0].rho[-1])
+        rho2 = np.clip(rho_gear[edge], tables[1].rho[0], tables[1].rho[-1])
+        c_edge = tables[0].total(rho1) + tables[1].total(rho2)
+        if with_hertz:
+            c_edge = c_edge + hertz_compliance_transverse(geom)
+        per_width = np.array(per_width)
+        per_width[edge] = c_edge
+    return per_width
+
+
+@dataclass(frozen=True)
+class LTCAModel:
+    """The load-independent part of an LTCA: per-gear slice tables and their pair table, grid of
+    points (incl. the start of engagement as the last position), compliances and the contact law."""
+
+    geom: PairGeometry
+    grid: CandidateGrid  # positions = mesh cycle + [roll_A]
+    compliance: np.ndarray  # (P+1, J, N) linear compliance of each point (m/N)
+    law: ContactLaw
+    method: str
+    pair_table: PairSliceTable
+    lead_slope: tuple[float, float]
+    tables: tuple[SliceComplianceTable, SliceComplianceTable]
+    misalignment: float = 0.0  # the stated mesh misalignment f_ma in the grid's separations (m)
+
+
+def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=None,
+               contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
+               extension: float = DEFAULT_EXTENSION,
+               tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
+               n_nodes: int = 257) -> LTCAModel:
+    """Grid, separations and point compliances (the model of :mod:`gearmesh.ltca`) for :func:`gearmesh.ltca.ltca`.
+
+    Flank points (region 1) take the stiffness stage's pair table at their s, exactly as
+    :func:`gearmesh.stiffness.mesh_stiffness` interpolates it; tip-edge points take each
+    tooth's table at its own touched roll length (the tip of the one, ρ_P of the other,
+    both within the active flank). ``tables`` may be passed to reuse the per-gear
+    :class:`~gearmesh.tooth.SliceComplianceTable` (same ``method``). ``lead_slope`` None: the
+    pair's own deviations (:func:`gearmesh.tca.pair_lead_slope`); the grid's separations carry
+    the pair's stated mesh misalignment too (the load-dependent f_sh is added per torque by
+    :func:`gearmesh.ltca.ltca`).
+    """
+    check_modifications(geom)
+    require_stiffness_data(geom)
+    if method not in METHODS:
+        raise GearmeshInputError("method", method, f"must be one of {list(METHODS)}")
+    positions = check_count("positions", positions, 1, 100000)
+    points = check_count("points", points, 1, 100000)
+    extension = check_extension(extension)
+    if tables is None:
+        tables = (slice_compliance_table(geom, 0, method, n_nodes), slice_compliance_table(geom, 1, method, n_nodes))
+    pair_table = pair_slice_table(geom, tables)
+    roll_a = engagement_point(geom)[0]
+    roll = np.append(mesh_cycle_rolls(geom, positions), roll_a)
+    lead_slope = pair_lead_slope(geom, lead_slope)
+    mis = geom.pair.deviations.misalignment
+    grid = candidate_grid(geom, roll, points, lead_slope, extension, misalignment=mis)
+    law = contact_law(geom, grid.dz, contact_law_name)
+    if contact_law_name == "linear":  # the Hertz part sits in the tooth compliance, as the stiffness stage
+        law = ContactLaw("linear", 0.0, 1.0, 0.0, grid.dz)
+    per_width = point_compliance(geom, pair_table, tables, grid.s, grid.region, grid.rho_pinion, grid.rho_gear,
+                                 with_hertz=contact_law_name == "linear")
+    compliance = per_width / grid.dz
+    return LTCAModel(geom=geom, grid=grid, compliance=compliance, law=law, method=method, pair_table=pair_table,
+                     lead_slope=lead_slope, tables=tables, misalignment=mis)
