@@ -384,3 +384,27 @@ def test_gearmesh_run_refuses_what_snakemake_would(tmp_path, monkeypatch, capsys
     assert err.startswith("gearmesh: error: snakemake arguments = ") and "--no-such-option" in err
     assert main(["run", "-n", "--profile", str(tmp_path / "nowhere")]) == 2
     assert "profile" in capsys.readouterr().err
+
+
+#: Functions allowed over the length limit, each with its reason: numba compiles them whole (a
+#: compiled kernel cannot call back into helpers without paying for it on every step).
+COMPILED_KERNELS = {"dynamics/integrate.py:_sweep": "the RK4 sweep with its shooting, compiled by numba"}
+
+
+def test_modules_and_functions_stay_short_enough_to_read():
+    """Modules by topic (no module of the package over 800 lines) and functions that do one thing
+    (none over 80 lines but the compiled kernels above)."""
+    package = Path(gearmesh.__file__).parent
+    long_modules, long_functions = {}, {}
+    for path in sorted(package.rglob("*.py")):
+        text = path.read_text(encoding="utf-8")
+        where = path.relative_to(package).as_posix()
+        if len(text.splitlines()) > 800:
+            long_modules[where] = len(text.splitlines())
+        for node in ast.walk(ast.parse(text)):
+            if isinstance(node, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                length = node.end_lineno - node.lineno + 1
+                if length > 80 and f"{where}:{node.name}" not in COMPILED_KERNELS:
+                    long_functions[f"{where}:{node.name}"] = length
+    assert not long_modules, long_modules
+    assert not long_functions, long_functions
