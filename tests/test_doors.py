@@ -30,10 +30,10 @@ from test_workflow import _scratch_workflow, _snakemake
 
 pytestmark = pytest.mark.skipif(shutil.which("snakemake") is None, reason="snakemake not installed")
 
-PAIR, SOFT = "low_fluctuation_pair1", "seed001_pair1_206GPa"
+PAIR, SOFT = "low_fluctuation_pair1", "low_fluctuation_pair1_206GPa"
 TORQUE_NM, SPEED_RPM, QUASI_STATIC_RPM = 20.0, 3000.0, 100.0
 STUDY = {"study": "doors", "pairs": [PAIR],
-         "ltca": {"torques_Nm": [TORQUE_NM]},
+         "ltca": {"torques_Nm": [TORQUE_NM]}, "rating": {"speed_rpm": SPEED_RPM},
          "impact": {"torques_Nm": [TORQUE_NM], "speeds_rpm": [SPEED_RPM], "design_speed_rpm": SPEED_RPM},
          "dynamics": {"torques_Nm": TORQUE_NM, "speeds_rpm": [QUASI_STATIC_RPM], "excitation": "ltca",
                       "sample_speeds_rpm": [], "refine_resonances": False}}
@@ -98,6 +98,23 @@ def test_ltca_one_answer(doors):
     # a different choice is a different answer, and says so
     other = _cli("ltca", _pair_file(doors), "--torque-Nm", str(TORQUE_NM), "--method", "transition")
     assert other["tooth_model"] == "transition" and other["lte_mean_um"] != pytest.approx(cli["lte_mean_um"])
+
+
+@pytest.mark.workflow
+def test_rating_one_answer(doors):
+    """S_H and S_F, K_Hβ from the LTCA of the misaligned mesh: workflow file, CLI and stage API at
+    each one's default method (one default, declared once)."""
+    from gearmesh.datasets.rating import rating_summary
+
+    pair = load_pair(_pair_file(doors))
+    flow = read_dataset(doors / "results/doors" / PAIR / "standard/rating.nc")
+    cli = _cli("rating", _pair_file(doors), "--torque-Nm", str(TORQUE_NM), "--speed-rpm", str(SPEED_RPM))
+    api = rating_summary(pair, TORQUE_NM, SPEED_RPM)
+    for door, summary in (("cli", cli), ("api", api)):
+        assert summary["method"] == flow.attrs["factor_method"], door
+        np.testing.assert_allclose(summary["S_H"], flow["S_H"].values[0], rtol=1e-9, err_msg=door)
+        np.testing.assert_allclose(summary["S_F"], flow["S_F"].values[0], rtol=1e-9, err_msg=door)
+        assert summary["K_Hbeta"] == pytest.approx(float(flow["K_Hbeta"].values[0]), rel=1e-9), door
 
 
 @pytest.mark.workflow
