@@ -89,7 +89,7 @@ def involute_helicoid_z(base_radius: float, tan_beta_b: float, u, z, sigma: floa
         Axial position (m); broadcast with ``u``.
     sigma : float, default 0.0
         Angle (rad) of the involute's start on the base circle in slice z = 0.
-    side : (1, -1)
+    side : {1, -1}, default 1
         Side sign s.
 
     Returns
@@ -135,7 +135,7 @@ def involute_helicoid(base_radius: float, lead_parameter: float, u, theta, sigma
         Helical parameter θ (rad); broadcast with ``u``.
     sigma : float, default 0.0
         Start angle on the base circle (rad).
-    side : (1, -1)
+    side : {1, -1}, default 1
         Side sign s.
 
     Returns
