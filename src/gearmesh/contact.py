@@ -37,7 +37,13 @@ from .gear import PairGeometry
 
 
 def hand_sign(geom: PairGeometry) -> int:
-    """+1 for a right-hand pinion, −1 for a left-hand pinion (the gear has the other hand)."""
+    """+1 for a right-hand pinion, −1 for a left-hand pinion (the gear has the other hand).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    """
     return 1 if geom.pair.helix_hand == "right" else -1
 
 
@@ -46,6 +52,16 @@ def tooth_pair_indices(geom: PairGeometry) -> np.ndarray:
 
     With roll ∈ [0, p_bt) and h·z·tan βb ∈ [−b tan βb/2, b tan βb/2], s_j ∈ [0, g_α] needs
     j·p_bt ∈ (−p_bt − b tan βb/2, g_α + b tan βb/2].
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    ndarray of int
+        (J,) consecutive tooth-pair indices j.
     """
     half_axial = 0.5 * geom.face_width * math.tan(geom.base_helix_angle)
     pbt = geom.transverse_base_pitch
@@ -78,16 +94,22 @@ def contact_roll_positions(geom: PairGeometry, roll: np.ndarray, z: np.ndarray,
 
     Parameters
     ----------
-    roll : (P,) pinion roll distance r_b1·φ1 (m).
-    z : (S,) axial positions of the transverse slices (m), within [−b/2, b/2].
-    pairs : tooth-pair indices j (default :func:`tooth_pair_indices`, widened to cover
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    roll : ndarray
+        (P,) pinion roll distance r_b1·φ1 (m).
+    z : ndarray
+        (S,) axial positions of the transverse slices (m), within [−b/2, b/2].
+    pairs : ndarray of int, optional
+        (J,) tooth-pair indices j (default :func:`tooth_pair_indices`, widened to cover
         rolls outside one base pitch).
 
     Returns
     -------
-    (P, J, S) array of s, NaN where the slice of that pair is outside the active zone
-    [0, g_α]. The pinion roll length at the contact is ρ1 = ρ_SAP1 + s and the gear roll
-    length ρ2 = ρ_EAP2 − s.
+    ndarray
+        (P, J, S) s (m), NaN where the slice of that pair is outside the active zone
+        [0, g_α]. The pinion roll length at the contact is ρ1 = ρ_SAP1 + s and the gear roll
+        length ρ2 = ρ_EAP2 − s.
     """
     roll = np.asarray(roll, dtype=float)
     pairs = _pair_indices_for_rolls(geom, roll) if pairs is None else np.asarray(pairs)
@@ -124,6 +146,23 @@ def contact_lines(geom: PairGeometry, roll: np.ndarray) -> ContactLines:
     closed form per line). For β = 0 a line covers the whole face or none of it.
     ``roll`` may lie outside [0, p_bt): the tooth-pair set is widened to cover it (for
     rolls within one base pitch it is :func:`tooth_pair_indices`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    roll : ndarray
+        (P,) pinion roll distances r_b1·φ1 (m).
+
+    Returns
+    -------
+    ContactLines
+        End points ``s_start``, ``s_end``, ``z_start``, ``z_end`` (P, J) (m, NaN out of contact),
+        ``length`` (P, J) (m) and ``total_length`` L (P,) (m).
+
+    References
+    ----------
+    .. [1] *Numerical Simulation of Meshing Line Position and Length for Helical Gears*.
     """
     roll = np.asarray(roll, dtype=float)
     pairs = _pair_indices_for_rolls(geom, roll)
@@ -163,6 +202,20 @@ def contact_length_closed_form(geom: PairGeometry) -> tuple[float, float, float]
     [max(0, f_α + f_β − 1), min(f_α, f_β)] (derivation in docs of the low-fluctuation paper §1, written out
     here because the document only names the piecewise phases). The mean is exactly
     l_mean = b ε_α / cos βb (docs/modelling.md). For β = 0: L ∈ {⌊ε_α⌋b, ⌈ε_α⌉b}.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    mean, min, max : float
+        L_mean, L_min, L_max (m).
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, §1.
     """
     ea, eb = geom.eps_alpha, geom.eps_beta
     b = geom.face_width
@@ -178,7 +231,20 @@ def contact_length_closed_form(geom: PairGeometry) -> tuple[float, float, float]
 
 
 def mesh_cycle_rolls(geom: PairGeometry, n_positions: int) -> np.ndarray:
-    """``n_positions`` pinion roll distances (m) evenly over one base pitch, end excluded."""
+    """``n_positions`` pinion roll distances (m) evenly over one base pitch, end excluded.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    n_positions : int
+        Number of positions (≥ 1).
+
+    Returns
+    -------
+    ndarray
+        (n_positions,) roll distances in [0, p_bt) (m).
+    """
     if n_positions < 1:
         raise ValueError("n_positions must be at least 1")
     return np.arange(n_positions) * (geom.transverse_base_pitch / n_positions)
@@ -190,12 +256,28 @@ def mesh_cycle_rolls(geom: PairGeometry, n_positions: int) -> np.ndarray:
 
 
 def pinion_rotation(geom: PairGeometry, roll: np.ndarray | float) -> np.ndarray:
-    """Pinion rotation angle φ1 = roll / r_b1 (rad, counter-clockwise about +z) at a roll distance (m)."""
+    """Pinion rotation angle φ1 = roll / r_b1 (rad, counter-clockwise about +z) at a roll distance (m).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    roll : float or ndarray
+        Pinion roll distance (m), any shape.
+    """
     return np.asarray(roll, dtype=float) / geom.base_radius[0]
 
 
 def gear_rotation(geom: PairGeometry, roll: np.ndarray | float) -> np.ndarray:
-    """Gear rotation angle φ2 = φ1·z1/z2 = roll / r_b2 (rad, clockwise about its axis) at a roll distance (m)."""
+    """Gear rotation angle φ2 = φ1·z1/z2 = roll / r_b2 (rad, clockwise about its axis) at a roll distance (m).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    roll : float or ndarray
+        Pinion roll distance (m), any shape.
+    """
     return np.asarray(roll, dtype=float) / geom.base_radius[1]
 
 
@@ -220,6 +302,22 @@ def flank_reference_angles(geom: PairGeometry) -> tuple[float, float]:
     The body frames of :mod:`gearmesh.surface` (tooth 0 centre line on +y) are these frames
     turned by −Φ(0) = −(σ − π/2 − ψ0), ψ0 = s_t/(2r) + inv αt (``surface.body_rotation`` at
     φ1 = 0); tests/test_contact.py checks the two agree.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    sigma1, sigma2 : float
+        σ1, σ2 (rad).
+
+    References
+    ----------
+    .. [1] *Numerical Simulation of Meshing Line Position and Length for Helical Gears*.
+    .. [2] F. L. Litvin, A. Fuentes, Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §10, §14.
     """
     awt = geom.operating_pressure_angle
     sigma1 = geom.rho_sap[0] / geom.base_radius[0] - awt
@@ -262,20 +360,33 @@ def plane_of_action_points(geom: PairGeometry, roll: np.ndarray | float, s: np.n
                            z: np.ndarray | float, pair: np.ndarray | int = 0) -> FramePoints:
     """Map plane-of-action coordinates (s, z) at pinion roll ``roll`` to the three frames.
 
-    Parameters (broadcast together, all SI)
-    ----------
-    roll : pinion roll distance r_b1·φ1 (m).
-    s : position along the transverse line of action from the start of active profile A (m);
-        pinion roll length ρ1 = ρ_SAP1 + s, gear roll length ρ2 = ρ_EAP2 − s.
-    z : axial position (m), face centre at 0.
-    pair : tooth-pair index j (only used for the tooth-0 frames).
-
     The fixed-frame point is T1 + ρ1·d + z·e_z with T1 = r_b1(cos αwt, −sin αwt) and
     d = (sin αwt, cos αwt) (module docstring). The pinion body frame is the fixed frame
     rotated with the pinion, φ1 = roll/r_b1 counter-clockwise: p_body = R(−φ1) p. The gear
     body frame has its origin at the gear centre (a, 0, 0) and turns clockwise by
     φ2 = φ1 z1/z2: g_body = R(+φ2)(p − (a, 0, 0)). The reference (roll = 0 ↔ tooth 0 at
     the start of active profile in the slice z = 0) is :func:`flank_reference_angles`.
+    ``roll``, ``s``, ``z`` and ``pair`` are broadcast together (all SI).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    roll : float or ndarray
+        Pinion roll distance r_b1·φ1 (m).
+    s : float or ndarray
+        Position along the transverse line of action from the start of active profile A (m);
+        pinion roll length ρ1 = ρ_SAP1 + s, gear roll length ρ2 = ρ_EAP2 − s.
+    z : float or ndarray
+        Axial position (m), face centre at 0.
+    pair : int or ndarray, default 0
+        Tooth-pair index j (only used for the tooth-0 frames).
+
+    Returns
+    -------
+    FramePoints
+        The points (..., 3) (m) in the fixed, pinion and gear frames and on tooth 0 of each
+        gear, with the roll lengths ρ (m) and involute parameters u (rad) of each gear.
     """
     roll, s, z, pair = np.broadcast_arrays(np.asarray(roll, float), np.asarray(s, float),
                                            np.asarray(z, float), np.asarray(pair, float))
@@ -319,11 +430,28 @@ class ContactLineEnds:
 def contact_line_end_points(geom: PairGeometry, roll: np.ndarray | ContactLines) -> ContactLineEnds:
     """3-D end points of every contact line, in the fixed, pinion and gear frames.
 
-    ``roll`` is an array of pinion roll distances (m) or a :class:`ContactLines` already
-    computed by :func:`contact_lines`. Vectorised over positions and lines; the mapping is
+    Vectorised over positions and lines; the mapping is
     :func:`plane_of_action_points` applied to the exactly clipped ends (s, z) of
     :func:`contact_lines` (the contact-line paper: contact points on the involute helicoids; the
     involute parameter at the ends is u = ρ/r_b for each gear).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    roll : ndarray or ContactLines
+        (P,) pinion roll distances (m), or a :class:`ContactLines` already computed by
+        :func:`contact_lines`.
+
+    Returns
+    -------
+    ContactLineEnds
+        ``points`` (P, J, 2, 3) (m; (start, end) = (smaller z, larger z), NaN out of contact)
+        and the rotation angles ``phi_pinion``, ``phi_gear`` (P,) (rad).
+
+    References
+    ----------
+    .. [1] *Numerical Simulation of Meshing Line Position and Length for Helical Gears*.
     """
     lines = roll if isinstance(roll, ContactLines) else contact_lines(geom, roll)
     s = np.stack([lines.s_start, lines.s_end], axis=-1)  # (P, J, 2)
@@ -347,6 +475,16 @@ def contact_length_breakpoints(geom: PairGeometry) -> np.ndarray:
     of its ends crosses a corner of the active zone, i.e. when roll + j p_bt ± h(b/2)tan βb
     equals 0 or g_α. Returned sorted and unique, together with the midpoints between
     consecutive ones (so that the exact extremes of a step function are also sampled).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    ndarray
+        Sorted roll distances (m), breakpoints and midpoints alternating.
     """
     pbt = geom.transverse_base_pitch
     half = 0.5 * geom.face_width * math.tan(geom.base_helix_angle)
@@ -384,7 +522,17 @@ class ContactLengthSummary:
 
 
 def contact_length_fluctuation(geom: PairGeometry) -> float:
-    """ε_l = (L_max − L_min)/b (-), closed form (the low-fluctuation paper §5; zero for integer ε_α or ε_β)."""
+    """ε_l = (L_max − L_min)/b (-), closed form (the low-fluctuation paper §5; zero for integer ε_α or ε_β).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, §5.
+    """
     _, lo, hi = contact_length_closed_form(geom)
     return (hi - lo) / geom.face_width
 
@@ -395,6 +543,24 @@ def contact_length_summary(geom: PairGeometry, n_positions: int | None = None) -
     The numeric mean integrates the piecewise-linear L exactly (trapezoids between
     breakpoints; for β = 0 the midpoint value of each step). ``n_positions`` adds the
     statistics of L on :func:`mesh_cycle_rolls` (the plain mean of the contact-line paper, L_ave = ΣL_k/N_k).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    n_positions : int, optional
+        Even grid over one base pitch for the ``sampled_*`` values (default None: none, NaN).
+
+    Returns
+    -------
+    ContactLengthSummary
+        ``mean``, ``min``, ``max`` (m) and ``eps_l`` (-) in closed form, their ``numeric_*`` and
+        ``sampled_*`` counterparts.
+
+    References
+    ----------
+    .. [1] *Numerical Simulation of Meshing Line Position and Length for Helical Gears*.
+    .. [2] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, §5.
     """
     mean, lo, hi = contact_length_closed_form(geom)
     b = geom.face_width
@@ -425,5 +591,17 @@ def contact_lines_benchmark(geom: PairGeometry, n_positions: int = 360) -> Conta
 
     One vectorised call of :func:`contact_lines` on a (P, J) grid; no Python loop over
     positions or teeth.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    n_positions : int, default 360
+        Number of roll positions P.
+
+    Returns
+    -------
+    ContactLines
+        As :func:`contact_lines`.
     """
     return contact_lines(geom, mesh_cycle_rolls(geom, n_positions))

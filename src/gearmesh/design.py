@@ -91,6 +91,24 @@ def pair_with_helix_angle(pair: GearPair, helix_angle: float, center_distance: s
     - ``"keep"``: keep the operating centre distance a and re-choose the total shift for
       zero backlash at a (inv α_wt = inv α_t + 2 tan α_n Σx/Σz with cos α_wt = (r1 + r2) cos α_t / a),
       keeping the shift difference x1 − x2.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair as designed (SI).
+    helix_angle : float
+        β (rad), in [0, 60°).
+    center_distance : {'zero_backlash', 'keep'}, default 'zero_backlash'
+        What becomes of a given centre distance (above).
+
+    Returns
+    -------
+    GearPair
+        The new pair (not yet through :func:`pair_geometry`).
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry, eqs. 57–59.
     """
     if not 0 <= helix_angle < MAX_HELIX_ANGLE:
         raise GearmeshInputError("helix_angle_deg", math.degrees(helix_angle), "must lie in [0, 60) degrees")
@@ -130,6 +148,28 @@ def integer_overlap_helix_angle(pair: GearPair, direction: str = "forward", n: i
 
     Refuses (field ``helix_angle_deg``) when π m_n N > b (no angle exists) or β ≥ 60°;
     the new pair must pass :func:`pair_geometry` (its refusals propagate).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair as designed (SI).
+    direction : {'forward', 'backward'}, default 'forward'
+        The next integer above the current ratio, or the one below (≥ 1).
+    n : int, optional
+        The integer N itself (≥ 1); overrides ``direction``.
+    center_distance : {'zero_backlash', 'keep'}, default 'zero_backlash'
+        As in :func:`pair_with_helix_angle`.
+
+    Returns
+    -------
+    DesignResult
+        The new pair, its ``eps_beta`` and ``eps_alpha`` (-) and its geometry.
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, §1, §5, Table 1.
+    .. [2] *Numerical Simulation of Meshing Line Position and Length for Helical Gears*.
+    .. [3] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry, eq. 91.
     """
     geom0 = pair_geometry(pair)
     target = _target_integer(geom0.eps_beta, direction, n, "helix_angle_deg",
@@ -159,6 +199,24 @@ def integer_overlap_face_width(pair: GearPair, direction: str = "forward", n: in
     Both face widths move by the same amount (a wider pinion stays wider). The low-fluctuation paper
     Table 1: pair 1 (β 10°, b 20 mm) → b = 31.66 mm. Refuses a spur pair (field
     ``helix_angle_deg``: ε_β = 0 for any face width).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair as designed (SI).
+    direction : {'forward', 'backward'}, default 'forward'
+        The next integer above the current ratio, or the one below (≥ 1).
+    n : int, optional
+        The integer N itself (≥ 1); overrides ``direction``.
+
+    Returns
+    -------
+    DesignResult
+        The new pair, its ``eps_beta`` and ``eps_alpha`` (-) and its geometry.
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, §1, Table 1.
     """
     if pair.helix_angle == 0:
         raise GearmeshInputError("helix_angle_deg", 0.0,
@@ -196,6 +254,24 @@ def transverse_ratio_addendum(pair: GearPair, eps_alpha: float, keep_clearance: 
     design; the deeper tool may undercut). The result is checked by :func:`pair_geometry`:
     long addenda soon give pointed teeth or interference and are refused there. Refuses
     (field ``addendum_coefficient``) when no h_a* in (0, 3] reaches ``eps_alpha``.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair as designed (SI).
+    eps_alpha : float
+        Target transverse contact ratio ε_α (-).
+    keep_clearance : bool, default True
+        Raise the dedendum coefficient with the addendum (tip clearance kept).
+
+    Returns
+    -------
+    DesignResult
+        The new pair, its ``eps_beta`` and ``eps_alpha`` (-) and its geometry.
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry, eqs. 45, 87.
     """
     geom0 = pair_geometry(pair)
     fixed_pair = pair.with_changes(profile_shift=tuple(float(v) for v in geom0.profile_shift),
@@ -220,7 +296,28 @@ def transverse_ratio_addendum(pair: GearPair, eps_alpha: float, keep_clearance: 
 def integer_transverse_addendum(pair: GearPair, direction: str = "forward", n: int | None = None,
                                 keep_clearance: bool = True) -> DesignResult:
     """Addendum coefficient giving an integer ε_α = N (the low-fluctuation paper §1): N is the next integer
-    above (forward) or below (backward) the current ε_α; see :func:`transverse_ratio_addendum`."""
+    above (forward) or below (backward) the current ε_α; see :func:`transverse_ratio_addendum`.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair as designed (SI).
+    direction : {'forward', 'backward'}, default 'forward'
+        The next integer above the current ratio, or the one below (≥ 1).
+    n : int, optional
+        The integer N itself (≥ 1); overrides ``direction``.
+    keep_clearance : bool, default True
+        As in :func:`transverse_ratio_addendum`.
+
+    Returns
+    -------
+    DesignResult
+        The new pair, its ``eps_beta`` and ``eps_alpha`` (-) and its geometry.
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, §1.
+    """
     target = _target_integer(pair_geometry(pair).eps_alpha, direction, n, "addendum_coefficient",
                              list(pair.addendum_coefficient), "eps_alpha")
     return transverse_ratio_addendum(pair, target, keep_clearance)
@@ -230,7 +327,27 @@ def pair_with_contact_ratios(pair: GearPair, eps_alpha: float | None = None,
                              eps_beta: float | None = None) -> GearPair:
     """``pair`` redesigned to the given contact ratios: ε_β by the face width
     (b = π m_n ε_β / sin β, the low-fluctuation paper §1), ε_α by the addendum at constant tip clearance
-    (:func:`transverse_ratio_addendum`); the transition-curve paper's contact-ratio study."""
+    (:func:`transverse_ratio_addendum`); the transition-curve paper's contact-ratio study.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair as designed (SI).
+    eps_alpha : float, optional
+        Target transverse contact ratio (≥ 1); None keeps the addenda.
+    eps_beta : float, optional
+        Target overlap ratio (> 0, helical pairs only); None keeps the face widths.
+
+    Returns
+    -------
+    GearPair
+        The redesigned pair.
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, §1.
+    .. [2] [untitled] *Mesh stiffness of helical gears with the hob-generated root transition curve*.
+    """
     if eps_beta is not None:
         if pair.helix_angle == 0 or eps_beta <= 0:
             raise GearmeshInputError("eps_beta", eps_beta, "needs a helical pair and a positive target")
@@ -278,6 +395,27 @@ def overlap_fluctuation_curve(pair: GearPair, helix_angles: Sequence[float] | np
     :func:`gearmesh.contact.contact_length_closed_form` and, independently, from the
     clipped contact lines (:func:`gearmesh.contact.contact_length_summary`). The low-fluctuation paper §5:
     a V-shaped curve with its minimum ε_l = 0 at integer ε_β.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair as designed (SI).
+    helix_angles : array_like
+        (B,) helix angles β (rad).
+    n_positions : int, optional
+        Even roll grid for ``eps_l_sampled`` (default None: NaN).
+    center_distance : {'zero_backlash', 'keep'}, default 'zero_backlash'
+        As in :func:`pair_with_helix_angle`.
+
+    Returns
+    -------
+    FluctuationCurve
+        Per β (B,): ``eps_alpha``, ``eps_beta``, ``eps_l`` (-), ``l_mean``, ``l_min``, ``l_max`` (m),
+        ``eps_l_numeric``, ``eps_l_sampled`` (-), ``valid`` and ``reasons``.
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, §5.
     """
     betas = np.asarray(helix_angles, dtype=float)
     n = betas.size

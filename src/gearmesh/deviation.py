@@ -133,7 +133,26 @@ def _pair_um(key: str, value: Any) -> tuple[float, float]:
 
 
 def read_deviations(spec: Mapping[str, Any]) -> Deviations:
-    """The deviation keys of a pair-file mapping (others ignored; module docstring), µm → m."""
+    """The deviation keys of a pair-file mapping (others ignored; module docstring), µm → m.
+
+    Parameters
+    ----------
+    spec : Mapping
+        The pair-file mapping: ``lead_slope_deviation_um`` and ``profile_slope_deviation_um``
+        [pinion, gear] (µm), ``mesh_misalignment_um`` (µm), each optional.
+
+    Returns
+    -------
+    Deviations
+        ``lead_slope``, ``profile_slope`` (m, [pinion, gear]) and ``mesh_misalignment`` (m or None).
+
+    References
+    ----------
+    .. [1] ISO 1328-1:2013, Cylindrical gears — ISO system of flank tolerance classification — Part 1:
+       Definitions and allowable values of deviations relevant to flanks of gear teeth, 3.2.4, 3.3.4.
+    .. [2] ISO 6336-1:2019, Calculation of load capacity of spur and helical gears — Part 1: Basic
+       principles, introduction and general influence factors, 7.6.2.1.
+    """
     lead = spec.get(DEVIATION_KEYS[0])
     profile = spec.get(DEVIATION_KEYS[1])
     mis = spec.get(DEVIATION_KEYS[2])
@@ -145,7 +164,20 @@ def read_deviations(spec: Mapping[str, Any]) -> Deviations:
 
 
 def mesh_lead_sum(lead_slope, misalignment=0.0) -> np.ndarray:
-    """F = f1 + f2 + misalignment (m): the mesh's lead mismatch; ``lead_slope`` (..., 2)."""
+    """F = f1 + f2 + misalignment (m): the mesh's lead mismatch; ``lead_slope`` (..., 2).
+
+    Parameters
+    ----------
+    lead_slope : array_like
+        (..., 2) lead slope deviations f_Hβ1, f_Hβ2 (m).
+    misalignment : float or array_like, default 0.0
+        Mesh misalignment f_ma (m), broadcast against ``lead_slope[..., 0]``.
+
+    Returns
+    -------
+    ndarray
+        F (m), shape (...).
+    """
     return np.sum(np.asarray(lead_slope, dtype=float), axis=-1) + np.asarray(misalignment, dtype=float)
 
 
@@ -153,8 +185,30 @@ def lead_gap(geom, lead_slope, z, misalignment=0.0) -> np.ndarray:
     """Transverse separation (m) opened by the lead mismatch at axial positions ``z`` (m, model
     frame): g = −F·h·z/b + |F|/2 (module docstring), F = f1 + f2 + ``misalignment``.
 
-    ``lead_slope`` a pair (f1, f2) or an array (..., 2) whose leading axes broadcast against ``z``
-    (one pair per row of a batch); ``misalignment`` (m) broadcasts like ``lead_slope[..., 0]``."""
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    lead_slope : array_like
+        A pair (f1, f2) or an array (..., 2) (m) whose leading axes broadcast against ``z``
+        (one pair per row of a batch).
+    z : array_like
+        Axial positions (m), face centre at 0.
+    misalignment : float or array_like, default 0.0
+        f_ma (m), broadcast like ``lead_slope[..., 0]``.
+
+    Returns
+    -------
+    ndarray
+        g ≥ 0 (m), broadcast(F, z).
+
+    References
+    ----------
+    .. [1] ISO 1328-1:2013, Cylindrical gears — ISO system of flank tolerance classification — Part 1:
+       Definitions and allowable values of deviations relevant to flanks of gear teeth, 3.3.4.
+    .. [2] ISO 6336-1:2019, Calculation of load capacity of spur and helical gears — Part 1: Basic
+       principles, introduction and general influence factors, 7.6.2.1.
+    """
     f = mesh_lead_sum(lead_slope, misalignment)
     hand = 1.0 if geom.pair.helix_hand == "right" else -1.0  # gearmesh.contact.hand_sign (below it here)
     zeta = hand * np.asarray(z, dtype=float)
@@ -164,7 +218,27 @@ def lead_gap(geom, lead_slope, z, misalignment=0.0) -> np.ndarray:
 def profile_gap(geom, profile_slope, rho_pinion, rho_gear) -> np.ndarray | float:
     """Transverse separation (m) opened by both gears' profile slope deviations ``profile_slope``
     (f_Hα1, f_Hα2) (m) at the touched roll lengths ``rho_pinion``, ``rho_gear`` (m) (module
-    docstring); 0.0 for a pair without profile deviations."""
+    docstring); 0.0 for a pair without profile deviations.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    profile_slope : sequence of float
+        (f_Hα1, f_Hα2) (m).
+    rho_pinion, rho_gear : array_like
+        Roll lengths of the contact on each gear (m), clipped to its active flank; broadcast.
+
+    Returns
+    -------
+    ndarray or float
+        g ≥ 0 (m).
+
+    References
+    ----------
+    .. [1] ISO 1328-1:2013, Cylindrical gears — ISO system of flank tolerance classification — Part 1:
+       Definitions and allowable values of deviations relevant to flanks of gear teeth, 3.2.4.
+    """
     gap: Any = 0.0
     for gear, rho in enumerate((rho_pinion, rho_gear)):
         f = float(profile_slope[gear])
@@ -179,7 +253,20 @@ def profile_gap(geom, profile_slope, rho_pinion, rho_gear) -> np.ndarray | float
 def with_misalignment(lead, misalignment: float) -> np.ndarray:
     """Lead-slope rows (..., 2) (m) carrying a further mesh misalignment (m) in the pinion's entry:
     the separations depend on the mesh's sum f1 + f2 + misalignment alone (:func:`lead_gap`), so
-    this is exact; a result keeps the rows' own slopes apart."""
+    this is exact; a result keeps the rows' own slopes apart.
+
+    Parameters
+    ----------
+    lead : array_like
+        (..., 2) lead slope deviations (m).
+    misalignment : float
+        Mesh misalignment to add (m).
+
+    Returns
+    -------
+    ndarray
+        A copy of ``lead`` (..., 2) (m).
+    """
     out = np.array(lead, dtype=float)
     out[..., 0] += misalignment
     return out

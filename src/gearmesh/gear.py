@@ -28,7 +28,13 @@ GEARS = ("pinion", "gear")
 
 
 def inverse_involute(value: float) -> float:
-    """The pressure angle α in [0, π/2) (rad) with inv(α) = ``value`` (value ≥ 0)."""
+    """The pressure angle α in [0, π/2) (rad) with inv(α) = ``value`` (value ≥ 0).
+
+    Parameters
+    ----------
+    value : float
+        inv α = tan α − α (rad), ≥ 0; a negative value raises ValueError.
+    """
     if value < 0:
         raise ValueError(f"inverse involute of a negative value {value}")
     if value == 0:
@@ -152,7 +158,15 @@ def _is_number(value: Any) -> bool:
 
 
 def check_teeth(field_name: str, z: int) -> None:
-    """Refuse a tooth count outside [5, :data:`MAX_TEETH`] (compared as integers: no overflow)."""
+    """Refuse a tooth count outside [5, :data:`MAX_TEETH`] (compared as integers: no overflow).
+
+    Parameters
+    ----------
+    field_name : str
+        The pair-file key named in the refusal (e.g. ``teeth[0]``).
+    z : int
+        Number of teeth (-).
+    """
     if z < 5:
         raise GearmeshInputError(field_name, z, "must be at least 5 (external gears)")
     if z > MAX_TEETH:
@@ -162,7 +176,19 @@ def check_teeth(field_name: str, z: int) -> None:
 def validate_pair(pair: GearPair) -> None:
     """Range checks on a :class:`GearPair` in SI, also for pairs built in code (sweeps,
     designs); field names are the pair-file keys. The ranges are :data:`MODULE_RANGE`,
-    :data:`MIN_FACE_WIDTH_TO_MODULE` and :data:`MAX_FACE_WIDTH_TO_DIAMETER`."""
+    :data:`MIN_FACE_WIDTH_TO_MODULE` and :data:`MAX_FACE_WIDTH_TO_DIAMETER`.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (SI); a GearmeshInputError names the first key out of range.
+
+    References
+    ----------
+    .. [1] ISO 54:1996, Cylindrical gears for general engineering and for heavy engineering — Modules.
+    .. [2] ANSI/AGMA 2001-D04, Fundamental rating factors and calculation methods for involute spur and
+       helical gear teeth (face width b ≤ 2 d1).
+    """
     for i, z in enumerate(pair.teeth):
         if isinstance(z, bool) or not isinstance(z, (int, np.integer)):
             raise GearmeshInputError(f"teeth[{i}]", z, "must be an integer")
@@ -196,7 +222,13 @@ def validate_pair(pair: GearPair) -> None:
 
 
 def material_values(material: Material) -> dict[str, float]:
-    """``material`` as the pair file's ``material`` mapping (GPa, -, kg/m³)."""
+    """``material`` as the pair file's ``material`` mapping (GPa, -, kg/m³).
+
+    Parameters
+    ----------
+    material : Material
+        The material (SI: Pa, -, kg/m³).
+    """
     return {"youngs_modulus_GPa": material.youngs_modulus * 1e-9, "poisson_ratio": material.poisson_ratio,
             "density_kg_m3": material.density}
 
@@ -366,6 +398,22 @@ def shift_rounding_center_distance(pair: GearPair, alpha_t: float, alpha_wt0: fl
     for a = 50–80 mm and ±20 µm for a = 800–1000 mm. A centre distance printed 0.1–0.3 µm
     below a0 (that pair at 861.000 mm, a0 = 861.00015 mm) is therefore the zero-backlash design
     whose shifts were rounded, not interpenetrating teeth.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (SI).
+    alpha_t, alpha_wt0 : float
+        Transverse pressure angle αt and operating pressure angle αwt at a0 (rad).
+
+    Returns
+    -------
+    float
+        The accepted shortfall a0 − a (m).
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry, eqs. 57–59.
     """
     mn, an, beta = pair.normal_module, pair.normal_pressure_angle, pair.helix_angle
     da0_dxsum = mn * math.tan(an) * math.cos(alpha_t) / (math.cos(beta) * math.sin(alpha_wt0))
@@ -382,7 +430,23 @@ def max_tool_tip_radius(normal_module: float, tool_addendum: float, alpha_n: flo
     meet on its centreline (full-radius tip; ISO 53:1998, ρ_fP,max = 0.472 m_n for αn = 20°,
     h_fP = 1.25 m_n). Negative when the rack tooth is pointed before its tip line.
 
-    Parameters: ``normal_module`` m_n (m), ``tool_addendum`` h_aP0 (m), ``alpha_n`` (rad).
+    Parameters
+    ----------
+    normal_module : float
+        Normal module m_n (m).
+    tool_addendum : float
+        Tool addendum h_aP0 (m), the gear's dedendum.
+    alpha_n : float
+        Normal pressure angle αn (rad).
+
+    Returns
+    -------
+    float
+        ρ_max (m).
+
+    References
+    ----------
+    .. [1] ISO 53:1998, Cylindrical gears for general and heavy engineering — Standard basic rack tooth profile.
     """
     land = math.pi * normal_module / 4 - tool_addendum * math.tan(alpha_n)
     return land * math.cos(alpha_n) / (1 - math.sin(alpha_n))
@@ -395,6 +459,19 @@ def tool_tip_radius(pair: GearPair, gear: int) -> float:
     the ISO 53 value 0.38 m_n, or the full-radius tip where 0.38 m_n does not fit (e.g. αn =
     25° with h_aP0 = 1.25 m_n, the low-fluctuation paper: ρ_max = 0.318 m_n). A rack tooth pointed before
     its tip line (π/4 ≤ h_f*·tan αn) is refused on ``dedendum_coefficient``.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (SI); its ``tool_tip_radius_coefficient`` ρ* (-) or None per gear.
+    gear : int
+        0 for the pinion, 1 for the gear.
+
+    References
+    ----------
+    .. [1] ISO 53:1998, Cylindrical gears for general and heavy engineering — Standard basic rack tooth
+       profile (profile A, ρ_fP = 0.38 m_n).
+    .. [2] [untitled] Low mesh-stiffness fluctuation design of helical gears, Table 1.
     """
     mn, an = pair.normal_module, pair.normal_pressure_angle
     rho_max = max_tool_tip_radius(mn, pair.dedendum_coefficient[gear] * mn, an)
@@ -417,7 +494,21 @@ def tool_tip_radius(pair: GearPair, gear: int) -> float:
 def pinion_torque(pair: GearPair, torque, on: str):
     """Pinion torque T1 (N m) of a torque given on the pinion or on the gear: T1 = T2·z1/z2
     (torque balance of a lossless mesh, the base radii being proportional to the teeth).
-    Works on scalars and arrays; ``on`` is 'pinion' or 'gear'."""
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its tooth counts z1, z2).
+    torque : float or ndarray
+        The torque (N m), any shape.
+    on : {'pinion', 'gear'}
+        The member it acts on.
+
+    Returns
+    -------
+    float or ndarray
+        T1 (N m), the shape of ``torque``.
+    """
     if on not in GEARS:
         raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where the torque acts)")
     return torque if on == "pinion" else torque * (pair.teeth[0] / pair.teeth[1])
@@ -429,6 +520,22 @@ def gear_body_mass_inertia(reference_radius, bore_radius, face_width, density):
 
     This is the body convention of the low-fluctuation paper (Table 1: pair 1 gives 0.2165/0.6266 kg and
     0.96/7.90 ·10⁻⁴ kg m²).
+
+    Parameters
+    ----------
+    reference_radius, bore_radius, face_width : array_like
+        r, r_i and b (m), broadcast together (per gear: shape (2,)).
+    density : float
+        ρ (kg/m³).
+
+    Returns
+    -------
+    mass, inertia : ndarray
+        m (kg) and J about the axis (kg m²).
+
+    References
+    ----------
+    .. [1] [untitled] Low mesh-stiffness fluctuation design of helical gears, Table 1.
     """
     r, ri, b = np.asarray(reference_radius), np.asarray(bore_radius), np.asarray(face_width)
     mass = density * np.pi * (r**2 - ri**2) * b
@@ -441,6 +548,22 @@ def pair_geometry(pair: GearPair) -> PairGeometry:
     When the profile shifts were inferred from the centre distance, a refusal caused by
     them (shift or tip geometry) names ``center_distance_mm`` (the value the user gave) and
     says which inferred shift failed; other refusals keep their own field.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair as designed (SI); no shifts but a centre distance: those closing the backlash, split equally.
+
+    Returns
+    -------
+    PairGeometry
+        Radii (m, (2,)), roll lengths ``rho_*`` (m), pressure angles (rad), centre distance (m),
+        ``eps_alpha``, ``eps_beta`` (-), thicknesses and backlash (m), masses (kg), inertias (kg m²).
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry
+       (eqs. 9, 11, 13, 21, 45, 47, 57–59, 64, 70, 87, 91; §5.4.1, §5.5).
     """
     try:
         return _pair_geometry(pair)
@@ -621,7 +744,15 @@ def check_tip_edge_radius(edge_radius: float, normal_tip_thickness) -> None:
     """Refuse a tip-edge rounding radius (m) above half the thinner normal tip thickness (m, per
     gear): the rounding would take the whole tip (GearmeshInputError on ``tip_edge_radius_mm``).
     The pair's own radius is checked with its geometry (:func:`pair_geometry`, so ``validate``
-    refuses what the rating would), one given to a stress function by it too."""
+    refuses what the rating would), one given to a stress function by it too.
+
+    Parameters
+    ----------
+    edge_radius : float
+        Tip-edge rounding radius (m).
+    normal_tip_thickness : array_like
+        Normal tip thickness s_an of each gear (m), shape (2,).
+    """
     limit = 0.5 * float(np.min(normal_tip_thickness))
     if edge_radius > limit:
         raise GearmeshInputError("tip_edge_radius_mm", edge_radius * 1e3,
@@ -630,7 +761,13 @@ def check_tip_edge_radius(edge_radius: float, normal_tip_thickness) -> None:
 
 def validate_modifications(geom: PairGeometry) -> None:
     """Refuse relief lengths longer than the active flank, lead lengths beyond the face and
-    depths beyond :data:`MAX_MODIFICATION_TO_MODULE` normal modules."""
+    depths beyond :data:`MAX_MODIFICATION_TO_MODULE` normal modules.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with its two :class:`Modification` (m); refusals name ``modification.<gear>.*``.
+    """
     depth_limit = MAX_MODIFICATION_TO_MODULE * geom.pair.normal_module
     for i, (gear, mod) in enumerate(zip(GEARS, geom.pair.modification)):
         active = geom.rho_eap[i] - geom.rho_sap[i]

@@ -70,7 +70,22 @@ __all__ = [
 def generating_rack(pair: GearPair, gear: int, profile_shift: float) -> GeneratingRack:
     """The transverse generating rack of gear ``gear`` (0/1) with profile shift x (-)
     (:func:`gearmesh.rack.rack_from` with the pair's module, angles, tool addendum and the tip
-    rounding of :func:`gearmesh.gear.tool_tip_radius`)."""
+    rounding of :func:`gearmesh.gear.tool_tip_radius`).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (SI).
+    gear : int
+        0 for the pinion, 1 for the gear.
+    profile_shift : float
+        x (-) as resolved (:attr:`PairGeometry.profile_shift`).
+
+    Returns
+    -------
+    GeneratingRack
+        The rack's transverse section (m, rad).
+    """
     mn = pair.normal_module
     rho0 = tool_tip_radius(pair, gear)
     return rack_from(pair.teeth[gear], mn, pair.normal_pressure_angle, pair.helix_angle,
@@ -90,7 +105,29 @@ def form_point(pair: GearPair, gear: int, profile_shift: float) -> tuple[float, 
     & Fuentes §10.6). When the fillet cuts away the whole involute the value is ≥ the tip
     roll length √(r_a² − r_b²).
 
-    Parameters: ``pair``; ``gear`` 0 (pinion) or 1 (gear); ``profile_shift`` x (-) as resolved.
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (SI).
+    gear : int
+        0 for the pinion, 1 for the gear.
+    profile_shift : float
+        x (-) as resolved.
+
+    Returns
+    -------
+    rho_F : float
+        Roll length of the form point (m).
+    undercut : bool
+        True when the trochoid cuts the involute.
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry,
+       §5.4 (form circle); DIN 3960.
+    .. [2] [untitled] *Mesh stiffness of helical gears with the hob-generated root transition curve*, §1.
+    .. [3] F. L. Litvin, A. Fuentes, Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §10.6.
     """
     return form_roll(generating_rack(pair, gear, profile_shift))
 
@@ -156,6 +193,25 @@ def tooth_profile(geom: PairGeometry, gear: int, n_fillet: int = 60, n_involute:
     point included) are both the envelope of the transverse generating rack (module
     docstring). The form point is the rounding/flank tangent point, or for an undercut tooth
     the trochoid–involute crossing (:func:`form_point`); it equals ``geom.form_radius``.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 for the pinion, 1 for the gear.
+    n_fillet, n_involute : int, default 60, 120
+        Points on the fillet and on the involute (each ≥ 2).
+
+    Returns
+    -------
+    ToothProfile
+        Points ``x``, ``y``, ``radius`` (n_fillet + n_involute,) (m), unit tangents, ``roll`` (m),
+        the form, root, tip and base radii (m).
+
+    References
+    ----------
+    .. [1] [untitled] *Mesh stiffness of helical gears with the hob-generated root transition curve*, §1.
     """
     if n_fillet < 2 or n_involute < 2:
         raise ValueError("n_fillet and n_involute must be at least 2")
@@ -217,6 +273,18 @@ def half_thickness(profile: ToothProfile, y: np.ndarray) -> np.ndarray:
     ``profile.y_range`` (beyond a round-off tolerance of 1e-12·r_a). Assumes y increases
     along each segment (true for the generated profiles; checked in tests over random and
     undercut gears).
+
+    Parameters
+    ----------
+    profile : ToothProfile
+        The flank (:func:`tooth_profile`).
+    y : ndarray
+        Heights along the tooth centreline from the gear centre (m), any shape.
+
+    Returns
+    -------
+    ndarray
+        x(y) (m), the shape of ``y``, NaN outside the profile.
     """
     y = np.asarray(y, dtype=float)
     out = np.full(y.shape, np.nan)

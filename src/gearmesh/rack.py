@@ -21,7 +21,22 @@ __all__ = ["involute", "GeneratingRack", "rack_from", "rack_flank_envelope", "ra
 
 
 def involute(alpha: np.ndarray | float) -> np.ndarray | float:
-    """Involute function inv(α) = tan α − α (ISO 21771 eq. 18), α in rad."""
+    """Involute function inv(α) = tan α − α (ISO 21771 eq. 18), α in rad.
+
+    Parameters
+    ----------
+    alpha : float or ndarray
+        Pressure angle α (rad), any shape.
+
+    Returns
+    -------
+    float or ndarray
+        inv α (rad), the shape of ``alpha``.
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry, eq. 18.
+    """
     return np.tan(alpha) - alpha
 
 
@@ -81,7 +96,35 @@ def rack_from(teeth: int, normal_module: float, normal_pressure_angle: float, he
     """The transverse generating rack of a gear of ``teeth`` teeth (lengths m, angles rad):
     flank ξ = s_t/2 − η tan αt with s_t = m_t(π/2 + 2x tan αn) (ISO 21771 eq. 64); tip
     rounding centre in the normal section (ξ_n, η_c) = (s_n/2 − η_c tan αn + ρ/cos αn,
-    x m_n − h_aP0 + ρ), stretched to the transverse section by 1/cos β (the transition-curve paper §1)."""
+    x m_n − h_aP0 + ρ), stretched to the transverse section by 1/cos β (the transition-curve paper §1).
+
+    Parameters
+    ----------
+    teeth : int
+        Number of teeth z of the generated gear.
+    normal_module : float
+        m_n (m).
+    normal_pressure_angle, helix_angle : float
+        αn and β (rad).
+    tool_addendum : float
+        h_aP0 (m), the gear's dedendum.
+    tip_radius : float
+        Tool tip rounding ρ_aP0 (m) (:func:`gearmesh.gear.tool_tip_radius`).
+    profile_shift : float
+        x (-).
+    tip_radius_clamped : bool, default False
+        Whether the default 0.38 m_n was reduced to the full-radius tip (recorded only).
+
+    Returns
+    -------
+    GeneratingRack
+        The rack's transverse section (m, rad).
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry, eq. 64.
+    .. [2] [untitled] *Mesh stiffness of helical gears with the hob-generated root transition curve*, §1.
+    """
     z = int(teeth)
     mn, an, beta = normal_module, normal_pressure_angle, helix_angle
     cb = math.cos(beta)
@@ -115,7 +158,26 @@ def rack_flank_envelope(rack: GeneratingRack, rho: np.ndarray):
     """Envelope of the straight rack flank (the involute), parameterised by roll length ρ (m).
 
     The flank point generating roll ρ sits at η = (ρ − r sin αt) sin αt on the line of action;
-    r φ = ξ − η cot αt (meshing condition). Returns X, Y (m) and dX/dρ, dY/dρ (-).
+    r φ = ξ − η cot αt (meshing condition).
+
+    Parameters
+    ----------
+    rack : GeneratingRack
+        The transverse generating rack (:func:`rack_from`).
+    rho : ndarray
+        Roll lengths ρ (m), any shape.
+
+    Returns
+    -------
+    X, Y : ndarray
+        Generated points in the gear frame (m), the shape of ``rho``.
+    dX, dY : ndarray
+        dX/dρ, dY/dρ (-).
+
+    References
+    ----------
+    .. [1] F. L. Litvin, A. Fuentes, Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §6.1–6.3, ch. 10.
     """
     rho = np.asarray(rho, dtype=float)
     r, at = rack.reference_radius, rack.transverse_pressure_angle
@@ -134,7 +196,27 @@ def rack_rounding_envelope(rack: GeneratingRack, t: np.ndarray):
     Rack point (ξ_c − (ρ/cos β) cos t, η_c − ρ sin t), normal ∝ (cos t, sin t/cos β); t = αn is
     the tangent point with the flank, t = π/2 the tip line (root circle). Meshing condition
     r φ = ξ − η cos β cot t (Litvin & Fuentes §6.3). With ρ = 0 this is the trochoid of the
-    sharp tool corner. Returns X, Y (m) and dX/dt, dY/dt (m/rad).
+    sharp tool corner.
+
+    Parameters
+    ----------
+    rack : GeneratingRack
+        The transverse generating rack (:func:`rack_from`).
+    t : ndarray
+        Rounding angles t in [αn, π/2] (rad), any shape.
+
+    Returns
+    -------
+    X, Y : ndarray
+        Generated points in the gear frame (m), the shape of ``t``.
+    dX, dY : ndarray
+        dX/dt, dY/dt (m/rad).
+
+    References
+    ----------
+    .. [1] F. L. Litvin, A. Fuentes, Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §6.3.
+    .. [2] [untitled] *Mesh stiffness of helical gears with the hob-generated root transition curve*, §1.
     """
     t = np.asarray(t, dtype=float)
     r, cb, rho0 = rack.reference_radius, math.cos(rack.helix_angle), rack.tip_radius
@@ -152,6 +234,22 @@ def involute_half_angle(rack: GeneratingRack, radius: np.ndarray) -> np.ndarray:
     """Polar angle (rad) of the involute flank from the tooth centreline at ``radius`` (m ≥ r_b).
 
     ψ(R) = s_t/(2r) + inv αt − inv α(R), cos α(R) = r_b/R (ISO 21771 §5.4, eq. 70).
+
+    Parameters
+    ----------
+    rack : GeneratingRack
+        The transverse generating rack (:func:`rack_from`).
+    radius : ndarray
+        Radii R (m), any shape; below r_b the angle at r_b.
+
+    Returns
+    -------
+    ndarray
+        ψ(R) (rad), the shape of ``radius``.
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry, §5.4, eq. 70.
     """
     radius = np.asarray(radius, dtype=float)
     alpha = np.arccos(np.clip(rack.base_radius / radius, -1.0, 1.0))
@@ -202,7 +300,26 @@ def _undercut_crossing(rack: GeneratingRack, n: int = 4001) -> tuple[float, floa
 
 
 def form_point_of(rack: GeneratingRack) -> tuple[float, float, bool]:
-    """(t_F, ρ_F, undercut): rounding angle and roll length (m) of the true form point."""
+    """(t_F, ρ_F, undercut): rounding angle and roll length (m) of the true form point.
+
+    Parameters
+    ----------
+    rack : GeneratingRack
+        The transverse generating rack (:func:`rack_from`).
+
+    Returns
+    -------
+    t_F : float
+        Rack rounding angle (rad) whose trochoid point is the form point (αn unless undercut).
+    rho_F : float
+        Roll length of the form point (m).
+    undercut : bool
+        True when the trochoid cuts the involute.
+
+    References
+    ----------
+    .. [1] [untitled] *Mesh stiffness of helical gears with the hob-generated root transition curve*, §1.
+    """
     rho_b = rack.flank_form_roll
     if rho_b >= 0:
         return rack.normal_pressure_angle, rho_b, False
@@ -214,6 +331,19 @@ def form_point_of(rack: GeneratingRack) -> tuple[float, float, bool]:
 
 def form_roll(rack: GeneratingRack) -> tuple[float, bool]:
     """Roll length ρ_F (m) of the true start of the involute of the gear ``rack`` generates,
-    and whether it is undercut (:func:`gearmesh.profile.form_point`)."""
+    and whether it is undercut (:func:`gearmesh.profile.form_point`).
+
+    Parameters
+    ----------
+    rack : GeneratingRack
+        The transverse generating rack (:func:`rack_from`).
+
+    Returns
+    -------
+    rho_F : float
+        Roll length of the form point (m).
+    undercut : bool
+        True when the trochoid cuts the involute.
+    """
     _, rho, undercut = form_point_of(rack)
     return rho, undercut

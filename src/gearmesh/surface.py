@@ -77,10 +77,33 @@ def involute_helicoid_z(base_radius: float, tan_beta_b: float, u, z, sigma: floa
 
     The point lies at radius r_b√(1 + u²); the roll length is ρ = r_b u.
 
-    Parameters: ``base_radius`` r_b (m); ``tan_beta_b`` (-); ``u`` roll angle (rad, ≥ 0);
-    ``z`` axial position (m); ``sigma`` angle (rad) of the involute's start on the base
-    circle in slice z = 0; ``side`` ±1. Returns (points, normals), arrays of shape
-    broadcast(u, z) + (3,), in m and unit vectors.
+    Parameters
+    ----------
+    base_radius : float
+        r_b (m).
+    tan_beta_b : float
+        Signed tan βb k (-).
+    u : array_like
+        Roll angle (rad, ≥ 0).
+    z : array_like
+        Axial position (m); broadcast with ``u``.
+    sigma : float, default 0.0
+        Angle (rad) of the involute's start on the base circle in slice z = 0.
+    side : {1, -1}, default 1
+        Side sign s.
+
+    Returns
+    -------
+    points : ndarray
+        broadcast(u, z) + (3,) (m).
+    normals : ndarray
+        Outward unit normals, same shape (-).
+
+    References
+    ----------
+    .. [1] *Numerical Simulation of Meshing Line Position and Length for Helical Gears*.
+    .. [2] F. L. Litvin, A. Fuentes, Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §10.4.
     """
     u, z = np.broadcast_arrays(np.asarray(u, dtype=float), np.asarray(z, dtype=float))
     k = float(tan_beta_b)
@@ -98,9 +121,33 @@ def involute_helicoid(base_radius: float, lead_parameter: float, u, theta, sigma
     x = r_b cos(σ + s u + θ) + s r_b u sin(σ + s u + θ),
     y = r_b sin(σ + s u + θ) − s r_b u cos(σ + s u + θ),  z = p θ   (s = ``side``, the contact-line paper: s = 1).
 
-    ``lead_parameter`` p (m/rad, signed; p < 0 is a left-hand flank, must be finite);
-    ``u`` roll angle (rad); ``theta`` helical parameter (rad). Returns (points, unit outward
-    normals) as :func:`involute_helicoid_z`, which also covers spur flanks (p = ∞).
+    The form of :func:`involute_helicoid_z`, which also covers spur flanks (p = ∞).
+
+    Parameters
+    ----------
+    base_radius : float
+        r_b (m).
+    lead_parameter : float
+        p (m/rad, signed; p < 0 is a left-hand flank, must be finite).
+    u : array_like
+        Roll angle (rad).
+    theta : array_like
+        Helical parameter θ (rad); broadcast with ``u``.
+    sigma : float, default 0.0
+        Start angle on the base circle (rad).
+    side : {1, -1}, default 1
+        Side sign s.
+
+    Returns
+    -------
+    points : ndarray
+        broadcast(u, theta) + (3,) (m).
+    normals : ndarray
+        Outward unit normals, same shape (-).
+
+    References
+    ----------
+    .. [1] *Numerical Simulation of Meshing Line Position and Length for Helical Gears*.
     """
     p = float(lead_parameter)
     return involute_helicoid_z(base_radius, base_radius / p, u, p * np.asarray(theta, dtype=float), sigma, side)
@@ -108,7 +155,20 @@ def involute_helicoid(base_radius: float, lead_parameter: float, u, theta, sigma
 
 def flank_tan_base_helix(geom: PairGeometry, gear: int) -> float:
     """Signed tan βb of the contacting flank of ``gear`` (0/1): +h tan βb for the pinion, −h
-    for the gear (h = +1 right-hand pinion); slices turn CCW by z·k/r_b."""
+    for the gear (h = +1 right-hand pinion); slices turn CCW by z·k/r_b.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 for the pinion, 1 for the gear.
+
+    Returns
+    -------
+    float
+        k (-).
+    """
     h = 1.0 if geom.pair.helix_hand == "right" else -1.0
     return (h if gear == 0 else -h) * math.tan(geom.base_helix_angle)
 
@@ -127,8 +187,25 @@ def flank_point(geom: PairGeometry, gear: int, rho, z, tooth: int = 0):
     σ = π/2 + ψ0 + 2π·tooth/z and k = :func:`flank_tan_base_helix`; its transverse section
     is the mirror of the involute of :func:`gearmesh.profile.tooth_profile`.
 
-    Parameters: ``rho`` roll length of this gear (m); ``z`` axial position (m).
-    Returns (points, normals), shape broadcast(rho, z) + (3,).
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 for the pinion, 1 for the gear.
+    rho : array_like
+        Roll length of this gear (m).
+    z : array_like
+        Axial position (m); broadcast with ``rho``.
+    tooth : int, default 0
+        Tooth number (counted CCW).
+
+    Returns
+    -------
+    points : ndarray
+        broadcast(rho, z) + (3,) (m).
+    normals : ndarray
+        Outward unit normals, same shape (-).
     """
     rb = float(geom.base_radius[gear])
     sigma = math.pi / 2 + _psi0(geom, gear) + 2 * math.pi * tooth / geom.pair.teeth[gear]
@@ -143,7 +220,22 @@ def flank_point(geom: PairGeometry, gear: int, rho, z, tooth: int = 0):
 
 def body_rotation(geom: PairGeometry, gear: int, phi1) -> np.ndarray:
     """Angle Φ (rad, CCW about +z) of gear ``gear``'s body frame in the fixed frame at pinion
-    rotation φ1 = roll/r_b1 (rad): Φ1 and Φ2 of the module docstring."""
+    rotation φ1 = roll/r_b1 (rad): Φ1 and Φ2 of the module docstring.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 for the pinion, 1 for the gear.
+    phi1 : array_like
+        Pinion rotation φ1 (rad).
+
+    Returns
+    -------
+    ndarray
+        Φ (rad), the shape of ``phi1``.
+    """
     phi1 = np.asarray(phi1, dtype=float)
     awt = geom.operating_pressure_angle
     rb = geom.base_radius
@@ -154,7 +246,17 @@ def body_rotation(geom: PairGeometry, gear: int, phi1) -> np.ndarray:
 
 def plane_of_action_point(geom: PairGeometry, rho1, z) -> np.ndarray:
     """Fixed-frame point (m) of the plane of action at pinion roll length ρ1 (m) and z (m):
-    T1 + ρ1·d (contact.py), shape broadcast(rho1, z) + (3,)."""
+    T1 + ρ1·d (contact.py), shape broadcast(rho1, z) + (3,).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    rho1 : array_like
+        Pinion roll length ρ1 (m).
+    z : array_like
+        Axial position (m); broadcast with ``rho1``.
+    """
     rho1, z = np.broadcast_arrays(np.asarray(rho1, dtype=float), np.asarray(z, dtype=float))
     awt, rb1 = geom.operating_pressure_angle, float(geom.base_radius[0])
     return np.stack([rb1 * math.cos(awt) + rho1 * math.sin(awt),
@@ -163,7 +265,18 @@ def plane_of_action_point(geom: PairGeometry, rho1, z) -> np.ndarray:
 
 def plane_of_action_normal(geom: PairGeometry) -> np.ndarray:
     """Unit normal (fixed frame) of the plane of action, out of the pinion's driving flank:
-    (d cos βb, −h sin βb). It is the common normal of both flanks at every contact point."""
+    (d cos βb, −h sin βb). It is the common normal of both flanks at every contact point.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    ndarray
+        (3,) unit vector (-).
+    """
     bb = geom.base_helix_angle
     h = 1.0 if geom.pair.helix_hand == "right" else -1.0
     awt = geom.operating_pressure_angle
@@ -182,7 +295,23 @@ def pinion_contact_point(geom: PairGeometry, rho1, z, phi1) -> np.ndarray:
 
     b = R_z(−Φ1(φ1))·(T1 + ρ1 d, z). When (ρ1, z, φ1) is a contact of pair j
     (ρ1 = ρ_SAP1 + r_b1 φ1 + j p_bt + h z tan βb) the point lies on the driving flank of
-    pinion tooth j (:func:`flank_point`). Parameters: ρ1 (m), z (m), φ1 (rad); broadcast.
+    pinion tooth j (:func:`flank_point`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    rho1 : array_like
+        Pinion roll length ρ1 (m).
+    z : array_like
+        Axial position (m).
+    phi1 : array_like
+        Pinion rotation φ1 (rad); the three broadcast together.
+
+    Returns
+    -------
+    ndarray
+        Points broadcast(rho1, z, phi1) + (3,) (m).
     """
     f = plane_of_action_point(geom, rho1, z)
     return _rotate_z(f, -body_rotation(geom, 0, phi1))
@@ -191,7 +320,24 @@ def pinion_contact_point(geom: PairGeometry, rho1, z, phi1) -> np.ndarray:
 def gear_contact_point(geom: PairGeometry, rho1, z, phi1) -> np.ndarray:
     """The plane-of-action point (pinion roll ρ1, z) at pinion rotation φ1 in the gear body
     frame (m): b = R_z(−Φ2(φ1))·(f − (a, 0, 0)). A contact of pair j lies on gear tooth −j
-    at gear roll length ρ2 = ρ_EAP2 − (ρ1 − ρ_SAP1). Parameters: ρ1 (m), z (m), φ1 (rad)."""
+    at gear roll length ρ2 = ρ_EAP2 − (ρ1 − ρ_SAP1).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    rho1 : array_like
+        Pinion roll length ρ1 (m).
+    z : array_like
+        Axial position (m).
+    phi1 : array_like
+        Pinion rotation φ1 (rad); the three broadcast together.
+
+    Returns
+    -------
+    ndarray
+        Points broadcast(rho1, z, phi1) + (3,) (m).
+    """
     f = plane_of_action_point(geom, rho1, z)
     f = f - np.array([geom.center_distance, 0.0, 0.0])
     return _rotate_z(f, -body_rotation(geom, 1, phi1))
@@ -208,7 +354,17 @@ MODIFICATION_FIELDS = ("root_relief", "tip_relief", "root_relief_length", "tip_r
 
 def modification_parameters(geom: PairGeometry) -> np.ndarray:
     """The mesh-in impact paper's six parameters y1..y6 of both gears as a (2, 6) array (m), in the order of
-    :data:`MODIFICATION_FIELDS` (pinion row 0, gear row 1)."""
+    :data:`MODIFICATION_FIELDS` (pinion row 0, gear row 1).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    References
+    ----------
+    .. [1] *Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears*.
+    """
     return np.array([[float(getattr(mod, f)) for f in MODIFICATION_FIELDS] for mod in geom.pair.modification])
 
 
@@ -220,6 +376,28 @@ def relief_depth(params, rho_sap: float, rho_eap: float, face_width: float, rho,
     axes of ``params`` broadcast against ``rho`` and ``z`` (a batch of candidate
     modifications, e.g. a GA population of shape (C, 1, 6) against points (1, M)). A zero
     amount or zero length is no relief; ρ = NaN gives 0.
+
+    Parameters
+    ----------
+    params : array_like
+        (..., 6) y1..y6 (m).
+    rho_sap, rho_eap : float
+        Roll lengths of the start and end of active profile (m).
+    face_width : float
+        b (m).
+    rho : array_like
+        Roll lengths (m), NaN on the fillet.
+    z : array_like
+        Axial positions (m).
+
+    Returns
+    -------
+    ndarray or float
+        Depth δ ≥ 0 (m), broadcast(params[..., 0], rho, z); a scalar for scalar arguments.
+
+    References
+    ----------
+    .. [1] *Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears* (its printed profile and lead forms replaced, see :func:`modification_depth`).
     """
     y1, y2, y3, y4, y5, y6 = np.moveaxis(np.asarray(params, dtype=float), -1, 0)
     rho = np.asarray(rho, dtype=float)
@@ -251,7 +429,20 @@ def fit_modifications(geom: PairGeometry, params) -> np.ndarray:
     """Parameter sets (C, 2, 6) (m) made valid modifications of ``geom``'s flanks (a copy): relief
     lengths whose sum exceeds the active roll length scaled down to fit it, an amount without a
     length (or the reverse) no relief, the unmodified lead length inside the face — so
-    :func:`gearmesh.gear.validate_modifications` accepts every set (GA candidates, tolerance samples)."""
+    :func:`gearmesh.gear.validate_modifications` accepts every set (GA candidates, tolerance samples).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    params : array_like
+        (C, 2, 6) or (2, 6) y1..y6 of pinion and gear (m).
+
+    Returns
+    -------
+    ndarray
+        (C, 2, 6) fitted parameter sets (m).
+    """
     p = np.array(params, dtype=float, ndmin=3)
     for gear in range(2):
         active = float(geom.rho_eap[gear] - geom.rho_sap[gear]) * (1 - 1e-9)
@@ -285,6 +476,29 @@ def modification_depth(geom: PairGeometry, gear: int, rho, z) -> np.ndarray:
     SAP the root parabola continues (non-active flank). ρ = NaN (the fillet, not ground)
     gives 0. ``rho`` and ``z`` broadcast. (:func:`relief_depth` is the same for a batch of
     parameter sets.)
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 for the pinion, 1 for the gear.
+    rho : array_like
+        Roll length of this gear (m), NaN on the fillet.
+    z : array_like
+        Axial position (m).
+
+    Returns
+    -------
+    ndarray
+        δ (m), broadcast(rho, z).
+
+    References
+    ----------
+    .. [1] *Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears*.
+    .. [2] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and geometry, §7.
+    .. [3] F. L. Litvin, A. Fuentes, Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §9.6.
     """
     rho, z = np.broadcast_arrays(np.asarray(rho, dtype=float), np.asarray(z, dtype=float))
     return relief_depth(modification_parameters(geom)[gear], float(geom.rho_sap[gear]), float(geom.rho_eap[gear]),
@@ -330,6 +544,34 @@ def tooth_surface(geom: PairGeometry, gear: int, n_profile: int = 90, n_face: in
     involute it equals the helicoid normal. With ``modified`` the depth of
     :func:`modification_depth` is removed along the normal, P − δ n; zero modification (or
     ``modified=False``) returns the exact generated flank.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 for the pinion, 1 for the gear.
+    n_profile : int, default 90
+        Points along the profile (≥ 6).
+    n_face : int, default 21
+        Transverse slices over the face (≥ 1).
+    modified : bool, default True
+        Remove the pair's modification depth.
+    tooth : int, default 0
+        Tooth number (counted CCW).
+    n_fillet : int, optional
+        Profile points on the fillet (default ``n_profile // 3``, at least 2 on each part).
+
+    Returns
+    -------
+    ToothSurface
+        Points ``x``, ``y``, ``z`` (m), unit normals, ``rho`` (m), ``radius`` (m), ``segment``
+        and ``depth`` (m), each (n_profile, n_face).
+
+    References
+    ----------
+    .. [1] F. L. Litvin, A. Fuentes, Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §10.4.
     """
     if n_profile < 6 or n_face < 1:
         raise ValueError("n_profile must be at least 6 and n_face at least 1")

@@ -61,7 +61,27 @@ _TO_SI = np.array([1e-6, 1e-6, 1e-3, 1e-3, 1e-6, 1e-3])
 
 def helix_slope_tolerance(reference_diameter: float, face_width: float, grade: int) -> float:
     """ISO 1328-1:2013 helix slope tolerance f_HβT (m) of a gear of reference diameter d (m) and
-    face width b (m) in flank tolerance class ``grade`` (module docstring, Formula (10))."""
+    face width b (m) in flank tolerance class ``grade`` (module docstring, Formula (10)).
+
+    Parameters
+    ----------
+    reference_diameter : float
+        d (m).
+    face_width : float
+        b (m) of that gear.
+    grade : int
+        Flank tolerance class A (1 … 11).
+
+    Returns
+    -------
+    float
+        f_HβT (m), unrounded.
+
+    References
+    ----------
+    .. [1] ISO 1328-1:2013, Cylindrical gears — ISO system of flank tolerance classification — Part 1:
+       Definitions and allowable values of deviations relevant to flanks of gear teeth, 5.3.4.1, Formula (10).
+    """
     d, b = reference_diameter * 1e3, face_width * 1e3
     return (0.05 * math.sqrt(d) + 0.35 * math.sqrt(b) + 4.0) * math.sqrt(2.0) ** (grade - 5) * 1e-6
 
@@ -98,7 +118,33 @@ def tolerance_model(geom: PairGeometry, grade: int | None = None, lead_on=("pini
                     modification: Mapping[str, Any] | None = None, field: str = "tolerances") -> ToleranceModel:
     """The deviation model of ``geom``'s pair: lead slope ±f_Hβ of ISO 1328-1 class ``grade`` on the
     gears ``lead_on`` (None: no lead deviation), and ± ``modification`` {pair-file key: value in
-    µm / mm} on every nonzero modification parameter. Refuses bad values naming ``field``."""
+    µm / mm} on every nonzero modification parameter. Refuses bad values naming ``field``.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    grade : int, optional
+        ISO 1328-1 flank tolerance class (1 … 11) of the lead slope; None: no lead deviation.
+        Refused outside the standard's scope (clause 1).
+    lead_on : str or sequence of {'pinion', 'gear'}, default both
+        The gears whose lead slope deviates.
+    modification : mapping, optional
+        Half-widths {pair-file key: value} in the key's unit (µm or mm), in [0, 1000].
+    field : str, default 'tolerances'
+        The config key named in refusals.
+
+    Returns
+    -------
+    ToleranceModel
+        ``modification`` (2, 6) and ``lead`` (2,) half-widths (m; lead over the meshing face width),
+        ``grade``.
+
+    References
+    ----------
+    .. [1] ISO 1328-1:2013, Cylindrical gears — ISO system of flank tolerance classification — Part 1:
+       Definitions and allowable values of deviations relevant to flanks of gear teeth, clause 1 (scope), 5.3.4.1, Formula (10).
+    """
     lead = np.zeros(2)
     if grade is not None:
         if isinstance(grade, bool) or not isinstance(grade, (int, np.integer)) or grade not in GRADES:
@@ -133,7 +179,31 @@ def tolerance_model(geom: PairGeometry, grade: int | None = None, lead_on=("pini
 def unit_deviations(dimensions: int, samples: int, sampling: str = "lhs", seed: int = 0) -> np.ndarray:
     """``samples`` deviation samples (S, k) in [−1, 1]^k, k = ``dimensions`` (module docstring):
     a seeded Latin hypercube (``lhs``) or corners of the box (``corners``: all 2^k when
-    ``samples`` ≥ 2^k, else a seeded choice of them without repetition, in a fixed order)."""
+    ``samples`` ≥ 2^k, else a seeded choice of them without repetition, in a fixed order).
+
+    Parameters
+    ----------
+    dimensions : int
+        k, the number of toleranced quantities.
+    samples : int
+        S requested, in [0, :data:`gearmesh.limits.MAX_SAMPLES`].
+    sampling : {'lhs', 'corners'}, default 'lhs'
+        Latin hypercube or box corners (at most :data:`gearmesh.limits.MAX_CORNER_DIMENSIONS`).
+    seed : int, default 0
+        Seed of numpy's default generator.
+
+    Returns
+    -------
+    ndarray
+        (S, k) unit deviations (-); (0, k) when there is nothing to sample; for ``corners``
+        S = min(samples, 2^k).
+
+    References
+    ----------
+    .. [1] M. D. McKay, R. J. Beckman, W. J. Conover, "A comparison of three methods for selecting
+       values of input variables in the analysis of output from a computer code", Technometrics
+       21(2) (1979) 239–245.
+    """
     if sampling not in SAMPLINGS or sampling == "box":  # box: a design's own worst gears (gearmesh.robust)
         raise GearmeshInputError("sampling", sampling, f"must be one of {list(SAMPLINGS[:2])} here")
     if isinstance(samples, bool) or not isinstance(samples, (int, np.integer)) or not 0 <= samples <= MAX_SAMPLES:
@@ -160,7 +230,27 @@ def apply_deviations(model: ToleranceModel, params: np.ndarray, lead_slope, unit
     the nominal, sample s the unit deviation ``units[s − 1]`` scaled by the half-widths. A
     deviation applies only where the nominal parameter is nonzero, and amounts and lengths are
     clipped at zero (the caller repairs what the deviation made invalid, e.g. relief lengths that
-    no longer fit the flank)."""
+    no longer fit the flank).
+
+    Parameters
+    ----------
+    model : ToleranceModel
+        Half-widths of the deviations (:func:`tolerance_model`).
+    params : ndarray
+        (C, 2, 6) nominal modification parameters of C candidates (m, order of
+        :data:`gearmesh.surface.MODIFICATION_FIELDS`).
+    lead_slope : array_like
+        (2,) nominal lead slope deviations (m).
+    units : ndarray
+        (S, k) unit deviations (:func:`unit_deviations`), k = ``len(model.dimensions)``.
+
+    Returns
+    -------
+    params : ndarray
+        (C, S + 1, 2, 6) parameters (m).
+    lead : ndarray
+        (C, S + 1, 2) lead slopes (m).
+    """
     params = np.asarray(params, dtype=float)
     nc, ns = params.shape[0], units.shape[0]
     p = np.repeat(params[:, None], ns + 1, axis=1)
@@ -182,13 +272,45 @@ def manufactured_population(geom: PairGeometry, model: ToleranceModel, params: n
     (C·(S + 1), 2), candidate-major, sample 0 of each candidate the nominal
     (:func:`apply_deviations`), every row made a valid modification
     (:func:`gearmesh.surface.fit_modifications`). The one population of the optimiser and the
-    impact stage."""
+    impact stage.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    model : ToleranceModel
+        Half-widths of the deviations (:func:`tolerance_model`).
+    params : ndarray
+        (C, 2, 6) nominal modification parameters of C candidates (m, order of
+        :data:`gearmesh.surface.MODIFICATION_FIELDS`).
+    lead_slope : array_like
+        (2,) nominal lead slope deviations (m).
+    units : ndarray
+        (S, k) unit deviations (:func:`unit_deviations`), k = ``len(model.dimensions)``.
+
+    Returns
+    -------
+    params : ndarray
+        (C·(S + 1), 2, 6) valid modification parameters (m).
+    lead : ndarray
+        (C·(S + 1), 2) lead slopes (m).
+    """
     p, lead = apply_deviations(model, params, lead_slope, units)
     return fit_modifications(geom, p.reshape(-1, 2, 6)), lead.reshape(-1, 2)
 
 
 def check_statistic(statistic: str | None, level_percent: float, field: str = "tolerance_statistic") -> None:
-    """Refuse an unknown statistic or a level outside its range (percentile [0, 100], cvar [0, 100))."""
+    """Refuse an unknown statistic or a level outside its range (percentile [0, 100], cvar [0, 100)).
+
+    Parameters
+    ----------
+    statistic : {'max', 'mean', 'percentile', 'cvar'} or None
+        The statistic; None is the nominal only.
+    level_percent : float
+        Its level (%).
+    field : str, default 'tolerance_statistic'
+        The config key named in refusals (its ``level_percent`` sibling for the level).
+    """
     if statistic is not None and statistic not in STATISTICS:
         raise GearmeshInputError(field, statistic, f"must be one of {list(STATISTICS)} (or null: nominal only)")
     high = math.nextafter(100.0, 0.0) if statistic == "cvar" else 100.0
@@ -197,7 +319,29 @@ def check_statistic(statistic: str | None, level_percent: float, field: str = "t
 
 def sample_statistic(values: np.ndarray, statistic: str, level_percent: float = 90.0) -> np.ndarray:
     """The statistic over the last axis of ``values`` (samples equally weighted; module docstring):
-    ``max``, ``mean``, ``percentile`` at ``level_percent`` or ``cvar`` at α = level_percent/100."""
+    ``max``, ``mean``, ``percentile`` at ``level_percent`` or ``cvar`` at α = level_percent/100.
+
+    Parameters
+    ----------
+    values : array_like
+        (..., N) values over the nominal and the samples, in any unit.
+    statistic : {'max', 'mean', 'percentile', 'cvar'}
+        The statistic.
+    level_percent : float, default 90.0
+        Level of ``percentile`` and ``cvar`` (%).
+
+    Returns
+    -------
+    ndarray
+        (...) the statistic, in the unit of ``values``.
+
+    References
+    ----------
+    .. [1] R. J. Hyndman, Y. Fan, "Sample quantiles in statistical packages", The American
+       Statistician 50(4) (1996) 361–365 (definition 7).
+    .. [2] R. T. Rockafellar, S. Uryasev, "Conditional value-at-risk for general loss distributions",
+       Journal of Banking & Finance 26 (2002) 1443–1471 (Proposition 8).
+    """
     x = np.asarray(values, dtype=float)
     if statistic == "max":
         return x.max(axis=-1)
@@ -217,7 +361,18 @@ def sample_statistic(values: np.ndarray, statistic: str, level_percent: float = 
 
 def study_population(tolerances: Mapping[str, Any] | None) -> tuple[int, int, int, int]:
     """The study's ``tolerances:`` section's populations beside the optimisers' samples: (population,
-    seed, heldout, heldout_seed) (:class:`gearmesh.settings.Tolerances`; no section: none)."""
+    seed, heldout, heldout_seed) (:class:`gearmesh.settings.Tolerances`; no section: none).
+
+    Parameters
+    ----------
+    tolerances : mapping or None
+        The study config's ``tolerances:`` section.
+
+    Returns
+    -------
+    tuple of int
+        (population, seed, heldout, heldout_seed); all 0 without a section.
+    """
     from .schema import object_schema, validate
     from .settings import Tolerances
 
@@ -231,7 +386,26 @@ def study_tolerances(geom: PairGeometry, tolerances: Mapping[str, Any] | None):
     """The study's ``tolerances:`` section as (ToleranceModel, samples, sampling, seed); None or {} is
     no tolerance (nominal only). Keys (:class:`gearmesh.settings.Tolerances`): grade (ISO 1328-1 class of the lead slope, null: none),
     lead_on, modification {pair-file key: ±}, samples, sampling, seed (of the samples: the same
-    manufactured population for every optimisation and the impact stage)."""
+    manufactured population for every optimisation and the impact stage).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    tolerances : mapping or None
+        The study config's ``tolerances:`` section.
+
+    Returns
+    -------
+    model : ToleranceModel
+        The deviation model (:func:`tolerance_model`).
+    samples : int
+        Number of samples.
+    sampling : str
+        'lhs' or 'corners'.
+    seed : int
+        Seed of the samples.
+    """
     from .schema import object_schema, validate
     from .settings import Tolerances
 
