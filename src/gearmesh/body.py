@@ -37,10 +37,10 @@ bending of the rim; with the load over its arc 64 harmonics reach 10⁻⁴ (test
 the plate is left out (Kirchhoff): for thick discs it makes the compliance a lower bound.
 Checks (tests/test_body.py): every harmonic of a narrow annulus against the cantilever plate strip
 it becomes (edge load and edge moment, Maxwell–Betti), the series converged, thick discs → 0, and
-the mesh compliance against the 3-D reference's normal-minus-transverse-load compliance (seed
-004 within 0.6 % of the stiffness, the default pair 5.7 % (the plate 97 % and 89 % of the 3-D
+the mesh compliance against the 3-D reference's normal-minus-transverse-load compliance (the improved
+potential-energy paper's gears within 0.6 % of the stiffness, the default pair 5.7 % (the plate 97 % and 89 % of the 3-D
 compliance); 11–36 % of it for the low-fluctuation paper's small thick discs, whose radial span is below their
-thickness, outside a plate theory, and 53–83 % for the β ≈ 30° pairs of seeds 002 and 003).
+thickness, outside a plate theory, and 53–83 % for the β ≈ 30° pairs of the meshing-line and transition-curve papers).
 
 In the mesh, both bodies act in series with the teeth along the transverse line of action:
 δ_t = w tan β_b and w = c_w F_n sin β_b = c_w F_bt tan β_b, so c_body = tan² β_b (c_w1 + c_w2)
@@ -132,7 +132,18 @@ def read_body(spec: Mapping[str, Any]) -> Body:
     """The body keys of a pair-file mapping (others ignored): the web one positive length, ``rigid``
     or a [pinion, gear] pair of either, the hub one positive length or a pair; their agreement with
     the gear (web ≤ face, bore ≤ hub < root circle) is checked by :func:`check_body` once the
-    geometry is known."""
+    geometry is known.
+
+    Parameters
+    ----------
+    spec : mapping
+        A pair file's keys; ``web_thickness_mm`` and ``hub_diameter_mm`` (mm) are read.
+
+    Returns
+    -------
+    Body
+        ``web_thickness`` and ``hub_diameter`` [pinion, gear] in m (inf: a rigid web), None where not given.
+    """
     web, hub = (spec.get(k) for k in BODY_KEYS)
     return Body(None if web is None else _web(BODY_KEYS[0], web),
                 None if hub is None else per_gear_length(BODY_KEYS[1], hub))
@@ -143,7 +154,26 @@ def check_body(body: Body, face_width, bore_radius, root_radius, supports=None) 
     than :data:`gearmesh.limits.MIN_WEB_TO_FACE` of it (naming a likely unit slip), a hub is not
     between the bore and the root circle (all in m, [pinion, gear]; bore may be None), or when a
     body is described without the shafts and bearings (``supports``,
-    :class:`gearmesh.supports.Supports`) that carry the same moment (module docstring)."""
+    :class:`gearmesh.supports.Supports`) that carry the same moment (module docstring).
+
+    Parameters
+    ----------
+    body : Body
+        The gear bodies (m).
+    face_width : sequence of float
+        [pinion, gear] face widths (m).
+    bore_radius : sequence of float or None
+        [pinion, gear] bore radii (m), None when the pair gives none.
+    root_radius : sequence of float
+        [pinion, gear] root radii (m).
+    supports : Supports, optional
+        The pair's shafts and bearings; a described body with defaulted supports is refused.
+
+    Returns
+    -------
+    None
+        Raises :class:`gearmesh.errors.GearmeshInputError` naming the pair-file key.
+    """
     described = (body.web_thickness is not None and not all(body.rigid)) or body.hub_diameter is not None
     if described and supports is not None and supports.defaulted:
         key = "web_thickness_mm" if body.web_thickness is not None else "hub_diameter_mm"
@@ -209,7 +239,37 @@ def plate_edge_compliance(youngs_modulus: float, poisson_ratio: float, hub_radiu
     annular Kirchhoff plate clamped at ``hub_radius`` and free at ``edge_radius`` (m), thickness
     ``thickness`` (m), loaded on the edge, evenly over an arc of ``spread`` rad (0: a point), and
     carried out to ``load_radius`` by a rigid arm; the deflection is the mean over the arc (module
-    docstring). ``point=False``: the force spread evenly around the edge (harmonic 0 alone)."""
+    docstring).
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        E (Pa).
+    poisson_ratio : float
+        ν (-).
+    hub_radius, edge_radius : float
+        Clamped inner radius b and free outer radius a (m), 0 < b < a.
+    thickness : float
+        Plate thickness t (m).
+    load_radius : float, optional
+        Radius (m) the rigid arm carries the force out to (default the edge a).
+    spread : float
+        Arc (rad) the edge load is spread over (default 0: a point).
+    harmonics : int
+        Fourier harmonics summed (default :data:`HARMONICS`, 64).
+    point : bool
+        False: the force spread evenly around the edge (harmonic 0 alone). Default True.
+
+    Returns
+    -------
+    float
+        Axial compliance (m/N).
+
+    References
+    ----------
+    .. [1] Timoshenko S., Woinowsky-Krieger S., *Theory of Plates and Shells*, 2nd ed.,
+       McGraw-Hill, 1959, §§15–18 (axisymmetric bending) and §29 (unsymmetrical bending).
+    """
     b, a, t = float(hub_radius), float(edge_radius), float(thickness)
     if not (0 < b < a and t > 0):
         raise ValueError("need 0 < hub radius < edge radius and a positive thickness")
@@ -239,7 +299,20 @@ def _described_web(geom, gear: int) -> tuple[float, float, float] | None:
 def body_axial_compliance(geom, gear: int) -> float:
     """c_w (m/N) of one gear of ``geom`` (:class:`gearmesh.gear.PairGeometry`): the web of the pair
     file's body (a solid disc of the face width held at the bore when only a hub is stated; 0 for a
-    rigid web), the load at the operating pitch radius."""
+    rigid web), the load at the operating pitch radius.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (material, body, bore, root and operating pitch radii in m).
+    gear : int
+        0 pinion, 1 gear.
+
+    Returns
+    -------
+    float
+        c_w (m/N).
+    """
     web = _described_web(geom, gear)
     if web is None:
         return 0.0
@@ -253,7 +326,25 @@ def web_tilt_compliance(geom, gear: int) -> float:
     """The rim's tilt (rad per N of axial force at the operating pitch radius) of a described body:
     the plate's harmonic 1 at the edge, f₁(a)/a — the rigid tilt of the rim about the diameter
     normal to the load's radius (module docstring; Timoshenko & Woinowsky-Krieger §29). 0 where the
-    bodies add nothing (:func:`describe_body`)."""
+    bodies add nothing (:func:`describe_body`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (material, body, root and operating pitch radii in m).
+    gear : int
+        0 pinion, 1 gear.
+
+    Returns
+    -------
+    float
+        Rim tilt per axial force (rad/N).
+
+    References
+    ----------
+    .. [1] Timoshenko S., Woinowsky-Krieger S., *Theory of Plates and Shells*, 2nd ed.,
+       McGraw-Hill, 1959, §29.
+    """
     if _why_none(geom.pair) is not None:
         return 0.0
     web = _described_web(geom, gear)
@@ -286,14 +377,36 @@ def _why_none(pair) -> str | None:
 def mesh_body_compliance(geom) -> float:
     """Both bodies' compliance in series with the mesh along the transverse line of action (m/N):
     tan² β_b (c_w1 + c_w2) (module docstring); 0 where the bodies add none (no body described,
-    rigid webs, or no material, or neither bore nor hub: :func:`describe_body` says which)."""
+    rigid webs, or no material, or neither bore nor hub: :func:`describe_body` says which).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (base helix angle β_b in rad, the pair file's bodies).
+
+    Returns
+    -------
+    float
+        c_body (m/N).
+    """
     if _why_none(geom.pair) is not None:
         return 0.0
     return math.tan(geom.base_helix_angle) ** 2 * (body_axial_compliance(geom, 0) + body_axial_compliance(geom, 1))
 
 
 def describe_body(geom) -> str:
-    """One sentence for a result's attributes: the gear-body compliance in its mesh stiffness."""
+    """One sentence for a result's attributes: the gear-body compliance in its mesh stiffness.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (the pair file's bodies).
+
+    Returns
+    -------
+    str
+        Why there is none, or the compliance in µm/kN along the transverse line of action.
+    """
     why = _why_none(geom.pair)
     if why is not None:
         return f"none: {why}; the tooth model's ring held at the bore"

@@ -152,13 +152,33 @@ def shaft_deflection(youngs_modulus: float, poisson_ratio: float, shaft_diameter
                      web_tilt: np.ndarray | None = None, face_elements: int = FACE_ELEMENTS) -> ShaftDeflection:
     """Displacements and rotations of a gear's face under a load spread evenly over it.
 
-    The beam lies on the z axis (model frame), the face centre at z = 0, the bearings at
-    z = ∓L/2 − ``offset`` (m), each with half of ``bearing_radial`` (x and y) and of
-    ``bearing_axial`` (N/m; inf: rigid). Segments within ±``body_length``/2 have ``body_diameter``,
-    the rest ``shaft_diameter`` (m). ``load`` (3,) the force (N) acting at ``pitch_point`` (3,)
-    (m, from the axis) spread evenly over z ∈ ±``face_width``/2; its torque about the axis is
-    reacted at the bearing on the side of ``torque_end`` (±1: the +z or −z end), which holds the
-    twist. ``web_tilt`` (3,) a rotation (rad) of the rim relative to the shaft added over the face.
+    Parameters
+    ----------
+    youngs_modulus, poisson_ratio : float
+        E (Pa) and ν (-).
+    shaft_diameter, body_diameter : float
+        Diameter (m) of the shaft, and of the segments within ±``body_length``/2 (the gear body).
+    span, offset, body_length, face_width : float
+        (m) The beam on the z axis (model frame), face centre z = 0: bearings at z = ∓L/2 − offset,
+        the body over ±body_length/2, the load spread evenly over z ∈ ±face_width/2.
+    bearing_radial, bearing_axial : float
+        Stiffness of both bearings together (N/m; inf: rigid): each bearing half of it, radial in x and y.
+    load, pitch_point : ndarray
+        (3,) the force (N) and its point of action from the axis (m).
+    torque_end, face_elements : int
+        ±1: the load's torque about the axis is reacted at the bearing of the +z or −z end, which holds
+        the twist; beam elements over the face (default :data:`FACE_ELEMENTS`).
+    web_tilt : ndarray, optional
+        (3,) a rotation (rad) of the rim relative to the shaft, added over the face.
+
+    Returns
+    -------
+    ShaftDeflection
+        Face nodes ``z`` (K,) m, their displacements ``u`` (K, 3) m and rotations ``theta`` (K, 3) rad.
+
+    References
+    ----------
+    .. [1] Przemieniecki J.S., *Theory of Matrix Structural Analysis*, McGraw-Hill, 1968, §5.6.
     """
     e, nu = youngs_modulus, poisson_ratio
     g = e / (2.0 * (1.0 + nu))
@@ -269,7 +289,25 @@ def _rigid_shaft(geom, tilt: np.ndarray | None, pitch_point: np.ndarray) -> Shaf
 def mesh_deflection(geom) -> MeshDeflection:
     """The system deflection of ``geom``'s pair per newton of F_bt (module docstring); zero, with
     the reason in ``included``, when the pair file states no shafts. Computed once per pair (the
-    pair, a frozen dataclass, is the key: its geometry follows from it)."""
+    pair, a frozen dataclass, is the key: its geometry follows from it).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry; its pair's supports, bodies and material.
+
+    Returns
+    -------
+    MeshDeflection
+        ``misalignment_per_force``, ``approach_per_force``, ``curvature_per_force`` (m/N of F_bt),
+        ``parts`` (m/N), the torque sides and ``included`` (words).
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2019, Calculation of load capacity of spur and helical gears — Part 1,
+       7.6 (the mesh misalignment f_sh from the deformation of shafts and gear bodies).
+    .. [2] Przemieniecki J.S., *Theory of Matrix Structural Analysis*, McGraw-Hill, 1968, §5.6.
+    """
     known = _DEFLECTIONS.get(geom.pair)
     if known is None:
         if len(_DEFLECTIONS) >= 256:
@@ -332,12 +370,36 @@ def _deflection(geom) -> MeshDeflection:
 def mesh_misalignment(geom, force) -> np.ndarray:
     """The mesh's lead mismatch beyond the gears' own lead slopes (m) at transverse forces ``force``
     (N): the stated mesh misalignment f_ma plus the system deflection's f_sh
-    (:func:`mesh_deflection`), in the convention of :mod:`gearmesh.deviation`."""
+    (:func:`mesh_deflection`), in the convention of :mod:`gearmesh.deviation`.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (its stated misalignment f_ma in m, supports and bodies).
+    force : array_like
+        Transverse forces F_bt (N).
+
+    Returns
+    -------
+    ndarray
+        Lead mismatch (m), shaped like ``force``.
+    """
     return geom.pair.deviations.misalignment + mesh_deflection(geom).misalignment(force)
 
 
 def describe_deflection(geom) -> str:
-    """One sentence for a result's attributes: the deflections the mesh includes."""
+    """One sentence for a result's attributes: the deflections the mesh includes.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+
+    Returns
+    -------
+    str
+        What is included, with f_sh and the supports' approach in µm/kN of F_bt.
+    """
     d = mesh_deflection(geom)
     if not d.active:
         return d.included

@@ -89,6 +89,13 @@ def lame_parameters(youngs_modulus: float, poisson_ratio: float, plane: str = DE
     """Lamé constants (λ, μ) in Pa of plane strain or plane stress (Timoshenko & Goodier §§8, 16).
 
     Plane strain λ = Eν/((1+ν)(1−2ν)); plane stress λ* = 2λμ/(λ+2μ) = Eν/(1−ν²); μ = E/(2(1+ν)).
+
+    Parameters
+    ----------
+    youngs_modulus, poisson_ratio : float
+        E (Pa) and ν (-).
+    plane : {'strain', 'stress'}
+        Plane state (default 'strain').
     """
     if plane not in PLANES:
         raise GearmeshInputError("plane", plane, f"must be one of {list(PLANES)}")
@@ -100,12 +107,18 @@ def lame_parameters(youngs_modulus: float, poisson_ratio: float, plane: str = DE
 
 def triangulate(vertices: np.ndarray, segments: np.ndarray, max_area: float, min_angle: float = 30.0,
                 holes: np.ndarray | None = None):
-    """Quality triangulation (skfem ``MeshTri``) of a planar straight-line graph.
-
-    ``vertices`` (N, 2) in m, ``segments`` (S, 2) vertex index pairs; Triangle's ``p``
-    (respect the segments), ``q`` (minimum angle) and ``a`` (maximum area, m²) switches. The
+    """Quality triangulation (skfem ``MeshTri``) of a planar straight-line graph, by Triangle's
+    ``p`` (respect the segments), ``q`` (minimum angle) and ``a`` (maximum area) switches. The
     input vertices keep their indices in the mesh (checked), so a load can be put on one.
-    ``holes`` (H, 2): a point inside each hole.
+
+    Parameters
+    ----------
+    vertices, segments : ndarray
+        (N, 2) vertices (m) and (S, 2) vertex index pairs.
+    max_area, min_angle : float
+        Largest triangle area (m²) and smallest angle (degrees, default 30).
+    holes : ndarray, optional
+        (H, 2) a point inside each hole (m).
     """
     import triangle
     from skfem import MeshTri
@@ -170,7 +183,17 @@ def point_load_matrix(solver: ElasticSolver, vertices: np.ndarray, directions: n
 
 
 def probe_displacements(solver: ElasticSolver, u: np.ndarray, points: np.ndarray) -> np.ndarray:
-    """Displacements (2, n, m) in m at ``points`` (2, n) of the solutions ``u`` (N, m)."""
+    """Displacements (2, n, m) in m at ``points`` (2, n) of the solutions ``u`` (N, m).
+
+    Parameters
+    ----------
+    solver : ElasticSolver
+        The factorised problem whose basis interpolates ``u``.
+    u : ndarray
+        (N, m) nodal displacements (m) of m load cases.
+    points : ndarray
+        (2, n) points (m).
+    """
     n = points.shape[1]
     v = solver.basis.probes(np.asarray(points, dtype=float)) @ u  # rows: x of all points, then y
     return np.stack([v[:n], v[n:]])
@@ -208,8 +231,15 @@ def rigid_displacement(t: np.ndarray, omega: np.ndarray, centre, point) -> np.nd
 
 
 def resample_polyline(points: np.ndarray, spacing: float) -> np.ndarray:
-    """Points (k, 2) equally spaced by arc length (at most ``spacing`` apart, m) along the
-    dense polyline ``points`` (n, 2), both ends kept."""
+    """Points (k, 2) equally spaced by arc length along a dense polyline, both ends kept.
+
+    Parameters
+    ----------
+    points : ndarray
+        (n, 2) the polyline (m).
+    spacing : float
+        Largest distance between the output points (m).
+    """
     seg = np.hypot(*np.diff(points, axis=0).T)
     s = np.concatenate([[0.0], np.cumsum(seg)])
     k = max(int(math.ceil(s[-1] / spacing)), 1)
@@ -408,10 +438,26 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
 def gear_sector(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAULT_SIZE,
                 neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None, ring: bool = False,
                 root_chord: float | None = None):
-    """(profile, sector) of gear ``gear`` (0 pinion, 1 gear): the profile of
-    :func:`gearmesh.profile.tooth_profile` and the sector outline with the load rolls (m)
-    as vertices; ``size`` in normal modules; ``bore_radius`` (m) defaults to the pair's;
-    ``ring``: the whole ring with ``neighbours`` teeth each side (:func:`sector_outline`)."""
+    """(profile, sector) of gear ``gear``: the profile of :func:`gearmesh.profile.tooth_profile`
+    and the sector outline (:func:`sector_outline`) with the load rolls as vertices.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    gear : int
+        0 pinion, 1 gear.
+    load_rolls : array_like
+        Roll lengths (m) of the load points, on the involute.
+    size : float
+        Element edge on the loaded tooth in normal modules (default 0.05).
+    neighbours : int or None
+        Teeth each side of the loaded one (default None: the whole gear).
+    bore_radius : float, optional
+        Bore radius (m); defaults to the pair's.
+    ring, root_chord
+        As in :func:`sector_outline` (the whole ring with ``neighbours`` teeth each side; θ_f in rad).
+    """
     from .profile import tooth_profile
     require_stiffness_data(geom)
     if not size > 0:
@@ -490,10 +536,29 @@ def tooth_compliance(geom: PairGeometry, gear: int, rho, plane: str = DEFAULT_PL
     """FE compliance of one tooth of gear ``gear`` under a unit load along the line of action
     at roll lengths ``rho`` (m), on either flank (module docstring for model and read-out).
 
-    Parameters: ``plane`` 'strain' or 'stress'; ``size`` element edge on the loaded tooth in
-    normal modules; ``neighbours`` teeth modelled on each side (None: the whole gear, no
-    cuts); ``bore_radius`` (m) to override the pair's (rim-thickness studies); ``ring``: the
-    whole ring with only ``neighbours`` teeth each side (the domain of :mod:`gearmesh.fe3d`).
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    gear : int
+        0 pinion, 1 gear.
+    rho : array_like
+        Roll lengths (m) on the involute.
+    plane : {'strain', 'stress'}
+        Plane state (default 'strain').
+    size : float
+        Element edge on the loaded tooth in normal modules (default 0.05).
+    neighbours : int or None
+        Teeth modelled on each side (default None: the whole gear, no cuts).
+    bore_radius : float, optional
+        Bore radius (m) overriding the pair's (rim-thickness studies).
+    ring : bool
+        The whole ring with only ``neighbours`` teeth each side (the domain of :mod:`gearmesh.fe3d`).
+
+    Returns
+    -------
+    ToothCompliance
+        ``total``, ``body``, ``tooth`` … per unit width (m²/N) at ``rho`` (m).
     """
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
     profile, sector, model, mesh, solver = loaded_tooth(geom, gear, rho, plane, size, neighbours, bore_radius, ring)
@@ -656,7 +721,17 @@ def weber_approach(depth, half_width, youngs_modulus: float, poisson_ratio: floa
     (2/(πE))·[ln(2d/a) − ν/2]. Derivation: ∫₀ᵈ ε_z dz on the axis of the strip with
     Johnson's (Contact Mechanics, 1985, eq. 2.40/5.?) subsurface stresses σ_z = −p₀a/√(a²+z²),
     σ_x = −p₀[(a² + 2z²)/√(a²+z²) − 2z]/a, whose integrals are −p₀a·asinh(d/a) and
-    −p₀·d(√(a²+d²) − d)/a → −p₀a·ln(2d/a) and −p₀a/2 for d ≫ a; p₀a = 2/π per unit load."""
+    −p₀·d(√(a²+d²) − d)/a → −p₀a·ln(2d/a) and −p₀a/2 for d ≫ a; p₀a = 2/π per unit load.
+
+    Parameters
+    ----------
+    depth, half_width : array_like
+        Depth d of the point below the surface and the strip's half-width a (m).
+    youngs_modulus, poisson_ratio : float
+        E (Pa) and ν (-).
+    plane : {'strain', 'stress'}
+        Plane state (default 'strain').
+    """
     d = np.asarray(depth, dtype=float)
     a = np.asarray(half_width, dtype=float)
     e, nu = float(youngs_modulus), float(poisson_ratio)

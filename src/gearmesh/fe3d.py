@@ -93,6 +93,22 @@ def extrude(points: np.ndarray, triangles: np.ndarray, z: np.ndarray, twist: flo
     Each prism is cut into three tetrahedra so that the diagonal of every side face runs
     from its higher-numbered bottom vertex to its lower-numbered top vertex: neighbouring
     prisms cut a shared face alike, so the mesh is conforming.
+
+    Parameters
+    ----------
+    points : ndarray
+        (2, N) section vertices (m).
+    triangles : ndarray
+        (3, T) vertex indices of the section's triangles.
+    z : ndarray
+        (K,) layer positions along the axis (m), increasing.
+    twist : float
+        Turn of the section per unit z (rad/m; tan β / r for the helix, ISO 21771).
+
+    Returns
+    -------
+    skfem.MeshTet
+        (3, K·N) vertices (m) and 3·(K − 1)·T positively oriented tetrahedra.
     """
     from skfem import MeshTet
 
@@ -194,7 +210,13 @@ def roll_sign() -> int:
     flank's contact with a fixed line of action to the roll length ρ − r_b·dθ (the base
     point of every roll lies counter-clockwise of the involute's origin by ρ/r_b, and the
     turn carries the base point of ρ − r_b·dθ onto the fixed tangent point). Checked in the
-    tests: the contact points of every section lie in the plane of action."""
+    tests: the contact points of every section lie in the plane of action.
+
+    Returns
+    -------
+    int
+        s = −1.
+    """
     return -1
 
 
@@ -203,13 +225,31 @@ def gear_model_3d(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAU
                   face_width: float | None = None, solver: str = "auto") -> GearModel3D:
     """Mesh, assemble and prepare the multigrid of gear ``gear`` (0 pinion, 1 gear) in 3-D.
 
-    ``load_rolls`` (m): every roll length a load line will cross a layer at (vertices of
-    the section's right flank); ``size``: boundary element edge on the loaded tooth in
-    normal modules (:func:`gearmesh.fe.sector_outline`); ``layers``: number of equal
-    layers over the face (default: the face width over the loaded tooth's edge, rounded
-    up); ``face_width`` (m) defaults to the pair's; ``solver`` 'direct' (sparse LU, one
-    factorisation for every line), 'amg' (CG with smoothed-aggregation multigrid, pyamg) or
-    'auto' (direct up to :data:`DIRECT_LIMIT` unknowns).
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    gear : int
+        0 pinion, 1 gear.
+    load_rolls : array_like
+        Every roll length (m) a load line will cross a layer at (vertices of the section's right flank).
+    size : float
+        Boundary element edge on the loaded tooth in normal modules (default 0.2;
+        :func:`gearmesh.fe.sector_outline`).
+    layers : int, optional
+        Number of equal layers over the face (default: the face width over the loaded tooth's edge, rounded up).
+    neighbours : int
+        Teeth kept each side of the loaded one on the ring (default 3).
+    face_width : float, optional
+        Face width (m); defaults to the pair's.
+    solver : {'auto', 'direct', 'amg'}
+        'direct' (sparse LU, one factorisation for every line), 'amg' (CG with smoothed-aggregation
+        multigrid, pyamg) or 'auto' (default: direct up to :data:`DIRECT_LIMIT` unknowns).
+
+    Returns
+    -------
+    GearModel3D
+        The assembled model: layers ``z`` (m), ``twist`` (rad/m), the solver's factors or hierarchy.
     """
     from skfem import Basis, ElementTetP2, ElementVector
 
@@ -288,13 +328,47 @@ class LineCompliance3D:
 
 def line_rolls(geom: PairGeometry, gear: int, rho0, z: np.ndarray) -> np.ndarray:
     """Roll length (R, K) in m of the contact of each line (``rho0`` at z = 0) in the section
-    at each layer ``z``: ρ(z) = ρ₀ + s·z·tan βb (:func:`roll_sign`; r_b·θ(z) = z·tan βb)."""
+    at each layer ``z``: ρ(z) = ρ₀ + s·z·tan βb (:func:`roll_sign`; r_b·θ(z) = z·tan βb).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (base helix angle βb in rad).
+    gear : int
+        0 pinion, 1 gear (the formula is the same for both).
+    rho0 : array_like
+        (R,) roll length (m) of each line at z = 0.
+    z : ndarray
+        (K,) layer positions (m).
+
+    Returns
+    -------
+    ndarray
+        (R, K) roll lengths (m).
+    """
     return np.asarray(rho0, float)[:, None] + roll_sign() * math.tan(geom.base_helix_angle) * np.asarray(z)[None, :]
 
 
 def layer_grid_rolls(geom: PairGeometry, gear: int, rho0, z: np.ndarray) -> np.ndarray:
     """Every roll length (m) the lines ``rho0`` touch at the layers ``z`` within the active
-    flank: the vertices the 2-D section must carry."""
+    flank: the vertices the 2-D section must carry.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (active flank [ρ_SAP, ρ_EAP] in m).
+    gear : int
+        0 pinion, 1 gear.
+    rho0 : array_like
+        (R,) roll length (m) of each line at z = 0.
+    z : ndarray
+        (K,) layer positions (m).
+
+    Returns
+    -------
+    ndarray
+        Sorted distinct roll lengths (m), equal ones up to 1e-9 m_n merged.
+    """
     r = line_rolls(geom, gear, rho0, z)
     lo, hi = geom.rho_sap[gear], geom.rho_eap[gear]
     r = np.sort(r[(r >= lo - 1e-12) & (r <= hi + 1e-12)])
@@ -422,7 +496,25 @@ def richardson(values, ratio: float) -> dict[str, float]:
     (h_{i+1} = h_i / ratio): observed order p = ln((c₁−c₂)/(c₂−c₃))/ln ratio and
     c∞ = c₃ + (c₃ − c₂)/(ratio^p − 1) (Richardson; Roache 1998, Verification and Validation
     in Computational Science, §5). NaN order when the differences do not shrink
-    monotonically; then c∞ is the finest value."""
+    monotonically; then c∞ is the finest value.
+
+    Parameters
+    ----------
+    values : sequence of float
+        Results from coarse to fine (at least three; any units).
+    ratio : float
+        Refinement ratio of successive meshes (> 1).
+
+    Returns
+    -------
+    dict of str to float
+        ``order`` p (-), ``limit`` c∞ and ``error_estimate`` |c∞ − c₃| (units of ``values``).
+
+    References
+    ----------
+    .. [1] Roache P.J., *Verification and Validation in Computational Science and Engineering*,
+       Hermosa Publishers, 1998, §5.
+    """
     c1, c2, c3 = (float(v) for v in values[-3:])
     d1, d2 = c1 - c2, c2 - c3
     if d1 == 0 or d2 == 0 or d1 * d2 < 0 or abs(d2) >= abs(d1):

@@ -43,7 +43,28 @@ def fe_tooth_compliance_cached(geom: PairGeometry, gear: int, n_roll: int = DEFA
     """:func:`gearmesh.fe.tooth_compliance` at ``n_roll`` equally spaced roll lengths over [ρ_SAP, ρ_EAP],
     kept in an in-process LRU cache keyed by the pair data and the settings, so that the
     stages of one process (stiffness, LTCA, impact, the GA's candidates of one pair) mesh
-    and solve each gear once."""
+    and solve each gear once.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    gear : int
+        0 pinion, 1 gear.
+    n_roll : int
+        Roll-length nodes (≥ 4; default :data:`gearmesh.fe.DEFAULT_ROLL_NODES`, 17).
+    plane : {'strain', 'stress'}
+        Plane state (default 'strain').
+    size : float
+        Element edge on the loaded tooth in normal modules (default 0.05).
+    neighbours : int or None
+        Teeth modelled each side of the loaded one (default None: the whole gear).
+
+    Returns
+    -------
+    ToothCompliance
+        ``rho`` (m) and the compliances ``total``, ``tooth``, ``body`` (m²/N) at it.
+    """
     if int(n_roll) != n_roll or n_roll < 4:
         raise GearmeshInputError("n_roll", n_roll, "must be a whole number >= 4 (cubic spline)")
     settings = (int(n_roll), plane, float(size), neighbours)
@@ -63,7 +84,20 @@ def seed_cache(ds, geom: PairGeometry) -> None:
     :func:`gearmesh.datasets.fe.fe_compliance_dataset` of the same pair) into the in-process
     cache under the settings they were computed with, so a stage of the same pair with the
     same settings reads them instead of meshing again: the table is computed once per gear
-    geometry in the workflow, and every stage using ``method: fe`` takes it from the file."""
+    geometry in the workflow, and every stage using ``method: fe`` takes it from the file.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The pair's ``fe_compliance.nc`` (roll in m, compliances in m²/N, per gear).
+    geom : PairGeometry
+        The pair's geometry; its roll nodes must be those of ``ds`` (else
+        :class:`gearmesh.errors.GearmeshInputError`).
+
+    Returns
+    -------
+    None
+    """
     settings = (int(ds.attrs["roll_nodes"]), str(ds.attrs["plane"]), float(ds.attrs["size_normal_modules"]),
                 DEFAULT_NEIGHBOURS)
     for gear, name in enumerate(GEARS):
@@ -84,7 +118,19 @@ def seed_cache(ds, geom: PairGeometry) -> None:
 
 
 def use_fe_tables(ds, geom: PairGeometry) -> None:
-    """:func:`seed_cache` when a stage was handed its pair's ``fe_compliance.nc`` (else nothing)."""
+    """:func:`seed_cache` when a stage was handed its pair's ``fe_compliance.nc`` (else nothing).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset or None
+        The pair's ``fe_compliance.nc``, or None.
+    geom : PairGeometry
+        The pair's geometry.
+
+    Returns
+    -------
+    None
+    """
     if ds is not None:
         seed_cache(ds, geom)
 
@@ -99,6 +145,29 @@ def fe_slice_compliance_table(geom: PairGeometry, gear: int, n_roll: int = DEFAU
     Components: 'bending' the tooth's own deflection (bending + shear + axial of the 2-D
     continuum), 'fillet' the body part (root-section rigid motion), 'shear' and 'axial'
     zero (:mod:`gearmesh.fe`, "Split of c_FE"); cubic splines over ``n_roll`` FE roll positions.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    gear : int
+        0 pinion, 1 gear.
+    n_roll : int
+        Roll-length nodes of the FE solution (≥ 4; default 17).
+    plane : {'strain', 'stress'}
+        Plane state (default 'strain').
+    size : float
+        Element edge on the loaded tooth in normal modules (default 0.05).
+    neighbours : int or None
+        Teeth modelled each side of the loaded one (default None: the whole gear).
+    profile : optional
+        The gear's tooth profile (:func:`gearmesh.profile.tooth_profile`) for the table's
+        tooth model (default: generated).
+
+    Returns
+    -------
+    SliceComplianceTable
+        Method 'fe': ``rho`` (m), components (m²/N) at the FE roll nodes.
     """
     res = fe_tooth_compliance_cached(geom, gear, n_roll, plane, size, neighbours)
     return compliance_table(geom, gear, res.rho, res.tooth, res.body, res.load_angle, profile)
@@ -108,7 +177,28 @@ def compliance_table(geom: PairGeometry, gear: int, rho: np.ndarray, tooth: np.n
                      load_angle: np.ndarray, profile=None):
     """A :class:`gearmesh.tooth.SliceComplianceTable` (method 'fe') of a tooth compliance
     per unit width (m²/N) given at roll lengths ``rho`` (m): ``tooth`` as 'bending', ``body``
-    as 'fillet', 'shear' and 'axial' zero; cubic splines."""
+    as 'fillet', 'shear' and 'axial' zero; cubic splines.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    gear : int
+        0 pinion, 1 gear.
+    rho : ndarray
+        (n,) roll lengths (m), increasing.
+    tooth, body : ndarray
+        (n,) tooth and body (fillet-foundation) compliance per unit width (m²/N).
+    load_angle : ndarray
+        (n,) load angle α1 (rad).
+    profile : optional
+        The gear's tooth profile for the table's tooth model (default: generated).
+
+    Returns
+    -------
+    SliceComplianceTable
+        Method 'fe', callable at roll lengths (m) giving m²/N.
+    """
     from scipy.interpolate import CubicSpline
 
     zero = np.zeros_like(rho)

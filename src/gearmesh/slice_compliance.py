@@ -8,8 +8,9 @@ compliance from here; the helical assembly of the slices into a mesh stiffness i
 A *per-unit-width* stiffness k0 is in N/m per m of face width (N/m²) and its compliance
 c0 = 1/k0 in m²/N; a slice of transverse width Δz then has stiffness k0·Δz (N/m).
 
-Model (one transverse slice of one tooth, Smith's slice theory as used in seeds 003/004)
-------------------------------------------------------------------------------------
+Model (one transverse slice of one tooth, the slice theory of the transition-curve and
+improved potential-energy papers)
+--------------------------------------------------------------------------------
 The tooth is a non-uniform cantilever along its centre line (y axis, gear centre at the
 origin; half-thickness x(y)). A unit load at the contact point P = (x_P, y_P) of roll
 length ρ acts along the line of action, at the load angle α1 = α_ρ − ψ_ρ to the normal of
@@ -50,8 +51,8 @@ The three cantilever models (``method``):
 Fillet-foundation term: per slice. Sainsot's formula is for a tooth of width L loaded
 uniformly; the slice theory cuts the tooth into uncoupled transverse slices, each loaded
 at its own height, so its per-unit-width form (L → 1, local α1 and u_f, as the transition-curve paper does)
-is the consistent choice and reduces exactly to Sainsot's spur formula for β = 0. Seed
-004's single per-tooth term with the face width B and the nominal pressure angle ignores
+is the consistent choice and reduces exactly to Sainsot's spur formula for β = 0. The improved
+potential-energy paper's single per-tooth term with the face width B and the nominal pressure angle ignores
 where the load sits and how much of the face is loaded (wrong while a line enters or
 leaves the face); the low-fluctuation paper's single k_f in series with *all* contact lines is
 dimensionally a series element shared by parallel paths, which is not physical.
@@ -89,7 +90,18 @@ METHODS = TOOTH_METHODS
 
 @lru_cache(maxsize=16)
 def leggauss(n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Gauss–Legendre nodes and weights on [−1, 1] (numpy), cached (read-only arrays)."""
+    """Gauss–Legendre nodes and weights on [−1, 1] (numpy), cached (read-only arrays).
+
+    Parameters
+    ----------
+    n : int
+        Number of nodes.
+
+    Returns
+    -------
+    nodes, weights : ndarray
+        (n,) each, read-only.
+    """
     t, w = _leggauss(n)
     t.flags.writeable = False
     w.flags.writeable = False
@@ -112,6 +124,18 @@ SAINSOT_COEFFICIENTS = np.array([
 
 
 def check_method(method: str) -> str:
+    """The tooth model ``method`` if it is one of :data:`METHODS`, else a :class:`GearmeshInputError`.
+
+    Parameters
+    ----------
+    method : str
+        Tooth model name: 'traditional', 'improved', 'transition' or 'fe'.
+
+    Returns
+    -------
+    str
+        ``method`` unchanged.
+    """
     if method not in METHODS:
         raise GearmeshInputError("method", method, f"must be one of {list(METHODS)}")
     return method
@@ -125,16 +149,27 @@ def check_method(method: str) -> str:
 def hertz_stiffness_per_width(youngs_modulus: float, poisson_ratio: float) -> float:
     """Hertzian line-contact stiffness per unit contact-line length, k_h0 = πE/(4(1−ν²)).
 
-    Yang & Sun (1985); docs/modelling.md and the transition-curve paper (two bodies of the same material).
+    Yang & Sun (1985) [1]; docs/modelling.md and the transition-curve paper [2] (two bodies of
+    the same material).
 
     Parameters
     ----------
-    youngs_modulus : E (Pa).
-    poisson_ratio : ν (-).
+    youngs_modulus : float
+        Young's modulus E (Pa).
+    poisson_ratio : float
+        Poisson's ratio ν (-).
 
     Returns
     -------
-    k_h0 in N/m per m of contact-line length (N/m²).
+    float
+        k_h0 in N/m per m of contact-line length (N/m²).
+
+    References
+    ----------
+    .. [1] Yang D.C.H., Sun Z.S., "A rotary model for spur gear dynamics", J. Mech. Transm.
+       Autom. Des. 107 (1985) 529–535.
+    .. [2] [untitled] Mesh stiffness of helical gears with the hob-generated root transition
+       curve (docs/references.md, document 003).
     """
     return math.pi * youngs_modulus / (4.0 * (1.0 - poisson_ratio**2))
 
@@ -147,8 +182,20 @@ def sainsot_coefficients(h_f: float, theta_f: float) -> np.ndarray:
 
     Parameters
     ----------
-    h_f : r_f / r_int, root over bore radius (-).
-    theta_f : half angle of the tooth on the root circle (rad).
+    h_f : float
+        r_f / r_int, root over bore radius (-).
+    theta_f : float
+        Half angle of the tooth on the root circle (rad).
+
+    Returns
+    -------
+    ndarray
+        (4,) L*, M*, P*, Q* (-).
+
+    References
+    ----------
+    .. [1] Sainsot P., Velex P., Duverger O., "Contribution of gear body to tooth deflections —
+       a new bidimensional analytical formula", J. Mech. Des. 126 (2004) 748–752.
     """
     v = np.array([1.0 / theta_f**2, h_f**2, h_f / theta_f, 1.0 / theta_f, h_f, 1.0])
     return SAINSOT_COEFFICIENTS @ v
@@ -164,13 +211,29 @@ def fillet_foundation_compliance(load_angle, u_f, s_f: float, theta_f: float, h_
 
     Parameters
     ----------
-    load_angle : α_m, angle of the load to the normal of the tooth centre line (rad), array.
-    u_f : distance (m) along the centre line from the root circle to the intersection of
-        the load line with the centre line, array.
-    s_f : tooth thickness on the root circle (m), S_f = 2 r_f θ_f.
-    theta_f : half angle of the tooth on the root circle (rad).
-    h_f : r_f / r_int (-).
-    youngs_modulus : E (Pa).
+    load_angle : array_like
+        α_m, angle of the load to the normal of the tooth centre line (rad).
+    u_f : array_like
+        Distance (m) along the centre line from the root circle to the intersection of
+        the load line with the centre line (broadcasts with ``load_angle``).
+    s_f : float
+        Tooth thickness on the root circle (m), S_f = 2 r_f θ_f.
+    theta_f : float
+        Half angle of the tooth on the root circle (rad).
+    h_f : float
+        r_f / r_int (-).
+    youngs_modulus : float
+        E (Pa).
+
+    Returns
+    -------
+    ndarray
+        c_f (m²/N), shaped like the broadcast of ``load_angle`` and ``u_f``.
+
+    References
+    ----------
+    .. [1] Sainsot P., Velex P., Duverger O., "Contribution of gear body to tooth deflections —
+       a new bidimensional analytical formula", J. Mech. Des. 126 (2004) 748–752.
     """
     lm, mm, pm, qm = sainsot_coefficients(h_f, theta_f)
     a = np.asarray(load_angle, dtype=float)
@@ -224,7 +287,30 @@ def tooth_slice_compliance(model: ToothModel, rho, n_gauss: int = 64,
     A = y_P cos α1 − x_P sin α1. Formulas: module docstring (Yang & Lin 1987; Tian 2004;
     Sainsot et al. 2004).
 
-    Returns a dict with 'bending', 'shear', 'axial', 'fillet' arrays shaped like ``rho``.
+    Parameters
+    ----------
+    model : ToothModel
+        The tooth's cantilever (:func:`gearmesh.tooth.tooth_model`).
+    rho : array_like
+        Roll lengths ρ (m) of the contact points.
+    n_gauss : int
+        Gauss–Legendre nodes on the involute (default 64).
+    moments : _FixedMoments, optional
+        Precomputed moments of the fixed segments (default: computed with 200 nodes).
+
+    Returns
+    -------
+    dict of str to ndarray
+        'bending', 'shear', 'axial', 'fillet' compliances (m²/N), each shaped like ``rho``.
+
+    References
+    ----------
+    .. [1] Yang D.C.H., Lin J.Y., "Hertzian damping, tooth friction and bending elasticity in
+       gear impact dynamics", J. Mech. Transm. Autom. Des. 109 (1987) 189–196.
+    .. [2] Tian X., "Dynamic simulation for system response of gearbox including localized
+       gear faults", MSc thesis, University of Alberta, 2004.
+    .. [3] Sainsot P., Velex P., Duverger O., "Contribution of gear body to tooth deflections —
+       a new bidimensional analytical formula", J. Mech. Des. 126 (2004) 748–752.
     """
     rho = np.asarray(rho, dtype=float)
     shape = rho.shape
@@ -257,7 +343,20 @@ def tooth_slice_compliance(model: ToothModel, rho, n_gauss: int = 64,
 
 
 def fixed_moments_quad(model: ToothModel, epsrel: float = 1e-12) -> _FixedMoments:
-    """Moments ∫y^n/x³ dy (n = 0, 1, 2) and ∫dy/x of the fixed segments by adaptive quadrature."""
+    """Moments ∫y^n/x³ dy (n = 0, 1, 2) and ∫dy/x of the fixed segments by adaptive quadrature.
+
+    Parameters
+    ----------
+    model : ToothModel
+        The tooth's cantilever; its ``fixed`` segments (y in m, half-thickness x in m).
+    epsrel : float
+        Relative tolerance of :func:`scipy.integrate.quad` (default 1e-12).
+
+    Returns
+    -------
+    _FixedMoments
+        ``j30`` (m⁻²), ``j31`` (m⁻¹), ``j32`` (-), ``j1`` (-).
+    """
     from scipy import integrate
 
     out = [0.0, 0.0, 0.0, 0.0]
@@ -279,6 +378,22 @@ def tooth_slice_compliance_quad(model: ToothModel, rho: float, epsrel: float = 1
     parametrisation and Gauss rule of :func:`tooth_slice_compliance`. The segments below the
     involute (fillet, straight root segment) do not depend on ρ; their moments come from
     :func:`fixed_moments_quad` (pass ``moments`` to reuse them). Slow; for tests and baselines.
+
+    Parameters
+    ----------
+    model : ToothModel
+        The tooth's cantilever (:func:`gearmesh.tooth.tooth_model`).
+    rho : float
+        Roll length ρ (m) of the contact point.
+    epsrel : float
+        Relative tolerance of the quadrature (default 1e-12).
+    moments : _FixedMoments, optional
+        Moments of the fixed segments (default :func:`fixed_moments_quad`).
+
+    Returns
+    -------
+    dict of str to float
+        'bending', 'shear', 'axial', 'fillet' compliances (m²/N).
     """
     from scipy import integrate
     from scipy.optimize import brentq
@@ -316,17 +431,29 @@ def slice_compliance_table(geom: PairGeometry, gear: int, method: str = DEFAULT_
                            n_gauss: int = 64, profile=None) -> SliceComplianceTable:
     """Tabulate one gear's per-unit-width slice compliance over its active flank.
 
-    Parameters
-    ----------
-    geom : pair geometry (needs material and bore radius).
-    gear : 0 pinion, 1 gear.
-    method : cantilever model, 'traditional', 'improved' or 'transition'.
-    n_nodes : number of equally spaced roll-length nodes on [ρ_SAP, ρ_EAP] (m).
-    n_gauss : Gauss–Legendre nodes on the involute segment.
-    profile : optional tooth profile for 'transition'.
-
     ``method='fe'``: the finite-element tooth (:func:`gearmesh.fe_tables.fe_slice_compliance_table`,
     its own roll nodes and mesh; ``n_nodes`` and ``n_gauss`` do not apply).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    gear : int
+        0 pinion, 1 gear.
+    method : {'fe', 'traditional', 'improved', 'transition'}
+        Tooth model (default :data:`gearmesh.choices.DEFAULT_TOOTH_METHOD`, 'fe').
+    n_nodes : int
+        Number of equally spaced roll-length nodes on [ρ_SAP, ρ_EAP] (default 257).
+    n_gauss : int
+        Gauss–Legendre nodes on the involute segment (default 64).
+    profile : optional
+        The gear's generated tooth profile (:mod:`gearmesh.profile`) for 'transition' and
+        'fe' (default: generated from ``geom``).
+
+    Returns
+    -------
+    SliceComplianceTable
+        ``rho`` (n,) m; ``values`` 'bending', 'shear', 'axial', 'fillet' (n,) m²/N; callable at ρ (m).
     """
     if check_method(method) == "fe":
         from .fe_tables import fe_slice_compliance_table
@@ -348,7 +475,22 @@ def hertz_compliance_transverse(geom: PairGeometry) -> float:
 
     A slice Δz carries a contact line Δz/cos βb long under the normal load; projected on
     the transverse line of action its stiffness is k_h0·Δz·cos βb (:mod:`gearmesh.stiffness`, helical assembly), so
-    c_h = 1/(k_h0 cos βb) with k_h0 = πE/(4(1−ν²)).
+    c_h = 1/(k_h0 cos βb) with k_h0 = πE/(4(1−ν²)) (Yang & Sun [1]).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material; base helix angle βb in rad).
+
+    Returns
+    -------
+    float
+        c_h (m²/N).
+
+    References
+    ----------
+    .. [1] Yang D.C.H., Sun Z.S., "A rotary model for spur gear dynamics", J. Mech. Transm.
+       Autom. Des. 107 (1985) 529–535.
     """
     require_stiffness_data(geom, need_bore=False)
     mat = geom.pair.material
@@ -381,9 +523,27 @@ class PairSliceTable:
 
 def pair_slice_table(geom: PairGeometry, tables: tuple[SliceComplianceTable, SliceComplianceTable],
                      n_intervals: int = 8192, contact_compliance: float | None = None) -> PairSliceTable:
-    """Resample both gears' slice compliance and the contact on a uniform s grid (m); the contact
-    ``contact_compliance`` (m²/N per unit transverse width, e.g. the LTCA law's tangent at a load,
-    :func:`gearmesh.ltca.contact_tangent_compliance`), Yang & Sun's constant when None."""
+    """Resample both gears' slice compliance and the contact on a uniform s grid (m).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (path of contact g_α in m, ρ_SAP1 and ρ_EAP2 in m).
+    tables : tuple of SliceComplianceTable
+        (pinion, gear) slice compliance against roll length (:func:`slice_compliance_table`).
+    n_intervals : int
+        Intervals of the uniform grid over [0, g_α] (default 8192).
+    contact_compliance : float, optional
+        Contact compliance (m²/N per unit transverse width, e.g. the LTCA law's tangent at a
+        load, :func:`gearmesh.ltca.contact_tangent_compliance`); None: Yang & Sun's constant
+        (:func:`hertz_compliance_transverse`).
+
+    Returns
+    -------
+    PairSliceTable
+        ``values`` (9, n_intervals + 1) and ``total`` (n_intervals + 1,) m²/N against s (m),
+        grid step ``ds`` (m).
+    """
     g = geom.path_of_contact
     s = np.linspace(0.0, g, n_intervals + 1)
     rho1 = np.clip(geom.rho_sap[0] + s, tables[0].rho[0], tables[0].rho[-1])

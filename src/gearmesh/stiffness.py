@@ -69,7 +69,22 @@ from .tooth import PEM_METHODS, SliceComplianceTable, require_stiffness_data, to
 
 
 def slice_centres(geom: PairGeometry, n_slices: int) -> tuple[np.ndarray, float]:
-    """Centres z_k (m) of ``n_slices`` equal transverse slices over [−b/2, b/2] and their width Δz (m)."""
+    """Centres z_k (m) of ``n_slices`` equal transverse slices over [−b/2, b/2] and their width Δz (m).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (face width b in m).
+    n_slices : int
+        Number of equal slices (≥ 1).
+
+    Returns
+    -------
+    z : ndarray
+        (n_slices,) slice centres (m), z = 0 at mid-face.
+    dz : float
+        Slice width Δz = b/n_slices (m).
+    """
     if n_slices < 1:
         raise GearmeshInputError("n_slices", n_slices, "must be at least 1")
     dz = geom.face_width / n_slices
@@ -108,13 +123,22 @@ def slice_samples(geom: PairGeometry, roll, n_slices: int, pairs: np.ndarray | N
                   rule: str = "centre") -> SliceSamples:
     """Where and with what width every slice of every tooth pair touches, at every roll.
 
+    Along one contact line s is linear in the slice index, so the slices in contact form
+    one run of consecutive k computed in closed form (±1 slice, then checked exactly):
+    no (P, J, S) array is formed.
+
     Parameters
     ----------
-    geom : pair geometry.
-    roll : (P,) pinion roll distances r_b1·φ1 (m).
-    n_slices : number of equal transverse slices over the face width.
-    pairs : tooth-pair indices (default :func:`gearmesh.contact.tooth_pair_indices`).
-    rule : 'centre' — a slice is in contact when its centre is in the active zone
+    geom : PairGeometry
+        The pair's geometry.
+    roll : array_like
+        (P,) pinion roll distances r_b1·φ1 (m).
+    n_slices : int
+        Number of equal transverse slices over the face width.
+    pairs : ndarray, optional
+        (J,) tooth-pair indices (default :func:`gearmesh.contact.tooth_pair_indices`).
+    rule : {'centre', 'clip'}
+        'centre' (default) — a slice is in contact when its centre is in the active zone
         [0, g_α], evaluated at its centre, full width Δz: exactly the points (bit for bit)
         of :func:`gearmesh.contact.contact_roll_positions`; first-order convergence in Δz
         because the line ends are rounded to whole slices. 'clip' — each slice, whose
@@ -122,9 +146,10 @@ def slice_samples(geom: PairGeometry, roll, n_slices: int, pairs: np.ndarray | N
         fraction inside and evaluated at the middle of that part (second order). For
         β = 0 both rules coincide.
 
-    Along one contact line s is linear in the slice index, so the slices in contact form
-    one run of consecutive k computed in closed form (±1 slice, then checked exactly):
-    no (P, J, S) array is formed.
+    Returns
+    -------
+    SliceSamples
+        Per entry in contact: its line, slice index, position s (m) and width (m).
     """
     if rule not in SLICE_RULES:
         raise GearmeshInputError("rule", rule, f"must be one of {list(SLICE_RULES)}")
@@ -178,10 +203,26 @@ def line_slice_sum(geom: PairGeometry, roll, n_slices: int, per_width: Callable[
                    rule: str = "centre") -> np.ndarray:
     """Σ over the slices of each contact line of per_width(s)·(slice width) (N/m): (P, J).
 
-    The building block of the slice method: ``per_width`` maps positions s on the line of
-    action (m) to a per-unit-width stiffness (N/m²); slices out of contact give 0. Pair
-    indices are :func:`gearmesh.contact.tooth_pair_indices`; ``rule`` as in
-    :func:`slice_samples`.
+    The building block of the slice method; slices out of contact give 0. Pair indices
+    are :func:`gearmesh.contact.tooth_pair_indices`.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+    roll : array_like
+        (P,) pinion roll distances r_b1·φ1 (m).
+    n_slices : int
+        Number of equal transverse slices over the face width.
+    per_width : callable
+        Maps positions s (N,) on the line of action (m) to a per-unit-width stiffness (N/m²).
+    rule : {'centre', 'clip'}
+        Slice rule of :func:`slice_samples` (default 'centre').
+
+    Returns
+    -------
+    ndarray
+        (P, J) stiffness of each contact line (N/m).
     """
     smp = slice_samples(geom, roll, n_slices, rule=rule)
     return smp.line_sums(per_width(smp.s) * smp.width)
@@ -289,24 +330,40 @@ def mesh_stiffness(geom: PairGeometry, n_positions: int = 360, n_slices: int = D
     """Time-varying mesh stiffness of a helical pair by the slice potential energy method.
 
     Tabulates each gear's slice compliance once (:func:`~gearmesh.slice_compliance.slice_compliance_table`),
-    resamples the pair slice compliance on a fine uniform grid of s, then for every roll
-    position, tooth pair and slice in contact (:func:`slice_samples`, the points of
-    :func:`gearmesh.contact.contact_roll_positions`) interpolates linearly and sums
-    k_slice = width/(c1 + c2 + c_h) over slices and lines.
+    resamples the pair slice compliance on a fine uniform grid of s, then for every roll position, tooth
+    pair and slice in contact (:func:`slice_samples`, the points of :func:`gearmesh.contact.contact_roll_positions`)
+    interpolates linearly and sums k_slice = width/(c1 + c2 + c_h) over slices and lines.
 
     Parameters
     ----------
-    geom : pair geometry (needs material and bore radius).
-    n_positions : roll positions over one base pitch.
-    n_slices : transverse slices over the face width (see :data:`DEFAULT_SLICES`).
-    method : cantilever model ('traditional', 'improved', 'transition').
-    components : also compute the series-equivalent component stiffnesses.
-    n_nodes : Gauss-evaluated roll-length nodes per gear.
-    tables, pair_table : precomputed tables to reuse (e.g. in a sweep of n_slices).
-    rule : slice rule of :func:`slice_samples`: 'clip' (end slices clipped to the active
-        zone, error O(Δz²)) or 'centre' (whole slices by their centre, error O(Δz)).
-    contact_compliance : the contact term (m²/N per unit transverse width) of
-        :func:`~gearmesh.slice_compliance.pair_slice_table`; None: Yang & Sun's constant (ignored with ``pair_table``).
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    n_positions, n_slices : int
+        Roll positions over one base pitch (default 360); transverse slices over the face
+        width (default :data:`DEFAULT_SLICES`).
+    method : {'fe', 'traditional', 'improved', 'transition'}
+        Tooth model (default :data:`gearmesh.choices.DEFAULT_TOOTH_METHOD`, 'fe').
+    components : bool
+        Also compute the series-equivalent component stiffnesses (default True).
+    n_nodes : int
+        Gauss-evaluated roll-length nodes per gear (default 257).
+    tables, pair_table : SliceComplianceTable pair, PairSliceTable, optional
+        Precomputed tables to reuse (e.g. in a sweep of n_slices).
+    rule : {'clip', 'centre'}
+        Slice rule of :func:`slice_samples`: 'clip' (default, error O(Δz²)) or 'centre' (O(Δz)).
+    contact_compliance : float, optional
+        Contact term (m²/N per unit transverse width) of :func:`~gearmesh.slice_compliance.pair_slice_table`;
+        None: Yang & Sun's constant [1] (ignored with ``pair_table``).
+
+    Returns
+    -------
+    MeshStiffness
+        ``roll`` (P,) m, ``K`` (P,) N/m, ``k_pair`` N/m, ``components`` N/m; ``mean``, ``min``, ``max`` N/m.
+
+    References
+    ----------
+    .. [1] Yang D.C.H., Sun Z.S., "A rotary model for spur gear dynamics", J. Mech. Transm.
+       Autom. Des. 107 (1985) 529–535.
     """
     check_method(method)
     require_stiffness_data(geom)
@@ -353,7 +410,22 @@ def mesh_stiffness_reference(geom: PairGeometry, n_positions: int, n_slices: int
     (:func:`gearmesh.contact.contact_roll_positions`) gets its compliance by adaptive
     quadrature (:func:`~gearmesh.slice_compliance.tooth_slice_compliance_quad`); no tables, no interpolation. Slow:
     for tests and benchmark baselines on small grids (about 5 ms per slice and position).
-    ``method`` one of the potential-energy cantilevers (:data:`PEM_METHODS`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius).
+    n_positions : int
+        Roll positions over one base pitch.
+    n_slices : int
+        Transverse slices over the face width.
+    method : {'traditional', 'improved', 'transition'}
+        One of the potential-energy cantilevers (:data:`PEM_METHODS`).
+
+    Returns
+    -------
+    ndarray
+        (n_positions,) mesh stiffness K (N/m) along the transverse line of action.
     """
     if method not in PEM_METHODS:
         raise GearmeshInputError("method", method, f"must be one of {list(PEM_METHODS)} (the reference is the "
@@ -388,8 +460,15 @@ def lste(result: MeshStiffness, torque: float) -> np.ndarray:
 
     Parameters
     ----------
-    result : a :class:`MeshStiffness`.
-    torque : pinion torque T1 (N·m).
+    result : MeshStiffness
+        The pair's mesh stiffness (:func:`mesh_stiffness`).
+    torque : float
+        Pinion torque T1 (N·m).
+
+    Returns
+    -------
+    ndarray
+        (P,) LSTE e (m) at the rolls of ``result.roll``.
     """
     return torque / result.base_radius[0] / result.K
 
@@ -424,8 +503,16 @@ def fourier_fit(values, order: int = 3) -> FourierFit:
 
     Parameters
     ----------
-    values : (P,) samples over one period, end point excluded (any units).
-    order : highest harmonic kept; needs P > 2·order.
+    values : array_like
+        (P,) samples over one period, end point excluded (any units).
+    order : int
+        Highest harmonic kept (default 3); needs P > 2·order.
+
+    Returns
+    -------
+    FourierFit
+        ``mean``, ``a``, ``b`` (order,) and ``rms_error`` in the units of ``values``;
+        ``relative_rms_error`` (-).
     """
     from scipy.fft import rfft
 
@@ -457,16 +544,32 @@ def iso6336_stiffness(geom: PairGeometry) -> dict[str, float]:
     one material for both gears: the pair's E; steel when the pair gives none). The factor is
     returned as ``material_factor``.
 
-    Returns c_prime_th, c_prime, c_gamma_alpha, c_gamma_beta in N/(mm·µm), the
-    factors, and K_gamma_alpha = cγα·b, K_gamma_beta = cγβ·b in N/m (mean transverse mesh
-    stiffness of the face width b, comparable to :attr:`MeshStiffness.mean`).
 
-    Known difference from the slice model: the slices are transverse sections (seeds
-    003/004), whose profile thickens with β, while ISO scales by cos β on the virtual spur
+    Known difference from the slice model: the slices are transverse sections (the
+    transition-curve and improved potential-energy papers), whose profile thickens with β, while ISO scales by cos β on the virtual spur
     gear. The ratio PEM/ISO therefore grows with β: 1.18, 1.21, 1.29, 1.42, 1.62 at β =
     0, 10, 20, 30, 40° for 29/49 teeth, m_n 1.75, αn 20°. The CB formula is also used
     here outside the usual basic-rack range (the transition-curve paper's 2.2 m_n deep hobs give CB 0.57);
     both are reported as computed, not corrected.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (teeth, helix angle, profile shifts, basic rack, face width, material).
+
+    Returns
+    -------
+    dict of str to float
+        c_prime_th, c_prime, c_gamma_alpha, c_gamma_beta in N/(mm·µm); q_prime (mm·µm/N);
+        zn1, zn2, C_M, C_R, C_B, material_factor (-); K_gamma_alpha = cγα·b,
+        K_gamma_beta = cγβ·b in N/m (mean transverse mesh stiffness of the face width b,
+        comparable to :attr:`MeshStiffness.mean`).
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2019, Calculation of load capacity of spur and helical gears — Part 1:
+       Basic principles, introduction and general influence factors, clause 9 (tooth
+       stiffness parameters c′ and cγ, method B).
     """
     pair = geom.pair
     beta, beta_b = pair.helix_angle, geom.base_helix_angle

@@ -42,13 +42,44 @@ STRIBECK_LINE = 4.08
 
 def shaft_bending_stiffness(youngs_modulus: float, diameter: float, span: float) -> float:
     """Radial stiffness (N/m) at mid-span of a simply supported solid round shaft: 48 E I / L³,
-    I = π d⁴/64 (Roark, Table 8.1 case 1e). E in Pa, d and L in m."""
+    I = π d⁴/64 (Roark, Table 8.1 case 1e).
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        E (Pa).
+    diameter : float
+        Shaft diameter d (m).
+    span : float
+        Bearing span L (m).
+
+    Returns
+    -------
+    float
+        k_s (N/m).
+
+    References
+    ----------
+    .. [1] Young W.C., Budynas R.G., *Roark's Formulas for Stress and Strain*, 7th ed.,
+       McGraw-Hill, 2002, Table 8.1 case 1e.
+    """
     inertia = math.pi * diameter**4 / 64.0
     return 48.0 * youngs_modulus * inertia / span**3
 
 
 def in_series(*stiffness: float) -> float:
-    """Springs in series: 1/Σ(1/k_i) (N/m); an infinite k (rigid) adds nothing."""
+    """Springs in series: 1/Σ(1/k_i) (N/m); an infinite k (rigid) adds nothing.
+
+    Parameters
+    ----------
+    *stiffness : float
+        The springs' stiffnesses k_i (N/m; inf: rigid).
+
+    Returns
+    -------
+    float
+        The series stiffness (N/m); inf when all are rigid.
+    """
     return 1.0 / sum(1.0 / k for k in stiffness if math.isfinite(k))
 
 
@@ -56,8 +87,31 @@ def roller_bearing_stiffness(radial_load: float, axial_load: float, rollers: int
                              contact_angle: float) -> tuple[float, float]:
     """Tangent radial and axial stiffness (N/m) of one line-contact rolling bearing (module
     docstring: Palmgren's approach at both raceways, Q_max = 4.08 F_r/(Z cos α), the axial load
-    on all rollers). Loads in N (> 0), roller length in m, contact angle in rad (0 < α < π/2 for
-    the axial value)."""
+    on all rollers).
+
+    Parameters
+    ----------
+    radial_load, axial_load : float
+        F_r and F_a on the bearing (N, > 0).
+    rollers : int
+        Number of rollers Z.
+    roller_length : float
+        Effective roller length l (m).
+    contact_angle : float
+        Contact angle α (rad; 0 < α < π/2 for the axial value).
+
+    Returns
+    -------
+    k_r, k_a : float
+        Tangent radial and axial stiffness (N/m).
+
+    References
+    ----------
+    .. [1] Palmgren A., *Ball and Roller Bearing Engineering*, 3rd ed., 1959 (line-contact
+       approach δ = 3.84·10⁻⁵ Q^0.9/l^0.8).
+    .. [2] Harris T.A., Kotzalas M.N., *Rolling Bearing Analysis*, 5th ed., Vol. 1, CRC Press,
+       2007, §6.5 (contact deformation) and §7.2 (load distribution, Q_max = 4.08 F_r/(Z cos α)).
+    """
     l_mm = roller_length * 1e3
 
     def approach(q):  # both raceways, m
@@ -186,7 +240,22 @@ def _two(key: str, values: Any) -> tuple[Any, Any]:
 def check_supports(supports: Supports, face_width, bore_radius) -> None:
     """One :class:`GearmeshInputError` naming the key when a shaft does not fit its gear: thicker
     than the bore it passes through, or its bearings closer together than the gear is wide (they
-    sit either side of it). Face width and bore radius in m, [pinion, gear]; bore may be None."""
+    sit either side of it).
+
+    Parameters
+    ----------
+    supports : Supports
+        The pair's supports (m, N/m).
+    face_width : sequence of float
+        [pinion, gear] face widths (m).
+    bore_radius : sequence of float or None
+        [pinion, gear] bore radii (m), None when the pair gives none.
+
+    Returns
+    -------
+    None
+        Raises :class:`gearmesh.errors.GearmeshInputError` naming the pair-file key.
+    """
     if supports.shaft_diameter is None:
         return
     for i in range(2):
@@ -219,7 +288,22 @@ def _stiffness(key: str, value: Any) -> tuple[float, float]:
 def per_gear_length(key: str, value: Any, alternative: str = "") -> tuple[float, float]:
     """One positive length (mm) or a [pinion, gear] pair of a pair-file key → (m, m); one
     :class:`GearmeshInputError` naming the key (and index) otherwise (shafts here, gear bodies in
-    :mod:`gearmesh.body`, whose web may also be the word ``alternative``, named in the rule)."""
+    :mod:`gearmesh.body`, whose web may also be the word ``alternative``, named in the rule).
+
+    Parameters
+    ----------
+    key : str
+        The pair-file key, for the error message.
+    value : float or sequence of float
+        One length or a [pinion, gear] pair (mm).
+    alternative : str
+        A word the caller accepts instead (e.g. ``rigid``), named in the rule (default none).
+
+    Returns
+    -------
+    tuple of float
+        (pinion, gear) lengths (m).
+    """
     rule = "must be a positive length (mm)" + (f" or '{alternative}'" if alternative else "")
 
     def one(name, v):
@@ -237,7 +321,19 @@ def per_gear_length(key: str, value: Any, alternative: str = "") -> tuple[float,
 def read_supports(spec: Mapping[str, Any]) -> Supports:
     """The supports of a pair-file mapping (its other keys ignored): both stiffnesses or neither
     (then :data:`DEFAULT_SUPPORTS_N_PER_UM`), shaft diameter and bearing span together or not at
-    all. One :class:`~gearmesh.errors.GearmeshInputError` naming the key otherwise."""
+    all. One :class:`~gearmesh.errors.GearmeshInputError` naming the key otherwise.
+
+    Parameters
+    ----------
+    spec : mapping
+        A pair file's keys; :data:`SUPPORT_KEYS` are read (N/µm, mm, ``rigid``).
+
+    Returns
+    -------
+    Supports
+        Bearing stiffnesses (N/m, inf: rigid), shaft diameter, bearing span and gear offset (m),
+        torque sides; ``defaulted`` when the pair file gives no stiffness.
+    """
     given = {k: spec[k] for k in SUPPORT_KEYS if spec.get(k) is not None}
     stiff = [k for k in SUPPORT_KEYS[:2] if k in given]
     if len(stiff) == 1:

@@ -36,7 +36,21 @@ COMPONENTS = ("bending", "shear", "axial", "fillet")
 
 
 def require_stiffness_data(geom: PairGeometry, need_bore: bool = True) -> None:
-    """Refuse a pair without the data the stiffness needs (GearmeshInputError naming the field)."""
+    """Refuse a pair without the data the stiffness needs (GearmeshInputError naming the field).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry; its pair needs ``material`` and, with ``need_bore``, positive
+        ``bore_radius`` (m) for both gears.
+    need_bore : bool
+        Also require the bore radii (default True: the fillet foundation's h_f = r_f/r_int).
+
+    Returns
+    -------
+    None
+        Raises :class:`gearmesh.errors.GearmeshInputError` naming the missing or bad field.
+    """
     pair = geom.pair
     if pair.material is None:
         raise GearmeshInputError("material", None,
@@ -113,7 +127,25 @@ def _involute_dy_da(rb: float, psi_b: float, a):
 
 
 def base_half_angle(geom: PairGeometry, gear: int) -> float:
-    """Half tooth-thickness angle ψ_b on the base circle (rad): s_t/(2r) + inv α_t (ISO 21771)."""
+    """Half tooth-thickness angle ψ_b on the base circle (rad): s_t/(2r) + inv α_t (ISO 21771).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (transverse thickness s_t and reference radius r in m, α_t in rad).
+    gear : int
+        0 pinion, 1 gear.
+
+    Returns
+    -------
+    float
+        ψ_b (rad).
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and
+       geometry.
+    """
     return float(geom.transverse_thickness[gear] / (2.0 * geom.reference_radius[gear])
                  + involute(geom.transverse_pressure_angle))
 
@@ -123,11 +155,31 @@ def tooth_model(geom: PairGeometry, gear: int, method: str, profile=None) -> Too
 
     Parameters
     ----------
-    geom : the pair geometry; needs ``material`` and ``bore_radius``.
-    gear : 0 pinion, 1 gear.
-    method : 'traditional', 'improved' or 'transition'.
-    profile : for 'transition', a tooth profile from :func:`gearmesh.profile.tooth_profile`
+    geom : PairGeometry
+        The pair's geometry; needs ``material`` and ``bore_radius``.
+    gear : int
+        0 pinion, 1 gear.
+    method : {'traditional', 'improved', 'transition'}
+        The potential-energy cantilever (:data:`PEM_METHODS`).
+    profile : optional
+        For 'transition', a tooth profile from :func:`gearmesh.profile.tooth_profile`
         (computed when None).
+
+    Returns
+    -------
+    ToothModel
+        Base and root radius (m), ψ_b and start angle ``a_start`` (rad), the ``fixed``
+        segments below the involute (m), θ_f (rad), E (Pa) and ν (-).
+
+    References
+    ----------
+    .. [1] Tian X., "Dynamic simulation for system response of gearbox including localized
+       gear faults", MSc thesis, University of Alberta, 2004 ('traditional').
+    .. [2] A Comprehensive Study on Meshing Characteristics of Helical Gear Pairs Using an
+       Improved Potential Energy Method for Time-Varying Meshing Stiffness
+       (docs/references.md, document 004; 'improved').
+    .. [3] [untitled] Mesh stiffness of helical gears with the hob-generated root transition
+       curve (docs/references.md, document 003; 'transition').
     """
     if method not in PEM_METHODS:
         raise GearmeshInputError("method", method, f"must be one of {list(PEM_METHODS)} for a cantilever model")
@@ -186,9 +238,26 @@ def _transition_model(geom: PairGeometry, gear: int, profile, common: dict) -> T
 def contact_point(model: ToothModel, rho):
     """Contact point and load angle on the involute at roll length ρ (m).
 
-    Returns (x_P, y_P, α1, a_P): half-thickness and centre-line coordinate of P (m), the
-    load angle α1 = α_ρ − ψ_ρ (rad; Tian 2004: α1 + α2 = ρ/r_b) and the profile pressure
-    angle α_ρ = arctan(ρ/r_b) (rad).
+    Parameters
+    ----------
+    model : ToothModel
+        The tooth's cantilever (:func:`tooth_model`).
+    rho : array_like
+        Roll lengths ρ (m).
+
+    Returns
+    -------
+    x_P, y_P : ndarray
+        Half-thickness and centre-line coordinate of P (m), shaped like ``rho``.
+    alpha1 : ndarray
+        Load angle α1 = α_ρ − ψ_ρ (rad; Tian 2004 [1]: α1 + α2 = ρ/r_b).
+    a_P : ndarray
+        Profile pressure angle α_ρ = arctan(ρ/r_b) (rad).
+
+    References
+    ----------
+    .. [1] Tian X., "Dynamic simulation for system response of gearbox including localized
+       gear faults", MSc thesis, University of Alberta, 2004.
     """
     rho = np.asarray(rho, dtype=float)
     a_p = np.arctan(rho / model.base_radius)
