@@ -13,7 +13,7 @@ pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
 from pairs import STEEL, low_fluctuation_pair1  # noqa: E402
-from gearmesh import fe, fe_tables  # noqa: E402
+from gearmesh import fe, fe_elastic, fe_tables  # noqa: E402
 from gearmesh import slice_compliance as sc  # noqa: E402
 from gearmesh import stiffness as st  # noqa: E402
 from gearmesh.errors import GearmeshInputError  # noqa: E402
@@ -41,8 +41,8 @@ def _cantilever_tip(length: float, depth: float, size: float, plane: str = "stre
     from skfem import FacetBasis, LinearForm, asm
 
     v = np.array([[0, 0], [length, 0], [length, depth], [0, depth]], float)
-    mesh = fe.triangulate(v, np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), max_area=0.5 * size**2)
-    solver = fe.elastic_solver(mesh, E, NU, plane, clamped=lambda x: x[0] < 1e-12 * length)
+    mesh = fe_elastic.triangulate(v, np.array([[0, 1], [1, 2], [2, 3], [3, 0]]), max_area=0.5 * size**2)
+    solver = fe_elastic.elastic_solver(mesh, E, NU, plane, clamped=lambda x: x[0] < 1e-12 * length)
 
     @LinearForm
     def shear(w, p):  # τ = 3F/(2h)·(1 − (2η/h)²), η from the axis: resultant F = 1 N per m
@@ -52,7 +52,7 @@ def _cantilever_tip(length: float, depth: float, size: float, plane: str = "stre
     end = mesh.facets_satisfying(lambda x: np.isclose(x[0], length))
     f = asm(shear, FacetBasis(mesh, solver.basis.elem, facets=end))
     u = solver.solve(f[:, None])
-    t, _ = fe.section_rigid_motion(solver, u, (length * (1 - 1e-9), 0.0), (length * (1 - 1e-9), depth))
+    t, _ = fe_elastic.section_rigid_motion(solver, u, (length * (1 - 1e-9), 0.0), (length * (1 - 1e-9), depth))
     return float(t[1, 0])
 
 

@@ -253,7 +253,7 @@ def gear_model_3d(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAU
     """
     from skfem import Basis, ElementTetP2, ElementVector
 
-    from . import fe
+    from . import fe, fe_elastic
 
     if solver not in SOLVERS:
         raise GearmeshInputError("solver", solver, f"must be one of {list(SOLVERS)}")
@@ -262,7 +262,7 @@ def gear_model_3d(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAU
     t0 = time.perf_counter()
     rolls = np.unique(np.asarray(load_rolls, dtype=float))
     profile, sector = fe.gear_sector(geom, gear, rolls, size, neighbours, ring=True)
-    mesh2 = fe.triangulate(sector.vertices, sector.segments, max_area=fe.AREA_FACTOR * sector.sizes[-1] ** 2,
+    mesh2 = fe_elastic.triangulate(sector.vertices, sector.segments, max_area=fe.AREA_FACTOR * sector.sizes[-1] ** 2,
                            holes=sector.holes)
     b = float(geom.face_width if face_width is None else face_width)
     h = size * geom.pair.normal_module
@@ -273,7 +273,7 @@ def gear_model_3d(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAU
     elem = ElementVector(ElementTetP2())
     basis = Basis(mesh, elem, intorder=2)
     mat = geom.pair.material
-    lam, mu = fe.lame_parameters(mat.youngs_modulus, mat.poisson_ratio, "strain")  # 3-D Lamé constants
+    lam, mu = fe_elastic.lame_parameters(mat.youngs_modulus, mat.poisson_ratio, "strain")  # 3-D Lamé constants
     k = _assemble(lambda idx: Basis(mesh, elem, intorder=2, elements=idx), mesh, lam, mu, basis.N)
     r_int = sector.bore_radius
     fixed = basis.get_dofs(lambda x: np.hypot(x[0], x[1]) <= r_int * (1 + 1e-9)).all()
@@ -284,7 +284,7 @@ def gear_model_3d(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAU
     if solver == "direct":
         from scipy.sparse.linalg import splu
 
-        # symmetric positive definite: minimum degree on A+Aᵀ, diagonal pivots (as fe.elastic_solver)
+        # symmetric positive definite: minimum degree on A+Aᵀ, diagonal pivots (as fe_elastic.elastic_solver)
         ml = splu(kff.tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0, options={"SymmetricMode": True})
     else:  # 'amg'
         import pyamg

@@ -12,7 +12,8 @@ import json
 import numpy as np
 
 from .errors import GearmeshInputError
-from .fe import DEFAULT_NEIGHBOURS, DEFAULT_PLANE, DEFAULT_ROLL_NODES, DEFAULT_SIZE, ToothCompliance, tooth_compliance
+from .fe import DEFAULT_NEIGHBOURS, DEFAULT_ROLL_NODES, DEFAULT_SIZE, ToothCompliance, tooth_compliance
+from .fe_elastic import DEFAULT_PLANE
 from .gear import GEARS, PairGeometry
 from .pairfile import pair_to_dict
 from .tooth import SliceComplianceTable, tooth_model

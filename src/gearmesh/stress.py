@@ -370,7 +370,8 @@ def fe_fillet_stress(geom: PairGeometry, gear: int, rho, plane: str = "strain", 
     """
     from skfem import ElementTriP2
 
-    from .fe import lame_parameters, loaded_tooth, point_load_matrix
+    from .fe import loaded_tooth
+    from .fe_elastic import lame_parameters, point_load_matrix
     from .tooth import contact_point
 
     rho = np.atleast_1d(np.asarray(rho, dtype=float))
