@@ -926,12 +926,11 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
 
     When loaded tip edges reach the outer fifth of the candidate zone beyond the active
     profile, the zone is doubled (up to one base pitch) and the LTCA repeated; with a given
-    ``model`` a RuntimeWarning is issued instead.
-
-    The mesh misalignment of each torque — the pair's stated f_ma and the system deflection's f_sh
-    under that torque's force (:func:`gearmesh.deflection.mesh_misalignment`) — adds to the
-    separations as a lead mismatch (:func:`torque_gaps`); the supports' translation along the line
-    of action is reported beside the LTE (``system_approach``), not in it.
+    ``model`` a RuntimeWarning is issued instead. The mesh misalignment of each torque — the pair's
+    stated f_ma and the system deflection's f_sh under that torque's force
+    (:func:`gearmesh.deflection.mesh_misalignment`) — adds to the separations as a lead mismatch
+    (:func:`torque_gaps`); the supports' translation along the line of action is reported beside the
+    LTE (``system_approach``), not in it.
 
     Parameters
     ----------
@@ -939,13 +938,10 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
         The pair's geometry (needs material and bore radius; carries the modifications).
     torques : float or array_like
         Torque(s), N·m, on the pinion or, with ``on='gear'``, on the gear.
-    positions : int, default 64
-        Roll positions per mesh cycle.
-    points : int, default 50
-        Candidate points per contact line.
+    positions, points : int
+        Roll positions per mesh cycle (default 64) and candidate points per contact line (50).
     lead_slope : sequence of 2 float, optional
-        Lead slope deviations [pinion, gear], m over the face width; None: the pair's own
-        (:mod:`gearmesh.deviation`).
+        Lead slope deviations [pinion, gear], m over the face width; None: the pair's own (:mod:`gearmesh.deviation`).
     on : {'pinion', 'gear'}, default 'pinion'
         The member ``torques`` act on.
     contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
@@ -955,8 +951,7 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     extension : float, default :data:`gearmesh.tca.DEFAULT_EXTENSION`
         Reach of the tip-edge candidates beyond the active zone, fraction of p_bt.
     model : LTCAModel, optional
-        A prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (then the grid arguments are
-        ignored).
+        A prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (the grid arguments then ignored).
     misalignment : float or array_like, optional
         The mesh misalignment of each torque, m, instead of the pair's own
         (:func:`gearmesh.deflection.mesh_misalignment`; e.g. the rating's with ISO's f_ma).
@@ -964,9 +959,8 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     Returns
     -------
     LTCAResult
-        ``torque`` (T,) N·m, ``force`` F_bt (T,) N, ``load`` (T, P, J, N) N, ``lte`` (T, P) m,
-        ``stiffness`` (T, P) N/m, ``pairs_in_contact``, ``corner_load`` (T, P) N, the values at the
-        start of engagement, the unloaded ``tca`` and the ``model``.
+        ``torque`` (T,) N·m, ``force`` F_bt (T,) N, ``load`` (T, P, J, N) N, ``lte`` (T, P) m, ``stiffness``
+        (T, P) N/m, ``corner_load`` (T, P) N, the values at φ1A, the unloaded ``tca`` and the ``model``.
 
     Raises
     ------

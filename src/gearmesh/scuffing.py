@@ -386,9 +386,8 @@ def scuffing_rating(geom: PairGeometry, line_load: np.ndarray, grid, speed_rpm: 
                     load_factor, w_bt_N_mm) -> ScuffingRating:
     """The scuffing rating of an LTCA's line load by the flash and the integral temperature methods.
 
-    Blok's flash temperature [1]_ of every LTCA point on the path of contact from the LTCA's own line
-    load, then the rated values of the flash temperature [2]_, [4]_ and the integral temperature
-    method [3]_, [5]_ with the factors of :data:`SCUFFING_ASSUMPTIONS`.
+    Blok's flash temperature [1]_ of every LTCA point on the path of contact from the LTCA's own line load,
+    then the flash [2]_, [4]_ and integral temperature methods [3]_, [5]_ (factors: :data:`SCUFFING_ASSUMPTIONS`).
 
     Parameters
     ----------
@@ -411,9 +410,8 @@ def scuffing_rating(geom: PairGeometry, line_load: np.ndarray, grid, speed_rpm: 
     Returns
     -------
     ScuffingRating
-        ``flash`` (T, P, J, N) K, ``mu`` (T,), ``flash_max`` / ``flash_mean`` (T,) K, ``contact_max``
-        θ_B,max (T,) °C, ``safety_flash`` S_B (T,), ``integral`` θ_int (T,) °C, ``safety_integral``
-        S_intS (T,), ``scuffing_temperature`` θ_S and ``integral_scuffing_temperature`` θ_intS (°C).
+        ``flash`` (T, P, J, N) K; (T,): ``mu``, ``flash_max``, ``flash_mean`` (K), ``contact_max`` θ_B,max (°C),
+        ``safety_flash`` S_B, ``integral`` θ_int (°C), ``safety_integral`` S_intS; θ_S, θ_intS (°C, scalars).
 
     References
     ----------
