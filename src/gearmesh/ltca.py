@@ -924,13 +924,12 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
          extension: float = DEFAULT_EXTENSION, model: LTCAModel | None = None, misalignment=None) -> LTCAResult:
     """Loaded TCA at each torque over one mesh cycle (and at the start of engagement φ1A).
 
-    When loaded tip edges reach the outer fifth of the candidate zone beyond the active
-    profile, the zone is doubled (up to one base pitch) and the LTCA repeated; with a given
-    ``model`` a RuntimeWarning is issued instead. The mesh misalignment of each torque — the pair's
-    stated f_ma and the system deflection's f_sh under that torque's force
-    (:func:`gearmesh.deflection.mesh_misalignment`) — adds to the separations as a lead mismatch
-    (:func:`torque_gaps`); the supports' translation along the line of action is reported beside the
-    LTE (``system_approach``), not in it.
+    When loaded tip edges reach the outer fifth of the candidate zone beyond the active profile, the
+    zone is doubled (up to one base pitch) and the LTCA repeated; with a given ``model`` a RuntimeWarning
+    is issued instead. Each torque's mesh misalignment — the stated f_ma and the system deflection's f_sh
+    under its force (:func:`gearmesh.deflection.mesh_misalignment`) — adds to the separations as a lead
+    mismatch (:func:`torque_gaps`); the supports' translation along the line of action is reported
+    beside the LTE (``system_approach``), not in it.
 
     Parameters
     ----------
@@ -953,8 +952,7 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     model : LTCAModel, optional
         A prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (the grid arguments then ignored).
     misalignment : float or array_like, optional
-        The mesh misalignment of each torque, m, instead of the pair's own
-        (:func:`gearmesh.deflection.mesh_misalignment`; e.g. the rating's with ISO's f_ma).
+        The mesh misalignment of each torque, m, instead of the pair's own (e.g. the rating's with ISO's f_ma).
 
     Returns
     -------
