@@ -78,14 +78,40 @@ MESH_ORDERS = (1, 2, 3)
 
 
 def contact_tangent_compliance(geom: PairGeometry, pinion_torque: float) -> float:
-    """The linear mesh stiffness's contact compliance (m²/N per unit transverse width, the role of
-    :func:`gearmesh.slice_compliance.hertz_compliance_transverse`): the tangent of the LTCA's Palmgren
-    law (:func:`~gearmesh.ltca_model.contact_law`) at the mean line load of ``pinion_torque`` (N·m), c = 0.9 δ_t(f)/f
-    with f = F_bt/(b εα) the transverse force per unit of contact width (the contact lines'
-    transverse widths sum to b εα on average, l_mean = b εα/cos βb). So the stiffness stage's
-    TVMS, the LTCA's loaded stiffness and the contact table's tangent are one stiffness at one
-    load (issue 28; Palmgren's law is of the size of Weber's contact part, docs/validation.md).
-    The tangent falls as f^-0.1: ±10 % of the contact compliance for a load 2.5× off."""
+    """The linear mesh stiffness's contact compliance (m²/N per unit transverse width).
+
+    The role of :func:`gearmesh.slice_compliance.hertz_compliance_transverse`: the tangent of the LTCA's
+    Palmgren law [1]_, [2]_ (:func:`~gearmesh.ltca_model.contact_law`) at the mean line load of
+    ``pinion_torque``, c = 0.9 δ_t(f)/f with f = F_bt/(b εα) the transverse force per unit of contact
+    width (the contact lines' transverse widths sum to b εα on average, l_mean = b εα/cos βb). So the
+    stiffness stage's TVMS, the LTCA's loaded stiffness and the contact table's tangent are one
+    stiffness at one load (issue 28; Palmgren's law is of the size of Weber's contact part,
+    docs/validation.md). The tangent falls as f^-0.1: ±10 % of the contact compliance for a load 2.5× off.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with its material (:func:`gearmesh.gear.pair_geometry`).
+    pinion_torque : float
+        Pinion torque T1, N·m (positive, finite).
+
+    Returns
+    -------
+    float
+        Tangent contact compliance per unit transverse width, m²/N.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``torque_Nm`` not positive and finite, or the pair lacks the stiffness data.
+
+    References
+    ----------
+    .. [1] Palmgren A., Ball and Roller Bearing Engineering, 3rd ed., SKF Industries, Philadelphia,
+       1959.
+    .. [2] Harris T.A., Kotzalas M.N., Rolling Bearing Analysis, 5th ed., CRC Press, Boca Raton, 2007,
+       eq. 6.41.
+    """
     require_stiffness_data(geom, need_bore=False)
     if not (math.isfinite(pinion_torque) and pinion_torque > 0):
         raise GearmeshInputError("torque_Nm", pinion_torque, "must be a positive finite number")
@@ -95,13 +121,30 @@ def contact_tangent_compliance(geom: PairGeometry, pinion_torque: float) -> floa
 
 
 def edge_tangent_stiffness(result: "LTCAResult") -> np.ndarray:
-    """Tangent stiffness (T, P) in N/m of the loaded tip-edge points beyond the active zone: the
-    loaded extension of contact (the unrelieved tips that touch under load before the start and
-    after the end of the active profile; Munro 1990, Velex & Maatar 1996). Each loaded point i of
+    """Tangent stiffness (T, P) in N/m of the loaded tip-edge points beyond the active zone.
+
+    The loaded extension of contact (the unrelieved tips that touch under load before the start and
+    after the end of the active profile; Munro 1990, Velex & Maatar 1996 [1]_). Each loaded point i of
     :func:`solve_contact` has δ − g_i = c_i q_i + coef·q_i^m, so its tangent is
     1/(c_i + coef·m·q_i^(m−1)); the LTCA's tangent ``stiffness`` is the sum over all loaded points,
     this the sum over the tip-edge ones alone (teeth only: the bodies' series compliance,
-    :mod:`gearmesh.body`, is not in it)."""
+    :mod:`gearmesh.body`, is not in it).
+
+    Parameters
+    ----------
+    result : LTCAResult
+        An LTCA (:func:`ltca`) with its ``model`` and ``load`` (T, P, J, N) N.
+
+    Returns
+    -------
+    numpy.ndarray
+        (T, P) tangent stiffness of the tip-edge points (regions 2 and 3), N/m.
+
+    References
+    ----------
+    .. [1] Velex P., Maatar M., "A mathematical model for analyzing the influence of shape
+       deviations and mounting errors on gear dynamic behaviour", J. Sound Vib. 191 (1996) 629–660.
+    """
     model = result.model
     law, g = model.law, model.grid
     corner = (g.region == REGION_APPROACH_TIP) | (g.region == REGION_RECESS_TIP)
@@ -116,14 +159,40 @@ def edge_tangent_stiffness(result: "LTCAResult") -> np.ndarray:
 
 def with_loaded_extension(geom: PairGeometry, K: np.ndarray, pinion_torque: float, method: str = DEFAULT_TOOTH_METHOD,
                           points: int = 50) -> np.ndarray:
-    """The linear TVMS ``K`` (N/m, evenly over one mesh cycle from roll 0, as
-    :func:`gearmesh.stiffness.mesh_stiffness`) with the loaded extension of contact added in
-    parallel with the teeth (inside the bodies' series compliance): the tip-edge tangent
-    stiffness (:func:`edge_tangent_stiffness`) of the LTCA at ``pinion_torque`` (N·m) on the same
-    rolls. The linear TVMS counts the active zone only; under load the unrelieved tips also touch
-    beyond it, and that contact is what the LTCA's tangent has and the TVMS lacks (issue 28: for
-    the default pair at 1000 N·m 77 of its 767 N/µm). So ``tvms``, ``ltca`` and ``contact`` are
-    one mesh stiffness at one load."""
+    """The linear TVMS ``K`` with the loaded extension of contact added in parallel with the teeth.
+
+    Added inside the bodies' series compliance: the tip-edge tangent stiffness
+    (:func:`edge_tangent_stiffness`) of the LTCA at ``pinion_torque`` on the same rolls. The linear
+    TVMS counts the active zone only; under load the unrelieved tips also touch beyond it, and that
+    contact is what the LTCA's tangent has and the TVMS lacks (issue 28: for the default pair at
+    1000 N·m 77 of its 767 N/µm). So ``tvms``, ``ltca`` and ``contact`` are one mesh stiffness at
+    one load.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    K : array_like
+        (P,) linear mesh stiffness, N/m, evenly over one mesh cycle from roll 0, as
+        :func:`gearmesh.stiffness.mesh_stiffness`.
+    pinion_torque : float
+        Pinion torque T1 of the LTCA, N·m.
+    method : str, default 'fe'
+        Tooth model of the LTCA (:data:`gearmesh.choices.TOOTH_METHODS`).
+    points : int, default 50
+        Candidate points per contact line of the LTCA.
+
+    Returns
+    -------
+    numpy.ndarray
+        (P,) mesh stiffness with the loaded tip-edge contact, N/m (``K`` itself when no tip edge
+        carries load).
+
+    References
+    ----------
+    .. [1] Velex P., Maatar M., "A mathematical model for analyzing the influence of shape
+       deviations and mounting errors on gear dynamic behaviour", J. Sound Vib. 191 (1996) 629–660.
+    """
     K = np.asarray(K, dtype=float)
     res = ltca(geom, [pinion_torque], positions=K.size, points=points, method=method)
     k_edge = edge_tangent_stiffness(res)[0]
@@ -196,8 +265,25 @@ def _universal_inverse(m: float) -> tuple[np.ndarray, np.ndarray]:
 
 
 def law_scales(c, coef: float, m: float) -> tuple[np.ndarray, np.ndarray]:
-    """ln Q and ln(c·Q) of points of compliance ``c`` (m/N) under the law c·q + coef·q^m:
-    Q = (coef/c)^(1/(1−m)) is the load at which both terms are equal (:func:`invert_tabulated`)."""
+    """ln Q and ln(c·Q) of points of compliance ``c`` (m/N) under the law c·q + coef·q^m: Q =
+    (coef/c)^(1/(1−m)) is the load at which both terms are equal (:func:`invert_tabulated`).
+
+    Parameters
+    ----------
+    c : array_like
+        Linear compliances of the points, m/N.
+    coef : float
+        Coefficient of the power-law term, m/N^m.
+    m : float
+        Exponent of the power-law term (< 1).
+
+    Returns
+    -------
+    log_q : numpy.ndarray
+        ln Q, Q in N, shaped like ``c``.
+    log_cq : numpy.ndarray
+        ln(c·Q), c·Q in m, shaped like ``c``.
+    """
     log_c = np.log(c)
     log_q = (math.log(coef) - log_c) / (1.0 - m)
     return log_q, log_c + log_q
@@ -205,7 +291,20 @@ def law_scales(c, coef: float, m: float) -> tuple[np.ndarray, np.ndarray]:
 
 def log_universal_inverse(u: np.ndarray, m: float) -> np.ndarray:
     """ln X of the root X of X + X^m = y for ln y = ``u`` (array), from the table of
-    :func:`_universal_inverse` by cubic Hermite interpolation; NaN outside the table."""
+    :func:`_universal_inverse` by cubic Hermite interpolation; NaN outside the table.
+
+    Parameters
+    ----------
+    u : numpy.ndarray
+        ln y (dimensionless).
+    m : float
+        Exponent of the power-law term (< 1).
+
+    Returns
+    -------
+    numpy.ndarray
+        ln X, shaped like ``u``; NaN where |ln y| lies beyond the table.
+    """
     lo, hi, h = _TABLE_LOG_Y
     v_tab, s_tab = _universal_inverse(float(m))
     t = (u - lo) * (1.0 / h)
@@ -220,13 +319,33 @@ def log_universal_inverse(u: np.ndarray, m: float) -> np.ndarray:
 
 
 def invert_tabulated(d, c, coef: float, m: float):
-    """q ≥ 0 with c·q + coef·q^m = d (elementwise; 0 where d ≤ 0) and dq/dd, from one universal
-    table instead of a Newton iteration per point: with Q = (coef/c)^(1/(1−m)) (the load at which
-    both terms are equal) q = Q·X(d/(c·Q)), X the root of X + X^m = y, tabulated once in
-    ln X against ln y and read by cubic Hermite interpolation (values and slopes at the nodes;
-    relative error of q about 1e-13 over the table, checked by test). dq/dd = X/(c·(X + m·(y − X)))
-    needs no power (X^m = y − X). Outside the table (|ln y| > 80) the exact :func:`_invert`.
-    For ``coef`` = 0 (linear law) q = d/c exactly."""
+    """q ≥ 0 with c·q + coef·q^m = d (elementwise; 0 where d ≤ 0) and dq/dd, from one universal table.
+
+    Instead of a Newton iteration per point: with Q = (coef/c)^(1/(1−m)) (the load at which both terms
+    are equal) q = Q·X(d/(c·Q)), X the root of X + X^m = y, tabulated once in ln X against ln y and read
+    by cubic Hermite interpolation (values and slopes at the nodes; relative error of q about 1e-13
+    over the table, checked by test). dq/dd = X/(c·(X + m·(y − X))) needs no power (X^m = y − X).
+    Outside the table (|ln y| > 80) the exact :func:`_invert`. For ``coef`` = 0 (linear law) q = d/c
+    exactly.
+
+    Parameters
+    ----------
+    d : array_like
+        Approach beyond each point's separation, δ − g, m.
+    c : array_like
+        Linear compliance of each point, m/N, broadcast to ``d``.
+    coef : float
+        Coefficient of the power-law term, m/N^m (0: linear law).
+    m : float
+        Exponent of the power-law term (< 1).
+
+    Returns
+    -------
+    q : numpy.ndarray
+        Load of each point, N, shaped like ``d``.
+    dq : numpy.ndarray
+        Tangent dq/dd, N/m (0 where unloaded).
+    """
     d = np.asarray(d, dtype=float)
     c = np.broadcast_to(np.asarray(c, dtype=float), d.shape)
     pos = d > 0
@@ -348,10 +467,23 @@ def _kernel(name: str):
 
 
 def law_point_scales(compliance: np.ndarray, law: ContactLaw) -> np.ndarray:
-    """Q, ln(c·Q) and c·Q (3, R, M) of points of compliance ``compliance`` (R, M) m/N (the law's
-    linear part included) under ``law``, as :func:`load_sums` computes them (its ``scales``: a
-    Newton iteration over the approach passes the same points many times); (0, 0, 0) for a
-    linear law, which needs none."""
+    """Q, ln(c·Q) and c·Q (3, R, M) of points of compliance ``compliance`` (R, M) m/N under ``law``.
+
+    As :func:`load_sums` computes them (its ``scales``: a Newton iteration over the approach passes
+    the same points many times); (0, 0, 0) for a linear law, which needs none.
+
+    Parameters
+    ----------
+    compliance : numpy.ndarray
+        (R, M) linear compliance of each point, m/N, the law's linear part included.
+    law : ContactLaw
+        The local contact law (:func:`gearmesh.ltca_model.contact_law`).
+
+    Returns
+    -------
+    numpy.ndarray
+        (3, R, M): Q (N), ln(c·Q) (c·Q in m), c·Q (m); shape (0, 0, 0) for a linear law.
+    """
     comp = np.ascontiguousarray(compliance, dtype=float)
     if not law.coefficient:
         return np.zeros((0, 0, 0))
@@ -362,21 +494,46 @@ def law_point_scales(compliance: np.ndarray, law: ContactLaw) -> np.ndarray:
 
 def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law: ContactLaw, mask=None,
               points: bool = False, scales: np.ndarray | None = None, rows: np.ndarray | None = None):
-    """Per row, the total load Σ q_i (N), its tangent Σ dq_i/dδ (N/m) and the load of the points
-    in ``mask`` at each of several approaches: q_i the root of c_i·q + coef·q^m = δ − g_i (0 where
-    δ ≤ g_i) for points of separation ``gap`` (R, M) m (inf: none) and compliance ``compliance``
-    (R, M) m/N (the law's linear part included) at approaches ``approach`` (R, U) m, increasing
-    along each row. Returns three (R, U) arrays; with ``points`` also each point's q_i and dq_i/dδ
-    (R, M) at the last approach. With ``rows`` (N,) only those rows of ``gap``, ``compliance``,
-    ``mask`` and ``scales``, ``approach`` (N, U) one row for each, and the results (N, ...): what the
-    same call on the rows taken out gives, without copying them.
+    """Per row, the total load, its tangent and the masked points' load at several approaches.
+
+    Σ q_i (N), Σ dq_i/dδ (N/m) and the load of the points in ``mask``: q_i the root of
+    c_i·q + coef·q^m = δ − g_i (0 where δ ≤ g_i). With ``rows`` only those rows of ``gap``,
+    ``compliance``, ``mask`` and ``scales`` are taken, ``approach`` one row for each, and the results
+    have len(rows) rows: what the same call on the rows taken out gives, without copying them.
 
     Each root by :func:`invert_tabulated`'s method — q = Q·X(y), Q = (coef/c)^(1/(1−m)) the load
     at which both terms are equal, y = d/(c·Q), X the root of X + X^m = y from its universal table
     by cubic Hermite interpolation, dq/dd = X/(c·(X + m·(y − X))) — in one compiled pass (numba):
     Q and c·Q once per point (or taken from ``scales``, :func:`law_point_scales` of the same
     points), only the points the largest approach reaches. A row with a point beyond the universal
-    table is summed again by :func:`invert_tabulated` (Newton there)."""
+    table is summed again by :func:`invert_tabulated` (Newton there).
+
+    Parameters
+    ----------
+    gap : numpy.ndarray
+        (R, M) unloaded separations of the points, m; inf where no point.
+    compliance : numpy.ndarray
+        (R, M) linear compliances, m/N, the law's linear part included.
+    approach : numpy.ndarray
+        (R, U) approaches δ, m, increasing along each row ((len(rows), U) with ``rows``).
+    law : ContactLaw
+        The local contact law (:func:`gearmesh.ltca_model.contact_law`).
+    mask : numpy.ndarray of bool, optional
+        (R, M) points whose load is summed apart (e.g. the entering pair); None: none.
+    points : bool, default False
+        Also return each point's q_i and dq_i/dδ at the last approach.
+    scales : numpy.ndarray, optional
+        (3, R, M) the points' scales from :func:`law_point_scales`; None: computed here.
+    rows : numpy.ndarray of int, optional
+        Indices of the rows to sum; None: all.
+
+    Returns
+    -------
+    force, stiffness, masked : numpy.ndarray
+        (R, U) Σ q_i (N), Σ dq_i/dδ (N/m), Σ of the masked q_i (N).
+    point_load, point_tangent : numpy.ndarray
+        Only with ``points``: (R, M) q_i (N) and dq_i/dδ (N/m) at the last approach.
+    """
     gap, comp = np.ascontiguousarray(gap, dtype=float), np.ascontiguousarray(compliance, dtype=float)
     x = np.ascontiguousarray(approach, dtype=float)
     rows = np.arange(gap.shape[0]) if rows is None else np.ascontiguousarray(rows, dtype=np.int64)
@@ -425,11 +582,44 @@ def solve_contact_tabulated(gap: np.ndarray, compliance: np.ndarray, force: np.n
 
     The approach of each row by Newton on S(δ) = Σ q_i(δ) − F with the compiled load sums of
     :func:`load_sums`, each row until its own |S| ≤ rtol·F/10 (the rows still iterating copied out
-    for each pass, their loads kept from the pass that meets it), from ``delta_start`` (B,) m
-    where it is below the default upper bound (all of F on the point closest to contact). S is
-    convex and increasing: Newton from an upper bound descends monotonically to the root, and from
-    a point left of it steps once to its right. Returns loads (B, M) N, approach δ (B,) m and each
-    point's tangent dq_i/dδ (B, M) N/m (0 where unloaded)."""
+    for each pass, their loads kept from the pass that meets it), from ``delta_start`` where it is
+    below the default upper bound (all of F on the point closest to contact). S is convex and
+    increasing: Newton from an upper bound descends monotonically to the root, and from a point left
+    of it steps once to its right.
+
+    Parameters
+    ----------
+    gap : numpy.ndarray
+        (B, M) unloaded separations, m; NaN or inf for points that cannot touch.
+    compliance : numpy.ndarray
+        (B, M) linear compliance of each point, m/N: teeth (+ linear contact).
+    force : numpy.ndarray
+        (B,) total transverse force, N, > 0.
+    law : ContactLaw
+        The local contact law (:func:`~gearmesh.ltca_model.contact_law`).
+    delta_start : array_like, optional
+        (B,) guesses of the approach, m (a warm start).
+    rtol : float, default 1e-12
+        Relative tolerance of the load sum.
+    max_iter : int, default 100
+        Newton passes before a RuntimeError.
+
+    Returns
+    -------
+    q : numpy.ndarray
+        (B, M) loads, N.
+    delta : numpy.ndarray
+        (B,) approach δ, m.
+    dq : numpy.ndarray
+        (B, M) each point's tangent dq_i/dδ, N/m (0 where unloaded).
+
+    Raises
+    ------
+    GearmeshInputError
+        A row without any candidate contact point.
+    RuntimeError
+        The load sum does not converge.
+    """
     g, c_eff, force, bound = _contact_rows(gap, compliance, force, law)
     delta = bound.copy() if delta_start is None else np.where(np.asarray(delta_start) < bound, delta_start, bound)
     q, dq = np.zeros(g.shape), np.zeros(g.shape)
@@ -453,21 +643,47 @@ def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, la
                   rtol: float = 1e-12, max_iter: int = 200, inner_tol: float = 1e-14, delta_start=None):
     """Loads, approach and tangent stiffness of independent contact points (exact LCP solve).
 
+    Complementarity holds exactly: q_i > 0 only where g_i < δ, and there
+    δ − g_i = c_i q_i + δ_c(q_i) to the inner tolerance; Σ q = F to ``rtol`` (module docstring:
+    Newton on the convex increasing load sum from an upper bound).
+
     Parameters
     ----------
-    gap : (B, M) unloaded separations (m); NaN or inf for points that cannot touch.
-    compliance : (B, M) linear compliance of each point (m/N): teeth (+ linear contact).
-    force : (B,) total transverse force (N), > 0.
-    law : the local contact law (:func:`~gearmesh.ltca_model.contact_law`).
-    rtol, inner_tol : relative tolerances of the load sum and of each point's inversion.
-    delta_start : (B,) optional guesses of the approach (m), used where they are an upper bound
-        closer than the default one (a warm start: fewer Newton steps, same root).
+    gap : numpy.ndarray
+        (B, M) unloaded separations, m; NaN or inf for points that cannot touch.
+    compliance : numpy.ndarray
+        (B, M) linear compliance of each point, m/N: teeth (+ linear contact).
+    force : numpy.ndarray
+        (B,) total transverse force, N, > 0.
+    law : ContactLaw
+        The local contact law (:func:`~gearmesh.ltca_model.contact_law`).
+    rtol : float, default 1e-12
+        Relative tolerance of the load sum.
+    max_iter : int, default 200
+        Newton steps on the approach.
+    inner_tol : float, default 1e-14
+        Relative tolerance of each point's inversion.
+    delta_start : array_like, optional
+        (B,) guesses of the approach, m, used where they are an upper bound closer than the default
+        one (a warm start: fewer Newton steps, same root).
 
     Returns
     -------
-    loads (B, M) N, approach δ (B,) m, stiffness dF/dδ (B,) N/m, iterations used.
-    Complementarity holds exactly: q_i > 0 only where g_i < δ, and there
-    δ − g_i = c_i q_i + δ_c(q_i) to the inner tolerance; Σ q = F to ``rtol``.
+    q : numpy.ndarray
+        (B, M) loads, N.
+    delta : numpy.ndarray
+        (B,) approach δ, m.
+    stiffness : numpy.ndarray
+        (B,) tangent stiffness dF/dδ, N/m.
+    iterations : int
+        Newton steps used.
+
+    Raises
+    ------
+    GearmeshInputError
+        A row without any candidate contact point.
+    RuntimeError
+        The load sum does not converge.
     """
     g, c_eff, force, delta = _contact_rows(gap, compliance, force, law)
     coef, m = law.coefficient, law.exponent
@@ -504,12 +720,47 @@ def solve_contact(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, la
 
 
 def check_torques(torques, field: str = "torques_Nm") -> np.ndarray:
-    """Torques (N·m) as a 1-d float array; refuses empty, non-numeric, non-finite, non-positive."""
+    """Torques (N·m) as a 1-d float array; refuses empty, non-numeric, non-finite, non-positive.
+
+    Parameters
+    ----------
+    torques : float or array_like
+        Torque(s), N·m.
+    field : str, default 'torques_Nm'
+        Field named in the error.
+
+    Returns
+    -------
+    numpy.ndarray
+        (T,) torques, N·m.
+
+    Raises
+    ------
+    GearmeshInputError
+        Empty, non-numeric, non-finite or non-positive torques.
+    """
     return positive_values(torques, field, "N m", note="; the pinion drives")
 
 
 def pinion_torques(geom: PairGeometry, torques, on: str = "pinion", field: str = "torques_Nm") -> np.ndarray:
-    """Pinion torques T1 (N·m): as given, or from gear torques T2 by T1 = T2·z1/z2."""
+    """Pinion torques T1 (N·m): as given, or from gear torques T2 by T1 = T2·z1/z2.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    torques : float or array_like
+        Torque(s), N·m.
+    on : {'pinion', 'gear'}, default 'pinion'
+        The member the torques act on.
+    field : str, default 'torques_Nm'
+        Field named in an error.
+
+    Returns
+    -------
+    numpy.ndarray
+        (T,) pinion torques T1, N·m.
+    """
     return pinion_torque(geom.pair, check_torques(torques, field), on)
 
 
@@ -517,7 +768,31 @@ def loaded_pinion_torques(geom: PairGeometry, torques, on: str = "pinion",
                           field: str = "torques_Nm") -> tuple[np.ndarray, np.ndarray]:
     """The torques as given and as pinion torques T1 (N·m), each refused (GearmeshInputError
     naming ``field``) above the contact-stress and deflection limits of
-    :func:`gearmesh.loads.check_load`: the entry check of every stage that loads the mesh."""
+    :func:`gearmesh.loads.check_load`: the entry check of every stage that loads the mesh.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    torques : float or array_like
+        Torque(s), N·m.
+    on : {'pinion', 'gear'}, default 'pinion'
+        The member the torques act on.
+    field : str, default 'torques_Nm'
+        Field named in an error.
+
+    Returns
+    -------
+    given : numpy.ndarray
+        (T,) the torques as given, N·m.
+    pinion : numpy.ndarray
+        (T,) pinion torques T1, N·m.
+
+    Raises
+    ------
+    GearmeshInputError
+        Torques not positive and finite, or beyond the load limits.
+    """
     given = check_torques(torques, field)
     t1 = pinion_torque(geom.pair, given, on)
     check_loads(geom, t1, field, given)
@@ -595,7 +870,20 @@ def _tca_from_grid(model: LTCAModel, te_pair_full: np.ndarray, tol: float = 1e-9
 
 def torque_gaps(model: LTCAModel, misalignment: np.ndarray) -> np.ndarray:
     """The grid's separations (T, P+1, J, N) (m) at each torque's mesh misalignment ``misalignment``
-    (T,) m (the stated f_ma and the load's f_sh; the grid carries the stated one alone)."""
+    (T,) m (the stated f_ma and the load's f_sh; the grid carries the stated one alone).
+
+    Parameters
+    ----------
+    model : LTCAModel
+        The load-independent LTCA model (:func:`gearmesh.ltca_model.ltca_model`).
+    misalignment : numpy.ndarray
+        (T,) mesh misalignment of each torque, m.
+
+    Returns
+    -------
+    numpy.ndarray
+        (T, P+1, J, N) unloaded separations, m.
+    """
     g, geom = model.grid, model.geom
     mis = np.asarray(misalignment, dtype=float)
     if np.all(mis == model.misalignment):
@@ -636,28 +924,46 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
          extension: float = DEFAULT_EXTENSION, model: LTCAModel | None = None, misalignment=None) -> LTCAResult:
     """Loaded TCA at each torque over one mesh cycle (and at the start of engagement φ1A).
 
+    When loaded tip edges reach the outer fifth of the candidate zone beyond the active profile, the
+    zone is doubled (up to one base pitch) and the LTCA repeated; with a given ``model`` a RuntimeWarning
+    is issued instead. Each torque's mesh misalignment — the stated f_ma and the system deflection's f_sh
+    under its force (:func:`gearmesh.deflection.mesh_misalignment`) — adds to the separations as a lead
+    mismatch (:func:`torque_gaps`); the supports' translation along the line of action is reported
+    beside the LTE (``system_approach``), not in it.
+
     Parameters
     ----------
-    geom : pair geometry (needs material and bore radius; carries the modifications).
-    torques : torque(s) in N·m, on the pinion or, with ``on='gear'``, on the gear.
-    positions, points : roll positions per mesh cycle and points per contact line.
-    lead_slope : lead slope deviations [pinion, gear] (m over the face width); None: the pair's
-        own (:mod:`gearmesh.deviation`).
-    contact_law_name : 'palmgren' (default) or 'linear' (module docstring).
-    method : cantilever model of the slice compliance (:mod:`gearmesh.stiffness`).
-    extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
-    model : a prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (then the grid arguments are ignored).
-    misalignment : the mesh misalignment (m) of each torque, instead of the pair's own
-        (:func:`gearmesh.deflection.mesh_misalignment`; e.g. the rating's with ISO's f_ma).
+    geom : PairGeometry
+        The pair's geometry (needs material and bore radius; carries the modifications).
+    torques : float or array_like
+        Torque(s), N·m, on the pinion or, with ``on='gear'``, on the gear.
+    positions, points : int
+        Roll positions per mesh cycle (default 64) and candidate points per contact line (50).
+    lead_slope : sequence of 2 float, optional
+        Lead slope deviations [pinion, gear], m over the face width; None: the pair's own (:mod:`gearmesh.deviation`).
+    on : {'pinion', 'gear'}, default 'pinion'
+        The member ``torques`` act on.
+    contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
+        Local contact law (:func:`gearmesh.ltca_model.contact_law`).
+    method : str, default 'fe'
+        Cantilever (tooth) model of the slice compliance (:data:`gearmesh.choices.TOOTH_METHODS`).
+    extension : float, default :data:`gearmesh.tca.DEFAULT_EXTENSION`
+        Reach of the tip-edge candidates beyond the active zone, fraction of p_bt.
+    model : LTCAModel, optional
+        A prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (the grid arguments then ignored).
+    misalignment : float or array_like, optional
+        The mesh misalignment of each torque, m, instead of the pair's own (e.g. the rating's with ISO's f_ma).
 
-    When loaded tip edges reach the outer fifth of the candidate zone beyond the active
-    profile, the zone is doubled (up to one base pitch) and the LTCA repeated; with a given
-    ``model`` a RuntimeWarning is issued instead.
+    Returns
+    -------
+    LTCAResult
+        ``torque`` (T,) N·m, ``force`` F_bt (T,) N, ``load`` (T, P, J, N) N, ``lte`` (T, P) m, ``stiffness``
+        (T, P) N/m, ``corner_load`` (T, P) N, the values at φ1A, the unloaded ``tca`` and the ``model``.
 
-    The mesh misalignment of each torque — the pair's stated f_ma and the system deflection's f_sh
-    under that torque's force (:func:`gearmesh.deflection.mesh_misalignment`) — adds to the
-    separations as a lead mismatch (:func:`torque_gaps`); the supports' translation along the line
-    of action is reported beside the LTE (``system_approach``), not in it.
+    Raises
+    ------
+    GearmeshInputError
+        Torques, counts, method or modifications out of range.
     """
     t1 = pinion_torques(geom, torques, on)
     lead_slope = pair_lead_slope(geom, lead_slope)
@@ -699,7 +1005,25 @@ def lte_harmonics(lte, orders=MESH_ORDERS) -> np.ndarray:
     """Amplitudes (m) of mesh orders ``orders`` of a loaded TE sampled at P evenly spaced rolls over
     one mesh cycle, end excluded (last axis; :func:`gearmesh.contact.mesh_cycle_rolls`): the
     one-sided discrete Fourier amplitude 2·|X_k|/P of order k (exact for a band-limited signal of
-    orders below P/2). Shape (..., len(orders))."""
+    orders below P/2).
+
+    Parameters
+    ----------
+    lte : array_like
+        (..., P) loaded transmission error, m.
+    orders : sequence of int, default :data:`MESH_ORDERS`
+        Mesh orders, each below P/2.
+
+    Returns
+    -------
+    numpy.ndarray
+        (..., len(orders)) amplitudes, m.
+
+    Raises
+    ------
+    ValueError
+        An order at or above P/2.
+    """
     lte = np.asarray(lte, dtype=float)
     n = lte.shape[-1]
     if max(orders) >= n / 2:

@@ -69,9 +69,36 @@ class ContactLaw:
 def contact_law(geom: PairGeometry, dz: float, name: str = DEFAULT_CONTACT_LAW) -> ContactLaw:
     """The local contact law of a point of width ``dz`` (m) in transverse units (module docstring).
 
-    Palmgren: δ_n [mm] = 3.84e-5·(w·E'_steel/E')^0.9·l_ref^0.1 with w = q/Δz the normal load
+    Palmgren [1]_, [2]_: δ_n [mm] = 3.84e-5·(w·E'_steel/E')^0.9·l_ref^0.1 with w = q/Δz the normal load
     per unit length (N/mm) and l_ref = b/cos βb (mm); transverse δ_t = δ_n/cos βb.
     Linear: δ_t = c_h·q/Δz, c_h of :func:`gearmesh.slice_compliance.hertz_compliance_transverse`.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`), with its material.
+    dz : float
+        Width of the point (slice) along the face, m.
+    name : {'palmgren', 'linear'}, default 'palmgren'
+        The law (:data:`gearmesh.choices.CONTACT_LAWS`).
+
+    Returns
+    -------
+    ContactLaw
+        δ_c(q) = ``coefficient``·q^``exponent`` (m, q in N, transverse) and the linear compliance
+        ``linear`` (m/N) added to the teeth; ``dz`` (m).
+
+    Raises
+    ------
+    GearmeshInputError
+        ``contact_law`` not one of the laws, or the pair lacks the stiffness data.
+
+    References
+    ----------
+    .. [1] Palmgren A., Ball and Roller Bearing Engineering, 3rd ed., SKF Industries, Philadelphia,
+       1959.
+    .. [2] Harris T.A., Kotzalas M.N., Rolling Bearing Analysis, 5th ed., CRC Press, Boca Raton, 2007,
+       eq. 6.41.
     """
     if name not in CONTACT_LAWS:
         raise GearmeshInputError("contact_law", name, f"must be one of {list(CONTACT_LAWS)}")
@@ -103,6 +130,30 @@ def point_compliance(geom: PairGeometry, pair_table: PairSliceTable,
     table at its own touched roll length (the tip of one, ρ_P of the other). Bending,
     shear, axial compression and fillet foundation of both teeth; with ``with_hertz`` the
     linear Hertz line-contact compliance as well (the stiffness stage's slice sum).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    pair_table : PairSliceTable
+        Both teeth's compliances along the path of contact
+        (:func:`gearmesh.slice_compliance.pair_slice_table`).
+    tables : tuple of SliceComplianceTable
+        (pinion, gear) per-tooth compliance tables against roll length, for tip-edge points.
+    s : array_like
+        Positions along the transverse line of action from A, m.
+    region : array_like of int
+        Region of each point (:data:`gearmesh.tca.REGION_FLANK`, tip edges :data:`gearmesh.tca.REGION_APPROACH_TIP`,
+        :data:`gearmesh.tca.REGION_RECESS_TIP`), shaped like ``s``.
+    rho_pinion, rho_gear : array_like
+        Touched roll lengths (radii of curvature) on pinion and gear, m, shaped like ``s``.
+    with_hertz : bool, default False
+        Add the linear Hertz line-contact compliance.
+
+    Returns
+    -------
+    numpy.ndarray
+        Compliance per unit face width, m²/N, shaped like ``s``.
     """
     s = np.clip(np.nan_to_num(np.asarray(s, dtype=float)), 0.0, geom.path_of_contact)
     n_int = pair_table.total.size - 1
@@ -153,11 +204,41 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     Flank points (region 1) take the stiffness stage's pair table at their s, exactly as
     :func:`gearmesh.stiffness.mesh_stiffness` interpolates it; tip-edge points take each
     tooth's table at its own touched roll length (the tip of the one, ρ_P of the other,
-    both within the active flank). ``tables`` may be passed to reuse the per-gear
-    :class:`~gearmesh.tooth.SliceComplianceTable` (same ``method``). ``lead_slope`` None: the
-    pair's own deviations (:func:`gearmesh.tca.pair_lead_slope`); the grid's separations carry
-    the pair's stated mesh misalignment too (the load-dependent f_sh is added per torque by
-    :func:`gearmesh.ltca.ltca`).
+    both within the active flank). The grid's separations carry the pair's stated mesh
+    misalignment too (the load-dependent f_sh is added per torque by :func:`gearmesh.ltca.ltca`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with its modifications (:func:`gearmesh.gear.pair_geometry`).
+    positions : int, default 64
+        Mesh positions over one mesh cycle (the start of engagement is appended as a last one).
+    points : int, default 50
+        Candidate points (slices) per contact line.
+    lead_slope : sequence of 2 float, optional
+        Lead slope deviations [pinion, gear], m over the face width; None: the pair's own
+        deviations (:func:`gearmesh.tca.pair_lead_slope`).
+    contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
+        Local contact law (:func:`contact_law`).
+    method : str, default 'fe'
+        Tooth (cantilever) model of the slice compliance (:data:`gearmesh.choices.TOOTH_METHODS`).
+    extension : float, default :data:`gearmesh.tca.DEFAULT_EXTENSION`
+        Reach of the tip-edge candidates beyond the active zone, fraction of p_bt.
+    tables : tuple of SliceComplianceTable, optional
+        Per-gear :class:`~gearmesh.tooth.SliceComplianceTable` to reuse (same ``method``).
+    n_nodes : int, default 257
+        Nodes of each slice compliance table when ``tables`` is None.
+
+    Returns
+    -------
+    LTCAModel
+        ``grid`` (:class:`gearmesh.tca.CandidateGrid`, positions + 1), ``compliance`` (P+1, J, N) m/N,
+        ``law``, ``method``, ``pair_table``, ``lead_slope`` (m), ``tables``, ``misalignment`` f_ma (m).
+
+    Raises
+    ------
+    GearmeshInputError
+        Modifications, counts, ``method`` or ``extension`` out of range, or no stiffness data.
     """
     check_modifications(geom)
     require_stiffness_data(geom)

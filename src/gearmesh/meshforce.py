@@ -256,7 +256,36 @@ def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, p
                  contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
                  extension: float = DEFAULT_TABLE_EXTENSION,
                  tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None) -> TableLayout:
-    """The micro-geometry-independent part of :func:`mesh_force_table` (its parameters)."""
+    """The micro-geometry-independent part of :func:`mesh_force_table` (its parameters).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    positions : int, default :data:`DEFAULT_TABLE_POSITIONS`
+        Rows (window positions) per mesh cycle (≥ 16).
+    points : int, default :data:`DEFAULT_TABLE_POINTS`
+        Candidate points (slices) per contact line.
+    contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
+        Local contact law (:func:`gearmesh.ltca_model.contact_law`).
+    method : str, default 'fe'
+        Tooth model of the slice compliance (:data:`gearmesh.choices.TOOTH_METHODS`).
+    extension : float, default :data:`DEFAULT_TABLE_EXTENSION`
+        Reach of the tip-edge candidates beyond the active zone, fraction of p_bt, in (0, 0.5].
+    tables : tuple of SliceComplianceTable, optional
+        Per-gear slice compliance tables to reuse (same ``method``).
+
+    Returns
+    -------
+    TableLayout
+        ``law``, ``pitch`` p_bt (m), ``roll_engagement`` r_A (m), ``window`` and ``roll`` (P+1,) m,
+        candidate ``grid``, ``compliance`` (P+1, M) m/N, ``enter_mask`` (P+1, M).
+
+    Raises
+    ------
+    GearmeshInputError
+        ``table_positions`` or ``table_extension`` out of range.
+    """
     positions = check_count("table_positions", positions, 16, 100000)
     if not (isinstance(extension, (int, float)) and 0 < extension <= 0.5):
         raise GearmeshInputError("table_extension", extension, "must lie in (0, 0.5] (fraction of the base pitch)")
@@ -286,7 +315,30 @@ def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, p
 def tabulate(layout: TableLayout, gap: np.ndarray, force_max: float,
              approaches: int = DEFAULT_TABLE_APPROACHES) -> MeshForceTable:
     """The :class:`MeshForceTable` of one micro-geometry with separations ``gap`` (P+1, M) m
-    (:meth:`TableLayout.gaps`) up to ``force_max`` (N)."""
+    (:meth:`TableLayout.gaps`) up to ``force_max`` (N).
+
+    Parameters
+    ----------
+    layout : TableLayout
+        The pair's micro-geometry-independent layout (:func:`table_layout`).
+    gap : numpy.ndarray
+        Unloaded separations of every candidate point, (P+1, M) m, inf where no candidate.
+    force_max : float
+        Transverse force every row reaches on the grid, N (positive, finite).
+    approaches : int, default :data:`DEFAULT_TABLE_APPROACHES`
+        Columns (approaches) of the table (≥ 8).
+
+    Returns
+    -------
+    MeshForceTable
+        ``approach`` (U,) m, ``gap_min`` (P+1,) m, ``force`` (P+1, U) N, ``stiffness`` (P+1, U) N/m,
+        ``enter_gap`` (P+1,) m, ``enter_force`` (P+1, U) N, with the bodies' compliance in series.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``table_approaches`` or ``force_max`` out of range, or a row without a candidate point.
+    """
     approaches = check_count("table_approaches", approaches, 8, 100000)
     if not (isinstance(force_max, (int, float)) and math.isfinite(force_max) and force_max > 0):
         raise GearmeshInputError("force_max", force_max, "must be a positive finite force (N)")
@@ -334,25 +386,60 @@ def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFA
                      static_force: float | None = None) -> MeshForceTable:
     """Tabulate the mesh force F(x, w) of ``geom`` (its modifications) over one mesh cycle.
 
-    Parameters
-    ----------
-    force_max : every row reaches at least this transverse force (N) on the grid (give a few
-        times the largest static force F_bt a simulation will see; above it F is extrapolated
-        with its tangent).
-    positions, approaches : rows per mesh cycle and columns (module docstring).
-    points : candidate points (slices) per contact line, as the LTCA's ``points``.
-    lead_slope : lead slope deviations [pinion, gear] (m over the face width); None: the pair's own.
-    contact_law_name, method : local contact law and cantilever model (:mod:`gearmesh.ltca`).
-    extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt, at
-        most 0.5: the entering pair is followed over half a pitch before A).
-    tables : per-gear slice compliance tables to reuse (same ``method``).
-    static_force : the static transverse force (N) whose mesh misalignment the separations carry
-        (the stated f_ma and the system deflection's f_sh at it,
-        :func:`gearmesh.deflection.mesh_misalignment`: the gearbox deflects with the mean load);
-        None: the stated f_ma alone.
+    The model and the table's layout are the module docstring's: each candidate point's load is its
+    own contact law inverted at the approach, the mesh force their sum, after the "mesh force from the
+    instantaneous contact of all tooth pairs" formulation of [1]_, [2]_, [3]_ with the project's own
+    slice model, for the mesh-in impact of [4]_.
 
     Several micro-geometries of one pair: :func:`table_layout` once, then :func:`tabulate` of
     :meth:`TableLayout.gaps` for each.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with its modifications (:func:`gearmesh.gear.pair_geometry`).
+    force_max : float
+        Every row reaches at least this transverse force (N) on the grid (give a few times the
+        largest static force F_bt a simulation will see; above it F is extrapolated with its tangent).
+    positions : int, default :data:`DEFAULT_TABLE_POSITIONS`
+        Rows per mesh cycle (module docstring).
+    approaches : int, default :data:`DEFAULT_TABLE_APPROACHES`
+        Columns (approaches) of the table.
+    points : int, default :data:`DEFAULT_TABLE_POINTS`
+        Candidate points (slices) per contact line, as the LTCA's ``points``.
+    lead_slope : sequence of 2 float, optional
+        Lead slope deviations [pinion, gear], m over the face width; None: the pair's own.
+    contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
+        Local contact law (:func:`gearmesh.ltca_model.contact_law`).
+    method : str, default 'fe'
+        Tooth (cantilever) model (:data:`gearmesh.choices.TOOTH_METHODS`).
+    extension : float, default :data:`DEFAULT_TABLE_EXTENSION`
+        Reach of the tip-edge candidates beyond the active zone (fraction of p_bt, at most 0.5: the
+        entering pair is followed over half a pitch before A).
+    tables : tuple of SliceComplianceTable, optional
+        Per-gear slice compliance tables to reuse (same ``method``).
+    static_force : float, optional
+        The static transverse force (N) whose mesh misalignment the separations carry (the stated
+        f_ma and the system deflection's f_sh at it, :func:`gearmesh.deflection.mesh_misalignment`:
+        the gearbox deflects with the mean load); None: the stated f_ma alone.
+
+    Returns
+    -------
+    MeshForceTable
+        F (N) and dF/dx (N/m) over window position w (m) and approach u (m) beyond the first touch,
+        with the entering pair's separation (m) and load (N) (:class:`MeshForceTable`).
+
+    References
+    ----------
+    .. [1] Velex P., Maatar M., "A mathematical model for analyzing the influence of shape
+       deviations and mounting errors on gear dynamic behaviour", J. Sound Vib. 191 (1996) 629–660.
+    .. [2] Eritenel T., Parker R.G., "An investigation of tooth mesh nonlinearity and partial
+       contacts of a helical gear pair using a lumped-parameter model", Mech. Mach. Theory 56
+       (2012) 28–51.
+    .. [3] Parker R.G., Vijayakar S.M., Imajo T., "Non-linear dynamic response of a spur gear pair:
+       modelling and experimental comparisons", J. Sound Vib. 237 (2000) 435–455.
+    .. [4] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears,
+       docs/references.md.
     """
     layout = table_layout(geom, positions, points, contact_law_name, method, extension, tables)
     lead = with_misalignment(pair_lead_slope(geom, lead_slope),

@@ -109,10 +109,29 @@ def _text(value: Any) -> str:
 
 
 def rating_inputs(given: Mapping[str, Any] | None = None) -> RatingInputs:
-    """The given inputs (names of :data:`DEFAULT_INPUTS`, e.g. a pair's ``rating_inputs``; others such
-    as ``tip_edge_radius_mm`` are not the rating's and are skipped) checked by the pair reader's
-    rules (:func:`gearmesh.pairfile.check_rating_input`: grade an integer 1..12, limits, roughness and
-    viscosities positive, ν100 < ν40) and the others filled from :data:`DEFAULT_INPUTS`."""
+    """The given inputs checked by the pair reader's rules, the others filled from :data:`DEFAULT_INPUTS`.
+
+    Names of :data:`DEFAULT_INPUTS` (e.g. a pair's ``rating_inputs``; others such as
+    ``tip_edge_radius_mm`` are not the rating's and are skipped) are checked by
+    :func:`gearmesh.pairfile.check_rating_input` (grade an integer 1..12, limits, roughness and
+    viscosities positive, ν100 < ν40).
+
+    Parameters
+    ----------
+    given : Mapping, optional
+        Rating inputs in engineering units, keys with their unit (e.g. ``flank_Ra_um``,
+        ``viscosity_40C_mm2_s``, ``contact_fatigue_limit_MPa``); None: all defaults.
+
+    Returns
+    -------
+    RatingInputs
+        ``values`` (all of :data:`DEFAULT_INPUTS`' keys) and the names ``defaulted``.
+
+    Raises
+    ------
+    GearmeshInputError
+        An input outside its rule, or ``viscosity_100C_mm2_s`` not below ``viscosity_40C_mm2_s``.
+    """
     given = {k: v for k, v in dict(given or {}).items() if k in DEFAULT_INPUTS}
     out = {k: check_rating_input(k, given[k]) if k in given else default for k, default in DEFAULT_INPUTS.items()}
     if out["viscosity_100C_mm2_s"] >= out["viscosity_40C_mm2_s"]:
@@ -124,7 +143,23 @@ def rating_inputs(given: Mapping[str, Any] | None = None) -> RatingInputs:
 def check_factors(factors: Mapping[str, Any] | None) -> dict[str, float]:
     """Given factors {name: value} (a mapping): names of :data:`FACTOR_NAMES`, each a finite number
     within its range in the standard (:data:`gearmesh.limits.FACTOR_RANGES`: the load factors K_*
-    at least 1, the life factors within ISO 6336-2/-3's tables, ...)."""
+    at least 1, the life factors within ISO 6336-2/-3's tables, ...).
+
+    Parameters
+    ----------
+    factors : Mapping of str to float, optional
+        Factors given instead of computed, e.g. ``{'K_v': 1.2}`` (dimensionless).
+
+    Returns
+    -------
+    dict of str to float
+        The checked factors.
+
+    Raises
+    ------
+    GearmeshInputError
+        Not a mapping, an unknown name, or a value not finite or out of its range.
+    """
     if factors is not None and not isinstance(factors, Mapping):
         raise GearmeshInputError("factors", factors, "must be a mapping {name: value}, e.g. {'K_v': 1.2}")
     out = {}
@@ -147,10 +182,31 @@ def check_factors(factors: Mapping[str, Any] | None) -> dict[str, float]:
 
 
 def iso1328_tolerances(grade: int, d_mm: float, b_mm: float, m_n_mm: float) -> dict[str, float]:
-    """ISO 1328-1:1995 tolerances (µm) of grade ``grade`` for reference diameter d, face width b and
-    module m_n (mm): single pitch f_pt = 0.3(m_n + 0.4√d) + 4, helix slope f_Hβ = 0.07√d + 0.45√b + 3
-    and total helix F_β = 0.1√d + 0.63√b + 4.2 at grade 5, each times 2^((Q − 5)/2) (clause 5.3;
-    the standard's rounding of the tabulated values is not applied)."""
+    """ISO 1328-1:1995 tolerances (µm) of grade ``grade`` [1]_: single pitch f_pt = 0.3(m_n + 0.4√d) + 4,
+    helix slope f_Hβ = 0.07√d + 0.45√b + 3 and total helix F_β = 0.1√d + 0.63√b + 4.2 at grade 5, each
+    times 2^((Q − 5)/2) (clause 5.3; the standard's rounding of the tabulated values is not applied).
+
+    Parameters
+    ----------
+    grade : int
+        Accuracy grade Q.
+    d_mm : float
+        Reference diameter d, mm.
+    b_mm : float
+        Face width b, mm.
+    m_n_mm : float
+        Normal module m_n, mm.
+
+    Returns
+    -------
+    dict of str to float
+        ``f_pt``, ``f_Hbeta``, ``F_beta``, µm.
+
+    References
+    ----------
+    .. [1] ISO 1328-1:1995, Cylindrical gears — ISO system of accuracy — Part 1: Definitions and allowable
+       values of deviations relevant to corresponding flanks of gear teeth, clause 5.3.
+    """
     step = 2.0 ** (0.5 * (grade - 5))
     return {"f_pt": (0.3 * (m_n_mm + 0.4 * math.sqrt(d_mm)) + 4.0) * step,
             "f_Hbeta": (0.07 * math.sqrt(d_mm) + 0.45 * math.sqrt(b_mm) + 3.0) * step,
@@ -159,10 +215,39 @@ def iso1328_tolerances(grade: int, d_mm: float, b_mm: float, m_n_mm: float) -> d
 
 def dynamic_factor_c(grade: int, eps_beta: float, v: float, z1: int, u: float, load_per_width: float,
                      k1: tuple[float, float] | None = None) -> float:
-    """K_v by ISO 6336-1:1996 method C (6.3.4; DIN 3990-1 eq. 3.05):
-    K_v = 1 + (K1/(K_A F_t/b) + K2)·(z1 v/100)·√(u²/(1 + u²)), K_A F_t/b ≥ 100 N/mm, ``v`` the
-    pitch-line speed (m/s), ``load_per_width`` K_A F_t/b (N/mm); K1 (spur, helical) of the grade
-    (``k1`` overrides). ε_β ≥ 1 takes the helical column, ε_β < 1 interpolates K_vα − ε_β(K_vα − K_vβ)."""
+    """K_v by ISO 6336-1:1996 method C (6.3.4 [1]_; DIN 3990-1 eq. 3.05 [2]_):
+    K_v = 1 + (K1/(K_A F_t/b) + K2)·(z1 v/100)·√(u²/(1 + u²)), K_A F_t/b ≥ 100 N/mm; K1 (spur,
+    helical) of the grade. ε_β ≥ 1 takes the helical column, ε_β < 1 interpolates
+    K_vα − ε_β(K_vα − K_vβ). Grades finer than 3 take grade 3's K1 (conservative).
+
+    Parameters
+    ----------
+    grade : int
+        ISO 1328-1 accuracy grade.
+    eps_beta : float
+        Overlap ratio ε_β.
+    v : float
+        Pitch-line speed, m/s.
+    z1 : int
+        Pinion teeth.
+    u : float
+        Gear ratio z2/z1.
+    load_per_width : float
+        K_A F_t/b, N/mm.
+    k1 : tuple of 2 float, optional
+        (spur, helical) K1 overriding the grade's.
+
+    Returns
+    -------
+    float
+        Dynamic factor K_v.
+
+    References
+    ----------
+    .. [1] ISO 6336-1:1996, Calculation of load capacity of spur and helical gears — Part 1: Basic
+       principles, introduction and general influence factors, clause 6.3.4 (method C).
+    .. [2] DIN 3990-1:1987, Tragfähigkeitsberechnung von Stirnrädern — Einführung und allgemeine Einflussfaktoren, eq. 3.05.
+    """
     if grade < 3:
         grade = 3  # the table starts at grade 3; finer grades take its value (conservative)
     k1 = _K1[grade] if k1 is None else k1
@@ -174,11 +259,38 @@ def dynamic_factor_c(grade: int, eps_beta: float, v: float, z1: int, u: float, l
 
 def face_load_factor_c(fm_per_width: float, c_gamma_beta: float, f_ma: float, b_over_d1: float,
                        crowned: bool = False, running_in: bool = True) -> tuple[float, dict[str, float]]:
-    """K_Hβ by ISO 6336-1 method C (7.6): f_sh = (F_m/b)·A·(b/d1)² (pinion bending and torsion, the
+    """K_Hβ by ISO 6336-1 method C (7.6 [1]_): f_sh = (F_m/b)·A·(b/d1)² (pinion bending and torsion, the
     pinion between bearings, no stiffening factor; A = 0.023 µm·mm/N, 0.012 with crowning),
     F_βx = 1.33 f_sh + f_ma, y_β = 0.15 F_βx ≤ 6 µm (case-hardened; 0 with ``running_in`` False),
     F_βy = F_βx − y_β, K_Hβ = 1 + c_γβ F_βy/(2 F_m/b) ≤ 2, else √(2 c_γβ F_βy/(F_m/b)).
-    ``fm_per_width`` F_m/b (N/mm), ``c_gamma_beta`` N/(mm µm), ``f_ma`` µm."""
+
+    Parameters
+    ----------
+    fm_per_width : float
+        F_m/b, N/mm.
+    c_gamma_beta : float
+        Mesh stiffness c_γβ, N/(mm·µm).
+    f_ma : float
+        Mesh misalignment f_ma, µm.
+    b_over_d1 : float
+        Face width over pinion reference diameter.
+    crowned : bool, default False
+        Crowned flanks (A = 0.012).
+    running_in : bool, default True
+        Take the running-in allowance y_β.
+
+    Returns
+    -------
+    k_hbeta : float
+        Face load factor K_Hβ.
+    terms : dict of str to float
+        ``f_sh_um``, ``F_betax_um``, ``y_beta_um``, ``F_betay_um``, µm.
+
+    References
+    ----------
+    .. [1] ISO 6336-1, Calculation of load capacity of spur and helical gears — Part 1: Basic principles,
+       introduction and general influence factors, clause 7.6 (method C).
+    """
     a = 0.012 if crowned else 0.023
     f_sh = fm_per_width * a * b_over_d1**2
     f_bx = 1.33 * f_sh + f_ma
@@ -191,17 +303,60 @@ def face_load_factor_c(fm_per_width: float, c_gamma_beta: float, f_ma: float, b_
 
 
 def face_factor_root(k_hbeta: float, b_over_h: float) -> float:
-    """K_Fβ = K_Hβ^N_F, N_F = (b/h)²/(1 + b/h + (b/h)²), b/h not below 3 (ISO 6336-1, 8.3)."""
+    """K_Fβ = K_Hβ^N_F, N_F = (b/h)²/(1 + b/h + (b/h)²), b/h not below 3 (ISO 6336-1, 8.3 [1]_).
+
+    Parameters
+    ----------
+    k_hbeta : float
+        Face load factor for contact stress K_Hβ.
+    b_over_h : float
+        Face width over tooth depth b/h.
+
+    Returns
+    -------
+    float
+        Face load factor for root stress K_Fβ.
+
+    References
+    ----------
+    .. [1] ISO 6336-1, Calculation of load capacity of spur and helical gears — Part 1: Basic principles,
+       introduction and general influence factors.
+    """
     r = max(b_over_h, 3.0)
     return k_hbeta ** (r**2 / (1 + r + r**2))
 
 
 def transverse_load_factor_b(eps_alpha: float, eps_gamma: float, z_eps: float, c_gamma_alpha: float,
                              f_pb: float, fth_per_width: float) -> tuple[float, float, float]:
-    """K_Hα, K_Fα by ISO 6336-1 method B (8.3.2): y_α = 0.075 f_pb ≤ 3 µm (case-hardened),
+    """K_Hα, K_Fα by ISO 6336-1 method B (8.3.2 [1]_): y_α = 0.075 f_pb ≤ 3 µm (case-hardened),
     ε_γ ≤ 2: K = ε_γ/2·(0.9 + 0.4 c_γα (f_pb − y_α)/(F_tH/b)); ε_γ > 2: K = 0.9 + 0.4 √(2(ε_γ − 1)/ε_γ)·
     c_γα (f_pb − y_α)/(F_tH/b); bounds 1 ≤ K_Hα ≤ ε_γ/(ε_α Z_ε²), 1 ≤ K_Fα ≤ ε_γ/(0.25 ε_α + 0.75).
-    Returns (K_Hα, K_Fα, y_α in µm)."""
+
+    Parameters
+    ----------
+    eps_alpha, eps_gamma : float
+        Transverse and total contact ratios ε_α, ε_γ.
+    z_eps : float
+        Contact ratio factor Z_ε (:func:`contact_ratio_factor`).
+    c_gamma_alpha : float
+        Mesh stiffness c_γα, N/(mm·µm).
+    f_pb : float
+        Base pitch deviation f_pb, µm.
+    fth_per_width : float
+        F_tH/b = F_t K_A K_v K_Hβ/b, N/mm.
+
+    Returns
+    -------
+    k_halpha, k_falpha : float
+        Transverse load factors K_Hα, K_Fα.
+    y_alpha : float
+        Running-in allowance y_α, µm.
+
+    References
+    ----------
+    .. [1] ISO 6336-1, Calculation of load capacity of spur and helical gears — Part 1: Basic principles,
+       introduction and general influence factors, clause 8.3.2 (method B).
+    """
     y_a = min(0.075 * f_pb, 3.0)
     term = c_gamma_alpha * (f_pb - y_a) / max(fth_per_width, 1e-9)
     k = eps_gamma / 2 * (0.9 + 0.4 * term) if eps_gamma <= 2 else 0.9 + 0.4 * math.sqrt(2 * (eps_gamma - 1) / eps_gamma) * term
@@ -216,27 +371,95 @@ def transverse_load_factor_b(eps_alpha: float, eps_gamma: float, z_eps: float, c
 
 
 def zone_factor(geom: PairGeometry) -> float:
-    """Z_H = √(2 cos βb cos α_wt/(cos² α_t sin α_wt)) (ISO 6336-2, 6.1)."""
+    """Z_H = √(2 cos βb cos α_wt/(cos² α_t sin α_wt)) (ISO 6336-2, 6.1 [1]_).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    float
+        Zone factor Z_H.
+
+    References
+    ----------
+    .. [1] ISO 6336-2, Calculation of load capacity of spur and helical gears — Part 2: Calculation of
+       surface durability (pitting).
+    """
     bb, awt, at = geom.base_helix_angle, geom.operating_pressure_angle, geom.transverse_pressure_angle
     return math.sqrt(2 * math.cos(bb) * math.cos(awt) / (math.cos(at) ** 2 * math.sin(awt)))
 
 
 def elasticity_factor(youngs_modulus: float, poisson_ratio: float) -> float:
-    """Z_E (√(N/mm²)) of two gears of one material: √(E/(2π(1 − ν²))) (ISO 6336-2, 7), E in Pa."""
+    """Z_E (√(N/mm²)) of two gears of one material: √(E/(2π(1 − ν²))) (ISO 6336-2, 7 [1]_), E in Pa.
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E, Pa.
+    poisson_ratio : float
+        Poisson's ratio ν.
+
+    Returns
+    -------
+    float
+        Elasticity factor Z_E, √(N/mm²).
+
+    References
+    ----------
+    .. [1] ISO 6336-2, Calculation of load capacity of spur and helical gears — Part 2: Calculation of
+       surface durability (pitting).
+    """
     return math.sqrt(youngs_modulus * 1e-6 / (2 * math.pi * (1 - poisson_ratio**2)))
 
 
 def contact_ratio_factor(eps_alpha: float, eps_beta: float) -> float:
-    """Z_ε (ISO 6336-2, 8): ε_β < 1: √((4 − ε_α)/3·(1 − ε_β) + ε_β/ε_α); ε_β ≥ 1: √(1/ε_α)."""
+    """Z_ε (ISO 6336-2, 8 [1]_): ε_β < 1: √((4 − ε_α)/3·(1 − ε_β) + ε_β/ε_α); ε_β ≥ 1: √(1/ε_α).
+
+    Parameters
+    ----------
+    eps_alpha : float
+        Transverse contact ratio ε_α.
+    eps_beta : float
+        Overlap ratio ε_β.
+
+    Returns
+    -------
+    float
+        Contact ratio factor Z_ε.
+
+    References
+    ----------
+    .. [1] ISO 6336-2, Calculation of load capacity of spur and helical gears — Part 2: Calculation of
+       surface durability (pitting).
+    """
     if eps_beta < 1:
         return math.sqrt((4 - eps_alpha) / 3 * (1 - eps_beta) + eps_beta / eps_alpha)
     return math.sqrt(1 / eps_alpha)
 
 
 def single_pair_factors(geom: PairGeometry) -> tuple[float, float, float, float]:
-    """(Z_B, Z_D, M1, M2), ISO 6336-2 clause 6.2: M1 = tan α_wt/√((√(d_a1²/d_b1² − 1) − 2π/z1)·
+    """(Z_B, Z_D, M1, M2), ISO 6336-2 clause 6.2 [1]_: M1 = tan α_wt/√((√(d_a1²/d_b1² − 1) − 2π/z1)·
     (√(d_a2²/d_b2² − 1) − (ε_α − 1)2π/z2)), M2 with the gears exchanged; spur: Z_B = max(1, M1),
-    Z_D = max(1, M2); ε_β ≥ 1: 1; ε_β < 1: Z = M − ε_β(M − 1), not below 1."""
+    Z_D = max(1, M2); ε_β ≥ 1: 1; ε_β < 1: Z = M − ε_β(M − 1), not below 1.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    tuple of float
+        Single pair tooth contact factors Z_B, Z_D and the ratios M1, M2.
+
+    References
+    ----------
+    .. [1] ISO 6336-2, Calculation of load capacity of spur and helical gears — Part 2: Calculation of
+       surface durability (pitting), clause 6.2.
+    """
     z1, z2 = geom.pair.teeth
     awt, ea, eb = geom.operating_pressure_angle, geom.eps_alpha, geom.eps_beta
     t1, t2 = (math.sqrt((float(geom.tip_radius[i]) / float(geom.base_radius[i])) ** 2 - 1) for i in (0, 1))
@@ -263,16 +486,62 @@ LONG_LIFE_CYCLES = 1e10
 
 def life_factor_contact(cycles: float, conditions: str = DEFAULT_LIFE_FACTOR_CONDITIONS) -> float:
     """Z_NT of case-hardened steel (Eh, IF), no pitting permitted: ISO 6336-2:2019 Table 2, line 2
-    (method B): 1.6 up to N_L = 10⁵, 1.0 at 5·10⁷, then ``conditions`` 'normal' 0.85 at 10¹⁰
+    (method B [1]_): 1.6 up to N_L = 10⁵, 1.0 at 5·10⁷, then ``conditions`` 'normal' 0.85 at 10¹⁰
     (Z_NT = (5·10⁷/N_L)^0.0307 between, the standard's Figure 6), 'optimum' 1.0; log-log between
-    the points and constant beyond 10¹⁰, where the standard's table ends."""
+    the points and constant beyond 10¹⁰, where the standard's table ends.
+
+    Parameters
+    ----------
+    cycles : float
+        Number of load cycles N_L.
+    conditions : {'normal', 'optimum'}, default 'normal'
+        Long-life conditions (:data:`gearmesh.choices.LIFE_FACTOR_CONDITIONS`).
+
+    Returns
+    -------
+    float
+        Life factor Z_NT.
+
+    Raises
+    ------
+    GearmeshInputError
+        Unknown ``life_factor_conditions``.
+
+    References
+    ----------
+    .. [1] ISO 6336-2:2019, Calculation of load capacity of spur and helical gears — Part 2: Calculation of
+       surface durability (pitting), Table 2.
+    """
     return _log_interp(cycles, ((1e5, 1.6), (5e7, 1.0), (1e10, _long_life_value(conditions))))
 
 
 def life_factor_root(cycles: float, conditions: str = DEFAULT_LIFE_FACTOR_CONDITIONS) -> float:
-    """Y_NT of case-hardened steel (Eh, IF root): ISO 6336-3:2019 Table 3 (method B): 2.5 up to
+    """Y_NT of case-hardened steel (Eh, IF root): ISO 6336-3:2019 Table 3 (method B [1]_): 2.5 up to
     N_L = 10³, 1.0 at 3·10⁶, then ``conditions`` 'normal' 0.85 at 10¹⁰ (Y_NT = (3·10⁶/N_L)^0.02
-    between, the standard's Figure 5), 'optimum' 1.0; log-log between the points, constant beyond 10¹⁰."""
+    between, the standard's Figure 5), 'optimum' 1.0; log-log between the points, constant beyond 10¹⁰.
+
+    Parameters
+    ----------
+    cycles : float
+        Number of load cycles N_L.
+    conditions : {'normal', 'optimum'}, default 'normal'
+        Long-life conditions (:data:`gearmesh.choices.LIFE_FACTOR_CONDITIONS`).
+
+    Returns
+    -------
+    float
+        Life factor Y_NT.
+
+    Raises
+    ------
+    GearmeshInputError
+        Unknown ``life_factor_conditions``.
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength, Table 3.
+    """
     return _log_interp(cycles, ((1e3, 2.5), (3e6, 1.0), (1e10, _long_life_value(conditions))))
 
 
@@ -290,19 +559,58 @@ IDLER_MEAN_STRESS_FACTOR = 0.7
 
 
 def mean_stress_factor(idler: bool) -> float:
-    """Y_M, the mean stress influence factor of ISO 6336-3:2019 (σ_FG = σ_Flim Y_ST Y_NT Y_δrelT
+    """Y_M, the mean stress influence factor of ISO 6336-3:2019 [1]_ (σ_FG = σ_Flim Y_ST Y_NT Y_δrelT
     Y_RrelT Y_X Y_M): :data:`IDLER_MEAN_STRESS_FACTOR` for an idler (alternating bending), 1 for a
-    gear loaded on one flank (the pulsating load, R = 0, of the σ_Flim tests)."""
+    gear loaded on one flank (the pulsating load, R = 0, of the σ_Flim tests).
+
+    Parameters
+    ----------
+    idler : bool
+        True for an idler gear.
+
+    Returns
+    -------
+    float
+        Mean stress factor Y_M.
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength.
+    """
     return IDLER_MEAN_STRESS_FACTOR if idler else 1.0
 
 
 def lubrication_velocity_roughness(sigma_hlim: float, nu40: float, v: float, rz_mean: float,
                                    rho_red_mm: float) -> dict[str, float]:
-    """Z_L, Z_v, Z_R of ISO 6336-2 method B (clause 11): C_ZL = 0.83 + 0.08(σ_Hlim − 850)/350 on
+    """Z_L, Z_v, Z_R of ISO 6336-2 method B (clause 11 [1]_): C_ZL = 0.83 + 0.08(σ_Hlim − 850)/350 on
     850–1200 N/mm² (0.83 below, 0.91 above), Z_L = C_ZL + 4(1 − C_ZL)/(1.2 + 134/ν40)²;
     C_Zv = C_ZL + 0.02, Z_v = C_Zv + 2(1 − C_Zv)/√(0.8 + 32/v); R_z10 = R_z (10/ρ_red)^(1/3),
     C_ZR = 0.32 − 0.0002 σ_Hlim on 850–1200 (0.15 below, 0.08 above), Z_R = (3/R_z10)^C_ZR.
-    ``rz_mean`` (R_z1 + R_z2)/2 µm, ``rho_red_mm`` the relative radius at the pitch point (mm)."""
+
+    Parameters
+    ----------
+    sigma_hlim : float
+        Contact fatigue limit σ_Hlim, N/mm².
+    nu40 : float
+        Kinematic viscosity at 40 °C, mm²/s.
+    v : float
+        Pitch-line speed, m/s.
+    rz_mean : float
+        Mean flank roughness (R_z1 + R_z2)/2, µm.
+    rho_red_mm : float
+        Relative radius of curvature at the pitch point, mm.
+
+    Returns
+    -------
+    dict of str to float
+        ``Z_L``, ``Z_v``, ``Z_R`` and ``R_z10_um`` (µm).
+
+    References
+    ----------
+    .. [1] ISO 6336-2, Calculation of load capacity of spur and helical gears — Part 2: Calculation of
+       surface durability (pitting), clause 11.
+    """
     s = min(max(sigma_hlim, 850.0), 1200.0)
     c_zl = 0.83 + 0.08 * (s - 850.0) / 350.0
     z_l = c_zl + 4 * (1 - c_zl) / (1.2 + 134.0 / nu40) ** 2
@@ -319,13 +627,54 @@ def lubrication_velocity_roughness(sigma_hlim: float, nu40: float, v: float, rz_
 
 
 def helix_factor_root(eps_beta: float, helix_angle: float) -> float:
-    """Y_β = 1 − ε_β β/120° with ε_β ≤ 1 and β ≤ 30° taken (ISO 6336-3:2006, 9.3)."""
+    """Y_β = 1 − ε_β β/120° with ε_β ≤ 1 and β ≤ 30° taken (ISO 6336-3:2006, 9.3 [1]_).
+
+    Parameters
+    ----------
+    eps_beta : float
+        Overlap ratio ε_β.
+    helix_angle : float
+        Reference helix angle β, rad.
+
+    Returns
+    -------
+    float
+        Helix factor Y_β.
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2006, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength, clause 9.3.
+    """
     return 1 - min(eps_beta, 1.0) * min(math.degrees(helix_angle), 30.0) / 120.0
 
 
 def rim_factor(rim_thickness: float, tooth_depth: float) -> float:
-    """Y_B (ISO 6336-3, 9.4, external gears): s_R/h_t ≥ 1.2: 1; 0.5 < s_R/h_t < 1.2:
-    1.6 ln(2.242 h_t/s_R). Below 0.5 the standard does not apply (refused)."""
+    """Y_B (ISO 6336-3, 9.4 [1]_, external gears): s_R/h_t ≥ 1.2: 1; 0.5 < s_R/h_t < 1.2:
+    1.6 ln(2.242 h_t/s_R). Below 0.5 the standard does not apply (refused).
+
+    Parameters
+    ----------
+    rim_thickness : float
+        Rim thickness s_R below the root, m (any unit, as ``tooth_depth``).
+    tooth_depth : float
+        Tooth depth h_t, same unit.
+
+    Returns
+    -------
+    float
+        Rim thickness factor Y_B.
+
+    Raises
+    ------
+    GearmeshInputError
+        s_R/h_t ≤ 0.5 (``bore_radius_mm``).
+
+    References
+    ----------
+    .. [1] ISO 6336-3, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength.
+    """
     r = rim_thickness / tooth_depth
     if r >= 1.2:
         return 1.0
@@ -335,30 +684,96 @@ def rim_factor(rim_thickness: float, tooth_depth: float) -> float:
 
 
 def deep_tooth_factor(eps_alpha_n: float, grade: int) -> float:
-    """Y_DT (ISO 6336-3, 9.5): 1 for ε_αn ≤ 2.05 or grade > 4; −0.666 ε_αn + 2.366 on (2.05, 2.5];
-    0.7 above."""
+    """Y_DT (ISO 6336-3, 9.5 [1]_): 1 for ε_αn ≤ 2.05 or grade > 4; −0.666 ε_αn + 2.366 on (2.05, 2.5];
+    0.7 above.
+
+    Parameters
+    ----------
+    eps_alpha_n : float
+        Virtual contact ratio ε_αn.
+    grade : int
+        ISO 1328-1 accuracy grade.
+
+    Returns
+    -------
+    float
+        Deep tooth factor Y_DT.
+
+    References
+    ----------
+    .. [1] ISO 6336-3, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength.
+    """
     if eps_alpha_n <= 2.05 or grade > 4:
         return 1.0
     return -0.666 * eps_alpha_n + 2.366 if eps_alpha_n <= 2.5 else 0.7
 
 
 def notch_sensitivity_factor(q_s: float) -> float:
-    """Y_δrelT of case-hardened steel (ISO 6336-3, 12.3, method B): (1 + √(ρ'χ*))/(1 + √(ρ'χ*_T)),
+    """Y_δrelT of case-hardened steel (ISO 6336-3, 12.3, method B [1]_): (1 + √(ρ'χ*))/(1 + √(ρ'χ*_T)),
     slip-layer thickness ρ' = 0.0030 mm, relative stress gradient χ* = (1 + 2q_s)/5 mm⁻¹,
-    χ*_T = 1.2 mm⁻¹ of the standard test gear (q_sT = 2.5)."""
+    χ*_T = 1.2 mm⁻¹ of the standard test gear (q_sT = 2.5).
+
+    Parameters
+    ----------
+    q_s : float
+        Notch parameter q_s = s_Fn/(2ρ_F).
+
+    Returns
+    -------
+    float
+        Relative notch sensitivity factor Y_δrelT.
+
+    References
+    ----------
+    .. [1] ISO 6336-3, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength.
+    """
     rho_p = 0.0030
     return (1 + math.sqrt(rho_p * (1 + 2 * q_s) / 5)) / (1 + math.sqrt(rho_p * 1.2))
 
 
 def root_roughness_factor(rz: float) -> float:
-    """Y_RrelT of case-hardened steel (ISO 6336-3, 13.3, method B): 1.674 − 0.529 (R_z + 1)^0.1
-    for 1 ≤ R_z ≤ 40 µm; 1.120 below 1 µm."""
+    """Y_RrelT of case-hardened steel (ISO 6336-3, 13.3, method B [1]_): 1.674 − 0.529 (R_z + 1)^0.1
+    for 1 ≤ R_z ≤ 40 µm; 1.120 below 1 µm.
+
+    Parameters
+    ----------
+    rz : float
+        Root roughness R_z, µm.
+
+    Returns
+    -------
+    float
+        Relative surface factor Y_RrelT.
+
+    References
+    ----------
+    .. [1] ISO 6336-3, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength.
+    """
     return 1.120 if rz < 1 else 1.674 - 0.529 * (rz + 1) ** 0.1
 
 
 def size_factor_root(m_n_mm: float) -> float:
-    """Y_X of case-hardened steel (ISO 6336-3, 14): 1 for m_n ≤ 5 mm, 1.05 − 0.01 m_n up to 25,
-    0.8 above."""
+    """Y_X of case-hardened steel (ISO 6336-3, 14 [1]_): 1 for m_n ≤ 5 mm, 1.05 − 0.01 m_n up to 25,
+    0.8 above.
+
+    Parameters
+    ----------
+    m_n_mm : float
+        Normal module m_n, mm.
+
+    Returns
+    -------
+    float
+        Size factor Y_X.
+
+    References
+    ----------
+    .. [1] ISO 6336-3, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength.
+    """
     return 1.0 if m_n_mm <= 5 else 1.05 - 0.01 * m_n_mm if m_n_mm < 25 else 0.8
 
 
@@ -371,12 +786,30 @@ def ltca_load_factors(load: np.ndarray, reference_load: np.ndarray | None = None
     """K_Hβ and K_Hα per torque from LTCA point loads ``load`` (T, P, J, N) N.
 
     K_Hβ: the load of every slice summed over tooth pairs and mesh positions (the face load
-    distribution over a cycle), its maximum over its mean (ISO 6336-1 method A: the peak load per
+    distribution over a cycle), its maximum over its mean (ISO 6336-1 method A [1]_: the peak load per
     unit face width over the mean). K_Hα: the largest load a tooth pair carries over the cycle,
     over the same of ``reference_load`` (the LTCA of the same pair unmodified and error-free, same
     torques and grid): how far the load sharing between pairs departs from the ideal one that
     Z_ε and Z_B already assume; 1 without a reference (the unmodified pair is its own). The LTCA
-    has no pitch errors, so this K_Hα carries the modifications' effect, not ISO's f_pb."""
+    has no pitch errors, so this K_Hα carries the modifications' effect, not ISO's f_pb.
+
+    Parameters
+    ----------
+    load : numpy.ndarray
+        (T, P, J, N) LTCA point loads, N.
+    reference_load : numpy.ndarray, optional
+        (T, P, J', N) point loads of the unmodified, error-free pair, N.
+
+    Returns
+    -------
+    dict of str to numpy.ndarray
+        ``K_Hbeta`` and ``K_Halpha``, each (T,).
+
+    References
+    ----------
+    .. [1] ISO 6336-1, Calculation of load capacity of spur and helical gears — Part 1: Basic principles,
+       introduction and general influence factors, method A.
+    """
     q = np.asarray(load, dtype=float)
     face = q.sum(axis=(1, 2))  # (T, N)
     k_hb = face.max(axis=1) / face.mean(axis=1)
@@ -406,18 +839,72 @@ class Rating:
 def rated_transverse_factor(k_halpha):
     """The LTCA's K_Hα (scalar or array) as the rating takes it: at least 1, since ISO 6336-1
     defines no load factor below 1 (:func:`check_factors`); better load sharing than the
-    unmodified pair's earns no credit below the standard's own assumption."""
+    unmodified pair's earns no credit below the standard's own assumption.
+
+    Parameters
+    ----------
+    k_halpha : float or array_like
+        The LTCA's transverse load factor K_Hα.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        max(K_Hα, 1).
+    """
     return np.maximum(k_halpha, 1.0)
 
 
 def rating(geom: PairGeometry, pinion_torque: float, speed_rpm: float, inputs: RatingInputs | None = None,
            application_factor: float = 1.0, life_hours: float | None = None, factors: Mapping[str, float] | None = None,
            method: str = "iso", ltca_factors: Mapping[str, float] | None = None, running_in: bool = True) -> Rating:
-    """ISO 6336-2/-3 method B rating of ``geom`` at pinion torque ``pinion_torque`` (N·m) and pinion
-    speed ``speed_rpm`` (module docstring). ``life_hours`` None: the long-life end of the life factors
-    (N_L = 10¹⁰: 0.85 under the inputs' 'normal' ``life_factor_conditions``, 1 under 'optimum');
-    ``factors`` given factors (:func:`check_factors`); ``method`` 'iso' or 'ltca' picks where
-    K_Hβ, K_Fβ, K_Hα, K_Fα come from (``ltca_factors`` {K_Hbeta, K_Halpha}, needed for 'ltca')."""
+    """ISO 6336-2/-3 method B rating of ``geom`` at a pinion torque and speed (module docstring).
+
+    Load factors by ISO 6336-1 [1]_, pitting by ISO 6336-2 [2]_, bending by ISO 6336-3 [3]_.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with material and modifications (:func:`gearmesh.gear.pair_geometry`).
+    pinion_torque : float
+        Pinion torque T1, N·m.
+    speed_rpm : float
+        Pinion speed, rpm.
+    inputs : RatingInputs, optional
+        Material, accuracy, roughness and lubricant (:func:`rating_inputs`); None: the defaults.
+    application_factor : float, default 1.0
+        Application factor K_A.
+    life_hours : float, optional
+        Required life, h; None: the long-life end of the life factors (N_L = 10¹⁰: 0.85 under the
+        inputs' 'normal' ``life_factor_conditions``, 1 under 'optimum').
+    factors : Mapping of str to float, optional
+        Factors given instead of computed (:func:`check_factors`).
+    method : {'iso', 'ltca'}, default 'iso'
+        Where K_Hβ, K_Fβ, K_Hα, K_Fα come from.
+    ltca_factors : Mapping of str to float, optional
+        The LTCA's ``K_Hbeta`` and ``K_Halpha`` (:func:`ltca_load_factors`), needed for 'ltca'.
+    running_in : bool, default True
+        Take the running-in allowances y_β of K_Hβ (method C).
+
+    Returns
+    -------
+    Rating
+        ``values`` in engineering units (σ_H, σ_F, σ_HG, σ_FG in MPa, safety factors S_H, S_F
+        [pinion, gear], every factor), ``given`` names, ``sources`` of each factor and ``notes``.
+
+    Raises
+    ------
+    GearmeshInputError
+        An unknown ``method``, a factor out of range, or 'ltca' without the LTCA's factors.
+
+    References
+    ----------
+    .. [1] ISO 6336-1, Calculation of load capacity of spur and helical gears — Part 1: Basic principles,
+       introduction and general influence factors.
+    .. [2] ISO 6336-2, Calculation of load capacity of spur and helical gears — Part 2: Calculation of
+       surface durability (pitting), method B.
+    .. [3] ISO 6336-3, Calculation of load capacity of spur and helical gears — Part 3: Calculation of
+       tooth bending strength, method B.
+    """
     if method not in FACTOR_SOURCES:
         raise GearmeshInputError("method", method, f"must be one of {list(FACTOR_SOURCES)}")
     given = check_factors({**({"K_A": application_factor} if application_factor != 1.0 else {}), **(factors or {})})

@@ -85,8 +85,33 @@ _BULK_FLASH, _BULK_INTEGRAL = 0.47, 0.7
 
 def walther_viscosity(nu40: float, nu100: float, temperature_C):
     """Kinematic viscosity (mm²/s) at ``temperature_C`` through ν40 and ν100 (mm²/s) by the
-    Ubbelohde–Walther relation of ASTM D341: log₁₀ log₁₀(ν + 0.7) = A − B log₁₀ T, T in K (valid for
-    ν ≥ 2 mm²/s)."""
+    Ubbelohde–Walther relation of ASTM D341 [1]_: log₁₀ log₁₀(ν + 0.7) = A − B log₁₀ T, T in K (valid for
+    ν ≥ 2 mm²/s).
+
+    Parameters
+    ----------
+    nu40 : float
+        Kinematic viscosity at 40 °C, mm²/s.
+    nu100 : float
+        Kinematic viscosity at 100 °C, mm²/s; positive and below ``nu40``.
+    temperature_C : float or array_like
+        Oil temperature, °C.
+
+    Returns
+    -------
+    float or numpy.ndarray
+        Kinematic viscosity ν, mm²/s, shaped like ``temperature_C``.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``viscosity_100C_mm2_s`` not positive or not below ``nu40``.
+
+    References
+    ----------
+    .. [1] ASTM D341, Standard practice for viscosity–temperature equations and charts for liquid
+       petroleum or hydrocarbon products.
+    """
     if not 0 < nu100 < nu40:
         raise GearmeshInputError("viscosity_100C_mm2_s", nu100, f"must be positive and below viscosity_40C_mm2_s "
                                                                 f"({nu40:g})")
@@ -99,13 +124,44 @@ def walther_viscosity(nu40: float, nu100: float, temperature_C):
 
 def oil_dynamic_viscosity(nu40: float, nu100: float, temperature_C: float) -> float:
     """Dynamic viscosity η (mPa·s) = ν (mm²/s) × ρ (g/cm³) at ``temperature_C``, ρ of a mineral oil
-    (:data:`SCUFFING_ASSUMPTIONS`, 7·10⁻⁴/K expansion)."""
+    (:data:`SCUFFING_ASSUMPTIONS`, 7·10⁻⁴/K expansion).
+
+    Parameters
+    ----------
+    nu40 : float
+        Kinematic viscosity at 40 °C, mm²/s.
+    nu100 : float
+        Kinematic viscosity at 100 °C, mm²/s.
+    temperature_C : float
+        Oil temperature, °C.
+
+    Returns
+    -------
+    float
+        Dynamic viscosity η, mPa·s.
+    """
     rho = SCUFFING_ASSUMPTIONS["oil_density_15C_kg_m3"] * 1e-3 * (1 - _OIL_EXPANSION * (temperature_C - 15.0))
     return float(walther_viscosity(nu40, nu100, temperature_C)) * rho
 
 
 def helical_load_factor(eps_gamma: float) -> float:
-    """K_Bγ of ISO/TR 13989: 1 for ε_γ ≤ 2, 1 + 0.2 √((ε_γ − 2)(5 − ε_γ)) up to 3.5, 1.3 above."""
+    """K_Bγ of ISO/TR 13989 [1]_: 1 for ε_γ ≤ 2, 1 + 0.2 √((ε_γ − 2)(5 − ε_γ)) up to 3.5, 1.3 above.
+
+    Parameters
+    ----------
+    eps_gamma : float
+        Total contact ratio ε_γ = ε_α + ε_β (dimensionless).
+
+    Returns
+    -------
+    float
+        Helical load factor K_Bγ (dimensionless).
+
+    References
+    ----------
+    .. [1] ISO/TR 13989-1:2000, Calculation of scuffing load capacity of cylindrical, bevel and hypoid
+       gears — Part 1: Flash temperature method.
+    """
     if eps_gamma <= 2:
         return 1.0
     return 1 + 0.2 * math.sqrt((eps_gamma - 2) * (5 - eps_gamma)) if eps_gamma < 3.5 else 1.3
@@ -114,18 +170,74 @@ def helical_load_factor(eps_gamma: float) -> float:
 def friction_coefficient(w_bt_N_mm: float, v_sum_m_s: float, rho_red_mm: float, eta_mPas: float, ra_um: float,
                          x_l: float = 1.0) -> float:
     """μ_mC = 0.045 (w_Bt K_Bγ/(v_ΣC ρ_redC))^0.2 η^(−0.05) X_R X_L, X_R = 2.2 (R_a/ρ_redC)^0.25
-    (ISO/TR 13989-2; ``w_bt_N_mm`` already times K_Bγ)."""
+    (ISO/TR 13989-2 [1]_; ``w_bt_N_mm`` already times K_Bγ).
+
+    The standard's engineering units are kept: the constants are empirical and belong to them.
+
+    Parameters
+    ----------
+    w_bt_N_mm : float
+        Transverse unit load times K_Bγ, w_Bt K_Bγ, N/mm.
+    v_sum_m_s : float
+        Sum of the tangential speeds at the pitch point v_ΣC, m/s.
+    rho_red_mm : float
+        Relative (reduced) radius of curvature at the pitch point ρ_redC, mm.
+    eta_mPas : float
+        Dynamic viscosity of the oil at the oil temperature, mPa·s.
+    ra_um : float
+        Flank arithmetic mean roughness R_a, µm.
+    x_l : float, default 1.0
+        Lubricant factor X_L (1 for mineral oil).
+
+    Returns
+    -------
+    float
+        Mean coefficient of friction μ_mC (dimensionless).
+
+    References
+    ----------
+    .. [1] ISO/TR 13989-2:2000, Calculation of scuffing load capacity of cylindrical, bevel and hypoid
+       gears — Part 2: Integral temperature method.
+    """
     x_r = 2.2 * (ra_um / rho_red_mm) ** 0.25
     return 0.045 * (w_bt_N_mm / (v_sum_m_s * rho_red_mm)) ** 0.2 * eta_mPas ** -0.05 * x_r * x_l
 
 
 def flash_temperature(w, rho1, rho2, v1, v2, mu, reduced_modulus: float, cos_beta_b: float = 1.0,
                       b1: float = STEEL_THERMAL_CONTACT_COEFFICIENT, b2: float = STEEL_THERMAL_CONTACT_COEFFICIENT):
-    """Blok's flash temperature (K), arrays broadcast: ``w`` normal load per unit contact-line length
-    (N/m), ``rho1``, ``rho2`` the transverse radii of curvature (m), ``v1``, ``v2`` the surfaces'
-    speeds normal to the contact line (m/s), ``mu`` the coefficient of friction,
-    ``reduced_modulus`` E_r = 2/((1 − ν1²)/E1 + (1 − ν2²)/E2) (Pa), ``cos_beta_b`` for the normal
-    radius ρ_red/cos β_b, ``b1``, ``b2`` the thermal contact coefficients (module docstring)."""
+    """Blok's flash temperature (K) of a Hertzian line contact [1]_, [2]_ (module docstring for the
+    derivation and the constant :data:`BLOK_COEFFICIENT`); arrays broadcast.
+
+    Parameters
+    ----------
+    w : array_like
+        Normal load per unit contact-line length, N/m; zero or negative gives 0.
+    rho1, rho2 : array_like
+        Transverse radii of curvature of pinion and gear at the point, m.
+    v1, v2 : array_like
+        The surfaces' rolling speeds normal to the contact line, m/s.
+    mu : array_like
+        Coefficient of friction (dimensionless).
+    reduced_modulus : float
+        E_r = 2/((1 − ν1²)/E1 + (1 − ν2²)/E2), Pa.
+    cos_beta_b : float, default 1.0
+        cos β_b, for the normal relative radius ρ_red/cos β_b.
+    b1, b2 : float, default :data:`STEEL_THERMAL_CONTACT_COEFFICIENT`
+        Thermal contact coefficients B_i = √(λ_i ρ_i c_i), N/(m·s^½·K).
+
+    Returns
+    -------
+    numpy.ndarray
+        Flash temperature θ_fl, K, of the broadcast shape; 0 where ``w`` ≤ 0.
+
+    References
+    ----------
+    .. [1] Blok H., "Theoretical study of temperature rise at surfaces of actual contact under
+       oiliness lubricating conditions", Proc. General Discussion on Lubrication and Lubricants,
+       Institution of Mechanical Engineers, London, vol. 2 (1937) 222–235.
+    .. [2] Jaeger J.C., "Moving sources of heat and the temperature at sliding contacts",
+       J. Proc. Roy. Soc. New South Wales 76 (1942) 203–224.
+    """
     w, rho1, rho2, v1, v2 = (np.asarray(a, dtype=float) for a in (w, rho1, rho2, v1, v2))
     with np.errstate(invalid="ignore", divide="ignore"):
         radius = rho1 * rho2 / ((rho1 + rho2) * cos_beta_b)
@@ -135,13 +247,59 @@ def flash_temperature(w, rho1, rho2, v1, v2, mu, reduced_modulus: float, cos_bet
 
 
 def flash_scuffing_temperature(fzg_load_stage: int, x_w: float = 1.0, x_l: float = 1.0) -> float:
-    """θ_S (°C) = 80 + (0.85 + 1.4 X_W) X_L S_FZG² of the flash temperature method (FZG A/8.3/90)."""
+    """θ_S (°C) = 80 + (0.85 + 1.4 X_W) X_L S_FZG² of the flash temperature method (FZG A/8.3/90) [1]_, [2]_.
+
+    Parameters
+    ----------
+    fzg_load_stage : int
+        Failure load stage S_FZG of the oil in the FZG test A/8.3/90.
+    x_w : float, default 1.0
+        Welding factor X_W.
+    x_l : float, default 1.0
+        Lubricant factor X_L.
+
+    Returns
+    -------
+    float
+        Scuffing temperature θ_S, °C.
+
+    References
+    ----------
+    .. [1] ISO/TR 13989-1:2000, Calculation of scuffing load capacity of cylindrical, bevel and hypoid
+       gears — Part 1: Flash temperature method.
+    .. [2] ISO/TS 6336-20:2017, Calculation of load capacity of spur and helical gears — Part 20:
+       Calculation of scuffing load capacity — Flash temperature method.
+    """
     return 80.0 + (0.85 + 1.4 * x_w) * x_l * fzg_load_stage**2
 
 
 def integral_scuffing_temperature(fzg_load_stage: int, x_w: float = 1.0, x_l: float = 1.0) -> float:
     """θ_intS (°C) = θ_MT + X_WrelT C_2 θ_flaintT with θ_MT = 80 + 0.23 T_1T X_L, θ_flaintT = 0.2 T_1T X_L,
-    T_1T the stage's pinion torque (:data:`FZG_PINION_TORQUE_NM`), X_WrelT = X_W/X_WT."""
+    T_1T the stage's pinion torque (:data:`FZG_PINION_TORQUE_NM`), X_WrelT = X_W/X_WT [1]_, [2]_, [3]_.
+
+    Parameters
+    ----------
+    fzg_load_stage : int
+        Failure load stage of the oil in the FZG test A/8.3/90 (1–12).
+    x_w : float, default 1.0
+        Welding factor X_W.
+    x_l : float, default 1.0
+        Lubricant factor X_L.
+
+    Returns
+    -------
+    float
+        Integral scuffing temperature θ_intS, °C.
+
+    References
+    ----------
+    .. [1] ISO/TR 13989-2:2000, Calculation of scuffing load capacity of cylindrical, bevel and hypoid
+       gears — Part 2: Integral temperature method.
+    .. [2] ISO/TS 6336-21:2017, Calculation of load capacity of spur and helical gears — Part 21:
+       Calculation of scuffing load capacity — Integral temperature method.
+    .. [3] ISO 14635-1:2000, Gears — FZG test procedures — Part 1: FZG test method A/8,3/90 for
+       relative scuffing load-carrying capacity of oils, Table 2 (pinion torque per load stage).
+    """
     t1 = FZG_PINION_TORQUE_NM[int(fzg_load_stage)]
     c2, x_wt = SCUFFING_ASSUMPTIONS["C_2"], SCUFFING_ASSUMPTIONS["X_WT"]
     return 80.0 + 0.23 * t1 * x_l + x_w / x_wt * c2 * 0.2 * t1 * x_l
@@ -164,7 +322,23 @@ class PathKinematics:
 
 def path_kinematics(geom: PairGeometry, grid, speed_rpm: float) -> PathKinematics:
     """:class:`PathKinematics` of an LTCA's candidate grid (:class:`gearmesh.tca.CandidateGrid`) at
-    pinion speed ``speed_rpm``: v_i = ω_i ρ_i, ω2 = ω1 z1/z2."""
+    pinion speed ``speed_rpm``: v_i = ω_i ρ_i, ω2 = ω1 z1/z2.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    grid : CandidateGrid
+        The LTCA's candidate points, arrays (P, J, N) (:func:`gearmesh.tca.candidate_grid`).
+    speed_rpm : float
+        Pinion speed, rpm.
+
+    Returns
+    -------
+    PathKinematics
+        ``on_path`` (P, J, N) bool, ``s`` (m), ``rho1``, ``rho2`` (m), ``v1``, ``v2`` (m/s); NaN off
+        the path.
+    """
     omega1 = 2 * math.pi * speed_rpm / 60.0
     omega2 = omega1 * geom.pair.teeth[0] / geom.pair.teeth[1]
     on = grid.region == 1
@@ -210,11 +384,49 @@ class ScuffingRating:
 
 def scuffing_rating(geom: PairGeometry, line_load: np.ndarray, grid, speed_rpm: float, inputs: Mapping[str, Any],
                     load_factor, w_bt_N_mm) -> ScuffingRating:
-    """The scuffing rating of an LTCA's ``line_load`` (T, P, J, N) N/m on its candidate ``grid`` at
-    pinion speed ``speed_rpm``: ``inputs`` the rating inputs (flank_Ra_um, viscosity_40C_mm2_s,
-    viscosity_100C_mm2_s, oil_temperature_C, fzg_load_stage; :func:`gearmesh.rating.rating_inputs`),
-    ``load_factor`` (T,) K_A K_v applied to the line load, ``w_bt_N_mm`` (T,) the rating's
-    K_A K_v K_Hβ K_Hα F_t/b (N/mm) for μ_mC (times K_Bγ here)."""
+    """The scuffing rating of an LTCA's line load by the flash and the integral temperature methods.
+
+    Blok's flash temperature [1]_ of every LTCA point on the path of contact from the LTCA's own line load,
+    then the flash [2]_, [4]_ and integral temperature methods [3]_, [5]_ (factors: :data:`SCUFFING_ASSUMPTIONS`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    line_load : numpy.ndarray
+        The LTCA's line load, (T, P, J, N) N/m.
+    grid : CandidateGrid
+        The LTCA's candidate grid (:class:`gearmesh.tca.CandidateGrid`).
+    speed_rpm : float
+        Pinion speed, rpm.
+    inputs : Mapping
+        Rating inputs: ``flank_Ra_um``, ``viscosity_40C_mm2_s``, ``viscosity_100C_mm2_s``,
+        ``oil_temperature_C``, ``fzg_load_stage`` (:func:`gearmesh.rating.rating_inputs`).
+    load_factor : array_like
+        (T,) K_A K_v applied to the line load.
+    w_bt_N_mm : array_like
+        (T,) the rating's K_A K_v K_Hβ K_Hα F_t/b, N/mm, for μ_mC (times K_Bγ here).
+
+    Returns
+    -------
+    ScuffingRating
+        ``flash`` (T, P, J, N) K; (T,): ``mu``, ``flash_max``, ``flash_mean`` (K), ``contact_max`` θ_B,max (°C),
+        ``safety_flash`` S_B, ``integral`` θ_int (°C), ``safety_integral`` S_intS; θ_S, θ_intS (°C, scalars).
+
+    References
+    ----------
+    .. [1] Blok H., "Theoretical study of temperature rise at surfaces of actual contact under
+       oiliness lubricating conditions", Proc. General Discussion on Lubrication and Lubricants,
+       Institution of Mechanical Engineers, London, vol. 2 (1937) 222–235.
+    .. [2] ISO/TR 13989-1:2000, Calculation of scuffing load capacity of cylindrical, bevel and hypoid
+       gears — Part 1: Flash temperature method.
+    .. [3] ISO/TR 13989-2:2000, Calculation of scuffing load capacity of cylindrical, bevel and hypoid
+       gears — Part 2: Integral temperature method.
+    .. [4] ISO/TS 6336-20:2017, Calculation of load capacity of spur and helical gears — Part 20:
+       Calculation of scuffing load capacity — Flash temperature method.
+    .. [5] ISO/TS 6336-21:2017, Calculation of load capacity of spur and helical gears — Part 21:
+       Calculation of scuffing load capacity — Integral temperature method.
+    """
     mat = geom.pair.material
     e_r = mat.youngs_modulus / (1 - mat.poisson_ratio**2)
     cos_bb = math.cos(geom.base_helix_angle)

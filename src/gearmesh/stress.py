@@ -73,14 +73,53 @@ DEFAULT_TIP_EDGE_RADIUS_COEFFICIENT = 0.1
 
 
 def contact_modulus(youngs_modulus: float, poisson_ratio: float) -> float:
-    """E* (Pa) of two bodies of one material: 1/E* = 2(1 − ν²)/E (Johnson 1985, eq. 4.22)."""
+    """E* (Pa) of two bodies of one material: 1/E* = 2(1 − ν²)/E (Johnson 1985, eq. 4.22 [1]_).
+
+    Parameters
+    ----------
+    youngs_modulus : float
+        Young's modulus E, Pa.
+    poisson_ratio : float
+        Poisson's ratio ν.
+
+    Returns
+    -------
+    float
+        Contact modulus E*, Pa.
+
+    References
+    ----------
+    .. [1] Johnson K.L., Contact Mechanics, Cambridge University Press, 1985, eq. 4.22.
+    """
     return youngs_modulus / (2.0 * (1.0 - poisson_ratio**2))
 
 
 def hertz_line_contact(line_load, radius, e_star: float):
-    """Peak pressure p0 (Pa) and half-width a (m) of a Hertzian line contact: load ``line_load``
-    per unit length (N/m, ≥ 0), relative radius ``radius`` (m, > 0), contact modulus ``e_star``
-    (Pa). p0 = √(w E*/(π R)), a = √(4 w R/(π E*)) (Johnson 1985, §4.3, eqs. 4.43–4.45)."""
+    """Peak pressure p0 (Pa) and half-width a (m) of a Hertzian line contact [1]_: p0 = √(w E*/(π R)),
+    a = √(4 w R/(π E*)) (Johnson 1985, §4.3, eqs. 4.43–4.45 [2]_).
+
+    Parameters
+    ----------
+    line_load : array_like
+        Load per unit length of contact line w, N/m (≥ 0; negative taken as 0).
+    radius : array_like
+        Relative radius of curvature R, m (> 0), broadcast against ``line_load``.
+    e_star : float
+        Contact modulus E*, Pa (:func:`contact_modulus`).
+
+    Returns
+    -------
+    p0 : numpy.ndarray
+        Peak pressure, Pa.
+    a : numpy.ndarray
+        Half-width of the contact band, m.
+
+    References
+    ----------
+    .. [1] Hertz H., "Über die Berührung fester elastischer Körper", J. reine angew. Math. 92 (1882)
+       156–171.
+    .. [2] Johnson K.L., Contact Mechanics, Cambridge University Press, 1985, §4.3, eqs. 4.43–4.45.
+    """
     w = np.asarray(line_load, dtype=float)
     r = np.asarray(radius, dtype=float)
     p0 = np.sqrt(np.maximum(w, 0.0) * e_star / (math.pi * r))
@@ -90,19 +129,63 @@ def hertz_line_contact(line_load, radius, e_star: float):
 
 def flank_relative_radius(rho_pinion, rho_gear, base_helix_angle: float):
     """Relative radius R (m) normal to the contact line of two involute helicoids touching at
-    transverse roll lengths ρ1, ρ2 (m): 1/R = cos βb·(1/ρ1 + 1/ρ2) (ISO 6336-2, Z_H derivation)."""
+    transverse roll lengths ρ1, ρ2 (m): 1/R = cos βb·(1/ρ1 + 1/ρ2) (ISO 6336-2, Z_H derivation [1]_).
+
+    Parameters
+    ----------
+    rho_pinion, rho_gear : array_like
+        Transverse radii of curvature (roll lengths) of pinion and gear at the point, m.
+    base_helix_angle : float
+        Base helix angle βb, rad.
+
+    Returns
+    -------
+    numpy.ndarray
+        Relative radius normal to the contact line, m.
+
+    References
+    ----------
+    .. [1] ISO 6336-2:2019, Calculation of load capacity of spur and helical gears — Part 2: Calculation
+       of surface durability (pitting), zone factor Z_H.
+    """
     r1, r2 = np.asarray(rho_pinion, dtype=float), np.asarray(rho_gear, dtype=float)
     return 1.0 / (math.cos(base_helix_angle) * (1.0 / r1 + 1.0 / r2))
 
 
 def edge_relative_radius(edge_radius: float, rho_mate, base_helix_angle: float):
     """Relative radius R (m) of a tip edge rounded to ``edge_radius`` (m) against the mating flank
-    at roll length ``rho_mate`` (m): 1/R = 1/r_e + cos βb/ρ_mate (module docstring)."""
+    at roll length ``rho_mate`` (m): 1/R = 1/r_e + cos βb/ρ_mate (module docstring).
+
+    Parameters
+    ----------
+    edge_radius : float
+        Tip-edge rounding radius r_e, m.
+    rho_mate : array_like
+        Transverse roll length of the mating flank at the touched point, m.
+    base_helix_angle : float
+        Base helix angle βb, rad.
+
+    Returns
+    -------
+    numpy.ndarray
+        Relative radius, m, shaped like ``rho_mate``.
+    """
     return 1.0 / (1.0 / edge_radius + math.cos(base_helix_angle) / np.asarray(rho_mate, dtype=float))
 
 
 def pair_edge_radius(geom: PairGeometry) -> float | None:
-    """The pair file's tip-edge radius (m; rating input ``tip_edge_radius_mm``), None when not given."""
+    """The pair file's tip-edge radius (m; rating input ``tip_edge_radius_mm``), None when not given.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    float or None
+        Tip-edge radius, m, or None.
+    """
     value = dict(geom.pair.rating_inputs).get("tip_edge_radius_mm")
     return None if value is None else value * 1e-3
 
@@ -110,7 +193,27 @@ def pair_edge_radius(geom: PairGeometry) -> float | None:
 def check_edge_radius(geom: PairGeometry, edge_radius: float | None) -> tuple[float, bool]:
     """The tip-edge radius (m) and whether it was given: the value, or the default
     :data:`DEFAULT_TIP_EDGE_RADIUS_COEFFICIENT`·m_n; refuses a non-positive one or one above
-    the normal tip thickness's half (GearmeshInputError on ``tip_edge_radius_mm``)."""
+    the normal tip thickness's half (GearmeshInputError on ``tip_edge_radius_mm``).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    edge_radius : float or None
+        Tip-edge radius, m; None: the default.
+
+    Returns
+    -------
+    radius : float
+        Tip-edge radius, m.
+    given : bool
+        True when ``edge_radius`` was given.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``tip_edge_radius_mm`` not positive and finite, or above half the normal tip thickness.
+    """
     if edge_radius is None:
         return DEFAULT_TIP_EDGE_RADIUS_COEFFICIENT * geom.pair.normal_module, False
     if isinstance(edge_radius, bool) or not isinstance(edge_radius, (int, float)) or not math.isfinite(edge_radius) \
@@ -152,11 +255,38 @@ def contact_stress(geom: PairGeometry, line_load, region, rho_pinion, rho_gear,
                    edge_radius: float | None = None) -> ContactStress:
     """Hertzian pressure and half-width at LTCA points (module docstring).
 
-    ``line_load`` (…, P, J, N) N/m (leading torque axes allowed); ``region``, ``rho_pinion``,
-    ``rho_gear`` (P, J, N) of :class:`gearmesh.tca.CandidateGrid`. Flank points (region 1) take
-    both involutes' curvature; approach tip-edge points (region 2: the gear's tip edge on the
-    pinion flank) the edge against ρ_pinion; recess ones (3: the pinion's edge on the gear flank)
-    against ρ_gear.
+    Flank points (region 1) take both involutes' curvature; approach tip-edge points (region 2: the
+    gear's tip edge on the pinion flank) the edge against ρ_pinion; recess ones (3: the pinion's edge
+    on the gear flank) against ρ_gear. Line contact of Hertz [1]_ after Johnson [2]_, normal radii of
+    the helicoids as ISO 6336-2 [3]_.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with its material (:func:`gearmesh.gear.pair_geometry`).
+    line_load : array_like
+        (…, P, J, N) normal load per unit contact-line length, N/m (leading torque axes allowed).
+    region : array_like of int
+        (P, J, N) regions of :class:`gearmesh.tca.CandidateGrid`.
+    rho_pinion, rho_gear : array_like
+        (P, J, N) touched roll lengths, m.
+    edge_radius : float, optional
+        Tip-edge rounding radius, m; None: the default
+        :data:`DEFAULT_TIP_EDGE_RADIUS_COEFFICIENT`·m_n.
+
+    Returns
+    -------
+    ContactStress
+        ``pressure`` p0 (Pa), ``half_width`` a (m), ``radius`` R (m), ``edge`` (bool), each shaped
+        like ``line_load``; ``edge_radius`` (m) and ``edge_radius_given``.
+
+    References
+    ----------
+    .. [1] Hertz H., "Über die Berührung fester elastischer Körper", J. reine angew. Math. 92 (1882)
+       156–171.
+    .. [2] Johnson K.L., Contact Mechanics, Cambridge University Press, 1985, §4.3.
+    .. [3] ISO 6336-2:2019, Calculation of load capacity of spur and helical gears — Part 2: Calculation
+       of surface durability (pitting).
     """
     from .tca import REGION_APPROACH_TIP, REGION_FLANK, REGION_RECESS_TIP
 
@@ -187,14 +317,45 @@ def edge_pressure_reference(flank_peak, edge_peak):
     """The pressure a design's tip-edge pressure is held against, like against like: the
     reference's own tip-edge peak ``edge_peak``, or its flank peak ``flank_peak`` where it has no
     edge contact (0). A reference's edge pressure (GPa with an assumed edge radius) would
-    otherwise let a design's flank pressure rise at will (docs/optimisation.md)."""
+    otherwise let a design's flank pressure rise at will (docs/optimisation.md).
+
+    Parameters
+    ----------
+    flank_peak : array_like
+        The reference's peak flank pressure, Pa.
+    edge_peak : array_like
+        The reference's peak tip-edge pressure, Pa (0 without edge contact).
+
+    Returns
+    -------
+    numpy.ndarray
+        Reference pressure, Pa, of the broadcast shape.
+    """
     flank_peak, edge_peak = np.asarray(flank_peak, dtype=float), np.asarray(edge_peak, dtype=float)
     return np.where(edge_peak > 0, edge_peak, flank_peak)
 
 
 def virtual_gear(geom: PairGeometry, gear: int) -> dict[str, float]:
-    """The virtual spur gear of ISO 6336-3:2019 (clause 6.2): z_n = z/(cos²βb cos β),
-    d_n = m_n z_n, d_bn = d_n cos α_n, d_an = d_n + d_a − d, ε_αn = ε_α/cos²βb (SI)."""
+    """The virtual spur gear of ISO 6336-3:2019 (clause 6.2 [1]_): z_n = z/(cos²βb cos β),
+    d_n = m_n z_n, d_bn = d_n cos α_n, d_an = d_n + d_a − d, ε_αn = ε_α/cos²βb (SI).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 the pinion, 1 the gear.
+
+    Returns
+    -------
+    dict of str to float
+        ``z_n``, ``d_n`` (m), ``d_bn`` (m), ``d_an`` (m), ``eps_alpha_n``.
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation
+       of tooth bending strength, clause 6.2.
+    """
     p = geom.pair
     z = p.teeth[gear]
     beta, bb, an, mn = p.helix_angle, geom.base_helix_angle, p.normal_pressure_angle, p.normal_module
@@ -207,8 +368,26 @@ def virtual_gear(geom: PairGeometry, gear: int) -> dict[str, float]:
 
 def outer_single_contact_diameter(geom: PairGeometry, gear: int) -> float:
     """d_en (m) of the virtual gear's outer point of single pair tooth contact (ISO 6336-3:2019,
-    method B): d_en = 2√((√((d_an/2)² − (d_bn/2)²) − π m_n cos α_n (ε_αn − 1))² + (d_bn/2)²);
-    for ε_αn ≥ 2 the ISO formula is kept (then it is the point of the three-pair region)."""
+    method B [1]_): d_en = 2√((√((d_an/2)² − (d_bn/2)²) − π m_n cos α_n (ε_αn − 1))² + (d_bn/2)²);
+    for ε_αn ≥ 2 the ISO formula is kept (then it is the point of the three-pair region).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 the pinion, 1 the gear.
+
+    Returns
+    -------
+    float
+        Diameter d_en of the virtual spur gear, m.
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation
+       of tooth bending strength, method B.
+    """
     v = virtual_gear(geom, gear)
     mn, an = geom.pair.normal_module, geom.pair.normal_pressure_angle
     rb, ra = 0.5 * v["d_bn"], 0.5 * v["d_an"]
@@ -243,11 +422,10 @@ class RootForm:
 def root_form_factors(z_n: float, normal_module: float, pressure_angle: float, profile_shift: float,
                       rack_dedendum: float, rack_tip_radius: float, d_en: float, protuberance: float = 0.0,
                       ) -> RootForm:
-    """Y_F and Y_S of a gear generated by a rack (hob), ISO 6336-3:2019 clauses 6.2 and 7.2 (method B;
-    also DIN 3990-3), for a load at diameter ``d_en`` (m) of the virtual gear of ``z_n`` teeth.
+    """Y_F and Y_S of a gear generated by a rack (hob), ISO 6336-3:2019 clauses 6.2 and 7.2 (method B
+    [1]_; also DIN 3990-3 [2]_), for a load at diameter ``d_en`` (m) of the virtual gear of ``z_n`` teeth.
 
-    ``rack_dedendum`` h_fP (m, the hob's addendum), ``rack_tip_radius`` ρ_fP (m), ``protuberance``
-    s_pr (m). Formulas:
+    Formulas::
 
         E = π m_n/4 − h_fP tan α_n + s_pr/cos α_n − (1 − sin α_n) ρ_fP/cos α_n
         G = ρ_fP/m_n − h_fP/m_n + x,   H = 2/z_n (π/2 − E/m_n) − π/3
@@ -258,6 +436,37 @@ def root_form_factors(z_n: float, normal_module: float, pressure_angle: float, p
         h_Fe/m_n = ½[(cos γ_e − sin γ_e tan α_Fen) d_en/m_n − z_n cos(π/3 − ϑ) − G/cos ϑ + ρ_fP/m_n]
         Y_F = 6 (h_Fe/m_n) cos α_Fen / ((s_Fn/m_n)² cos α_n)
         Y_S = (1.2 + 0.13 L) q_s^(1/(1.21 + 2.3/L)),  L = s_Fn/h_Fe,  q_s = s_Fn/(2ρ_F)
+
+    Parameters
+    ----------
+    z_n : float
+        Virtual number of teeth (:func:`virtual_gear`).
+    normal_module, pressure_angle : float
+        Normal module m_n (m) and normal pressure angle α_n (rad).
+    profile_shift : float
+        Profile shift coefficient x.
+    rack_dedendum, rack_tip_radius : float
+        Dedendum h_fP of the basic rack (the hob's addendum) and tip radius ρ_fP of the hob, m.
+    d_en : float
+        Diameter of the load point on the virtual gear, m (≥ d_bn).
+    protuberance : float, default 0.0
+        Protuberance s_pr, m.
+
+    Returns
+    -------
+    RootForm
+        ``Y_F``, ``Y_S``, ``s_Fn``, ``rho_F``, ``h_Fe`` (m), ``alpha_Fen``, ``theta`` (rad), the intermediates.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``d_en`` below the virtual base diameter.
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation
+       of tooth bending strength, clauses 6.2 and 7.2.
+    .. [2] DIN 3990-3:1987, Tragfähigkeitsberechnung von Stirnrädern — Teil 3: Berechnung der Zahnfußtragfähigkeit.
     """
     mn, an, x = float(normal_module), float(pressure_angle), float(profile_shift)
     e = math.pi * mn / 4 - rack_dedendum * math.tan(an) + protuberance / math.cos(an) \
@@ -293,7 +502,28 @@ def root_form_factors(z_n: float, normal_module: float, pressure_angle: float, p
 def gear_root_form(geom: PairGeometry, gear: int, d_en: float | None = None) -> RootForm:
     """:func:`root_form_factors` of gear ``gear`` of ``geom`` (its hob: h_fP = dedendum
     coefficient·m_n, ρ_fP of :func:`gearmesh.gear.tool_tip_radius`, no protuberance), the
-    load at ``d_en`` (m; default the outer point of single pair tooth contact, method B)."""
+    load at ``d_en`` (m; default the outer point of single pair tooth contact, method B [1]_).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 the pinion, 1 the gear.
+    d_en : float, optional
+        Diameter of the load point on the virtual gear, m; None:
+        :func:`outer_single_contact_diameter`.
+
+    Returns
+    -------
+    RootForm
+        Y_F, Y_S and the root quantities (SI).
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation
+       of tooth bending strength, method B.
+    """
     v = virtual_gear(geom, gear)
     p = geom.pair
     d = outer_single_contact_diameter(geom, gear) if d_en is None else d_en
@@ -304,8 +534,28 @@ def gear_root_form(geom: PairGeometry, gear: int, d_en: float | None = None) -> 
 def virtual_load_diameter(geom: PairGeometry, gear: int, rho) -> np.ndarray:
     """Diameter (m) on the virtual spur gear of a load at transverse roll length ``rho`` (m) of the
     real gear: the roll length is carried over unchanged in its distance from the tip along the
-    path (ISO's d_en construction: d_en from √(r_an² − r_bn²) minus the same roll distance,
-    scaled by p_bn/p_bt so that one base pitch maps onto one base pitch)."""
+    path (ISO's d_en construction [1]_: d_en from √(r_an² − r_bn²) minus the same roll distance,
+    scaled by p_bn/p_bt so that one base pitch maps onto one base pitch).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 the pinion, 1 the gear.
+    rho : array_like
+        Transverse roll lengths of the load points on the real gear, m.
+
+    Returns
+    -------
+    numpy.ndarray
+        Diameters on the virtual spur gear, m, shaped like ``rho``.
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation
+       of tooth bending strength, method B (d_en).
+    """
     v = virtual_gear(geom, gear)
     rb, ra = 0.5 * v["d_bn"], 0.5 * v["d_an"]
     scale = geom.normal_base_pitch / geom.transverse_base_pitch
@@ -314,12 +564,37 @@ def virtual_load_diameter(geom: PairGeometry, gear: int, rho) -> np.ndarray:
 
 
 def iso_root_stress_slices(geom: PairGeometry, gear: int, line_load, rho, n_nodes: int = 17) -> np.ndarray:
-    """Root stress (Pa) of gear ``gear`` under each point's line load by ISO 6336-3's local form:
+    """Root stress (Pa) of gear ``gear`` under each point's line load by ISO 6336-3's local form [1]_.
+
     σ = w_t/m_n · Y_F(ρ)·Y_S(ρ), with w_t = w·cos α_t the tangential load per unit face width at the
-    reference circle of a point of line load ``line_load`` w (N/m; the LTCA's, = transverse load per
-    unit width along the line of action, F_t = F_bt cos α_t) and Y_F, Y_S for the load at the point's
-    own roll length ``rho`` (m) (:func:`virtual_load_diameter`, interpolated linearly from
-    ``n_nodes`` evaluations between the form circle and the tip). Points with no load give 0."""
+    reference circle (F_t = F_bt cos α_t) and Y_F, Y_S for the load at the point's own roll length
+    (:func:`virtual_load_diameter`, interpolated linearly from ``n_nodes`` evaluations between the
+    form circle and the tip). Points with no load give 0.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 the pinion, 1 the gear.
+    line_load : array_like
+        The LTCA's line load w of each point, N/m (= transverse load per unit width along the line
+        of action).
+    rho : array_like
+        The points' roll lengths on gear ``gear``, m, shaped like ``line_load``.
+    n_nodes : int, default 17
+        Evaluations of Y_F·Y_S between the form circle and the tip.
+
+    Returns
+    -------
+    numpy.ndarray
+        Nominal root stress σ_F0 of each point, Pa.
+
+    References
+    ----------
+    .. [1] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation
+       of tooth bending strength, clauses 6 and 7.
+    """
     p = geom.pair
     rho = np.asarray(rho, dtype=float)
     w = np.asarray(line_load, dtype=float)
@@ -367,6 +642,28 @@ def fe_fillet_stress(geom: PairGeometry, gear: int, rho, plane: str = "strain", 
     clamped). The stress σ = λ tr(ε) I + 2μ ε is L2-projected onto continuous P2 fields and read
     2e-4·m_n inside the loaded (right, x > 0) flank's fillet; σ_tt = t·σ·t with t the fillet's
     tangent — at a free surface the only non-zero stress, the largest principal one.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with material and bore (:func:`gearmesh.gear.pair_geometry`).
+    gear : int
+        0 the pinion, 1 the gear.
+    rho : float or array_like
+        (m_loads,) roll lengths of the unit loads (1 N per m of face width along the line of
+        action), m.
+    plane : {'strain', 'stress'}, default 'strain'
+        Plane strain or plane stress.
+    size : float, default 0.05
+        Element edge on the loaded tooth, in normal modules.
+    neighbours : int or None, default 3
+        Teeth modelled on each side of the loaded one.
+
+    Returns
+    -------
+    FilletStress
+        ``arc`` (n,) m, ``stress`` (m_loads, n) σ_tt per unit load (1/m), ``peak`` (m_loads,) 1/m,
+        ``peak_radius`` (m), ``peak_angle`` (rad).
     """
     from skfem import ElementTriP2
 

@@ -103,10 +103,19 @@ _MOD_FIELDS = (("root_relief", "root_relief_um", 1e6), ("tip_relief", "tip_relie
 def check_modifications(pair_or_geom) -> None:
     """Refuse non-finite or negative modification parameters (also for pairs built in code).
 
-    Accepts a :class:`~gearmesh.gear.GearPair` or a :class:`PairGeometry`. Lengths against
-    the flank and the face are checked by :func:`gearmesh.gear.validate_modifications`
+    Lengths against the flank and the face are checked by :func:`gearmesh.gear.validate_modifications`
     (run by ``pair_geometry``); this adds the sign and finiteness, naming the pair-file key
     (GearmeshInputError).
+
+    Parameters
+    ----------
+    pair_or_geom : GearPair or PairGeometry
+        The pair (or its geometry) whose ``modification`` [pinion, gear] is checked.
+
+    Raises
+    ------
+    GearmeshInputError
+        Not one modification per gear, or a parameter not finite or negative.
     """
     pair = getattr(pair_or_geom, "pair", pair_or_geom)
     mods = getattr(pair, "modification", None)
@@ -124,20 +133,70 @@ def check_modifications(pair_or_geom) -> None:
 
 def pair_lead_slope(geom: PairGeometry, lead_slope=None) -> tuple[float, float]:
     """The lead slope deviations (m) a model takes: ``lead_slope`` as given, or None: the pair's own
-    (``pair.deviations.lead_slope``, :mod:`gearmesh.deviation`)."""
+    (``pair.deviations.lead_slope``, :mod:`gearmesh.deviation`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    lead_slope : sequence of 2 float, optional
+        Lead slope deviations [pinion, gear], m over the face width.
+
+    Returns
+    -------
+    tuple of float
+        (pinion, gear) lead slope deviations, m.
+    """
     if lead_slope is None:
         return tuple(float(v) for v in geom.pair.deviations.lead_slope)
     return tuple(float(v) for v in lead_slope)
 
 
 def check_count(name: str, value, minimum: int, maximum: int) -> int:
+    """An integer count within its bounds, else a GearmeshInputError naming ``name``.
+
+    Parameters
+    ----------
+    name : str
+        Field named in the error.
+    value : int
+        The count (a bool is refused).
+    minimum, maximum : int
+        Inclusive bounds.
+
+    Returns
+    -------
+    int
+        ``value`` as an int.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``value`` not an integer in [minimum, maximum].
+    """
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or not minimum <= value <= maximum:
         raise GearmeshInputError(name, value, f"must be an integer in [{minimum}, {maximum}]")
     return int(value)
 
 
 def check_extension(extension) -> float:
-    """The reach of the tip-edge candidates (fraction of p_bt) as a float in [0, 1]."""
+    """The reach of the tip-edge candidates (fraction of p_bt) as a float in [0, 1].
+
+    Parameters
+    ----------
+    extension : float
+        Reach beyond the active zone, fraction of the transverse base pitch p_bt.
+
+    Returns
+    -------
+    float
+        ``extension``.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``corner_extension`` not a finite number in [0, 1].
+    """
     if isinstance(extension, bool) or not isinstance(extension, (int, float, np.floating, np.integer)) \
             or not math.isfinite(extension) or not 0 <= extension <= 1:
         raise GearmeshInputError("corner_extension", extension, "must lie in [0, 1] (fraction of the base pitch)")
@@ -151,7 +210,22 @@ def check_extension(extension) -> float:
 
 def point_centres(geom: PairGeometry, n_points: int) -> tuple[np.ndarray, float]:
     """Centres z_k (m) of ``n_points`` equal transverse slices over [−b/2, b/2] and their width (m)
-    (as :func:`gearmesh.stiffness.slice_centres`)."""
+    (as :func:`gearmesh.stiffness.slice_centres`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    n_points : int
+        Number of slices across the face width.
+
+    Returns
+    -------
+    z : numpy.ndarray
+        (n_points,) slice centres, m.
+    dz : float
+        Slice width b/n_points, m.
+    """
     dz = geom.face_width / n_points
     return -0.5 * geom.face_width + dz * (np.arange(n_points) + 0.5), dz
 
@@ -198,7 +272,20 @@ def _frame(geom: PairGeometry):
 
 def approach_tip_point(geom: PairGeometry, s) -> tuple[np.ndarray, np.ndarray]:
     """Fixed-frame transverse position (x, y) (m) of the gear tip point that reaches the start of
-    the path of contact A after the gear turns on by −s/r_b2 (s < 0): P = O2 + R(−s/r_b2)(A − O2)."""
+    the path of contact A after the gear turns on by −s/r_b2 (s < 0): P = O2 + R(−s/r_b2)(A − O2).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    s : array_like
+        Positions on the line of action before A (s < 0), m.
+
+    Returns
+    -------
+    x, y : numpy.ndarray
+        Coordinates of the tip point in the pinion-centred fixed frame, m, shaped like ``s``.
+    """
     s = np.asarray(s, float)
     _, t1, d = _frame(geom)
     a = geom.center_distance
@@ -210,7 +297,20 @@ def approach_tip_point(geom: PairGeometry, s) -> tuple[np.ndarray, np.ndarray]:
 
 def recess_tip_point(geom: PairGeometry, s) -> tuple[np.ndarray, np.ndarray]:
     """Fixed-frame transverse position (x, y) (m) of the pinion tip point that left the end of the
-    path of contact E a pinion turn (s − g_α)/r_b1 ago (s > g_α): P = R((s − g_α)/r_b1)·E."""
+    path of contact E a pinion turn (s − g_α)/r_b1 ago (s > g_α): P = R((s − g_α)/r_b1)·E.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    s : array_like
+        Positions on the line of action beyond E (s > g_α), m.
+
+    Returns
+    -------
+    x, y : numpy.ndarray
+        Coordinates of the tip point in the pinion-centred fixed frame, m, shaped like ``s``.
+    """
     s = np.asarray(s, float)
     _, t1, d = _frame(geom)
     ex, ey = t1 + geom.rho_eap[0] * d
@@ -280,10 +380,32 @@ def _recess_basis(geom: PairGeometry, s):
 
 
 def separation_basis(geom: PairGeometry, s, extension: float = np.inf) -> SeparationBasis:
-    """The :class:`SeparationBasis` of points at line-of-action positions ``s`` (m, any shape):
-    flank points for s ∈ [0, g_α], tip-edge points up to ``extension`` (m) beyond it (region
-    2 before A, region 3 after E; module docstring), no candidate elsewhere or where the
-    touched roll length falls below the mating form circle."""
+    """The :class:`SeparationBasis` of points at line-of-action positions ``s`` (m, any shape).
+
+    Flank points for s ∈ [0, g_α], tip-edge points up to ``extension`` beyond it (region 2 before A,
+    region 3 after E; module docstring: the tip-edge distances by the parallel involutes of [1]_), no
+    candidate elsewhere or where the touched roll length falls below the mating form circle.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    s : array_like
+        Positions on the transverse line of action from A, m.
+    extension : float, default inf
+        Reach of the tip-edge candidates beyond the active zone, m.
+
+    Returns
+    -------
+    SeparationBasis
+        ``region``, ``base`` (m), ``w_pinion``, ``w_gear`` (transverse gap per metre of normal depth),
+        ``rho_pinion``, ``rho_gear`` (m), each shaped like ``s``; NaN where no candidate.
+
+    References
+    ----------
+    .. [1] Litvin F.L., Fuentes A., Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §10.3.
+    """
     s = np.asarray(s, dtype=float)
     g = geom.path_of_contact
     cb = math.cos(geom.base_helix_angle)
@@ -322,13 +444,32 @@ def basis_gap(geom: PairGeometry, basis: SeparationBasis, z, lead_slope=(0.0, 0.
               misalignment=0.0) -> np.ndarray:
     """Transverse gaps (m) of the points of ``basis`` at axial positions ``z`` (m, broadcast).
 
-    ``params``: the modification parameters of both gears, (..., 2, 6) in m in the order of
-    :data:`gearmesh.surface.MODIFICATION_FIELDS` (leading axes broadcast against the
-    points, e.g. (C, 1, 1, 2, 6) for C candidates); default the pair's own. ``lead_slope``
-    (..., 2) the gears' lead slope deviations and ``misalignment`` the mesh's further lead
-    mismatch (m, broadcast like ``lead_slope[..., 0]``): :func:`gearmesh.deviation.lead_gap`;
-    the pair's own profile slope deviations (:func:`gearmesh.deviation.profile_gap`) are
-    always added. NaN where the basis has no candidate.
+    The pair's own profile slope deviations (:func:`gearmesh.deviation.profile_gap`) are always
+    added. NaN where the basis has no candidate.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    basis : SeparationBasis
+        The points' separation basis (:func:`separation_basis`).
+    z : array_like
+        Axial positions of the points, m, broadcast against the basis.
+    lead_slope : array_like, default (0, 0)
+        (..., 2) the gears' lead slope deviations, m over the face width
+        (:func:`gearmesh.deviation.lead_gap`).
+    params : array_like, optional
+        (..., 2, 6) modification parameters of both gears, m, in the order of
+        :data:`gearmesh.surface.MODIFICATION_FIELDS` (leading axes broadcast against the points,
+        e.g. (C, 1, 1, 2, 6) for C candidates); None: the pair's own.
+    misalignment : float or array_like, default 0.0
+        The mesh's further lead mismatch, m, broadcast like ``lead_slope[..., 0]``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Transverse gaps, m, of the broadcast shape of basis, ``params``, ``z``, ``lead_slope`` and
+        ``misalignment``.
     """
     if params is None:
         params = modification_parameters(geom)
@@ -369,6 +510,24 @@ def flank_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0), misalignme
     gap = (δ1(ρ1, z) + δ2(ρ2, z))/cos βb + lead deviation, ρ1 = ρ_SAP1 + s,
     ρ2 = ρ_EAP2 − s, δ the normal depths of :func:`gearmesh.surface.modification_depth`
     (module docstring for the /cos βb). Zero for an unmodified, aligned pair.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    s : array_like
+        Positions on the line of action from A, m (clipped to [0, g_α]).
+    z : array_like
+        Axial positions, m, broadcast against ``s``.
+    lead_slope : sequence of 2 float, default (0, 0)
+        Lead slope deviations [pinion, gear], m over the face width.
+    misalignment : float, default 0.0
+        The mesh's further lead mismatch, m.
+
+    Returns
+    -------
+    numpy.ndarray
+        Transverse gaps, m, of the broadcast shape of ``s`` and ``z``.
     """
     s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
     s = np.clip(s, 0.0, geom.path_of_contact)
@@ -382,10 +541,32 @@ def approach_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
     turns on (clockwise) by −s/r_b2, so now it sits at P = O2 + R(−s/r_b2)(A − O2). The
     pinion rotation that brings the pinion involute to P (gear held) is
     σ1(P) − σ1,flank with σ1(P) = θ1(P) + inv(u_P), σ1,flank = −αwt + (ρ_SAP1 + s)/r_b1
-    (module docstring). Adds the pinion modification at ρ_P = r_b1·u_P and the gear tip
-    modification projected on the pinion normal (both /cos βb) and the lead deviation.
+    (module docstring; the parallel involutes of [1]_). Adds the pinion modification at
+    ρ_P = r_b1·u_P and the gear tip modification projected on the pinion normal (both /cos βb) and
+    the lead deviation.
 
-    Returns (gap, rho_pinion): gap NaN where ρ_P falls below the pinion form circle.
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    s : array_like
+        Positions on the line of action before A, m (s > 0 is taken as 0).
+    z : array_like
+        Axial positions, m, broadcast against ``s``.
+    lead_slope : sequence of 2 float, default (0, 0)
+        Lead slope deviations [pinion, gear], m over the face width.
+
+    Returns
+    -------
+    gap : numpy.ndarray
+        Transverse gaps, m; NaN where ρ_P falls below the pinion form circle.
+    rho_pinion : numpy.ndarray
+        Touched pinion roll lengths ρ_P, m.
+
+    References
+    ----------
+    .. [1] Litvin F.L., Fuentes A., Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §10.3.
     """
     s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
     basis = separation_basis(geom, np.minimum(s, -0.0), np.inf)
@@ -399,11 +580,32 @@ def recess_tip_separation(geom: PairGeometry, s, z, lead_slope=(0.0, 0.0)):
     The pinion tip left E = T1 + ρ_EAP1·d a pinion turn (s − g_α)/r_b1 ago: P = R((s − g_α)/r_b1)·E.
     With σ2 = θ2 + inv(u2) in the gear-centred polar angle and σ2,flank = π − αwt +
     (ρ_EAP2 − s)/r_b2, the gap is the pinion rotation ψ that brings P onto the flank,
-    σ2(R(ψ)P) = σ2,flank, times r_b1 (:func:`_recess_basis`); the modifications enter through
-    r_b1/|n2·(e_z × P)| (the moment arm of the flank normal n2 about the pinion axis), as in
-    :func:`approach_tip_separation`.
+    σ2(R(ψ)P) = σ2,flank, times r_b1 (:func:`_recess_basis`; the parallel involutes of [1]_); the
+    modifications enter through r_b1/|n2·(e_z × P)| (the moment arm of the flank normal n2 about the
+    pinion axis), as in :func:`approach_tip_separation`.
 
-    Returns (gap, rho_gear): NaN where the touched gear roll length falls below its form circle.
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    s : array_like
+        Positions on the line of action beyond E, m.
+    z : array_like
+        Axial positions, m, broadcast against ``s``.
+    lead_slope : sequence of 2 float, default (0, 0)
+        Lead slope deviations [pinion, gear], m over the face width.
+
+    Returns
+    -------
+    gap : numpy.ndarray
+        Transverse gaps, m; NaN where the touched gear roll length falls below its form circle.
+    rho_gear : numpy.ndarray
+        Touched gear roll lengths, m.
+
+    References
+    ----------
+    .. [1] Litvin F.L., Fuentes A., Gear Geometry and Applied Theory, 2nd ed., Cambridge University
+       Press, 2004, §10.3.
     """
     s, z = np.broadcast_arrays(np.asarray(s, float), np.asarray(z, float))
     basis = _only(separation_basis(geom, s, np.inf), REGION_RECESS_TIP)
@@ -470,11 +672,38 @@ def candidate_grid(geom: PairGeometry, roll, n_points: int = 50, lead_slope=(0.0
                    misalignment: float = 0.0) -> CandidateGrid:
     """Candidate points and their unloaded separations at the pinion rolls ``roll`` (m).
 
-    ``n_points`` slice centres across the face; ``lead_slope`` (m over the face width,
-    [pinion, gear]) and ``misalignment`` (m, the mesh's further lead mismatch,
-    :mod:`gearmesh.deviation`); ``extension`` the reach beyond the active zone as a fraction of
-    the transverse base pitch (0: flank contact only). Tooth pairs that never have a candidate
-    are dropped unless ``pairs`` is given.
+    Tooth pair j in the slice z lies at s = roll + j·p_bt + h·z·tan βb (module docstring); tooth pairs
+    that never have a candidate are dropped unless ``pairs`` is given. The tip-edge candidates are the
+    corner contact before A and after E of [1]_ (scenario 1).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    roll : float or array_like
+        (P,) pinion roll distances r_b1·φ1, m.
+    n_points : int, default 50
+        Slice centres across the face.
+    lead_slope : sequence of 2 float, default (0, 0)
+        Lead slope deviations [pinion, gear], m over the face width (:mod:`gearmesh.deviation`).
+    extension : float, default :data:`DEFAULT_EXTENSION`
+        Reach beyond the active zone as a fraction of the transverse base pitch (0: flank contact
+        only).
+    pairs : numpy.ndarray of int, optional
+        (J,) tooth-pair indices to keep; None: those with a candidate.
+    misalignment : float, default 0.0
+        The mesh's further lead mismatch, m (:mod:`gearmesh.deviation`).
+
+    Returns
+    -------
+    CandidateGrid
+        ``roll`` (P,) m, ``pairs`` (J,), ``z`` (N,) m, ``dz`` m, and (P, J, N) arrays ``s`` (m),
+        ``region``, ``rho_pinion``, ``rho_gear`` (m), ``gap`` (m, NaN where no candidate), with the
+        ``basis``; ``extension`` in m.
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears, docs/references.md.
     """
     roll = np.atleast_1d(np.asarray(roll, dtype=float))
     ext = float(extension) * geom.transverse_base_pitch
@@ -512,8 +741,21 @@ def engagement_point(geom: PairGeometry) -> tuple[float, int, float]:
 
     The line of pair j first reaches the start of active profile (s = 0) at the face end
     where h·z·tan βb is largest, z_A = h·b/2 (the corner of the entering tooth): at
-    roll_A + j·p_bt + (b/2)·tan βb = 0. Returns (roll_A in [0, p_bt) in m, the entering
-    pair index j_A, z_A in m). For β = 0 the whole line enters at once (z_A = 0).
+    roll_A + j·p_bt + (b/2)·tan βb = 0. For β = 0 the whole line enters at once (z_A = 0).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    roll_a : float
+        Pinion roll of the start of engagement, in [0, p_bt), m.
+    j_a : int
+        Index of the entering tooth pair.
+    z_a : float
+        Axial position of the entering corner, m.
     """
     pbt = geom.transverse_base_pitch
     half_axial = 0.5 * geom.face_width * math.tan(geom.base_helix_angle)
@@ -570,6 +812,24 @@ class TCAResult:
 
 
 def first_contact(grid: CandidateGrid, te_pair: np.ndarray, tolerance: float):
+    """Where each tooth pair touches first: the centre of its points within ``tolerance`` of its
+    smallest separation.
+
+    Parameters
+    ----------
+    grid : CandidateGrid
+        The candidate points, arrays (P, J, N).
+    te_pair : numpy.ndarray
+        (P, J) each pair's smallest separation, m.
+    tolerance : float
+        Separation within which points count as the first contact, m.
+
+    Returns
+    -------
+    s, z, rho_pinion, rho_gear : numpy.ndarray
+        (P, J) line-of-action position, axial position and touched roll lengths, m; NaN for a pair
+        without candidates.
+    """
     near = np.isfinite(grid.gap) & (grid.gap <= te_pair[..., None] + tolerance)
     cnt = near.sum(axis=-1)
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -581,6 +841,21 @@ def first_contact(grid: CandidateGrid, te_pair: np.ndarray, tolerance: float):
 
 
 def nanmin(a, axis):
+    """Minimum over ``axis`` ignoring NaN and inf; NaN where no value is finite (without numpy's
+    all-NaN warning).
+
+    Parameters
+    ----------
+    a : array_like
+        The values.
+    axis : int or tuple of int
+        Axis or axes to reduce.
+
+    Returns
+    -------
+    numpy.ndarray
+        The minima, NaN where a slice has no finite value.
+    """
     with np.errstate(invalid="ignore"):
         fin = np.isfinite(a)
         out = np.min(np.where(fin, a, np.inf), axis=axis)
@@ -589,8 +864,29 @@ def nanmin(a, axis):
 
 def engagement_separation(geom: PairGeometry, n_points: int, lead_slope, extension: float,
                           misalignment: float = 0.0) -> tuple[float, float]:
-    """(TE of the mesh, separation of the entering pair) at φ1A (m): the grid points at
-    roll_A and, exactly, the entering corner (s = 0, z = z_A)."""
+    """(TE of the mesh, separation of the entering pair) at φ1A (m): the grid points at roll_A and,
+    exactly, the entering corner (s = 0, z = z_A).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    n_points : int
+        Slice centres across the face.
+    lead_slope : sequence of 2 float
+        Lead slope deviations [pinion, gear], m over the face width.
+    extension : float
+        Reach of the tip-edge candidates, fraction of p_bt.
+    misalignment : float, default 0.0
+        The mesh's further lead mismatch, m.
+
+    Returns
+    -------
+    te : float
+        Unloaded TE of the whole mesh at φ1A, m.
+    te_next : float
+        The entering pair's own separation at φ1A, m.
+    """
     roll_a, j_a, z_a = engagement_point(geom)
     grid = candidate_grid(geom, np.array([roll_a]), n_points, lead_slope, extension, misalignment=misalignment)
     corner = float(flank_separation(geom, 0.0, z_a, lead_slope, misalignment))
@@ -604,20 +900,45 @@ def tca(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=No
         extension: float = DEFAULT_EXTENSION, tolerance: float = 1e-9) -> TCAResult:
     """Unloaded tooth contact analysis over one mesh cycle.
 
-    Parameters
-    ----------
-    geom : pair geometry (its pair carries the modifications of both gears).
-    positions : pinion roll positions evenly over one transverse base pitch.
-    points : points (slice centres) per contact line across the face width.
-    lead_slope : lead slope deviations [pinion, gear] in m over the face width
-        (:func:`gearmesh.deviation.lead_gap`); None: the pair's own (``pair.deviations``, with
-        its stated mesh misalignment).
-    extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
-    tolerance : separation (m) within which points count as the first contact of a pair.
-
     The unloaded TE at each roll is the smallest separation of any candidate point (the
     rotation, ×r_b1, that closes it: module docstring); an unmodified aligned pair has
-    zero TE to round-off because every flank point of the active zone has zero gap.
+    zero TE to round-off because every flank point of the active zone has zero gap. Lead slope
+    deviations are taken as ISO 1328-1 [1]_ measures helix deviations (module docstring); the
+    tip-edge candidates are the corner contact of [2]_.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry; its pair carries the modifications of both gears.
+    positions : int, default 64
+        Pinion roll positions evenly over one transverse base pitch.
+    points : int, default 50
+        Points (slice centres) per contact line across the face width.
+    lead_slope : sequence of 2 float, optional
+        Lead slope deviations [pinion, gear], m over the face width
+        (:func:`gearmesh.deviation.lead_gap`); None: the pair's own (``pair.deviations``, with its
+        stated mesh misalignment).
+    extension : float, default :data:`DEFAULT_EXTENSION`
+        Reach of the tip-edge candidates beyond the active zone, fraction of p_bt.
+    tolerance : float, default 1e-9
+        Separation (m) within which points count as the first contact of a pair.
+
+    Returns
+    -------
+    TCAResult
+        ``te`` (P,) m, ``te_pair`` (P, J) m, first-contact positions (P, J) m, the start of
+        engagement and the TE there (m), the ``grid``.
+
+    Raises
+    ------
+    GearmeshInputError
+        Modifications, counts or ``extension`` out of range.
+
+    References
+    ----------
+    .. [1] ISO 1328-1:2013, Cylindrical gears — ISO system of flank tolerance classification — Part 1:
+       Definitions and allowable values of deviations relevant to flanks of gear teeth.
+    .. [2] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears, docs/references.md.
     """
     check_modifications(geom)
     positions = check_count("positions", positions, 1, 100000)
