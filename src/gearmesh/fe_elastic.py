@@ -92,7 +92,38 @@ class ElasticSolver:
 
 def elastic_solver(mesh, youngs_modulus: float, poisson_ratio: float, plane: str, clamped) -> ElasticSolver:
     """Assemble ∫ σ(u):ε(v) dA with P2 triangles and factorise it, the facets where
-    ``clamped(x)`` (x: (2, n) facet midpoints → bool) held at zero displacement."""
+    ``clamped(x)`` (x: (2, n) facet midpoints → bool) held at zero displacement.
+
+    Parameters
+    ----------
+    mesh : skfem.MeshTri
+        The triangulation (:func:`triangulate`), coordinates in m.
+    youngs_modulus : float
+        E (Pa).
+    poisson_ratio : float
+        ν (1).
+    plane : {'strain', 'stress'}
+        The plane state (:func:`lame_parameters`).
+    clamped : callable
+        ``clamped(x)`` → bool for facet midpoints x (2, n) (m): the facets held at zero
+        displacement.
+
+    Returns
+    -------
+    ElasticSolver
+        The P2 vector basis, the free degrees of freedom and the sparse LU of the stiffness
+        matrix restricted to them (per unit thickness, N/m).
+
+    Raises
+    ------
+    RuntimeError
+        When no facet is clamped (the problem is singular).
+
+    References
+    ----------
+    .. [1] Timoshenko S. P., Goodier J. N., *Theory of Elasticity*, 3rd ed., McGraw-Hill, 1970,
+       §§8, 16 (plane strain and plane stress).
+    """
     from skfem import Basis, ElementTriP2, ElementVector, asm
     from skfem.models.elasticity import linear_elasticity
 
@@ -113,7 +144,22 @@ def elastic_solver(mesh, youngs_modulus: float, poisson_ratio: float, plane: str
 
 def point_load_matrix(solver: ElasticSolver, vertices: np.ndarray, directions: np.ndarray) -> np.ndarray:
     """Nodal load vectors (N, m): a unit force (N per m of width) along ``directions`` (m, 2)
-    at mesh vertices ``vertices`` (m,)."""
+    at mesh vertices ``vertices`` (m,).
+
+    Parameters
+    ----------
+    solver : ElasticSolver
+        The factorised problem (its basis numbers the degrees of freedom).
+    vertices : ndarray
+        (m,) indices of the mesh vertices loaded, one per load case.
+    directions : ndarray
+        (m, 2) unit directions of the forces.
+
+    Returns
+    -------
+    ndarray
+        (N, m) load vectors, N the basis' degrees of freedom (N/m of width).
+    """
     dofs = solver.basis.nodal_dofs[:, np.asarray(vertices)]  # (2, m)
     f = np.zeros((solver.basis.N, len(vertices)))
     cols = np.arange(len(vertices))
@@ -147,6 +193,24 @@ def section_rigid_motion(solver: ElasticSolver, u: np.ndarray, a, b, n: int = 20
     Along the section (unit direction e, coordinate s from M) the mean of u·e and of u·e⊥
     give t and ∫s u·e⊥ ds/∫s² ds gives ω: the mean displacement and rotation of a plane
     section of Timoshenko's beam kinematics (``n`` midpoint samples, equal weights).
+
+    Parameters
+    ----------
+    solver : ElasticSolver
+        The factorised problem whose basis interpolates ``u``.
+    u : ndarray
+        (N, m) nodal displacements (m) of m load cases.
+    a, b : array_like
+        (2,) the section's end points (m).
+    n : int
+        Midpoint samples along the section.
+
+    Returns
+    -------
+    t : ndarray
+        (2, m) translation of the section's midpoint (m).
+    omega : ndarray
+        (m,) rotation of the section (rad, counter-clockwise).
     """
     a, b = np.asarray(a, float), np.asarray(b, float)
     s = (np.arange(n) + 0.5) / n - 0.5  # midpoint rule: the ends may sit on a curved boundary
@@ -165,7 +229,22 @@ def section_rigid_motion(solver: ElasticSolver, u: np.ndarray, a, b, n: int = 20
 
 
 def rigid_displacement(t: np.ndarray, omega: np.ndarray, centre, point) -> np.ndarray:
-    """Displacement (2, m) of ``point`` under the rigid motion (t, ω) about ``centre`` (m)."""
+    """Displacement (2, m) of ``point`` under the rigid motion (t, ω) about ``centre`` (m).
+
+    Parameters
+    ----------
+    t : ndarray
+        (2, m) translation of ``centre`` (m).
+    omega : ndarray
+        (m,) rotation (rad, counter-clockwise).
+    centre, point : array_like
+        (2,) the centre of the rotation and the point moved (m).
+
+    Returns
+    -------
+    ndarray
+        (2, m) displacement of ``point`` (m): t + ω ẑ×(point − centre).
+    """
     d = np.asarray(point, float) - np.asarray(centre, float)
     return t + np.outer(np.array([-d[1], d[0]]), omega)
 
