@@ -196,18 +196,16 @@ def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bo
               min_step: float = 1.0 / 32.0, starts: int = 2, first_stage_only: bool = False) -> BoxWorst:
     """The largest value of every column of ``evaluate`` over [−1, 1]^k (module docstring, "The search").
 
-    The first stage, then a compass search [1]_ from each column's ``starts`` best points of the first stage (a column can
-    have more than one local maximum), each walker with its own step — polled along every dimension, kept while the poll
-    improves its point, halved when it does not, down to ``min_step`` — all walkers' trial points in one batch per poll.
+    The first stage, then a compass search [1]_ from each column's ``starts`` best first-stage points (a column can have
+    more than one local maximum), each walker with its own step — polled along every dimension, kept while the poll
+    improves its point, else halved, down to ``min_step`` — all walkers' trial points in one batch per poll.
 
     Parameters
     ----------
     evaluate : callable
         Unit points (n, k) → values (n, M).
-    k, mismatch : int, bool
-        Dimensions of the box; whether dimension 0 is the lead mismatch (default True).
-    min_step, starts : float, int, default 1/32, 2
-        Smallest compass step (unit box) and walkers per column.
+    k, mismatch, min_step, starts : int, bool, float, int
+        Dimensions of the box; dimension 0 the lead mismatch (default True); smallest step (1/32); walkers per column (2).
     first_stage_only : bool, default False
         The first stage's worst alone (a lower bound of the box's, for a quick refusal).
 
