@@ -103,7 +103,20 @@ class ToleranceBox:
 
 
 def tolerance_box(model: ToleranceModel, params: np.ndarray) -> ToleranceBox:
-    """The effective box of design ``params`` (2, 6) (m) under ``model``."""
+    """The effective box of design ``params`` under ``model`` (module docstring, "The box the mesh sees").
+
+    Parameters
+    ----------
+    model : ToleranceModel
+        The tolerance model (:mod:`gearmesh.tolerance`): its dimensions (lead and modification deviations).
+    params : numpy.ndarray
+        (2, 6) modification parameters of the design (m); a deviation is active only where its amount is > 0.
+
+    Returns
+    -------
+    ToleranceBox
+        ``active`` the indices of the active modification dimensions, ``mismatch`` whether the lead mismatch is one.
+    """
     params = np.asarray(params, dtype=float)
     active = tuple(j for j, (kind, g, k) in enumerate(model.dimensions) if kind == "modification" and params[g, k] > 0)
     return ToleranceBox(model=model, active=active, mismatch=any(kind == "lead" for kind, _, _ in model.dimensions))
@@ -121,10 +134,34 @@ class GearCriteria:
 
 def gear_criteria(model: ImpactModel, rows: np.ndarray, lead: np.ndarray, torques, speed_rpm: float,
                   energy_velocity: str = "transverse", samples: int = 1) -> GearCriteria:
-    """The :data:`CRITERIA` of N manufactured gears (parameter rows (N, 2, 6) m, lead slopes (N, 2)
-    m) at pinion ``torques`` (N m): F_s at ``speed_rpm`` (closed form; 0 where the entering pair meets
-    without a closing velocity) and the loaded contact over one mesh cycle
-    (:func:`gearmesh.impact.ltca_criteria`; ``samples`` as there)."""
+    """The :data:`CRITERIA` of N manufactured gears at pinion ``torques``.
+
+    F_s at ``speed_rpm`` (closed form; 0 where the entering pair meets without a closing velocity) and the loaded contact
+    over one mesh cycle (:func:`gearmesh.impact.ltca_criteria`).
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared impact model (:func:`gearmesh.impact.impact_model`).
+    rows : numpy.ndarray
+        (N, 2, 6) modification parameters of the gears (m).
+    lead : numpy.ndarray
+        (N, 2) lead slopes [pinion, gear] (m over the face width).
+    torques : array_like
+        (T,) pinion torques (N m).
+    speed_rpm : float
+        Pinion speed (rpm).
+    energy_velocity : {'transverse', 'normal'}, default 'transverse'
+        Velocity of the impact energy (:func:`gearmesh.impact.impact_response`).
+    samples : int, default 1
+        Rows per design, the first the nominal (:func:`gearmesh.impact.ltca_criteria`).
+
+    Returns
+    -------
+    GearCriteria
+        ``values`` (N, T, K) in :data:`CRITERIA` order (N, m, Pa), ``impact_force_energy_balance`` (N, T) (N) and the
+        mesh-in ``scenario`` (N, T).
+    """
     c = ltca_criteria(model, torques, rows, lead_slope=lead, samples=samples)
     static = impact_static(model, torques, rows, lead_slope=lead, engagement=False)
     _, resp = impact_response(model, static, [speed_rpm], energy_velocity=energy_velocity)
@@ -157,14 +194,31 @@ def _first_stage(k: int, mismatch: bool) -> np.ndarray:
 
 def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bool = True,
               min_step: float = 1.0 / 32.0, starts: int = 2, first_stage_only: bool = False) -> BoxWorst:
-    """The largest value of every column of ``evaluate`` (unit points (n, k) → values (n, M)) over
-    [−1, 1]^k (module docstring): the first stage, then a compass search (Kolda, Lewis & Torczon
-    2003, §3) from each column's ``starts`` best points of the first stage (a column can have more
-    than one local maximum), each walker with its own step — polled along every dimension, kept
-    while the poll improves its point, halved when it does not, down to ``min_step`` — the trial
-    points of every walker evaluated in one batch per poll. ``mismatch``: dimension 0 is the lead
-    mismatch. ``first_stage_only``: the first stage's worst alone (a lower bound of the box's, for a
-    quick refusal)."""
+    """The largest value of every column of ``evaluate`` over [−1, 1]^k (module docstring, "The search").
+
+    The first stage, then a compass search [1]_ from each column's ``starts`` best first-stage points (a column can have
+    more than one local maximum), each walker with its own step — polled along every dimension, kept while the poll
+    improves its point, else halved, down to ``min_step`` — all walkers' trial points in one batch per poll.
+
+    Parameters
+    ----------
+    evaluate : callable
+        Unit points (n, k) → values (n, M).
+    k, mismatch, min_step, starts : int, bool, float, int
+        Dimensions of the box; dimension 0 the lead mismatch (default True); smallest step (1/32); walkers per column (2).
+    first_stage_only : bool, default False
+        The first stage's worst alone (a lower bound of the box's, for a quick refusal).
+
+    Returns
+    -------
+    BoxWorst
+        ``values`` (M,), ``points`` (M, k) where they were found, ``evaluated`` the gears evaluated.
+
+    References
+    ----------
+    .. [1] Kolda T. G., Lewis R. M., Torczon V., "Optimization by direct search: new perspectives on some classical and
+       modern methods", SIAM Review 45 (2003) 385–482, §3.
+    """
     seen: dict[bytes, int] = {}
     points: list[np.ndarray] = []
     values: list[np.ndarray] = []
@@ -222,8 +276,32 @@ def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bo
 def design_box_worst(model: ImpactModel, tolerance: ToleranceModel, params: np.ndarray, torques, speed_rpm: float,
                      energy_velocity: str = "transverse", first_stage_only: bool = False
                      ) -> tuple[BoxWorst, ToleranceBox]:
-    """The box worst of every criterion and torque (M = T·K columns, torque-major) of design
-    ``params`` (2, 6) (m) on ``model`` (its lead slopes the nominal), and its effective box."""
+    """The box worst of every criterion and torque of design ``params`` on ``model``, and its effective box.
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared impact model; its lead slopes are the nominal.
+    tolerance : ToleranceModel
+        The tolerance model (:mod:`gearmesh.tolerance`).
+    params : numpy.ndarray
+        (2, 6) modification parameters of the design (m).
+    torques : array_like
+        (T,) pinion torques (N m).
+    speed_rpm : float
+        Pinion speed (rpm).
+    energy_velocity : {'transverse', 'normal'}, default 'transverse'
+        Velocity of the impact energy (:func:`gearmesh.impact.impact_response`).
+    first_stage_only : bool, default False
+        The first stage of :func:`box_worst` alone.
+
+    Returns
+    -------
+    worst : BoxWorst
+        ``values`` (T, K) in :data:`CRITERIA` order (N, m, Pa), ``points`` (T, K, k), ``evaluated``.
+    box : ToleranceBox
+        The design's effective box (:func:`tolerance_box`).
+    """
     box = tolerance_box(tolerance, params)
     nt = np.atleast_1d(torques).size
 
@@ -241,17 +319,48 @@ def design_box_worst(model: ImpactModel, tolerance: ToleranceModel, params: np.n
 
 
 def population_units(tolerance: ToleranceModel, samples: int, seed: int) -> np.ndarray:
-    """A seeded Latin-hypercube population (samples, K) of the whole model's unit deviations
-    (:func:`gearmesh.tolerance.unit_deviations`): the same gears for every design of a study, so a
-    design and its reference are compared gear for gear."""
+    """A seeded Latin-hypercube population of the whole model's unit deviations.
+
+    :func:`gearmesh.tolerance.unit_deviations`: the same gears for every design of a study, so a design and its reference
+    are compared gear for gear.
+
+    Parameters
+    ----------
+    tolerance : ToleranceModel
+        The tolerance model; one column per dimension.
+    samples : int
+        Manufactured gears.
+    seed : int
+        Random seed.
+
+    Returns
+    -------
+    numpy.ndarray
+        (samples, K) unit deviations in [−1, 1].
+    """
     return unit_deviations(len(tolerance.dimensions), samples, "lhs", seed)
 
 
 def manufactured_pair(pair, params: np.ndarray, lead_slope):
-    """The pair file of one manufactured gear: ``pair`` (:class:`gearmesh.gear.GearPair`, the design)
-    with the modification ``params`` (2, 6) (m, :data:`gearmesh.surface.MODIFICATION_FIELDS`) and the
-    lead slope deviations ``lead_slope`` (2,) (m) it was made with (its profile slopes and mesh
-    misalignment kept): any gear of a population, evaluated again through any command."""
+    """The pair file of one manufactured gear: any gear of a population, evaluated again through any command.
+
+    The design ``pair`` with the modification and the lead slope deviations it was made with (its profile slopes and mesh
+    misalignment kept).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The design (:class:`gearmesh.gear.GearPair`).
+    params : numpy.ndarray
+        (2, 6) modification parameters (m, :data:`gearmesh.surface.MODIFICATION_FIELDS`).
+    lead_slope : array_like
+        (2,) lead slope deviations [pinion, gear] (m).
+
+    Returns
+    -------
+    GearPair
+        The manufactured pair.
+    """
     from dataclasses import replace
 
     from .gear import Modification
@@ -264,13 +373,26 @@ def manufactured_pair(pair, params: np.ndarray, lead_slope):
 
 
 def box_scenarios(tolerance: ToleranceModel, reference: BoxWorst) -> np.ndarray:
-    """The manufactured gears an optimiser evaluates each candidate on (S, K unit deviations): at
-    every lead mismatch where the reference design's worst gears lie (the box search's points of
-    the unmodified pair, all criteria and torques), the modification deviations all at their lower
-    and all at their upper tolerance — the structure of the box (the mismatch acts most; a relief
-    or crowning slightly thinner or thicker than drawn acts on every criterion the same way round).
-    A candidate's worst over these is checked on its own box afterwards
-    (:func:`gearmesh.optimise.optimise`)."""
+    """The manufactured gears an optimiser evaluates each candidate on.
+
+    At every lead mismatch where the reference design's worst gears lie (the box search's points of the unmodified pair,
+    all criteria and torques), the modification deviations all at their lower and all at their upper tolerance — the
+    structure of the box (the mismatch acts most; a relief or crowning slightly thinner or thicker than drawn acts on
+    every criterion the same way round). A candidate's worst over these is checked on its own box afterwards
+    (:func:`gearmesh.optimise.optimise`).
+
+    Parameters
+    ----------
+    tolerance : ToleranceModel
+        The tolerance model (:mod:`gearmesh.tolerance`).
+    reference : BoxWorst
+        The reference design's box worst (:func:`design_box_worst`).
+
+    Returns
+    -------
+    numpy.ndarray
+        (S, K) unit deviations of the scenarios.
+    """
     points = np.asarray(reference.points)
     mismatch = np.unique(np.round(points[..., 0].ravel(), 9)) if points.shape[-1] else np.zeros(1)
     dims = tolerance.dimensions

@@ -80,7 +80,22 @@ class MeshLaw:
 
 
 def periodic_interp(ph, xp, fp):
-    """Linear interpolation in a periodic table (xp increasing over one period [0, 1))."""
+    """Linear interpolation in a periodic table.
+
+    Parameters
+    ----------
+    ph : array_like
+        Phases at which to interpolate (fractions of the period, in [0, 1)).
+    xp : numpy.ndarray
+        (P,) table phases, increasing over one period [0, 1).
+    fp : numpy.ndarray
+        (P,) table values (any unit).
+
+    Returns
+    -------
+    numpy.ndarray
+        Values at ``ph`` (the unit of ``fp``), the last interval wrapping to the first point.
+    """
     xp = np.concatenate([xp, [xp[0] + 1.0]])
     fp = np.concatenate([fp, [fp[0]]])
     return np.interp(ph, xp, fp)
@@ -92,19 +107,33 @@ def mesh_law(geom: PairGeometry, K_transverse: np.ndarray, torque: float, stiffn
 
     Parameters
     ----------
-    geom : pair geometry.
-    K_transverse : (P,) transverse mesh stiffness K (N/m) at evenly spaced pinion rolls over
-        one base pitch (:attr:`gearmesh.stiffness.MeshStiffness.K`, or the LTCA's k_L).
-    torque : pinion torque T1 (N·m), for the seed-001 excitation e = F/K.
-    stiffness_form : 'fourier' (series of ``order``, the improved potential-energy paper) or 'table' (full curve).
-    excitation : 'tvms' or 'ltca' (e = the given ``transmission_error``, or none) or 'lste'
-        (the low-fluctuation paper literal: e = F_bt/K(t) along the transverse line of action, × cos βb along the
-        normal). For 'contact' use :func:`contact_mesh_law`.
-    transmission_error : optional (Q,) static TE (m) along the *transverse* line of action at
-        evenly spaced rolls over one base pitch (unloaded TE, or the LTCA's e = LTE − F/k_L),
-        added to e; with ``stiffness_form='fourier'`` represented by its Fourier series of
-        ``order`` too.
-    phase_offset : mesh-cycle fraction (-) added to this mesh's phase.
+    geom : PairGeometry
+        The pair's geometry (βb).
+    K_transverse : numpy.ndarray
+        (P,) transverse mesh stiffness K (N/m; :attr:`~gearmesh.stiffness.MeshStiffness.K` or the LTCA's k_L) evenly over p_bt.
+    torque : float
+        Pinion torque T1 (N·m), for the low-fluctuation paper's excitation e = F/K.
+    stiffness_form, order : {'fourier', 'table'}, int
+        Fourier series of ``order`` (default 'fourier', 3: the improved potential-energy paper [2]_) or the full curve.
+    excitation : {'tvms', 'ltca', 'lste'}, default 'tvms'
+        'tvms', 'ltca': e = ``transmission_error`` or none; 'lste': the low-fluctuation paper's literal [1]_
+        e = F_bt/K(t) along the transverse line of action, × cos βb along the normal; 'contact': :func:`contact_mesh_law`.
+    transmission_error : numpy.ndarray or None
+        (Q,) static TE (m) along the *transverse* line of action evenly over one base pitch (unloaded, or the LTCA's
+        e = LTE − F/k_L), added to e; with ``stiffness_form='fourier'`` its Fourier series of ``order`` too.
+    phase_offset : float, default 0
+        Mesh-cycle fraction (-) added to this mesh's phase.
+
+    Returns
+    -------
+    MeshLaw
+        Normal mesh stiffness (``k_mean``, ``k_max``, ``fourier`` or ``k``, N/m) and error ``e`` (m, normal).
+
+    References
+    ----------
+    .. [1] [untitled] Low mesh-stiffness fluctuation design of helical gears (docs/references.md).
+    .. [2] A Comprehensive Study on Meshing Characteristics of Helical Gear Pairs Using an Improved Potential Energy Method
+       for Time-Varying Meshing Stiffness.
     """
     from ..stiffness import fourier_fit
 
@@ -155,10 +184,32 @@ def mesh_law(geom: PairGeometry, K_transverse: np.ndarray, torque: float, stiffn
 
 
 def contact_mesh_law(geom: PairGeometry, table: MeshForceTable, torque: float, phase_offset: float = 0.0) -> MeshLaw:
-    """The ``contact`` :class:`MeshLaw`: the mesh force of ``table`` at pinion torque ``torque``
-    (N·m), with the table's own static solution F(x, w) = F_bt = T1/r_b1 as its linearisation
-    (k = dF/dx, e = x − F_bt/k, the ``ltca`` form, on the table's rows resampled to evenly spaced
-    mesh phases) and as the largest stiffness the largest tangent anywhere in the table."""
+    """The ``contact`` :class:`MeshLaw`: the mesh force of ``table`` at pinion torque ``torque``.
+
+    The table's own static solution F(x, w) = F_bt = T1/r_b1 is its linearisation (k = dF/dx, e = x − F_bt/k, the
+    ``ltca`` form, on the table's rows resampled to evenly spaced mesh phases), and the largest stiffness is the largest
+    tangent anywhere in the table.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+    table : MeshForceTable
+        The pair's mesh force table (:func:`gearmesh.meshforce.mesh_force_table`).
+    torque : float
+        Pinion torque T1 (N·m).
+    phase_offset : float, default 0
+        Mesh-cycle fraction (-) added to this mesh's phase.
+
+    Returns
+    -------
+    MeshLaw
+        ``contact`` the table; ``k`` (N/m) and ``e`` (m) its linearisation along the normal.
+
+    References
+    ----------
+    .. [1] Velex P., Ajmi M., J. Sound Vib. 290 (2006) 882: the equivalent error e = LTE − F/k_L of the ``ltca`` form.
+    """
     cb = math.cos(geom.base_helix_angle)
     force = torque / float(geom.base_radius[0])
     x_s, k_s = table.static_approach(force)

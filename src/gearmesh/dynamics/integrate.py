@@ -41,19 +41,16 @@ FIRST_PART_AFTER_A = 0.25
 class SolverSettings:
     """Step and window rules of :func:`simulate` (package docstring).
 
-    courant : ω_max·Δt bound (-); steps_per_cycle_min : m_min; transient_tau : n_τ (-);
-    record_cycles : n_rec mesh periods (even); min_transient_cycles : at least this many
-    mesh periods before recording; block : steps per block of the numpy reference.
-    steady_state : 'shooting' (the periodic steady state by Newton's method on the one-period
-    map, :func:`_sweep`, then ``settle_cycles`` periods before recording; the
-    physical-time transient where it does not converge to a stable orbit) or 'transient'
-    (always the physical-time transient); shooting_tolerance : the fixed point's residual
-    relative to the state's scale; shooting_iterations : at most this many Newton steps;
-    periodic_record_cycles : the mesh periods recorded where the shooting found a stable
-    periodic orbit (even; None: ``record_cycles``). From a fixed point of the one-period map
-    every period repeats the first to the shooting tolerance, so two periods give every
-    statistic to that tolerance; ``record_cycles`` stays for the physical-time transient,
-    whose response need not repeat.
+    courant : ω_max·Δt bound (-); steps_per_cycle_min : m_min; transient_tau : n_τ (-); record_cycles : n_rec mesh
+    periods (even); min_transient_cycles : at least this many mesh periods before recording; block : steps per block
+    of the numpy reference. steady_state : 'shooting' (the periodic steady state by Newton's method on the one-period
+    map, :func:`_sweep`, then ``settle_cycles`` periods before recording; the physical-time transient where it does
+    not converge to a stable orbit) or 'transient' (always the physical-time transient); shooting_tolerance : the
+    fixed point's residual relative to the state's scale; shooting_iterations : at most this many Newton steps;
+    periodic_record_cycles : the mesh periods recorded where the shooting found a stable periodic orbit (even; None:
+    ``record_cycles``). From a fixed point of the one-period map every period repeats the first to the shooting
+    tolerance, so two periods give every statistic to that tolerance; ``record_cycles`` stays for the physical-time
+    transient, whose response need not repeat.
     """
 
     courant: float = 0.25
@@ -73,27 +70,23 @@ class SolverSettings:
 class SweepResult:
     """Steady-state statistics per speed (arrays (S,) or (n, S) / (m, S)), SI units.
 
-    ``y_mean``, ``y_std`` (n, S) mean and standard deviation of each reduced coordinate
-    (m), ``v_rms`` (n, S) RMS of its velocity (m/s); ``dte_*`` (m, S) of the mesh deflection
-    δ (m, along the normal, eq. 1: the elastic approach, statically F/k; with ``contact`` the
-    approach beyond the first touch, x − g_min); ``approach_mean``, ``approach_std`` (m, S) of
-    the gear bodies' approach along the normal, G·y (statically the loaded TE × cos βb: the
-    dynamic transmission error); ``force_*`` (m, S) of F (N; min and max at the steps, as
-    ``dte_min``, ``dte_max``); ``gap_fraction``, ``back_fraction`` (m, S) fractions of the
-    record window in contact loss and back-side contact; ``steady_change`` (m, S) relative
-    change of the deflection standard deviation between the two halves of the window;
-    ``series`` optional per-speed time series.
+    ``y_mean``, ``y_std`` (n, S) mean and standard deviation of each reduced coordinate (m), ``v_rms`` (n, S) RMS of
+    its velocity (m/s); ``dte_*`` (m, S) of the mesh deflection δ (m, along the normal, eq. 1: the elastic approach,
+    statically F/k; with ``contact`` the approach beyond the first touch, x − g_min); ``approach_mean``,
+    ``approach_std`` (m, S) of the gear bodies' approach along the normal, G·y (statically the loaded TE × cos βb: the
+    dynamic transmission error); ``force_*`` (m, S) of F (N; min and max at the steps, as ``dte_min``, ``dte_max``);
+    ``gap_fraction``, ``back_fraction`` (m, S) fractions of the record window in contact loss and back-side contact;
+    ``steady_change`` (m, S) relative change of the deflection standard deviation between the two halves of the
+    window; ``series`` optional per-speed time series.
 
-    ``contact`` meshes only (NaN otherwise), normal forces: ``enter_force_max`` (m, S) the
-    entering pair's largest force over the first part of its engagement (from p_bt/2 before A to
-    :data:`FIRST_PART_AFTER_A`·p_bt after it); ``impact_force`` (m, S) the largest excess there of
-    its force over its quasi-static force at the same mesh position (the dynamic impact);
-    ``touch_roll_before_A`` (m, S) the roll (m, transverse line of action) before A at which it
-    first carried load, the earliest over the recorded cycles (0 at or after A);
-    ``table_overrun`` (m, S) fraction of steps above the table's approach range (extrapolated).
-    ``shooting_iterations`` (S,) Newton steps of the periodic steady state (−1: it did not
-    converge to a stable orbit and the physical-time transient was run instead);
-    ``periodic_state`` (S, 2n) that state (positions, velocities at mesh phase 0; NaN where none).
+    ``contact`` meshes only (NaN otherwise), normal forces: ``enter_force_max`` (m, S) the entering pair's largest
+    force over the first part of its engagement (from p_bt/2 before A to :data:`FIRST_PART_AFTER_A`·p_bt after it);
+    ``impact_force`` (m, S) the largest excess there of its force over its quasi-static force at the same mesh
+    position (the dynamic impact); ``touch_roll_before_A`` (m, S) the roll (m, transverse line of action) before A at
+    which it first carried load, the earliest over the recorded cycles (0 at or after A); ``table_overrun`` (m, S)
+    fraction of steps above the table's approach range (extrapolated). ``shooting_iterations`` (S,) Newton steps of
+    the periodic steady state (−1: it did not converge to a stable orbit and the physical-time transient was run
+    instead); ``periodic_state`` (S, 2n) that state (positions, velocities at mesh phase 0; NaN where none).
     """
 
     speed_rpm: np.ndarray
@@ -133,6 +126,16 @@ def step_plan(model: GearModel, speed_rpm: np.ndarray, settings: SolverSettings 
 
     Δt_max = courant/ω_max with ω_max = max |λ| of the model at the maximum stiffness;
     transient time n_τ/σ_min with σ_min = min(−Re λ) at the mean stiffness.
+
+    Parameters
+    ----------
+    model, speed_rpm, settings : GearModel, array_like, SolverSettings
+        The model, its (S,) driver speeds (rpm) and the solver settings (``courant``, ``transient_tau`` n_τ, ...).
+
+    Returns
+    -------
+    f_mesh, m, cycles, dt : numpy.ndarray
+        (S,) mesh frequency (Hz), steps per mesh period (even), transient mesh periods, time step Δt (s).
     """
     speed_rpm = np.asarray(speed_rpm, dtype=float)
     kmax = np.array([ml.k_max for ml in model.meshes])
@@ -667,14 +670,19 @@ def _series_buffers(k: int, n: int, nm: int) -> tuple:
 
 def simulate(model: GearModel, speed_rpm, settings: SolverSettings = SolverSettings(), series: bool = False,
              y0: np.ndarray | None = None, progress=None) -> SweepResult:
-    """Steady-state response of ``model`` at every speed (rpm) (package docstring, "Solver").
+    """Steady-state response (:class:`SweepResult`, SI) of ``model`` at every speed (package docstring, "Solver").
 
-    Each speed starts from the static state (or ``y0``, reduced coordinates, at rest), runs its
-    transient and records ``settings.record_cycles`` mesh periods (``periodic_record_cycles``
-    from a periodic orbit found by shooting, when set). ``series=True`` also returns,
-    per speed, the record window sampled at every step: time (s), δ (m, meshes), F (N), y (n),
-    ẏ (n) and, for ``contact`` meshes, the entering pair's force Fe (N). Keep it for a few speeds
-    only. ``progress`` (optional) is called with the fraction of steps done, about every 5 %.
+    Parameters
+    ----------
+    model, speed_rpm : GearModel, array_like
+        The model and its (S,) driver speeds (rpm), positive.
+    settings : SolverSettings
+        Each speed starts from the static state (or ``y0``, reduced coordinates, at rest), runs its transient and records
+        ``settings.record_cycles`` mesh periods (``periodic_record_cycles`` from a periodic orbit found by shooting).
+    series, y0, progress : bool, numpy.ndarray or None, callable or None
+        ``series=True`` also returns per speed the record window at every step (a few speeds only): time (s), δ (m,
+        meshes), F (N), y (n), ẏ (n) and, for ``contact`` meshes, the entering pair's force Fe (N); ``y0`` the start
+        state; ``progress`` (optional) is called with the fraction of steps done, about every 5 %.
     """
     speed_rpm = np.atleast_1d(np.asarray(speed_rpm, dtype=float))
     if speed_rpm.size == 0 or not np.all(np.isfinite(speed_rpm)) or np.any(speed_rpm <= 0):

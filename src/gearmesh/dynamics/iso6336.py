@@ -34,7 +34,25 @@ from ..stiffness import iso6336_stiffness
 
 
 def reduced_mass_per_width(geom: PairGeometry) -> float:
-    """m_red (kg/mm) = J1* J2*/(J1* r_b2² + J2* r_b1²), J* = J/b (kg·mm²/mm), r_b in mm."""
+    """Reduced mass per unit face width m_red (kg/mm) of the pair's own bodies.
+
+    m_red = J1* J2*/(J1* r_b2² + J2* r_b1²), J* = J/b (kg·mm²/mm), r_b in mm — the two gears as rigid discs on rigid
+    supports (module docstring).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry: ``inertia`` (2,) kg m² of the gear bodies, ``base_radius`` (2,) m, ``face_width`` m.
+
+    Returns
+    -------
+    float
+        m_red (kg/mm), in the standard's units.
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2006, clause 6.5 (dynamic factor, method B); the same equations in ISO 6336-1:2019.
+    """
     b_mm = geom.face_width * 1e3
     j1, j2 = (float(j) * 1e6 / b_mm for j in geom.inertia)
     r1, r2 = (float(r) * 1e3 for r in geom.base_radius)
@@ -42,8 +60,24 @@ def reduced_mass_per_width(geom: PairGeometry) -> float:
 
 
 def reduced_mass_solid_discs(geom: PairGeometry) -> float:
-    """ISO 6336-1's own estimate of m_red (kg/mm) for solid gears of mean diameter d_m = (d_a + d_f)/2:
-    (π/8)(d_m1/d_b1)² d_m1²/(1/ρ1 + 1/(ρ2 u²)) (ρ in kg/mm³, u = z2/z1) — bores and webs left out."""
+    """ISO 6336-1's own estimate of m_red (kg/mm) for solid gears of mean diameter d_m = (d_a + d_f)/2.
+
+    m_red = (π/8)(d_m1/d_b1)² d_m1²/(1/ρ1 + 1/(ρ2 u²)) (ρ in kg/mm³, u = z2/z1) — bores and webs left out.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (tip, root and base radii in m; the material's density in kg/m³, both gears alike).
+
+    Returns
+    -------
+    float
+        m_red (kg/mm).
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2006, clause 6.5 (dynamic factor, method B); the same equations in ISO 6336-1:2019.
+    """
     rho = geom.pair.material.density * 1e-9
     dm1 = float(geom.tip_radius[0] + geom.root_radius[0]) * 1e3
     db1 = 2 * float(geom.base_radius[0]) * 1e3
@@ -52,16 +86,49 @@ def reduced_mass_solid_discs(geom: PairGeometry) -> float:
 
 
 def resonance_speed(geom: PairGeometry, c_gamma_alpha: float | None = None, solid_discs: bool = False) -> float:
-    """n_E1 (r/min) of the pinion; ``c_gamma_alpha`` in N/(mm·µm), default ISO's own
-    (:func:`gearmesh.stiffness.iso6336_stiffness`); m_red of the pair's own bodies, or with
-    ``solid_discs`` the standard's solid-disc estimate (:func:`reduced_mass_solid_discs`)."""
+    """Resonance speed n_E1 (r/min) of the pinion, n_E1 = 30 000/(π z1)·√(c_γα/m_red).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+    c_gamma_alpha : float or None
+        Mesh stiffness c_γα in N/(mm·µm); None: ISO's own (:func:`gearmesh.stiffness.iso6336_stiffness`).
+    solid_discs : bool, default False
+        m_red of the standard's solid-disc estimate (:func:`reduced_mass_solid_discs`) instead of the pair's own bodies
+        (:func:`reduced_mass_per_width`).
+
+    Returns
+    -------
+    float
+        n_E1 (r/min).
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2006, clause 6.5 (dynamic factor, method B); the same equations in ISO 6336-1:2019.
+    """
     c = iso6336_stiffness(geom)["c_gamma_alpha"] if c_gamma_alpha is None else c_gamma_alpha
     m_red = reduced_mass_solid_discs(geom) if solid_discs else reduced_mass_per_width(geom)
     return 30000.0 / (math.pi * geom.pair.teeth[0]) * math.sqrt(c / m_red)
 
 
 def velocity_factors(eps_gamma: float) -> tuple[float, ...]:
-    """C_v1 … C_v7 (ISO 6336-1:2006 Table 8) for ε_γ > 1."""
+    """The factors C_v1 … C_v7 of method B for a total contact ratio ε_γ > 1.
+
+    Parameters
+    ----------
+    eps_gamma : float
+        Total contact ratio ε_γ (-), > 1.
+
+    Returns
+    -------
+    tuple of float
+        (C_v1, …, C_v7) (-).
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2006, clause 6.5, Table 8; the same values in ISO 6336-1:2019.
+    """
     e = eps_gamma
     if e <= 2:
         cv = [0.32, 0.34, 0.23, 0.90, 0.47, 0.47]
@@ -74,9 +141,36 @@ def velocity_factors(eps_gamma: float) -> tuple[float, ...]:
 def dynamic_factor(geom: PairGeometry, speed_rpm, pinion_torque: float, tip_relief_um: float = 0.0,
                    f_pb_eff_um: float = 0.0, f_f_eff_um: float = 0.0, application_factor: float = 1.0,
                    c_gamma_alpha: float | None = None) -> np.ndarray:
-    """K_v of method B at pinion speeds ``speed_rpm`` (r/min) for ``pinion_torque`` (N·m): perfect
-    gears by default (B_p = B_f = 0, no relief: B_k = 1). ``c_gamma_alpha`` (N/(mm·µm)) replaces
-    ISO's in n_E1 only (c' of the B factors stays ISO's)."""
+    """K_v of method B at pinion speeds ``speed_rpm``: perfect gears by default (B_p = B_f = 0, no relief: B_k = 1).
+
+    Subcritical, main resonance and supercritical ranges as the module docstring states, linear in N between 1.15 and 1.5.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+    speed_rpm : array_like
+        Pinion speeds (r/min).
+    pinion_torque : float
+        Pinion torque (N·m).
+    tip_relief_um : float, default 0
+        Tip relief C_a (µm).
+    f_pb_eff_um, f_f_eff_um : float, default 0
+        Effective pitch and profile deviations after running-in, f_pb,eff and f_f,eff (µm).
+    application_factor : float, default 1
+        K_A (-).
+    c_gamma_alpha : float or None
+        c_γα (N/(mm·µm)) replacing ISO's in n_E1 only (c' of the B factors stays ISO's); None: ISO's.
+
+    Returns
+    -------
+    numpy.ndarray
+        K_v (-), the shape of ``speed_rpm``.
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2006, clause 6.5 (dynamic factor, method B) and Table 8; the same equations in ISO 6336-1:2019.
+    """
     iso = iso6336_stiffness(geom)
     c1 = iso["c_prime"]
     ft = pinion_torque / (float(geom.pair.normal_module) * geom.pair.teeth[0] / (2 * math.cos(geom.pair.helix_angle)))

@@ -149,7 +149,18 @@ def _check_nonneg(name: str, value) -> float:
 
 
 def require_dynamics_data(geom: PairGeometry) -> None:
-    """Refuse a pair without the bore radius or material the masses and inertias need."""
+    """Refuse a pair without the bore radius or material the masses and inertias need.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+
+    Returns
+    -------
+    None
+        Raises :class:`~gearmesh.errors.GearmeshInputError` naming the missing field.
+    """
     if geom.pair.material is None:
         raise GearmeshInputError("material", None, "is required for the dynamics (density for the masses, "
                                  "Young's modulus for the mesh stiffness)")
@@ -257,8 +268,22 @@ def _constrain(names, M, Kb, Cb, G, tau, rot_idx):
 
 
 def full_translations(model: "GearModel", a: np.ndarray, axis: int = 0) -> np.ndarray:
-    """``a`` (the model's n_trans translations first along ``axis``) with every translation of the
-    unconstrained model in its place (``model.full['translations']``), zero where a support is rigid."""
+    """``a`` with every translation of the unconstrained model in its place, zero where a support is rigid.
+
+    Parameters
+    ----------
+    model : GearModel
+        The model (``model.full['translations']``).
+    a : numpy.ndarray
+        Array with the model's n_trans translations first along ``axis`` (m or any unit).
+    axis : int, default 0
+        The axis of the translations.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``a`` with the unconstrained model's translations along ``axis``.
+    """
     a = np.moveaxis(np.asarray(a), axis, 0)
     names = model.full.get("translations", model.names[:model.n_trans])
     kept = list(model.names[:model.n_trans])
@@ -278,19 +303,41 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
 
     Parameters
     ----------
-    geom : pair geometry with bore radius and material (masses, inertias).
-    torque_out : output (gear) torque T_out (N·m), > 0; T_in = T_out r_b1/r_b2.
-    K_transverse : (P,) transverse TVMS K (N/m) evenly over one base pitch.
-    bearing : overrides for both gears of k_radial, k_axial (N/m, inf: rigid), c_radial, c_axial
-        (N·s/m); the stiffnesses default to the pair file's supports (:mod:`gearmesh.supports`, seed
-        001's 1.5e8 / 1e7 when it gives none), the damping to the low-fluctuation paper's 1000 N·s/m.
-    damping_ratio : modal damping ratio ζ (-) of the mesh mode, the mesh damper sized to give it
-        (:func:`_with_mesh_damping`; ignored when ``mesh_damping`` (N·s/m) is given).
-    backlash : total backlash 2b0 (m) along the normal; None = no backlash (contact never
-        lost: f(δ) = δ, a linear time-varying model).
-    stiffness_form, order, excitation, transmission_error : see :func:`mesh_law`.
-    contact : the mesh force table of the pair (:func:`gearmesh.meshforce.mesh_force_table`):
-        the ``contact`` excitation (then ``K_transverse`` and the four above are unused).
+    geom : PairGeometry
+        Pair geometry with bore radius and material (masses, inertias).
+    torque_out : float
+        Output (gear) torque T_out (N·m), > 0; T_in = T_out r_b1/r_b2.
+    K_transverse : numpy.ndarray or None
+        (P,) transverse TVMS K (N/m) evenly over one base pitch.
+    bearing : mapping or None
+        Overrides for both gears of k_radial, k_axial (N/m, inf: rigid), c_radial, c_axial (N·s/m); the stiffnesses
+        default to the pair file's supports (:mod:`gearmesh.supports`, the low-fluctuation paper's 1.5e8 / 1e7 when it
+        gives none), the damping to the low-fluctuation paper's 1000 N·s/m.
+    damping_ratio : float
+        Modal damping ratio ζ (-) of the mesh mode, the mesh damper sized to give it (:func:`_with_mesh_damping`;
+        ignored when ``mesh_damping`` is given).
+    backlash : float or None, default 60e-6
+        Total backlash 2b0 (m) along the normal; None = no backlash (contact never lost: f(δ) = δ, a linear
+        time-varying model).
+    stiffness_form, order, excitation, transmission_error
+        See :func:`mesh_law`.
+    mesh_damping : float or None
+        Mesh damping coefficient (N·s/m), instead of ``damping_ratio``.
+    contact : MeshForceTable or None
+        The mesh force table of the pair (:func:`gearmesh.meshforce.mesh_force_table`): the ``contact`` excitation
+        (then ``K_transverse`` and the four above are unused).
+
+    Returns
+    -------
+    GearModel
+        The model (SI): mass, stiffness and damping matrices, its mesh laws and the static state.
+
+    References
+    ----------
+    .. [1] [untitled] Low mesh-stiffness fluctuation design of helical gears (the low-fluctuation paper,
+       docs/references.md), §4, eqs. 1–2, corrected as the package docstring says.
+    .. [2] Kahraman A., Singh R., "Non-linear dynamics of a spur gear pair", J. Sound Vib. 142 (1990) 49–75: the
+       backlash dead zone.
     """
     require_dynamics_data(geom)
     torque_out = _check_positive("torque_Nm", torque_out)
@@ -326,8 +373,20 @@ def pair_model(geom: PairGeometry, torque_out: float, K_transverse: np.ndarray |
 
 
 def mesh_mode(model: GearModel) -> int:
-    """Index (in :meth:`GearModel.modes`) of the mesh mode: the mode with the largest share of its
-    strain energy in the meshes (:func:`mesh_energy_fraction`)."""
+    """Index (in :meth:`GearModel.modes`) of the mesh mode.
+
+    The mode with the largest share of its strain energy in the meshes (:func:`mesh_energy_fraction`).
+
+    Parameters
+    ----------
+    model : GearModel
+        The model.
+
+    Returns
+    -------
+    int
+        Index of the mesh mode.
+    """
     return int(np.argmax(mesh_energy_fraction(model, model.modes()["shapes"])))
 
 
@@ -449,13 +508,35 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | No
                 contact: MeshForceTable | None = None) -> GearModel:
     """The 9-DOF plate–blanket–impression train of the improved potential-energy paper (package docstring).
 
-    The three gears are the pair file's gear (index 1) repeated, the pair's TVMS serving both
-    meshes (assumption: the improved potential-energy paper's gears are alike, 88 teeth each), the plate driven by
-    ``torque`` (N·m) and the impression loaded by it; y along the line of centres, each gear on
-    the pair file's gear supports (radial for y, axial for z; ``bearing`` overrides them as in
-    :func:`pair_model`). ``phase_offsets`` (mesh cycles) shift each mesh's
-    TVMS (default in phase: the improved potential-energy paper finds the two mesh forces nearly identical). With
-    ``contact`` (the pair's mesh force table) both meshes are driven by the real contact.
+    The three gears are the pair file's gear (index 1) repeated, the pair's TVMS serving both meshes (assumption: the
+    improved potential-energy paper's gears are alike, 88 teeth each), the plate driven by ``torque`` and the impression
+    loaded by it; y along the line of centres, each gear on the pair file's gear supports (radial for y, axial for z).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        Pair geometry with bore radius and material; its gear (index 1) is used three times.
+    torque : float
+        Torque driving the plate and loading the impression (N·m).
+    K_transverse : numpy.ndarray or None
+        (P,) transverse TVMS K (N/m) evenly over one base pitch, serving both meshes.
+    bearing, damping_ratio, backlash, stiffness_form, order, excitation, mesh_damping
+        As in :func:`pair_model`.
+    phase_offsets : sequence of float, default (0, 0)
+        Shift of each mesh's TVMS (mesh cycles); default in phase: the improved potential-energy paper finds the two
+        mesh forces nearly identical.
+    contact : MeshForceTable or None
+        The pair's mesh force table: both meshes driven by the real contact.
+
+    Returns
+    -------
+    GearModel
+        The 9-DOF model (SI).
+
+    References
+    ----------
+    .. [1] A Comprehensive Study on Meshing Characteristics of Helical Gear Pairs Using an Improved Potential Energy
+       Method for Time-Varying Meshing Stiffness (the improved potential-energy paper, docs/references.md).
     """
     require_dynamics_data(geom)
     torque = _check_positive("torque_Nm", torque)
@@ -495,9 +576,22 @@ def train_model(geom: PairGeometry, torque: float, K_transverse: np.ndarray | No
 
 
 def resonance_speeds(model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> dict[str, np.ndarray]:
-    """Speeds (rpm) where harmonic j of the mesh frequency meets a natural frequency of the
-    linearised model: n = f_n/(j·z_drv/60). Returns 'frequency_Hz' (modes) and 'speed_rpm'
-    (harmonic, mode)."""
+    """Speeds (rpm) where harmonic j of the mesh frequency meets a natural frequency of the linearised model.
+
+    n = f_n/(j·z_drv/60).
+
+    Parameters
+    ----------
+    model : GearModel
+        The model (its modes at the mean stiffness).
+    harmonics : sequence of int, default (1, 2, 3)
+        Mesh-frequency harmonics j.
+
+    Returns
+    -------
+    dict
+        'frequency_Hz' (modes,) natural frequencies (Hz) and 'speed_rpm' (harmonic, mode) driver speeds (rpm).
+    """
     fn = model.modes()["frequency_Hz"]
     h = np.asarray(harmonics, dtype=float)
     return {"frequency_Hz": fn, "speed_rpm": fn[None, :] / (h[:, None] * model.mesh_frequency_per_rpm)}
@@ -510,10 +604,30 @@ RESONANCE_OFFSETS = (-1.0, -0.5, -0.25, 0.0, 0.25, 0.5, 1.0)
 
 def resonance_band(model: GearModel, low: float, high: float, harmonics: Sequence[int] = (1, 2, 3),
                    offsets: Sequence[float] = RESONANCE_OFFSETS, min_mesh_energy: float = 0.0) -> np.ndarray:
-    """Speeds (rpm) strictly inside (``low``, ``high``) around every resonance speed n_r of
-    :func:`resonance_speeds`: n_r(1 + c ζ_r) for c in ``offsets``, ζ_r the mode's damping ratio
-    clipped to [0.005, 0.2] (overdamped modes have no peak to resolve), of the modes with at least
-    ``min_mesh_energy`` of their strain energy in the meshes (:func:`mesh_energy_fraction`). Unsorted."""
+    """Speeds (rpm) strictly inside (``low``, ``high``) around every resonance speed n_r of :func:`resonance_speeds`.
+
+    n_r(1 + c ζ_r) for c in ``offsets``, ζ_r the mode's damping ratio clipped to [0.005, 0.2] (overdamped modes have no
+    peak to resolve), of the modes with at least ``min_mesh_energy`` of their strain energy in the meshes
+    (:func:`mesh_energy_fraction`). Unsorted.
+
+    Parameters
+    ----------
+    model : GearModel
+        The model.
+    low, high : float
+        Bounds of the speed range (rpm), excluded.
+    harmonics : sequence of int, default (1, 2, 3)
+        Mesh-frequency harmonics.
+    offsets : sequence of float
+        Offsets c in damping ratios (-); default :data:`RESONANCE_OFFSETS`.
+    min_mesh_energy : float, default 0
+        Smallest fraction (-) of a mode's strain energy in the meshes.
+
+    Returns
+    -------
+    numpy.ndarray
+        Speeds (rpm), unsorted.
+    """
     res = resonance_speeds(model, harmonics)
     md = model.modes()
     zeta = np.clip(np.nan_to_num(md["damping_ratio"], nan=0.0), 0.005, 0.2)
@@ -524,10 +638,23 @@ def resonance_band(model: GearModel, low: float, high: float, harmonics: Sequenc
 
 
 def mesh_energy_fraction(model: GearModel, shapes: np.ndarray) -> np.ndarray:
-    """Fraction (-) of each mode's strain energy in the meshes (mean stiffness): k (G φ)² over
-    Σ k_b,i φ_i² + k (G φ)², φ the displacement part of the mode shape (columns of ``shapes``,
-    made real by removing its phase). A mode with little energy in the mesh is barely driven by
-    the mesh excitation."""
+    """Fraction (-) of each mode's strain energy in the meshes (mean stiffness).
+
+    k (G φ)² over Σ k_b,i φ_i² + k (G φ)², φ the displacement part of the mode shape (made real by removing its phase).
+    A mode with little energy in the mesh is barely driven by the mesh excitation.
+
+    Parameters
+    ----------
+    model : GearModel
+        The model.
+    shapes : numpy.ndarray
+        (2n or n, modes) mode shapes as columns (:meth:`GearModel.modes`), complex.
+
+    Returns
+    -------
+    numpy.ndarray
+        (modes,) fractions in [0, 1] (-).
+    """
     k = np.array([ml.k_mean for ml in model.meshes])
     trans = [i for i in range(model.full["M"].shape[0]) if i not in model.full["rotations"]]
     kb = np.diag(model.full["K_bearing"])[trans]

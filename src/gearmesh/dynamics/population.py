@@ -97,13 +97,39 @@ def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash
                         points: int = POPULATION_TABLE["points"], contact_law_name: str = DEFAULT_CONTACT_LAW,
                         settings: SolverSettings = POPULATION_SOLVER, tables=None,
                         misalignment_torque: float | None = None) -> PopulationDynamics:
-    """Set up :func:`dynamic_factors` for ``geom`` at pinion torques ``pinion_torques`` (N·m) over
-    the speed grid ``speeds_rpm`` (rpm, ≥ 2 speeds: its range bounds the resonance speeds added);
-    ``backlash`` 2b0 (m; default the pair's own normal backlash j_bn); ``tables`` the per-gear slice
-    compliance tables to reuse (:func:`gearmesh.meshforce.table_layout`); ``misalignment_torque``
-    a pinion torque (N m) whose mesh misalignment every member's one table carries (None: one table
-    per torque at its own, as the dynamics stage; a screening can take the design torque's: the
-    system deflection's f_sh moves with the load by a fraction of the modifications)."""
+    """Set up :func:`dynamic_factors` for ``geom`` at pinion torques over a speed grid.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (with bore radius and material).
+    pinion_torques : array_like
+        (T,) pinion torques (N·m).
+    speeds_rpm : array_like
+        Speed grid (rpm, ≥ 2 speeds: its range bounds the resonance speeds added).
+    backlash : float or None
+        2b0 (m); None: the pair's own normal backlash j_bn.
+    damping_ratio : float
+        Modal damping ratio ζ (-) of the mesh mode (:func:`pair_model`).
+    method, contact_law_name : str
+        Cantilever tooth model and contact law of the mesh force table (:mod:`gearmesh.ltca`).
+    positions, approaches, points : int
+        The member tables' mesh positions, approaches and points per line (default ``POPULATION_TABLE``: 64, 32, 50).
+    settings : SolverSettings
+        Solver settings (default ``POPULATION_SOLVER``).
+    tables : optional
+        The per-gear slice compliance tables to reuse (:func:`gearmesh.meshforce.table_layout`).
+    misalignment_torque : float or None
+        A pinion torque (N m) whose mesh misalignment every member's one table carries (None: one table per torque at
+        its own, as the dynamics stage; a screening can take the design torque's: the system deflection's f_sh moves
+        with the load by a fraction of the modifications).
+
+    Returns
+    -------
+    PopulationDynamics
+        The shared setup: table ``layout``, ``torques_out`` (T,) N·m, ``speeds_rpm``, ``force_max`` (N), backlash (m),
+        damping ratio and solver settings.
+    """
     require_dynamics_data(geom)
     torques = np.atleast_1d(np.asarray(pinion_torques, dtype=float))
     speeds = np.unique(np.atleast_1d(np.asarray(speeds_rpm, dtype=float)))
@@ -124,10 +150,29 @@ def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash
 
 
 def dynamic_factors(pd: PopulationDynamics, params: np.ndarray, lead_slope: np.ndarray) -> np.ndarray:
-    """Dynamic factor K_v (N, T) of N micro-geometries ``params`` (N, 2, 6) m with lead slopes
-    ``lead_slope`` (N, 2) m at the setup's torques (module docstring); each torque's table carries
-    its mesh misalignment (:func:`gearmesh.deflection.mesh_misalignment`, as the study's tables),
-    torques of one misalignment share it."""
+    """Dynamic factor K_v (N, T) of N micro-geometries at the setup's torques (module docstring).
+
+    Each torque's table carries its mesh misalignment (:func:`gearmesh.deflection.mesh_misalignment`, as the study's
+    tables); torques of one misalignment share it.
+
+    Parameters
+    ----------
+    pd : PopulationDynamics
+        The setup (:func:`population_dynamics`).
+    params : numpy.ndarray
+        (N, 2, 6) modification parameters (m).
+    lead_slope : numpy.ndarray
+        (N, 2) lead slopes [pinion, gear] (m over the face width).
+
+    Returns
+    -------
+    numpy.ndarray
+        (N, T) K_v (-): the largest steady-state normal mesh force over the speeds / the static T_out/(r_b2 cos βb).
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2019 (the dynamic factor K_v, here from the simulated contact rather than method B).
+    """
     params = np.asarray(params, dtype=float)
     torques = pd.pinion_torques if pd.misalignment_torque is None else np.full(pd.pinion_torques.size,
                                                                                  pd.misalignment_torque)

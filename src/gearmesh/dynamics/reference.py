@@ -70,14 +70,31 @@ def _contact_force(table, delta, ddot, tab, cb: float, c_m: float, bl: float):
 
 def simulate_numpy(model: GearModel, speed_rpm, settings: SolverSettings = SolverSettings(),
                    series: bool = False, y0: np.ndarray | None = None, progress=None) -> SweepResult:
-    """Steady-state response of ``model`` at every speed (rpm), one RK4 batch in numpy (the
-    kernel the compiled loop replaced), always with the physical-time transient. ``contact``
-    meshes read their table as the compiled loop does (bilinear, the same stage phases), written
-    independently with numpy; the entering-pair statistics are not computed (None).
+    """Steady-state response of ``model`` at every speed (rpm), one RK4 batch in numpy (the kernel the compiled loop replaced).
 
-    ``series=True`` also returns, per speed, the record window sampled at every step:
-    time (s), δ (m, meshes), F (N), y (n) and ẏ (n). Keep it for a few speeds only.
-    ``progress`` (optional) is called with the fraction of steps done, about every 5 %.
+    Always with the physical-time transient. ``contact`` meshes read their table as the compiled loop does (bilinear, the
+    same stage phases), written independently with numpy; the entering-pair statistics are not computed (None).
+
+    Parameters
+    ----------
+    model : GearModel
+        The model.
+    speed_rpm : array_like
+        (S,) driver speeds (rpm).
+    settings : SolverSettings
+        Solver settings (transient, record cycles, step).
+    series : bool, default False
+        Also return, per speed, the record window sampled at every step: time (s), δ (m, meshes), F (N), y (n) and
+        ẏ (n). Keep it for a few speeds only.
+    y0 : numpy.ndarray or None
+        Start state (reduced coordinates, at rest); None: the static state.
+    progress : callable or None
+        Called with the fraction of steps done, about every 5 %.
+
+    Returns
+    -------
+    SweepResult
+        Statistics per speed (SI): ``dte_*``, ``approach_*`` (m), ``force_*`` (N), ``y_std`` (m), ...
     """
     speed_rpm = np.atleast_1d(np.asarray(speed_rpm, dtype=float))
     if speed_rpm.size == 0 or not np.all(np.isfinite(speed_rpm)) or np.any(speed_rpm <= 0):
@@ -344,17 +361,29 @@ def reference_solution(model: GearModel, speed_rpm: float, settings: SolverSetti
                        rtol: float = 1e-10, atol: float = 1e-14, method: str = "DOP853",
                        samples_per_cycle: int = 256, start: np.ndarray | None = None,
                        transient_cycles: int | None = None) -> dict[str, np.ndarray]:
-    """The same steady state at one speed by :func:`scipy.integrate.solve_ivp` on the *full*
-    equations (absolute rotations included, rigid-body mode not removed), from the same
-    static state, over the same physical-time transient and record window (dense output sampled
-    at ``samples_per_cycle`` points per mesh period). Slow; for tests and the benchmark baseline.
-    ``start`` (2n,) a reduced state (positions, velocities) at mesh phase 0 to start from instead
-    (e.g. the shooting's periodic state), ``transient_cycles`` mesh periods before recording
-    instead of the physical-time transient.
+    """The same steady state at one speed by :func:`scipy.integrate.solve_ivp` on the *full* equations.
 
-    Returns dte_mean, dte_std, dte_rms (of the deflection statistic), approach_mean,
-    approach_std (G·q), force_mean/min/max (per mesh), y_std (reduced translations and q, for
-    comparison), v_rms, and 'nfev'.
+    Absolute rotations included, rigid-body mode not removed, from the same static state, over the same physical-time
+    transient and record window (dense output sampled at ``samples_per_cycle`` points per mesh period). Slow; for
+    tests and the benchmark baseline.
+
+    Parameters
+    ----------
+    model, speed_rpm, settings : GearModel, float, SolverSettings
+        The model, the driver speed (rpm) and the solver settings (record cycles, transient).
+    rtol, atol, method : float, float, str
+        Tolerances and method of :func:`scipy.integrate.solve_ivp` (default 1e-10, 1e-14, 'DOP853').
+    samples_per_cycle : int, default 256
+        Dense-output samples per mesh period.
+    start, transient_cycles : numpy.ndarray or None, int or None
+        (2n,) a reduced state (positions, velocities) at mesh phase 0 to start from instead (e.g. the shooting's
+        periodic state); mesh periods before recording instead of the physical-time transient.
+
+    Returns
+    -------
+    dict
+        dte_mean, dte_std, dte_rms (m, of the deflection statistic), approach_mean, approach_std (m, G·q),
+        force_mean/min/max (N, per mesh), y_std (reduced translations and q, for comparison), v_rms, and 'nfev'.
     """
     from scipy.integrate import solve_ivp
 

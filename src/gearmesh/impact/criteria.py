@@ -52,22 +52,39 @@ class LTCACriteria:
 
 def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, stresses: bool = True,
                   samples: int = 1) -> LTCACriteria:
-    """The loaded contact of modification parameter sets ``params`` ((C, 2, 6) m) with lead slopes
-    ``lead_slope`` ((C, 2) m; None: the model's) at pinion ``torques`` (N m), over one mesh cycle:
-    the LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from its
-    separation basis (no new geometry), and from its loads the sign-off quantities of
-    :class:`LTCACriteria` (``stresses`` False: pressure and root stress left NaN). ``samples``: the
-    rows come in runs of that many manufactured gears of one design, the first the nominal
-    (:func:`_cycle_loads` starts the others from it).
+    """The loaded contact of modification parameter sets over one mesh cycle, with its sign-off quantities.
 
-    Each (row, torque, position) is one contact problem on the position's candidate points,
-    solved with the tabulated contact law (:func:`gearmesh.ltca.solve_contact_tabulated`: the
-    loads of :func:`gearmesh.ltca.solve_contact` to its tolerance). The stresses are per point
-    of the grid a fixed function of its line load w — the Hertzian peak p0 = √(w E*/(π R))
-    (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's local root stress
-    σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`), R and Y_F Y_S
-    those of the point's roll lengths — so each is evaluated once at w = 1 and scaled:
-    p0(w) = √w · p0(1), σ(w) = w · σ(1) (the same quantities, not an approximation)."""
+    The LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from its separation basis (no new
+    geometry). Each (row, torque, position) is one contact problem on the position's candidate points, solved with the
+    tabulated contact law (:func:`gearmesh.ltca.solve_contact_tabulated`: the loads of :func:`gearmesh.ltca.solve_contact`
+    to its tolerance). The stresses are per point of the grid a fixed function of its line load w — the Hertzian peak
+    p0 = √(w E*/(π R)) (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's local root stress
+    σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`), R and Y_F Y_S those of the point's roll
+    lengths — so each is evaluated once at w = 1 and scaled: p0(w) = √w · p0(1), σ(w) = w · σ(1) (the same quantities,
+    not an approximation).
+
+    Parameters
+    ----------
+    model, torques : ImpactModel, array_like
+        The prepared model (:func:`impact_model`; its LTCA grid is used) and (T,) pinion torques (N m).
+    params, lead_slope : array_like or None
+        (C, 2, 6) modification parameters and (C, 2) lead slopes [pinion, gear] (m); None: the pair's and the model's.
+    stresses : bool, default True
+        Also the pressures and root stress (False: left NaN).
+    samples : int, default 1
+        The rows come in runs of that many manufactured gears of one design, the first the nominal (a divisor of C;
+        :func:`_cycle_loads` starts the others from it).
+
+    Returns
+    -------
+    LTCACriteria
+        (C, T) ``lte_peak_to_peak`` (m), ``max_line_load`` (N/m), pressures and ``root_stress`` (Pa), ``load`` (N).
+
+    References
+    ----------
+    .. [1] ISO 6336-2:2019 and ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Parts 2 and 3.
+    .. [2] Johnson K. L., Contact Mechanics, Cambridge University Press (1985): Hertzian line contact.
+    """
     from ..ltca import lte_harmonics
 
     g, lt = model.geom, model.ltca
@@ -182,7 +199,23 @@ def _unit_load_stresses(model: ImpactModel) -> tuple[np.ndarray, np.ndarray, np.
 
 
 def ltca_metrics(model: ImpactModel, torques, params=None) -> tuple[np.ndarray, np.ndarray]:
-    """Peak-to-peak LTE (m) and largest line load (N/m) over one mesh cycle, (C, T), of
-    :func:`ltca_criteria`."""
+    """Peak-to-peak LTE (m) and largest line load (N/m) over one mesh cycle, (C, T), of :func:`ltca_criteria`.
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared model (:func:`impact_model`).
+    torques : array_like
+        (T,) pinion torques (N m).
+    params : array_like or None
+        (C, 2, 6) modification parameter sets (m); None: the pair's own.
+
+    Returns
+    -------
+    lte_peak_to_peak : numpy.ndarray
+        (C, T) peak-to-peak loaded transmission error (m).
+    max_line_load : numpy.ndarray
+        (C, T) largest line load (N/m).
+    """
     c = ltca_criteria(model, torques, params, stresses=False)
     return c.lte_peak_to_peak, c.max_line_load

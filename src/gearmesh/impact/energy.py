@@ -29,8 +29,31 @@ _FIT_POINTS = 24
 
 
 def closed_form_force(mass, velocity, k_s, n):
-    """The mesh-in impact paper's energy-method peak force F_s = ((n+1)/2·m·v²)^(n/(n+1))·K_s^(1/(n+1)) (N),
-    from ½·m·v² = ∫₀^δs K_s·δ^n dδ; m (kg), v (m/s), K_s (N/m^n), n (-)."""
+    """The mesh-in impact paper's energy-method peak force F_s (N).
+
+    F_s = ((n+1)/2·m·v²)^(n/(n+1))·K_s^(1/(n+1)), from ½·m·v² = ∫₀^δs K_s·δ^n dδ.
+
+    Parameters
+    ----------
+    mass : float or array_like
+        Equivalent mass m (kg).
+    velocity : array_like
+        Impact velocity v (m/s).
+    k_s : array_like
+        Local stiffness coefficient K_s (N/m^n).
+    n : array_like
+        Local stiffness exponent n (-).
+
+    Returns
+    -------
+    numpy.ndarray
+        Peak impact force F_s (N), broadcast over the inputs.
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears (the
+       mesh-in impact paper, docs/references.md).
+    """
     n = np.asarray(n, dtype=float)
     return ((n + 1) / 2 * mass * np.asarray(velocity) ** 2) ** (n / (n + 1)) * np.asarray(k_s) ** (1 / (n + 1))
 
@@ -38,11 +61,24 @@ def closed_form_force(mass, velocity, k_s, n):
 def energy_balance(curve_approach, curve_force, energy):
     """Peak force and approach where ∫₀^δ F dδ = ``energy`` on a tabulated F–δ curve.
 
-    ``curve_approach``, ``curve_force`` (..., K) increasing, with (0, 0) implied before the
-    first node; between nodes F is the power law through them (exact for a pure power law,
-    so the closed form and this agree to round-off on F = K·δ^n). ``energy`` (...,) or
-    broadcastable with an extra speed axis last: (..., S). Returns (force, approach), NaN
-    where the curve does not reach the energy (extend it).
+    Between nodes F is the power law through them (exact for a pure power law, so the closed
+    form and this agree to round-off on F = K·δ^n); (0, 0) is implied before the first node.
+
+    Parameters
+    ----------
+    curve_approach : array_like
+        (..., K) approaches δ of the curve, increasing (m).
+    curve_force : array_like
+        (..., K) forces F at those approaches, increasing (N).
+    energy : array_like
+        Energy to absorb (J): (...,) or broadcastable with an extra speed axis last, (..., S).
+
+    Returns
+    -------
+    force : numpy.ndarray
+        (..., S) peak force (N); NaN where the curve does not reach the energy (extend it).
+    approach : numpy.ndarray
+        (..., S) peak approach (m); NaN likewise.
     """
     d = np.asarray(curve_approach, dtype=float)
     f = np.asarray(curve_force, dtype=float)
@@ -72,9 +108,37 @@ def energy_balance(curve_approach, curve_force, energy):
 
 
 def fit_power_law(curve_approach, curve_force, approach_max, n_points: int = _FIT_POINTS):
-    """Least-squares fit F = K_s·δ^n (log-log) to the F–δ curve over [δ_s/n_points, δ_s] at
-    ``n_points`` approaches evenly spaced in δ (the range an impact of peak approach δ_s
-    reaches). ``approach_max`` (..., S). Returns (K_s in N/m^n, n, RMS relative error of F)."""
+    """Least-squares fit F = K_s·δ^n (log-log) to the F–δ curve over the range an impact reaches.
+
+    The fit is over [δ_s/n_points, δ_s] at ``n_points`` approaches evenly spaced in δ, δ_s the
+    impact's peak approach; the curve is interpolated log-log (consistent with
+    :func:`energy_balance`), with (0, 0) implied.
+
+    Parameters
+    ----------
+    curve_approach : array_like
+        (..., K) approaches δ of the curve, increasing (m).
+    curve_force : array_like
+        (..., K) forces F at those approaches (N).
+    approach_max : array_like
+        (..., S) peak approach δ_s of each impact (m); NaN: no impact, no fit.
+    n_points : int, default 24
+        Approaches of the fit.
+
+    Returns
+    -------
+    k_s : numpy.ndarray
+        (..., S) stiffness coefficient K_s (N/m^n).
+    n : numpy.ndarray
+        (..., S) exponent n (-).
+    error : numpy.ndarray
+        (..., S) RMS relative error of F of the fit (-). All NaN where there is no impact.
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears (the
+       mesh-in impact paper, docs/references.md): the local stiffness F = K_s·δ^n.
+    """
     d = np.asarray(curve_approach, dtype=float)
     f = np.asarray(curve_force, dtype=float)
     dm = np.asarray(approach_max, dtype=float)
@@ -129,10 +193,42 @@ class ImpactResponse:
 
 def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
                     energy_velocity: str = "transverse") -> tuple[ImpactStatic, ImpactResponse]:
-    """Impact velocity, energy, peak force and fitted local stiffness at pinion speeds
-    ``speeds_rpm`` for every (C, T) of ``static``; the F–δ curve is extended (and the static
-    part returned anew) where an impact reaches beyond it; a RuntimeWarning says when the
-    impact's approach reaches slices that ``local_keep`` left out."""
+    """Impact velocity, energy, peak force and fitted local stiffness at pinion speeds ``speeds_rpm``.
+
+    For every (C, T) row of ``static``: v_t the closing rate of g − δ at the touch × r_b1·ω1,
+    E_k = ½·m_eq·v², the energy balance on the computed F–δ curve (:func:`energy_balance`),
+    the power-law fit over the range the impact reaches (:func:`fit_power_law`) and the
+    paper's closed form with it (:func:`closed_form_force`). The F–δ curve is extended (and the
+    static part returned anew) where an impact reaches beyond it; a RuntimeWarning says when the
+    impact's approach reaches slices that ``local_keep`` left out.
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared model (:func:`impact_model`).
+    static : ImpactStatic
+        The speed-independent part (:func:`impact_static`), (C, T) rows.
+    speeds_rpm : array_like
+        (S,) pinion speeds (rpm).
+    energy_velocity : {'transverse', 'normal'}, default 'transverse'
+        Velocity in E_k: the transverse closing rate that m_eq belongs to (default), or the
+        paper's literal 3-D normal velocity v_t·cos βb (:mod:`gearmesh.impact`).
+
+    Returns
+    -------
+    static : ImpactStatic
+        ``static``, with its F–δ curves extended where needed.
+    response : ImpactResponse
+        (C, T, S) ``velocity_transverse``/``velocity_normal`` (m/s), ``kinetic_energy`` (J),
+        ``force`` closed form and ``force_energy_balance`` (N), ``approach_energy_balance`` (m),
+        ``stiffness_coefficient`` (N/m^n), ``stiffness_exponent`` (-), ``fit_error`` (-).
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears (the
+       mesh-in impact paper, docs/references.md); its kinetic energy corrected as docs/impact.md
+       says.
+    """
     if energy_velocity not in ENERGY_VELOCITIES:
         raise GearmeshInputError("energy_velocity", energy_velocity, f"must be one of {list(ENERGY_VELOCITIES)}")
     speeds = check_speeds(None, speeds_rpm)
@@ -175,17 +271,51 @@ def impact_response(model: ImpactModel, static: ImpactStatic, speeds_rpm,
 
 
 def load_grid(torques, step: float, top: float | None = None) -> np.ndarray:
-    """Torques (N m) of the load window: every multiple of ``step`` up to ``top`` (default 1.25 ×
-    the largest of ``torques``), and the ``torques`` themselves (sorted, unique)."""
+    """Torques (N m) of the load window.
+
+    Every multiple of ``step`` up to ``top``, and the ``torques`` themselves (sorted, unique).
+
+    Parameters
+    ----------
+    torques : sequence of float
+        Torques that must be on the grid (N m).
+    step : float
+        Grid step (N m).
+    top : float or None
+        Largest grid torque (N m); default 1.25 × the largest of ``torques``.
+
+    Returns
+    -------
+    numpy.ndarray
+        Sorted unique torques (N m).
+    """
     top = 1.25 * max(torques) if top is None else top
     grid = step * np.arange(1, int(math.floor(top / step + 1e-9)) + 1)
     return np.unique(np.concatenate([grid, np.asarray(torques, dtype=float)]))
 
 
 def load_window(grid: np.ndarray, force: np.ndarray, standard: np.ndarray, design: float) -> tuple[float, float]:
-    """[low, high] (N m) of the contiguous run of ``grid`` torques around ``design`` where
-    ``force`` is below ``standard`` (NaN, NaN when it is not at the design torque; the ends are
-    grid torques, so a window reaching a grid end may extend further)."""
+    """[low, high] (N m) of the run of torques around ``design`` where ``force`` is below ``standard``.
+
+    The run is contiguous on ``grid``; (NaN, NaN) when ``force`` is not below ``standard`` at the
+    design torque. The ends are grid torques, so a window reaching a grid end may extend further.
+
+    Parameters
+    ----------
+    grid : numpy.ndarray
+        (G,) torques, sorted (N m), e.g. :func:`load_grid`.
+    force : numpy.ndarray
+        (G,) peak impact force of the candidate at those torques (N).
+    standard : numpy.ndarray
+        (G,) the reference's force at those torques (N).
+    design : float
+        Design torque (N m); the grid torque nearest it starts the run.
+
+    Returns
+    -------
+    tuple of float
+        (low, high) torques (N m), or (NaN, NaN).
+    """
     beats = np.asarray(force) < np.asarray(standard)
     k = int(np.argmin(np.abs(grid - design)))
     if not beats[k]:

@@ -41,6 +41,29 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     local maximum could close a few µs after a grazing touch, on a wiggle of a few newtons.)
     The energy method's premise — all of ½·m_eq·v² goes into the entering pair — ignores the
     pairs already in mesh, which unload as x rebounds; the ratio measures that.
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared model (:func:`impact_model`).
+    torque : float
+        Pinion torque (N m); must give a mesh-in contact in the search window.
+    speed_rpm : float
+        Pinion speed (rpm).
+    params : array_like or None
+        Modification parameters (2, 6) or (1, 2, 6) (m); only the first set is used; None: the
+        pair's own.
+    samples : int, default 600
+        Time-like rolls at which the mesh points are tabulated and the result sampled.
+    cycles_after : float, default 2.5
+        Natural periods integrated after the touch.
+
+    Returns
+    -------
+    dict
+        ``time`` (s), ``tau`` (m), ``approach`` x (m), ``mesh_force``, ``entering_force`` and
+        ``entering_static`` (N) over the samples; ``static_force`` F_bt, ``peak_above_static``,
+        ``entering_peak``, ``entering_excess`` (N); ``peak_time``, ``period``, ``touch_time`` (s).
     """
     g, law = model.geom, model.ltca.law
     params = model.params(params)[:1]

@@ -35,10 +35,28 @@ def _omegas(model: ImpactModel, speed_rpm: float, approach_rate: float = 0.0) ->
 
 
 def mesh_in_point(model: ImpactModel, static: ImpactStatic, c: int = 0, t: int = 0) -> dict[str, np.ndarray | float]:
-    """M of candidate ``c`` at torque ``t`` in 3-D: fixed-frame point at the touch (m), the same
-    point in the pinion body frame (m; :mod:`gearmesh.surface` frames), pinion radius and roll
-    length, face position, and the unit common normal of the unmodified flanks (fixed frame,
-    out of the pinion flank; the mating flank's for a pinion tip edge)."""
+    """The mesh-in point M of candidate ``c`` at torque ``t`` in 3-D.
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared model (:func:`impact_model`).
+    static : ImpactStatic
+        Its speed-independent impact (:func:`impact_static`).
+    c : int, default 0
+        Row (modification parameter set) of ``static``.
+    t : int, default 0
+        Torque index of ``static``.
+
+    Returns
+    -------
+    dict
+        ``point`` (3,) the fixed-frame point at the touch (m), ``point_pinion`` (3,) the same
+        point in the pinion body frame (m; :mod:`gearmesh.surface` frames), ``pinion_radius``
+        and ``rho_pinion`` (roll length) (m), ``face_position`` z (m), and ``normal`` (3,) the
+        unit common normal of the unmodified flanks (fixed frame, out of the pinion flank; the
+        mating flank's for a pinion tip edge). NaN where the row has no mesh-in contact.
+    """
     g = model.geom
     if static.scenario[c, t] == SCENARIO_NONE:
         nan3 = np.full(3, np.nan)
@@ -95,17 +113,26 @@ def _profile(model: ImpactModel, params: np.ndarray, gear: int, rho, z: float, p
 
 def vector_velocity(model: ImpactModel, static: ImpactStatic, speed_rpm: float, c: int = 0,
                     t: int = 0) -> dict[str, float]:
-    """The mesh-in impact paper's impact velocity v = ((ω1 − ω2) × r − E × ω2)·n, computed independently of the
-    separation functions: the true closest points of the two exact modified transverse profiles
-    in the slice of M at the touch roll (a tip edge against a flank, or flank against flank),
-    their common normal n, and the relative velocity of the two material points along it.
+    """The mesh-in impact paper's impact velocity v = ((ω1 − ω2) × r − E × ω2)·n, independent of the separation functions.
 
-    Returns ``normal_transverse`` (m/s, along the transverse common normal, + closing),
-    ``normal_3d`` (× cos βb: the helicoid's 3-D normal; the axial velocity is zero),
-    ``transverse_equivalent`` (the same closing expressed in the transverse line-of-action
-    coordinate, × r_b1/arm, arm the normal's moment arm about the pinion axis; = 1 for a
-    pinion involute normal), ``distance`` the closest distance (m; = the separation at the
-    touch) and the closest points.
+    The true closest points of the exact modified transverse profiles in M's slice at the touch, their common normal n.
+
+    Parameters
+    ----------
+    model, static : ImpactModel, ImpactStatic
+        The prepared model (:func:`impact_model`) and its static impact (:func:`impact_static`).
+    speed_rpm : float
+        Pinion speed (rpm); the pinion's real speed adds the rate of the loaded approach.
+    c, t : int, default 0
+        Row (parameter set) and torque index of ``static``.
+
+    Returns
+    -------
+    dict
+        ``normal_transverse`` (m/s, along the transverse common normal, + closing), ``normal_3d`` (× cos βb: the
+        helicoid's 3-D normal; the axial velocity is zero), ``transverse_equivalent`` (m/s, the closing in the transverse
+        line-of-action coordinate, × r_b1/arm, arm the normal's moment arm about the pinion axis; = 1 for a pinion
+        involute normal), ``distance`` (m, the separation at the touch), the closest points ``pinion_point_x`` ... (m).
     """
     from scipy.optimize import brentq, fsolve
 
@@ -167,9 +194,10 @@ def vector_velocity(model: ImpactModel, static: ImpactStatic, speed_rpm: float, 
 
 
 def seed_edge_roll(geom: PairGeometry, approach: float) -> float:
-    """The mesh-in impact paper's 'reverse rotation' solution for an unmodified pair, pinion driving: the pinion
-    roll (m) before the theoretical start of engagement at which the gear's tip corner meets the
-    pinion flank when the pairs in mesh are compressed by ``approach`` δ (m).
+    """The mesh-in impact paper's 'reverse rotation' solution for an unmodified pair, pinion driving.
+
+    The pinion roll (m) before the theoretical start of engagement at which the gear's tip
+    corner meets the pinion flank when the pairs in mesh are compressed by ``approach`` δ (m).
 
     The mesh-in impact paper: arcsin(r_a2 sin(γ2 + LTE0 + Δφk2)/r_O1D) − Δφk2/i − arcsin(r_a2 sin γ2/r_O1E)
     = inv(arccos(r_b1/r_O1D)) − inv(arccos(r_b1/r_O1E')), r_O1D² = a² + r_a2² −
@@ -178,8 +206,25 @@ def seed_edge_roll(geom: PairGeometry, approach: float) -> float:
     gear's lag. It states that the tip point D, turned back by LTE0 + Δφk2, lies on the pinion
     involute through A turned back by the pinion angle of Δφk2. That angle is Δφk2·z2/z1, so
     the printed "Δφk2/i" holds only with i = z1/z2; with the usual ratio i = z2/z1 it must read
-    Δφk2·i (corrected here). Returns r_b2·(LTE0 + Δφk2), the mesh-in impact paper's total deviation Δφ as
-    roll, which :func:`impact_static` must reproduce for an unmodified pair (the same event).
+    Δφk2·i (corrected here).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The (unmodified) pair's geometry.
+    approach : float
+        Approach δ of the pairs in mesh (m).
+
+    Returns
+    -------
+    float
+        r_b2·(LTE0 + Δφk2) (m), the mesh-in impact paper's total deviation Δφ as roll, which
+        :func:`impact_static` must reproduce for an unmodified pair (the same event).
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears (the
+       mesh-in impact paper, docs/references.md): the reverse-rotation equation, corrected.
     """
     from scipy.optimize import brentq
 

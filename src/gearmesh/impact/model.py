@@ -33,8 +33,28 @@ DRIVERS = ("pinion", "gear")
 
 
 def impact_paper_inertia(geom: PairGeometry) -> np.ndarray:
-    """Polar moments (kg m²) of both gears by the mesh-in impact paper: J_i = πρB_i(r_bi⁴ − r_hi⁴)/2 — a solid
-    disc of the base radius r_b over the face width B, less the hub bore r_h."""
+    """Polar moments (kg m²) of both gears by the mesh-in impact paper.
+
+    J_i = πρB_i(r_bi⁴ − r_hi⁴)/2 — a solid disc of the base radius r_b over the face width B,
+    less the hub bore r_h.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`); its pair must carry a
+        ``material`` (density ρ, kg/m³) and a ``bore_radius`` (m), else
+        :class:`~gearmesh.errors.GearmeshInputError`.
+
+    Returns
+    -------
+    numpy.ndarray
+        (2,) polar moments [pinion, gear] (kg m²).
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears (the
+       mesh-in impact paper, docs/references.md).
+    """
     pair = geom.pair
     if pair.material is None or pair.bore_radius is None:
         raise GearmeshInputError("material" if pair.material is None else "bore_radius_mm", None,
@@ -44,8 +64,28 @@ def impact_paper_inertia(geom: PairGeometry) -> np.ndarray:
 
 
 def equivalent_mass(geom: PairGeometry, inertia) -> float:
-    """m_eq = J1·J2/(J1·r_b2² + J2·r_b1²) (kg): the mass of the relative coordinate
-    r_b1·θ1 + r_b2·θ2 along the transverse line of action (the mesh-in impact paper)."""
+    """Equivalent mass m_eq = J1·J2/(J1·r_b2² + J2·r_b1²) (kg) of the mesh-in impact.
+
+    The mass of the relative coordinate r_b1·θ1 + r_b2·θ2 along the transverse line of action
+    (the mesh-in impact paper).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (base radii r_b1, r_b2 in m).
+    inertia : array_like
+        (2,) polar moments [J1, J2] (kg m²), e.g. :func:`impact_paper_inertia`.
+
+    Returns
+    -------
+    float
+        m_eq (kg).
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears (the
+       mesh-in impact paper, docs/references.md).
+    """
     j1, j2 = (float(v) for v in inertia)
     rb1, rb2 = (float(v) for v in geom.base_radius)
     return j1 * j2 / (j1 * rb2**2 + j2 * rb1**2)
@@ -198,21 +238,32 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=None, contact_
 
     Parameters
     ----------
-    points : LTCA points per contact line (the other pairs and the local stiffness).
-    lead_slope : lead slope deviations [pinion, gear] (m over the face width); None: the pair's own.
-    contact_law_name, method : local contact law and cantilever model (:mod:`gearmesh.ltca`).
-    extension : reach of the tip-edge candidates beyond the active zone (fraction of p_bt).
-    driver : 'pinion' or 'gear' (:mod:`gearmesh.impact`).
-    added_inertia_kg_m2 : inertia (kg m²) of what hangs on each shaft, added to the mesh-in impact paper's discs.
-    window_positions : grid rolls over the search window (−extension … +1 base pitch).
-    face_samples : samples of the entering line over the face for min_z (refined by a parabola).
-    cycle_positions : rolls per mesh cycle of the LTCA grid kept for :func:`ltca_criteria`.
-    local_points, local_keep : slices of the entering line for its local stiffness, and how
-        many of them (those closest to contact) are loaded. The F–δ curve of an edge contact
-        spreads along the line (separations growing like |z − z_M|), and converges only when a
-        slice's separation step is small against the impact's approach: hundreds of slices,
-        more than the LTCA's ``points`` (test ``test_convergence_in_local_slices``).
-    ltca : a prepared LTCA model (its grid is the one :func:`ltca_criteria` uses).
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`); SI throughout.
+    points, cycle_positions : int
+        LTCA points per contact line (the other pairs, the local stiffness); rolls per mesh cycle of the LTCA grid.
+    lead_slope : array_like or None
+        Lead slope deviations [pinion, gear] (m over the face width); None: the pair's own.
+    contact_law_name, method : str
+        Local contact law and cantilever model (:mod:`gearmesh.ltca`); defaults :mod:`gearmesh.choices`.
+    extension : float
+        Reach of the tip-edge candidates beyond the active zone (fraction of p_bt, -).
+    driver : {'pinion', 'gear'}
+        The driving gear (:mod:`gearmesh.impact`).
+    added_inertia_kg_m2 : (2,) array_like
+        Inertia (kg m²) of what hangs on each shaft [pinion, gear], added to the mesh-in impact paper's discs.
+    window_positions, face_samples : int
+        Grid rolls over the search window (−extension … +1 p_bt); samples of the entering line over the face (min_z).
+    local_points, local_keep : int
+        Slices of the entering line for its local stiffness, and how many (closest to contact) are loaded: an edge
+        contact's F–δ curve spreads along the line and converges only with hundreds (test_convergence_in_local_slices).
+    ltca : LTCAModel or None
+        A prepared LTCA model (its grid is the one :func:`ltca_criteria` uses); None: built here.
+
+    Returns
+    -------
+    ImpactModel
+        ``tau`` (R,) window rolls (m), ``inertia`` (2,) kg m², ``equivalent_mass`` (kg), ``body_compliance`` (m/N), ...
     """
     if driver not in DRIVERS:
         raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")

@@ -411,20 +411,50 @@ def _enter_points(model: ImpactModel, params: np.ndarray, lead: np.ndarray, tau:
 
 def impact_static(model: ImpactModel, torques, params=None, curve_levels: int = 48,
                   curve_force_min=None, lead_slope=None, engagement: bool = True) -> ImpactStatic:
-    """The speed-independent part of the impact for pinion torques ``torques`` (N m) and
-    modification parameter sets ``params`` ((C, 2, 6) m; default the pair's own).
+    """The speed-independent part of the impact: the mesh-in point, closing rates and the entering pair's F–δ curve.
 
-    ``lead_slope`` (C, 2) the lead slope deviations [pinion, gear] of each set (m over the face
-    width; default the model's for all): additive to the separations
-    (:func:`gearmesh.deviation.lead_gap`), so a tolerance sample costs no new geometry; each
-    torque adds its mesh misalignment (:func:`gearmesh.deflection.mesh_misalignment`: torques
-    of different misalignment are solved as one batch of a row per set and torque, each row
-    with its own lead slopes and force — what each torque alone gives, to round-off).
-    ``curve_levels`` approaches of the entering pair's F–δ curve, geometric up to one at which
-    it carries at least ``curve_force_min`` (N, (C, T) or scalar; default 4·F_bt) —
-    :func:`impact_response` extends it where an impact needs more. ``engagement``: also the
-    loaded TE of all pairs at the theoretical engagement (``lte_engagement``, one more load
-    solve per row; NaN without).
+    For pinion torques ``torques`` and modification parameter sets ``params``: the first roll
+    where the entering pair's separation, minimised over the face, equals the approach of the
+    pairs already in mesh (:mod:`gearmesh.impact`). The lead slopes are additive to the
+    separations (:func:`gearmesh.deviation.lead_gap`), so a tolerance sample costs no new
+    geometry; each torque adds its mesh misalignment
+    (:func:`gearmesh.deflection.mesh_misalignment`: torques of different misalignment are
+    solved as one batch of a row per set and torque, each row with its own lead slopes and
+    force — what each torque alone gives, to round-off).
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared model (:func:`impact_model`).
+    torques : array_like
+        (T,) pinion torques (N m).
+    params : array_like or None
+        (C, 2, 6) modification parameter sets (m); None: the pair's own.
+    curve_levels : int, default 48
+        Approaches of the entering pair's F–δ curve, geometric up to one at which it carries at
+        least ``curve_force_min``; :func:`impact_response` extends it where an impact needs more.
+    curve_force_min : float or array_like or None
+        (C, T) or scalar force the curve must reach (N); default 4·F_bt.
+    lead_slope : array_like or None
+        (C, 2) lead slope deviations [pinion, gear] of each set (m over the face width);
+        None: the model's for all.
+    engagement : bool, default True
+        Also the loaded TE of all pairs at the theoretical engagement (``lte_engagement``, one
+        more load solve per row; NaN without).
+
+    Returns
+    -------
+    ImpactStatic
+        ``torque`` and ``force`` F_bt (T,) (N m, N); per (C, T) ``scenario`` (0 none, 1 surface,
+        2 edge), ``tau`` and ``roll`` of the touch (m), ``approach`` (m), ``gap_rate`` and
+        ``approach_rate`` (-), where M lies (``s``, ``z``, roll lengths, m), and the F–δ curve
+        ``curve_force``/``curve_approach`` (C, T, K) (N, m).
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears (the
+       mesh-in impact paper, docs/references.md): the TE(φ)/LTE(φ) intersection and the
+       quasi-static loading of the entering pair.
     """
 
     g = model.geom

@@ -134,7 +134,24 @@ def _integer(field_name: str, value: Any, low: int, high: int) -> int:
 
 
 def check_positive(field_name: str, value: Any, allow_none: bool = False, at_least: float = 0.0) -> float | None:
-    """``value`` as a float above ``at_least`` (or None when allowed); GearmeshInputError otherwise."""
+    """``value`` as a float above ``at_least`` (or None when allowed); GearmeshInputError otherwise.
+
+    Parameters
+    ----------
+    field_name : str
+        The setting's name, for the error line.
+    value : Any
+        The raw value.
+    allow_none : bool, default False
+        None is accepted (and returned).
+    at_least : float, default 0
+        The value must be greater than this (the setting's unit).
+
+    Returns
+    -------
+    float or None
+        The value as a float, or None.
+    """
     if value is None and allow_none:
         return None
     if isinstance(value, bool) or not isinstance(value, (int, float, np.integer, np.floating)) \
@@ -196,13 +213,36 @@ def check_settings(method: str = "ga", objective: str = "force", population: int
                    root_stress_factor=None, impact_factor=None, worst_impact_factor=None,
                    pareto_objectives=("impact", "lte"), S_Hmin=None, S_Fmin=None,
                    criteria_over_samples: bool | None = None) -> OptimiseSettings:
-    """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming
-    the field). Torques here are pinion torques (N m); ``torques`` None is the design torque alone.
-    The constraint factors (``*_factor``) are relative to the unmodified pair's value
-    (:mod:`gearmesh.optimise`); ``pareto_objectives`` the objectives of method nsga2
-    (:data:`PARETO_OBJECTIVES`); ``criteria_over_samples``, ``penalty``, ``harmonic_orders`` None:
-    the declared default (:func:`_declared_constraint`). The values are checked in a fixed order
-    (the signature's groups, one helper each): of several bad values the same one is named first."""
+    """:class:`OptimiseSettings` from raw values, refusing bad ones (GearmeshInputError naming the field).
+
+    The values are checked in a fixed order (the signature's groups, one helper each): of several bad values the same
+    one is named first. Each setting is described in config/README.md (``optimise.NAME``).
+
+    Parameters
+    ----------
+    method, objective, population, generations, seed, mutation_probability, mutation_scale, keep_elitism
+        The search ('ga', 'nsga2', 'random'), the objective quantity, the GA's size, seed and operators.
+    torque, torques, weights, statistic, speed_rpm
+        Design torque and load spectrum (pinion torques, N m; ``torques`` None: the design torque alone), their time
+        shares, the spectrum statistic ('max' or 'mean') and the pinion speed (rpm).
+    tolerance_samples, sampling, tolerance_seed, tolerance_statistic, tolerance_level, criteria_over_samples
+        The manufactured population (:mod:`gearmesh.tolerance`), its statistic at the level (%); None: the default.
+    lte_factor, line_load_factor, harmonic_factor, pressure_factor, root_stress_factor, impact_factor, worst_impact_factor
+        Constraint factors (-), relative to the unmodified pair's value (:mod:`gearmesh.optimise`).
+    harmonic_orders, penalty, S_Hmin, S_Fmin
+        Mesh orders of ``harmonic_factor`` and penalty weight (None: the declared default); least ISO 6336 safety
+        factors S_H, S_F (-; None: not constrained).
+    dynamic_speeds, dynamic_factor, backlash
+        Speed grid (rpm) and factor of the dynamic constraint, backlash 2b0 (m) of its model.
+    energy_velocity, load_window_step, load_window_top, random_baseline, pareto_objectives
+        Impact energy velocity; load-window grid step and top (N m); a random search of the same budget; the
+        objectives of method nsga2 (:data:`PARETO_OBJECTIVES`).
+
+    Returns
+    -------
+    OptimiseSettings
+        The checked settings.
+    """
     method = _choice("method", method, METHODS)
     objective = _choice("objective", objective, OBJECTIVES)
     population = _integer("population", population, *_declared_bounds("population"))

@@ -131,9 +131,23 @@ def _criteria(prob: "Problem", params: np.ndarray, rows: np.ndarray, lead: np.nd
 
 
 def worst_ratio(values: np.ndarray, reference: np.ndarray) -> np.ndarray:
-    """The largest ratio of ``values`` (C, ...) to the unmodified pair's ``reference`` (...) over
-    every axis but the first (torques, orders): 1 or less exactly when no entry exceeds the
-    reference. A zero reference counts a zero value as ratio 0 and a positive one as infinite."""
+    """The largest ratio of ``values`` to the unmodified pair's ``reference`` over every axis but the first.
+
+    1 or less exactly when no entry exceeds the reference. A zero reference counts a zero value as ratio 0 and a positive
+    one as infinite.
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        (C, ...) candidates' values (any unit), the further axes torques, orders, ...
+    reference : numpy.ndarray
+        (...) the unmodified pair's values (the same unit).
+
+    Returns
+    -------
+    numpy.ndarray
+        (C,) worst ratios (-).
+    """
     v = np.asarray(values, dtype=float)
     ref = np.broadcast_to(np.asarray(reference, dtype=float), v.shape[1:])
     with np.errstate(invalid="ignore", divide="ignore"):
@@ -170,10 +184,33 @@ def _ratios(s: OptimiseSettings, force: np.ndarray, lte, line, kv, crit: LTCACri
 
 
 def safety_factors(prob: "Problem", crit: LTCACriteria, reference: LTCACriteria) -> tuple[np.ndarray, np.ndarray]:
-    """S_H and S_F (C, T) of the weaker gear of each candidate at the spectrum torques: ISO 6336-2/-3
-    method B (:func:`gearmesh.rating.rating`, the pair's rating inputs, application factor 1) at the
+    """S_H and S_F (C, T) of the weaker gear of each candidate at the spectrum torques.
+
+    ISO 6336-2/-3 method B (:func:`gearmesh.rating.rating`, the pair's rating inputs, application factor 1) at the
     objective speed, with K_Hβ and K_Hα from the candidate's LTCA loads and the unmodified pair's
-    (:func:`gearmesh.rating.ltca_load_factors`, K_Hα at least 1, as the rating stage)."""
+    (:func:`gearmesh.rating.ltca_load_factors`, K_Hα at least 1, as the rating stage).
+
+    Parameters
+    ----------
+    prob : Problem
+        The optimisation problem (:func:`problem`): pair, settings and spectrum torques.
+    crit : LTCACriteria
+        The candidates' loaded contact (:func:`gearmesh.impact.ltca_criteria`), (C, T) rows.
+    reference : LTCACriteria
+        The unmodified pair's.
+
+    Returns
+    -------
+    S_H, S_F : numpy.ndarray
+        (C, T) contact and bending safety factors (-).
+
+    References
+    ----------
+    .. [1] ISO 6336-2:2019, Calculation of load capacity of spur and helical gears — Part 2: Calculation of surface
+       durability (pitting), method B.
+    .. [2] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3: Calculation of tooth bending
+       strength, method B.
+    """
     from ..rating import ltca_load_factors, rated_transverse_factor, rating, rating_inputs
 
     s, geom = prob.settings, prob.geom
@@ -190,7 +227,18 @@ def safety_factors(prob: "Problem", crit: LTCACriteria, reference: LTCACriteria)
 
 
 def constraint_factors(s: OptimiseSettings) -> dict[str, float]:
-    """The constraints set, {criterion of :func:`_ratios` (S_H, S_F: S_min/S): factor (1 for S_min)}."""
+    """The constraints set, {criterion of :func:`_ratios` (S_H, S_F: S_min/S): factor (1 for S_min)}.
+
+    Parameters
+    ----------
+    s : OptimiseSettings
+        The checked settings (:func:`check_settings`).
+
+    Returns
+    -------
+    dict of str to float
+        Factor (-) of every constraint that is set.
+    """
     given = {"lte": s.lte_factor, "line_load": s.line_load_factor, "dynamic": s.dynamic_factor,
              "te_harmonics": s.harmonic_factor, "pressure": s.pressure_factor,
              "root_stress": s.root_stress_factor, "force": s.impact_factor, "worst_force": s.worst_impact_factor,

@@ -45,8 +45,26 @@ class ImpactValues:
 
 def impact_values(model: ImpactModel, settings: OptimiseSettings, params: np.ndarray, lead: np.ndarray,
                   torques) -> ImpactValues:
-    """F_s, |v_n| and scenario of parameter sets ``params`` (N, 2, 6) with lead slopes ``lead``
-    (N, 2) at pinion ``torques`` and the settings' speed: one batch of the impact model."""
+    """F_s, |v_n| and scenario of parameter sets at pinion ``torques`` and the settings' speed: one batch of the impact model.
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared impact model (:func:`gearmesh.impact.impact_model`).
+    settings : OptimiseSettings
+        Its ``speed_rpm`` (rpm) and ``energy_velocity``.
+    params : numpy.ndarray
+        (N, 2, 6) modification parameters (m).
+    lead : numpy.ndarray
+        (N, 2) lead slopes [pinion, gear] (m over the face width).
+    torques : array_like
+        (T,) pinion torques (N m).
+
+    Returns
+    -------
+    ImpactValues
+        (N, T) ``force`` F_s closed form and ``force_energy_balance`` (N), ``velocity`` |v_n| (m/s), ``scenario``.
+    """
     static = impact_static(model, list(torques), params, lead_slope=lead, engagement=False)
     static, resp = impact_response(model, static, [settings.speed_rpm], energy_velocity=settings.energy_velocity)
     return ImpactValues(resp.force[..., 0], resp.force_energy_balance[..., 0], resp.velocity_normal[..., 0],
@@ -65,8 +83,22 @@ OBJECTIVE_VALUES: dict[str, Callable[["Problem", np.ndarray, np.ndarray, ImpactV
 
 
 def load_statistic(values: np.ndarray, statistic: str, weights=None) -> np.ndarray:
-    """The load-spectrum statistic over the last axis (torques): the largest value (``max``) or the
-    duty-cycle mean (``mean``) with ``weights`` the time shares (equal shares without)."""
+    """The load-spectrum statistic over the last axis (torques).
+
+    Parameters
+    ----------
+    values : numpy.ndarray
+        (..., T) values at the spectrum torques (any unit).
+    statistic : {'max', 'mean'}
+        The largest value, or the duty-cycle mean.
+    weights : array_like or None
+        (T,) time shares of the torques for 'mean' (equal shares without).
+
+    Returns
+    -------
+    numpy.ndarray
+        (...) the statistic (the unit of ``values``).
+    """
     values = np.asarray(values, dtype=float)
     if statistic == "max":
         return values.max(axis=-1)

@@ -55,8 +55,25 @@ class Gene:
 
 
 def impact_paper_bounds(geom: PairGeometry) -> np.ndarray:
-    """The mesh-in impact paper's bounds (6, 2) of y1..y6 in µm / mm: y1, y2, y5 in [0.001, 0.015]·m_n, y3, y4 in
-    [0.1, 0.8]·m_n, y6 in (0, 0.5·B] (B the meshing face width)."""
+    """The mesh-in impact paper's bounds (6, 2) of y1..y6 in µm / mm.
+
+    y1, y2, y5 in [0.001, 0.015]·m_n, y3, y4 in [0.1, 0.8]·m_n, y6 in (0, 0.5·B] (B the meshing face width).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (normal module m_n and face width B, m).
+
+    Returns
+    -------
+    numpy.ndarray
+        (6, 2) [low, high] of y1..y6: amounts in µm, lengths in mm.
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears (the mesh-in impact paper,
+       docs/references.md).
+    """
     mn, b = geom.pair.normal_module, geom.face_width
     si = np.array([[0.001 * mn, 0.015 * mn]] * 2 + [[0.1 * mn, 0.8 * mn]] * 2 + [[0.001 * mn, 0.015 * mn],
                                                                                   [0.0, 0.5 * b]])
@@ -73,12 +90,28 @@ def _limits(geom: PairGeometry, gear: int) -> np.ndarray:
 
 def gene_table(geom: PairGeometry, modify=("pinion",), bounds: Mapping[str, Any] | None = None,
                fixed: Mapping[str, Any] | None = None) -> tuple[tuple[Gene, ...], np.ndarray]:
-    """The free genes and the base parameters (2, 6) (m): the pair's own modification, with the
-    modified gears' parameters set to their ``fixed`` values (0 until a gene sets them).
+    """The free genes and the base parameters (2, 6) (m).
 
-    ``modify`` the gears whose six parameters are optimised ('pinion', 'gear' or both);
-    ``bounds`` {pair-file key: [low, high]} overrides the mesh-in impact paper's bounds (µm / mm, on every
-    modified gear); ``fixed`` {key: value} fixes a parameter instead of optimising it.
+    The base is the pair's own modification, with the modified gears' parameters set to their ``fixed`` values (0 until
+    a gene sets them).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+    modify : sequence of {'pinion', 'gear'}, default ('pinion',)
+        The gears whose six parameters are optimised.
+    bounds : mapping or None
+        {pair-file key: [low, high]} overriding the mesh-in impact paper's bounds (µm / mm, on every modified gear).
+    fixed : mapping or None
+        {key: value} (µm / mm) fixing a parameter instead of optimising it.
+
+    Returns
+    -------
+    genes : tuple of Gene
+        The free genes (gear, parameter, bounds in µm / mm).
+    base : numpy.ndarray
+        (2, 6) base modification parameters (m).
     """
     from ..surface import modification_parameters
 
@@ -128,8 +161,26 @@ def gene_table(geom: PairGeometry, modify=("pinion",), bounds: Mapping[str, Any]
 
 
 def decode(geom: PairGeometry, genes: tuple[Gene, ...], base: np.ndarray, values) -> np.ndarray:
-    """Modification parameters (C, 2, 6) in m of gene values (C, G) (µm / mm), made valid
-    modifications by :func:`gearmesh.surface.fit_modifications` (:mod:`gearmesh.optimise`)."""
+    """Modification parameters (C, 2, 6) in m of gene values (C, G) (µm / mm).
+
+    Made valid modifications by :func:`gearmesh.surface.fit_modifications` (:mod:`gearmesh.optimise`).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+    genes : tuple of Gene
+        The free genes (:func:`gene_table`).
+    base : numpy.ndarray
+        (2, 6) base parameters (m).
+    values : array_like
+        (C, G) gene values (µm for amounts, mm for lengths).
+
+    Returns
+    -------
+    numpy.ndarray
+        (C, 2, 6) modification parameters (m).
+    """
     values = np.atleast_2d(np.asarray(values, dtype=float))
     p = np.broadcast_to(base, (values.shape[0], 2, 6)).copy()
     for k, gene in enumerate(genes):

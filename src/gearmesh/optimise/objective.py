@@ -67,9 +67,27 @@ def _manufactured_rows(model: ImpactModel, tolerance: ToleranceModel, params: np
 
 def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), bounds=None,
             fixed=None, tolerance: ToleranceModel | None = None) -> Problem:
-    """Set up the optimisation of ``model``'s pair: genes, the manufactured population's unit
-    deviations (``settings.tolerance_samples`` of ``tolerance``, seeded by the settings' seed),
-    and the standard (unmodified) gear evaluated once, with the same population."""
+    """Set up the optimisation of ``model``'s pair.
+
+    Genes, the manufactured population's unit deviations (``settings.tolerance_samples`` of ``tolerance``, seeded by the
+    settings' seed), and the standard (unmodified) gear evaluated once, with the same population.
+
+    Parameters
+    ----------
+    model : ImpactModel
+        The prepared impact model (:func:`gearmesh.impact.impact_model`).
+    settings : OptimiseSettings
+        The checked settings (:func:`check_settings`).
+    modify, bounds, fixed
+        The gears optimised and the gene bounds and fixed values (:func:`gene_table`).
+    tolerance : ToleranceModel or None
+        The tolerance model of the manufactured population (:mod:`gearmesh.tolerance`).
+
+    Returns
+    -------
+    Problem
+        Genes, base parameters, population and the standard gear's evaluation.
+    """
     genes, base = gene_table(model.geom, modify, bounds, fixed)
     tolerance = tolerance or ToleranceModel(np.zeros((2, 6)), np.zeros(2))
     robust = settings.tolerance_statistic is not None and bool(tolerance.dimensions)
@@ -101,14 +119,40 @@ def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), 
 
 
 def standard_penalised_objective(prob: Problem) -> float:
-    """The unmodified pair as a candidate of the run: its J with the constraints' penalties, scored
-    from its evaluation in :func:`problem` (no second impact batch)."""
+    """The unmodified pair as a candidate of the run: its J with the constraints' penalties.
+
+    Scored from its evaluation in :func:`problem` (no second impact batch).
+
+    Parameters
+    ----------
+    prob : Problem
+        The problem (:func:`problem`).
+
+    Returns
+    -------
+    float
+        J (N, or m/s for the 'velocity' objective), penalties included.
+    """
     return float(_score(prob, prob.standard, prob.standard).objective[0])
 
 
 def evaluate(prob: Problem, params: np.ndarray) -> Evaluation:
-    """The objective of candidates ``params`` (C, 2, 6) m: every candidate × torque × manufactured
-    sample in one batch of the impact model (:mod:`gearmesh.optimise`)."""
+    """The objective of candidates ``params`` (C, 2, 6) m.
+
+    Every candidate × torque × manufactured sample in one batch of the impact model (:mod:`gearmesh.optimise`).
+
+    Parameters
+    ----------
+    prob : Problem
+        The problem (:func:`problem`).
+    params : numpy.ndarray
+        (C, 2, 6) modification parameters (m).
+
+    Returns
+    -------
+    Evaluation
+        ``objective`` J (C,) (N, or m/s for 'velocity', penalties included) and per (C, S, T) the quantities behind it.
+    """
     return _evaluate(prob, params, prob.standard)
 
 
@@ -138,8 +182,23 @@ class Diagnostics:
 
 
 def diagnose(prob: Problem, params: np.ndarray) -> Diagnostics:
-    """Load window, tolerance spread and scenarios of the micro-geometry ``params`` (2, 6) against
-    the standard gear (:mod:`gearmesh.optimise`): two batches of the impact model."""
+    """Load window, tolerance spread and scenarios of the micro-geometry ``params`` against the standard gear.
+
+    Two batches of the impact model (:mod:`gearmesh.optimise`).
+
+    Parameters
+    ----------
+    prob : Problem
+        The problem (:func:`problem`).
+    params : numpy.ndarray
+        (2, 6) modification parameters (m).
+
+    Returns
+    -------
+    Diagnostics
+        ``load_window`` (low, high) N m, the window's F_s against the standard's (N), the spread of F_s over the
+        manufactured samples (N) and the scenarios.
+    """
     s, model = prob.settings, prob.model
     both = np.stack([np.asarray(params, dtype=float), np.zeros((2, 6))])
     grid = load_grid(s.objective_torques, s.load_window_step, s.load_window_top)

@@ -127,10 +127,24 @@ def _gene_space(genes: tuple[Gene, ...]) -> list[dict[str, float]]:
 
 
 def random_search(prob: Problem, evaluations: int | None = None) -> OptimisationResult:
-    """Uniform random search over the gene bounds: ``evaluations`` candidates (default the GA's
-    nominal budget, population × (generations + 1)) from numpy's PCG64 seeded with the
-    settings' seed, in generations + 1 batches of ``population`` (when the budget is smaller
-    the last batches are short, padded with NaN in the history: the GA's shape)."""
+    """Uniform random search over the gene bounds.
+
+    ``evaluations`` candidates from numpy's PCG64 seeded with the settings' seed, in generations + 1 batches of
+    ``population`` (when the budget is smaller the last batches are short, padded with NaN in the history: the GA's
+    shape).
+
+    Parameters
+    ----------
+    prob : Problem
+        The problem (:func:`problem`).
+    evaluations : int or None
+        Candidates; default the GA's nominal budget, population × (generations + 1).
+
+    Returns
+    -------
+    OptimisationResult
+        Its ``history``, the ``optimum`` genes (µm / mm) and parameters (2, 6) m, its evaluation, ``evaluations``.
+    """
     s = prob.settings
     budget = s.budget if evaluations is None else int(evaluations)
     t0 = time.perf_counter()
@@ -198,9 +212,26 @@ def _run_pygad(prob: Problem) -> OptimisationResult:
 
 
 def pareto_mask(objectives: np.ndarray) -> np.ndarray:
-    """Non-dominated rows of ``objectives`` (K, M), all minimised (Deb et al. 2002, IEEE TEC
-    6(2): a point is dominated when another is no worse in every objective and better in
-    one). Duplicates of a non-dominated point are all kept."""
+    """Non-dominated rows of ``objectives``, all minimised.
+
+    A point is dominated when another is no worse in every objective and better in one. Duplicates of a non-dominated
+    point are all kept.
+
+    Parameters
+    ----------
+    objectives : numpy.ndarray
+        (K, M) objective values of K points.
+
+    Returns
+    -------
+    numpy.ndarray
+        (K,) bool, True where the row is non-dominated.
+
+    References
+    ----------
+    .. [1] Deb K., Pratap A., Agarwal S., Meyarivan T., "A fast and elitist multiobjective genetic algorithm: NSGA-II",
+       IEEE Transactions on Evolutionary Computation 6(2) (2002) 182–197.
+    """
     o = np.asarray(objectives, dtype=float)
     no_worse = np.all(o[:, None, :] <= o[None, :, :], axis=-1)  # [j, i]: j no worse than i
     better = np.any(o[:, None, :] < o[None, :, :], axis=-1)
@@ -299,8 +330,21 @@ def _verified(prob: Problem, genes: np.ndarray, ranked: np.ndarray) -> tuple[int
 
 
 def optimise(prob: Problem) -> OptimisationResult:
-    """Run the configured method (and, for 'ga' and 'nsga2' with ``random_baseline``, the random
-    search of the same budget as ``baseline``)."""
+    """Run the configured method.
+
+    For 'ga' and 'nsga2' with ``random_baseline`` also the random search of the same budget, as ``baseline``.
+
+    Parameters
+    ----------
+    prob : Problem
+        The problem (:func:`problem`); ``prob.settings.method`` 'ga', 'nsga2' or 'random'.
+
+    Returns
+    -------
+    OptimisationResult
+        The run: ``history``, the ``optimum`` genes (µm / mm) and parameters (2, 6) m, ``evaluations``, ``wall_s``,
+        ``baseline``, ``pareto`` (NSGA-II) and the optimum's ``diagnostics``.
+    """
     s = prob.settings
     if s.method == "random":
         return random_search(prob)
