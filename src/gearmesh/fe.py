@@ -202,20 +202,34 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
     ``size`` (m): boundary spacing on the loaded tooth, then :data:`GRADING` times it on
     the teeth next to it (the last factor on all others, the cuts and the bore). The load
     rolls (m) become vertices on both flanks of the loaded tooth.
+
+    Parameters
+    ----------
+    profile : ToothProfile
+        The transverse tooth profile (:func:`gearmesh.profile.tooth_profile`).
+    teeth : int
+        Number of teeth.
+    bore_radius : float
+        Bore radius (m).
+    load_rolls : ndarray
+        (k,) roll lengths of the load points (m).
+    size : float
+        Boundary spacing on the loaded tooth (m).
+    neighbours, ring, root_chord
+        As above.
+
+    Returns
+    -------
+    GearSector
+        Vertices, segments and holes for the triangulation, the load vertices on both flanks,
+        the spacings and the root chord's vertices.
     """
     pitch = 2 * math.pi / teeth
     sizes = tuple(size * GRADING[k] for k in range(len(GRADING)))
     full = neighbours is None or 2 * neighbours + 1 >= teeth
     closed = full or ring
     js = range(-(teeth // 2), teeth - teeth // 2) if full else range(-neighbours, neighbours + 1)
-    pieces = []
-    for j in js:
-        tooth, loads_j = _tooth_outline(profile, load_rolls if j == 0 else np.array([]), sizes[min(abs(j), len(sizes) - 1)])
-        if j == 0:
-            loads = loads_j
-        keep_first = not full and j == js[0]  # otherwise the previous tooth ends at this root-space middle
-        pieces.append(_rotate(tooth if keep_first else tooth[1:], j * pitch))
-    outer = np.vstack(pieces)  # over the tips, ending at the right-most root-space middle
+    outer, loads = _teeth_outline(profile, load_rolls, js, full, pitch, sizes)
     rf = float(np.hypot(*outer[-1]))
     if root_chord is not None:
         outer, ends = _insert_junctions(outer, float(root_chord), pitch)
@@ -224,46 +238,67 @@ def sector_outline(profile, teeth: int, bore_radius: float, load_rolls: np.ndarr
         ka = max(int(math.ceil(rf * (2 * math.pi - 2 * a0) / sizes[-1])), 8)
         th = np.linspace(a0, 2 * math.pi - a0, ka + 1)[1:-1]
         outer = np.vstack([outer, np.column_stack([rf * np.sin(th), rf * np.cos(th)])])
+    verts, segments, holes = _rim(outer, rf, bore_radius, sizes[-1], ring, closed, len(js) * math.pi / teeth)
+    chord = None
+    if root_chord is not None:
+        verts, segments, chord = _with_root_chord(verts, segments, ends, sizes[0])
+    return GearSector(vertices=verts, segments=segments, holes=holes, right_loads=_vertex_indices(verts, loads, rf),
+                      left_loads=_vertex_indices(verts, loads * np.array([-1.0, 1.0]), rf), bore_radius=bore_radius,
+                      full=closed, sizes=sizes, chord=chord)
+
+
+def _teeth_outline(profile, load_rolls: np.ndarray, js: range, full: bool, pitch: float, sizes: tuple[float, ...]):
+    """The outline (n, 2) (m) over the tips of teeth ``js`` (the loaded one 0) and the load points
+    (k, 2) on the loaded tooth's right flank; each tooth spaced by its ``sizes`` entry."""
+    pieces = []
+    for j in js:
+        tooth, loads_j = _tooth_outline(profile, load_rolls if j == 0 else np.array([]), sizes[min(abs(j), len(sizes) - 1)])
+        if j == 0:
+            loads = loads_j
+        keep_first = not full and j == js[0]  # otherwise the previous tooth ends at this root-space middle
+        pieces.append(_rotate(tooth if keep_first else tooth[1:], j * pitch))
+    return np.vstack(pieces), loads  # over the tips, ending at the right-most root-space middle
+
+
+def _rim(outer: np.ndarray, rf: float, bore_radius: float, spacing: float, ring: bool, closed: bool, half: float):
+    """Vertices, segments and holes of the domain: ``outer`` closed by the bore circle (a whole
+    gear or ring: the bore a hole) or by two radial cuts at ±``half`` (rad) and the bore arc."""
     # the wind-up field grows as 1/r³ (the 2-D whole gear: at least 64 points; the 3-D ring: 32)
-    kb = max(int(math.ceil(2 * math.pi * bore_radius / sizes[-1])), 32 if ring else 64)
+    kb = max(int(math.ceil(2 * math.pi * bore_radius / spacing)), 32 if ring else 64)
     if closed:
         th = np.linspace(0, 2 * math.pi, kb + 1)[:-1]
         bore = np.column_stack([bore_radius * np.sin(th), bore_radius * np.cos(th)])
         verts = np.vstack([outer, bore])
-        segments = np.vstack([_closed(0, len(outer)), _closed(len(outer), len(bore))])
-        holes = np.zeros((1, 2))
-    else:
-        half = len(js) * math.pi / teeth
-        kr = max(int(math.ceil((rf - bore_radius) / sizes[-1])), 1)
-        r = np.linspace(rf, bore_radius, kr + 1)[1:]
-        right_cut = np.column_stack([r * math.sin(half), r * math.cos(half)])
-        th = np.linspace(half, -half, max(int(kb * half / math.pi), 2) + 1)[1:]
-        bore = np.column_stack([bore_radius * np.sin(th), bore_radius * np.cos(th)])
-        left_cut = np.column_stack([r[::-1][1:] * math.sin(-half), r[::-1][1:] * math.cos(-half)])
-        verts = np.vstack([outer, right_cut, bore, left_cut])
-        segments = _closed(0, len(verts))
-        holes = np.zeros((0, 2))
+        return verts, np.vstack([_closed(0, len(outer)), _closed(len(outer), len(bore))]), np.zeros((1, 2))
+    kr = max(int(math.ceil((rf - bore_radius) / spacing)), 1)
+    r = np.linspace(rf, bore_radius, kr + 1)[1:]
+    right_cut = np.column_stack([r * math.sin(half), r * math.cos(half)])
+    th = np.linspace(half, -half, max(int(kb * half / math.pi), 2) + 1)[1:]
+    bore = np.column_stack([bore_radius * np.sin(th), bore_radius * np.cos(th)])
+    left_cut = np.column_stack([r[::-1][1:] * math.sin(-half), r[::-1][1:] * math.cos(-half)])
+    verts = np.vstack([outer, right_cut, bore, left_cut])
+    return verts, _closed(0, len(verts)), np.zeros((0, 2))
 
-    chord = None
-    if root_chord is not None:  # inner segment along the chord, spaced like the loaded tooth
-        a, b = verts[ends[0]], verts[ends[1]]
-        kc = max(int(math.ceil(np.hypot(*(b - a)) / sizes[0])), 2)
-        inner = a + np.outer(np.linspace(0.0, 1.0, kc + 1)[1:-1], b - a)
-        first = len(verts)
-        verts = np.vstack([verts, inner])
-        chord = np.concatenate([[ends[0]], np.arange(first, first + len(inner)), [ends[1]]])
-        segments = np.vstack([segments, np.column_stack([chord[:-1], chord[1:]])])
 
-    def find(points):
-        d = np.hypot(verts[:, None, 0] - points[None, :, 0], verts[:, None, 1] - points[None, :, 1])
-        i = np.argmin(d, axis=0)
-        if not np.all(d[i, np.arange(points.shape[0])] < 1e-9 * rf):
-            raise RuntimeError("a load point is not a vertex of the outline")
-        return i
+def _with_root_chord(verts: np.ndarray, segments: np.ndarray, ends, spacing: float):
+    """The loaded tooth's root chord between vertices ``ends`` as an inner segment, its vertices
+    spaced like the loaded tooth: (vertices, segments, the chord's vertex indices)."""
+    a, b = verts[ends[0]], verts[ends[1]]
+    kc = max(int(math.ceil(np.hypot(*(b - a)) / spacing)), 2)
+    inner = a + np.outer(np.linspace(0.0, 1.0, kc + 1)[1:-1], b - a)
+    first = len(verts)
+    verts = np.vstack([verts, inner])
+    chord = np.concatenate([[ends[0]], np.arange(first, first + len(inner)), [ends[1]]])
+    return verts, np.vstack([segments, np.column_stack([chord[:-1], chord[1:]])]), chord
 
-    return GearSector(vertices=verts, segments=segments, holes=holes, right_loads=find(loads),
-                      left_loads=find(loads * np.array([-1.0, 1.0])), bore_radius=bore_radius, full=closed,
-                      sizes=sizes, chord=chord)
+
+def _vertex_indices(verts: np.ndarray, points: np.ndarray, rf: float) -> np.ndarray:
+    """Indices of the vertices at ``points`` (k, 2) (m); an error if one is not a vertex."""
+    d = np.hypot(verts[:, None, 0] - points[None, :, 0], verts[:, None, 1] - points[None, :, 1])
+    i = np.argmin(d, axis=0)
+    if not np.all(d[i, np.arange(points.shape[0])] < 1e-9 * rf):
+        raise RuntimeError("a load point is not a vertex of the outline")
+    return i
 
 
 def gear_sector(geom: PairGeometry, gear: int, load_rolls, size: float = DEFAULT_SIZE,
@@ -348,7 +383,25 @@ def loaded_tooth(geom: PairGeometry, gear: int, rho: np.ndarray, plane: str = DE
                  neighbours: int | None = DEFAULT_NEIGHBOURS, bore_radius: float | None = None, ring: bool = False):
     """(profile, sector, tooth model, mesh, factorised solver) of gear ``gear`` with load points at
     roll lengths ``rho`` (m) on its loaded tooth, the bore clamped (:func:`tooth_compliance`'s model);
-    an unknown ``plane`` refused before meshing."""
+    an unknown ``plane`` refused before meshing.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry; ``gear`` 0 pinion, 1 gear.
+    rho : ndarray
+        (m,) roll lengths of the load points (m).
+    plane, size, neighbours, bore_radius
+        As :func:`tooth_compliance`.
+    ring : bool
+        The ring domain of :mod:`gearmesh.fe3d` (no radial cuts).
+
+    Returns
+    -------
+    tuple
+        The profile, the :class:`GearSector`, the transition tooth model, the triangle mesh and
+        the factorised :class:`~gearmesh.fe_elastic.ElasticSolver`.
+    """
     lame_parameters(1.0, 0.3, plane)
     profile, sector = gear_sector(geom, gear, rho, size, neighbours, bore_radius, ring)
     model = tooth_model(geom, gear, "transition", profile)
@@ -467,7 +520,30 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     energy components are checked against. ``plane`` 'stress' by default: the cantilever
     and Sainsot's foundation use E and G. ``body_plane``: another plane for the body (the
     material below the loaded tooth's root chord and the other teeth), e.g. a tooth in
-    plane strain on a body in plane stress; ``ring``: the domain of :mod:`gearmesh.fe3d`."""
+    plane strain on a body in plane stress; ``ring``: the domain of :mod:`gearmesh.fe3d`.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry; ``gear`` 0 pinion, 1 gear.
+    rho : array_like
+        (m,) roll lengths of the load points on the involute (m).
+    plane, body_plane : {'strain', 'stress'}, optional
+        The tooth's plane state and, if given, the body's.
+    size, neighbours
+        As :func:`tooth_compliance`.
+
+    Returns
+    -------
+    ToothBodySplit
+        Total, tooth-on-rigid-base, body-under-rigid-tooth, section-motion and interaction
+        compliances (m,) (m/N per m of width).
+
+    References
+    ----------
+    .. [1] Sainsot P., Velex P., Duverger O., "Contribution of gear body to tooth deflections —
+       a new bidimensional analytical formula", J. Mech. Des. 126 (2004) 748–752.
+    """
     from skfem import Basis, ElementTriP2, ElementVector, asm
     from skfem.models.elasticity import linear_elasticity
 
@@ -499,30 +575,35 @@ def tooth_body_split(geom: PairGeometry, gear: int, rho, plane: str = "stress", 
     x_p, y_p, alpha1, _ = contact_point(model, rho)
     n_right = np.column_stack([-np.cos(alpha1), -np.sin(alpha1)])
     c = np.vstack([np.zeros(rho.size), y_p - x_p * np.tan(alpha1)])
-    cols = np.arange(rho.size)
 
-    from scipy.sparse.linalg import splu
-
-    def read(k, held):
-        free = np.setdiff1d(np.arange(basis.N), held)
-        lu = splu(k[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                  options={"SymmetricMode": True})
-        solver = ElasticSolver(basis=basis, free=free, lu=lu)
-        u = solver.solve(point_load_matrix(solver, sector.right_loads, n_right))
-        return np.einsum("ik,ik->k", n_right.T, probe_displacements(solver, u, c)[:, cols, cols]), solver, u
-
-    total, solver, u = read(k_tooth + k_body, bore)
-    body, _, _ = read(k_body + RIGID * k_tooth, bore)
+    loaded = (basis, sector.right_loads, n_right, c)
+    total, solver, u = _compliance_along_load(k_tooth + k_body, bore, *loaded)
+    body, _, _ = _compliance_along_load(k_body + RIGID * k_tooth, bore, *loaded)
     # the tooth alone: every dof off the tooth's elements, and the dofs on its root chord, held
     on_chord = basis.get_dofs(lambda x: (np.abs(above(x)) < 1e-9 * model.root_radius)
                               & (x[0] >= min(a[0], b[0]) - 1e-12) & (x[0] <= max(a[0], b[0]) + 1e-12)).all()
     held = np.union1d(np.setdiff1d(np.arange(basis.N), np.unique(basis.element_dofs[:, in_tooth])), on_chord)
-    tooth, _, _ = read(k_tooth, held)
+    tooth, _, _ = _compliance_along_load(k_tooth, held, *loaded)
     t, omega = section_rigid_motion(solver, u, a, b)
     d = c - (0.5 * (a + b))[:, None]
     section = np.einsum("ik,ik->k", n_right.T, t + np.vstack([-d[1], d[0]]) * omega)
     return ToothBodySplit(rho=rho, total=total, tooth_rigid_base=tooth, body_rigid_tooth=body, section_body=section,
                           interaction=total - tooth - body, plane=plane, size=float(size))
+
+
+def _compliance_along_load(k, held: np.ndarray, basis, loads: np.ndarray, directions: np.ndarray, c: np.ndarray):
+    """Compliance (m,) (m/N per m of width) along ``directions`` (m, 2) at the points ``c`` (2, m)
+    under unit loads at the vertices ``loads`` (m,), with stiffness matrix ``k`` and the degrees
+    of freedom ``held`` fixed; and the factorised solver and the displacements (N, m)."""
+    from scipy.sparse.linalg import splu
+
+    free = np.setdiff1d(np.arange(basis.N), held)
+    lu = splu(k[free][:, free].tocsc(), permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
+              options={"SymmetricMode": True})
+    solver = ElasticSolver(basis=basis, free=free, lu=lu)
+    u = solver.solve(point_load_matrix(solver, loads, directions))
+    cols = np.arange(len(loads))
+    return np.einsum("ik,ik->k", directions.T, probe_displacements(solver, u, c)[:, cols, cols]), solver, u
 
 
 @dataclass(frozen=True, eq=False)
@@ -582,7 +663,35 @@ def contact_approach(geom: PairGeometry, gear: int, rho: float, half_width: floa
     length over ±1.5 a around P (the involute's arc length from the base circle is
     ρ²/(2 r_b)); the pressure p(s) = (2/(πa))·√(1 − s²/a²) acts on them along each
     vertex's own line of action, lumped by the trapezoidal rule and scaled to a unit
-    resultant."""
+    resultant.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry; ``gear`` 0 pinion, 1 gear.
+    rho : float
+        Roll length of the contact point P (m).
+    half_width : float
+        Hertzian half-width a (m).
+    plane : {'strain', 'stress'}
+        The plane state.
+    size, neighbours
+        As :func:`tooth_compliance`.
+    points : int
+        Flank vertices per half-width.
+
+    Returns
+    -------
+    ContactApproach
+        The approaches under the strip and under the point load and Weber's closed form (m/N
+        per m of width).
+
+    References
+    ----------
+    .. [1] Weber C., "Formänderung und Profilrücknahme bei gerad- und schrägverzahnten Rädern",
+       Schriftenreihe Antriebstechnik 11, Vieweg, 1949.
+    .. [2] Johnson K. L., *Contact Mechanics*, Cambridge University Press, 1985, §5.
+    """
     model = tooth_model(geom, gear, "transition")
     rb = model.base_radius
     s_p = rho**2 / (2 * rb)
@@ -620,7 +729,20 @@ def contact_approach(geom: PairGeometry, gear: int, rho: float, half_width: floa
 
 
 def tooth_profile_rolls(geom: PairGeometry, gear: int) -> np.ndarray:
-    """Roll lengths (m) of the involute of :func:`gearmesh.profile.tooth_profile` (NaN off it)."""
+    """Roll lengths (m) of the involute of :func:`gearmesh.profile.tooth_profile` (NaN off it).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry.
+    gear : int
+        0 pinion, 1 gear.
+
+    Returns
+    -------
+    ndarray
+        Roll length of each profile point (m), NaN on the fillet and circles.
+    """
     from .profile import tooth_profile
 
     return tooth_profile(geom, gear, n_fillet=400, n_involute=50).roll

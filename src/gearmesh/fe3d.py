@@ -392,7 +392,24 @@ def line_compliance_3d(model: GearModel3D, rho0, transverse_only: bool = False) 
     ``rho0`` (m) and read the tooth deflection at C(z) (module docstring). Every roll a line
     touches at a layer must be one of the model's ``load_rolls``. ``transverse_only``: the
     slice model's load instead (the transverse part n alone, read along n), to separate the
-    effect of the axial part of the flank normal."""
+    effect of the axial part of the flank normal.
+
+    Parameters
+    ----------
+    model : GearModel3D
+        The factorised 3-D gear (:func:`gear_model_3d`).
+    rho0 : array_like
+        (m,) right-flank roll lengths of the contact lines at z = 0 (m).
+    transverse_only : bool
+        Load and read along the transverse n alone (the slice model's load).
+
+    Returns
+    -------
+    LineCompliance3D
+        Per line its compliance (m/N per m of contact line; with ``transverse_only`` per m of
+        face, transverse), the deflections and weights per layer, the load angles and the
+        solver's iterations and times.
+    """
     geom, gear = model.geom, model.gear
     rho0 = np.atleast_1d(np.asarray(rho0, dtype=float))
     z = model.z
@@ -401,7 +418,6 @@ def line_compliance_3d(model: GearModel3D, rho0, transverse_only: bool = False) 
     active = (rho >= geom.rho_sap[gear] - 1e-12) & (rho <= geom.rho_eap[gear] + 1e-12)
     tm = tooth_model(geom, gear, "transition", model.profile)
     cb = math.cos(geom.base_helix_angle)
-    sb = math.sin(geom.base_helix_angle)
     load_vertices = model.sector.right_loads  # indices of model.load_rolls on the right flank
     out_def = np.full(rho.shape, np.nan)
     weights = np.zeros(rho.shape)
@@ -414,29 +430,11 @@ def line_compliance_3d(model: GearModel3D, rho0, transverse_only: bool = False) 
         ks = np.flatnonzero(active[r])
         if ks.size == 0:
             continue
-        w = np.zeros(z.size)
-        # trapezoidal weights over the run of loaded layers (ends: half a layer)
-        w[ks] = 0.5 * (np.concatenate([[0.0], dz])[ks] * active[r][np.maximum(ks - 1, 0)]
-                       + np.concatenate([dz, [0.0]])[ks] * active[r][np.minimum(ks + 1, z.size - 1)])
-        if ks.size == 1:
-            w[ks] = 1.0
-        idx = np.clip(np.searchsorted(model.load_rolls, rho[r, ks]), 1, model.load_rolls.size - 1)
-        idx = np.where(np.abs(model.load_rolls[idx - 1] - rho[r, ks]) < np.abs(model.load_rolls[idx] - rho[r, ks]),
-                       idx - 1, idx)  # the nearest vertex roll
-        near = np.abs(model.load_rolls[idx] - rho[r, ks]) < 1e-9 * geom.pair.normal_module
-        if not np.all(near):
-            raise ValueError("a contact line crosses a layer between the section's load vertices")
-        x_p, y_p, a1, _ = contact_point(tm, rho[r, ks])
+        w = _layer_weights(active[r], dz, ks)
+        idx = _nearest_load_rolls(model, rho[r, ks])
+        a1 = contact_point(tm, rho[r, ks])[2]
         alpha[r, ks] = a1
-        # transverse line of action into the tooth (the 2-D model's n), turned with the section
-        th = model.twist * z[ks]
-        nx0, ny0 = -np.cos(a1), -np.sin(a1)
-        nx = nx0 * np.cos(th) - ny0 * np.sin(th)
-        ny = nx0 * np.sin(th) + ny0 * np.cos(th)
-        # flank normal: transverse part n·cos βb, axial part along the helix (sign below)
-        normal = np.vstack([nx * cb, ny * cb, np.full(ks.size, _axial_sign(model) * sb)])
-        if transverse_only:
-            normal = np.vstack([nx, ny, np.zeros(ks.size)])
+        normal = _load_normal(model, a1, z[ks], transverse_only)
         vert3 = ks * n2 + load_vertices[idx]
         f = np.zeros(model.basis.N)
         dofs = model.basis.nodal_dofs[:, vert3]  # (3, k)
@@ -452,19 +450,60 @@ def line_compliance_3d(model: GearModel3D, rho0, transverse_only: bool = False) 
         # at the lumped load points, under a smooth line load at C, so the lumping error falls
         # as (Δz/|PC|)² instead of being the near field of a point load
         out_def[r, ks] = np.einsum("ik,ik->k", normal, _probe_c(model, tm, rho[r, ks], z[ks], u))
-        if ks.size > 1:
-            t = (np.arange(READ * (ks.size - 1)) + 0.5) / READ
-            zz = np.interp(t, np.arange(ks.size), z[ks])
-            rr = np.interp(t, np.arange(ks.size), rho[r, ks])
-            nn = np.vstack([np.interp(t, np.arange(ks.size), normal[i]) for i in range(3)])
-            means[r] = float(np.mean(np.einsum("ik,ik->k", nn, _probe_c(model, tm, rr, zz, u))))
-        else:
-            means[r] = out_def[r, ks[0]]
+        means[r] = _mean_line_deflection(model, tm, rho[r, ks], z[ks], normal, u) if ks.size > 1 else out_def[r, ks[0]]
         weights[r] = w
     mean = means
     return LineCompliance3D(rho0=rho0, compliance=mean if transverse_only else mean / cb**2, deflection=out_def, weights=weights, rho=rho, z=z,
                             load_angle=alpha, iterations=iters, seconds=secs, n_dofs=model.n_dofs,
                             n_elements=model.n_elements, size=model.size, layers=model.layers)
+
+
+def _layer_weights(active: np.ndarray, dz: np.ndarray, ks: np.ndarray) -> np.ndarray:
+    """Trapezoidal weights (layers,) over the run ``ks`` of loaded layers (ends: half a layer;
+    one layer alone: 1)."""
+    w = np.zeros(active.size)
+    w[ks] = 0.5 * (np.concatenate([[0.0], dz])[ks] * active[np.maximum(ks - 1, 0)]
+                   + np.concatenate([dz, [0.0]])[ks] * active[np.minimum(ks + 1, active.size - 1)])
+    if ks.size == 1:
+        w[ks] = 1.0
+    return w
+
+
+def _nearest_load_rolls(model: GearModel3D, rho: np.ndarray) -> np.ndarray:
+    """Indices into ``model.load_rolls`` of the load vertices at the rolls ``rho`` (m); an error
+    where a contact line crosses a layer between them."""
+    rolls = model.load_rolls
+    idx = np.clip(np.searchsorted(rolls, rho), 1, rolls.size - 1)
+    idx = np.where(np.abs(rolls[idx - 1] - rho) < np.abs(rolls[idx] - rho), idx - 1, idx)  # the nearest vertex roll
+    if not np.all(np.abs(rolls[idx] - rho) < 1e-9 * model.geom.pair.normal_module):
+        raise ValueError("a contact line crosses a layer between the section's load vertices")
+    return idx
+
+
+def _load_normal(model: GearModel3D, a1: np.ndarray, z: np.ndarray, transverse_only: bool) -> np.ndarray:
+    """Unit load directions (3, k) at layers ``z`` (m) for load angles ``a1`` (rad): the
+    transverse line of action into the tooth (the 2-D model's n) turned with the section, as
+    the flank normal (transverse part n·cos βb, axial part along the helix) or, with
+    ``transverse_only``, n alone."""
+    th = model.twist * z
+    nx0, ny0 = -np.cos(a1), -np.sin(a1)
+    nx = nx0 * np.cos(th) - ny0 * np.sin(th)
+    ny = nx0 * np.sin(th) + ny0 * np.cos(th)
+    if transverse_only:
+        return np.vstack([nx, ny, np.zeros(z.size)])
+    cb, sb = math.cos(model.geom.base_helix_angle), math.sin(model.geom.base_helix_angle)
+    return np.vstack([nx * cb, ny * cb, np.full(z.size, _axial_sign(model) * sb)])
+
+
+def _mean_line_deflection(model: GearModel3D, tm, rho: np.ndarray, z: np.ndarray, normal: np.ndarray,
+                          u: np.ndarray) -> float:
+    """Mean deflection (m) along ``normal`` of the points C over the loaded run (layers ``z``,
+    rolls ``rho``), read at :data:`READ` points per layer."""
+    t = (np.arange(READ * (z.size - 1)) + 0.5) / READ
+    zz = np.interp(t, np.arange(z.size), z)
+    rr = np.interp(t, np.arange(z.size), rho)
+    nn = np.vstack([np.interp(t, np.arange(z.size), normal[i]) for i in range(3)])
+    return float(np.mean(np.einsum("ik,ik->k", nn, _probe_c(model, tm, rr, zz, u))))
 
 
 def _probe_c(model: GearModel3D, tm, rho: np.ndarray, z: np.ndarray, u: np.ndarray) -> np.ndarray:
