@@ -239,7 +239,7 @@ def _straightforward_criteria(model, torques, params, lead) -> dict[str, np.ndar
     from gearmesh.deflection import mesh_misalignment
     from gearmesh.ltca import solve_contact
     from gearmesh.stress import pair_edge_radius
-    from gearmesh.tca import SeparationBasis, basis_gap
+    from gearmesh.separation import SeparationBasis, basis_gap
 
     g, lt = model.geom, model.ltca
     grid = lt.grid
@@ -338,7 +338,7 @@ def test_tangent_start_of_a_sample_is_an_upper_bound_of_its_approach(model):
     """The nominal gear's tangent estimate δ_n + Σ k_i Δg_i / Σ k_i is an upper bound of each
     sample's exact approach (each q_i convex in δ), close to it (the deviations are small)."""
     from gearmesh.ltca import solve_contact, solve_contact_tabulated
-    from gearmesh.tca import SeparationBasis, basis_gap
+    from gearmesh.separation import SeparationBasis, basis_gap
     from gearmesh.tolerance import apply_deviations, tolerance_model, unit_deviations
 
     g, lt = model.geom, model.ltca

@@ -64,8 +64,9 @@ from .deflection import mesh_deflection, mesh_misalignment
 from .deviation import lead_gap
 from .ltca_model import ContactLaw, LTCAModel, contact_law, ltca_model
 from .tooth import require_stiffness_data
-from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, TCAResult, first_contact,
-                  nanmin, engagement_point, engagement_separation, pair_lead_slope)
+from .separation import REGION_APPROACH_TIP, REGION_RECESS_TIP
+from .tca import (DEFAULT_EXTENSION, CandidateGrid, TCAResult, first_contact, nanmin, engagement_point,
+                  engagement_separation, pair_lead_slope)
 
 __all__ = [
     "check_torques", "pinion_torques", "solve_contact", "solve_contact_tabulated", "load_sums", "law_point_scales",

@@ -67,8 +67,8 @@ from .deviation import with_misalignment
 from .ltca import load_sums, solve_contact
 from .ltca_model import ContactLaw, ltca_model, point_compliance
 from .tooth import SliceComplianceTable
-from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point,
-                  pair_lead_slope)
+from .separation import REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap
+from .tca import candidate_grid, check_count, engagement_point, pair_lead_slope
 
 __all__ = ["MeshForceTable", "mesh_force_table", "TableLayout", "table_layout", "tabulate", "DEFAULT_TABLE_POSITIONS", "DEFAULT_TABLE_APPROACHES",
            "DEFAULT_TABLE_EXTENSION"]

@@ -16,7 +16,7 @@ from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
 from ..ltca import check_torques
 from ..ltca_model import ContactLaw
-from ..tca import SeparationBasis, basis_gap
+from ..separation import SeparationBasis, basis_gap
 from .model import ImpactModel
 
 
