@@ -64,7 +64,7 @@ from .gear import PairGeometry
 from .body import mesh_body_compliance
 from .deflection import mesh_misalignment
 from .deviation import with_misalignment
-from .ltca import load_sums, solve_contact
+from .ltca_solve import load_sums, solve_contact
 from .ltca_model import ContactLaw, ltca_model, point_compliance
 from .tooth import SliceComplianceTable
 from .separation import REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap

@@ -128,7 +128,7 @@ def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force
     δ_n + Σ k_i Δg_i / Σ k_i (k_i = dq_i/dδ at the nominal's solution). It is an upper bound of
     the sample's: each q_i(d) is convex, so q_i(δ − g_i − Δg_i) ≥ q_i,n + k_i (δ − δ_n − Δg_i) and
     the loads at that δ carry at least F; Newton descends from it in a few steps."""
-    from ..ltca import solve_contact_tabulated
+    from ..ltca_solve import solve_contact_tabulated
 
     nt = force.size
     if gap.ndim == 3:  # one set of separations for every torque

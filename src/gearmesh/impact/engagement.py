@@ -14,7 +14,7 @@ from ..errors import GearmeshInputError
 from ..limits import check_speeds
 from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
-from ..ltca import _invert, solve_contact
+from ..ltca_solve import _invert, solve_contact
 from ..ltca_model import ContactLaw, point_compliance
 from ..separation import basis_gap
 from ..tca import candidate_grid
