@@ -105,18 +105,18 @@ def replace_contact_solvers():
     runs :func:`solve_rows`, and every inversion of the contact law :func:`invert_law` or
     :func:`log_universal_root` (raises on leaving if none was called: :func:`common.swapped`; yields
     the list of those called)."""
-    return swapped(Swap("gearmesh.ltca.solve_contact", _exact_form),
-                   Swap("gearmesh.ltca.solve_contact_tabulated", _tabulated_form),
-                   Swap("gearmesh.ltca._invert", lambda original: invert_law),
-                   Swap("gearmesh.ltca.invert_tabulated", lambda original: invert_law),
-                   Swap("gearmesh.ltca.log_universal_inverse", lambda original: log_universal_root))
+    return swapped(Swap("gearmesh.ltca_solve.solve_contact", _exact_form),
+                   Swap("gearmesh.ltca_solve.solve_contact_tabulated", _tabulated_form),
+                   Swap("gearmesh.ltca_solve._invert", lambda original: invert_law),
+                   Swap("gearmesh.ltca_solve.invert_tabulated", lambda original: invert_law),
+                   Swap("gearmesh.ltca_solve.log_universal_inverse", lambda original: log_universal_root))
 
 
 def exact_for_tabulated():
     """A context in which every gearmesh call of ``solve_contact_tabulated`` runs the package's exact
     :func:`gearmesh.ltca.solve_contact` instead (its Newton on every point's own inversion, no table):
     the tabulated inversion switched off."""
-    from gearmesh.ltca import solve_contact
+    from gearmesh.ltca_solve import solve_contact
 
     def make(original):
         def solve(gap, compliance, force, law, *args, **kwargs):
@@ -127,4 +127,4 @@ def exact_for_tabulated():
             return q, delta, dq
         return solve
 
-    return swapped(Swap("gearmesh.ltca.solve_contact_tabulated", make))
+    return swapped(Swap("gearmesh.ltca_solve.solve_contact_tabulated", make))

@@ -266,7 +266,7 @@ def test_random_pairs_crossing_equals_seed_equation_and_velocities_agree(pair, l
 def test_tabulated_law_inverse_equals_newton_inversion():
     """The universal table of the Palmgren inverse (one per exponent) against the exact Newton
     inversion over nine decades of approach and three of compliance."""
-    from gearmesh.ltca import _invert, invert_tabulated
+    from gearmesh.ltca_solve import _invert, invert_tabulated
 
     rng = np.random.default_rng(3)
     c = 10 ** rng.uniform(-9, -5, 20000)

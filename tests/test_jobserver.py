@@ -254,8 +254,8 @@ while steps:  # as the server runs them (a step answering False waits for its he
         time.sleep(0.05)
 assert jobserver.kernels_cached()
 from gearmesh.dynamics import integrate
-from gearmesh import ltca
-kernels = [integrate._sweep, ltca._COMPILED["loop"], ltca._COMPILED["scales"]]  # the others compile into _sweep
+from gearmesh import ltca_solve
+kernels = [integrate._sweep, ltca_solve._COMPILED["loop"], ltca_solve._COMPILED["scales"]]  # the others compile into _sweep
 before = [len(k.signatures) for k in kernels]
 modules = set(sys.modules)
 from gearmesh.gear import pair_geometry
@@ -266,7 +266,7 @@ from gearmesh.dynamics.integrate import simulate
 geom = pair_geometry(load_pair({str(root / 'config/pairs/low_fluctuation_pair1.yaml')!r}))
 table = mesh_force_table(geom, 4 * 300 / geom.base_radius[0], positions=32, approaches=16, points=10, method="transition")
 simulate(pair_model(geom, 300.0, None, contact=table), [2000.0, 3000.0])
-from gearmesh.ltca import solve_contact_tabulated
+from gearmesh.ltca_solve import solve_contact_tabulated
 from gearmesh.meshforce import table_layout
 layout = table_layout(geom, 32, 10, method="transition")
 solve_contact_tabulated(layout.gaps()[:3], layout.compliance[:3] - layout.law.linear, np.full(3, 1e4), layout.law)

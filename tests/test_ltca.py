@@ -20,7 +20,8 @@ from gearmesh.gear import Modification, pair_geometry
 from gearmesh.pairfile import load_pair, pair_from_dict, pair_to_dict
 from gearmesh.io import check_documented
 from gearmesh.supports import read_supports
-from gearmesh.ltca import ltca, solve_contact
+from gearmesh.ltca import ltca
+from gearmesh.ltca_solve import solve_contact
 from gearmesh.ltca_model import PALMGREN_COEFFICIENT, contact_law, ltca_model
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -11,7 +11,7 @@ import pytest
 
 from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import pair_geometry
-from gearmesh.ltca import _invert, law_point_scales, load_sums
+from gearmesh.ltca_solve import _invert, law_point_scales, load_sums
 from gearmesh.ltca_model import ContactLaw
 from gearmesh.pairfile import load_pair
 from gearmesh.meshforce import table_layout, tabulate

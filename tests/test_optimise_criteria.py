@@ -237,9 +237,9 @@ def _straightforward_criteria(model, torques, params, lead) -> dict[str, np.ndar
     computed them: gaps from the separation basis, the exact solve (ltca.solve_contact, cold) on
     every grid point, the stresses by contact_stress and iso_root_stress_slices of the loads."""
     from gearmesh.deflection import mesh_misalignment
-    from gearmesh.ltca import solve_contact
+    from gearmesh.ltca_solve import solve_contact
     from gearmesh.stress import pair_edge_radius
-    from gearmesh.tca import SeparationBasis, basis_gap
+    from gearmesh.separation import SeparationBasis, basis_gap
 
     g, lt = model.geom, model.ltca
     grid = lt.grid
@@ -337,8 +337,8 @@ def test_population_batch_equals_each_gear_solved_on_its_own(model):
 def test_tangent_start_of_a_sample_is_an_upper_bound_of_its_approach(model):
     """The nominal gear's tangent estimate δ_n + Σ k_i Δg_i / Σ k_i is an upper bound of each
     sample's exact approach (each q_i convex in δ), close to it (the deviations are small)."""
-    from gearmesh.ltca import solve_contact, solve_contact_tabulated
-    from gearmesh.tca import SeparationBasis, basis_gap
+    from gearmesh.ltca_solve import solve_contact, solve_contact_tabulated
+    from gearmesh.separation import SeparationBasis, basis_gap
     from gearmesh.tolerance import apply_deviations, tolerance_model, unit_deviations
 
     g, lt = model.geom, model.ltca
@@ -365,7 +365,7 @@ def test_tabulated_solve_equals_the_exact_solve_from_any_start(pair, law_name):
     """solve_contact_tabulated: the loads and approach of solve_contact to its tolerance, the load
     sum equal to F, from the default bound, from a start right of the root and from one left of
     every point (no load there: back to the bound)."""
-    from gearmesh.ltca import solve_contact, solve_contact_tabulated
+    from gearmesh.ltca_solve import solve_contact, solve_contact_tabulated
     from gearmesh.ltca_model import contact_law
 
     geom = pair_geometry(pair)

@@ -14,9 +14,9 @@ from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_geometry
 from gearmesh.pairfile import pair_from_dict
 from gearmesh.ltca import ltca
-from gearmesh.rating import (check_factors, contact_ratio_factor, dynamic_factor_c, face_factor_root,
-                             face_load_factor_c, ltca_load_factors, rating, rating_inputs, single_pair_factors,
-                             zone_factor)
+from gearmesh.rating import check_factors, ltca_load_factors, rating, rating_inputs
+from gearmesh.rating_factors import (contact_ratio_factor, dynamic_factor_c, face_factor_root, face_load_factor_c,
+                                     single_pair_factors, zone_factor)
 from test_stress import SPUR
 
 #: Worked example: hanslhansl/din3990 tests/test_1.py (DIN 3990-11, the method B of ISO 6336:1996 for
@@ -210,7 +210,7 @@ def test_life_factors_follow_the_standards_lines():
     """ISO 6336-2:2019 Table 2 line 2 and ISO 6336-3:2019 Table 3 (case-hardened): the tabulated points,
     and between the knee and 10¹⁰ the closed forms of the standards' figures, (5e7/N)^0.0307 and
     (3e6/N)^0.02 (written here independently of the code's log-log table)."""
-    from gearmesh.rating import life_factor_contact, life_factor_root
+    from gearmesh.rating_factors import life_factor_contact, life_factor_root
 
     for n, z in ((1e4, 1.6), (1e5, 1.6), (5e7, 1.0), (1e10, 0.85), (1e12, 0.85)):
         assert life_factor_contact(n) == pytest.approx(z, rel=1e-12)
@@ -245,7 +245,7 @@ def test_endurance_takes_the_long_life_end_and_optimum_conditions_hold_one(spur)
 def test_an_idlers_bending_safety_is_its_one_way_safety_times_y_m(spur):
     """Y_M (ISO 6336-3:2019) in σ_FG: the idler's S_F is the same gear's one-way S_F times 0.7, the
     other gear and pitting untouched."""
-    from gearmesh.rating import IDLER_MEAN_STRESS_FACTOR
+    from gearmesh.rating_factors import IDLER_MEAN_STRESS_FACTOR
 
     one_way = rating(spur, 500.0, 1500.0, rating_inputs()).values
     idler = rating(spur, 500.0, 1500.0, rating_inputs({"idler_gear": "gear"})).values

@@ -16,8 +16,9 @@ from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import Modification, pair_geometry
 from gearmesh.pairfile import load_pair, pair_from_dict
 from gearmesh.io import check_documented
-from gearmesh.tca import (REGION_APPROACH_TIP, REGION_FLANK, REGION_RECESS_TIP, approach_tip_separation,
-                          candidate_grid, engagement_point, flank_separation, recess_tip_separation, tca)
+from gearmesh.separation import (REGION_APPROACH_TIP, REGION_FLANK, REGION_RECESS_TIP, approach_tip_separation,
+                                 flank_separation, recess_tip_separation)
+from gearmesh.tca import candidate_grid, engagement_point, tca
 
 
 

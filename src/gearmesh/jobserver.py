@@ -256,9 +256,9 @@ def kernels_cached() -> bool:
     current source (then loading them costs a fraction of a second); False when it cannot tell."""
     try:
         from .dynamics import integrate
-        from . import ltca
+        from . import ltca_solve
 
-        kernels = (integrate._sweep, ltca._kernel("loop"), ltca._kernel("scales"))
+        kernels = (integrate._sweep, ltca_solve._kernel("loop"), ltca_solve._kernel("scales"))
         return all(len(k._cache._cache_file._load_index()) > 0 for k in kernels)
     except Exception:  # noqa: BLE001 - numba's cache internals: not knowing means compiling aside
         return False
@@ -275,15 +275,15 @@ def warm_kernels() -> None:
     """Load every compiled kernel (numba, ``cache=True``) from its on-disk cache by running it once
     on a tiny problem through the functions the jobs call, so that it loads with the types the jobs
     use: the contact-driven dynamics of the shipped default pair (mesh force table: the load sums
-    of :func:`gearmesh.ltca.load_sums`; the RK4 sweep with its shooting,
+    of :func:`gearmesh.ltca_solve.load_sums`; the RK4 sweep with its shooting,
     :mod:`gearmesh.dynamics.integrate`) and a tabulated contact solve of its points
-    (:func:`gearmesh.ltca.solve_contact_tabulated`). A fork inherits the loaded machine code."""
+    (:func:`gearmesh.ltca_solve.solve_contact_tabulated`). A fork inherits the loaded machine code."""
     import numpy as np
 
     from .dynamics.population import dynamic_factors, population_dynamics
     from .gear import pair_geometry
     from .pairfile import example_pair, load_pair
-    from .ltca import solve_contact_tabulated
+    from .ltca_solve import solve_contact_tabulated
 
     geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     setup = population_dynamics(geom, [1000.0], [1000.0, 5000.0], positions=16, approaches=8, points=5,

@@ -36,8 +36,9 @@ from .gear import PairGeometry
 from .slice_compliance import (METHODS, PairSliceTable, hertz_compliance_transverse, pair_slice_table,
                                slice_compliance_table)
 from .tooth import SliceComplianceTable, require_stiffness_data
-from .tca import (DEFAULT_EXTENSION, REGION_APPROACH_TIP, REGION_RECESS_TIP, CandidateGrid, check_count,
-                  candidate_grid, check_extension, check_modifications, engagement_point, pair_lead_slope)
+from .separation import REGION_APPROACH_TIP, REGION_RECESS_TIP
+from .tca import (DEFAULT_EXTENSION, CandidateGrid, check_count, candidate_grid, check_extension, check_modifications,
+                  engagement_point, pair_lead_slope)
 
 __all__ = ["CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
            "point_compliance", "LTCAModel", "ltca_model"]

@@ -64,11 +64,11 @@ from .gear import PairGeometry
 from .body import mesh_body_compliance
 from .deflection import mesh_misalignment
 from .deviation import with_misalignment
-from .ltca import load_sums, solve_contact
+from .ltca_solve import load_sums, solve_contact
 from .ltca_model import ContactLaw, ltca_model, point_compliance
 from .tooth import SliceComplianceTable
-from .tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap, candidate_grid, check_count, engagement_point,
-                  pair_lead_slope)
+from .separation import REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap
+from .tca import candidate_grid, check_count, engagement_point, pair_lead_slope
 
 __all__ = ["MeshForceTable", "mesh_force_table", "TableLayout", "table_layout", "tabulate", "DEFAULT_TABLE_POSITIONS", "DEFAULT_TABLE_APPROACHES",
            "DEFAULT_TABLE_EXTENSION"]

@@ -288,7 +288,7 @@ def contact_stress(geom: PairGeometry, line_load, region, rho_pinion, rho_gear,
     .. [3] ISO 6336-2:2019, Calculation of load capacity of spur and helical gears — Part 2: Calculation
        of surface durability (pitting).
     """
-    from .tca import REGION_APPROACH_TIP, REGION_FLANK, REGION_RECESS_TIP
+    from .separation import REGION_APPROACH_TIP, REGION_FLANK, REGION_RECESS_TIP
 
     r_e, given = check_edge_radius(geom, edge_radius)
     bb = geom.base_helix_angle

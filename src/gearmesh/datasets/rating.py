@@ -21,8 +21,8 @@ from ..io import variable
 from . import shared_torques, variant_names
 from ..limits import check_contact_grid, check_speeds
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
-from ..rating import (check_factors, face_factor_root, ltca_load_factors, rated_transverse_factor, rating,
-                      rating_inputs)
+from ..rating import check_factors, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
+from ..rating_factors import face_factor_root
 from ..schema import check_arguments, defaults
 from ..settings import Rating
 

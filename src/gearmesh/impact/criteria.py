@@ -16,7 +16,7 @@ from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
 from ..ltca import check_torques
 from ..ltca_model import ContactLaw
-from ..tca import SeparationBasis, basis_gap
+from ..separation import SeparationBasis, basis_gap
 from .model import ImpactModel
 
 
@@ -145,7 +145,7 @@ def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force
     δ_n + Σ k_i Δg_i / Σ k_i (k_i = dq_i/dδ at the nominal's solution). It is an upper bound of
     the sample's: each q_i(d) is convex, so q_i(δ − g_i − Δg_i) ≥ q_i,n + k_i (δ − δ_n − Δg_i) and
     the loads at that δ carry at least F; Newton descends from it in a few steps."""
-    from ..ltca import solve_contact_tabulated
+    from ..ltca_solve import solve_contact_tabulated
 
     nt = force.size
     if gap.ndim == 3:  # one set of separations for every torque

@@ -14,9 +14,10 @@ from ..errors import GearmeshInputError
 from ..limits import check_speeds
 from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
-from ..ltca import _invert, solve_contact
+from ..ltca_solve import _invert, solve_contact
 from ..ltca_model import ContactLaw, point_compliance
-from ..tca import basis_gap, candidate_grid
+from ..separation import basis_gap
+from ..tca import candidate_grid
 from .model import SCENARIO_NONE, ImpactModel
 from .static import _approach_at, impact_static
 

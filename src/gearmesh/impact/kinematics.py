@@ -15,7 +15,7 @@ import numpy as np
 
 from ..gear import PairGeometry, involute
 from ..surface import body_rotation, flank_point, plane_of_action_point, relief_depth
-from ..tca import REGION_APPROACH_TIP, REGION_RECESS_TIP, approach_tip_point, recess_tip_point
+from ..separation import REGION_APPROACH_TIP, REGION_RECESS_TIP, approach_tip_point, recess_tip_point
 from .model import SCENARIO_NONE, ImpactModel
 from .static import ImpactStatic
 

@@ -19,7 +19,8 @@ from ..gear import PairGeometry
 from ..ltca_model import LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance
 from ..body import mesh_body_compliance
 from ..surface import modification_parameters
-from ..tca import SeparationBasis, candidate_grid, engagement_point, pair_lead_slope, separation_basis
+from ..separation import SeparationBasis, separation_basis
+from ..tca import candidate_grid, engagement_point, pair_lead_slope
 from ..contact import hand_sign
 
 SCENARIOS = ("none", "surface", "edge")

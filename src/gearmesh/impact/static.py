@@ -17,10 +17,11 @@ import numpy as np
 
 from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
-from ..ltca import _invert, check_torques, law_scales, log_universal_inverse, solve_contact
+from ..ltca import check_torques
+from ..ltca_solve import _invert, law_scales, log_universal_inverse, solve_contact
 from ..ltca_model import ContactLaw, point_compliance
-from ..tca import (REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, basis_gap, candidate_grid, point_centres,
-                   separation_basis)
+from ..separation import REGION_APPROACH_TIP, REGION_RECESS_TIP, SeparationBasis, basis_gap, separation_basis
+from ..tca import candidate_grid, point_centres
 from ..contact import hand_sign
 from .model import SCENARIO_EDGE, SCENARIO_NONE, SCENARIO_SURFACE, ImpactModel, _without_column
 
