@@ -21,7 +21,7 @@
 loaded-contact criteria of one generation of the ``optimised`` run over its manufactured population
 (:func:`gearmesh.impact.ltca_criteria` with its samples started from their nominal, the tabulated
 contact law). Baseline: the same function with the tabulated solve replaced by the package's exact
-:func:`gearmesh.ltca.solve_contact` (Newton on every point's own inversion) and every gear solved
+:func:`gearmesh.ltca_solve.solve_contact` (Newton on every point's own inversion) and every gear solved
 from scratch (``samples=1``); equality of LTE p-p, flank and edge pressure and root stress.
 
 ``bench_dynamic_objective(repeats)``: ``dynamic_objective_generation_<N>_candidates``, the dynamic

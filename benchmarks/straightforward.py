@@ -1,7 +1,7 @@
 """The contact problem of the LTCA solved the straightforward way, independently of the package's
 solvers, as the baseline of the benchmarks whose code solves it.
 
-The problem (:func:`gearmesh.ltca.solve_contact`): points i of one row with unloaded separations
+The problem (:func:`gearmesh.ltca_solve.solve_contact`): points i of one row with unloaded separations
 g_i (m; NaN or inf where no point can touch) and linear compliances c_i (m/N, plus the contact
 law's linear part) under the transverse force F (N); find the approach δ with Σ q_i(δ) = F, where a
 point with g_i < δ carries q_i > 0 solving c_i·q + a·q^m = δ − g_i (the local contact law
@@ -63,7 +63,7 @@ def solve_rows(gap, compliance, force, law):
 
 def invert_law(d, c, coef: float, m: float, *args, **kwargs):
     """q ≥ 0 with c·q + coef·q^m = d and dq/dd, elementwise (0 where d ≤ 0), each by brentq: the
-    straightforward form of :func:`gearmesh.ltca._invert` and :func:`gearmesh.ltca.invert_tabulated`."""
+    straightforward form of :func:`gearmesh.ltca_solve._invert` and :func:`gearmesh.ltca_solve.invert_tabulated`."""
     d = np.asarray(d, dtype=float)
     c = np.broadcast_to(np.asarray(c, dtype=float), d.shape)
     q, dq = np.zeros(d.shape), np.zeros(d.shape)
@@ -76,7 +76,7 @@ def invert_law(d, c, coef: float, m: float, *args, **kwargs):
 def log_universal_root(u, m: float):
     """ln X of the root X of X + X^m = e^u, elementwise, each by brentq in ln X between the bounds
     the larger term gives (it is between y/2 and y): the straightforward form of
-    :func:`gearmesh.ltca.log_universal_inverse`."""
+    :func:`gearmesh.ltca_solve.log_universal_inverse`."""
     u = np.asarray(u, dtype=float)
     out = np.empty(u.shape)
     for i, ui in np.ndenumerate(u):
@@ -86,7 +86,7 @@ def log_universal_root(u, m: float):
 
 
 def _exact_form(original):
-    """:func:`solve_rows` with :func:`gearmesh.ltca.solve_contact`'s signature and returns."""
+    """:func:`solve_rows` with :func:`gearmesh.ltca_solve.solve_contact`'s signature and returns."""
     def solve(gap, compliance, force, law, *args, **kwargs):
         q, delta, dq = solve_rows(gap, compliance, force, law)
         return q, delta, dq.sum(axis=1), 1
@@ -94,7 +94,7 @@ def _exact_form(original):
 
 
 def _tabulated_form(original):
-    """:func:`solve_rows` with :func:`gearmesh.ltca.solve_contact_tabulated`'s signature and returns."""
+    """:func:`solve_rows` with :func:`gearmesh.ltca_solve.solve_contact_tabulated`'s signature and returns."""
     def solve(gap, compliance, force, law, *args, **kwargs):
         return solve_rows(gap, compliance, force, law)
     return solve
@@ -114,7 +114,7 @@ def replace_contact_solvers():
 
 def exact_for_tabulated():
     """A context in which every gearmesh call of ``solve_contact_tabulated`` runs the package's exact
-    :func:`gearmesh.ltca.solve_contact` instead (its Newton on every point's own inversion, no table):
+    :func:`gearmesh.ltca_solve.solve_contact` instead (its Newton on every point's own inversion, no table):
     the tabulated inversion switched off."""
     from gearmesh.ltca_solve import solve_contact
 

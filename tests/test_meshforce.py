@@ -1,5 +1,5 @@
 """The mesh force table (gearmesh.meshforce) and the compiled load sums it is made of
-(gearmesh.ltca.load_sums): against each point's contact law inverted on its own by Newton's
+(gearmesh.ltca_solve.load_sums): against each point's contact law inverted on its own by Newton's
 method, for both contact laws, and beyond the universal inverse's table."""
 
 from __future__ import annotations
@@ -28,7 +28,7 @@ def geom():
 @pytest.mark.parametrize("law", ["palmgren", "linear"])
 def test_table_is_the_sum_of_each_points_own_inversion(geom, law):
     """F, dF/dx and the entering pair's load at every (row, approach): Σ over the points of the
-    root of c·q + coef·q^m = x − g by Newton per point (:func:`gearmesh.ltca._invert`), to 1e-12."""
+    root of c·q + coef·q^m = x − g by Newton per point (:func:`gearmesh.ltca_solve._invert`), to 1e-12."""
     layout = table_layout(geom, positions=16, points=20, contact_law_name=law)
     params = np.zeros((2, 6))
     params[0] = [0.0, 15e-6, 0.0, 2e-3, 8e-6, 5e-3]

@@ -234,7 +234,7 @@ def test_every_door_defaults_to_the_robust_objective_over_the_tolerance_samples(
 
 def _straightforward_criteria(model, torques, params, lead) -> dict[str, np.ndarray]:
     """One manufactured gear's criteria (T, ...) the straightforward way, as main's ltca_criteria
-    computed them: gaps from the separation basis, the exact solve (ltca.solve_contact, cold) on
+    computed them: gaps from the separation basis, the exact solve (ltca_solve.solve_contact, cold) on
     every grid point, the stresses by contact_stress and iso_root_stress_slices of the loads."""
     from gearmesh.deflection import mesh_misalignment
     from gearmesh.ltca_solve import solve_contact

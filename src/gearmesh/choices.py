@@ -83,7 +83,7 @@ FORCE_LINES = {
 #: Long-life conditions of the ISO 6336-2/-3:2019 life factors Z_NT and Y_NT (pair-file key
 #: ``life_factor_conditions``): 'normal' takes the standards' line down to 0.85 at 10¹⁰ load
 #: cycles, 'optimum' (optimum lubrication, material, manufacturing and experience) holds 1.0
-#: beyond the knee (:func:`gearmesh.rating.life_factor_contact`).
+#: beyond the knee (:func:`gearmesh.rating_factors.life_factor_contact`).
 LIFE_FACTOR_CONDITIONS = ("normal", "optimum")
 DEFAULT_LIFE_FACTOR_CONDITIONS = "normal"
 

@@ -144,8 +144,9 @@ def point_compliance(geom: PairGeometry, pair_table: PairSliceTable,
     s : array_like
         Positions along the transverse line of action from A, m.
     region : array_like of int
-        Region of each point (:data:`gearmesh.tca.REGION_FLANK`, tip edges :data:`gearmesh.tca.REGION_APPROACH_TIP`,
-        :data:`gearmesh.tca.REGION_RECESS_TIP`), shaped like ``s``.
+        Region of each point (:data:`gearmesh.separation.REGION_FLANK`, tip edges
+        :data:`gearmesh.separation.REGION_APPROACH_TIP`, :data:`gearmesh.separation.REGION_RECESS_TIP`),
+        shaped like ``s``.
     rho_pinion, rho_gear : array_like
         Touched roll lengths (radii of curvature) on pinion and gear, m, shaped like ``s``.
     with_hertz : bool, default False

@@ -19,7 +19,7 @@ at an approach x is its own law inverted,
     q_i(x, r) = f_i⁻¹((x − g_i(r))₊),   f_i(q) = c_i·q + δ_c(q),
 
 and the mesh force is their sum F(x, r) = Σ_i q_i. For a given force its inverse is the LTCA
-(:func:`gearmesh.ltca.solve_contact` solves Σ q_i(x) = F for x), so the quasi-static limit of
+(:func:`gearmesh.ltca_solve.solve_contact` solves Σ q_i(x) = F for x), so the quasi-static limit of
 a simulation driven by F(x, r) is the LTCA's loaded TE, and its tangent dF/dx at the static
 approach is the LTCA's loaded mesh stiffness. What the table adds is everything away from the
 static state: an entering tooth pair whose tip edge touches *before* A when the pairs in mesh
@@ -236,7 +236,7 @@ class TableLayout:
     def gaps(self, params=None, lead_slope=(0.0, 0.0)) -> np.ndarray:
         """Unloaded separations (m) of every point, (..., P+1, M), inf where no candidate, for
         modification parameters ``params`` (..., 2, 6) m (default the pair's own) and lead slopes
-        ``lead_slope`` (..., 2) m (:func:`gearmesh.tca.basis_gap`: no new geometry)."""
+        ``lead_slope`` (..., 2) m (:func:`gearmesh.separation.basis_gap`: no new geometry)."""
         grid = self.grid
         rows = self.roll.size
         if params is None:

@@ -9,7 +9,7 @@ The event
 ---------
 Under load the pairs already in mesh are compressed by their approach δ(roll) (the LTE);
 the entering tooth pair still has its unloaded separation g(roll, z) — flank points in the
-active zone and the mating tip edge outside it (:func:`gearmesh.tca.separation_basis`),
+active zone and the mating tip edge outside it (:func:`gearmesh.separation.separation_basis`),
 with both gears' modifications and lead slope errors. The entering pair first touches at
 the first roll where
 

@@ -56,12 +56,12 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
 
     The LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from its separation basis (no new
     geometry). Each (row, torque, position) is one contact problem on the position's candidate points, solved with the
-    tabulated contact law (:func:`gearmesh.ltca.solve_contact_tabulated`: the loads of :func:`gearmesh.ltca.solve_contact`
-    to its tolerance). The stresses are per point of the grid a fixed function of its line load w — the Hertzian peak
-    p0 = √(w E*/(π R)) (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's local root stress
-    σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`), R and Y_F Y_S those of the point's roll
-    lengths — so each is evaluated once at w = 1 and scaled: p0(w) = √w · p0(1), σ(w) = w · σ(1) (the same quantities,
-    not an approximation).
+    tabulated contact law (:func:`gearmesh.ltca_solve.solve_contact_tabulated`: the loads of
+    :func:`gearmesh.ltca_solve.solve_contact` to its tolerance). The stresses are per point of the grid a fixed function
+    of its line load w — the Hertzian peak p0 = √(w E*/(π R)) (:func:`gearmesh.stress.contact_stress`) and ISO 6336-3's
+    local root stress σ = w cos α_t Y_F Y_S / m_n (:func:`gearmesh.stress.iso_root_stress_slices`), R and Y_F Y_S those
+    of the point's roll lengths — so each is evaluated once at w = 1 and scaled: p0(w) = √w · p0(1), σ(w) = w · σ(1)
+    (the same quantities, not an approximation).
 
     Parameters
     ----------
@@ -137,7 +137,7 @@ def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force
     """Loads (C, T, P, M) N and approach (C, T, P) m of C gears with separations ``gap`` (C, P, M),
     or (C, T, P, M) each torque's own, at the points of P positions (compliance (P, M) m/N) under
     the transverse forces ``force`` (T,) N: every row one contact problem of
-    :func:`gearmesh.ltca.solve_contact_tabulated`.
+    :func:`gearmesh.ltca_solve.solve_contact_tabulated`.
 
     With ``samples`` S > 1 the gears come in runs of S manufactured gears of one design, the
     first the nominal. A sample's separations differ from its nominal's by its deviations

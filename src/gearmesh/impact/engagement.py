@@ -29,7 +29,7 @@ def simulate_engagement(model: ImpactModel, torque: float, speed_rpm: float, par
     The two-inertia torsional system in its relative coordinate x (transverse approach along
     the line of action, gear held): m_eq·ẍ = F_bt − F_mesh(x, τ(t)), τ advancing at r_b1·Ω1,
     F_mesh the LTCA contact force of every point of every pair (the entering one included) at
-    approach x (:func:`gearmesh.ltca.solve_contact`'s point laws, inverted directly). No
+    approach x (:func:`gearmesh.ltca_solve.solve_contact`'s point laws, inverted directly). No
     damping: the energy method is conservative. It starts in static equilibrium a little before
     the touch (x = δ, ẋ = dδ/dt), integrates (scipy solve_ivp, RK45) through the touch for
     ``cycles_after`` periods of the mesh's natural frequency √(k/m_eq), and reports over the

@@ -658,7 +658,7 @@ def _force_curve(model: ImpactModel, rel: np.ndarray, comp: np.ndarray, dmax: np
     flat = (rk // levels) * length + j
     x = d.reshape(-1)[rk] - e.reshape(-1)[flat]  # > 0 by construction
     if law.coefficient:
-        # the universal inverse of :func:`gearmesh.ltca.invert_tabulated`, with each slice's
+        # the universal inverse of :func:`gearmesh.ltca_solve.invert_tabulated`, with each slice's
         # scales taken once per slice rather than once per (slice, level)
         log_q, log_cq = law_scales(c, law.coefficient, law.exponent)
         v = log_universal_inverse(np.log(x) - log_cq.reshape(-1)[flat], law.exponent)
