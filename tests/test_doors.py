@@ -257,3 +257,18 @@ def test_every_function_defaults_to_the_declared_choice():
                 if p.default != declared[p.name]:
                     wrong.append(f"{module.__name__}.{fname}({p.name}={p.default!r})")
     assert seen >= 15 and not wrong, wrong
+
+
+@pytest.mark.workflow
+def test_every_result_names_the_deflections_it_includes(doors):
+    """The gear bodies and the system deflection (shafts and bearings) each result was computed with,
+    named in the file as the physics layer states them: the LTCA, the impact stage, the dynamics and
+    the rating."""
+    from gearmesh.body import describe_body
+    from gearmesh.deflection import describe_deflection
+
+    geom = pair_geometry(load_pair(_pair_file(doors)))
+    for stage in ("ltca", "impact", "dynamics", "rating"):
+        attrs = read_dataset(doors / "results/doors" / PAIR / f"standard/{stage}.nc").attrs
+        assert attrs["gear_body"] == describe_body(geom), stage
+        assert attrs["system_deflection"] == describe_deflection(geom), stage

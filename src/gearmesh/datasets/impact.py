@@ -12,7 +12,9 @@ from typing import Any, Sequence
 import numpy as np
 import xarray as xr
 
+from ..body import describe_body
 from ..choices import IMPACT_INDEX
+from ..deflection import describe_deflection
 from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from . import shared_torques, variant_names
@@ -140,7 +142,8 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
     _add_tolerance_spread(ds, model, judged, tolerances, design, energy_velocity)
     ds.attrs.update({"variant": variant, "driver": driver, "torque_on": on, "energy_velocity": energy_velocity,
                      "contact_law": model.ltca.law.name, "tooth_model": model.ltca.method,
-                     "design_speed_rpm": design,
+                     "design_speed_rpm": design, "gear_body": describe_body(model.geom),
+                     "system_deflection": describe_deflection(model.geom),
                      "displacement_convention": ("transverse along the line of action, r_b1 * dphi_1 with the gear "
                                                  "held; forces transverse (F_bt = T1/r_b1)")})
     return name_force_lines(ds, "transverse")

@@ -14,6 +14,8 @@ from typing import Any, Mapping, Sequence
 import numpy as np
 import xarray as xr
 
+from ..body import describe_body
+from ..deflection import describe_deflection
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry
 from ..pairfile import missing_key, pair_notes
@@ -303,7 +305,8 @@ def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: floa
               "gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair")}
     ds = xr.Dataset(data_vars=data, coords=coords)
     ds.attrs.update({"speed_rpm": float(speed_rpm), "application_factor": float(application_factor),
-                     "factor_method": method, "rating_notes": "; ".join(rows[0].notes)})
+                     "factor_method": method, "rating_notes": "; ".join(rows[0].notes),
+                     "gear_body": describe_body(geom), "system_deflection": describe_deflection(geom)})
     return ds
 
 

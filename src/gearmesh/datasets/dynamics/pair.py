@@ -12,6 +12,7 @@ import numpy as np
 import xarray as xr
 
 from ...body import describe_body
+from ...deflection import describe_deflection
 from ...dynamics import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, FIRST_PART_AFTER_A, LOW_FLUCTUATION_BEARING,
                          GearModel, SolverSettings, SweepResult, pair_model, require_dynamics_data, resonance_band,
                          simulate)
@@ -353,6 +354,7 @@ def _sweep_attrs(pair: GearPair, geom: PairGeometry, exc: str, settings: SolverS
         "damping_ratio_meaning": DAMPING_MEANING,
         "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
         "gear_body": describe_body(geom),
+        "system_deflection": describe_deflection(geom),
         "steady_state": (f"periodic steady state by shooting (Newton on the one-period map), then "
                          f"{settings.settle_cycles} periods, then {record_cycles} recorded; the physical-time "
                          f"transient ({transient_tau} time constants of the slowest mode) where shooting does not "
