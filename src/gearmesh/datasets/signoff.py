@@ -21,9 +21,10 @@ Every criterion judges on one ``basis``:
 Beside the worst case, as columns and not as criteria: the median and the 90th percentile over the
 population (``median_*``, ``p90_*``) and, gear for gear, the share of the population's gears that
 are worse than the reference made with the same deviations (``share_worse_*``). The verdict is
-checked on the held-out gears (their own seed, never seen by an optimiser): ``heldout_holds`` and,
-where it does not hold, the first held-out gear that breaks it (``heldout_breaking_gear``; write it
-as a pair file with ``gearmesh manufactured``); ``meets_all`` holds only where both hold.
+checked on the held-out gears (their own seed, never seen by an optimiser): ``heldout_holds`` (the
+held-out gears judged alone: meets when every one meets the criteria) and, where one does not, the
+first held-out gear that fails (``heldout_breaking_gear``; write it as a pair file with ``gearmesh
+manufactured``); ``meets_all`` holds only where both hold.
 
 The criteria compare each variant with the reference variant at the same torque:
 
@@ -303,8 +304,9 @@ def _population_verdict(names: list[str], made: list[dict], ref: int, k_orders: 
         held = [_heldout_verdict(m["heldout"], w_ref, k_orders, factors, impact_factor, worst_impact_factor)
                 for m in made]
         holds = np.array([h[0] for h in held])
-        out["heldout_holds"] = variable(dims, _flag(holds, ref), "1", "the verdict on the basis holds on every "
-                                        "held-out gear (their own seed, never seen by an optimiser)",
+        out["heldout_holds"] = variable(dims, _flag(holds, ref), "1", "the held-out gears (their own seed, never "
+                                        "seen by an optimiser) judged alone: meets when every one meets the "
+                                        "criteria (a meets verdict holds there), fails when one does not",
                                         flag_values=_FLAG_VALUES, flag_meanings=_FLAG_MEANINGS)
         out["heldout_breaking_gear"] = variable(dims, np.array([h[1] for h in held], dtype=np.int64), "1",
                                                 "the first held-out gear that breaks the verdict (-1: none; "
