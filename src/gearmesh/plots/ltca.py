@@ -100,7 +100,7 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
         mesh = ax.pcolormesh(z_edges, edges * MM, np.where(np.isfinite(grid), grid, -1.0), cmap=cmap, vmin=0,
                              vmax=top, shading="flat")
         for name, ls in (("rho_sap", "--"), ("rho_eap", "-")):
-            ax.axhline(float(ds[name][0]) * MM, color="tab:cyan", ls=ls, lw=0.9)
+            ax.axhline(float(ds[name][0]) * MM, color="tab:cyan", ls=ls, lw=1.5, zorder=3)
         sel = ds.isel(torque=k)
         ax.set_title(f"T1 = {number(float(sel.torque))} N m\nmax {number(float(sel.max_line_load_cycle) * 1e-3)} N/mm",
                      fontsize=9)
@@ -110,6 +110,9 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
                            aspect=30)
         bar.set_label("largest line load over the mesh cycle (N/mm)" + (";\ngrey (left end): no contact" if apart else ""),
                       fontsize=8)
+    # the pattern spans SAP to tip: a margin beyond both, so their lines are not hidden by the frame
+    sap, eap = float(ds["rho_sap"][0]) * MM, float(ds["rho_eap"][0]) * MM
+    axes[0][0].set_ylim(sap - 0.03 * (eap - sap), eap + 0.03 * (eap - sap))
     axes[0][0].set_ylabel("pinion roll length ρ1 (mm); dashed SAP, solid tip")
     fig.suptitle(_title(ds, "loaded contact pattern on the pinion flank"))
     return _save(fig, path)
