@@ -384,6 +384,34 @@ def test_tabulated_solve_equals_the_exact_solve_from_any_start(pair, law_name):
         assert np.all((qt > 0) == (dq > 0)) and np.all(qt[~np.isfinite(gap)] == 0)
 
 
+def test_the_commands_differences_from_a_study_are_its_listed_overrides_alone(pair):
+    """``gearmesh optimise`` runs a study's section (commands._optimise_section): given only its
+    design torque, every key is the declared default and the run resolves to a study's with an
+    empty section (and the command's lead class); the differences are the listed ones — the
+    design torque the spectrum's middle, weights the duty-cycle mean, no samples the nominal."""
+    from gearmesh.cli import CLI_LEAD_GRADE, build_parser
+    from gearmesh.commands import _optimise_section
+    from gearmesh.schema import defaults, jsonable
+    from gearmesh.settings import Constraints, Optimise, Tolerances
+
+    path = str(ROOT / "config/pairs/helical_z29_71_m5.yaml")
+    args = build_parser().parse_args(["optimise", path, "--torque-Nm", "1000"])
+    section, tolerances = _optimise_section(args, None, None)
+    declared = defaults(Optimise)
+    assert set(section) <= set(declared) and "constraints" in section
+    assert {k: jsonable(v) for k, v in section.items()} == {k: declared[k] for k in section}
+    assert section["constraints"] == defaults(Constraints)
+    assert tolerances == {"grade": CLI_LEAD_GRADE, "samples": defaults(Tolerances)["samples"],
+                          "sampling": defaults(Tolerances)["sampling"]}
+    study = run_settings(pair, tolerances={"grade": CLI_LEAD_GRADE})[1]
+    assert run_settings(pair, **section, tolerances=tolerances)[1] == study
+    args = build_parser().parse_args(["optimise", path, "--torques-Nm", "400,1000,1600", "--weights", "1,2,1",
+                                      "--tolerance-samples", "0"])
+    section, tolerances = _optimise_section(args, [400.0, 1000.0, 1600.0], [1.0, 2.0, 1.0])
+    assert (section["torque_Nm"], section["statistic"], section["tolerance_statistic"]) == (1000.0, "mean", None)
+    assert tolerances["samples"] == 0
+
+
 def test_every_door_judges_the_criteria_over_the_manufactured_population(pair, monkeypatch):
     """Issue 27: the loaded-contact criteria over the manufactured gears is the one declared
     default (settings.Constraints), and the schema, the checked settings, the study's optimise
