@@ -24,7 +24,6 @@ from gearmesh.datasets.stiffness import stiffness_dataset
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import GearPair, Material, pair_geometry
 from gearmesh.pairfile import load_pair, pair_from_dict, variant_pair
-from gearmesh.optimise import check_settings
 from gearmesh.stiffness import mesh_stiffness
 from pairs import low_fluctuation_pair1
 from test_limits import REFUSAL_BYTES, _refused  # one line on the field, bounded memory
@@ -204,11 +203,12 @@ def test_an_absurd_optimisation_torque_is_named_as_a_load(pair):
 # --- issue 25: each limit declared once ---------------------------------------------------------
 
 
-def test_the_population_cap_is_the_declared_one():
+def test_the_population_cap_is_the_declared_one(pair):
     """settings.Optimise capped the population at 10 000, optimise.check_settings at 100 000."""
-    check_settings(population=10000, keep_elitism=2)
-    _refused(lambda: check_settings(population=50000), "population", "10000")
-    _refused(lambda: check_settings(generations=50000), "generations", "10000")
+    nominal = {"objective": "force", "tolerance_statistic": None, "torque_Nm": 100}
+    assert run_settings(pair, population=10000, keep_elitism=2, **nominal)[1].population == 10000
+    _refused(lambda: run_settings(pair, population=50000, **nominal), "population", "10000")
+    _refused(lambda: run_settings(pair, generations=50000, **nominal), "generations", "10000")
 
 
 def _module_level_assignments(path: Path) -> list[str]:

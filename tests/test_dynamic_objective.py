@@ -22,6 +22,8 @@ from gearmesh.pairfile import load_pair
 from gearmesh.meshforce import mesh_force_table
 from gearmesh.surface import MODIFICATION_FIELDS, modification_parameters
 
+from test_optimise import problem_of  # the run settings through the declaration
+
 ROOT = Path(__file__).resolve().parents[1]
 SPEEDS = (2000.0, 5000.0, 9000.0)
 TORQUES = (400.0, 1000.0)
@@ -90,7 +92,7 @@ def test_models_share_cached_matrices_only_where_their_inputs_are_equal(geom, se
         np.testing.assert_array_equal(fresh.__dict__[name], a.__dict__[name])
     np.testing.assert_array_equal(b.modes()["eigenvalue"], b.modes(np.array([b.meshes[0].k_mean]))["eigenvalue"])
     model = im.impact_model(geom, points=16, window_positions=24, face_samples=65)
-    prob = op.problem(model, op.check_settings(population=4, generations=1))
+    prob = problem_of(model, population=4, generations=1)
     ev = _Evaluator(prob)
     genes = np.array([[g.low + 0.3 * (g.high - g.low) for g in prob.genes], [g.high for g in prob.genes]])
     first = ev(genes)
@@ -115,11 +117,12 @@ def test_dynamic_objective_and_constraint_drive_the_evaluation(geom):
     constraint adds penalty · f_std · (max over torques of K_v / K_v,std / factor − 1)₊ exactly, and
     the standard gear itself is feasible at factor 1."""
     model = im.impact_model(geom, points=16, window_positions=24, face_samples=65)
-    common = dict(torques=TORQUES, torque=1000.0, population=4, generations=1, dynamic_speeds=SPEEDS, backlash=60e-6)
-    dyn = op.problem(model, op.check_settings(objective="dynamic", **common))
+    common = dict(torques_Nm=list(TORQUES), torque_Nm=1000.0, population=4, generations=1,
+                  dynamic_speeds_rpm=list(SPEEDS), backlash_um=60)
+    dyn = problem_of(model, objective="dynamic", **common)
     std = dyn.standard
     assert std.objective[0] == pytest.approx(std.value[0, 0].max(), rel=1e-12)
-    con = op.problem(model, op.check_settings(objective="robust", dynamic_factor=1.0, **common))
+    con = problem_of(model, objective="robust", constraints={"dynamic_factor": 1.0}, **common)
     np.testing.assert_allclose(con.standard.dynamic_factor, std.value[:, 0], rtol=1e-12)
     ev = op.evaluate(con, np.stack([np.zeros((2, 6)), RELIEF]))
     assert ev.violation[0] == 0.0

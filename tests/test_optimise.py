@@ -26,7 +26,6 @@ from gearmesh.pairfile import MODIFICATION_UNITS, load_pair
 from gearmesh.io import check_documented
 from gearmesh.plots.optimise import plot_convergence, plot_modification, plot_pareto
 from gearmesh.surface import MODIFICATION_FIELDS
-from gearmesh.tolerance import tolerance_model
 
 ROOT = Path(__file__).resolve().parents[1]
 COARSE = {"points": 16, "window_positions": 24, "face_samples": 65}
@@ -42,9 +41,28 @@ def model(pair):
     return im.impact_model(pair_geometry(pair), **COARSE)
 
 
-def _run(model, tolerance=None, **settings):
-    settings = {"population": 10, "generations": 6, **settings}
-    return op.optimise(op.problem(model, op.check_settings(**settings), tolerance=tolerance))
+#: The manufactured population of the robust runs: ISO 1328-1 class 6 lead, ± 2 µm tip relief and crowning.
+ROBUST_TOLERANCES = {"grade": 6, "modification": {"tip_relief_um": 2, "crowning_um": 2}}
+
+
+def run_settings_of(model, tolerances=None, **section):
+    """The run settings and tolerance model of a study's optimisation ``section`` (its config keys)
+    for ``model``'s pair, through the declaration as every door builds them
+    (:func:`run_settings`); unless given, the nominal single-point form (objective force, no
+    tolerance statistic)."""
+    section = {"objective": "force", "tolerance_statistic": None, **section}
+    _, settings, _, _, tol = run_settings(model.geom.pair, tolerances=tolerances, **section)
+    return settings, tol
+
+
+def problem_of(model, tolerances=None, **section):
+    """The optimisation problem of ``model`` with the run settings of ``section`` (:func:`run_settings_of`)."""
+    settings, tol = run_settings_of(model, tolerances, **section)
+    return op.problem(model, settings, tolerance=tol)
+
+
+def _run(model, tolerances=None, **section):
+    return op.optimise(problem_of(model, tolerances, **{"population": 10, "generations": 6, **section}))
 
 
 @pytest.fixture(scope="module")
@@ -104,11 +122,11 @@ def test_ga_beats_random_search_with_the_same_budget_over_seeds(model, pair):
     same number of distinct evaluations. 16 x 12: with 10 x 6 (about 55 evaluations) the GA has
     hardly begun to select and a random search's lucky draws decide; the GA's lead grows with the
     budget (40 x 30: README)."""
-    tol = tolerance_model(model.geom, grade=6, modification={"tip_relief_um": 2, "crowning_um": 2})
     ga_best, random_best = [], []
     for seed in range(5):
-        res = _run(model, tolerance=tol, seed=seed, population=16, generations=12, objective="robust", torque=400.0,
-                   torques=(400.0, 1600.0), tolerance_samples=2, tolerance_statistic="max", random_baseline=True)
+        res = _run(model, {**ROBUST_TOLERANCES, "samples": 2, "seed": seed}, seed=seed, population=16, generations=12,
+                   objective="robust", torque_Nm=400.0, torques_Nm=[400.0, 1600.0], tolerance_statistic="max",
+                   random_baseline=True)
         assert res.baseline.evaluations == res.evaluations
         ga_best.append(res.history.best[-1])
         random_best.append(res.baseline.history.best[-1])
@@ -116,24 +134,26 @@ def test_ga_beats_random_search_with_the_same_budget_over_seeds(model, pair):
 
 
 def test_fixed_genes_robust_objective_and_constraints(model):
-    res = _run(model, objective="robust", torque=400.0, torques=(400.0, 1600.0), generations=2, lte_factor=1.2, seed=1)
+    res = _run(model, objective="robust", torque_Nm=400.0, torques_Nm=[400.0, 1600.0], generations=2,
+               constraints={"lte_factor": 1.2}, seed=1)
     prob = res.problem
     assert len(prob.genes) == 6
     ev = op.evaluate(prob, res.optimum[None])
     expected = ev.force[:, 0].max(axis=1) + prob.settings.penalty * prob.standard.objective * ev.violation
     np.testing.assert_allclose(ev.objective, expected, rtol=1e-12)
     assert ev.force.shape == (1, 1, 2)
-    fixed = op.problem(model, op.check_settings(population=4, generations=1),
+    fixed = op.problem(model, run_settings_of(model, population=4, generations=1)[0],
                        fixed={"crowning_um": 0, "unmodified_lead_length_mm": 0})
     assert [g.name for g in fixed.genes] == [f"pinion.{k}" for k in op.GENE_KEYS[:4]]
-    both = op.problem(model, op.check_settings(population=4, generations=1), modify=["pinion", "gear"])
+    both = op.problem(model, run_settings_of(model, population=4, generations=1)[0], modify=["pinion", "gear"])
     assert len(both.genes) == 12 and {g.gear for g in both.genes} == {0, 1}
     # the mesh-in impact paper's alternative objective, |v_n| at the design point
-    slow = op.problem(model, op.check_settings(population=4, generations=1, objective="velocity"))
+    slow = op.problem(model, run_settings_of(model, population=4, generations=1, objective="velocity")[0])
     ev = op.evaluate(slow, slow.decode([[40, 40, 2, 2, 20, 10]]))
     assert ev.objective[0] == ev.velocity[0, 0, 0] > 0
     # a tight LTE factor penalises a candidate in proportion to its excess
-    strict = op.problem(model, op.check_settings(population=4, generations=1, lte_factor=1e-3))
+    strict = op.problem(model, run_settings_of(model, population=4, generations=1,
+                                                      constraints={"lte_factor": 1e-3})[0])
     ev = op.evaluate(strict, strict.decode([[40, 40, 2, 2, 20, 10]]))
     assert ev.violation[0] > 1 and ev.objective[0] > ev.force[0, 0, 0]
 
@@ -252,17 +272,19 @@ def test_load_window_is_the_run_around_the_design_torque():
     np.testing.assert_allclose(load_grid([130], 50), [50, 100, 130, 150])
 
 
+#: A robust run: the CVaR 50 % over the nominal and three samples of the worst case over three torques.
+ROBUST = {"tolerances": {**ROBUST_TOLERANCES, "samples": 3, "seed": 5}, "seed": 5, "objective": "robust",
+          "torque_Nm": 1000.0, "torques_Nm": [400.0, 1000.0, 1600.0], "tolerance_statistic": "cvar",
+          "tolerance_level_percent": 50.0, "load_window_step_Nm": 100.0}
+
+
 @pytest.fixture(scope="module")
 def robust(model):
-    tol = tolerance_model(model.geom, grade=6, modification={"tip_relief_um": 2, "crowning_um": 2})
-    return _run(model, tolerance=tol, seed=5, objective="robust", torque=1000.0, torques=(400.0, 1000.0, 1600.0),
-                tolerance_samples=3, tolerance_statistic="cvar", tolerance_level=50.0, load_window_step=100.0)
+    return _run(model, **ROBUST)
 
 
 def test_robust_run_is_bit_identical_and_its_objective_is_the_two_step_statistic(model, robust):
-    tol = robust.problem.tolerance
-    again = _run(model, tolerance=tol, seed=5, objective="robust", torque=1000.0, torques=(400.0, 1000.0, 1600.0),
-                 tolerance_samples=3, tolerance_statistic="cvar", tolerance_level=50.0, load_window_step=100.0)
+    again = _run(model, **ROBUST)
     assert np.array_equal(robust.optimum, again.optimum)
     for name, value in robust.history.arrays().items():
         assert np.array_equal(value, again.history.arrays()[name], equal_nan=True), name

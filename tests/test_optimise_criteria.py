@@ -28,16 +28,17 @@ from gearmesh.ltca_model import ltca_model
 from gearmesh.plots.optimise import plot_pareto
 from gearmesh.stress import contact_stress, iso_root_stress_slices
 
-from test_optimise import COARSE, ROOT, model, pair  # noqa: F401 (the coarse impact model and its pair, as fixtures)
+from test_optimise import (COARSE, ROBUST_TOLERANCES, ROOT, model, pair,  # noqa: F401 (the coarse impact model and
+                           problem_of, run_settings_of)  # its pair, as fixtures; settings through the declaration)
 
 TORQUES = (400.0, 1000.0, 1600.0)
 CANDIDATE = [40, 40, 2, 2, 20, 10]  # µm / mm: reliefs, lengths, crowning, unmodified lead
 
 
-def _problem(model, **settings):
-    settings = {"population": 8, "generations": 3, "objective": "robust", "torque": 1000.0, "torques": TORQUES,
-                **settings}
-    return op.problem(model, op.check_settings(**settings))
+def _problem(model, **section):
+    section = {"population": 8, "generations": 3, "objective": "robust", "torque_Nm": 1000.0,
+               "torques_Nm": list(TORQUES), **section}
+    return op.problem(model, run_settings_of(model, **section)[0])
 
 
 def test_lte_harmonics_recover_the_amplitudes_of_a_sampled_cycle():
@@ -113,13 +114,13 @@ def test_worst_ratio_is_at_most_one_exactly_when_no_value_exceeds_its_reference(
 def test_penalty_is_zero_exactly_when_the_criterion_holds(model, name, factor):
     free = _problem(model)
     params = free.decode([CANDIDATE])
-    ev = _evaluate(_problem(model, pressure_factor=1e6), params, None)  # the criteria, no penalty yet
-    std = _problem(model, pressure_factor=1e6).standard
+    ev = _evaluate(_problem(model, constraints={"pressure_factor": 1e6}), params, None)  # the criteria, no penalty yet
+    std = _problem(model, constraints={"pressure_factor": 1e6}).standard
     ratio = float(_ratios(free.settings, ev.force[:, 0], ev.lte_peak_to_peak, ev.max_line_load,
                              ev.dynamic_factor, ev.criteria, std)[name][0])
     assert math.isfinite(ratio) and ratio > 0
-    loose = _problem(model, **{factor: ratio * (1 + 1e-9)})
-    tight = _problem(model, **{factor: ratio * (1 - 1e-3)})
+    loose = _problem(model, constraints={factor: ratio * (1 + 1e-9)})
+    tight = _problem(model, constraints={factor: ratio * (1 - 1e-3)})
     ev_loose, ev_tight = op.evaluate(loose, params), op.evaluate(tight, params)
     assert ev_loose.violation[0] == 0.0
     assert ev_tight.violation[0] == pytest.approx(1 / (1 - 1e-3) - 1, rel=1e-6)
@@ -131,27 +132,27 @@ def test_safety_factor_penalty_is_zero_exactly_when_the_minimum_holds(model, key
     """S_H, S_F of ISO 6336-2/-3 method B with the LTCA's load factors: the penalty vanishes at
     S = S_min and grows as S_min/S − 1 beyond; the crowned candidate's K_Hβ lowers its S below the
     unmodified pair's (whose own K_Hα is 1 by definition)."""
-    probe = _problem(model, pressure_factor=1e6)
+    probe = _problem(model, constraints={"pressure_factor": 1e6})
     params = probe.decode([CANDIDATE])
     crit = _evaluate(probe, params, None).criteria
     s = op.safety_factors(probe, crit, probe.standard.criteria)[which]
     s_std = op.safety_factors(probe, probe.standard.criteria, probe.standard.criteria)[which]
     assert s.shape == (1, 3) and np.all(s < s_std) and np.all(np.diff(s_std[0]) < 0)  # more torque, less safety
     worst = float(s.min())
-    assert op.evaluate(_problem(model, **{key: worst * (1 - 1e-9)}), params).violation[0] == 0.0
-    assert op.evaluate(_problem(model, **{key: worst * 1.01}), params).violation[0] == pytest.approx(0.01, rel=1e-6)
+    assert op.evaluate(_problem(model, constraints={key: worst * (1 - 1e-9)}), params).violation[0] == 0.0
+    assert op.evaluate(_problem(model, constraints={key: worst * 1.01}), params).violation[0] == pytest.approx(0.01, rel=1e-6)
 
 
 def test_the_standard_gear_meets_every_relative_criterion_at_factor_one(model):
-    prob = _problem(model, pressure_factor=1.0, root_stress_factor=1.0, harmonic_factor=1.0, impact_factor=1.0,
-                    worst_impact_factor=1.0)
+    prob = _problem(model, constraints={"pressure_factor": 1.0, "root_stress_factor": 1.0, "harmonic_factor": 1.0,
+                                        "impact_factor": 1.0, "worst_impact_factor": 1.0})
     ev = op.evaluate(prob, np.zeros((1, 2, 6)))
     assert ev.violation[0] == 0.0
 
 
 def test_nsga2_front_over_three_objectives_is_non_dominated_and_drawn(model, tmp_path):
     prob = _problem(model, method="nsga2", pareto_objectives=("impact", "te_harmonics", "root_stress"),
-                    population=10, generations=3, seed=1, root_stress_factor=1.1)
+                    population=10, generations=3, seed=1, constraints={"root_stress_factor": 1.1})
     res = op.optimise(prob)
     genes, pts = res.pareto
     assert pts.shape[1] == 3 and op.pareto_mask(pts).all()
@@ -179,20 +180,19 @@ def test_nsga2_front_over_three_objectives_is_non_dominated_and_drawn(model, tmp
     ({"pareto_objectives": ("lte", "impact")}, "pareto_objectives"),
     ({"pareto_objectives": ("impact",)}, "pareto_objectives"),
     ({"method": "ga", "pareto_objectives": ("impact", "pressure")}, "pareto_objectives"),
-    ({"pressure_factor": -1.0}, "constraints.pressure_factor"),
-    ({"root_stress_factor": 0.0}, "constraints.root_stress_factor"),
-    ({"harmonic_factor": float("nan")}, "constraints.harmonic_factor"),
-    ({"worst_impact_factor": "half"}, "constraints.worst_impact_factor"),
-    ({"harmonic_orders": (4,)}, "constraints.harmonic_orders"),
-    ({"harmonic_orders": (1, 1)}, "constraints.harmonic_orders"),
-    ({"S_Hmin": 0.0}, "constraints.S_Hmin"),
-    ({"S_Fmin": 11.0}, "constraints.S_Fmin"),
-    ({"S_Fmin": "1.4"}, "constraints.S_Fmin"),
+    ({"constraints": {"pressure_factor": -1.0}}, "constraints.pressure_factor"),
+    ({"constraints": {"root_stress_factor": 0.0}}, "constraints.root_stress_factor"),
+    ({"constraints": {"harmonic_factor": float("nan")}}, "constraints.harmonic_factor"),
+    ({"constraints": {"worst_impact_factor": "half"}}, "constraints.worst_impact_factor"),
+    ({"constraints": {"harmonic_orders": (4,)}}, "constraints.harmonic_orders[0]"),
+    ({"constraints": {"harmonic_orders": (1, 1)}}, "constraints.harmonic_orders"),
+    ({"constraints": {"S_Hmin": 0.0}}, "constraints.S_Hmin"),
+    ({"constraints": {"S_Fmin": 11.0}}, "constraints.S_Fmin"),
+    ({"constraints": {"S_Fmin": "1.4"}}, "constraints.S_Fmin"),
 ])
-def test_bad_criteria_settings_are_refused_naming_the_field(settings, field):
-    settings = {"method": "nsga2", **settings}
+def test_bad_criteria_settings_are_refused_naming_the_field(model, settings, field):
     with pytest.raises(GearmeshInputError) as exc:
-        op.check_settings(**settings)
+        run_settings_of(model, **{"method": "nsga2", **settings})
     assert exc.value.field == field
 
 
@@ -208,11 +208,10 @@ def test_bad_criteria_in_a_study_section_are_refused(pair, section, field):
     assert field in exc.value.field
 
 
-def test_every_door_defaults_to_the_robust_objective_over_the_tolerance_samples():
+def test_every_door_defaults_to_the_robust_objective_over_the_tolerance_samples(pair):
     """Issue 27 item 4: the study schema, the Python API and ``gearmesh optimise`` give one default:
     the robust objective, the worst case over the nominal and the tolerance samples."""
     import argparse
-    import inspect
 
     from gearmesh.cli import CLI_LEAD_GRADE, build_parser
     from gearmesh.schema import defaults
@@ -220,9 +219,9 @@ def test_every_door_defaults_to_the_robust_objective_over_the_tolerance_samples(
 
     declared = defaults(Optimise)
     assert declared["objective"] == "robust" and declared["tolerance_statistic"] == "max"
-    api = inspect.signature(run_settings).parameters
-    assert api["objective"].default == declared["objective"]
-    assert api["tolerance_statistic"].default == declared["tolerance_statistic"]
+    api = run_settings(pair, tolerances={"grade": 6})[1]  # the Python API's run, its section left to the defaults
+    assert api.objective == declared["objective"]
+    assert api.tolerance_statistic == declared["tolerance_statistic"]
     sub = next(a for a in build_parser()._actions if isinstance(a, argparse._SubParsersAction)).choices["optimise"]
     cli = {a.dest: a.default for a in sub._actions}
     assert cli["objective"] == declared["objective"]
@@ -277,13 +276,13 @@ def test_criteria_over_samples_are_the_tolerance_statistic_of_each_manufactured_
     at a time (:func:`_straightforward_criteria`), against the optimiser's tabulated batch with its
     samples started from their nominal — for the candidate and for the unmodified pair it is held
     against; without it, the nominal gear's."""
-    from gearmesh.tolerance import tolerance_model
-
-    tol = tolerance_model(model.geom, grade=6, modification={"tip_relief_um": 2, "crowning_um": 2})
-    common = {"population": 4, "generations": 1, "objective": "robust", "torque": 1000.0, "torques": TORQUES,
-              "tolerance_samples": 2, "tolerance_statistic": "max", "root_stress_factor": 1.1}
-    over = op.problem(model, op.check_settings(**common, criteria_over_samples=True), tolerance=tol)
-    nominal = op.problem(model, op.check_settings(**common, criteria_over_samples=False), tolerance=tol)
+    common = {"population": 4, "generations": 1, "objective": "robust", "torque_Nm": 1000.0,
+              "torques_Nm": list(TORQUES), "tolerance_statistic": "max"}
+    tolerances = {**ROBUST_TOLERANCES, "samples": 2}
+    over = problem_of(model, tolerances, **common, constraints={
+        "root_stress_factor": 1.1, "criteria_over_samples": True})
+    nominal = problem_of(model, tolerances, **common, constraints={
+        "root_stress_factor": 1.1, "criteria_over_samples": False})
     params = over.decode([CANDIDATE])
     rows, lead = _manufactured_rows(model, over.tolerance, params, over.population_deviations)
     assert rows.shape[0] == 3  # the nominal and two samples
@@ -385,6 +384,34 @@ def test_tabulated_solve_equals_the_exact_solve_from_any_start(pair, law_name):
         assert np.all((qt > 0) == (dq > 0)) and np.all(qt[~np.isfinite(gap)] == 0)
 
 
+def test_the_commands_differences_from_a_study_are_its_listed_overrides_alone(pair):
+    """``gearmesh optimise`` runs a study's section (commands._optimise_section): given only its
+    design torque, every key is the declared default and the run resolves to a study's with an
+    empty section (and the command's lead class); the differences are the listed ones — the
+    design torque the spectrum's middle, weights the duty-cycle mean, no samples the nominal."""
+    from gearmesh.cli import CLI_LEAD_GRADE, build_parser
+    from gearmesh.commands import _optimise_section
+    from gearmesh.schema import defaults, jsonable
+    from gearmesh.settings import Constraints, Optimise, Tolerances
+
+    path = str(ROOT / "config/pairs/helical_z29_71_m5.yaml")
+    args = build_parser().parse_args(["optimise", path, "--torque-Nm", "1000"])
+    section, tolerances = _optimise_section(args, None, None)
+    declared = defaults(Optimise)
+    assert set(section) <= set(declared) and "constraints" in section
+    assert {k: jsonable(v) for k, v in section.items()} == {k: declared[k] for k in section}
+    assert section["constraints"] == defaults(Constraints)
+    assert tolerances == {"grade": CLI_LEAD_GRADE, "samples": defaults(Tolerances)["samples"],
+                          "sampling": defaults(Tolerances)["sampling"]}
+    study = run_settings(pair, tolerances={"grade": CLI_LEAD_GRADE})[1]
+    assert run_settings(pair, **section, tolerances=tolerances)[1] == study
+    args = build_parser().parse_args(["optimise", path, "--torques-Nm", "400,1000,1600", "--weights", "1,2,1",
+                                      "--tolerance-samples", "0"])
+    section, tolerances = _optimise_section(args, [400.0, 1000.0, 1600.0], [1.0, 2.0, 1.0])
+    assert (section["torque_Nm"], section["statistic"], section["tolerance_statistic"]) == (1000.0, "mean", None)
+    assert tolerances["samples"] == 0
+
+
 def test_every_door_judges_the_criteria_over_the_manufactured_population(pair, monkeypatch):
     """Issue 27: the loaded-contact criteria over the manufactured gears is the one declared
     default (settings.Constraints), and the schema, the checked settings, the study's optimise
@@ -400,9 +427,9 @@ def test_every_door_judges_the_criteria_over_the_manufactured_population(pair, m
     schema = yaml.safe_load((ROOT / "src/gearmesh/schemas/config.schema.yaml").read_text())
     run = schema["properties"]["optimise"]["additionalProperties"]
     assert run["properties"]["constraints"]["properties"]["criteria_over_samples"]["default"] is True
-    assert op.OptimiseSettings().criteria_over_samples is True
-    assert op.check_settings().criteria_over_samples is True
-    assert op.check_settings(criteria_over_samples=False).criteria_over_samples is False
+    nominal = {"objective": "force", "tolerance_statistic": None}
+    assert run_settings(pair, **nominal)[1].criteria_over_samples is True
+    assert run_settings(pair, **nominal, constraints={"criteria_over_samples": False})[1].criteria_over_samples is False
     config = yaml.safe_load((ROOT / "config/config.yaml").read_text())
     for name, section in config["optimise"].items():
         checked = run_settings(pair, **section, impact=config.get("impact"), tolerances=config.get("tolerances"))[1]
@@ -478,13 +505,10 @@ def test_a_candidate_its_nominal_gear_refuses_is_refused_without_its_samples_con
     """Screening by the nominal gear (tolerance statistic max): a candidate whose nominal gear meets
     every constraint is scored on its samples exactly as without screening; one its nominal gear
     already refuses stays refused, its violation a lower bound of the full one (never above it)."""
-    from gearmesh.tolerance import tolerance_model
-
-    tol = tolerance_model(model.geom, grade=6, modification={"tip_relief_um": 2, "crowning_um": 2})
-    prob = op.problem(model, op.check_settings(
-        population=8, generations=1, objective="robust", torque=1000.0, torques=TORQUES, tolerance_samples=2,
-        tolerance_statistic="max", criteria_over_samples=True, harmonic_factor=1.0, pressure_factor=1.1,
-        root_stress_factor=1.1), tolerance=tol)
+    prob = problem_of(
+        model, {**ROBUST_TOLERANCES, "samples": 2}, population=8, generations=1, objective="robust", torque_Nm=1000.0,
+        torques_Nm=list(TORQUES), tolerance_statistic="max", constraints={
+            "criteria_over_samples": True, "harmonic_factor": 1.0, "pressure_factor": 1.1, "root_stress_factor": 1.1})
     rng = np.random.default_rng(3)
     genes = np.array([[g.low + (g.high - g.low) * u for g, u in zip(prob.genes, row)]
                       for row in rng.uniform(0.0, 1.0, (12, len(prob.genes)))])
@@ -505,13 +529,10 @@ def test_the_optimum_is_checked_on_its_own_box_and_a_refused_one_is_not_searched
     them (searched no further); the next, the unmodified pair itself, meets every constraint on its
     own box, and its box searched in full is the run's reference, bit for bit (the same search of
     the same gears)."""
-    from gearmesh.tolerance import tolerance_model
-
-    tol = tolerance_model(model.geom, grade=6, modification={"tip_relief_um": 2, "crowning_um": 2})
-    prob = op.problem(model, op.check_settings(
-        population=8, generations=1, objective="robust", torque=1000.0, torques=TORQUES, tolerance_samples=2,
-        tolerance_statistic="max", criteria_over_samples=True, harmonic_factor=1.0,
-        pressure_factor=1.0, root_stress_factor=1.0), tolerance=tol)
+    prob = problem_of(
+        model, {**ROBUST_TOLERANCES, "samples": 2}, population=8, generations=1, objective="robust", torque_Nm=1000.0,
+        torques_Nm=list(TORQUES), tolerance_statistic="max", constraints={
+            "criteria_over_samples": True, "harmonic_factor": 1.0, "pressure_factor": 1.0, "root_stress_factor": 1.0})
     crowned = [0, 0, 0, 0, 25, 0]  # 25 µm of crowning: the flank pressure rises well above the reference's
     genes = np.array([crowned, [0] * 6], dtype=float)
     assert np.all(prob.decode(genes[1:]) == 0.0)

@@ -372,11 +372,8 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
 
     torques = _numbers("--torques-Nm", args.torques_Nm)
     weights = _numbers("--weights", args.weights)
-    if args.torque_Nm is None and torques is None:
-        raise GearmeshInputError("--torque-Nm", None, "is required, or --torques-Nm (a load spectrum, its middle "
-                                                      "torque the design torque)")
-    # the design torque: given, or the middle torque of the spectrum (the lower of two middles)
-    design = args.torque_Nm if args.torque_Nm is not None else sorted(torques)[(len(torques) - 1) // 2]
+    section, tolerances = _optimise_section(args, torques, weights)
+    design = section["torque_Nm"]
     out = _output_pair_path(args.write_pair)
     pair, geom = _pair(args)
     if torques is not None:
@@ -389,26 +386,7 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
         handler.setFormatter(logging.Formatter("  %(message)s"))
         LOG.addHandler(handler)
         LOG.setLevel(logging.INFO)
-    samples = args.samples
-    tolerances = {"grade": args.grade, "samples": samples, "sampling": args.sampling}
-    modification = {}
-    if args.amount_tolerance_um:
-        modification |= {k: args.amount_tolerance_um for k in ("root_relief_um", "tip_relief_um", "crowning_um")}
-    if args.length_tolerance_mm:
-        modification |= {k: args.length_tolerance_mm for k in ("root_relief_length_mm", "tip_relief_length_mm")}
-    if modification:
-        tolerances["modification"] = modification
-    statistic = args.tolerance_statistic if samples else None
-    summary, ds = optimise_summary(pair, objective=args.objective, torque_Nm=design, torques_Nm=torques,
-                                   weights=weights, statistic="mean" if weights else args.statistic, on=args.on,
-                                   speed_rpm=args.speed_rpm, modify=args.modify, method=args.method, seed=args.seed,
-                                   population=args.population, generations=args.generations,
-                                   tolerance_statistic=statistic, tolerance_level_percent=args.tolerance_level_percent,
-                                   tolerances=tolerances, dynamic_speeds_rpm=_numbers("--dynamic-speeds-rpm",
-                                                                                      args.dynamic_speeds_rpm),
-                                   backlash_um=args.backlash_um,
-                                   constraints={key: getattr(args, key) for key in args.constraint_keys},
-                                   **{key: getattr(args, key) for key in args.optimise_keys})
+    summary, ds = optimise_summary(pair, **section, tolerances=tolerances)
     summary["pinion_torque_Nm"] = float(pinion_torque(pair, design, args.on))
     if args.objective == "dynamic" or args.dynamic_factor is not None:  # the candidates' dynamics
         summary.update(_backlash(geom, args.backlash_um))
@@ -418,6 +396,45 @@ def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
         summary["notes"] = [*summary.get("notes", []), f"{out} states the optimum to the drawing's resolution "
                             f"(depths 0.01 µm, lengths 0.001 mm); genes above are the optimiser's own values"]
     return summary
+
+
+def _optimise_section(args: argparse.Namespace, torques, weights) -> tuple[dict[str, Any], dict[str, Any]]:
+    """``gearmesh optimise``'s options as a study's ``optimise.NAME`` and ``tolerances:`` sections,
+    run as a study's (:func:`gearmesh.datasets.optimise.run_settings`). Every key is its declared
+    option's value (the declared default unless given), but for the command's deliberate
+    differences, made here and nowhere else:
+
+    * the design torque: ``--torque-Nm``, or the middle torque of ``--torques-Nm`` (the lower of
+      two middles);
+    * ``--weights`` make the spectrum statistic the duty-cycle mean;
+    * without tolerance samples (``--tolerance-samples 0``) the objective is the nominal alone
+      (``tolerance_statistic`` null), where a study refuses a statistic over no samples;
+    * the manufactured population is the command's options (``--grade``, class
+      :data:`gearmesh.cli.CLI_LEAD_GRADE` unless given; ± on the amounts and lengths; samples,
+      sampling), where a study has its ``tolerances:`` section."""
+    if args.torque_Nm is None and torques is None:
+        raise GearmeshInputError("--torque-Nm", None, "is required, or --torques-Nm (a load spectrum, its middle "
+                                                      "torque the design torque)")
+    # the design torque: given, or the middle torque of the spectrum (the lower of two middles)
+    design = args.torque_Nm if args.torque_Nm is not None else sorted(torques)[(len(torques) - 1) // 2]
+    tolerances = {"grade": args.grade, "samples": args.samples, "sampling": args.sampling}
+    modification = {}
+    if args.amount_tolerance_um:
+        modification |= {k: args.amount_tolerance_um for k in ("root_relief_um", "tip_relief_um", "crowning_um")}
+    if args.length_tolerance_mm:
+        modification |= {k: args.length_tolerance_mm for k in ("root_relief_length_mm", "tip_relief_length_mm")}
+    if modification:
+        tolerances["modification"] = modification
+    section = {"objective": args.objective, "torque_Nm": design, "torques_Nm": torques, "weights": weights,
+               "statistic": "mean" if weights else args.statistic, "on": args.on, "speed_rpm": args.speed_rpm,
+               "modify": args.modify, "method": args.method, "seed": args.seed, "population": args.population,
+               "generations": args.generations,
+               "tolerance_statistic": args.tolerance_statistic if args.samples else None,
+               "tolerance_level_percent": args.tolerance_level_percent,
+               "dynamic_speeds_rpm": _numbers("--dynamic-speeds-rpm", args.dynamic_speeds_rpm),
+               "backlash_um": args.backlash_um, "constraints": {key: getattr(args, key) for key in args.constraint_keys},
+               **{key: getattr(args, key) for key in args.optimise_keys}}
+    return section, tolerances
 
 
 def _output_pair_path(path: str | None):

@@ -439,6 +439,39 @@ def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "
     return out
 
 
+def settings_object(cls: type, data: Mapping[str, Any] | None, prefix: str = "") -> Any:
+    """``data`` (a study's section, or the keywords of an API call) as the frozen settings object
+    ``cls``: validated against its declaration with its defaults filled (:func:`validate`; a bad
+    value named ``prefix.KEY``), lists as tuples, a nested section as its own object. The one parse
+    of a section that every door shares."""
+    return _settings_instance(cls, validate(data or {}, object_schema(cls), prefix))
+
+
+def _settings_instance(cls: type, values: Mapping[str, Any]) -> Any:
+    """The settings object ``cls`` of validated ``values`` (keys left out: the field's default)."""
+    given = {}
+    for f in settings_fields(cls):
+        if key_of(f) not in values:
+            continue
+        value, inner = values[key_of(f)], _section_type(cls, f)
+        if inner is not None and isinstance(value, Mapping):
+            held = type_hints(cls)[f.name]
+            named = any(typing.get_origin(t) in (dict, Mapping) for t in (held, *typing.get_args(held)))
+            value = {k: _settings_instance(inner, v) for k, v in value.items()} if named else \
+                _settings_instance(inner, value)
+        given[f.name] = _frozen(value)
+    return cls(**given)
+
+
+def _frozen(value: Any) -> Any:
+    """Lists as tuples, at every depth (mappings stay mappings)."""
+    if isinstance(value, list):
+        return tuple(_frozen(v) for v in value)
+    if isinstance(value, dict):
+        return {k: _frozen(v) for k, v in value.items()}
+    return value
+
+
 def _alternatives(schema: Mapping[str, Any]) -> list[Mapping[str, Any]]:
     return [schema, *schema.get("oneOf", ()), *schema.get("anyOf", ())]
 

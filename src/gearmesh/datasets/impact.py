@@ -26,7 +26,7 @@ from ..impact.model import DRIVERS, SCENARIOS, ImpactModel, impact_model
 from ..impact.static import ImpactStatic, impact_static
 from ..pairfile import load_pair, pair_to_dict
 from ..io import name_force_lines, variable
-from ..limits import check_speeds, same_point
+from ..limits import MAX_WINDOW_TORQUES, check_speeds, same_point
 from ..ltca import MESH_ORDERS, check_torques, loaded_pinion_torques, pinion_torques
 from ..surface import MODIFICATION_FIELDS
 from ..tca import check_modifications
@@ -241,8 +241,9 @@ def _design_response(model: ImpactModel, torques, params, lead, speed: float, en
 
 
 def _add_load_grid(ds: xr.Dataset, model: ImpactModel, t1, step: float, design: float, energy_velocity: str) -> None:
-    if not step > 0 or not np.isfinite(step) or 1.25 * t1.max() / step > 2000:
-        raise GearmeshInputError("load_window_step_Nm", step, "must be a positive step giving at most 2000 torques")
+    if not step > 0 or not np.isfinite(step) or 1.25 * t1.max() / step > MAX_WINDOW_TORQUES:
+        raise GearmeshInputError("load_window_step_Nm", step,
+                                 f"must be a positive step giving at most {MAX_WINDOW_TORQUES} torques")
     grid = load_grid(t1, step)
     force, force_eb, scen = _design_response(model, grid, None, None, design, energy_velocity)
     w = ("window_torque",)

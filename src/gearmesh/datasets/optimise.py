@@ -15,13 +15,11 @@ from __future__ import annotations
 import json
 import math
 import warnings
-from dataclasses import replace
 from typing import Any, Mapping
 
 import numpy as np
 import xarray as xr
 
-from ..choices import DEFAULT_CYCLE_POSITIONS
 from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from ..gear import GEARS, GearPair, Modification, pair_geometry
@@ -29,18 +27,16 @@ from ..impact.model import SCENARIOS, impact_model
 from ..pairfile import MODIFICATION_UNITS
 from ..robust import CRITERIA, CRITERION_UNITS
 from ..io import name_force_lines, variable
-from ..loads import check_load
-from ..ltca import MESH_ORDERS, loaded_pinion_torques, pinion_torques
-from ..optimise.checks import check_positive, check_settings
+from ..ltca import MESH_ORDERS
+from ..optimise.checks import resolve_settings
 from ..optimise.constraints import constraint_factors
 from ..optimise.evaluation import Problem
 from ..optimise.genes import GENE_SYMBOLS, gene_table
 from ..optimise.objective import problem, standard_penalised_objective
 from ..optimise.search import OptimisationResult, optimise
 from ..surface import MODIFICATION_FIELDS
-from ..tolerance import study_tolerances
-from ..schema import check_arguments, defaults, settings_fields
-from ..settings import Constraints, Impact, Optimise
+from ..schema import defaults, settings_object
+from ..settings import Impact, Optimise
 from .ltca import _geometry
 
 __all__ = ["optimise_dataset", "result_dataset", "optimum_pair", "optimise_summary", "run_settings", "run_problem",
@@ -53,93 +49,40 @@ MODIFICATION_TEXT = ", ".join(name.replace("_", " ") for name in MODIFICATION_FI
 OPTIMISE_SOURCE = "optimise."
 
 
-def _window_top(geom, torques: tuple[float, ...]) -> float:
-    """1.25 × the largest spectrum torque, lowered (in 5 % steps) to what the load limits allow."""
-    top = 1.25 * max(torques)
-    while top > max(torques):
-        try:
-            check_load(geom, top, "load_window_top_Nm", top)
-            return top
-        except GearmeshInputError:
-            top = max(max(torques), top - 0.05 * max(torques))
-    return top
+def run_settings(pair: GearPair, *, impact: Mapping[str, Any] | None = None,
+                 tolerances: Mapping[str, Any] | None = None, **section):
+    """One optimisation of ``pair`` as it runs: (geometry, resolved settings, gene keywords,
+    impact-model keywords, tolerance model). The one path of every door (the workflow's stage, the
+    CLI, the Python API).
 
-
-@check_arguments(Optimise)
-def run_settings(pair: GearPair, method: str = "ga", objective: str = "robust", population: int = 40,
-                 generations: int = 30, seed: int = 0, torque_Nm: float = 1000.0, on: str = "pinion",
-                 speed_rpm: float = 5000.0, torques_Nm=None, statistic: str = "max",
-                 weights=None, tolerance_statistic: str | None = "max", tolerance_level_percent: float = 90.0,
-                 load_window_step_Nm: float = 50.0, modify=("pinion",), bounds: Mapping[str, Any] | None = None,
-                 fixed: Mapping[str, Any] | None = None, constraints: Mapping[str, Any] | None = None,
-                 random_baseline: bool = False, mutation_probability: float = 0.3, mutation_scale: float = 0.1,
-                 keep_elitism: int = 2, points: int | None = None, window_positions: int | None = None,
-                 face_samples: int | None = None, cycle_positions: int = DEFAULT_CYCLE_POSITIONS, contact_law: str | None = None,
-                 corner_extension: float | None = None, impact: Mapping[str, Any] | None = None,
-                 tolerances: Mapping[str, Any] | None = None, dynamic_speeds_rpm=None, backlash_um="pair",
-                 pareto_objectives=("impact", "lte")):
-    """Check one optimisation's settings (the config's ``optimise.NAME`` section, as keywords) for
-    ``pair``: (geometry, settings, gene keywords, impact-model keywords, tolerance model). Torques
-    are given on ``on`` (converted to the pinion); ``torques_Nm`` the load spectrum (None: the
-    design torque alone). Refuses a bad value with GearmeshInputError naming the field.
+    ``section`` is the study's ``optimise.NAME`` section (keywords, :class:`gearmesh.settings.Optimise`:
+    every default and bound there), parsed once; :func:`gearmesh.optimise.checks.resolve_settings`
+    turns it into the run's settings (pinion torques, SI) and refuses what breaks a rule between
+    fields. A bad value is refused with GearmeshInputError naming the field.
 
     The impact model is the study's: ``impact`` is its ``impact:`` section (driver, points,
     contact law, slice method, corner extension, window and face sampling, added inertia,
     energy velocity), so the optimum is optimal for the model the impact stage evaluates it
     with; ``points``, ``contact_law``, ``corner_extension``, ``window_positions`` and
-    ``face_samples`` given here override it (None: the section's, or the package defaults
-    without one). ``tolerances`` is the study's ``tolerances:`` section (:func:`gearmesh.tolerance.study_tolerances`).
-    ``dynamic_speeds_rpm`` and ``backlash_um`` ('pair': the pair's own, or µm) set the candidates'
-    contact-driven dynamics of objective 'dynamic' and constraint ``dynamic_factor``
-    (:mod:`gearmesh.dynamics.population`)."""
+    ``face_samples`` given in ``section`` override it (None: the section's, or the declared
+    defaults without one). ``tolerances`` is the study's ``tolerances:`` section
+    (:func:`gearmesh.tolerance.study_tolerances`)."""
+    declared = settings_object(Optimise, section)
+    imp = settings_object(Impact, impact, "impact")
     geom = _geometry(pair)
-    imp = {**defaults(Impact), **(impact or {})}  # the study's impact model, the declared defaults without one
-    constraints = dict(constraints or {})
-    known = [f.name for f in settings_fields(Constraints)]
-    unknown = set(constraints) - set(known)
-    if unknown:
-        key = sorted(unknown)[0]
-        raise GearmeshInputError(f"constraints.{key}", constraints[key], f"is not a constraint; use {', '.join(known)}")
-    constraints = {**defaults(Constraints), **constraints}  # the declared defaults of those not given
-    if backlash_um == "pair":
-        backlash = None
-    elif isinstance(backlash_um, (int, float)) and not isinstance(backlash_um, bool):
-        backlash = float(backlash_um) * 1e-6
-    else:
-        raise GearmeshInputError("backlash_um", backlash_um, "must be 'pair' (the pair's own) or a number (µm)")
-    # the load limits first: an absurd torque is named as such, not as a load window too fine for it
-    design = float(loaded_pinion_torques(geom, [check_positive("torque_Nm", torque_Nm)], on, field="torque_Nm")[1][0])
-    spectrum = None if torques_Nm is None else \
-        tuple(float(t) for t in loaded_pinion_torques(geom, torques_Nm, on, field="torques_Nm")[1])
-    tol_model, samples, sampling, tol_seed = study_tolerances(geom, tolerances)
-    step = check_positive("load_window_step_Nm", load_window_step_Nm)
-    step = float(pinion_torques(geom, [step], on, field="load_window_step_Nm")[0])
-    settings = check_settings(method=method, objective=objective, population=population, generations=generations,
-                              seed=seed, torque=design, torques=spectrum, weights=weights, statistic=statistic,
-                              speed_rpm=speed_rpm, tolerance_samples=samples, sampling=sampling,
-                              tolerance_seed=tol_seed,
-                              tolerance_statistic=tolerance_statistic, tolerance_level=tolerance_level_percent,
-                              mutation_probability=mutation_probability,
-                              mutation_scale=mutation_scale, keep_elitism=keep_elitism,
-                              random_baseline=random_baseline,
-                              energy_velocity=imp["energy_velocity"], load_window_step=step,
-                              dynamic_speeds=dynamic_speeds_rpm, backlash=backlash,
-                              pareto_objectives=pareto_objectives, **constraints)
-    settings = replace(settings, load_window_top=_window_top(geom, settings.torques))
-    if settings.tolerance_statistic is not None and not tol_model.dimensions:
-        raise GearmeshInputError("tolerance_statistic", settings.tolerance_statistic,
-                                 "needs tolerances (tolerances.grade or tolerances.modification): nothing deviates")
-    genes = {"modify": modify, "bounds": bounds, "fixed": fixed}
+    settings, tol_model = resolve_settings(geom, declared, imp.energy_velocity, tolerances)
+    genes = {"modify": declared.modify, "bounds": declared.bounds, "fixed": declared.fixed}
     gene_table(geom, **genes)
 
     def pick(own, key):
-        return imp[key] if own is None else own
+        return getattr(imp, key) if own is None else own
 
-    model = {"points": pick(points, "points"), "contact_law_name": pick(contact_law, "contact_law"),
-             "extension": pick(corner_extension, "corner_extension"), "method": imp["method"],
-             "driver": imp["driver"], "added_inertia_kg_m2": imp["added_inertia_kg_m2"],
-             "window_positions": pick(window_positions, "window_positions"),
-             "face_samples": pick(face_samples, "face_samples"), "cycle_positions": cycle_positions}
+    d = declared
+    model = {"points": pick(d.points, "points"), "contact_law_name": pick(d.contact_law, "contact_law"),
+             "extension": pick(d.corner_extension, "corner_extension"), "method": imp.method,
+             "driver": imp.driver, "added_inertia_kg_m2": imp.added_inertia_kg_m2,
+             "window_positions": pick(d.window_positions, "window_positions"),
+             "face_samples": pick(d.face_samples, "face_samples"), "cycle_positions": d.cycle_positions}
     return geom, settings, genes, model, tol_model
 
 
@@ -569,7 +512,7 @@ def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dat
     the design torque, the reduction, ``by_torque`` (F_s, the standard's and the scenario at each
     spectrum torque, with the spread under the tolerance samples), ``load_window_Nm``,
     evaluations and wall time. Torques in the JSON are on the gear ``on``, as given."""
-    on = settings.get("on", "pinion")
+    on = settings.get("on", defaults(Optimise)["on"])
     prob = run_problem(pair, **settings)
     res = optimise(prob)
     s, d = prob.settings, res.diagnostics

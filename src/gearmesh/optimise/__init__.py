@@ -77,8 +77,8 @@ distinct candidates. Same settings and seed → bit-identical history and optimu
 
 The package
 -----------
-One module per topic, data flowing down this list: :mod:`~gearmesh.optimise.checks` (the settings,
-checked), :mod:`~gearmesh.optimise.genes` (genes, bounds, decoding),
+One module per topic, data flowing down this list: :mod:`~gearmesh.optimise.checks` (the run's
+settings, resolved once from the declaration), :mod:`~gearmesh.optimise.genes` (genes, bounds, decoding),
 :mod:`~gearmesh.optimise.evaluation` (the problem, an evaluation, the objective quantities),
 :mod:`~gearmesh.optimise.constraints` (criteria, ratios, safety factors, the penalised objective),
 :mod:`~gearmesh.optimise.objective` (the problem set up, candidates evaluated, an optimum diagnosed)
@@ -90,8 +90,8 @@ package each name is imported from its module.
 from __future__ import annotations
 
 from ..impact.energy import load_grid, load_window
-from .checks import (LOAD_STATISTICS, METHODS, OBJECTIVES, PARETO_OBJECTIVES, OptimiseSettings, check_positive,
-                     check_settings)
+from .checks import (LOAD_STATISTICS, METHODS, OBJECTIVES, PARETO_OBJECTIVES, OptimiseSettings, check_rules,
+                     resolve_settings)
 from .genes import GENE_KEYS, GENE_SYMBOLS, GENE_UNITS, Gene, decode, gene_table, impact_paper_bounds
 from .evaluation import (FAILURE_FACTOR, OBJECTIVE_VALUES, Evaluation, ImpactValues, Problem, impact_values,
                          load_statistic)
@@ -101,7 +101,7 @@ from .search import LOG, VERIFY_LIMIT, History, OptimisationResult, Verification
 
 __all__ = [
     "GENE_KEYS", "GENE_SYMBOLS", "GENE_UNITS", "METHODS", "OBJECTIVES", "PARETO_OBJECTIVES", "OBJECTIVE_VALUES", "FAILURE_FACTOR", "Gene",
-    "OptimiseSettings", "check_settings", "check_positive", "impact_paper_bounds", "gene_table", "decode", "Problem",
+    "OptimiseSettings", "resolve_settings", "check_rules", "impact_paper_bounds", "gene_table", "decode", "Problem",
     "problem", "Evaluation", "evaluate", "load_statistic", "load_grid", "load_window", "Diagnostics", "diagnose",
     "History", "OptimisationResult", "optimise", "random_search", "pareto_mask", "worst_ratio", "constraint_factors",
     "safety_factors", "ImpactValues", "impact_values", "LOAD_STATISTICS", "standard_penalised_objective", "LOG",

@@ -232,7 +232,7 @@ def constraint_factors(s: OptimiseSettings) -> dict[str, float]:
     Parameters
     ----------
     s : OptimiseSettings
-        The checked settings (:func:`check_settings`).
+        The run settings (:func:`gearmesh.optimise.checks.resolve_settings`).
 
     Returns
     -------

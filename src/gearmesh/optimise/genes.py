@@ -16,7 +16,6 @@ from ..errors import GearmeshInputError
 from ..gear import GEARS, PairGeometry
 from ..limits import MAX_MODIFICATION_TO_MODULE
 from ..surface import fit_modifications
-from .checks import _choice
 
 #: Pair-file keys of y1..y6, in the order of :data:`gearmesh.surface.MODIFICATION_FIELDS`.
 GENE_KEYS = ("root_relief_um", "tip_relief_um", "root_relief_length_mm", "tip_relief_length_mm", "crowning_um",
@@ -120,7 +119,8 @@ def gene_table(geom: PairGeometry, modify=("pinion",), bounds: Mapping[str, Any]
     if not isinstance(modify, (list, tuple)) or not modify or len(set(modify)) != len(modify):
         raise GearmeshInputError("modify", modify, "must name 'pinion', 'gear' or both, once each")
     for g in modify:
-        _choice("modify", g, GEARS)
+        if g not in GEARS:
+            raise GearmeshInputError("modify", g, f"must be one of {list(GEARS)}")
     bounds, fixed = dict(bounds or {}), dict(fixed or {})
     for section, spec in (("bounds", bounds), ("fixed", fixed)):
         for key in spec:

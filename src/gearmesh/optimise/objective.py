@@ -77,7 +77,7 @@ def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), 
     model : ImpactModel
         The prepared impact model (:func:`gearmesh.impact.impact_model`).
     settings : OptimiseSettings
-        The checked settings (:func:`check_settings`).
+        The run settings (:func:`gearmesh.optimise.checks.resolve_settings`).
     modify, bounds, fixed
         The gears optimised and the gene bounds and fixed values (:func:`gene_table`).
     tolerance : ToleranceModel or None
