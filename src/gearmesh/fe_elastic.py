@@ -3,7 +3,7 @@ of plane strain and plane stress, quality triangulation, P2 assembly and one spa
 (scikit-fem), point loads, displacement probes and the rigid motion of a section.
 
 Nothing here knows a gear: :mod:`gearmesh.fe` builds the gear sector and reads the tooth's
-compliance with these tools, and :func:`gearmesh.stress.fe_root_stress` the root stress.
+compliance with these tools, and :func:`gearmesh.stress.fe_fillet_stress` the root stress.
 """
 
 from __future__ import annotations

@@ -15,7 +15,7 @@ A gear is never made to its nominal micro-geometry. The deviation model here has
   unrounded value (the standard's rounding is for drawings). Its scope (clause 1): 5 ≤ z ≤ 1000,
   5 ≤ d ≤ 15 000 mm, 0.5 ≤ m_n ≤ 70 mm, 4 ≤ b ≤ 1200 mm, β ≤ 45°. f_Hβ is measured over the
   gear's own face width; over the meshing face width b_m it tilts the flank by f·b_m/b
-  (:func:`gearmesh.tca.lead_deviation` takes slopes over b_m). The two gears' slopes add in the
+  (:func:`gearmesh.deviation.lead_gap` takes slopes over b_m). The two gears' slopes add in the
   mesh; the separations are linear in them, so a sample costs no new geometry.
 
 Samples are unit deviations u ∈ [−1, 1]^k over the k toleranced quantities (each scaled by its
