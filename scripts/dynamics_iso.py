@@ -76,7 +76,7 @@ def main() -> None:
         for exc in ("contact", "tvms"):
             for relief in ((0.0, args.relief_um) if exc == "contact" else (0.0,)):
                 pair = _pair(args.pair, sup, relief, args.web_thickness_mm)
-                model = build_pair_model(pair, args.torque_Nm, "pinion", 60, excitation=exc)
+                model = build_pair_model(pair, args.torque_Nm, on="pinion", backlash_um=60, excitation=exc)
                 md = model.modes()
                 i = mesh_mode(model)
                 n_res = md["frequency_Hz"][i] / model.mesh_frequency_per_rpm

@@ -97,7 +97,7 @@ def test_tvms_and_contact_put_the_mesh_mode_within_3_percent():
     for pair in (load_pair(data), load_pair(rigid)):
         n = {}
         for exc in ("tvms", "contact"):
-            m = build_pair_model(pair, 1000.0, "pinion", 60, excitation=exc, method="transition", slices=100,
-                                 positions=64)
+            m = build_pair_model(pair, 1000.0, on="pinion", backlash_um=60, excitation=exc, method="transition",
+                                 slices=100, positions=64)
             n[exc] = m.modes()["frequency_Hz"][mesh_mode(m)]
         assert n["tvms"] == pytest.approx(n["contact"], rel=0.03)

@@ -10,7 +10,7 @@ import pytest
 import scipy.linalg
 
 from gearmesh import dynamics as dy
-from gearmesh.datasets.dynamics import dynamics_dataset, dynamics_summary, speed_grid, train_dataset
+from gearmesh.datasets.dynamics import dynamics_dataset, dynamics_summary, parse_speeds, speed_grid, train_dataset
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_geometry
 from gearmesh.pairfile import load_pair, pair_from_dict
@@ -255,7 +255,8 @@ def test_dataset_summary_and_inputs():
     assert ds.attrs["torque_on"] == "pinion" and float(ds.torque[0]) == 200.0  # the torque and its gear, stated
     spec = ds.mesh_force_spectrum.isel(torque=0, sample_speed=0)
     assert float(spec.sel(order=1.0)) > 10 * float(spec.sel(order=0.5))  # lines at mesh orders only
-    rows = dynamics_summary(pair, 200.0, "25000:27000:2000", transient_tau=4.0, record_cycles=4)
+    rows = dynamics_summary(pair, torques_Nm=200.0, speeds_rpm=parse_speeds("25000:27000:2000"), transient_tau=4.0,
+                            record_cycles=4)
     assert [r["speed_rpm"] for r in rows] == [25000.0, 27000.0]
     assert {"speed_rpm", "dynamic_te_mean_um", "dynamic_te_std_um", "mesh_deflection_mean_um", "mesh_force_mean_normal_N",
             "mesh_force_max_normal_N"} <= set(rows[0])
@@ -292,7 +293,7 @@ def test_ltca_excitation_reproduces_the_loaded_te_and_sees_the_modification():
         pair = load_pair(data)
         g = pair_geometry(pair)
         ltca = ltca_dataset(pair, torques_Nm=[200], on="gear", positions=64, points=30)
-        mdl = build_pair_model(pair, 200.0, "gear", stiffness_form="table", ltca=ltca)
+        mdl = build_pair_model(pair, 200.0, on="gear", stiffness_form="table", ltca=ltca)
         law = mdl.meshes[0]
         phase = np.arange(64) / 64
         k, e = law.stiffness(phase), law.error(phase)[0]
@@ -305,7 +306,7 @@ def test_ltca_excitation_reproduces_the_loaded_te_and_sees_the_modification():
         res = dy.simulate(mdl, np.array([6000.0]), FAST)
         std.append(float(res.dte_std[0, 0]))
         # the default smooth (Fourier) form keeps the periodic mean force = static force
-        smooth = build_pair_model(pair, 200.0, "gear", ltca=ltca)
+        smooth = build_pair_model(pair, 200.0, on="gear", ltca=ltca)
         fast = dy.simulate(smooth, np.array([50000.0]), FAST)
         np.testing.assert_allclose(fast.force_mean[0], smooth.static_force[0], rtol=1e-5)
     assert abs(std[1] / std[0] - 1) > 0.05
@@ -321,7 +322,7 @@ def test_low_speed_dynamic_te_is_the_mean_lte_and_mesh_deflection_is_f_over_k():
 
     pair = pair_from_dict(low_fluctuation_pair1(modification={"gear": {"tip_relief_um": 15, "tip_relief_length_mm": 1.0}}))
     ltca = ltca_dataset(pair, torques_Nm=[200], on="gear", positions=32, points=12)
-    ds = dynamics_dataset(pair, 200.0, "gear", speeds_rpm=[40.0], sample_speeds_rpm=[], stiffness_form="table",
+    ds = dynamics_dataset(pair, torques_Nm=200.0, on="gear", speeds_rpm=[40.0], sample_speeds_rpm=[], stiffness_form="table",
                           refine_resonances=False, transient_tau=6.0, record_cycles=2, ltca=ltca)
     check_documented(ds)
     assert ds.attrs["excitation"].startswith("ltca")
@@ -362,3 +363,48 @@ def test_encoder_rotation_adds_the_static_bearing_deflection(geom, K):
     f_bt = float(model.static_force[0]) * cb
     bearing = 2 * f_bt * (1 / dy.LOW_FLUCTUATION_BEARING["k_radial"] + tb**2 / dy.LOW_FLUCTUATION_BEARING["k_axial"])
     np.testing.assert_allclose(y[model.n_trans] - (model.G @ y)[0] / cb, bearing, rtol=1e-9)
+
+
+def test_the_dynamics_functions_take_their_section_whole():
+    """Issue 37 item 1: the stage functions restate no default of their declaration. Every key of
+    settings.Dynamics / settings.TrainDynamics reaches them through ``**section``, parsed once
+    (schema.settings_object), so a key the declaration lacks is refused naming it, and a bad value
+    names its key as the study's section does."""
+    import inspect
+
+    from gearmesh.datasets.dynamics import build_pair_model
+    from gearmesh.schema import key_of, settings_fields
+    from gearmesh.settings import Dynamics, TrainDynamics
+
+    for func, cls in ((dynamics_dataset, Dynamics), (build_pair_model, Dynamics), (dynamics_summary, Dynamics),
+                      (train_dataset, TrainDynamics)):
+        params = inspect.signature(func).parameters
+        restated = sorted({key_of(f) for f in settings_fields(cls)} & set(params))
+        assert not restated, (func.__name__, restated)
+        assert any(p.kind is p.VAR_KEYWORD for p in params.values())
+    with pytest.raises(GearmeshInputError, match=r"^torque_Nm"):
+        dynamics_dataset(None, torque_Nm=200.0)  # the pair's key is torques_Nm
+    with pytest.raises(GearmeshInputError, match=r"^excitation = 'ltca': must be one of"):
+        train_dataset(None, excitation="ltca")
+
+
+def test_the_command_differs_from_a_study_only_by_its_listed_overrides():
+    """``gearmesh dynamics`` runs a study's section (commands._dynamics_section): besides its torque,
+    gear, speeds and backlash options, the keys it sets are the listed differences (no kept series;
+    the excitation tvms, the study's null without an LTCA upstream); everything else is the declared
+    default, parsed by the same settings_object as the study's section."""
+    from gearmesh.cli import build_parser
+    from gearmesh.commands import _dynamics_section
+    from gearmesh.schema import defaults, jsonable, settings_object
+    from gearmesh.settings import Dynamics
+
+    args = build_parser().parse_args(["dynamics", "config/pairs/helical_z29_71_m5.yaml", "--torque-Nm", "300",
+                                      "--speeds", "3000:5000:1000"])
+    section = _dynamics_section(args)
+    declared = defaults(Dynamics)
+    assert section == {"torques_Nm": 300.0, "on": declared["on"], "backlash_um": declared["backlash_um"],
+                       "speeds_rpm": {"start": 3000.0, "stop": 5000.0, "step": 1000.0},
+                       "sample_speeds_rpm": [], "excitation": "tvms"}
+    parsed = jsonable(settings_object(Dynamics, section))
+    assert {k: v for k, v in parsed.items() if k not in section} == {k: v for k, v in declared.items()
+                                                                     if k not in section}

@@ -127,7 +127,7 @@ def test_contact_and_ltca_excitation_agree_for_small_motion(pair, geom, table):
 
     # the same tooth model as the table: both the declared default (the FE tooth)
     ds = ltca_dataset(pair, torques_Nm=[1000.0], positions=128, points=200)
-    lin = build_pair_model(pair, 1000.0, "pinion", backlash_um=60, stiffness_form="table", ltca=ds)
+    lin = build_pair_model(pair, 1000.0, on="pinion", backlash_um=60, stiffness_form="table", ltca=ds)
     # both on the pair file's supports, with the damper sized on the mesh mode
     con = dy.pair_model(geom, 1000.0 * geom.base_radius[1] / geom.base_radius[0], None, contact=table, backlash=60e-6)
     f_lin, f_con = lin.modes()["frequency_Hz"], con.modes()["frequency_Hz"]
@@ -276,7 +276,7 @@ def test_compiled_loop_equals_the_numpy_kernel(excitation):
         kw = {"ltca": ltca_dataset(pair, torques_Nm=[30.0], on="gear", positions=32, points=12)}
     else:  # a kinematic error large enough to open the backlash at this load
         kw = {"transmission_error_um": list(8.0 * np.sin(2 * np.pi * np.arange(32) / 32))}
-    model = build_pair_model(pair, 30.0, "gear", backlash_um=60, excitation=excitation, positions=64, slices=40, **kw)
+    model = build_pair_model(pair, 30.0, on="gear", backlash_um=60, excitation=excitation, positions=64, slices=40, **kw)
     s = dy.SolverSettings(transient_tau=3.0, record_cycles=2, steady_state="transient")
     speeds = [8000.0, 16000.0, 20000.0]  # (at 33000 rpm and above the impacting response is chaotic)
     a, b = dy.simulate(model, speeds, s), dy.simulate_numpy(model, speeds, s)

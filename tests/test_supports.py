@@ -133,9 +133,9 @@ def test_rigid_supports_give_the_torsional_model_and_isos_resonance():
                          web_thickness_mm="rigid")
     bores_only = _default_pair(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid")
     assert mesh_body_compliance(pair_geometry(bores_only)) == 0.0
-    alone = build_pair_model(bores_only, 1000.0, "pinion", 60, excitation="contact")
+    alone = build_pair_model(bores_only, 1000.0, on="pinion", backlash_um=60, excitation="contact")
     geom = pair_geometry(pair)
-    model = build_pair_model(pair, 1000.0, "pinion", 60, excitation="contact")
+    model = build_pair_model(pair, 1000.0, on="pinion", backlash_um=60, excitation="contact")
     assert model.n == 1
     k_t = model.meshes[0].k_mean * model.cos_beta_b**2
     J1, J2 = (float(j) for j in geom.inertia)
@@ -152,7 +152,7 @@ def test_rigid_supports_give_the_torsional_model_and_isos_resonance():
     solid = _default_pair(bearing_radial_stiffness_N_per_um="rigid", bearing_axial_stiffness_N_per_um="rigid",
                           hub_diameter_mm=[60.0, 140.0])  # solid discs held at the bore on rigid supports
     c_body = mesh_body_compliance(pair_geometry(solid))
-    with_body = build_pair_model(solid, 1000.0, "pinion", 60, excitation="contact")
+    with_body = build_pair_model(solid, 1000.0, on="pinion", backlash_um=60, excitation="contact")
     k_body = with_body.meshes[0].k_mean * with_body.cos_beta_b**2  # along the transverse line, as c_body
     assert k_body == pytest.approx(1 / (1 / k_t + c_body), rel=0.01)  # in series, K(t)'s ripple aside
     n_body = with_body.modes()["frequency_Hz"][0] / with_body.mesh_frequency_per_rpm
@@ -165,7 +165,7 @@ def test_mesh_damping_is_the_mesh_modes_modal_damping(excitation):
     """The stated ζ is found in the complex eigenvalues of the *unreduced* system (rigid-body
     rotation kept, its zero eigenvalues dropped), built from the model's full matrices."""
     pair = load_pair(example_pair("helical_z29_71_m5"))
-    model = build_pair_model(pair, 1000.0, "pinion", 60, excitation=excitation, damping_ratio=0.07)
+    model = build_pair_model(pair, 1000.0, on="pinion", backlash_um=60, excitation=excitation, damping_ratio=0.07)
     full = model.full
     g = full["G"][0]
     k, c = model.meshes[0].k_mean, model.damping[0]

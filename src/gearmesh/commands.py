@@ -20,7 +20,6 @@ from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .config import check_study, load_study, validate_study
 from .contact import contact_length_summary
 from .deviation import read_deviations
@@ -279,28 +278,46 @@ def cmd_rating(args: argparse.Namespace) -> dict[str, Any]:
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.dynamics.checks import check_dynamics_settings
     from .datasets.dynamics.excitation import model_choices
-    from .datasets.dynamics.inputs import parse_speeds, positive_torque, supports_note
-    from .datasets.dynamics.pair import dynamics_summary
+    from .datasets.dynamics.inputs import positive_torque, supports_note
+    from .datasets.dynamics.pair import pair_summary
+    from .dynamics import DAMPING_MEANING
+    from .schema import settings_object
+    from .settings import Dynamics
 
     positive_torque("torque_Nm", args.torque_Nm)
     pair, geom = _pair(args)
-    speeds = parse_speeds(args.speeds)
-    check_dynamics_settings(pair, {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": speeds,
-                                   "backlash_um": args.backlash_um, "sample_speeds_rpm": [],
-                                   "excitation": args.excitation})
-    excitation = {"excitation": args.excitation}
-    if args.excitation == "ltca":  # the loaded TE and stiffness of this pair at this torque excite the model
+    s = settings_object(Dynamics, _dynamics_section(args))
+    check_dynamics_settings(pair, s)
+    ltca = None
+    if s.excitation == "ltca":  # the loaded TE and stiffness of this pair at this torque excite the model
         from .datasets.ltca import ltca_dataset
 
-        torque_1 = pinion_torque(pair, args.torque_Nm, args.on)
-        excitation["ltca"] = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion")  # the LTCA stage's defaults
-    rows = dynamics_summary(pair, torque_Nm=args.torque_Nm, speeds=speeds, on=args.on,
-                            backlash_um=args.backlash_um, progress=_progress(), **excitation)
-    from .dynamics import DAMPING_MEANING, DEFAULT_DAMPING_RATIO
-    return {"name": pair.name, **_torque(pair, args.torque_Nm, args.on), "excitation": args.excitation,
-            **model_choices(args.excitation, DEFAULT_TOOTH_METHOD, DEFAULT_CONTACT_LAW, ltca=excitation.get("ltca")),
-            **_backlash(geom, args.backlash_um), "supports": supports_note(pair),
-            "damping_ratio": DEFAULT_DAMPING_RATIO, "damping_ratio_meaning": DAMPING_MEANING, "speeds": rows}
+        torque_1 = pinion_torque(pair, args.torque_Nm, s.on)
+        ltca = ltca_dataset(pair, torques_Nm=[torque_1], on="pinion")  # the LTCA stage's defaults
+    rows = pair_summary(pair, s, ltca=ltca, progress=_progress())
+    return {"name": pair.name, **_torque(pair, args.torque_Nm, s.on), "excitation": s.excitation,
+            **model_choices(s.excitation, s.method, s.contact_law, ltca=ltca),
+            **_backlash(geom, s.backlash_um),
+            "supports": supports_note(pair, s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m),
+            "damping_ratio": s.damping_ratio, "damping_ratio_meaning": DAMPING_MEANING, "speeds": rows}
+
+
+def _dynamics_section(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh dynamics``'s options as a study's ``dynamics:`` section, run as a study's
+    (:func:`gearmesh.datasets.dynamics.pair.pair_summary`). Every other key is the declared
+    default (:class:`gearmesh.settings.Dynamics`), but for the command's deliberate differences,
+    made here and nowhere else:
+
+    * one torque (``--torque-Nm``) and the speeds ``--speeds`` (START:STOP:STEP or one speed);
+    * no kept time series (``sample_speeds_rpm`` empty): the command prints per-speed statistics
+      of the speeds as given (:func:`~gearmesh.datasets.dynamics.pair.pair_summary` adds none
+      around the resonances);
+    * ``--excitation`` tvms by default, what the study's null means without an LTCA upstream;
+      ``ltca`` runs the LTCA stage's defaults at this torque."""
+    from .datasets.dynamics.inputs import parse_speeds
+
+    return {"torques_Nm": args.torque_Nm, "on": args.on, "speeds_rpm": parse_speeds(args.speeds),
+            "backlash_um": args.backlash_um, "sample_speeds_rpm": [], "excitation": args.excitation}
 
 
 def _torque(pair, torque_Nm: float, on: str) -> dict[str, Any]:

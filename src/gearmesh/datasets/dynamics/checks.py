@@ -14,20 +14,22 @@ from ...errors import GearmeshInputError
 from ...gear import GearPair, pair_geometry
 from ...limits import MAX_SPEED_STEPS, MAX_TRAIN_SPEEDS, check_speeds, positive_values
 from ...stiffness import mesh_stiffness
-from ...schema import check_value, defaults
+from ...schema import jsonable, settings_object
 from ...settings import Dynamics, TrainDynamics
-from .inputs import (_DECLARED, _SOLVER_KEYS, _TABLE_KEYS, _backlash, _bearing, _solver, _table_settings,
-                     positive_torque, speed_grid)
-from .pair import build_pair_model
+from .excitation import resolve_excitation
+from .inputs import (_backlash, _bearing, _solver, _table_settings, positive_torque, settings_speeds, speed_grid,
+                     table_keywords)
+from .pair import pair_model_of
 
 #: Coarse slice grid of the stiffness used only to estimate the step size (ω_max) up front.
 _ESTIMATE_SLICES, _ESTIMATE_POSITIONS = 16, 24
 
 
-def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: bool = False,
-                            excitation_points: int | None = None) -> None:
+def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any] | Dynamics | TrainDynamics,
+                            train: bool = False, excitation_points: int | None = None) -> None:
     """Check every setting of :func:`dynamics_dataset` (or :func:`train_dataset` with
-    ``train``) for ``pair`` without simulating, and refuse a sweep whose work exceeds
+    ``train``; ``settings`` its section, or the section already parsed,
+    :func:`gearmesh.schema.settings_object`) for ``pair`` without simulating, and refuse a sweep whose work exceeds
     :data:`MAX_SPEED_STEPS` or a contact table larger than :data:`MAX_TABLE_POINTS`.
 
     The model is built on a coarse slice stiffness at each torque (the step size depends on the
@@ -40,88 +42,80 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any], train: 
     """
     from ...dynamics import step_plan
 
-    section = TrainDynamics if train else Dynamics
-    s = {**defaults(section), **settings}  # the declared defaults of what is not given
-    for key, value in settings.items():
-        if key in _DECLARED[section]:
-            check_value(section, key, value)
-    solver = _solver(*(s[k] for k in _SOLVER_KEYS))
-    order = s["fourier_order"]
-    excitation = s["excitation"]
-    if excitation == "contact":
-        _table_settings(**{k: s[k] for k in _TABLE_KEYS})
-    if s["stiffness_form"] == "fourier" and excitation != "contact":
-        _check_fourier_samples(order, excitation_points, s)
+    if isinstance(settings, (Dynamics, TrainDynamics)):
+        s = settings
+    else:
+        s = settings_object(TrainDynamics if train else Dynamics, settings)
+    train = isinstance(s, TrainDynamics)
+    order = s.fourier_order
+    if s.excitation == "contact":
+        _table_settings(**table_keywords(s))
+    if s.stiffness_form == "fourier" and s.excitation != "contact":
+        _check_fourier_samples(order, excitation_points, getattr(s, "transmission_error_um", None))
     coarse = max(_ESTIMATE_POSITIONS, 2 * order + 2)
     speeds, models = (_train_estimate(pair, s, coarse) if train else _pair_estimate(pair, s, coarse))
     steps = 0
+    solver = _solver(s)
     for model in models:
         _, m, n_tr, _ = step_plan(model, speeds, solver)
         steps = max(steps, int(((n_tr + solver.record_cycles) * m).max()))
     if steps * speeds.size * len(models) > MAX_SPEED_STEPS:
-        raise GearmeshInputError("speeds_rpm", s["speeds_rpm"],
+        raise GearmeshInputError("speeds_rpm", jsonable(s.speeds_rpm),
                                  f"needs {len(models)} torques × {speeds.size} speeds × {steps} RK4 steps = "
                                  f"{steps * speeds.size * len(models):.3g} speed-steps; at most {MAX_SPEED_STEPS:.0e} "
                                  "(fewer or faster speeds)")
 
 
-def _check_fourier_samples(order: int, excitation_points: int | None, s: Mapping[str, Any]) -> None:
+def _check_fourier_samples(order: int, excitation_points: int | None, transmission_error_um) -> None:
     """Refuse a Fourier form of ``order`` without more than 2·order samples over a mesh cycle of
     the excitation k(t) (``excitation_points``) or of the tabulated TE."""
     for what, points in (("the excitation k(t)", excitation_points),
-                         ("transmission_error_um", len(s.get("transmission_error_um") or []) or None)):
+                         ("transmission_error_um", len(transmission_error_um or ()) or None)):
         if points is not None and not 2 * order < points:
             raise GearmeshInputError("fourier_order", order, f"needs more than {2 * order} samples of {what} "
                                      f"over a mesh cycle; it has {points}")
 
 
-def _pair_estimate(pair: GearPair, s: Mapping[str, Any], coarse: int) -> tuple[np.ndarray, list]:
+def _pair_estimate(pair: GearPair, s: Dynamics, coarse: int) -> tuple[np.ndarray, list]:
     """The speeds of a pair sweep (its grid and sample speeds checked) and one model per torque
     on the coarse slice stiffness (``coarse`` positions): what its work estimate needs."""
-    import inspect
-
-    speeds = speed_grid(s["speeds_rpm"])
+    speeds = settings_speeds(s.speeds_rpm)
     check_speeds(pair_geometry(pair), speeds, "speeds_rpm")
     try:
-        samples = speed_grid(list(s["sample_speeds_rpm"]) or 1.0)
+        samples = speed_grid(list(s.sample_speeds_rpm) or 1.0)
     except GearmeshInputError as exc:
         raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
     check_speeds(pair_geometry(pair), samples, "sample_speeds_rpm")
-    known = set(inspect.signature(build_pair_model).parameters) - {"pair", "stiffness", "ltca", "table",
-                                                                   "torque_Nm", "excitation"}
-    excitation = s["excitation"]
-    models = [build_pair_model(pair, float(t), **{k: v for k, v in s.items() if k in known},
-                               excitation="tvms" if excitation in ("ltca", "contact") else excitation,
-                               slices=_ESTIMATE_SLICES, positions=coarse)
-              for t in positive_values(s["torques_Nm"], "torques_Nm", "N m")]
+    excitation = "tvms" if s.excitation in ("ltca", "contact") else resolve_excitation(s.excitation, None)
+    models = [pair_model_of(pair, float(t), s, excitation, (_ESTIMATE_SLICES, coarse))
+              for t in positive_values(s.torques_Nm, "torques_Nm", "N m")]
     return speeds, models
 
 
-def _train_estimate(pair: GearPair, s: Mapping[str, Any], coarse: int) -> tuple[np.ndarray, list]:
+def _train_estimate(pair: GearPair, s: TrainDynamics, coarse: int) -> tuple[np.ndarray, list]:
     """The speeds of a train run (checked, at most :data:`MAX_TRAIN_SPEEDS`) and its model on the
     coarse slice stiffness (``coarse`` positions): what its work estimate needs."""
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
-    if s["speeds_rpm"] is None:
-        speeds = np.array([positive_torque("mesh_frequency_Hz", s["mesh_frequency_Hz"]) * 60.0 / pair.teeth[1]])
+    if s.speeds_rpm is None:
+        speeds = np.array([positive_torque("mesh_frequency_Hz", s.mesh_frequency_Hz) * 60.0 / pair.teeth[1]])
     else:
-        speeds = speed_grid(s["speeds_rpm"])
+        speeds = settings_speeds(s.speeds_rpm)
     check_speeds(geom, speeds, "speeds_rpm", on="gear")
-    if s["torque_Nm"] is not None:
-        torque = positive_torque("torque_Nm", s["torque_Nm"])
+    if s.torque_Nm is not None:
+        torque = positive_torque("torque_Nm", s.torque_Nm)
     else:
-        torque = positive_torque("static_force_N", s["static_force_N"]) \
+        torque = positive_torque("static_force_N", s.static_force_N) \
             * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
     if speeds.size > MAX_TRAIN_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",
                                  f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
     K = mesh_stiffness(geom, n_positions=coarse, n_slices=_ESTIMATE_SLICES, components=False).K
-    bearing = _bearing(*(s[f"bearing_{key}_{unit}"] for key, unit in (
-        ("k_radial", "N_per_m"), ("k_axial", "N_per_m"), ("c_radial", "Ns_per_m"), ("c_axial", "Ns_per_m"))))
-    excitation = s["excitation"]
-    return speeds, [train_model(geom, torque, K, bearing=bearing, damping_ratio=s["damping_ratio"],
-                                backlash=_backlash(geom, s["backlash_um"]), stiffness_form=s["stiffness_form"],
-                                order=s["fourier_order"],
-                                excitation="tvms" if excitation in (None, "contact") else excitation,
-                                phase_offsets=tuple(s["phase_offsets_cycles"]),
-                                mesh_damping=s["mesh_damping_Ns_per_m"])]
+    bearing = _bearing(s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m, s.bearing_c_radial_Ns_per_m,
+                       s.bearing_c_axial_Ns_per_m)
+    return speeds, [train_model(geom, torque, K, bearing=bearing, damping_ratio=s.damping_ratio,
+                                backlash=_backlash(geom, s.backlash_um), stiffness_form=s.stiffness_form,
+                                order=s.fourier_order,
+                                excitation="tvms" if s.excitation in (None, "contact") else s.excitation,
+                                phase_offsets=tuple(s.phase_offsets_cycles),
+                                mesh_damping=s.mesh_damping_Ns_per_m)]

@@ -14,10 +14,11 @@ from ...dynamics import SolverSettings
 from ...errors import GearmeshInputError
 from ...gear import GearPair, PairGeometry
 from ...limits import BEARING_STIFFNESS, MAX_SPEEDS, MAX_TABLE_POINTS
-from ...schema import check_value, defaults, settings_fields
-from ...settings import Dynamics, PairExcitation, SteadyState, TrainDynamics
+from ...schema import check_value, defaults, jsonable, key_of, settings_fields, settings_object
+from ...settings import Dynamics, PairExcitation, SteadyState, Stiffness, TrainDynamics
 
-DEFAULT_SPEEDS = {"start": 500, "stop": 50000, "step": 100}
+#: The pair sweep's default speeds {start, stop, step} (rpm): the declared one (:class:`gearmesh.settings.Dynamics`).
+DEFAULT_SPEEDS = jsonable(settings_object(Dynamics, {}).speeds_rpm)
 
 
 def parse_speeds(text: str) -> dict[str, float] | list[float]:
@@ -108,21 +109,38 @@ def supports_note(pair: GearPair, bearing_k_radial_N_per_m="pair", bearing_k_axi
 
 #: The declared defaults of the dynamics settings (:class:`gearmesh.settings.Dynamics`).
 _DEFAULTS = defaults(Dynamics)
-#: The keys each settings class declares.
-_DECLARED = {cls: {f.name for f in settings_fields(cls)} for cls in (Dynamics, TrainDynamics)}
-#: Solver rules of the settings (:class:`gearmesh.dynamics.SolverSettings`), with their defaults.
-_SOLVER_KEYS = {k: _DEFAULTS[k] for k in ("courant", "steps_per_cycle_min", "transient_tau", "record_cycles",
-                                          "steady_state")}
+#: The keys each settings class declares: a stage function parses them itself, once
+#: (:func:`gearmesh.schema.settings_object`), so :func:`gearmesh.schema.check_arguments` leaves them to it.
+SECTION_KEYS = {cls: tuple(key_of(f) for f in settings_fields(cls)) for cls in (Dynamics, TrainDynamics)}
 
 
-def _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state="shooting") -> SolverSettings:
-    """The solver rules as :class:`gearmesh.dynamics.SolverSettings`, each checked against its
-    declaration (:class:`gearmesh.settings.Dynamics`: the bounds the study schema has)."""
-    given = dict(zip(_SOLVER_KEYS, (courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)))
-    for key, value in given.items():
-        check_value(Dynamics, key, value)
-    return SolverSettings(courant=float(courant), steps_per_cycle_min=steps_per_cycle_min,
-                          transient_tau=float(transient_tau), record_cycles=record_cycles, steady_state=steady_state)
+def _solver(settings: Dynamics | TrainDynamics) -> SolverSettings:
+    """The solver rules of parsed ``settings`` (:func:`gearmesh.schema.settings_object`: every
+    bound of its declaration met) as :class:`gearmesh.dynamics.SolverSettings`."""
+    s = settings
+    return SolverSettings(courant=float(s.courant), steps_per_cycle_min=s.steps_per_cycle_min,
+                          transient_tau=float(s.transient_tau), record_cycles=s.record_cycles,
+                          steady_state=s.steady_state)
+
+
+def slice_grid(slices: int | None, positions: int | None) -> tuple[int, int]:
+    """The slice model's grid (slices, positions) of a dynamics run given no stiffness dataset: the
+    stiffness stage's (:class:`gearmesh.settings.Stiffness`; its declared default where None),
+    keywords of the Python API beside the section (a study's dynamics reads the stiffness stage)."""
+    grid = settings_object(Stiffness, {k: v for k, v in (("slices", slices), ("positions", positions))
+                                       if v is not None})
+    return grid.slices, grid.positions
+
+
+def settings_speeds(speeds_rpm) -> np.ndarray:
+    """The speeds (rpm) of a parsed ``speeds_rpm`` (a :class:`gearmesh.settings.SpeedRange` or a
+    tuple) as :func:`speed_grid` reads them."""
+    return speed_grid(jsonable(speeds_rpm))
+
+
+def table_keywords(settings: Dynamics | TrainDynamics) -> dict[str, Any]:
+    """The contact-table settings of parsed ``settings`` as :func:`contact_tables` takes them."""
+    return {k: getattr(settings, k) for k in _TABLE_KEYS}
 
 
 #: How each speed reaches its steady state (:class:`gearmesh.dynamics.SolverSettings`).

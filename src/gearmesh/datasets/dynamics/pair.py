@@ -6,16 +6,15 @@ from __future__ import annotations
 
 import logging
 import math
-from typing import Any, Mapping, Sequence
+from typing import Any, Sequence
 
 import numpy as np
 import xarray as xr
 
 from ...body import describe_body
 from ...deflection import describe_deflection
-from ...dynamics import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, FIRST_PART_AFTER_A, LOW_FLUCTUATION_BEARING,
-                         GearModel, SolverSettings, SweepResult, pair_model, require_dynamics_data, resonance_band,
-                         simulate)
+from ...dynamics import (DAMPING_MEANING, FIRST_PART_AFTER_A, GearModel, SolverSettings, SweepResult, pair_model,
+                         require_dynamics_data, resonance_band, simulate)
 from ...errors import GearmeshInputError
 from ...fe_tables import use_fe_tables
 from ...gear import GearPair, PairGeometry, pair_geometry, pinion_torque
@@ -23,77 +22,99 @@ from ...io import name_force_lines, variable
 from ...limits import MAX_SPEEDS, check_slice_grid, check_speeds, positive_values
 from ...loads import check_load, check_loads
 from ...ltca import with_loaded_extension
-from ...meshforce import DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS, MeshForceTable
-from ...stiffness import DEFAULT_SLICES
-from ...schema import check_arguments
-from ...choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
+from ...meshforce import MeshForceTable
+from ...schema import check_arguments, settings_object
 from ...settings import Dynamics
 from .excitation import (_stiffness_curve, _transmission_error, contact_table, contact_tables, excitation_used,
                          ltca_excitation, model_choices, resolve_excitation)
-from .inputs import (DEFAULT_SPEEDS, _DEFAULTS, _SOLVER_KEYS, _TABLE_KEYS, _backlash, _bearing, _solver,
-                     backlash_source, positive_torque, speed_grid, supports_note)
+from .inputs import (SECTION_KEYS, _backlash, _bearing, _solver, backlash_source, positive_torque, settings_speeds,
+                     slice_grid, speed_grid, supports_note, table_keywords)
 from .variables import _common_vars, _modal_vars, _series_arrays, _series_vars, _vibration_vars
 
 _PAIR_GEARS = ("pinion", "gear")
 _PAIR_DIRS = ("x", "y", "z")
 
 
-@check_arguments(Dynamics)
-def build_pair_model(pair: GearPair, torque_Nm: float = 200.0, on: str = "pinion", backlash_um="pair",
-                     bearing_k_radial_N_per_m: float | str = "pair",
-                     bearing_k_axial_N_per_m: float | str = "pair",
-                     bearing_c_radial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_radial"],
-                     bearing_c_axial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_axial"],
-                     damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
-                     stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                     method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
-                     transmission_error_um=None, stiffness: xr.Dataset | None = None,
-                     ltca: xr.Dataset | None = None, table: MeshForceTable | None = None) -> GearModel:
-    """The 8-DOF model of ``pair`` at one torque from engineering-unit settings (:func:`dynamics_dataset`).
+@check_arguments(Dynamics, exclude=SECTION_KEYS[Dynamics])
+def build_pair_model(pair: GearPair, torque_Nm: float, *, slices: int | None = None, positions: int | None = None,
+                     stiffness: xr.Dataset | None = None, ltca: xr.Dataset | None = None,
+                     table: MeshForceTable | None = None, **section: Any) -> GearModel:
+    """The 8-DOF model of ``pair`` at one torque ``torque_Nm`` (N·m, on ``section``'s ``on``):
+    ``section`` is a study's ``dynamics:`` section (keywords, :class:`gearmesh.settings.Dynamics`:
+    every default and bound there), parsed once; ``slices`` and ``positions`` the slice grid without
+    a ``stiffness`` dataset (:func:`.inputs.slice_grid`); the model as :func:`pair_model_of` builds it."""
+    s = settings_object(Dynamics, section)
+    return pair_model_of(pair, torque_Nm, s, resolve_excitation(s.excitation, ltca), slice_grid(slices, positions),
+                         stiffness=stiffness, ltca=ltca, table=table)
 
-    Excitation (:func:`resolve_excitation`): 'contact' the mesh force ``table`` (built here
-    with the default table settings when not given); 'ltca' the loaded stiffness and equivalent
-    error of the ``ltca`` dataset (:func:`ltca_excitation`, the variant's micro-geometry
-    included); 'tvms' / 'lste' the slice stiffness (``stiffness`` dataset or computed) with
-    ``transmission_error_um`` (or none), 'tvms' with the loaded extension of contact beyond the
-    active zone at the torque (:func:`gearmesh.ltca.with_loaded_extension`; 'lste' is the low-fluctuation paper's
-    literal form without it).
+
+def pair_model_of(pair: GearPair, torque_Nm: float, settings: Dynamics, excitation: str, grid: tuple[int, int], *,
+                  stiffness: xr.Dataset | None = None, ltca: xr.Dataset | None = None,
+                  table: MeshForceTable | None = None) -> GearModel:
+    """The 8-DOF model of ``pair`` at one torque from parsed ``settings``
+    (:func:`gearmesh.schema.settings_object`) and the resolved ``excitation``.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its supports, body and micro-geometry).
+    torque_Nm : float
+        Torque (N·m) on ``settings.on``.
+    settings : gearmesh.settings.Dynamics
+        The dynamics section as its declaration parsed it.
+    excitation : {'contact', 'ltca', 'tvms', 'lste'}
+        'contact' the mesh force ``table`` (built with the section's table settings when not
+        given); 'ltca' the loaded stiffness and equivalent error of the ``ltca`` dataset
+        (:func:`ltca_excitation`, the variant's micro-geometry included); 'tvms' / 'lste' the slice
+        stiffness (``stiffness`` dataset or computed) with ``transmission_error_um`` (or none),
+        'tvms' with the loaded extension of contact beyond the active zone at the torque
+        (:func:`gearmesh.ltca.with_loaded_extension`; 'lste' is the low-fluctuation paper's literal
+        form without it).
+    grid : (int, int)
+        Slices and positions of the slice stiffness computed without a ``stiffness`` dataset.
+    stiffness, ltca : xarray.Dataset, optional
+        The variant's stiffness and LTCA results.
+    table : MeshForceTable, optional
+        The contact excitation's mesh force table.
+
+    Returns
+    -------
+    GearModel
+        The model (:func:`gearmesh.dynamics.pair_model`), SI.
     """
+    s, exc, (slices, positions) = settings, excitation, grid
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
     torque = positive_torque("torque_Nm", torque_Nm)
-    if on not in _PAIR_GEARS:
-        raise GearmeshInputError("on", on, "must be 'pinion' or 'gear' (where torque_Nm acts)")
-    check_load(geom, pinion_torque(pair, torque, on), "torque_Nm", torque_Nm)
+    check_load(geom, pinion_torque(pair, torque, s.on), "torque_Nm", torque_Nm)
     if stiffness is None and ltca is None and table is None:
         check_slice_grid(slices, positions)
-    t_out = torque if on == "gear" else torque * geom.base_radius[1] / geom.base_radius[0]
-    backlash = _backlash(geom, backlash_um)
-    exc = resolve_excitation(excitation, ltca)
+    t_out = torque if s.on == "gear" else torque * geom.base_radius[1] / geom.base_radius[0]
+    backlash = _backlash(geom, s.backlash_um)
     t1 = pinion_torque(pair, t_out, "gear")  # the pinion torque of the mesh's static force
     K = te = None
     if exc == "contact":
-        if transmission_error_um is not None:
+        if s.transmission_error_um is not None:
             raise GearmeshInputError("transmission_error_um", "given", "the contact excitation has the "
                                      "micro-geometry in its table; give no tabulated TE")
         if table is None:
-            table = contact_table(geom, [t1], method)
+            table = contact_table(geom, [t1], s.method, **table_keywords(s))
     elif exc == "ltca":
         if ltca is None:
             raise GearmeshInputError("excitation", "ltca", "needs the variant's LTCA dataset (ltca.nc)")
-        if transmission_error_um is not None:
+        if s.transmission_error_um is not None:
             raise GearmeshInputError("transmission_error_um", "given", "give either a table or an ltca dataset")
         K, te = ltca_excitation(geom, ltca, t1)
     else:
-        K = _stiffness_curve(geom, stiffness, method, slices, positions, t1)
+        K = _stiffness_curve(geom, stiffness, s.method, slices, positions, t1)
         if exc == "tvms":  # the loaded extension of contact beyond the active zone (one stiffness at one load)
-            K = with_loaded_extension(geom, K, t1, method)
-        te = _transmission_error(transmission_error_um)
-    return pair_model(geom, t_out, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
-                                                         bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
-                      damping_ratio=damping_ratio, backlash=backlash, stiffness_form=stiffness_form,
-                      order=fourier_order, excitation="lste" if exc == "lste" else "tvms", transmission_error=te,
-                      mesh_damping=mesh_damping_Ns_per_m, contact=table if exc == "contact" else None)
+            K = with_loaded_extension(geom, K, t1, s.method)
+        te = _transmission_error(s.transmission_error_um)
+    return pair_model(geom, t_out, K, bearing=_bearing(s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m,
+                                                       s.bearing_c_radial_Ns_per_m, s.bearing_c_axial_Ns_per_m),
+                      damping_ratio=s.damping_ratio, backlash=backlash, stiffness_form=s.stiffness_form,
+                      order=s.fourier_order, excitation="lste" if exc == "lste" else "tvms", transmission_error=te,
+                      mesh_damping=s.mesh_damping_Ns_per_m, contact=table if exc == "contact" else None)
 
 
 def resonance_refined(grid: np.ndarray, model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> np.ndarray:
@@ -181,31 +202,22 @@ def _pair_sweep(pair: GearPair, model: GearModel, speeds: np.ndarray, grid: np.n
 _TORQUE_FREE = ("mesh_frequency", "on_grid", "frequency", "time")
 
 
-@check_arguments(Dynamics)
-def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
-                     speeds_rpm: Mapping[str, float] | Sequence[float] | str = DEFAULT_SPEEDS,
-                     backlash_um="pair",
-                     bearing_k_radial_N_per_m: float | str = "pair",
-                     bearing_k_axial_N_per_m: float | str = "pair",
-                     bearing_c_radial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_radial"],
-                     bearing_c_axial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_axial"],
-                     damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
-                     stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                     method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
-                     transmission_error_um=None, sample_speeds_rpm: Sequence[float] = (5000, 13700, 27000),
-                     courant: float = 0.25, steps_per_cycle_min: int = 32, transient_tau: float = 10.0,
-                     record_cycles: int = 8, steady_state: str = "shooting", points_per_cycle: int = 64,
-                     max_order: int = 10, refine_resonances: bool = True, contact_law: str = DEFAULT_CONTACT_LAW,
-                     points: int = DEFAULT_TABLE_POINTS,
-                     table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
-                     table_force_factor: float = 4.0, variant: str = "", stiffness: xr.Dataset | None = None,
-                     ltca: xr.Dataset | None = None, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+@check_arguments(Dynamics, exclude=SECTION_KEYS[Dynamics])
+def dynamics_dataset(pair: GearPair, *, variant: str = "", slices: int | None = None, positions: int | None = None,
+                     stiffness: xr.Dataset | None = None, ltca: xr.Dataset | None = None,
+                     fe_compliance: xr.Dataset | None = None, **section: Any) -> xr.Dataset:
     """Speed sweeps of the 8-DOF helical pair at one or more torques (the low-fluctuation paper §4; model and
     solver in :mod:`gearmesh.dynamics`). Dimensions (torque, speed) and, for the kept series,
     (torque, sample_speed, sample).
 
-    Parameters (engineering units)
-    ------------------------------
+    ``section`` is a study's ``dynamics:`` section (keywords, :class:`gearmesh.settings.Dynamics`:
+    every default and bound there), parsed once (:func:`gearmesh.schema.settings_object`); a bad
+    value is refused naming its key. ``variant`` names the micro-geometry variant; ``stiffness``,
+    ``ltca`` and ``fe_compliance`` are the variant's upstream results; ``slices`` and ``positions``
+    the slice grid without a ``stiffness`` dataset (:func:`slice_grid`).
+
+    Settings (engineering units)
+    ----------------------------
     torques_Nm : T (N·m) > 0, one or a list, acting on ``on`` ('pinion' or 'gear').
     speeds_rpm : pinion speeds {start, stop, step} (stop included), a list or 'a:b:c'.
     backlash_um : total backlash 2b0 (µm) along the normal; 'pair' the pair's own (from its
@@ -220,7 +232,7 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
         force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error at each torque),
         'tvms' (the slice stiffness with ``transmission_error_um`` or none, plus the tip-edge contact
         the LTCA loads beyond the active zone at the torque), 'lste' (the low-fluctuation paper literal); null: 'ltca' with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
-    method, slices, positions : slice model (and the TVMS grid when no upstream ``stiffness``).
+    method : slice model (and of the contact table).
     sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
         the record window) and spectra (to ``max_order`` mesh orders) are kept.
     courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state : solver rules
@@ -236,31 +248,25 @@ def dynamics_dataset(pair: GearPair, torques_Nm=200.0, on: str = "pinion",
     centres move too. With ``contact``, the entering pair: ``entering_pair_force_max``,
     ``dynamic_impact_force``, ``mesh_in_roll_before_A`` (:func:`_contact_vars`).
     """
+    s = settings_object(Dynamics, section)
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
-    given, t1 = _pair_torques(pair, geom, torques_Nm, on)
-    grid, samples = _sweep_speeds(geom, speeds_rpm, sample_speeds_rpm)
-    check_slice_grid(slices, positions)
+    given, t1 = _pair_torques(pair, geom, s.torques_Nm, s.on)
+    grid, samples = _sweep_speeds(geom, s.speeds_rpm, s.sample_speeds_rpm)
+    grid_slices = slice_grid(slices, positions)
+    check_slice_grid(*grid_slices)
     use_fe_tables(fe_compliance, geom)
-    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
-    exc = resolve_excitation(excitation, ltca)
-    tables = (contact_tables(geom, t1, method, contact_law=contact_law, points=points, table_positions=table_positions,
-                             table_approaches=table_approaches, table_force_factor=table_force_factor)
-              if exc == "contact" else [None] * len(given))
-    models = [build_pair_model(pair, float(t), on, backlash_um, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
-                               bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m, damping_ratio,
-                               mesh_damping_Ns_per_m, stiffness_form, fourier_order, exc, method, slices, positions,
-                               transmission_error_um, stiffness, ltca, tab) for t, tab in zip(given, tables)]
-    speeds = _resonance_refined_speeds(grid, models) if refine_resonances else grid
-    ds = _torque_sweeps(pair, models, tables, given, on, speeds, grid, samples, settings, points_per_cycle, max_order)
+    settings = _solver(s)
+    exc = resolve_excitation(s.excitation, ltca)
+    tables = (contact_tables(geom, t1, s.method, **table_keywords(s)) if exc == "contact" else [None] * len(given))
+    models = [pair_model_of(pair, float(t), s, exc, grid_slices, stiffness=stiffness, ltca=ltca, table=tab)
+              for t, tab in zip(given, tables)]
+    speeds = _resonance_refined_speeds(grid, models) if s.refine_resonances else grid
+    ds = _torque_sweeps(pair, models, tables, given, s.on, speeds, grid, samples, settings, s.points_per_cycle,
+                        s.max_order)
     ds = _with_pair_scalars(ds, geom, t1, models[0], tables[0])
-    ds.attrs.update(_sweep_attrs(
-        pair, geom, exc, settings, ltca=ltca, transmission_error_um=transmission_error_um, table=tables[0],
-        method=method, contact_law=contact_law, stiffness=stiffness, refine_resonances=refine_resonances,
-        stiffness_form=stiffness_form, fourier_order=fourier_order, on=on, variant=variant, backlash_um=backlash_um,
-        damping_ratio=damping_ratio, bearing_k_radial_N_per_m=bearing_k_radial_N_per_m,
-        bearing_k_axial_N_per_m=bearing_k_axial_N_per_m, steady_state=steady_state, transient_tau=transient_tau,
-        record_cycles=record_cycles))
+    ds.attrs.update(_sweep_attrs(pair, geom, exc, settings, s, ltca=ltca, table=tables[0], stiffness=stiffness,
+                                 variant=variant))
     return name_force_lines(ds, "normal")
 
 
@@ -278,7 +284,7 @@ def _pair_torques(pair: GearPair, geom: PairGeometry, torques_Nm, on: str) -> tu
 def _sweep_speeds(geom: PairGeometry, speeds_rpm, sample_speeds_rpm: Sequence[float]) -> tuple[np.ndarray, np.ndarray]:
     """The configured grid of pinion speeds and the speeds whose series are kept (rpm; none: an
     empty array), each checked against the pair's speed limits."""
-    grid = speed_grid(speeds_rpm)
+    grid = settings_speeds(speeds_rpm)
     check_speeds(geom, grid, "speeds_rpm")
     samples = speed_grid(list(sample_speeds_rpm)) if len(sample_speeds_rpm) else np.zeros(0)
     check_speeds(geom, samples, "sample_speeds_rpm", empty_ok=True)
@@ -336,31 +342,30 @@ def _with_pair_scalars(ds: xr.Dataset, geom: PairGeometry, t1: np.ndarray, model
     return ds
 
 
-def _sweep_attrs(pair: GearPair, geom: PairGeometry, exc: str, settings: SolverSettings, *, ltca, transmission_error_um,
-                 table, method, contact_law, stiffness, refine_resonances, stiffness_form, fourier_order, on, variant,
-                 backlash_um, damping_ratio, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m, steady_state,
-                 transient_tau, record_cycles) -> dict[str, Any]:
+def _sweep_attrs(pair: GearPair, geom: PairGeometry, exc: str, settings: SolverSettings, s: Dynamics, *,
+                 ltca: xr.Dataset | None, table: MeshForceTable | None, stiffness: xr.Dataset | None,
+                 variant: str) -> dict[str, Any]:
     """The attributes of a pair sweep: its model, excitation and model choices, settings, supports
-    and how the steady state was reached (the keywords: those of :func:`dynamics_dataset`)."""
+    and how the steady state was reached (``s``: the parsed section of :func:`dynamics_dataset`)."""
     return {
         "model": "8-DOF bending-torsion-axial helical pair (the low-fluctuation paper, section 4, projections corrected; "
                  "gearmesh.dynamics)",
-        "excitation": excitation_used(exc, ltca, transmission_error_um, table), "excitation_name": exc,
-        **model_choices(exc, method, contact_law, stiffness, ltca),
-        "resonance_refinement": "on" if refine_resonances else "off", "stiffness_form": stiffness_form,
-        "fourier_order": fourier_order, "torque_on": on, "variant": variant,
-        "backlash_source": backlash_source(backlash_um),
-        "damping_ratio": float(damping_ratio),
+        "excitation": excitation_used(exc, ltca, s.transmission_error_um, table), "excitation_name": exc,
+        **model_choices(exc, s.method, s.contact_law, stiffness, ltca),
+        "resonance_refinement": "on" if s.refine_resonances else "off", "stiffness_form": s.stiffness_form,
+        "fourier_order": s.fourier_order, "torque_on": s.on, "variant": variant,
+        "backlash_source": backlash_source(s.backlash_um),
+        "damping_ratio": float(s.damping_ratio),
         "damping_ratio_meaning": DAMPING_MEANING,
-        "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
+        "supports": supports_note(pair, s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m),
         "gear_body": describe_body(geom),
         "system_deflection": describe_deflection(geom),
         "steady_state": (f"periodic steady state by shooting (Newton on the one-period map), then "
-                         f"{settings.settle_cycles} periods, then {record_cycles} recorded; the physical-time "
-                         f"transient ({transient_tau} time constants of the slowest mode) where shooting does not "
-                         "converge to a stable orbit") if steady_state == "shooting" else
-                        (f"{transient_tau} time constants 1/sigma_min of the slowest linearised mode, then "
-                         f"{record_cycles} mesh periods recorded"),
+                         f"{settings.settle_cycles} periods, then {s.record_cycles} recorded; the physical-time "
+                         f"transient ({s.transient_tau} time constants of the slowest mode) where shooting does not "
+                         "converge to a stable orbit") if s.steady_state == "shooting" else
+                        (f"{s.transient_tau} time constants 1/sigma_min of the slowest linearised mode, then "
+                         f"{s.record_cycles} mesh periods recorded"),
     }
 
 
@@ -370,25 +375,35 @@ def _engagement_roll(geom: PairGeometry) -> float:
     return engagement_point(geom)[0]
 
 
-@check_arguments(Dynamics)
-def dynamics_summary(pair: GearPair, torque_Nm: float = 200.0, speeds: Any = DEFAULT_SPEEDS, on: str = "pinion",
-                     progress=None, **settings: Any) -> list[dict[str, float]]:
-    """Per speed (for the CLI): speed_rpm, mesh_frequency_Hz, dynamic_te_mean_um, dynamic_te_std_um,
+@check_arguments(Dynamics, exclude=SECTION_KEYS[Dynamics])
+def dynamics_summary(pair: GearPair, *, ltca: xr.Dataset | None = None, progress=None,
+                     **section: Any) -> list[dict[str, float]]:
+    """The per-speed summary (:func:`pair_summary`) of ``section``, a study's ``dynamics:`` section
+    (keywords, :class:`gearmesh.settings.Dynamics`) at one torque, parsed once."""
+    return pair_summary(pair, settings_object(Dynamics, section), ltca=ltca, progress=progress)
+
+
+def pair_summary(pair: GearPair, settings: Dynamics, *, ltca: xr.Dataset | None = None,
+                 progress=None) -> list[dict[str, float]]:
+    """Per speed of ``settings.speeds_rpm`` at its one torque (for the CLI; the grid as given:
+    ``refine_resonances`` and ``sample_speeds_rpm`` are :func:`dynamics_dataset`'s): speed_rpm, mesh_frequency_Hz, dynamic_te_mean_um, dynamic_te_std_um,
     mesh_deflection_mean_um (all three along the transverse line of action, as the LTCA's
     lte_mean_um; :func:`dynamics_dataset`), mesh_force_mean_normal_N, mesh_force_min_normal_N, mesh_force_max_normal_N
     (normal force), dynamic_factor, contact_loss_fraction; with the ``contact`` excitation also
     entering_pair_force_max_normal_N, dynamic_impact_force_normal_N (normal) and mesh_in_roll_before_A_mm."""
-    model_settings = {k: v for k, v in settings.items() if k not in _SOLVER_KEYS and k not in _TABLE_KEYS}
-    if resolve_excitation(settings.get("excitation"), settings.get("ltca")) == "contact":
-        geom = pair_geometry(pair)
-        t1 = pinion_torque(pair, positive_torque("torque_Nm", torque_Nm), on)
-        model_settings["table"] = contact_table(geom, [t1], settings.get("method", _DEFAULTS["method"]),
-                                                **{k: v for k, v in settings.items() if k in _TABLE_KEYS})
-    model = build_pair_model(pair, torque_Nm, on, **model_settings)
-    solver = _solver(*(settings.get(k, d) for k, d in _SOLVER_KEYS.items()))
-    grid = speed_grid(speeds)
+    s = settings
+    torques = positive_values(s.torques_Nm, "torques_Nm", "N m")
+    if torques.size != 1:
+        raise GearmeshInputError("torques_Nm", list(s.torques_Nm), "one torque for the per-speed summary")
+    torque = float(torques[0])
+    exc, table = resolve_excitation(s.excitation, ltca), None
+    if exc == "contact":
+        t1 = pinion_torque(pair, positive_torque("torque_Nm", torque), s.on)
+        table = contact_table(pair_geometry(pair), [t1], s.method, **table_keywords(s))
+    model = pair_model_of(pair, torque, s, exc, slice_grid(None, None), ltca=ltca, table=table)
+    grid = settings_speeds(s.speeds_rpm)
     check_speeds(pair_geometry(pair), grid, "speeds_rpm")
-    res = simulate(model, grid, solver, progress=progress)
+    res = simulate(model, grid, _solver(s), progress=progress)
     fs = float(model.static_force[0])
     um = 1e6 / model.cos_beta_b  # normal (m) -> transverse (µm)
     rows = []

@@ -3,52 +3,37 @@
 from __future__ import annotations
 
 import math
-from typing import Any, Sequence
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
 from ...body import describe_body
-from ...dynamics import (DAMPING_MEANING, DEFAULT_DAMPING_RATIO, LOW_FLUCTUATION_BEARING, TRAIN_GEARS, GearModel,
-                         SolverSettings, SweepResult, require_dynamics_data, simulate, train_model)
+from ...dynamics import (DAMPING_MEANING, TRAIN_GEARS, GearModel, SolverSettings, SweepResult, require_dynamics_data,
+                         simulate, train_model)
 from ...errors import GearmeshInputError
 from ...fe_tables import use_fe_tables
 from ...gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ...io import name_force_lines, variable
 from ...limits import MAX_TRAIN_SPEEDS, check_speeds
 from ...loads import check_load
-from ...meshforce import DEFAULT_TABLE_APPROACHES, DEFAULT_TABLE_POINTS, DEFAULT_TABLE_POSITIONS
-from ...stiffness import DEFAULT_SLICES
-from ...schema import check_arguments
-from ...choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
+from ...schema import check_arguments, defaults, settings_object
 from ...settings import TrainDynamics
 from .excitation import _stiffness_curve, contact_table, excitation_used, model_choices
-from .inputs import _backlash, _bearing, _solver, backlash_source, positive_torque, speed_grid, supports_note
+from .inputs import (SECTION_KEYS, _backlash, _bearing, _solver, backlash_source, positive_torque, settings_speeds,
+                     slice_grid, supports_note, table_keywords)
 from .variables import _common_vars, _modal_vars, _series_arrays, _series_vars, _vibration_vars
 
-#: The improved potential-energy paper: mesh frequency 249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm.
-PRINTING_TRAIN_MESH_FREQUENCY_HZ = 249.4
-PRINTING_TRAIN_STATIC_FORCE_N = 2832.0
+#: The improved potential-energy paper's mesh frequency (249.4 Hz of the 88-tooth gears -> 249.4·60/88 rpm) and
+#: static normal mesh force: the declared defaults of :class:`gearmesh.settings.TrainDynamics`.
+PRINTING_TRAIN_MESH_FREQUENCY_HZ = float(defaults(TrainDynamics)["mesh_frequency_Hz"])
+PRINTING_TRAIN_STATIC_FORCE_N = float(defaults(TrainDynamics)["static_force_N"])
 
 
-@check_arguments(TrainDynamics)
-def train_dataset(pair: GearPair, static_force_N: float | None = PRINTING_TRAIN_STATIC_FORCE_N,
-                  torque_Nm: float | None = None, speeds_rpm: Any = None,
-                  mesh_frequency_Hz: float = PRINTING_TRAIN_MESH_FREQUENCY_HZ, backlash_um="pair",
-                  bearing_k_radial_N_per_m: float | str = "pair",
-                  bearing_k_axial_N_per_m: float | str = "pair",
-                  bearing_c_radial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_radial"],
-                  bearing_c_axial_Ns_per_m: float = LOW_FLUCTUATION_BEARING["c_axial"],
-                  damping_ratio: float = DEFAULT_DAMPING_RATIO, mesh_damping_Ns_per_m: float | None = None,
-                  stiffness_form: str = "fourier", fourier_order: int = 3, excitation: str | None = None,
-                  method: str = DEFAULT_TOOTH_METHOD, slices: int = DEFAULT_SLICES, positions: int = 360,
-                  phase_offsets_cycles: Sequence[float] = (0.0, 0.0), courant: float = 0.25,
-                  steps_per_cycle_min: int = 32, transient_tau: float = 10.0, record_cycles: int = 8,
-                  steady_state: str = "shooting", points_per_cycle: int = 64, max_order: int = 10,
-                  contact_law: str = DEFAULT_CONTACT_LAW, points: int = DEFAULT_TABLE_POINTS,
-                  table_positions: int = DEFAULT_TABLE_POSITIONS, table_approaches: int = DEFAULT_TABLE_APPROACHES,
-                  table_force_factor: float = 4.0, stiffness: xr.Dataset | None = None,
-                  fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+@check_arguments(TrainDynamics, exclude=SECTION_KEYS[TrainDynamics])
+def train_dataset(pair: GearPair, *, slices: int | None = None, positions: int | None = None,
+                  stiffness: xr.Dataset | None = None, fe_compliance: xr.Dataset | None = None,
+                  **section: Any) -> xr.Dataset:
     """The 9-DOF plate–blanket–impression train of the improved potential-energy paper (:func:`gearmesh.dynamics.train_model`).
 
     Assumptions (the improved potential-energy paper gives neither torque nor speed nor bearings): the three gears are
@@ -60,44 +45,46 @@ def train_dataset(pair: GearPair, static_force_N: float | None = PRINTING_TRAIN_
     given; meshes in phase. ``excitation`` 'tvms' (default), 'lste' or 'contact' (both meshes
     driven by the pair's mesh force table, settings as :func:`dynamics_dataset`).
     Time series and spectra are kept at every speed (give few).
+
+    ``section`` is a study's ``train_dynamics:`` section (keywords,
+    :class:`gearmesh.settings.TrainDynamics`: every default and bound there), parsed once
+    (:func:`gearmesh.schema.settings_object`); ``stiffness`` and ``fe_compliance`` are the upstream results;
+    ``slices`` and ``positions`` the slice grid without a ``stiffness`` dataset (:func:`.inputs.slice_grid`).
     """
+    s = settings_object(TrainDynamics, section)
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
     rb = float(geom.base_radius[1])
-    torque = _train_torque(pair, geom, torque_Nm, static_force_N)
-    speeds = _train_speeds(geom, speeds_rpm, mesh_frequency_Hz)
+    torque = _train_torque(pair, geom, s.torque_Nm, s.static_force_N)
+    speeds = _train_speeds(geom, s.speeds_rpm, s.mesh_frequency_Hz)
     use_fe_tables(fe_compliance, geom)
-    exc = "tvms" if excitation is None else excitation
-    if exc not in ("tvms", "lste", "contact"):
-        raise GearmeshInputError("excitation", excitation, "must be 'tvms', 'lste', 'contact' or null for the train")
-    table = None
+    exc = "tvms" if s.excitation is None else s.excitation
+    table = K = None
     if exc == "contact":
-        table = contact_table(geom, [torque * float(geom.base_radius[0]) / rb], method, contact_law=contact_law,
-                              points=points, table_positions=table_positions,
-                              table_approaches=table_approaches, table_force_factor=table_force_factor)
-        K = None
+        table = contact_table(geom, [torque * float(geom.base_radius[0]) / rb], s.method, **table_keywords(s))
     else:
-        K = _stiffness_curve(geom, stiffness, method, slices, positions, torque * float(geom.base_radius[0]) / rb)
-    model = train_model(geom, torque, K, bearing=_bearing(bearing_k_radial_N_per_m, bearing_k_axial_N_per_m,
-                                                          bearing_c_radial_Ns_per_m, bearing_c_axial_Ns_per_m),
-                        damping_ratio=damping_ratio, backlash=_backlash(geom, backlash_um),
-                        stiffness_form=stiffness_form, order=fourier_order,
+        K = _stiffness_curve(geom, stiffness, s.method, *slice_grid(slices, positions),
+                             torque * float(geom.base_radius[0]) / rb)
+    model = train_model(geom, torque, K, bearing=_bearing(s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m,
+                                                          s.bearing_c_radial_Ns_per_m, s.bearing_c_axial_Ns_per_m),
+                        damping_ratio=s.damping_ratio, backlash=_backlash(geom, s.backlash_um),
+                        stiffness_form=s.stiffness_form, order=s.fourier_order,
                         excitation="lste" if exc == "lste" else "tvms", contact=table,
-                        phase_offsets=tuple(phase_offsets_cycles), mesh_damping=mesh_damping_Ns_per_m)
-    settings = _solver(courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state)
+                        phase_offsets=tuple(s.phase_offsets_cycles), mesh_damping=s.mesh_damping_Ns_per_m)
+    settings = _solver(s)
     res = simulate(model, speeds, settings, series=True)
-    data = _train_variables(geom, model, res, torque, settings, points_per_cycle, max_order)
-    ds = xr.Dataset(data, coords=_train_coords(speeds, model, max_order, settings.record_cycles))
+    data = _train_variables(geom, model, res, torque, settings, s.points_per_cycle, s.max_order)
+    ds = xr.Dataset(data, coords=_train_coords(speeds, model, s.max_order, settings.record_cycles))
     ds.attrs.update({
         "model": "9-DOF plate-blanket-impression helical train (the improved potential-energy paper, projections corrected; gearmesh.dynamics)",
         "excitation": excitation_used(exc, None, None, table), "excitation_name": exc,
-        **model_choices(exc, method, contact_law, stiffness), "stiffness_form": stiffness_form,
-        "fourier_order": fourier_order,
-        "backlash_source": backlash_source(backlash_um),
+        **model_choices(exc, s.method, s.contact_law, stiffness), "stiffness_form": s.stiffness_form,
+        "fourier_order": s.fourier_order,
+        "backlash_source": backlash_source(s.backlash_um),
         "assumptions": "three alike gears (the pair file's gear, its supports for all three); plate drives, "
                        "impression loaded, blanket idles; meshes in phase unless phase_offsets_cycles; centres on "
                        "one line",
-        "supports": supports_note(pair, bearing_k_radial_N_per_m, bearing_k_axial_N_per_m),
+        "supports": supports_note(pair, s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m),
         "gear_body": describe_body(geom),
         "damping_ratio_meaning": DAMPING_MEANING,
     })
@@ -126,7 +113,7 @@ def _train_speeds(geom: PairGeometry, speeds_rpm: Any, mesh_frequency_Hz: float)
         f = positive_torque("mesh_frequency_Hz", mesh_frequency_Hz)
         speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
     else:
-        speeds = speed_grid(speeds_rpm)
+        speeds = settings_speeds(speeds_rpm)
     check_speeds(geom, speeds, "speeds_rpm" if speeds_rpm is not None else "mesh_frequency_Hz", on="gear")
     if len(speeds) > MAX_TRAIN_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{len(speeds)} speeds",
