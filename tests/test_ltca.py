@@ -252,3 +252,30 @@ def test_dataset_and_summary(helical_z29_71_m5):
                 "loaded_mesh_stiffness_mean_transverse_N_per_um"):
         assert math.isfinite(summary[key])
     assert summary["te_peak_to_peak_um"] == 0.0 and summary["lte_mean_um"] > 0
+
+
+def test_the_contact_commands_differ_from_a_study_only_by_their_listed_overrides(helical_z29_71_m5):
+    """``gearmesh ltca`` and ``gearmesh impact`` run a study's section (commands._ltca_section,
+    commands._impact_section): given only their operating point, every key they set is the declared
+    default, and what they leave out is the map the one operating point replaces (and, for the LTCA,
+    nothing else but the corner extension's default). The one-point functions refuse a map key
+    rather than parse it and ignore it."""
+    from gearmesh.cli import build_parser
+    from gearmesh.commands import _impact_section, _ltca_section
+    from gearmesh.datasets.impact import _MAP_KEYS, impact_summary
+    from gearmesh.schema import defaults, jsonable
+    from gearmesh.settings import Impact, Ltca
+
+    path = str(ROOT / "config/pairs/helical_z29_71_m5.yaml")
+    for command, section_of, cls, left_out in (
+            (["ltca", path, "--torque-Nm", "1000"], _ltca_section, Ltca, {"torques_Nm", "corner_extension"}),
+            (["impact", path, "--torque-Nm", "1000", "--speed-rpm", "5000"], _impact_section, Impact,
+             set(_MAP_KEYS) | {"contact_law", "method", "corner_extension", "added_inertia_kg_m2",
+                               "window_positions", "face_samples"})):
+        section, declared = section_of(build_parser().parse_args(command)), defaults(cls)
+        assert set(section) == set(declared) - left_out, command[0]
+        assert {k: jsonable(v) for k, v in section.items()} == {k: declared[k] for k in section}, command[0]
+    with pytest.raises(GearmeshInputError, match="torques_Nm"):
+        ltca_summary(helical_z29_71_m5, 1000.0, torques_Nm=[1000.0])
+    with pytest.raises(GearmeshInputError, match="speeds_rpm"):
+        impact_summary(helical_z29_71_m5, 1000.0, 5000.0, speeds_rpm=[5000.0])

@@ -81,12 +81,12 @@ def test_every_setting_is_described():
 def test_a_stage_function_takes_its_defaults_from_the_declaration():
     """The defaults a stage function gets are the settings fields' (gearmesh.schema.check_arguments
     fills them): what a caller leaving them out computes with, what help() shows."""
-    from gearmesh.datasets.ltca import ltca_dataset
-    from gearmesh.settings import Ltca
+    from gearmesh.datasets.stiffness import stiffness_dataset
+    from gearmesh.settings import Stiffness
 
-    params = inspect.signature(ltca_dataset).parameters
-    for f in settings_fields(Ltca):
-        assert params[f.name].default == getattr(Ltca(), f.name), f.name
+    params = inspect.signature(stiffness_dataset).parameters
+    for f in settings_fields(Stiffness):
+        assert params[f.name].default == getattr(Stiffness(), f.name), f.name
 
 
 def test_a_second_declaration_of_a_default_is_refused_at_import():

@@ -249,8 +249,21 @@ def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
 def cmd_impact(args: argparse.Namespace) -> dict[str, Any]:
     from .datasets.impact import impact_summary
 
-    return impact_summary(_pair(args)[0], args.torque_Nm, args.speed_rpm, on=args.on, driver=args.driver,
-                          points=args.points, simulate=args.simulate, energy_velocity=args.energy_velocity)
+    return impact_summary(_pair(args)[0], args.torque_Nm, args.speed_rpm, simulate=args.simulate,
+                          **_impact_section(args))
+
+
+def _impact_section(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh impact``'s options as a study's ``impact:`` section, run as a study's
+    (:func:`gearmesh.datasets.impact.impact_summary`). Every other key is the declared default
+    (:class:`gearmesh.settings.Impact`: contact law, tooth model, corner extension, added inertia,
+    search window), but for the command's deliberate differences, made here and nowhere else:
+
+    * one torque (``--torque-Nm``) and one speed (``--speed-rpm``) in place of the map's
+      ``torques_Nm``, ``speeds_rpm`` and ``design_speed_rpm``;
+    * no load window and no manufactured gears; the engagement integrated in time only with
+      ``--simulate`` (at that torque and speed)."""
+    return {"on": args.on, "driver": args.driver, "points": args.points, "energy_velocity": args.energy_velocity}
 
 
 def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
@@ -258,8 +271,17 @@ def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
 
     check_grid("--points", args.points, (args.positions + 1) * args.points, MAX_CONTACT_POINTS,
                "contact candidates per line")
-    return ltca_summary(_pair(args)[0], args.torque_Nm, on=args.on, positions=args.positions,
-                        points=args.points, contact_law=args.contact_law, method=args.method)
+    return ltca_summary(_pair(args)[0], args.torque_Nm, **_ltca_section(args))
+
+
+def _ltca_section(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh ltca``'s options as a study's ``ltca:`` section, run as a study's
+    (:func:`gearmesh.datasets.ltca.ltca_summary`). Every other key is the declared default
+    (:class:`gearmesh.settings.Ltca`: the corner extension), but for the command's deliberate
+    difference, made here and nowhere else: one torque (``--torque-Nm``) in place of
+    ``torques_Nm``."""
+    return {"on": args.on, "positions": args.positions, "points": args.points, "contact_law": args.contact_law,
+            "method": args.method}
 
 
 def cmd_rating(args: argparse.Namespace) -> dict[str, Any]:

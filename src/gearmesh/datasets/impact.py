@@ -18,11 +18,12 @@ from ..deflection import describe_deflection
 from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from . import shared_torques, variant_names
+from .ltca import refuse_operating_point, section_keys
 from ..gear import GEARS, GearPair, pair_geometry
 from ..impact.energy import ImpactResponse, impact_response, load_grid, load_window
 from ..impact.engagement import simulate_engagement
 from ..impact.kinematics import mesh_in_point, seed_edge_roll, vector_velocity
-from ..impact.model import DRIVERS, SCENARIOS, ImpactModel, impact_model
+from ..impact.model import SCENARIOS, ImpactModel, impact_model
 from ..impact.static import ImpactStatic, impact_static
 from ..pairfile import load_pair, pair_to_dict
 from ..io import name_force_lines, variable
@@ -32,7 +33,7 @@ from ..surface import MODIFICATION_FIELDS
 from ..tca import check_modifications
 from ..robust import CRITERIA, CRITERION_UNITS, design_box_worst, gear_criteria, population_units
 from ..tolerance import manufactured_population, study_population, study_tolerances
-from ..schema import check_arguments, defaults
+from ..schema import check_arguments, settings_object
 from ..settings import Impact
 
 UM = 1e-6
@@ -40,16 +41,17 @@ UM = 1e-6
 __all__ = ["impact_dataset", "impact_table_dataset", "impact_summary", "manufactured_gear"]
 
 
-def _model(pair: GearPair, points: int, contact_law: str, method: str, corner_extension: float,
-           driver: str, added_inertia_kg_m2, window_positions: int = 32, face_samples: int = 257) -> ImpactModel:
-    """The impact model of ``pair`` (its modification and deviations; :func:`gearmesh.impact.impact_model`)."""
+def _model(pair: GearPair, settings: Impact) -> ImpactModel:
+    """The impact model of ``pair`` (its modification and deviations) from the parsed ``settings``'
+    contact model, driver, added inertia and search window (:func:`gearmesh.impact.impact_model`)."""
     if not isinstance(pair, GearPair):
         raise GearmeshInputError("pair", type(pair).__name__, "must be a GearPair")
     check_modifications(pair)
     geom = pair_geometry(pair)
-    return impact_model(geom, points=points, contact_law_name=contact_law, method=method,
-                        extension=corner_extension, driver=driver, added_inertia_kg_m2=added_inertia_kg_m2,
-                        window_positions=window_positions, face_samples=face_samples)
+    s = settings
+    return impact_model(geom, points=s.points, contact_law_name=s.contact_law, method=s.method,
+                        extension=s.corner_extension, driver=s.driver, added_inertia_kg_m2=s.added_inertia_kg_m2,
+                        window_positions=s.window_positions, face_samples=s.face_samples)
 
 
 def _operating_points(pair: GearPair, torques, on: str, speeds_rpm, torque_field: str = "torques_Nm",
@@ -71,13 +73,9 @@ def _scenario_var(dims, scenario) -> xr.Variable:
                     flag_values=np.array([0, 1, 2], dtype=np.int8), flag_meanings=" ".join(SCENARIOS))
 
 
-@check_arguments(Impact)
-def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_speed_rpm: float, driver: str,
-                   points: int, energy_velocity: str, added_inertia_kg_m2, contact_law: str,
-                   method: str, corner_extension: float, simulate_torques_Nm, variant: str = "",
-                   fe_compliance: xr.Dataset | None = None, window_positions: int, face_samples: int,
-                   design_torque_Nm: float | None, load_window_step_Nm: float | None,
-                   tolerance_torques_Nm=None, tolerances: dict[str, Any] | None = None) -> xr.Dataset:
+@check_arguments(Impact, exclude=section_keys(Impact))
+def impact_dataset(pair: GearPair, *, variant: str = "", fe_compliance: xr.Dataset | None = None,
+                   tolerances: dict[str, Any] | None = None, **section: Any) -> xr.Dataset:
     """Mesh-in impact over a torque × speed grid (dims torque, speed): scenario, mesh-in point
     M (3-D, profile and face position, common normal), impact velocity (closing rate and seed
     000's vector form), local stiffness fit, kinetic energy, impact force (closed form and
@@ -97,34 +95,40 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
     every tolerance sample at each torque (the tolerance spread) and the loaded contact of each
     of those manufactured gears at each torque (:func:`gearmesh.impact.ltca_criteria`, the
     optimiser's criteria on the same model and population: the sign-off table's population basis).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its modification and deviations).
+    variant : str
+        The micro-geometry variant's name.
+    fe_compliance : xarray.Dataset, optional
+        The FE tables of ``method='fe'``.
+    tolerances : dict, optional
+        The study's ``tolerances:`` section.
+    **section
+        A study's ``impact:`` section (:class:`gearmesh.settings.Impact`: every default and bound
+        there), parsed once (:func:`gearmesh.schema.settings_object`); a bad value is refused
+        naming its key.
+
+    Returns
+    -------
+    xarray.Dataset
+        impact.nc, SI.
     """
-    given, t1, speeds = _operating_points(pair, torques_Nm, on, speeds_rpm)
-    design = float(_operating_points(pair, given, on, [design_speed_rpm], speed_field="design_speed_rpm")[2][0])
-    anchor = _design_torque(given, design_torque_Nm)
+    s = settings_object(Impact, section)
+    on, driver, energy_velocity = s.on, s.driver, s.energy_velocity
+    given, t1, speeds = _operating_points(pair, s.torques_Nm, on, s.speeds_rpm)
+    design = float(_operating_points(pair, given, on, [s.design_speed_rpm], speed_field="design_speed_rpm")[2][0])
+    anchor = _design_torque(given, s.design_torque_Nm)
     if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
         use_fe_tables(fe_compliance, pair_geometry(pair))
-    model = _model(pair, points, contact_law, method, corner_extension, driver, added_inertia_kg_m2,
-                   window_positions, face_samples)
+    model = _model(pair, s)
     geom = model.geom
-    sim_given = check_torques(simulate_torques_Nm, "simulate_torques_Nm") if len(simulate_torques_Nm) else np.array([])
-    for k, t in enumerate(sim_given):
-        if not same_point(given, t).any():
-            raise GearmeshInputError(f"simulate_torques_Nm[{k}]", float(t), "must be one of torques_Nm")
+    sim_given = _simulated_torques(given, s.simulate_torques_Nm)
     static = impact_static(model, t1)
     static, resp = impact_response(model, static, speeds, energy_velocity)
-    nt = t1.size
-    points_ = [mesh_in_point(model, static, 0, k) for k in range(nt)]
-    vec = np.full((nt, speeds.size), np.nan)
-    for k in range(nt):  # v is linear in the speed at fixed geometry: one evaluation per torque
-        if static.scenario[0, k]:
-            vec[k] = vector_velocity(model, static, float(speeds[0]), 0, k)["transverse_equivalent"] * speeds / speeds[0]
-    seed_roll = np.full(nt, np.nan)
-    unmodified = not np.any(static.params[0])
-    if unmodified and driver == "pinion":
-        for k in range(nt):
-            if static.scenario[0, k] == 2:
-                seed_roll[k] = seed_edge_roll(geom, float(static.approach[0, k]))
-    ds = xr.Dataset(data_vars=_variables(model, static, resp, points_, vec, seed_roll),
+    ds = xr.Dataset(data_vars=_variables(model, static, resp, *_mesh_in_kinematics(model, static, speeds, driver)),
                     coords={"torque": variable(("torque",), t1, "N m", "pinion torque T1"),
                             "speed": variable(("speed",), speeds, "rpm", "pinion speed"),
                             "level": variable(("level",), np.arange(static.curve_force.shape[-1]), "1",
@@ -135,10 +139,10 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
     ds["design_torque"] = variable((), float(pinion_torques(geom, [anchor], on)[0]), "N m",
                                    "pinion torque the load window is anchored at")
     _add_simulation(ds, model, given, t1, sim_given, design)
-    if load_window_step_Nm is not None:
-        _add_load_grid(ds, model, t1, float(pinion_torques(geom, [load_window_step_Nm], on, "load_window_step_Nm")[0]),
-                       design, energy_velocity)
-    judged = t1 if tolerance_torques_Nm is None else _among(given, t1, tolerance_torques_Nm, "tolerance_torques_Nm")
+    if s.load_window_step_Nm is not None:
+        step = float(pinion_torques(geom, [s.load_window_step_Nm], on, "load_window_step_Nm")[0])
+        _add_load_grid(ds, model, t1, step, design, energy_velocity)
+    judged = t1 if s.tolerance_torques_Nm is None else _among(given, t1, s.tolerance_torques_Nm, "tolerance_torques_Nm")
     _add_tolerance_spread(ds, model, judged, tolerances, design, energy_velocity)
     ds.attrs.update({"variant": variant, "driver": driver, "torque_on": on, "energy_velocity": energy_velocity,
                      "contact_law": model.ltca.law.name, "tooth_model": model.ltca.method,
@@ -147,6 +151,35 @@ def impact_dataset(pair: GearPair, *, torques_Nm, speeds_rpm, on: str, design_sp
                      "displacement_convention": ("transverse along the line of action, r_b1 * dphi_1 with the gear "
                                                  "held; forces transverse (F_bt = T1/r_b1)")})
     return name_force_lines(ds, "transverse")
+
+
+def _simulated_torques(given: np.ndarray, simulate_torques_Nm) -> np.ndarray:
+    """The torques (as given) whose engagement is integrated in time, each one of ``given``."""
+    sim_given = check_torques(simulate_torques_Nm, "simulate_torques_Nm") if len(simulate_torques_Nm) else np.array([])
+    for k, t in enumerate(sim_given):
+        if not same_point(given, t).any():
+            raise GearmeshInputError(f"simulate_torques_Nm[{k}]", float(t), "must be one of torques_Nm")
+    return sim_given
+
+
+def _mesh_in_kinematics(model: ImpactModel, static: ImpactStatic, speeds: np.ndarray, driver: str):
+    """Per torque: the mesh-in point M (:func:`gearmesh.impact.kinematics.mesh_in_point`), the
+    vector-form impact velocity at each speed (T, S; NaN without a touch) and, for an unmodified
+    pair driven by the pinion in edge contact, the roll before A by the mesh-in impact paper's
+    reverse-rotation equation (T; NaN elsewhere)."""
+    nt = static.scenario.shape[1]
+    points = [mesh_in_point(model, static, 0, k) for k in range(nt)]
+    vec = np.full((nt, speeds.size), np.nan)
+    for k in range(nt):  # v is linear in the speed at fixed geometry: one evaluation per torque
+        if static.scenario[0, k]:
+            vec[k] = vector_velocity(model, static, float(speeds[0]), 0, k)["transverse_equivalent"] * speeds / speeds[0]
+    seed_roll = np.full(nt, np.nan)
+    unmodified = not np.any(static.params[0])
+    if unmodified and driver == "pinion":
+        for k in range(nt):
+            if static.scenario[0, k] == 2:
+                seed_roll[k] = seed_edge_roll(model.geom, float(static.approach[0, k]))
+    return points, vec, seed_roll
 
 
 def _variables(model: ImpactModel, st: ImpactStatic, rs: ImpactResponse, pts, vec, seed_roll) -> dict:
@@ -498,26 +531,50 @@ def manufactured_gear(path, heldout: int | None = None, population: int | None =
                              ds[f"{prefix}_modification"].values[gear], ds[f"{prefix}_lead_slope"].values[gear])
 
 
-@check_arguments(Impact)
-def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, on: str, driver: str, points: int, simulate: bool = False,
-                   energy_velocity: str) -> dict[str, Any]:
-    """Headline numbers of one impact in engineering units (the CLI's ``impact --json``)."""
+#: The keys of the impact map that one impact (:func:`impact_summary`) takes as its own arguments or has not.
+_MAP_KEYS = ("torques_Nm", "speeds_rpm", "design_speed_rpm", "simulate_torques_Nm", "design_torque_Nm",
+             "load_window_step_Nm", "tolerance_torques_Nm")
+
+
+@check_arguments(Impact, exclude=section_keys(Impact))
+def impact_summary(pair: GearPair, torque_Nm, speed_rpm, *, simulate: bool = False, **section: Any) -> dict[str, Any]:
+    """Headline numbers of one impact in engineering units (the CLI's ``impact --json``).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its modification and deviations).
+    torque_Nm : float
+        The one torque (N·m) on ``section``'s ``on``.
+    speed_rpm : float
+        The one pinion speed (rpm).
+    simulate : bool
+        Also integrate the engagement in time at this torque and speed.
+    **section
+        A study's ``impact:`` section but its map (torques, speeds, load window, simulated and
+        judged torques; :class:`gearmesh.settings.Impact`), parsed once
+        (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    dict
+        The headline numbers (N, m/s, µm, mm).
+    """
+    refuse_operating_point(section, _MAP_KEYS, "one torque_Nm and one speed_rpm")
+    s = settings_object(Impact, section)
     for name, value in (("torque_Nm", torque_Nm), ("speed_rpm", speed_rpm)):
         if isinstance(value, bool) or not isinstance(value, (int, float, np.floating, np.integer)):
             raise GearmeshInputError(name, value, "must be one positive number")
-    if driver not in DRIVERS:
-        raise GearmeshInputError("driver", driver, f"must be one of {list(DRIVERS)}")
-    t1, speed = _operating_points(pair, [torque_Nm], on, [speed_rpm], "torque_Nm", "speed_rpm")[1:]
-    d = defaults(Impact)  # the study's impact model where the CLI gives no option
-    model = _model(pair, points, d["contact_law"], d["method"], d["corner_extension"], driver,
-                   d["added_inertia_kg_m2"], d["window_positions"], d["face_samples"])
+    t1, speed = _operating_points(pair, [torque_Nm], s.on, [speed_rpm], "torque_Nm", "speed_rpm")[1:]
+    model = _model(pair, s)
+    energy_velocity = s.energy_velocity
     static = impact_static(model, t1)
     static, resp = impact_response(model, static, speed, energy_velocity)
     um, mm = 1e6, 1e3
     scen = SCENARIOS[int(static.scenario[0, 0])]
     out: dict[str, Any] = {
-        "name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": on, "pinion_torque_Nm": float(t1[0]),
-        "speed_rpm": float(speed[0]), "driver": driver, "tooth_model": d["method"], "contact_law": d["contact_law"],
+        "name": pair.name, "torque_Nm": float(torque_Nm), "torque_on": s.on, "pinion_torque_Nm": float(t1[0]),
+        "speed_rpm": float(speed[0]), "driver": s.driver, "tooth_model": s.method, "contact_law": s.contact_law,
         "scenario": scen,
         "impact_force_transverse_N": float(resp.force[0, 0, 0]),
         "impact_force_energy_balance_transverse_N": float(resp.force_energy_balance[0, 0, 0]),

@@ -21,7 +21,7 @@ from ..io import name_force_lines, variable
 from ..limits import check_contact_grid, same_point
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, ltca
 from ..tca import TCAResult, check_modifications, tca
-from ..schema import check_arguments
+from ..schema import check_arguments, key_of, settings_fields, settings_object
 from ..body import describe_body, mesh_body_compliance
 from ..deflection import describe_deflection
 from ..settings import Ltca, Tca
@@ -29,6 +29,20 @@ from ..settings import Ltca, Tca
 UM = 1e-6
 
 __all__ = ["tca_dataset", "ltca_dataset", "ltca_summary", "lte_table_dataset"]
+
+
+def section_keys(cls: type) -> tuple[str, ...]:
+    """The keys settings class ``cls`` declares: a stage function parses them itself, once
+    (:func:`gearmesh.schema.settings_object`), so :func:`gearmesh.schema.check_arguments` leaves them to it."""
+    return tuple(key_of(f) for f in settings_fields(cls))
+
+
+def refuse_operating_point(section: dict[str, Any], keys: Sequence[str], instead: str) -> None:
+    """Refuse a key of a stage's map (``keys``) given to a function of one operating point, naming
+    the argument it takes ``instead``: it would be parsed and then ignored."""
+    for key in keys:
+        if key in section:
+            raise GearmeshInputError(key, section[key], f"is the stage's map; this function takes {instead}")
 
 
 def _geometry(pair: GearPair):
@@ -103,25 +117,39 @@ def _coords(geom, res: TCAResult) -> dict[str, xr.Variable]:
     }
 
 
-@check_arguments(Tca)
-def tca_dataset(pair: GearPair, *, positions: int, points: int, corner_extension: float) -> xr.Dataset:
+@check_arguments(Tca, exclude=section_keys(Tca))
+def tca_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     """Unloaded TCA over one mesh cycle (dims position, line, point): separations of every
     candidate point (flank and tip edges), the TE curve of the mesh and of each pair, the
     first-contact point of each pair and the values at the start of engagement φ1A; the pair's
     manufacturing deviations included (:mod:`gearmesh.deviation`).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its modification and deviations).
+    **section
+        A study's ``tca:`` section: ``positions``, ``points``, ``corner_extension``
+        (:class:`gearmesh.settings.Tca` declares their defaults and bounds), parsed once by
+        :func:`gearmesh.schema.settings_object`, which refuses a bad value naming its key.
+
+    Returns
+    -------
+    xarray.Dataset
+        tca.nc, SI.
     """
+    s = settings_object(Tca, section)
     geom = _geometry(pair)
-    positions, points = check_contact_grid(positions, points)
-    res = tca(geom, positions, points, None, corner_extension)
+    positions, points = check_contact_grid(s.positions, s.points)
+    res = tca(geom, positions, points, None, s.corner_extension)
     ds = xr.Dataset(data_vars=_tca_variables(geom, res), coords=_coords(geom, res))
     ds.attrs["displacement_convention"] = ("transverse along the line of action, r_b1 * dphi_1 with the gear held; "
                                            "normal depths divided by cos(beta_b)")
     return ds
 
 
-@check_arguments(Ltca)
-def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, on: str, contact_law: str,
-                 method: str, corner_extension: float, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+@check_arguments(Ltca, exclude=section_keys(Ltca))
+def ltca_dataset(pair: GearPair, *, fe_compliance: xr.Dataset | None = None, **section: Any) -> xr.Dataset:
     """LTCA at each torque over one mesh cycle (dims torque, position, line, point).
 
     Loaded TE, load and line load of every point (the contact pattern), load per tooth
@@ -129,20 +157,34 @@ def ltca_dataset(pair: GearPair, *, torques_Nm, positions: int, points: int, on:
     edges, and LTE at the start of engagement φ1A beside the entering pair's unloaded
     separation there and whether the entering pair touches before A
     (:func:`teeth_approach_at_engagement`). Also carries the TCA variables of
-    :func:`tca_dataset` on the same grid.
+    :func:`tca_dataset` on the same grid. The pair's deviations and the system deflection of its
+    stated supports are in the contact (``mesh_misalignment``, ``system_approach``;
+    :mod:`gearmesh.deflection`).
 
-    ``torques_Nm`` torques (N·m) on the pinion, or on the gear with ``on='gear'`` (then
-    T1 = T2·z1/z2); ``contact_law`` 'palmgren' or 'linear'; ``method`` the slice model
-    (with 'fe', ``fe_compliance`` supplies the FE tables: :func:`gearmesh.fe_tables.seed_cache`). The
-    pair's deviations and the system deflection of its stated supports are in the contact
-    (``mesh_misalignment``, ``system_approach``; :mod:`gearmesh.deflection`).
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its modification, deviations and supports).
+    fe_compliance : xarray.Dataset, optional
+        The FE tables of ``method='fe'`` (:func:`gearmesh.fe_tables.seed_cache`).
+    **section
+        A study's ``ltca:`` section (:class:`gearmesh.settings.Ltca`: every default and bound
+        there), parsed once (:func:`gearmesh.schema.settings_object`): ``torques_Nm`` (N·m) on
+        the pinion, or on the gear with ``on='gear'`` (then T1 = T2·z1/z2), the contact law, the
+        slice model ``method``, the grid and the corner extension.
+
+    Returns
+    -------
+    xarray.Dataset
+        ltca.nc, SI.
     """
+    s = settings_object(Ltca, section)
     geom = _geometry(pair)
-    positions, points = check_contact_grid(positions, points)
-    given, t1 = loaded_pinion_torques(geom, torques_Nm, on)
+    positions, points = check_contact_grid(s.positions, s.points)
+    given, t1 = loaded_pinion_torques(geom, s.torques_Nm, s.on)
     use_fe_tables(fe_compliance, geom)
-    res = ltca(geom, t1, positions, points, None, "pinion", contact_law, method, corner_extension)
-    return _ltca_to_dataset(geom, res, given, on)
+    res = ltca(geom, t1, positions, points, None, "pinion", s.contact_law, s.method, s.corner_extension)
+    return _ltca_to_dataset(geom, res, given, s.on)
 
 
 def teeth_approach_at_engagement(geom, res: LTCAResult) -> np.ndarray:
@@ -231,21 +273,38 @@ def _load_capacity_variables(geom, res: LTCAResult) -> dict[str, xr.Variable]:
     return load_capacity_variables(geom, res, reference_ltca(geom, res))
 
 
-@check_arguments(Ltca)
-def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: int, contact_law: str,
-                 method: str) -> dict[str, Any]:
+@check_arguments(Ltca, exclude=section_keys(Ltca))
+def ltca_summary(pair: GearPair, torque_Nm, **section: Any) -> dict[str, Any]:
     """Headline LTCA numbers at one torque in engineering units (the CLI's ``ltca --json``): the
     loaded TE and stiffness, the sign-off quantities of this gear (loaded-TE mesh orders 1–3, peak
     flank and tip-edge pressure, peak root stress [pinion, gear]) and the deviations and system
-    deflection in its contact."""
+    deflection in its contact.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+    torque_Nm : float
+        The one torque (N·m) on ``section``'s ``on``.
+    **section
+        A study's ``ltca:`` section but its ``torques_Nm`` (:class:`gearmesh.settings.Ltca`),
+        parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    dict
+        The headline numbers (µm, MPa, N, N/µm).
+    """
     from .rating import load_capacity, reference_ltca
 
+    refuse_operating_point(section, ("torques_Nm",), "one torque_Nm")
+    s = settings_object(Ltca, section)
     if not (isinstance(torque_Nm, (int, float, np.floating, np.integer)) and not isinstance(torque_Nm, bool)):
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be one positive number (N m)")
     geom = _geometry(pair)
-    positions, points = check_contact_grid(positions, points)
-    t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
-    res = ltca(geom, t1, positions, points, None, "pinion", contact_law, method)
+    positions, points = check_contact_grid(s.positions, s.points)
+    t1 = loaded_pinion_torques(geom, [torque_Nm], s.on, "torque_Nm")[1]
+    res = ltca(geom, t1, positions, points, None, "pinion", s.contact_law, s.method, s.corner_extension)
     lc = load_capacity(geom, res, reference_ltca(geom, res))
     c = lc["contact"]
     um, mpa = 1e6, 1e-6
@@ -254,7 +313,7 @@ def ltca_summary(pair: GearPair, torque_Nm, *, on: str, positions: int, points: 
     return {
         "name": pair.name,
         "torque_Nm": float(torque_Nm),
-        "torque_on": on,
+        "torque_on": s.on,
         "pinion_torque_Nm": float(t1[0]),
         "force_transverse_N": float(res.force[0]),
         "tooth_model": res.model.method,
