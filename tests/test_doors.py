@@ -109,7 +109,7 @@ def test_rating_one_answer(doors):
     pair = load_pair(_pair_file(doors))
     flow = read_dataset(doors / "results/doors" / PAIR / "standard/rating.nc")
     cli = _cli("rating", _pair_file(doors), "--torque-Nm", str(TORQUE_NM), "--speed-rpm", str(SPEED_RPM))
-    api = rating_summary(pair, TORQUE_NM, SPEED_RPM)
+    api = rating_summary(pair, TORQUE_NM, speed_rpm=SPEED_RPM)
     for door, summary in (("cli", cli), ("api", api)):
         assert summary["method"] == flow.attrs["factor_method"], door
         np.testing.assert_allclose(summary["S_H"], flow["S_H"].values[0], rtol=1e-9, err_msg=door)

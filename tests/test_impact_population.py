@@ -120,7 +120,7 @@ def test_the_nominal_gear_agrees_with_the_ltca_and_rating_stages(relief):
     impact = impact_dataset(relief, torques_Nm=TORQUES, speeds_rpm=(SPEED,), design_speed_rpm=SPEED, points=50,
                             method="improved", tolerances={**TOLERANCES, "population": 1, "heldout": 0})
     lt = ltca_dataset(relief, torques_Nm=TORQUES, positions=64, points=50, method="improved")
-    rating = rating_dataset(relief, SPEED, application_factor=1.0, life_hours=None, method="ltca", ltca=lt)
+    rating = rating_dataset(relief, speed_rpm=SPEED, application_factor=1.0, life_hours=None, method="ltca", ltca=lt)
     nominal = impact.isel(population_gear=0)
     region, pressure = lt["region"].values, np.nan_to_num(lt["contact_pressure"].values)
     for name, want, rtol in (

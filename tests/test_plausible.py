@@ -129,7 +129,7 @@ def test_the_rating_api_refuses_factors_given_as_a_list(no_ltca):
 
     pair = load_pair(example_pair("helical_z29_71_m5"))
     with pytest.raises(GearmeshInputError, match="factors = "):
-        rating_summary(pair, 1000, 5000, factors=[("K_v", 1.2)])
+        rating_summary(pair, 1000, speed_rpm=5000, factors=[("K_v", 1.2)])
 
 
 def _study(**sections) -> dict:

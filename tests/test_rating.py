@@ -289,3 +289,31 @@ def test_the_commercial_stage_at_endurance_moves_by_the_long_life_factor_alone()
     assert [x / y for x, y in zip(b["S_H"], a["S_H"])] == pytest.approx([1 / 0.85] * 2, rel=1e-12)
     assert [x / y for x, y in zip(b["S_F"], a["S_F"])] == pytest.approx([1 / 0.85] * 2, rel=1e-12)
     assert a["sigma_H_MPa"] == b["sigma_H_MPa"] and a["sigma_F_MPa"] == b["sigma_F_MPa"]
+
+
+def test_the_rating_command_differs_from_a_study_only_by_its_listed_overrides():
+    """``gearmesh rating`` runs a study's ``rating:`` and ``ltca:`` sections (commands._rating_sections):
+    given only its operating point, every key it sets is the declared default but the speed, and
+    what it leaves out of the LTCA's is the map its one torque replaces and the LTCA's model (the
+    declared defaults). rating_summary refuses the LTCA's torque map rather than parse and ignore it."""
+    from pathlib import Path
+
+    from gearmesh.cli import build_parser
+    from gearmesh.commands import _rating_sections
+    from gearmesh.datasets.rating import rating_summary
+    from gearmesh.schema import defaults, jsonable
+    from gearmesh.pairfile import load_pair
+    from gearmesh.settings import Ltca, Rating
+
+    path = str(Path(__file__).resolve().parents[1] / "config/pairs/helical_z29_71_m5.yaml")
+    pair = load_pair(path)
+    args = build_parser().parse_args(["rating", path, "--torque-Nm", "1000", "--speed-rpm", "5000"])
+    rating, contact = _rating_sections(args)
+    assert rating == {**defaults(Rating), "speed_rpm": 5000.0}
+    declared = defaults(Ltca)
+    assert set(contact) == set(declared) - {"torques_Nm", "contact_law", "method", "corner_extension"}
+    assert {k: jsonable(v) for k, v in contact.items()} == {k: declared[k] for k in contact}
+    with pytest.raises(GearmeshInputError, match="torques_Nm"):
+        rating_summary(pair, 1000.0, speed_rpm=5000.0, ltca_section={"torques_Nm": [1000.0]})
+    with pytest.raises(GearmeshInputError, match="speed_rpm"):
+        rating_summary(pair, 1000.0, speed_rpm=-1.0)

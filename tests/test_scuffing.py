@@ -305,7 +305,7 @@ def stage_datasets():
 
     pair = load_pair(Path(__file__).resolve().parents[1] / "config/pairs/helical_z29_71_m5.yaml")
     ltca = ltca_dataset(pair, torques_Nm=[1000.0], positions=16, points=12)
-    rated = rating_dataset(pair, 5000.0, ltca=ltca)
+    rated = rating_dataset(pair, speed_rpm=5000.0, ltca=ltca)
     return pair, ltca, rated, scuffing_dataset(pair, ltca=ltca, rating=rated)
 
 
@@ -316,7 +316,7 @@ def test_the_stage_and_rating_json_give_the_same_scuffing_numbers(stage_datasets
     from gearmesh.datasets.rating import rating_summary
 
     pair, _, _, ds = stage_datasets
-    out = rating_summary(pair, 1000.0, 5000.0, positions=16, points=12)
+    out = rating_summary(pair, 1000.0, speed_rpm=5000.0, ltca_section={"positions": 16, "points": 12})
     for key, name in (("contact_temperature_max_C", "contact_temperature_max"),
                       ("scuffing_safety_flash", "scuffing_safety_flash"),
                       ("integral_temperature_C", "integral_temperature"),

@@ -292,9 +292,23 @@ def cmd_rating(args: argparse.Namespace) -> dict[str, Any]:
         if name in factors:
             raise GearmeshInputError("--factor", name, "must be given once")
         factors[name] = value
-    return rating_summary(_pair(args)[0], args.torque_Nm, args.speed_rpm, on=args.on,
-                          application_factor=args.application_factor, life_hours=args.life_hours, factors=factors,
-                          method=args.method, positions=args.positions, points=args.points)
+    rating, contact = _rating_sections(args)
+    return rating_summary(_pair(args)[0], args.torque_Nm, factors=factors, ltca_section=contact, **rating)
+
+
+def _rating_sections(args: argparse.Namespace) -> tuple[dict[str, Any], dict[str, Any]]:
+    """``gearmesh rating``'s options as a study's ``rating:`` and ``ltca:`` sections, run as a
+    study's (:func:`gearmesh.datasets.rating.rating_summary`). Every other key is the declared
+    default (:class:`gearmesh.settings.Rating`, :class:`gearmesh.settings.Ltca`: the LTCA's
+    contact law, tooth model and corner extension), but for the command's deliberate differences,
+    made here and nowhere else:
+
+    * one torque (``--torque-Nm``) in place of the LTCA's ``torques_Nm``;
+    * ``--speed-rpm`` the speed of the gear the torque acts on (``--on``), the study's the pinion's;
+    * factors given instead of computed (``--factor``), which a study does not take."""
+    rating = {"speed_rpm": args.speed_rpm, "application_factor": args.application_factor,
+              "life_hours": args.life_hours, "method": args.method}
+    return rating, {"on": args.on, "positions": args.positions, "points": args.points}
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:

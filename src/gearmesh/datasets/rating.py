@@ -25,16 +25,16 @@ from ..limits import check_contact_grid, check_speeds
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
 from ..rating import check_factors, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
 from ..rating_factors import face_factor_root
-from ..schema import check_arguments, defaults
-from ..settings import Rating
-
-#: The rating's load factors by default (the study's declaration, also the CLI's and the API's).
-RATING_METHOD = defaults(Rating)["method"]
+from ..schema import check_arguments, key_of, settings_fields, settings_object
+from ..settings import Ltca, Rating
 from .scuffing import scuffing_json, scuffing_of
 from ..stress import ContactStress, contact_stress, iso_root_stress_slices, pair_edge_radius
 
 __all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "reference_ltca", "rating_summary",
            "rating_dataset", "load_capacity_table_dataset"]
+
+#: The rating section's keys: the functions below parse their section themselves, once.
+_RATING_KEYS = tuple(key_of(f) for f in settings_fields(Rating))
 
 
 
@@ -180,36 +180,49 @@ def _fe_root_check(geom: PairGeometry, res: LTCAResult, root: np.ndarray) -> dic
             "peak_root_stress_roll_mm": [r * 1e3 for r in where]}
 
 
-def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", application_factor: float = 1.0,
-                   life_hours: float | None = None, factors: Mapping[str, float] | None = None,
-                   method: str | None = None, positions: int = 64, points: int = 50) -> dict[str, Any]:
+@check_arguments(Rating, exclude=_RATING_KEYS)
+def rating_summary(pair: GearPair, torque_Nm, *, factors: Mapping[str, float] | None = None,
+                   ltca_section: Mapping[str, Any] | None = None, **section: Any) -> dict[str, Any]:
     """ISO 6336-2/-3 rating at one torque and speed with the LTCA's stresses and its scuffing rating
     (ISO/TS 6336-20/-21 from the LTCA's load along the path, :mod:`gearmesh.datasets.scuffing`; the
     CLI's ``rating --json``).
 
-    Per-gear values are [pinion, gear]; ``factors_given`` names the factors given; ``factor_sources``
-    where each load factor came from; ``ltca`` the LTCA's peak contact pressure (and whether on an
-    edge), peak root stress per gear and its K factors; ``notes`` the defaults taken. ``method`` None:
-    the study's declared default (:class:`gearmesh.settings.Rating`), one answer through every door."""
-    method = RATING_METHOD if method is None else method
+    Parameters
+    ----------
+    pair : GearPair
+        The pair, with its rating inputs.
+    torque_Nm : float
+        The one torque (N·m) on ``ltca_section``'s ``on``.
+    factors : mapping, optional
+        Factors given instead of computed (``K_v``, ``Z_L``, ...).
+    ltca_section : mapping, optional
+        A study's ``ltca:`` section but its ``torques_Nm`` (:class:`gearmesh.settings.Ltca`): the
+        gear the torque acts on and the LTCA's grid and model.
+    **section
+        A study's ``rating:`` section (:class:`gearmesh.settings.Rating`; ``speed_rpm`` the speed of
+        the gear the torque acts on), parsed once (:func:`gearmesh.schema.settings_object`).
 
-    for name, value in (("torque_Nm", torque_Nm), ("speed_rpm", speed_rpm)):
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-            raise GearmeshInputError(name, value, "must be one positive number")
-    if life_hours is not None and (isinstance(life_hours, bool) or not isinstance(life_hours, (int, float))
-                                   or not math.isfinite(life_hours) or life_hours <= 0):
-        raise GearmeshInputError("life_hours", life_hours, "must be a positive number (h)")
-    if isinstance(application_factor, bool) or not isinstance(application_factor, (int, float)):
-        raise GearmeshInputError("application_factor", application_factor, "must be a number ≥ 1 (ISO 6336-1 K_A)")
-    try:
-        check_factors({"K_A": application_factor})
-    except GearmeshInputError as exc:
-        raise GearmeshInputError("application_factor", application_factor, exc.rule) from None
+    Returns
+    -------
+    dict
+        Per-gear values [pinion, gear]; ``factors_given`` names the factors given; ``factor_sources``
+        where each load factor came from; ``ltca`` the LTCA's peak contact pressure (and whether on an
+        edge), peak root stress per gear and its K factors; ``notes`` the defaults taken.
+    """
+    if "torques_Nm" in (ltca_section or {}):
+        raise GearmeshInputError("torques_Nm", ltca_section["torques_Nm"], "is the stage's map; this function "
+                                 "takes one torque_Nm")
+    if isinstance(torque_Nm, bool) or not isinstance(torque_Nm, (int, float)) or not math.isfinite(torque_Nm) \
+            or torque_Nm <= 0:
+        raise GearmeshInputError("torque_Nm", torque_Nm, "must be one positive number")
+    s, lt = settings_object(Rating, section), settings_object(Ltca, ltca_section)
+    speed_rpm, method, on = s.speed_rpm, s.method, lt.on
+    application_factor, life_hours = s.application_factor, s.life_hours
     check_factors(factors)  # every input checked before the LTCA, the expensive step
     inputs = rating_inputs(dict(pair.rating_inputs))
     geom = pair_geometry(pair)
     check_speeds(geom, speed_rpm, "speed_rpm", on=on)  # not above the burst speed of the faster tip circle
-    positions, points = check_contact_grid(positions, points)
+    positions, points = check_contact_grid(lt.positions, lt.points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     speed1 = speed_rpm if on == "pinion" else speed_rpm * pair.teeth[1] / pair.teeth[0]
     if method == "iso" and pair.bore_radius is None:  # the standard's factors need no LTCA, the LTCA a bore
@@ -218,7 +231,7 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
                 "factors_given": r.given, "factor_sources": r.sources, "gears": list(GEARS),
                 "notes": pair_notes(pair) + r.notes + [f"the LTCA's contact pressure and root stress not computed: "
                                                        f"{missing_key('bore_radius_mm').rule}"]}
-    res = ltca(geom, t1, positions, points, None, "pinion")
+    res = ltca(geom, t1, positions, points, None, "pinion", lt.contact_law, lt.method, lt.corner_extension)
     lc = load_capacity(geom, res, reference_ltca(geom, res))
     k_ha = float(rated_transverse_factor(lc["K_Halpha"][0]))
     r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method,
@@ -250,13 +263,30 @@ def rating_summary(pair: GearPair, torque_Nm, speed_rpm, on: str = "pinion", app
             "notes": notes}
 
 
-@check_arguments(Rating)
-def rating_dataset(pair: GearPair, speed_rpm: float, *, application_factor: float, life_hours: float | None,
-                   method: str, ltca: xr.Dataset | None = None) -> xr.Dataset:
-    """ISO 6336-2/-3 rating of a pair (a variant) at each torque of its ``ltca`` dataset (ltca.nc, with
-    the variables of :func:`load_capacity_variables`) and pinion speed ``speed_rpm`` (rating.nc): safety
-    factors, stresses and the load factors by the standard and from the LTCA, beside the LTCA's peak
-    contact pressure (and whether on an edge) and peak root stress."""
+@check_arguments(Rating, exclude=_RATING_KEYS)
+def rating_dataset(pair: GearPair, *, ltca: xr.Dataset | None = None, **section: Any) -> xr.Dataset:
+    """ISO 6336-2/-3 rating of a pair (a variant) at each torque of its ``ltca`` dataset (rating.nc):
+    safety factors, stresses and the load factors by the standard and from the LTCA, beside the
+    LTCA's peak contact pressure (and whether on an edge) and peak root stress.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (a variant).
+    ltca : xarray.Dataset
+        Its ltca.nc, with the variables of :func:`load_capacity_variables`.
+    **section
+        A study's ``rating:`` section (:class:`gearmesh.settings.Rating`: the pinion speed, K_A,
+        the life and where the load factors come from), parsed once
+        (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        rating.nc (dims torque, gear).
+    """
+    s = settings_object(Rating, section)
+    speed_rpm, application_factor, life_hours, method = s.speed_rpm, s.application_factor, s.life_hours, s.method
     if not isinstance(ltca, xr.Dataset) or "K_Hbeta_rated" not in ltca:
         raise GearmeshInputError("ltca", type(ltca).__name__, "must be an ltca.nc dataset with its load-capacity "
                                  "variables")
