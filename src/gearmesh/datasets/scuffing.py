@@ -22,7 +22,7 @@ from ..io import variable
 from ..errors import GearmeshInputError
 from ..ltca import LTCAResult
 from ..rating import RatingInputs, rating_inputs
-from ..schema import check_arguments
+from ..schema import check_arguments, key_of, settings_fields, settings_object
 from ..scuffing import ScuffingRating, scuffing_rating
 from ..settings import Scuffing
 
@@ -155,16 +155,34 @@ def scuffing_variables(geom: PairGeometry, contact: LoadedContact, sc: ScuffingR
     }
 
 
-@check_arguments(Scuffing)
-def scuffing_dataset(pair: GearPair, *, path_bins: int, ltca: xr.Dataset | None = None,
-                     rating: xr.Dataset | None = None) -> xr.Dataset:
-    """The scuffing rating of a pair (a variant) at each torque of its ``ltca`` dataset (ltca.nc)
-    with the load factors and speed of its ``rating`` dataset (rating.nc): Blok's flash
-    temperature of every contact point from the LTCA's line load, its largest value over the face
-    along the path of contact (``path_bins`` bins), and the flash temperature method's (ISO/TS
-    6336-20: θ_B,max, S_B) and the integral temperature method's (ISO/TS 6336-21: θ_int, S_intS)
-    temperatures and safety factors (scuffing.nc). Oil, roughness and FZG load stage are the pair
-    file's (defaults named in the notes)."""
+@check_arguments(Scuffing, exclude=tuple(key_of(f) for f in settings_fields(Scuffing)))  # parsed once below
+def scuffing_dataset(pair: GearPair, *, ltca: xr.Dataset | None = None, rating: xr.Dataset | None = None,
+                     **section: Any) -> xr.Dataset:
+    """The scuffing rating of a pair (a variant) at each torque of its ``ltca`` dataset with the
+    load factors and speed of its ``rating`` dataset (scuffing.nc): Blok's flash temperature of
+    every contact point from the LTCA's line load, its largest value over the face along the path
+    of contact, and the flash temperature method's (ISO/TS 6336-20: θ_B,max, S_B) and the integral
+    temperature method's (ISO/TS 6336-21: θ_int, S_intS) temperatures and safety factors. Oil,
+    roughness and FZG load stage are the pair file's (defaults named in the notes).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (a variant).
+    ltca : xarray.Dataset
+        Its ltca.nc.
+    rating : xarray.Dataset
+        Its rating.nc (speed and load factors), rated at the LTCA's torques.
+    **section
+        A study's ``scuffing:`` section (:class:`gearmesh.settings.Scuffing`: ``path_bins``, the bins
+        of the path of contact), parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        scuffing.nc (dims torque, position, line, point, path).
+    """
+    path_bins = settings_object(Scuffing, section).path_bins
     for name, ds, needed in (("ltca", ltca, "line_load"), ("rating", rating, "K_v")):
         if not isinstance(ds, xr.Dataset) or needed not in ds:
             raise GearmeshInputError(name, type(ds).__name__, f"must be the variant's {name}.nc dataset")
