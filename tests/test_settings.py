@@ -80,13 +80,15 @@ def test_every_setting_is_described():
 
 def test_a_stage_function_takes_its_defaults_from_the_declaration():
     """The defaults a stage function gets are the settings fields' (gearmesh.schema.check_arguments
-    fills them): what a caller leaving them out computes with, what help() shows."""
-    from gearmesh.datasets.stiffness import stiffness_dataset
-    from gearmesh.settings import Stiffness
+    fills them): what a caller leaving them out computes with, what help() shows. (The signoff
+    table names its settings; the stages that take their section whole parse it with the same
+    declaration, :func:`gearmesh.schema.settings_object`.)"""
+    from gearmesh.datasets.signoff import signoff_table_dataset
+    from gearmesh.settings import Signoff
 
-    params = inspect.signature(stiffness_dataset).parameters
-    for f in settings_fields(Stiffness):
-        assert params[f.name].default == getattr(Stiffness(), f.name), f.name
+    params = inspect.signature(signoff_table_dataset).parameters
+    for f in settings_fields(Signoff):
+        assert params[f.name].default == getattr(Signoff(), f.name), f.name
 
 
 def test_a_second_declaration_of_a_default_is_refused_at_import():

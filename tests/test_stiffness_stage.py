@@ -105,3 +105,23 @@ def test_cli_stiffness_without_material_is_steel_and_says_so(tmp_path, capsys):
     given = json.loads(capsys.readouterr().out)
     assert given["notes"] == []
     assert given["mean_mesh_stiffness_transverse_N_per_um"] == default["mean_mesh_stiffness_transverse_N_per_um"]
+
+
+def test_the_stiffness_command_is_a_study_section():
+    """``gearmesh stiffness`` runs a study's ``stiffness:`` section (commands._stiffness_section):
+    given only the pair, every key it sets is the declared default, and it leaves out only the
+    Fourier order (declared default) and the torque (none: no LSTE, as a study leaving it out)."""
+    from pathlib import Path
+
+    from gearmesh.cli import build_parser
+    from gearmesh.commands import _stiffness_section
+    from gearmesh.schema import defaults, jsonable
+    from gearmesh.settings import Stiffness
+
+    path = str(Path(__file__).resolve().parents[1] / "config/pairs/helical_z29_71_m5.yaml")
+    section = _stiffness_section(build_parser().parse_args(["stiffness", path]))
+    declared = defaults(Stiffness)
+    assert set(declared) - set(section) == {"fourier_order"} | ({"torque_Nm"} & set(declared))
+    assert {k: jsonable(v) for k, v in section.items()} == {k: declared[k] for k in section}
+    given = _stiffness_section(build_parser().parse_args(["stiffness", path, "--torque-Nm", "500"]))
+    assert given["torque_Nm"] == 500.0

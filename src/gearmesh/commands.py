@@ -241,9 +241,17 @@ def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
 
     check_grid("--slices", args.slices, args.slices * args.positions, MAX_STIFFNESS_POINTS, "slice-positions")
     pair = _pair(args)[0]
-    result = stiffness_summary(pair, method=args.method, slices=args.slices, positions=args.positions,
-                               torque_Nm=args.torque_Nm, torque_on=args.on)
+    result = stiffness_summary(pair, **_stiffness_section(args))
     return result if args.torque_Nm is None else {**result, **_torque(pair, args.torque_Nm, args.on)}
+
+
+def _stiffness_section(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh stiffness``'s options as a study's ``stiffness:`` section, run as a study's
+    (:func:`gearmesh.datasets.stiffness.stiffness_summary`). Every other key is the declared default
+    (:class:`gearmesh.settings.Stiffness`: the Fourier order); the command differs from a study in
+    nothing but what it prints. No ``--torque-Nm``: the key left out, as a study leaves it (no LSTE)."""
+    section = {"method": args.method, "slices": args.slices, "positions": args.positions, "torque_on": args.on}
+    return section if args.torque_Nm is None else {**section, "torque_Nm": args.torque_Nm}
 
 
 def cmd_impact(args: argparse.Namespace) -> dict[str, Any]:

@@ -28,7 +28,7 @@ from ..stiffness import (
     lste,
     mesh_stiffness,
 )
-from ..schema import check_arguments
+from ..schema import check_arguments, key_of, settings_fields, settings_object
 from ..choices import PEM_TOOTH_METHODS
 from ..settings import SliceConvergence, Stiffness, StiffnessTable
 
@@ -42,6 +42,9 @@ CONTACT_TERM_NOTE = {
     False: "Yang & Sun's constant line-contact stiffness pi E/(4(1-nu^2)) (no torque given: 2.8-3.3x stiffer than "
            "the loaded contact: the documentation's validation page)"}
 
+#: The stiffness section's keys: the functions below parse their section themselves, once.
+_STIFFNESS_KEYS = tuple(key_of(f) for f in settings_fields(Stiffness))
+
 
 def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
     """Pinion torque (N m) from a torque on the pinion or on the gear (ratio z1/z2, no loss)."""
@@ -52,21 +55,41 @@ def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
     return gear_pinion_torque(geom.pair, torque_Nm, on)
 
 
-@check_arguments(Stiffness)
-def stiffness_dataset(pair: GearPair, *, method: str, slices: int, positions: int, fourier_order: int,
-                      torque_Nm: float | None, torque_on: str, fe_compliance: xr.Dataset | None = None) -> xr.Dataset:
+@check_arguments(Stiffness, exclude=_STIFFNESS_KEYS)
+def stiffness_dataset(pair: GearPair, *, fe_compliance: xr.Dataset | None = None, **section: Any) -> xr.Dataset:
     """K(φ) of ``pair`` by the slice potential energy method (:func:`gearmesh.stiffness.mesh_stiffness`),
-    with its components, one tooth pair's k over its engagement, the Fourier series of K to
-    ``fourier_order`` (the improved potential-energy paper) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
-    torque the LSTE F/K(φ) (the low-fluctuation paper). Stiffness is along the transverse line of action
-    (force F = T1/r_b1); multiply by 1/cos²βb for the normal direction. With ``method='fe'``,
-    ``fe_compliance`` (the pair's fe_compliance.nc) supplies the FE tables (:func:`gearmesh.fe_tables.seed_cache`).
+    with its components, one tooth pair's k over its engagement, the Fourier series of K (the
+    improved potential-energy paper) with its fitting error, ISO 6336-1 c', cγα, cγβ, and with a
+    torque the LSTE F/K(φ) (the low-fluctuation paper). Stiffness is along the transverse line of
+    action (force F = T1/r_b1); multiply by 1/cos²βb for the normal direction.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+    fe_compliance : xarray.Dataset, optional
+        The pair's fe_compliance.nc: the FE tables of ``method='fe'``
+        (:func:`gearmesh.fe_tables.seed_cache`).
+    **section
+        A study's ``stiffness:`` section (:class:`gearmesh.settings.Stiffness`), parsed once
+        (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        stiffness.nc (dims position, pair_position, component, harmonic).
     """
+    return _stiffness_dataset(pair, settings_object(Stiffness, section), fe_compliance)
+
+
+def _stiffness_dataset(pair: GearPair, s: Stiffness, fe_compliance: xr.Dataset | None) -> xr.Dataset:
+    """:func:`stiffness_dataset` of the parsed section ``s``."""
+    method, fourier_order, torque_Nm = s.method, s.fourier_order, s.torque_Nm
     geom = pair_geometry(pair)
-    slices, positions = check_slice_grid(slices, positions)
+    slices, positions = check_slice_grid(s.slices, s.positions)
     t1 = None
     if torque_Nm is not None:
-        t1 = pinion_torque(geom, torque_Nm, torque_on)
+        t1 = pinion_torque(geom, torque_Nm, s.torque_on)
         check_load(geom, t1, "torque_Nm", torque_Nm)
     use_fe_tables(fe_compliance, geom)
     result = mesh_stiffness(geom, n_positions=positions, n_slices=slices, method=method,
@@ -131,13 +154,27 @@ def stiffness_dataset(pair: GearPair, *, method: str, slices: int, positions: in
     return ds
 
 
-@check_arguments(Stiffness)
-def stiffness_summary(pair: GearPair, *, method: str, slices: int, positions: int, torque_Nm: float | None,
-                      torque_on: str) -> dict[str, Any]:
+@check_arguments(Stiffness, exclude=_STIFFNESS_KEYS)
+def stiffness_summary(pair: GearPair, **section: Any) -> dict[str, Any]:
     """Headline stiffness numbers in one unit family, N, mm, µm, the unit in every key (the CLI's
-    ``stiffness --json``); stiffnesses along the transverse line of action."""
-    ds = stiffness_dataset(pair, method=method, slices=slices, positions=positions, torque_Nm=torque_Nm,
-                           torque_on=torque_on)
+    ``stiffness --json``); stiffnesses along the transverse line of action.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+    **section
+        A study's ``stiffness:`` section (:class:`gearmesh.settings.Stiffness`), parsed once
+        (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    dict
+        The headline numbers (N/µm, N/(mm·µm), µm, %).
+    """
+    s = settings_object(Stiffness, section)
+    method, slices, torque_Nm = s.method, s.slices, s.torque_Nm
+    ds = _stiffness_dataset(pair, s, None)
     out = {
         "name": pair.name, "tooth_model": method, "contact_term": ds.attrs["contact_term"], "slices": slices,
         "mean_mesh_stiffness_transverse_N_per_um": float(ds.mean_stiffness) * 1e-6,
