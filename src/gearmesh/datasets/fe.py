@@ -4,6 +4,7 @@ the active profile, beside the three potential-energy cantilevers."""
 from __future__ import annotations
 
 import time
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -13,18 +14,34 @@ from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
 from ..slice_compliance import tooth_slice_compliance
 from ..tooth import PEM_METHODS, tooth_model
-from ..schema import check_arguments
+from ..schema import check_arguments, key_of, settings_fields, settings_object
 from ..settings import FeCompliance
 
 
-@check_arguments(FeCompliance)
-def fe_compliance_dataset(pair: GearPair, *, plane: str, size: float, roll_nodes: int) -> xr.Dataset:
+@check_arguments(FeCompliance, exclude=tuple(key_of(f) for f in settings_fields(FeCompliance)))  # parsed below
+def fe_compliance_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     """Per-unit-width tooth compliance (m²/N) of each gear at ``roll_nodes`` roll lengths over
     [ρ_SAP, ρ_EAP]: the FE total in ``plane`` (the table of ``stiffness.method: fe``) and in
     plane stress (the PEM's E and G), its body / tooth / wind-up / ring-shift / local parts
     (:class:`gearmesh.fe.ToothCompliance`), and the PEM's bending + shear + axial + foundation
     and its foundation alone for the three cantilever models. Mesh size and solve time per gear in
-    the attributes (the time logged, not written: :data:`gearmesh.io.TIMING_SUFFIX`)."""
+    the attributes (the time logged, not written: :data:`gearmesh.io.TIMING_SUFFIX`).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+    **section
+        A study's ``fe_compliance:`` section (:class:`gearmesh.settings.FeCompliance`: ``plane``,
+        ``size``, ``roll_nodes``), parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        fe_compliance.nc (dims gear, node, model).
+    """
+    s = settings_object(FeCompliance, section)
+    plane, size, roll_nodes = s.plane, s.size, s.roll_nodes
     geom = pair_geometry(pair)
     planes = list(dict.fromkeys([plane, "stress"]))
     n = int(roll_nodes)

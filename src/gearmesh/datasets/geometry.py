@@ -27,8 +27,13 @@ from ..io import variable
 from ..limits import check_sweep
 from ..profile import tooth_profile
 from ..surface import tooth_surface
-from ..schema import check_arguments
+from ..schema import check_arguments, key_of, settings_fields, settings_object
 from ..settings import ContactLines, Geometry, HelixSweep, LowFluctuationDesign
+
+
+def _keys(cls: type) -> tuple[str, ...]:
+    """The keys of settings class ``cls``: the functions below parse their section themselves, once."""
+    return tuple(key_of(f) for f in settings_fields(cls))
 
 
 def _per_gear(values, units: str, long_name: str) -> xr.Variable:
@@ -84,15 +89,30 @@ def _gear_coord() -> dict[str, xr.Variable]:
     return {"gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair (pinion drives)")}
 
 
-@check_arguments(Geometry)
-def geometry_dataset(pair: GearPair, *, involute_points: int, fillet_points: int, face_points: int) -> xr.Dataset:
+@check_arguments(Geometry, exclude=_keys(Geometry))
+def geometry_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     """The pair's geometry: scalars, the transverse tooth profile with its hob fillet, and the
     (modified) flank surface of each gear on a (profile, face) grid, in each gear's body frame.
 
     Profile and surface come from :mod:`gearmesh.profile` (rack-generated involute and
     trochoid fillet, the transition-curve paper) and :mod:`gearmesh.surface` (involute helicoid, the contact-line paper, with
     the six-parameter modification of the mesh-in impact paper along the normal).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+    **section
+        A study's ``geometry:`` section (:class:`gearmesh.settings.Geometry`: the point counts),
+        parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        geometry.nc.
     """
+    s = settings_object(Geometry, section)
+    involute_points, fillet_points, face_points = s.involute_points, s.fillet_points, s.face_points
     geom = pair_geometry(pair)
     profiles = [tooth_profile(geom, g, n_fillet=fillet_points, n_involute=involute_points) for g in range(2)]
     surfaces = [tooth_surface(geom, g, n_profile=involute_points + fillet_points, n_face=face_points,
@@ -126,8 +146,8 @@ def geometry_dataset(pair: GearPair, *, involute_points: int, fillet_points: int
     return ds
 
 
-@check_arguments(ContactLines)
-def contact_lines_dataset(pair: GearPair, *, positions: int) -> xr.Dataset:
+@check_arguments(ContactLines, exclude=_keys(ContactLines))
+def contact_lines_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     """Contact lines and total length L(φ) over one mesh cycle (the contact-line paper; the low-fluctuation paper §1, §5).
 
     Positions are pinion roll distances over one transverse base pitch. Each line is given
@@ -135,7 +155,21 @@ def contact_lines_dataset(pair: GearPair, *, positions: int) -> xr.Dataset:
     and on the pinion flank (pinion body frame, tooth j rotated onto tooth 0), with its
     length. Mean/min/max of L are exact (L is piecewise linear: evaluated at its kinks,
     :func:`gearmesh.contact.contact_length_summary`) beside the closed forms.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+    **section
+        A study's ``contact_lines:`` section (:class:`gearmesh.settings.ContactLines`: ``positions``),
+        parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        contact_lines.nc (dims position, line, end, xyz).
     """
+    positions = settings_object(ContactLines, section).positions
     geom = pair_geometry(pair)
     roll = mesh_cycle_rolls(geom, positions)
     lines = contact_lines(geom, roll)
