@@ -439,6 +439,11 @@ def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "
     return out
 
 
+def section_keys(cls: type) -> tuple[str, ...]:
+    """The config keys of settings class ``cls``'s section (its fields' names in the config)."""
+    return tuple(key_of(f) for f in settings_fields(cls))
+
+
 def settings_object(cls: type, data: Mapping[str, Any] | None, prefix: str = "") -> Any:
     """``data`` (a study's section, or the keywords of an API call) as the frozen settings object
     ``cls``: validated against its declaration with its defaults filled (:func:`validate`; a bad

@@ -14,11 +14,11 @@ from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
 from ..slice_compliance import tooth_slice_compliance
 from ..tooth import PEM_METHODS, tooth_model
-from ..schema import check_arguments, key_of, settings_fields, settings_object
+from ..schema import check_arguments, section_keys, settings_object
 from ..settings import FeCompliance
 
 
-@check_arguments(FeCompliance, exclude=tuple(key_of(f) for f in settings_fields(FeCompliance)))  # parsed below
+@check_arguments(FeCompliance, exclude=section_keys(FeCompliance))  # parsed below
 def fe_compliance_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     """Per-unit-width tooth compliance (m²/N) of each gear at ``roll_nodes`` roll lengths over
     [ρ_SAP, ρ_EAP]: the FE total in ``plane`` (the table of ``stiffness.method: fe``) and in

@@ -27,13 +27,9 @@ from ..io import variable
 from ..limits import check_sweep
 from ..profile import tooth_profile
 from ..surface import tooth_surface
-from ..schema import check_arguments, key_of, settings_fields, settings_object
+from ..schema import check_arguments, section_keys, settings_object
 from ..settings import ContactLines, Geometry, HelixSweep, LowFluctuationDesign
 
-
-def _keys(cls: type) -> tuple[str, ...]:
-    """The keys of settings class ``cls``: the functions below parse their section themselves, once."""
-    return tuple(key_of(f) for f in settings_fields(cls))
 
 
 def _per_gear(values, units: str, long_name: str) -> xr.Variable:
@@ -89,7 +85,7 @@ def _gear_coord() -> dict[str, xr.Variable]:
     return {"gear": variable(("gear",), np.array(GEARS), "1", "gear of the pair (pinion drives)")}
 
 
-@check_arguments(Geometry, exclude=_keys(Geometry))
+@check_arguments(Geometry, exclude=section_keys(Geometry))
 def geometry_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     """The pair's geometry: scalars, the transverse tooth profile with its hob fillet, and the
     (modified) flank surface of each gear on a (profile, face) grid, in each gear's body frame.
@@ -146,7 +142,7 @@ def geometry_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     return ds
 
 
-@check_arguments(ContactLines, exclude=_keys(ContactLines))
+@check_arguments(ContactLines, exclude=section_keys(ContactLines))
 def contact_lines_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     """Contact lines and total length L(φ) over one mesh cycle (the contact-line paper; the low-fluctuation paper §1, §5).
 

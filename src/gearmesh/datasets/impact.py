@@ -18,7 +18,7 @@ from ..deflection import describe_deflection
 from ..fe_tables import use_fe_tables
 from ..errors import GearmeshInputError
 from . import shared_torques, variant_names
-from .ltca import refuse_operating_point, section_keys
+from .ltca import refuse_operating_point
 from ..gear import GEARS, GearPair, pair_geometry
 from ..impact.energy import ImpactResponse, impact_response, load_grid, load_window
 from ..impact.engagement import simulate_engagement
@@ -33,7 +33,7 @@ from ..surface import MODIFICATION_FIELDS
 from ..tca import check_modifications
 from ..robust import CRITERIA, CRITERION_UNITS, design_box_worst, gear_criteria, population_units
 from ..tolerance import manufactured_population, study_population, study_tolerances
-from ..schema import check_arguments, settings_object
+from ..schema import check_arguments, section_keys, settings_object
 from ..settings import Impact
 
 UM = 1e-6

@@ -21,7 +21,7 @@ from ..io import name_force_lines, variable
 from ..limits import check_contact_grid, same_point
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, ltca
 from ..tca import TCAResult, check_modifications, tca
-from ..schema import check_arguments, key_of, settings_fields, settings_object
+from ..schema import check_arguments, section_keys, settings_object
 from ..body import describe_body, mesh_body_compliance
 from ..deflection import describe_deflection
 from ..settings import Ltca, Tca
@@ -30,11 +30,6 @@ UM = 1e-6
 
 __all__ = ["tca_dataset", "ltca_dataset", "ltca_summary", "lte_table_dataset"]
 
-
-def section_keys(cls: type) -> tuple[str, ...]:
-    """The keys settings class ``cls`` declares: a stage function parses them itself, once
-    (:func:`gearmesh.schema.settings_object`), so :func:`gearmesh.schema.check_arguments` leaves them to it."""
-    return tuple(key_of(f) for f in settings_fields(cls))
 
 
 def refuse_operating_point(section: dict[str, Any], keys: Sequence[str], instead: str) -> None:

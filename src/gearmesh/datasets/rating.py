@@ -25,7 +25,7 @@ from ..limits import check_contact_grid, check_speeds
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
 from ..rating import check_factors, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
 from ..rating_factors import face_factor_root
-from ..schema import check_arguments, key_of, settings_fields, settings_object
+from ..schema import check_arguments, section_keys, settings_object
 from ..settings import Ltca, Rating
 from .scuffing import scuffing_json, scuffing_of
 from ..stress import ContactStress, contact_stress, iso_root_stress_slices, pair_edge_radius
@@ -34,7 +34,7 @@ __all__ = ["MESH_ORDERS", "load_capacity", "load_capacity_variables", "reference
            "rating_dataset", "load_capacity_table_dataset"]
 
 #: The rating section's keys: the functions below parse their section themselves, once.
-_RATING_KEYS = tuple(key_of(f) for f in settings_fields(Rating))
+_RATING_KEYS = section_keys(Rating)
 
 
 

@@ -22,7 +22,7 @@ from ..io import variable
 from ..errors import GearmeshInputError
 from ..ltca import LTCAResult
 from ..rating import RatingInputs, rating_inputs
-from ..schema import check_arguments, key_of, settings_fields, settings_object
+from ..schema import check_arguments, section_keys, settings_object
 from ..scuffing import ScuffingRating, scuffing_rating
 from ..settings import Scuffing
 
@@ -155,7 +155,7 @@ def scuffing_variables(geom: PairGeometry, contact: LoadedContact, sc: ScuffingR
     }
 
 
-@check_arguments(Scuffing, exclude=tuple(key_of(f) for f in settings_fields(Scuffing)))  # parsed once below
+@check_arguments(Scuffing, exclude=section_keys(Scuffing))  # parsed once below
 def scuffing_dataset(pair: GearPair, *, ltca: xr.Dataset | None = None, rating: xr.Dataset | None = None,
                      **section: Any) -> xr.Dataset:
     """The scuffing rating of a pair (a variant) at each torque of its ``ltca`` dataset with the

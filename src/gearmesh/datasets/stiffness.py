@@ -28,7 +28,7 @@ from ..stiffness import (
     lste,
     mesh_stiffness,
 )
-from ..schema import check_arguments, key_of, settings_fields, settings_object
+from ..schema import check_arguments, section_keys, settings_object
 from ..choices import PEM_TOOTH_METHODS
 from ..settings import SliceConvergence, Stiffness, StiffnessTable
 
@@ -43,7 +43,7 @@ CONTACT_TERM_NOTE = {
            "the loaded contact: the documentation's validation page)"}
 
 #: The stiffness section's keys: the functions below parse their section themselves, once.
-_STIFFNESS_KEYS = tuple(key_of(f) for f in settings_fields(Stiffness))
+_STIFFNESS_KEYS = section_keys(Stiffness)
 
 
 def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
