@@ -67,9 +67,9 @@ def _default_models() -> dict[str, dy.GearModel]:
     ltca: xr.Dataset = ltca_dataset(pair, torques_Nm=[1000.0], positions=64, points=50)
     table = contact_table(geom, [1000.0, 1600.0])
     common = {"backlash_um": 60.0}
-    return {"tvms": build_pair_model(pair, 1000.0, "pinion", excitation="tvms", **common),
-            "ltca": build_pair_model(pair, 1000.0, "pinion", excitation="ltca", ltca=ltca, **common),
-            "contact": build_pair_model(pair, 1000.0, "pinion", excitation="contact", table=table, **common)}
+    return {"tvms": build_pair_model(pair, torque_Nm=1000.0, on="pinion", excitation="tvms", **common),
+            "ltca": build_pair_model(pair, torque_Nm=1000.0, on="pinion", excitation="ltca", ltca=ltca, **common),
+            "contact": build_pair_model(pair, torque_Nm=1000.0, on="pinion", excitation="contact", table=table, **common)}
 
 
 def kernel_rows(name: str, model, speeds, repeats: int, baseline_speeds: int | None = None) -> tuple[dict, object]:
