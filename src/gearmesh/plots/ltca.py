@@ -94,13 +94,14 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
     dz = float(ds["point_width"]) * MM
     z_edges = np.append(z - 0.5 * dz, z[-1] + 0.5 * dz)
     cmap = colormaps["inferno"].with_extremes(under="0.8", bad="0.8")
+    sap, eap = float(ds["rho_sap"][0]) * MM, float(ds["rho_eap"][0]) * MM
     for k, ax in enumerate(axes[0]):
         edges, grid = _pattern(ds, k)
         top = float(np.nanmax(grid)) if np.isfinite(grid).any() else 1.0
         mesh = ax.pcolormesh(z_edges, edges * MM, np.where(np.isfinite(grid), grid, -1.0), cmap=cmap, vmin=0,
                              vmax=top, shading="flat")
-        for name, ls in (("rho_sap", "--"), ("rho_eap", "-")):
-            ax.axhline(float(ds[name][0]) * MM, color="tab:cyan", ls=ls, lw=1.5, zorder=3)
+        for rho, ls in ((sap, "--"), (eap, "-")):
+            ax.axhline(rho, color="tab:cyan", ls=ls, lw=1.5, zorder=3)
         sel = ds.isel(torque=k)
         ax.set_title(f"T1 = {number(float(sel.torque))} N m\nmax {number(float(sel.max_line_load_cycle) * 1e-3)} N/mm",
                      fontsize=9)
@@ -111,7 +112,6 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
         bar.set_label("largest line load over the mesh cycle (N/mm)" + (";\ngrey (left end): no contact" if apart else ""),
                       fontsize=8)
     # the pattern spans SAP to tip: a margin beyond both, so their lines are not hidden by the frame
-    sap, eap = float(ds["rho_sap"][0]) * MM, float(ds["rho_eap"][0]) * MM
     axes[0][0].set_ylim(sap - 0.03 * (eap - sap), eap + 0.03 * (eap - sap))
     axes[0][0].set_ylabel("pinion roll length ρ1 (mm); dashed SAP, solid tip")
     fig.suptitle(_title(ds, "loaded contact pattern on the pinion flank"))
