@@ -192,6 +192,11 @@ def _first_stage(k: int, mismatch: bool) -> np.ndarray:
                       for c in corners])
 
 
+def _point_key(point: np.ndarray) -> bytes:
+    """The key of a unit point once clipped to the box (12 decimals): one gear, evaluated once."""
+    return np.round(np.clip(point, -1.0, 1.0), 12).tobytes()
+
+
 def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bool = True,
               min_step: float = 1.0 / 32.0, starts: int = 2, first_stage_only: bool = False) -> BoxWorst:
     """The largest value of every column of ``evaluate`` over [−1, 1]^k (module docstring, "The search").
@@ -226,7 +231,7 @@ def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bo
     def run(trial: np.ndarray) -> None:
         fresh = []
         for p in np.clip(trial, -1.0, 1.0):
-            key = np.round(p, 12).tobytes()
+            key = _point_key(p)
             if key not in seen:
                 seen[key] = len(points) + len(fresh)
                 fresh.append(p)
@@ -253,20 +258,17 @@ def box_worst(evaluate: Callable[[np.ndarray], np.ndarray], k: int, mismatch: bo
     moves = np.vstack([np.eye(k), -np.eye(k)]) if k else np.zeros((0, 0))
     while k and np.any(step >= min_step):
         active = np.flatnonzero(step >= min_step)
-        before = len(points)
         trial = (pts[at[active]][:, None, :] + step[active, None, None] * moves[None])  # (walkers, 2k, k)
         run(trial.reshape(-1, k))
         pts, vals, _ = best_of()
         finite = np.where(np.isfinite(vals), vals, -np.inf)
         for w in active:  # each walker moves to the best of its own poll, if better
-            key = [seen[np.round(np.clip(p, -1.0, 1.0), 12).tobytes()] for p in pts[at[w]] + step[w] * moves]
+            key = [seen[_point_key(p)] for p in pts[at[w]] + step[w] * moves]
             j = key[int(np.argmax(finite[key, column[w]]))]
             if finite[j, column[w]] > finite[at[w], column[w]]:
                 at[w] = j
             else:
                 step[w] *= 0.5
-        if len(points) == before and not np.any(step >= min_step):
-            break
     best = np.array([at[column == c][np.argmax(finite[at[column == c], c])] for c in range(m)])
     best = np.where(finite[best, np.arange(m)] >= finite.max(axis=0), best, np.argmax(finite, axis=0))
     cols = np.arange(m)
