@@ -158,6 +158,7 @@ class Stiffness:
     ISO 6336-1's value; with a torque the loaded static transmission error F/K (stiffness.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.stiffness:stiffness_dataset", "stiffness.nc", "pair",
+        priority=5,  # every variant's dynamics reads it: done early, it holds none of them back (Dynamics)
         reads=(Read("fe_compliance", method_fe()),), category="Stiffness",
         draws="gearmesh.plots.stiffness:stiffness_figures", figures=(Figure("stiffness"),),
         limits=(_SLICE_GRID, Torques("torque_Nm", "torque_on")))
@@ -281,7 +282,10 @@ class Impact:
     as a check (impact.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.impact:impact_dataset", "impact.nc", "variant",
-        priority=3,  # the next longest stage of a variant, beside its dynamics (Dynamics)
+        # the longest stage of a variant (the box search of the tolerances: 10 s of CPU for the default
+        # study's optimum), so once an optimisation ends its impact starts first and the sign-off table,
+        # which waits for it, does not wait for a stage started last
+        priority=6,
         reads=(Read("fe_compliance", method_fe()),), category="Impact", draws="gearmesh.plots.impact:impact_figures",
         figures=(Figure("force_speed", "impact_speed"), Figure("trajectory", "mesh_in_trajectory"),
                  Figure("simulation", "impact_simulation")),
@@ -546,9 +550,8 @@ class Dynamics(_Dynamics):
     micro-geometry."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.dynamics:dynamics_dataset", "dynamics.nc", "variant",
-        # the longest stage of a variant (3 s of CPU in the default study): once an optimisation ends,
-        # its variant's dynamics starts first, its LTCA and rating (4) and impact (3) beside it, the
-        # study tables (0) after them, so the sign-off and engagement tables wait for no stage started last
+        # a variant's impact (6) first, then its dynamics as soon as the LTCA (4) and the stiffness (5) it
+        # reads are done, ahead of the rating (4); the study tables (0) after them all
         priority=5,
         reads=(Read("stiffness"), Read("ltca", ltca_drives), Read("fe_compliance", method_fe())), category="Dynamics",
         draws="gearmesh.plots.dynamics:dynamics_figures",
