@@ -233,7 +233,7 @@ def test_every_model_takes_each_torques_misalignment():
 
 
 #: The NREL 5 MW reference gearbox's third (parallel helical) stage (Nejad, Guo, Gao & Moan 2016,
-#: Wind Energy 19:1089), as its KISSsoft report gives it (tests/test_pair_input.py): an uncrowned
+#: Wind Energy 19:1089), as its KISSsoft report gives it (tests/test_pairfile.py): an uncrowned
 #: 360 mm face.
 NREL_STAGE_3 = {"name": "nrel_5mw_stage_3", "teeth": [24, 95], "normal_module_mm": 14, "normal_pressure_angle_deg": 20,
                 "helix_angle_deg": 10, "face_width_mm": 360, "profile_shift": [0.48, 0.6691],

@@ -1,5 +1,6 @@
 """The user-facing documents stay true (issue 18): the README's Python API block runs,
-docs/api.md names only functions that exist, CITATION.cff carries the package version."""
+docs/api.md names only functions that exist, CITATION.cff carries the package version,
+tests/README.md lists every test file."""
 
 from __future__ import annotations
 
@@ -227,3 +228,17 @@ def test_every_gearmesh_name_in_the_docs_and_docstrings_exists(root):
                     break
                 obj = getattr(obj, attr)
     assert not missing, sorted(missing)
+
+
+def test_every_test_file_is_in_the_tests_index_once(root):
+    """tests/README.md says where the test for X lives: every test file in it exactly once, and a
+    file the index files under "Modules" tests a module that exists (``test_a_b.py`` → ``gearmesh.a.b``)."""
+    index = (root / "tests/README.md").read_text(encoding="utf-8")
+    listed = re.findall(r"^\| `(test_\w+\.py)` \|", index, flags=re.M)
+    files = sorted(p.name for p in (root / "tests").glob("test_*.py"))
+    assert sorted(listed) == files, set(listed) ^ set(files)
+    modules = index[index.index("## Modules"):index.index("## Contracts")]
+    for name, module in re.findall(r"^\| `test_(\w+)\.py` \| `(gearmesh[\w.]*)`", modules, flags=re.M):
+        importlib.import_module(module)
+        parts = module.split(".")[1:]
+        assert name == "_".join(parts), (name, module)

@@ -332,7 +332,7 @@ def test_signoff_figure_says_what_its_markers_mean_in_legible_type(tmp_path, dra
     the figure's legend says so (it said 'o meets' of the open circles too); two panels a row and
     every text at least 9 pt, so the report's page-wide image keeps them legible."""
     from matplotlib.text import Text
-    from test_signoff import _table, _variant
+    from test_datasets_signoff import _table, _variant
 
     from gearmesh.plots.signoff import plot_signoff
 

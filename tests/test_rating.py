@@ -272,7 +272,7 @@ def test_pair_file_life_idler_and_fzg_keys_are_read_and_refused_in_one_line():
         assert info.value.field == field
 
 
-#: The KISSsoft report's stage of tests/test_pair_input.py (issue 18): only its geometry is in the
+#: The KISSsoft report's stage of tests/test_pairfile.py (issue 18): only its geometry is in the
 #: repository; the report's life factors and safety factors are not.
 KISSSOFT_STAGE = {"teeth": [24, 95], "normal_module_mm": 14, "normal_pressure_angle_deg": 20, "helix_angle_deg": 10,
                   "face_width_mm": 360, "profile_shift": [0.48, 0.6691], "center_distance_mm": 861.000,

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from test_signoff import _table, _variant
+from test_datasets_signoff import _table, _variant
 
 from gearmesh.datasets.signoff import CRITERIA
 from gearmesh.datasets.verdict import MARGINS, MARKS, criteria, criterion_margins, signoff_verdict_dataset
