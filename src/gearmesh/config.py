@@ -166,7 +166,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     every pair loads and works, has the material and bore the always-run stiffness stage
     needs, every micro-geometry variant and every stiffness-table variant gives a working
     pair, sweep ranges are not empty, and the folders its jobs write into under ``root`` are
-    folders where they exist (:func:`gearmesh.io.check_output_tree`). Returns the pairs.
+    folders where they exist (:func:`gearmesh.io.check_output_tree`).
 
     Parameters
     ----------
@@ -183,8 +183,7 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     Raises
     ------
     GearmeshInputError
-        The first failed check, naming the config field (``variants.NAME.…``,
-        ``stiffness_table.variants.NAME.…``, ``ltca.torques_Nm``, ``helix_sweep.stop_deg``, …).
+        The first failed check, naming the config field (``variants.NAME.…``, ``ltca.torques_Nm``, …).
     """
     from .datasets.optimise import check_optimise
     from .datasets.stiffness import apply_variant
