@@ -63,7 +63,20 @@ def pair_excitation(excitation: str | None, ltca_available: bool) -> str:
     """The excitation a dynamics runs: as given, or (None) the LTCA's loaded stiffness and error
     when an LTCA of the variant is at hand (a study that runs the LTCA), else the slice-model
     stiffness. The one statement of "the LTCA drives the dynamics" for the API, the study checks
-    and the workflow's inputs."""
+    and the workflow's inputs.
+
+    Parameters
+    ----------
+    excitation : {'tvms', 'lste', 'ltca', 'contact'} or None
+        The excitation asked for (:data:`PAIR_EXCITATIONS`); None for the default.
+    ltca_available : bool
+        Whether an LTCA of the variant is at hand.
+
+    Returns
+    -------
+    str
+        One of :data:`PAIR_EXCITATIONS`.
+    """
     if excitation is None:
         return "ltca" if ltca_available else "tvms"
     return excitation

@@ -29,7 +29,24 @@ def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
     """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field
     (a NaN or infinite number anywhere, then the first error of the study schema,
     :func:`gearmesh.settings.study_schema`). A ``__use_yte__`` key is named for what it is: it
-    turns on Snakemake's YTE template engine, which runs the file's Python when Snakemake loads it."""
+    turns on Snakemake's YTE template engine, which runs the file's Python when Snakemake loads it.
+
+    Parameters
+    ----------
+    config : mapping
+        A study config as read (YAML mapping).
+
+    Returns
+    -------
+    dict
+        The config with every declared default filled.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the first bad field: ``__use_yte__``, a NaN or infinite number, or the first error
+        against the study schema.
+    """
     if isinstance(config, Mapping) and "__use_yte__" in config:
         raise GearmeshInputError("__use_yte__", config["__use_yte__"], "turns on Snakemake's YTE template engine, "
                                  "which runs Python from the config when Snakemake loads it (before any check): a "
@@ -39,7 +56,24 @@ def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
 
 
 def load_study(path: str | Path) -> dict[str, Any]:
-    """Read and validate a study config file."""
+    """Read and validate a study config file.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The study config file (YAML).
+
+    Returns
+    -------
+    dict
+        The validated config, defaults filled (:func:`validate_study`).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming "config file" for a file :func:`gearmesh.inputfile.read_yaml` refuses or one that is not
+        a mapping, else the first bad field.
+    """
     data = read_yaml(path, "config file")
     if not isinstance(data, Mapping):
         raise GearmeshInputError("config file", str(path), "must be a YAML mapping")
@@ -50,7 +84,25 @@ def workflow_config(config: Mapping[str, Any], configfiles: list[str | Path]) ->
     """The config Snakemake built, judged as ``gearmesh validate`` judges a study: each of its
     files re-read with :func:`read_yaml` (bounded; refuses aliases and duplicated keys, which
     Snakemake's loader lets through), then the merged config validated with its defaults
-    filled (:func:`validate_study`). The Snakefile calls it before anything else."""
+    filled (:func:`validate_study`). The Snakefile calls it before anything else.
+
+    Parameters
+    ----------
+    config : mapping
+        The config Snakemake merged from its files and ``--config``.
+    configfiles : list of str or pathlib.Path
+        The config files Snakemake read.
+
+    Returns
+    -------
+    dict
+        The validated config, defaults filled.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming "file" for a config file refused or not a mapping, else the first bad field.
+    """
     for path in configfiles:
         if not isinstance(read_yaml(path, "file"), Mapping):
             raise GearmeshInputError("file", str(path), "must be a YAML mapping")
@@ -58,12 +110,45 @@ def workflow_config(config: Mapping[str, Any], configfiles: list[str | Path]) ->
 
 
 def pair_path(config: Mapping[str, Any], name: str, root: str | Path = ".") -> Path:
-    """The pair file of pair ``name`` of a validated study config."""
+    """The pair file of pair ``name`` of a validated study config.
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config (its ``pairs_dir``).
+    name : str
+        The pair's name.
+    root : str or pathlib.Path, default "."
+        The folder the study runs in.
+
+    Returns
+    -------
+    pathlib.Path
+        ``root/pairs_dir/name.yaml`` (not checked to exist).
+    """
     return Path(root) / config["pairs_dir"] / f"{name}.yaml"
 
 
 def study_pairs(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, GearPair]:
-    """Every pair the study names (``pairs`` and the sweep/design lists), loaded and checked."""
+    """Every pair the study names (``pairs`` and the sweep/design lists), loaded and checked.
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config.
+    root : str or pathlib.Path, default "."
+        The folder the study runs in.
+
+    Returns
+    -------
+    dict of str to GearPair
+        Every named pair, in the order named (``pairs`` first).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``pairs`` for a pair without a pair file, or the pair file's first bad field.
+    """
     names = list(config["pairs"])
     for section in ("helix_sweep", "low_fluctuation_design", "stiffness_table", "slice_convergence"):
         names += [n for n in config.get(section, {}).get("pairs", []) if n not in names]
@@ -81,7 +166,25 @@ def check_study(config: Mapping[str, Any], root: str | Path = ".") -> dict[str, 
     every pair loads and works, has the material and bore the always-run stiffness stage
     needs, every micro-geometry variant and every stiffness-table variant gives a working
     pair, sweep ranges are not empty, and the folders its jobs write into under ``root`` are
-    folders where they exist (:func:`gearmesh.io.check_output_tree`). Returns the pairs."""
+    folders where they exist (:func:`gearmesh.io.check_output_tree`).
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config, defaults filled.
+    root : str or pathlib.Path, default "."
+        The folder the study runs in (pair files and results under it).
+
+    Returns
+    -------
+    dict of str to GearPair
+        Every pair the study names (:func:`study_pairs`).
+
+    Raises
+    ------
+    GearmeshInputError
+        The first failed check, naming the config field (``variants.NAME.…``, ``ltca.torques_Nm``, …).
+    """
     from .datasets.optimise import check_optimise
     from .datasets.stiffness import apply_variant
     from .io import check_output_tree, study_folders
@@ -154,7 +257,18 @@ def _section(prefix: str) -> Iterator[None]:
 def check_required_sections(config: Mapping[str, Any]) -> None:
     """Every stage the study runs has the sections it needs (:func:`gearmesh.stages.required_sections`:
     those of the stages it reads in every study, and those it declares): a study with a rating
-    section and no ltca section is refused here, before any job runs."""
+    section and no ltca section is refused here, before any job runs.
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the section of the first stage that lacks a section it needs.
+    """
     for section, stage in stages().items():
         if section not in config:
             continue
@@ -171,7 +285,22 @@ def check_stages(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> No
     the contact-stress and deflection limits of every pair it loads, every speed against the
     burst speed), the stiffness Fourier order, helix-sweep size, dynamics comparison couples and
     the full dynamics and train settings with their work estimate
-    (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`)."""
+    (:func:`gearmesh.datasets.dynamics.check_dynamics_settings`).
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config, defaults filled.
+    pairs : mapping of str to GearPair
+        The study's pairs (:func:`study_pairs`).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the first setting over a limit (``SECTION.KEY`` or ``SECTION.RUN.KEY``, with ``[k]``
+        for an entry of a list): a torque over the contact-stress or deflection limit, a speed over
+        the burst speed, a grid over its work limit, or an inconsistent dynamics setting.
+    """
     from .datasets.dynamics.checks import check_dynamics_settings
     from .gear import pair_geometry
     from .limits import check_sweep
@@ -303,7 +432,18 @@ def _among(t1: float, pair: GearPair, ltca: Mapping[str, Any]) -> bool:
 
 def study_excitation(config: Mapping[str, Any]) -> str | None:
     """The excitation of the study's dynamics (None: the study has none): the section's, or the
-    LTCA's when the study runs the LTCA (:func:`gearmesh.choices.pair_excitation`)."""
+    LTCA's when the study runs the LTCA (:func:`gearmesh.choices.pair_excitation`).
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config.
+
+    Returns
+    -------
+    {'tvms', 'lste', 'ltca', 'contact'} or None
+        The excitation of the study's dynamics; None without a dynamics section.
+    """
     if "dynamics" not in config:
         return None
     return pair_excitation((config.get("dynamics") or {}).get("excitation"), "ltca" in config)

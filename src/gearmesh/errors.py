@@ -14,14 +14,43 @@ _repr.maxstring = _repr.maxother = _repr.maxlong = MAX_EXCERPT
 
 
 def excerpt(text: str, limit: int = MAX_EXCERPT) -> str:
-    """``text`` cut to ``limit`` characters, the cut marked with an ellipsis."""
+    """``text`` cut to ``limit`` characters, the cut marked with an ellipsis.
+
+    Parameters
+    ----------
+    text : str
+        The text to cut.
+    limit : int, default MAX_EXCERPT
+        Longest result (characters), the ellipsis included.
+
+    Returns
+    -------
+    str
+        ``text`` unchanged when it fits, else its first ``limit - 1`` characters and "…".
+    """
     return text if len(text) <= limit else text[:limit - 1] + "…"
 
 
 def unknown_key_rule(key: object, allowed, reference: str) -> str:
     """The rule an unknown ``key`` breaks, whole words only within the message's excerpt: every
     allowed key where they fit in a terminal line, else the closest ones and the command that
-    lists them all (``reference``, e.g. "gearmesh schema pair --format markdown")."""
+    lists them all (``reference``, e.g. "gearmesh schema pair --format markdown").
+
+    Parameters
+    ----------
+    key : object
+        The key the user gave.
+    allowed : iterable
+        Every key allowed where ``key`` stands.
+    reference : str
+        The command that lists every allowed key.
+
+    Returns
+    -------
+    str
+        The rule of a :class:`GearmeshInputError`: "unknown key; allowed keys are ..." or
+        "unknown key; did you mean ...? every allowed key: ``reference``".
+    """
     import difflib
 
     names = sorted(map(str, allowed))
@@ -35,7 +64,18 @@ def unknown_key_rule(key: object, allowed, reference: str) -> str:
 
 def short_repr(value: object) -> str:
     """repr of ``value`` in bounded time and length (reprlib: nested levels, items and long
-    strings are elided), so that the error path never formats a huge input in full."""
+    strings are elided), so that the error path never formats a huge input in full.
+
+    Parameters
+    ----------
+    value : object
+        Any value, however large or deeply nested.
+
+    Returns
+    -------
+    str
+        Its repr, at most :data:`MAX_EXCERPT` characters.
+    """
     return excerpt(_repr.repr(value))
 
 

@@ -67,7 +67,26 @@ _UniqueKeyLoader.add_constructor(yaml.resolver.BaseResolver.DEFAULT_MAPPING_TAG,
 def read_input_text(path: str | Path, what: str) -> str:
     """The text of a small input file, read bounded: refuses anything but a regular file (a
     directory, FIFO or device such as /dev/zero, checked before opening), more than
-    :data:`MAX_INPUT_BYTES` and non-UTF-8 bytes, each as one :class:`GearmeshInputError`."""
+    :data:`MAX_INPUT_BYTES` and non-UTF-8 bytes, each as one :class:`GearmeshInputError`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The input file.
+    what : str
+        What the file is ("pair file", "config file", "profile"), the field an error names.
+
+    Returns
+    -------
+    str
+        The file's text.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``what`` and ``path``: not a regular file, unreadable, larger than
+        :data:`MAX_INPUT_BYTES`, or not UTF-8.
+    """
     import stat
 
     path = Path(path)
@@ -89,7 +108,27 @@ def read_input_text(path: str | Path, what: str) -> str:
 
 def read_yaml(path: str | Path, what: str) -> Any:
     """Parse a small YAML input file (:func:`read_input_text`); a malformed file, a key given
-    twice, an alias or an oversized document is a one-line :class:`GearmeshInputError`."""
+    twice, an alias or an oversized document is a one-line :class:`GearmeshInputError`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The input file.
+    what : str
+        What the file is, the field an error names.
+
+    Returns
+    -------
+    object
+        The parsed document (a mapping for every gearmesh input; the caller checks).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``what`` and ``path`` (or the duplicated key): everything :func:`read_input_text`
+        refuses, malformed YAML, a key given twice, an alias, more than :data:`MAX_INPUT_NODES`
+        nodes or deeper than :data:`MAX_INPUT_DEPTH` levels.
+    """
     text = read_input_text(path, what)
     try:
         return yaml.load(text, Loader=_UniqueKeyLoader)

@@ -39,7 +39,15 @@ from .errors import GearmeshInputError
 
 
 def config_digest(config: Mapping[str, Any]) -> tuple[str, str]:
-    """The config as canonical JSON (sorted keys) and its sha256 hex digest."""
+    """The config as canonical JSON (sorted keys) and its sha256 hex digest.
+
+    Parameters
+    ----------
+    config : mapping
+        JSON-like (numpy numbers and arrays, paths allowed).
+    digest : str
+        Its sha256 (hex).
+    """
     text = json.dumps(config, sort_keys=True, default=_json_default)
     return text, hashlib.sha256(text.encode()).hexdigest()
 
@@ -55,14 +63,45 @@ def _json_default(obj: Any) -> Any:
 
 
 def variable(dims, data, units: str, long_name: str, **attrs) -> xr.Variable:
-    """An xarray Variable with its CF ``units`` and ``long_name``."""
+    """An xarray Variable with its CF ``units`` and ``long_name``.
+
+    Parameters
+    ----------
+    dims : str or tuple of str
+        The dimensions.
+    data : array_like
+        The values, in ``units``.
+    units : str
+        CF/UDUNITS unit (SI: "m", "N", "Pa", "N m-1"; "1" for a ratio).
+    long_name : str
+        What the values are.
+    **attrs
+        Further attributes (``engineering_units``, ``flag_values``, ...).
+
+    References
+    ----------
+    .. [1] Eaton B. et al., NetCDF Climate and Forecast (CF) Metadata Conventions 1.8 (2020), §3.1, §3.2.
+    """
     return xr.Variable(dims, np.asarray(data), attrs={"units": units, "long_name": long_name, **attrs})
 
 
 def name_force_lines(ds: xr.Dataset, line: str) -> xr.Dataset:
     """Mark every force variable (units N) of ``ds`` that names no line as acting along ``line``
     ('transverse' or 'normal', :data:`gearmesh.choices.FORCE_LINES`): its ``force_line``
-    attribute, which the CSV copies add to the column name. Returns ``ds`` (changed in place)."""
+    attribute, which the CSV copies add to the column name. Returns ``ds`` (changed in place).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A stage's dataset.
+    line : {'transverse', 'normal', 'tangential'}
+        The line the unmarked forces act along.
+
+    Raises
+    ------
+    ValueError
+        For a line not in :data:`gearmesh.choices.FORCE_LINES`.
+    """
     if line not in FORCE_LINES:
         raise ValueError(f"force line {line!r} is not one of {list(FORCE_LINES)}")
     for var in ds.variables.values():
@@ -90,13 +129,24 @@ class OutputError(OSError):
 
 
 def host_name() -> str:
-    """This host's name as it appears in temporary file names (letters, digits, '-')."""
+    """This host's name as it appears in temporary file names (letters, digits, '-').
+
+    Returns
+    -------
+    str
+    """
     name = re.sub(r"[^A-Za-z0-9-]", "-", socket.gethostname().split(".")[0])
     return name if re.search(r"[A-Za-z-]", name) else f"h{name}"
 
 
 def temporary_path(path: str | Path) -> Path:
-    """The temporary file of ``path`` for this process: ``.NAME.HOST.PID.tmp.SUFFIX`` beside it."""
+    """The temporary file of ``path`` for this process: ``.NAME.HOST.PID.tmp.SUFFIX`` beside it.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The final file.
+    """
     path = Path(path)
     return path.with_name(f".{path.stem}.{host_name()}.{os.getpid()}.tmp{path.suffix}")
 
@@ -110,8 +160,23 @@ def atomic_output(path: str | Path) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; rename it to ``path`` only if the block succeeds,
     so no partial file ever carries the final name (docs/architecture.md). A process killed outright
     (SIGKILL skips the cleanup) leaves the temporary file: :func:`remove_stale_temporaries`.
-    A write that fails on a full disk raises :class:`OutputError` naming ``path``; inside a
-    workflow job (:func:`job_outputs`) the rename waits on the job's check."""
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The final file (its folder is made).
+
+    Yields
+    ------
+    pathlib.Path
+        The temporary file to write.
+
+    Raises
+    ------
+    OutputError
+        Naming ``path``: a write that fails on a full disk; inside a workflow job (:func:`job_outputs`),
+        a rename the job's check refuses.
+    """
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     tmp = temporary_path(path)
@@ -142,7 +207,13 @@ def job_outputs() -> Iterator[None]:
       run or an orphan of an older one; the older writer must not clobber it, the newer one fails
       (Snakemake then removes the file) and the next run remakes it.
 
-    A cluster job's controller runs on another host: there only the second check applies."""
+    A cluster job's controller runs on another host: there only the second check applies.
+
+    Returns
+    -------
+    contextlib.AbstractContextManager
+        A context manager (:func:`contextlib.contextmanager`).
+    """
     global _before_rename
     controller = controller_process()
 
@@ -194,14 +265,19 @@ while alive(job, job_started):
 
 @contextmanager
 def stop_with_controller(interval: float = WATCH_INTERVAL) -> Iterator[None]:
-    """Inside a workflow job that runs in a process of its own (no job server): a watcher process
-    that kills the job (SIGKILL) within ``interval`` seconds once the Snakemake process that started
-    it is gone (killed with ``kill -9``: nobody waits for the job, and a recovery run may be
-    remaking its files), and ends with the block. A thread could not do it: a compiled loop (the
-    dynamics' RK4, seconds to minutes) holds the interpreter; a fork would cost the job the copy
-    of every page it then writes. (A job on the run's job server is stopped by the server:
-    :mod:`gearmesh.jobserver`.) Without a Snakemake ancestor (a cluster job, whose controller runs
-    elsewhere) it does nothing; :func:`job_outputs` still keeps an orphan from writing."""
+    """Inside a workflow job in a process of its own (no job server): a watcher process kills the job
+    (SIGKILL) within ``interval`` seconds once the Snakemake process that started it is gone (``kill -9``:
+    nobody waits for the job, and a recovery run may be remaking its files); it ends with the block.
+    Not a thread: a compiled loop (the dynamics' RK4, seconds to minutes) holds the interpreter; not a
+    fork: the job would pay a copy of every page it then writes. A job on the run's job server is stopped
+    by the server (:mod:`gearmesh.jobserver`). Without a Snakemake ancestor (a cluster job, whose
+    controller runs elsewhere) it does nothing; :func:`job_outputs` still keeps an orphan from writing.
+
+    Parameters
+    ----------
+    interval : float, default WATCH_INTERVAL
+        Seconds between the watcher's checks.
+    """
     import subprocess
     import sys
 
@@ -231,7 +307,13 @@ def _start_ticks(pid: int) -> str:
 
 def controller_process() -> tuple[int, float] | None:
     """(pid, start time) of the nearest ancestor that is a Snakemake process (``.../snakemake``
-    or ``python -m snakemake``), or None (no such ancestor, or no psutil)."""
+    or ``python -m snakemake``), or None (no such ancestor, or no psutil).
+
+    Returns
+    -------
+    tuple of (int, float) or None
+        Process id and start time (s since the epoch, psutil's ``create_time``).
+    """
     try:
         import psutil  # a Snakemake dependency
     except ImportError:  # pragma: no cover
@@ -259,7 +341,13 @@ def _running(pid: int, started: float) -> bool:
 
 
 def space_errno(exc: BaseException) -> int | None:
-    """ENOSPC or EDQUOT when ``exc`` or an exception that caused it is one, else None."""
+    """ENOSPC or EDQUOT when ``exc`` or an exception that caused it is one, else None.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The exception of a failed write.
+    """
     seen: BaseException | None = exc
     while seen is not None:
         if isinstance(seen, OSError) and seen.errno in (errno.ENOSPC, errno.EDQUOT):
@@ -270,7 +358,15 @@ def space_errno(exc: BaseException) -> int | None:
 
 def disk_full(exc: BaseException, folder: Path) -> bool:
     """Whether ``exc`` (or what caused it) is a full disk or quota (ENOSPC, EDQUOT), or a library
-    error on a file system with less than :data:`FULL_DISK_BYTES` left."""
+    error on a file system with less than :data:`FULL_DISK_BYTES` left.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The exception of a failed write.
+    folder : pathlib.Path
+        The folder written to.
+    """
     if space_errno(exc) is not None:
         return True
     return isinstance(exc, (OSError, RuntimeError)) and _free_bytes(folder) < FULL_DISK_BYTES
@@ -292,7 +388,13 @@ def _reason(exc: BaseException) -> str:
 
 
 def writer_alive(pid: int) -> bool:
-    """Whether process ``pid`` of this host exists (a process of another user counts)."""
+    """Whether process ``pid`` of this host exists (a process of another user counts).
+
+    Parameters
+    ----------
+    pid : int
+        A process id of this host.
+    """
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -303,11 +405,19 @@ def writer_alive(pid: int) -> bool:
 
 
 def remove_stale_temporaries(root: str | Path, now: float | None = None) -> list[Path]:
-    """Delete the temporary files of :func:`atomic_output` under ``root`` that no live process
-    writes, and return their paths: those of this host whose writer (its PID) is gone, and those
-    of any host untouched for :data:`STALE_AGE`. A temporary of a live writer stays, so two runs
-    in one checkout (different studies, or a run beside a job of a killed one) do not delete each
-    other's files in flight; the workflow calls it on start."""
+    """Delete the temporary files of :func:`atomic_output` under ``root`` that no live process writes,
+    and return their paths: those of this host whose writer (its PID) is gone, and those of any host
+    untouched for :data:`STALE_AGE`. A temporary of a live writer stays, so two runs in one checkout
+    (different studies, or a run beside a job of a killed one) do not delete each other's files in
+    flight; the workflow calls it on start.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        The folder searched (recursively); none when it does not exist.
+    now : float, optional
+        The time (s since the epoch); default the clock's.
+    """
     root = Path(root)
     now = time.time() if now is None else now
     host = host_name()
@@ -328,7 +438,13 @@ def remove_stale_temporaries(root: str | Path, now: float | None = None) -> list
 def study_folders(config: Mapping[str, Any]) -> list[Path]:
     """The folders a study's jobs write into (relative to the working directory): results and
     logs of the study, of each pair, of each micro-geometry variant and optimisation run, and
-    their ``plots`` folders."""
+    their ``plots`` folders.
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config.
+    """
     study = str(config["study"])
     leaves = [Path("results", study, "plots"), Path("logs", study)]
     for pair in config.get("pairs", []):
@@ -344,7 +460,20 @@ def study_folders(config: Mapping[str, Any]) -> list[Path]:
 def check_output_tree(folders, root: str | Path = ".") -> None:
     """Refuse (GearmeshInputError) when a folder of ``folders``, or one above it, exists under
     ``root`` as something other than a folder (a file, a dangling link): the jobs could not
-    write there, and Snakemake would stop mid-run with a traceback."""
+    write there, and Snakemake would stop mid-run with a traceback.
+
+    Parameters
+    ----------
+    folders : iterable of pathlib.Path
+        Folders relative to ``root`` (:func:`study_folders`).
+    root : str or pathlib.Path, default "."
+        The working directory of the study.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the first path that exists and is not a folder.
+    """
     root, seen = Path(root), set()
     for folder in folders:
         for part in reversed([folder, *folder.parents][:-1]):  # from the top, without '.'
@@ -361,7 +490,13 @@ def check_output_tree(folders, root: str | Path = ".") -> None:
 def output_pattern(pattern: str) -> re.Pattern[str]:
     """The regular expression of a Snakemake output pattern (``results/{study}/{pair}/tca.nc``):
     each ``{wildcard}`` (with or without its own ``,regex``) one path component or more of
-    one, the rest literal."""
+    one, the rest literal.
+
+    Parameters
+    ----------
+    pattern : str
+        A Snakemake output pattern.
+    """
     parts = re.split(r"\{([^{}]+)\}", pattern)
     return re.compile("".join(re.escape(p) if k % 2 == 0 else "[^/]+" for k, p in enumerate(parts)))
 
@@ -370,7 +505,22 @@ def check_output_files(patterns, roots, root: str | Path = ".") -> None:
     """Refuse (GearmeshInputError) a folder under ``roots`` (e.g. ``results/STUDY``) where an
     output of ``patterns`` (the rules' file outputs) belongs: Snakemake takes an existing path
     for a made file, skips its job and leaves the result and its figure missing. Walks the
-    folders only (a study has tens of them)."""
+    folders only (a study has tens of them).
+
+    Parameters
+    ----------
+    patterns : iterable of str
+        The rules' output patterns.
+    roots : iterable of str or pathlib.Path
+        The folders walked, relative to ``root``.
+    root : str or pathlib.Path, default "."
+        The working directory of the study.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the first folder that stands where an output file belongs.
+    """
     regexes = [output_pattern(str(p)) for p in patterns]
     root = Path(root)
     for top in roots:
@@ -385,7 +535,13 @@ def check_output_files(patterns, roots, root: str | Path = ".") -> None:
 @lru_cache(maxsize=1)
 def source_digest() -> str:
     """sha256 of the package's own source files (.py and .yaml, sorted by path): ties a result
-    to the exact code that made it, with or without git."""
+    to the exact code that made it, with or without git.
+
+    Returns
+    -------
+    str
+        sha256 (hex), computed once per process.
+    """
     package = Path(__file__).resolve().parent
     h = hashlib.sha256()
     for f in sorted(p for p in package.rglob("*") if p.suffix in (".py", ".yaml") and "__pycache__" not in p.parts):
@@ -396,7 +552,28 @@ def source_digest() -> str:
 
 def add_provenance(ds: xr.Dataset, config: Mapping[str, Any], source: str, title: str) -> xr.Dataset:
     """Attach the global provenance attributes (version, source digest, full config JSON and its
-    sha256, source reference)."""
+    sha256, source reference).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A stage's dataset, changed in place.
+    config : mapping
+        What it was made from (the study settings and the pair data), JSON-like.
+    source : str
+        Where the model comes from (paper, standard).
+    title : str
+        The dataset's CF ``title``.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds``, with ``Conventions = "CF-1.8"``.
+
+    References
+    ----------
+    .. [1] Eaton B. et al., NetCDF Climate and Forecast (CF) Metadata Conventions 1.8 (2020), §2.6.
+    """
     text, digest = config_digest(config)
     ds.attrs.update({
         "title": title,
@@ -419,7 +596,13 @@ def data_digest(ds: xr.Dataset) -> str:
     """sha256 of every data and coordinate variable of ``ds`` (name, dimensions, shape and the
     values: numbers by their bytes in little-endian order, text as UTF-8), in name order. The
     same before writing and after reading back (netCDF keeps dtypes; strings come back as
-    objects, hashed by their text); an edited value changes it."""
+    objects, hashed by their text); an edited value changes it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Any dataset.
+    """
     h = hashlib.sha256()
     for name in sorted(map(str, {**ds.data_vars, **ds.coords})):
         var = ds[name].variable
@@ -434,7 +617,18 @@ def data_digest(ds: xr.Dataset) -> str:
 
 
 def check_documented(ds: xr.Dataset) -> None:
-    """Raise if any data or coordinate variable lacks ``units`` or ``long_name``."""
+    """Raise if any data or coordinate variable lacks ``units`` or ``long_name``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A dataset about to be written.
+
+    Raises
+    ------
+    ValueError
+        Naming the first variable without ``units`` or ``long_name``.
+    """
     for name, var in {**ds.data_vars, **ds.coords}.items():
         missing = [a for a in ("units", "long_name") if a not in var.attrs]
         if missing:
@@ -450,7 +644,22 @@ TIMING_SUFFIX = "_seconds"
 
 def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
     """Write ``ds`` to ``path`` atomically: a temporary file in the same folder, then rename; its
-    measured times (attributes ending in :data:`TIMING_SUFFIX`) to the log instead of the file."""
+    measured times (attributes ending in :data:`TIMING_SUFFIX`) to the log instead of the file.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A documented dataset with provenance (:func:`add_provenance`); its data digest is added.
+    path : str or pathlib.Path
+        The netCDF file.
+
+    Raises
+    ------
+    ValueError
+        For an undocumented variable or missing provenance.
+    OutputError
+        From :func:`atomic_output`.
+    """
     check_documented(ds)
     for attr in ("gearmesh_version", "config_sha256"):
         if attr not in ds.attrs:
@@ -469,7 +678,12 @@ def write_dataset(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def normal_path(path: str | Path) -> str:
-    """``path`` as written in the provenance: normalised, relative as given, POSIX separators."""
+    """``path`` as written in the provenance: normalised, relative as given, POSIX separators.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+    """
     return Path(os.path.normpath(path)).as_posix()
 
 
@@ -490,7 +704,13 @@ _figure_sources: ContextVar[dict[str, str] | None] = ContextVar("gearmesh_figure
 def figure_sources(sources: Mapping[str, str]) -> Iterator[None]:
     """Inside the block every figure saved (:func:`gearmesh.plots.common.save`) records that it
     was drawn from ``sources`` ({path: digest}: the netCDF files of the job, by their data digest,
-    or the input files of a figure job), beside its own path and digest (:func:`stamp_figure`)."""
+    or the input files of a figure job), beside its own path and digest (:func:`stamp_figure`).
+
+    Parameters
+    ----------
+    sources : mapping of str to str
+        Path to digest of every file the job's figures are drawn from.
+    """
     token = _figure_sources.set({normal_path(k): str(v) for k, v in sorted(sources.items())})
     try:
         yield
@@ -517,7 +737,19 @@ def stamp_figure(png: bytes, path: str | Path) -> bytes:
     it was drawn from with their digests and the sha256 of the PNG without that chunk (so an edited
     or replaced figure, a copy of another job's and one drawn from a file that has changed since
     are told apart: :func:`gearmesh.upstream.check_figure`). Outside a job's drawing, as it is.
-    Nothing in it depends on the run (no time or host): two runs give the same bytes."""
+    Nothing in it depends on the run (no time or host): two runs give the same bytes.
+
+    Parameters
+    ----------
+    png : bytes
+        The PNG file's bytes.
+    path : str or pathlib.Path
+        The file it is written as.
+
+    References
+    ----------
+    .. [1] W3C, PNG Specification (Second Edition), ISO/IEC 15948:2003, §5.3 (chunks), §11.3.4.3 (tEXt).
+    """
     sources = _figure_sources.get()
     if sources is None or not png.startswith(_PNG_SIGNATURE):
         return png
@@ -530,7 +762,20 @@ def stamp_figure(png: bytes, path: str | Path) -> bytes:
 
 def figure_provenance(data: bytes) -> tuple[dict[str, Any] | None, str]:
     """The provenance a figure's bytes ``data`` carry (:func:`stamp_figure`; None when it carries
-    none or is not a PNG) and the sha256 of the bytes without it."""
+    none or is not a PNG) and the sha256 of the bytes without it.
+
+    Parameters
+    ----------
+    data : bytes
+        A figure file's bytes.
+
+    Returns
+    -------
+    meta : dict or None
+        ``file``, ``drawn_from`` ({path: digest}) and ``image_sha256``.
+    digest : str
+        sha256 (hex) of ``data`` without the provenance chunk.
+    """
     if data.startswith(_PNG_SIGNATURE):
         for start, end, kind, payload in _png_chunks(data):
             if kind == b"tEXt" and payload.startswith(FIGURE_KEY + b"\0"):
@@ -544,6 +789,12 @@ def figure_provenance(data: bytes) -> tuple[dict[str, Any] | None, str]:
 
 
 def read_dataset(path: str | Path) -> xr.Dataset:
-    """Open a gearmesh netCDF file fully into memory (the file is closed on return)."""
+    """Open a gearmesh netCDF file fully into memory (the file is closed on return).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A netCDF file.
+    """
     with xr.open_dataset(path, engine="netcdf4") as ds:
         return ds.load()

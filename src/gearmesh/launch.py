@@ -46,7 +46,31 @@ def snakemake_inputs(argv: Sequence[str]) -> SnakemakeInputs:
     """The profiles and config files of the Snakemake command line ``argv`` (and of the
     environment: ``$SNAKEMAKE_PROFILE``), found by Snakemake's own parser and profile lookup
     (``snakemake.cli``); GearmeshInputError for arguments Snakemake would refuse and for a profile
-    it would not find."""
+    it would not find.
+
+    Parameters
+    ----------
+    argv : sequence of str
+        The arguments ``gearmesh run`` passes on to Snakemake.
+
+    Returns
+    -------
+    SnakemakeInputs
+        ``profiles``: the profile files in the order Snakemake applies them; ``configfiles``: the
+        command line's, then every profile's (:data:`DEFAULT_STUDY` when none is named).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming "snakemake arguments" for arguments Snakemake's parser refuses, "--profile" for a
+        profile it would not find, or the profile key that turns on YTE.
+
+    References
+    ----------
+    .. [1] Snakemake documentation, "Profiles" (command-line interface): profile lookup,
+       ``$SNAKEMAKE_PROFILE``, workflow-specific profiles and YTE templating.
+       https://snakemake.readthedocs.io/en/stable/executing/cli.html#profiles
+    """
     from snakemake.cli import get_argument_parser, get_profile_dir
 
     args = _parse(get_argument_parser(), argv)
@@ -130,7 +154,19 @@ def _profile_configfiles(folder: Path, path: Path) -> list[str]:
 def check_inputs(inputs: SnakemakeInputs) -> None:
     """Every config file of ``inputs`` read bounded, a mapping, valid as a study
     (:func:`gearmesh.config.validate_study`, which names ``__use_yte__``); the profiles were read
-    bounded by :func:`snakemake_inputs`. GearmeshInputError naming the first that fails."""
+    bounded by :func:`snakemake_inputs`. GearmeshInputError naming the first that fails.
+
+    Parameters
+    ----------
+    inputs : SnakemakeInputs
+        What :func:`snakemake_inputs` found.
+
+    Raises
+    ------
+    GearmeshInputError
+        The first config file's failure (unreadable, not a mapping, not a valid study), the rule
+        naming the file.
+    """
     from .config import validate_study
     from .inputfile import read_yaml
 

@@ -205,7 +205,20 @@ SAME_POINT_RTOL = 1e-9
 
 def same_point(values, target: float) -> np.ndarray:
     """Boolean mask (shape of ``values``): which of ``values`` are the operating point ``target``
-    (torque or speed, any unit) to :data:`SAME_POINT_RTOL` of ``target``."""
+    (torque or speed, any unit) to :data:`SAME_POINT_RTOL` of ``target``.
+
+    Parameters
+    ----------
+    values : array_like
+        Torques or speeds, any shape.
+    target : float
+        The operating point looked for, in the unit of ``values``.
+
+    Returns
+    -------
+    numpy.ndarray of bool
+        Shape of ``values``.
+    """
     return np.abs(np.asarray(values, dtype=float) - target) <= SAME_POINT_RTOL * abs(target)
 
 
@@ -273,7 +286,25 @@ MAX_WINDOW_TORQUES = 2000
 
 def max_speed_rpm(geom: Any, on: str = "pinion") -> float:
     """Highest speed (rpm) of the ``on`` gear ('pinion' or 'gear') at which the faster tip circle
-    stays within :data:`MAX_RIM_STRESS`: ρ (ω_g r_a,g)² ≤ σ_max for both gears, ω2 = ω1 z1/z2."""
+    stays within :data:`MAX_RIM_STRESS`: ρ (ω_g r_a,g)² ≤ σ_max for both gears, ω2 = ω1 z1/z2.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (tip radii in m; density of its material in kg/m³, steel's when it has none).
+    on : {'pinion', 'gear'}, default 'pinion'
+        The gear whose speed is returned.
+
+    Returns
+    -------
+    float
+        Highest speed of the ``on`` gear (rpm).
+
+    References
+    ----------
+    .. [1] Timoshenko S. P., Goodier J. N., Theory of Elasticity, McGraw-Hill, §32 (rotating disks):
+       hoop stress ρ v² of a thin rotating ring.
+    """
     pair = geom.pair
     density = pair.material.density if pair.material else STEEL_DENSITY
     v_max = math.sqrt(MAX_RIM_STRESS / density)
@@ -288,7 +319,34 @@ def positive_values(values, field: str, unit: str, maximum: float = math.inf, no
     """A positive number or a list of them as a 1-d float array; refuses more than ``max_items``
     (measured before any item is read), empty, non-numeric, non-finite, non-positive and (if
     given) values above ``maximum``, naming ``field`` and the ``unit`` (GearmeshInputError);
-    ``note`` is added to the rule of a non-positive value."""
+    ``note`` is added to the rule of a non-positive value.
+
+    Parameters
+    ----------
+    values : float or sequence of float
+        One value or a list.
+    field : str
+        The field an error names (an item as ``field[k]``).
+    unit : str
+        The values' unit, as an error says it.
+    maximum : float, default inf
+        Largest value accepted, in ``unit``.
+    note : str, default ""
+        Added to the rule of a non-positive value.
+    max_items : int, default MAX_LIST_ITEMS
+        Most values accepted.
+
+    Returns
+    -------
+    numpy.ndarray
+        The values, shape (n,), float, in ``unit``.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``field`` (or ``field[k]``) for too many, no, non-numeric, non-finite, non-positive
+        or too large values.
+    """
     if isinstance(values, (int, float, np.floating, np.integer)) and not isinstance(values, bool):
         values = [values]
     if isinstance(values, (str, bytes)) or not hasattr(values, "__len__"):
@@ -317,7 +375,34 @@ def check_speeds(geom: Any, speeds_rpm, field: str = "speeds_rpm", on: str = "pi
     :func:`max_speed_rpm` (the centrifugal hoop stress of the faster tip circle would exceed
     :data:`MAX_RIM_STRESS`; the advice is to lower the speed); and none above
     :data:`MAX_SPEED_RPM`. The one speed check of the package; ``empty_ok``: no speed is a
-    valid answer (e.g. no sampled speeds)."""
+    valid answer (e.g. no sampled speeds).
+
+    Parameters
+    ----------
+    geom : PairGeometry or None
+        The pair's geometry; None: no rim-speed check.
+    speeds_rpm : float or sequence of float
+        Speeds of the ``on`` gear (rpm).
+    field : str, default "speeds_rpm"
+        The field an error names.
+    on : {'pinion', 'gear'}, default 'pinion'
+        The gear the speeds are of.
+    max_items : int, default MAX_SPEEDS
+        Most speeds accepted.
+    empty_ok : bool, default False
+        Accept an empty list (returns an empty array).
+
+    Returns
+    -------
+    numpy.ndarray
+        The speeds (rpm), shape (n,).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``field`` (or ``field[k]``): everything :func:`positive_values` refuses, a speed above
+        :func:`max_speed_rpm` or above :data:`MAX_SPEED_RPM`.
+    """
     if empty_ok and hasattr(speeds_rpm, "__len__") and not isinstance(speeds_rpm, str) and len(speeds_rpm) == 0:
         return np.zeros(0)
     values = positive_values(speeds_rpm, field, "rpm", max_items=max_items)
@@ -339,7 +424,26 @@ def check_speeds(geom: Any, speeds_rpm, field: str = "speeds_rpm", on: str = "pi
 
 
 def check_grid(field: str, value: object, points: int, limit: int, what: str) -> None:
-    """Refuse a stage grid of ``points`` (e.g. slices × positions) above ``limit``."""
+    """Refuse a stage grid of ``points`` (e.g. slices × positions) above ``limit``.
+
+    Parameters
+    ----------
+    field : str
+        The setting an error names.
+    value : object
+        The setting's value as given.
+    points : int
+        The grid's size.
+    limit : int
+        Largest size accepted.
+    what : str
+        What a point of the grid is (plural), as the error says.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``field`` and ``value`` when ``points > limit``.
+    """
     if points > limit:
         raise GearmeshInputError(field, value, f"gives {points:.3g} {what}; at most {limit:.3g} "
                                  "(memory, see gearmesh.limits)")
@@ -354,7 +458,26 @@ def _count(field: str, value) -> int:
 
 def check_slice_grid(slices, positions, names: tuple[str, str] = ("slices", "positions")) -> tuple[int, int]:
     """``slices`` and ``positions`` of a slice-model run as integers, refused (naming them as
-    ``names``) when their product exceeds :data:`MAX_STIFFNESS_POINTS`."""
+    ``names``) when their product exceeds :data:`MAX_STIFFNESS_POINTS`.
+
+    Parameters
+    ----------
+    slices : int
+        Slices over the face width (≥ 1).
+    positions : int
+        Mesh positions (≥ 1).
+    names : tuple of str, default ("slices", "positions")
+        The fields an error names.
+
+    Returns
+    -------
+    slices, positions : int
+
+    Raises
+    ------
+    GearmeshInputError
+        For a count that is not an integer ≥ 1, or a product above :data:`MAX_STIFFNESS_POINTS`.
+    """
     slices, positions = _count(names[0], slices), _count(names[1], positions)
     check_grid(names[0], slices, slices * positions, MAX_STIFFNESS_POINTS, "slice-positions")
     return slices, positions
@@ -363,7 +486,28 @@ def check_slice_grid(slices, positions, names: tuple[str, str] = ("slices", "pos
 def check_sweep(start: float, stop: float, step: float, prefix: str = "") -> int:
     """The number of helix angles from ``start`` to ``stop`` (included on the grid) in steps of
     ``step`` (degrees), computed from the three numbers before any grid exists, refused above
-    :data:`MAX_SWEEP_ANGLES` or when the range is empty (fields ``prefix`` + start_deg/step_deg)."""
+    :data:`MAX_SWEEP_ANGLES` or when the range is empty (fields ``prefix`` + start_deg/step_deg).
+
+    Parameters
+    ----------
+    start, stop : float
+        First and last helix angle (deg).
+    step : float
+        Step (deg), positive.
+    prefix : str, default ""
+        Prefix of the fields an error names (e.g. ``"helix_sweep."``).
+
+    Returns
+    -------
+    int
+        The number of helix angles.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``step_deg`` (not a positive finite number, or too many angles) or ``stop_deg``
+        (below ``start``).
+    """
     if not (math.isfinite(start) and math.isfinite(stop) and math.isfinite(step)) or step <= 0:
         raise GearmeshInputError(f"{prefix}step_deg", step, "must be a positive finite number (degrees)")
     if stop < start:
@@ -375,7 +519,25 @@ def check_sweep(start: float, stop: float, step: float, prefix: str = "") -> int
 
 def check_contact_grid(positions, points) -> tuple[int, int]:
     """``positions`` and ``points`` of a TCA/LTCA as integers, refused when the (positions + 1) ×
-    points candidates per contact line exceed :data:`MAX_CONTACT_POINTS`."""
+    points candidates per contact line exceed :data:`MAX_CONTACT_POINTS`.
+
+    Parameters
+    ----------
+    positions : int
+        Mesh positions of the TCA/LTCA (≥ 1).
+    points : int
+        Points per contact line (≥ 1).
+
+    Returns
+    -------
+    positions, points : int
+
+    Raises
+    ------
+    GearmeshInputError
+        For a count that is not an integer ≥ 1, or ``points`` when (positions + 1) × points exceeds
+        :data:`MAX_CONTACT_POINTS`.
+    """
     positions, points = _count("positions", positions), _count("points", points)
     check_grid("points", points, (positions + 1) * points, MAX_CONTACT_POINTS, "contact candidates per line")
     return positions, points

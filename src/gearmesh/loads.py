@@ -29,6 +29,25 @@ def nominal_load(geom: PairGeometry, pinion_torque: float) -> dict[str, float]:
     pair has none) and Z_ε of ISO 6336-2 eq. (8)–(10); Z_β ≈ 1 is left out (it lies within
     ±7 % for β < 30°; the limit is coarse). Deflection δ = F_bt/(c_γα b) with c_γα b from
     ISO 6336-1 (:func:`gearmesh.stiffness.iso6336_stiffness`, which scales it by E/206 GPa).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    pinion_torque : float
+        Pinion torque T1 (N m).
+
+    Returns
+    -------
+    dict of str to float
+        ``contact_stress``: nominal contact stress σ_H0 (Pa); ``deflection``: mesh deflection δ (m).
+
+    References
+    ----------
+    .. [1] ISO 6336-2:2019, Calculation of load capacity of spur and helical gears — Part 2:
+       Calculation of surface durability (pitting), method B, eqs. (8)–(10) (Z_ε).
+    .. [2] ISO 6336-1:2019, Calculation of load capacity of spur and helical gears — Part 1: Basic
+       principles, introduction and general influence factors, clause 9 (mesh stiffness c_γα).
     """
     pair = geom.pair
     material = pair.material
@@ -52,7 +71,25 @@ def nominal_load(geom: PairGeometry, pinion_torque: float) -> dict[str, float]:
 def check_load(geom: PairGeometry, pinion_torque: float, field: str, value: object) -> None:
     """Refuse a pinion torque (N m) whose nominal contact stress exceeds
     :data:`MAX_CONTACT_STRESS` or whose deflection exceeds :data:`MAX_DEFLECTION_TO_MODULE`
-    normal modules (:func:`nominal_load`); ``field`` and ``value`` are what the user gave."""
+    normal modules (:func:`nominal_load`); ``field`` and ``value`` are what the user gave.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    pinion_torque : float
+        Pinion torque T1 (N m).
+    field : str
+        The field the torque came from, as the error names it.
+    value : object
+        The value as the user gave it.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``field`` and ``value``, when the nominal contact stress exceeds
+        :data:`MAX_CONTACT_STRESS` or the mesh deflection exceeds :data:`MAX_DEFLECTION_TO_MODULE` m_n.
+    """
     load = nominal_load(geom, pinion_torque)
     if load["contact_stress"] > MAX_CONTACT_STRESS:
         raise GearmeshInputError(field, value, f"gives a nominal contact stress of {load['contact_stress'] / 1e6:.4g} "
@@ -67,7 +104,25 @@ def check_load(geom: PairGeometry, pinion_torque: float, field: str, value: obje
 
 def check_loads(geom: PairGeometry, pinion_torques, field: str, given) -> None:
     """:func:`check_load` on each of ``pinion_torques`` (N m); ``given`` the values as the user
-    gave them (same order), named ``field[k]`` when there are several."""
+    gave them (same order), named ``field[k]`` when there are several.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    pinion_torques : array_like
+        Pinion torques T1 (N m), any shape.
+    field : str
+        The field the torques came from.
+    given : array_like
+        The values as the user gave them, in the order of ``pinion_torques``.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``field[k]`` (or ``field`` for a single torque) for the first torque
+        :func:`check_load` refuses.
+    """
     values = np.ravel(given).tolist()
     for k, (t1, value) in enumerate(zip(np.ravel(pinion_torques), values)):
         check_load(geom, float(t1), f"{field}[{k}]" if len(values) > 1 else field, value)

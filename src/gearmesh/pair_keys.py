@@ -198,6 +198,18 @@ class PairFile:
 def pair_schema() -> dict[str, Any]:
     """The JSON schema of a pair file (:class:`PairFile`): what an editor completes and checks.
     The physics of a pair (contact ratio, interference, centre distance) is the reader's
-    (:func:`gearmesh.gear.pair_geometry`), beyond any schema."""
+    (:func:`gearmesh.gear.pair_geometry`), beyond any schema.
+
+    Returns
+    -------
+    dict
+        JSON schema (draft 2020-12) of :class:`PairFile`: every key with its type, default, bounds
+        and description (units in the key names).
+
+    References
+    ----------
+    .. [1] JSON Schema, draft 2020-12, Core and Validation specifications.
+       https://json-schema.org/draft/2020-12
+    """
     return {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": "gearmesh gear pair file",
             **object_schema(PairFile)}

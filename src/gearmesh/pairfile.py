@@ -64,7 +64,20 @@ _GIVEN_AS = {"bore_radius_mm": "bore_diameter_mm, a datasheet's inner diameter"}
 
 def missing_key(key: str, what: str | None = None) -> GearmeshInputError:
     """The refusal of a computation that needs pair-file key ``key`` (:data:`OPTIONAL_NEEDS`), saying
-    what needs it and which key to add."""
+    what needs it and which key to add.
+
+    Parameters
+    ----------
+    key : str
+        The pair-file key (a key of :data:`OPTIONAL_NEEDS`, or any key when ``what`` is given).
+    what : str, optional
+        What needs it; default :data:`OPTIONAL_NEEDS`' own words.
+
+    Returns
+    -------
+    GearmeshInputError
+        Naming ``key``, for the caller to raise.
+    """
     need = what or OPTIONAL_NEEDS[key][0]
     other = f" (or {_GIVEN_AS[key]})" if key in _GIVEN_AS else ""
     return GearmeshInputError(key, None, f"is required for {need}: add {key}{other} to the pair file")
@@ -72,7 +85,18 @@ def missing_key(key: str, what: str | None = None) -> GearmeshInputError:
 
 def missing_needs(pair: "GearPair") -> dict[str, str]:
     """{key: what a command needs it for and which commands} for each key of :data:`OPTIONAL_NEEDS`
-    that ``pair`` leaves out (what ``gearmesh validate`` reports beside "valid")."""
+    that ``pair`` leaves out (what ``gearmesh validate`` reports beside "valid").
+
+    Parameters
+    ----------
+    pair : GearPair
+        A pair as read.
+
+    Returns
+    -------
+    dict of str to str
+        One sentence per key left out; empty when the pair has them all.
+    """
     given = {"bore_radius_mm": pair.bore_radius is not None}
     return {key: f"add {key}{f' (or {_GIVEN_AS[key]})' if key in _GIVEN_AS else ''} for {what}: needed by "
                  f"{', '.join(commands)}" for key, (what, commands) in OPTIONAL_NEEDS.items() if not given[key]}
@@ -206,6 +230,31 @@ def pair_from_dict(data: Mapping[str, Any], source: str = "", default_name: str 
     Checks the form of the data (keys, types, signs, ranges); the physics of the pair
     (contact ratio, interference, centre distance) is checked by :func:`gearmesh.gear.pair_geometry`.
     ``name`` may be left out when ``default_name`` is given (a file's stem, :func:`load_pair`).
+
+    Parameters
+    ----------
+    data : mapping
+        A pair file's keys, engineering units (mm, deg, GPa, ...) as their names say.
+    source : str, default ""
+        Where the data come from (the file's path), kept on the pair.
+    default_name : str, optional
+        The name when ``data`` has none.
+
+    Returns
+    -------
+    GearPair
+        The pair in SI units (m, rad, Pa, kg/m³, N/m).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the first bad key (``modification.pinion.tip_relief_um`` …): unknown, required and
+        missing, two alternatives given together, wrong type, sign or range.
+
+    References
+    ----------
+    .. [1] ISO 21771:2007, Gears — Cylindrical involute gears and gear pairs — Concepts and
+       geometry, eqs. 45, 47 (tip and root diameters from the datasheet).
     """
     spec = _mapping("pair", data, _PAIR_KEYS)
     for key in _REQUIRED_KEYS:
@@ -327,7 +376,35 @@ def check_rating_input(name: str, value: Any, field_name: str | None = None) -> 
     temperature in (−40, 200) °C, the life-factor conditions and the idler gear one of their words
     (:mod:`gearmesh.choices`), every other a positive number within its plausible range
     (:data:`gearmesh.limits.RATING_INPUT_RANGES`: fatigue limits of ISO 6336-5's materials,
-    roughness, viscosities); GearmeshInputError naming ``field_name`` (default ``name``)."""
+    roughness, viscosities); GearmeshInputError naming ``field_name`` (default ``name``).
+
+    Parameters
+    ----------
+    name : str
+        The rating input's name (a value of :data:`RATING_KEYS`).
+    value : object
+        The value as given (units as the pair-file key says: MPa, µm, mm²/s, °C).
+    field_name : str, optional
+        The field an error names; default ``name``.
+
+    Returns
+    -------
+    float or int or str
+        The value checked (an int for the grade and the FZG stage, a word for the choices).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``field_name`` for a value outside its range or set.
+
+    References
+    ----------
+    .. [1] ISO 1328-1:2013, Cylindrical gears — ISO system of flank tolerance classification — Part 1
+       (accuracy grades 1–12).
+    .. [2] ISO 14635-1, Gears — FZG test procedures — Part 1: FZG test method A/8,3/90 (load stages 1–12).
+    .. [3] ISO 6336-5:2016, Calculation of load capacity of spur and helical gears — Part 5: Strength
+       and quality of materials (the fatigue limits' span).
+    """
     key = field_name or name
     words = {"life_factor_conditions": LIFE_FACTOR_CONDITIONS, "idler_gear": IDLER_GEARS}
     if name in words:
@@ -438,7 +515,24 @@ def _coefficient(key: str, diameters: np.ndarray, values: np.ndarray, what: str,
 def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
     """Read a pair file (YAML, engineering units) or mapping into a :class:`GearPair`; a file
     without ``name`` is named after its stem (``my_pair.yaml``: ``my_pair``), a different
-    ``name`` is kept as given."""
+    ``name`` is kept as given.
+
+    Parameters
+    ----------
+    path_or_data : str, pathlib.Path or mapping
+        A pair file (YAML) or its keys.
+
+    Returns
+    -------
+    GearPair
+        The pair in SI units.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming "pair file" for a file that cannot be read or is not a mapping, else the first bad
+        key (the rule names the file).
+    """
     if isinstance(path_or_data, Mapping):
         return pair_from_dict(path_or_data)
     data = read_yaml(path_or_data, "pair file")
@@ -455,7 +549,18 @@ def load_pair(path_or_data: str | Path | Mapping[str, Any]) -> GearPair:
 def pair_notes(pair: GearPair) -> list[str]:
     """What the results of ``pair`` rest on that its file did not say: a centre distance taken
     as the zero-backlash one (:func:`gearmesh.gear.shift_rounding_center_distance`) and the material values
-    filled by :data:`DEFAULT_MATERIAL`. One sentence each, for the output (JSON, dataset attrs)."""
+    filled by :data:`DEFAULT_MATERIAL`. One sentence each, for the output (JSON, dataset attrs).
+
+    Parameters
+    ----------
+    pair : GearPair
+        A pair as read.
+
+    Returns
+    -------
+    list of str
+        The notes, empty when the file said everything.
+    """
     notes = []
     if pair.center_distance is not None and pair.profile_shift is not None:
         a0 = _resolve_shift_and_center(pair, *_transverse_angle_and_radius_sum(pair))[3]
@@ -486,12 +591,34 @@ EXAMPLES_DIR = Path(__file__).parent / "pairs"
 
 
 def example_pairs() -> dict[str, Path]:
-    """{name: file} of the example pairs shipped with the package (:data:`EXAMPLES_DIR`)."""
+    """{name: file} of the example pairs shipped with the package (:data:`EXAMPLES_DIR`).
+
+    Returns
+    -------
+    dict of str to pathlib.Path
+        Name to pair file, sorted by name.
+    """
     return {f.stem: f for f in sorted(EXAMPLES_DIR.glob("*.yaml"))}
 
 
 def example_pair(name: str) -> Path:
-    """The file of the shipped example pair ``name`` (e.g. ``helical_z29_71_m5``), for :func:`load_pair`."""
+    """The file of the shipped example pair ``name`` (e.g. ``helical_z29_71_m5``), for :func:`load_pair`.
+
+    Parameters
+    ----------
+    name : str
+        An example pair's name.
+
+    Returns
+    -------
+    pathlib.Path
+        Its pair file.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming "example" for an unknown name, listing the known ones.
+    """
     pairs = example_pairs()
     if name not in pairs:
         raise GearmeshInputError("example", name, f"must be one of {sorted(pairs)}")
@@ -501,14 +628,48 @@ def example_pair(name: str) -> Path:
 def check_pair_name(pair: GearPair, path: str | Path) -> GearPair:
     """Refuse a pair whose ``name`` differs from the name of its file ``path``: the rule of
     a study's pair library (``pairs_dir/NAME.yaml``), whose results are filed under the name.
-    The command line has no such rule (:func:`load_pair`)."""
+    The command line has no such rule (:func:`load_pair`).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair read from ``path``.
+    path : str or pathlib.Path
+        Its file.
+
+    Returns
+    -------
+    GearPair
+        ``pair`` unchanged.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming "name" when it is not the file's stem.
+    """
     if pair.name != Path(path).stem:
         raise GearmeshInputError("name", pair.name, f"must equal the file name {Path(path).stem!r} of {path}")
     return pair
 
 
 def load_named_pair(path: str | Path) -> GearPair:
-    """Read a pair file whose ``name`` equals its file name (:func:`check_pair_name`)."""
+    """Read a pair file whose ``name`` equals its file name (:func:`check_pair_name`).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A pair file of a study's pair library.
+
+    Returns
+    -------
+    GearPair
+        The pair in SI units.
+
+    Raises
+    ------
+    GearmeshInputError
+        What :func:`load_pair` and :func:`check_pair_name` raise.
+    """
     return check_pair_name(load_pair(path), path)
 
 
@@ -518,7 +679,19 @@ def load_named_pair(path: str | Path) -> GearPair:
 
 
 def pair_to_dict(pair: GearPair) -> dict[str, Any]:
-    """The inverse of :func:`pair_from_dict`: a pair-file mapping in engineering units."""
+    """The inverse of :func:`pair_from_dict`: a pair-file mapping in engineering units.
+
+    Parameters
+    ----------
+    pair : GearPair
+        A pair (SI units).
+
+    Returns
+    -------
+    dict
+        Pair-file keys and values in engineering units (mm, deg, µm, GPa); defaulted material values
+        left out.
+    """
     out: dict[str, Any] = {
         "name": pair.name,
         "teeth": list(pair.teeth),
@@ -567,7 +740,27 @@ def variant_pair(pair: GearPair, variant: str, spec: Mapping[str, Any]) -> GearP
     or a variant without one); the variant's modification replaces the pair file's. A variant
     ``{from: optimise.NAME}`` is ``pair`` as given: the optimisation's pair file, its optimum
     (the workflow hands that file to the variant's stages). A key other than ``modification`` and
-    ``from``, or both, is refused naming it (a misspelt key must not give the unmodified pair)."""
+    ``from``, or both, is refused naming it (a misspelt key must not give the unmodified pair).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The study's pair (or an optimisation's optimum for a ``from`` variant).
+    variant : str
+        The variant's name, as an error names it (``variants.NAME``).
+    spec : mapping
+        The variant's settings: ``modification`` (the pair-file block) or ``from``, or neither.
+
+    Returns
+    -------
+    GearPair
+        The pair with the variant's modification (SI).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``variants.NAME.KEY`` for an unknown key, both keys, or a bad modification value.
+    """
     spec = _mapping(f"variants.{variant}", spec, _VARIANT_KEYS)
     if spec.get("from") and spec.get("modification"):
         raise GearmeshInputError(f"variants.{variant}.from", spec["from"], "and modification are exclusive: a variant "

@@ -60,7 +60,18 @@ class Filled(Mapping[str, Any]):
 
 
 def filled(config: Mapping[str, Any]) -> Filled:
-    """:class:`Filled` of ``config``."""
+    """:class:`Filled` of ``config``.
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config.
+
+    Returns
+    -------
+    Filled
+        A read-only view of ``config``.
+    """
     return Filled(config)
 
 
@@ -103,7 +114,25 @@ def versioned_param(spec: str) -> Callable[[Any], str]:
     digest of the code it can run (:func:`gearmesh.codeversion.versioned`), so a code change reruns
     the job. Given as a function of the wildcards: Snakemake formats a plain string param with the
     wildcards (a plain ``str`` again) but keeps what a param function returns, so the report's job
-    panel shows the function's name and the rerun trigger still compares the digest."""
+    panel shows the function's name and the rerun trigger still compares the digest.
+
+    Parameters
+    ----------
+    spec : str
+        ``"package.module:function"``.
+
+    Returns
+    -------
+    callable
+        A function of the wildcards returning ``"package.module:function@digest"``, the same string
+        also as its ``spec`` attribute.
+
+    References
+    ----------
+    .. [1] Snakemake documentation, "Snakefiles and Rules", section "Non-file parameters for rules"
+       (params given as functions), and "Command line interface", ``--rerun-triggers`` (a job reruns
+       when its params change). https://snakemake.readthedocs.io/en/stable/snakefiles/rules.html
+    """
     value = versioned(spec)
     param = lambda wildcards: value  # noqa: E731
     param.spec = value  # gearmesh.jobserver.rule_modules reads it without wildcards
@@ -116,24 +145,78 @@ def versioned_param(spec: str) -> Callable[[Any], str]:
 
 
 def stage_wanted(config: Mapping[str, Any], section: str, stage: Stage) -> bool:
-    """Whether the study gets the result of ``stage``: it has the section, and ``wanted`` holds."""
+    """Whether the study gets the result of ``stage``: it has the section, and ``wanted`` holds.
+
+    Parameters
+    ----------
+    config : mapping
+        The study config as written.
+    section : str
+        The stage's config section.
+    stage : Stage
+        Its declaration.
+
+    Returns
+    -------
+    bool
+    """
     return section in config and (stage.wanted is None or stage.wanted(config, section))
 
 
 def table_wanted(config: Mapping[str, Any], section: str, table: Table) -> bool:
-    """Whether the study gets ``table`` of the stage of ``section``."""
+    """Whether the study gets ``table`` of the stage of ``section``.
+
+    Parameters
+    ----------
+    config : mapping
+        The study config as written.
+    section : str
+        The config section of the stage the table belongs to.
+    table : Table
+        The table's declaration.
+
+    Returns
+    -------
+    bool
+    """
     return section in config and (table.wanted is None or table.wanted(config, section))
 
 
 def active_reads(config: Mapping[str, Any], section: str, job: Stage | Table) -> list[Read]:
-    """The results the job of ``job`` (declared by the stage of ``section``) reads in this study."""
+    """The results the job of ``job`` (declared by the stage of ``section``) reads in this study.
+
+    Parameters
+    ----------
+    config : mapping
+        The study config (read through :func:`filled`).
+    section : str
+        The config section of the declaring stage.
+    job : Stage or Table
+        The job whose reads are asked for.
+
+    Returns
+    -------
+    list of Read
+        The reads whose ``when`` holds, in the declaration's order.
+    """
     view = filled(config)
     return [r for r in job.reads if r.when(view, section)]
 
 
 def study_stages(config: Mapping[str, Any]) -> dict[str, Stage]:
     """Every stage the study runs by section, in the declarations' order: those it wants, the
-    stages their jobs and their tables read, and so on."""
+    stages their jobs and their tables read, and so on.
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config.
+
+    Returns
+    -------
+    dict of str to Stage
+        Section name to stage declaration, in the order of :func:`gearmesh.settings.stages`.
+    """
     declared = stages()
     run = {s for s, stage in declared.items() if stage_wanted(config, s, stage)}
     todo = list(run)
@@ -272,7 +355,24 @@ def _doc(config: Mapping[str, Any], section: str, job: Stage | Table) -> str:
 def rules(config: Mapping[str, Any]) -> list[Rule]:
     """Every rule of the study (a validated config, defaults filled): the rule of each stage it
     runs (:func:`study_stages`, named as its section) and of each wanted table of those stages
-    (named as the table)."""
+    (named as the table).
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config, defaults filled.
+
+    Returns
+    -------
+    list of Rule
+        The rules in the order of their stages, each stage's rule before its tables'.
+
+    References
+    ----------
+    .. [1] Snakemake documentation, "Snakefiles and Rules" (input functions and ``unpack``,
+       ``localrule``, ``priority``, ``log``) and "Snakemake Reports" (``report`` captions,
+       categories and subcategories). https://snakemake.readthedocs.io/en/stable/snakefiles/rules.html
+    """
     out = []
     for section, stage in study_stages(config).items():
         out.append(_rule(config, section, section, stage, _stage_params(config, section, stage)))
@@ -294,7 +394,18 @@ def _job_targets(config: Mapping[str, Any], job: Job, runs: Callable[[Mapping[st
 def targets(config: Mapping[str, Any]) -> list[str]:
     """Every file the study asks for: the result of every stage it wants (each job's figures and
     tables come with its netCDF file), then every wanted table's (once per study, per pair, per
-    variant of a pair or per run of a pair)."""
+    variant of a pair or per run of a pair).
+
+    Parameters
+    ----------
+    config : mapping
+        A validated study config, defaults filled.
+
+    Returns
+    -------
+    list of str
+        Paths under ``results/{study}/`` (the wildcards filled), stages first, then tables.
+    """
     declared = stages()
     wanted = [(s, stage) for s, stage in declared.items() if stage_wanted(config, s, stage)]
     out = [path for s, stage in wanted for path in _job_targets(config, stage, section=s)]

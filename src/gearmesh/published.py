@@ -25,19 +25,43 @@ def _source(root: type) -> str:
 
 
 def study_schema_text() -> str:
-    """The study schema as published in ``schemas/config.schema.yaml``."""
+    """The study schema as published in ``schemas/config.schema.yaml``.
+
+    Returns
+    -------
+    str
+        YAML: a generated-file header comment and the JSON schema of a study config
+        (:func:`gearmesh.settings.study_schema`).
+    """
     head = f"# The JSON schema of a study config, {_GENERATED.format(source=_source(Study), what='study')}.\n"
     return head + yaml.safe_dump(study_schema(), sort_keys=False, allow_unicode=True, width=110, default_flow_style=None)
 
 
 def pair_schema_text() -> str:
-    """The pair-file schema as published in ``schemas/pair.schema.json``."""
+    """The pair-file schema as published in ``schemas/pair.schema.json``.
+
+    Returns
+    -------
+    str
+        JSON (2-space indent, newline at the end) of :func:`gearmesh.pair_keys.pair_schema`.
+    """
     return json.dumps(pair_schema(), indent=2, ensure_ascii=False) + "\n"
 
 
 def study_reference() -> str:
     """``config/README.md``: every study key, section by section (the Snakemake workflow
-    catalog's convention of a config README)."""
+    catalog's convention of a config README).
+
+    Returns
+    -------
+    str
+        Markdown: title, introduction, the table of top-level keys and one per nested section.
+
+    References
+    ----------
+    .. [1] Snakemake workflow catalog, "Standardized usage" rules: a workflow documents its
+       configuration in ``config/README.md``. https://snakemake.github.io/snakemake-workflow-catalog/
+    """
     return _reference(Study, "Configuration", "study --format markdown", [
         "A study config (`config/config.yaml`, the default study, or one of `config/studies/*.yaml`",
         "with `--configfile`) says which gear pairs to run, which stages and how finely. Run",
@@ -54,7 +78,13 @@ def study_reference() -> str:
 
 
 def pair_reference() -> str:
-    """Every key of a pair file as Markdown tables."""
+    """Every key of a pair file as Markdown tables.
+
+    Returns
+    -------
+    str
+        Markdown: title, introduction, the table of top-level pair keys and one per nested section.
+    """
     return _reference(PairFile, "Gear pair files", "pair --format markdown", [
         "A pair file `NAME.yaml` describes one helical gear pair as designed. `gearmesh validate FILE`",
         "checks it, the physics included (contact ratio, interference, centre distance), which no",

@@ -57,14 +57,38 @@ Runner = Literal["pair_stage", "study_stage", "collect", "optimise", "plot"]
 
 
 def always(config: Mapping[str, Any], section: str) -> bool:
-    """Read in every study."""
+    """Read in every study.
+
+    Parameters
+    ----------
+    config : mapping
+        The study config.
+    section : str
+        The section of the stage declaring the read.
+
+    Returns
+    -------
+    bool
+        True.
+    """
     return True
 
 
 def method_fe(of: str | None = None) -> When:
     """Read when the tooth model of section ``of`` (default: the reading stage's own) is the
     finite-element tooth: its tables come from the pair's fe_compliance result, computed once.
-    A section the study leaves out has the declared default method."""
+    A section the study leaves out has the declared default method.
+
+    Parameters
+    ----------
+    of : str, optional
+        The section whose ``method`` decides; None: the reading stage's own.
+
+    Returns
+    -------
+    When
+        A condition of (config, section), True when that section's tooth model is ``fe``.
+    """
 
     def when(config: Mapping[str, Any], section: str) -> bool:
         return (config.get(of or section) or {}).get("method", DEFAULT_TOOTH_METHOD) == "fe"
@@ -74,7 +98,18 @@ def method_fe(of: str | None = None) -> When:
 
 
 def runs(other: str) -> When:
-    """When the study runs stage ``other`` (has its section)."""
+    """When the study runs stage ``other`` (has its section).
+
+    Parameters
+    ----------
+    other : str
+        The section of the other stage.
+
+    Returns
+    -------
+    When
+        A condition of (config, section), True when the config has section ``other``.
+    """
 
     def when(config: Mapping[str, Any], section: str) -> bool:
         return other in config
@@ -85,19 +120,61 @@ def runs(other: str) -> When:
 
 def ltca_drives(config: Mapping[str, Any], section: str) -> bool:
     """Read when the LTCA excites the dynamics (:func:`gearmesh.choices.pair_excitation`: the
-    section's excitation, or ltca when the study runs the LTCA)."""
+    section's excitation, or ltca when the study runs the LTCA).
+
+    Parameters
+    ----------
+    config : mapping
+        The study config.
+    section : str
+        The dynamics section reading the LTCA.
+
+    Returns
+    -------
+    bool
+        Whether that section's excitation is ``ltca``.
+    """
     return pair_excitation((config.get(section) or {}).get("excitation"), "ltca" in config) == "ltca"
 
 
 def contact_drives(config: Mapping[str, Any], section: str) -> bool:
-    """When the real tooth contact excites the study's dynamics (excitation contact)."""
+    """When the real tooth contact excites the study's dynamics (excitation contact).
+
+    Parameters
+    ----------
+    config : mapping
+        The study config.
+    section : str
+        The section of the reading stage (unused: the ``dynamics`` section decides).
+
+    Returns
+    -------
+    bool
+        Whether the study runs the dynamics with excitation ``contact``.
+    """
     return "dynamics" in config and pair_excitation((config.get("dynamics") or {}).get("excitation"),
                                                     "ltca" in config) == "contact"
 
 
 def resolve(spec: str) -> Callable[..., Any]:
     """The function named by ``"package.module:function"`` (a ``"@digest"`` that
-    :func:`gearmesh.codeversion.versioned` appends is dropped), imported."""
+    :func:`gearmesh.codeversion.versioned` appends is dropped), imported.
+
+    Parameters
+    ----------
+    spec : str
+        ``"package.module:function"``, optionally with ``"@digest"`` appended.
+
+    Returns
+    -------
+    callable
+        The function.
+
+    Raises
+    ------
+    ImportError, AttributeError
+        When the module or the function does not exist.
+    """
     module, _, name = spec.partition("@")[0].partition(":")
     return getattr(importlib.import_module(module), name)
 
@@ -328,14 +405,40 @@ class Stage(Job):
 
 def required_sections(stage: Stage) -> tuple[str, ...]:
     """The sections a study running ``stage`` must have: those of the stages it reads in every
-    study, and those it ``needs``."""
+    study, and those it ``needs``.
+
+    Parameters
+    ----------
+    stage : Stage
+        A stage declaration.
+
+    Returns
+    -------
+    tuple of str
+        The section names, in order, each once.
+    """
     return tuple(dict.fromkeys([r.stage for r in stage.reads if r.when is always] + list(stage.needs)))
 
 
 def dependencies(stage: Stage | None, section: str, config: Mapping[str, Any]) -> list[str]:
     """The config sections a result of ``stage`` (config ``section``) depends on: its own and
     each section it carries that the study has; :mod:`gearmesh.upstream` compares them with
-    the reading run's."""
+    the reading run's.
+
+    Parameters
+    ----------
+    stage : Stage or None
+        The stage declaration (None: a result of no declared stage, only its own section counts).
+    section : str
+        The stage's config section.
+    config : mapping
+        The study config of the run that wrote (or reads) the result.
+
+    Returns
+    -------
+    list of str
+        ``section`` when the config has it, then the carried sections the config has, sorted.
+    """
     own = [section] if section in config else []
     carried = sorted(s for s in (stage.carries if stage else ()) if isinstance(config.get(s), Mapping))
     return own + carried

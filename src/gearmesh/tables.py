@@ -34,7 +34,26 @@ ENGINEERING_UNITS = {
 def engineering(var: xr.Variable | xr.DataArray) -> tuple[str | None, float]:
     """The unit a table shows ``var`` in and the factor from its SI values: the variable's
     ``engineering_units`` or its SI unit's default (:data:`ENGINEERING_UNITS`), else its own
-    unit unchanged."""
+    unit unchanged.
+
+    Parameters
+    ----------
+    var : xarray.Variable or xarray.DataArray
+        A variable of a study dataset (SI ``units``, optionally ``engineering_units``).
+
+    Returns
+    -------
+    units : str or None
+        The unit the table shows (its own when it has no engineering unit, is not numeric or is a
+        CF flag variable).
+    factor : float
+        The factor from the SI values to that unit (1.0 when unchanged).
+
+    Raises
+    ------
+    ValueError
+        When ``engineering_units`` is not one of :data:`ENGINEERING_UNITS` for the SI unit.
+    """
     units = var.attrs.get("units")
     choices = ENGINEERING_UNITS.get(units)
     if not choices or var.dtype.kind not in "fiuc" or _flags(var):
@@ -67,7 +86,24 @@ def _flags(var: xr.Variable | xr.DataArray) -> dict[int, str]:
 
 def table(ds: xr.Dataset) -> pd.DataFrame:
     """The dataset as a table with units in the headers, flag variables as words and a ``note``
-    column for empty rows."""
+    column for empty rows.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A study dataset (SI units, CF flag variables, the ``refused`` attribute of its refused cases).
+
+    Returns
+    -------
+    pandas.DataFrame
+        One row per index combination; columns and index levels headed ``name [units]`` in
+        engineering units, flag variables as words, a ``note`` column when a row has no values.
+
+    References
+    ----------
+    .. [1] Eaton B., Gregory J., Drach B., Taylor K., Hankin S. et al., NetCDF Climate and Forecast
+       (CF) Metadata Conventions, version 1.8 (2020), section 3.5 "Flags" (``flag_values``, ``flag_meanings``).
+    """
     df = ds.to_dataframe()
     # entries "NAME CASE: reason" joined by "; " (a reason may itself contain "; ")
     refused = [r.strip() for r in re.split(r"; (?=[^;:\s]+ [^;:\s]+: )", str(ds.attrs.get("refused", "")))
@@ -100,5 +136,13 @@ def table(ds: xr.Dataset) -> pd.DataFrame:
 
 
 def write_csv(ds: xr.Dataset, path) -> None:
-    """Write :func:`table` of ``ds`` to ``path`` (an open temporary path of an atomic write)."""
+    """Write :func:`table` of ``ds`` to ``path`` (an open temporary path of an atomic write).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A study dataset.
+    path : str or path-like
+        The CSV file to write (numbers as :data:`FLOAT_FORMAT`).
+    """
     table(ds).to_csv(path, float_format=FLOAT_FORMAT)

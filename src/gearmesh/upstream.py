@@ -80,7 +80,26 @@ def identify(ds: xr.Dataset, path: str | Path, rule: str, wildcards: Mapping[str
              function: str | None = None) -> xr.Dataset:
     """Record in ``ds`` the file it is written as, the ``rule`` that made it, the job's
     ``wildcards`` and the ``function`` that made it (with its code digest): what
-    :func:`check_input` and :func:`check_tree` compare."""
+    :func:`check_input` and :func:`check_tree` compare.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The job's result, changed in place.
+    path : str or pathlib.Path
+        The file it is written as.
+    rule : str
+        The rule that made it.
+    wildcards : mapping of str to str
+        The job's wildcards.
+    function : str, optional
+        ``"package.module:function@digest"`` of the function that made it.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds``.
+    """
     ds.attrs.update({OUTPUT_ATTR: normal_path(path), RULE_ATTR: rule,
                      WILDCARDS_ATTR: json.dumps({k: str(v) for k, v in dict(wildcards).items()}, sort_keys=True)})
     if function:  # the whole text: a Versioned spec prints without its digest
@@ -89,7 +108,26 @@ def identify(ds: xr.Dataset, path: str | Path, rule: str, wildcards: Mapping[str
 
 
 def read_input(path: str | Path, expected: Expected) -> xr.Dataset:
-    """The upstream netCDF file at ``path``, fully loaded, after :func:`check_input`."""
+    """The upstream netCDF file at ``path``, fully loaded, after :func:`check_input`.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The upstream netCDF file.
+    expected : Expected
+        What the reading job expects of it.
+
+    Returns
+    -------
+    xarray.Dataset
+        The file's dataset, loaded into memory.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``path``: missing, unreadable as netCDF, or refused by :func:`check_input`; the rule
+        says how to regenerate it.
+    """
     try:
         with xr.open_dataset(path, engine="netcdf4") as ds:
             ds = ds.load()
@@ -106,7 +144,22 @@ def check_input(ds: xr.Dataset, path: str | Path, expected: Expected) -> None:
     """Refuse ``ds`` (read from ``path``) unless it is the workflow's file at ``path``, its data
     those its digest claims, made for the expected study, pair data and variant, with the
     current settings of every section it depends on, from inputs that are still the files it
-    was made from (module docstring)."""
+    was made from (module docstring).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset read.
+    path : str or pathlib.Path
+        The file it was read from.
+    expected : Expected
+        What the reading job expects.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``path``, what the file is and what differs (the first differing key).
+    """
     _check_identity(ds.attrs, path)
     _check_digests(ds, path, ds.attrs.get(RULE_ATTR, "?"))
     check_made_for(ds.attrs, path, expected)
@@ -115,7 +168,22 @@ def check_input(ds: xr.Dataset, path: str | Path, expected: Expected) -> None:
 def check_made_for(attrs: Mapping[str, Any], path: str | Path, expected: Expected) -> None:
     """Refuse a result by its attributes ``attrs`` alone (a header read of ``path``) unless it was
     made for the expected study, pair data and variant, with the current settings of every
-    section it depends on, from inputs that are still the files it was made from."""
+    section it depends on, from inputs that are still the files it was made from.
+
+    Parameters
+    ----------
+    attrs : mapping
+        The file's global attributes.
+    path : str or pathlib.Path
+        The file.
+    expected : Expected
+        What the reading job expects.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``path`` and the first differing study, pair key, setting or changed input.
+    """
     rule = attrs.get(RULE_ATTR, "?")
     made = json.loads(attrs["config_json"])
     study = made.get("study", {})
@@ -173,7 +241,18 @@ def _header(path: str | Path) -> dict[str, Any]:
 
 def file_digest(path: str | Path) -> str:
     """What a file is as an input: a netCDF result's data digest (its attribute, read from the
-    header only), any other file's sha256; '' for a file that is missing or cannot be read."""
+    header only), any other file's sha256; '' for a file that is missing or cannot be read.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        Any file.
+
+    Returns
+    -------
+    str
+        The digest (hex), or ''.
+    """
     path = Path(path)
     try:
         if path.suffix == ".nc":
@@ -189,7 +268,22 @@ def file_digest(path: str | Path) -> str:
 def record_sources(ds: xr.Dataset, files, sections) -> xr.Dataset:
     """Record in ``ds`` every input file of the job with its :func:`file_digest` now, and the
     config ``sections`` the result depends on: what :func:`check_sources` and
-    :func:`_check_section` compare when the file is read."""
+    :func:`_check_section` compare when the file is read.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The job's result, changed in place.
+    files : iterable of str or pathlib.Path
+        The job's input files.
+    sections : iterable of str
+        The config sections the result depends on (:func:`gearmesh.stages.dependencies`).
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds``.
+    """
     ds.attrs[SOURCES_ATTR] = json.dumps({normal_path(f): file_digest(f) for f in files}, sort_keys=True)
     ds.attrs[SECTIONS_ATTR] = json.dumps(list(sections))
     return ds
@@ -202,7 +296,20 @@ TABLES_ATTR = "gearmesh_tables_json"
 
 def record_tables(ds: xr.Dataset, tables: Mapping[str, str]) -> xr.Dataset:
     """Record in ``ds`` the CSV tables its job wrote from it ({path: sha256}, written before the
-    netCDF file), so an edited or replaced table is named (:func:`check_tree`)."""
+    netCDF file), so an edited or replaced table is named (:func:`check_tree`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The job's result, changed in place.
+    tables : mapping of str to str
+        CSV path to its sha256.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds``.
+    """
     ds.attrs[TABLES_ATTR] = json.dumps({normal_path(k): v for k, v in tables.items()}, sort_keys=True)
     return ds
 
@@ -213,7 +320,20 @@ def check_figure(path: str | Path, digest_of: Callable[[str], str] | None = None
     variant's, moved or copied here), edited since it was drawn, or drawn from a file that has
     changed or gone since (stale). One line naming the file and how to remake it
     (:func:`gearmesh.io.stamp_figure` writes what this reads). ``digest_of``: :func:`file_digest`,
-    or a memo of it over many figures drawn from the same files."""
+    or a memo of it over many figures drawn from the same files.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The PNG figure.
+    digest_of : callable, optional
+        str -> str, a file's digest; default :func:`file_digest`.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``path``: unreadable, without provenance, a copy, edited, or stale.
+    """
     try:
         data = Path(path).read_bytes()
     except OSError as exc:
@@ -262,7 +382,20 @@ def _check_tables(listed: Mapping[str, tuple[str, str]], root: Path) -> list[str
 
 def check_sources(ds: xr.Dataset, path) -> None:
     """Refuse ``ds`` (read from ``path``) when an input it was made from is gone or is no longer
-    the file it was made from (remade, replaced or edited since, and ``path`` not remade)."""
+    the file it was made from (remade, replaced or edited since, and ``path`` not remade).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A result read.
+    path : str or pathlib.Path
+        The file it was read from.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``path`` and the first input that changed or is gone.
+    """
     _check_sources(ds.attrs, path)
 
 
@@ -280,7 +413,22 @@ def _check_sources(attrs: Mapping[str, Any], path) -> None:
 def optimum_header(path: str | Path, body: str, made_by: Mapping[str, Any]) -> str:
     """The first line of an optimisation's pair file at ``path``: a YAML comment with the file
     as written, the digest of its content ``body`` and ``made_by`` (the run's ga.nc and its
-    data digest)."""
+    data digest).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        The pair file as written.
+    body : str
+        Its content after the header line.
+    made_by : mapping
+        ``ga`` (the run's ga.nc) and ``data_sha256`` (its data digest).
+
+    Returns
+    -------
+    str
+        The line, newline included.
+    """
     meta = {"file": normal_path(path), "content_sha256": hashlib.sha256(body.encode()).hexdigest(), **made_by}
     return OPTIMUM_HEADER + json.dumps(meta, sort_keys=True) + "\n"
 
@@ -292,7 +440,20 @@ def check_optimum(path: str | Path, expected: Expected | None = None) -> None:
     and the study's pair file of that pair) also one whose ga.nc was not made for this study: with
     other settings of that optimisation, tolerances or impact model, or for other pair data
     (another run's pair.yaml and ga.nc put in place together; :func:`check_input`). One line
-    naming the file and how to remake it."""
+    naming the file and how to remake it.
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        An optimisation's ``pair.yaml``.
+    expected : Expected, optional
+        The reading job's study config and pair; None: provenance and digests only.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``path``, what is wrong and the ``snakemake --forcerun`` that remakes it.
+    """
     from .inputfile import read_input_text
 
     text = read_input_text(path, "pair file")
@@ -370,7 +531,22 @@ PAIR_ATTR = "gearmesh_pair_json"
 
 def stamp_pair(ds: xr.Dataset, pair: GearPair, per_variant: bool) -> xr.Dataset:
     """Record in ``ds`` the pair data it was computed for (:data:`PAIR_ATTR`); ``per_variant``
-    whether the result depends on the micro-geometry (TCA, LTCA, impact, dynamics)."""
+    whether the result depends on the micro-geometry (TCA, LTCA, impact, dynamics).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A stage's dataset, changed in place.
+    pair : GearPair
+        The pair it was computed for.
+    per_variant : bool
+        Whether the result depends on the micro-geometry.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``ds``.
+    """
     data = pair_to_dict(pair)
     if not per_variant:
         data.pop("modification", None)
@@ -381,7 +557,22 @@ def stamp_pair(ds: xr.Dataset, pair: GearPair, per_variant: bool) -> xr.Dataset:
 def check_dataset_pair(argument: str, ds: xr.Dataset, pair: GearPair) -> None:
     """Refuse a dataset argument computed for other pair data than ``pair`` (GearmeshInputError
     naming the argument, the pair it was made for and the first differing key); a dataset
-    without :data:`PAIR_ATTR` (made by hand) is taken as it is."""
+    without :data:`PAIR_ATTR` (made by hand) is taken as it is.
+
+    Parameters
+    ----------
+    argument : str
+        The stage function's argument the dataset was passed as.
+    ds : xarray.Dataset
+        The dataset passed.
+    pair : GearPair
+        The stage's pair.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``argument``, the pair the dataset was made for and the first differing key.
+    """
     text = ds.attrs.get(PAIR_ATTR)
     if not isinstance(text, str):
         return
@@ -422,7 +613,23 @@ def check_tree(root: str | Path, config: Mapping[str, Any] | None = None,
     run's unedited optimum; with the study ``config`` (and ``pair_of``, the pair each file must be
     of) also the settings and pair data of each file, and of each optimum's run. The files nothing
     downstream reads (geometry, contact lines, TCA, tables, ga.nc, figures) included. Paths are
-    relative to the working directory, the folder the study ran in."""
+    relative to the working directory, the folder the study ran in.
+
+    Parameters
+    ----------
+    root : str or pathlib.Path
+        A study's results folder.
+    config : mapping, optional
+        The study config; None: no settings or pair-data checks.
+    pair_of : callable, optional
+        (pair name, variant or None) -> GearPair, the pair each file must be of.
+
+    Returns
+    -------
+    list of str
+        One line per problem, naming the file, what is wrong and how to remake it, each once;
+        empty when every file is sound.
+    """
     from .codeversion import versioned
 
     problems: list[str] = []
@@ -499,7 +706,20 @@ def _check_identity(attrs: Mapping[str, Any], path) -> None:
 
 def first_difference(made: Any, wanted: Any, prefix: str = "") -> str | None:
     """The dotted key (``a.b[2]``) of the first difference between two JSON-like values, numbers
-    equal within :data:`PAIR_RTOL`; ``''`` when the values differ at the top; None if equal."""
+    equal within :data:`PAIR_RTOL`; ``''`` when the values differ at the top; None if equal.
+
+    Parameters
+    ----------
+    made, wanted : object
+        JSON-like values (mappings, lists, numbers, strings, booleans).
+    prefix : str, default ""
+        The key of the values themselves.
+
+    Returns
+    -------
+    str or None
+        The dotted key of the first difference (keys sorted), '' at the top, None when equal.
+    """
     if isinstance(made, Mapping) and isinstance(wanted, Mapping):
         for key in sorted(set(made) | set(wanted)):
             sub = f"{prefix}.{key}" if prefix else str(key)
