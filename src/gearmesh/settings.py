@@ -282,10 +282,7 @@ class Impact:
     as a check (impact.nc)."""
 
     STAGE: ClassVar = Stage("gearmesh.datasets.impact:impact_dataset", "impact.nc", "variant",
-        # the longest stage of a variant (the box search of the tolerances: 10 s of CPU for the default
-        # study's optimum), so once an optimisation ends its impact starts first and the sign-off table,
-        # which waits for it, does not wait for a stage started last
-        priority=6,
+        priority=6,  # a variant's longest stage (its box search): first once an optimisation ends
         reads=(Read("fe_compliance", method_fe()),), category="Impact", draws="gearmesh.plots.impact:impact_figures",
         figures=(Figure("force_speed", "impact_speed"), Figure("trajectory", "mesh_in_trajectory"),
                  Figure("simulation", "impact_simulation")),
