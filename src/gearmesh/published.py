@@ -7,12 +7,16 @@ schema (``schemas/pair.schema.json``) and the Markdown reference of every key
 
 from __future__ import annotations
 
+import dataclasses
 import json
+from collections.abc import Mapping
+from typing import Any
 
 import yaml
 
 from .pair_keys import PairFile, pair_schema
-from .schema import description_of, markdown_table, nested_sections
+from .schema import (choices_words, default_of, description_of, field_schema, has_default, holds_section, key_of,
+                     nested_sections, section_type, settings_fields, spec_of, type_words, units_of)
 from .settings import Study, study_schema
 
 #: The header of a published file: the module whose declarations it renders (``{source}``) and the command.
@@ -99,3 +103,67 @@ def _reference(root: type, title: str, command: str, intro: list[str]) -> str:
     for path, cls in nested_sections(root):
         lines += ["", f"## `{path}`", "", description_of(cls), "", *markdown_table(cls, prefix=f"{path}.")]
     return "\n".join(lines) + "\n"
+
+
+# The reference tables of config/README.md (and of the pair file's keys)
+
+
+def _default_words(field: dataclasses.Field) -> str:
+    if not has_default(field):
+        return "required"
+    if not spec_of(field).fill:
+        return "—"
+    value = default_of(field)
+    return "`" + _flow(value) + "`"
+
+
+def _flow(value: Any) -> str:
+    """A value as YAML flow text."""
+    if value is None:
+        return "null"
+    if value == "":
+        return '""'
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{k}: {_flow(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, list):
+        return "[" + ", ".join(_flow(v) for v in value) + "]"
+    return str(value)
+
+
+def markdown_table(cls: type, prefix: str = "") -> list[str]:
+    """Markdown rows ``| key | type | units | default | description |`` of the settings of ``cls``.
+
+    Nested sections get a row that links to their own table (:func:`gearmesh.schema.nested_sections`
+    lists them).
+
+    Parameters
+    ----------
+    cls : type
+        A settings dataclass (:mod:`gearmesh.settings`, :mod:`gearmesh.pair_keys`).
+    prefix : str, default ""
+        The key path of ``cls`` in its study or pair file, with its trailing dot (``"impact."``).
+
+    Returns
+    -------
+    list of str
+        The table's lines, header first, then "At most one of …" for each group of alternative keys.
+    """
+    rows = ["| key | type | units | default | description |", "| --- | --- | --- | --- | --- |"]
+    for f in settings_fields(cls):
+        schema = field_schema(cls, f)
+        section = section_type(cls, f)
+        kind = "section" if section else type_words(schema).replace("|", "\\|")
+        text = spec_of(f).description
+        if section:  # its own table follows: a link and its first sentence here
+            path = f"{prefix}{key_of(f)}" + ("" if holds_section(cls, f) else ".NAME")
+            anchor = "".join(c for c in path.lower() if c.isalnum() or c in "_-")
+            text = f"[`{path}`](#{anchor}): " + (text or description_of(section).split(". ")[0].rstrip("."))
+        text = text.replace("|", "\\|")
+        rows.append(f"| `{prefix}{key_of(f)}` | {kind} | {units_of(f)} | {_default_words(f)} | {text} |")
+    for group in getattr(cls, "ALTERNATIVES", ()):
+        rows += ["", "At most one of " + choices_words([f"`{prefix}{k}`" for k in group], quote=False) + "."]
+    return rows

@@ -345,7 +345,7 @@ def _rule(err) -> str:
     if kind == "multipleOf":
         return f"must be a multiple of {limit}"
     if kind == "enum":
-        return f"must be one of {_choices(limit)}"
+        return f"must be one of {choices_words(limit)}"
     if kind == "minItems":
         return f"must have at least {limit} item{'s' if limit != 1 else ''}"
     if kind == "maxItems":
@@ -359,12 +359,12 @@ def _rule(err) -> str:
     if kind == "maxLength":
         return f"{'names ' if 'propertyNames' in err.schema_path else ''}must be at most {limit} characters"
     if kind == "oneOf":
-        return "must be " + _choices([_alternative(sub) for sub in limit], quote=False)
+        return "must be " + choices_words([_alternative(sub) for sub in limit], quote=False)
     message, head = err.message, repr(err.instance)
     return message[len(head):].strip() if message.startswith(head) else message
 
 
-def _choices(values: list[Any], quote: bool = True) -> str:
+def choices_words(values: list[Any], quote: bool = True) -> str:
     """``a, b or c``: values as a reader writes them (null, not None)."""
     words = ["null" if v is None else repr(v) if quote and isinstance(v, str) else str(v) for v in values]
     return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
@@ -373,10 +373,10 @@ def _choices(values: list[Any], quote: bool = True) -> str:
 def _alternative(schema: Mapping[str, Any]) -> str:
     """One alternative of a ``oneOf`` in words: ``a number ≥ 0``, ``'pair'``, ``null``."""
     if "enum" in schema:
-        return _choices(schema["enum"])
+        return choices_words(schema["enum"])
     kind = schema.get("type")
     if not isinstance(kind, str):
-        return _type_words(schema)
+        return type_words(schema)
     bounds = _bound_words(schema)
     return _ARTICLES.get(kind, kind) + (" " + bounds.strip(" ()").replace(", ", " and ") if bounds else "")
 
@@ -458,7 +458,7 @@ def _settings_instance(cls: type, values: Mapping[str, Any]) -> Any:
     for f in settings_fields(cls):
         if key_of(f) not in values:
             continue
-        value, inner = values[key_of(f)], _section_type(cls, f)
+        value, inner = values[key_of(f)], section_type(cls, f)
         if inner is not None and isinstance(value, Mapping):
             held = type_hints(cls)[f.name]
             named = any(typing.get_origin(t) in (dict, Mapping) for t in (held, *typing.get_args(held)))
@@ -636,14 +636,14 @@ def defaults(cls: type) -> dict[str, Any]:
 
 
 # --------------------------------------------------------------------------------------
-# Reference tables
+# The words of the rules (error messages and the reference tables of gearmesh.published)
 # --------------------------------------------------------------------------------------
 
 
-def _type_words(schema: Mapping[str, Any]) -> str:
+def type_words(schema: Mapping[str, Any]) -> str:
     """A short reader's description of a schema's type and bounds."""
     if "oneOf" in schema:
-        return " or ".join(_type_words(s) for s in schema["oneOf"])
+        return " or ".join(type_words(s) for s in schema["oneOf"])
     kind = schema.get("type")
     kinds = [kind] if isinstance(kind, str) else list(kind or [])
     words = []
@@ -655,7 +655,7 @@ def _type_words(schema: Mapping[str, Any]) -> str:
                 words.append(_array_words(schema))
             elif k == "object":
                 values = schema.get("additionalProperties")
-                words.append("mapping" + (f" of {_type_words(values)}" if isinstance(values, Mapping) else ""))
+                words.append("mapping" + (f" of {type_words(values)}" if isinstance(values, Mapping) else ""))
             elif k == "null":
                 words.append("null")
             else:
@@ -687,7 +687,7 @@ def _array_words(schema: Mapping[str, Any]) -> str:
     lo, hi = schema.get("minItems"), schema.get("maxItems")
     count = (f"{lo}" if lo is not None and lo == hi else f"{lo}–{hi}" if lo is not None and hi is not None
              else f"≥ {lo}" if lo is not None else f"≤ {hi}" if hi is not None else "")
-    item = _type_words(schema.get("items", {}))
+    item = type_words(schema.get("items", {}))
     head, _, rest = item.partition(" ")
     if head in ("integer", "number", "string", "list", "mapping"):
         item = f"{head}s{' ' + rest if rest else ''}"
@@ -695,60 +695,14 @@ def _array_words(schema: Mapping[str, Any]) -> str:
     return f"list of {count + ' ' if count else ''}{item}{unique}"
 
 
-def _default_words(field: dataclasses.Field) -> str:
-    if not has_default(field):
-        return "required"
-    if not spec_of(field).fill:
-        return "—"
-    value = default_of(field)
-    return "`" + _flow(value) + "`"
-
-
-def _flow(value: Any) -> str:
-    """A value as YAML flow text."""
-    if value is None:
-        return "null"
-    if value == "":
-        return '""'
-    if isinstance(value, bool):
-        return "true" if value else "false"
-    if isinstance(value, float):
-        return f"{value:g}"
-    if isinstance(value, Mapping):
-        return "{" + ", ".join(f"{k}: {_flow(v)}" for k, v in value.items()) + "}"
-    if isinstance(value, list):
-        return "[" + ", ".join(_flow(v) for v in value) + "]"
-    return str(value)
-
-
-def markdown_table(cls: type, prefix: str = "") -> list[str]:
-    """Markdown rows ``| key | type | units | default | description |`` of the settings of ``cls``
-    (keys under ``prefix``), without nested sections (:func:`nested_sections` lists them)."""
-    rows = ["| key | type | units | default | description |", "| --- | --- | --- | --- | --- |"]
-    for f in settings_fields(cls):
-        schema = field_schema(cls, f)
-        section = _section_type(cls, f)
-        kind = "section" if section else _type_words(schema).replace("|", "\\|")
-        text = spec_of(f).description
-        if section:  # its own table follows: a link and its first sentence here
-            path = f"{prefix}{key_of(f)}" + ("" if _holds_section(cls, f) else ".NAME")
-            anchor = "".join(c for c in path.lower() if c.isalnum() or c in "_-")
-            text = f"[`{path}`](#{anchor}): " + (text or description_of(section).split(". ")[0].rstrip("."))
-        text = text.replace("|", "\\|")
-        rows.append(f"| `{prefix}{key_of(f)}` | {kind} | {units_of(f)} | {_default_words(f)} | {text} |")
-    for group in getattr(cls, "ALTERNATIVES", ()):
-        rows += ["", "At most one of " + _choices([f"`{prefix}{k}`" for k in group], quote=False) + "."]
-    return rows
-
-
-def _holds_section(cls: type, field: dataclasses.Field) -> bool:
+def holds_section(cls: type, field: dataclasses.Field) -> bool:
     """Whether a field holds one settings object (directly or optionally), not a mapping of them."""
     tp = type_hints(cls)[field.name]
     members = typing.get_args(tp) if typing.get_origin(tp) in (Union, types.UnionType) else (tp,)
     return any(dataclasses.is_dataclass(m) for m in members)
 
 
-def _section_type(cls: type, field: dataclasses.Field) -> type | None:
+def section_type(cls: type, field: dataclasses.Field) -> type | None:
     """The settings dataclass a field holds (directly, optionally, or as the values of a
     mapping of named entries), else None."""
     tp = type_hints(cls)[field.name]
@@ -766,10 +720,10 @@ def nested_sections(cls: type, prefix: str = "") -> list[tuple[str, type]]:
     named entries appears as ``KEY.NAME``."""
     out = []
     for f in settings_fields(cls):
-        sub = _section_type(cls, f)
+        sub = section_type(cls, f)
         if sub is None:
             continue
-        path = f"{prefix}{key_of(f)}" + ("" if _holds_section(cls, f) else ".NAME")
+        path = f"{prefix}{key_of(f)}" + ("" if holds_section(cls, f) else ".NAME")
         out.append((path, sub))
         out += nested_sections(sub, path + ".")
     return out
