@@ -3,7 +3,7 @@ the slice-count convergence study (seeds 001, 003, 004)."""
 
 from __future__ import annotations
 
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping
 
 import numpy as np
 import xarray as xr
