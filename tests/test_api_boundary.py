@@ -17,7 +17,7 @@ import pytest
 import gearmesh
 from gearmesh.cli import main
 from gearmesh.datasets.dynamics import dynamics_dataset
-from gearmesh.datasets.geometry import helix_sweep_dataset
+from gearmesh.datasets.geometry import helix_sweep_dataset, low_fluctuation_design_dataset
 from gearmesh.datasets.ltca import ltca_dataset, tca_dataset
 from gearmesh.datasets.optimise import run_settings
 from gearmesh.datasets.stiffness import stiffness_dataset
@@ -129,8 +129,29 @@ def test_a_million_speeds_are_refused_by_their_count(pair):
 
 def test_a_helix_sweep_is_sized_before_its_grid(pair):
     """helix_sweep_dataset(step_deg=1e-9) tried 335 GiB."""
-    _refused(lambda: helix_sweep_dataset({"p": pair}, 0.0, 30.0, 1e-9), "step_deg", "helix angles")
-    _refused(lambda: helix_sweep_dataset({"p": pair}, 20.0, 10.0, 1.0), "stop_deg", "start_deg")
+    _refused(lambda: helix_sweep_dataset({"p": pair}, pairs=["p"], start_deg=0.0, stop_deg=30.0, step_deg=1e-9),
+             "step_deg", "helix angles")
+    _refused(lambda: helix_sweep_dataset({"p": pair}, pairs=["p"], start_deg=20.0, stop_deg=10.0, step_deg=1.0),
+             "stop_deg", "start_deg")
+
+
+@pytest.mark.parametrize("function, section, field", [
+    (helix_sweep_dataset, {"start_deg": 60}, "start_deg"),
+    (helix_sweep_dataset, {"step_deg": None}, "step_deg"),
+    (helix_sweep_dataset, {"positions": 4}, "positions"),
+    (helix_sweep_dataset, {"angles_deg": [10]}, "angles_deg"),  # an unknown key
+    (helix_sweep_dataset, {"pairs": ["q"]}, "pairs"),  # a pair not given
+    (low_fluctuation_design_dataset, {"pairs": ["a b"]}, "pairs[0]"),
+    (low_fluctuation_design_dataset, {"pairs": ["q"]}, "pairs"),
+    (low_fluctuation_design_dataset, {"routes": ["helix_angle_forward"]}, "routes"),  # an unknown key
+])
+def test_the_geometry_study_tables_refuse_a_bad_setting_by_its_key(pair, function, section, field):
+    """The helix sweep and the low-fluctuation designs parse their section once
+    (gearmesh.schema.settings_object): a value outside its declaration, a required key left out, an
+    unknown key and a pair the caller did not give are refused by their key."""
+    given = {"pairs": ["p"]} | ({"start_deg": 10, "stop_deg": 20, "step_deg": 5}
+                                if function is helix_sweep_dataset else {})
+    _refused(lambda: function({"p": pair}, **{k: v for k, v in (given | section).items() if v is not None}), field)
 
 
 def test_mesh_stiffness_grid_is_sized_before_allocation(pair):

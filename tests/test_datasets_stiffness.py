@@ -46,7 +46,7 @@ def test_integer_overlap_pairs_have_flat_stiffness(pair1):
     pairs = {"p1": pair1,
              "p2": load_pair(low_fluctuation_pair1(helix_angle_deg=15.9554207)),
              "p3": load_pair(low_fluctuation_pair1(face_width_mm=31.6604943))}
-    table = stiffness_table_dataset(pairs, positions=120, torque_Nm=200, torque_on="gear")
+    table = stiffness_table_dataset(pairs, pairs=list(pairs), positions=120, torque_Nm=200, torque_on="gear")
     eps_k = table["fluctuation"].values[:, 0]
     lste_pp = table["lste_peak_to_peak"].values[:, 0]
     assert eps_k[0] > 0.2 and eps_k[1] < 1e-3 and eps_k[2] < 1e-3
@@ -66,7 +66,7 @@ def test_contact_ratio_variants_reach_their_targets(pair1):
 
 
 def test_clipped_slices_converge_at_second_order(pair1):
-    ds = slice_convergence_dataset({"p1": pair1}, slices=(20, 40, 80, 640), positions=60)
+    ds = slice_convergence_dataset({"p1": pair1}, pairs=["p1"], slices=(20, 40, 80, 640), positions=60)
     err = np.abs(ds["mean_relative_difference"].sel(rule="clip").values[0, :3])
     order = np.log2(err[:-1] / err[1:])
     assert np.all(order > 1.7), order
@@ -125,3 +125,38 @@ def test_the_stiffness_command_is_a_study_section():
     assert {k: jsonable(v) for k, v in section.items()} == {k: declared[k] for k in section}
     given = _stiffness_section(build_parser().parse_args(["stiffness", path, "--torque-Nm", "500"]))
     assert given["torque_Nm"] == 500.0
+
+
+@pytest.mark.parametrize("function, section, field", [
+    (stiffness_table_dataset, {"positions": 4}, "positions"),
+    (stiffness_table_dataset, {"methods": ["cubic"]}, "methods[0]"),
+    (stiffness_table_dataset, {"torque_on": "rack"}, "torque_on"),
+    (stiffness_table_dataset, {"variants": {"a b": {}}}, "variants"),
+    (stiffness_table_dataset, {"slice": 40}, "slice"),  # an unknown key
+    (stiffness_table_dataset, {"pairs": ["p2"]}, "pairs"),  # a pair not given
+    (slice_convergence_dataset, {"slices": [40]}, "slices"),
+    (slice_convergence_dataset, {"method": "cubic"}, "method"),
+    (slice_convergence_dataset, {"rule": "clip"}, "rule"),  # an unknown key
+    (slice_convergence_dataset, {"pairs": []}, "pairs"),
+])
+def test_the_study_tables_refuse_a_bad_setting_by_its_key(pair1, function, section, field):
+    """The stiffness table and the slice convergence parse their section once
+    (gearmesh.schema.settings_object): a value outside its declaration, an unknown key and a pair
+    the caller did not give are refused by their key."""
+    with pytest.raises(GearmeshInputError) as info:
+        function({"p1": pair1}, **({"pairs": ["p1"]} | section))
+    assert info.value.field == field
+
+
+def test_a_study_table_takes_the_pairs_its_section_names_in_its_order(pair1):
+    """``pairs`` names the table's pairs (in its order) among the loaded ``gear_pairs``; a pair left
+    unnamed is not computed, and a pair's row does not depend on the others."""
+    p2 = load_pair(low_fluctuation_pair1(helix_angle_deg=15.9554207))
+    both = slice_convergence_dataset({"p1": pair1, "p2": p2, "unnamed": pair1}, pairs=["p2", "p1"],
+                                     slices=(20, 40), positions=16)
+    alone = slice_convergence_dataset({"p2": p2}, pairs=["p2"], slices=(20, 40), positions=16)
+    assert both["pair"].values.tolist() == ["p2", "p1"]
+    np.testing.assert_array_equal(both["mean_stiffness"].sel(pair="p2").values,
+                                  alone["mean_stiffness"].sel(pair="p2").values)
+    assert not np.array_equal(both["mean_stiffness"].sel(pair="p1").values,
+                              both["mean_stiffness"].sel(pair="p2").values)

@@ -408,3 +408,19 @@ def test_the_command_differs_from_a_study_only_by_its_listed_overrides():
     parsed = jsonable(settings_object(Dynamics, section))
     assert {k: v for k, v in parsed.items() if k not in section} == {k: v for k, v in declared.items()
                                                                      if k not in section}
+
+
+@pytest.mark.parametrize("section, field", [
+    ({"couples": [["low_fluctuation_pair2"]]}, "couples[0]"),  # a couple is [pair, reference]
+    ({"couples": []}, "couples"),
+    ({"couples": None}, "couples"),  # left out means every pair against the first; null is not a value
+    ({"pairs": ["low_fluctuation_pair1"]}, "pairs"),  # an unknown key: the pairs are the dynamics results'
+])
+def test_the_dynamics_comparison_takes_its_section_whole(section, field):
+    """The comparison table parses its ``dynamics_comparison:`` section once (schema.settings_object):
+    a bad value and an unknown key are refused by their key before any result is read."""
+    from gearmesh.datasets.dynamics import dynamics_comparison_dataset
+
+    with pytest.raises(GearmeshInputError) as info:
+        dynamics_comparison_dataset([], **section)
+    assert info.value.field == field

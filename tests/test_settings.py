@@ -20,7 +20,7 @@ from gearmesh import gear, pairfile
 from gearmesh.config import validate_study
 from gearmesh.errors import GearmeshInputError
 from gearmesh.pipeline import resolve
-from gearmesh.schema import defaults, field_schema, has_default, jsonable, key_of, settings_fields, spec_of
+from gearmesh.schema import defaults, field_schema, has_default, jsonable, key_of, settings_fields
 from gearmesh.pair_keys import GearModification, PairFile, PairMaterial, pair_schema
 from gearmesh.published import pair_schema_text, study_reference, study_schema_text
 from gearmesh.settings import Dynamics, Study, stage_sections, study_keys, study_schema
@@ -78,17 +78,17 @@ def test_every_setting_is_described():
 # --------------------------------------------------------------------------------------
 
 
-def test_a_stage_function_takes_its_defaults_from_the_declaration():
-    """The defaults a stage function gets are the settings fields' (gearmesh.schema.check_arguments
-    fills them): what a caller leaving them out computes with, what help() shows. (The signoff
-    table names its settings; the stages that take their section whole parse it with the same
-    declaration, :func:`gearmesh.schema.settings_object`.)"""
-    from gearmesh.datasets.signoff import signoff_table_dataset
-    from gearmesh.settings import Signoff
+def test_every_stage_function_takes_its_section_whole():
+    """Every stage function takes its study section whole (``**section``) and names none of its
+    settings in its signature: the declaration is the one place a default is written, and the
+    function parses the section once with it (:func:`gearmesh.schema.settings_object`), so a caller
+    leaving a key out computes with the declared default."""
+    from gearmesh.schema import section_keys
 
-    params = inspect.signature(signoff_table_dataset).parameters
-    for f in settings_fields(Signoff):
-        assert params[f.name].default == getattr(Signoff(), f.name), f.name
+    for path, cls in STAGED:
+        params = inspect.signature(resolve(cls.STAGE.function)).parameters
+        assert any(p.kind is p.VAR_KEYWORD for p in params.values()), path
+        assert not [n for n in params if n in section_keys(cls)], path
 
 
 def test_a_second_declaration_of_a_default_is_refused_at_import():
@@ -190,23 +190,23 @@ _REQUIRED = {"helix_sweep": {"pairs": ["p"], "start_deg": 0, "stop_deg": 10, "st
              "stiffness_table": {"pairs": ["p"]}, "slice_convergence": {"pairs": ["p"]}, "rating": {"speed_rpm": 5000}}
 
 
-CHECKED = [(path, cls) for path, cls in STAGED if any(not spec_of(f).workflow for f in settings_fields(cls))]
+CHECKED = [(path, cls) for path, cls in STAGED if settings_fields(cls)]
 
 
 @pytest.mark.parametrize("path, cls", CHECKED, ids=[p for p, _ in CHECKED])
 def test_every_bound_is_the_stages_own(path, cls):
     """A value just outside a declared bound is refused by the stage function, naming the key,
-    before it does any work (the pair is None: any work would fail otherwise)."""
+    before it does any work (the pair, or each result it reads, is None: any work would fail
+    otherwise)."""
     func = resolve(cls.STAGE.function)
-    own = {key_of(f) for f in settings_fields(cls) if not spec_of(f).workflow}
-    required = {k: v for k, v in _REQUIRED.get(path, {}).items() if k in own}  # a section parsed whole needs them
+    inputs = [None for p in inspect.signature(func).parameters.values()
+              if p.kind is p.POSITIONAL_OR_KEYWORD and p.default is p.empty]
+    required = _REQUIRED.get(path, {})  # a section parsed whole needs them
     checked = 0
     for f in settings_fields(cls):
-        if spec_of(f).workflow:
-            continue
         for bad in _violations(field_schema(cls, f)):
             with pytest.raises(GearmeshInputError) as err:
-                func(None, **{**required, key_of(f): bad})
+                func(*inputs, **{**required, key_of(f): bad})
             assert err.value.field.split("[")[0].split(".")[0] == key_of(f), (key_of(f), bad, str(err.value))
             # and the study schema refuses it too, under the section's name
             if "." not in path:

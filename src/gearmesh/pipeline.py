@@ -258,11 +258,13 @@ def run_pair_stage(smk: Any) -> None:
 
 
 def run_study_stage(smk: Any) -> None:
-    """A stage over several pairs: ``function({name: pair}, **settings)`` -> Dataset, and its figures."""
+    """A stage over several pairs: ``function(gear_pairs, **section)`` -> Dataset, and its figures;
+    ``gear_pairs`` the pair files the section's ``pairs`` name (its inputs, in that order), loaded,
+    by the section's names."""
     def body(smk: Any) -> float:
-        pairs = {p.name: p for p in map(load_pair, smk.input.pairs)}
-        settings = {k: v for k, v in dict(smk.params.settings).items() if k != "pairs"}
-        _write_outputs(smk, resolve(smk.params.function)(pairs, **settings), None)
+        section = dict(smk.params.settings)
+        gear_pairs = dict(zip(section["pairs"], map(load_pair, smk.input.pairs), strict=True))
+        _write_outputs(smk, resolve(smk.params.function)(gear_pairs, **section), None)
         return _draw(smk, {})
 
     _run(smk, body)

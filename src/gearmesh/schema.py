@@ -65,7 +65,6 @@ class Spec:
     key_max_length: int | None = None
     key: str | None = None
     fill: bool = True
-    workflow: bool = False
 
 
 def setting(default: Any = REQUIRED, description: str = "", **spec: Any) -> Any:
@@ -80,8 +79,6 @@ def setting(default: Any = REQUIRED, description: str = "", **spec: Any) -> Any:
     key : the key in the document when it is not a Python name (``from``).
     fill : False when leaving the key out means something of its own (the schema fills no
         default, and null is not accepted); the Python default is then None.
-    workflow : read by the workflow (e.g. the pair names a study stage gathers), not passed
-        to the stage function.
     """
     meta = {SPEC: Spec(description=" ".join(description.split()), **spec)}
     if default is REQUIRED:
@@ -531,13 +528,13 @@ def check_arguments(cls: type, exclude: tuple[str, ...] = ()) -> Callable[[Calla
       otherwise), so the two cannot differ.
     * Arguments given are checked against their declarations before the function runs
       (:func:`check_value`), so the API refuses what the schema refuses, with the same bounds;
-      keys the workflow reads (``workflow``) and ``exclude`` (keys the function checks itself,
-      with more context) are left to the function.
+      ``exclude`` (keys the function checks itself: a section it parses whole) is left to the
+      function.
     * The stage's own function (``cls.STAGE.function``, :mod:`gearmesh.stages`) must take every
       setting, each result it reads and each section it carries (TypeError at import).
     * Another pair's upstream dataset is refused (:mod:`gearmesh.upstream`) and the result is
       stamped with the pair it was computed for."""
-    fields = {key_of(f): f for f in settings_fields(cls) if not spec_of(f).workflow}
+    fields = {key_of(f): f for f in settings_fields(cls)}
     keys = set(fields) - set(exclude)
     stage = getattr(cls, "STAGE", None)
 

@@ -81,8 +81,7 @@ def _torque_on() -> Any:
 
 
 def _pairs() -> Any:
-    return setting(REQUIRED, "the pairs (names in pairs_dir)", min_items=1, pattern=NAME, max_length=NAME_LENGTH,
-                   workflow=True)
+    return setting(REQUIRED, "the pairs (names in pairs_dir)", min_items=1, pattern=NAME, max_length=NAME_LENGTH)
 
 
 def lste_compared(config: Mapping[str, Any], section: str) -> bool:

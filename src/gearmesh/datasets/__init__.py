@@ -8,7 +8,21 @@ writes it (:mod:`gearmesh.pipeline`).
 
 from __future__ import annotations
 
-from typing import Any, Sequence
+from typing import Any, Mapping, Sequence
+
+
+def named_pairs(gear_pairs: Mapping[str, Any], names: Sequence[str]) -> dict[str, Any]:
+    """The pairs a study table's section names (its ``pairs``), in its order, from ``gear_pairs``
+    (loaded pairs by name; more may be given); GearmeshInputError naming ``pairs`` for a name
+    that is not given."""
+    from ..errors import GearmeshInputError
+
+    if not isinstance(gear_pairs, Mapping):
+        raise GearmeshInputError("gear_pairs", type(gear_pairs).__name__, "must map each pair's name to its pair")
+    missing = [n for n in names if n not in gear_pairs]
+    if missing:
+        raise GearmeshInputError("pairs", missing[0], f"must be one of the pairs given {sorted(gear_pairs)}")
+    return {n: gear_pairs[n] for n in names}
 
 
 def variant_name(ds, k: int) -> str:

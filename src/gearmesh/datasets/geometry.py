@@ -29,6 +29,7 @@ from ..profile import tooth_profile
 from ..surface import tooth_surface
 from ..schema import check_arguments, section_keys, settings_object
 from ..settings import ContactLines, Geometry, HelixSweep, LowFluctuationDesign
+from . import named_pairs
 
 
 
@@ -213,15 +214,31 @@ def contact_lines_dataset(pair: GearPair, **section: Any) -> xr.Dataset:
     return ds
 
 
-@check_arguments(HelixSweep)
-def helix_sweep_dataset(pairs: Mapping[str, GearPair], start_deg: float, stop_deg: float, step_deg: float, *,
-                        positions: int) -> xr.Dataset:
-    """Contact-length statistics against helix angle for each pair (the contact-line paper; the low-fluctuation paper §5).
+@check_arguments(HelixSweep, exclude=section_keys(HelixSweep))
+def helix_sweep_dataset(gear_pairs: Mapping[str, GearPair], **section: Any) -> xr.Dataset:
+    """Contact-length statistics against helix angle for each pair (the contact-line paper; the
+    low-fluctuation paper §5).
 
     Each helix angle is a full new pair geometry at its zero-backlash centre distance
     (:func:`gearmesh.design.overlap_fluctuation_curve`); angles whose pair cannot work are
     NaN, with the reasons in the ``refused`` attribute.
+
+    Parameters
+    ----------
+    gear_pairs : mapping of str to GearPair
+        Loaded pairs by name; the section's ``pairs`` picks the sweep's, in its order.
+    **section
+        A study's ``helix_sweep:`` section (:class:`gearmesh.settings.HelixSweep`: the angles in
+        degrees and the positions per mesh cycle), parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        helix_sweep.nc (dims pair, helix_angle).
     """
+    s = settings_object(HelixSweep, section)
+    start_deg, stop_deg, step_deg, positions = s.start_deg, s.stop_deg, s.step_deg, s.positions
+    pairs = named_pairs(gear_pairs, s.pairs)
     check_sweep(start_deg, stop_deg, step_deg)  # its size from the three numbers, before any grid
     angles = np.arange(start_deg, stop_deg + 0.5 * step_deg, step_deg)
     names = list(pairs)
@@ -264,12 +281,27 @@ DESIGN_ROUTES = {  # name -> (design function, direction)
 }
 
 
-@check_arguments(LowFluctuationDesign)
-def low_fluctuation_design_dataset(pairs: Mapping[str, GearPair]) -> xr.Dataset:
-    """Integer-overlap-ratio designs of each pair (the low-fluctuation paper §1, §5): the original and its
-    helix-angle (forward/backward) and face-width (forward/backward) redesigns, with εα,
-    εβ and the contact-line fluctuation ε_l of each. Routes with no solution are NaN and
-    the reason is in the ``refused`` attribute."""
+@check_arguments(LowFluctuationDesign, exclude=section_keys(LowFluctuationDesign))
+def low_fluctuation_design_dataset(gear_pairs: Mapping[str, GearPair], **section: Any) -> xr.Dataset:
+    """Integer-overlap-ratio designs of each pair (the low-fluctuation paper §1, §5): the original
+    and its helix-angle (forward/backward) and face-width (forward/backward) redesigns, with εα,
+    εβ and the contact-line fluctuation ε_l of each. Routes with no solution are NaN and the
+    reason is in the ``refused`` attribute.
+
+    Parameters
+    ----------
+    gear_pairs : mapping of str to GearPair
+        Loaded pairs by name; the section's ``pairs`` picks the table's, in its order.
+    **section
+        A study's ``low_fluctuation_design:`` section (:class:`gearmesh.settings.LowFluctuationDesign`),
+        parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        low_fluctuation_design.nc (dims pair, design).
+    """
+    pairs = named_pairs(gear_pairs, settings_object(LowFluctuationDesign, section).pairs)
     names = list(pairs)
     routes = ["original", *DESIGN_ROUTES]
     keys = ("helix_angle", "face_width", "eps_alpha", "eps_beta", "eps_l", "mean_length")

@@ -42,7 +42,7 @@ S_H and S_F stay the rating stage's (nominal gear, K_Hβ of its misaligned mesh)
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 import xarray as xr
@@ -50,7 +50,7 @@ import xarray as xr
 from ..errors import GearmeshInputError
 from ..io import variable
 from ..limits import same_point
-from ..schema import check_arguments
+from ..schema import check_arguments, section_keys, settings_object
 from ..settings import Signoff
 from ..stress import edge_pressure_reference
 from ..robust import CRITERION_UNITS
@@ -144,50 +144,64 @@ def _manufactured(imp: xr.Dataset, torques: np.ndarray, orders: list[int], name:
 CRITERIA_OF_GEAR = ("impact_force", "peak_flank_pressure", "peak_edge_pressure", "peak_root_stress")
 
 
-def _judge(c: dict[str, np.ndarray], ref: dict[str, np.ndarray], k_orders: list[int], pressure_factor: float,
-           root_stress_factor: float, harmonic_factor: float) -> tuple[np.ndarray, dict[str, np.ndarray]]:
-    """The like-against-like pressure ratio and the pressure, root-stress and TE-order criteria met of
-    columns ``c`` (p_flank, p_edge, sigma_f, harm; leading axes any) against the reference's ``ref``
-    (the same keys, (torque, ...))."""
+def _judge(c: dict[str, np.ndarray], ref: dict[str, np.ndarray], k_orders: list[int], s: Signoff
+           ) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """The like-against-like pressure ratio and the pressure, root-stress and TE-order criteria of
+    ``s`` met by columns ``c`` (p_flank, p_edge, sigma_f, harm; leading axes any) against the
+    reference's ``ref`` (the same keys, (torque, ...))."""
     harm = c["harm"][..., k_orders]
     edge_ref = edge_pressure_reference(ref["p_flank"], ref["p_edge"])
     ratio = np.maximum(c["p_flank"] / ref["p_flank"], c["p_edge"] / edge_ref)
-    return ratio, {"meets_pressure": ratio <= pressure_factor,
-                   "meets_root_stress": c["sigma_f"] <= root_stress_factor * ref["sigma_f"],
-                   "meets_te_harmonics": np.all(harm <= harmonic_factor * ref["harm"][..., k_orders], axis=-1)}
+    return ratio, {"meets_pressure": ratio <= s.pressure_factor,
+                   "meets_root_stress": c["sigma_f"] <= s.root_stress_factor * ref["sigma_f"],
+                   "meets_te_harmonics": np.all(harm <= s.harmonic_factor * ref["harm"][..., k_orders], axis=-1)}
 
 
-def _impact_flags(fs: np.ndarray, fs_ref: np.ndarray, impact_factor: float, worst_impact_factor: float
-                  ) -> dict[str, np.ndarray]:
-    """F_s below impact_factor × the reference's at each torque, and the worst over the torques (last
-    axis) at most worst_impact_factor × the reference's worst."""
+def _impact_flags(fs: np.ndarray, fs_ref: np.ndarray, s: Signoff) -> dict[str, np.ndarray]:
+    """F_s below ``s.impact_factor`` × the reference's at each torque, and the worst over the torques
+    (last axis) at most ``s.worst_impact_factor`` × the reference's worst."""
     worst = np.max(fs, axis=-1, keepdims=True)
-    return {"meets_impact": fs < impact_factor * fs_ref,
-            "meets_worst_impact": np.broadcast_to(worst <= worst_impact_factor * np.max(fs_ref), fs.shape)}
+    return {"meets_impact": fs < s.impact_factor * fs_ref,
+            "meets_worst_impact": np.broadcast_to(worst <= s.worst_impact_factor * np.max(fs_ref), fs.shape)}
 
 
-def _heldout_verdict(held: dict[str, np.ndarray], ref: dict[str, np.ndarray], k_orders: list[int], factors,
-                     impact_factor: float, worst_impact_factor: float) -> tuple[np.ndarray, np.ndarray]:
+def _heldout_verdict(held: dict[str, np.ndarray], ref: dict[str, np.ndarray], k_orders: list[int], s: Signoff
+                     ) -> tuple[np.ndarray, np.ndarray]:
     """Whether every held-out gear (gear, torque, ...) meets the basis criteria against the reference's
     worst (torque,), and the first gear that breaks them at each torque (−1: none)."""
-    _, flags = _judge(held, ref, k_orders, *factors)
-    flags |= _impact_flags(held["fs"], ref["fs"], impact_factor, worst_impact_factor)
+    _, flags = _judge(held, ref, k_orders, s)
+    flags |= _impact_flags(held["fs"], ref["fs"], s)
     ok = np.all(list(flags.values()), axis=0)  # (gear, torque)
     broken = ~ok
     return ok.all(axis=0), np.where(broken.any(axis=0), np.argmax(broken, axis=0), -1)
 
 
-@check_arguments(Signoff)
+@check_arguments(Signoff, exclude=section_keys(Signoff))
 def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Dataset], rating: Sequence[xr.Dataset],
-                          dynamics: Sequence[xr.Dataset] = (), *, reference: str, basis: str,
-                          pressure_factor: float, root_stress_factor: float, harmonic_orders: Sequence[int],
-                          harmonic_factor: float, impact_factor: float, worst_impact_factor: float,
-                          dynamic_factor: float) -> xr.Dataset:
-    """Every variant beside ``reference`` at each LTCA torque (variant × torque) and the criteria
-    of the module docstring, judged on ``basis``, as flags (``reference``/``fails``/``meets``);
-    ``meets_all`` holds them together (and, on the population basis, the held-out check). The
-    variants' datasets may come in any order; they must cover the same variants (``dynamics`` may
-    be empty: no dynamic criterion)."""
+                          dynamics: Sequence[xr.Dataset] = (), **section: Any) -> xr.Dataset:
+    """Every variant beside the section's ``reference`` at each LTCA torque (variant × torque) and
+    the criteria of the module docstring, judged on its ``basis``, as flags
+    (``reference``/``fails``/``meets``); ``meets_all`` holds them together (and, on the population
+    basis, the held-out check).
+
+    Parameters
+    ----------
+    impact, ltca, rating : sequence of xarray.Dataset
+        Each variant's impact.nc, ltca.nc and rating.nc, in any order; they must cover the same
+        variants of one pair.
+    dynamics : sequence of xarray.Dataset, optional
+        Each variant's dynamics.nc; empty: no dynamic criterion.
+    **section
+        A study's ``signoff:`` section (:class:`gearmesh.settings.Signoff`: the reference, the basis
+        and the factors), parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        signoff_table.nc (dims variant, torque).
+    """
+    s = settings_object(Signoff, section)
+    reference, basis, harmonic_orders = s.reference, s.basis, s.harmonic_orders
     names = variant_names("ltca", ltca)
     one_pair(ltca=ltca, impact=impact, rating=rating, dynamics=dynamics)
     by = _by_variant(names, impact, rating, dynamics)
@@ -203,17 +217,15 @@ def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Datase
     dims = ("variant", "torque")
     c, made = _variant_columns(names, ltca, by, torques, orders, basis, bool(dynamics))
     k_orders = [orders.index(n) for n in harmonic_orders]
-    factors = (pressure_factor, root_stress_factor, harmonic_factor)
     nominal_ref = {k: c[k][ref] for k in ("p_flank", "p_edge", "sigma_f", "harm")}
-    pressure_ratio, flags = _judge(c, nominal_ref, k_orders, *factors)
-    flags |= _impact_flags(c["fs"], c["fs"][ref], impact_factor, worst_impact_factor)
+    pressure_ratio, flags = _judge(c, nominal_ref, k_orders, s)
+    flags |= _impact_flags(c["fs"], c["fs"][ref], s)
     out: dict[str, xr.Variable] = {}
     if basis == "population":
-        basis_flags, out, holds = _population_verdict(names, made, ref, k_orders, factors, impact_factor,
-                                                      worst_impact_factor, orders, dims)
+        basis_flags, out, holds = _population_verdict(names, made, ref, k_orders, s, orders, dims)
         flags |= basis_flags
     if dynamics:
-        flags["meets_dynamics"] = c["dyn_peak"] <= dynamic_factor * c["dyn_peak"][ref]
+        flags["meets_dynamics"] = c["dyn_peak"] <= s.dynamic_factor * c["dyn_peak"][ref]
     verdict = np.all(list(flags.values()), axis=0)
     if "heldout_holds" in out:
         verdict &= holds
@@ -223,11 +235,11 @@ def signoff_table_dataset(impact: Sequence[xr.Dataset], ltca: Sequence[xr.Datase
     out |= _flag_columns(flags, ref, basis, dims, "heldout_holds" in out)
     ds = xr.Dataset(out, coords={"variant": variable(("variant",), np.array(names), "1", "micro-geometry variant"),
                                  "torque": variable(("torque",), torques, "N m", "pinion torque T1")})
-    ds.attrs.update(reference=reference, basis=basis, pressure_factor=pressure_factor,
-                    root_stress_factor=root_stress_factor,
-                    harmonic_orders=np.array(harmonic_orders, dtype=np.int64), harmonic_factor=harmonic_factor,
-                    impact_factor=impact_factor, worst_impact_factor=worst_impact_factor,
-                    dynamic_factor=dynamic_factor,
+    ds.attrs.update(reference=reference, basis=basis, pressure_factor=s.pressure_factor,
+                    root_stress_factor=s.root_stress_factor,
+                    harmonic_orders=np.array(harmonic_orders, dtype=np.int64), harmonic_factor=s.harmonic_factor,
+                    impact_factor=s.impact_factor, worst_impact_factor=s.worst_impact_factor,
+                    dynamic_factor=s.dynamic_factor,
                     design_speed_rpm=float(by["impact"][reference].attrs["design_speed_rpm"]))
     if basis == "population":
         imp = by["impact"][reference]
@@ -288,21 +300,19 @@ def _variant_columns(names: list[str], ltca: Sequence[xr.Dataset], by: dict[str,
     return {k: np.array(v) for k, v in cols.items()}, made
 
 
-def _population_verdict(names: list[str], made: list[dict], ref: int, k_orders: list[int], factors,
-                        impact_factor: float, worst_impact_factor: float, orders: list[int], dims
-                        ) -> tuple[dict[str, np.ndarray], dict[str, xr.Variable], np.ndarray | None]:
+def _population_verdict(names: list[str], made: list[dict], ref: int, k_orders: list[int], s: Signoff,
+                        orders: list[int], dims) -> tuple[dict[str, np.ndarray], dict[str, xr.Variable], np.ndarray | None]:
     """The criteria on the population basis (each variant's worst manufactured gear against the
     reference's worst), the population's columns and, when every variant has held-out gears,
     whether the verdict holds on them (per variant; None without them)."""
     w = {k: np.array([m["worst"][k] for m in made]) for k in made[ref]["worst"]}
     w_ref = {k: v[ref] for k, v in w.items()}
-    worst_ratio, basis_flags = _judge(w, w_ref, k_orders, *factors)
-    basis_flags |= _impact_flags(w["fs"], w_ref["fs"], impact_factor, worst_impact_factor)
+    worst_ratio, basis_flags = _judge(w, w_ref, k_orders, s)
+    basis_flags |= _impact_flags(w["fs"], w_ref["fs"], s)
     out = _population_columns(names, made, ref, w, worst_ratio, orders, dims)
     holds = None
     if all(m["heldout"] for m in made):
-        held = [_heldout_verdict(m["heldout"], w_ref, k_orders, factors, impact_factor, worst_impact_factor)
-                for m in made]
+        held = [_heldout_verdict(m["heldout"], w_ref, k_orders, s) for m in made]
         holds = np.array([h[0] for h in held])
         out["heldout_holds"] = variable(dims, _flag(holds, ref), "1", "the held-out gears (their own seed, never "
                                         "seen by an optimiser) judged alone: meets when every one meets the "

@@ -3,7 +3,7 @@ the slice-count convergence study (seeds 001, 003, 004)."""
 
 from __future__ import annotations
 
-from typing import Any, Mapping, Sequence
+from typing import Any, Mapping
 
 import numpy as np
 import xarray as xr
@@ -31,6 +31,7 @@ from ..stiffness import (
 from ..schema import check_arguments, section_keys, settings_object
 from ..choices import PEM_TOOTH_METHODS
 from ..settings import SliceConvergence, Stiffness, StiffnessTable
+from . import named_pairs
 
 METHODS = PEM_TOOTH_METHODS
 
@@ -215,18 +216,33 @@ def apply_variant(pair: GearPair, name: str, overrides: Mapping[str, Any]) -> Ge
     return pair_with_contact_ratios(pair_from_dict(data), **targets)
 
 
-@check_arguments(StiffnessTable)
-def stiffness_table_dataset(pairs: Mapping[str, GearPair], *, methods: Sequence[str],
-                            variants: Mapping[str, Mapping[str, Any]] | None, slices: int, positions: int,
-                            torque_Nm: float | None, torque_on: str) -> xr.Dataset:
+@check_arguments(StiffnessTable, exclude=section_keys(StiffnessTable))
+def stiffness_table_dataset(gear_pairs: Mapping[str, GearPair], **section: Any) -> xr.Dataset:
     """A comparison table over pairs (and pair-file variants of each) and cantilever methods:
     mean/min/max K, ε_k, ISO 6336-1 mesh stiffness and, with a torque, LSTE mean and
-    peak-to-peak (the low-fluctuation paper Table/§3, the transition-curve paper parametric tables, the improved potential-energy paper method table)."""
+    peak-to-peak (the low-fluctuation paper Table/§3, the transition-curve paper parametric
+    tables, the improved potential-energy paper method table).
+
+    Parameters
+    ----------
+    gear_pairs : mapping of str to GearPair
+        Loaded pairs by name; the section's ``pairs`` picks the table's, in its order.
+    **section
+        A study's ``stiffness_table:`` section (:class:`gearmesh.settings.StiffnessTable`),
+        parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        stiffness_table.nc (dims case, model).
+    """
+    s = settings_object(StiffnessTable, section)
+    methods, slices, positions, torque_Nm, torque_on = s.methods, s.slices, s.positions, s.torque_Nm, s.torque_on
     cases: dict[str, GearPair] = {}
-    for name, pair in pairs.items():
-        for vname, overrides in (variants or {"as_given": {}}).items():
-            cases[name if not variants else f"{name}-{vname}"] = (
-                apply_variant(pair, vname, overrides) if variants else pair)
+    for name, pair in named_pairs(gear_pairs, s.pairs).items():
+        for vname, overrides in (s.variants or {"as_given": {}}).items():
+            cases[name if not s.variants else f"{name}-{vname}"] = (
+                apply_variant(pair, vname, overrides) if s.variants else pair)
     keys = ("mean", "min", "max", "fluctuation", "iso", "lste_mean", "lste_p2p", "eps_alpha", "eps_beta",
             "sap", "eap")
     out = {k: np.full((len(cases), len(methods)), np.nan) for k in keys}
@@ -269,12 +285,27 @@ def stiffness_table_dataset(pairs: Mapping[str, GearPair], *, methods: Sequence[
     return ds
 
 
-@check_arguments(SliceConvergence)
-def slice_convergence_dataset(pairs: Mapping[str, GearPair], *, slices: Sequence[int], method: str,
-                              positions: int) -> xr.Dataset:
-    """K statistics against the slice count for both slice rules (the improved potential-energy paper argues N = 1000):
-    'centre' (whole slices, the documents' sampling) and 'clip' (end slices clipped), with
-    the relative difference of the mean to the finest 'clip' result."""
+@check_arguments(SliceConvergence, exclude=section_keys(SliceConvergence))
+def slice_convergence_dataset(gear_pairs: Mapping[str, GearPair], **section: Any) -> xr.Dataset:
+    """K statistics against the slice count for both slice rules (the improved potential-energy
+    paper argues N = 1000): 'centre' (whole slices, the documents' sampling) and 'clip' (end
+    slices clipped), with the relative difference of the mean to the finest 'clip' result.
+
+    Parameters
+    ----------
+    gear_pairs : mapping of str to GearPair
+        Loaded pairs by name; the section's ``pairs`` picks the table's, in its order.
+    **section
+        A study's ``slice_convergence:`` section (:class:`gearmesh.settings.SliceConvergence`),
+        parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        slice_convergence.nc (dims pair, rule, slices).
+    """
+    s = settings_object(SliceConvergence, section)
+    pairs, slices, method, positions = named_pairs(gear_pairs, s.pairs), s.slices, s.method, s.positions
     rules = ("centre", DEFAULT_RULE) if DEFAULT_RULE != "centre" else ("centre",)
     shape = (len(pairs), len(rules), len(slices))
     mean, lo, hi = (np.full(shape, np.nan) for _ in range(3))

@@ -4,7 +4,7 @@ paper's comparisons) and the energy method beside the contact-driven dynamics (t
 
 from __future__ import annotations
 
-from typing import Sequence
+from typing import Any, Sequence
 
 import numpy as np
 import xarray as xr
@@ -13,7 +13,7 @@ from ...errors import GearmeshInputError
 from .. import one_pair, variant_names
 from ...io import name_force_lines, variable
 from ...limits import same_point
-from ...schema import check_arguments
+from ...schema import check_arguments, section_keys, settings_object
 from ...choices import IMPACT_INDEX
 from ...settings import DynamicsComparison
 
@@ -24,9 +24,8 @@ def _grid(ds: xr.Dataset) -> xr.Dataset:
     return ds.isel(speed=ds["on_grid"].values.astype(bool)) if "on_grid" in ds else ds
 
 
-@check_arguments(DynamicsComparison)
-def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
-                                couples: Sequence[Sequence[str]] | None = None) -> xr.Dataset:
+@check_arguments(DynamicsComparison, exclude=section_keys(DynamicsComparison))
+def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset], **section: Any) -> xr.Dataset:
     """RMS changes between pairs over a common speed sweep (the low-fluctuation paper §4–5, its comparisons).
 
     Over the configured speeds (``on_grid``; each pair's added resonance speeds differ), at each
@@ -36,10 +35,24 @@ def dynamics_comparison_dataset(dynamics: Sequence[xr.Dataset],
     change of the highest peak of the displacement standard deviation and velocity RMS
     (the low-fluctuation paper reports "across most speeds" and "at the resonance peaks"). Default couples:
     every pair against the first.
+
+    Parameters
+    ----------
+    dynamics : sequence of xarray.Dataset
+        Each pair's dynamics.nc (its standard variant).
+    **section
+        A study's ``dynamics_comparison:`` section (:class:`gearmesh.settings.DynamicsComparison`:
+        ``couples``, [pair, reference] names), parsed once (:func:`gearmesh.schema.settings_object`).
+
+    Returns
+    -------
+    xarray.Dataset
+        dynamics_comparison.nc (dim couple).
     """
+    given = settings_object(DynamicsComparison, section).couples
     by_name = {d.attrs.get("pair_name", str(i)): d for i, d in enumerate(dynamics)}
     names = list(by_name)
-    couples = [tuple(c) for c in couples] if couples else [(n, names[0]) for n in names[1:]]
+    couples = given or tuple((n, names[0]) for n in names[1:])
     for pair, ref in couples:
         for n in (pair, ref):
             if n not in by_name:
