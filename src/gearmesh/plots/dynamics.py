@@ -211,8 +211,6 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
             ax.plot(cyc[keep], fe, lw=1.2, color="tab:red", label="entering pair (±½ base pitch about A)")
             i_s = int(np.argmin(np.abs(d.speed.values - float(sel.sample_speed))))
             # A wide and pale, the quasi-static point narrower, the dynamic one thin on top: where
-            # two coincide both stay visible
-            # A wide and pale, the quasi-static point narrower, the dynamic one thin on top: where
             # two coincide both stay visible; a mesh-in at or after A (stored as 0) is not marked
             dynamic, static = float(d.mesh_in_roll_before_A.values[i_s]), float(d.static_mesh_in_roll_before_A)
             marks = ((0.0, "0.55", "-", 2.4, "A (theoretical start of engagement)"),
