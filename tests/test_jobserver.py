@@ -123,6 +123,37 @@ def test_a_job_on_the_server_rounds_as_the_one_thread_job_snakemake_runs(root, t
 
 
 @pytest.mark.workflow
+def test_a_job_forked_while_the_helper_compiles_waits_and_loads_the_kernels(root, tmp_path, monkeypatch):
+    """A fresh clone (numba's cache empty: here a cache folder of its own): the server's helper
+    compiles the kernels, and a dynamics job forked meanwhile waits for it and loads the sweep from
+    the cache the helper wrote instead of compiling it a second time (numba's cache log, on the
+    job's standard output: 'data saved' is a compile, 'data loaded' a load)."""
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.setenv("NUMBA_DEBUG_CACHE", "1")
+    path = jobserver.start(["gearmesh.pipeline", "gearmesh.datasets.dynamics"])
+    try:
+        server = psutil.Process(jobserver._server.pid)
+        deadline = time.monotonic() + 60
+        while not server.children() and time.monotonic() < deadline:  # the helper: the first warm step
+            time.sleep(0.01)
+        (helper,) = server.children()
+        job = _job(root, tmp_path, "gearmesh.datasets.dynamics:dynamics_dataset",
+                   {"speeds_rpm": {"start": 20000, "stop": 30000, "step": 5000}, "sample_speeds_rpm": [27000],
+                    "transient_tau": 4.0, "record_cycles": 4, "points_per_cycle": 32, "max_order": 4})
+        proc = _script(job, tmp_path, dict(os.environ))
+        while len(server.children()) < 2 and proc.poll() is None:
+            time.sleep(0.01)
+        assert helper.is_running(), "the helper finished before the job started: nothing tested"
+        out, err = proc.communicate(timeout=300)
+        assert proc.returncode == 0, err
+        assert "integrate._sweep" in out and "data loaded" in out, out
+        assert "data saved" not in out, out
+    finally:
+        jobserver.stop()
+
+
+@pytest.mark.workflow
 def test_a_failing_job_reports_its_error_and_exit_code(root, tmp_path, server):
     job = _job(root, tmp_path, "gearmesh.datasets.geometry:contact_lines_dataset", {"positions": -3})
     proc = _script(job, tmp_path, server.env)
