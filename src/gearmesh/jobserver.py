@@ -68,8 +68,8 @@ THREAD_VARIABLES = ("OMP_NUM_THREADS", "GOTO_NUM_THREADS", "OPENBLAS_NUM_THREADS
 #: starts; other C libraries ignore it): numpy's arrays of up to 32 MiB from the heap, not each a
 #: fresh mapping, and freed memory kept for the next array, not handed back to the kernel, so that
 #: a job does not fault in fresh zeroed pages for every temporary (by default glibc maps anything
-#: above 128 KiB anew and returns heap tops above twice that; half the page faults of the default
-#: study, and half its system time, measured). Numbers: glibc's upper limit of the mmap threshold
+#: above 128 KiB anew and returns heap tops above twice that: 59% of the default study's page
+#: faults and 44% of its system time, measured). Numbers: glibc's upper limit of the mmap threshold
 #: on 64-bit (``DEFAULT_MMAP_THRESHOLD_MAX``), and a trim threshold above any job's heap.
 MALLOC_TUNABLES = {"glibc.malloc.mmap_threshold": str(32 << 20), "glibc.malloc.trim_threshold": str(1 << 30)}
 #: Third-party modules the package imports inside functions (``import gearmesh`` stays light for
@@ -392,7 +392,7 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
             continue
         # the server's objects out of reach of the child's garbage collector, whose passes would
         # otherwise write to each of them and so copy every page of the server's heap it touches
-        # (Python's gc.freeze, "right before fork()"): a third of the run's system time, measured
+        # (Python's gc.freeze, "right before fork()"): 12% of the default study's page faults, measured
         gc.freeze()
         pid = os.fork()
         if pid == 0:
