@@ -123,6 +123,37 @@ def test_a_job_on_the_server_rounds_as_the_one_thread_job_snakemake_runs(root, t
 
 
 @pytest.mark.workflow
+def test_a_job_forked_while_the_helper_compiles_waits_and_loads_the_kernels(root, tmp_path, monkeypatch):
+    """A fresh clone (numba's cache empty: here a cache folder of its own): the server's helper
+    compiles the kernels, and a dynamics job forked meanwhile waits for it and loads the sweep from
+    the cache the helper wrote instead of compiling it a second time (numba's cache log, on the
+    job's standard output: 'data saved' is a compile, 'data loaded' a load)."""
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
+    monkeypatch.setenv("NUMBA_DEBUG_CACHE", "1")
+    path = jobserver.start(["gearmesh.pipeline", "gearmesh.datasets.dynamics"])
+    try:
+        server = psutil.Process(jobserver._server.pid)
+        deadline = time.monotonic() + 60
+        while not server.children() and time.monotonic() < deadline:  # the helper: the first warm step
+            time.sleep(0.01)
+        (helper,) = server.children()
+        job = _job(root, tmp_path, "gearmesh.datasets.dynamics:dynamics_dataset",
+                   {"speeds_rpm": {"start": 20000, "stop": 30000, "step": 5000}, "sample_speeds_rpm": [27000],
+                    "transient_tau": 4.0, "record_cycles": 4, "points_per_cycle": 32, "max_order": 4})
+        proc = _script(job, tmp_path, dict(os.environ))
+        while len(server.children()) < 2 and proc.poll() is None:
+            time.sleep(0.01)
+        assert helper.is_running(), "the helper finished before the job started: nothing tested"
+        out, err = proc.communicate(timeout=300)
+        assert proc.returncode == 0, err
+        assert "integrate._sweep" in out and "data loaded" in out, out
+        assert "data saved" not in out, out
+    finally:
+        jobserver.stop()
+
+
+@pytest.mark.workflow
 def test_a_failing_job_reports_its_error_and_exit_code(root, tmp_path, server):
     job = _job(root, tmp_path, "gearmesh.datasets.geometry:contact_lines_dataset", {"positions": -3})
     proc = _script(job, tmp_path, server.env)
@@ -174,6 +205,34 @@ def test_only_a_local_run_in_this_python_uses_a_server(monkeypatch, methods, loc
     monkeypatch.setenv(jobserver.ENV, "off")
     assert jobserver.wanted(SimpleNamespace(deployment_settings=SimpleNamespace(deployment_method=set()),
                                             local_exec=True, remote_exec=False)) is False
+
+
+#: 100 times: 16 arrays of 1 MiB made, written and dropped together (as a numpy expression's
+#: temporaries are); prints the page faults it took.
+CHURN = ("import resource, numpy as np; a = np.ones(8); before = resource.getrusage(resource.RUSAGE_SELF).ru_minflt\n"
+         "for _ in range(100): a = [np.ones(1 << 17) for _ in range(16)]\n"
+         "print(resource.getrusage(resource.RUSAGE_SELF).ru_minflt - before)")
+
+
+@pytest.mark.skipif(os.name != "posix" or os.confstr("CS_GNU_LIBC_VERSION") is None, reason="glibc's malloc")
+def test_the_servers_malloc_settings_spare_a_job_the_page_faults_of_its_temporaries(monkeypatch):
+    """With the server's ``GLIBC_TUNABLES`` a process whose temporaries come and go together reuses
+    their memory (two rounds' 32 MiB faulted in once: 8192 pages), where glibc's defaults hand the
+    heap's freed top back to the kernel and fault it in again (about 2000 pages a round, measured)."""
+    monkeypatch.delenv("GLIBC_TUNABLES", raising=False)
+    faults = {}
+    for name, tunables in (("default", ""), ("server", jobserver._tunables(os.environ))):
+        out = subprocess.run([sys.executable, "-c", CHURN], capture_output=True, text=True, timeout=60,
+                             env={**os.environ, "GLIBC_TUNABLES": tunables}, check=True)
+        faults[name] = int(out.stdout)
+    assert faults["server"] < 3 * 4096 < 10 * 4096 < faults["default"], faults
+
+
+def test_the_users_own_glibc_tunables_win():
+    given = "glibc.malloc.trim_threshold=5:glibc.cpu.hwcaps=-AVX512F"
+    tunables = jobserver._tunables({"GLIBC_TUNABLES": given}).split(":")
+    assert tunables[:2] == given.split(":") and "glibc.malloc.mmap_threshold=33554432" in tunables
+    assert [t for t in tunables if t.startswith("glibc.malloc.trim_threshold")] == ["glibc.malloc.trim_threshold=5"]
 
 
 def test_the_server_imports_the_modules_its_rules_name():
