@@ -162,7 +162,7 @@ def gear_criteria(model: ImpactModel, rows: np.ndarray, lead: np.ndarray, torque
         ``values`` (N, T, K) in :data:`CRITERIA` order (N, m, Pa), ``impact_force_energy_balance`` (N, T) (N) and the
         mesh-in ``scenario`` (N, T).
     """
-    c = ltca_criteria(model, torques, rows, lead_slope=lead, samples=samples)
+    c = ltca_criteria(model, torques, rows, lead_slope=lead, samples=samples, loads=False)
     static = impact_static(model, torques, rows, lead_slope=lead, engagement=False)
     _, resp = impact_response(model, static, [speed_rpm], energy_velocity=energy_velocity)
     force = np.nan_to_num(resp.force[..., 0], nan=0.0)

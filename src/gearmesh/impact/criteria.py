@@ -34,7 +34,7 @@ class LTCACriteria:
     (regions 2, 3; the pair's tip-edge radius, :mod:`gearmesh.stress`) (Pa, 0 where none is
     loaded), ``root_stress`` the largest ISO 6336-3 local root stress of either gear (Pa);
     ``load`` (C, T, P, J, N) the point loads (N), for ISO 6336's load factors from the LTCA
-    (:func:`gearmesh.rating.ltca_load_factors`)."""
+    (:func:`gearmesh.rating.ltca_load_factors`; None where not asked for)."""
 
     lte_peak_to_peak: np.ndarray
     te_harmonics: np.ndarray
@@ -42,7 +42,7 @@ class LTCACriteria:
     flank_pressure: np.ndarray
     edge_pressure: np.ndarray
     root_stress: np.ndarray
-    load: np.ndarray
+    load: np.ndarray | None
 
     @property
     def peak_pressure(self) -> np.ndarray:
@@ -51,7 +51,7 @@ class LTCACriteria:
 
 
 def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, stresses: bool = True,
-                  samples: int = 1) -> LTCACriteria:
+                  samples: int = 1, loads: bool = True) -> LTCACriteria:
     """The loaded contact of modification parameter sets over one mesh cycle, with its sign-off quantities.
 
     The LTCA of :mod:`gearmesh.ltca` on the model's mesh-cycle grid, gaps re-evaluated from its separation basis (no new
@@ -74,6 +74,8 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     samples : int, default 1
         The rows come in runs of that many manufactured gears of one design, the first the nominal (a divisor of C;
         :func:`_cycle_loads` starts the others from it).
+    loads : bool, default True
+        Also the load of every point (``load``; False: None, for a caller that needs the criteria alone).
 
     Returns
     -------
@@ -125,11 +127,14 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
         flank = np.where(edge_point, 0.0, p0).max(axis=(2, 3))
         edge = np.where(edge_point, p0, 0.0).max(axis=(2, 3))
         root = (w * root_stress).max(axis=(2, 3))
-    load = np.zeros((nc, nt, p, candidate.shape[1]))
-    np.put_along_axis(load, np.broadcast_to(cols, q.shape), q, axis=3)
+    load = None
+    if loads:
+        load = np.zeros((nc, nt, p, candidate.shape[1]))
+        np.put_along_axis(load, np.broadcast_to(cols, q.shape), q, axis=3)
+        load = load.reshape(nc, nt, p, *basis.base.shape[1:])
     return LTCACriteria(lte_peak_to_peak=np.ptp(delta, axis=-1), te_harmonics=lte_harmonics(delta),
                         max_line_load=w.max(axis=(2, 3)), flank_pressure=flank, edge_pressure=edge,
-                        root_stress=root, load=load.reshape(nc, nt, p, *basis.base.shape[1:]))
+                        root_stress=root, load=load)
 
 
 def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force: np.ndarray,
