@@ -127,14 +127,17 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
         flank = np.where(edge_point, 0.0, p0).max(axis=(2, 3))
         edge = np.where(edge_point, p0, 0.0).max(axis=(2, 3))
         root = (w * root_stress).max(axis=(2, 3))
-    load = None
-    if loads:
-        load = np.zeros((nc, nt, p, candidate.shape[1]))
-        np.put_along_axis(load, np.broadcast_to(cols, q.shape), q, axis=3)
-        load = load.reshape(nc, nt, p, *basis.base.shape[1:])
     return LTCACriteria(lte_peak_to_peak=np.ptp(delta, axis=-1), te_harmonics=lte_harmonics(delta),
                         max_line_load=w.max(axis=(2, 3)), flank_pressure=flank, edge_pressure=edge,
-                        root_stress=root, load=load)
+                        root_stress=root, load=_grid_loads(q, cols, basis.base.shape) if loads else None)
+
+
+def _grid_loads(q: np.ndarray, cols: np.ndarray, grid_shape: tuple[int, ...]) -> np.ndarray:
+    """The loads ``q`` (C, T, P, M') N of each position's candidate points ``cols`` (P, M') put back on
+    the grid's points (C, T, P, J, N), 0 elsewhere (:func:`ltca_criteria`)."""
+    load = np.zeros(q.shape[:3] + (int(np.prod(grid_shape[1:])),))
+    np.put_along_axis(load, np.broadcast_to(cols, q.shape), q, axis=3)
+    return load.reshape(q.shape[:3] + tuple(grid_shape[1:]))
 
 
 def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force: np.ndarray,
