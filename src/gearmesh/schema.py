@@ -7,7 +7,10 @@ default, bounds and description. From that one declaration come
   (``gearmesh validate``, the Snakefile and editors through the published schema files);
 * the refusal of a bad argument of a stage function (:func:`check_arguments`), with the same
   bounds, so the Python API, the CLI and a study config refuse the same values;
-* the reference table of every key (:func:`markdown_table`, ``config/README.md``).
+* the reference table of every key (:func:`gearmesh.published.markdown_table`, ``config/README.md``).
+
+The words of a rule (a refused value's message, the reference tables' type column) live in
+:mod:`gearmesh.schema_words`.
 
 Types map to JSON schema as: ``int`` → integer, ``float`` → number, ``bool`` → boolean,
 ``str`` → string, ``Literal[...]`` → enum, ``tuple[X, ...]`` → array of X, ``tuple[X, X]``
@@ -29,8 +32,9 @@ import typing
 from collections.abc import Mapping
 from typing import Any, Callable, Literal, Union
 
-from .errors import GearmeshInputError, unknown_key_rule
+from .errors import GearmeshInputError
 from .limits import MAX_LIST_ITEMS
+from .schema_words import schema_error
 
 #: Key of a field's :class:`Spec` in ``dataclasses.field(metadata=...)``.
 SPEC = "gearmesh"
@@ -318,105 +322,6 @@ def first_non_finite(data: Any, path: str = "") -> tuple[str, float] | None:
     return None
 
 
-def _field(parts: list[Any]) -> str:
-    """A key path as the error names it: ``optimise.best.modify[0]``."""
-    out = ""
-    for p in parts:
-        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
-    return out
-
-
-_ARTICLES = {"integer": "an integer", "number": "a number", "string": "a string", "array": "a list",
-             "object": "a mapping", "boolean": "true or false", "null": "null"}
-
-
-def _rule(err) -> str:
-    """The rule a jsonschema error says was broken, in the words of the reference tables."""
-    kind, limit = err.validator, err.validator_value
-    if kind == "type":
-        kinds = [limit] if isinstance(limit, str) else list(limit)
-        return "must be " + " or ".join(_ARTICLES.get(k, k) for k in kinds)
-    words = {"minimum": "at least", "maximum": "at most", "exclusiveMinimum": "above", "exclusiveMaximum": "below"}
-    if kind in words:
-        return "must be positive" if kind == "exclusiveMinimum" and limit == 0 else f"must be {words[kind]} {_number(limit)}"
-    if kind == "multipleOf":
-        return f"must be a multiple of {limit}"
-    if kind == "enum":
-        return f"must be one of {choices_words(limit)}"
-    if kind == "minItems":
-        return f"must have at least {limit} item{'s' if limit != 1 else ''}"
-    if kind == "maxItems":
-        return f"must have at most {limit} item{'s' if limit != 1 else ''}"
-    if kind == "maxProperties":
-        return f"must have at most {limit} keys"
-    if kind == "uniqueItems":
-        return "must not repeat an item"
-    if kind == "pattern":
-        return f"{'names ' if 'propertyNames' in err.schema_path else ''}must match {limit}"
-    if kind == "maxLength":
-        return f"{'names ' if 'propertyNames' in err.schema_path else ''}must be at most {limit} characters"
-    if kind == "oneOf":
-        return "must be " + choices_words([_alternative(sub) for sub in limit], quote=False)
-    message, head = err.message, repr(err.instance)
-    return message[len(head):].strip() if message.startswith(head) else message
-
-
-def choices_words(values: list[Any], quote: bool = True) -> str:
-    """``a, b or c``: values as a reader writes them (null, not None)."""
-    words = ["null" if v is None else repr(v) if quote and isinstance(v, str) else str(v) for v in values]
-    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
-
-
-def _alternative(schema: Mapping[str, Any]) -> str:
-    """One alternative of a ``oneOf`` in words: ``a number ≥ 0``, ``'pair'``, ``null``."""
-    if "enum" in schema:
-        return choices_words(schema["enum"])
-    kind = schema.get("type")
-    if not isinstance(kind, str):
-        return type_words(schema)
-    bounds = _bound_words(schema)
-    return _ARTICLES.get(kind, kind) + (" " + bounds.strip(" ()").replace(", ", " and ") if bounds else "")
-
-
-def schema_error(err, prefix: str = "") -> GearmeshInputError:
-    """One jsonschema error as the field it is about (``a.b[0]``, an unknown or missing key
-    named itself) and the rule it breaks (:func:`_rule`). A value that fails every alternative of
-    a ``oneOf`` but has the type of exactly one is judged by that one (``speeds_rpm.start``
-    must be positive, not "must be a mapping or a list")."""
-    alternative = _matching_alternative(err)
-    if alternative is not None:
-        return schema_error(alternative, prefix)
-    path = ([prefix] if prefix else []) + list(err.absolute_path)
-    instance = err.instance
-    if err.validator == "additionalProperties" and err.validator_value is False and isinstance(instance, Mapping):
-        extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
-        if extra:
-            rule = unknown_key_rule(extra[0], err.schema.get("properties", {}), "gearmesh schema study --format markdown")
-            if isinstance(extra[0], bool):
-                rule = rule.replace("unknown key", "unknown key (YAML 1.1 reads on/off/yes/no as true/false: quote the "
-                                                   "key, e.g. \"on\")", 1)
-            return GearmeshInputError(_field(path + [str(extra[0])]), instance[extra[0]], rule)
-    if err.validator == "required" and isinstance(instance, Mapping):
-        missing = [k for k in err.validator_value if k not in instance]
-        if missing:
-            return GearmeshInputError(_field(path + [missing[0]]), None, "is required")
-    return GearmeshInputError(_field(path) or "config", instance if path else None, _rule(err))
-
-
-def _matching_alternative(err):
-    """The first error of the one ``oneOf`` alternative whose type the value has, or None."""
-    if err.validator != "oneOf" or not err.context:
-        return None
-    by_alternative: dict[int, list] = {}
-    for sub in err.context:
-        by_alternative.setdefault(sub.relative_schema_path[0], []).append(sub)
-    typed = [subs for subs in by_alternative.values()
-             if not any(e.validator in ("type", "enum") and not e.relative_path for e in subs)]
-    if len(typed) != 1:
-        return None
-    return sorted(typed[0], key=lambda e: (len(e.relative_path), list(map(str, e.relative_path))))[0]
-
-
 def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
     """A copy of ``data`` with the defaults of ``schema`` filled; GearmeshInputError naming the
     first bad field (a NaN or infinite number anywhere, then the schema's first error)."""
@@ -633,63 +538,8 @@ def defaults(cls: type) -> dict[str, Any]:
 
 
 # --------------------------------------------------------------------------------------
-# The words of the rules (error messages and the reference tables of gearmesh.published)
+# The declaration tree: the sections inside a settings class
 # --------------------------------------------------------------------------------------
-
-
-def type_words(schema: Mapping[str, Any]) -> str:
-    """A short reader's description of a schema's type and bounds."""
-    if "oneOf" in schema:
-        return " or ".join(type_words(s) for s in schema["oneOf"])
-    kind = schema.get("type")
-    kinds = [kind] if isinstance(kind, str) else list(kind or [])
-    words = []
-    if "enum" in schema:
-        words.append(" / ".join("null" if v is None else f"`{v}`" for v in schema["enum"]))
-    else:
-        for k in kinds:
-            if k == "array":
-                words.append(_array_words(schema))
-            elif k == "object":
-                values = schema.get("additionalProperties")
-                words.append("mapping" + (f" of {type_words(values)}" if isinstance(values, Mapping) else ""))
-            elif k == "null":
-                words.append("null")
-            else:
-                words.append(k + _bound_words(schema))
-    return " or ".join(words) if words else "any"
-
-
-def _number(value: float) -> str:
-    """A bound as written: integers whole, other numbers short."""
-    return str(value) if isinstance(value, int) else f"{value:g}"
-
-
-def _bound_words(schema: Mapping[str, Any]) -> str:
-    lo = (f"≥ {_number(schema['minimum'])}" if "minimum" in schema else
-          f"> {_number(schema['exclusiveMinimum'])}" if "exclusiveMinimum" in schema else "")
-    hi = (f"≤ {_number(schema['maximum'])}" if "maximum" in schema else
-          f"< {_number(schema['exclusiveMaximum'])}" if "exclusiveMaximum" in schema else "")
-    parts = [p for p in (lo, hi) if p]
-    if "multipleOf" in schema:
-        parts.append(f"multiple of {schema['multipleOf']}")
-    if "pattern" in schema:
-        parts.append(f"matching `{schema['pattern']}`")
-    if "maxLength" in schema:
-        parts.append(f"at most {schema['maxLength']} characters")
-    return f" ({', '.join(parts)})" if parts else ""
-
-
-def _array_words(schema: Mapping[str, Any]) -> str:
-    lo, hi = schema.get("minItems"), schema.get("maxItems")
-    count = (f"{lo}" if lo is not None and lo == hi else f"{lo}–{hi}" if lo is not None and hi is not None
-             else f"≥ {lo}" if lo is not None else f"≤ {hi}" if hi is not None else "")
-    item = type_words(schema.get("items", {}))
-    head, _, rest = item.partition(" ")
-    if head in ("integer", "number", "string", "list", "mapping"):
-        item = f"{head}s{' ' + rest if rest else ''}"
-    unique = ", distinct" if schema.get("uniqueItems") else ""
-    return f"list of {count + ' ' if count else ''}{item}{unique}"
 
 
 def holds_section(cls: type, field: dataclasses.Field) -> bool:
