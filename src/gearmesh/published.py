@@ -17,7 +17,7 @@ import yaml
 from .pair_keys import PairFile, pair_schema
 from .schema import (default_of, description_of, field_schema, has_default, holds_section, key_of, nested_sections,
                      section_type, settings_fields, spec_of, units_of)
-from .schema_words import choices_words, type_words
+from .schema_rules import choices_words, type_words
 from .settings import Study, study_schema
 
 #: The header of a published file: the module whose declarations it renders (``{source}``) and the command.
