@@ -15,8 +15,9 @@ from typing import Any
 import yaml
 
 from .pair_keys import PairFile, pair_schema
-from .schema import (choices_words, default_of, description_of, field_schema, has_default, holds_section, key_of,
-                     nested_sections, section_type, settings_fields, spec_of, type_words, units_of)
+from .schema import (default_of, description_of, field_schema, has_default, holds_section, key_of, nested_sections,
+                     section_type, settings_fields, spec_of, units_of)
+from .schema_rules import choices_words, type_words
 from .settings import Study, study_schema
 
 #: The header of a published file: the module whose declarations it renders (``{source}``) and the command.

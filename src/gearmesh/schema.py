@@ -7,7 +7,11 @@ default, bounds and description. From that one declaration come
   (``gearmesh validate``, the Snakefile and editors through the published schema files);
 * the refusal of a bad argument of a stage function (:func:`check_arguments`), with the same
   bounds, so the Python API, the CLI and a study config refuse the same values;
-* the reference table of every key (:func:`markdown_table`, ``config/README.md``).
+* the reference table of every key (:func:`gearmesh.published.markdown_table`, ``config/README.md``).
+
+The checks gearmesh makes before jsonschema (counts, finite numbers) and the words of a rule (a
+refused value's message, the reference tables' type column) live in
+:mod:`gearmesh.schema_rules`.
 
 Types map to JSON schema as: ``int`` → integer, ``float`` → number, ``bool`` → boolean,
 ``str`` → string, ``Literal[...]`` → enum, ``tuple[X, ...]`` → array of X, ``tuple[X, X]``
@@ -23,14 +27,14 @@ import copy
 import dataclasses
 import functools
 import inspect
-import math
 import types
 import typing
 from collections.abc import Mapping
 from typing import Any, Callable, Literal, Union
 
-from .errors import GearmeshInputError, unknown_key_rule
+from .errors import GearmeshInputError
 from .limits import MAX_LIST_ITEMS
+from .schema_rules import check_counts, filling_validator, first_non_finite, schema_error
 
 #: Key of a field's :class:`Spec` in ``dataclasses.field(metadata=...)``.
 SPEC = "gearmesh"
@@ -68,17 +72,27 @@ class Spec:
 
 
 def setting(default: Any = REQUIRED, description: str = "", **spec: Any) -> Any:
-    """A dataclass field declaring one setting: ``default`` (:data:`REQUIRED`: must be given),
-    a ``description`` (a sentence fragment: what it is, what null or a special value means) and
-    the keywords of :class:`Spec`:
+    """A dataclass field declaring one setting: its default, description and :class:`Spec`.
 
-    units : shown in the reference table; by default from the key's suffix (:data:`UNIT_SUFFIXES`).
-    minimum, maximum, exclusive_minimum, exclusive_maximum, multiple_of : numeric bounds.
-    min_items, max_items, unique : of the outermost array.
-    pattern, max_length : of the strings; key_pattern, key_max_length : of a mapping's keys.
-    key : the key in the document when it is not a Python name (``from``).
-    fill : False when leaving the key out means something of its own (the schema fills no
-        default, and null is not accepted); the Python default is then None.
+    Parameters
+    ----------
+    default : object, default REQUIRED
+        :data:`REQUIRED`: must be given; a dict, list or set is copied for each instance.
+    description : str, default ""
+        A sentence fragment: what it is, what null or a special value means.
+    **spec
+        The keywords of :class:`Spec`. ``units``: shown in the reference table; by default from the
+        key's suffix (:data:`UNIT_SUFFIXES`). ``minimum``, ``maximum``, ``exclusive_minimum``,
+        ``exclusive_maximum``, ``multiple_of``: numeric bounds. ``min_items``, ``max_items``,
+        ``unique``: of the outermost array. ``pattern``, ``max_length``: of the strings;
+        ``key_pattern``, ``key_max_length``: of a mapping's keys. ``key``: the key in the document
+        when it is not a Python name (``from``). ``fill``: False when leaving the key out means
+        something of its own (no default filled, null not accepted; the Python default is None).
+
+    Returns
+    -------
+    dataclasses.Field
+        The field, its :class:`Spec` in ``metadata[SPEC]``.
     """
     meta = {SPEC: Spec(description=" ".join(description.split()), **spec)}
     if default is REQUIRED:
@@ -94,31 +108,94 @@ def setting(default: Any = REQUIRED, description: str = "", **spec: Any) -> Any:
 
 
 def spec_of(field: dataclasses.Field) -> Spec:
+    """What a setting declares beyond its type and default.
+
+    Parameters
+    ----------
+    field : dataclasses.Field
+        A setting (:func:`setting`).
+
+    Returns
+    -------
+    Spec
+    """
     return field.metadata[SPEC]
 
 
 def key_of(field: dataclasses.Field) -> str:
-    """The field's key in the document."""
+    """The field's key in the document.
+
+    Parameters
+    ----------
+    field : dataclasses.Field
+
+    Returns
+    -------
+    str
+        ``Spec.key``, else the field's name.
+    """
     return spec_of(field).key or field.name
 
 
 def settings_fields(cls: type) -> list[dataclasses.Field]:
-    """The settings of dataclass ``cls``, in declaration order."""
+    """The settings of dataclass ``cls``, in declaration order.
+
+    Parameters
+    ----------
+    cls : type
+        A settings dataclass.
+
+    Returns
+    -------
+    list of dataclasses.Field
+    """
     return [f for f in dataclasses.fields(cls) if SPEC in f.metadata]
 
 
 @functools.cache
 def type_hints(cls: type) -> dict[str, Any]:
+    """The resolved annotations of ``cls`` (``typing.get_type_hints``), once per class.
+
+    Parameters
+    ----------
+    cls : type
+
+    Returns
+    -------
+    dict
+        Field name → Python type.
+    """
     return typing.get_type_hints(cls)
 
 
 def has_default(field: dataclasses.Field) -> bool:
+    """Whether a setting has a default (a value or a factory), i.e. may be left out.
+
+    Parameters
+    ----------
+    field : dataclasses.Field
+
+    Returns
+    -------
+    bool
+    """
     return field.default is not dataclasses.MISSING or field.default_factory is not dataclasses.MISSING
 
 
 def default_of(field: dataclasses.Field) -> Any:
     """The field's default as a document value: tuples as lists, a settings object that is all
-    its own defaults as ``{}`` (they are filled inside it), any other in full."""
+    its own defaults as ``{}`` (they are filled inside it), any other in full.
+
+    Parameters
+    ----------
+    field : dataclasses.Field
+        A setting with a default (:func:`has_default`).
+
+    Returns
+    -------
+    object
+        JSON data (:func:`jsonable`).
+    """
     value = field.default_factory() if field.default is dataclasses.MISSING else field.default
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         try:
@@ -131,7 +208,18 @@ def default_of(field: dataclasses.Field) -> Any:
 
 def jsonable(value: Any) -> Any:
     """``value`` as JSON data: tuples and arrays as lists, numpy scalars as Python numbers,
-    mappings as dicts, a settings object as the mapping of its keys."""
+    mappings as dicts, a settings object as the mapping of its keys.
+
+    Parameters
+    ----------
+    value : object
+        Any value of a document or of an API call.
+
+    Returns
+    -------
+    object
+        The same value of JSON types (dict, list, str, int, float, bool, None).
+    """
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return {key_of(f): jsonable(getattr(value, f.name)) for f in settings_fields(type(value))}
     if isinstance(value, Mapping):
@@ -145,7 +233,17 @@ def jsonable(value: Any) -> Any:
 
 def units_of(field: dataclasses.Field) -> str:
     """The units of a setting: declared, or from its key's suffix, else '' (a count, a name or
-    a dimensionless number)."""
+    a dimensionless number).
+
+    Parameters
+    ----------
+    field : dataclasses.Field
+
+    Returns
+    -------
+    str
+        The units as the reference table shows them (``N m``, ``µm``, ``°``).
+    """
     spec = spec_of(field)
     if spec.units is not None:
         return spec.units
@@ -170,7 +268,34 @@ def _numeric(spec: Spec) -> dict[str, Any]:
 
 
 def type_schema(tp: Any, spec: Spec, outer: bool = True) -> dict[str, Any]:
-    """JSON schema of Python type ``tp`` with the constraints of ``spec`` (module docstring)."""
+    """JSON schema of Python type ``tp`` with the constraints of ``spec`` (module docstring).
+
+    Parameters
+    ----------
+    tp : type
+        A setting's annotation (``float``, ``tuple[float, ...]``, ``X | None``, a dataclass ...).
+    spec : Spec
+        Its declaration: bounds, counts, patterns.
+    outer : bool, default True
+        Whether ``tp`` is the setting's own type (item counts and key patterns apply there only).
+
+    Returns
+    -------
+    dict
+        The schema; every list and mapping capped at ``MAX_LIST_ITEMS`` (:mod:`gearmesh.limits`).
+
+    Raises
+    ------
+    TypeError
+        A type with no JSON schema, or a fixed-length tuple of mixed item types.
+
+    References
+    ----------
+    .. [1] A. Wright, H. Andrews, B. Hutton, "JSON Schema Validation: A Vocabulary for Structural Validation
+       of JSON", IETF draft-bhutton-json-schema-validation-00 (JSON Schema 2020-12), 2020, section 6.
+    .. [2] A. Wright, H. Andrews, B. Hutton, G. Dennis, "JSON Schema: A Media Type for Describing JSON
+       Documents", IETF draft-bhutton-json-schema-00 (JSON Schema 2020-12), 2020, section 10.
+    """
     origin, args = typing.get_origin(tp), typing.get_args(tp)
     if tp is Any:
         return {}
@@ -235,7 +360,18 @@ def _with_null(schema: dict[str, Any]) -> dict[str, Any]:
 
 
 def field_schema(cls: type, field: dataclasses.Field) -> dict[str, Any]:
-    """JSON schema of one setting of ``cls``: type, bounds, description and default."""
+    """JSON schema of one setting of ``cls``: type, bounds, description and default.
+
+    Parameters
+    ----------
+    cls : type
+    field : dataclasses.Field
+
+    Returns
+    -------
+    dict
+        Its :func:`type_schema`, ``description`` and ``default`` (:func:`default_of`; none where ``fill`` is False).
+    """
     spec = spec_of(field)
     tp = type_hints(cls)[field.name]
     if not spec.fill:  # absent means "not given": the key may be left out, not set to null
@@ -255,7 +391,17 @@ def object_schema(cls: type) -> dict[str, Any]:
     """JSON schema of settings dataclass ``cls``: no unknown key, its required keys, each
     setting's :func:`field_schema`, and at most one key of each group of its ``ALTERNATIVES``
     (keys that give the same quantity) other than null; described by the first paragraph of its
-    docstring."""
+    docstring.
+
+    Parameters
+    ----------
+    cls : type
+
+    Returns
+    -------
+    dict
+        An ``object`` schema: ``additionalProperties`` false, ``required``, ``properties``, ``allOf``.
+    """
     fields = settings_fields(cls)
     out: dict[str, Any] = {"type": "object", "additionalProperties": False}
     doc = description_of(cls)
@@ -274,7 +420,17 @@ def object_schema(cls: type) -> dict[str, Any]:
 
 
 def description_of(cls: type) -> str:
-    """The first paragraph of ``cls``'s own docstring, on one line."""
+    """The first paragraph of ``cls``'s own docstring, on one line.
+
+    Parameters
+    ----------
+    cls : type
+        A class (its own docstring: none inherited).
+
+    Returns
+    -------
+    str
+    """
     doc = cls.__dict__.get("__doc__") or ""
     return " ".join(inspect.cleandoc(doc).split("\n\n")[0].split())
 
@@ -284,142 +440,32 @@ def description_of(cls: type) -> str:
 # --------------------------------------------------------------------------------------
 
 
-@functools.lru_cache(maxsize=None)
-def _with_defaults(validator_class):
-    """A validator that fills ``default`` values while it validates (jsonschema FAQ recipe); the
-    class made once per validator class (making one costs a millisecond, and every setting checked
-    made one)."""
-    validate_properties = validator_class.VALIDATORS["properties"]
-
-    def set_defaults(validator, properties, instance, schema):
-        if isinstance(instance, dict):
-            for name, sub in properties.items():
-                if "default" in sub and name not in instance:
-                    instance[name] = copy.deepcopy(sub["default"])
-        yield from validate_properties(validator, properties, instance, schema)
-
-    import jsonschema
-
-    return jsonschema.validators.extend(validator_class, {"properties": set_defaults})
-
-
-def first_non_finite(data: Any, path: str = "") -> tuple[str, float] | None:
-    """The path and value of the first NaN or infinite number in nested data (JSON schema
-    numbers accept both; no setting may be either)."""
-    stack = [(path, data)]
-    while stack:
-        where, value = stack.pop()
-        if isinstance(value, float) and not math.isfinite(value):
-            return where or "config", value
-        if isinstance(value, Mapping):
-            stack += [(f"{where}.{k}" if where else str(k), v) for k, v in reversed(list(value.items()))]
-        elif isinstance(value, (list, tuple)):
-            stack += [(f"{where}[{i}]", v) for i, v in reversed(list(enumerate(value)))]
-    return None
-
-
-def _field(parts: list[Any]) -> str:
-    """A key path as the error names it: ``optimise.best.modify[0]``."""
-    out = ""
-    for p in parts:
-        out += f"[{p}]" if isinstance(p, int) else (f".{p}" if out else str(p))
-    return out
-
-
-_ARTICLES = {"integer": "an integer", "number": "a number", "string": "a string", "array": "a list",
-             "object": "a mapping", "boolean": "true or false", "null": "null"}
-
-
-def _rule(err) -> str:
-    """The rule a jsonschema error says was broken, in the words of the reference tables."""
-    kind, limit = err.validator, err.validator_value
-    if kind == "type":
-        kinds = [limit] if isinstance(limit, str) else list(limit)
-        return "must be " + " or ".join(_ARTICLES.get(k, k) for k in kinds)
-    words = {"minimum": "at least", "maximum": "at most", "exclusiveMinimum": "above", "exclusiveMaximum": "below"}
-    if kind in words:
-        return "must be positive" if kind == "exclusiveMinimum" and limit == 0 else f"must be {words[kind]} {_number(limit)}"
-    if kind == "multipleOf":
-        return f"must be a multiple of {limit}"
-    if kind == "enum":
-        return f"must be one of {choices_words(limit)}"
-    if kind == "minItems":
-        return f"must have at least {limit} item{'s' if limit != 1 else ''}"
-    if kind == "maxItems":
-        return f"must have at most {limit} item{'s' if limit != 1 else ''}"
-    if kind == "maxProperties":
-        return f"must have at most {limit} keys"
-    if kind == "uniqueItems":
-        return "must not repeat an item"
-    if kind == "pattern":
-        return f"{'names ' if 'propertyNames' in err.schema_path else ''}must match {limit}"
-    if kind == "maxLength":
-        return f"{'names ' if 'propertyNames' in err.schema_path else ''}must be at most {limit} characters"
-    if kind == "oneOf":
-        return "must be " + choices_words([_alternative(sub) for sub in limit], quote=False)
-    message, head = err.message, repr(err.instance)
-    return message[len(head):].strip() if message.startswith(head) else message
-
-
-def choices_words(values: list[Any], quote: bool = True) -> str:
-    """``a, b or c``: values as a reader writes them (null, not None)."""
-    words = ["null" if v is None else repr(v) if quote and isinstance(v, str) else str(v) for v in values]
-    return words[0] if len(words) == 1 else ", ".join(words[:-1]) + " or " + words[-1]
-
-
-def _alternative(schema: Mapping[str, Any]) -> str:
-    """One alternative of a ``oneOf`` in words: ``a number ≥ 0``, ``'pair'``, ``null``."""
-    if "enum" in schema:
-        return choices_words(schema["enum"])
-    kind = schema.get("type")
-    if not isinstance(kind, str):
-        return type_words(schema)
-    bounds = _bound_words(schema)
-    return _ARTICLES.get(kind, kind) + (" " + bounds.strip(" ()").replace(", ", " and ") if bounds else "")
-
-
-def schema_error(err, prefix: str = "") -> GearmeshInputError:
-    """One jsonschema error as the field it is about (``a.b[0]``, an unknown or missing key
-    named itself) and the rule it breaks (:func:`_rule`). A value that fails every alternative of
-    a ``oneOf`` but has the type of exactly one is judged by that one (``speeds_rpm.start``
-    must be positive, not "must be a mapping or a list")."""
-    alternative = _matching_alternative(err)
-    if alternative is not None:
-        return schema_error(alternative, prefix)
-    path = ([prefix] if prefix else []) + list(err.absolute_path)
-    instance = err.instance
-    if err.validator == "additionalProperties" and err.validator_value is False and isinstance(instance, Mapping):
-        extra = sorted((k for k in instance if k not in err.schema.get("properties", {})), key=str)
-        if extra:
-            rule = unknown_key_rule(extra[0], err.schema.get("properties", {}), "gearmesh schema study --format markdown")
-            if isinstance(extra[0], bool):
-                rule = rule.replace("unknown key", "unknown key (YAML 1.1 reads on/off/yes/no as true/false: quote the "
-                                                   "key, e.g. \"on\")", 1)
-            return GearmeshInputError(_field(path + [str(extra[0])]), instance[extra[0]], rule)
-    if err.validator == "required" and isinstance(instance, Mapping):
-        missing = [k for k in err.validator_value if k not in instance]
-        if missing:
-            return GearmeshInputError(_field(path + [missing[0]]), None, "is required")
-    return GearmeshInputError(_field(path) or "config", instance if path else None, _rule(err))
-
-
-def _matching_alternative(err):
-    """The first error of the one ``oneOf`` alternative whose type the value has, or None."""
-    if err.validator != "oneOf" or not err.context:
-        return None
-    by_alternative: dict[int, list] = {}
-    for sub in err.context:
-        by_alternative.setdefault(sub.relative_schema_path[0], []).append(sub)
-    typed = [subs for subs in by_alternative.values()
-             if not any(e.validator in ("type", "enum") and not e.relative_path for e in subs)]
-    if len(typed) != 1:
-        return None
-    return sorted(typed[0], key=lambda e: (len(e.relative_path), list(map(str, e.relative_path))))[0]
-
-
 def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "") -> dict[str, Any]:
     """A copy of ``data`` with the defaults of ``schema`` filled; GearmeshInputError naming the
-    first bad field (a NaN or infinite number anywhere, then the schema's first error)."""
+    first bad field (a NaN or infinite number anywhere, then the schema's first error).
+
+    Parameters
+    ----------
+    data : Mapping
+        The document (a config section, a pair file, an API call's keywords).
+    schema : Mapping
+        Its JSON schema (:func:`object_schema`).
+    prefix : str, default ""
+        The key path of ``data`` in its file: bad fields are named ``prefix.KEY``.
+
+    Returns
+    -------
+    dict
+        The validated copy as JSON data, defaults filled at every depth
+        (:func:`gearmesh.schema_rules.filling_validator`).
+
+    Raises
+    ------
+    GearmeshInputError
+        ``field`` the key path of the first bad value: a list or mapping over its count
+        (:func:`gearmesh.schema_rules.check_counts`), a NaN or infinite number ("must be a finite
+        number"), then the first schema error, shallowest first (:func:`gearmesh.schema_rules.schema_error`).
+    """
     import jsonschema
 
     check_counts(data, schema, prefix)  # O(1) per list before any list is read through
@@ -427,7 +473,7 @@ def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "
     if bad:
         raise GearmeshInputError(bad[0], bad[1], "must be a finite number")
     out = copy.deepcopy(jsonable(dict(data)))
-    validator = _with_defaults(jsonschema.Draft202012Validator)(schema)
+    validator = filling_validator(jsonschema.Draft202012Validator)(schema)
     errors = sorted(validator.iter_errors(out), key=lambda e: (len(e.path), list(map(str, e.path))))
     if errors:
         raise schema_error(errors[0], prefix)
@@ -437,7 +483,16 @@ def validate(data: Mapping[str, Any], schema: Mapping[str, Any], prefix: str = "
 
 
 def section_keys(cls: type) -> tuple[str, ...]:
-    """The config keys of settings class ``cls``'s section (its fields' names in the config)."""
+    """The config keys of settings class ``cls``'s section (its fields' names in the config).
+
+    Parameters
+    ----------
+    cls : type
+
+    Returns
+    -------
+    tuple of str
+    """
     return tuple(key_of(f) for f in settings_fields(cls))
 
 
@@ -445,7 +500,25 @@ def settings_object(cls: type, data: Mapping[str, Any] | None, prefix: str = "")
     """``data`` (a study's section, or the keywords of an API call) as the frozen settings object
     ``cls``: validated against its declaration with its defaults filled (:func:`validate`; a bad
     value named ``prefix.KEY``), lists as tuples, a nested section as its own object. The one parse
-    of a section that every door shares."""
+    of a section that every door shares.
+
+    Parameters
+    ----------
+    cls : type
+    data : Mapping or None
+        The section (None: all defaults).
+    prefix : str, default ""
+        The section's key path in its file (``optimise``).
+
+    Returns
+    -------
+    cls
+
+    Raises
+    ------
+    GearmeshInputError
+        ``field`` ``prefix.KEY`` of the first bad value (:func:`validate`).
+    """
     return _settings_instance(cls, validate(data or {}, object_schema(cls), prefix))
 
 
@@ -474,45 +547,23 @@ def _frozen(value: Any) -> Any:
     return value
 
 
-def _alternatives(schema: Mapping[str, Any]) -> list[Mapping[str, Any]]:
-    return [schema, *schema.get("oneOf", ()), *schema.get("anyOf", ())]
-
-
-def check_counts(data: Any, schema: Mapping[str, Any], prefix: str = "") -> None:
-    """Refuse a list with more items (a mapping with more keys) than ``schema`` allows anywhere
-    in ``data``, measuring each by its length before reading any item (GearmeshInputError naming
-    the field and the count), so a list of 10⁷ values costs no more to refuse than one of 10³.
-    Items are visited only inside lists already within their limit."""
-    stack = [(prefix, data, schema)]
-    while stack:
-        where, value, sub = stack.pop()
-        if not isinstance(sub, Mapping):
-            continue
-        field = where or "config"
-        if isinstance(value, Mapping):
-            limits = [a["maxProperties"] for a in _alternatives(sub) if "maxProperties" in a]
-            if limits and len(value) > max(limits):
-                raise GearmeshInputError(field, f"{len(value)} keys", f"must have at most {max(limits)} keys "
-                                         "(gearmesh.limits)")
-            for alt in _alternatives(sub):
-                props, extra = alt.get("properties", {}), alt.get("additionalProperties")
-                for key, item in value.items():
-                    inner = props.get(key, extra if isinstance(extra, Mapping) else None)
-                    if inner is not None:
-                        stack.append((f"{where}.{key}" if where else str(key), item, inner))
-        elif isinstance(value, (list, tuple)) or (hasattr(value, "__len__") and hasattr(value, "shape")):
-            limits = [a["maxItems"] for a in _alternatives(sub) if "maxItems" in a]
-            if limits and len(value) > max(limits):
-                raise GearmeshInputError(field, f"{len(value)} items", f"must have at most {max(limits)} items "
-                                         "(gearmesh.limits)")
-            items = next((a["items"] for a in _alternatives(sub) if isinstance(a.get("items"), Mapping)), None)
-            if items is not None and isinstance(value, (list, tuple)):
-                stack += [(f"{where}[{k}]", v, items) for k, v in enumerate(value)]
-
-
 def check_value(cls: type, key: str, value: Any) -> None:
     """Refuse ``value`` of setting ``key`` of ``cls`` unless its declaration accepts it
-    (GearmeshInputError naming the key)."""
+    (GearmeshInputError naming the key).
+
+    Parameters
+    ----------
+    cls : type
+    key : str
+        The setting's key in the document (:func:`key_of`).
+    value : object
+        The value given.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``field`` ``key`` (or a path inside it), ``rule`` the bound it breaks (:func:`validate`).
+    """
     field = next(f for f in settings_fields(cls) if key_of(f) == key)
     schema = {"type": "object", "properties": {key: field_schema(cls, field)}}
     validate({key: value}, schema)
@@ -522,18 +573,33 @@ def check_arguments(cls: type, exclude: tuple[str, ...] = ()) -> Callable[[Calla
     """Decorator of a function whose keyword arguments are the settings of ``cls``: the one
     declaration gives their defaults and their checks.
 
-    * A setting the function names without a default (keyword-only) takes the declared one
-      when the caller leaves it out; the function's ``__signature__`` shows it. A default
-      written in the signature as well must be the declared one (TypeError at import
-      otherwise), so the two cannot differ.
+    * A setting the function names without a default (keyword-only) takes the declared one when the
+      caller leaves it out; the function's ``__signature__`` shows it. A default written in the
+      signature as well must be the declared one (TypeError at import otherwise), so the two cannot differ.
     * Arguments given are checked against their declarations before the function runs
-      (:func:`check_value`), so the API refuses what the schema refuses, with the same bounds;
-      ``exclude`` (keys the function checks itself: a section it parses whole) is left to the
-      function.
+      (:func:`check_value`), so the API refuses what the schema refuses, with the same bounds.
     * The stage's own function (``cls.STAGE.function``, :mod:`gearmesh.stages`) must take every
       setting, each result it reads and each section it carries (TypeError at import).
     * Another pair's upstream dataset is refused (:mod:`gearmesh.upstream`) and the result is
-      stamped with the pair it was computed for."""
+      stamped with the pair it was computed for.
+
+    Parameters
+    ----------
+    cls : type
+    exclude : tuple of str, default ()
+        Keys the function checks itself (a section it parses whole): left to the function.
+
+    Returns
+    -------
+    callable
+        The decorator; the function it returns carries ``__settings__ = cls``.
+
+    Raises
+    ------
+    GearmeshInputError
+        At a call: ``field`` the argument's key, ``rule`` the bound it breaks (:func:`check_value`).
+        (TypeError at import: the rules above.)
+    """
     fields = {key_of(f): f for f in settings_fields(cls)}
     keys = set(fields) - set(exclude)
     stage = getattr(cls, "STAGE", None)
@@ -623,7 +689,17 @@ def _is_dataset(value: Any) -> bool:
 
 def defaults(cls: type) -> dict[str, Any]:
     """The filled defaults of settings dataclass ``cls`` as a document (keys that must be given
-    and keys without a default are left out)."""
+    and keys without a default are left out).
+
+    Parameters
+    ----------
+    cls : type
+
+    Returns
+    -------
+    dict
+        Key → default as JSON data; a nested section as its own defaults.
+    """
     out = {}
     for f in settings_fields(cls):
         if has_default(f) and spec_of(f).fill:
@@ -632,68 +708,19 @@ def defaults(cls: type) -> dict[str, Any]:
     return out
 
 
-# --------------------------------------------------------------------------------------
-# The words of the rules (error messages and the reference tables of gearmesh.published)
-# --------------------------------------------------------------------------------------
-
-
-def type_words(schema: Mapping[str, Any]) -> str:
-    """A short reader's description of a schema's type and bounds."""
-    if "oneOf" in schema:
-        return " or ".join(type_words(s) for s in schema["oneOf"])
-    kind = schema.get("type")
-    kinds = [kind] if isinstance(kind, str) else list(kind or [])
-    words = []
-    if "enum" in schema:
-        words.append(" / ".join("null" if v is None else f"`{v}`" for v in schema["enum"]))
-    else:
-        for k in kinds:
-            if k == "array":
-                words.append(_array_words(schema))
-            elif k == "object":
-                values = schema.get("additionalProperties")
-                words.append("mapping" + (f" of {type_words(values)}" if isinstance(values, Mapping) else ""))
-            elif k == "null":
-                words.append("null")
-            else:
-                words.append(k + _bound_words(schema))
-    return " or ".join(words) if words else "any"
-
-
-def _number(value: float) -> str:
-    """A bound as written: integers whole, other numbers short."""
-    return str(value) if isinstance(value, int) else f"{value:g}"
-
-
-def _bound_words(schema: Mapping[str, Any]) -> str:
-    lo = (f"≥ {_number(schema['minimum'])}" if "minimum" in schema else
-          f"> {_number(schema['exclusiveMinimum'])}" if "exclusiveMinimum" in schema else "")
-    hi = (f"≤ {_number(schema['maximum'])}" if "maximum" in schema else
-          f"< {_number(schema['exclusiveMaximum'])}" if "exclusiveMaximum" in schema else "")
-    parts = [p for p in (lo, hi) if p]
-    if "multipleOf" in schema:
-        parts.append(f"multiple of {schema['multipleOf']}")
-    if "pattern" in schema:
-        parts.append(f"matching `{schema['pattern']}`")
-    if "maxLength" in schema:
-        parts.append(f"at most {schema['maxLength']} characters")
-    return f" ({', '.join(parts)})" if parts else ""
-
-
-def _array_words(schema: Mapping[str, Any]) -> str:
-    lo, hi = schema.get("minItems"), schema.get("maxItems")
-    count = (f"{lo}" if lo is not None and lo == hi else f"{lo}–{hi}" if lo is not None and hi is not None
-             else f"≥ {lo}" if lo is not None else f"≤ {hi}" if hi is not None else "")
-    item = type_words(schema.get("items", {}))
-    head, _, rest = item.partition(" ")
-    if head in ("integer", "number", "string", "list", "mapping"):
-        item = f"{head}s{' ' + rest if rest else ''}"
-    unique = ", distinct" if schema.get("uniqueItems") else ""
-    return f"list of {count + ' ' if count else ''}{item}{unique}"
-
-
 def holds_section(cls: type, field: dataclasses.Field) -> bool:
-    """Whether a field holds one settings object (directly or optionally), not a mapping of them."""
+    """Whether a field holds one settings object (directly or optionally), not a mapping of them.
+
+    Parameters
+    ----------
+    cls : type
+    field : dataclasses.Field
+
+    Returns
+    -------
+    bool
+        True for ``X`` or ``X | None`` with ``X`` a dataclass.
+    """
     tp = type_hints(cls)[field.name]
     members = typing.get_args(tp) if typing.get_origin(tp) in (Union, types.UnionType) else (tp,)
     return any(dataclasses.is_dataclass(m) for m in members)
@@ -701,7 +728,17 @@ def holds_section(cls: type, field: dataclasses.Field) -> bool:
 
 def section_type(cls: type, field: dataclasses.Field) -> type | None:
     """The settings dataclass a field holds (directly, optionally, or as the values of a
-    mapping of named entries), else None."""
+    mapping of named entries), else None.
+
+    Parameters
+    ----------
+    cls : type
+    field : dataclasses.Field
+
+    Returns
+    -------
+    type or None
+    """
     tp = type_hints(cls)[field.name]
     for candidate in (tp, *typing.get_args(tp)):
         if dataclasses.is_dataclass(candidate):
@@ -714,7 +751,19 @@ def section_type(cls: type, field: dataclasses.Field) -> type | None:
 
 def nested_sections(cls: type, prefix: str = "") -> list[tuple[str, type]]:
     """(key path, dataclass) of every settings object inside ``cls``, depth first; a mapping of
-    named entries appears as ``KEY.NAME``."""
+    named entries appears as ``KEY.NAME``.
+
+    Parameters
+    ----------
+    cls : type
+    prefix : str, default ""
+        Put before every path (``KEY.``).
+
+    Returns
+    -------
+    list of (str, type)
+        Key path and settings dataclass of each section.
+    """
     out = []
     for f in settings_fields(cls):
         sub = section_type(cls, f)
@@ -727,7 +776,19 @@ def nested_sections(cls: type, prefix: str = "") -> list[tuple[str, type]]:
 
 
 def all_keys(cls: type, prefix: str = "") -> list[str]:
-    """Every key path of ``cls`` and its nested settings (``a.b.c``; named entries as ``NAME``)."""
+    """Every key path of ``cls`` and its nested settings (``a.b.c``; named entries as ``NAME``).
+
+    Parameters
+    ----------
+    cls : type
+    prefix : str, default ""
+        Put before every path.
+
+    Returns
+    -------
+    list of str
+        The key paths, ``cls``'s own first.
+    """
     keys = [f"{prefix}{key_of(f)}" for f in settings_fields(cls)]
     for path, sub in nested_sections(cls, prefix):
         keys += [f"{path}.{key_of(f)}" for f in settings_fields(sub)]
