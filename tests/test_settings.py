@@ -96,7 +96,7 @@ def test_a_second_declaration_of_a_default_is_refused_at_import():
     imported: a signature default other than the declared one, a setting without a default
     that is not keyword-only, and a stage function that does not take every setting, every
     result its stage reads and every section it carries."""
-    from gearmesh.schema import check_arguments
+    from gearmesh.arguments import check_arguments
     from gearmesh.settings import Ltca
 
     with pytest.raises(TypeError, match="differs from the declared Ltca.positions"):
@@ -263,11 +263,21 @@ def test_tolerances_take_the_declared_defaults():
 # --------------------------------------------------------------------------------------
 
 
-def test_the_pair_schema_has_the_readers_keys():
-    assert {key_of(f) for f in settings_fields(PairFile)} == pairfile._PAIR_KEYS
+def test_the_readers_of_the_pair_file_read_declared_keys():
+    """The pair file is declared once (gearmesh.pair_keys): the reader's key sets are taken from the
+    declaration, and the readers of the gearbox (supports, bodies, deviations) read only declared keys."""
+    from gearmesh.body import BODY_KEYS
+    from gearmesh.deviation import DEVIATION_KEYS
+    from gearmesh.supports import SUPPORT_KEYS
+    from gearmesh.surface import MODIFICATION_FIELDS
+
+    declared = {key_of(f) for f in settings_fields(PairFile)}
+    assert pairfile._PAIR_KEYS == declared
+    assert set(SUPPORT_KEYS) | set(BODY_KEYS) | set(DEVIATION_KEYS) <= declared
     assert {key_of(f) for f in settings_fields(PairFile) if not has_default(f)} == set(pairfile._REQUIRED_KEYS)
     assert {key_of(f) for f in settings_fields(PairMaterial)} == pairfile._MATERIAL_KEYS
-    assert {key_of(f) for f in settings_fields(GearModification)} == set(pairfile._MODIFICATION_KEYS)
+    assert list(pairfile._MODIFICATION_KEYS) == [key_of(f) for f in settings_fields(GearModification)]
+    assert {v[0] for v in pairfile._MODIFICATION_KEYS.values()} == set(MODIFICATION_FIELDS)
 
 
 def _pair_files() -> list[Path]:

@@ -5,20 +5,46 @@ Every key of a pair file is a field of one of the frozen dataclasses below, decl
 are in :mod:`gearmesh.settings`. From them come the pair-file schema for editors
 (:func:`pair_schema`, published as ``schemas/pair.schema.json`` by :mod:`gearmesh.published`)
 and the reference of every key (``gearmesh schema pair --format markdown``). The physics of a
-pair is the reader's (:mod:`gearmesh.gear`), whose constants this module takes; it imports
-no physics.
+pair is the reader's (:mod:`gearmesh.pairfile`, :mod:`gearmesh.gear`), which takes its keys and
+defaults from here; this module imports no physics.
 """
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass
 from typing import Any, ClassVar, Literal
 
 from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
-from .pairfile import _ALTERNATIVE_KEYS, DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN
 from .limits import (BEARING_STIFFNESS, BENDING_FATIGUE_LIMIT, CONTACT_FATIGUE_LIMIT, DENSITY, MAX_LEAD_SLOPE_UM,
                      MODULE_RANGE, ROUGHNESS_RA, ROUGHNESS_RZ, VISCOSITY_40C, VISCOSITY_100C, YOUNGS_MODULUS, Plausible)
 from .schema import REQUIRED, object_schema, setting
+
+
+#: ISO 53:1998 basic rack profiles (α_P = 20°, h_aP = 1.0 m): the dedendum h_fP and root fillet
+#: radius ρ_fP of the rack, in modules — the addendum and tip radius of the hob that generates
+#: the gear (``dedendum_coefficient``, ``tool_tip_radius_coefficient``). A for high torque, B and
+#: C for normal service (smaller fillets), D for gears finished by grinding or shaving.
+ISO53_PROFILES = {"ISO 53 A": (1.25, 0.38), "ISO 53 B": (1.25, 0.30), "ISO 53 C": (1.25, 0.25),
+                  "ISO 53 D": (1.40, 0.39)}
+#: Steel, for a pair file without ``material`` or without one of its keys (given keys override):
+#: E = 206 GPa and ν = 0.3 are the steel of the gear standards, ISO 6336-1:2019 (the single
+#: stiffness c' refers to E_st = 206 000 N/mm²) and ISO 6336-2:2019 (Z_E = √(E/(2π(1 − ν²))) =
+#: 189.8 √(N/mm²) for steel on steel); ρ = 7850 kg/m³ is EN 1993-1-1:2005 §3.2.6 (which gives
+#: E = 210 GPa for structural steel: the gear standards' 206 GPa is taken because the stiffness
+#: and load limits here refer to it). Which keys were filled is stated (:func:`gearmesh.pairfile.pair_notes`).
+DEFAULT_MATERIAL = {"youngs_modulus_GPa": 206.0, "poisson_ratio": 0.3, "density_kg_m3": 7850.0}
+#: Name of a pair: usable as a file name (letters, digits, '_', '-' and '.', not first; no
+#: path characters), short enough to stay far below the 255-byte limit of one path component
+#: (Linux NAME_MAX) with any suffix. Study configs restrict the names they use further (schema).
+NAME_PATTERN = re.compile(r"[A-Za-z0-9_-][A-Za-z0-9_.-]{0,159}")
+#: Keys that say the same thing: at most one of each group may be given (the reader refuses two).
+ALTERNATIVE_KEYS = (
+    ("addendum_coefficient", "tip_diameter_mm"),
+    ("dedendum_coefficient", "root_diameter_mm", "basic_rack_profile"),
+    ("tool_tip_radius_coefficient", "basic_rack_profile"),
+    ("bore_radius_mm", "bore_diameter_mm"),
+)
 
 
 def _within(plausible: Plausible) -> dict[str, float]:
@@ -100,7 +126,7 @@ class PairFile:
     basic_rack_profile for dedendum_coefficient, bore_diameter_mm for bore_radius_mm)."""
 
     #: Keys that give one quantity: at most one of each group (the reader's own list).
-    ALTERNATIVES: ClassVar = _ALTERNATIVE_KEYS
+    ALTERNATIVES: ClassVar = ALTERNATIVE_KEYS
     name: str | None = setting(None, "the pair's name (null or left out: the file name without .yaml; a study's "
                                      "pair library needs the two equal)", pattern=f"^{NAME_PATTERN.pattern}$")
     teeth: tuple[int, int] = setting(REQUIRED, "numbers of teeth [pinion, gear] (external gears)", minimum=5)

@@ -10,45 +10,34 @@ it resolves (ISO 21771:2007 eqs. 45, 47).
 from __future__ import annotations
 
 import math
-import re
 from pathlib import Path
 from typing import Any, Mapping
 
 import numpy as np
 
-from .body import BODY_KEYS, read_body
+from .body import read_body
 from .choices import FZG_LOAD_STAGES, IDLER_GEARS, LIFE_FACTOR_CONDITIONS
-from .deviation import DEVIATION_KEYS, read_deviations
+from .deviation import read_deviations
 from .errors import GearmeshInputError, unknown_key_rule
 from .gear import (GEARS, GearPair, Material, Modification, _number, _resolve_shift_and_center,
                    _transverse_angle_and_radius_sum, check_teeth, material_values)
 from .inputfile import read_yaml
 from .limits import RATING_INPUT_RANGES
-from .supports import SUPPORT_KEYS, read_supports
+from .pair_keys import (DEFAULT_MATERIAL, ISO53_PROFILES, NAME_PATTERN, GearModification, PairFile,
+                        PairMaterial)
+from .schema import has_default, key_of, section_keys, settings_fields
+from .supports import read_supports
 
 # --------------------------------------------------------------------------------------
 # The keys of a pair file
 # --------------------------------------------------------------------------------------
 
-_PAIR_KEYS = {
-    "name", "teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg",
-    "face_width_mm", "profile_shift", "center_distance_mm", "addendum_coefficient",
-    "dedendum_coefficient", "tool_tip_radius_coefficient", "bore_radius_mm", "material",
-    "modification", "helix_hand", "source",
-    "tip_diameter_mm", "root_diameter_mm", "bore_diameter_mm", "basic_rack_profile",  # datasheet alternatives
-    *SUPPORT_KEYS,  # the gearbox: bearings and shafts (gearmesh.supports)
-    *BODY_KEYS,  # the gear bodies' webs and hubs (gearmesh.body)
-    *DEVIATION_KEYS,  # the manufactured gear's deviations (gearmesh.deviation)
-    "accuracy_grade", "roughness_um", "lubricant", "tip_edge_radius_mm",  # load capacity (gearmesh.rating)
-    "life_factor_conditions", "idler_gear",
-}
-#: Keys that say the same thing: at most one of each group may be given (_one_of).
-_ALTERNATIVE_KEYS = (
-    ("addendum_coefficient", "tip_diameter_mm"),
-    ("dedendum_coefficient", "root_diameter_mm", "basic_rack_profile"),
-    ("tool_tip_radius_coefficient", "basic_rack_profile"),
-    ("bore_radius_mm", "bore_diameter_mm"),
-)
+#: The keys of a pair file, of its material and of a gear's modification, and those a pair file must give:
+#: from their declaration (:mod:`gearmesh.pair_keys`), read here, never restated.
+_PAIR_KEYS = frozenset(section_keys(PairFile))
+_REQUIRED_KEYS = tuple(key_of(f) for f in settings_fields(PairFile) if not has_default(f))
+_MATERIAL_KEYS = frozenset(section_keys(PairMaterial))
+_ALTERNATIVE_KEYS = PairFile.ALTERNATIVES
 #: What a valid pair file may leave out that some computations need, and which commands need it:
 #: {key: (what needs it, the commands that do)}. ``gearmesh validate`` names them for a pair that
 #: lacks the key; a command that needs it refuses with :func:`missing_key` (the key to add).
@@ -102,15 +91,6 @@ def missing_needs(pair: "GearPair") -> dict[str, str]:
                  f"{', '.join(commands)}" for key, (what, commands) in OPTIONAL_NEEDS.items() if not given[key]}
 
 
-#: ISO 53:1998 basic rack profiles (α_P = 20°, h_aP = 1.0 m): the dedendum h_fP and root fillet
-#: radius ρ_fP of the rack, in modules — the addendum and tip radius of the hob that generates
-#: the gear (``dedendum_coefficient``, ``tool_tip_radius_coefficient``). A for high torque, B and
-#: C for normal service (smaller fillets), D for gears finished by grinding or shaving.
-ISO53_PROFILES = {"ISO 53 A": (1.25, 0.38), "ISO 53 B": (1.25, 0.30), "ISO 53 C": (1.25, 0.25),
-                  "ISO 53 D": (1.40, 0.39)}
-_REQUIRED_KEYS = ("teeth", "normal_module_mm", "normal_pressure_angle_deg", "helix_angle_deg", "face_width_mm")
-_MATERIAL_KEYS = {"youngs_modulus_GPa", "poisson_ratio", "density_kg_m3", "contact_fatigue_limit_MPa",
-                  "bending_fatigue_limit_MPa"}
 #: Pair-file keys of the load-capacity rating (path in the file → input name of gearmesh.rating, which
 #: fills and names the defaults of those not given). Checked here, on reading, by :func:`check_rating_input`.
 RATING_KEYS = {
@@ -127,29 +107,13 @@ RATING_KEYS = {
     ("life_factor_conditions",): "life_factor_conditions",
     ("idler_gear",): "idler_gear",
 }
-#: Steel, for a pair file without ``material`` or without one of its keys (given keys override):
-#: E = 206 GPa and ν = 0.3 are the steel of the gear standards, ISO 6336-1:2019 (the single
-#: stiffness c' refers to E_st = 206 000 N/mm²) and ISO 6336-2:2019 (Z_E = √(E/(2π(1 − ν²))) =
-#: 189.8 √(N/mm²) for steel on steel); ρ = 7850 kg/m³ is EN 1993-1-1:2005 §3.2.6 (which gives
-#: E = 210 GPa for structural steel: the gear standards' 206 GPa is taken because the stiffness
-#: and load limits here refer to it). Which keys were filled is stated (:func:`pair_notes`).
-DEFAULT_MATERIAL = {"youngs_modulus_GPa": 206.0, "poisson_ratio": 0.3, "density_kg_m3": 7850.0}
-_MODIFICATION_KEYS = {  # file key -> (field, factor to SI)
-    "root_relief_um": ("root_relief", 1e-6),
-    "tip_relief_um": ("tip_relief", 1e-6),
-    "root_relief_length_mm": ("root_relief_length", 1e-3),
-    "tip_relief_length_mm": ("tip_relief_length", 1e-3),
-    "crowning_um": ("crowning", 1e-6),
-    "unmodified_lead_length_mm": ("unmodified_lead_length", 1e-3),
-}
+#: A gear's modification keys (:class:`gearmesh.pair_keys.GearModification`) → (the Modification field, the factor
+#: of the key's unit to SI): the unit is the key's suffix.
+_UNIT_TO_SI = {"um": 1e-6, "mm": 1e-3}
+_MODIFICATION_KEYS = {key: (key.rsplit("_", 1)[0], _UNIT_TO_SI[key.rsplit("_", 1)[1]])
+                      for key in section_keys(GearModification)}
 #: Each modification parameter's engineering unit, as its pair-file key names it ("um" or "mm").
 MODIFICATION_UNITS = {attr: key.rsplit("_", 1)[1] for key, (attr, _) in _MODIFICATION_KEYS.items()}
-
-
-#: Name of a pair: usable as a file name (letters, digits, '_', '-' and '.', not first; no
-#: path characters), short enough to stay far below the 255-byte limit of one path component
-#: (Linux NAME_MAX) with any suffix. Study configs restrict the names they use further (schema).
-NAME_PATTERN = re.compile(r"[A-Za-z0-9_-][A-Za-z0-9_.-]{0,159}")
 
 
 # --------------------------------------------------------------------------------------

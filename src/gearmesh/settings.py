@@ -5,13 +5,13 @@ Every study key is a field of one of the frozen dataclasses below, declared with
 study schema (:func:`study_schema`; published as ``schemas/config.schema.yaml``, linked as
 ``workflow/schemas/``, by :mod:`gearmesh.published`), which ``gearmesh validate`` and the
 Snakefile validate a config with and fill its defaults from; the argument checks of the stage
-functions (:func:`gearmesh.schema.check_arguments`: the API refuses what the schema refuses) and
+functions (:func:`gearmesh.arguments.check_arguments`: the API refuses what the schema refuses) and
 the reference of every key (``config/README.md``). The keys of a pair file are declared beside
 them in :mod:`gearmesh.pair_keys`. ``gearmesh schema`` prints each.
 
 A stage's section also declares the stage (``STAGE``, :class:`gearmesh.stages.Stage`): the
 function that takes its keys as keyword arguments (and its defaults from here, through
-:func:`gearmesh.schema.check_arguments`), the result it writes, the results it reads and the
+:func:`gearmesh.arguments.check_arguments`), the result it writes, the results it reads and the
 figures it draws; the workflow's rules, the study's targets and the upstream checks derive
 from it (:func:`stages`, docs/architecture.md "Each stage declared once"). Every bound is
 this module's or :mod:`gearmesh.limits`'s. Engineering units, the unit in the key name

@@ -9,7 +9,7 @@ category, the tables of the variants (or of the pairs) collected from its result
 (:class:`Torques`, :class:`Speeds`, :class:`Grid`). From that one declaration come
 
 * the study schema, ``gearmesh validate`` and ``config/README.md`` (the settings fields);
-* the stage function's defaults and argument checks (:func:`gearmesh.schema.check_arguments`);
+* the stage function's defaults and argument checks (:func:`gearmesh.arguments.check_arguments`);
 * every Snakemake rule of the study — input, output with the report's caption, category and
   subcategory, log, params, localrule, priority, script — and the study's targets
   (:mod:`gearmesh.plan`, which ``workflow/rules/stages.smk`` turns into rules in one loop);

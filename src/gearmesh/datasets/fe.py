@@ -14,7 +14,8 @@ from ..gear import GEARS, GearPair, pair_geometry
 from ..io import variable
 from ..slice_compliance import tooth_slice_compliance
 from ..tooth import PEM_METHODS, tooth_model
-from ..schema import check_arguments, section_keys, settings_object
+from ..arguments import check_arguments
+from ..schema import section_keys, settings_object
 from ..settings import FeCompliance
 
 

@@ -27,7 +27,8 @@ from ..io import variable
 from ..limits import check_sweep
 from ..profile import tooth_profile
 from ..surface import tooth_surface
-from ..schema import check_arguments, section_keys, settings_object
+from ..arguments import check_arguments
+from ..schema import section_keys, settings_object
 from ..settings import ContactLines, Geometry, HelixSweep, LowFluctuationDesign
 from . import named_pairs
 

@@ -33,7 +33,8 @@ from ..surface import MODIFICATION_FIELDS
 from ..tca import check_modifications
 from ..robust import CRITERIA, CRITERION_UNITS, design_box_worst, gear_criteria, population_units
 from ..tolerance import manufactured_population, study_population, study_tolerances
-from ..schema import check_arguments, section_keys, settings_object
+from ..arguments import check_arguments
+from ..schema import section_keys, settings_object
 from ..settings import Impact
 
 UM = 1e-6

@@ -21,7 +21,8 @@ from ..io import name_force_lines, variable
 from ..limits import check_contact_grid, same_point
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, ltca
 from ..tca import TCAResult, check_modifications, tca
-from ..schema import check_arguments, section_keys, settings_object
+from ..arguments import check_arguments
+from ..schema import section_keys, settings_object
 from ..body import describe_body, mesh_body_compliance
 from ..deflection import describe_deflection
 from ..settings import Ltca, Tca

@@ -25,7 +25,8 @@ from ..limits import check_contact_grid, check_speeds
 from ..ltca import MESH_ORDERS, LTCAResult, loaded_pinion_torques, lte_harmonics, ltca
 from ..rating import check_factors, ltca_load_factors, rated_transverse_factor, rating, rating_inputs
 from ..rating_factors import face_factor_root
-from ..schema import check_arguments, section_keys, settings_object
+from ..arguments import check_arguments
+from ..schema import section_keys, settings_object
 from ..settings import Ltca, Rating
 from .scuffing import scuffing_json, scuffing_of
 from ..stress import ContactStress, contact_stress, iso_root_stress_slices, pair_edge_radius

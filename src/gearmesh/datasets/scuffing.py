@@ -22,7 +22,8 @@ from ..io import variable
 from ..errors import GearmeshInputError
 from ..ltca import LTCAResult
 from ..rating import RatingInputs, rating_inputs
-from ..schema import check_arguments, section_keys, settings_object
+from ..arguments import check_arguments
+from ..schema import section_keys, settings_object
 from ..scuffing import ScuffingRating, scuffing_rating
 from ..settings import Scuffing
 

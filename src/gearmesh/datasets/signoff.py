@@ -50,7 +50,8 @@ import xarray as xr
 from ..errors import GearmeshInputError
 from ..io import variable
 from ..limits import same_point
-from ..schema import check_arguments, section_keys, settings_object
+from ..arguments import check_arguments
+from ..schema import section_keys, settings_object
 from ..settings import Signoff
 from ..stress import edge_pressure_reference
 from ..robust import CRITERION_UNITS

@@ -28,7 +28,8 @@ from ..stiffness import (
     lste,
     mesh_stiffness,
 )
-from ..schema import check_arguments, section_keys, settings_object
+from ..arguments import check_arguments
+from ..schema import section_keys, settings_object
 from ..choices import PEM_TOOTH_METHODS
 from ..settings import SliceConvergence, Stiffness, StiffnessTable
 from . import named_pairs

@@ -110,7 +110,7 @@ def supports_note(pair: GearPair, bearing_k_radial_N_per_m="pair", bearing_k_axi
 #: The declared defaults of the dynamics settings (:class:`gearmesh.settings.Dynamics`).
 _DEFAULTS = defaults(Dynamics)
 #: The keys each settings class declares: a stage function parses them itself, once
-#: (:func:`gearmesh.schema.settings_object`), so :func:`gearmesh.schema.check_arguments` leaves them to it.
+#: (:func:`gearmesh.schema.settings_object`), so :func:`gearmesh.arguments.check_arguments` leaves them to it.
 SECTION_KEYS = {cls: tuple(key_of(f) for f in settings_fields(cls)) for cls in (Dynamics, TrainDynamics)}
 
 

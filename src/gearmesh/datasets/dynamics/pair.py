@@ -23,7 +23,8 @@ from ...limits import MAX_SPEEDS, check_slice_grid, check_speeds, positive_value
 from ...loads import check_load, check_loads
 from ...ltca import with_loaded_extension
 from ...meshforce import MeshForceTable
-from ...schema import check_arguments, settings_object
+from ...arguments import check_arguments
+from ...schema import settings_object
 from ...settings import Dynamics
 from .excitation import (_stiffness_curve, _transmission_error, contact_table, contact_tables, excitation_used,
                          ltca_excitation, model_choices, resolve_excitation)

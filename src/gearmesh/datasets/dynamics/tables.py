@@ -13,7 +13,8 @@ from ...errors import GearmeshInputError
 from .. import one_pair, variant_names
 from ...io import name_force_lines, variable
 from ...limits import same_point
-from ...schema import check_arguments, section_keys, settings_object
+from ...arguments import check_arguments
+from ...schema import section_keys, settings_object
 from ...choices import IMPACT_INDEX
 from ...settings import DynamicsComparison
 

@@ -17,7 +17,8 @@ from ...gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ...io import name_force_lines, variable
 from ...limits import MAX_TRAIN_SPEEDS, check_speeds
 from ...loads import check_load
-from ...schema import check_arguments, defaults, settings_object
+from ...arguments import check_arguments
+from ...schema import defaults, settings_object
 from ...settings import TrainDynamics
 from .excitation import _stiffness_curve, contact_table, excitation_used, model_choices
 from .inputs import (SECTION_KEYS, _backlash, _bearing, _solver, backlash_source, positive_torque, settings_speeds,
