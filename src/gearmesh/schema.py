@@ -5,7 +5,7 @@ default, bounds and description. From that one declaration come
 
 * the JSON schema (:func:`object_schema`) that validates a document and fills its defaults
   (``gearmesh validate``, the Snakefile and editors through the published schema files);
-* the refusal of a bad argument of a stage function (:func:`check_arguments`), with the same
+* the refusal of a bad argument of a stage function (:func:`gearmesh.arguments.check_arguments`), with the same
   bounds, so the Python API, the CLI and a study config refuse the same values;
 * the reference table of every key (:func:`gearmesh.published.markdown_table`, ``config/README.md``).
 
