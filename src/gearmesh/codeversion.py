@@ -34,7 +34,21 @@ def module_file(module: str, root: Path = PACKAGE_ROOT) -> Path | None:
 
     Remembered for the process (the workflow's digests ask for each module about 15 times per
     rule: 15 000 lookups, 0.4 s of Snakemake's start-up otherwise): a module file created or
-    removed during one process is not seen; an edited one is (its digest reads the file)."""
+    removed during one process is not seen; an edited one is (its digest reads the file).
+
+    Parameters
+    ----------
+    module : str
+        Dotted module name, e.g. ``"gearmesh.datasets.ltca"``; a name outside the package gives None.
+    root : Path
+        The package directory (default: this installed package's).
+
+    Returns
+    -------
+    Path or None
+        ``<root>/<sub/path>.py`` or ``<root>/<sub/path>/__init__.py``, whichever exists; None when
+        neither does (a name imported from a module rather than a module).
+    """
     parts = module.split(".")
     if parts[0] != PACKAGE:
         return None
@@ -102,7 +116,22 @@ def _imports(module: str, path: Path, nested: bool = True) -> frozenset[str]:
 def module_closure(module: str, root: Path = PACKAGE_ROOT, shallow: tuple[str, ...] = ()) -> dict[str, Path]:
     """``module`` and every gearmesh module it imports, transitively, with their parent
     packages' ``__init__`` files: {module name: source file}. Modules in ``shallow``
-    contribute only the imports they run at import time (not those inside functions)."""
+    contribute only the imports they run at import time (not those inside functions).
+
+    Parameters
+    ----------
+    module : str
+        Dotted name of the module to start from, e.g. ``"gearmesh.datasets.ltca"``.
+    root : Path
+        The package directory (default: this installed package's).
+    shallow : tuple of str
+        Modules whose imports inside functions are not followed (default: none).
+
+    Returns
+    -------
+    dict of str to Path
+        Every module reached, by dotted name, with its source file.
+    """
     found: dict[str, Path] = {}
     todo = [module]
     while todo:
@@ -133,7 +162,32 @@ def _digest(module: str, root: Path) -> str:
 
 
 def function_digest(spec: str, root: Path = PACKAGE_ROOT) -> str:
-    """sha256 of the sources that the function ``spec`` ("gearmesh.module:function") can run."""
+    """sha256 of the sources that the function ``spec`` ("gearmesh.module:function") can run.
+
+    The module's :func:`module_closure` and that of the glue (:data:`GLUE`, its imports inside
+    functions not followed), each file's name and bytes hashed in name order.
+
+    Parameters
+    ----------
+    spec : str
+        ``"gearmesh.module:function"``; an ``"@digest"`` suffix is ignored.
+    root : Path
+        The package directory (default: this installed package's).
+
+    Returns
+    -------
+    str
+        The 64 hex digits of the sha256.
+
+    Raises
+    ------
+    ValueError
+        ``spec``'s module is not a module of the package under ``root``.
+
+    References
+    ----------
+    .. [1] NIST, Secure Hash Standard (SHS), FIPS PUB 180-4 (2015), §6.2 (SHA-256).
+    """
     module = spec.partition("@")[0].partition(":")[0]
     if module_file(module, root) is None:
         raise ValueError(f"{spec!r} does not name a module of the {PACKAGE} package under {root}")
@@ -160,5 +214,32 @@ class Versioned(str):
 
 
 def versioned(spec: str, root: Path = PACKAGE_ROOT) -> Versioned:
-    """``spec`` with the first 16 hex digits of :func:`function_digest` appended after '@'."""
+    """``spec`` with the first 16 hex digits of :func:`function_digest` appended after '@'.
+
+    What a rule's ``params.function`` holds: Snakemake reruns a job when its params change (the
+    ``params`` rerun trigger, on by default since Snakemake 7.8), so a job reruns exactly when a
+    module its function can run changed.
+
+    Parameters
+    ----------
+    spec : str
+        ``"gearmesh.module:function"``.
+    root : Path
+        The package directory (default: this installed package's).
+
+    Returns
+    -------
+    Versioned
+        ``"gearmesh.module:function@<16 hex digits>"``, shown without the digest.
+
+    Raises
+    ------
+    ValueError
+        ``spec``'s module is not a module of the package under ``root``.
+
+    References
+    ----------
+    .. [1] Snakemake documentation, "Snakefiles and Rules": non-file parameters for rules
+       (``params``); command line interface: ``--rerun-triggers``.
+    """
     return Versioned(f"{spec}@{function_digest(spec, root)[:16]}")
