@@ -90,7 +90,28 @@ WARM_MODULES = ("jsonschema", "netCDF4", "numba", "numpy", "psutil", "pyamg", "p
 def run(smk: Any, entry: str) -> None:
     """Run the job ``smk`` (the Snakemake object of a ``script:`` rule) through the pipeline
     function ``entry`` (e.g. "run_pair_stage"): in a child of the run's server when there is
-    one, here otherwise. Exits with the job's exit code."""
+    one, here otherwise. Exits with the job's exit code.
+
+    Parameters
+    ----------
+    smk : snakemake.script.Snakemake
+        The job's Snakemake object (``input``, ``output``, ``params``, ``log``, ``threads``, ...).
+    entry : str
+        Name of the :mod:`gearmesh.pipeline` function that runs the job, e.g. ``"run_job"``.
+
+    Returns
+    -------
+    None
+        Returns only when the job ran here and succeeded; a job run on the server exits this
+        process with its exit code (``SystemExit``), and a failed job exits non-zero.
+
+    References
+    ----------
+    .. [1] Snakemake documentation, "Snakefiles and Rules": external scripts (the ``script``
+       directive and its ``snakemake`` object).
+    .. [2] Python documentation, :func:`socket.send_fds` (Python 3.9+): the streams' descriptors
+       passed to the server.
+    """
     code = _run_on_server(smk, entry)
     if code is not None:
         sys.exit(code)
@@ -150,7 +171,18 @@ def process_start_time() -> float | None:
 
     From /proc: the start in clock ticks since boot against the uptime, both since boot, so the
     result does not carry the whole-second rounding of the boot time that psutil's
-    ``create_time`` adds (up to a second: more than a job's start-up)."""
+    ``create_time`` adds (up to a second: more than a job's start-up).
+
+    Returns
+    -------
+    float or None
+        Seconds since the epoch (s); None where /proc cannot be read.
+
+    References
+    ----------
+    .. [1] proc(5), Linux manual page: ``/proc/[pid]/stat`` field 22 (``starttime``, clock ticks
+       after boot) and ``/proc/uptime``.
+    """
     try:
         with open("/proc/self/stat", encoding="ascii") as stat, open("/proc/uptime", encoding="ascii") as up:
             start_ticks = int(stat.read().rsplit(")", 1)[1].split()[19])  # field 22, starttime
@@ -168,7 +200,19 @@ def process_start_time() -> float | None:
 def wanted(workflow: Any) -> bool:
     """Whether a run of ``workflow`` (Snakemake's object) should use a server: a local run whose
     jobs run with this Python (no conda, container or environment modules), on a platform with
-    fork and descriptor passing, not disabled by ``GEARMESH_JOBSERVER=off``."""
+    fork and descriptor passing, not disabled by ``GEARMESH_JOBSERVER=off``.
+
+    Parameters
+    ----------
+    workflow : snakemake.workflow.Workflow
+        The run's workflow object (the Snakefile's ``workflow``): its deployment methods and
+        whether it executes locally.
+
+    Returns
+    -------
+    bool
+        True when a server should be started.
+    """
     if os.environ.get(ENV) == "off" or os.name != "posix" or not hasattr(socket, "send_fds"):
         return False
     methods = {str(m).lower() for m in workflow.deployment_settings.deployment_method}
@@ -179,7 +223,30 @@ def wanted(workflow: Any) -> bool:
 
 def start(modules: Iterable[str], timeout: float = 5.0) -> str | None:
     """Start the run's server with ``modules`` imported, export its socket in ``GEARMESH_JOBSERVER``
-    for the jobs, and return the socket path (None if it did not come up within ``timeout``)."""
+    for the jobs, and return the socket path (None if it did not come up within ``timeout``).
+
+    The server runs with one BLAS thread (:data:`THREAD_VARIABLES`) and the malloc settings of
+    :data:`MALLOC_TUNABLES` (the user's own ``GLIBC_TUNABLES`` win).
+
+    Parameters
+    ----------
+    modules : iterable of str
+        Dotted names of the modules the server imports before it takes jobs
+        (:func:`rule_modules`).
+    timeout : float
+        How long to wait for the server's socket (s, default 5).
+
+    Returns
+    -------
+    str or None
+        The socket's path, also exported in ``GEARMESH_JOBSERVER``; None when the server exited
+        or did not listen within ``timeout`` (it is stopped, and the jobs run alone).
+
+    References
+    ----------
+    .. [1] The GNU C Library Reference Manual, chapter "Tunables": memory allocation tunables
+       (``glibc.malloc.mmap_threshold``, ``glibc.malloc.trim_threshold``).
+    """
     global _server
     folder = tempfile.mkdtemp(prefix="gearmesh-jobs-")  # mode 0700: this user's jobs only
     path = os.path.join(folder, "socket")
@@ -205,7 +272,14 @@ def _tunables(environ: dict[str, str]) -> str:
 
 
 def stop() -> None:
-    """Stop the run's server (its running children finish their jobs) and remove its socket."""
+    """Stop the run's server (its running children finish their jobs) and remove its socket.
+
+    SIGTERM, then SIGKILL if it has not exited within 10 s; ``GEARMESH_JOBSERVER`` is unset.
+
+    Returns
+    -------
+    None
+    """
     global _server
     path = os.environ.pop(ENV, None)
     if _server is not None:
@@ -223,7 +297,18 @@ def stop() -> None:
 def rule_modules(rules: Iterable[Any]) -> list[str]:
     """The gearmesh modules named by the rules' ``params.function`` and ``params.figures``
     ("package.module:function@digest", or a param function carrying it as ``.spec``), and the
-    pipeline: what the server imports."""
+    pipeline: what the server imports.
+
+    Parameters
+    ----------
+    rules : iterable of snakemake.rules.Rule
+        The workflow's rules (objects with an iterable ``params``).
+
+    Returns
+    -------
+    list of str
+        Sorted dotted module names, ``"gearmesh.pipeline"`` among them.
+    """
     modules = {"gearmesh.pipeline"}
     for rule in rules:
         for value in getattr(rule, "params", None) or []:
@@ -248,7 +333,18 @@ def warm_steps(children: set[int]) -> list[Callable[[], Any]]:
     that kernel from the cache (:func:`_after_helper`): each kernel is compiled once per run (the
     dynamics sweep alone takes seconds), not again by every job that needs it meanwhile.
     ``children``: the server's running children, which the helper joins (reaped with them, killed
-    with them when the run is)."""
+    with them when the run is).
+
+    Parameters
+    ----------
+    children : set of int
+        Process ids of the server's running children; the compiling helper's is added.
+
+    Returns
+    -------
+    list of callable
+        The steps, in order, each called without arguments.
+    """
     helper: list[int] = []
     release: list[Callable[[], None]] = []
 
@@ -284,7 +380,14 @@ def warm_steps(children: set[int]) -> list[Callable[[], Any]]:
 
 def kernels() -> tuple[Any, ...]:
     """The numba dispatchers of the compiled kernels the jobs call from Python (those the sweep
-    calls compile into it)."""
+    calls compile into it).
+
+    Returns
+    -------
+    tuple
+        The dispatchers: the dynamics RK4 sweep (``integrate._sweep``) and the contact
+        solver's load-sum and law-scale loops (``ltca_solve._kernel('loop')``, ``('scales')``).
+    """
     from .dynamics import integrate
     from . import ltca_solve
 
@@ -293,7 +396,13 @@ def kernels() -> tuple[Any, ...]:
 
 def kernels_cached() -> bool:
     """Whether numba's on-disk cache holds every kernel of :func:`warm_kernels` for its module's
-    current source (then loading them costs a fraction of a second); False when it cannot tell."""
+    current source (then loading them costs a fraction of a second); False when it cannot tell.
+
+    Returns
+    -------
+    bool
+        True when every kernel of :func:`kernels` has an index in numba's cache.
+    """
     try:
         return all(len(k._cache._cache_file._load_index()) > 0 for k in kernels())
     except Exception:  # noqa: BLE001 - numba's cache internals: not knowing means compiling aside
@@ -344,7 +453,14 @@ def warm_kernels() -> None:
     use: the contact-driven dynamics of the shipped default pair (mesh force table: the load sums
     of :func:`gearmesh.ltca_solve.load_sums`; the RK4 sweep with its shooting,
     :mod:`gearmesh.dynamics.integrate`) and a tabulated contact solve of its points
-    (:func:`gearmesh.ltca_solve.solve_contact_tabulated`). A fork inherits the loaded machine code."""
+    (:func:`gearmesh.ltca_solve.solve_contact_tabulated`). A fork inherits the loaded machine code.
+
+    Returns
+    -------
+    None
+        Its work is the side effect: the kernels loaded (compiled and cached where the cache
+        lacks them).
+    """
     import numpy as np
 
     from .dynamics.population import dynamic_factors, population_dynamics
@@ -363,7 +479,27 @@ def warm_kernels() -> None:
 def serve(path: str, parent: int, modules: Iterable[str]) -> None:
     """Listen on ``path``, import ``modules``, then fork a child per connection until the process
     ``parent`` (the Snakemake run) is gone or a SIGTERM arrives; in between, the
-    :func:`warm_steps` (each in this one thread, so a fork never copies a half-done import)."""
+    :func:`warm_steps` (each in this one thread, so a fork never copies a half-done import).
+
+    Parameters
+    ----------
+    path : str
+        The socket's path (in a private directory, removed on exit).
+    parent : int
+        Process id of the Snakemake run; the server stops (killing its children) when it is gone.
+    modules : iterable of str
+        Dotted module names to import first; one that fails fails in the job, with its message.
+
+    Returns
+    -------
+    None
+        When the run ended and every child was reaped.
+
+    References
+    ----------
+    .. [1] Python documentation, :func:`gc.freeze` ("right before fork()": copy-on-write
+       friendly), :func:`os.fork`, :func:`socket.recv_fds`.
+    """
     listener = socket.socket(socket.AF_UNIX, socket.SOCK_STREAM)
     listener.bind(path + ".tmp")
     listener.listen(128)
