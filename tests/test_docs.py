@@ -171,7 +171,7 @@ def test_validation_doc_loaded_contact_rows_are_what_the_ltca_computes(root):
 #: The command-line, job and settings modules, the stage datasets and the plots: their functions take the
 #: settings and files of a run, documented in docs/workflow.md and config/README.md; their docstrings are
 #: not numpydoc yet (schema: at the module line limit until its Markdown rendering has a module of its own).
-NOT_NUMPYDOC = ("cli", "commands", "pipeline", "settings", "__init__",
+NOT_NUMPYDOC = ("cli", "commands", "settings", "__init__",
                 "__main__", "datasets", "plots")
 
 

@@ -38,7 +38,20 @@ from .upstream import (Expected, check_optimum, file_digest, identify, optimum_h
 
 
 def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) -> dict[str, Any]:
-    """What a result depends on: the study config and, for a pair stage, the pair data."""
+    """What a result depends on: the study config and, for a pair stage, the pair data.
+
+    Parameters
+    ----------
+    study : mapping
+        The validated study config.
+    pair : GearPair, optional
+        The stage's pair (None for a stage over several pairs).
+
+    Returns
+    -------
+    dict
+        ``{"study": ..., "pair": ...}``, the pair as its pair-file keys (engineering units).
+    """
     out: dict[str, Any] = {"study": dict(study)}
     if pair is not None:
         out["pair"] = pair_to_dict(pair)
@@ -47,7 +60,33 @@ def provenance_config(study: Mapping[str, Any], pair: GearPair | None = None) ->
 
 def finish(ds: xr.Dataset, path: str | Path, study: Mapping[str, Any], pair: GearPair | None,
            title: str) -> Path:
-    """Attach provenance and the pair name to ``ds`` and write it atomically."""
+    """Attach provenance and the pair name to ``ds`` and write it atomically.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The stage's documented dataset; its attributes are changed in place.
+    path : str or pathlib.Path
+        The netCDF file.
+    study : mapping
+        The validated study config (its ``study`` name and ``source``).
+    pair : GearPair or None
+        The stage's pair (its name, notes and source), None for a stage over several pairs.
+    title : str
+        The dataset's ``title`` attribute.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+
+    Raises
+    ------
+    ValueError
+        An undocumented variable (:func:`gearmesh.io.write_dataset`).
+    OutputError
+        The file could not be written.
+    """
     source = pair.source if pair is not None and pair.source else study.get("source", "")
     add_provenance(ds, provenance_config(study, pair), source, title)
     if pair is not None:
@@ -59,7 +98,18 @@ def finish(ds: xr.Dataset, path: str | Path, study: Mapping[str, Any], pair: Gea
 
 def resolve(spec: str) -> Callable[..., Any]:
     """The function named by "package.module:function", with or without the "@digest" that
-    :func:`gearmesh.codeversion.versioned` appends."""
+    :func:`gearmesh.codeversion.versioned` appends.
+
+    Parameters
+    ----------
+    spec : str
+        ``"package.module:function"``, optionally followed by ``"@digest"``.
+
+    Returns
+    -------
+    callable
+        The function, its module imported.
+    """
     module, _, name = spec.partition("@")[0].partition(":")
     return getattr(importlib.import_module(module), name)
 
@@ -115,7 +165,18 @@ def _run(smk: Any, body: Callable[[Any], float]) -> None:
 def error_line(exc: BaseException) -> str:
     """The one line a failed job prints: the exception's text; for a full disk reported without a
     path (a library's own write: numba's cache of compiled code under the package's
-    ``__pycache__`` or ``NUMBA_CACHE_DIR``), the file being written, from the traceback."""
+    ``__pycache__`` or ``NUMBA_CACHE_DIR``), the file being written, from the traceback.
+
+    Parameters
+    ----------
+    exc : BaseException
+        The job's exception, with its traceback.
+
+    Returns
+    -------
+    str
+        The line, without the ``gearmesh: error:`` prefix.
+    """
     code = space_errno(exc)
     if code is None or isinstance(exc, OutputError) or getattr(exc, "filename", None):
         return str(exc)
@@ -149,7 +210,28 @@ def _title(smk: Any) -> str:
 
 def study_pair(config: Mapping[str, Any], name: str, variant: str | None) -> GearPair:
     """The pair ``name`` of a study as its ``variant``'s stages use it (None: the pair file):
-    the pair file with the variant's micro-geometry, or an optimisation's pair file."""
+    the pair file with the variant's micro-geometry, or an optimisation's pair file.
+
+    Parameters
+    ----------
+    config : mapping
+        The validated study config (``pairs_dir``, ``variants``, ``study``).
+    name : str
+        The pair's name.
+    variant : str or None
+        The micro-geometry variant's name; None for the pair file as it is.
+
+    Returns
+    -------
+    GearPair
+        The pair, SI units.
+
+    Raises
+    ------
+    GearmeshInputError
+        A ``{from: optimise.NAME}`` variant whose pair file is not the optimum this study's run
+        wrote (:func:`gearmesh.upstream.check_optimum`), or a malformed pair file or variant.
+    """
     from .config import pair_path
 
     spec = (config.get("variants") or {}).get(variant) if variant is not None else None
@@ -248,19 +330,68 @@ def _pair_stage(smk: Any, then: Callable[[GearPair, xr.Dataset], None] | None = 
 
 def run_job(smk: Any) -> None:
     """The job of rule ``smk.rule`` as its declaration says (:func:`gearmesh.settings.job_of`):
-    ``run_pair_stage``, ``run_study_stage``, ``run_collect``, ``run_optimise`` or ``run_plot``."""
+    ``run_pair_stage``, ``run_study_stage``, ``run_collect``, ``run_optimise`` or ``run_plot``.
+
+    Parameters
+    ----------
+    smk : snakemake.script.Snakemake
+        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
+        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+
+    Returns
+    -------
+    None
+        The outputs written (``.nc``, ``.csv``, ``.png``) and the log's last line.
+
+    Raises
+    ------
+    SystemExit
+        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
+        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+
+    References
+    ----------
+    .. [1] Snakemake documentation, "Snakefiles and Rules": external scripts (the ``script``
+       directive and its ``snakemake`` object) and non-file parameters for rules (``params``).
+    """
     RUNNERS[job_of(smk.rule).runner](smk)
 
 
 def run_pair_stage(smk: Any) -> None:
-    """A stage of one pair (:func:`_pair_stage`)."""
+    """A stage of one pair (:func:`_pair_stage`).
+
+    Parameters
+    ----------
+    smk : snakemake.script.Snakemake
+        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
+        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+
+    Raises
+    ------
+    SystemExit
+        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
+        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+    """
     _pair_stage(smk)
 
 
 def run_study_stage(smk: Any) -> None:
     """A stage over several pairs: ``function(gear_pairs, **section)`` -> Dataset, and its figures;
     ``gear_pairs`` the pair files the section's ``pairs`` name (its inputs, in that order), loaded,
-    by the section's names."""
+    by the section's names.
+
+    Parameters
+    ----------
+    smk : snakemake.script.Snakemake
+        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
+        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+
+    Raises
+    ------
+    SystemExit
+        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
+        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+    """
     def body(smk: Any) -> float:
         section = dict(smk.params.settings)
         gear_pairs = dict(zip(section["pairs"], map(load_pair, smk.input.pairs), strict=True))
@@ -280,7 +411,20 @@ def _read_inputs(smk: Any, pair: GearPair | None = None) -> dict[str, Any]:
 
 def run_collect(smk: Any) -> None:
     """A study table from per-pair results: ``function(**{input name: [Dataset, ...]}, **settings)``,
-    and its figures (drawn from the inputs and the table)."""
+    and its figures (drawn from the inputs and the table).
+
+    Parameters
+    ----------
+    smk : snakemake.script.Snakemake
+        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
+        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+
+    Raises
+    ------
+    SystemExit
+        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
+        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+    """
     def body(smk: Any) -> float:
         inputs = _read_inputs(smk)
         lists = {k: v if isinstance(v, list) else [v] for k, v in inputs.items()}
@@ -292,7 +436,20 @@ def run_collect(smk: Any) -> None:
 
 
 def run_plot(smk: Any) -> None:
-    """Figures alone: ``function({input name: Dataset}, {output name: path})`` writes the PNGs."""
+    """Figures alone: ``function({input name: Dataset}, {output name: path})`` writes the PNGs.
+
+    Parameters
+    ----------
+    smk : snakemake.script.Snakemake
+        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
+        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+
+    Raises
+    ------
+    SystemExit
+        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
+        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+    """
     def body(smk: Any) -> float:
         start = time.perf_counter()
         inputs = _read_inputs(smk)
@@ -306,7 +463,29 @@ def run_plot(smk: Any) -> None:
 def write_pair(pair: GearPair, path: str | Path, made_by: Mapping[str, Any] | None = None) -> Path:
     """Write ``pair`` as a pair file (YAML, engineering units), checked by pair_geometry first;
     with ``made_by`` (the run that wrote it) its first line is the provenance comment of
-    :func:`gearmesh.upstream.optimum_header` (the content's digest and that run)."""
+    :func:`gearmesh.upstream.optimum_header` (the content's digest and that run).
+
+    Floats are kept to :data:`PAIR_FILE_DIGITS` significant digits.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (SI units; written in the pair file's engineering units).
+    path : str or pathlib.Path
+        The YAML file, written atomically.
+    made_by : mapping, optional
+        ``ga`` (the run's ga.nc) and ``data_sha256`` (its data digest); None: no provenance line.
+
+    Returns
+    -------
+    pathlib.Path
+        ``path``.
+
+    Raises
+    ------
+    GearmeshInputError
+        A pair that :func:`gearmesh.gear.pair_geometry` refuses (nothing written).
+    """
     import yaml
 
     from .gear import pair_geometry
@@ -338,7 +517,20 @@ def _tidy(value: Any) -> Any:
 
 def run_optimise(smk: Any) -> None:
     """The optimiser of one pair: ``function(pair, **settings)`` -> ga.nc, the optimum as a pair
-    file (``output.pair``, the input of a variant ``{from: optimise.NAME}``) and its figures."""
+    file (``output.pair``, the input of a variant ``{from: optimise.NAME}``) and its figures.
+
+    Parameters
+    ----------
+    smk : snakemake.script.Snakemake
+        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
+        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+
+    Raises
+    ------
+    SystemExit
+        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
+        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+    """
     from .datasets.optimise import optimum_pair
 
     def then(pair: GearPair, ds: xr.Dataset) -> None:
@@ -351,7 +543,19 @@ def run_optimise(smk: Any) -> None:
 def check_results(config: Mapping[str, Any]) -> list[str]:
     """Every problem of the study's results folder against ``config`` (``gearmesh check``,
     :func:`gearmesh.upstream.check_tree`): what ``snakemake --report`` runs before it publishes
-    the files, those nothing downstream reads included."""
+    the files, those nothing downstream reads included.
+
+    Parameters
+    ----------
+    config : mapping
+        The validated study config; its results are ``results/<study>`` under the working
+        directory.
+
+    Returns
+    -------
+    list of str
+        One line per problem; empty when all is well or nothing was run yet.
+    """
     from .upstream import check_tree
 
     root = Path("results", str(config["study"]))
