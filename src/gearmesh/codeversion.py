@@ -235,7 +235,7 @@ def versioned(spec: str, root: Path = PACKAGE_ROOT) -> Versioned:
     Raises
     ------
     ValueError
-        ``spec``'s module is not a module of the package under ``root``.
+        As :func:`function_digest`.
 
     References
     ----------

@@ -363,14 +363,12 @@ def run_pair_stage(smk: Any) -> None:
     Parameters
     ----------
     smk : snakemake.script.Snakemake
-        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
-        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+        The job's Snakemake object (:func:`run_job`).
 
     Raises
     ------
     SystemExit
-        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
-        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+        On failure, as :func:`run_job` says.
     """
     _pair_stage(smk)
 
@@ -383,14 +381,12 @@ def run_study_stage(smk: Any) -> None:
     Parameters
     ----------
     smk : snakemake.script.Snakemake
-        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
-        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+        The job's Snakemake object (:func:`run_job`).
 
     Raises
     ------
     SystemExit
-        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
-        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+        On failure, as :func:`run_job` says.
     """
     def body(smk: Any) -> float:
         section = dict(smk.params.settings)
@@ -416,14 +412,12 @@ def run_collect(smk: Any) -> None:
     Parameters
     ----------
     smk : snakemake.script.Snakemake
-        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
-        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+        The job's Snakemake object (:func:`run_job`).
 
     Raises
     ------
     SystemExit
-        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
-        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+        On failure, as :func:`run_job` says.
     """
     def body(smk: Any) -> float:
         inputs = _read_inputs(smk)
@@ -441,14 +435,12 @@ def run_plot(smk: Any) -> None:
     Parameters
     ----------
     smk : snakemake.script.Snakemake
-        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
-        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+        The job's Snakemake object (:func:`run_job`).
 
     Raises
     ------
     SystemExit
-        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
-        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+        On failure, as :func:`run_job` says.
     """
     def body(smk: Any) -> float:
         start = time.perf_counter()
@@ -522,14 +514,12 @@ def run_optimise(smk: Any) -> None:
     Parameters
     ----------
     smk : snakemake.script.Snakemake
-        The job's Snakemake object: ``input``, ``output``, ``params`` (``function``, ``settings``,
-        ``figures``), ``log``, ``wildcards``, ``config``, ``rule``.
+        The job's Snakemake object (:func:`run_job`).
 
     Raises
     ------
     SystemExit
-        On failure, after one ``gearmesh: error: ...`` line on stderr and the traceback in the
-        log: code 2 for bad input (a ``ValueError``), 1 otherwise.
+        On failure, as :func:`run_job` says.
     """
     from .datasets.optimise import optimum_pair
 
