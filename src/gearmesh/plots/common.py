@@ -25,19 +25,62 @@ __all__ = ["MM", "UM", "Figure", "apart", "coinciding", "end_labels", "figure", 
 
 def figure(figsize: tuple[float, float], layout: str | None = None) -> Figure:
     """A new figure of its own (``matplotlib.figure.Figure``, no pyplot registry), so figures can
-    be drawn in threads and nothing has to be closed."""
+    be drawn in threads and nothing has to be closed.
+
+    Parameters
+    ----------
+    figsize : tuple of float
+        Width and height (inches).
+    layout : str, optional
+        Matplotlib layout engine ('constrained', 'tight'); default none.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
     return Figure(figsize=figsize, layout=layout)
 
 
 def subplots(nrows: int = 1, ncols: int = 1, *, figsize: tuple[float, float], layout: str | None = None,
              **kwargs: Any) -> tuple[Figure, Any]:
-    """``figure`` and its grid of axes (``Figure.subplots`` keywords: sharex, squeeze, ...)."""
+    """``figure`` and its grid of axes (``Figure.subplots`` keywords: sharex, squeeze, ...).
+
+    Parameters
+    ----------
+    nrows, ncols : int
+        Rows and columns of axes (default 1 each).
+    figsize : tuple of float
+        Width and height (inches), keyword only.
+    layout : str, optional
+        Matplotlib layout engine; default none.
+    **kwargs
+        Passed to ``Figure.subplots``.
+
+    Returns
+    -------
+    (Figure, Axes or array of Axes)
+    """
     fig = figure(figsize, layout)
     return fig, fig.subplots(nrows, ncols, **kwargs)
 
 
 def palette(n: int, name: str = "viridis", low: float = 0.1, high: float = 0.85) -> np.ndarray:
-    """``n`` colours spread over ``name`` from ``low`` to ``high`` (RGBA rows)."""
+    """``n`` colours spread over ``name`` from ``low`` to ``high`` (RGBA rows).
+
+    Parameters
+    ----------
+    n : int
+        Number of colours.
+    name : str
+        Matplotlib colormap (default 'viridis').
+    low, high : float
+        Span of the colormap used, fractions in [0, 1] (default 0.1 to 0.85).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n, 4)`` RGBA rows.
+    """
     return colormaps[name](np.linspace(low, high, n))
 
 
@@ -48,7 +91,20 @@ PNG_COMPRESS_LEVEL = 3
 
 def save(fig: Figure, path: str | Path) -> Path:
     """Write ``fig`` as PNG atomically (parent folders created), inside a workflow job with the
-    provenance of the figure (:func:`gearmesh.io.stamp_figure`)."""
+    provenance of the figure (:func:`gearmesh.io.stamp_figure`).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        The figure (130 dpi, tight bounding box, zlib level :data:`PNG_COMPRESS_LEVEL`).
+    path : str or Path
+        The PNG file to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     with atomic_output(path) as tmp:
         fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png",
                     pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
@@ -63,8 +119,18 @@ def pair_label(ds: xr.Dataset) -> str:
     """The dataset's gear pair as a reader knows it: its data ("29/71 teeth, module 5 mm, helix
     27.5°, face 42 mm", from the pair data the result was computed with), after its name for a
     pair of the user's own; the shipped example pairs' names (helical_z29_71_m5, ...) only restate
-    their data, so they are left out. Empty for a
-    result of no single pair."""
+    their data, so they are left out. Empty for a result of no single pair.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A stage's dataset; reads its attributes ``pair_name`` and ``config_json`` (the pair's
+        ``teeth``, ``normal_module_mm``, ``helix_angle_deg``, ``face_width_mm``).
+
+    Returns
+    -------
+    str
+    """
     name = ds.attrs.get("pair_name", "")
     try:
         pair = json.loads(ds.attrs.get("config_json", "{}")).get("pair") or {}
@@ -80,7 +146,19 @@ def pair_label(ds: xr.Dataset) -> str:
 
 
 def title(ds: xr.Dataset, what: str) -> str:
-    """'PAIR — what', the pair as :func:`pair_label` names it."""
+    """'PAIR — what', the pair as :func:`pair_label` names it.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        The dataset the figure is drawn from (its pair attributes).
+    what : str
+        What the figure shows.
+
+    Returns
+    -------
+    str
+    """
     return f"{pair_label(ds)} — {what}".strip(" —")
 
 
@@ -88,7 +166,19 @@ def number(value: float, digits: int = 3) -> str:
     """A value for a label: whole numbers from 100 up (118.367 → "118", 12500 → "12500"), below
     that ``digits`` significant digits (13.224 → "13.2", 0.01234 → "0.0123"), below 0.001 with an
     exponent (1.22e-15); no trailing zeros. The netCDF file keeps the full value; a label only has
-    to tell values apart."""
+    to tell values apart.
+
+    Parameters
+    ----------
+    value : float
+        The value, in the unit the label states.
+    digits : int
+        Significant digits below 100 (default 3).
+
+    Returns
+    -------
+    str
+    """
     v = float(value)
     if not np.isfinite(v):
         return str(v)
@@ -102,7 +192,15 @@ def number(value: float, digits: int = 3) -> str:
 def plain_log_axis(ax, axis: str = "y") -> None:
     """Tick labels of a logarithmic axis as plain numbers (5000, 20000; not 5×10³, 2×10⁴); the
     minor ticks at 2, 3 and 5 labelled too on an axis spanning about a decade, at 2 and 5 on one
-    spanning up to about two and a half."""
+    spanning up to about two and a half.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes with a logarithmic axis.
+    axis : {'y', 'x'}
+        Which axis (default 'y').
+    """
     target = ax.yaxis if axis == "y" else ax.xaxis
     limits = ax.get_ylim if axis == "y" else ax.get_xlim
 
@@ -119,7 +217,21 @@ def plain_log_axis(ax, axis: str = "y") -> None:
 
 def figure_legend(fig, ncol: int = 3, fontsize: float = 8):
     """One legend under all panels of ``fig`` (constrained layout), each label once, in the order
-    the panels first use it."""
+    the panels first use it.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A figure with constrained layout.
+    ncol : int
+        Legend columns (default 3).
+    fontsize : float
+        Points (default 8).
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+    """
     seen: dict[str, Any] = {}
     for ax in fig.axes:
         for handle, label in zip(*ax.get_legend_handles_labels()):
@@ -129,7 +241,20 @@ def figure_legend(fig, ncol: int = 3, fontsize: float = 8):
 
 def legend_below(ax, ncol: int = 2, **kwargs: Any):
     """The legend of ``ax`` under its x label, so it covers no curve (for axes whose curves fill
-    every corner)."""
+    every corner).
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    ncol : int
+        Legend columns (default 2).
+    **kwargs
+        Passed to ``Axes.legend``.
+
+    Returns
+    -------
+    matplotlib.legend.Legend
+    """
     return ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.16), ncol=ncol, fontsize=7, **kwargs)
 
 
@@ -142,7 +267,19 @@ def coinciding(curves, span: float | None = None) -> list[list[int]]:
     """Groups of row indices of ``curves`` (rows of y values on one x grid) that coincide to
     :data:`SAME_CURVE` of ``span`` (the axis range; default their own range), in first-appearance
     order: draw one line per group and name every member in its label, instead of a legend entry
-    for a curve hidden under another."""
+    for a curve hidden under another.
+
+    Parameters
+    ----------
+    curves : array_like
+        ``(n, x)`` y values in the unit drawn; NaN where a curve has no value (must match to coincide).
+    span : float, optional
+        The axis range in the same unit; default the finite values' peak-to-peak.
+
+    Returns
+    -------
+    list of list of int
+    """
     y = np.asarray(curves, dtype=float)
     finite = y[np.isfinite(y)]
     if span is None:
@@ -163,14 +300,40 @@ def coinciding(curves, span: float | None = None) -> list[list[int]]:
 
 def text_line(ax, fontsize: float) -> float:
     """The height of one line of text of ``fontsize`` points (with its spacing) as a fraction of
-    the height of ``ax``."""
+    the height of ``ax``.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+    fontsize : float
+        Points.
+
+    Returns
+    -------
+    float
+    """
     height_pt = ax.get_position().height * ax.get_figure().get_figheight() * 72.0
     return 1.25 * fontsize / max(height_pt, 1.0)
 
 
 def apart(positions, gap: float, top: float = 1.0) -> np.ndarray:
     """Label positions (axes fractions) moved up as little as needed to be ``gap`` apart, in the
-    order of ``positions``; a stack pushed above ``top`` shifted down as a whole."""
+    order of ``positions``; a stack pushed above ``top`` shifted down as a whole.
+
+    Parameters
+    ----------
+    positions : array_like
+        ``(n,)`` wanted positions (axes fractions).
+    gap : float
+        Least distance between two labels (axes fraction, e.g. :func:`text_line`).
+    top : float
+        Highest position allowed (default 1.0).
+
+    Returns
+    -------
+    numpy.ndarray
+        ``(n,)`` positions (axes fractions).
+    """
     pos = np.asarray(positions, dtype=float)
     placed = np.empty_like(pos)
     last = -np.inf
@@ -184,8 +347,21 @@ def apart(positions, gap: float, top: float = 1.0) -> np.ndarray:
 
 def end_labels(ax, ends, texts, fontsize: float = 6.5, color: str = "0.3") -> None:
     """Label lines at their right ends, outside the axes (where no data or frame cuts them),
-    moved apart vertically where they would overlap. ``ends``: the lines' last y values (data
-    units, linear y axis); call after the y limits are final."""
+    moved apart vertically where they would overlap; call after the y limits are final.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes with a linear y axis.
+    ends : array_like
+        ``(n,)`` the lines' last y values (data units).
+    texts : sequence of str
+        ``(n,)`` labels.
+    fontsize : float
+        Points (default 6.5).
+    color : str
+        Matplotlib colour (default '0.3').
+    """
     lo, hi = ax.get_ylim()
     placed = apart((np.asarray(ends, dtype=float) - lo) / (hi - lo), text_line(ax, fontsize))
     for y, text in zip(placed, texts):
@@ -201,7 +377,19 @@ def plain_axis(ax, values, unit: str, what: str = "") -> None:
     """Plain y tick labels (no offset or scientific notation such as "1e-5 + 6.736"), and a
     curve that is constant to better than :data:`FLAT` of its mean shown as what it is: flat
     (axis at least ±5 % of the mean wide) with a note giving its relative and absolute
-    peak-to-peak, instead of noise or slice discretisation blown up into a square wave."""
+    peak-to-peak, instead of noise or slice discretisation blown up into a square wave.
+
+    Parameters
+    ----------
+    ax : matplotlib.axes.Axes
+        Axes the curve is drawn on.
+    values : array_like
+        The curve's y values as drawn (NaN ignored).
+    unit : str
+        Their unit, for the note.
+    what : str
+        The curve's name, for the note (default none).
+    """
     ax.ticklabel_format(axis="y", style="plain", useOffset=False)
     v = np.asarray(values, dtype=float)
     v = v[np.isfinite(v)]
