@@ -1,5 +1,10 @@
 """FE-compliance figure: the finite-element tooth compliance of both gears along the active
-profile, beside the three potential-energy cantilevers (from ``fe_compliance.nc``)."""
+profile, beside the three potential-energy cantilevers (from ``fe_compliance.nc``).
+
+The figure job (``fe_compliance_figures(inputs, outputs)``, as every ``*_figures`` of :mod:`gearmesh.plots`)
+takes ``inputs``, a mapping of str to xarray.Dataset (the rule's netCDF inputs by name), and ``outputs``, a
+mapping of str to the path of each PNG by name; it writes them and returns None.
+"""
 
 from __future__ import annotations
 
@@ -32,7 +37,28 @@ def _pem_lines(ax, x, ds, name: str, gear: int, label: str) -> None:
 def plot_fe_compliance(ds: xr.Dataset, path: str | Path) -> Path:
     """Top: total tooth compliance (no contact part) against roll length, FE in its plane and
     in plane stress, and the PEMs. Bottom: the body part, FE (root-section rigid motion)
-    against Sainsot's fillet foundation of each PEM."""
+    against Sainsot's fillet foundation of each PEM.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        fe_compliance.nc: over (gear, point) ``roll`` (m, SAP to EAP), ``fe_compliance``,
+        ``fe_compliance_plane_stress``, ``fe_body``, ``fe_wind_up`` and over (model, gear, point)
+        ``pem_compliance``, ``pem_fillet`` (m²/N: deflection per load per unit face width, drawn
+        in µm per N/mm); attributes ``plane`` and ``size_normal_modules``.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    References
+    ----------
+    .. [1] Sainsot P., Velex P., Duverger O., "Contribution of gear body to tooth deflections — a new
+       bidimensional analytical formula", J. Mech. Des. 126 (2004) 748–752.
+    """
     fig, axes = subplots(2, 2, figsize=(10, 6.4), sharex="col")
     for g, gear in enumerate(ds["gear"].values):
         x = ds["roll"].values[g] * MM
@@ -62,5 +88,12 @@ def plot_fe_compliance(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def fe_compliance_figures(inputs, outputs) -> None:
-    """The figure of the ``fe_compliance`` rule."""
+    """The figure of the ``fe_compliance`` rule.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["fe_compliance"]``,
+        writes ``outputs["fe_compliance"]``.
+    """
     plot_fe_compliance(inputs["fe_compliance"], outputs["fe_compliance"])

@@ -1,5 +1,10 @@
 """Load-capacity figures: the contact-pressure map over the pinion flank and the root stress along
-the face, drawn from the variant's ltca.nc (its load-capacity variables) and rating.nc."""
+the face, drawn from the variant's ltca.nc (its load-capacity variables) and rating.nc.
+
+The figure job (``rating_figures(inputs, outputs)``, as every ``*_figures`` of :mod:`gearmesh.plots`)
+takes ``inputs``, a mapping of str to xarray.Dataset (the rule's netCDF inputs by name), and ``outputs``, a
+mapping of str to the path of each PNG by name; it writes them and returns None.
+"""
 
 from __future__ import annotations
 
@@ -22,7 +27,25 @@ def plot_pressure_map(ltca: xr.Dataset, rating: xr.Dataset | None, path: str | P
     cell, one panel per torque, its colour scale ending at the flank's peak so that the flank stays
     legible: cells above it (tip-edge contacts, drawn where they touch the pinion: the gear's tip
     above the SAP, the pinion's own tip) are white. The overall peak is circled and said to sit on a
-    flank or an edge; S_H of the weaker gear in the title when the rating is given."""
+    flank or an edge; S_H of the weaker gear in the title when the rating is given.
+
+    Parameters
+    ----------
+    ltca : xarray.Dataset
+        ltca.nc: ``contact_pressure`` (Pa) over (torque, position, line, point), ``rho_pinion`` (m)
+        and ``region`` (1 on the flank) over (position, line, point), ``point``, ``point_width``, ``rho_sap``,
+        ``rho_eap``, ``tip_edge_radius`` (m), over torque ``peak_contact_pressure`` (Pa) and
+        ``peak_contact_pressure_on_edge``.
+    rating : xarray.Dataset or None
+        rating.nc: ``S_H`` (1) over (torque, gear); None leaves S_H out of the titles.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     n = ltca.sizes["torque"]
     fig, axes = subplots(1, n, figsize=(4.2 * n, 5.6), squeeze=False, sharey=True, layout="constrained")
     z = ltca["point"].values * MM
@@ -74,7 +97,22 @@ def plot_pressure_map(ltca: xr.Dataset, rating: xr.Dataset | None, path: str | P
 
 def plot_root_stress_face(ltca: xr.Dataset, rating: xr.Dataset | None, path: str | Path) -> Path:
     """The largest tooth-root stress (MPa, ISO 6336-3 local form per slice) over the mesh cycle along
-    the face, pinion and gear, one line per torque; ISO method B's σ_F of the rating dotted beside."""
+    the face, pinion and gear, one line per torque; ISO method B's σ_F of the rating dotted beside.
+
+    Parameters
+    ----------
+    ltca : xarray.Dataset
+        ltca.nc: ``root_stress`` (Pa) over (torque, gear, position, line, point), ``point`` (m).
+    rating : xarray.Dataset or None
+        rating.nc: ``sigma_F`` (Pa) over (torque, gear); None draws no σ_F lines.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     fig, axes = subplots(1, 2, figsize=(10, 4.4), sharey=True, layout="constrained")
     z = ltca["point"].values * MM
     colors = palette(ltca.sizes["torque"])
@@ -96,6 +134,14 @@ def plot_root_stress_face(ltca: xr.Dataset, rating: xr.Dataset | None, path: str
 
 
 def rating_figures(inputs, outputs) -> None:
-    """The figures of the ``rating`` rule from its ``ltca`` input and its ``rating`` dataset."""
+    """The figures of the ``rating`` rule from its ``ltca`` input and its ``rating`` dataset.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["ltca"]`` and
+        ``inputs["rating"]`` (optional), writes ``outputs["pressure_map"]`` and
+        ``outputs["root_stress_face"]``.
+    """
     plot_pressure_map(inputs["ltca"], inputs.get("rating"), outputs["pressure_map"])
     plot_root_stress_face(inputs["ltca"], inputs.get("rating"), outputs["root_stress_face"])

@@ -1,5 +1,10 @@
 """Scuffing figure: the flash temperature over the path of contact, one line per torque, from
-scuffing.nc (:func:`gearmesh.datasets.scuffing.scuffing_dataset`)."""
+scuffing.nc (:func:`gearmesh.datasets.scuffing.scuffing_dataset`).
+
+The figure job (``scuffing_figures(inputs, outputs)``, as every ``*_figures`` of :mod:`gearmesh.plots`)
+takes ``inputs``, a mapping of str to xarray.Dataset (the rule's netCDF inputs by name), and ``outputs``, a
+mapping of str to the path of each PNG by name; it writes them and returns None.
+"""
 
 from __future__ import annotations
 
@@ -18,7 +23,23 @@ def plot_flash_temperature(ds: xr.Dataset, path: str | Path) -> Path:
     safety factors S_B (flash temperature method) and S_intS (integral temperature method); the
     mean over the path (θ_flaint) dashed in the same colour; the pitch point C, where the flanks
     roll without sliding, dotted. Where no point of the path carries load (a relief) the line is
-    broken: no contact, not a flash temperature of zero. The pinion speed in the title."""
+    broken: no contact, not a flash temperature of zero. The pinion speed in the title.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        scuffing.nc: ``path`` (m from A), over (torque, path) ``flash_temperature_path`` (K), over
+        torque ``flash_temperature_mean`` (K), ``contact_temperature_max`` (°C),
+        ``scuffing_safety_flash`` and ``scuffing_safety_integral`` (1); ``pitch_point`` (m from A)
+        and the attribute ``speed_rpm`` when present.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     fig, ax = subplots(1, 1, figsize=(7.5, 4.8), layout="constrained")
     s = ds["path"].values * MM
     for k, color in enumerate(palette(ds.sizes["torque"])):
@@ -43,5 +64,12 @@ def plot_flash_temperature(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def scuffing_figures(inputs, outputs) -> None:
-    """The figure of the ``scuffing`` rule: output 'flash_temperature' from the scuffing.nc it wrote."""
+    """The figure of the ``scuffing`` rule: output 'flash_temperature' from the scuffing.nc it wrote.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["scuffing"]``, writes
+        ``outputs["flash_temperature"]``.
+    """
     plot_flash_temperature(inputs["scuffing"], outputs["flash_temperature"])
