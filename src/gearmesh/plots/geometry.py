@@ -1,4 +1,10 @@
-"""Geometry-stage figures: tooth profile, contact lines, L(phi), the helix-angle V-curve."""
+"""Geometry-stage figures: tooth profile, contact lines, L(phi), the helix-angle V-curve.
+
+The figure jobs (``geometry_figures``, ``contact_lines_figures``, ``helix_sweep_figures``, each
+``(inputs, outputs)`` as every ``*_figures`` of :mod:`gearmesh.plots`) take ``inputs``, a mapping of str to
+xarray.Dataset (the rule's netCDF inputs by name), and ``outputs``, a mapping of str to the path of each PNG
+by name; they write them and return None.
+"""
 
 from __future__ import annotations
 
@@ -13,7 +19,21 @@ from .common import coinciding, legend_below, MM, number, palette, plain_axis, s
 
 def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
     """One tooth of each gear in its transverse section: the hob-generated fillet (trochoid)
-    and the involute, with the root, base, form and tip circles."""
+    and the involute, with the root, base, form and tip circles.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        geometry.nc: per gear ``profile_x``, ``profile_y`` (m, gear centre at 0) and
+        ``profile_segment`` (0 fillet, 1 involute) of one flank, ``root_radius``, ``base_radius``,
+        ``form_radius``, ``tip_radius`` (m), ``teeth``, ``profile_shift`` (1), ``undercut``.
+    path : str or Path
+        The PNG to write.
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     fig, axes = subplots(1, 2, figsize=(10, 5))
     for g, ax in enumerate(axes):
         sel = ds.isel(gear=g)
@@ -48,7 +68,26 @@ def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
-    """Total contact-line length L(φ) over a mesh cycle with its closed-form mean/min/max."""
+    """Total contact-line length L(φ) over a mesh cycle with its closed-form mean/min/max.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        contact_lines.nc: ``total_length`` (m) over ``position`` (m of pinion roll r_b1·φ1),
+        ``mean_length_closed_form``, ``min_length_closed_form``, ``max_length_closed_form`` (m),
+        ``eps_alpha``, ``eps_beta``, ``length_fluctuation`` (1).
+    path : str or Path
+        The PNG to write.
+    Returns
+    -------
+    Path
+        ``path``.
+
+    References
+    ----------
+    .. [1] *Numerical Simulation of Meshing Line Position and Length for Helical Gears* (contact lines
+       against rotation, total and mean contact length).
+    """
     fig, ax = subplots(figsize=(7, 4))
     x = ds["position"].values * MM
     ax.plot(x, ds["total_length"].values * MM, lw=1.6, label="L(φ), sum of clipped lines")
@@ -71,7 +110,29 @@ def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def plot_contact_lines(ds: xr.Dataset, path: str | Path, snapshots: int = 4) -> Path:
-    """Contact lines in the plane of action (s along the line of action, z across the face)."""
+    """Contact lines in the plane of action (s along the line of action, z across the face).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        contact_lines.nc: over (position, line) ``s_start``, ``s_end``, ``z_start``, ``z_end`` (m;
+        NaN where a line is out of contact), ``total_length`` (m), ``path_of_contact``,
+        ``face_width`` (m).
+    path : str or Path
+        The PNG to write.
+    snapshots : int
+        Mesh positions drawn, evenly over the cycle (default 4).
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    References
+    ----------
+    .. [1] *Numerical Simulation of Meshing Line Position and Length for Helical Gears* (contact lines
+       against rotation, total and mean contact length).
+    """
     fig, ax = subplots(figsize=(7, 4.5))
     g = float(ds.path_of_contact) * MM
     half_b = 0.5 * float(ds.face_width) * MM
@@ -98,7 +159,25 @@ def plot_contact_lines(ds: xr.Dataset, path: str | Path, snapshots: int = 4) -> 
 def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
     """ε_l and mean contact length against helix angle for each pair (the V-curve, the low-fluctuation paper §5):
     the closed form solid, the sampled lines dashed where they differ from it visibly (where they
-    do not, the legend gives their largest difference instead of a hidden curve)."""
+    do not, the legend gives their largest difference instead of a hidden curve).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        helix_sweep.nc: over (pair, helix angle) ``helix_angle_deg`` (deg), ``length_fluctuation``
+        and ``length_fluctuation_sampled`` (1), ``mean_length``, ``min_length``, ``max_length`` (m),
+        ``eps_beta`` (1; its integers dotted).
+    path : str or Path
+        The PNG to write.
+    Returns
+    -------
+    Path
+        ``path``.
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, section 5.
+    """
     fig, (ax1, ax2) = subplots(2, 1, figsize=(7, 6.8), sharex=True)
     for name in ds["pair"].values:
         sel = ds.sel(pair=name)
@@ -135,16 +214,37 @@ def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def geometry_figures(inputs, outputs) -> None:
-    """The figure of the ``geometry`` rule from its ``geometry`` dataset: the tooth profile."""
+    """The figure of the ``geometry`` rule from its ``geometry`` dataset: the tooth profile.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["geometry"]``, writes
+        ``outputs["tooth_profile"]``.
+    """
     plot_tooth_profile(inputs["geometry"], outputs["tooth_profile"])
 
 
 def contact_lines_figures(inputs, outputs) -> None:
-    """The figures of the ``contact_lines`` rule from its ``contact_lines`` dataset: L(phi) and the lines."""
+    """The figures of the ``contact_lines`` rule from its ``contact_lines`` dataset: L(phi) and the lines.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["contact_lines"]``,
+        writes ``outputs["contact_length"]`` and ``outputs["contact_lines"]``.
+    """
     plot_contact_length(inputs["contact_lines"], outputs["contact_length"])
     plot_contact_lines(inputs["contact_lines"], outputs["contact_lines"])
 
 
 def helix_sweep_figures(inputs, outputs) -> None:
-    """The V-curve figure of the ``helix_sweep`` rule."""
+    """The V-curve figure of the ``helix_sweep`` rule.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["helix_sweep"]``, writes
+        ``outputs["helix_sweep"]``.
+    """
     plot_helix_sweep(inputs["helix_sweep"], outputs["helix_sweep"])

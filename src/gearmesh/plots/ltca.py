@@ -1,5 +1,10 @@
 """TCA/LTCA figures: TE and LTE against rotation for every torque, the loaded contact pattern
-on the pinion flank, and the unloaded separations of the TCA."""
+on the pinion flank, and the unloaded separations of the TCA.
+
+The figure jobs (``tca_figures``, ``ltca_figures``, each ``(inputs, outputs)`` as every ``*_figures`` of
+:mod:`gearmesh.plots`) take ``inputs``, a mapping of str to xarray.Dataset (the rule's netCDF inputs by
+name), and ``outputs``, a mapping of str to the path of each PNG by name; they write them and return None.
+"""
 
 from __future__ import annotations
 
@@ -29,7 +34,23 @@ def plot_te_lte(ds: xr.Dataset, path: str | Path) -> Path:
     part of it (open circles, where the gear bodies add a deflection in series) and the entering
     pair's separation TE(φ1A) (square): the mesh-in impact paper's criterion, the teeth's LTE at
     φ1A above that separation means the entering pair touches before A (the bodies turn the
-    entering tooth with the loaded ones: :func:`gearmesh.datasets.ltca.teeth_approach_at_engagement`)."""
+    entering tooth with the loaded ones: :func:`gearmesh.datasets.ltca.teeth_approach_at_engagement`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        ltca.nc: ``pinion_angle`` (rad) over position, ``te`` (m) over position and ``lte`` (m) over
+        (torque, position) along the transverse line of action, ``pinion_angle_engagement`` (rad),
+        ``te_next_pair_at_engagement`` (m), over torque ``lte_at_engagement``,
+        ``lte_teeth_at_engagement``, ``lte_peak_to_peak`` (m) and ``touches_before_engagement``;
+        attribute ``contact_law``.
+    path : str or Path
+        The PNG to write.
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     fig, ax = subplots(figsize=(7.5, 4.5))
     x = _angle_mrad(ds)
     xa = float(ds["pinion_angle_engagement"]) * 1e3
@@ -86,7 +107,21 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
     (N/mm) over the mesh cycle against axial position z and pinion roll length ρ1, with the
     SAP and tip (EAP) marked; each panel on its own colour scale (its colour bar below it, so a
     light load is not drawn dark on the scale of the heaviest), cells the contact never
-    reaches grey, shown at the low end of each colour bar (where there are any)."""
+    reaches grey, shown at the low end of each colour bar (where there are any).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        ltca.nc: ``line_load`` (N/m) over (torque, position, line, point), ``rho_pinion`` (m) over
+        (position, line, point), ``point``, ``point_width``, ``rho_sap``, ``rho_eap`` (m),
+        ``max_line_load_cycle`` (N/m) over torque.
+    path : str or Path
+        The PNG to write.
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     n = ds.sizes["torque"]
     fig, axes = subplots(1, n, figsize=(4.2 * n, 5.4), squeeze=False, sharey=True, layout="constrained")
     fig.get_layout_engine().set(wspace=0.08)  # the panels' end tick labels apart
@@ -120,7 +155,22 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
     """Unloaded TCA: the TE of the mesh and of each tooth pair over one mesh cycle, and the
-    path of each pair's first-contact point on the pinion flank (z, ρ1)."""
+    path of each pair's first-contact point on the pinion flank (z, ρ1).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        tca.nc: ``pinion_angle`` (rad), ``te`` (m) over position, over (position, line) ``te_pair``,
+        ``contact_z``, ``contact_rho_pinion`` (m), ``separation`` (m) over (position, line, point),
+        ``pinion_angle_engagement`` (rad), ``face_width``, ``rho_sap``, ``rho_eap``,
+        ``te_peak_to_peak`` (m).
+    path : str or Path
+        The PNG to write.
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     fig, (ax1, ax2) = subplots(1, 2, figsize=(11, 4.6), layout="constrained")
     x = _angle_mrad(ds)
     ax1.plot(x, ds["te"].values * UM, color="0.75", lw=4.0, label="TE of the mesh", zorder=1)
@@ -165,11 +215,25 @@ def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def tca_figures(inputs, outputs) -> None:
-    """The figure of the ``tca`` rule from its ``tca`` dataset."""
+    """The figure of the ``tca`` rule from its ``tca`` dataset.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["tca"]``, writes
+        ``outputs["tca"]``.
+    """
     plot_tca(inputs["tca"], outputs["tca"])
 
 
 def ltca_figures(inputs, outputs) -> None:
-    """The figures of the ``ltca`` rule from its ``ltca`` dataset."""
+    """The figures of the ``ltca`` rule from its ``ltca`` dataset.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["ltca"]``, writes
+        ``outputs["te_lte"]`` and ``outputs["contact_pattern"]``.
+    """
     plot_te_lte(inputs["ltca"], outputs["te_lte"])
     plot_contact_pattern(inputs["ltca"], outputs["contact_pattern"])
