@@ -29,6 +29,7 @@ def plot_tooth_profile(ds: xr.Dataset, path: str | Path) -> Path:
         ``form_radius``, ``tip_radius`` (m), ``teeth``, ``profile_shift`` (1), ``undercut``.
     path : str or Path
         The PNG to write.
+
     Returns
     -------
     Path
@@ -78,6 +79,7 @@ def plot_contact_length(ds: xr.Dataset, path: str | Path) -> Path:
         ``eps_alpha``, ``eps_beta``, ``length_fluctuation`` (1).
     path : str or Path
         The PNG to write.
+
     Returns
     -------
     Path
@@ -169,6 +171,7 @@ def plot_helix_sweep(ds: xr.Dataset, path: str | Path) -> Path:
         ``eps_beta`` (1; its integers dotted).
     path : str or Path
         The PNG to write.
+
     Returns
     -------
     Path

@@ -46,6 +46,7 @@ def plot_te_lte(ds: xr.Dataset, path: str | Path) -> Path:
         attribute ``contact_law``.
     path : str or Path
         The PNG to write.
+
     Returns
     -------
     Path
@@ -117,6 +118,7 @@ def plot_contact_pattern(ds: xr.Dataset, path: str | Path) -> Path:
         ``max_line_load_cycle`` (N/m) over torque.
     path : str or Path
         The PNG to write.
+
     Returns
     -------
     Path
@@ -166,6 +168,7 @@ def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
         ``te_peak_to_peak`` (m).
     path : str or Path
         The PNG to write.
+
     Returns
     -------
     Path
