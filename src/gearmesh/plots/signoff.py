@@ -1,7 +1,12 @@
 """The sign-off figure: each variant's sign-off quantities as ratios to the reference variant's at
 every torque, with each criterion's limit, drawn from signoff_table.nc: the pressure, root-stress
 and TE-order panels on the table's basis (the worst manufactured gear, or the nominal gear), the
-nominal gear's ratios beside the population's as open markers."""
+nominal gear's ratios beside the population's as open markers.
+
+The figure job (``signoff_figures(inputs, outputs)``, as every ``*_figures`` of :mod:`gearmesh.plots`)
+takes ``inputs``, a mapping of str to xarray.Dataset (the rule's netCDF inputs by name), and ``outputs``, a
+mapping of str to the path of each PNG by name; it writes them and returns None.
+"""
 
 from __future__ import annotations
 
@@ -39,12 +44,24 @@ def _judged(table: xr.Dataset, name: str) -> str:
 
 
 def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
-    """One panel per criterion: every variant's value over the reference's against torque on the
-    table's basis, the criterion's limit dashed, a met point a filled circle and a failing one a
-    cross; on the population basis the nominal gear's ratios as open markers, dotted (shown, not
-    judged). Two panels a row and type of 10–11 pt, so the text stays legible where the report
-    shows the figure at the width of its page; one legend under the panels says what every colour,
-    marker and line means. The worst-case F_s criterion in the title."""
+    """One panel per criterion: every variant's value over the reference's against torque on the table's basis,
+    the criterion's limit dashed, a met point a filled circle and a failing one a cross; on the population basis
+    the nominal gear's ratios as open markers, dotted (shown, not judged). Two panels a row and type of 10–11 pt,
+    legible at the width of the report's page; one legend under the panels says what every colour, marker and
+    line means. The worst-case F_s criterion in the title.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        signoff_table.nc over (variant, torque): ``pressure_ratio`` (1), ``peak_root_stress`` (Pa), ``lte_order_N``
+        (m), ``impact_force``, ``dynamic_mesh_force_peak`` (N), ``worst_*``, ``meets_*``; ``reference``, ``*_factor``.
+    path : str or Path
+
+    Returns
+    -------
+    Path
+        ``path``, the PNG written.
+    """
     ref = str(table.attrs["reference"])
     basis = str(table.attrs.get("basis", "nominal"))
     panels = _panels(table)
@@ -110,5 +127,12 @@ def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
 
 
 def signoff_figures(inputs, outputs) -> None:
-    """The figure of the ``signoff_table`` rule: output 'signoff' from the table it wrote."""
+    """The figure of the ``signoff_table`` rule: output 'signoff' from the table it wrote.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["signoff_table"]``,
+        writes ``outputs["signoff"]``.
+    """
     plot_signoff(inputs["signoff_table"], outputs["signoff"])

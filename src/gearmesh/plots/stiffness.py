@@ -1,5 +1,11 @@
 """Stiffness-stage figures: K(φ) with its Fourier fit and the ISO mean, the comparison table,
-and the slice-count convergence."""
+and the slice-count convergence.
+
+The figure jobs (``stiffness_figures``, ``stiffness_table_figures``, ``slice_convergence_figures``, each
+``(inputs, outputs)`` as every ``*_figures`` of :mod:`gearmesh.plots`) take ``inputs``, a mapping of str to
+xarray.Dataset (the rule's netCDF inputs by name), and ``outputs``, a mapping of str to the path of each PNG
+by name; they write them and return None.
+"""
 
 from __future__ import annotations
 
@@ -45,7 +51,23 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
     """K(φ) with its Fourier series, the ISO 6336-1 mean and the tooth pairs in parallel without
     the terms in series with the whole mesh (gear bodies, ...); what is in series, as stacked
     compliances that add up to 1/K; one tooth pair's k (teeth and contact) with the mean of all
-    pairs in parallel; and the LSTE."""
+    pairs in parallel; and the LSTE.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        stiffness.nc: over ``position`` (m of pinion roll) ``mesh_stiffness``, ``mesh_stiffness_fourier``
+        (N/m), ``component_stiffness`` (N/m) over (component, position), ``pair_stiffness`` (N/m) over
+        ``pair_position`` (m), ``iso6336_mesh_stiffness``, ``mean_stiffness`` (N/m), ``fluctuation`` (1);
+        with a torque ``lste`` (m), ``lste_mean``, ``lste_peak_to_peak`` (m), ``pinion_torque`` (N m).
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     n = 4 if "lste" in ds else 3
     fig, axes = subplots(n, 1, figsize=(11, 2.8 * n + 0.6), sharex=False, layout="constrained")
     ax = axes[0]
@@ -106,7 +128,26 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_stiffness_table(ds: xr.Dataset, path: str | Path) -> Path:
     """Mean K (bars, min–max whiskers) of every case and method, with the ISO value as a line
-    across each case's bars; the legend beside the axes, clear of the bars."""
+    across each case's bars; the legend beside the axes, clear of the bars.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        stiffness_table.nc: over (case, model) ``mean_stiffness``, ``min_stiffness``,
+        ``max_stiffness`` and ``iso6336_mesh_stiffness`` (N/m).
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    References
+    ----------
+    .. [1] *A Comprehensive Study on Meshing Characteristics of Helical Gear Pairs Using an Improved
+       Potential Energy Method for Time-Varying Meshing Stiffness* (root-circle cases of the cantilever against ISO 6336-1).
+    """
     cases, methods = ds["case"].values, ds["model"].values
     fig, ax = subplots(figsize=(min(16, 4 + 0.9 * len(cases) * max(1, len(methods) // 2)), 4.5), layout="constrained")
     width = 0.8 / len(methods)
@@ -133,7 +174,26 @@ SLICE_RULES = {"centre": "whole slices (by their centre)", "clip": "end slices c
 
 
 def plot_slice_convergence(ds: xr.Dataset, path: str | Path) -> Path:
-    """|relative difference of the mean K| against the slice count, both slice rules."""
+    """|relative difference of the mean K| against the slice count, both slice rules.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        slice_convergence.nc: ``mean_relative_difference`` (1, against the finest clipped count) over
+        (pair, rule, slices).
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    References
+    ----------
+    .. [1] *A Comprehensive Study on Meshing Characteristics of Helical Gear Pairs Using an Improved
+       Potential Energy Method for Time-Varying Meshing Stiffness* (slice-count convergence).
+    """
     fig, ax = subplots(figsize=(6.5, 4))
     n = ds["slices"].values
     for pair in ds["pair"].values:
@@ -150,15 +210,36 @@ def plot_slice_convergence(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def stiffness_figures(inputs, outputs) -> None:
-    """The figure of the ``stiffness`` rule."""
+    """The figure of the ``stiffness`` rule.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["stiffness"]``, writes
+        ``outputs["stiffness"]``.
+    """
     plot_mesh_stiffness(inputs["stiffness"], outputs["stiffness"])
 
 
 def stiffness_table_figures(inputs, outputs) -> None:
-    """The figure of the ``stiffness_table`` rule."""
+    """The figure of the ``stiffness_table`` rule.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["stiffness_table"]``, writes
+        ``outputs["stiffness_table"]``.
+    """
     plot_stiffness_table(inputs["stiffness_table"], outputs["stiffness_table"])
 
 
 def slice_convergence_figures(inputs, outputs) -> None:
-    """The figure of the ``slice_convergence`` rule."""
+    """The figure of the ``slice_convergence`` rule.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["slice_convergence"]``, writes
+        ``outputs["slice_convergence"]``.
+    """
     plot_slice_convergence(inputs["slice_convergence"], outputs["slice_convergence"])
