@@ -44,11 +44,10 @@ def _judged(table: xr.Dataset, name: str) -> str:
 
 
 def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
-    """One panel per criterion: every variant's value over the reference's against torque on the table's basis,
-    the criterion's limit dashed, a met point a filled circle and a failing one a cross; on the population basis
-    the nominal gear's ratios as open markers, dotted (shown, not judged). Two panels a row and type of 10–11 pt,
-    legible at the width of the report's page; one legend under the panels says what every colour, marker and
-    line means. The worst-case F_s criterion in the title.
+    """One panel per criterion: each variant's value over the reference's against torque on the table's basis, the
+    limit dashed, met points filled circles, failing ones crosses; on the population basis the nominal gear's ratios
+    as open markers, dotted (shown, not judged). Two panels a row, type of 10–11 pt (legible at the report's page
+    width); one legend under the panels says what every colour, marker and line means. Worst-case F_s in the title.
 
     Parameters
     ----------
@@ -56,11 +55,11 @@ def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
         signoff_table.nc over (variant, torque): ``pressure_ratio`` (1), ``peak_root_stress`` (Pa), ``lte_order_N``
         (m), ``impact_force``, ``dynamic_mesh_force_peak`` (N), ``worst_*``, ``meets_*``; ``reference``, ``*_factor``.
     path : str or Path
+        The PNG to write (returned).
 
     Returns
     -------
     Path
-        ``path``, the PNG written.
     """
     ref = str(table.attrs["reference"])
     basis = str(table.attrs.get("basis", "nominal"))
