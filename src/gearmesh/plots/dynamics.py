@@ -1,5 +1,12 @@
 """Dynamics-stage figures: RMS against speed, mesh-force time series and spectra, the entering
-pair's engagement (contact excitation) and the variants' peak mesh force against speed."""
+pair's engagement (contact excitation) and the variants' peak mesh force against speed.
+
+The figure jobs (``dynamics_figures``, ``dynamics_variants_figures``, ``train_figures``,
+``dynamics_comparison_figures``, each ``(inputs, outputs)`` as every ``*_figures`` of :mod:`gearmesh.plots`)
+take ``inputs``, a mapping of str to xarray.Dataset (or a list of them, one per variant or pair), the rule's
+netCDF inputs by name, and ``outputs``, a mapping of str to the path of each PNG by name; they write them
+and return None.
+"""
 
 from __future__ import annotations
 
@@ -83,6 +90,25 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     3 (dash-dot) meet the natural frequencies of the linearised model's mesh modes. A TE
     fluctuation below :data:`MEANINGFUL_TE_UM` is drawn in nm and the title says it is below the
     model's meaning.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        dynamics.nc: over (torque, speed) (speed in rpm, torque N m) ``dynamic_te_std``,
+        ``mesh_deflection_std`` (m), ``displacement_std`` (m) and ``velocity_rms`` (m/s) also over
+        (gear, direction); ``resonance_speed`` (rpm) over (harmonic, mode), ``mesh_energy_fraction``
+        (1) over mode, ``on_grid`` over speed where present.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, section 4 (speed sweeps).
     """
     speed = ds.speed.values
     fig, axes = subplots(3, 1, figsize=(11, 10.5), sharex=True, layout="constrained")
@@ -131,7 +157,23 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
 
 def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
     """Mesh-force time series (two mesh periods) and amplitude spectrum at the kept speeds (at
-    the middle torque of a sweep over several)."""
+    the middle torque of a sweep over several).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        dynamics.nc (or train.nc, with a ``mesh`` dimension): over (sample_speed, time)
+        ``mesh_force_series`` (N, normal; time in s), over (sample_speed, frequency)
+        ``mesh_force_spectrum`` (N; frequency in Hz, ``order`` the mesh order),
+        ``static_mesh_force`` (N).
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     ds = _at_torque(ds)
     n = ds.sizes.get("sample_speed", 0)
     fig, axes = subplots(max(n, 1), 2, figsize=(11, 1.0 + 2.6 * max(n, 1)), squeeze=False, layout="constrained")
@@ -186,7 +228,23 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
     """The engagement in the steady state (``contact`` excitation): per kept speed (rows) and
     torque (columns), the mesh force and the force of the tooth pair entering in each cycle over
     the first two recorded mesh cycles (normal, kN), with A (the theoretical start of
-    engagement, solid), the quasi-static mesh-in point (dotted) and the dynamic one (dashed)."""
+    engagement, solid), the quasi-static mesh-in point (dotted) and the dynamic one (dashed).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        dynamics.nc of the contact excitation: over (torque, sample_speed, time) ``mesh_force_series``
+        and ``entering_pair_force_series`` (N, normal; time in s), ``frequency`` (Hz) and ``order``,
+        ``mesh_in_roll_before_A`` (m) over speed, ``static_mesh_in_roll_before_A``,
+        ``transverse_base_pitch``, ``roll_engagement`` (m).
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     n_s = ds.sizes.get("sample_speed", 0)
     torques = list(range(ds.sizes["torque"])) if "torque" in ds.dims else [None]
     fig, axes = subplots(max(n_s, 1), len(torques), figsize=(4.4 * len(torques), 1.8 + 2.8 * max(n_s, 1)),
@@ -241,7 +299,15 @@ def plot_engagement(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def dynamics_figures(inputs, outputs) -> None:
-    """The figures of the ``dynamics`` rule: outputs 'rms', 'spectrum' and (contact) 'engagement' from input 'dynamics'."""
+    """The figures of the ``dynamics`` rule: outputs 'rms', 'spectrum' and (contact) 'engagement' from input
+    'dynamics'.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["dynamics"]``, writes those of
+        ``outputs["rms"]``, ``outputs["spectrum"]`` and ``outputs["engagement"]`` it holds.
+    """
     ds = inputs["dynamics"]
     if "rms" in outputs:
         plot_rms_against_speed(ds, outputs["rms"])
@@ -254,7 +320,22 @@ def dynamics_figures(inputs, outputs) -> None:
 def plot_variants_peak_force(datasets, path: str | Path) -> Path:
     """Peak dynamic mesh force (normal) against speed, every variant on one axis (colour), one
     panel per torque; the static force as a dashed line; with the contact excitation a second
-    row: the entering pair's dynamic impact (its force above its quasi-static force)."""
+    row: the entering pair's dynamic impact (its force above its quasi-static force).
+
+    Parameters
+    ----------
+    datasets : sequence of xarray.Dataset
+        Each variant's dynamics.nc (the first is the reference for the static force and the torques):
+        ``mesh_force_max`` (N) over (torque, speed) (rpm), ``static_mesh_force`` (N), with the
+        contact excitation ``dynamic_impact_force`` (N); attribute ``variant``.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     ref = datasets[0]
     torques = list(range(ref.sizes["torque"])) if "torque" in ref.dims else [None]
     contact = all("dynamic_impact_force" in d for d in datasets)
@@ -285,18 +366,49 @@ def plot_variants_peak_force(datasets, path: str | Path) -> Path:
 
 
 def dynamics_variants_figures(inputs, outputs) -> None:
-    """The figure of the ``engagement_table`` rule (or ``plot_dynamics_variants`` without one)."""
+    """The figure of the ``engagement_table`` rule (or ``plot_dynamics_variants`` without one).
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["dynamics"]`` (one
+        dataset or a list, one per variant), writes ``outputs["dynamics_variants"]``.
+    """
     sets = inputs["dynamics"]
     plot_variants_peak_force(sets if isinstance(sets, (list, tuple)) else [sets], outputs["dynamics_variants"])
 
 
 def train_figures(inputs, outputs) -> None:
-    """The figure of the ``train_dynamics`` rule: output 'spectrum' (both meshes) from input 'train'."""
+    """The figure of the ``train_dynamics`` rule: output 'spectrum' (both meshes) from input 'train'.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["train"]``, writes
+        ``outputs["spectrum"]``.
+    """
     plot_force_spectrum(inputs["train"], outputs["spectrum"])
 
 
 def plot_dynamics_comparison(datasets, path) -> None:
-    """Mesh-deflection std and pinion lateral (y) and axial (z) velocity RMS against speed, all pairs."""
+    """Mesh-deflection std and pinion lateral (y) and axial (z) velocity RMS against speed, all pairs.
+
+    Parameters
+    ----------
+    datasets : sequence of xarray.Dataset
+        Each pair's dynamics.nc (standard variant, its first torque): ``mesh_deflection_std`` (m)
+        and ``velocity_rms`` (m/s) over (gear, direction) against ``speed`` (rpm).
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    None
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, section 4 (speed sweeps; the dynamic TE, DTE).
+    """
     fig, axes = subplots(3, 1, figsize=(8, 8.5), sharex=True)
     for ds in datasets:
         name = pair_label(ds)
@@ -318,5 +430,12 @@ def plot_dynamics_comparison(datasets, path) -> None:
 
 
 def dynamics_comparison_figures(inputs, outputs) -> None:
-    """The figure of the ``dynamics_comparison`` rule."""
+    """The figure of the ``dynamics_comparison`` rule.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["dynamics"]`` (a list,
+        one per pair), writes ``outputs["dynamics_comparison"]``.
+    """
     plot_dynamics_comparison(inputs["dynamics"], outputs["dynamics_comparison"])

@@ -1,5 +1,10 @@
 """Optimiser figures: convergence (GA and random search on one axis), the optimum's
-modification map δ(profile, face) on each flank it modifies, and NSGA-II's Pareto front."""
+modification map δ(profile, face) on each flank it modifies, and NSGA-II's Pareto front.
+
+The figure jobs (``optimise_figures``, ``pareto_figures``, each ``(inputs, outputs)`` as every ``*_figures``
+of :mod:`gearmesh.plots`) take ``inputs``, a mapping of str to xarray.Dataset (the rule's netCDF inputs by
+name), and ``outputs``, a mapping of str to the path of each PNG by name; they write them and return None.
+"""
 
 from __future__ import annotations
 
@@ -30,7 +35,23 @@ def _change(optimum: float, standard: float) -> str:
 
 def plot_convergence(ds: xr.Dataset, path: str | Path) -> Path:
     """Best objective so far and the population median against generation, for the run and (when
-    it ran) the random search of the same budget, with the standard gear's objective."""
+    it ran) the random search of the same budget, with the standard gear's objective.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        ga.nc: over ``generation`` ``best_objective``, ``median_objective`` (and ``random_*``), in the
+        ``objective`` variable's units (N for F_s, m s-1 for the velocity), ``evaluations``,
+        ``standard_objective``, ``optimum_objective``, ``objective_torque`` (N m); attributes
+        ``method``, ``objective``, ``seed``, ``constraints`` and the tolerance statistic.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     fig, ax = subplots(figsize=(7.5, 4.5))
     k, unit = _scale(ds)
     gen = ds["generation"].values
@@ -118,7 +139,21 @@ def plot_modification(ds: xr.Dataset, path: str | Path) -> Path:
     each relief zone named, the lead δ(z) at the tip and at mid-profile below it, dashed lines
     where the reliefs and the crowning begin, and the six parameters in words in the title
     (the mesh-in impact paper's parabolic tip and root reliefs and lead crowning,
-    :func:`gearmesh.surface.modification_depth`)."""
+    :func:`gearmesh.surface.modification_depth`).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        ga.nc: ``optimum_modification`` (m) over (gear, parameter: y1..y6), ``rho_sap``, ``rho_eap``
+        (m) over gear, ``face_width`` (m).
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     p = ds["optimum_modification"].values
     gears = [g for g in range(2) if g == 0 or np.any(p[g] > 0)]
     fig = figure(figsize=(8.2 * len(gears), 8.4), layout="constrained")
@@ -182,7 +217,24 @@ def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
     objective (ga.nc attribute ``pareto_objectives``) for every evaluated candidate (failed ones
     left out; those meeting every constraint in green), the Pareto front, the chosen design (the
     front's least J), the standard gear (its J as a candidate of the run, penalties included,
-    when the run has constraints) and each constraint's limit."""
+    when the run has constraints) and each constraint's limit.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        ga.nc of an NSGA-II run: per candidate ``objective`` (its units), ``failed``, ``violation``,
+        ``lte_peak_to_peak`` (m) and the ``*_ratio`` objectives (1); per front point
+        ``pareto_objective`` and ``pareto_*``; ``standard_lte_peak_to_peak`` (m),
+        ``standard_penalised_objective``, ``design_torque`` (N m), ``speed`` (rpm); attributes
+        ``pareto_objectives``, ``constraints``.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     names = [n for n in ds.attrs.get("pareto_objectives", "impact,lte").split(",") if n != "impact"]
     fig, axes = subplots(1, len(names), figsize=(4.6 * len(names) + 0.6, 4.8), squeeze=False)
     ok = ds["failed"].values == 0
@@ -220,11 +272,25 @@ def plot_pareto(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def optimise_figures(inputs, outputs) -> None:
-    """The figures of the ``optimise`` rule from its ``ga`` dataset."""
+    """The figures of the ``optimise`` rule from its ``ga`` dataset.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["ga"]``, writes
+        ``outputs["convergence"]`` and ``outputs["modification"]``.
+    """
     plot_convergence(inputs["ga"], outputs["convergence"])
     plot_modification(inputs["ga"], outputs["modification"])
 
 
 def pareto_figures(inputs, outputs) -> None:
-    """The figure of the ``plot_pareto`` rule (NSGA-II runs)."""
+    """The figure of the ``plot_pareto`` rule (NSGA-II runs).
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["ga"]``, writes
+        ``outputs["pareto"]``.
+    """
     plot_pareto(inputs["ga"], outputs["pareto"])
