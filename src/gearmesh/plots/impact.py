@@ -1,7 +1,13 @@
 """Mesh-in impact figures: the mesh-in impact index F_s (the energy method of the mesh-in impact
 paper, :data:`gearmesh.choices.IMPACT_INDEX`) against speed and torque, the trajectory of the
 mesh-in point M on the pinion flank as the load rises (the paper's Table 3), and the direct
-simulation of the engagement beside F_s."""
+simulation of the engagement beside F_s.
+
+The figure jobs (``impact_figures``, ``impact_study_figures``, each ``(inputs, outputs)`` as every
+``*_figures`` of :mod:`gearmesh.plots`) take ``inputs``, a mapping of str to xarray.Dataset (or to a list of
+them, one per variant), the rule's netCDF inputs by name, and ``outputs``, a mapping of str to the path of
+each PNG by name; they write them and return None.
+"""
 
 from __future__ import annotations
 
@@ -25,7 +31,21 @@ _COLORS = {"none": "0.6", "surface": "tab:green", "edge": "tab:red"}
 
 def plot_force_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
     """F_s (closed form, solid; energy balance, dashed) against pinion speed, one line per torque
-    (torques whose curves coincide share one line and one legend entry)."""
+    (torques whose curves coincide share one line and one legend entry).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        impact.nc: ``impact_force`` and ``impact_force_energy_balance`` (N, transverse) over
+        (torque, speed) (N m, rpm), ``scenario`` over torque; attribute ``variant``.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     fig, ax = subplots(figsize=(7, 4.4))
     closed = ds["impact_force"].transpose("torque", "speed").values * 1e-3
     balance = ds["impact_force_energy_balance"].transpose("torque", "speed").values * 1e-3
@@ -48,7 +68,25 @@ def plot_force_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
 def plot_mesh_in_trajectory(ds: xr.Dataset, path: str | Path) -> Path:
     """Where M lies on the pinion flank (face position against roll length) for every torque,
     coloured by scenario, with SAP, tip and face ends (the mesh-in impact paper Table 3): the whole flank on
-    the left, a close-up around the points (labelled with their torque) on the right."""
+    the left, a close-up around the points (labelled with their torque) on the right.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        impact.nc: over torque (N m) ``mesh_in_face_position``, ``mesh_in_rho_pinion`` (m) and
+        ``scenario``; ``face_width``, ``rho_sap``, ``rho_eap`` (m); attribute ``variant``.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+
+    References
+    ----------
+    .. [1] *Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears*, Table 3.
+    """
     fig, axes = subplots(1, 2, figsize=(11, 4.6), gridspec_kw={"width_ratios": [1, 1.3]})
     b = float(ds["face_width"]) * MM
     sap, eap = float(ds["rho_sap"][0]) * MM, float(ds["rho_eap"][0]) * MM
@@ -121,7 +159,24 @@ def _torque_labels(ax, z, rho, found, torques, zc: float, hz: float, hr: float, 
 def plot_simulation(ds: xr.Dataset, path: str | Path) -> Path:
     """The direct time integration at the design speed: total mesh force and the entering pair's
     force against time, with the static force and the energy-method F_s (and F_s above static);
-    the legend under the axes, clear of the curves."""
+    the legend under the axes, clear of the curves.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        impact.nc: over ``sim_time`` (s) ``sim_mesh_force``, ``sim_entering_force`` and
+        ``sim_entering_static`` (N, transverse), ``sim_static_force`` (N), ``sim_torque`` (N m),
+        ``sim_touch_time``, ``sim_period``, ``sim_peak_time`` (s), ``impact_force`` (N) and
+        ``simulated_entering_excess`` (N); attribute ``design_speed_rpm``. Without ``sim_time`` the
+        figure says no simulation ran.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    Path
+        ``path``.
+    """
     fig, ax = subplots(figsize=(7, 4.4))
     if "sim_time" not in ds.coords:
         ax.text(0.5, 0.5, "no simulation in this study (impact.simulate_torques_Nm empty)", ha="center",
@@ -160,7 +215,14 @@ def plot_simulation(ds: xr.Dataset, path: str | Path) -> Path:
 
 
 def impact_figures(inputs: Mapping[str, xr.Dataset], outputs: Mapping[str, str]) -> None:
-    """Per-variant figures of ``impact.nc``."""
+    """Per-variant figures of ``impact.nc``.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["impact"]``, writes
+        ``outputs["force_speed"]``, ``outputs["trajectory"]`` and ``outputs["simulation"]``.
+    """
     ds = inputs["impact"]
     plot_force_against_speed(ds, outputs["force_speed"])
     plot_mesh_in_trajectory(ds, outputs["trajectory"])
@@ -181,7 +243,16 @@ def impact_study_figures(inputs: Mapping[str, Sequence[xr.Dataset]], outputs: Ma
     against torque at the design speed and against speed at the design torque (each variant's whole
     torque × speed map is its own impact_speed figure); where the engagement was simulated, the
     entering pair's simulated excess over its quasi-static force (crosses), and F_s over it in the
-    legend: the index is many times the force the simulation finds."""
+    legend: the index is many times the force the simulation finds.
+
+    Parameters
+    ----------
+    inputs, outputs : mapping
+        The rule's datasets and PNG paths (module docstring): reads ``inputs["impact"]``, every
+        variant's impact.nc (``impact_force`` (N) over (torque, speed), ``simulated_entering_excess``
+        (N)), writes ``outputs["impact_force"]`` and, when asked, ``outputs["robustness"]``
+        (:func:`plot_robustness`).
+    """
     sets = inputs["impact"]
     sets = sets if isinstance(sets, (list, tuple)) else [sets]
     ref = sets[0]
@@ -309,7 +380,20 @@ ROBUSTNESS_PANELS = (("window_impact_force", _load_windows), ("population_impact
 def plot_robustness(sets: Sequence[xr.Dataset], path) -> None:
     """The variants side by side off the design point: F_s against torque on a fine grid with each
     variant's load window, and the spread of F_s under the manufacturing tolerance samples at each
-    study torque (the panels of :data:`ROBUSTNESS_PANELS` whose data the variants have)."""
+    study torque (the panels of :data:`ROBUSTNESS_PANELS` whose data the variants have).
+
+    Parameters
+    ----------
+    sets : sequence of xarray.Dataset
+        Every variant's impact.nc: ``window_impact_force`` (N) over ``window_torque`` (N m) and
+        ``design_torque``; the tolerance samples' ``population_impact_force`` (N); attribute ``variant``.
+    path : str or Path
+        The PNG to write.
+
+    Returns
+    -------
+    None
+    """
     panels = [draw for need, draw in ROBUSTNESS_PANELS if all(need in ds for ds in sets)]
     fig, axes = subplots(1, max(len(panels), 1), figsize=(6.4 * max(len(panels), 1), 5.0), squeeze=False)
     colors = colormaps["tab10"](np.arange(len(sets)))
