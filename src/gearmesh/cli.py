@@ -217,7 +217,15 @@ class _Parser(argparse.ArgumentParser):
 
 
 def build_parser() -> argparse.ArgumentParser:
-    """The ``gearmesh`` parser: every subcommand, group by group, in the order ``--help`` lists them."""
+    """The ``gearmesh`` parser: every subcommand, group by group, in the order ``--help`` lists them.
+
+    Returns
+    -------
+    argparse.ArgumentParser
+        Its refusals are the one line ``gearmesh: error: ARGUMENT = VALUE: RULE`` (exit 2); each
+        subcommand sets ``func`` (its :mod:`gearmesh.commands` function) and, where options are
+        settings, ``setting_options`` (option -> its declaration, checked by :func:`main`).
+    """
     parser = _Parser(prog="gearmesh", description="Helical gear pairs from their design data: geometry, contact, "
                      "mesh stiffness, loaded contact, mesh-in impact, micro-geometry optimisation and dynamics; "
                      "each command prints its headline numbers (--json: one JSON object).",
@@ -424,6 +432,31 @@ def _optimise_command(sub) -> None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
+    """Run one ``gearmesh`` command: parse, check every option that is a setting against its
+    declaration and the numbers for finiteness, run the command, print its result.
+
+    Everything after ``run`` is Snakemake's (not parsed here). The pair file's notes are printed
+    before the command's own. A reader that stops early (``gearmesh example | head``) ends it quietly.
+
+    Parameters
+    ----------
+    argv : sequence of str, optional
+        The arguments after ``gearmesh`` (default: ``sys.argv[1:]``).
+
+    Returns
+    -------
+    int
+        The exit code: 0, or 2 (:data:`EXIT_BAD_INPUT`) on a refusal, printed on stderr as the one
+        line ``gearmesh: error: FIELD = VALUE: RULE`` with nothing on stdout (``validate --json``
+        also prints ``{"file", "valid": false, "errors"}``). The result goes to stdout through
+        :func:`gearmesh.commands.emit` (text, or one JSON object with ``--json``).
+
+    Raises
+    ------
+    SystemExit
+        From argparse: code 2 for a malformed command line (the same one line), 0 after
+        ``--help`` or ``--version``.
+    """
     parser = build_parser()
     argv = list(sys.argv[1:] if argv is None else argv)
     if argv[:1] == ["run"] and argv[1:2] not in (["-h"], ["--help"]):  # everything after 'run' is Snakemake's
