@@ -168,10 +168,10 @@ def test_validation_doc_loaded_contact_rows_are_what_the_ltca_computes(root):
     assert entry == ["surface", "surface", "edge"] and "surface entry at 400 and 1000, edge at 1600" in text
 
 
-#: The command-line, job and settings modules and the stage datasets: their functions take the
+#: The job and settings modules and the stage datasets: their functions take the
 #: settings and files of a run, documented in docs/workflow.md and config/README.md; their docstrings are
 #: not numpydoc yet (schema: at the module line limit until its Markdown rendering has a module of its own).
-NOT_NUMPYDOC = ("cli", "commands", "settings", "__init__",
+NOT_NUMPYDOC = ("settings", "__init__",
                 "__main__", "datasets")
 
 

@@ -47,7 +47,17 @@ def _finite(obj: Any) -> Any:
 def emit(result: Mapping[str, Any], as_json: bool, text=None) -> None:
     """Print a result: one JSON object, or its text (``text(result)``: the command's own lines),
     or one ``key  value`` line per number (nested keys dotted) and, for a speed sweep, a table
-    with one row per speed."""
+    with one row per speed.
+
+    Parameters
+    ----------
+    result : mapping
+        A command's result (NaN printed as JSON null).
+    as_json : bool
+        One JSON object on one line.
+    text : callable, optional
+        ``text(result)``: the lines to print (e.g. :func:`rating_text`).
+    """
     if as_json:
         print(json.dumps(_finite(result)))
         return
@@ -107,7 +117,18 @@ RATING_GROUPS = (
 def safety_verdict(result: Mapping[str, Any]) -> tuple[bool, str]:
     """Whether every safety factor of a rating meets its minimum, and the line that says so:
     each ``S_X`` with an ``S_Xmin`` in ``result`` (the weaker gear's against the minimum), e.g.
-    "PASS: S_H 1.98 >= S_Hmin 1, S_F 4.83 >= S_Fmin 1 (the weaker gear of each)"."""
+    "PASS: S_H 1.98 >= S_Hmin 1, S_F 4.83 >= S_Fmin 1 (the weaker gear of each)".
+
+    Parameters
+    ----------
+    result : mapping
+        A rating (:func:`gearmesh.datasets.rating.rating_summary`); ``S_X`` a number or per gear.
+
+    Returns
+    -------
+    tuple of (bool, str)
+        Met (False for a factor not finite, or none with its minimum), and the line.
+    """
     parts, ok = [], True
     for key, value in result.items():
         need = result.get(f"{key}min")
@@ -126,7 +147,13 @@ def safety_verdict(result: Mapping[str, Any]) -> tuple[bool, str]:
 def rating_text(result: Mapping[str, Any]) -> list[str]:
     """The text output of ``gearmesh rating``: the verdict line first, then the result by group
     (:data:`RATING_GROUPS`), each key with its value (per-gear values named by gear), the notes
-    last, one a line."""
+    last, one a line.
+
+    Parameters
+    ----------
+    result : mapping
+        A rating (:func:`gearmesh.datasets.rating.rating_summary`).
+    """
     lines = _flat(_finite({k: v for k, v in result.items() if k != "notes"}))
     gears = result.get("gears") if isinstance(result.get("gears"), list) else []
     groups: dict[str, dict[str, Any]] = {title: {} for title, _ in RATING_GROUPS} | {"other": {}}
@@ -194,6 +221,19 @@ def _with_deviations(pair, args: argparse.Namespace):
 
 
 def cmd_validate(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh validate``: a pair file, or a study config (a key only a study has).
+    Refused naming the file's key (exit 2; ``--json`` prints ``valid: false`` too).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``file`` (path), ``json``.
+
+    Returns
+    -------
+    dict
+        ``file``, ``kind``, ``valid``; a study's ``pairs``; a pair's ``name``, ``needs`` if any.
+    """
     data = read_yaml(args.file, "file")
     if not data:
         raise GearmeshInputError("file", args.file, "is empty: neither a gear pair file (teeth, normal_module_mm, ...) "
@@ -221,6 +261,20 @@ def _is_study(data: Any) -> bool:
 
 
 def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh geometry``: the pair's geometry and contact-line lengths.
+    Refused naming the pair file's key (exit 2).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``pair`` (path), ``json``.
+
+    Returns
+    -------
+    dict
+        Contact ratios, angles, radii, backlash, masses, inertias (units in the keys); contact-line
+        lengths (mm), numeric and ``_closed_form``, and ``contact_length_fluctuation``.
+    """
     geom = _pair(args)[1]
     result = geom.scalars()
     summary = contact_length_summary(geom)
@@ -237,6 +291,19 @@ def cmd_geometry(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_stiffness(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh stiffness``: the time-varying mesh stiffness, as a study's stiffness stage.
+    Refused (exit 2) naming ``--slices`` (grid over its limit), ``--torque-Nm`` or the pair's key.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``pair``, ``method``, ``slices``, ``positions``; ``torque_Nm`` (N·m, optional: LSTE), ``on``.
+
+    Returns
+    -------
+    dict
+        :func:`gearmesh.datasets.stiffness.stiffness_summary`, and the torque if given.
+    """
     from .datasets.stiffness import stiffness_summary
 
     check_grid("--slices", args.slices, args.slices * args.positions, MAX_STIFFNESS_POINTS, "slice-positions")
@@ -255,6 +322,20 @@ def _stiffness_section(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_impact(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh impact``: the mesh-in impact at one torque and speed.
+    Refused (exit 2) naming ``--torque-Nm`` (over the load limits), a setting or the pair's key.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``pair``, deviations (µm), ``torque_Nm`` (N·m), ``on``, ``speed_rpm`` (pinion, rpm),
+        ``driver``, ``points``, ``energy_velocity``, ``simulate``.
+
+    Returns
+    -------
+    dict
+        :func:`gearmesh.datasets.impact.impact_summary` (units in the keys).
+    """
     from .datasets.impact import impact_summary
 
     return impact_summary(_pair(args)[0], args.torque_Nm, args.speed_rpm, simulate=args.simulate,
@@ -275,6 +356,20 @@ def _impact_section(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_ltca(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh ltca``: the loaded tooth contact at one torque.
+    Refused (exit 2) naming ``--points`` (grid over its limit), ``--torque-Nm``, a setting or the pair's key.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``pair``, deviations (µm), ``torque_Nm`` (N·m), ``on``, ``positions``, ``points``,
+        ``contact_law``, ``method``.
+
+    Returns
+    -------
+    dict
+        :func:`gearmesh.datasets.ltca.ltca_summary` (units in the keys).
+    """
     from .datasets.ltca import ltca_summary
 
     check_grid("--points", args.points, (args.positions + 1) * args.points, MAX_CONTACT_POINTS,
@@ -293,6 +388,20 @@ def _ltca_section(args: argparse.Namespace) -> dict[str, Any]:
 
 
 def cmd_rating(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh rating``: ISO 6336-2/-3 method B and scuffing with the LTCA's stresses.
+    Refused (exit 2) naming ``--factor`` (given twice), ``--torque-Nm``, a rating input or the pair's key.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``pair``, deviations (µm), ``torque_Nm`` (N·m), ``on``, ``speed_rpm`` (rpm, gear ``on``),
+        ``application_factor``, ``life_hours`` (h), ``factor``, ``method``, ``positions``, ``points``.
+
+    Returns
+    -------
+    dict
+        :func:`gearmesh.datasets.rating.rating_summary`, printed by :func:`rating_text`.
+    """
     from .datasets.rating import rating_summary
 
     factors = {}
@@ -320,6 +429,21 @@ def _rating_sections(args: argparse.Namespace) -> tuple[dict[str, Any], dict[str
 
 
 def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh dynamics``: the 8-DOF model's steady state over a speed sweep.
+    Refused (exit 2) naming ``torque_Nm``, ``speeds_rpm`` (``--speeds``), a setting or the pair's key.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``pair``, deviations (µm), ``torque_Nm`` (N·m), ``on``, ``speeds`` (START:STOP:STEP rpm),
+        ``backlash_um`` (µm or 'pair'), ``excitation``.
+
+    Returns
+    -------
+    dict
+        The load, model choices, backlash, supports, damping and ``speeds``, a row per speed
+        (:func:`gearmesh.datasets.dynamics.pair.pair_summary`).
+    """
     from .datasets.dynamics.checks import check_dynamics_settings
     from .datasets.dynamics.excitation import model_choices
     from .datasets.dynamics.inputs import positive_torque, supports_note
@@ -380,7 +504,13 @@ def _backlash(geom, option) -> dict[str, Any]:
 
 def cmd_schema(args: argparse.Namespace) -> None:
     """Print the JSON schema of a study config or a pair file, or their keys as Markdown tables
-    (:mod:`gearmesh.settings`: the files published under ``schemas/`` and ``config/README.md``)."""
+    (:mod:`gearmesh.settings`: the files published under ``schemas/`` and ``config/README.md``).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``kind`` (study or pair), ``format`` (yaml, json, markdown; None: yaml study, json pair).
+    """
     from .pair_keys import pair_schema
     from .published import pair_reference, pair_schema_text, study_reference, study_schema_text
     from .settings import study_schema
@@ -396,6 +526,13 @@ def cmd_schema(args: argparse.Namespace) -> None:
 
 
 def yaml_text(data: Any) -> str:
+    """``data`` as YAML in its own key order.
+
+    Parameters
+    ----------
+    data : Any
+        A JSON-like document.
+    """
     import yaml
 
     return yaml.safe_dump(data, sort_keys=False, allow_unicode=True, width=110, default_flow_style=None)
@@ -427,6 +564,21 @@ def _numbers(option: str, text: str | None) -> list[float] | None:
 
 
 def cmd_optimise(args: argparse.Namespace) -> dict[str, Any]:
+    """``gearmesh optimise``: the micro-geometry optimisation, as a study's (:func:`_optimise_section`).
+    Refused (exit 2, before the search) naming ``--torque-Nm``, ``--torques-Nm``, ``--weights``,
+    ``--write-pair`` or a setting.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``pair``, deviations (µm), ``torque_Nm``, ``torques_Nm``, ``weights`` (N·m, comma lists), ``on``,
+        ``speed_rpm``, tolerance and GA options, declared settings and constraints, ``write_pair``.
+
+    Returns
+    -------
+    dict
+        :func:`gearmesh.datasets.optimise.optimise_summary`; ``pair_file`` once written.
+    """
     from .datasets.optimise import optimise_summary, optimum_pair
     from .optimise.search import LOG
     from .pipeline import write_pair
@@ -519,7 +671,19 @@ def _output_pair_path(path: str | None):
 
 def cmd_example(args: argparse.Namespace) -> dict[str, Any] | None:
     """The example pairs shipped with the package: their names and sources, or one of them
-    printed as it is (a pair file every command reads)."""
+    printed as it is (a pair file every command reads).
+    An unknown name is refused as ``example`` (exit 2).
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``name`` (None: the list), ``json``.
+
+    Returns
+    -------
+    dict or None
+        {name: source}, or None once the pair file is printed.
+    """
     if args.name is None:
         return {name: _source(path) for name, path in example_pairs().items()}
     sys.stdout.write(example_pair(args.name).read_text(encoding="utf-8"))
@@ -528,7 +692,14 @@ def cmd_example(args: argparse.Namespace) -> dict[str, Any] | None:
 
 def cmd_manufactured(args: argparse.Namespace) -> None:
     """One manufactured gear of a variant's impact.nc printed as a pair file
-    (:func:`gearmesh.robust.manufactured_pair`)."""
+    (:func:`gearmesh.robust.manufactured_pair`).
+    Refused (exit 2) naming ``impact``, ``--worst`` or ``--torque-Nm``.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``impact`` (path); ``heldout``, ``population`` or ``worst`` (with ``torque_Nm``, pinion N·m).
+    """
     import yaml
 
     from .datasets.impact import manufactured_gear
@@ -556,7 +727,14 @@ def cmd_check(args) -> dict[str, Any] | None:
     folder (:func:`gearmesh.upstream.check_tree`), one line each; nothing printed when all is well
     (``--json``: one object, ``ok`` and ``problems``). The files record their paths relative to
     the folder the run ran in, the one above ``results/``: the check runs there, whatever folder
-    it is called from and however RESULTS is written (relative or absolute)."""
+    it is called from and however RESULTS is written (relative or absolute).
+    Refused (exit 2) naming ``results``, or with every problem, one line each.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``results``, ``configfile`` (optional), ``json``.
+    """
     from .pipeline import study_pair
     from .upstream import check_tree
 
@@ -601,7 +779,14 @@ def cmd_run(args) -> None:
     (the command line's config files, every profile and the config files it names,
     ``$SNAKEMAKE_PROFILE`` and the workflow's default profile included) read with the package's
     bounded loader and validated (:mod:`gearmesh.launch`), then Snakemake started with the same
-    arguments: its own loader (and template engine) never sees a file that failed."""
+    arguments: its own loader (and template engine) never sees a file that failed.
+    Refused (exit 2) naming a config's or profile's key, or ``snakemake`` not installed.
+
+    Parameters
+    ----------
+    args : argparse.Namespace
+        ``snakemake_args``: for Snakemake, unchanged.
+    """
     import shutil
 
     from .launch import check_inputs, snakemake_inputs
