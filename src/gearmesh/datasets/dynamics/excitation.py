@@ -15,6 +15,7 @@ from ...limits import same_point
 from ...ltca import contact_tangent_compliance
 from ...deflection import mesh_misalignment
 from ...deviation import with_misalignment
+from ...contact_model import TABLE_CONTACT
 from ...meshforce import MeshForceTable, table_layout, tabulate
 from ...tca import pair_lead_slope
 from ...stiffness import mesh_stiffness
@@ -92,7 +93,8 @@ def contact_tables(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOO
     rb1 = float(geom.base_radius[0])
     torques = np.atleast_1d(np.asarray(pinion_torques, dtype=float))
     force = t["factor"] * float(np.max(torques)) / rb1
-    layout = table_layout(geom, t["positions"], t["points"], t["contact_law_name"], method)
+    contact = TABLE_CONTACT.with_(points=t["points"], contact_law=t["contact_law"], method=method)
+    layout = table_layout(geom, t["positions"], contact)
     lead = pair_lead_slope(geom)
     built: dict[float, MeshForceTable] = {}
     for m in mesh_misalignment(geom, torques / rb1):

@@ -185,5 +185,5 @@ def _table_settings(**settings: Any) -> dict[str, Any]:
     if positions * approaches * points > MAX_TABLE_POINTS:
         raise GearmeshInputError("table_positions", positions, f"× table_approaches {approaches} × points {points} "
                                  f"must be at most {MAX_TABLE_POINTS:.0e} (the table's build time and memory)")
-    return {"contact_law_name": s["contact_law"], "points": points, "positions": positions,
+    return {"contact_law": s["contact_law"], "points": points, "positions": positions,
             "approaches": approaches, "factor": float(s["table_force_factor"])}

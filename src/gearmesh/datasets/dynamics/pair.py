@@ -21,6 +21,7 @@ from ...gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ...io import name_force_lines, variable
 from ...limits import MAX_SPEEDS, check_slice_grid, check_speeds, positive_values
 from ...loads import check_load, check_loads
+from ...contact_model import LTCA_CONTACT
 from ...ltca import with_loaded_extension
 from ...meshforce import MeshForceTable
 from ...arguments import check_arguments
@@ -109,7 +110,7 @@ def pair_model_of(pair: GearPair, torque_Nm: float, settings: Dynamics, excitati
     else:
         K = _stiffness_curve(geom, stiffness, s.method, slices, positions, t1)
         if exc == "tvms":  # the loaded extension of contact beyond the active zone (one stiffness at one load)
-            K = with_loaded_extension(geom, K, t1, s.method)
+            K = with_loaded_extension(geom, K, t1, LTCA_CONTACT.with_(method=s.method))
         te = _transmission_error(s.transmission_error_um)
     return pair_model(geom, t_out, K, bearing=_bearing(s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m,
                                                        s.bearing_c_radial_Ns_per_m, s.bearing_c_axial_Ns_per_m),
