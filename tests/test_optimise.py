@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from gearmesh.contact_model import ContactModel
 from gearmesh import impact as im
 from gearmesh import optimise as op
 from gearmesh.impact import load_grid, load_window
@@ -28,7 +29,7 @@ from gearmesh.plots.optimise import plot_convergence, plot_modification, plot_pa
 from gearmesh.surface import MODIFICATION_FIELDS
 
 ROOT = Path(__file__).resolve().parents[1]
-COARSE = {"points": 16, "window_positions": 24, "face_samples": 65}
+COARSE = {"contact": ContactModel(points=16), "window_positions": 24, "face_samples": 65}
 
 
 @pytest.fixture(scope="module")
