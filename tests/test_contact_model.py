@@ -7,9 +7,10 @@ import numpy as np
 import pytest
 
 from gearmesh.choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD
-from gearmesh.contact_model import (DEFAULT_TABLE_EXTENSION, DEFAULT_TABLE_POINTS, LTCA_CONTACT, MAX_POINTS,
+from gearmesh.contact_model import (DEFAULT_TABLE_EXTENSION, DEFAULT_TABLE_POINTS, LTCA_CONTACT,
                                     TABLE_CONTACT, ContactModel)
 from gearmesh.errors import GearmeshInputError
+from gearmesh.limits import MAX_LINE_POINTS
 from gearmesh.schema import settings_object
 from gearmesh.settings import Dynamics, Impact, Ltca, Optimise
 
@@ -23,7 +24,7 @@ def test_the_defaults_are_the_declared_choices():
 
 
 @pytest.mark.parametrize("field, value", [
-    ("points", 0), ("points", MAX_POINTS + 1), ("points", 2.0), ("points", True),
+    ("points", 0), ("points", MAX_LINE_POINTS + 1), ("points", 2.0), ("points", True),
     ("contact_law", "hertz"), ("method", "beam"),
     ("extension", -0.1), ("extension", 1.5), ("extension", float("nan")), ("extension", "0.25"), ("extension", True),
 ])

@@ -12,7 +12,8 @@ it (:class:`gearmesh.settings.Ltca`, :class:`~gearmesh.settings.Impact`,
 
 Each use's defaults are declared here once: :data:`LTCA_CONTACT` (the LTCA and the impact) and
 :data:`TABLE_CONTACT` (the dynamics' mesh force table). Light: it imports no numerical library,
-so :mod:`gearmesh.settings` can build the group.
+so :mod:`gearmesh.settings` can build the group: its sections inherit how from the mixins below
+(:class:`LoadedContactSection`, :class:`TableContactSection`, :class:`OverridingContactSection`).
 """
 
 from __future__ import annotations
@@ -23,9 +24,10 @@ from dataclasses import dataclass, replace
 
 from .choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_TOOTH_METHOD, TOOTH_METHODS
 from .errors import GearmeshInputError
+from .limits import MAX_LINE_POINTS
 
 __all__ = ["ContactModel", "LTCA_CONTACT", "TABLE_CONTACT", "DEFAULT_LTCA_POINTS", "DEFAULT_TABLE_POINTS",
-           "DEFAULT_TABLE_EXTENSION", "MAX_POINTS"]
+           "DEFAULT_TABLE_EXTENSION", "LoadedContactSection", "TableContactSection", "OverridingContactSection"]
 
 #: Candidate points (slices) per contact line of the LTCA and the impact model (the study's default
 #: of ``ltca.points`` and ``impact.points``, :mod:`gearmesh.settings`).
@@ -39,9 +41,6 @@ DEFAULT_TABLE_POINTS = 200
 #: Reach of a mesh force table's tip-edge candidates beyond the active zone (fraction of p_bt): half a
 #: base pitch, the whole half-window before A in which the entering pair is followed.
 DEFAULT_TABLE_EXTENSION = 0.5
-#: Most candidate points per contact line a physics function accepts (the study's own bound is lower,
-#: :func:`gearmesh.settings._points`).
-MAX_POINTS = 100000
 
 
 @dataclass(frozen=True)
@@ -67,8 +66,8 @@ class ContactModel:
 
     def __post_init__(self) -> None:
         points, extension = self.points, self.extension
-        if isinstance(points, bool) or not isinstance(points, numbers.Integral) or not 1 <= points <= MAX_POINTS:
-            raise GearmeshInputError("points", points, f"must be an integer in [1, {MAX_POINTS}]")
+        if isinstance(points, bool) or not isinstance(points, numbers.Integral) or not 1 <= points <= MAX_LINE_POINTS:
+            raise GearmeshInputError("points", points, f"must be an integer in [1, {MAX_LINE_POINTS}]")
         if self.contact_law not in CONTACT_LAWS:
             raise GearmeshInputError("contact_law", self.contact_law, f"must be one of {list(CONTACT_LAWS)}")
         if self.method not in TOOTH_METHODS:
@@ -88,3 +87,31 @@ class ContactModel:
 LTCA_CONTACT = ContactModel()
 #: A mesh force table's (:mod:`gearmesh.meshforce`): more points, half a base pitch of reach.
 TABLE_CONTACT = ContactModel(points=DEFAULT_TABLE_POINTS, extension=DEFAULT_TABLE_EXTENSION)
+
+
+class LoadedContactSection:
+    """A study section that sets a loaded contact (:class:`gearmesh.settings.Ltca`,
+    :class:`~gearmesh.settings.Impact`): its ``points``, ``contact_law``, ``method`` and ``corner_extension``."""
+
+    def contact_model(self) -> ContactModel:
+        """The section's contact model, passed whole to the physics."""
+        return ContactModel(self.points, self.contact_law, self.method, self.corner_extension)
+
+
+class TableContactSection:
+    """A study section that sets a mesh force table (:class:`gearmesh.settings.Dynamics`,
+    :class:`~gearmesh.settings.TrainDynamics`): its ``points``, ``contact_law`` and ``method`` on a table's reach."""
+
+    def contact_model(self) -> ContactModel:
+        """The contact table's contact model, passed whole to the physics."""
+        return TABLE_CONTACT.with_(points=self.points, contact_law=self.contact_law, method=self.method)
+
+
+class OverridingContactSection:
+    """A study section (:class:`gearmesh.settings.Optimise`) whose ``points``, ``contact_law`` and
+    ``corner_extension`` override the study's impact section's when given (None: the impact's)."""
+
+    def contact_model(self, impact: LoadedContactSection) -> ContactModel:
+        """The run's contact model: the impact section's with this section's own keys; its tooth model always."""
+        own = {"points": self.points, "contact_law": self.contact_law, "extension": self.corner_extension}
+        return impact.contact_model().with_(**{k: v for k, v in own.items() if v is not None})

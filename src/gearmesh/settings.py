@@ -15,11 +15,8 @@ function that takes its keys as keyword arguments (and its defaults from here, t
 figures it draws; the workflow's rules, the study's targets and the upstream checks derive
 from it (:func:`stages`, docs/architecture.md "Each stage declared once"). Every bound is
 this module's or :mod:`gearmesh.limits`'s. Engineering units, the unit in the key name
-(``torque_Nm``, ``speed_rpm``). Reading a config imports no physics: this module needs
-:mod:`gearmesh.choices`, :mod:`gearmesh.contact_model`, :mod:`gearmesh.limits`, :mod:`gearmesh.schema` and
-:mod:`gearmesh.stages` only. A section that sets a loaded contact gives it whole as one
-:class:`gearmesh.contact_model.ContactModel` (its ``contact_model`` method), the group the physics
-functions take.
+(``torque_Nm``, ``speed_rpm``). Reading a config imports no physics: this module needs :mod:`gearmesh.choices`,
+:mod:`gearmesh.contact_model`, :mod:`gearmesh.limits`, :mod:`gearmesh.schema` and :mod:`gearmesh.stages` only.
 """
 
 from __future__ import annotations
@@ -29,7 +26,8 @@ from typing import Any, ClassVar, Literal, Mapping
 
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_CYCLE_POSITIONS, DEFAULT_TOOTH_METHOD,  # noqa: F401
                       PAIR_EXCITATIONS, TOOTH_METHODS)
-from .contact_model import DEFAULT_LTCA_POINTS, DEFAULT_TABLE_POINTS, TABLE_CONTACT, ContactModel
+from .contact_model import (DEFAULT_LTCA_POINTS, DEFAULT_TABLE_POINTS, LoadedContactSection, OverridingContactSection,
+                            TableContactSection)
 from .limits import FACTOR_RANGES, MAX_CONTACT_POINTS, MAX_LTCA_TORQUES, MAX_STIFFNESS_POINTS
 from .schema import REQUIRED, all_keys, nested_sections, object_schema, setting
 from .stages import (Figure, Grid, Read, Speeds, Stage, Table, Torques, always, contact_drives, ltca_drives, method_fe,
@@ -213,17 +211,8 @@ class Tca:
     corner_extension: float = _corner_extension()
 
 
-class _LoadedContact:
-    """A section that sets a loaded contact: ``points``, ``contact_law``, ``method`` and ``corner_extension``."""
-
-    def contact_model(self) -> ContactModel:
-        """The section's contact model (:class:`gearmesh.contact_model.ContactModel`), passed whole to the physics."""
-        return ContactModel(points=self.points, contact_law=self.contact_law, method=self.method,
-                            extension=self.corner_extension)
-
-
 @dataclass(frozen=True, kw_only=True)
-class Ltca(_LoadedContact):
+class Ltca(LoadedContactSection):
     """Loaded tooth contact analysis of every pair and variant at each torque over one mesh
     cycle: loaded and load transmission error, contact pattern, loaded mesh stiffness (ltca.nc)."""
 
@@ -287,7 +276,7 @@ class Scuffing:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Impact(_LoadedContact):
+class Impact(LoadedContactSection):
     """Mesh-in impact of every pair and variant over a torque × speed grid: where the entering
     pair first touches, edge or surface contact, impact velocity and force by the energy method,
     the variants side by side at the design speed, and a direct simulation of the engagement
@@ -387,7 +376,7 @@ class Constraints:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Optimise:
+class Optimise(OverridingContactSection):
     """One named optimisation of the six modification parameters per modified gear against the
     mesh-in impact, over a load spectrum and the study's manufacturing tolerances, once per pair
     (results/{study}/{pair}/optimise/NAME/ga.nc and pair.yaml). Its impact model is the study's
@@ -470,12 +459,6 @@ class Optimise:
                                                             "impact stage's manufactured gears')", minimum=8,
                                    maximum=10000)
 
-    def contact_model(self, impact: Impact) -> ContactModel:
-        """The run's contact model: ``points``, ``contact_law`` and ``corner_extension`` given here, else the study's
-        ``impact`` section's; its tooth model always (:class:`gearmesh.contact_model.ContactModel`)."""
-        own = {"points": self.points, "contact_law": self.contact_law, "extension": self.corner_extension}
-        return impact.contact_model().with_(**{k: v for k, v in own.items() if v is not None})
-
 
 @dataclass(frozen=True, kw_only=True)
 class Tolerances:
@@ -513,7 +496,7 @@ class Tolerances:
 
 
 @dataclass(frozen=True, kw_only=True)
-class _Dynamics:
+class _Dynamics(TableContactSection):
     """What the 8-DOF pair and the 9-DOF train share: bearings, mesh, contact table, solver."""
 
     backlash_um: float | Literal["pair"] | None = setting(
@@ -537,8 +520,7 @@ class _Dynamics:
     method: Method = _method(" (the stiffness when no stiffness stage runs, the contact table)")
     contact_law: ContactLaw = _contact_law(" (contact table)")
     points: int = _points(DEFAULT_TABLE_POINTS, " of the contact table (the first touch at the face-end corner "
-                                                "converges as 1/points; 200 puts the default pair's within 0.03 mm "
-                                                "of roll of 400's)")
+                          "converges as 1/points; 200 puts the default pair's within 0.03 mm of roll of 400's)")
     table_positions: int = setting(256, "positions per mesh cycle of the contact table", minimum=16, maximum=100000)
     table_approaches: int = setting(96, "approaches of the contact table", minimum=8, maximum=100000)
     table_force_factor: float = setting(4.0, "the contact table reaches this many times the largest static force",
@@ -555,11 +537,6 @@ class _Dynamics:
     # period resolve far above max_order, and 200 mesh orders are beyond any RK4 step plan.
     points_per_cycle: int = setting(64, "points per mesh period of the kept time series", minimum=8, maximum=4096)
     max_order: int = setting(10, "highest mesh order of the kept spectra", minimum=1, maximum=200)
-
-    def contact_model(self) -> ContactModel:
-        """The contact table's contact model: ``points``, ``contact_law`` and ``method`` on a table's reach
-        (:data:`gearmesh.contact_model.TABLE_CONTACT`), passed whole to the physics."""
-        return TABLE_CONTACT.with_(points=self.points, contact_law=self.contact_law, method=self.method)
 
 
 @dataclass(frozen=True, kw_only=True)
