@@ -377,7 +377,8 @@ def test_contact_table_is_built_once_per_mesh_misalignment(pair, geom, monkeypat
         assert (len(layouts), len(tabs)) == (1, expected)
         monkeypatch.setattr(dd, "table_layout", real_layout)
         monkeypatch.setattr(dd, "tabulate", real_tab)
-    t = contact_table(geom, [1600.0], points=30, table_positions=32, table_approaches=16, table_force_factor=3.0)
+    t = contact_table(geom, [1600.0], TABLE_CONTACT.with_(points=30), table_positions=32, table_approaches=16,
+                      table_force_factor=3.0)
     assert math.isclose(t.force_max, 3.0 * 1600.0 / float(geom.base_radius[0]))
 
 

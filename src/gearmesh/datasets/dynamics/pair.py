@@ -100,7 +100,7 @@ def pair_model_of(pair: GearPair, torque_Nm: float, settings: Dynamics, excitati
             raise GearmeshInputError("transmission_error_um", "given", "the contact excitation has the "
                                      "micro-geometry in its table; give no tabulated TE")
         if table is None:
-            table = contact_table(geom, [t1], s.method, **table_keywords(s))
+            table = contact_table(geom, [t1], s.contact_model(), **table_keywords(s))
     elif exc == "ltca":
         if ltca is None:
             raise GearmeshInputError("excitation", "ltca", "needs the variant's LTCA dataset (ltca.nc)")
@@ -260,7 +260,8 @@ def dynamics_dataset(pair: GearPair, *, variant: str = "", slices: int | None = 
     use_fe_tables(fe_compliance, geom)
     settings = _solver(s)
     exc = resolve_excitation(s.excitation, ltca)
-    tables = (contact_tables(geom, t1, s.method, **table_keywords(s)) if exc == "contact" else [None] * len(given))
+    tables = (contact_tables(geom, t1, s.contact_model(), **table_keywords(s)) if exc == "contact"
+              else [None] * len(given))
     models = [pair_model_of(pair, float(t), s, exc, grid_slices, stiffness=stiffness, ltca=ltca, table=tab)
               for t, tab in zip(given, tables)]
     speeds = _resonance_refined_speeds(grid, models) if s.refine_resonances else grid
@@ -401,7 +402,7 @@ def pair_summary(pair: GearPair, settings: Dynamics, *, ltca: xr.Dataset | None 
     exc, table = resolve_excitation(s.excitation, ltca), None
     if exc == "contact":
         t1 = pinion_torque(pair, positive_torque("torque_Nm", torque), s.on)
-        table = contact_table(pair_geometry(pair), [t1], s.method, **table_keywords(s))
+        table = contact_table(pair_geometry(pair), [t1], s.contact_model(), **table_keywords(s))
     model = pair_model_of(pair, torque, s, exc, slice_grid(None, None), ltca=ltca, table=table)
     grid = settings_speeds(s.speeds_rpm)
     check_speeds(pair_geometry(pair), grid, "speeds_rpm")
