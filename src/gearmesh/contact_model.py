@@ -11,9 +11,10 @@ it (:class:`gearmesh.settings.Ltca`, :class:`~gearmesh.settings.Impact`,
 :class:`~gearmesh.settings.Dynamics`, :class:`~gearmesh.settings.Optimise`) give it whole.
 
 Each use's defaults are declared here once: :data:`LTCA_CONTACT` (the LTCA and the impact) and
-:data:`TABLE_CONTACT` (the dynamics' mesh force table). Light: it imports no numerical library,
-so :mod:`gearmesh.settings` can build the group: its sections inherit how from the mixins below
-(:class:`LoadedContactSection`, :class:`TableContactSection`, :class:`OverridingContactSection`).
+:data:`TABLE_CONTACT` (the dynamics' mesh force table). Light: it imports no physics (only
+:mod:`~gearmesh.choices`, :mod:`~gearmesh.errors` and :mod:`~gearmesh.limits`), so :mod:`gearmesh.settings` can
+build the group: its sections inherit how from the mixins below (:class:`LoadedContactSection`,
+:class:`TableContactSection`, :class:`OverridingContactSection`).
 """
 
 from __future__ import annotations
