@@ -19,6 +19,7 @@ from __future__ import annotations
 import json
 import sys
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.gear import pair_geometry
 from gearmesh.pairfile import load_pair, variant_pair
 from gearmesh.ltca import ltca, ltca_model
@@ -30,11 +31,11 @@ from straightforward import replace_contact_solvers
 def bench_ltca(repeats: int = 7) -> dict:
     geom = pair_geometry(variant_pair(load_pair(CASE_PAIR), "relief", study_config()["variants"]["relief"]))
     torque = 1000.0
-    fast, _, result, _ = timed_calls(lambda: ltca(geom, [torque], positions=64, points=50), repeats)
-    model = ltca_model(geom, positions=64, points=50)
+    fast, _, result, _ = timed_calls(lambda: ltca(geom, [torque], 64, ContactModel(points=50)), repeats)
+    model = ltca_model(geom, 64, ContactModel(points=50))
     solve, _, _, _ = timed_calls(lambda: ltca(geom, [torque], model=model), repeats)
     with replace_contact_solvers():
-        base, reference = median_seconds(lambda: ltca(geom, [torque], positions=64, points=50), 1)
+        base, reference = median_seconds(lambda: ltca(geom, [torque], 64, ContactModel(points=50)), 1)
     return {"name": "ltca_1_torque_64_positions_50_points", "median_s": fast, "solve_median_s": solve,
             "baseline": "the same ltca call, its contact solve by per-position brentq on the approach and "
                         "per-point brentq on each load (Python loops)",

@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 import yaml
 
+from gearmesh.contact_model import ContactModel, TABLE_CONTACT
 from gearmesh.body import _harmonic_edge, describe_body, mesh_body_compliance, plate_edge_compliance
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
@@ -102,7 +103,8 @@ def test_body_in_series_with_the_teeth_in_the_tvms_and_the_ltca():
     np.testing.assert_allclose(1 / k1.K, 1 / k0.K + c, rtol=1e-12)
     assert k1.components["body"][0] == pytest.approx(1 / c)
     np.testing.assert_allclose(1 / k1.K, sum(1 / v for v in k1.components.values()), rtol=1e-9)
-    r0, r1 = (ltca(g, [1000.0], 16, 20, method="transition", misalignment=[0.0]) for g in (plain, body))
+    contact = ContactModel(points=20, method="transition")
+    r0, r1 = (ltca(g, [1000.0], 16, contact, misalignment=[0.0]) for g in (plain, body))
     np.testing.assert_allclose(r1.lte, r0.lte + c * r0.force[:, None], rtol=1e-12)
     np.testing.assert_allclose(1 / r1.stiffness, 1 / r0.stiffness + c, rtol=1e-12)
     np.testing.assert_allclose(r1.load, r0.load, rtol=0, atol=1e-9 * r0.force[0])
@@ -174,7 +176,7 @@ def test_body_in_series_in_the_contact_table():
     plain = pair_geometry(_pair(web_thickness_mm="rigid"))
     body = pair_geometry(_pair())
     c = mesh_body_compliance(body)
-    t0, t1 = (mesh_force_table(g, 40e3, positions=16, approaches=400, points=20, method="transition")
+    t0, t1 = (mesh_force_table(g, 40e3, 16, 400, TABLE_CONTACT.with_(points=20, method="transition"))
               for g in (plain, body))
     force = 14e3
     x0, _ = t0.static_approach(force)

@@ -5,6 +5,7 @@ LTCA's own loaded (tangent) stiffness on the same contact lines, and the tangent
 import numpy as np
 import pytest
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.gear import pair_geometry
 from gearmesh.ltca import contact_tangent_compliance, ltca
 from gearmesh.ltca_model import contact_law
@@ -24,7 +25,7 @@ def test_tvms_with_the_tangent_is_the_ltcas_stiffness(geom):
     t1 = 1000.0
     k = mesh_stiffness(geom, n_positions=64, method="transition", components=False,
                        contact_compliance=contact_tangent_compliance(geom, t1)).mean
-    res = ltca(geom, [t1], positions=64, points=200, method="transition", extension=0.0)
+    res = ltca(geom, [t1], 64, ContactModel(points=200, method="transition", extension=0.0))
     assert float(np.mean(res.stiffness[0, :64])) == pytest.approx(k, rel=5e-3)
     k_ys = mesh_stiffness(geom, n_positions=64, method="transition", components=False).mean
     assert k_ys > 1.1 * k  # Yang & Sun's constant is the stiffer contact (docs/validation.md)
@@ -50,17 +51,17 @@ def test_edge_tangent_is_the_ltcas_stiffness_beyond_the_active_zone(geom):
     tip relief over 3 mm takes most of it away (fewer tips reach the mating flank under load)."""
     from gearmesh.ltca import edge_tangent_stiffness
 
-    res = ltca(geom, [1000.0], positions=32, points=50, method="transition")
+    res = ltca(geom, [1000.0], 32, ContactModel(points=50, method="transition"))
     k_edge = edge_tangent_stiffness(res)[0]
     assert np.any(k_edge > 0) and np.all(k_edge >= 0) and np.all(k_edge < res.stiffness[0])
     # the tangent is the mesh's at its misalignment (the shafts' f_sh follows the mean load, not the ripple)
-    res2 = ltca(geom, [1000.0 * (1 + 1e-6)], positions=32, points=50, method="transition",
+    res2 = ltca(geom, [1000.0 * (1 + 1e-6)], 32, ContactModel(points=50, method="transition"),
                 misalignment=res.misalignment)
     fd = (res2.force[0] - res.force[0]) / (res2.lte[0] - res.lte[0])
     np.testing.assert_allclose(res.stiffness[0], fd, rtol=1e-4)
     pair = load_pair(example_pair("helical_z29_71_m5"))
     relieved = pair_geometry(pair.with_changes(modification=tuple(_relief(m) for m in pair.modification)))
-    k_rel = edge_tangent_stiffness(ltca(relieved, [1000.0], positions=32, points=50, method="transition"))[0]
+    k_rel = edge_tangent_stiffness(ltca(relieved, [1000.0], 32, ContactModel(points=50, method="transition")))[0]
     assert np.mean(k_rel) < 0.5 * np.mean(k_edge)
 
 
@@ -78,8 +79,8 @@ def test_tvms_with_the_loaded_extension_is_the_ltcas_stiffness(geom):
     t1 = 1000.0
     K = mesh_stiffness(geom, n_positions=64, method="transition", components=False,
                        contact_compliance=contact_tangent_compliance(geom, t1)).K
-    K_ext = with_loaded_extension(geom, K, t1, "transition")
-    k_l = ltca(geom, [t1], positions=64, points=50, method="transition").stiffness[0]
+    K_ext = with_loaded_extension(geom, K, t1, contact=ContactModel(method="transition"))
+    k_l = ltca(geom, [t1], 64, ContactModel(points=50, method="transition")).stiffness[0]
     assert np.mean(K_ext) > 1.05 * np.mean(K)  # the unrelieved tips carry load beyond the zone
     assert np.mean(K_ext) == pytest.approx(np.mean(k_l), rel=5e-3)
     np.testing.assert_allclose(K_ext, k_l, rtol=3e-2)

@@ -11,6 +11,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.datasets.impact import impact_dataset
 from gearmesh.datasets.ltca import ltca_dataset
 from gearmesh.gear import Modification, pair_geometry
@@ -64,7 +65,7 @@ def _alone(relief, params, lead):
     made = relief.with_changes(modification=tuple(Modification(**dict(zip(MODIFICATION_FIELDS, row)))
                                                   for row in params))
     made = made.with_changes(deviations=replace(made.deviations, lead_slope=tuple(float(v) for v in lead)))
-    model = impact_model(pair_geometry(made), points=POINTS, method="improved")
+    model = impact_model(pair_geometry(made), ContactModel(points=POINTS, method="improved"))
     return gear_criteria(model, model.params(), np.asarray(model.lead_slope, dtype=float)[None], TORQUES,
                          SPEED).values[0]  # (T, criteria)
 

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from scipy.integrate import cumulative_trapezoid
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.deflection import mesh_deflection, mesh_misalignment, shaft_deflection
 from gearmesh.deviation import Deviations, lead_gap, profile_gap, read_deviations
 from gearmesh.errors import GearmeshInputError
@@ -154,15 +155,16 @@ def test_lead_deviations_that_cancel_give_the_aligned_contact():
                                   shaft_diameter_mm=None, bearing_span_mm=None))
     both = pair_geometry(aligned.pair.with_changes(deviations=Deviations(lead_slope=(12e-6, -12e-6))))
     one = pair_geometry(aligned.pair.with_changes(deviations=Deviations(lead_slope=(12e-6, 0.0))))
-    r0, r1, r2 = (ltca(g, [1000.0], 16, 20, method="transition") for g in (aligned, both, one))
+    r0, r1, r2 = (ltca(g, [1000.0], 16, ContactModel(points=20, method="transition")) for g in (aligned, both, one))
     np.testing.assert_allclose(r1.load, r0.load, rtol=0, atol=1e-9 * r0.force[0])
     np.testing.assert_allclose(r1.lte, r0.lte, rtol=1e-12)
     assert np.max(np.abs(r2.load - r0.load)) > 0.01 * r0.force[0]
-    s0, s1 = (impact_static(impact_model(g, points=20, method="transition"), [1000.0]) for g in (aligned, both))
+    contact = ContactModel(points=20, method="transition")
+    s0, s1 = (impact_static(impact_model(g, contact), [1000.0]) for g in (aligned, both))
     assert s1.tau[0, 0] == pytest.approx(s0.tau[0, 0], abs=1e-12)
     # and f_ma stated is the same mismatch as a lead slope of the pinion
     ma = pair_geometry(aligned.pair.with_changes(deviations=Deviations(mesh_misalignment=12e-6)))
-    np.testing.assert_allclose(ltca(ma, [1000.0], 16, 20, method="transition").load, r2.load, rtol=0,
+    np.testing.assert_allclose(ltca(ma, [1000.0], 16, contact).load, r2.load, rtol=0,
                                atol=1e-9 * r0.force[0])
 
 
@@ -223,12 +225,12 @@ def test_every_model_takes_each_torques_misalignment():
     """The impact model solved at two torques at once equals each solved alone (each at its own
     mismatch); the LTCA's misalignment is mesh_misalignment's."""
     geom = pair_geometry(_case())
-    model = impact_model(geom, points=20, method="transition")
+    model = impact_model(geom, ContactModel(points=20, method="transition"))
     both = impact_static(model, [400.0, 1600.0])
     for k, t in enumerate((400.0, 1600.0)):
         alone = impact_static(model, [t])
         assert both.tau[0, k] == pytest.approx(alone.tau[0, 0], abs=1e-12)
-    res = ltca(geom, [400.0, 1600.0], 16, 20, method="transition")
+    res = ltca(geom, [400.0, 1600.0], 16, ContactModel(points=20, method="transition"))
     np.testing.assert_allclose(res.misalignment, mesh_misalignment(geom, res.force), rtol=1e-15)
 
 
@@ -248,7 +250,7 @@ def test_face_load_factor_of_a_misaligned_mesh_follows_isos_closed_form(lead_um)
     stiffness per face width: the LTCA's K_Hβ within 10 % of K_Hβ − 1; the aligned pair within 2 %
     of 1 (the LTE's own ripple, phase-shifted along the helix, loads the face slightly unevenly)."""
     geom = pair_geometry(pair_from_dict({**NREL_STAGE_3, "lead_slope_deviation_um": [lead_um, 0.0]}))
-    res = ltca(geom, [40e3], positions=32, points=50)
+    res = ltca(geom, [40e3], 32, ContactModel(points=50))
     k_hb = float(ltca_load_factors(res.load)["K_Hbeta"][0])
     fm = float(res.force[0]) / geom.face_width
     c = float(np.mean(res.stiffness[0])) / geom.face_width

@@ -21,6 +21,7 @@ import pandas as pd
 import pytest
 import yaml
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD, FORCE_LINES
 from gearmesh.gear import pair_geometry
 from gearmesh.pairfile import load_pair
@@ -83,7 +84,7 @@ def test_ltca_one_answer(doors):
     cli = _cli("ltca", _pair_file(doors), "--torque-Nm", str(TORQUE_NM))
     api = ltca_summary(pair, TORQUE_NM)
     stage = ltca_dataset(pair, torques_Nm=[TORQUE_NM])
-    physics = ltca(pair_geometry(pair), [TORQUE_NM], 64, 50)
+    physics = ltca(pair_geometry(pair), [TORQUE_NM], 64, contact=ContactModel(points=50))
     lte = {"workflow": flow["lte"].values[0], "stage": stage["lte"].values[0], "physics": physics.lte[0]}
     for door, value in lte.items():
         np.testing.assert_allclose(value, lte["workflow"], rtol=1e-12, err_msg=door)
@@ -226,14 +227,16 @@ def test_contact_laws_are_declared_once():
 
 def test_every_function_defaults_to_the_declared_choice():
     """No public function of the package, physics or stage, carries a tooth-model, contact-law or
-    tip-edge default of its own: each takes the one of gearmesh.choices, or none. (The tables'
-    own reach, ``extension`` of gearmesh.meshforce, is another quantity with its own default.)"""
+    tip-edge default of its own: each takes the one of gearmesh.choices, or none, and every default
+    contact model (``contact``, gearmesh.contact_model) has them too. (The tables' own reach,
+    DEFAULT_TABLE_EXTENSION, is another quantity with its own default.)"""
     import importlib
     import inspect
     import pkgutil
 
     import gearmesh
     from gearmesh.choices import DEFAULT_CORNER_EXTENSION, TOOTH_METHODS
+    from gearmesh.contact_model import DEFAULT_TABLE_EXTENSION, ContactModel
 
     declared = {"method": DEFAULT_TOOTH_METHOD, "contact_law": DEFAULT_CONTACT_LAW,
                 "contact_law_name": DEFAULT_CONTACT_LAW, "name": DEFAULT_CONTACT_LAW,
@@ -247,6 +250,13 @@ def test_every_function_defaults_to_the_declared_choice():
             if func.__module__ != module.__name__ or fname.startswith("_"):
                 continue
             for p in inspect.signature(func).parameters.values():
+                if isinstance(p.default, ContactModel):
+                    seen += 1
+                    c = p.default
+                    if (c.method, c.contact_law) != (DEFAULT_TOOTH_METHOD, DEFAULT_CONTACT_LAW) \
+                            or c.extension not in (DEFAULT_CORNER_EXTENSION, DEFAULT_TABLE_EXTENSION):
+                        wrong.append(f"{module.__name__}.{fname}({p.name}={c!r})")
+                    continue
                 if p.name not in declared or p.default in (inspect.Parameter.empty, None):
                     continue  # required, or None: the study section's (itself the declared default)
                 if p.name == "method" and p.default not in TOOTH_METHODS:
@@ -256,7 +266,7 @@ def test_every_function_defaults_to_the_declared_choice():
                 seen += 1
                 if p.default != declared[p.name]:
                     wrong.append(f"{module.__name__}.{fname}({p.name}={p.default!r})")
-    assert seen >= 15 and not wrong, wrong
+    assert seen >= 10 and not wrong, wrong  # 12 in all: five keywords and seven contact models
 
 
 @pytest.mark.workflow

@@ -11,6 +11,7 @@ import math
 import numpy as np
 import pytest
 
+from gearmesh.contact_model import ContactModel, TABLE_CONTACT
 from gearmesh import dynamics as dy
 from gearmesh.body import RIGID_WEBS
 from gearmesh.config import variant_pair
@@ -79,7 +80,7 @@ def test_table_inverted_is_the_ltca(geom, table):
     """The table's static solution F(x, r) = F_bt at every roll is the LTCA's loaded TE (the LTCA
     solves Σ q_i(x) = F by Newton; the table tabulates the forward map and is inverted between
     columns), and its tangent the LTCA's loaded stiffness, at the same points per line."""
-    res = ltca(geom, [1000.0], positions=32, points=200)
+    res = ltca(geom, [1000.0], 32, ContactModel(points=200))
     w = table.window_position(mesh_cycle_rolls(geom, 32))
     x, k = table.static_approach(1000.0 / float(geom.base_radius[0]))
     np.testing.assert_allclose(np.interp(w, table.window, x), res.lte[0], rtol=2e-3)
@@ -96,7 +97,7 @@ def test_quasi_static_limit_is_the_ltca(geom, table):
     cb = model.cos_beta_b
     te = (model.G @ st["y"].T)[0] / cb  # bodies' approach along the transverse line of action
     roll = np.mod(st["t"] * res.mesh_frequency[0], 1.0) * geom.transverse_base_pitch
-    lte = ltca(geom, [1000.0], positions=128, points=200)
+    lte = ltca(geom, [1000.0], 128, ContactModel(points=200))
     ref = np.interp(roll, mesh_cycle_rolls(geom, 128), lte.lte[0], period=geom.transverse_base_pitch)
     assert abs(te.mean() / ref.mean() - 1) < 2e-3
     assert np.max(np.abs(te - ref)) < 0.03 * np.ptp(ref)  # the shape, within 3 % of its peak-to-peak
@@ -112,7 +113,7 @@ def test_mesh_in_converges_to_the_impact_model(teeth):
     Richardson extrapolation 2·T(2N) − T(N) meets impact_static's roll before engagement."""
     geom = teeth
     force = 1000.0 / float(geom.base_radius[0])
-    t = {n: mesh_force_table(geom, 2 * force, positions=128, approaches=32, points=n).static_touch(force)
+    t = {n: mesh_force_table(geom, 2 * force, 128, 32, TABLE_CONTACT.with_(points=n)).static_touch(force)
          for n in (50, 100)}
     exact = -float(impact_static(impact_model(geom), [1000.0]).tau[0, 0])
     assert abs(exact - t[100]) < 0.6 * abs(exact - t[50])  # the error halves
@@ -148,7 +149,7 @@ def test_converges_in_time_step_and_table(teeth):
     speeds = [6500.0]
 
     def run(P=128, U=48, courant=0.25):
-        tab = mesh_force_table(geom, 4 * force, positions=P, approaches=U, points=100, method="transition")
+        tab = mesh_force_table(geom, 4 * force, P, U, TABLE_CONTACT.with_(points=100, method="transition"))
         r = dy.simulate(_model(geom, tab, 1000.0), speeds, dy.SolverSettings(courant=courant, record_cycles=4))
         return np.array([r.force_max[0, 0], r.approach_std[0, 0], r.impact_force[0, 0]])
 
@@ -190,7 +191,7 @@ def test_shooting_state_is_a_periodic_orbit_of_the_full_equations(geom):
     two more mesh periods, comes back to itself, and the record statistics agree with the
     compiled loop's (an independent integrator and formulation of the same contact model)."""
     force = 1000.0 / float(geom.base_radius[0])
-    tab = mesh_force_table(geom, 4 * force, positions=128, approaches=48, points=50)
+    tab = mesh_force_table(geom, 4 * force, 128, 48, TABLE_CONTACT.with_(points=50))
     model = _model(geom, tab, 1000.0)
     s = dy.SolverSettings(record_cycles=2)
     res = dy.simulate(model, [6000.0], s)
@@ -205,7 +206,7 @@ def test_shooting_equals_the_physical_transient(geom):
     """With heavily damped bearings (short transients) the periodic state by shooting and the
     state after waiting out 10 time constants give the same statistics."""
     force = 1000.0 / float(geom.base_radius[0])
-    tab = mesh_force_table(geom, 4 * force, positions=64, approaches=32, points=30)
+    tab = mesh_force_table(geom, 4 * force, 64, 32, TABLE_CONTACT.with_(points=30))
     model = _model(geom, tab, 1000.0, bearing={"c_radial": 3e4, "c_axial": 3e4})
     speeds = [3000.0, 6500.0]
     a = dy.simulate(model, speeds)
@@ -220,7 +221,7 @@ def test_two_periods_of_the_periodic_orbit_give_the_statistics_of_eight(geom):
     none to settle (the population's solver) give the statistics of the default eight after two,
     to the shooting tolerance; the modes and static state the step plan reuses are the model's."""
     force = 1000.0 / float(geom.base_radius[0])
-    tab = mesh_force_table(geom, 4 * force, positions=64, approaches=32, points=30)
+    tab = mesh_force_table(geom, 4 * force, 64, 32, TABLE_CONTACT.with_(points=30))
     model = _model(geom, tab, 1000.0)
     speeds = [2500.0, 5200.0, 6500.0, 12000.0]
     a = dy.simulate(model, speeds)
@@ -241,7 +242,7 @@ def test_period_map_jacobian_is_its_forward_difference(geom, speed):
     from gearmesh.dynamics.integrate import _Loop, step_plan
 
     force = 1000.0 / float(geom.base_radius[0])
-    tab = mesh_force_table(geom, 4 * force, positions=64, approaches=32, points=30)
+    tab = mesh_force_table(geom, 4 * force, 64, 32, TABLE_CONTACT.with_(points=30))
     model = _model(geom, tab, 1000.0)
     f_mesh, m, _, dt = step_plan(model, np.array([speed]))
     run = _Loop(model).speed(int(m[0]), float(f_mesh[0]), float(dt[0]))
@@ -292,7 +293,7 @@ def test_compiled_contact_loop_equals_the_numpy_kernel(teeth):
     far from equilibrium that opens the mesh and hits the back flanks."""
     geom = teeth
     force = 1000.0 / float(geom.base_radius[0])
-    tab = mesh_force_table(geom, 4 * force, positions=64, approaches=32, points=30)
+    tab = mesh_force_table(geom, 4 * force, 64, 32, TABLE_CONTACT.with_(points=30))
     model = dy.pair_model(geom, 400.0 * geom.base_radius[1] / geom.base_radius[0], None, contact=tab, backlash=20e-6)
     y0 = model.static_state()
     y0[-1] -= 10 * (model.G @ y0)[0] / model.G[0, -1]  # relative rotation pulled back by 10 static deflections
@@ -376,7 +377,8 @@ def test_contact_table_is_built_once_per_mesh_misalignment(pair, geom, monkeypat
         assert (len(layouts), len(tabs)) == (1, expected)
         monkeypatch.setattr(dd, "table_layout", real_layout)
         monkeypatch.setattr(dd, "tabulate", real_tab)
-    t = contact_table(geom, [1600.0], points=30, table_positions=32, table_approaches=16, table_force_factor=3.0)
+    t = contact_table(geom, [1600.0], TABLE_CONTACT.with_(points=30), table_positions=32, table_approaches=16,
+                      table_force_factor=3.0)
     assert math.isclose(t.force_max, 3.0 * 1600.0 / float(geom.base_radius[0]))
 
 

@@ -10,13 +10,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from gearmesh.contact_model import ContactModel
 from gearmesh import impact as im
 from gearmesh import optimise as op
 from gearmesh.optimise.search import _Evaluator
 from gearmesh.cli import main as cli_main
 from gearmesh.dynamics import pair_model, resonance_band, simulate
-from gearmesh.dynamics.population import (POPULATION_HARMONICS, POPULATION_MESH_ENERGY, POPULATION_OFFSETS,
-                                          POPULATION_TABLE, dynamic_factors, population_dynamics)
+from gearmesh.dynamics.population import (POPULATION_CONTACT, POPULATION_HARMONICS, POPULATION_MESH_ENERGY,
+                                          POPULATION_OFFSETS, POPULATION_TABLE, dynamic_factors, population_dynamics)
 from gearmesh.gear import Modification, pair_geometry
 from gearmesh.pairfile import load_pair
 from gearmesh.meshforce import mesh_force_table
@@ -62,7 +63,7 @@ def test_population_member_equals_the_pair_with_that_modification_run_alone(pair
     rb1, rb2 = (float(r) for r in geom.base_radius)
     for t, torque in enumerate(TORQUES):  # each torque's table at its mesh misalignment, as the dynamics stage's
         table = mesh_force_table(geom, setup.force_max, POPULATION_TABLE["positions"], POPULATION_TABLE["approaches"],
-                                 POPULATION_TABLE["points"], lead_slope=tuple(lead[0]), static_force=torque / rb1)
+                                 POPULATION_CONTACT, lead_slope=tuple(lead[0]), static_force=torque / rb1)
         model = pair_model(geom, torque * rb2 / rb1, None, contact=table, backlash=60e-6)
         speeds = np.unique(np.concatenate([SPEEDS, resonance_band(model, SPEEDS[0], SPEEDS[-1], POPULATION_HARMONICS,
                                                                   POPULATION_OFFSETS, POPULATION_MESH_ENERGY)]))
@@ -91,7 +92,7 @@ def test_models_share_cached_matrices_only_where_their_inputs_are_equal(geom, se
         assert fresh.__dict__[name] is not a.__dict__[name]
         np.testing.assert_array_equal(fresh.__dict__[name], a.__dict__[name])
     np.testing.assert_array_equal(b.modes()["eigenvalue"], b.modes(np.array([b.meshes[0].k_mean]))["eigenvalue"])
-    model = im.impact_model(geom, points=16, window_positions=24, face_samples=65)
+    model = im.impact_model(geom, ContactModel(points=16), window_positions=24, face_samples=65)
     prob = problem_of(model, population=4, generations=1)
     ev = _Evaluator(prob)
     genes = np.array([[g.low + 0.3 * (g.high - g.low) for g in prob.genes], [g.high for g in prob.genes]])
@@ -107,7 +108,8 @@ def test_dynamic_factor_is_converged_in_the_table_and_exceeds_one(geom, setup):
     the dynamic factor of the unmodified pair within 0.5 %; a peak mesh force above the static one
     (the mesh force fluctuates) but bounded (no contact loss at these loads)."""
     coarse = dynamic_factors(setup, np.zeros((1, 2, 6)), np.zeros((1, 2)))[0]
-    fine = population_dynamics(geom, TORQUES, SPEEDS, backlash=60e-6, positions=256, approaches=96, points=200)
+    fine = population_dynamics(geom, TORQUES, SPEEDS, backlash=60e-6, contact=POPULATION_CONTACT.with_(points=200),
+                               positions=256, approaches=96)
     np.testing.assert_allclose(coarse, dynamic_factors(fine, np.zeros((1, 2, 6)), np.zeros((1, 2)))[0], rtol=5e-3)
     assert np.all((coarse > 1.0) & (coarse < 2.0))
 
@@ -116,7 +118,7 @@ def test_dynamic_objective_and_constraint_drive_the_evaluation(geom):
     """Objective 'dynamic' of the standard gear is the load statistic of its dynamic factors; the
     constraint adds penalty · f_std · (max over torques of K_v / K_v,std / factor − 1)₊ exactly, and
     the standard gear itself is feasible at factor 1."""
-    model = im.impact_model(geom, points=16, window_positions=24, face_samples=65)
+    model = im.impact_model(geom, ContactModel(points=16), window_positions=24, face_samples=65)
     common = dict(torques_Nm=list(TORQUES), torque_Nm=1000.0, population=4, generations=1,
                   dynamic_speeds_rpm=list(SPEEDS), backlash_um=60)
     dyn = problem_of(model, objective="dynamic", **common)

@@ -13,6 +13,7 @@ pytest.importorskip("skfem")
 pytest.importorskip("triangle")
 
 from pairs import STEEL, low_fluctuation_pair1  # noqa: E402
+from gearmesh.contact_model import ContactModel
 from gearmesh import fe, fe_elastic, fe_tables  # noqa: E402
 from gearmesh import slice_compliance as sc  # noqa: E402
 from gearmesh import stiffness as st  # noqa: E402
@@ -183,7 +184,7 @@ def test_fe_is_a_stiffness_method(p1):
     assert np.isinf(k.components["shear_pinion"]).all()  # no separate shear compliance in 2-D
     ref = st.mesh_stiffness(p1, 60, method="transition", components=False)
     assert 1.0 < k.mean / ref.mean < 1.5  # the FE tooth is stiffer than the transition PEM
-    model = ltca_model(p1, positions=8, points=10, method="fe", tables=tabs)
+    model = ltca_model(p1, 8, ContactModel(points=10, method="fe"), tables=tabs)
     assert model.method == "fe"
 
 

@@ -10,6 +10,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
 from gearmesh.supports import read_supports
@@ -25,6 +26,7 @@ from test_contact import geometry_or_skip, valid_pairs
 
 ROOT_PAIR = "config/pairs/helical_z29_71_m5.yaml"
 POINTS = 24
+CONTACT = ContactModel(points=POINTS)
 
 
 @pytest.fixture(scope="module")
@@ -36,7 +38,7 @@ def case():
 
 @pytest.fixture(scope="module")
 def case_model(case):
-    return impact_model(case, points=POINTS, window_positions=40, face_samples=129)
+    return impact_model(case, CONTACT, window_positions=40, face_samples=129)
 
 
 def _relieved(geom, tip_um=20.0, length_mm=3.0, crown_um=10.0):
@@ -58,13 +60,13 @@ def test_crossing_agrees_with_seed_reverse_rotation_equation(case, case_model, r
         seed = seed_edge_roll(case, float(st.approach[0, k]))
         assert ours == pytest.approx(seed, rel=1e-7, abs=1e-12)
     other = pair_geometry(load_pair(low_fluctuation_pair1()))
-    st = impact_static(impact_model(other, points=POINTS, window_positions=40, face_samples=129), [150])
+    st = impact_static(impact_model(other, CONTACT, window_positions=40, face_samples=129), [150])
     assert -float(st.tau[0, 0]) == pytest.approx(seed_edge_roll(other, float(st.approach[0, 0])), rel=1e-7)
 
 
 @pytest.mark.parametrize("driver", ["pinion", "gear"])
 def test_vector_form_equals_closing_rate_for_edge_contact(case, driver):
-    model = impact_model(case, points=POINTS, window_positions=40, face_samples=129, driver=driver)
+    model = impact_model(case, CONTACT, window_positions=40, face_samples=129, driver=driver)
     st = impact_static(model, [300, 1200])
     st, rs = impact_response(model, st, [4000])
     for k in range(2):
@@ -85,7 +87,7 @@ def test_vector_form_agrees_with_closing_rate_to_first_order_in_the_relief_slope
     diffs = []
     for amount in (4.0, 2.0):
         geom = _relieved(case, tip_um=amount, length_mm=4.0, crown_um=0.0)
-        model = impact_model(geom, points=POINTS, window_positions=40, face_samples=129)
+        model = impact_model(geom, CONTACT, window_positions=40, face_samples=129)
         st = impact_static(model, [10])
         st, rs = impact_response(model, st, [5000])
         assert _scenario(st) == "surface"
@@ -132,11 +134,11 @@ def test_energy_balance_equals_closed_form_on_a_pure_power_law():
 
 
 def test_relief_turns_edge_into_surface_at_light_load_and_heavy_load_turns_it_back(case):
-    model = impact_model(_relieved(case), points=POINTS, window_positions=40, face_samples=129)
+    model = impact_model(_relieved(case), CONTACT, window_positions=40, face_samples=129)
     st = impact_static(model, [400, 1600])
     assert [_scenario(st, 0), _scenario(st, 1)] == ["surface", "edge"]
     assert st.lte_engagement[0, 0] < st.te_engagement[0, 0] < st.lte_engagement[0, 1]
-    standard = impact_static(impact_model(case, points=POINTS, window_positions=40, face_samples=129), [400])
+    standard = impact_static(impact_model(case, CONTACT, window_positions=40, face_samples=129), [400])
     assert _scenario(standard) == "edge"
 
 
@@ -147,7 +149,7 @@ def test_batch_over_modifications_equals_one_by_one(case, case_model):
                         for m in g.pair.modification] for g in geoms])
     batch = impact_static(case_model, [800], params)
     for c, g in enumerate(geoms):
-        one = impact_static(impact_model(g, points=POINTS, window_positions=40, face_samples=129), [800])
+        one = impact_static(impact_model(g, CONTACT, window_positions=40, face_samples=129), [800])
         assert batch.tau[c, 0] == pytest.approx(float(one.tau[0, 0]), rel=1e-9, abs=1e-13)
         assert batch.slope[c, 0] == pytest.approx(float(one.slope[0, 0]), rel=1e-6)
 
@@ -159,7 +161,7 @@ def test_convergence_in_points_per_line(case, method):
     12 points on (40, 26, 75 N of 13.0 kN: within 0.6 %, not monotone)."""
     forces = []
     for points in (12, 24, 48, 96):
-        model = impact_model(case, points=points, window_positions=40, face_samples=129, method=method)
+        model = impact_model(case, ContactModel(points=points, method=method), window_positions=40, face_samples=129)
         st, rs = impact_response(model, impact_static(model, [1000]), [5000])
         forces.append(float(rs.force_energy_balance[0, 0, 0]))
     steps = np.abs(np.diff(forces))
@@ -233,8 +235,7 @@ def test_convergence_in_local_slices(case):
     changes by less than 0.2 % from 150 to 1200 slices, the closed form (its fit) by < 2 %."""
     eb, cf = [], []
     for local in (150, 300, 600, 1200):
-        model = impact_model(case, points=POINTS, window_positions=40, face_samples=129, local_points=local,
-                             local_keep=local)
+        model = impact_model(case, CONTACT, window_positions=40, face_samples=129, local_points=local, local_keep=local)
         st, rs = impact_response(model, impact_static(model, [400]), [5000])
         eb.append(float(rs.force_energy_balance[0, 0, 0]))
         cf.append(float(rs.force[0, 0, 0]))
@@ -251,7 +252,8 @@ def test_random_pairs_crossing_equals_seed_equation_and_velocities_agree(pair, l
     r = np.array(pair.teeth) * pair.normal_module / (2 * math.cos(pair.helix_angle))
     pair = pair.with_changes(bore_radius=tuple(0.3 * r), material=Material(210e9, 0.3, 7850.0))
     geom = geometry_or_skip(pair)
-    model = impact_model(geom, points=12, window_positions=24, face_samples=65, local_points=60, local_keep=60)
+    model = impact_model(geom, ContactModel(points=12), window_positions=24, face_samples=65, local_points=60,
+                         local_keep=60)
     # a torque giving a line load of `load` × 300 N/mm
     torque = load * 300e3 * geom.face_width * float(geom.base_radius[0])
     st_ = impact_static(model, [torque])
@@ -289,7 +291,7 @@ def test_lead_slopes_per_row_equal_models_built_with_them(case, case_model):
     lead = np.array([[0.0, 0.0], [6e-6, -2e-6], [-9e-6, 0.0]])
     batch = impact_static(case_model, [700, 1300], params, lead_slope=lead, engagement=False)
     for c in range(3):
-        one = impact_static(impact_model(case, points=POINTS, window_positions=40, face_samples=129,
+        one = impact_static(impact_model(case, CONTACT, window_positions=40, face_samples=129,
                                          lead_slope=tuple(lead[c])), [700, 1300], params[c:c + 1])
         np.testing.assert_allclose(batch.tau[c], one.tau[0], rtol=1e-9, atol=1e-13)
         np.testing.assert_allclose(batch.slope[c], one.slope[0], rtol=1e-6)

@@ -73,9 +73,9 @@ def test_criteria_of_a_candidate_agree_with_the_ltca_and_the_stress_functions(pa
                  for g in range(2))
     mod_geom = pair_geometry(pair.with_changes(modification=mods))
     lt = model.ltca
-    full = ltca(mod_geom, list(TORQUES), model=ltca_model(mod_geom, lt.grid.roll.size - 1, COARSE["points"],
-                                                           lt.lead_slope, lt.law.name, lt.method,
-                                                           lt.grid.extension / geom.transverse_base_pitch,
+    contact = COARSE["contact"].with_(contact_law=lt.law.name, method=lt.method,
+                                      extension=lt.grid.extension / geom.transverse_base_pitch)
+    full = ltca(mod_geom, list(TORQUES), model=ltca_model(mod_geom, lt.grid.roll.size - 1, contact, lt.lead_slope,
                                                            tables=lt.tables))
     np.testing.assert_allclose(crit.lte_peak_to_peak[0], np.ptp(full.lte, axis=1), rtol=1e-6)
     for t in range(len(TORQUES)):

@@ -319,15 +319,17 @@ before = [len(k.signatures) for k in kernels]
 modules = set(sys.modules)
 from gearmesh.gear import pair_geometry
 from gearmesh.pairfile import load_pair
+from gearmesh.contact_model import TABLE_CONTACT
 from gearmesh.meshforce import mesh_force_table
 from gearmesh.dynamics.model import pair_model
 from gearmesh.dynamics.integrate import simulate
 geom = pair_geometry(load_pair({str(root / 'config/pairs/low_fluctuation_pair1.yaml')!r}))
-table = mesh_force_table(geom, 4 * 300 / geom.base_radius[0], positions=32, approaches=16, points=10, method="transition")
+table = mesh_force_table(geom, 4 * 300 / geom.base_radius[0], positions=32, approaches=16,
+                         contact=TABLE_CONTACT.with_(points=10, method="transition"))
 simulate(pair_model(geom, 300.0, None, contact=table), [2000.0, 3000.0])
 from gearmesh.ltca_solve import solve_contact_tabulated
 from gearmesh.meshforce import table_layout
-layout = table_layout(geom, 32, 10, method="transition")
+layout = table_layout(geom, 32, TABLE_CONTACT.with_(points=10, method="transition"))
 solve_contact_tabulated(layout.gaps()[:3], layout.compliance[:3] - layout.law.linear, np.full(3, 1e4), layout.law)
 after = [len(k.signatures) for k in kernels]
 heavy = sorted(m for m in set(sys.modules) - modules

@@ -12,6 +12,7 @@ import xarray as xr
 from pairs import low_fluctuation_pair1
 from scipy.optimize import brentq
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.body import mesh_body_compliance
 from gearmesh import stiffness as st
 from gearmesh.datasets.ltca import ltca_dataset, ltca_summary
@@ -72,7 +73,7 @@ def test_linearised_lte_equals_F_over_K_of_the_stiffness_stage(helical_z29_71_m5
     positions, no tip-edge candidates): LTE = F/K(φ) to round-off and dF/dδ = K; against the
     stage's default (200 clipped slices) within 1.5 % (the 50-point slice rule's O(Δz) ends)."""
     geom = pair_geometry(helical_z29_71_m5)
-    model = ltca_model(geom, positions=64, points=50, contact_law_name="linear", extension=0.0)
+    model = ltca_model(geom, 64, ContactModel(points=50, contact_law="linear", extension=0.0))
     res = ltca(geom, [1000.0], model=model)
     K = st.mesh_stiffness(geom, n_positions=64, n_slices=50, rule="centre", pair_table=model.pair_table)
     assert np.allclose(res.lte[0], st.lste(K, 1000.0), rtol=1e-12, atol=0)
@@ -83,7 +84,7 @@ def test_linearised_lte_equals_F_over_K_of_the_stiffness_stage(helical_z29_71_m5
 
 def test_tangent_stiffness_is_dF_ddelta(helical_z29_71_m5):
     geom = pair_geometry(helical_z29_71_m5.with_changes(modification=MOD))
-    model = ltca_model(geom, positions=8, points=30)
+    model = ltca_model(geom, 8, ContactModel(points=30))
     a, b = ltca(geom, [1000.0, 1000.0 * (1 + 1e-6)], model=model).lte
     mid = ltca(geom, [1000.0 * (1 + 0.5e-6)], model=model)
     fd = 1000.0e-6 / geom.base_radius[0] / (b - a)
@@ -135,7 +136,7 @@ def test_symmetric_crowning_gives_a_symmetric_pattern_for_spur(beta):
     pair = pair_from_dict(low_fluctuation_pair1(helix_angle_deg=beta))
     geom = pair_geometry(pair.with_changes(modification=(Modification(crowning=10e-6, unmodified_lead_length=4e-3),
                                                          Modification(crowning=5e-6))))
-    res = ltca(geom, [150.0], positions=16, points=40)
+    res = ltca(geom, [150.0], 16, ContactModel(points=40))
     load = res.load[0]
     assert np.allclose(load, load[..., ::-1], rtol=1e-9, atol=1e-9 * load.max())
     centre = load[..., 19:21].sum(axis=-1)
@@ -145,7 +146,7 @@ def test_symmetric_crowning_gives_a_symmetric_pattern_for_spur(beta):
 def _asymmetry(beta):
     pair = pair_from_dict(low_fluctuation_pair1(helix_angle_deg=beta))
     geom = pair_geometry(pair.with_changes(modification=(Modification(crowning=10e-6), Modification())))
-    res = ltca(geom, [150.0], positions=16, points=40)
+    res = ltca(geom, [150.0], 16, ContactModel(points=40))
     pattern = res.line_load[0].max(axis=(0, 1))  # envelope over the cycle at each z
     return np.max(np.abs(pattern - pattern[::-1])) / pattern.max()
 
@@ -159,7 +160,7 @@ def test_convergence_in_points_per_line(helical_z29_71_m5):
     geom = pair_geometry(helical_z29_71_m5.with_changes(modification=MOD))
     out = {}
     for n in (25, 50, 100, 200):
-        res = ltca(geom, [1000.0], positions=16, points=n)
+        res = ltca(geom, [1000.0], 16, ContactModel(points=n))
         out[n] = (res.lte[0].mean(), res.max_line_load[0].max(), res.stiffness[0].mean())
     for k in range(3):
         d1 = abs(out[50][k] - out[25][k])
@@ -170,17 +171,18 @@ def test_convergence_in_points_per_line(helical_z29_71_m5):
 
 def test_gear_torque_is_converted_by_the_ratio(helical_z29_71_m5):
     geom = pair_geometry(helical_z29_71_m5)
-    a = ltca(geom, [1000.0], positions=8, points=20)
-    b = ltca(geom, [1000.0 * 71 / 29], positions=8, points=20, on="gear")
+    a = ltca(geom, [1000.0], 8, ContactModel(points=20))
+    b = ltca(geom, [1000.0 * 71 / 29], 8, ContactModel(points=20), on="gear")
     assert np.allclose(a.lte, b.lte, rtol=1e-12) and b.torque[0] == pytest.approx(1000.0)
 
 
 def test_unmodified_pair_meets_with_an_edge_and_modification_delays_it(helical_z29_71_m5):
-    std = ltca(pair_geometry(helical_z29_71_m5), [400.0], positions=8, points=30)
+    std = ltca(pair_geometry(helical_z29_71_m5), [400.0], 8, ContactModel(points=30))
     assert std.lte_at_engagement[0] > std.tca.te_next_pair_at_engagement == 0.0
     assert std.corner_load.max() > 0  # tip edges carry load outside the active zone
     gear_relief = (Modification(), Modification(tip_relief=30e-6, tip_relief_length=4e-3))
-    mod = ltca(pair_geometry(helical_z29_71_m5.with_changes(modification=gear_relief)), [400.0], positions=8, points=30)
+    mod = ltca(pair_geometry(helical_z29_71_m5.with_changes(modification=gear_relief)), [400.0], 8,
+               ContactModel(points=30))
     assert mod.lte_at_engagement[0] < mod.tca.te_next_pair_at_engagement  # surface-to-surface entry
 
 

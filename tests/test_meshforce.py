@@ -9,6 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from gearmesh.contact_model import TABLE_CONTACT
 from gearmesh.body import RIGID_WEBS
 from gearmesh.gear import pair_geometry
 from gearmesh.ltca_solve import _invert, law_point_scales, load_sums
@@ -29,7 +30,7 @@ def geom():
 def test_table_is_the_sum_of_each_points_own_inversion(geom, law):
     """F, dF/dx and the entering pair's load at every (row, approach): Σ over the points of the
     root of c·q + coef·q^m = x − g by Newton per point (:func:`gearmesh.ltca_solve._invert`), to 1e-12."""
-    layout = table_layout(geom, positions=16, points=20, contact_law_name=law)
+    layout = table_layout(geom, 16, TABLE_CONTACT.with_(points=20, contact_law=law))
     params = np.zeros((2, 6))
     params[0] = [0.0, 15e-6, 0.0, 2e-3, 8e-6, 5e-3]
     gap = layout.gaps(params, (4e-6, -3e-6))

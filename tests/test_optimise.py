@@ -14,6 +14,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from gearmesh.contact_model import ContactModel
 from gearmesh import impact as im
 from gearmesh import optimise as op
 from gearmesh.impact import load_grid, load_window
@@ -28,7 +29,7 @@ from gearmesh.plots.optimise import plot_convergence, plot_modification, plot_pa
 from gearmesh.surface import MODIFICATION_FIELDS
 
 ROOT = Path(__file__).resolve().parents[1]
-COARSE = {"points": 16, "window_positions": 24, "face_samples": 65}
+COARSE = {"contact": ContactModel(points=16), "window_positions": 24, "face_samples": 65}
 
 
 @pytest.fixture(scope="module")
@@ -252,12 +253,12 @@ def test_bad_study_settings_and_variants_are_refused_before_any_job(capsys):
 def test_the_impact_model_is_the_studys_impact_section(pair):
     impact = {"points": 20, "energy_velocity": "normal", "driver": "gear", "window_positions": 24}
     _, settings, _, model, _ = run_settings(pair, impact=impact, objective="force", tolerance_statistic=None)
-    assert model["points"] == 20 and model["driver"] == "gear"
+    assert model["contact"].points == 20 and model["driver"] == "gear"
     assert model["window_positions"] == 24 and settings.energy_velocity == "normal"
     _, _, _, model, _ = run_settings(pair, points=16, impact=impact, objective="force", tolerance_statistic=None)
-    assert model["points"] == 16
+    assert model["contact"].points == 16
     _, settings, _, model, tol = run_settings(pair, objective="force", tolerance_statistic=None)
-    assert model["points"] == 50 and model["window_positions"] == 32 and settings.energy_velocity == "transverse"
+    assert model["contact"].points == 50 and model["window_positions"] == 32 and settings.energy_velocity == "transverse"
     assert tol.dimensions == []
 
 

@@ -9,6 +9,7 @@ import math
 import numpy as np
 import pytest
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.cli import main
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_geometry
@@ -60,7 +61,7 @@ def test_ltca_face_load_factor_is_one_aligned_and_follows_method_c_with_a_lead_s
     the LTCA's mean mesh stiffness per unit width, at the centre of the end slice (1 − 1/N of F_β)."""
     n = 20
     for f in (0.0, 5e-6, 10e-6):
-        res = ltca(spur, [500.0], positions=32, points=n, lead_slope=(f, 0.0), contact_law_name="linear")
+        res = ltca(spur, [500.0], 32, ContactModel(points=n, contact_law="linear"), lead_slope=(f, 0.0))
         k = ltca_load_factors(res.load)["K_Hbeta"][0]
         c = res.stiffness.mean() / spur.face_width
         expected = 1 + c * f * (1 - 1 / n) / (2 * res.force[0] / spur.face_width)

@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 import yaml
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.config import load_study
 from gearmesh.datasets.ltca import ltca_summary
 from gearmesh.errors import GearmeshInputError
@@ -46,7 +47,7 @@ def _grid_worst(evaluate, k: int, levels: int) -> np.ndarray:
 def _design_columns(geom, tol, torques, speed=5000.0):
     params = modification_parameters(geom)
     box = tolerance_box(tol, params)
-    model = impact_model(geom, points=30, method="transition", cycle_positions=32)
+    model = impact_model(geom, ContactModel(points=30, method="transition"), cycle_positions=32)
 
     def evaluate(units):
         rows, lead = box.gears(geom, params, model.lead_slope, units)
@@ -120,7 +121,7 @@ def test_only_the_lead_mismatch_acts():
     lead dimension is their sum."""
     geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
     tol = tolerance_model(geom, 6)
-    model = impact_model(geom, points=20, method="transition", cycle_positions=16)
+    model = impact_model(geom, ContactModel(points=20, method="transition"), cycle_positions=16)
     p = np.zeros((1, 2, 6))
     rows, lead = apply_deviations(tol, p, (0.0, 0.0), np.array([[0.4, 0.4]]))
     split = np.array([[lead[0, 1].sum() - 1e-6, 1e-6]])
@@ -140,7 +141,7 @@ def test_a_manufactured_gear_as_a_pair_file_gives_the_same_numbers_through_gearm
     tol = tolerance_model(geom, 6, ("pinion", "gear"), {"tip_relief_um": 2, "crowning_um": 2})
     params = modification_parameters(geom)
     box = tolerance_box(tol, params)
-    model = impact_model(geom, points=50, cycle_positions=64)
+    model = impact_model(geom, ContactModel(points=50), cycle_positions=64)
     units = np.array([[0.6, -1.0, 1.0]])
     rows, lead = box.gears(geom, params, model.lead_slope, units)
     values = gear_criteria(model, rows, lead, [1000.0], 5000.0).values[0, 0]

@@ -20,6 +20,7 @@ from scipy.optimize import minimize_scalar
 from scipy.special import k0e
 
 from figure_checks import layout_faults
+from gearmesh.contact_model import ContactModel
 from gearmesh.gear import pair_geometry
 from gearmesh.pairfile import pair_from_dict
 from gearmesh.rating import rating_inputs
@@ -163,7 +164,7 @@ def spur_scuffing():
     from gearmesh.ltca import ltca
 
     geom = pair_geometry(pair_from_dict({**SPUR, "material": {"youngs_modulus_GPa": 206}}))
-    res = ltca(geom, [300.0, 900.0], positions=48, points=6, contact_law_name="linear")
+    res = ltca(geom, [300.0, 900.0], 48, ContactModel(points=6, contact_law="linear"))
     return geom, res, _variables(geom, res, 3000.0)
 
 

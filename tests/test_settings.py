@@ -221,13 +221,14 @@ def test_every_bound_is_the_stages_own(path, cls):
 def test_a_value_the_schema_accepts_passes_the_stage_check():
     """The other direction for the solver, the instance of the issue (courant 1.5 passed the
     schema, then the stage refused it): the bounds themselves pass both."""
+    from gearmesh.contact_model import TABLE_CONTACT
     from gearmesh.datasets.dynamics.inputs import _solver, _table_settings
     from gearmesh.schema import settings_object
     from gearmesh.settings import Dynamics
 
     _solver(settings_object(Dynamics, {"courant": 1.0, "steps_per_cycle_min": 8, "transient_tau": 1.0,
                                        "record_cycles": 2, "steady_state": "transient"}))
-    _table_settings(points=2000, table_positions=16, table_approaches=8, table_force_factor=100)
+    _table_settings(TABLE_CONTACT.with_(points=2000), table_positions=16, table_approaches=8, table_force_factor=100)
     config = validate_study({"study": "s", "pairs": ["p"], "dynamics": {"courant": 1.0, "points": 2000}})
     assert config["dynamics"]["courant"] == 1.0
 

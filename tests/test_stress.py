@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
+from gearmesh.contact_model import ContactModel
 from gearmesh.errors import GearmeshInputError
 from gearmesh.gear import pair_geometry
 from gearmesh.pairfile import example_pair, load_pair, pair_from_dict
@@ -89,7 +90,7 @@ def test_iso_local_root_stress_of_a_uniform_load_is_the_nominal_one():
 
 def test_ltca_pressure_field_peaks_on_the_unmodified_pairs_tip_edge():
     geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
-    res = ltca(geom, [400.0, 1600.0], positions=32, points=30)
+    res = ltca(geom, [400.0, 1600.0], 32, ContactModel(points=30))
     g = res.grid
     c = contact_stress(geom, res.line_load, g.region, g.rho_pinion, g.rho_gear)
     assert np.all(c.pressure[res.load == 0] == 0)

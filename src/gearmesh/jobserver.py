@@ -463,14 +463,14 @@ def warm_kernels() -> None:
     """
     import numpy as np
 
-    from .dynamics.population import dynamic_factors, population_dynamics
+    from .dynamics.population import POPULATION_CONTACT, dynamic_factors, population_dynamics
     from .gear import pair_geometry
     from .pairfile import example_pair, load_pair
     from .ltca_solve import solve_contact_tabulated
 
     geom = pair_geometry(load_pair(example_pair("helical_z29_71_m5")))
-    setup = population_dynamics(geom, [1000.0], [1000.0, 5000.0], positions=16, approaches=8, points=5,
-                                method="transition")
+    setup = population_dynamics(geom, [1000.0], [1000.0, 5000.0], positions=16, approaches=8,
+                                contact=POPULATION_CONTACT.with_(points=5, method="transition"))
     dynamic_factors(setup, np.zeros((1, 2, 6)), np.zeros((1, 2)))
     layout = setup.layout
     solve_contact_tabulated(layout.gaps()[:2], layout.compliance[:2] - layout.law.linear, np.full(2, 1e4), layout.law)

@@ -261,6 +261,9 @@ MAX_STIFFNESS_POINTS = 4_000_000
 #: Most position × point candidates of one TCA/LTCA torque: measured about 1 kB per candidate
 #: (2000 positions × 50 points: 0.2 GB), so 1e6 stay under about 1 GB.
 MAX_CONTACT_POINTS = 1_000_000
+#: Most candidate points per contact line a physics function accepts (a study's ``points`` is at
+#: most 2000, :mod:`gearmesh.settings`): the bound the LTCA's counts had (gearmesh.contact_model).
+MAX_LINE_POINTS = 100_000
 #: Highest centrifugal hoop stress ρ·v_a² (Pa) at the tip circle accepted: the ultimate tensile
 #: strength of maraging steel 18Ni(300), about 2.0 GPa (ASM Handbook vol. 1, 1990), above that
 #: of any carburising or through-hardening gear steel (EN 10084 18CrNiMo7-6 core: 1.08–1.32 GPa).

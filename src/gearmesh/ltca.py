@@ -49,7 +49,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
 from .errors import GearmeshInputError
 from .gear import PairGeometry, pinion_torque
 from .limits import positive_values
@@ -57,11 +56,12 @@ from .loads import check_loads
 from .body import mesh_body_compliance
 from .deflection import mesh_deflection, mesh_misalignment
 from .deviation import lead_gap
+from .contact_model import LTCA_CONTACT, ContactModel
 from .ltca_model import LTCAModel, contact_law, ltca_model
 from .ltca_solve import solve_contact
 from .tooth import require_stiffness_data
 from .separation import REGION_APPROACH_TIP, REGION_RECESS_TIP
-from .tca import (DEFAULT_EXTENSION, CandidateGrid, TCAResult, first_contact, nanmin, engagement_point,
+from .tca import (CandidateGrid, TCAResult, first_contact, nanmin, engagement_point,
                   engagement_separation, pair_lead_slope)
 
 __all__ = [
@@ -153,8 +153,8 @@ def edge_tangent_stiffness(result: "LTCAResult") -> np.ndarray:
     return k.sum(axis=(2, 3))
 
 
-def with_loaded_extension(geom: PairGeometry, K: np.ndarray, pinion_torque: float, method: str = DEFAULT_TOOTH_METHOD,
-                          points: int = 50) -> np.ndarray:
+def with_loaded_extension(geom: PairGeometry, K: np.ndarray, pinion_torque: float,
+                          contact: ContactModel = LTCA_CONTACT) -> np.ndarray:
     """The linear TVMS ``K`` with the loaded extension of contact added in parallel with the teeth.
 
     Added inside the bodies' series compliance: the tip-edge tangent stiffness
@@ -173,10 +173,8 @@ def with_loaded_extension(geom: PairGeometry, K: np.ndarray, pinion_torque: floa
         :func:`gearmesh.stiffness.mesh_stiffness`.
     pinion_torque : float
         Pinion torque T1 of the LTCA, N·m.
-    method : str, default 'fe'
-        Tooth model of the LTCA (:data:`gearmesh.choices.TOOTH_METHODS`).
-    points : int, default 50
-        Candidate points per contact line of the LTCA.
+    contact : ContactModel, default :data:`gearmesh.contact_model.LTCA_CONTACT`
+        The LTCA's contact model (:class:`gearmesh.contact_model.ContactModel`).
 
     Returns
     -------
@@ -190,7 +188,7 @@ def with_loaded_extension(geom: PairGeometry, K: np.ndarray, pinion_torque: floa
        deviations and mounting errors on gear dynamic behaviour", J. Sound Vib. 191 (1996) 629–660.
     """
     K = np.asarray(K, dtype=float)
-    res = ltca(geom, [pinion_torque], positions=K.size, points=points, method=method)
+    res = ltca(geom, [pinion_torque], positions=K.size, contact=contact)
     k_edge = edge_tangent_stiffness(res)[0]
     if not np.any(k_edge):
         return K
@@ -405,9 +403,8 @@ def _reach_exceeded(model: LTCAModel, q: np.ndarray) -> bool:
     return bool(np.any((q > 0) & far[None]))
 
 
-def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lead_slope=None,
-         on: str = "pinion", contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
-         extension: float = DEFAULT_EXTENSION, model: LTCAModel | None = None, misalignment=None) -> LTCAResult:
+def ltca(geom: PairGeometry, torques, positions: int = 64, contact: ContactModel = LTCA_CONTACT, lead_slope=None,
+         on: str = "pinion", model: LTCAModel | None = None, misalignment=None) -> LTCAResult:
     """Loaded TCA at each torque over one mesh cycle (and at the start of engagement φ1A).
 
     When loaded tip edges reach the outer fifth of the candidate zone beyond the active profile, the
@@ -423,20 +420,18 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
         The pair's geometry (needs material and bore radius; carries the modifications).
     torques : float or array_like
         Torque(s), N·m, on the pinion or, with ``on='gear'``, on the gear.
-    positions, points : int
-        Roll positions per mesh cycle (default 64) and candidate points per contact line (50).
+    positions : int, default 64
+        Roll positions per mesh cycle.
+    contact : ContactModel, default :data:`gearmesh.contact_model.LTCA_CONTACT`
+        Candidate points per contact line, local contact law (:func:`gearmesh.ltca_model.contact_law`),
+        tooth model of the slice compliance and reach of the tip-edge candidates beyond the active zone
+        (:class:`gearmesh.contact_model.ContactModel`).
     lead_slope : sequence of 2 float, optional
         Lead slope deviations [pinion, gear], m over the face width; None: the pair's own (:mod:`gearmesh.deviation`).
     on : {'pinion', 'gear'}, default 'pinion'
         The member ``torques`` act on.
-    contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
-        Local contact law (:func:`gearmesh.ltca_model.contact_law`).
-    method : str, default 'fe'
-        Cantilever (tooth) model of the slice compliance (:data:`gearmesh.choices.TOOTH_METHODS`).
-    extension : float, default :data:`gearmesh.tca.DEFAULT_EXTENSION`
-        Reach of the tip-edge candidates beyond the active zone, fraction of p_bt.
     model : LTCAModel, optional
-        A prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (the grid arguments then ignored).
+        A prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (``positions`` and ``contact`` then ignored).
     misalignment : float or array_like, optional
         The mesh misalignment of each torque, m, instead of the pair's own (e.g. the rating's with ISO's f_ma).
 
@@ -449,7 +444,7 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     Raises
     ------
     GearmeshInputError
-        Torques, counts, method or modifications out of range.
+        Torques, ``positions`` or modifications out of range.
     """
     t1 = pinion_torques(geom, torques, on)
     lead_slope = pair_lead_slope(geom, lead_slope)
@@ -459,15 +454,15 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, points: int = 50, lea
     own = model is None
     while True:
         if own:
-            model = ltca_model(geom, positions, points, lead_slope, contact_law_name, method, extension)
+            model = ltca_model(geom, positions, contact, lead_slope)
         q, delta, k, it = _solve(model, force, misalignment)
         if not _reach_exceeded(model, q):
             break
-        if not own or extension >= 1.0:
+        if not own or contact.extension >= 1.0:
             warnings.warn("LTCA: tip-edge contact reaches the end of the candidate zone beyond the active "
                           "profile; raise corner_extension", RuntimeWarning, stacklevel=2)
             break
-        extension = min(1.0, 2.0 * extension)  # the load reaches further than the candidates: widen
+        contact = contact.with_(extension=min(1.0, 2.0 * contact.extension))  # the load reaches further: widen
     c_body = mesh_body_compliance(geom)
     if c_body:  # the bodies bend under the total force, in series (gearmesh.body)
         delta, k = delta + c_body * force[:, None], 1.0 / (1.0 / k + c_body)

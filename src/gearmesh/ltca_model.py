@@ -29,16 +29,16 @@ from dataclasses import dataclass
 import numpy as np
 
 from .contact import mesh_cycle_rolls
-from .choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
+from .choices import CONTACT_LAWS, DEFAULT_CONTACT_LAW
+from .contact_model import LTCA_CONTACT, ContactModel
 from .errors import GearmeshInputError
 from .supports import PALMGREN_LINE, PALMGREN_LINE_EXPONENT
 from .gear import PairGeometry
-from .slice_compliance import (METHODS, PairSliceTable, hertz_compliance_transverse, pair_slice_table,
+from .slice_compliance import (PairSliceTable, hertz_compliance_transverse, pair_slice_table,
                                slice_compliance_table)
 from .tooth import SliceComplianceTable, require_stiffness_data
 from .separation import REGION_APPROACH_TIP, REGION_RECESS_TIP
-from .tca import (DEFAULT_EXTENSION, CandidateGrid, check_count, candidate_grid, check_extension, check_modifications,
-                  engagement_point, pair_lead_slope)
+from .tca import (CandidateGrid, check_count, candidate_grid, check_modifications, engagement_point, pair_lead_slope)
 
 __all__ = ["CONTACT_LAWS", "PALMGREN_COEFFICIENT", "PALMGREN_EXPONENT", "ContactLaw", "contact_law",
            "point_compliance", "LTCAModel", "ltca_model"]
@@ -196,9 +196,7 @@ class LTCAModel:
     misalignment: float = 0.0  # the stated mesh misalignment f_ma in the grid's separations (m)
 
 
-def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_slope=None,
-               contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
-               extension: float = DEFAULT_EXTENSION,
+def ltca_model(geom: PairGeometry, positions: int = 64, contact: ContactModel = LTCA_CONTACT, lead_slope=None,
                tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
                n_nodes: int = 257) -> LTCAModel:
     """Grid, separations and point compliances (the model of :mod:`gearmesh.ltca`) for :func:`gearmesh.ltca.ltca`.
@@ -215,19 +213,15 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
         The pair's geometry with its modifications (:func:`gearmesh.gear.pair_geometry`).
     positions : int, default 64
         Mesh positions over one mesh cycle (the start of engagement is appended as a last one).
-    points : int, default 50
-        Candidate points (slices) per contact line.
+    contact : ContactModel, default :data:`gearmesh.contact_model.LTCA_CONTACT`
+        Candidate points per contact line, local contact law (:func:`contact_law`), tooth model of
+        the slice compliance and reach of the tip-edge candidates beyond the active zone
+        (:class:`gearmesh.contact_model.ContactModel`).
     lead_slope : sequence of 2 float, optional
         Lead slope deviations [pinion, gear], m over the face width; None: the pair's own
         deviations (:func:`gearmesh.tca.pair_lead_slope`).
-    contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
-        Local contact law (:func:`contact_law`).
-    method : str, default 'fe'
-        Tooth (cantilever) model of the slice compliance (:data:`gearmesh.choices.TOOTH_METHODS`).
-    extension : float, default :data:`gearmesh.tca.DEFAULT_EXTENSION`
-        Reach of the tip-edge candidates beyond the active zone, fraction of p_bt.
     tables : tuple of SliceComplianceTable, optional
-        Per-gear :class:`~gearmesh.tooth.SliceComplianceTable` to reuse (same ``method``).
+        Per-gear :class:`~gearmesh.tooth.SliceComplianceTable` to reuse (same tooth model).
     n_nodes : int, default 257
         Nodes of each slice compliance table when ``tables`` is None.
 
@@ -240,15 +234,12 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     Raises
     ------
     GearmeshInputError
-        Modifications, counts, ``method`` or ``extension`` out of range, or no stiffness data.
+        Modifications or ``positions`` out of range, or no stiffness data.
     """
     check_modifications(geom)
     require_stiffness_data(geom)
-    if method not in METHODS:
-        raise GearmeshInputError("method", method, f"must be one of {list(METHODS)}")
     positions = check_count("positions", positions, 1, 100000)
-    points = check_count("points", points, 1, 100000)
-    extension = check_extension(extension)
+    points, method, law_name = contact.points, contact.method, contact.contact_law
     if tables is None:
         tables = (slice_compliance_table(geom, 0, method, n_nodes), slice_compliance_table(geom, 1, method, n_nodes))
     pair_table = pair_slice_table(geom, tables)
@@ -256,12 +247,12 @@ def ltca_model(geom: PairGeometry, positions: int = 64, points: int = 50, lead_s
     roll = np.append(mesh_cycle_rolls(geom, positions), roll_a)
     lead_slope = pair_lead_slope(geom, lead_slope)
     mis = geom.pair.deviations.misalignment
-    grid = candidate_grid(geom, roll, points, lead_slope, extension, misalignment=mis)
-    law = contact_law(geom, grid.dz, contact_law_name)
-    if contact_law_name == "linear":  # the Hertz part sits in the tooth compliance, as the stiffness stage
+    grid = candidate_grid(geom, roll, points, lead_slope, contact.extension, misalignment=mis)
+    law = contact_law(geom, grid.dz, law_name)
+    if law_name == "linear":  # the Hertz part sits in the tooth compliance, as the stiffness stage
         law = ContactLaw("linear", 0.0, 1.0, 0.0, grid.dz)
     per_width = point_compliance(geom, pair_table, tables, grid.s, grid.region, grid.rho_pinion, grid.rho_gear,
-                                 with_hertz=contact_law_name == "linear")
+                                 with_hertz=law_name == "linear")
     compliance = per_width / grid.dz
     return LTCAModel(geom=geom, grid=grid, compliance=compliance, law=law, method=method, pair_table=pair_table,
                      lead_slope=lead_slope, tables=tables, misalignment=mis)

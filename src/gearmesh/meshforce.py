@@ -58,7 +58,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
+from .contact_model import TABLE_CONTACT, ContactModel
 from .errors import GearmeshInputError
 from .gear import PairGeometry
 from .body import mesh_body_compliance
@@ -70,22 +70,12 @@ from .tooth import SliceComplianceTable
 from .separation import REGION_APPROACH_TIP, REGION_RECESS_TIP, basis_gap
 from .tca import candidate_grid, check_count, engagement_point, pair_lead_slope
 
-__all__ = ["MeshForceTable", "mesh_force_table", "TableLayout", "table_layout", "tabulate", "DEFAULT_TABLE_POSITIONS", "DEFAULT_TABLE_APPROACHES",
-           "DEFAULT_TABLE_EXTENSION"]
+__all__ = ["MeshForceTable", "mesh_force_table", "TableLayout", "table_layout", "tabulate", "DEFAULT_TABLE_POSITIONS", "DEFAULT_TABLE_APPROACHES"]
 
 #: Rows (window positions per mesh cycle) and columns (approaches) of the default table; the
 #: convergence of the dynamics in both is tested (tests/test_meshforce.py, test_dynamics_contact.py).
 DEFAULT_TABLE_POSITIONS = 256
 DEFAULT_TABLE_APPROACHES = 96
-#: Reach of the tip-edge candidates beyond the active zone (fraction of p_bt): half a base pitch,
-#: the whole half-window before A in which the entering pair is followed.
-DEFAULT_TABLE_EXTENSION = 0.5
-#: Points (slices) per contact line. More than the LTCA's 50: a helical pair enters at the corner
-#: at the face end, and slice centres put the first point half a slice inside it, delaying the
-#: entering pair's first touch by (b/2N)·tan βb of roll — 0.2 mm at 50 points on the default pair,
-#: 0.05 mm at 200, converging as 1/N to the exact corner of :func:`gearmesh.impact.impact_static`
-#: (tests/test_dynamics_contact.py); the table costs about 1 s at 200.
-DEFAULT_TABLE_POINTS = 200
 
 
 @dataclass(frozen=True)
@@ -252,9 +242,7 @@ class TableLayout:
         return np.where(np.isfinite(gap), gap, np.inf)
 
 
-def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, points: int = DEFAULT_TABLE_POINTS,
-                 contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
-                 extension: float = DEFAULT_TABLE_EXTENSION,
+def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, contact: ContactModel = TABLE_CONTACT,
                  tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None) -> TableLayout:
     """The micro-geometry-independent part of :func:`mesh_force_table` (its parameters).
 
@@ -264,16 +252,13 @@ def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, p
         The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
     positions : int, default :data:`DEFAULT_TABLE_POSITIONS`
         Rows (window positions) per mesh cycle (≥ 16).
-    points : int, default :data:`DEFAULT_TABLE_POINTS`
-        Candidate points (slices) per contact line.
-    contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
-        Local contact law (:func:`gearmesh.ltca_model.contact_law`).
-    method : str, default 'fe'
-        Tooth model of the slice compliance (:data:`gearmesh.choices.TOOTH_METHODS`).
-    extension : float, default :data:`DEFAULT_TABLE_EXTENSION`
-        Reach of the tip-edge candidates beyond the active zone, fraction of p_bt, in (0, 0.5].
+    contact : ContactModel, default :data:`gearmesh.contact_model.TABLE_CONTACT`
+        Candidate points (slices) per contact line, local contact law
+        (:func:`gearmesh.ltca_model.contact_law`), tooth model of the slice compliance, and reach of
+        the tip-edge candidates beyond the active zone, fraction of p_bt, in (0, 0.5]
+        (:class:`gearmesh.contact_model.ContactModel`).
     tables : tuple of SliceComplianceTable, optional
-        Per-gear slice compliance tables to reuse (same ``method``).
+        Per-gear slice compliance tables to reuse (same tooth model).
 
     Returns
     -------
@@ -287,11 +272,11 @@ def table_layout(geom: PairGeometry, positions: int = DEFAULT_TABLE_POSITIONS, p
         ``table_positions`` or ``table_extension`` out of range.
     """
     positions = check_count("table_positions", positions, 16, 100000)
-    if not (isinstance(extension, (int, float)) and 0 < extension <= 0.5):
+    points, extension = contact.points, contact.extension
+    if not 0 < extension <= 0.5:
         raise GearmeshInputError("table_extension", extension, "must lie in (0, 0.5] (fraction of the base pitch)")
     # the load-independent LTCA model: slice tables, pair table, contact law (its own grid unused)
-    base = ltca_model(geom, positions=1, points=points, contact_law_name=contact_law_name, method=method,
-                      extension=extension, tables=tables)
+    base = ltca_model(geom, positions=1, contact=contact, tables=tables)
     law: ContactLaw = base.law
     pitch = geom.transverse_base_pitch
     roll_a, j_a, _ = engagement_point(geom)
@@ -379,10 +364,8 @@ def _with_body(u, force, stiff, enter, c_body: float, force_max: float):
 
 
 def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFAULT_TABLE_POSITIONS,
-                     approaches: int = DEFAULT_TABLE_APPROACHES, points: int = DEFAULT_TABLE_POINTS,
-                     lead_slope=None, contact_law_name: str = DEFAULT_CONTACT_LAW, method: str = DEFAULT_TOOTH_METHOD,
-                     extension: float = DEFAULT_TABLE_EXTENSION,
-                     tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
+                     approaches: int = DEFAULT_TABLE_APPROACHES, contact: ContactModel = TABLE_CONTACT,
+                     lead_slope=None, tables: tuple[SliceComplianceTable, SliceComplianceTable] | None = None,
                      static_force: float | None = None) -> MeshForceTable:
     """Tabulate the mesh force F(x, w) of ``geom`` (its modifications) over one mesh cycle.
 
@@ -405,19 +388,14 @@ def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFA
         Rows per mesh cycle (module docstring).
     approaches : int, default :data:`DEFAULT_TABLE_APPROACHES`
         Columns (approaches) of the table.
-    points : int, default :data:`DEFAULT_TABLE_POINTS`
-        Candidate points (slices) per contact line, as the LTCA's ``points``.
+    contact : ContactModel, default :data:`gearmesh.contact_model.TABLE_CONTACT`
+        Candidate points (slices) per contact line, as the LTCA's, local contact law, tooth model, and
+        reach of the tip-edge candidates beyond the active zone (fraction of p_bt, at most 0.5: the
+        entering pair is followed over half a pitch before A) (:class:`gearmesh.contact_model.ContactModel`).
     lead_slope : sequence of 2 float, optional
         Lead slope deviations [pinion, gear], m over the face width; None: the pair's own.
-    contact_law_name : {'palmgren', 'linear'}, default 'palmgren'
-        Local contact law (:func:`gearmesh.ltca_model.contact_law`).
-    method : str, default 'fe'
-        Tooth (cantilever) model (:data:`gearmesh.choices.TOOTH_METHODS`).
-    extension : float, default :data:`DEFAULT_TABLE_EXTENSION`
-        Reach of the tip-edge candidates beyond the active zone (fraction of p_bt, at most 0.5: the
-        entering pair is followed over half a pitch before A).
     tables : tuple of SliceComplianceTable, optional
-        Per-gear slice compliance tables to reuse (same ``method``).
+        Per-gear slice compliance tables to reuse (same tooth model).
     static_force : float, optional
         The static transverse force (N) whose mesh misalignment the separations carry (the stated
         f_ma and the system deflection's f_sh at it, :func:`gearmesh.deflection.mesh_misalignment`:
@@ -441,7 +419,7 @@ def mesh_force_table(geom: PairGeometry, force_max: float, positions: int = DEFA
     .. [4] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears,
        docs/references.md.
     """
-    layout = table_layout(geom, positions, points, contact_law_name, method, extension, tables)
+    layout = table_layout(geom, positions, contact, tables)
     lead = with_misalignment(pair_lead_slope(geom, lead_slope),
                              float(mesh_misalignment(geom, 0.0 if static_force is None else static_force)))
     return tabulate(layout, layout.gaps(lead_slope=lead), force_max, approaches)

@@ -15,8 +15,8 @@ function that takes its keys as keyword arguments (and its defaults from here, t
 figures it draws; the workflow's rules, the study's targets and the upstream checks derive
 from it (:func:`stages`, docs/architecture.md "Each stage declared once"). Every bound is
 this module's or :mod:`gearmesh.limits`'s. Engineering units, the unit in the key name
-(``torque_Nm``, ``speed_rpm``). Reading a config imports no physics: this module needs
-:mod:`gearmesh.choices`, :mod:`gearmesh.limits`, :mod:`gearmesh.schema` and :mod:`gearmesh.stages` only.
+(``torque_Nm``, ``speed_rpm``). Reading a config imports no physics: this module needs :mod:`gearmesh.choices`,
+:mod:`gearmesh.contact_model`, :mod:`gearmesh.limits`, :mod:`gearmesh.schema` and :mod:`gearmesh.stages` only.
 """
 
 from __future__ import annotations
@@ -26,6 +26,8 @@ from typing import Any, ClassVar, Literal, Mapping
 
 from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_CYCLE_POSITIONS, DEFAULT_TOOTH_METHOD,  # noqa: F401
                       PAIR_EXCITATIONS, TOOTH_METHODS)
+from .contact_model import (DEFAULT_LTCA_POINTS, DEFAULT_TABLE_POINTS, LoadedContactSection, OverridingContactSection,
+                            TableContactSection)
 from .limits import FACTOR_RANGES, MAX_CONTACT_POINTS, MAX_LTCA_TORQUES, MAX_STIFFNESS_POINTS
 from .schema import REQUIRED, all_keys, nested_sections, object_schema, setting
 from .stages import (Figure, Grid, Read, Speeds, Stage, Table, Torques, always, contact_drives, ltca_drives, method_fe,
@@ -64,7 +66,7 @@ def _positions(default: int = 360, maximum: int = 100000, what: str = "") -> Any
     return setting(default, f"rotation positions over one mesh cycle{what}", minimum=8, maximum=maximum)
 
 
-def _points(default: int = 50, what: str = "") -> Any:
+def _points(default: int = DEFAULT_LTCA_POINTS, what: str = "") -> Any:
     return setting(default, f"points per contact line{what}", minimum=2, maximum=2000)
 
 
@@ -210,7 +212,7 @@ class Tca:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Ltca:
+class Ltca(LoadedContactSection):
     """Loaded tooth contact analysis of every pair and variant at each torque over one mesh
     cycle: loaded and load transmission error, contact pattern, loaded mesh stiffness (ltca.nc)."""
 
@@ -274,7 +276,7 @@ class Scuffing:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Impact:
+class Impact(LoadedContactSection):
     """Mesh-in impact of every pair and variant over a torque × speed grid: where the entering
     pair first touches, edge or surface contact, impact velocity and force by the energy method,
     the variants side by side at the design speed, and a direct simulation of the engagement
@@ -374,7 +376,7 @@ class Constraints:
 
 
 @dataclass(frozen=True, kw_only=True)
-class Optimise:
+class Optimise(OverridingContactSection):
     """One named optimisation of the six modification parameters per modified gear against the
     mesh-in impact, over a load spectrum and the study's manufacturing tolerances, once per pair
     (results/{study}/{pair}/optimise/NAME/ga.nc and pair.yaml). Its impact model is the study's
@@ -494,7 +496,7 @@ class Tolerances:
 
 
 @dataclass(frozen=True, kw_only=True)
-class _Dynamics:
+class _Dynamics(TableContactSection):
     """What the 8-DOF pair and the 9-DOF train share: bearings, mesh, contact table, solver."""
 
     backlash_um: float | Literal["pair"] | None = setting(
@@ -517,8 +519,8 @@ class _Dynamics:
     fourier_order: int = setting(3, "order of the Fourier series of k(t)", minimum=0, maximum=30)
     method: Method = _method(" (the stiffness when no stiffness stage runs, the contact table)")
     contact_law: ContactLaw = _contact_law(" (contact table)")
-    points: int = _points(200, " of the contact table (the first touch at the face-end corner converges as "
-                               "1/points; 200 puts the default pair's within 0.03 mm of roll of 400's)")
+    points: int = _points(DEFAULT_TABLE_POINTS, " of the contact table (the first touch at the face-end corner "
+                          "converges as 1/points; 200 puts the default pair's within 0.03 mm of roll of 400's)")
     table_positions: int = setting(256, "positions per mesh cycle of the contact table", minimum=16, maximum=100000)
     table_approaches: int = setting(96, "approaches of the contact table", minimum=8, maximum=100000)
     table_force_factor: float = setting(4.0, "the contact table reaches this many times the largest static force",

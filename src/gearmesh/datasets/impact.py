@@ -50,8 +50,7 @@ def _model(pair: GearPair, settings: Impact) -> ImpactModel:
     check_modifications(pair)
     geom = pair_geometry(pair)
     s = settings
-    return impact_model(geom, points=s.points, contact_law_name=s.contact_law, method=s.method,
-                        extension=s.corner_extension, driver=s.driver, added_inertia_kg_m2=s.added_inertia_kg_m2,
+    return impact_model(geom, s.contact_model(), driver=s.driver, added_inertia_kg_m2=s.added_inertia_kg_m2,
                         window_positions=s.window_positions, face_samples=s.face_samples)
 
 

@@ -176,10 +176,10 @@ def ltca_dataset(pair: GearPair, *, fe_compliance: xr.Dataset | None = None, **s
     """
     s = settings_object(Ltca, section)
     geom = _geometry(pair)
-    positions, points = check_contact_grid(s.positions, s.points)
+    positions, _ = check_contact_grid(s.positions, s.points)
     given, t1 = loaded_pinion_torques(geom, s.torques_Nm, s.on)
     use_fe_tables(fe_compliance, geom)
-    res = ltca(geom, t1, positions, points, None, "pinion", s.contact_law, s.method, s.corner_extension)
+    res = ltca(geom, t1, positions, s.contact_model())
     return _ltca_to_dataset(geom, res, given, s.on)
 
 
@@ -298,9 +298,9 @@ def ltca_summary(pair: GearPair, torque_Nm, **section: Any) -> dict[str, Any]:
     if not (isinstance(torque_Nm, (int, float, np.floating, np.integer)) and not isinstance(torque_Nm, bool)):
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be one positive number (N m)")
     geom = _geometry(pair)
-    positions, points = check_contact_grid(s.positions, s.points)
+    positions, _ = check_contact_grid(s.positions, s.points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], s.on, "torque_Nm")[1]
-    res = ltca(geom, t1, positions, points, None, "pinion", s.contact_law, s.method, s.corner_extension)
+    res = ltca(geom, t1, positions, s.contact_model())
     lc = load_capacity(geom, res, reference_ltca(geom, res))
     c = lc["contact"]
     um, mpa = 1e6, 1e-6

@@ -78,9 +78,7 @@ def run_settings(pair: GearPair, *, impact: Mapping[str, Any] | None = None,
         return getattr(imp, key) if own is None else own
 
     d = declared
-    model = {"points": pick(d.points, "points"), "contact_law_name": pick(d.contact_law, "contact_law"),
-             "extension": pick(d.corner_extension, "corner_extension"), "method": imp.method,
-             "driver": imp.driver, "added_inertia_kg_m2": imp.added_inertia_kg_m2,
+    model = {"contact": d.contact_model(imp), "driver": imp.driver, "added_inertia_kg_m2": imp.added_inertia_kg_m2,
              "window_positions": pick(d.window_positions, "window_positions"),
              "face_samples": pick(d.face_samples, "face_samples"), "cycle_positions": d.cycle_positions}
     return geom, settings, genes, model, tol_model

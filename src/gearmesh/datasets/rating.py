@@ -17,6 +17,7 @@ import xarray as xr
 from ..body import describe_body
 from ..deflection import describe_deflection
 from ..errors import GearmeshInputError
+from ..contact_model import ContactModel
 from ..gear import GEARS, GearPair, Modification, PairGeometry, pair_geometry
 from ..pairfile import missing_key, pair_notes
 from ..io import variable
@@ -148,16 +149,18 @@ def reference_ltca(geom: PairGeometry, res: LTCAResult) -> LTCAResult | None:
     if base is None:
         return None
     m = res.model
-    extension = res.grid.extension / geom.transverse_base_pitch  # the grid keeps it in m
+    # res's contact model; the grid keeps the extension in m
+    contact = ContactModel(points=res.grid.z.size, contact_law=m.law.name, method=m.method,
+                           extension=res.grid.extension / geom.transverse_base_pitch)
     while True:  # as ltca() widens the tip-edge zone when loaded edges reach its end
-        model = ltca_model(base, res.grid.roll.size, res.grid.z.size, m.lead_slope, m.law.name, m.method,
-                           extension, tables=m.tables)  # the teeth's compliance does not see the relief
+        model = ltca_model(base, res.grid.roll.size, contact, m.lead_slope,
+                           tables=m.tables)  # the teeth's compliance does not see the relief
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always", RuntimeWarning)
             out = ltca(base, res.torque, model=model)
-        if not caught or extension >= 1.0:
+        if not caught or contact.extension >= 1.0:
             return out
-        extension = min(1.0, 2.0 * extension)
+        contact = contact.with_(extension=min(1.0, 2.0 * contact.extension))
 
 
 def _fe_root_check(geom: PairGeometry, res: LTCAResult, root: np.ndarray) -> dict[str, Any]:
@@ -223,7 +226,7 @@ def rating_summary(pair: GearPair, torque_Nm, *, factors: Mapping[str, float] | 
     inputs = rating_inputs(dict(pair.rating_inputs))
     geom = pair_geometry(pair)
     check_speeds(geom, speed_rpm, "speed_rpm", on=on)  # not above the burst speed of the faster tip circle
-    positions, points = check_contact_grid(lt.positions, lt.points)
+    positions, _ = check_contact_grid(lt.positions, lt.points)
     t1 = loaded_pinion_torques(geom, [torque_Nm], on, "torque_Nm")[1]
     speed1 = speed_rpm if on == "pinion" else speed_rpm * pair.teeth[1] / pair.teeth[0]
     if method == "iso" and pair.bore_radius is None:  # the standard's factors need no LTCA, the LTCA a bore
@@ -232,7 +235,7 @@ def rating_summary(pair: GearPair, torque_Nm, *, factors: Mapping[str, float] | 
                 "factors_given": r.given, "factor_sources": r.sources, "gears": list(GEARS),
                 "notes": pair_notes(pair) + r.notes + [f"the LTCA's contact pressure and root stress not computed: "
                                                        f"{missing_key('bore_radius_mm').rule}"]}
-    res = ltca(geom, t1, positions, points, None, "pinion", lt.contact_law, lt.method, lt.corner_extension)
+    res = ltca(geom, t1, positions, lt.contact_model())
     lc = load_capacity(geom, res, reference_ltca(geom, res))
     k_ha = float(rated_transverse_factor(lc["K_Halpha"][0]))
     r = rating(geom, float(t1[0]), float(speed1), inputs, application_factor, life_hours, factors, method,

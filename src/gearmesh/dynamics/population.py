@@ -33,7 +33,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_TOOTH_METHOD
+from ..contact_model import DEFAULT_LTCA_POINTS, TABLE_CONTACT, ContactModel
 from ..errors import GearmeshInputError
 from ..deflection import mesh_misalignment
 from ..deviation import with_misalignment
@@ -45,7 +45,10 @@ from .model import DEFAULT_DAMPING_RATIO, pair_model, require_dynamics_data, res
 __all__ = ["PopulationDynamics", "population_dynamics", "dynamic_factors"]
 
 #: Table size of a population member (module docstring).
-POPULATION_TABLE = {"positions": 64, "approaches": 32, "points": 50}
+POPULATION_TABLE = {"positions": 64, "approaches": 32}
+#: The contact model of those tables: a mesh force table's (:data:`gearmesh.contact_model.TABLE_CONTACT`) on the
+#: LTCA's 50 points per line.
+POPULATION_CONTACT = TABLE_CONTACT.with_(points=DEFAULT_LTCA_POINTS)
 #: Harmonics of the mesh frequency whose resonances are added to the speed grid (a modified
 #: candidate's peak can lie at the second: 1.063 against 1.026 with the first alone), the offsets
 #: around each (in modal damping ratios) and the least share of a mode's strain energy in the
@@ -91,10 +94,9 @@ class PopulationDynamics:
 
 
 def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash: float | None = None,
-                        damping_ratio: float = DEFAULT_DAMPING_RATIO, method: str = DEFAULT_TOOTH_METHOD,
+                        damping_ratio: float = DEFAULT_DAMPING_RATIO, contact: ContactModel = POPULATION_CONTACT,
                         positions: int = POPULATION_TABLE["positions"],
                         approaches: int = POPULATION_TABLE["approaches"],
-                        points: int = POPULATION_TABLE["points"], contact_law_name: str = DEFAULT_CONTACT_LAW,
                         settings: SolverSettings = POPULATION_SOLVER, tables=None,
                         misalignment_torque: float | None = None) -> PopulationDynamics:
     """Set up :func:`dynamic_factors` for ``geom`` at pinion torques over a speed grid.
@@ -111,10 +113,11 @@ def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash
         2b0 (m); None: the pair's own normal backlash j_bn.
     damping_ratio : float
         Modal damping ratio ζ (-) of the mesh mode (:func:`pair_model`).
-    method, contact_law_name : str
-        Cantilever tooth model and contact law of the mesh force table (:mod:`gearmesh.ltca`).
-    positions, approaches, points : int
-        The member tables' mesh positions, approaches and points per line (default ``POPULATION_TABLE``: 64, 32, 50).
+    contact : ContactModel, default :data:`POPULATION_CONTACT`
+        The member tables' contact model: points per line, contact law, tooth model, reach
+        (:class:`gearmesh.contact_model.ContactModel`).
+    positions, approaches : int
+        The member tables' mesh positions and approaches (default ``POPULATION_TABLE``: 64, 32).
     settings : SolverSettings
         Solver settings (default ``POPULATION_SOLVER``).
     tables : optional
@@ -142,7 +145,7 @@ def population_dynamics(geom: PairGeometry, pinion_torques, speeds_rpm, backlash
     backlash = float(geom.backlash_normal) if backlash is None else float(backlash)
     if not (math.isfinite(backlash) and backlash >= 0):
         raise GearmeshInputError("backlash_um", backlash * 1e6, "must be a non-negative finite backlash")
-    layout = table_layout(geom, positions, points, contact_law_name, method, tables=tables)
+    layout = table_layout(geom, positions, contact, tables=tables)
     return PopulationDynamics(layout=layout, pinion_torques=torques, torques_out=torques * rb2 / rb1, speeds_rpm=speeds,
                               force_max=POPULATION_FORCE_FACTOR * float(torques.max()) / rb1, approaches=approaches,
                               backlash=backlash, damping_ratio=float(damping_ratio), settings=settings,

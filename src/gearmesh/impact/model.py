@@ -13,7 +13,8 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..choices import DEFAULT_CONTACT_LAW, DEFAULT_CORNER_EXTENSION, DEFAULT_CYCLE_POSITIONS, DEFAULT_TOOTH_METHOD
+from ..choices import DEFAULT_CYCLE_POSITIONS
+from ..contact_model import LTCA_CONTACT, ContactModel
 from ..errors import GearmeshInputError
 from ..gear import PairGeometry
 from ..ltca_model import LTCAModel, ContactLaw, contact_law, ltca_model, point_compliance
@@ -230,8 +231,7 @@ def _engagement(geom: PairGeometry, driver: str) -> tuple[float, int, float]:
     return float(roll_e), j_e, float(z_e)
 
 
-def impact_model(geom: PairGeometry, points: int = 50, lead_slope=None, contact_law_name: str = DEFAULT_CONTACT_LAW,
-                 method: str = DEFAULT_TOOTH_METHOD, extension: float = DEFAULT_CORNER_EXTENSION, driver: str = "pinion",
+def impact_model(geom: PairGeometry, contact: ContactModel = LTCA_CONTACT, lead_slope=None, driver: str = "pinion",
                  added_inertia_kg_m2=(0.0, 0.0), window_positions: int = 32, face_samples: int = 257,
                  cycle_positions: int = DEFAULT_CYCLE_POSITIONS, local_points: int = 400, local_keep: int = 400,
                  ltca: LTCAModel | None = None) -> ImpactModel:
@@ -241,14 +241,14 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=None, contact_
     ----------
     geom : PairGeometry
         The pair's geometry (:func:`gearmesh.gear.pair_geometry`); SI throughout.
-    points, cycle_positions : int
-        LTCA points per contact line (the other pairs, the local stiffness); rolls per mesh cycle of the LTCA grid.
+    contact : ContactModel, default :data:`gearmesh.contact_model.LTCA_CONTACT`
+        The LTCA's contact model (:class:`gearmesh.contact_model.ContactModel`): points per contact line (the
+        other pairs, the local stiffness), local contact law, tooth model, and the reach of the tip-edge candidates
+        beyond the active zone (fraction of p_bt, -) that also opens the search window.
     lead_slope : array_like or None
         Lead slope deviations [pinion, gear] (m over the face width); None: the pair's own.
-    contact_law_name, method : str
-        Local contact law and cantilever model (:mod:`gearmesh.ltca`); defaults :mod:`gearmesh.choices`.
-    extension : float
-        Reach of the tip-edge candidates beyond the active zone (fraction of p_bt, -).
+    cycle_positions : int
+        Rolls per mesh cycle of the LTCA grid.
     driver : {'pinion', 'gear'}
         The driving gear (:mod:`gearmesh.impact`).
     added_inertia_kg_m2 : (2,) array_like
@@ -279,11 +279,11 @@ def impact_model(geom: PairGeometry, points: int = 50, lead_slope=None, contact_
             raise GearmeshInputError(name, value, f"must be an integer in [{low}, {high}]")
     lead_slope = pair_lead_slope(geom, lead_slope)
     if ltca is None:
-        ltca = ltca_model(geom, positions=cycle_positions, points=points, lead_slope=lead_slope, contact_law_name=contact_law_name,
-                          method=method, extension=extension)
+        ltca = ltca_model(geom, positions=cycle_positions, contact=contact, lead_slope=lead_slope)
     inertia = impact_paper_inertia(geom) + added
     pbt = geom.transverse_base_pitch
-    ext = float(extension) * pbt
+    points, extension = contact.points, contact.extension
+    ext = extension * pbt
     sigma = 1 if driver == "pinion" else -1
     roll_e, j_e, z_c = _engagement(geom, driver)
     # window: from the outer end of the entering corner's tip-edge candidates to one base pitch in

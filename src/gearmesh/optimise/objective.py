@@ -13,7 +13,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ..errors import GearmeshInputError
-from ..dynamics.population import population_dynamics
+from ..dynamics.population import POPULATION_CONTACT, population_dynamics
 from ..impact.energy import load_grid, load_window
 from ..impact.model import SCENARIO_NONE, ImpactModel
 from ..robust import box_scenarios, design_box_worst
@@ -106,7 +106,8 @@ def problem(model: ImpactModel, settings: OptimiseSettings, modify=("pinion",), 
                                                      "tolerance): the tolerance statistic has nothing to sample")
     dynamics = population_dynamics(model.geom, settings.objective_torques, settings.dynamic_speed_grid,
                                    backlash=settings.backlash, tables=model.ltca.tables,
-                                   contact_law_name=model.ltca.law.name,
+                                   contact=POPULATION_CONTACT.with_(contact_law=model.ltca.law.name,
+                                                                    method=model.ltca.method),
                                    misalignment_torque=settings.torque) if settings.uses_dynamics else None
     prob = Problem(model, genes, base, settings, tolerance, deviations, None, dynamics, reference)
     standard = _with_reference(_evaluate(prob, np.zeros((1, 2, 6)), None), reference)

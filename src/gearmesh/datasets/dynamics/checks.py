@@ -49,7 +49,7 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any] | Dynami
     train = isinstance(s, TrainDynamics)
     order = s.fourier_order
     if s.excitation == "contact":
-        _table_settings(**table_keywords(s))
+        _table_settings(s.contact_model(), **table_keywords(s))
     if s.stiffness_form == "fourier" and s.excitation != "contact":
         _check_fourier_samples(order, excitation_points, getattr(s, "transmission_error_um", None))
     coarse = max(_ESTIMATE_POSITIONS, 2 * order + 2)

@@ -15,10 +15,11 @@ from ...limits import same_point
 from ...ltca import contact_tangent_compliance
 from ...deflection import mesh_misalignment
 from ...deviation import with_misalignment
+from ...contact_model import TABLE_CONTACT, ContactModel
 from ...meshforce import MeshForceTable, table_layout, tabulate
 from ...tca import pair_lead_slope
 from ...stiffness import mesh_stiffness
-from ...choices import DEFAULT_TOOTH_METHOD, pair_excitation
+from ...choices import pair_excitation
 from .inputs import PAIR_EXCITATIONS, _table_settings
 
 def _stiffness_curve(geom: PairGeometry, stiffness: xr.Dataset | None, method: str, slices: int,
@@ -73,26 +74,28 @@ def resolve_excitation(excitation: str | None, ltca: xr.Dataset | None) -> str:
     return pair_excitation(excitation, ltca is not None)
 
 
-def contact_table(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOTH_METHOD, **settings) -> MeshForceTable:
+def contact_table(geom: PairGeometry, pinion_torques, contact: ContactModel = TABLE_CONTACT,
+                  **settings) -> MeshForceTable:
     """The mesh force table of ``geom`` (its micro-geometry and deviations) for the ``contact``
     excitation at the first of ``pinion_torques`` (N m): every row reaches ``table_force_factor``
     times the largest static force F_bt = T1/r_b1 of them, the separations carry the mesh
-    misalignment of the first (:func:`contact_tables`); ``settings`` as :data:`_TABLE_KEYS`."""
-    return contact_tables(geom, np.atleast_1d(pinion_torques)[:1], method, **settings)[0]
+    misalignment of the first (:func:`contact_tables`); ``contact`` its contact model
+    (:class:`gearmesh.contact_model.ContactModel`), ``settings`` as :data:`_TABLE_KEYS`."""
+    return contact_tables(geom, np.atleast_1d(pinion_torques)[:1], contact, **settings)[0]
 
 
-def contact_tables(geom: PairGeometry, pinion_torques, method: str = DEFAULT_TOOTH_METHOD,
+def contact_tables(geom: PairGeometry, pinion_torques, contact: ContactModel = TABLE_CONTACT,
                    **settings) -> list[MeshForceTable]:
     """One mesh force table per pinion torque of ``pinion_torques`` (N m) (:mod:`gearmesh.meshforce`):
     every row of each reaches ``table_force_factor`` times the largest static force F_bt of them;
     each table's separations carry the mesh misalignment at its own static force (the stated f_ma
     and the system deflection's f_sh, :func:`gearmesh.deflection.mesh_misalignment`: the gearbox
     deflects with the mean load), so torques of one misalignment share one table."""
-    t = _table_settings(**settings)
+    t = _table_settings(contact, **settings)
     rb1 = float(geom.base_radius[0])
     torques = np.atleast_1d(np.asarray(pinion_torques, dtype=float))
     force = t["factor"] * float(np.max(torques)) / rb1
-    layout = table_layout(geom, t["positions"], t["points"], t["contact_law_name"], method)
+    layout = table_layout(geom, t["positions"], contact)
     lead = pair_lead_slope(geom)
     built: dict[float, MeshForceTable] = {}
     for m in mesh_misalignment(geom, torques / rb1):

@@ -11,6 +11,7 @@ from typing import Any, Mapping, Sequence, get_args
 import numpy as np
 
 from ...dynamics import SolverSettings
+from ...contact_model import TABLE_CONTACT, ContactModel
 from ...errors import GearmeshInputError
 from ...gear import GearPair, PairGeometry
 from ...limits import BEARING_STIFFNESS, MAX_SPEEDS, MAX_TABLE_POINTS
@@ -139,7 +140,8 @@ def settings_speeds(speeds_rpm) -> np.ndarray:
 
 
 def table_keywords(settings: Dynamics | TrainDynamics) -> dict[str, Any]:
-    """The contact-table settings of parsed ``settings`` as :func:`contact_tables` takes them."""
+    """The contact-table settings of parsed ``settings`` as :func:`contact_tables` takes them beside the
+    section's contact model (``settings.contact_model()``)."""
     return {k: getattr(settings, k) for k in _TABLE_KEYS}
 
 
@@ -166,24 +168,22 @@ def backlash_source(backlash_um) -> str:
             else ("none" if backlash_um is None else "given"))
 
 
-#: Settings of the contact table (:func:`contact_table`), with their defaults.
-_TABLE_KEYS = {k: _DEFAULTS[k] for k in ("contact_law", "points", "table_positions", "table_approaches",
-                                         "table_force_factor")}
+#: Settings of the contact table (:func:`contact_table`) beside its contact model, with their defaults.
+_TABLE_KEYS = {k: _DEFAULTS[k] for k in ("table_positions", "table_approaches", "table_force_factor")}
 
 
-def _table_settings(**settings: Any) -> dict[str, Any]:
+def _table_settings(contact: ContactModel = TABLE_CONTACT, **settings: Any) -> dict[str, Any]:
     """The contact-table settings (:data:`_TABLE_KEYS`; the declared defaults for those not
-    given), each checked against its declaration, and their product against the work limit
-    :data:`MAX_TABLE_POINTS` (GearmeshInputError naming the key)."""
+    given), each checked against its declaration, and their product with the ``contact`` model's
+    points against the work limit :data:`MAX_TABLE_POINTS` (GearmeshInputError naming the key)."""
     unknown = sorted(set(settings) - set(_TABLE_KEYS))
     if unknown:
         raise GearmeshInputError(unknown[0], settings[unknown[0]], f"is not a contact-table setting {list(_TABLE_KEYS)}")
     s = {**_TABLE_KEYS, **settings}
     for key, value in s.items():
         check_value(Dynamics, key, value)
-    positions, approaches, points = s["table_positions"], s["table_approaches"], s["points"]
+    positions, approaches, points = s["table_positions"], s["table_approaches"], contact.points
     if positions * approaches * points > MAX_TABLE_POINTS:
         raise GearmeshInputError("table_positions", positions, f"× table_approaches {approaches} × points {points} "
                                  f"must be at most {MAX_TABLE_POINTS:.0e} (the table's build time and memory)")
-    return {"contact_law_name": s["contact_law"], "points": points, "positions": positions,
-            "approaches": approaches, "factor": float(s["table_force_factor"])}
+    return {"positions": positions, "approaches": approaches, "factor": float(s["table_force_factor"])}

@@ -21,6 +21,7 @@ from ...gear import GearPair, PairGeometry, pair_geometry, pinion_torque
 from ...io import name_force_lines, variable
 from ...limits import MAX_SPEEDS, check_slice_grid, check_speeds, positive_values
 from ...loads import check_load, check_loads
+from ...contact_model import LTCA_CONTACT
 from ...ltca import with_loaded_extension
 from ...meshforce import MeshForceTable
 from ...arguments import check_arguments
@@ -99,7 +100,7 @@ def pair_model_of(pair: GearPair, torque_Nm: float, settings: Dynamics, excitati
             raise GearmeshInputError("transmission_error_um", "given", "the contact excitation has the "
                                      "micro-geometry in its table; give no tabulated TE")
         if table is None:
-            table = contact_table(geom, [t1], s.method, **table_keywords(s))
+            table = contact_table(geom, [t1], s.contact_model(), **table_keywords(s))
     elif exc == "ltca":
         if ltca is None:
             raise GearmeshInputError("excitation", "ltca", "needs the variant's LTCA dataset (ltca.nc)")
@@ -109,7 +110,7 @@ def pair_model_of(pair: GearPair, torque_Nm: float, settings: Dynamics, excitati
     else:
         K = _stiffness_curve(geom, stiffness, s.method, slices, positions, t1)
         if exc == "tvms":  # the loaded extension of contact beyond the active zone (one stiffness at one load)
-            K = with_loaded_extension(geom, K, t1, s.method)
+            K = with_loaded_extension(geom, K, t1, LTCA_CONTACT.with_(method=s.method))
         te = _transmission_error(s.transmission_error_um)
     return pair_model(geom, t_out, K, bearing=_bearing(s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m,
                                                        s.bearing_c_radial_Ns_per_m, s.bearing_c_axial_Ns_per_m),
@@ -259,7 +260,8 @@ def dynamics_dataset(pair: GearPair, *, variant: str = "", slices: int | None = 
     use_fe_tables(fe_compliance, geom)
     settings = _solver(s)
     exc = resolve_excitation(s.excitation, ltca)
-    tables = (contact_tables(geom, t1, s.method, **table_keywords(s)) if exc == "contact" else [None] * len(given))
+    tables = (contact_tables(geom, t1, s.contact_model(), **table_keywords(s)) if exc == "contact"
+              else [None] * len(given))
     models = [pair_model_of(pair, float(t), s, exc, grid_slices, stiffness=stiffness, ltca=ltca, table=tab)
               for t, tab in zip(given, tables)]
     speeds = _resonance_refined_speeds(grid, models) if s.refine_resonances else grid
@@ -400,7 +402,7 @@ def pair_summary(pair: GearPair, settings: Dynamics, *, ltca: xr.Dataset | None 
     exc, table = resolve_excitation(s.excitation, ltca), None
     if exc == "contact":
         t1 = pinion_torque(pair, positive_torque("torque_Nm", torque), s.on)
-        table = contact_table(pair_geometry(pair), [t1], s.method, **table_keywords(s))
+        table = contact_table(pair_geometry(pair), [t1], s.contact_model(), **table_keywords(s))
     model = pair_model_of(pair, torque, s, exc, slice_grid(None, None), ltca=ltca, table=table)
     grid = settings_speeds(s.speeds_rpm)
     check_speeds(pair_geometry(pair), grid, "speeds_rpm")

@@ -62,7 +62,8 @@ def train_dataset(pair: GearPair, *, slices: int | None = None, positions: int |
     exc = "tvms" if s.excitation is None else s.excitation
     table = K = None
     if exc == "contact":
-        table = contact_table(geom, [torque * float(geom.base_radius[0]) / rb], s.method, **table_keywords(s))
+        table = contact_table(geom, [torque * float(geom.base_radius[0]) / rb], s.contact_model(),
+                              **table_keywords(s))
     else:
         K = _stiffness_curve(geom, stiffness, s.method, *slice_grid(slices, positions),
                              torque * float(geom.base_radius[0]) / rb)
