@@ -157,6 +157,11 @@ def one_pair(**lists: Sequence[Any]) -> None:
     **lists : Sequence[xarray.Dataset]
         The table function's per-variant dataset lists, by argument name.
 
+    Returns
+    -------
+    None
+        Returns only when the datasets are of one pair.
+
     Raises
     ------
     GearmeshInputError
