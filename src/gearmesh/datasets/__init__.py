@@ -12,9 +12,25 @@ from typing import Any, Mapping, Sequence
 
 
 def named_pairs(gear_pairs: Mapping[str, Any], names: Sequence[str]) -> dict[str, Any]:
-    """The pairs a study table's section names (its ``pairs``), in its order, from ``gear_pairs``
-    (loaded pairs by name; more may be given); GearmeshInputError naming ``pairs`` for a name
-    that is not given."""
+    """The pairs a study table's section names (its ``pairs``), in its order, from ``gear_pairs``.
+
+    Parameters
+    ----------
+    gear_pairs : Mapping[str, GearPair]
+        Loaded pairs by name; more may be given than ``names`` asks for.
+    names : Sequence[str]
+        The section's ``pairs``, in the table's order.
+
+    Returns
+    -------
+    dict[str, GearPair]
+        The named pairs, in the order of ``names``.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``gear_pairs`` when it is not a mapping, ``pairs`` for a name not given.
+    """
     from ..errors import GearmeshInputError
 
     if not isinstance(gear_pairs, Mapping):
@@ -27,7 +43,20 @@ def named_pairs(gear_pairs: Mapping[str, Any], names: Sequence[str]) -> dict[str
 
 def variant_name(ds, k: int) -> str:
     """The micro-geometry variant a stage's dataset belongs to: its ``variant`` attribute, else the
-    job's wildcards (:data:`gearmesh.upstream.WILDCARDS_ATTR`), else ``variant{k}``."""
+    job's wildcards (:data:`gearmesh.upstream.WILDCARDS_ATTR`), else ``variant{k}``.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        A stage's dataset.
+    k : int
+        Its index in the table's list: the fallback name ``variant{k}``.
+
+    Returns
+    -------
+    str
+        The variant's name.
+    """
     import json
 
     from ..upstream import WILDCARDS_ATTR
@@ -39,9 +68,28 @@ def variant_name(ds, k: int) -> str:
 
 def variant_names(argument: str, datasets: Any, empty_ok: bool = False) -> list[str]:
     """The variant of each of a table's per-variant ``datasets`` (:func:`variant_name`), after
-    refusing (GearmeshInputError naming ``argument``) what is not a list of datasets, an empty one
-    (unless ``empty_ok``), a variant given twice (the same file twice) and datasets of different
-    pairs (:func:`one_pair`)."""
+    refusing what is not a list of datasets, an empty one (unless ``empty_ok``), a variant given
+    twice (the same file twice) and datasets of different pairs (:func:`one_pair`).
+
+    Parameters
+    ----------
+    argument : str
+        The table function's argument that holds ``datasets``: the field an error names.
+    datasets : Sequence[xarray.Dataset]
+        One stage dataset per variant.
+    empty_ok : bool, default False
+        Accept an empty list.
+
+    Returns
+    -------
+    list[str]
+        The variant of each dataset, in their order.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``argument`` (or ``argument[k]`` for an item that is not a dataset).
+    """
     import xarray as xr
 
     from ..errors import GearmeshInputError
@@ -62,9 +110,30 @@ def variant_names(argument: str, datasets: Any, empty_ok: bool = False) -> list[
 
 
 def shared_torques(field: str, names: Sequence[str], datasets: Sequence[Any], dim: str = "torque"):
-    """The torques (coordinate ``dim``) every variant's dataset shares, refused naming ``field``
-    (the config key that sets them) and the first variant that has others: a table of the
-    variants sets them side by side at the same operating points."""
+    """The torques (coordinate ``dim``) every variant's dataset shares: a table of the variants
+    sets them side by side at the same operating points.
+
+    Parameters
+    ----------
+    field : str
+        The config key that sets the torques: the field an error names.
+    names : Sequence[str]
+        The variant of each dataset (:func:`variant_names`).
+    datasets : Sequence[xarray.Dataset]
+        One stage dataset per variant, at least one.
+    dim : str, default "torque"
+        The torque coordinate's name.
+
+    Returns
+    -------
+    numpy.ndarray
+        The shared torques, shape (T,), in the datasets' unit (N·m for the stages').
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``field`` and the first variant whose torques differ (relative tolerance 1e-12).
+    """
     import numpy as np
 
     from ..errors import GearmeshInputError
@@ -78,10 +147,26 @@ def shared_torques(field: str, names: Sequence[str], datasets: Sequence[Any], di
 
 
 def one_pair(**lists: Sequence[Any]) -> None:
-    """Refuse (GearmeshInputError naming the list and the first differing pair key) datasets that
-    were not all computed for one pair: the variants of a pair differ in their micro-geometry
-    alone (the pair data each records, :data:`gearmesh.upstream.PAIR_ATTR`, without the
-    modification; or its ``pair_name``). Datasets that record neither (made by hand) pass."""
+    """Refuse datasets that were not all computed for one pair: the variants of a pair differ in
+    their micro-geometry alone (the pair data each records, :data:`gearmesh.upstream.PAIR_ATTR`,
+    without the modification; or its ``pair_name``). Datasets that record neither (made by hand)
+    pass.
+
+    Parameters
+    ----------
+    **lists : Sequence[xarray.Dataset]
+        The table function's per-variant dataset lists, by argument name.
+
+    Returns
+    -------
+    None
+        Returns only when the datasets are of one pair.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``argument[k]`` of the first dataset of another pair and the first differing pair key.
+    """
     from ..errors import GearmeshInputError
     from ..upstream import first_difference
 

@@ -43,7 +43,21 @@ def _scalar(value, units: str, long_name: str) -> xr.Variable:
 
 
 def geometry_scalars(geom: PairGeometry) -> dict[str, xr.Variable]:
-    """The pair's derived geometry as 0-d and per-gear variables (SI)."""
+    """The pair's derived geometry as 0-d and per-gear variables (SI).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+
+    Returns
+    -------
+    dict[str, xarray.Variable]
+        By name, each with ``units`` and ``long_name``: the contact ratios (1), module, centre
+        distances, backlash, face width, base pitch, path of contact (m), the angles (rad), and per
+        gear (dim ``gear``) the teeth, profile shift (1), radii, roll lengths of SAP/EAP, tip
+        thickness and tip clearance (m) and undercut (0/1).
+    """
     return {
         "eps_alpha": _scalar(geom.eps_alpha, "1", "transverse contact ratio"),
         "eps_beta": _scalar(geom.eps_beta, "1", "overlap ratio"),
@@ -345,5 +359,16 @@ def low_fluctuation_design_dataset(gear_pairs: Mapping[str, GearPair], **section
 
 
 def dataset_summary(ds: xr.Dataset) -> dict[str, Any]:
-    """0-d variables of a dataset as a plain dict (for logs and the CLI)."""
+    """0-d variables of a dataset as a plain dict (for logs and the CLI).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        Any stage's dataset.
+
+    Returns
+    -------
+    dict[str, float]
+        Each 0-d data variable's value in the dataset's unit (its ``units`` attribute).
+    """
     return {k: float(v) for k, v in ds.data_vars.items() if v.ndim == 0}

@@ -409,7 +409,34 @@ def impact_table_dataset(impact: Sequence[xr.Dataset]) -> xr.Dataset:
     every torque at the design speed, with the scenario and the reduction against the ``standard``
     variant (%); and, where the impact stage computed them, each variant's load window against
     ``standard``, the range of F_s under the study's tolerance samples, and at the simulated
-    torques the entering pair's simulated excess over its quasi-static force with F_s over it."""
+    torques the entering pair's simulated excess over its quasi-static force with F_s over it.
+
+    Parameters
+    ----------
+    impact : Sequence[xarray.Dataset]
+        Each variant's impact.nc (:func:`impact_dataset`), of one pair and the same torques.
+
+    Returns
+    -------
+    xarray.Dataset
+        impact_table.nc (dims variant, torque; judged_torque where the tolerances were judged):
+        ``impact_force`` and ``impact_force_energy_balance`` (N), ``scenario``,
+        ``velocity_transverse`` (m/s), ``reduction_percent`` (%), and where computed
+        ``load_window_low``/``_high`` (N·m), ``tolerance_min``/``max_impact_force`` (N),
+        ``simulated_entering_excess`` (N) and ``impact_index_over_simulated_excess`` (1).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``impact`` (not one pair's variants), ``impact.torques_Nm`` or
+        ``impact.tolerance_torques_Nm`` (torques that differ between variants), or
+        ``impact.load_window_step_Nm`` (load-window grids that differ).
+
+    References
+    ----------
+    .. [1] *Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears*
+       (docs/references.md, document 000): its table of impact forces per variant.
+    """
     names = variant_names("impact", impact)
     torque = shared_torques("impact.torques_Nm", names, impact)
     rows = []
@@ -498,7 +525,33 @@ def manufactured_gear(path, heldout: int | None = None, population: int | None =
     """One manufactured gear of a variant's impact.nc (``path``) as a pair
     (:func:`gearmesh.robust.manufactured_pair`): gear ``heldout`` of the held-out population, gear
     ``population`` of the population, or the worst gear over the tolerance box of criterion ``worst``
-    at pinion torque ``torque_Nm``. Refused in one line naming the option otherwise."""
+    at pinion torque ``torque_Nm``. Refused in one line naming the option otherwise.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A variant's impact.nc of a study with a ``tolerances`` section.
+    heldout : int, optional
+        Index of a gear of the held-out population.
+    population : int, optional
+        Index of a gear of the population (used when ``heldout`` is None).
+    worst : str, optional
+        A criterion of :data:`gearmesh.robust.CRITERIA`: the worst gear over the tolerance box;
+        takes precedence over ``heldout`` and ``population``.
+    torque_Nm : float, optional
+        Pinion torque (N·m), one of the file's judged torques; required with ``worst``.
+
+    Returns
+    -------
+    GearPair
+        The design pair with that gear's micro-geometry and lead slope, named after it.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``impact`` (no readable impact.nc, or one without manufactured gears),
+        ``--worst``, ``--torque-Nm``, ``--heldout`` or ``--population``.
+    """
     from pathlib import Path
 
     from ..io import read_dataset

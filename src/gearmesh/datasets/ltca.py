@@ -35,7 +35,22 @@ __all__ = ["tca_dataset", "ltca_dataset", "ltca_summary", "lte_table_dataset"]
 
 def refuse_operating_point(section: dict[str, Any], keys: Sequence[str], instead: str) -> None:
     """Refuse a key of a stage's map (``keys``) given to a function of one operating point, naming
-    the argument it takes ``instead``: it would be parsed and then ignored."""
+    the argument it takes ``instead``: it would be parsed and then ignored.
+
+    Parameters
+    ----------
+    section : dict[str, Any]
+        The keyword arguments the function was given (the study's section).
+    keys : Sequence[str]
+        The keys of the stage's map the function does not take.
+    instead : str
+        What the function takes in their place, as the error says it.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the first of ``keys`` found in ``section``.
+    """
     for key in keys:
         if key in section:
             raise GearmeshInputError(key, section[key], f"is the stage's map; this function takes {instead}")
@@ -191,7 +206,25 @@ def teeth_approach_at_engagement(geom, res: LTCAResult) -> np.ndarray:
     pair's gap; the teeth's deflection does. It is the approach the impact stage compares with
     the same separation (``lte_at_engagement`` of impact.nc). The mesh-in impact paper's
     criterion (Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears): the
-    entering pair touches before A when this approach exceeds its unloaded separation TE(φ1A)."""
+    entering pair touches before A when this approach exceeds its unloaded separation TE(φ1A).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    res : LTCAResult
+        The loaded contact analysis of the pair (:func:`gearmesh.ltca.ltca`), T torques.
+
+    Returns
+    -------
+    numpy.ndarray
+        The teeth's approach at φ1A, shape (T,), m.
+
+    References
+    ----------
+    .. [1] Comprehensive Analysis and Optimization of Mesh-in Impact in Helical Gears,
+       docs/references.md (the mesh-in criterion).
+    """
     return res.lte_at_engagement - mesh_body_compliance(geom) * res.force
 
 
@@ -364,7 +397,24 @@ def lte_table_dataset(ltca: Sequence[xr.Dataset]) -> xr.Dataset:
     """The loaded transmission error of every micro-geometry variant of a pair at every torque:
     mean and peak-to-peak over the mesh cycle and whether the entering pair touches before the
     start of engagement A, taken from the variants' ``ltca.nc`` as they are (the report's
-    landing page quotes this table). The variants must share their torques."""
+    landing page quotes this table). The variants must share their torques.
+
+    Parameters
+    ----------
+    ltca : Sequence[xarray.Dataset]
+        Each variant's ltca.nc (:func:`ltca_dataset`), of one pair and the same torques.
+
+    Returns
+    -------
+    xarray.Dataset
+        lte_table.nc (dims variant, torque): ``lte_mean`` and ``lte_peak_to_peak`` (m) and the
+        ``first_touch`` flag (0 at or after A, 1 before A).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``ltca`` (not one pair's variants) or ``ltca.torques_Nm`` (torques that differ).
+    """
     names = variant_names("ltca", ltca)
     torque = shared_torques("ltca.torques_Nm", names, ltca)
     dims = ("variant", "torque")
@@ -382,8 +432,30 @@ def lte_table_dataset(ltca: Sequence[xr.Dataset]) -> xr.Dataset:
 def lste_comparison_dataset(stiffness: Sequence[xr.Dataset], ltca: Sequence[xr.Dataset]) -> xr.Dataset:
     """LSTE of each pair by the LTCA next to F/K(φ) of the stiffness stage (the low-fluctuation paper §3).
 
-    ``stiffness`` and ``ltca`` are the per-pair datasets in the same pair order; the LTCA
-    torque equal to the stiffness stage's LSTE torque (pinion torques) is compared.
+    The LTCA torque equal to the stiffness stage's LSTE torque (pinion torques) is compared.
+
+    Parameters
+    ----------
+    stiffness : Sequence[xarray.Dataset]
+        Each pair's stiffness.nc (:func:`gearmesh.datasets.stiffness.stiffness_dataset`), with its LSTE.
+    ltca : Sequence[xarray.Dataset]
+        Each pair's ltca.nc (:func:`ltca_dataset`), in the same pair order.
+
+    Returns
+    -------
+    xarray.Dataset
+        lste_comparison.nc (dim pair): ``lste_stiffness_mean``/``_peak_to_peak``,
+        ``lte_ltca_mean``/``_peak_to_peak`` (m) and ``stiffness_fluctuation`` ε_k (1).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``stiffness.torque_Nm`` (a stiffness dataset without LSTE) or ``ltca.torques_Nm``
+        (the LTCA torques miss the LSTE torque).
+
+    References
+    ----------
+    .. [1] [untitled] Low mesh-stiffness fluctuation design of helical gears, docs/references.md, §3.
     """
     names, rows = [], []
     for k_ds, l_ds in zip(stiffness, ltca):

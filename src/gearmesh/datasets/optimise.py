@@ -55,18 +55,36 @@ def run_settings(pair: GearPair, *, impact: Mapping[str, Any] | None = None,
     impact-model keywords, tolerance model). The one path of every door (the workflow's stage, the
     CLI, the Python API).
 
-    ``section`` is the study's ``optimise.NAME`` section (keywords, :class:`gearmesh.settings.Optimise`:
-    every default and bound there), parsed once; :func:`gearmesh.optimise.checks.resolve_settings`
-    turns it into the run's settings (pinion torques, SI) and refuses what breaks a rule between
-    fields. A bad value is refused with GearmeshInputError naming the field.
+    The impact model is the study's, so the optimum is optimal for the model the impact stage
+    evaluates it with.
 
-    The impact model is the study's: ``impact`` is its ``impact:`` section (driver, points,
-    contact law, slice method, corner extension, window and face sampling, added inertia,
-    energy velocity), so the optimum is optimal for the model the impact stage evaluates it
-    with; ``points``, ``contact_law``, ``corner_extension``, ``window_positions`` and
-    ``face_samples`` given in ``section`` override it (None: the section's, or the declared
-    defaults without one). ``tolerances`` is the study's ``tolerances:`` section
-    (:func:`gearmesh.tolerance.study_tolerances`)."""
+    Parameters
+    ----------
+    pair : GearPair
+        The pair to optimise.
+    impact : Mapping, optional
+        The study's ``impact:`` section (driver, points, contact law, slice method, corner
+        extension, window and face sampling, added inertia, energy velocity); None: the declared
+        defaults. ``points``, ``contact_law``, ``corner_extension``, ``window_positions`` and
+        ``face_samples`` given in ``section`` override it.
+    tolerances : Mapping, optional
+        The study's ``tolerances:`` section (:func:`gearmesh.tolerance.study_tolerances`).
+    **section
+        The study's ``optimise.NAME`` section (:class:`gearmesh.settings.Optimise`: every default
+        and bound there), parsed once; :func:`gearmesh.optimise.checks.resolve_settings` turns it
+        into the run's settings (pinion torques, SI) and refuses what breaks a rule between fields.
+
+    Returns
+    -------
+    tuple
+        (PairGeometry, the resolved settings, gene keywords ``modify``/``bounds``/``fixed``,
+        impact-model keywords of :func:`gearmesh.impact.model.impact_model`, tolerance model).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the field of a bad value.
+    """
     declared = settings_object(Optimise, section)
     imp = settings_object(Impact, impact, "impact")
     geom = _geometry(pair)
@@ -85,8 +103,21 @@ def run_settings(pair: GearPair, *, impact: Mapping[str, Any] | None = None,
 
 
 def run_problem(pair: GearPair, **settings) -> Problem:
-    """The optimisation problem of ``pair`` (settings: :func:`run_settings`), its impact model
-    built once and its standard gear evaluated."""
+    """The optimisation problem of ``pair``, its impact model built once and its standard gear
+    evaluated.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair to optimise.
+    **settings
+        ``impact``, ``tolerances`` and the ``optimise.NAME`` section, as :func:`run_settings` takes them.
+
+    Returns
+    -------
+    Problem
+        The problem (:class:`gearmesh.optimise.evaluation.Problem`) :func:`gearmesh.optimise.optimise` solves.
+    """
     geom, checked, genes, model, tol = run_settings(pair, **settings)
     return problem(impact_model(geom, **model), checked, tolerance=tol, **genes)
 
@@ -95,7 +126,21 @@ def check_optimise(config: Mapping[str, Any], pairs: Mapping[str, GearPair]) -> 
     """Before any job runs: every named optimisation of the study's ``optimise:`` section for every
     pair (fields named ``optimise.NAME.…``; the shared ``tolerances.…`` under their own name), and
     every variant taking an optimum (``{from: optimise.NAME}``) names a run and has no
-    modification of its own."""
+    modification of its own.
+
+    Parameters
+    ----------
+    config : Mapping[str, Any]
+        The loaded study (:func:`gearmesh.config.load_study`).
+    pairs : Mapping[str, GearPair]
+        The study's pairs by name (every name of ``config["pairs"]``).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``optimise.NAME.FIELD``, ``tolerances.FIELD``, ``variants.V.from``,
+        ``variants.V.modification`` or ``variants.optimise`` (a reserved name).
+    """
     runs = config.get("optimise") or {}
     for variant, spec in (config.get("variants") or {}).items():
         source = spec.get("from")
@@ -239,8 +284,28 @@ def optimise_dataset(pair: GearPair, fe_compliance: xr.Dataset | None = None, **
     generation's population, objective, F_s, scenario and best; the random-search baseline
     (when asked for); the optimum genes and parameters; the standard gear and the optimum at the
     spectrum torques under every tolerance sample; the load window; NSGA-II's Pareto front;
-    method, seed, evaluations, wall time. With an impact model of ``method: fe``,
-    ``fe_compliance`` supplies the FE tables."""
+    method, seed, evaluations, wall time.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair to optimise.
+    fe_compliance : xarray.Dataset, optional
+        fe_compliance.nc (:func:`gearmesh.datasets.fe.fe_compliance_dataset`): the FE tables an
+        impact model of ``method: fe`` needs.
+    **settings
+        ``impact``, ``tolerances`` and the ``optimise.NAME`` section, as :func:`run_settings` takes them.
+
+    Returns
+    -------
+    xarray.Dataset
+        ga.nc (:func:`result_dataset`).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the field of a bad setting.
+    """
     if fe_compliance is not None:  # the FE tables of the workflow, before any model is built
         use_fe_tables(fe_compliance, pair_geometry(pair))
     return result_dataset(optimise(run_problem(pair, **settings)), settings)
@@ -318,7 +383,23 @@ def _half_widths(prob: Problem) -> np.ndarray:
 
 
 def result_dataset(result: OptimisationResult, settings: Mapping[str, Any] | None = None) -> xr.Dataset:
-    """ga.nc of a finished run (:func:`optimise_dataset`)."""
+    """ga.nc of a finished run (:func:`optimise_dataset`).
+
+    Parameters
+    ----------
+    result : OptimisationResult
+        The finished run (:func:`gearmesh.optimise.optimise`).
+    settings : Mapping, optional
+        The settings the run was given, recorded in the attributes.
+
+    Returns
+    -------
+    xarray.Dataset
+        ga.nc: per generation the population, objective, F_s (N), scenario and best; the random
+        baseline (prefix ``random_``) when run; the optimum's genes and modification (m) against the
+        standard gear; its criteria, verification on its tolerance box and Pareto front (NSGA-II);
+        method, seed, evaluations in the attributes.
+    """
     prob, s = result.problem, result.problem.settings
     units, what = _objective_units(result)
     data = _history_variables(result, "", s.method)
@@ -483,8 +564,28 @@ def _drawing_value(value: float, unit: str, down: bool = False) -> float:
 
 def optimum_pair(pair: GearPair, ds: xr.Dataset, name: str | None = None) -> GearPair:
     """``pair`` carrying the optimum modification of ga.nc (both gears, as applied) to the drawing's
-    resolution (:data:`MANUFACTURING_RESOLUTION`); ``name`` a new pair name (a pair file's name is
-    its file name)."""
+    resolution (:data:`MANUFACTURING_RESOLUTION`), rounded to the nearest step, or down where the
+    nearest breaks the pair's validity.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The optimised pair.
+    ds : xarray.Dataset
+        Its ga.nc (:func:`result_dataset`): ``optimum_modification`` (gear, parameter), m.
+    name : str, optional
+        A new pair name (a pair file's name is its file name); None keeps the pair's.
+
+    Returns
+    -------
+    GearPair
+        ``pair`` with the optimum modification of both gears.
+
+    Raises
+    ------
+    GearmeshInputError
+        When even the rounded-down modification makes no valid pair.
+    """
     p = ds["optimum_modification"].values
     units = [MODIFICATION_UNITS[f] for f in MODIFICATION_FIELDS]
     for down in (False, True):
@@ -505,11 +606,27 @@ def _finite(value: float) -> float | None:
 
 
 def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dataset]:
-    """Headline numbers of one optimisation (the CLI's ``optimise --json``) and its ga.nc Dataset:
-    the optimum genes named with units, objective, F_s of the optimum and of the standard gear at
-    the design torque, the reduction, ``by_torque`` (F_s, the standard's and the scenario at each
-    spectrum torque, with the spread under the tolerance samples), ``load_window_Nm``,
-    evaluations and wall time. Torques in the JSON are on the gear ``on``, as given."""
+    """Headline numbers of one optimisation (the CLI's ``optimise --json``) and its ga.nc Dataset.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair to optimise.
+    **settings
+        ``impact``, ``tolerances`` and the ``optimise.NAME`` section, as :func:`run_settings` takes them.
+
+    Returns
+    -------
+    summary : dict
+        The optimum ``genes`` (by name, the genes' units µm / mm), ``objective_value`` and the
+        standard's, ``impact_force_transverse_N`` of the optimum and the standard at the design
+        torque, ``reduction_percent``, scenarios, ``by_torque`` (F_s in N, the standard's, the
+        scenario and the spread under the tolerance samples at each spectrum torque),
+        ``load_window_Nm``, ``evaluations``, ``wall_s`` (s) and ``notes``. Torques (N·m) on the
+        gear ``on``, as given.
+    ds : xarray.Dataset
+        ga.nc (:func:`result_dataset`).
+    """
     on = settings.get("on", defaults(Optimise)["on"])
     prob = run_problem(pair, **settings)
     res = optimise(prob)
@@ -566,7 +683,20 @@ def optimise_summary(pair: GearPair, **settings) -> tuple[dict[str, Any], xr.Dat
 def optimum_notes(prob, diagnostics) -> list[str]:
     """What an optimum's numbers do not say by themselves: a single-point objective's risk,
     loaded-contact criteria judged on the nominal gear alone, and a load window that ends where
-    its torque grid ends (its true bound lies beyond)."""
+    its torque grid ends (its true bound lies beyond).
+
+    Parameters
+    ----------
+    prob : Problem
+        The run's problem (:func:`run_problem`).
+    diagnostics : Diagnostics
+        The finished run's diagnostics (its load window and window torque grid, pinion N·m).
+
+    Returns
+    -------
+    list[str]
+        One sentence per caveat that applies.
+    """
     s, notes = prob.settings, []
     single_torque = len(s.objective_torques) == 1
     if s.objective in ("force", "velocity") or (single_torque and not prob.deviations.shape[0]):

@@ -55,7 +55,29 @@ def rated_mesh_misalignment(geom: PairGeometry, res: LTCAResult) -> tuple[np.nda
     f_ma = 1.0·f_Hβ for gears without provision for adjustment; f_HβT of ISO 1328-1:2013, eq. 10,
     :func:`gearmesh.tolerance.helix_slope_tolerance`, of the gear with the larger tolerance), in the
     sense that adds to the mesh's own mismatch at that torque (the lead slopes and the system
-    deflection's f_sh: ISO's F_βx adds the magnitudes), positive where that is zero."""
+    deflection's f_sh: ISO's F_βx adds the magnitudes), positive where that is zero.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    res : LTCAResult
+        Its loaded contact analysis (:func:`gearmesh.ltca.ltca`), T torques.
+
+    Returns
+    -------
+    misalignment : numpy.ndarray or None
+        f_sh + f_ma per torque, shape (T,), m; None where the pair states its own.
+    source : str
+        Where f_ma comes from, for the dataset's long name.
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2019, Calculation of load capacity of spur and helical gears — Part 1,
+       clause 7.6 (mesh misalignment, method C f_ma).
+    .. [2] ISO 1328-1:2013, Cylindrical gears — ISO system of flank tolerance classification —
+       Part 1, eq. 10 (helix slope tolerance f_HβT).
+    """
     from ..deviation import mesh_lead_sum
     from ..tolerance import helix_slope_tolerance
 
@@ -78,7 +100,30 @@ def load_capacity(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | N
     those of the mesh under the rating's misalignment (:func:`rated_mesh_misalignment`: one more
     load solve on the same model when the pair states no f_ma), ``f_ma_source`` where that came
     from, ``K_Halpha`` (T,), ``te_harmonics`` (T, 3) amplitudes of the loaded TE at mesh orders 1–3
-    (m). ``reference`` is the unmodified pair's LTCA (K_Hα; None: K_Hα = 1)."""
+    (m).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    res : LTCAResult
+        Its loaded contact analysis (:func:`gearmesh.ltca.ltca`): T torques, P positions, J
+        contact lines, N points.
+    reference : LTCAResult, optional
+        The unmodified pair's LTCA (:func:`reference_ltca`) for K_Hα; None: K_Hα = 1.
+
+    Returns
+    -------
+    dict[str, Any]
+        The keys above, plus ``rated_misalignment`` (T,) m.
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2019, Calculation of load capacity of spur and helical gears — Part 1
+       (face and transverse load factors, K_Fβ = K_Hβ^N_F).
+    .. [2] ISO 6336-3:2019, Calculation of load capacity of spur and helical gears — Part 3:
+       Calculation of tooth bending strength (local root stress with Y_F, Y_S).
+    """
     g = res.grid
     w = res.line_load
     contact = contact_stress(geom, w, g.region, g.rho_pinion, g.rho_gear, pair_edge_radius(geom))
@@ -101,7 +146,24 @@ def load_capacity(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | N
 
 def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCAResult | None = None
                             ) -> dict[str, xr.Variable]:
-    """The ltca.nc variables of :func:`load_capacity` (units and long names)."""
+    """The ltca.nc variables of :func:`load_capacity` (units and long names).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    res : LTCAResult
+        Its loaded contact analysis (:func:`gearmesh.ltca.ltca`).
+    reference : LTCAResult, optional
+        The unmodified pair's LTCA (K_Hα); None: K_Hα = 1.
+
+    Returns
+    -------
+    dict[str, xarray.Variable]
+        Contact pressure and half-width (Pa, m) per (torque, position, line, point), root stress (Pa)
+        per gear, their peaks per torque, the load factors K_Hβ, K_Fβ (LTCA and rated), K_Hα, K_Fα (1),
+        the rated mesh misalignment (m), the tip-edge radius (m) and the LTE harmonics (m).
+    """
     lc = load_capacity(geom, res, reference)
     c: ContactStress = lc["contact"]
     tpjn = ("torque", "position", "line", "point")
@@ -142,7 +204,21 @@ def load_capacity_variables(geom: PairGeometry, res: LTCAResult, reference: LTCA
 
 
 def reference_ltca(geom: PairGeometry, res: LTCAResult) -> LTCAResult | None:
-    """The LTCA of the unmodified pair on ``res``'s grid and torques (None when unmodified)."""
+    """The LTCA of the unmodified pair on ``res``'s grid and torques (None when unmodified).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry, with its micro-geometry.
+    res : LTCAResult
+        Its loaded contact analysis: the grid, torques, tooth model and contact law to reuse.
+
+    Returns
+    -------
+    LTCAResult or None
+        The unmodified pair's LTCA (the tip-edge zone widened as :func:`gearmesh.ltca.ltca` does
+        when loaded edges reach its end), or None when the pair has no micro-geometry.
+    """
     from ..ltca_model import ltca_model
 
     base = _unmodified(geom)
@@ -347,7 +423,28 @@ def rating_dataset(pair: GearPair, *, ltca: xr.Dataset | None = None, **section:
 def load_capacity_table_dataset(rating: Sequence[xr.Dataset], scuffing: Sequence[xr.Dataset] = ()) -> xr.Dataset:
     """The load capacity of every variant of a pair side by side (variant × torque): S_H and S_F of the
     weaker gear, the peak contact pressure and where it sits, the peak root stress of either gear, and
-    with the variants' ``scuffing`` datasets (the study runs the scuffing stage) S_B and S_intS."""
+    with the variants' ``scuffing`` datasets (the study runs the scuffing stage) S_B and S_intS.
+
+    Parameters
+    ----------
+    rating : Sequence[xarray.Dataset]
+        Each variant's rating.nc (:func:`rating_dataset`), of one pair and the same torques.
+    scuffing : Sequence[xarray.Dataset], default ()
+        Each variant's scuffing.nc (:func:`gearmesh.datasets.scuffing.scuffing_dataset`), or none.
+
+    Returns
+    -------
+    xarray.Dataset
+        load_capacity_table.nc (dims variant, torque): ``S_H``, ``S_F`` (1, weaker gear),
+        ``peak_contact_pressure`` (Pa) and ``_on_edge`` (0/1), ``peak_root_stress`` (Pa),
+        ``K_Hbeta`` (1), ``shaft_misalignment`` (m), and with scuffing S_B and S_intS (1).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``rating`` (not one pair's variants), ``ltca.torques_Nm`` (torques that differ, also
+        between rating and scuffing) or ``variants`` (scuffing of other variants than the rating).
+    """
     names = variant_names("rating", rating)
     torques = shared_torques("ltca.torques_Nm", names, rating)
     scuffed = _scuffing_columns(names, torques, scuffing)

@@ -64,7 +64,34 @@ def scuffing_of(geom: PairGeometry, res: LTCAResult | LoadedContact, speed_rpm: 
                 rated: Sequence[Mapping[str, Any]]) -> ScuffingRating:
     """:func:`gearmesh.scuffing.scuffing_rating` of the LTCA ``res`` (a result, or ltca.nc read
     back: :class:`LoadedContact`) at pinion speed ``speed_rpm`` with the load factors of ``rated``
-    (the rating's values at each of its torques: K_A, K_v, K_Hbeta, K_Halpha, force_tangential_N)."""
+    (the rating's values at each of its torques: K_A, K_v, K_Hbeta, K_Halpha, force_tangential_N).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    res : LTCAResult or LoadedContact
+        The loaded contact: line load (T, P, J, N) N/m on its path grid, T torques.
+    speed_rpm : float
+        Pinion speed (rpm).
+    inputs : RatingInputs
+        The pair's rating inputs (:class:`gearmesh.rating.RatingInputs`: material, roughness, lubricant).
+    rated : Sequence[Mapping[str, Any]]
+        Per torque the load factors (1) and the nominal tangential force (N) (:func:`rated_factors`);
+        the transverse unit load w_Bt = K_A K_v K_Hβ K_Hα F_t / b is formed in N/mm.
+
+    Returns
+    -------
+    ScuffingRating
+        Flash and integral temperature methods' temperatures and safety factors per torque.
+
+    References
+    ----------
+    .. [1] ISO/TS 6336-20:2022, Calculation of load capacity of spur and helical gears — Part 20:
+       Calculation of scuffing load capacity — Flash temperature method.
+    .. [2] ISO/TS 6336-21:2022, Calculation of load capacity of spur and helical gears — Part 21:
+       Calculation of scuffing load capacity — Integral temperature method.
+    """
     load_factor = [v["K_A"] * v["K_v"] for v in rated]
     w_bt = [v["K_A"] * v["K_v"] * v["K_Hbeta"] * v["K_Halpha"] * v["force_tangential_N"] / (geom.face_width * 1e3)
             for v in rated]
@@ -73,7 +100,22 @@ def scuffing_of(geom: PairGeometry, res: LTCAResult | LoadedContact, speed_rpm: 
 
 def scuffing_json(sc: ScuffingRating, k: int = 0) -> dict[str, Any]:
     """The keys of ``gearmesh rating --json`` at torque ``k``: the flash temperature method's
-    largest contact temperature and S_B, the integral method's θ_int and S_intS, and their parts."""
+    largest contact temperature and S_B, the integral method's θ_int and S_intS, and their parts.
+
+    Parameters
+    ----------
+    sc : ScuffingRating
+        The scuffing rating (:func:`scuffing_of`).
+    k : int, default 0
+        Index of the torque.
+
+    Returns
+    -------
+    dict[str, Any]
+        ``contact_temperature_max_C`` and ``integral_temperature_C`` (°C), ``scuffing_safety_flash``
+        and ``scuffing_safety_integral`` (1), and ``scuffing``: flash temperatures (K), bulk and
+        scuffing temperatures (°C), ``friction_coefficient`` (1), ``oil_viscosity_mm2_s`` (mm²/s).
+    """
     return {"contact_temperature_max_C": float(sc.contact_max[k]), "scuffing_safety_flash": float(sc.safety_flash[k]),
             "integral_temperature_C": float(sc.integral[k]), "scuffing_safety_integral": float(sc.safety_integral[k]),
             "scuffing": {"flash_temperature_max_K": float(sc.flash_max[k]),
@@ -90,7 +132,25 @@ def rated_factors(geom: PairGeometry, rating: xr.Dataset) -> list[dict[str, floa
     """The rating's load factors at each torque of rating.nc (its ``K_v``, ``K_Hbeta``,
     ``K_Halpha`` and K_A, as :func:`gearmesh.datasets.rating.rating_dataset` rated them) with the
     nominal tangential force F_t = 2 T1/d1 at the reference circle (ISO 6336-1:2019, 6.1), the
-    values :func:`scuffing_of` takes."""
+    values :func:`scuffing_of` takes.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry: the pinion's reference radius d1/2 (m).
+    rating : xarray.Dataset
+        The pair's rating.nc (dim torque, pinion N·m).
+
+    Returns
+    -------
+    list[dict[str, float]]
+        Per torque ``K_A``, ``K_v``, ``K_Hbeta``, ``K_Halpha`` (1) and ``force_tangential_N`` (N).
+
+    References
+    ----------
+    .. [1] ISO 6336-1:2019, Calculation of load capacity of spur and helical gears — Part 1,
+       clause 6.1 (nominal tangential load).
+    """
     k_a = float(rating.attrs["application_factor"])
     return [{"K_A": k_a, "K_v": float(rating["K_v"].values[k]), "K_Hbeta": float(rating["K_Hbeta"].values[k]),
              "K_Halpha": float(rating["K_Halpha"].values[k]),
@@ -117,7 +177,25 @@ def scuffing_variables(geom: PairGeometry, contact: LoadedContact, sc: ScuffingR
     """The scuffing rating ``sc`` of ``contact`` as variables (units and long names; temperatures
     in °C, their rises in K): the flash temperature of every point and its largest value over the
     face in ``bins`` bins of the path, the pitch point's place on it, the flash and integral
-    methods' temperatures and safety factors per torque."""
+    methods' temperatures and safety factors per torque.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (:func:`gearmesh.gear.pair_geometry`).
+    contact : LoadedContact
+        The loaded contact the rating was made on (line load N/m, T torques).
+    sc : ScuffingRating
+        Its scuffing rating (:func:`scuffing_of`).
+    bins : int
+        Number of bins along the path of contact A–E for the largest flash temperature.
+
+    Returns
+    -------
+    dict[str, xarray.DataArray]
+        scuffing.nc's variables (dims torque, position, line, point, path), each with ``units``
+        and ``long_name``.
+    """
     centres, path_max = _along_path(geom, sc, contact.line_load, bins)
     t, tpjn = ("torque",), ("torque", "position", "line", "point")
     torque = {"torque": variable(t, contact.torque, "N m", "pinion torque T1")}
@@ -204,7 +282,25 @@ def scuffing_dataset(pair: GearPair, *, ltca: xr.Dataset | None = None, rating: 
 def scuffing_table_dataset(scuffing: Sequence[xr.Dataset]) -> xr.Dataset:
     """The scuffing load capacity of every variant of a pair side by side (variant × torque): the
     largest flash and contact temperatures and S_B (ISO/TS 6336-20), the integral temperature and
-    S_intS (ISO/TS 6336-21)."""
+    S_intS (ISO/TS 6336-21).
+
+    Parameters
+    ----------
+    scuffing : Sequence[xarray.Dataset]
+        Each variant's scuffing.nc (:func:`scuffing_dataset`), of one pair and the same torques.
+
+    Returns
+    -------
+    xarray.Dataset
+        scuffing_table.nc (dims variant, torque): ``flash_temperature_max`` (K),
+        ``contact_temperature_max`` and ``integral_temperature`` (°C), ``scuffing_safety_flash``
+        and ``scuffing_safety_integral`` (1); units as the variants' datasets carry them.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``scuffing`` (not one pair's variants) or ``ltca.torques_Nm`` (torques that differ).
+    """
     names = variant_names("scuffing", scuffing)
     torques = shared_torques("ltca.torques_Nm", names, scuffing)
     dims = ("variant", "torque")

@@ -49,7 +49,27 @@ _STIFFNESS_KEYS = section_keys(Stiffness)
 
 
 def pinion_torque(geom: PairGeometry, torque_Nm: float, on: str) -> float:
-    """Pinion torque (N m) from a torque on the pinion or on the gear (ratio z1/z2, no loss)."""
+    """Pinion torque (N m) from a torque on the pinion or on the gear (ratio z1/z2, no loss).
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (its teeth z1, z2).
+    torque_Nm : float
+        The torque (N·m), positive and finite.
+    on : {'pinion', 'gear'}
+        The gear ``torque_Nm`` acts on.
+
+    Returns
+    -------
+    float
+        The pinion torque T1 (N·m).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``torque_Nm`` or ``torque_on``.
+    """
     if not np.isfinite(torque_Nm) or torque_Nm <= 0:
         raise GearmeshInputError("torque_Nm", torque_Nm, "must be a positive finite number")
     if on not in ("pinion", "gear"):
@@ -205,6 +225,23 @@ def apply_variant(pair: GearPair, name: str, overrides: Mapping[str, Any]) -> Ge
 
     Two keys are design targets rather than pair-file keys: ``eps_alpha`` (reached by the
     addendum) and ``eps_beta`` (by the face width), :func:`gearmesh.design.pair_with_contact_ratios`.
+    A changed pressure angle, helix angle, module, teeth or profile shift without a centre distance
+    of its own gets the zero-backlash centre distance.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The base pair.
+    name : str
+        The variant's name, appended to the pair's.
+    overrides : Mapping[str, Any]
+        Pair-file keys in their engineering units (``helix_angle_deg``, ``normal_module_mm``, ...),
+        and the targets ``eps_alpha``, ``eps_beta`` (1).
+
+    Returns
+    -------
+    GearPair
+        The changed pair, validated as a pair file is.
     """
     overrides = dict(overrides)
     targets = {k: overrides.pop(k) for k in ("eps_alpha", "eps_beta") if k in overrides}

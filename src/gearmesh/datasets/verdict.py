@@ -65,13 +65,37 @@ BASIS_WORDS = {"population": "worst gear", "nominal": "nominal"}
 
 
 def criteria(table: xr.Dataset) -> list[str]:
-    """The criterion flags of a sign-off table in its order: every ``meets_*`` but ``meets_all``."""
+    """The criterion flags of a sign-off table in its order: every ``meets_*`` but ``meets_all``.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A sign-off table (signoff_table.nc, :mod:`gearmesh.datasets.signoff`).
+
+    Returns
+    -------
+    list[str]
+        The flags' variable names.
+    """
     return [str(name) for name in table.data_vars if str(name).startswith("meets_") and name != ALL]
 
 
 def judged_on(table: xr.Dataset, criterion: str) -> str:
     """The gear ``criterion`` was judged on: the flag's own ``basis`` attribute (the sign-off table
-    names it on every flag; a flag that does not say: the nominal gear)."""
+    names it on every flag; a flag that does not say: the nominal gear).
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A sign-off table.
+    criterion : str
+        One of its flags (:func:`criteria`).
+
+    Returns
+    -------
+    str
+        ``'population'`` (the worst manufactured gear) or ``'nominal'``.
+    """
     return str(table[criterion].attrs.get("basis", "nominal"))
 
 
@@ -88,7 +112,28 @@ def _columns(table: xr.Dataset, margin: Margin, basis: str) -> list[str]:
 
 def criterion_margins(table: xr.Dataset, criterion: str) -> np.ndarray | None:
     """The margin of ``criterion`` (variant, torque), fractions of its limit (:data:`MARGINS`),
-    or None for a criterion without a declared margin."""
+    or None for a criterion without a declared margin.
+
+    Each judged column is taken relative to the reference variant's, its largest ratio set against
+    the criterion's allowed factor (the table's attribute): margin = 1 − max(value/reference)/factor.
+
+    Parameters
+    ----------
+    table : xarray.Dataset
+        A sign-off table (dims variant, torque; attributes ``reference`` and the factors).
+    criterion : str
+        One of its flags (:func:`criteria`).
+
+    Returns
+    -------
+    numpy.ndarray or None
+        Margins, shape (variant, torque), 1 (a fraction of the limit; negative: fails).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``signoff_table`` when a column the margin needs is missing.
+    """
     margin = MARGINS.get(criterion)
     if margin is None:
         return None
@@ -116,7 +161,24 @@ def signoff_verdict_dataset(signoff: Sequence[xr.Dataset]) -> xr.Dataset:
     """The verdict of a pair's sign-off table (variant × torque, the reference left out): ``verdict``
     (meets every criterion or fails one), and per criterion a text column named by the criterion
     and the gear it was judged on ("pressure (worst gear)"): ✓ meets or ✗ fails, with the margin in
-    percent of the limit (:func:`criterion_margins`)."""
+    percent of the limit (:func:`criterion_margins`).
+
+    Parameters
+    ----------
+    signoff : Sequence[xarray.Dataset]
+        The pair's sign-off table, as a list of one (signoff_table.nc).
+
+    Returns
+    -------
+    xarray.Dataset
+        signoff_verdict.nc (dims variant, torque): ``verdict`` (0 fails, 1 meets) and a text column
+        per criterion; attributes ``reference``, ``basis``, ``criteria``.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming ``variants`` when the table holds the reference alone.
+    """
     (table,) = signoff
     reference = table.attrs["reference"]
     keep = [v for v in table["variant"].values if v != reference]
