@@ -87,9 +87,9 @@ def scuffing_of(geom: PairGeometry, res: LTCAResult | LoadedContact, speed_rpm: 
 
     References
     ----------
-    .. [1] ISO/TS 6336-20:2022, Calculation of load capacity of spur and helical gears — Part 20:
+    .. [1] ISO/TS 6336-20:2017, Calculation of load capacity of spur and helical gears — Part 20:
        Calculation of scuffing load capacity — Flash temperature method.
-    .. [2] ISO/TS 6336-21:2022, Calculation of load capacity of spur and helical gears — Part 21:
+    .. [2] ISO/TS 6336-21:2017, Calculation of load capacity of spur and helical gears — Part 21:
        Calculation of scuffing load capacity — Integral temperature method.
     """
     load_factor = [v["K_A"] * v["K_v"] for v in rated]
