@@ -260,72 +260,57 @@ def dynamics_dataset(pair: GearPair, *, variant: str = "", slices: int | None = 
     solver in :mod:`gearmesh.dynamics`). Dimensions (torque, speed) and, for the kept series,
     (torque, sample_speed, sample).
 
-    ``section`` is a study's ``dynamics:`` section (keywords, :class:`gearmesh.settings.Dynamics`:
-    every default and bound there), parsed once (:func:`gearmesh.schema.settings_object`); a bad
-    value is refused naming its key. ``variant`` names the micro-geometry variant; ``stiffness``,
-    ``ltca`` and ``fe_compliance`` are the variant's upstream results; ``slices`` and ``positions``
-    the slice grid without a ``stiffness`` dataset (:func:`slice_grid`).
-
     Parameters
     ----------
     pair : GearPair
         The pair (its supports, body and micro-geometry).
     variant : str, default ""
-        Name of the micro-geometry variant, recorded in the attributes.
+        Name of the micro-geometry variant (recorded).
     slices, positions : int, optional
-        Slice grid of the stiffness computed without a ``stiffness`` dataset (the stiffness stage's defaults).
+        Slice grid without a ``stiffness`` dataset (:func:`slice_grid`; the stiffness stage's defaults).
     stiffness, ltca, fe_compliance : xarray.Dataset, optional
         The variant's upstream stiffness, LTCA and finite-element tooth tables.
     **section
-        The ``dynamics:`` section's keys, engineering units (the settings below).
+        A study's ``dynamics:`` section (:class:`gearmesh.settings.Dynamics`: every default and bound there), parsed
+        once (:func:`gearmesh.schema.settings_object`); its keys, engineering units, follow. A bad value, and
+        ``excitation`` ``ltca`` without an LTCA dataset, raise GearmeshInputError naming the key (limits included).
+    torques_Nm : T (N·m) > 0, one or a list, acting on ``on`` ('pinion' or 'gear').
+    speeds_rpm : pinion speeds {start, stop, step} (stop included), a list or 'a:b:c'.
+    backlash_um : total backlash 2b0 (µm) along the normal; 'pair' the pair's own (from its centre distance and
+        shifts; the dataset says which); null = none.
+    bearing_* : bearing stiffness (N/m) and damping (N·s/m), radial (x, y) and axial (z), the low-fluctuation paper's
+        values by default.
+    damping_ratio : mesh damping ratio ζ (-), or ``mesh_damping_Ns_per_m`` directly.
+    stiffness_form : 'fourier' (order ``fourier_order``, the improved potential-energy paper) or 'table'.
+    excitation : 'contact' (the real tooth contact, :mod:`gearmesh.meshforce`: the table is built per torque (its mesh
+        misalignment) from ``method``, ``contact_law``, ``points``, ``table_positions``, ``table_approaches`` and
+        ``table_force_factor`` × the largest static force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error
+        at each torque), 'tvms' (the slice stiffness with ``transmission_error_um`` or none, plus the tip-edge contact
+        the LTCA loads beyond the active zone at the torque), 'lste' (the low-fluctuation paper literal); null: 'ltca'
+        with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
+    method : slice model (and of the contact table).
+    sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over the record window) and
+        spectra (to ``max_order`` mesh orders) are kept.
+    courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state : solver rules
+        (:class:`gearmesh.dynamics.SolverSettings`).
+    refine_resonances : add speeds around the resonance speeds the linearised model predicts at each torque
+        (:func:`resonance_refined`; ``on_grid`` marks the configured speeds).
+
+    Two displacements of the mesh are reported, both along the transverse line of action (the direction of the
+    LTCA's ``lte``): the dynamic transmission error ``dynamic_te_*`` (the approach of the gear bodies, δ + e,
+    statically the loaded TE) and the mesh deflection ``mesh_deflection_*`` (δ, statically F/k; with ``contact`` the
+    approach beyond the first touch). ``torsional_std`` is the relative rotation alone, what encoders read when the
+    gear centres move too. With ``contact``, the entering pair: ``entering_pair_force_max``,
+    ``dynamic_impact_force``, ``mesh_in_roll_before_A`` (:func:`_contact_vars`).
 
     Returns
     -------
     xarray.Dataset
-        Dimensions (torque, speed), and (torque, sample_speed, sample) for the kept series; every
-        variable with ``units`` and ``long_name``, the model choices and provenance in the attributes.
-
-    Raises
-    ------
-    GearmeshInputError
-        Naming the first bad section key (``torques_Nm`` beyond the load limits, ``speeds_rpm`` beyond
-        the pair's speed limits or :data:`MAX_SPEEDS`, ...), or ``excitation`` ``ltca`` without an LTCA dataset.
-
-    Settings (engineering units)
-    ----------------------------
-    torques_Nm : T (N·m) > 0, one or a list, acting on ``on`` ('pinion' or 'gear').
-    speeds_rpm : pinion speeds {start, stop, step} (stop included), a list or 'a:b:c'.
-    backlash_um : total backlash 2b0 (µm) along the normal; 'pair' the pair's own (from its
-        centre distance and shifts; the dataset says which); null = none.
-    bearing_* : bearing stiffness (N/m) and damping (N·s/m), radial (x, y) and axial (z),
-        the low-fluctuation paper values by default.
-    damping_ratio : mesh damping ratio ζ (-), or ``mesh_damping_Ns_per_m`` directly.
-    stiffness_form : 'fourier' (order ``fourier_order``, the improved potential-energy paper) or 'table'.
-    excitation : 'contact' (the real tooth contact, :mod:`gearmesh.meshforce`: the table is built
-        per torque (its mesh misalignment) from ``method``, ``contact_law``, ``points``,
-        ``table_positions``, ``table_approaches`` and ``table_force_factor`` × the largest static
-        force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error at each torque),
-        'tvms' (the slice stiffness with ``transmission_error_um`` or none, plus the tip-edge contact
-        the LTCA loads beyond the active zone at the torque), 'lste' (the low-fluctuation paper literal); null: 'ltca' with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
-    method : slice model (and of the contact table).
-    sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
-        the record window) and spectra (to ``max_order`` mesh orders) are kept.
-    courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state : solver rules
-        (:class:`gearmesh.dynamics.SolverSettings`).
-    refine_resonances : add speeds around the resonance speeds the linearised model predicts
-        at each torque (:func:`resonance_refined`; ``on_grid`` marks the configured speeds).
-
-    Two displacements of the mesh are reported, both along the transverse line of action
-    (the direction of the LTCA's ``lte``): the dynamic transmission error ``dynamic_te_*``
-    (the approach of the gear bodies, δ + e, statically the loaded TE) and the mesh deflection
-    ``mesh_deflection_*`` (δ, statically F/k; with ``contact`` the approach beyond the first
-    touch). ``torsional_std`` is the relative rotation alone, what encoders read when the gear
-    centres move too. With ``contact``, the entering pair: ``entering_pair_force_max``,
-    ``dynamic_impact_force``, ``mesh_in_roll_before_A`` (:func:`_contact_vars`).
+        Variables with ``units`` and ``long_name``; the model choices and provenance in the attributes.
 
     References
     ----------
-    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, sections 4–5 (the 8-DOF model, speed sweeps).
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, section 4.
     """
     s = settings_object(Dynamics, section)
     geom = pair_geometry(pair)

@@ -47,36 +47,25 @@ def train_dataset(pair: GearPair, *, slices: int | None = None, positions: int |
     driven by the pair's mesh force table, settings as :func:`dynamics_dataset`).
     Time series and spectra are kept at every speed (give few).
 
-    ``section`` is a study's ``train_dynamics:`` section (keywords,
-    :class:`gearmesh.settings.TrainDynamics`: every default and bound there), parsed once
-    (:func:`gearmesh.schema.settings_object`); ``stiffness`` and ``fe_compliance`` are the upstream results;
-    ``slices`` and ``positions`` the slice grid without a ``stiffness`` dataset (:func:`.inputs.slice_grid`).
-
     Parameters
     ----------
     pair : GearPair
         The pair whose gear is repeated three times.
     slices, positions : int, optional
-        Slice grid of the stiffness computed without a ``stiffness`` dataset (the stiffness stage's defaults).
+        Slice grid without a ``stiffness`` dataset (:func:`.inputs.slice_grid`; the stiffness stage's defaults).
     stiffness, fe_compliance : xarray.Dataset, optional
         The upstream stiffness result and finite-element tooth tables.
     **section
-        The ``train_dynamics:`` section's keys, engineering units (``torque_Nm`` N·m on the plate gear
-        or ``static_force_N`` N, ``speeds_rpm`` or ``mesh_frequency_Hz`` Hz, bearings N/m and N·s/m, ...).
+        A study's ``train_dynamics:`` section (:class:`gearmesh.settings.TrainDynamics`: every default and bound
+        there), parsed once (:func:`gearmesh.schema.settings_object`); engineering units (``torque_Nm`` N·m on the
+        plate gear, ``static_force_N`` N, ``mesh_frequency_Hz`` Hz). A bad value raises GearmeshInputError naming
+        the key (neither ``torque_Nm`` nor ``static_force_N``, load and speed limits, :data:`MAX_TRAIN_SPEEDS`).
 
     Returns
     -------
     xarray.Dataset
-        Dimension ``speed`` (r/min of the gears), with ``gear``, ``direction`` (y, z), ``mesh``, ``mode``
-        and the kept series on ``sample_speed`` and spectra on ``order``; every variable with ``units``
-        and ``long_name``, the model choices and provenance in the attributes.
-
-    Raises
-    ------
-    GearmeshInputError
-        Naming the first bad section key: ``torque_Nm`` (neither it nor ``static_force_N`` given, or
-        beyond the load limits), ``speeds_rpm`` or ``mesh_frequency_Hz`` beyond the speed limits or
-        over :data:`MAX_TRAIN_SPEEDS` speeds, ...
+        On ``speed`` (r/min), ``gear``, ``direction`` (y, z), ``mesh``, ``mode``, ``sample_speed`` and ``order``;
+        variables with ``units`` and ``long_name``, the model choices and provenance in the attributes.
 
     References
     ----------
