@@ -227,12 +227,7 @@ def settings_speeds(speeds_rpm) -> np.ndarray:
     Returns
     -------
     numpy.ndarray
-        The speeds (S,) (r/min).
-
-    Raises
-    ------
-    GearmeshInputError
-        ``speeds_rpm`` as :func:`speed_grid` refuses it.
+        The speeds (S,) (r/min), refused (GearmeshInputError naming ``speeds_rpm``) as :func:`speed_grid` does.
     """
     return speed_grid(jsonable(speeds_rpm))
 
