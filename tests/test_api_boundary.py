@@ -163,7 +163,7 @@ def test_mesh_stiffness_grid_is_sized_before_allocation(pair):
 
 def test_every_list_setting_declares_a_maximum_length():
     from gearmesh.pair_keys import pair_schema
-    from gearmesh.settings import study_schema
+    from gearmesh.registry import study_schema
 
     def arrays(schema, path=""):
         if isinstance(schema, dict):

@@ -248,7 +248,7 @@ def _job_modules() -> set[str]:
     """Every gearmesh module a job can run: the closure (imports inside functions included) of
     every stage's and table's function and plot function, and of the pipeline."""
     from gearmesh.codeversion import module_closure
-    from gearmesh.settings import stages
+    from gearmesh.registry import stages
 
     specs = {"gearmesh.pipeline:run"}
     for stage in stages().values():

@@ -23,7 +23,8 @@ from gearmesh.pipeline import resolve
 from gearmesh.schema import defaults, field_schema, has_default, jsonable, key_of, settings_fields
 from gearmesh.pair_keys import GearModification, PairFile, PairMaterial, pair_schema
 from gearmesh.published import pair_schema_text, study_reference, study_schema_text
-from gearmesh.settings import Dynamics, Study, stage_sections, study_keys, study_schema
+from gearmesh.registry import stage_sections, study_keys, study_schema
+from gearmesh.settings import Dynamics, Study
 
 ROOT = Path(__file__).resolve().parents[1]
 STAGED = [(path, cls) for path, cls in stage_sections() if getattr(cls, "STAGE", None) is not None]

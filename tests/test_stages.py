@@ -12,7 +12,7 @@ import pytest
 
 from gearmesh import plan
 from gearmesh.config import load_study, study_excitation
-from gearmesh.settings import stage_of, stages
+from gearmesh.registry import stage_of, stages
 from gearmesh.stages import Read, Stage, dependencies, ltca_drives, method_fe, required_sections, resolve
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -56,7 +56,7 @@ def test_every_declared_function_resolves_and_takes_what_its_job_gives(section, 
     settings, the results it reads, the sections it carries (by name or through ``**``); a
     table's takes the results it reads; a plot function takes (inputs, outputs)."""
     from gearmesh.schema import key_of, settings_fields
-    from gearmesh.settings import stage_sections
+    from gearmesh.registry import stage_sections
 
     params = inspect.signature(resolve(job.function)).parameters
     wanted = {r.argument for r in job.reads}

@@ -252,7 +252,7 @@ def _is_study(data: Any) -> bool:
     """Whether a document is meant as a study config: a mapping with a key of a study config that no
     pair file has (or ``__use_yte__``, which only Snakemake reads), so its errors are a study's."""
     from .pair_keys import pair_schema
-    from .settings import study_schema
+    from .registry import study_schema
 
     if not isinstance(data, Mapping):
         return False
@@ -513,7 +513,7 @@ def cmd_schema(args: argparse.Namespace) -> None:
     """
     from .pair_keys import pair_schema
     from .published import pair_reference, pair_schema_text, study_reference, study_schema_text
-    from .settings import study_schema
+    from .registry import study_schema
 
     form = args.format or ("yaml" if args.kind == "study" else "json")
     if form == "markdown":

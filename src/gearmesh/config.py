@@ -21,14 +21,15 @@ from .inputfile import read_yaml
 from .pairfile import load_named_pair, variant_pair
 from .limits import same_point
 from .schema import validate
-from .settings import lste_compared, stages, study_schema
+from .registry import stages, study_schema
+from .settings import lste_compared
 from .stages import Grid, Speeds, Torques, required_sections
 
 
 def validate_study(config: Mapping[str, Any]) -> dict[str, Any]:
     """A copy of ``config`` with defaults filled; GearmeshInputError naming the first bad field
     (a NaN or infinite number anywhere, then the first error of the study schema,
-    :func:`gearmesh.settings.study_schema`). A ``__use_yte__`` key is named for what it is: it
+    :func:`gearmesh.registry.study_schema`). A ``__use_yte__`` key is named for what it is: it
     turns on Snakemake's YTE template engine, which runs the file's Python when Snakemake loads it.
 
     Parameters

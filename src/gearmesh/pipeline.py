@@ -30,7 +30,7 @@ from .gear import GearPair
 from .pairfile import load_pair, pair_notes, pair_to_dict, variant_pair
 from .io import (DATA_ATTR, OutputError, add_provenance, atomic_output, figure_sources, job_outputs, normal_path,
                  read_dataset, space_errno, write_dataset)
-from .settings import job_of, stage_of
+from .registry import job_of, stage_of
 from .stages import dependencies
 from .tables import write_csv
 from .upstream import (Expected, check_optimum, file_digest, identify, optimum_header, read_input, record_sources,
@@ -329,7 +329,7 @@ def _pair_stage(smk: Any, then: Callable[[GearPair, xr.Dataset], None] | None = 
 
 
 def run_job(smk: Any) -> None:
-    """The job of rule ``smk.rule`` as its declaration says (:func:`gearmesh.settings.job_of`):
+    """The job of rule ``smk.rule`` as its declaration says (:func:`gearmesh.registry.job_of`):
     ``run_pair_stage``, ``run_study_stage``, ``run_collect``, ``run_optimise`` or ``run_plot``.
 
     Parameters

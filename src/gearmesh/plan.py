@@ -22,7 +22,7 @@ from typing import Any, Callable, Iterator, Mapping
 from .codeversion import versioned
 from .config import pair_path
 from .schema import defaults
-from .settings import stage_sections, stages
+from .registry import stage_sections, stages
 from .stages import Job, Read, Stage, Table
 
 #: The script of every job, relative to the rules' file ``workflow/rules/stages.smk``: it runs the
@@ -215,7 +215,7 @@ def study_stages(config: Mapping[str, Any]) -> dict[str, Stage]:
     Returns
     -------
     dict of str to Stage
-        Section name to stage declaration, in the order of :func:`gearmesh.settings.stages`.
+        Section name to stage declaration, in the order of :func:`gearmesh.registry.stages`.
     """
     declared = stages()
     run = {s for s, stage in declared.items() if stage_wanted(config, s, stage)}

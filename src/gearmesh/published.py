@@ -18,7 +18,8 @@ from .pair_keys import PairFile, pair_schema
 from .schema import (default_of, description_of, field_schema, has_default, holds_section, key_of, nested_sections,
                      section_type, settings_fields, spec_of, units_of)
 from .schema_rules import choices_words, type_words
-from .settings import Study, study_schema
+from .registry import study_schema
+from .settings import Study
 
 #: The header of a published file: the module whose declarations it renders (``{source}``) and the command.
 _GENERATED = "generated from {source} by `gearmesh schema {what}`: edit the settings, not this file"
@@ -36,7 +37,7 @@ def study_schema_text() -> str:
     -------
     str
         YAML: a generated-file header comment and the JSON schema of a study config
-        (:func:`gearmesh.settings.study_schema`).
+        (:func:`gearmesh.registry.study_schema`).
     """
     head = f"# The JSON schema of a study config, {_GENERATED.format(source=_source(Study), what='study')}.\n"
     return head + yaml.safe_dump(study_schema(), sort_keys=False, allow_unicode=True, width=110, default_flow_style=None)

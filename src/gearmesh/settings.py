@@ -2,7 +2,7 @@
 
 Every study key is a field of one of the frozen dataclasses below, declared with
 :func:`gearmesh.schema.setting` (type, default, bounds, description). From them come the
-study schema (:func:`study_schema`; published as ``schemas/config.schema.yaml``, linked as
+study schema (:func:`gearmesh.registry.study_schema`; published as ``schemas/config.schema.yaml``, linked as
 ``workflow/schemas/``, by :mod:`gearmesh.published`), which ``gearmesh validate`` and the
 Snakefile validate a config with and fill its defaults from; the argument checks of the stage
 functions (:func:`gearmesh.arguments.check_arguments`: the API refuses what the schema refuses) and
@@ -13,7 +13,7 @@ A stage's section also declares the stage (``STAGE``, :class:`gearmesh.stages.St
 function that takes its keys as keyword arguments (and its defaults from here, through
 :func:`gearmesh.arguments.check_arguments`), the result it writes, the results it reads and the
 figures it draws; the workflow's rules, the study's targets and the upstream checks derive
-from it (:func:`stages`, docs/architecture.md "Each stage declared once"). Every bound is
+from it (:func:`gearmesh.registry.stages`, docs/architecture.md "Each stage declared once"). Every bound is
 this module's or :mod:`gearmesh.limits`'s. Engineering units, the unit in the key name
 (``torque_Nm``, ``speed_rpm``). Reading a config imports no physics: this module needs :mod:`gearmesh.choices`,
 :mod:`gearmesh.contact_model`, :mod:`gearmesh.limits`, :mod:`gearmesh.schema` and :mod:`gearmesh.stages` only.
@@ -29,7 +29,7 @@ from .choices import (CONTACT_LAWS, DEFAULT_CONTACT_LAW, DEFAULT_CYCLE_POSITIONS
 from .contact_model import (DEFAULT_LTCA_POINTS, DEFAULT_TABLE_POINTS, LoadedContactSection, OverridingContactSection,
                             TableContactSection)
 from .limits import FACTOR_RANGES, MAX_CONTACT_POINTS, MAX_LTCA_TORQUES, MAX_STIFFNESS_POINTS
-from .schema import REQUIRED, all_keys, nested_sections, object_schema, setting
+from .schema import REQUIRED, nested_sections, setting
 from .stages import (Figure, Grid, Read, Speeds, Stage, Table, Torques, always, contact_drives, ltca_drives, method_fe,
                      runs)
 
@@ -88,18 +88,40 @@ def _pairs() -> Any:
 
 def lste_compared(config: Mapping[str, Any], section: str) -> bool:
     """Whether the study compares the LTCA with F/K: it runs the LTCA on the standard variant and
-    the stiffness stage has an LSTE torque."""
+    the stiffness stage has an LSTE torque.
+
+    Parameters
+    ----------
+    config : Mapping
+        The study config, defaults filled.
+    section : str
+        The section of the job asking (unused: the signature of a ``wanted`` condition).
+    """
     return "ltca" in config and "standard" in config.get("variants", {}) and "torque_Nm" in config.get("stiffness", {})
 
 
 def engagement_tabled(config: Mapping[str, Any], section: str) -> bool:
     """Whether the study sets the energy method's F_s beside the dynamics (the engagement table):
-    the real tooth contact drives its dynamics and it has an impact section."""
+    the real tooth contact drives its dynamics and it has an impact section.
+
+    Parameters
+    ----------
+    config : Mapping
+        The study config, defaults filled.
+    section : str
+        The section of the job asking (unused, as in :func:`gearmesh.stages.contact_drives`).
+    """
     return contact_drives(config, section) and "impact" in config
 
 
 def nsga2_run(run: Mapping[str, Any]) -> bool:
-    """Whether an optimisation (its settings) is NSGA-II's, with a Pareto front to draw."""
+    """Whether an optimisation (its settings) is NSGA-II's, with a Pareto front to draw.
+
+    Parameters
+    ----------
+    run : Mapping
+        One named run of the ``optimise`` section, defaults filled.
+    """
     return run["method"] == "nsga2"
 
 
@@ -111,9 +133,17 @@ _SLICE_GRID = Grid("slices", "positions", MAX_STIFFNESS_POINTS, "slice-positions
 def fe_wanted(config: Mapping[str, Any], section: str) -> bool:
     """Whether a study gets the pair's finite-element tooth tables (its ``section``,
     fe_compliance, is always filled): when a stage of it uses the FE tooth (its ``method``, or
-    among a table's ``methods``), so that every pair's tables are computed once and drawn."""
+    among a table's ``methods``), so that every pair's tables are computed once and drawn.
+
+    Parameters
+    ----------
+    config : Mapping
+        The study config, defaults filled.
+    section : str
+        ``fe_compliance`` (unused: the signature of a ``wanted`` condition).
+    """
     return any((config.get(s) or {}).get("method") == "fe" or "fe" in (config.get(s) or {}).get("methods", ())
-               for s, _ in stage_sections() if isinstance(config.get(s), Mapping))
+               for s, _ in nested_sections(Study) if isinstance(config.get(s), Mapping))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -763,38 +793,3 @@ class Study:
     train_dynamics: TrainDynamics | None = setting(None, "", fill=False)
     dynamics_comparison: DynamicsComparison | None = setting(None, "", fill=False)
 
-
-def study_schema() -> dict[str, Any]:
-    """The JSON schema of a study config (:class:`Study`)."""
-    return {"$schema": "https://json-schema.org/draft/2020-12/schema", "title": "gearmesh study config",
-            **object_schema(Study)}
-
-
-def stage_sections() -> list[tuple[str, type]]:
-    """(key path, settings class) of every section of a study."""
-    return nested_sections(Study)
-
-
-def stages() -> dict[str, Stage]:
-    """Every stage of a study by its config section (and rule name): the declaration
-    (:class:`gearmesh.stages.Stage`) of each settings class that has one."""
-    return {path.removesuffix(".NAME"): cls.STAGE for path, cls in stage_sections()
-            if "." not in path.removesuffix(".NAME") and isinstance(getattr(cls, "STAGE", None), Stage)}
-
-
-def stage_of(section: str) -> Stage | None:
-    """The stage of config ``section`` (a rule's name), or None (a table, a figure)."""
-    return stages().get(section)
-
-
-def job_of(name: str) -> Stage | Table | None:
-    """The job whose rule is ``name``: the stage of that config section, or the table of that name."""
-    declared = stages()
-    if name in declared:
-        return declared[name]
-    return next((t for stage in declared.values() for t in stage.tables if t.name == name), None)
-
-
-def study_keys() -> list[str]:
-    """Every key path of a study config (``dynamics.speeds_rpm.start``; named entries as ``NAME``)."""
-    return all_keys(Study)

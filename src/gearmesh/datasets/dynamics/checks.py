@@ -39,6 +39,24 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any] | Dynami
     ``excitation_points``: samples of k(t) over a mesh cycle the job will get (the stiffness
     or LTCA positions); a Fourier form needs more than twice its order. GearmeshInputError
     names the setting (as in the config section).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair the section runs on.
+    settings : Mapping or Dynamics or TrainDynamics
+        The ``dynamics`` (or ``train_dynamics``) section, engineering units, or the section parsed.
+    train : bool, default False
+        Check ``settings`` as a train section (:class:`gearmesh.settings.TrainDynamics`).
+    excitation_points : int, optional
+        Samples of k(t) per mesh cycle the job will get; None when not yet known.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the first bad setting (``speeds_rpm``, ``sample_speeds_rpm``, ``torques_Nm``,
+        ``fourier_order``, a table setting, ...), or ``speeds_rpm`` when the sweep's RK4 work is over
+        :data:`MAX_SPEED_STEPS`.
     """
     from ...dynamics import step_plan
 

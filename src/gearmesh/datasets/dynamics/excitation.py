@@ -54,6 +54,31 @@ def ltca_excitation(geom: PairGeometry, ltca: xr.Dataset, pinion_torque: float) 
     F = k(δ − e) is δ = LTE: the quasi-static excitation of Velex & Ajmi (2006, J. Sound Vib.
     290:882) built from the loaded TE. Micro-geometry, edge contact and the nonlinear contact
     law thus enter the dynamics through the LTCA of each variant.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry (its pinion base radius r_b1, m).
+    ltca : xarray.Dataset
+        The variant's LTCA: ``loaded_mesh_stiffness`` (N/m) and ``lte`` (m) on (``torque``, ``position``),
+        ``torque`` the pinion torques (N m).
+    pinion_torque : float
+        Pinion torque of the dynamics run (N m); one of the LTCA's torques.
+
+    Returns
+    -------
+    k_l, e : numpy.ndarray
+        Loaded mesh stiffness k_L (N/m) and equivalent error e (m), each (positions,) over one mesh cycle.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``ltca.torques_Nm`` when the LTCA has no torque equal to ``pinion_torque``.
+
+    References
+    ----------
+    .. [1] Velex P., Ajmi M., "On the modelling of excitations in geared systems by transmission
+       errors", J. Sound Vib. 290 (2006) 882–909.
     """
     torques = np.asarray(ltca["torque"].values, dtype=float)
     match = np.flatnonzero(same_point(torques, pinion_torque))
@@ -68,7 +93,25 @@ def ltca_excitation(geom: PairGeometry, ltca: xr.Dataset, pinion_torque: float) 
 
 def resolve_excitation(excitation: str | None, ltca: xr.Dataset | None) -> str:
     """The excitation to run (:func:`gearmesh.choices.pair_excitation`): as given, or (None) 'ltca'
-    when an LTCA dataset is at hand, else 'tvms'."""
+    when an LTCA dataset is at hand, else 'tvms'.
+
+    Parameters
+    ----------
+    excitation : {'tvms', 'lste', 'ltca', 'contact'} or None
+        The section's ``excitation``; None for the default.
+    ltca : xarray.Dataset or None
+        The variant's LTCA dataset, if the run has one.
+
+    Returns
+    -------
+    str
+        The excitation that runs.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``excitation`` when it is none of the pair model's excitations.
+    """
     if excitation is not None and excitation not in PAIR_EXCITATIONS:
         raise GearmeshInputError("excitation", excitation, f"must be one of {list(PAIR_EXCITATIONS)} or null")
     return pair_excitation(excitation, ltca is not None)
@@ -80,7 +123,29 @@ def contact_table(geom: PairGeometry, pinion_torques, contact: ContactModel = TA
     excitation at the first of ``pinion_torques`` (N m): every row reaches ``table_force_factor``
     times the largest static force F_bt = T1/r_b1 of them, the separations carry the mesh
     misalignment of the first (:func:`contact_tables`); ``contact`` its contact model
-    (:class:`gearmesh.contact_model.ContactModel`), ``settings`` as :data:`_TABLE_KEYS`."""
+    (:class:`gearmesh.contact_model.ContactModel`), ``settings`` as :data:`_TABLE_KEYS`.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with its micro-geometry and deviations.
+    pinion_torques : float or array_like
+        Pinion torques (N m); the first is tabulated.
+    contact : ContactModel
+        The contact model of the table (default the table's declared one).
+    **settings
+        ``table_positions``, ``table_approaches``, ``table_force_factor`` (declared defaults when left out).
+
+    Returns
+    -------
+    MeshForceTable
+        The mesh force F(x, w) (N) over one mesh cycle (:class:`gearmesh.meshforce.MeshForceTable`).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the table setting out of its declaration or the table over its work limit.
+    """
     return contact_tables(geom, np.atleast_1d(pinion_torques)[:1], contact, **settings)[0]
 
 
@@ -90,7 +155,29 @@ def contact_tables(geom: PairGeometry, pinion_torques, contact: ContactModel = T
     every row of each reaches ``table_force_factor`` times the largest static force F_bt of them;
     each table's separations carry the mesh misalignment at its own static force (the stated f_ma
     and the system deflection's f_sh, :func:`gearmesh.deflection.mesh_misalignment`: the gearbox
-    deflects with the mean load), so torques of one misalignment share one table."""
+    deflects with the mean load), so torques of one misalignment share one table.
+
+    Parameters
+    ----------
+    geom : PairGeometry
+        The pair's geometry with its micro-geometry and deviations.
+    pinion_torques : float or array_like
+        Pinion torques (N m), (T,).
+    contact : ContactModel
+        The contact model of the tables (default the table's declared one).
+    **settings
+        ``table_positions``, ``table_approaches``, ``table_force_factor`` (declared defaults when left out).
+
+    Returns
+    -------
+    list of MeshForceTable
+        One table per torque (N), in the order of ``pinion_torques``; equal misalignments share one object.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the table setting out of its declaration or the table over its work limit.
+    """
     t = _table_settings(contact, **settings)
     rb1 = float(geom.base_radius[0])
     torques = np.atleast_1d(np.asarray(pinion_torques, dtype=float))
@@ -107,7 +194,24 @@ def contact_tables(geom: PairGeometry, pinion_torques, contact: ContactModel = T
 
 def excitation_used(excitation: str, ltca: xr.Dataset | None = None, transmission_error_um=None,
                     table: MeshForceTable | None = None) -> str:
-    """What excited the model, for the ``excitation`` attribute of the dataset."""
+    """What excited the model, for the ``excitation`` attribute of the dataset.
+
+    Parameters
+    ----------
+    excitation : {'tvms', 'lste', 'ltca', 'contact'}
+        The excitation that ran (:func:`resolve_excitation`).
+    ltca : xarray.Dataset, optional
+        The LTCA behind ``ltca`` (its ``contact_law`` attribute is named).
+    transmission_error_um : sequence of float, optional
+        The tabulated unloaded TE (µm) of a ``tvms`` run, if any.
+    table : MeshForceTable, optional
+        The mesh force table behind ``contact`` (its positions and approaches are named).
+
+    Returns
+    -------
+    str
+        One sentence naming the excitation and its sources.
+    """
     if excitation == "contact":
         return ("contact: the mesh force of the real tooth contact F(x, w) of every tooth pair (flanks and tip edges, "
                 f"modifications and lead slopes; gearmesh.meshforce, {table.positions} positions x "
@@ -126,7 +230,26 @@ def model_choices(excitation: str, method: str, contact_law: str, stiffness: xr.
     """The tooth model and contact law behind a dynamics result (its ``tooth_model`` and
     ``contact_law`` attributes): the given stiffness dataset's tooth model or ``method`` for
     ``tvms``/``lste``; the LTCA's for ``ltca``; ``method`` and ``contact_law`` of the tabulated
-    contact for ``contact``."""
+    contact for ``contact``.
+
+    Parameters
+    ----------
+    excitation : {'tvms', 'lste', 'ltca', 'contact'}
+        The excitation that ran.
+    method : str
+        The section's tooth model (:data:`gearmesh.choices.TOOTH_METHODS`), the fallback.
+    contact_law : str
+        The section's contact law, the fallback.
+    stiffness : xarray.Dataset, optional
+        The upstream stiffness dataset (its ``tooth_model`` attribute).
+    ltca : xarray.Dataset, optional
+        The upstream LTCA dataset (its ``tooth_model`` and ``contact_law`` attributes).
+
+    Returns
+    -------
+    dict of str to str
+        ``tooth_model`` and, for ``ltca`` and ``contact``, ``contact_law``.
+    """
     if excitation == "ltca" and ltca is not None:
         return {"tooth_model": str(ltca.attrs.get("tooth_model", method)),
                 "contact_law": str(ltca.attrs.get("contact_law", contact_law))}

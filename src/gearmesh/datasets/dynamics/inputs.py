@@ -24,7 +24,23 @@ DEFAULT_SPEEDS = jsonable(settings_object(Dynamics, {}).speeds_rpm)
 
 def parse_speeds(text: str) -> dict[str, float] | list[float]:
     """'START:STOP:STEP' (rpm) as {start, stop, step}, or 'SPEED' as [speed]: the forms of a
-    study's ``speeds_rpm`` (GearmeshInputError naming ``speeds_rpm``)."""
+    study's ``speeds_rpm`` (GearmeshInputError naming ``speeds_rpm``).
+
+    Parameters
+    ----------
+    text : str
+        ``'START:STOP:STEP'`` or ``'SPEED'`` (r/min), e.g. from a command-line option.
+
+    Returns
+    -------
+    dict or list of float
+        ``{start, stop, step}`` (r/min) or ``[speed]`` (r/min); checked by :func:`speed_grid`.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``speeds_rpm`` when the text is not numbers or has neither one nor three parts.
+    """
     try:
         values = [float(p) for p in text.split(":")]
     except ValueError:
@@ -41,6 +57,22 @@ def speed_grid(speeds: Mapping[str, float] | Sequence[float] | str | float) -> n
 
     Refuses non-positive or non-finite speeds, stop < start, step <= 0 and more than
     :data:`MAX_SPEEDS` speeds (GearmeshInputError naming ``speeds_rpm``).
+
+    Parameters
+    ----------
+    speeds : Mapping or sequence of float or str or float
+        ``{start, stop, step}`` (r/min, stop included when on the grid), a list of speeds (r/min),
+        ``'START:STOP:STEP'`` or one speed (r/min).
+
+    Returns
+    -------
+    numpy.ndarray
+        The speeds (S,) (r/min).
+
+    Raises
+    ------
+    GearmeshInputError
+        ``speeds_rpm`` (or ``speeds_rpm.start``, ``.stop``, ``.step``, an unknown key) naming the rule broken.
     """
     if isinstance(speeds, str):
         speeds = parse_speeds(speeds)
@@ -75,6 +107,25 @@ def speed_grid(speeds: Mapping[str, float] | Sequence[float] | str | float) -> n
 
 
 def positive_torque(name: str, value) -> float:
+    """``value`` as a float when it is a positive finite number (a torque, force or frequency at the boundary).
+
+    Parameters
+    ----------
+    name : str
+        The setting's name, for the error (``torque_Nm``, ``static_force_N``, ``mesh_frequency_Hz``).
+    value : float
+        The value given, in the unit its name carries (N m, N, Hz).
+
+    Returns
+    -------
+    float
+        ``value``, in its given unit.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``name`` when ``value`` is not a positive finite number (a bool refused).
+    """
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
         raise GearmeshInputError(name, value, "must be a positive finite number (N m)")
     return float(value)
@@ -100,7 +151,20 @@ def _bearing(k_radial_N_per_m, k_axial_N_per_m, c_radial_Ns_per_m, c_axial_Ns_pe
 
 
 def supports_note(pair: GearPair, bearing_k_radial_N_per_m="pair", bearing_k_axial_N_per_m="pair") -> str:
-    """The supports a dynamics result used, one sentence (dataset attrs, CLI JSON)."""
+    """The supports a dynamics result used, one sentence (dataset attrs, CLI JSON).
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its own supports and Young's modulus, Pa).
+    bearing_k_radial_N_per_m, bearing_k_axial_N_per_m : float or 'pair'
+        The study's bearing stiffnesses (N/m) of both gears; ``'pair'`` the pair file's supports.
+
+    Returns
+    -------
+    str
+        The supports as the result used them.
+    """
     own = pair.supports.describe(pair.material.youngs_modulus)
     if bearing_k_radial_N_per_m == "pair" and bearing_k_axial_N_per_m == "pair":
         return own
@@ -127,7 +191,25 @@ def _solver(settings: Dynamics | TrainDynamics) -> SolverSettings:
 def slice_grid(slices: int | None, positions: int | None) -> tuple[int, int]:
     """The slice model's grid (slices, positions) of a dynamics run given no stiffness dataset: the
     stiffness stage's (:class:`gearmesh.settings.Stiffness`; its declared default where None),
-    keywords of the Python API beside the section (a study's dynamics reads the stiffness stage)."""
+    keywords of the Python API beside the section (a study's dynamics reads the stiffness stage).
+
+    Parameters
+    ----------
+    slices : int or None
+        Slices across the face width; None the stiffness stage's default.
+    positions : int or None
+        Mesh positions over one mesh cycle; None the stiffness stage's default.
+
+    Returns
+    -------
+    (int, int)
+        (slices, positions), checked against :class:`gearmesh.settings.Stiffness`.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``slices`` or ``positions`` outside its declaration.
+    """
     grid = settings_object(Stiffness, {k: v for k, v in (("slices", slices), ("positions", positions))
                                        if v is not None})
     return grid.slices, grid.positions
@@ -135,13 +217,35 @@ def slice_grid(slices: int | None, positions: int | None) -> tuple[int, int]:
 
 def settings_speeds(speeds_rpm) -> np.ndarray:
     """The speeds (rpm) of a parsed ``speeds_rpm`` (a :class:`gearmesh.settings.SpeedRange` or a
-    tuple) as :func:`speed_grid` reads them."""
+    tuple) as :func:`speed_grid` reads them.
+
+    Parameters
+    ----------
+    speeds_rpm : SpeedRange or tuple of float
+        The parsed section's ``speeds_rpm`` (r/min).
+
+    Returns
+    -------
+    numpy.ndarray
+        The speeds (S,) (r/min), refused (GearmeshInputError naming ``speeds_rpm``) as :func:`speed_grid` does.
+    """
     return speed_grid(jsonable(speeds_rpm))
 
 
 def table_keywords(settings: Dynamics | TrainDynamics) -> dict[str, Any]:
     """The contact-table settings of parsed ``settings`` as :func:`contact_tables` takes them beside the
-    section's contact model (``settings.contact_model()``)."""
+    section's contact model (``settings.contact_model()``).
+
+    Parameters
+    ----------
+    settings : Dynamics or TrainDynamics
+        The parsed section.
+
+    Returns
+    -------
+    dict of str to Any
+        ``table_positions``, ``table_approaches`` and ``table_force_factor`` (a factor on F_bt).
+    """
     return {k: getattr(settings, k) for k in _TABLE_KEYS}
 
 
@@ -163,7 +267,18 @@ def _backlash(geom: PairGeometry, backlash_um) -> float | None:
 
 
 def backlash_source(backlash_um) -> str:
-    """Where the backlash of a result came from, for its ``backlash_source`` attribute."""
+    """Where the backlash of a result came from, for its ``backlash_source`` attribute.
+
+    Parameters
+    ----------
+    backlash_um : float or 'pair' or None
+        The section's ``backlash_um``: a number (µm), the pair's own or none.
+
+    Returns
+    -------
+    str
+        "the pair's own (centre distance and shifts)", "given" or "none".
+    """
     return ("the pair's own (centre distance and shifts)" if backlash_um == "pair"
             else ("none" if backlash_um is None else "given"))
 

@@ -44,7 +44,35 @@ def build_pair_model(pair: GearPair, torque_Nm: float, *, slices: int | None = N
     """The 8-DOF model of ``pair`` at one torque ``torque_Nm`` (N·m, on ``section``'s ``on``):
     ``section`` is a study's ``dynamics:`` section (keywords, :class:`gearmesh.settings.Dynamics`:
     every default and bound there), parsed once; ``slices`` and ``positions`` the slice grid without
-    a ``stiffness`` dataset (:func:`.inputs.slice_grid`); the model as :func:`pair_model_of` builds it."""
+    a ``stiffness`` dataset (:func:`.inputs.slice_grid`); the model as :func:`pair_model_of` builds it.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its supports, body and micro-geometry).
+    torque_Nm : float
+        Torque (N·m) on the section's ``on`` gear, > 0.
+    slices, positions : int, optional
+        Slice grid of the stiffness computed without a ``stiffness`` dataset (the stiffness stage's defaults).
+    stiffness, ltca : xarray.Dataset, optional
+        The variant's stiffness and LTCA results.
+    table : MeshForceTable, optional
+        The ``contact`` excitation's mesh force table (built from the section when left out).
+    **section
+        The ``dynamics:`` section's keys, engineering units (:class:`gearmesh.settings.Dynamics`).
+
+    Returns
+    -------
+    GearModel
+        The 8-DOF model, SI (:func:`gearmesh.dynamics.pair_model`).
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the section key out of its declaration, ``torque_Nm`` beyond the pair's load limits,
+        ``excitation`` ``ltca`` without an LTCA dataset, ``transmission_error_um`` given beside an
+        LTCA or contact excitation.
+    """
     s = settings_object(Dynamics, section)
     return pair_model_of(pair, torque_Nm, s, resolve_excitation(s.excitation, ltca), slice_grid(slices, positions),
                          stiffness=stiffness, ltca=ltca, table=table)
@@ -122,7 +150,27 @@ def pair_model_of(pair: GearPair, torque_Nm: float, settings: Dynamics, excitati
 def resonance_refined(grid: np.ndarray, model: GearModel, harmonics: Sequence[int] = (1, 2, 3)) -> np.ndarray:
     """``grid`` plus the speeds around every resonance speed inside it
     (:func:`gearmesh.dynamics.resonance_band`), so a peak is resolved rather than caught by two
-    points of the grid. Sorted, unique; at most :data:`MAX_SPEEDS`."""
+    points of the grid. Sorted, unique; at most :data:`MAX_SPEEDS`.
+
+    Parameters
+    ----------
+    grid : numpy.ndarray
+        Pinion speeds (S,) (r/min).
+    model : GearModel
+        The linearised model whose resonance speeds are added.
+    harmonics : sequence of int, default (1, 2, 3)
+        Mesh-frequency harmonics whose resonances are refined.
+
+    Returns
+    -------
+    numpy.ndarray
+        The refined speeds (r/min), sorted and unique.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``speeds_rpm`` when the refined grid exceeds :data:`MAX_SPEEDS`.
+    """
     extra = resonance_band(model, float(grid.min()), float(grid.max()), harmonics)
     out = np.unique(np.concatenate([grid, extra]))
     if out.size > MAX_SPEEDS:
@@ -212,43 +260,57 @@ def dynamics_dataset(pair: GearPair, *, variant: str = "", slices: int | None = 
     solver in :mod:`gearmesh.dynamics`). Dimensions (torque, speed) and, for the kept series,
     (torque, sample_speed, sample).
 
-    ``section`` is a study's ``dynamics:`` section (keywords, :class:`gearmesh.settings.Dynamics`:
-    every default and bound there), parsed once (:func:`gearmesh.schema.settings_object`); a bad
-    value is refused naming its key. ``variant`` names the micro-geometry variant; ``stiffness``,
-    ``ltca`` and ``fe_compliance`` are the variant's upstream results; ``slices`` and ``positions``
-    the slice grid without a ``stiffness`` dataset (:func:`slice_grid`).
-
-    Settings (engineering units)
-    ----------------------------
+    Parameters
+    ----------
+    pair : GearPair
+        The pair (its supports, body and micro-geometry).
+    variant : str, default ""
+        Name of the micro-geometry variant (recorded).
+    slices, positions : int, optional
+        Slice grid without a ``stiffness`` dataset (:func:`slice_grid`; the stiffness stage's defaults).
+    stiffness, ltca, fe_compliance : xarray.Dataset, optional
+        The variant's upstream stiffness, LTCA and finite-element tooth tables.
+    **section
+        A study's ``dynamics:`` section (:class:`gearmesh.settings.Dynamics`: every default and bound there), parsed
+        once (:func:`gearmesh.schema.settings_object`); its keys, engineering units, follow. A bad value, and
+        ``excitation`` ``ltca`` without an LTCA dataset, raise GearmeshInputError naming the key (limits included).
     torques_Nm : T (N·m) > 0, one or a list, acting on ``on`` ('pinion' or 'gear').
     speeds_rpm : pinion speeds {start, stop, step} (stop included), a list or 'a:b:c'.
-    backlash_um : total backlash 2b0 (µm) along the normal; 'pair' the pair's own (from its
-        centre distance and shifts; the dataset says which); null = none.
-    bearing_* : bearing stiffness (N/m) and damping (N·s/m), radial (x, y) and axial (z),
-        the low-fluctuation paper values by default.
+    backlash_um : total backlash 2b0 (µm) along the normal; 'pair' the pair's own (from its centre distance and
+        shifts; the dataset says which); null = none.
+    bearing_* : bearing stiffness (N/m) and damping (N·s/m), radial (x, y) and axial (z), the low-fluctuation paper's
+        values by default.
     damping_ratio : mesh damping ratio ζ (-), or ``mesh_damping_Ns_per_m`` directly.
     stiffness_form : 'fourier' (order ``fourier_order``, the improved potential-energy paper) or 'table'.
-    excitation : 'contact' (the real tooth contact, :mod:`gearmesh.meshforce`: the table is built
-        per torque (its mesh misalignment) from ``method``, ``contact_law``, ``points``,
-        ``table_positions``, ``table_approaches`` and ``table_force_factor`` × the largest static
-        force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error at each torque),
-        'tvms' (the slice stiffness with ``transmission_error_um`` or none, plus the tip-edge contact
-        the LTCA loads beyond the active zone at the torque), 'lste' (the low-fluctuation paper literal); null: 'ltca' with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
+    excitation : 'contact' (the real tooth contact, :mod:`gearmesh.meshforce`: the table is built per torque (its mesh
+        misalignment) from ``method``, ``contact_law``, ``points``, ``table_positions``, ``table_approaches`` and
+        ``table_force_factor`` × the largest static force), 'ltca' (the ``ltca`` dataset's loaded stiffness and error
+        at each torque), 'tvms' (the slice stiffness with ``transmission_error_um`` or none, plus the tip-edge contact
+        the LTCA loads beyond the active zone at the torque), 'lste' (the low-fluctuation paper literal); null: 'ltca'
+        with an ``ltca`` dataset, else 'tvms'. See :mod:`gearmesh.dynamics`.
     method : slice model (and of the contact table).
-    sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over
-        the record window) and spectra (to ``max_order`` mesh orders) are kept.
+    sample_speeds_rpm : speeds whose time series (``points_per_cycle`` per mesh period over the record window) and
+        spectra (to ``max_order`` mesh orders) are kept.
     courant, steps_per_cycle_min, transient_tau, record_cycles, steady_state : solver rules
         (:class:`gearmesh.dynamics.SolverSettings`).
-    refine_resonances : add speeds around the resonance speeds the linearised model predicts
-        at each torque (:func:`resonance_refined`; ``on_grid`` marks the configured speeds).
+    refine_resonances : add speeds around the resonance speeds the linearised model predicts at each torque
+        (:func:`resonance_refined`; ``on_grid`` marks the configured speeds).
 
-    Two displacements of the mesh are reported, both along the transverse line of action
-    (the direction of the LTCA's ``lte``): the dynamic transmission error ``dynamic_te_*``
-    (the approach of the gear bodies, δ + e, statically the loaded TE) and the mesh deflection
-    ``mesh_deflection_*`` (δ, statically F/k; with ``contact`` the approach beyond the first
-    touch). ``torsional_std`` is the relative rotation alone, what encoders read when the gear
-    centres move too. With ``contact``, the entering pair: ``entering_pair_force_max``,
+    Two displacements of the mesh are reported, both along the transverse line of action (the direction of the
+    LTCA's ``lte``): the dynamic transmission error ``dynamic_te_*`` (the approach of the gear bodies, δ + e,
+    statically the loaded TE) and the mesh deflection ``mesh_deflection_*`` (δ, statically F/k; with ``contact`` the
+    approach beyond the first touch). ``torsional_std`` is the relative rotation alone, what encoders read when the
+    gear centres move too. With ``contact``, the entering pair: ``entering_pair_force_max``,
     ``dynamic_impact_force``, ``mesh_in_roll_before_A`` (:func:`_contact_vars`).
+
+    Returns
+    -------
+    xarray.Dataset
+        Variables with ``units`` and ``long_name``; the model choices and provenance in the attributes.
+
+    References
+    ----------
+    .. [1] [untitled] *Low mesh-stiffness fluctuation design of helical gears*, section 4.
     """
     s = settings_object(Dynamics, section)
     geom = pair_geometry(pair)
@@ -382,7 +444,29 @@ def _engagement_roll(geom: PairGeometry) -> float:
 def dynamics_summary(pair: GearPair, *, ltca: xr.Dataset | None = None, progress=None,
                      **section: Any) -> list[dict[str, float]]:
     """The per-speed summary (:func:`pair_summary`) of ``section``, a study's ``dynamics:`` section
-    (keywords, :class:`gearmesh.settings.Dynamics`) at one torque, parsed once."""
+    (keywords, :class:`gearmesh.settings.Dynamics`) at one torque, parsed once.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+    ltca : xarray.Dataset, optional
+        The variant's LTCA (the ``ltca`` excitation).
+    progress : callable, optional
+        Called with the fraction of the RK4 steps done (0–1).
+    **section
+        The ``dynamics:`` section's keys, engineering units, with one torque.
+
+    Returns
+    -------
+    list of dict
+        One row per speed, as :func:`pair_summary`.
+
+    Raises
+    ------
+    GearmeshInputError
+        Naming the section key out of its declaration, ``torques_Nm`` when more than one.
+    """
     return pair_summary(pair, settings_object(Dynamics, section), ltca=ltca, progress=progress)
 
 
@@ -393,7 +477,29 @@ def pair_summary(pair: GearPair, settings: Dynamics, *, ltca: xr.Dataset | None 
     mesh_deflection_mean_um (all three along the transverse line of action, as the LTCA's
     lte_mean_um; :func:`dynamics_dataset`), mesh_force_mean_normal_N, mesh_force_min_normal_N, mesh_force_max_normal_N
     (normal force), dynamic_factor, contact_loss_fraction; with the ``contact`` excitation also
-    entering_pair_force_max_normal_N, dynamic_impact_force_normal_N (normal) and mesh_in_roll_before_A_mm."""
+    entering_pair_force_max_normal_N, dynamic_impact_force_normal_N (normal) and mesh_in_roll_before_A_mm.
+
+    Parameters
+    ----------
+    pair : GearPair
+        The pair.
+    settings : gearmesh.settings.Dynamics
+        The parsed ``dynamics:`` section, one torque.
+    ltca : xarray.Dataset, optional
+        The variant's LTCA (the ``ltca`` excitation).
+    progress : callable, optional
+        Called with the fraction of the RK4 steps done (0–1).
+
+    Returns
+    -------
+    list of dict of str to float
+        One row per speed, the units in the key names (rpm, Hz, µm, N, mm; factors dimensionless).
+
+    Raises
+    ------
+    GearmeshInputError
+        ``torques_Nm`` when it is not one torque; ``speeds_rpm`` beyond the pair's speed limits.
+    """
     s = settings
     torques = positive_values(s.torques_Nm, "torques_Nm", "N m")
     if torques.size != 1:

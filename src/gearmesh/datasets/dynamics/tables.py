@@ -109,6 +109,26 @@ def engagement_table_dataset(impact: Sequence[xr.Dataset], dynamics: Sequence[xr
     force, the dynamic mesh-in roll, the peak mesh force, and the peak mesh force over the whole
     sweep. Every force transverse (the impact stage's direction: normal × cos βb), so F_s and
     the dynamics stand in one unit. Torques are those both stages ran (pinion torques).
+
+    Parameters
+    ----------
+    impact : sequence of xarray.Dataset
+        The ``impact.nc`` of every variant of one pair (its ``design_speed_rpm`` attribute, r/min).
+    dynamics : sequence of xarray.Dataset
+        The ``dynamics.nc`` of the same variants, each with the ``contact`` excitation.
+
+    Returns
+    -------
+    xarray.Dataset
+        Forces (N, transverse), rolls (m) and force ratios (1) on (variant, torque), torque the pinion
+        torque T1 (N m);
+        attributes ``design_speed_rpm``, ``dynamics_speed_rpm`` and each stage's tooth model and contact law.
+
+    Raises
+    ------
+    GearmeshInputError
+        ``variants`` when the two cover different variants, ``dynamics.excitation`` when a dynamics
+        result was not driven by the contact, ``dynamics.torques_Nm`` when they share no torque.
     """
     names, by_name = _engagement_inputs(impact, dynamics)
     torques = _shared_torques(impact, dynamics)

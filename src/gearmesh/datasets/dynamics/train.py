@@ -47,10 +47,31 @@ def train_dataset(pair: GearPair, *, slices: int | None = None, positions: int |
     driven by the pair's mesh force table, settings as :func:`dynamics_dataset`).
     Time series and spectra are kept at every speed (give few).
 
-    ``section`` is a study's ``train_dynamics:`` section (keywords,
-    :class:`gearmesh.settings.TrainDynamics`: every default and bound there), parsed once
-    (:func:`gearmesh.schema.settings_object`); ``stiffness`` and ``fe_compliance`` are the upstream results;
-    ``slices`` and ``positions`` the slice grid without a ``stiffness`` dataset (:func:`.inputs.slice_grid`).
+    Parameters
+    ----------
+    pair : GearPair
+        The pair whose gear is repeated three times.
+    slices, positions : int, optional
+        Slice grid without a ``stiffness`` dataset (:func:`.inputs.slice_grid`; the stiffness stage's defaults).
+    stiffness, fe_compliance : xarray.Dataset, optional
+        The upstream stiffness result and finite-element tooth tables.
+    **section
+        A study's ``train_dynamics:`` section (:class:`gearmesh.settings.TrainDynamics`: every default and bound
+        there), parsed once (:func:`gearmesh.schema.settings_object`); engineering units (``torque_Nm`` N·m on the
+        plate gear, ``static_force_N`` N, ``mesh_frequency_Hz`` Hz). A bad value raises GearmeshInputError naming
+        the key (neither ``torque_Nm`` nor ``static_force_N``, load and speed limits, :data:`MAX_TRAIN_SPEEDS`).
+
+    Returns
+    -------
+    xarray.Dataset
+        On ``speed`` (r/min), ``gear``, ``direction`` (y, z), ``mesh``, ``mode``, ``sample_speed`` and ``order``;
+        variables with ``units`` and ``long_name``, the model choices and provenance in the attributes.
+
+    References
+    ----------
+    .. [1] *A Comprehensive Study on Meshing Characteristics of Helical Gear Pairs Using an Improved
+       Potential Energy Method for Time-Varying Meshing Stiffness* (the 9-DOF three-gear train).
+    .. [2] [untitled] *Low mesh-stiffness fluctuation design of helical gears* (the bearings).
     """
     s = settings_object(TrainDynamics, section)
     geom = pair_geometry(pair)
