@@ -88,7 +88,7 @@ def stage_settings(section: str, run: str | None = None, config: dict | None = N
     """The settings the workflow hands the stage of config section ``section`` (its run ``run``
     for a stage per run), as workflow/rules/common.smk's stage_params builds them: the section
     (or the run's entry) and the sections its stage declaration carries."""
-    from gearmesh.settings import stage_of
+    from gearmesh.registry import stage_of
 
     config = study_config() if config is None else config
     own = config[section][run] if run is not None else config.get(section, {})

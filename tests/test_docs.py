@@ -243,3 +243,20 @@ def test_every_test_file_is_in_the_tests_index_once(root):
         importlib.import_module(module)
         parts = module.split(".")[1:]
         assert name == "_".join(parts), (name, module)
+
+
+def test_every_gearmesh_name_the_benchmarks_and_scripts_import_exists(root):
+    """The benchmarks run only in .ci/run (never imported by pytest), and a name moved in the package
+    broke them unseen twice: every ``from gearmesh... import name`` in benchmarks/ and scripts/, at any
+    depth (imports inside functions too), names something that exists."""
+    import ast
+    import importlib.util
+
+    missing = []
+    for path in sorted([*(root / "benchmarks").glob("*.py"), *(root / "scripts").glob("**/*.py")]):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and node.level == 0 and (node.module or "").startswith("gearmesh"):
+                module = importlib.import_module(node.module)
+                missing += [f"{path.name}: {node.module}.{a.name}" for a in node.names
+                            if not hasattr(module, a.name) and importlib.util.find_spec(f"{node.module}.{a.name}") is None]
+    assert not missing, missing
