@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
+import xarray as xr
 from test_datasets_signoff import _table, _variant
 
 from gearmesh.datasets.signoff import CRITERIA
@@ -75,3 +76,13 @@ def test_a_criterion_the_table_gains_appears_without_a_change():
     t["meets_held_out"] = flag.astype(np.int8)
     v = signoff_verdict_dataset([t])
     assert set(v["held out (nominal)"].values.ravel()) == {MARKS[True]}  # no margin declared: the flag alone
+
+
+@pytest.mark.parametrize("count", [0, 2])
+def test_the_verdict_is_of_one_table(count):
+    """A list of no table or of two is refused by name, not by a bare unpacking error."""
+    from gearmesh.datasets.verdict import signoff_verdict_dataset
+    from gearmesh.errors import GearmeshInputError
+
+    with pytest.raises(GearmeshInputError, match=rf"^signoff = {count}: must be one sign-off table"):
+        signoff_verdict_dataset([xr.Dataset()] * count)

@@ -4,6 +4,7 @@ eigen-solution, step halving, backlash, the train's torque balance, batch RK4 ag
 from __future__ import annotations
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -424,3 +425,14 @@ def test_the_dynamics_comparison_takes_its_section_whole(section, field):
     with pytest.raises(GearmeshInputError) as info:
         dynamics_comparison_dataset([], **section)
     assert info.value.field == field
+
+
+@pytest.mark.parametrize("name, unit", [("torque_Nm", "(N m)"), ("static_force_N", "(N)"), ("mesh_frequency_Hz", "(Hz)")])
+def test_a_non_positive_boundary_quantity_is_refused_in_its_own_unit(name, unit):
+    """The train's torque, static force and mesh frequency share one check; each refusal says its own unit."""
+    from gearmesh.datasets.dynamics import positive_quantity
+
+    for bad in (0.0, -1.0, float("nan"), True, "5"):
+        with pytest.raises(GearmeshInputError, match=rf"^{name} = .*: must be a positive finite number {re.escape(unit)}$"):
+            positive_quantity(name, bad)
+    assert positive_quantity(name, 2) == 2.0

@@ -446,13 +446,13 @@ def cmd_dynamics(args: argparse.Namespace) -> dict[str, Any]:
     """
     from .datasets.dynamics.checks import check_dynamics_settings
     from .datasets.dynamics.excitation import model_choices
-    from .datasets.dynamics.inputs import positive_torque, supports_note
+    from .datasets.dynamics.inputs import positive_quantity, supports_note
     from .datasets.dynamics.pair import pair_summary
     from .dynamics import DAMPING_MEANING
     from .schema import settings_object
     from .settings import Dynamics
 
-    positive_torque("torque_Nm", args.torque_Nm)
+    positive_quantity("torque_Nm", args.torque_Nm)
     pair, geom = _pair(args)
     s = settings_object(Dynamics, _dynamics_section(args))
     check_dynamics_settings(pair, s)

@@ -177,8 +177,10 @@ def signoff_verdict_dataset(signoff: Sequence[xr.Dataset]) -> xr.Dataset:
     Raises
     ------
     GearmeshInputError
-        Naming ``variants`` when the table holds the reference alone.
+        Naming ``signoff`` when it is not one table, ``variants`` when the table holds the reference alone.
     """
+    if len(signoff) != 1:
+        raise GearmeshInputError("signoff", len(signoff), "must be one sign-off table (a list of one)")
     (table,) = signoff
     reference = table.attrs["reference"]
     keep = [v for v in table["variant"].values if v != reference]

@@ -390,7 +390,7 @@ def train_figures(inputs, outputs) -> None:
     plot_force_spectrum(inputs["train"], outputs["spectrum"])
 
 
-def plot_dynamics_comparison(datasets, path) -> None:
+def plot_dynamics_comparison(datasets, path) -> Path:
     """Mesh-deflection std and pinion lateral (y) and axial (z) velocity RMS against speed, all pairs.
 
     Parameters
@@ -403,7 +403,8 @@ def plot_dynamics_comparison(datasets, path) -> None:
 
     Returns
     -------
-    None
+    Path
+        The PNG written.
 
     References
     ----------
@@ -426,7 +427,7 @@ def plot_dynamics_comparison(datasets, path) -> None:
         ax.grid(alpha=0.3, which="both")
     axes[0].legend(fontsize=8)
     axes[0].set_title("speed sweeps of the study's pairs (standard variant)")
-    _save(fig, path)
+    return _save(fig, path)
 
 
 def dynamics_comparison_figures(inputs, outputs) -> None:

@@ -377,7 +377,7 @@ def _tolerance_spread(ax, sets, colors) -> None:
 ROBUSTNESS_PANELS = (("window_impact_force", _load_windows), ("population_impact_force", _tolerance_spread))
 
 
-def plot_robustness(sets: Sequence[xr.Dataset], path) -> None:
+def plot_robustness(sets: Sequence[xr.Dataset], path) -> Path:
     """The variants side by side off the design point: F_s against torque on a fine grid with each
     variant's load window, and the spread of F_s under the manufacturing tolerance samples at each
     study torque (the panels of :data:`ROBUSTNESS_PANELS` whose data the variants have).
@@ -392,7 +392,8 @@ def plot_robustness(sets: Sequence[xr.Dataset], path) -> None:
 
     Returns
     -------
-    None
+    Path
+        The PNG written.
     """
     panels = [draw for need, draw in ROBUSTNESS_PANELS if all(need in ds for ds in sets)]
     fig, axes = subplots(1, max(len(panels), 1), figsize=(6.4 * max(len(panels), 1), 5.0), squeeze=False)
@@ -404,4 +405,4 @@ def plot_robustness(sets: Sequence[xr.Dataset], path) -> None:
                         va="center", transform=axes[0, 0].transAxes)
         axes[0, 0].set_axis_off()
     fig.suptitle(_title(sets[0], "off the design point: load windows and manufacturing tolerances"), fontsize=10)
-    _save(fig, path)
+    return _save(fig, path)

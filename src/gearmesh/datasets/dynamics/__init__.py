@@ -17,7 +17,7 @@ module.
 
 from .checks import check_dynamics_settings
 from .excitation import contact_table, contact_tables, excitation_used, ltca_excitation, model_choices, resolve_excitation
-from .inputs import (DEFAULT_SPEEDS, PAIR_EXCITATIONS, STEADY_STATES, parse_speeds, positive_torque, speed_grid,
+from .inputs import (DEFAULT_SPEEDS, PAIR_EXCITATIONS, STEADY_STATES, parse_speeds, positive_quantity, speed_grid,
                      supports_note)
 from .pair import build_pair_model, dynamics_dataset, dynamics_summary, resonance_refined
 from .tables import dynamics_comparison_dataset, engagement_table_dataset
@@ -28,6 +28,6 @@ __all__ = [
     "DEFAULT_SPEEDS", "DYNAMIC_TE", "MESH_DEFLECTION", "PAIR_EXCITATIONS", "PRINTING_TRAIN_MESH_FREQUENCY_HZ",
     "PRINTING_TRAIN_STATIC_FORCE_N", "STEADY_STATES", "build_pair_model", "check_dynamics_settings", "contact_table",
     "contact_tables", "dynamics_comparison_dataset", "dynamics_dataset", "dynamics_summary", "engagement_table_dataset",
-    "excitation_used", "ltca_excitation", "model_choices", "parse_speeds", "positive_torque", "resolve_excitation",
+    "excitation_used", "ltca_excitation", "model_choices", "parse_speeds", "positive_quantity", "resolve_excitation",
     "resonance_refined", "speed_grid", "supports_note", "train_dataset",
 ]

@@ -17,7 +17,7 @@ from ...stiffness import mesh_stiffness
 from ...schema import jsonable, settings_object
 from ...settings import Dynamics, TrainDynamics
 from .excitation import resolve_excitation
-from .inputs import (_backlash, _bearing, _solver, _table_settings, positive_torque, settings_speeds, speed_grid,
+from .inputs import (_backlash, _bearing, _solver, _table_settings, positive_quantity, settings_speeds, speed_grid,
                      table_keywords)
 from .pair import pair_model_of
 
@@ -116,14 +116,14 @@ def _train_estimate(pair: GearPair, s: TrainDynamics, coarse: int) -> tuple[np.n
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
     if s.speeds_rpm is None:
-        speeds = np.array([positive_torque("mesh_frequency_Hz", s.mesh_frequency_Hz) * 60.0 / pair.teeth[1]])
+        speeds = np.array([positive_quantity("mesh_frequency_Hz", s.mesh_frequency_Hz) * 60.0 / pair.teeth[1]])
     else:
         speeds = settings_speeds(s.speeds_rpm)
     check_speeds(geom, speeds, "speeds_rpm", on="gear")
     if s.torque_Nm is not None:
-        torque = positive_torque("torque_Nm", s.torque_Nm)
+        torque = positive_quantity("torque_Nm", s.torque_Nm)
     else:
-        torque = positive_torque("static_force_N", s.static_force_N) \
+        torque = positive_quantity("static_force_N", s.static_force_N) \
             * float(geom.base_radius[1]) * math.cos(geom.base_helix_angle)
     if speeds.size > MAX_TRAIN_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",

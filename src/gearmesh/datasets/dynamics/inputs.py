@@ -15,7 +15,7 @@ from ...contact_model import TABLE_CONTACT, ContactModel
 from ...errors import GearmeshInputError
 from ...gear import GearPair, PairGeometry
 from ...limits import BEARING_STIFFNESS, MAX_SPEEDS, MAX_TABLE_POINTS
-from ...schema import check_value, defaults, jsonable, key_of, settings_fields, settings_object
+from ...schema import UNIT_SUFFIXES, check_value, defaults, jsonable, key_of, settings_fields, settings_object
 from ...settings import Dynamics, PairExcitation, SteadyState, Stiffness, TrainDynamics
 
 #: The pair sweep's default speeds {start, stop, step} (rpm): the declared one (:class:`gearmesh.settings.Dynamics`).
@@ -106,7 +106,7 @@ def speed_grid(speeds: Mapping[str, float] | Sequence[float] | str | float) -> n
     return arr
 
 
-def positive_torque(name: str, value) -> float:
+def positive_quantity(name: str, value) -> float:
     """``value`` as a float when it is a positive finite number (a torque, force or frequency at the boundary).
 
     Parameters
@@ -127,7 +127,8 @@ def positive_torque(name: str, value) -> float:
         ``name`` when ``value`` is not a positive finite number (a bool refused).
     """
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value) or value <= 0:
-        raise GearmeshInputError(name, value, "must be a positive finite number (N m)")
+        unit = next((u for suffix, u in UNIT_SUFFIXES if name.endswith(suffix)), "")
+        raise GearmeshInputError(name, value, f"must be a positive finite number{f' ({unit})' if unit else ''}")
     return float(value)
 
 

@@ -29,7 +29,7 @@ from ...schema import settings_object
 from ...settings import Dynamics
 from .excitation import (_stiffness_curve, _transmission_error, contact_table, contact_tables, excitation_used,
                          ltca_excitation, model_choices, resolve_excitation)
-from .inputs import (SECTION_KEYS, _backlash, _bearing, _solver, backlash_source, positive_torque, settings_speeds,
+from .inputs import (SECTION_KEYS, _backlash, _bearing, _solver, backlash_source, positive_quantity, settings_speeds,
                      slice_grid, speed_grid, supports_note, table_keywords)
 from .variables import _common_vars, _modal_vars, _series_arrays, _series_vars, _vibration_vars
 
@@ -115,7 +115,7 @@ def pair_model_of(pair: GearPair, torque_Nm: float, settings: Dynamics, excitati
     s, exc, (slices, positions) = settings, excitation, grid
     geom = pair_geometry(pair)
     require_dynamics_data(geom)
-    torque = positive_torque("torque_Nm", torque_Nm)
+    torque = positive_quantity("torque_Nm", torque_Nm)
     check_load(geom, pinion_torque(pair, torque, s.on), "torque_Nm", torque_Nm)
     if stiffness is None and ltca is None and table is None:
         check_slice_grid(slices, positions)
@@ -507,7 +507,7 @@ def pair_summary(pair: GearPair, settings: Dynamics, *, ltca: xr.Dataset | None 
     torque = float(torques[0])
     exc, table = resolve_excitation(s.excitation, ltca), None
     if exc == "contact":
-        t1 = pinion_torque(pair, positive_torque("torque_Nm", torque), s.on)
+        t1 = pinion_torque(pair, positive_quantity("torque_Nm", torque), s.on)
         table = contact_table(pair_geometry(pair), [t1], s.contact_model(), **table_keywords(s))
     model = pair_model_of(pair, torque, s, exc, slice_grid(None, None), ltca=ltca, table=table)
     grid = settings_speeds(s.speeds_rpm)

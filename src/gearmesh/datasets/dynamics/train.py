@@ -21,7 +21,7 @@ from ...arguments import check_arguments
 from ...schema import defaults, settings_object
 from ...settings import TrainDynamics
 from .excitation import _stiffness_curve, contact_table, excitation_used, model_choices
-from .inputs import (SECTION_KEYS, _backlash, _bearing, _solver, backlash_source, positive_torque, settings_speeds,
+from .inputs import (SECTION_KEYS, _backlash, _bearing, _solver, backlash_source, positive_quantity, settings_speeds,
                      slice_grid, supports_note, table_keywords)
 from .variables import _common_vars, _modal_vars, _series_arrays, _series_vars, _vibration_vars
 
@@ -119,10 +119,10 @@ def _train_torque(pair: GearPair, geom: PairGeometry, torque_Nm: float | None, s
     ``static_force_N``, T = F r_b cos βb; checked against the load limits."""
     rb, cb = float(geom.base_radius[1]), math.cos(geom.base_helix_angle)
     if torque_Nm is not None:
-        torque = positive_torque("torque_Nm", torque_Nm)
+        torque = positive_quantity("torque_Nm", torque_Nm)
         check_load(geom, pinion_torque(pair, torque, "gear"), "torque_Nm", torque_Nm)
     elif static_force_N is not None:
-        torque = positive_torque("static_force_N", static_force_N) * rb * cb
+        torque = positive_quantity("static_force_N", static_force_N) * rb * cb
         check_load(geom, pinion_torque(pair, torque, "gear"), "static_force_N", static_force_N)
     else:
         raise GearmeshInputError("torque_Nm", None, "give torque_Nm or static_force_N")
@@ -133,7 +133,7 @@ def _train_speeds(geom: PairGeometry, speeds_rpm: Any, mesh_frequency_Hz: float)
     """The speeds (rpm) of the gears: ``speeds_rpm``, else the one whose mesh frequency is
     ``mesh_frequency_Hz``; checked, at most :data:`MAX_TRAIN_SPEEDS`."""
     if speeds_rpm is None:
-        f = positive_torque("mesh_frequency_Hz", mesh_frequency_Hz)
+        f = positive_quantity("mesh_frequency_Hz", mesh_frequency_Hz)
         speeds = np.array([f * 60.0 / geom.pair.teeth[1]])
     else:
         speeds = settings_speeds(speeds_rpm)
