@@ -124,7 +124,7 @@ class GearPair:
     modification: tuple[Modification, Modification] = (Modification(), Modification())
     helix_hand: str = "right"
     source: str = ""
-    defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. pairfile.DEFAULT_MATERIAL)
+    defaults: tuple[str, ...] = ()  # pair-file keys not given, filled by defaults (e.g. pair_keys.DEFAULT_MATERIAL)
     supports: Supports = field(default_factory=lambda: read_supports({}))  # bearings and shafts (dynamics)
     body: Body = field(default_factory=Body)  # gear-body webs and hubs (gearmesh.body)
     deviations: Deviations = field(default_factory=Deviations)  # manufacturing deviations (gearmesh.deviation)
