@@ -404,7 +404,7 @@ def _reach_exceeded(model: LTCAModel, q: np.ndarray) -> bool:
 
 
 def ltca(geom: PairGeometry, torques, positions: int = 64, contact: ContactModel = LTCA_CONTACT, lead_slope=None,
-         on: str = "pinion", model: LTCAModel | None = None, misalignment=None) -> LTCAResult:
+         on: str = "pinion", model: LTCAModel | None = None, misalignment=None, tables=None) -> LTCAResult:
     """Loaded TCA at each torque over one mesh cycle (and at the start of engagement φ1A).
 
     When loaded tip edges reach the outer fifth of the candidate zone beyond the active profile, the
@@ -434,6 +434,9 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, contact: ContactModel
         A prepared :class:`~gearmesh.ltca_model.LTCAModel` to reuse (``positions`` and ``contact`` then ignored).
     misalignment : float or array_like, optional
         The mesh misalignment of each torque, m, instead of the pair's own (e.g. the rating's with ISO's f_ma).
+    tables : optional
+        The slice-compliance tables of another pair's teeth to build the model on
+        (:func:`gearmesh.ltca_model.ltca_model`; e.g. the modified pair's for its unmodified reference).
 
     Returns
     -------
@@ -454,7 +457,7 @@ def ltca(geom: PairGeometry, torques, positions: int = 64, contact: ContactModel
     own = model is None
     while True:
         if own:
-            model = ltca_model(geom, positions, contact, lead_slope)
+            model = ltca_model(geom, positions, contact, lead_slope, tables=tables)
         q, delta, k, it = _solve(model, force, misalignment)
         if not _reach_exceeded(model, q):
             break

@@ -219,24 +219,17 @@ def reference_ltca(geom: PairGeometry, res: LTCAResult) -> LTCAResult | None:
         The unmodified pair's LTCA (the tip-edge zone widened as :func:`gearmesh.ltca.ltca` does
         when loaded edges reach its end), or None when the pair has no micro-geometry.
     """
-    from ..ltca_model import ltca_model
-
     base = _unmodified(geom)
     if base is None:
         return None
     m = res.model
-    # res's contact model; the grid keeps the extension in m
+    # res's contact model (the grid keeps the extension in m), the tip-edge zone widened by ltca() itself
     contact = ContactModel(points=res.grid.z.size, contact_law=m.law.name, method=m.method,
                            extension=res.grid.extension / geom.transverse_base_pitch)
-    while True:  # as ltca() widens the tip-edge zone when loaded edges reach its end
-        model = ltca_model(base, res.grid.roll.size, contact, m.lead_slope,
-                           tables=m.tables)  # the teeth's compliance does not see the relief
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", RuntimeWarning)
-            out = ltca(base, res.torque, model=model)
-        if not caught or contact.extension >= 1.0:
-            return out
-        contact = contact.with_(extension=min(1.0, 2.0 * contact.extension))
+    with warnings.catch_warnings():  # loaded edges past a whole base pitch: the reference as far as it reaches
+        warnings.simplefilter("ignore", RuntimeWarning)
+        return ltca(base, res.torque, res.grid.roll.size, contact, m.lead_slope,
+                    tables=m.tables)  # the teeth's compliance does not see the relief
 
 
 def _fe_root_check(geom: PairGeometry, res: LTCAResult, root: np.ndarray) -> dict[str, Any]:
