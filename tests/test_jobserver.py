@@ -123,34 +123,46 @@ def test_a_job_on_the_server_rounds_as_the_one_thread_job_snakemake_runs(root, t
 
 
 @pytest.mark.workflow
-def test_a_job_forked_while_the_helper_compiles_waits_and_loads_the_kernels(root, tmp_path, monkeypatch):
-    """A fresh clone (numba's cache empty: here a cache folder of its own): the server's helper
-    compiles the kernels, and a dynamics job forked meanwhile waits for it and loads the sweep from
-    the cache the helper wrote instead of compiling it a second time (numba's cache log, on the
-    job's standard output: 'data saved' is a compile, 'data loaded' a load)."""
+def test_a_job_forked_while_the_kernels_compile_waits_and_loads_them(root, tmp_path, monkeypatch):
+    """A fresh clone (numba's cache empty: here a cache folder of its own): the run's compiler
+    (started by the Snakefile, or here by the server's start) compiles the kernels, and a dynamics
+    job forked meanwhile waits for it and loads the sweep from the cache the compiler wrote instead
+    of compiling it a second time (numba's cache log, on the job's standard output: 'data saved' is
+    a compile, 'data loaded' a load)."""
     monkeypatch.delenv(jobserver.ENV, raising=False)
     monkeypatch.setenv("NUMBA_CACHE_DIR", str(tmp_path / "numba"))
     monkeypatch.setenv("NUMBA_DEBUG_CACHE", "1")
     path = jobserver.start(["gearmesh.pipeline", "gearmesh.datasets.dynamics"])
     try:
+        assert path is not None
+        compiler = psutil.Process(jobserver._compiler.pid)
         server = psutil.Process(jobserver._server.pid)
-        deadline = time.monotonic() + 60
-        while not server.children() and time.monotonic() < deadline:  # the helper: the first warm step
-            time.sleep(0.01)
-        (helper,) = server.children()
         job = _job(root, tmp_path, "gearmesh.datasets.dynamics:dynamics_dataset",
                    {"speeds_rpm": {"start": 20000, "stop": 30000, "step": 5000}, "sample_speeds_rpm": [27000],
                     "transient_tau": 4.0, "record_cycles": 4, "points_per_cycle": 32, "max_order": 4})
         proc = _script(job, tmp_path, dict(os.environ))
-        while len(server.children()) < 2 and proc.poll() is None:
+        while not server.children() and proc.poll() is None:
             time.sleep(0.01)
-        assert helper.is_running(), "the helper finished before the job started: nothing tested"
+        assert compiler.is_running(), "the compiler finished before the job started: nothing tested"
         out, err = proc.communicate(timeout=300)
         assert proc.returncode == 0, err
         assert "integrate._sweep" in out and "data loaded" in out, out
         assert "data saved" not in out, out
     finally:
         jobserver.stop()
+    assert jobserver._compiler is None and not compiler.is_running()
+
+
+def test_the_compiler_of_a_run_that_ends_early_is_stopped(tmp_path):
+    """A run that ends before its jobs (a dry run, a report, a refused input after the Snakefile
+    started the compiler) does not leave the kernels' compiler running: it is stopped at exit
+    (here with numba's cache empty, so the compiler would otherwise work for seconds)."""
+    code = ("import time; from gearmesh import jobserver; jobserver.compile_ahead(); "
+            "print(jobserver._compiler.pid, flush=True); time.sleep(0.3)")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120,
+                         env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)})
+    assert out.returncode == 0, out.stderr
+    assert not psutil.pid_exists(int(out.stdout.split()[0]))
 
 
 @pytest.mark.workflow
@@ -301,12 +313,11 @@ def test_after_the_warm_steps_a_job_loads_no_kernel_and_imports_nothing_heavy(ro
     and its figures load no compiled kernel (no new numba specialisation: the warm-up used the types
     the jobs use) and import no module of the heavy libraries."""
     code = f"""
-import sys, time, numpy as np
+import os, sys, time, numpy as np
 from gearmesh import jobserver
-children = set()
-steps = jobserver.warm_steps(children)
-while steps:  # as the server runs them (a step answering False waits for its helper child)
-    jobserver._reap(children)
+jobserver.compile_ahead()
+steps = jobserver.warm_steps(os.dup(jobserver._compiled))  # the server's own copy of the compiler's pipe
+while steps:  # as the server runs them (a step answering False waits for the compiler)
     if steps[0]() is not False:
         steps.pop(0)
     else:
@@ -356,7 +367,7 @@ def test_killing_the_controller_stops_the_jobs_on_its_server(root, tmp_path, mon
     try:
         path = parent.stdout.readline().strip()
         assert Path(path).exists(), path
-        server = psutil.Process(parent.pid).children()[0]
+        (server,) = [p for p in psutil.Process(parent.pid).children() if "serve" in p.cmdline()]  # not the compiler
         job = _job(root, tmp_path, "gearmesh.datasets.stiffness:stiffness_dataset", {"slices": 4000, "positions": 720})
         script = _script(job, tmp_path, {**os.environ, jobserver.ENV: path})
         deadline = time.monotonic() + 60

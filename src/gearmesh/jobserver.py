@@ -33,11 +33,13 @@ started the job, and the script runs it itself; one that closes after ``S`` lost
 
 from __future__ import annotations
 
+import atexit
 import functools
 import gc
 import importlib
 import os
 import pickle
+import select
 import shutil
 import signal
 import socket
@@ -58,6 +60,10 @@ STARTED_ENV = "GEARMESH_JOB_STARTED"
 _HEADER = struct.Struct("!Q")
 _CODE = struct.Struct("!i")
 _server: subprocess.Popen | None = None
+#: The process compiling the kernels ahead of the jobs (:func:`compile_ahead`), and the read end of
+#: a pipe whose only write end it holds: end of file once it has exited.
+_compiler: subprocess.Popen | None = None
+_compiled: int | None = None
 #: What Snakemake sets to a job's thread count for the linear-algebra libraries (OpenBLAS reads it
 #: once, when numpy loads it): the server's children are one-thread jobs with the same settings as
 #: the job's own process would have, so that BLAS splits its work, and rounds, as it does there
@@ -226,7 +232,9 @@ def start(modules: Iterable[str], timeout: float = 5.0) -> str | None:
     for the jobs, and return the socket path (None if it did not come up within ``timeout``).
 
     The server runs with one BLAS thread (:data:`THREAD_VARIABLES`) and the malloc settings of
-    :data:`MALLOC_TUNABLES` (the user's own ``GLIBC_TUNABLES`` win).
+    :data:`MALLOC_TUNABLES` (the user's own ``GLIBC_TUNABLES`` win). The kernels' compiler
+    (:func:`compile_ahead`, started here unless the Snakefile already did) is handed to the server,
+    whose jobs wait for it before they would compile a kernel themselves.
 
     Parameters
     ----------
@@ -250,9 +258,10 @@ def start(modules: Iterable[str], timeout: float = 5.0) -> str | None:
     global _server
     folder = tempfile.mkdtemp(prefix="gearmesh-jobs-")  # mode 0700: this user's jobs only
     path = os.path.join(folder, "socket")
-    env = {**os.environ, **dict.fromkeys(THREAD_VARIABLES, "1"), "GLIBC_TUNABLES": _tunables(os.environ)}
-    _server = subprocess.Popen([sys.executable, "-m", "gearmesh.jobserver", path, str(os.getpid()), *modules],
-                               stdin=subprocess.DEVNULL, env=env)
+    compile_ahead()
+    _server = subprocess.Popen([sys.executable, "-m", "gearmesh.jobserver", "serve", path, str(os.getpid()),
+                                str(_compiled), *modules], stdin=subprocess.DEVNULL, env=_environment(),
+                               pass_fds=(_compiled,))
     deadline = time.monotonic() + timeout
     while not os.path.exists(path):
         if _server.poll() is not None or time.monotonic() > deadline:
@@ -261,6 +270,56 @@ def start(modules: Iterable[str], timeout: float = 5.0) -> str | None:
         time.sleep(0.01)
     os.environ[ENV] = path
     return path
+
+
+def compile_ahead() -> None:
+    """Start compiling the numba kernels (:func:`kernels`) in a process of their own, unless this
+    process already started that: a fresh clone's compile (about 5 s of CPU) then runs on a free
+    core while Snakemake reads the Snakefile and builds its DAG, single-threaded, instead of after
+    the server has started. Where numba's cache already holds them the process only checks that
+    (:func:`kernels_cached`) and exits. It ends with this process at the latest (:func:`stop`, or
+    at exit: a dry run, a report).
+
+    Returns
+    -------
+    None
+        The compiler started (``_compiler``; ``_compiled`` reads end of file once it has exited).
+    """
+    global _compiler, _compiled
+    if _compiler is not None:
+        return
+    read, write = os.pipe()
+    _compiler = subprocess.Popen([sys.executable, "-m", "gearmesh.jobserver", "compile"], stdin=subprocess.DEVNULL,
+                                 env=_environment(), pass_fds=(write,))
+    os.close(write)
+    _compiled = read
+    atexit.register(_stop_compiler)
+
+
+def _stop_compiler() -> None:
+    """Stop the kernels' compiler if it still runs (the run is over) and close its pipe."""
+    global _compiler, _compiled
+    if _compiler is not None:
+        if _compiler.poll() is None:
+            _compiler.terminate()
+        _compiler.wait()
+        _compiler = None
+    if _compiled is not None:
+        os.close(_compiled)
+        _compiled = None
+
+
+def _compile() -> None:
+    """The compiler's work (:func:`compile_ahead`): the kernels compiled into numba's cache where
+    it lacks them."""
+    if not kernels_cached():
+        warm_kernels()
+
+
+def _environment() -> dict[str, str]:
+    """The environment of the server and the compiler: this one, with Snakemake's thread variables
+    of a one-thread job and :data:`MALLOC_TUNABLES` (the user's ``GLIBC_TUNABLES`` win)."""
+    return {**os.environ, **dict.fromkeys(THREAD_VARIABLES, "1"), "GLIBC_TUNABLES": _tunables(os.environ)}
 
 
 def _tunables(environ: dict[str, str]) -> str:
@@ -290,6 +349,7 @@ def stop() -> None:
             _server.kill()
             _server.wait()
         _server = None
+    _stop_compiler()
     if path and path != "off":
         shutil.rmtree(os.path.dirname(path), ignore_errors=True)
 
@@ -323,59 +383,37 @@ def rule_modules(rules: Iterable[Any]) -> list[str]:
 # --------------------------------------------------------------------------------------
 
 
-def warm_steps(children: set[int]) -> list[Callable[[], Any]]:
+def warm_steps(compiled: int) -> list[Callable[[], Any]]:
     """What the server does while no job waits, one step at a time (a job that arrives meanwhile
     waits for one step at most; a step that answers False is not done yet and is tried again):
-    first, where numba's cache lacks a kernel (a fresh clone, an edited kernel module), fork a
-    helper that compiles them all (:func:`warm_kernels`), writing the cache, while the server goes
-    on importing and forking jobs; then import :data:`WARM_MODULES`; then load the compiled kernels.
-    A job forked while the helper compiles waits for it when it first calls a kernel and then loads
-    that kernel from the cache (:func:`_after_helper`): each kernel is compiled once per run (the
-    dynamics sweep alone takes seconds), not again by every job that needs it meanwhile.
-    ``children``: the server's running children, which the helper joins (reaped with them, killed
-    with them when the run is).
+    import :data:`WARM_MODULES`, then, once the kernels' compiler (:func:`compile_ahead`) has
+    exited, load the compiled kernels from numba's cache. From the call on, a job forked while the
+    compiler runs waits for it when it first calls a kernel and then loads that kernel from the
+    cache (:func:`_after_compiler`): each kernel is compiled once per run (the dynamics sweep alone
+    takes seconds), not again by every job that needs it meanwhile.
 
     Parameters
     ----------
-    children : set of int
-        Process ids of the server's running children; the compiling helper's is added.
+    compiled : int
+        Read end of the compiler's pipe: end of file once the compiler has exited.
 
     Returns
     -------
     list of callable
         The steps, in order, each called without arguments.
     """
-    helper: list[int] = []
-    release: list[Callable[[], None]] = []
-
-    def compile_aside() -> None:
-        if kernels_cached():
-            return
-        read, write = os.pipe()
-        gc.freeze()  # see serve()
-        pid = os.fork()
-        if pid == 0:
-            try:
-                os.close(read)
-                warm_kernels()
-            finally:
-                os._exit(0)  # closes ``write``: the jobs waiting for the kernels go on
-        os.close(write)
-        helper.append(pid)
-        children.add(pid)
-        release.append(_after_helper(read))
+    release = _after_compiler(compiled)
 
     def load() -> bool:
-        if helper and helper[0] in children:
+        if not select.select([compiled], [], [], 0)[0]:  # readable: end of file, the compiler has exited
             return False
         try:
             warm_kernels()
         finally:
-            for done in release:
-                done()
+            release()
         return True
 
-    return [compile_aside, *(lambda m=m: importlib.import_module(m) for m in WARM_MODULES), _warm_png, load]
+    return [*(lambda m=m: importlib.import_module(m) for m in WARM_MODULES), _warm_png, load]
 
 
 def kernels() -> tuple[Any, ...]:
@@ -409,11 +447,11 @@ def kernels_cached() -> bool:
         return False
 
 
-def _after_helper(done: int) -> Callable[[], None]:
+def _after_compiler(done: int) -> Callable[[], None]:
     """Make this process (and every child it forks from now on) wait, before it compiles any of
     the :func:`kernels`, until the descriptor ``done`` (the read end of a pipe whose only write
-    end the compiling helper holds) reads end of file: the helper has exited, its cache written,
-    and the kernel loads from numba's cache instead of compiling again. A helper that died leaves
+    end the kernels' compiler holds) reads end of file: the compiler has exited, its cache written,
+    and the kernel loads from numba's cache instead of compiling again. A compiler that died leaves
     the compile to the job, as without a server. numba compiles a dispatcher for new argument
     types through its ``_compile_for_args`` method, which tries the on-disk cache first: an
     instance attribute of that name is called in its place, and removed before the real one runs.
@@ -426,7 +464,7 @@ def _after_helper(done: int) -> Callable[[], None]:
             k.__dict__.pop("_compile_for_args", None)
 
     def wait_then_compile(kernel: Any, *args: Any, **kws: Any) -> Any:
-        while os.read(done, 4096):  # nobody writes: returns b"" when the helper has exited
+        while os.read(done, 4096):  # nobody writes: returns b"" when the compiler has exited
             pass
         unhook()
         return kernel._compile_for_args(*args, **kws)
@@ -476,7 +514,7 @@ def warm_kernels() -> None:
     solve_contact_tabulated(layout.gaps()[:2], layout.compliance[:2] - layout.law.linear, np.full(2, 1e4), layout.law)
 
 
-def serve(path: str, parent: int, modules: Iterable[str]) -> None:
+def serve(path: str, parent: int, compiled: int, modules: Iterable[str]) -> None:
     """Listen on ``path``, import ``modules``, then fork a child per connection until the process
     ``parent`` (the Snakemake run) is gone or a SIGTERM arrives; in between, the
     :func:`warm_steps` (each in this one thread, so a fork never copies a half-done import).
@@ -487,6 +525,8 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
         The socket's path (in a private directory, removed on exit).
     parent : int
         Process id of the Snakemake run; the server stops (killing its children) when it is gone.
+    compiled : int
+        Read end of the kernels' compiler's pipe (:func:`compile_ahead`, :func:`warm_steps`).
     modules : iterable of str
         Dotted module names to import first; one that fails fails in the job, with its message.
 
@@ -512,7 +552,7 @@ def serve(path: str, parent: int, modules: Iterable[str]) -> None:
         except Exception:  # noqa: BLE001
             pass
     children: set[int] = set()
-    steps = warm_steps(children)
+    steps = warm_steps(compiled)
     while not stopping and os.getppid() == parent:
         _reap(children)
         listener.settimeout(0.01 if steps else 0.5)
@@ -612,4 +652,7 @@ def _die_with(conn: socket.socket) -> None:
 
 
 if __name__ == "__main__":
-    serve(sys.argv[1], int(sys.argv[2]), sys.argv[3:])
+    if sys.argv[1] == "compile":
+        _compile()
+    else:
+        serve(sys.argv[2], int(sys.argv[3]), int(sys.argv[4]), sys.argv[5:])

@@ -19,6 +19,12 @@ except GearmeshInputError as exc:
     print(f"gearmesh: error: {exc}", file=sys.stderr)
     sys.exit(2)
 
+# A local run compiles numba's kernels in a process of its own from here on (gearmesh.jobserver:
+# a fresh clone's seconds of compiling on a free core while Snakemake builds the DAG; with the
+# kernels cached, a check), and hands that process to its job server at onstart.
+if jobserver.wanted(workflow):
+    jobserver.compile_ahead()
+
 
 wildcard_constraints:
     study=STUDY,
