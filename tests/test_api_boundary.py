@@ -320,7 +320,7 @@ def test_validate_names_the_template_engine(tmp_path, capsys):
 ])
 def test_gearmesh_run_reads_configs_bounded_before_snakemake(tmp_path, monkeypatch, capsys, content, words):
     """A 200 MB config parsed for minutes at 6.5 GB, a deep one printed a 2985-line RecursionError:
-    'gearmesh run' refuses each before Snakemake starts (os.execv is never reached)."""
+    'gearmesh run' refuses each before Snakemake starts (its entry point is never reached)."""
     import os
 
     path = tmp_path / "c.yaml"
@@ -328,7 +328,7 @@ def test_gearmesh_run_reads_configs_bounded_before_snakemake(tmp_path, monkeypat
         os.mkfifo(path)
     else:
         path.write_text(content)
-    monkeypatch.setattr(os, "execv", lambda *a: pytest.fail("snakemake was started"))
+    monkeypatch.setattr("snakemake.cli.main", lambda *a: pytest.fail("snakemake was started"))
     tracemalloc.start()
     try:
         assert main(["run", "-n", "--cores", "1", "--configfile", str(path)]) == 2
@@ -366,13 +366,11 @@ def _profile(folder, text: str):
 def test_gearmesh_run_refuses_a_template_a_profile_names(tmp_path, monkeypatch, capsys, how):
     """'gearmesh run -n --profile P' (P's config.yaml: configfile: yte.yaml), or SNAKEMAKE_PROFILE=P,
     executed the template's Python: every profile Snakemake reads is followed to its config files."""
-    import os
-
     monkeypatch.chdir(tmp_path)
     monkeypatch.delenv("SNAKEMAKE_PROFILE", raising=False)
     (tmp_path / "yte.yaml").write_text(YTE_STUDY)
     (tmp_path / "Snakefile").write_text("rule all:\n    input: []\n")
-    monkeypatch.setattr(os, "execv", lambda *a: pytest.fail("snakemake was started"))
+    monkeypatch.setattr("snakemake.cli.main", lambda *a: pytest.fail("snakemake was started"))
     argv = ["run", "-n"]
     if how == "--profile":
         argv += ["--profile", str(_profile(tmp_path / "P", "configfile: yte.yaml\ncores: 1\n"))]
@@ -393,10 +391,8 @@ def test_gearmesh_run_refuses_a_template_a_profile_names(tmp_path, monkeypatch, 
 
 def test_gearmesh_run_refuses_what_snakemake_would(tmp_path, monkeypatch, capsys):
     """An abbreviated --configfile is still a config file to Snakemake; arguments it refuses are refused here."""
-    import os
-
     monkeypatch.chdir(tmp_path)
-    monkeypatch.setattr(os, "execv", lambda *a: pytest.fail("snakemake was started"))
+    monkeypatch.setattr("snakemake.cli.main", lambda *a: pytest.fail("snakemake was started"))
     (tmp_path / "yte.yaml").write_text(YTE_STUDY)
     assert main(["run", "-n", "--configfile", "yte.yaml"]) == 2
     assert "in config file yte.yaml" in capsys.readouterr().err

@@ -778,8 +778,9 @@ def cmd_run(args) -> None:
     """``gearmesh run SNAKEMAKE-ARGS``: every config Snakemake would read before the Snakefile runs
     (the command line's config files, every profile and the config files it names,
     ``$SNAKEMAKE_PROFILE`` and the workflow's default profile included) read with the package's
-    bounded loader and validated (:mod:`gearmesh.launch`), then Snakemake started with the same
-    arguments: its own loader (and template engine) never sees a file that failed.
+    bounded loader and validated (:mod:`gearmesh.launch`), then Snakemake run in this process with
+    the same arguments (its command-line entry point, whose modules the check already imported):
+    its own loader (and template engine) never sees a file that failed.
     Refused (exit 2) naming a config's or profile's key, or ``snakemake`` not installed.
 
     Parameters
@@ -787,13 +788,12 @@ def cmd_run(args) -> None:
     args : argparse.Namespace
         ``snakemake_args``: for Snakemake, unchanged.
     """
-    import shutil
-
+    try:
+        from snakemake.cli import main as snakemake_main
+    except ImportError:
+        raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'") from None
     from .launch import check_inputs, snakemake_inputs
 
     check_inputs(snakemake_inputs(args.snakemake_args))
-    exe = shutil.which("snakemake", path=str(Path(sys.executable).parent)) or shutil.which("snakemake")
-    if exe is None:
-        raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'")
     sys.stdout.flush()
-    os.execv(exe, [exe, *args.snakemake_args])
+    snakemake_main(list(args.snakemake_args))  # exits with Snakemake's code (SystemExit)
