@@ -4,6 +4,7 @@ declaration, and the work of the sweep (RK4 steps, contact-table size) against t
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Any, Mapping
 
@@ -23,6 +24,15 @@ from .pair import pair_model_of
 
 #: Coarse slice grid of the stiffness used only to estimate the step size (ω_max) up front.
 _ESTIMATE_SLICES, _ESTIMATE_POSITIONS = 16, 24
+#: The tooth model of that estimate, whatever the section's: the hob-fillet potential-energy
+#: cantilever. The FE tooth (the default, :data:`gearmesh.choices.DEFAULT_TOOTH_METHOD`) costs two
+#: plane-strain solves per pair, 0.8 s of the default study's 1.9 s of checks before any job runs
+#: (measured), for a number the estimate needs only to its order: the step follows the highest mode,
+#: ∝ √k, and the cantilever is 10–50 % more compliant than the FE tooth (docs/validation.md), so the
+#: estimated steps are 0–20 % fewer (0.07 % on the default pair, 7 % on low-fluctuation pair 1,
+#: measured), within the precision of the limit itself (:data:`gearmesh.limits.MAX_SPEED_STEPS`,
+#: "a few minutes" of work).
+_ESTIMATE_METHOD = "transition"
 
 
 def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any] | Dynamics | TrainDynamics,
@@ -32,8 +42,8 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any] | Dynami
     :func:`gearmesh.schema.settings_object`) for ``pair`` without simulating, and refuse a sweep whose work exceeds
     :data:`MAX_SPEED_STEPS` or a contact table larger than :data:`MAX_TABLE_POINTS`.
 
-    The model is built on a coarse slice stiffness at each torque (the step size depends on the
-    maximum stiffness only; an LTCA or contact excitation is of the same order), then
+    The model is built on a coarse slice stiffness (:data:`_ESTIMATE_METHOD`) at each torque (the
+    step size depends on the maximum stiffness only; an LTCA or contact excitation is of the same order), then
     :func:`gearmesh.dynamics.step_plan` gives the steps per speed (and refuses > 2e6) of the
     physical-time transient, the bound of a sweep whose shooting does not converge.
     ``excitation_points``: samples of k(t) over a mesh cycle the job will get (the stiffness
@@ -105,7 +115,8 @@ def _pair_estimate(pair: GearPair, s: Dynamics, coarse: int) -> tuple[np.ndarray
         raise GearmeshInputError("sample_speeds_rpm", exc.value, exc.rule) from None
     check_speeds(pair_geometry(pair), samples, "sample_speeds_rpm")
     excitation = "tvms" if s.excitation in ("ltca", "contact") else resolve_excitation(s.excitation, None)
-    models = [pair_model_of(pair, float(t), s, excitation, (_ESTIMATE_SLICES, coarse))
+    estimate = dataclasses.replace(s, method=_ESTIMATE_METHOD)
+    models = [pair_model_of(pair, float(t), estimate, excitation, (_ESTIMATE_SLICES, coarse))
               for t in positive_values(s.torques_Nm, "torques_Nm", "N m")]
     return speeds, models
 
@@ -128,7 +139,8 @@ def _train_estimate(pair: GearPair, s: TrainDynamics, coarse: int) -> tuple[np.n
     if speeds.size > MAX_TRAIN_SPEEDS:
         raise GearmeshInputError("speeds_rpm", f"{speeds.size} speeds",
                                  f"at most {MAX_TRAIN_SPEEDS} for the train (series are kept)")
-    K = mesh_stiffness(geom, n_positions=coarse, n_slices=_ESTIMATE_SLICES, components=False).K
+    K = mesh_stiffness(geom, n_positions=coarse, n_slices=_ESTIMATE_SLICES, method=_ESTIMATE_METHOD,
+                       components=False).K
     bearing = _bearing(s.bearing_k_radial_N_per_m, s.bearing_k_axial_N_per_m, s.bearing_c_radial_Ns_per_m,
                        s.bearing_c_axial_Ns_per_m)
     return speeds, [train_model(geom, torque, K, bearing=bearing, damping_ratio=s.damping_ratio,
