@@ -153,6 +153,7 @@ def test_a_job_forked_while_the_kernels_compile_waits_and_loads_them(root, tmp_p
     assert jobserver._compiler is None and not compiler.is_running()
 
 
+@pytest.mark.workflow
 def test_the_compiler_of_a_run_that_ends_early_is_stopped(tmp_path):
     """A run that ends before its jobs (a dry run, a report, a refused input after the Snakefile
     started the compiler) does not leave the kernels' compiler running: it is stopped at exit
