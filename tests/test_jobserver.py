@@ -354,6 +354,25 @@ assert not heavy, heavy
     assert out.returncode == 0, out.stderr[-3000:] + out.stdout
 
 
+@pytest.mark.workflow
+def test_the_compiler_of_a_killed_run_stops(tmp_path):
+    """kill -9 of the Snakemake process that started the kernels' compiler (numba's cache empty,
+    so it would compile for seconds) stops the compiler within a second, as it stops the server."""
+    code = ("import time; from gearmesh import jobserver; jobserver.compile_ahead(); "
+            "print(jobserver._compiler.pid, flush=True); time.sleep(600)")
+    parent = subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE, text=True,
+                              env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)})
+    try:
+        compiler = psutil.Process(int(parent.stdout.readline()))
+        time.sleep(0.5)
+        assert compiler.is_running() and compiler.status() != psutil.STATUS_ZOMBIE, "nothing to stop"
+        parent.kill()
+        parent.wait()
+        compiler.wait(timeout=3)  # psutil.TimeoutExpired if it compiled on
+    finally:
+        parent.kill()
+
+
 #: A stand-in for the Snakemake run: starts a server as the Snakefile's onstart does, says its
 #: socket, then waits to be killed.
 PARENT = ("import sys, time; from gearmesh import jobserver; "

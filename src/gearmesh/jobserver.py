@@ -311,7 +311,16 @@ def _stop_compiler() -> None:
 
 def _compile() -> None:
     """The compiler's work (:func:`compile_ahead`): the kernels compiled into numba's cache where
-    it lacks them."""
+    it lacks them; it stops when the process that started it is gone (Snakemake killed), as the
+    server does."""
+    parent = os.getppid()
+
+    def exit_with_parent() -> None:  # numba's compiler (LLVM, through ctypes) lets this thread run
+        while os.getppid() == parent:
+            time.sleep(0.2)
+        os._exit(1)
+
+    threading.Thread(target=exit_with_parent, daemon=True).start()
     if not kernels_cached():
         warm_kernels()
 
