@@ -259,3 +259,31 @@ def test_an_unknown_key_is_refused_in_whole_words(root, tmp_path, capsys, kind, 
         assert "did you mean bore_radius_mm" in err and "gearmesh schema pair --format markdown" in err
     if key == "ltca.torque_Nm":
         assert "allowed keys are contact_law, corner_extension" in err and "torques_Nm" in err
+
+
+@pytest.mark.workflow
+def test_gearmesh_run_leaves_no_snakemake_timer_to_wait_for(tmp_path, monkeypatch):
+    """'gearmesh run' runs Snakemake in its own process and then exits at once: a run that
+    scheduled jobs leaves Snakemake's job-rate timers (threading.Timer, 1 s each by default, which
+    the interpreter waited for) cancelled, and the heap frozen for the last collection."""
+    import gc
+    import threading
+
+    from gearmesh.launch import run_snakemake
+
+    (tmp_path / "Snakefile").write_text('rule all:\n    input: "b"\nrule b:\n    input: "a"\n    output: "b"\n'
+                                        '    shell: "cp a b"\nrule a:\n    output: "a"\n    shell: "echo a > a"\n')
+    monkeypatch.chdir(tmp_path)
+    started = []
+    real_start = threading.Timer.start
+    monkeypatch.setattr(threading.Timer, "start", lambda self: (started.append(self), real_start(self)))
+    try:
+        with pytest.raises(SystemExit) as exc:
+            run_snakemake(["--cores", "1", "--quiet"])
+        assert exc.value.code == 0 and (tmp_path / "b").read_text() == "a\n"
+        assert started, "Snakemake scheduled no timer: nothing tested"
+        # cancelled (or already fired): none would keep the process waiting (its finished event set)
+        assert all(t.finished.is_set() for t in started), "a timer the process would wait for"
+        assert gc.get_freeze_count() > 0
+    finally:
+        gc.unfreeze()

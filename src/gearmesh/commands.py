@@ -779,8 +779,8 @@ def cmd_run(args) -> None:
     (the command line's config files, every profile and the config files it names,
     ``$SNAKEMAKE_PROFILE`` and the workflow's default profile included) read with the package's
     bounded loader and validated (:mod:`gearmesh.launch`), then Snakemake run in this process with
-    the same arguments (its command-line entry point, whose modules the check already imported):
-    its own loader (and template engine) never sees a file that failed.
+    the same arguments (:func:`gearmesh.launch.run_snakemake`; the check already imported its
+    modules): its own loader (and template engine) never sees a file that failed.
     Refused (exit 2) naming a config's or profile's key, or ``snakemake`` not installed.
 
     Parameters
@@ -788,12 +788,12 @@ def cmd_run(args) -> None:
     args : argparse.Namespace
         ``snakemake_args``: for Snakemake, unchanged.
     """
-    try:
-        from snakemake.cli import main as snakemake_main
-    except ImportError:
-        raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'") from None
-    from .launch import check_inputs, snakemake_inputs
+    from importlib.util import find_spec
+
+    if find_spec("snakemake") is None:
+        raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'")
+    from .launch import check_inputs, run_snakemake, snakemake_inputs
 
     check_inputs(snakemake_inputs(args.snakemake_args))
     sys.stdout.flush()
-    snakemake_main(list(args.snakemake_args))  # exits with Snakemake's code (SystemExit)
+    run_snakemake(args.snakemake_args)

@@ -19,7 +19,7 @@ function itself.
 
 Lifetimes: the server exits when the run ends (:func:`stop`, from ``onsuccess``/``onerror``:
 its running children finish their jobs) or when the Snakemake process that started it is gone
-(killed: it kills its running children first, within half a second); a child is killed when its
+(killed: it kills its running children first, within a tenth of a second); a child is killed when its
 job's script is (Snakemake cancelling the job, Ctrl-C), so no job goes on working after its
 controller stopped waiting for it. A job its script runs itself (no server) has a watcher of its
 own that does the same (:func:`gearmesh.io.stop_with_controller`). The socket lives in a private temporary directory (mode 0700): only the user who
@@ -564,7 +564,9 @@ def serve(path: str, parent: int, compiled: int, modules: Iterable[str]) -> None
     steps = warm_steps(compiled)
     while not stopping and os.getppid() == parent:
         _reap(children)
-        listener.settimeout(0.01 if steps else 0.5)
+        # idle, it looks for the end of the run every 50 ms (a SIGTERM does not interrupt accept,
+        # PEP 475): the run's stop waited up to half a second for it, at the end of every run
+        listener.settimeout(0.01 if steps else 0.05)
         try:
             conn, _ = listener.accept()
         except (TimeoutError, InterruptedError):

@@ -12,7 +12,8 @@ each with the package's bounded loader (:func:`gearmesh.inputfile.read_yaml`: a 
 most MAX_INPUT_BYTES, MAX_INPUT_NODES nodes, MAX_INPUT_DEPTH levels, no alias, no duplicated
 key), refuses ``__use_yte__`` in any of them and validates each config file as a study
 (:func:`gearmesh.config.validate_study`). Whatever fails is refused in one line, exit 2, before
-Snakemake starts (docs/workflow.md, trust model).
+Snakemake starts (docs/workflow.md, trust model). :func:`run_snakemake` then runs it in this
+process and lets the process exit as soon as it has returned.
 """
 
 from __future__ import annotations
@@ -178,3 +179,45 @@ def check_inputs(inputs: SnakemakeInputs) -> None:
             validate_study(data)
         except GearmeshInputError as exc:
             raise GearmeshInputError(exc.field, exc.value, f"{exc.rule} (in config file {path})") from None
+
+
+def run_snakemake(argv: Sequence[str]) -> None:
+    """Run Snakemake's command line ``argv`` in this process (its entry point, ``snakemake.cli.main``),
+    then let the process exit at once.
+
+    Two things delayed that exit by about a second at the end of every run, measured on the
+    default study: Snakemake's job-rate timers (a :class:`threading.Timer` after every scheduling
+    round, each the timespan of ``--max-jobs-per-timespan``, 1 s by default; the interpreter waits
+    for every non-daemon thread before it exits) and the interpreter's last garbage collection over
+    a heap of Snakemake's DAG and the imported libraries (0.45 s). The timers, whose only work is to
+    wake a scheduler that has finished, are cancelled; the heap is frozen (:func:`gc.freeze`), so
+    that last collection skips it. The exit handlers (``atexit``: logging's flush and close among
+    them) still run.
+
+    Parameters
+    ----------
+    argv : sequence of str
+        Snakemake's arguments.
+
+    Raises
+    ------
+    SystemExit
+        Always: Snakemake's exit code.
+
+    References
+    ----------
+    .. [1] Python documentation, :class:`threading.Timer` (``cancel``), :func:`gc.freeze`, and
+       "threading": the program exits when no alive non-daemon threads are left.
+    """
+    import gc
+    import threading
+
+    from snakemake.cli import main
+
+    try:
+        main(list(argv))
+    finally:
+        for thread in threading.enumerate():
+            if isinstance(thread, threading.Timer):
+                thread.cancel()
+        gc.freeze()
