@@ -287,3 +287,31 @@ def test_gearmesh_run_leaves_no_snakemake_timer_to_wait_for(tmp_path, monkeypatc
         assert gc.get_freeze_count() > 0
     finally:
         gc.unfreeze()
+
+
+def test_gearmesh_run_starts_the_job_server_ahead_only_for_jobs_run_here(tmp_path, monkeypatch):
+    """'gearmesh run' starts the job server before Snakemake reads the Snakefile when its command
+    line runs jobs here; a dry run, a report, a lint or another executor starts none."""
+    import gc
+
+    from gearmesh import jobserver
+    from gearmesh.launch import snakemake_inputs
+
+    monkeypatch.chdir(tmp_path)  # no profiles/default: only the command line counts
+    monkeypatch.delenv("SNAKEMAKE_PROFILE", raising=False)
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    assert snakemake_inputs(["--cores", "2"]).local_jobs
+    for argv in (["-n"], ["--report", "r.html"], ["--lint"], ["--executor", "dryrun"], ["--executor", "touch"]):
+        assert not snakemake_inputs(argv).local_jobs, argv
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "config.yaml").write_text("study: s\npairs: [low_fluctuation_pair1]\n")
+    started = []
+    monkeypatch.setattr(jobserver, "start_ahead", lambda modules: started.append(list(modules)))
+    monkeypatch.setattr("snakemake.cli.main", lambda argv: None)
+    try:
+        for argv, ahead in ((["-n", "--cores", "2"], False), (["--cores", "2"], True)):
+            started.clear()
+            assert main(["run", *argv]) == 0
+            assert bool(started) is ahead and (not ahead or started[0] == jobserver.stage_modules())
+    finally:
+        gc.unfreeze()  # run_snakemake froze this process's heap for its exit

@@ -4,6 +4,7 @@ difference."""
 
 from __future__ import annotations
 
+import json
 import os
 import pickle
 import signal
@@ -255,6 +256,39 @@ def test_the_server_imports_the_modules_its_rules_name():
                                      {"positions": 3}]),
              SimpleNamespace(params=None)]
     assert jobserver.rule_modules(rules) == ["gearmesh.datasets.ltca", "gearmesh.pipeline", "gearmesh.plots.ltca"]
+
+
+def test_a_server_started_ahead_imports_every_module_a_shipped_studys_rules_name():
+    """``gearmesh run`` starts the server before Snakemake has built the rules, with
+    jobserver.stage_modules(): the run takes it only when its rules name no other module
+    (jobserver.start), so a module missing there would cost every run a second server. The
+    recorded plans (tests/plans/*.json, every shipped study) name the functions of every job."""
+    names = set()
+    for plan in (Path(__file__).parent / "plans").glob("*.json"):
+        for job in json.loads(plan.read_text())["jobs"]:
+            names.update(v for v in job["params"].values() if isinstance(v, str) and v.startswith("gearmesh."))
+    modules = {name.partition(":")[0] for name in names}
+    assert len(modules) > 10 and "gearmesh.datasets.verdict" in modules
+    assert modules <= set(jobserver.stage_modules())
+
+
+@pytest.mark.workflow
+def test_a_server_started_ahead_becomes_the_runs(monkeypatch):
+    """The server ``gearmesh run`` starts ahead takes no job (no GEARMESH_JOBSERVER) until the
+    Snakefile's onstart makes it the run's; a rule naming a module it did not import gets a new one."""
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    jobserver.start_ahead(["gearmesh.pipeline", "gearmesh.datasets.geometry"])
+    try:
+        ahead = jobserver._server
+        assert ahead is not None and jobserver.ENV not in os.environ
+        path = jobserver.start(["gearmesh.datasets.geometry", "gearmesh.pipeline"])
+        assert jobserver._server is ahead and os.environ[jobserver.ENV] == path and Path(path).exists()
+        other = jobserver.start(["gearmesh.pipeline", "gearmesh.datasets.stiffness"])
+        assert jobserver._server is not ahead and ahead.poll() is not None and other != path
+        assert not Path(path).exists() and Path(other).exists()
+    finally:
+        jobserver.stop()
+    assert jobserver._server is None and jobserver.ENV not in os.environ
 
 
 def _job_modules() -> set[str]:

@@ -794,6 +794,7 @@ def cmd_run(args) -> None:
         raise GearmeshInputError("snakemake", None, "is not installed: pip install 'gearmesh[workflow]'")
     from .launch import check_inputs, run_snakemake, snakemake_inputs
 
-    check_inputs(snakemake_inputs(args.snakemake_args))
+    inputs = snakemake_inputs(args.snakemake_args)
+    check_inputs(inputs)
     sys.stdout.flush()
-    run_snakemake(args.snakemake_args)
+    run_snakemake(args.snakemake_args, inputs.local_jobs)

@@ -4,7 +4,8 @@ are paid once per run instead of once per job.
 Snakemake starts the job of every ``script:`` rule as a new Python process, which then imports
 what the job needs: xarray and pandas, scipy.interpolate, matplotlib, numba — about a second of
 CPU before any work, more than most jobs of a study then spend working. For a local run the
-Snakefile starts one server per run (:func:`start`, from ``onstart``): it imports the modules of
+Snakefile starts one server per run (:func:`start`, from ``onstart``), or takes the one ``gearmesh
+run`` started before Snakemake read the Snakefile (:func:`start_ahead`): it imports the modules of
 the study's rules, then forks one child per job from that imported, otherwise untouched state.
 Between jobs it warms that state further (:func:`warm_steps`): it imports what jobs import inside
 functions (:data:`WARM_MODULES`) and loads the compiled kernels from numba's on-disk cache, which
@@ -60,6 +61,9 @@ STARTED_ENV = "GEARMESH_JOB_STARTED"
 _HEADER = struct.Struct("!Q")
 _CODE = struct.Struct("!i")
 _server: subprocess.Popen | None = None
+#: The server's socket and the modules it imported (:func:`start`, :func:`start_ahead`).
+_server_path: str | None = None
+_server_modules: frozenset[str] = frozenset()
 #: The process compiling the kernels ahead of the jobs (:func:`compile_ahead`), and the read end of
 #: a pipe whose only write end it holds: end of file once it has exited.
 _compiler: subprocess.Popen | None = None
@@ -232,10 +236,12 @@ def start(modules: Iterable[str], timeout: float = 5.0) -> str | None:
     """Start the run's server with ``modules`` imported, export its socket in ``GEARMESH_JOBSERVER``
     for the jobs, and return the socket path (None if it did not come up within ``timeout``).
 
-    The server runs with one BLAS thread (:data:`THREAD_VARIABLES`) and the malloc settings of
-    :data:`MALLOC_TUNABLES` (the user's own ``GLIBC_TUNABLES`` win). The kernels' compiler
-    (:func:`compile_ahead`, started here unless the Snakefile already did) is handed to the server,
-    whose jobs wait for it before they would compile a kernel themselves.
+    A server this process started ahead for at least these modules (:func:`start_ahead`:
+    ``gearmesh run``) becomes the run's instead. The server runs with one BLAS thread
+    (:data:`THREAD_VARIABLES`) and the malloc settings of :data:`MALLOC_TUNABLES` (the user's own
+    ``GLIBC_TUNABLES`` win). The kernels' compiler (:func:`compile_ahead`, started here unless the
+    Snakefile already did) is handed to the server, whose jobs wait for it before they would
+    compile a kernel themselves.
 
     Parameters
     ----------
@@ -256,21 +262,68 @@ def start(modules: Iterable[str], timeout: float = 5.0) -> str | None:
     .. [1] The GNU C Library Reference Manual, chapter "Tunables": memory allocation tunables
        (``glibc.malloc.mmap_threshold``, ``glibc.malloc.trim_threshold``).
     """
-    global _server
+    modules = list(modules)
+    if _server is None or _server.poll() is not None or not set(modules) <= _server_modules:
+        _stop_server()
+        _spawn(modules)
+    deadline = time.monotonic() + timeout
+    while not os.path.exists(_server_path):
+        if _server.poll() is not None or time.monotonic() > deadline:
+            _stop_server()
+            return None
+        time.sleep(0.01)
+    os.environ[ENV] = _server_path
+    return _server_path
+
+
+def start_ahead(modules: Iterable[str]) -> None:
+    """Start a server with ``modules`` imported before Snakemake reads the Snakefile, without
+    handing it to any job yet: its imports and the kernels' compile run on a free core while
+    Snakemake builds its DAG, single-threaded. The Snakefile's ``onstart`` makes it the run's
+    (:func:`start`); a run that ends without (a refused study, a cluster run) stops it at exit.
+    Nothing where a server cannot run (no ``fork`` or descriptor passing).
+
+    Parameters
+    ----------
+    modules : iterable of str
+        Dotted names of the modules the server imports (:func:`stage_modules`).
+
+    Returns
+    -------
+    None
+    """
+    if _server is None and os.name == "posix" and hasattr(socket, "send_fds"):
+        atexit.register(stop)
+        _spawn(list(modules))
+
+
+def stage_modules() -> list[str]:
+    """The modules of every stage's and every table's function and figures
+    (:func:`gearmesh.registry.stages`) and the pipeline: what any study's rules can name
+    (:func:`rule_modules`).
+
+    Returns
+    -------
+    list of str
+        Sorted dotted module names.
+    """
+    from .registry import stages
+
+    jobs = [job for stage in stages().values() for job in (stage, *stage.tables)]
+    specs = [spec for job in jobs for spec in (job.function, job.draws) if spec]
+    return sorted({"gearmesh.pipeline", *(spec.partition(":")[0] for spec in specs)})
+
+
+def _spawn(modules: list[str]) -> None:
+    """Start a server that imports ``modules`` (``_server``; its socket will be ``_server_path``)."""
+    global _server, _server_path, _server_modules
     folder = tempfile.mkdtemp(prefix="gearmesh-jobs-")  # mode 0700: this user's jobs only
     path = os.path.join(folder, "socket")
     compile_ahead()
     _server = subprocess.Popen([sys.executable, "-m", "gearmesh.jobserver", "serve", path, str(os.getpid()),
                                 str(_compiled), *modules], stdin=subprocess.DEVNULL, env=_environment(),
                                pass_fds=(_compiled,))
-    deadline = time.monotonic() + timeout
-    while not os.path.exists(path):
-        if _server.poll() is not None or time.monotonic() > deadline:
-            stop()
-            return None
-        time.sleep(0.01)
-    os.environ[ENV] = path
-    return path
+    _server_path, _server_modules = path, frozenset(modules)
 
 
 def compile_ahead() -> None:
@@ -341,7 +394,8 @@ def _tunables(environ: dict[str, str]) -> str:
 
 
 def stop() -> None:
-    """Stop the run's server (its running children finish their jobs) and remove its socket.
+    """Stop the run's server (its running children finish their jobs), remove its socket and stop
+    the kernels' compiler if it still runs.
 
     SIGTERM, then SIGKILL if it has not exited within 10 s; ``GEARMESH_JOBSERVER`` is unset.
 
@@ -349,8 +403,14 @@ def stop() -> None:
     -------
     None
     """
-    global _server
-    path = os.environ.pop(ENV, None)
+    os.environ.pop(ENV, None)
+    _stop_server()
+    _stop_compiler()
+
+
+def _stop_server() -> None:
+    """Stop the server this process started, if any, and remove its socket's folder."""
+    global _server, _server_path, _server_modules
     if _server is not None:
         _server.terminate()
         try:
@@ -359,9 +419,9 @@ def stop() -> None:
             _server.kill()
             _server.wait()
         _server = None
-    _stop_compiler()
-    if path and path != "off":
-        shutil.rmtree(os.path.dirname(path), ignore_errors=True)
+    if _server_path is not None:
+        shutil.rmtree(os.path.dirname(_server_path), ignore_errors=True)
+    _server_path, _server_modules = None, frozenset()
 
 
 def rule_modules(rules: Iterable[Any]) -> list[str]:

@@ -37,11 +37,14 @@ wildcard_constraints:
 # .NAME.PID.tmp.* beside its target: remove them before any job of this run starts.
 # A local run then starts its job server: one process that imports the modules of the study's
 # rules once and forks a child per job (gearmesh.jobserver; GEARMESH_JOBSERVER=off runs every
-# job in a process of its own, as a cluster run does).
+# job in a process of its own, as a cluster run does), or takes the one `gearmesh run` started
+# ahead of Snakemake; a run whose jobs do not run here stops that one.
 onstart:
     remove_stale_temporaries("results")
     if jobserver.wanted(workflow):
         jobserver.start(jobserver.rule_modules(workflow.rules))
+    else:
+        jobserver.stop()
 
 
 onsuccess:
