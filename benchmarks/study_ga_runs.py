@@ -1,9 +1,10 @@
 """Both optimisations of the default study as its optimise jobs run them (set-up included, files
-not written), for an A/B of two source trees with ``farm-bench`` (issue 27 item 6)::
+not written), for an A/B of two source trees (issue 27 item 6): time the two commands as whole
+processes, in turn, and compare medians of several runs of each::
 
     git archive c61da5b | tar -x -C /tmp/base
-    farm-bench -n 3 --timeout 3000 -- python benchmarks/study_ga_runs.py . FE.nc \\
-        --vs 'python benchmarks/study_ga_runs.py /tmp/base FE.nc'
+    python benchmarks/study_ga_runs.py . FE.nc
+    python benchmarks/study_ga_runs.py /tmp/base FE.nc
 
 ROOT is the tree whose ``src/gearmesh`` and ``config/config.yaml`` are run; FE.nc the pair's
 ``fe_compliance.nc`` of a workflow run (the tables the jobs get from the fe stage, so neither side
