@@ -221,7 +221,6 @@ def run_snakemake(argv: Sequence[str], local_jobs: bool = False) -> None:
        "threading": the program exits when no alive non-daemon threads are left.
     """
     import gc
-    import threading
 
     from snakemake.cli import main
 
@@ -232,7 +231,23 @@ def run_snakemake(argv: Sequence[str], local_jobs: bool = False) -> None:
     try:
         main(list(argv))
     finally:
-        for thread in threading.enumerate():
-            if isinstance(thread, threading.Timer):
-                thread.cancel()
+        cancel_timers()
         gc.freeze()
+
+
+def cancel_timers() -> None:
+    """Cancel this process's pending :class:`threading.Timer` threads: at the end of a run,
+    Snakemake's job-rate timers (one per scheduling round, 1 s each by default), whose only work is
+    to wake its finished scheduler, and for which the interpreter would wait before it exits
+    (:func:`run_snakemake`; the Snakefile's ``onsuccess`` and ``onerror``, for a plain
+    ``snakemake`` run).
+
+    Returns
+    -------
+    None
+    """
+    import threading
+
+    for thread in threading.enumerate():
+        if isinstance(thread, threading.Timer):
+            thread.cancel()

@@ -7,6 +7,7 @@ from gearmesh.config import check_study
 from gearmesh.errors import GearmeshInputError
 from gearmesh import jobserver
 from gearmesh.io import remove_stale_temporaries
+from gearmesh.launch import cancel_timers
 
 STUDY = config["study"]
 ENV = "../envs/gearmesh.yaml"
@@ -47,9 +48,13 @@ onstart:
         jobserver.stop()
 
 
+# The run is over: its server stopped, and Snakemake's job-rate timers, which would keep its
+# process alive for up to a second more, cancelled (gearmesh.launch.cancel_timers).
 onsuccess:
     jobserver.stop()
+    cancel_timers()
 
 
 onerror:
     jobserver.stop()
+    cancel_timers()
