@@ -52,9 +52,8 @@ def _script(job: Snakemake, tmp: Path, env: dict) -> subprocess.Popen:
 
 @pytest.fixture(scope="module", autouse=True)
 def kernels_in_numba_cache():
-    """numba's on-disk cache holding the kernels, so that a server compiles nothing aside and its
-    only children are the tests' jobs (a fresh clone's first server forks a helper to compile them,
-    which the tests below would take for a job)."""
+    """numba's on-disk cache holding the kernels, so that the run's compiler (jobserver.compile_ahead)
+    only checks them and the tests' jobs load them instead of waiting for a compile of seconds."""
     if not jobserver.kernels_cached():
         subprocess.run([sys.executable, "-c", "from gearmesh.jobserver import warm_kernels; warm_kernels()"],
                        check=True, timeout=600)

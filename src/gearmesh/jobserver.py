@@ -224,12 +224,17 @@ def wanted(workflow: Any) -> bool:
     bool
         True when a server should be started.
     """
-    if os.environ.get(ENV) == "off" or os.name != "posix" or not hasattr(socket, "send_fds"):
+    if os.environ.get(ENV) == "off" or not _platform_serves():
         return False
     methods = {str(m).lower() for m in workflow.deployment_settings.deployment_method}
     if any(m for m in methods if any(k in m for k in ("conda", "apptainer", "singularity", "env_modules"))):
         return False
     return bool(workflow.local_exec) and not workflow.remote_exec
+
+
+def _platform_serves() -> bool:
+    """Whether a server can run here: ``fork`` and descriptor passing (``socket.send_fds``)."""
+    return os.name == "posix" and hasattr(socket, "send_fds")
 
 
 def start(modules: Iterable[str], timeout: float = 5.0) -> str | None:
@@ -281,7 +286,8 @@ def start_ahead(modules: Iterable[str]) -> None:
     handing it to any job yet: its imports and the kernels' compile run on a free core while
     Snakemake builds its DAG, single-threaded. The Snakefile's ``onstart`` makes it the run's
     (:func:`start`); a run that ends without (a refused study, a cluster run) stops it at exit.
-    Nothing where a server cannot run (no ``fork`` or descriptor passing).
+    Nothing where a server cannot run (no ``fork`` or descriptor passing) or where
+    ``GEARMESH_JOBSERVER`` is set already (``off``, or a server of an outer run).
 
     Parameters
     ----------
@@ -292,7 +298,7 @@ def start_ahead(modules: Iterable[str]) -> None:
     -------
     None
     """
-    if _server is None and os.name == "posix" and hasattr(socket, "send_fds"):
+    if _server is None and ENV not in os.environ and _platform_serves():
         atexit.register(stop)
         _spawn(list(modules))
 

@@ -226,7 +226,7 @@ def run_snakemake(argv: Sequence[str], local_jobs: bool = False) -> None:
 
     from . import jobserver
 
-    if local_jobs and jobserver.ENV not in os.environ:  # a server not turned off (``off``) nor already there
+    if local_jobs:
         jobserver.start_ahead(jobserver.stage_modules())
     try:
         main(list(argv))
