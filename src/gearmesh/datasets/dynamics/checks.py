@@ -43,9 +43,9 @@ def check_dynamics_settings(pair: GearPair, settings: Mapping[str, Any] | Dynami
     :data:`MAX_SPEED_STEPS` or a contact table larger than :data:`MAX_TABLE_POINTS`.
 
     The model is built on a coarse slice stiffness (:data:`_ESTIMATE_METHOD`) at each torque (the
-    step size depends on the maximum stiffness only; an LTCA or contact excitation is of the same order), then
-    :func:`gearmesh.dynamics.step_plan` gives the steps per speed (and refuses > 2e6) of the
-    physical-time transient, the bound of a sweep whose shooting does not converge.
+    step size depends on the maximum stiffness only; an LTCA or contact excitation is of the same
+    order), then :func:`gearmesh.dynamics.step_plan` gives the steps per speed (and refuses > 2e6)
+    of the physical-time transient, the bound of a sweep whose shooting does not converge.
     ``excitation_points``: samples of k(t) over a mesh cycle the job will get (the stiffness
     or LTCA positions); a Fourier form needs more than twice its order. GearmeshInputError
     names the setting (as in the config section).
