@@ -1,0 +1,134 @@
+"""What the sign-off's worst-case search costs, and what a cheaper search would lose (issue 36).
+
+The box search (:func:`gearmesh.robust.box_worst`) is most of the default study's impact jobs. For
+each variant of the study, on the model, torques, speed and tolerance box its impact job builds
+(``impact_dataset`` run until its tolerance spread, with the study's FE tables from results/ when a
+run has made them): the shipped search, the same search stopped at a coarser last step
+(``min_step``), and an independent check of it, a structured grid (every corner of the modification
+deviations at ``--levels`` lead-mismatch levels, the box's structure: :mod:`gearmesh.robust`).
+
+Per search: the manufactured gears evaluated, the CPU seconds, and against the shipped search's
+worst of every criterion and torque: the largest shortfall (``max_lower``: its worst lower by that
+fraction; a cheaper search that loses worst-case value would sign off gears the drawing allows
+without having seen the worst one) and the largest excess (``max_higher``: where another search
+found a worse gear than the shipped one, the shipped search missed it).
+
+Run by hand after ``snakemake --cores 2`` (it reads results/ for the FE tables and the optimised
+designs): ``python benchmarks/bench_box_search.py [--levels 33] [--steps 0.0625 0.125 0.25]``.
+One JSON line per variant and search.
+"""
+
+from __future__ import annotations
+
+import argparse
+import functools
+import itertools
+import json
+import time
+
+import numpy as np
+import yaml
+
+from bench_impact_population import _job
+from common import ROOT
+
+
+class _Captured(Exception):
+    """Stops an impact job at its tolerance spread, carrying what the box search is given."""
+
+
+def search_inputs(variant: str, config: dict) -> dict:
+    """The box search's inputs of ``variant``'s impact job: its model, judged torques, design speed,
+    energy velocity, tolerance model and design parameters (the job run until its tolerance spread)."""
+    import gearmesh.datasets.impact as stage
+    from gearmesh.tolerance import study_tolerances
+
+    def capture(ds, model, torques, tolerances, design, energy_velocity):
+        raise _Captured(dict(model=model, torques=torques, tolerances=tolerances, speed_rpm=design,
+                             energy_velocity=energy_velocity))
+
+    spread = stage._add_tolerance_spread
+    stage._add_tolerance_spread = capture
+    try:
+        _job(variant, config)[0]()
+    except _Captured as stop:
+        got = stop.args[0]
+    else:
+        raise RuntimeError(f"the impact job of {variant} has no tolerance spread")
+    finally:
+        stage._add_tolerance_spread = spread
+    model = got["model"]
+    got["tolerance"] = study_tolerances(model.geom, got.pop("tolerances"))[0]
+    got["params"] = model.params()[0]
+    return got
+
+
+def grid_worst(inputs: dict, levels: int) -> tuple[np.ndarray, int]:
+    """The worst (T, K) over every corner of the design's active modification deviations at ``levels``
+    lead-mismatch levels, evaluated as the box search evaluates its gears; and the gears evaluated."""
+    import gearmesh.robust as robust
+
+    model, params = inputs["model"], inputs["params"]
+    box = robust.tolerance_box(inputs["tolerance"], params)
+    mods = box.size - int(box.mismatch)
+    corners = np.array(list(itertools.product((-1.0, 1.0), repeat=mods))) if mods else np.zeros((1, 0))
+    mismatch = np.linspace(-1.0, 1.0, levels) if box.mismatch else np.zeros(0)
+    units = (np.array([[u, *c] for c in corners for u in mismatch]) if box.mismatch else corners)
+    worst = None
+    for block in np.array_split(units, max(1, units.shape[0] // 200)):
+        with_nominal = np.vstack([np.zeros((1, block.shape[1])), block])
+        rows, lead = box.gears(model.geom, params, model.lead_slope, with_nominal)
+        values = robust.gear_criteria(model, rows, lead, inputs["torques"], inputs["speed_rpm"],
+                                      inputs["energy_velocity"], samples=with_nominal.shape[0]).values[1:]
+        block_worst = np.nanmax(values, axis=0)
+        worst = block_worst if worst is None else np.fmax(worst, block_worst)
+    return worst, units.shape[0]
+
+
+def _compare(name: str, variant: str, values: np.ndarray, evaluated: int, cpu: float, shipped: np.ndarray) -> dict:
+    rel = (values - shipped) / np.abs(shipped)
+    return {"variant": variant, "search": name, "evaluated": int(evaluated), "cpu_s": round(cpu, 2),
+            "max_lower": float(max(0.0, -np.nanmin(rel))), "max_higher": float(max(0.0, np.nanmax(rel))),
+            "columns_lower_1e-3": int(np.sum(rel < -1e-3)), "columns": int(rel.size)}
+
+
+def main() -> int:
+    import gearmesh.robust as robust
+
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--levels", type=int, default=33, help="lead-mismatch levels of the grid (default 33)")
+    parser.add_argument("--steps", type=float, nargs="*", default=[1 / 16, 1 / 8, 1 / 4],
+                        help="coarser last steps of the search to try (default 1/16 1/8 1/4)")
+    args = parser.parse_args()
+    config = yaml.safe_load((ROOT / "config/config.yaml").read_text())
+    shipped_search = robust.box_worst
+    for variant in config["variants"]:
+        inputs = search_inputs(variant, config)
+
+        def search(**options):
+            robust.box_worst = functools.partial(shipped_search, **options)
+            try:
+                c0 = time.process_time()
+                worst = robust.design_box_worst(inputs["model"], inputs["tolerance"], inputs["params"],
+                                                inputs["torques"], inputs["speed_rpm"], inputs["energy_velocity"])[0]
+                return worst, time.process_time() - c0
+            finally:
+                robust.box_worst = shipped_search
+
+        shipped, cpu = search()
+        print(json.dumps(_compare("shipped", variant, shipped.values, shipped.evaluated, cpu, shipped.values)),
+              flush=True)
+        for step in args.steps:
+            worst, cpu = search(min_step=step)
+            print(json.dumps(_compare(f"min_step {step:g}", variant, worst.values, worst.evaluated, cpu,
+                                      shipped.values)), flush=True)
+        c0 = time.process_time()
+        grid, evaluated = grid_worst(inputs, args.levels)
+        print(json.dumps(_compare(f"grid {args.levels} mismatch levels x corners", variant,
+                                  grid.reshape(shipped.values.shape), evaluated, time.process_time() - c0,
+                                  shipped.values)), flush=True)
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
