@@ -12,6 +12,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 import tracemalloc
 from pathlib import Path
@@ -562,6 +563,8 @@ def test_killed_run_rerun_leaves_no_temporary_files(root, tmp_path):
     assert leftovers == []
     for name in ("geometry.nc", "contact_lines.nc", "stiffness.nc", "plots/stiffness.png"):
         assert (base / name).stat().st_size > 0
+    # the killed run's job-server socket folder (gearmesh.jobserver) was removed by the rerun's server
+    assert not list(Path(tempfile.gettempdir()).glob(f"gearmesh-jobs-{run.pid}-*"))
 
 
 @pytest.mark.parametrize("name", ["helical_z29_71_m5", "low_fluctuation_pair1", "transition_curve_z23_62"])

@@ -7,9 +7,11 @@ from __future__ import annotations
 import json
 import os
 import pickle
+import shutil
 import signal
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from types import SimpleNamespace
@@ -288,6 +290,35 @@ def test_a_server_started_ahead_becomes_the_runs(monkeypatch):
     finally:
         jobserver.stop()
     assert jobserver._server is None and jobserver.ENV not in os.environ
+
+
+def test_a_new_server_removes_the_socket_folders_of_runs_that_are_gone(monkeypatch):
+    """A run killed with its server (kill -9 of the group) leaves its socket folder; the next
+    server removes the folders named after a process that no longer exists, and only those."""
+    monkeypatch.delenv(jobserver.ENV, raising=False)
+    gone = subprocess.Popen([sys.executable, "-c", ""])
+    gone.wait()
+    prefix = jobserver.FOLDER_PREFIX
+    parent = Path(tempfile.mkdtemp(prefix="gm"))  # short: a socket's path has at most 107 bytes
+    try:
+        stale = parent / f"{prefix}{gone.pid}-x1"
+        kept = [parent / f"{prefix}{os.getpid()}-x2", parent / f"{prefix}nopid", parent / "other-1-x3"]
+        for folder in (stale, *kept):
+            folder.mkdir()
+            (folder / "socket").write_bytes(b"")
+        assert jobserver.remove_stale_folders(str(parent)) == [str(stale)]
+        assert not stale.exists() and all(folder.exists() for folder in kept)
+        monkeypatch.setattr(tempfile, "tempdir", str(parent))  # the server's own folder there too
+        stale.mkdir()
+        path = jobserver.start(["gearmesh.pipeline"])
+        try:
+            assert path is not None and not stale.exists()
+            assert Path(path).parent.name.startswith(f"{prefix}{os.getpid()}-")
+        finally:
+            jobserver.stop()
+        assert not Path(path).parent.exists() and all(folder.exists() for folder in kept)
+    finally:
+        shutil.rmtree(parent)
 
 
 def _job_modules() -> set[str]:

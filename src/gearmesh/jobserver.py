@@ -320,16 +320,64 @@ def stage_modules() -> list[str]:
     return sorted({"gearmesh.pipeline", *(spec.partition(":")[0] for spec in specs)})
 
 
+#: The socket folders' name: the prefix, the PID of the run that started the server, a random tail.
+FOLDER_PREFIX = "gearmesh-jobs-"
+
+
 def _spawn(modules: list[str]) -> None:
-    """Start a server that imports ``modules`` (``_server``; its socket will be ``_server_path``)."""
+    """Start a server that imports ``modules`` (``_server``; its socket will be ``_server_path``),
+    its socket in a private folder named after this process; first the folders of runs that are
+    gone (:func:`remove_stale_folders`)."""
     global _server, _server_path, _server_modules
-    folder = tempfile.mkdtemp(prefix="gearmesh-jobs-")  # mode 0700: this user's jobs only
+    remove_stale_folders(tempfile.gettempdir())
+    folder = tempfile.mkdtemp(prefix=f"{FOLDER_PREFIX}{os.getpid()}-")  # mode 0700: this user's jobs only
     path = os.path.join(folder, "socket")
     compile_ahead()
     _server = subprocess.Popen([sys.executable, "-m", "gearmesh.jobserver", "serve", path, str(os.getpid()),
                                 str(_compiled), *modules], stdin=subprocess.DEVNULL, env=_environment(),
                                pass_fds=(_compiled,))
     _server_path, _server_modules = path, frozenset(modules)
+
+
+def remove_stale_folders(parent: str) -> list[str]:
+    """Remove the socket folders in ``parent`` of this user's runs that are gone.
+
+    A server removes its folder when it stops, and so does the run that started it; a run killed
+    together with its server (``kill -9`` of the process group, the out-of-memory killer) leaves
+    it behind. A folder is stale when the process its name carries (:data:`FOLDER_PREFIX`, the
+    run's PID) no longer exists; a folder of another user, of a process that lives (or of a new
+    one that took its PID), or without a PID in its name is left alone.
+
+    Parameters
+    ----------
+    parent : str
+        The folder holding the socket folders (the system's temporary folder).
+
+    Returns
+    -------
+    list of str
+        The folders removed.
+    """
+    removed = []
+    try:
+        names = os.listdir(parent)
+    except OSError:
+        return removed
+    for name in names:
+        pid, sep, _ = name[len(FOLDER_PREFIX):].partition("-")
+        if not (name.startswith(FOLDER_PREFIX) and sep and pid.isdigit()):
+            continue
+        folder = os.path.join(parent, name)
+        try:
+            if os.stat(folder).st_uid != os.getuid():
+                continue
+            os.kill(int(pid), 0)
+        except ProcessLookupError:
+            shutil.rmtree(folder, ignore_errors=True)
+            removed.append(folder)
+        except OSError:  # gone meanwhile, or a process of another user: not ours to judge
+            continue
+    return removed
 
 
 def compile_ahead() -> None:
