@@ -28,6 +28,19 @@ def test_readme_python_api_block_runs(root, tmp_path, monkeypatch, capsys):
     assert (tmp_path / "te_lte.png").stat().st_size > 10_000
 
 
+def test_readme_rating_verdict_is_what_its_rating_command_prints(root, capsys, monkeypatch):
+    """The verdict line the README quotes is the first line its own ``gearmesh rating`` command
+    prints (the command of its command-line block, without ``--json``)."""
+    from gearmesh.cli import main
+
+    text = (root / "README.md").read_text(encoding="utf-8")
+    command = re.search(r"^gearmesh rating (.*?) --json$", text, flags=re.M).group(1).split()
+    quoted = re.search(r"the `rating` command above: `(PASS: .*?)`\)", text, flags=re.S).group(1)
+    monkeypatch.chdir(root)
+    assert main(["rating", *command]) == 0
+    assert capsys.readouterr().out.splitlines()[0] == " ".join(quoted.split())
+
+
 def test_api_page_names_only_what_exists(root):
     names = set(re.findall(r"`(gearmesh(?:\.\w+)+)\(", (root / "docs/api.md").read_text(encoding="utf-8")))
     assert len(names) >= 30
