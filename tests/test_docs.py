@@ -89,11 +89,13 @@ def test_impact_doc_table_is_what_the_impact_stage_computes(root):
     study = load_study(root / "config/config.yaml")
     pair = load_pair(example_pair(study["pairs"][0]))
     torques = sorted({float(r["T1 (N·m)"]) for r in rows})
-    computed = {}
+    computed, doubled = {}, {}
     for name in sorted({r["variant"] for r in rows}):
         spec = study["variants"][name]
-        ds = impact_dataset(variant_pair(pair, name, spec) if spec else pair, torques_Nm=torques, method=method)
+        ds = impact_dataset(variant_pair(pair, name, spec) if spec else pair, torques_Nm=torques,
+                            speeds_rpm=[5000.0, 10000.0], method=method)
         computed[name] = ds.sel(speed=5000.0)
+        doubled[name] = ds.impact_force.sel(speed=10000.0) / ds.impact_force.sel(speed=5000.0)
     for row in rows:
         ds = computed[row["variant"]].sel(torque=float(row["T1 (N·m)"]))
         where = f"{row['variant']} at {row['T1 (N·m)']} N·m"
@@ -108,6 +110,35 @@ def test_impact_doc_table_is_what_the_impact_stage_computes(root):
             standard = computed["standard"].sel(torque=float(row["T1 (N·m)"]))
             reduction = 100 * (1 - float(ds["impact_force"]) / float(standard["impact_force"]))
             assert float(row["reduction"].rstrip(" %")) == pytest.approx(reduction, abs=1), where
+    _impact_doc_prose_is_the_tables_model(text[text.index(heading):], computed, doubled)
+
+
+def _impact_doc_prose_is_the_tables_model(text: str, computed: dict, doubled: dict) -> None:
+    """The numbers of the prose under docs/impact.md's table, each to its printed digits, from the
+    same runs as the table: the speed-doubling ratio of F_s and 2^(2n/(n+1)) at 1000 N·m, the relief's
+    LTE(φ1A) against TE(φ1A), the standard pair's radius of M and its roll before engagement beside
+    the reverse-rotation equation's."""
+    def numbers(pattern: str) -> list[float]:
+        return [float(v) for v in re.search(pattern, text, flags=re.S).groups()]
+
+    std, rel = computed["standard"], computed["relief"]
+    ratio = numbers(r"F_s doubles speed by ([\d.]+) \(standard\) and\s+([\d.]+) \(relief\) against "
+                    r"2\^\(2n/\(n\+1\)\) = ([\d.]+) and ([\d.]+)")
+    n = [float(computed[v]["stiffness_exponent"].sel(torque=1000.0)) for v in ("standard", "relief")]
+    expected = [float(doubled[v].sel(torque=1000.0)) for v in ("standard", "relief")] + [2 ** (2 * k / (k + 1)) for k in n]
+    np.testing.assert_allclose(ratio, expected, atol=0.005)
+    lte = numbers(r"LTE\(φ1A\) ([\d.]+) and ([\d.]+) µm below the entering pair's separation TE\(φ1A\) = ([\d.]+) "
+                  r"and\s+([\d.]+) µm \(surface contact\), ([\d.]+) µm above its ([\d.]+) µm")
+    um = {k: rel[k].values * 1e6 for k in ("lte_at_engagement", "te_at_engagement")}
+    expected = [*um["lte_at_engagement"][:2], *um["te_at_engagement"][:2], um["lte_at_engagement"][2],
+                um["te_at_engagement"][2]]
+    np.testing.assert_allclose(lte, expected, atol=0.05)
+    np.testing.assert_allclose(numbers(r"radius ([\d.]+) →\s+([\d.]+) mm"),
+                               std["mesh_in_pinion_radius"].values[[0, -1]] * 1e3, atol=0.005)
+    roll = numbers(r"\(([\d.]+), ([\d.]+), ([\d.]+) mm against ([\d.]+), ([\d.]+), ([\d.]+) mm\)")
+    np.testing.assert_allclose(roll, np.concatenate([std["roll_before_engagement"].values,
+                                                     std["roll_before_engagement_seed_equation"].values]) * 1e3,
+                               atol=0.0005)
 
 
 def test_nothing_shipped_points_into_the_repository(root, capsys):
