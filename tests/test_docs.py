@@ -304,3 +304,47 @@ def test_every_gearmesh_name_the_benchmarks_and_scripts_import_exists(root):
                 missing += [f"{path.name}: {node.module}.{a.name}" for a in node.names
                             if not hasattr(module, a.name) and importlib.util.find_spec(f"{node.module}.{a.name}") is None]
     assert not missing, missing
+
+
+#: docs/validation.md's K_v table, row label -> (output of scripts/dynamics_iso.py: default or
+#: solid-disc bodies, its model key).
+_KV_ROWS = {"model, rigid supports, `contact`": ("", "rigid / contact"),
+            "model, rigid supports, `tvms`": ("", "rigid / tvms"),
+            "model, the pair file's supports, `contact`": ("", "pair file / contact"),
+            "model, the pair file's supports, `tvms`": ("", "pair file / tvms"),
+            "model, the low-fluctuation paper's bearings, `contact`": ("", "the low-fluctuation paper / contact"),
+            "solid-disc bodies, rigid supports, `contact`": ("_web42.0", "rigid / contact"),
+            "solid-disc bodies, the pair file's supports, `contact`": ("_web42.0", "pair file / contact"),
+            "solid-disc bodies, the pair file's supports, `tvms`": ("_web42.0", "pair file / tvms")}
+
+
+@pytest.mark.slow
+def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, tmp_path):
+    """docs/validation.md's K_v table ("Dynamics against ISO 6336-1") is what the script it names
+    prints, to its printed digits: ISO's K_v and the model's dynamic factor at each speed column, the
+    peak and its speed, for every row (the teeth alone, and with solid-disc bodies)."""
+    import json
+    import subprocess
+    import sys
+
+    for extra in ([], ["--web-thickness-mm", "42"]):
+        subprocess.run([sys.executable, str(root / "scripts/dynamics_iso.py"), "--out", str(tmp_path), *extra],
+                       cwd=root, check=True, capture_output=True, timeout=600)
+    out = {suffix: json.loads((tmp_path / f"helical_z29_71_m5{suffix}.json").read_text())
+           for suffix in ("", "_web42.0")}
+    text = (root / "docs/validation.md").read_text(encoding="utf-8")
+    rows = {r["r/min"]: r for r in _markdown_table(text, "| r/min | 1000 | 3000 |")}
+    columns = [c for c in rows["ISO method B, K_v"] if c.isdigit()]
+    speeds = out[""]["speeds_rpm"]
+    iso = out[""]["iso"]["K_v_perfect"]
+    for c in columns:
+        assert float(rows["ISO method B, K_v"][c]) == pytest.approx(iso[speeds.index(float(c))], abs=5e-4), c
+    assert float(rows["ISO method B, K_v"]["peak (r/min)"].split()[0]) == pytest.approx(max(iso), abs=5e-4)
+    for label, (suffix, key) in _KV_ROWS.items():
+        row, model = rows[label], out[suffix]["model"][key]
+        for c in columns:
+            assert float(row[c]) == pytest.approx(model["dynamic_factor_on_grid"][speeds.index(float(c))],
+                                                  abs=5e-4), (label, c)
+        peak, at = row["peak (r/min)"].replace("(", "").replace(")", "").split()
+        assert float(peak) == pytest.approx(model["peak_dynamic_factor"], abs=5e-4), label
+        assert float(at) == pytest.approx(model["peak_speed_rpm"], abs=1.0), label
