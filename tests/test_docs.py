@@ -322,7 +322,8 @@ _KV_ROWS = {"model, rigid supports, `contact`": ("", "rigid / contact"),
 def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, tmp_path):
     """docs/validation.md's K_v table ("Dynamics against ISO 6336-1") is what the script it names
     prints, to its printed digits: ISO's K_v and the model's dynamic factor at each speed column, the
-    peak and its speed, for every row (the teeth alone, and with solid-disc bodies)."""
+    peak and its speed, for every row (the teeth alone, and with solid-disc bodies); and so is the
+    resonance table above it (mean mesh stiffness, rigid-support mesh mode, ISO's n_E1)."""
     import json
     import subprocess
     import sys
@@ -348,3 +349,19 @@ def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, t
         peak, at = row["peak (r/min)"].replace("(", "").replace(")", "").split()
         assert float(peak) == pytest.approx(model["peak_dynamic_factor"], abs=5e-4), label
         assert float(at) == pytest.approx(model["peak_speed_rpm"], abs=1.0), label
+    # the resonance table above it: mean mesh stiffness and rigid-support mesh mode of each excitation
+    modes = {r["excitation"]: r for r in _markdown_table(text, "| excitation | mean mesh stiffness (N/µm) |")}
+    assert float(modes["ISO 6336-1 c_γα·b"]["rigid-support resonance (r/min)"]) == pytest.approx(
+        out[""]["iso"]["n_E1_rpm"], abs=1.0)
+    for label, cases in (("`contact` (LTCA tangent at 1000 N·m)", [("", "rigid / contact")]),
+                         ("`tvms` (the same law's tangent, and the tips' loaded contact beyond the active zone)",
+                          [("", "rigid / tvms")]),
+                         ("solid-disc bodies in series: `contact` / `tvms`",
+                          [("_web42.0", "rigid / contact"), ("_web42.0", "rigid / tvms")])):
+        row = modes[label]
+        stiffness = [float(v) for v in row["mean mesh stiffness (N/µm)"].split(" / ")]
+        resonance = [float(v) for v in row["rigid-support resonance (r/min)"].split(" / ")]
+        for k, (suffix, key) in enumerate(cases):
+            model = out[suffix]["model"][key]
+            assert stiffness[k] == pytest.approx(model["mesh_stiffness_transverse_N_per_um"], abs=0.05), label
+            assert resonance[k] == pytest.approx(model["mesh_mode_rpm"], abs=1.0), label
