@@ -63,26 +63,21 @@ def search_inputs(variant: str, config: dict) -> dict:
     return got
 
 
-def grid_worst(inputs: dict, levels: int) -> tuple[np.ndarray, int]:
-    """The worst (T, K) over every corner of the design's active modification deviations at ``levels``
-    lead-mismatch levels, evaluated as the box search evaluates its gears; and the gears evaluated."""
+def grid_search(evaluate, k: int, mismatch: bool = True, levels: int = 33, **_):
+    """A stand-in for :func:`gearmesh.robust.box_worst` with its arguments: every corner of the
+    modification deviations at ``levels`` lead-mismatch levels (the box's structure), evaluated in
+    blocks of at most 200 gears by ``evaluate`` (the search's own: :func:`gearmesh.robust.design_box_worst`
+    hands it over); the largest of each column there."""
     import gearmesh.robust as robust
 
-    model, params = inputs["model"], inputs["params"]
-    box = robust.tolerance_box(inputs["tolerance"], params)
-    mods = box.size - int(box.mismatch)
+    mods = k - int(mismatch)
     corners = np.array(list(itertools.product((-1.0, 1.0), repeat=mods))) if mods else np.zeros((1, 0))
-    mismatch = np.linspace(-1.0, 1.0, levels) if box.mismatch else np.zeros(0)
-    units = (np.array([[u, *c] for c in corners for u in mismatch]) if box.mismatch else corners)
-    worst = None
-    for block in np.array_split(units, max(1, units.shape[0] // 200)):
-        with_nominal = np.vstack([np.zeros((1, block.shape[1])), block])
-        rows, lead = box.gears(model.geom, params, model.lead_slope, with_nominal)
-        values = robust.gear_criteria(model, rows, lead, inputs["torques"], inputs["speed_rpm"],
-                                      inputs["energy_velocity"], samples=with_nominal.shape[0]).values[1:]
-        block_worst = np.nanmax(values, axis=0)
-        worst = block_worst if worst is None else np.fmax(worst, block_worst)
-    return worst, units.shape[0]
+    units = np.array([[u, *c] for c in corners for u in np.linspace(-1.0, 1.0, levels)]) if mismatch else corners
+    values = np.vstack([np.asarray(evaluate(block), dtype=float).reshape(block.shape[0], -1)
+                        for block in np.array_split(units, max(1, units.shape[0] // 200))])
+    worst = np.argmax(np.where(np.isfinite(values), values, -np.inf), axis=0)
+    return robust.BoxWorst(values=values[worst, np.arange(values.shape[1])], points=units[worst],
+                           evaluated=units.shape[0])
 
 
 def _compare(name: str, variant: str, values: np.ndarray, evaluated: int, cpu: float, shipped: np.ndarray) -> dict:
@@ -105,8 +100,8 @@ def main() -> int:
     for variant in config["variants"]:
         inputs = search_inputs(variant, config)
 
-        def search(**options):
-            robust.box_worst = functools.partial(shipped_search, **options)
+        def search(method=shipped_search, **options):
+            robust.box_worst = functools.partial(method, **options)
             try:
                 c0 = time.process_time()
                 worst = robust.design_box_worst(inputs["model"], inputs["tolerance"], inputs["params"],
@@ -122,11 +117,9 @@ def main() -> int:
             worst, cpu = search(min_step=step)
             print(json.dumps(_compare(f"min_step {step:g}", variant, worst.values, worst.evaluated, cpu,
                                       shipped.values)), flush=True)
-        c0 = time.process_time()
-        grid, evaluated = grid_worst(inputs, args.levels)
-        print(json.dumps(_compare(f"grid {args.levels} mismatch levels x corners", variant,
-                                  grid.reshape(shipped.values.shape), evaluated, time.process_time() - c0,
-                                  shipped.values)), flush=True)
+        grid, cpu = search(grid_search, levels=args.levels)
+        print(json.dumps(_compare(f"grid {args.levels} mismatch levels x corners", variant, grid.values,
+                                  grid.evaluated, cpu, shipped.values)), flush=True)
     return 0
 
 
