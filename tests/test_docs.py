@@ -348,11 +348,11 @@ def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, t
                                                   abs=5e-4), (label, c)
         peak, at = row["peak (r/min)"].replace("(", "").replace(")", "").split()
         assert float(peak) == pytest.approx(model["peak_dynamic_factor"], abs=5e-4), label
-        assert float(at) == pytest.approx(model["peak_speed_rpm"], abs=1.0), label
+        assert float(at) == pytest.approx(model["peak_speed_rpm"], abs=0.5), label
     # the resonance table above it: mean mesh stiffness and rigid-support mesh mode of each excitation
     modes = {r["excitation"]: r for r in _markdown_table(text, "| excitation | mean mesh stiffness (N/µm) |")}
     assert float(modes["ISO 6336-1 c_γα·b"]["rigid-support resonance (r/min)"]) == pytest.approx(
-        out[""]["iso"]["n_E1_rpm"], abs=1.0)
+        out[""]["iso"]["n_E1_rpm"], abs=0.5)
     for label, cases in (("`contact` (LTCA tangent at 1000 N·m)", [("", "rigid / contact")]),
                          ("`tvms` (the same law's tangent, and the tips' loaded contact beyond the active zone)",
                           [("", "rigid / tvms")]),
@@ -364,4 +364,4 @@ def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, t
         for k, (suffix, key) in enumerate(cases):
             model = out[suffix]["model"][key]
             assert stiffness[k] == pytest.approx(model["mesh_stiffness_transverse_N_per_um"], abs=0.05), label
-            assert resonance[k] == pytest.approx(model["mesh_mode_rpm"], abs=1.0), label
+            assert resonance[k] == pytest.approx(model["mesh_mode_rpm"], abs=0.5), label
