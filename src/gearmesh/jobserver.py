@@ -364,8 +364,10 @@ def remove_stale_folders(parent: str) -> list[str]:
     except OSError:
         return removed
     for name in names:
+        if not name.startswith(FOLDER_PREFIX):
+            continue
         pid, sep, _ = name[len(FOLDER_PREFIX):].partition("-")
-        if not (name.startswith(FOLDER_PREFIX) and sep and pid.isdigit()):
+        if not (sep and pid.isdigit()):
             continue
         folder = os.path.join(parent, name)
         try:
