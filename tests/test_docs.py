@@ -306,6 +306,107 @@ def test_every_gearmesh_name_the_benchmarks_and_scripts_import_exists(root):
     assert not missing, missing
 
 
+def _validation(root) -> str:
+    return (root / "docs/validation.md").read_text(encoding="utf-8")
+
+
+def _printed(text: str) -> list[str]:
+    """The numbers of a table cell as printed, in order ("−" kept as the sign, "**" ignored)."""
+    return [v.replace("−", "-") for v in re.findall(r"−?\d+(?:\.\d+)?", text)]
+
+
+def _held(printed: str, value: float, where: str) -> None:
+    """``value`` is what ``printed`` says, to half a unit of its last printed digit."""
+    half = 0.5 * 10.0 ** -len(printed.partition(".")[2])
+    assert float(printed) == pytest.approx(float(value), abs=half), (where, printed, float(value))
+
+
+def _study_pairs(study, names) -> dict:
+    from gearmesh.pipeline import study_pair
+
+    return {name: study_pair(study, name, None) for name in names}
+
+
+def test_validation_doc_geometry_table_is_what_gearmesh_computes(root, capsys, monkeypatch):
+    """docs/validation.md's "Geometry and contact lines" table, our column and the numbers its "why
+    different" column argues with, to their printed digits: the contact ratios, masses and inertias
+    of the ``gearmesh geometry`` command its "where" names, the integer-overlap designs of the
+    low_fluctuation study, the ε_l minima of the contact_lines study's helix sweep (the local minima
+    where ε_β is near an integer) and ε_β at the near-1 one, the default pair's standard centre
+    distance and base radii, the transition-curve pair's ε_α and the addendum coefficient at which
+    its pinion turns pointed (accepted half a printed unit below, refused above)."""
+    import json
+
+    from gearmesh.cli import main
+    from gearmesh.config import load_study
+    from gearmesh.datasets.geometry import helix_sweep_dataset, low_fluctuation_design_dataset
+    from gearmesh.errors import GearmeshInputError
+    from gearmesh.gear import pair_geometry
+    from gearmesh.pairfile import load_pair, pair_to_dict
+
+    rows = {r["quantity"]: r for r in _markdown_table(_validation(root), "## Geometry and contact lines")}
+    monkeypatch.chdir(root)
+
+    def geometry(path: str) -> dict:
+        assert main(["geometry", path, "--json"]) == 0
+        return json.loads(capsys.readouterr().out)
+
+    def ours(quantity: str) -> list[str]:
+        return _printed(rows[quantity]["ours"])
+
+    command = rows["εα, εβ of pair 1"]["where"].strip("`").split()
+    assert command[:2] == ["gearmesh", "geometry"] and rows["masses pinion/gear"]["where"] == "same"
+    pair1 = geometry(command[2])
+    computed = {"εα, εβ of pair 1": [pair1["eps_alpha"], pair1["eps_beta"]],
+                "masses pinion/gear": pair1["mass_kg"],
+                "inertias pinion/gear": np.multiply(pair1["inertia_kg_m2"], 1e4)}  # printed ×10⁻⁴ kg m²
+    for quantity, values in computed.items():
+        assert len(ours(quantity)) >= len(values), quantity
+        for printed, value in zip(ours(quantity), values):
+            _held(printed, value, quantity)
+    # the low_fluctuation study's integer-overlap designs (low_fluctuation_design.csv)
+    study = load_study(root / "config/studies/low_fluctuation.yaml")
+    section = study["low_fluctuation_design"]
+    design = low_fluctuation_design_dataset(_study_pairs(study, section["pairs"]), **section)
+    beta, width = ours("integer-εβ design, pair 1: β / b")
+    _held(beta, design.helix_angle_deg.sel(pair="low_fluctuation_pair1", design="helix_angle_forward"), "β")
+    _held(width, design.face_width.sel(pair="low_fluctuation_pair1", design="face_width_forward") * 1e3, "b")
+    _held(ours("pair 4 backward design β")[0],
+          design.helix_angle_deg.sel(pair="low_fluctuation_pair4", design="helix_angle_backward"), "pair 4 β")
+    # the contact_lines study's helix sweep (helix_sweep.nc): input pair, then output pair
+    study = load_study(root / "config/studies/contact_lines.yaml")
+    section = study["helix_sweep"]
+    sweep = helix_sweep_dataset(_study_pairs(study, section["pairs"]), **section)
+    minima = []
+    for name in section["pairs"]:
+        eps_l, eps_beta = (sweep[v].sel(pair=name).values for v in ("length_fluctuation", "eps_beta"))
+        minima += [(float(sweep.helix_angle_deg[i]), eps_beta[i]) for i in range(1, eps_l.size - 1)
+                   if eps_l[i] <= min(eps_l[i - 1], eps_l[i + 1]) and abs(eps_beta[i] - round(eps_beta[i])) < 0.05]
+    printed = ours("ε_l V-curve minima")
+    assert len(printed) == len(minima) == 3, minima
+    for p, (angle, _) in zip(printed, minima):
+        _held(p, angle, "ε_l minimum")
+    why = rows["ε_l V-curve minima"]["why different"]
+    assert f"{float(printed[1]):g}°" in why  # "15.25° is the minimum on our 0.25° grid near εβ = 1 (0.993)"
+    _held(re.search(r"near εβ = 1 \(([\d.]+)\)", why).group(1), minima[1][1], "εβ at the minimum")
+    # the default pair: standard centre distance, and the base radii that rule out the paper's 261.0 mm
+    row = rows["centre distance, the mesh-in impact paper's pair"]
+    default = geometry(re.search(r"`(config/pairs/\S+\.yaml)`", row["where"]).group(1))
+    _held(ours("centre distance, the mesh-in impact paper's pair")[0], default["center_distance_mm"], "a")
+    _held(re.search(r"base radii alone sum to ([\d.]+) mm", row["why different"]).group(1),
+          sum(default["base_radius_mm"]), "r_b1 + r_b2")
+    # the transition-curve pair as shipped, and the addendum at which its pinion turns pointed
+    quantity = "εα of the transition-curve paper's pair"
+    shipped = geometry("config/pairs/transition_curve_z23_62.yaml")
+    _held(ours(quantity)[0], shipped["eps_alpha"], quantity)
+    printed = re.search(r"pointed at ha ≈ ([\d.]+)", rows[quantity]["why different"]).group(1)
+    data = pair_to_dict(load_pair("config/pairs/transition_curve_z23_62.yaml"))
+    half = 0.5 * 10.0 ** -len(printed.partition(".")[2])
+    pair_geometry(load_pair({**data, "addendum_coefficient": float(printed) - half}))
+    with pytest.raises(GearmeshInputError, match="pinion tooth pointed"):
+        pair_geometry(load_pair({**data, "addendum_coefficient": float(printed) + half}))
+
+
 #: docs/validation.md's K_v table, row label -> (output of scripts/dynamics_iso.py: default or
 #: solid-disc bodies, its model key).
 _KV_ROWS = {"model, rigid supports, `contact`": ("", "rigid / contact"),
