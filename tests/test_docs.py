@@ -407,6 +407,111 @@ def test_validation_doc_geometry_table_is_what_gearmesh_computes(root, capsys, m
         pair_geometry(load_pair({**data, "addendum_coefficient": float(printed) + half}))
 
 
+def _stiffness_rows(root) -> dict[str, list[str]]:
+    """docs/validation.md's "Mesh stiffness (N/µm)" table: quantity -> the numbers of our column."""
+    return {r["quantity"]: _printed(r["ours"]) for r in _markdown_table(_validation(root), "## Mesh stiffness (N/µm)")}
+
+
+def _stiffness_table(root, name: str):
+    """The stiffness_table.nc of study ``name`` (config/studies/NAME.yaml), as its stage computes it."""
+    from gearmesh.config import load_study
+    from gearmesh.datasets.stiffness import stiffness_table_dataset
+
+    study = load_study(root / f"config/studies/{name}.yaml")
+    section = study["stiffness_table"]
+    return study, stiffness_table_dataset(_study_pairs(study, section["pairs"]), **section)
+
+
+def test_validation_doc_printing_train_stiffness_rows_are_what_its_study_computes(root, monkeypatch):
+    """docs/validation.md's mesh-stiffness rows of the printing_train study, to their printed digits:
+    the 88-tooth pair's mean K by the traditional, improved and transition models and ISO 6336-1's
+    (stiffness_table.nc) with the E/E_st it scales by, and the slice convergence of the improved model
+    (slice_convergence.nc: whole slices at the fewest, clipped at the most, and the clipped mean's
+    relative difference at the N the "why different" column names)."""
+    from gearmesh.datasets.stiffness import DEFAULT_RULE, slice_convergence_dataset
+    from gearmesh.limits import ISO6336_STEEL_MODULUS
+
+    monkeypatch.chdir(root)
+    rows = _stiffness_rows(root)
+    study, table = _stiffness_table(root, "printing_train")
+    k = table.sel(case="printing_train_z88") * 1e-6
+    printed = rows["the improved potential-energy paper gear: traditional < improved < transition?"]
+    for p, value in zip(printed, [*k.mean_stiffness.sel(model=["traditional", "improved", "transition"]).values,
+                                  k.iso6336_mesh_stiffness.sel(model="improved")]):
+        _held(p, value, "printing_train_z88 mean K")
+    modulus = _study_pairs(study, ["printing_train_z88"])["printing_train_z88"].material.youngs_modulus
+    _held(printed[4], modulus * 1e-9, "E (GPa)")
+    _held(printed[5], ISO6336_STEEL_MODULUS * 1e-9, "E_st (GPa)")
+    section = study["slice_convergence"]
+    ds = slice_convergence_dataset(_study_pairs(study, section["pairs"]), **section).isel(pair=0)
+    whole, _, clipped, _ = rows["slice convergence (improved, mean)"]
+    _held(whole, ds.mean_stiffness.sel(rule="centre").isel(slices=0) * 1e-6, "whole slices")
+    _held(clipped, ds.mean_stiffness.sel(rule=DEFAULT_RULE).isel(slices=-1) * 1e-6, "clipped slices")
+    assert rows["slice convergence (improved, mean)"][1::2] == [str(ds.slices.values[0]), str(ds.slices.values[-1])]
+    why = next(r["why different"] for r in _markdown_table(_validation(root), "## Mesh stiffness (N/µm)")
+               if r["quantity"] == "slice convergence (improved, mean)")
+    difference, n = re.search(r"(\d+e-\d+) at N = (\d+)", why).groups()
+    assert float(difference) == pytest.approx(
+        abs(float(ds.mean_relative_difference.sel(rule=DEFAULT_RULE, slices=int(n)))), abs=0.5 * float(difference))
+
+
+def test_validation_doc_transition_curve_stiffness_rows_are_what_its_study_computes(root, monkeypatch):
+    """docs/validation.md's mesh-stiffness rows of the transition_curve study (stiffness_table.nc), to
+    their printed digits: the pair as given by the three cantilevers and ISO 6336-1, the transition
+    model's mean K at each pressure angle, and its LSTE peak-to-peak at the contact ratios the row
+    names, the first the worst of the contact-ratio variants."""
+    monkeypatch.chdir(root)
+    rows = _stiffness_rows(root)
+    _, table = _stiffness_table(root, "transition_curve")
+    k = table[["mean_stiffness", "iso6336_mesh_stiffness"]] * 1e-6
+    given = k.sel(case="transition_curve_z23_62-as_given")
+    for p, value in zip(rows["the transition-curve paper as given (transition)"],
+                        [*given.mean_stiffness.sel(model=["transition", "traditional", "improved"]).values,
+                         given.iso6336_mesh_stiffness.sel(model="transition")]):
+        _held(p, value, "as given")
+    quantity = next(q for q in rows if q.startswith("pressure angle "))
+    for angle, p in zip(re.findall(r"\d+", quantity), rows[quantity]):
+        _held(p, k.mean_stiffness.sel(case=f"transition_curve_z23_62-alpha_{angle}", model="transition"), quantity)
+    p2p = table.lste_peak_to_peak.sel(model="transition") * 1e6
+    printed = rows["TE p-p at half-integer εγ"]  # (εα,εβ) value, twice
+    for eps_alpha, eps_beta, value in zip(printed[0::3], printed[1::3], printed[2::3]):
+        _held(value, p2p.sel(case=f"transition_curve_z23_62-ratios_{eps_alpha}_{eps_beta}"), "TE p-p")
+    ratios = p2p.sel(case=[c for c in p2p.case.values if "-ratios_" in c])
+    assert str(ratios.idxmax().values).endswith(f"ratios_{printed[0]}_{printed[1]}")  # "worst"
+
+
+def test_validation_doc_low_fluctuation_stiffness_rows_are_what_its_study_computes(root, monkeypatch):
+    """docs/validation.md's mesh-stiffness rows of the low_fluctuation study, to their printed digits:
+    pairs 1–4's mean K and ε_k and the LSTE F/K (mean, and peak-to-peak of pair 1) of stiffness_table.nc,
+    the study's linear TVMS with its Hertz term; beside them the LTCA's LTE mean (and pair 1's
+    peak-to-peak) at the study's LTCA torque."""
+    from gearmesh.datasets.ltca import ltca_dataset
+
+    monkeypatch.chdir(root)
+    rows = _stiffness_rows(root)
+    study, table = _stiffness_table(root, "low_fluctuation")
+    names = list(table.case.values)
+    assert names == [f"low_fluctuation_pair{i}" for i in (1, 2, 3, 4)]
+    t = table.sel(model="transition")
+    for quantity, values in (("the low-fluctuation paper's pairs 1–4, mean K", t.mean_stiffness * 1e-6),
+                             ("ε_k pairs 1–4", t.fluctuation * 100)):
+        assert len(rows[quantity]) == 4, quantity
+        for p, value in zip(rows[quantity], values.values):
+            _held(p, value, quantity)
+    pairs = _study_pairs(study, names)
+    lte = {n: ltca_dataset(pairs[n], **study["ltca"]).isel(torque=0) for n in names}
+    f_over_k, p2p, mean, ltca_p2p = rows["LSTE pair 1 at 200 N·m (mean / p-p µm)"]
+    first = names[0]
+    for p, value in ((f_over_k, t.lste_mean.sel(case=first) * 1e6), (p2p, t.lste_peak_to_peak.sel(case=first) * 1e6),
+                     (mean, lte[first].lte_mean * 1e6), (ltca_p2p, lte[first].lte_peak_to_peak * 1e6)):
+        _held(p, value, first)
+    printed = rows["LSTE pairs 2–4, F/K vs LTCA (mean µm)"]
+    assert len(printed) == 6
+    for name, p, q in zip(names[1:], printed[0::2], printed[1::2]):
+        _held(p, t.lste_mean.sel(case=name) * 1e6, name)
+        _held(q, lte[name].lte_mean * 1e6, name)
+
+
 #: docs/validation.md's K_v table, row label -> (output of scripts/dynamics_iso.py: default or
 #: solid-disc bodies, its model key).
 _KV_ROWS = {"model, rigid supports, `contact`": ("", "rigid / contact"),
