@@ -512,6 +512,54 @@ def test_validation_doc_low_fluctuation_stiffness_rows_are_what_its_study_comput
         _held(q, lte[name].lte_mean * 1e6, name)
 
 
+#: docs/validation.md's FE-tooth row: the name of each pair it quotes, as its cell names it.
+_TOOTH_MODEL_PAIRS = {"the mesh-in impact paper": "helical_z29_71_m5",
+                      "the low-fluctuation paper's pair 1": "low_fluctuation_pair1",
+                      "the transition-curve paper": "transition_curve_z23_62",
+                      "the improved potential-energy paper": "printing_train_z88"}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", _TOOTH_MODEL_PAIRS.values())
+def test_validation_doc_tooth_model_row_is_what_stiffness_methods_computes(root, monkeypatch, name):
+    """docs/validation.md's "FE tooth" row, to its printed digits: the mean mesh stiffness of the
+    four tooth models (traditional / improved / transition / fe) of each pair it quotes, as the
+    stiffness_methods study's stiffness_table computes them (its grid, the pair as shipped: the teeth
+    alone), and for the default pair also with solid-disc bodies described (hub = bore, as
+    tests/test_body.py's ``_solid_discs``), their compliance in series at every position. One pair
+    per test: the FE tooth tables take 1–2 s a pair."""
+    from test_body import _solid_discs
+
+    from gearmesh.config import load_study
+    from gearmesh.datasets.stiffness import stiffness_table_dataset
+    from gearmesh.gear import pair_geometry
+    from gearmesh.stiffness import mesh_stiffness
+
+    monkeypatch.chdir(root)
+    text = next(r["ours"] for r in _markdown_table(_validation(root), "## Mesh stiffness (N/µm)")
+                if r["quantity"].startswith("FE tooth (our own check of the PEMs)"))
+    cells = {}
+    for part in re.split(r"; (?=the )", text):  # one part per pair, each opening with its name
+        label = next(lab for lab in sorted(_TOOTH_MODEL_PAIRS, key=len, reverse=True) if part.startswith(lab))
+        cells[_TOOTH_MODEL_PAIRS[label]] = _printed(part[len(label):])
+    assert list(cells) == list(_TOOTH_MODEL_PAIRS.values())
+    study = load_study(root / "config/studies/stiffness_methods.yaml")
+    section = {**study["stiffness_table"], "pairs": [name]}
+    methods = section["methods"]
+    assert methods == ["traditional", "improved", "transition", "fe"]
+    table = stiffness_table_dataset(_study_pairs(study, [name]), **section)
+    printed = cells[name]
+    assert len(printed) == (8 if name == "helical_z29_71_m5" else 4), printed
+    for p, value in zip(printed[:4], table.mean_stiffness.sel(case=name, model=methods).values * 1e-6):
+        _held(p, value, name)
+    if len(printed) == 8:  # "with its default solid-disc bodies in series"
+        geom = pair_geometry(_solid_discs(name))
+        for p, method in zip(printed[4:], methods):
+            k = mesh_stiffness(geom, n_positions=section["positions"], n_slices=section["slices"], method=method,
+                               components=False)
+            _held(p, k.mean * 1e-6, f"{name} with solid discs, {method}")
+
+
 #: docs/validation.md's K_v table, row label -> (output of scripts/dynamics_iso.py: default or
 #: solid-disc bodies, its model key).
 _KV_ROWS = {"model, rigid supports, `contact`": ("", "rigid / contact"),
