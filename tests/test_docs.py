@@ -560,6 +560,60 @@ def test_validation_doc_tooth_model_row_is_what_stiffness_methods_computes(root,
             _held(p, k.mean * 1e-6, f"{name} with solid discs, {method}")
 
 
+#: docs/validation.md's body-compliance table: row label -> the pairs its " / "-separated cells are of.
+_BODY_ROWS = {"helical_z29_71_m5 (default)": ["helical_z29_71_m5"],
+              "printing_train_z88": ["printing_train_z88"],
+              "low_fluctuation_pair1 / 2 / 3 / 4": [f"low_fluctuation_pair{i}" for i in (1, 2, 3, 4)],
+              "contact_lines_input_z29_36 / output": ["contact_lines_input_z29_36", "contact_lines_output_z15_65"],
+              "transition_curve_z23_62": ["transition_curve_z23_62"]}
+
+
+def test_validation_doc_body_compliance_table_is_what_gearmesh_body_computes(root):
+    """docs/validation.md's gear-body table, to its printed digits: the plate compliance c_body of
+    both gears as solid discs held at the bore (``gearmesh.body.mesh_body_compliance`` of
+    tests/test_body.py's ``_solid_discs``), and the columns it makes with the 3-D reference's
+    stiffnesses, which are taken from the "Verdict" table (the 3-D reference under the transverse
+    and the flank-normal load, minutes of FE each, not recomputed here): the 3-D normal − transverse
+    compliance, plate / 3-D, the 3-D transverse stiffness with the plate in series and its excess over
+    the 3-D normal-load stiffness."""
+    from test_body import _solid_discs
+
+    from gearmesh.body import mesh_body_compliance
+    from gearmesh.gear import pair_geometry
+
+    text = _validation(root)
+    verdict = {r["pair"]: r for r in _markdown_table(text, "### Verdict")}
+    rows = _markdown_table(text, "| pair | c_body plate (µm/kN) |")
+    assert [r["pair"] for r in rows] == list(_BODY_ROWS)
+
+    def cells(row, column):
+        return row[column].split(" / ")
+
+    for row in rows:
+        names = _BODY_ROWS[row["pair"]]
+        c_body = [mesh_body_compliance(pair_geometry(_solid_discs(n))) * 1e9 for n in names]  # µm/kN
+        k_3d = [float(verdict[n]["3-D reference"].strip("*")) for n in names]  # N/µm
+        k_normal = [float(verdict[n]["3-D, normal load"]) for n in names]
+        difference = [1e3 * (1 / kn - 1 / k) for kn, k in zip(k_normal, k_3d)]  # µm/kN
+        series = [1 / (1 / k + 1e-3 * c) for k, c in zip(k_3d, c_body)]
+        for column, values in (("c_body plate (µm/kN)", c_body), ("3-D normal − transverse (µm/kN)", difference),
+                               ("3-D transverse + plate body (N/µm)", series)):
+            assert len(cells(row, column)) == len(names), (row["pair"], column)
+            for p, value in zip(cells(row, column), values):
+                _held(p, value, f"{row['pair']}: {column}")
+        ratio = [c / d for c, d in zip(c_body, difference)]
+        printed = _printed(row["plate / 3-D"])
+        if "–" in row["plate / 3-D"]:  # a range over the row's pairs
+            ratio = [min(ratio), max(ratio)]
+        for p, value in zip(printed, ratio, strict=True):
+            _held(p, value, f"{row['pair']}: plate / 3-D")
+        normal = row["3-D normal load (N/µm)"]
+        assert _printed(normal.split(" (")[0]) == [f"{k:g}" for k in k_normal], row["pair"]
+        if "%" in normal:
+            excess = re.search(r"\(([+−]?[\d.]+) %\)", normal).group(1).replace("−", "-")
+            _held(excess, 100 * (series[0] / k_normal[0] - 1), f"{row['pair']}: excess")
+
+
 #: docs/validation.md's K_v table, row label -> (output of scripts/dynamics_iso.py: default or
 #: solid-disc bodies, its model key).
 _KV_ROWS = {"model, rigid supports, `contact`": ("", "rigid / contact"),
