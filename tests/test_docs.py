@@ -677,21 +677,30 @@ _KV_ROWS = {"model, rigid supports, `contact`": ("", "rigid / contact"),
             "solid-disc bodies, the pair file's supports, `tvms`": ("_web42.0", "pair file / tvms")}
 
 
+@pytest.fixture(scope="module")
+def dynamics_iso(tmp_path_factory) -> dict:
+    """scripts/dynamics_iso.py's two outputs, by file suffix: "" the teeth alone, "_web42.0" with
+    solid-disc bodies (``--web-thickness-mm 42``); run once for the tests of the tables it makes."""
+    import json
+    import subprocess
+    import sys
+    from pathlib import Path
+
+    root, out = Path(__file__).resolve().parents[1], tmp_path_factory.mktemp("dynamics_iso")
+    for extra in ([], ["--web-thickness-mm", "42"]):
+        subprocess.run([sys.executable, str(root / "scripts/dynamics_iso.py"), "--out", str(out), *extra],
+                       cwd=root, check=True, capture_output=True, timeout=600)
+    return {suffix: json.loads((out / f"helical_z29_71_m5{suffix}.json").read_text())
+            for suffix in ("", "_web42.0")}
+
+
 @pytest.mark.slow
-def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, tmp_path):
+def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, dynamics_iso):
     """docs/validation.md's K_v table ("Dynamics against ISO 6336-1") is what the script it names
     prints, to its printed digits: ISO's K_v and the model's dynamic factor at each speed column, the
     peak and its speed, for every row (the teeth alone, and with solid-disc bodies); and so is the
     resonance table above it (mean mesh stiffness, rigid-support mesh mode, ISO's n_E1)."""
-    import json
-    import subprocess
-    import sys
-
-    for extra in ([], ["--web-thickness-mm", "42"]):
-        subprocess.run([sys.executable, str(root / "scripts/dynamics_iso.py"), "--out", str(tmp_path), *extra],
-                       cwd=root, check=True, capture_output=True, timeout=600)
-    out = {suffix: json.loads((tmp_path / f"helical_z29_71_m5{suffix}.json").read_text())
-           for suffix in ("", "_web42.0")}
+    out = dynamics_iso
     text = (root / "docs/validation.md").read_text(encoding="utf-8")
     rows = {r["r/min"]: r for r in _markdown_table(text, "| r/min | 1000 | 3000 |")}
     columns = [c for c in rows["ISO method B, K_v"] if c.isdigit()]
@@ -724,3 +733,64 @@ def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, t
             model = out[suffix]["model"][key]
             assert stiffness[k] == pytest.approx(model["mesh_stiffness_transverse_N_per_um"], abs=0.05), label
             assert resonance[k] == pytest.approx(model["mesh_mode_rpm"], abs=0.5), label
+
+
+@pytest.mark.slow
+def test_validation_doc_before_and_after_table_is_what_its_script_computes(root, monkeypatch, dynamics_iso):
+    """docs/validation.md's "Before and after" table, the columns of today's code (the teeth alone, and
+    solid-disc bodies described), to its printed digits: the mean mesh stiffness of ``tvms`` and
+    ``contact``, the mesh modes with the pair's and rigid supports and how far apart they are, ISO's
+    n_E1, the peak dynamic factors and their speeds (scripts/dynamics_iso.py, the script of the tables
+    above it), the stiffness stage's linear TVMS of the default study and the loaded tip contact
+    ``tvms`` adds to it. The 3-D + Weber row is the "Weber" table's (3-D reference, not recomputed).
+    The c61da5b column is history."""
+    from gearmesh.config import load_study
+    from gearmesh.datasets.stiffness import stiffness_dataset
+
+    text = _validation(root)
+    rows = {}
+    for row in _markdown_table(text, "| | c61da5b |"):
+        label, _, *columns = row.values()  # the c61da5b column is history
+        rows[label] = [c.replace("**", "") for c in columns]
+    rigid = next(q for q in rows if q.startswith("rigid supports `tvms` / `contact`"))  # "(n_E1 4851)"
+    model = {"": dynamics_iso[""]["model"], "_web42.0": dynamics_iso["_web42.0"]["model"]}
+    for k, suffix in enumerate(model):  # the teeth alone, solid discs
+        m = model[suffix]
+        where = suffix or "teeth alone"
+        _held(_printed(rows["mean mesh stiffness `tvms` (N/µm)"][k])[0],
+              m["rigid / tvms"]["mesh_stiffness_transverse_N_per_um"], where)
+        _held(_printed(rows["LTCA tangent = `contact` (N/µm)"][k])[0],
+              m["rigid / contact"]["mesh_stiffness_transverse_N_per_um"], where)
+        for label, supports in (("mesh mode `tvms` / `contact`, pair's supports (r/min)", "pair file"),
+                                (rigid, "rigid")):
+            printed = _printed(rows[label][k])
+            tvms, contact = (m[f"{supports} / {e}"]["mesh_mode_rpm"] for e in ("tvms", "contact"))
+            _held(printed[0], tvms, (label, where))
+            _held(printed[1], contact, (label, where))
+            if len(printed) == 3:  # how far apart, %
+                _held(printed[2], 100 * (tvms / contact - 1), (label, where))
+        contact = _printed(rows["peak dynamic factor `contact`, pair's supports"][k])
+        _held(contact[0], m["pair file / contact"]["peak_dynamic_factor"], where)
+        _held(contact[1], m["pair file / contact"]["peak_speed_rpm"], where)
+        tvms = _printed(rows["peak dynamic factor `tvms`, rigid / pair's supports"][k])
+        for (factor, speed), supports in zip((tvms[:2], tvms[2:]), ("rigid", "pair file")):
+            _held(factor, m[f"{supports} / tvms"]["peak_dynamic_factor"], where)
+            _held(speed, m[f"{supports} / tvms"]["peak_speed_rpm"], where)
+    n_e1 = re.search(r"n_E1 (\d+)", rigid).group(1)
+    _held(n_e1, dynamics_iso[""]["iso"]["n_E1_rpm"], "n_E1")
+    # solid discs: the peak is not the mesh mode; the dynamic factor at 7000 r/min beside it
+    factor, at = re.search(r"([\d.]+) at (\d+)\)", rows["peak dynamic factor `contact`, pair's supports"][1]).groups()
+    speeds = dynamics_iso["_web42.0"]["speeds_rpm"]
+    _held(factor, model["_web42.0"]["pair file / contact"]["dynamic_factor_on_grid"][speeds.index(float(at))], "at")
+    # the teeth's tvms: the stiffness stage's linear TVMS plus the loaded tip contact
+    monkeypatch.chdir(root)
+    study = load_study(root / "config/config.yaml")
+    pair = _study_pairs(study, study["pairs"][:1])[study["pairs"][0]]
+    linear = float(stiffness_dataset(pair, **study["stiffness"]).mesh_stiffness.mean()) * 1e-6
+    _, stage, extension = _printed(rows["mean mesh stiffness `tvms` (N/µm)"][0])
+    _held(stage, linear, "linear TVMS of the stiffness stage")
+    _held(extension, model[""]["rigid / tvms"]["mesh_stiffness_transverse_N_per_um"] - linear, "loaded tip contact")
+    # the 3-D reference's row is the Weber table's
+    weber = next(r for r in _markdown_table(text, "| pair | Weber / Yang–Sun |") if r["pair"] == "helical_z29_71_m5")
+    for cell in rows["3-D + Weber, transverse / normal load (N/µm)"]:
+        assert cell == f"{weber['3-D + Weber']} / {weber['3-D normal load + Weber']}"
