@@ -7,7 +7,7 @@ force) over a speed sweep, with rigid supports, the pair file's and the low-fluc
 the teeth alone, ISO's model) or ``--web-thickness-mm T`` (mm: a web of that thickness held at the
 bore, its compliance in series, :mod:`gearmesh.body`; the face width a solid disc; then without the
 low-fluctuation paper's bearings, which are the model's defaults and not stated: a body needs its
-bearings stated). Writes results/dynamics_iso/helical_z29_71_m5[_web<T>].json and prints a table. Run: ``python scripts/dynamics_iso.py`` (about 2 min on a quiet 2-core machine).
+bearings stated). Writes results/dynamics_iso/helical_z29_71_m5[_web<T>].json and prints a table. Run: ``python scripts/dynamics_iso.py`` (about 10 s on a quiet 2-core machine).
 """
 
 from __future__ import annotations
