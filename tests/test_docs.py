@@ -621,10 +621,9 @@ def test_validation_doc_dynamics_rows_are_what_the_studies_compute(root, monkeyp
     over every pair and speed of the low_fluctuation sweep (dynamics.nc, the LTCA-excited pair with the
     stiffness stage beside it, as the workflow passes them); pairs 2 and 3 against pair 1
     (dynamics_comparison.nc: the mean change of the mesh-deflection std, and the range of the mean
-    change of the gears' vibration velocity RMS); the printing train's mean mesh force in both meshes
-    and its idle blanket (train.nc). Not held: the train's force range and mesh-order amplitudes
-    (docs/validation.md prints 2828.3–2836.3 N and 0.76/1.37/3.11 N; the train computes
-    2825.6–2838.9 N and 1.26/2.09/5.24 N)."""
+    change of the gears' vibration velocity RMS); the printing train's mean mesh force in both meshes,
+    its range over the mesh cycle, the mesh force's amplitudes at mesh orders 1–3 and its idle blanket
+    (train.nc)."""
     from gearmesh.config import load_study
     from gearmesh.datasets.dynamics import dynamics_comparison_dataset, dynamics_dataset, train_dataset
     from gearmesh.datasets.ltca import ltca_dataset
@@ -658,12 +657,53 @@ def test_validation_doc_dynamics_rows_are_what_the_studies_compute(root, monkeyp
                           **study["train_dynamics"]).isel(speed=0)
     printed = rows["the improved potential-energy paper train: mean mesh forces"]
     assert "both meshes" in printed
+    mean, low, high = _printed(printed)
     for value in train.mesh_force_mean.values:
-        _held(_printed(printed)[0], value, "train mean mesh force")
+        _held(mean, value, "train mean mesh force")
+    for p, values in ((low, train.mesh_force_min), (high, train.mesh_force_max)):
+        for value in values.values:
+            _held(p, value, "train mesh force range")
+    orders = _printed(rows["the improved potential-energy paper: 249.4 Hz dominates"].split(":", 1)[1])
+    spectrum = train.mesh_force_spectrum.isel(sample_speed=0)
+    assert len(orders) == 3
+    for order, p in zip((1.0, 2.0, 3.0), orders):
+        for value in spectrum.sel(order=order).values:
+            _held(p, value, f"train mesh force at order {order:g}")
     assert "blanket motionless" in rows["the improved potential-energy paper: blanket has the largest axial vibration"]
     rms = train.displacement_rms
     assert float(rms.sel(gear="blanket").max()) < 1e-9 * float(rms.sel(gear="plate").max())
 
+
+
+@pytest.mark.slow
+def test_validation_doc_dynamics_command_row_is_what_it_prints(root, capsys, monkeypatch):
+    """docs/validation.md's command row under "## Dynamics": its ``gearmesh dynamics`` command, run as
+    printed, gives the dynamic TE mean the row states at each of its speeds, and ``gearmesh ltca`` of the
+    same pair, torque and gear (the command without its dynamics options) the LTE mean the row sets it
+    against, to their printed digits; both with the tooth model the row names."""
+    import json
+    import shlex
+
+    from gearmesh.cli import main
+
+    monkeypatch.chdir(root)
+    row = next(r for r in _markdown_table(_validation(root), "## Dynamics\n")
+               if r["quantity"].startswith("`gearmesh dynamics"))
+    command = shlex.split(re.match(r"`gearmesh (.*?)`", row["quantity"]).group(1))
+    assert main([*command, "--json"]) == 0
+    dynamics = json.loads(capsys.readouterr().out)
+    ltca_command = [c for k, c in enumerate(command) if c not in ("--excitation", "--speeds")
+                    and (k == 0 or command[k - 1] not in ("--excitation", "--speeds"))]
+    ltca_command[0] = "ltca"
+    assert main([*ltca_command, "--json"]) == 0
+    ltca = json.loads(capsys.readouterr().out)
+    model = re.search(r"tooth model `(\w+)`", row["source"]).group(1)
+    assert ltca["tooth_model"] == model
+    _held(_printed(row["source"].split("lte_mean_um")[1])[0], ltca["lte_mean_um"], "ltca lte_mean_um")
+    mean, *speeds = _printed(row["ours"])
+    assert [float(s) for s in speeds] == [s["speed_rpm"] for s in dynamics["speeds"]]
+    for s in dynamics["speeds"]:
+        _held(mean, s["dynamic_te_mean_um"], f"dynamic TE mean at {s['speed_rpm']:g} rpm")
 
 #: docs/validation.md's K_v table, row label -> (output of scripts/dynamics_iso.py: default or
 #: solid-disc bodies, its model key).
