@@ -51,7 +51,7 @@ def test_two_clean_runs_give_the_same_bytes_and_check_what_they_publish(root, tm
     differ = [p for p in one if one[p] != two[p]]
     assert not differ, differ
     work = runs[0]
-    assert "wall_seconds" in (work / f"logs/det/low_fluctuation_pair1/optimise/robust.log").read_text()
+    assert "wall_seconds" in (work / "logs/det/low_fluctuation_pair1/optimise/robust.log").read_text()
 
     # gearmesh check passes on the genuine results from results/ and with an absolute path
     monkeypatch.chdir(work / "results")

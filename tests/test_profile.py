@@ -21,7 +21,7 @@ from gearmesh.profile import (
     form_point,
 )
 
-from pairs import STEEL, low_fluctuation_pair1
+from pairs import low_fluctuation_pair1
 
 
 def pair(**changes):

@@ -24,7 +24,7 @@ from gearmesh.surface import (
     tooth_surface,
 )
 
-from pairs import STEEL, low_fluctuation_pair1
+from pairs import low_fluctuation_pair1
 
 
 def pair_dict(**changes):
