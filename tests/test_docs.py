@@ -735,6 +735,7 @@ def dynamics_iso(tmp_path_factory) -> dict:
 
 
 @pytest.mark.slow
+@pytest.mark.workflow  # the script runs as a Python process of its own
 def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, dynamics_iso):
     """docs/validation.md's K_v table ("Dynamics against ISO 6336-1") is what the script it names
     prints, to its printed digits: ISO's K_v and the model's dynamic factor at each speed column, the
@@ -776,6 +777,7 @@ def test_validation_doc_dynamic_factor_table_is_what_its_script_computes(root, d
 
 
 @pytest.mark.slow
+@pytest.mark.workflow  # the script runs as a Python process of its own
 def test_validation_doc_before_and_after_table_is_what_its_script_computes(root, monkeypatch, dynamics_iso):
     """docs/validation.md's "Before and after" table, the columns of today's code (the teeth alone, and
     solid-disc bodies described), to its printed digits: the mean mesh stiffness of ``tvms`` and
