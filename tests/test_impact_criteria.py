@@ -382,6 +382,14 @@ def test_tabulated_solve_equals_the_exact_solve_from_any_start(pair, law_name):
         assert np.all(np.abs(qt - q) <= 1e-11 * force[:, None])
         np.testing.assert_allclose(qt.sum(axis=1), force, rtol=1e-12)
         assert np.all((qt > 0) == (dq > 0)) and np.all(qt[~np.isfinite(gap)] == 0)
+    # problems at the same points share their compliance row: the same solution bit for bit
+    which = rng.integers(0, 5, 50)
+    comp5 = comp[:5]
+    for start in (None, delta * 1.3):
+        alone = solve_contact_tabulated(gap, comp5[which], force, law, start)
+        shared = solve_contact_tabulated(gap, comp5, force, law, start, compliance_rows=which)
+        for a, b in zip(alone, shared):
+            np.testing.assert_array_equal(a, b)
 
 
 def test_the_commands_differences_from_a_study_are_its_listed_overrides_alone(pair):

@@ -79,3 +79,28 @@ def test_load_sums_of_chosen_rows_with_their_scales_are_those_of_the_rows_taken_
     for a, b in zip(alone, chosen):
         np.testing.assert_array_equal(a, b)
     assert np.all(alone[0][:, -1] > 0) and np.any(alone[2] > 0)
+
+
+@pytest.mark.parametrize("law", [ContactLaw("palmgren", 1e-9, 1 / 1.11, 0.0, 1e-3), ContactLaw("linear", 0.0, 1.0, 0.0, 1e-3)])
+def test_load_sums_with_shared_compliance_rows_are_those_of_the_rows_repeated(law):
+    """load_sums with ``compliance_rows`` (rows at the same points: each distinct row's compliance
+    and scales once) gives bit for bit what it gives with those compliances repeated row for row,
+    over chosen rows too (and on those rows taken out), a row beyond the universal table (the Newton
+    fallback) included."""
+    rng = np.random.default_rng(5)
+    comp = 1e-10 * (1 + rng.random((3, 30)))
+    which = np.array([2, 0, 0, 1, 2, 1, 0, 1])
+    gap = np.where(rng.random((which.size, 30)) < 0.2, np.inf, rng.random((which.size, 30)) * 2e-6)
+    mask = rng.random(gap.shape) < 0.3
+    rows = np.array([7, 2, 2, 5, 0])
+    x = np.sort(rng.random((rows.size, 4)) * 3e-6, axis=1)
+    x[-1, -1] = 1.0  # far beyond the table: summed again by invert_tabulated
+    repeated = load_sums(gap, comp[which], x, law, mask, points=True, scales=law_point_scales(comp[which], law),
+                         rows=rows)
+    shared = load_sums(gap, comp, x, law, mask, points=True, scales=law_point_scales(comp, law), rows=rows,
+                       compliance_rows=which)
+    alone = load_sums(gap[rows], comp[which[rows]], x, law, mask[rows], points=True)
+    for a, b, c in zip(repeated, shared, alone):
+        np.testing.assert_array_equal(a, b)
+        np.testing.assert_array_equal(a, c)
+    assert np.all(repeated[0][:, -1] > 0)

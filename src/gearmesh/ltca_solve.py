@@ -222,9 +222,9 @@ def _law_scales_loop(comp, coef, m, big_q, log_cq, cq):
 
 
 def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, force, stiff, masked, outside,
-                    point_q, point_dq, scales, rows):
+                    point_q, point_dq, scales, rows, comp_rows):
     """The loop of :func:`load_sums` (compiled by numba on first use): for each row r of ``rows``
-    (indices k into ``gap``, ``comp``, ``mask``, ``scales``), the sums over its points i of q_i,
+    (indices k into ``gap`` and ``mask``, comp_rows[k] into ``comp`` and ``scales``), the sums over its points i of q_i,
     dq_i/dd and (``mask``; (0, 0): none) q_i at every approach x_rj, d = x_rj − g_ki, into row r of
     the outputs; with ``point_q``, ``point_dq`` (len(rows), points) (else (0, 0)) each point's q_i
     and dq_i/dd at the last approach; ``scales`` (3, R, points) the points' Q, ln(c·Q), c·Q from
@@ -238,11 +238,12 @@ def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, for
     masking = mask.shape[0] > 0
     for r in range(rows.size):
         k = rows[r]
+        kc = comp_rows[k]
         for i in range(npts):
             g = gap[k, i]
             if not approach[r, nu - 1] - g > 0.0:  # not reached by the largest approach (or no point: inf)
                 continue
-            c = comp[k, i]
+            c = comp[kc, i]
             counted = masking and mask[k, i]
             if coef == 0.0:
                 for j in range(nu):
@@ -257,7 +258,7 @@ def _load_sums_loop(gap, comp, approach, mask, coef, m, v_tab, s_tab, lo, h, for
                     point_dq[r, i] = 1.0 / c
                 continue
             if scaled:
-                big_q, log_cq, cq = scales[0, k, i], scales[1, k, i], scales[2, k, i]
+                big_q, log_cq, cq = scales[0, kc, i], scales[1, kc, i], scales[2, kc, i]
             else:
                 log_c = np.log(c)
                 log_q = (np.log(coef) - log_c) / (1.0 - m)
@@ -329,7 +330,8 @@ def law_point_scales(compliance: np.ndarray, law: ContactLaw) -> np.ndarray:
 
 
 def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law: ContactLaw, mask=None,
-              points: bool = False, scales: np.ndarray | None = None, rows: np.ndarray | None = None):
+              points: bool = False, scales: np.ndarray | None = None, rows: np.ndarray | None = None,
+              compliance_rows: np.ndarray | None = None):
     """Per row, the total load, its tangent and the masked points' load at several approaches.
 
     Σ q_i (N), Σ dq_i/dδ (N/m) and the load of the points in ``mask``: q_i the root of
@@ -362,6 +364,10 @@ def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law
         (3, R, M) the points' scales from :func:`law_point_scales`; None: computed here.
     rows : numpy.ndarray of int, optional
         Indices of the rows to sum; None: all.
+    compliance_rows : numpy.ndarray of int, optional
+        (R,) the row of ``compliance`` (and ``scales``) of each row of ``gap``, for rows whose points
+        are those of fewer distinct rows (e.g. many gears at the same roll positions): ``compliance``
+        (R_c, M), the same sums as with the rows repeated; None: row for row.
 
     Returns
     -------
@@ -373,6 +379,8 @@ def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law
     gap, comp = np.ascontiguousarray(gap, dtype=float), np.ascontiguousarray(compliance, dtype=float)
     x = np.ascontiguousarray(approach, dtype=float)
     rows = np.arange(gap.shape[0]) if rows is None else np.ascontiguousarray(rows, dtype=np.int64)
+    comp_rows = (np.arange(gap.shape[0]) if compliance_rows is None
+                 else np.ascontiguousarray(compliance_rows, dtype=np.int64))
     mask = np.zeros((0, 0), dtype=np.bool_) if mask is None else np.ascontiguousarray(mask, dtype=np.bool_)
     out = [np.zeros(x.shape) for _ in range(3)]
     per_point = [np.zeros((rows.size, gap.shape[1]) if points else (0, 0)) for _ in range(2)]
@@ -381,11 +389,11 @@ def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law
     lo, _, h = _TABLE_LOG_Y
     v_tab, s_tab = _universal_inverse(float(law.exponent))
     _kernel("loop")(gap, comp, x, mask, float(law.coefficient), float(law.exponent), v_tab, s_tab, lo, h, *out,
-                    outside, *per_point, scales, rows)
+                    outside, *per_point, scales, rows, comp_rows)
     for r in np.flatnonzero(outside):
         k = rows[r]
         d = x[r, :, None] - gap[k, None, :]
-        q, dq = invert_tabulated(np.where(np.isfinite(d), d, -1.0), np.broadcast_to(comp[k], d.shape),
+        q, dq = invert_tabulated(np.where(np.isfinite(d), d, -1.0), np.broadcast_to(comp[comp_rows[k]], d.shape),
                                  law.coefficient, law.exponent)
         masked = np.where(mask[k], q, 0.0).sum(axis=1) if mask.size else np.zeros(d.shape[0])
         out[0][r], out[1][r], out[2][r] = q.sum(axis=1), dq.sum(axis=1), masked
@@ -399,12 +407,16 @@ def load_sums(gap: np.ndarray, compliance: np.ndarray, approach: np.ndarray, law
 # --------------------------------------------------------------------------------------
 
 
-def _contact_rows(gap: np.ndarray, compliance: np.ndarray, force, law: ContactLaw):
+def _contact_rows(gap: np.ndarray, compliance: np.ndarray, force, law: ContactLaw, compliance_rows=None):
     """The contact problem of :func:`solve_contact` made ready to solve: separations (B, M) with
     inf where no point can touch, compliances (B, M) with the law's linear part, forces (B,) and
-    the upper bound of the approach δ (B,) with all of F on the point closest to contact."""
+    the upper bound of the approach δ (B,) with all of F on the point closest to contact. With
+    ``compliance_rows`` (B,) the compliances are (B_c, M), row compliance_rows[b] that of row b
+    (:func:`solve_contact_tabulated`), and 1 where a compliance is not finite instead of where a
+    separation is not (a point that cannot touch is never loaded: its compliance is not used)."""
     g = np.where(np.isfinite(gap), gap, np.inf)
-    c_eff = np.where(np.isfinite(gap), compliance, 1.0) + law.linear
+    shared = compliance_rows is not None
+    c_eff = np.where(np.isfinite(compliance if shared else gap), compliance, 1.0) + law.linear
     force = np.asarray(force, dtype=float)
     rows = np.arange(g.shape[0])
     i_min = np.argmin(g, axis=1)
@@ -413,11 +425,12 @@ def _contact_rows(gap: np.ndarray, compliance: np.ndarray, force, law: ContactLa
         raise GearmeshInputError("positions", int(np.sum(~np.isfinite(g_min))),
                                  "roll positions without any candidate contact point")
     coef, m = law.coefficient, law.exponent
-    return g, c_eff, force, g_min + c_eff[rows, i_min] * force + (coef * force**m if coef else 0.0)
+    c_min = c_eff[np.asarray(compliance_rows) if shared else rows, i_min]
+    return g, c_eff, force, g_min + c_min * force + (coef * force**m if coef else 0.0)
 
 
 def solve_contact_tabulated(gap: np.ndarray, compliance: np.ndarray, force: np.ndarray, law: ContactLaw,
-                            delta_start=None, rtol: float = 1e-12, max_iter: int = 100):
+                            delta_start=None, rtol: float = 1e-12, max_iter: int = 100, compliance_rows=None):
     """:func:`solve_contact`'s problem with the tabulated inversion of the contact law
     (:func:`invert_tabulated`, relative error of a load about 1e-13, below ``rtol``), for many rows.
 
@@ -444,6 +457,10 @@ def solve_contact_tabulated(gap: np.ndarray, compliance: np.ndarray, force: np.n
         Relative tolerance of the load sum.
     max_iter : int, default 100
         Newton passes before a RuntimeError.
+    compliance_rows : array_like of int, optional
+        (B,) with ``compliance`` (B_c, M): the row of ``compliance`` of each problem, for problems at
+        the same points (many gears at the same roll positions: the law's point scales computed once
+        a point, :func:`law_point_scales`); the same loads as with the rows repeated. None: row for row.
 
     Returns
     -------
@@ -461,14 +478,15 @@ def solve_contact_tabulated(gap: np.ndarray, compliance: np.ndarray, force: np.n
     RuntimeError
         The load sum does not converge.
     """
-    g, c_eff, force, bound = _contact_rows(gap, compliance, force, law)
+    g, c_eff, force, bound = _contact_rows(gap, compliance, force, law, compliance_rows)
     delta = bound.copy() if delta_start is None else np.where(np.asarray(delta_start) < bound, delta_start, bound)
     q, dq = np.zeros(g.shape), np.zeros(g.shape)
     rows = np.arange(delta.size)
     scales = law_point_scales(c_eff, law)  # once: the points are the same in every pass
     for _ in range(max_iter):
         s, k, _, q_rows, dq_rows = load_sums(g, c_eff, delta[rows, None], law, points=True,
-                                             scales=scales if scales.size else None, rows=rows)
+                                             scales=scales if scales.size else None, rows=rows,
+                                             compliance_rows=compliance_rows)
         resid = s[:, 0] - force[rows]
         done = np.abs(resid) <= 0.1 * rtol * force[rows]
         q[rows[done]], dq[rows[done]] = q_rows[done], dq_rows[done]

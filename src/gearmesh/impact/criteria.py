@@ -163,9 +163,10 @@ def _cycle_loads(law: ContactLaw, gap: np.ndarray, compliance: np.ndarray, force
     def solve(gp: np.ndarray, start=None):
         k = gp.shape[0]
         rows = (k, nt, p, m)
-        q, d, dq = solve_contact_tabulated(np.broadcast_to(gp, rows).reshape(-1, m),
-                                           np.broadcast_to(compliance, rows).reshape(-1, m),
-                                           np.broadcast_to(force[:, None], rows[:3]).reshape(-1), law, start)
+        # every gear and torque at the same points: each position's compliance once (its row p)
+        q, d, dq = solve_contact_tabulated(np.broadcast_to(gp, rows).reshape(-1, m), compliance,
+                                           np.broadcast_to(force[:, None], rows[:3]).reshape(-1), law, start,
+                                           compliance_rows=np.broadcast_to(np.arange(p), rows[:3]).reshape(-1))
         return q.reshape(rows), d.reshape(rows[:3]), dq.reshape(rows)
 
     if samples == 1:
