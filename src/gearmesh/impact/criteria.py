@@ -100,12 +100,17 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     grid = lt.grid
     p = grid.gap.shape[0] - 1  # the last row is φ1A
     basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
-    z = np.broadcast_to(grid.z, basis.base.shape)
     nt = force.size
     # each position's candidate points first (the grid's, the same for every gear), the rest dropped
     candidate = np.isfinite(basis.base).reshape(p, -1)  # (P, M)
     cols = np.argsort(~candidate, axis=1, kind="stable")[:, :int(candidate.sum(axis=1).max())]  # (P, M')
-    comp = np.take_along_axis(lt.compliance[:p].reshape(p, -1), cols, axis=1)
+
+    def picked(a: np.ndarray) -> np.ndarray:  # the candidate points of a grid array (P, J, N): (P, M')
+        return np.take_along_axis(np.broadcast_to(a, basis.base.shape).reshape(p, -1), cols, axis=1)
+
+    comp = picked(lt.compliance[:p])
+    # the separations of the candidate points alone (each point's own, as on the whole grid)
+    candidates = SeparationBasis(*(picked(getattr(basis, f)) for f in SeparationBasis.__dataclass_fields__))
 
     # (C, P, M') at one misalignment, or (C, T, P, M') at each torque's own (the system deflection
     # grows with the load): every row of _cycle_loads is its own contact problem, so the torques
@@ -113,16 +118,14 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     one = bool(np.all(mis == mis[0]))
     m = np.asarray(mis[:1] if one else mis, dtype=float)
     lead_t = with_misalignment(np.broadcast_to(lead[:, None], (nc, m.size, 2)), m[None, :])  # (C, T or 1, 2)
-    gp = basis_gap(g, basis, z, lead_t[:, :, None, None, None, :],
-                   params[:, None, None, None, None, :, :])  # (C, T or 1, P, J, N)
-    gp = np.take_along_axis(gp.reshape(nc, m.size, p, -1), cols[None, None], axis=3)
+    gp = basis_gap(g, candidates, picked(grid.z), lead_t[:, :, None, None, :],
+                   params[:, None, None, None, :, :])  # (C, T or 1, P, M')
     q, delta = _cycle_loads(lt.law, gp[:, 0] if one else gp, comp, force, samples)
     w = q / grid.dz  # line loads (N/m), (C, T, P, M')
     nan = np.full((nc, nt), np.nan)
     flank = edge = root = nan
     if stresses:
-        pressure, edge_point, root_stress = (np.take_along_axis(a.reshape(p, -1), cols, axis=1)
-                                             for a in _unit_load_stresses(model))
+        pressure, edge_point, root_stress = (picked(a) for a in _unit_load_stresses(model))
         p0 = np.sqrt(w) * pressure
         flank = np.where(edge_point, 0.0, p0).max(axis=(2, 3))
         edge = np.where(edge_point, p0, 0.0).max(axis=(2, 3))
