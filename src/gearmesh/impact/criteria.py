@@ -101,13 +101,7 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     p = grid.gap.shape[0] - 1  # the last row is φ1A
     basis = SeparationBasis(*(getattr(grid.basis, f)[:p] for f in SeparationBasis.__dataclass_fields__))
     nt = force.size
-    # each position's candidate points first (the grid's, the same for every gear), the rest dropped
-    candidate = np.isfinite(basis.base).reshape(p, -1)  # (P, M)
-    cols = np.argsort(~candidate, axis=1, kind="stable")[:, :int(candidate.sum(axis=1).max())]  # (P, M')
-
-    def picked(a: np.ndarray) -> np.ndarray:  # the candidate points of a grid array (P, J, N): (P, M')
-        return np.take_along_axis(np.broadcast_to(a, basis.base.shape).reshape(p, -1), cols, axis=1)
-
+    cols, picked = _candidate_points(basis)
     comp = picked(lt.compliance[:p])
     # the separations of the candidate points alone (each point's own, as on the whole grid)
     candidates = SeparationBasis(*(picked(getattr(basis, f)) for f in SeparationBasis.__dataclass_fields__))
@@ -133,6 +127,21 @@ def ltca_criteria(model: ImpactModel, torques, params=None, lead_slope=None, str
     return LTCACriteria(lte_peak_to_peak=np.ptp(delta, axis=-1), te_harmonics=lte_harmonics(delta),
                         max_line_load=w.max(axis=(2, 3)), flank_pressure=flank, edge_pressure=edge,
                         root_stress=root, load=_grid_loads(q, cols, basis.base.shape) if loads else None)
+
+
+def _candidate_points(basis: SeparationBasis):
+    """Each position's candidate points of the mesh-cycle grid (the same for every gear), first and in
+    grid order: their columns ``cols`` (P, M') into the flattened grid (P, J·N), M' the most of any
+    position (the rest of a shorter row are points that are no candidates), and the function that
+    picks them out of a grid array (P, J, N) or one broadcast to it (:func:`ltca_criteria`)."""
+    p = basis.base.shape[0]
+    candidate = np.isfinite(basis.base).reshape(p, -1)
+    cols = np.argsort(~candidate, axis=1, kind="stable")[:, :int(candidate.sum(axis=1).max())]
+
+    def picked(a: np.ndarray) -> np.ndarray:
+        return np.take_along_axis(np.broadcast_to(a, basis.base.shape).reshape(p, -1), cols, axis=1)
+
+    return cols, picked
 
 
 def _grid_loads(q: np.ndarray, cols: np.ndarray, grid_shape: tuple[int, ...]) -> np.ndarray:
