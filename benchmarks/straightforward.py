@@ -93,10 +93,16 @@ def _exact_form(original):
     return solve
 
 
+def _row_compliance(compliance, compliance_rows=None):
+    """Each problem's own compliance row: ``compliance`` taken row for row by ``compliance_rows``
+    (:func:`gearmesh.ltca_solve.solve_contact_tabulated`'s problems at shared points), else as given."""
+    return compliance if compliance_rows is None else np.asarray(compliance)[np.asarray(compliance_rows)]
+
+
 def _tabulated_form(original):
     """:func:`solve_rows` with :func:`gearmesh.ltca_solve.solve_contact_tabulated`'s signature and returns."""
-    def solve(gap, compliance, force, law, *args, **kwargs):
-        return solve_rows(gap, compliance, force, law)
+    def solve(gap, compliance, force, law, *args, compliance_rows=None, **kwargs):
+        return solve_rows(gap, _row_compliance(compliance, compliance_rows), force, law)
     return solve
 
 
@@ -119,7 +125,8 @@ def exact_for_tabulated():
     from gearmesh.ltca_solve import solve_contact
 
     def make(original):
-        def solve(gap, compliance, force, law, *args, **kwargs):
+        def solve(gap, compliance, force, law, *args, compliance_rows=None, **kwargs):
+            compliance = _row_compliance(compliance, compliance_rows)
             q, delta, _, _ = solve_contact(gap, compliance, force, law)
             c = np.asarray(compliance, dtype=float) + law.linear
             with np.errstate(divide="ignore", invalid="ignore"):
