@@ -2,7 +2,7 @@
 
 The box search (:func:`gearmesh.robust.box_worst`) is most of the default study's impact jobs. For
 each variant of the study, on the model, torques, speed and tolerance box its impact job builds
-(``impact_dataset`` run until its tolerance spread, with the study's FE tables from results/ when a
+(``impact_dataset`` run until it calls the search, with the study's FE tables from results/ when a
 run has made them): the shipped search, the same search stopped at a coarser last step
 (``min_step``), and an independent check of it, a structured grid (every corner of the modification
 deviations at ``--levels`` lead-mismatch levels, the box's structure: :mod:`gearmesh.robust`).
@@ -22,7 +22,6 @@ from __future__ import annotations
 
 import argparse
 import functools
-import itertools
 import json
 import time
 
@@ -34,47 +33,46 @@ from common import ROOT
 
 
 class _Captured(Exception):
-    """Stops an impact job at its tolerance spread, carrying what the box search is given."""
+    """Stops an impact job where it calls the box search, carrying what the search is given."""
 
 
 def search_inputs(variant: str, config: dict) -> dict:
-    """The box search's inputs of ``variant``'s impact job: its model, judged torques, design speed,
-    energy velocity, tolerance model and design parameters (the job run until its tolerance spread)."""
+    """The box search's inputs of ``variant``'s impact job: its model, tolerance model, design
+    parameters, judged torques, design speed and energy velocity, as the job hands them to
+    :func:`gearmesh.robust.design_box_worst` (the job run until that call)."""
     import gearmesh.datasets.impact as stage
-    from gearmesh.tolerance import study_tolerances
 
-    def capture(ds, model, torques, tolerances, design, energy_velocity):
-        raise _Captured(dict(model=model, torques=torques, tolerances=tolerances, speed_rpm=design,
+    def capture(model, tolerance, params, torques, speed_rpm, energy_velocity):
+        raise _Captured(dict(model=model, tolerance=tolerance, params=params, torques=torques, speed_rpm=speed_rpm,
                              energy_velocity=energy_velocity))
 
-    spread = stage._add_tolerance_spread
-    stage._add_tolerance_spread = capture
+    search = stage.design_box_worst
+    stage.design_box_worst = capture
     try:
         _job(variant, config)[0]()
     except _Captured as stop:
-        got = stop.args[0]
-    else:
-        raise RuntimeError(f"the impact job of {variant} has no tolerance spread")
+        return stop.args[0]
     finally:
-        stage._add_tolerance_spread = spread
-    model = got["model"]
-    got["tolerance"] = study_tolerances(model.geom, got.pop("tolerances"))[0]
-    got["params"] = model.params()[0]
-    return got
+        stage.design_box_worst = search
+    raise RuntimeError(f"the impact job of {variant} searches no tolerance box")
 
 
 def grid_search(evaluate, k: int, mismatch: bool = True, levels: int = 33, **_):
-    """A stand-in for :func:`gearmesh.robust.box_worst` with its arguments: every corner of the
-    modification deviations at ``levels`` lead-mismatch levels (the box's structure), evaluated in
-    blocks of at most 200 gears by ``evaluate`` (the search's own: :func:`gearmesh.robust.design_box_worst`
-    hands it over); the largest of each column there."""
+    """A stand-in for :func:`gearmesh.robust.box_worst` with its arguments: the search's first stage
+    (every corner of the modification deviations at each lead-mismatch level, the box's structure) at
+    ``levels`` lead-mismatch levels instead of its own, evaluated in blocks of at most 200 gears by
+    ``evaluate`` (the search's own: :func:`gearmesh.robust.design_box_worst` hands it over); the
+    largest of each column there."""
     import gearmesh.robust as robust
 
-    mods = k - int(mismatch)
-    corners = np.array(list(itertools.product((-1.0, 1.0), repeat=mods))) if mods else np.zeros((1, 0))
-    units = np.array([[u, *c] for c in corners for u in np.linspace(-1.0, 1.0, levels)]) if mismatch else corners
+    own = robust.MISMATCH_LEVELS
+    robust.MISMATCH_LEVELS = np.linspace(-1.0, 1.0, levels)
+    try:
+        units = robust._first_stage(k, mismatch)
+    finally:
+        robust.MISMATCH_LEVELS = own
     values = np.vstack([np.asarray(evaluate(block), dtype=float).reshape(block.shape[0], -1)
-                        for block in np.array_split(units, max(1, units.shape[0] // 200))])
+                        for block in np.array_split(units, -(-units.shape[0] // 200))])
     worst = np.argmax(np.where(np.isfinite(values), values, -np.inf), axis=0)
     return robust.BoxWorst(values=values[worst, np.arange(values.shape[1])], points=units[worst],
                            evaluated=units.shape[0])
