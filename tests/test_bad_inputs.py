@@ -564,7 +564,9 @@ def test_killed_run_rerun_leaves_no_temporary_files(root, tmp_path):
     for name in ("geometry.nc", "contact_lines.nc", "stiffness.nc", "plots/stiffness.png"):
         assert (base / name).stat().st_size > 0
     # the killed run's job-server socket folder (gearmesh.jobserver) was removed by the rerun's server
-    assert not list(Path(tempfile.gettempdir()).glob(f"gearmesh-jobs-{run.pid}-*"))
+    from gearmesh.jobserver import FOLDER_PREFIX
+
+    assert not list(Path(tempfile.gettempdir()).glob(f"{FOLDER_PREFIX}{run.pid}-*"))
 
 
 @pytest.mark.parametrize("name", ["helical_z29_71_m5", "low_fluctuation_pair1", "transition_curve_z23_62"])

@@ -296,12 +296,13 @@ def test_a_new_server_removes_the_socket_folders_of_runs_that_are_gone(monkeypat
     """A run killed with its server (kill -9 of the group) leaves its socket folder; the next
     server removes the folders named after a process that no longer exists, and only those."""
     monkeypatch.delenv(jobserver.ENV, raising=False)
-    gone = subprocess.Popen([sys.executable, "-c", ""])
-    gone.wait()
+    from test_bad_inputs import _dead_pid
+
+    gone = _dead_pid()
     prefix = jobserver.FOLDER_PREFIX
     parent = Path(tempfile.mkdtemp(prefix="gm"))  # short: a socket's path has at most 107 bytes
     try:
-        stale = parent / f"{prefix}{gone.pid}-x1"
+        stale = parent / f"{prefix}{gone}-x1"
         kept = [parent / f"{prefix}{os.getpid()}-x2", parent / f"{prefix}nopid", parent / "other-1-x3"]
         for folder in (stale, *kept):
             folder.mkdir()

@@ -323,12 +323,11 @@ _BASE = yaml.safe_load((ROOT / "config/pairs/helical_z29_71_m5.yaml").read_text(
 # no subnormal floats (below 2.2e-308): a length or angle that small turns 0 on its way to SI units (5e-324 mm
 # is 0.0 m), which the reader refuses as not positive and no JSON schema can tell from a positive number; no pair
 # file holds one (found by this test: hub_diameter_mm 5e-324)
-_VALUES = st.one_of(st.none(), st.booleans(), st.integers(-10, 300),
-                    st.floats(-1e3, 1e3, allow_nan=False, allow_subnormal=False),
+_FLOAT = {"allow_nan": False, "allow_subnormal": False}
+_VALUES = st.one_of(st.none(), st.booleans(), st.integers(-10, 300), st.floats(-1e3, 1e3, **_FLOAT),
                     st.sampled_from([0, 0.05, 0.1, 100, 100.5, 45, 60, 59.99, 0.5, -3, 3, 2.99, 5, 4, "right", "left",
                                      "x", "a.b", ".a", "", "1e6", "ISO 53 A", "ISO 53 D", "ISO 53"]),
-                    st.lists(st.one_of(st.integers(-10, 300), st.floats(-10, 1e3, allow_nan=False, allow_subnormal=False)),
-                             max_size=3))
+                    st.lists(st.one_of(st.integers(-10, 300), st.floats(-10, 1e3, **_FLOAT)), max_size=3))
 # source: text in the schema; the reader takes any value as text (str(value)), so it is left out here
 _KEYS = sorted(pairfile._PAIR_KEYS - {"source"}) + ["material.youngs_modulus_GPa", "material.poisson_ratio",
                                                 "material.density_kg_m3", "modification.pinion.tip_relief_um",
