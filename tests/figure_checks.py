@@ -5,9 +5,11 @@
 * a curve listed in a legend that another curve hides (the same points to within a pixel);
 * texts that overlap (titles, labels, tick labels, annotations, legend entries);
 * a text that straddles the frame of its axes (a label cut by the axes);
-* a legend inside an axes that covers a curve of that axes.
+* a legend inside an axes that covers a curve of that axes;
+* a text or legend off the canvas (cut by the file's edge), for a figure written as laid out
+  (not cropped to its tight bounding box).
 
-``layout_faults(fig)`` draws the figure once on an Agg canvas and returns the faults as sentences.
+``layout_faults(fig, cropped)`` draws the figure once on an Agg canvas and returns the faults as sentences.
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from contextlib import contextmanager
 
 import numpy as np
 from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.collections import Collection, PathCollection, PolyCollection, QuadMesh
+from matplotlib.collections import Collection, PathCollection, PolyCollection
 from matplotlib.container import Container
 from matplotlib.legend import Legend
 from matplotlib.lines import Line2D
@@ -171,8 +173,17 @@ def _text_faults(texts, fig) -> list[str]:
     return faults
 
 
-def layout_faults(fig) -> list[str]:
-    """Every fault of the kinds listed in the module docstring, as sentences."""
+def _off_canvas(texts, fig, renderer) -> list[str]:
+    canvas = fig.bbox
+    boxes = [(repr(t.get_text()), b) for t, b in texts] + [("a legend", g.get_window_extent(renderer)) for g in
+                                                           [*fig.legends, *(ax.get_legend() for ax in fig.axes)] if g]
+    return [f"{name} is off the canvas" for name, b in boxes
+            if b.x0 < canvas.x0 - PIXEL or b.y0 < canvas.y0 - PIXEL or b.x1 > canvas.x1 + PIXEL or b.y1 > canvas.y1 + PIXEL]
+
+
+def layout_faults(fig, cropped: bool = True) -> list[str]:
+    """Every fault of the kinds listed in the module docstring, as sentences; texts and legends off
+    the canvas unless the figure is written ``cropped`` to its tight bounding box."""
     FigureCanvasAgg(fig)
     texts: list = []
     with _recording_texts(texts):
@@ -186,4 +197,6 @@ def layout_faults(fig) -> list[str]:
     for legend in fig.legends:
         faults += _covered_curves(legend, fig.axes, renderer)
     faults += _text_faults(texts, fig)
+    if not cropped:
+        faults += _off_canvas(texts, fig, renderer)
     return faults

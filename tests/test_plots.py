@@ -24,7 +24,7 @@ from gearmesh.datasets import stiffness as st
 from gearmesh.datasets.fe import fe_compliance_dataset
 from gearmesh.pairfile import load_pair, variant_pair
 from gearmesh.plots import dynamics, fe, geometry, impact, ltca, optimise, stiffness
-from gearmesh.plots.common import coinciding, end_labels, number, pair_label, subplots, title
+from gearmesh.plots.common import DPI, coinciding, end_labels, number, pair_label, save, subplots, title
 
 ROOT = Path(__file__).resolve().parents[1]
 COARSE_IMPACT = {"points": 15, "window_positions": 16, "face_samples": 65}
@@ -79,6 +79,7 @@ def drawn(monkeypatch):
 
     def recording(self, fname, *args, **kwargs):
         save(self, fname, *args, **kwargs)
+        self.written_cropped = kwargs.get("bbox_inches") == "tight"  # for layout_faults
         figures[Path(str(fname)).name.split(".")[1] if str(fname).count(".") > 1 else Path(str(fname)).stem] = self
 
     monkeypatch.setattr(Figure, "savefig", recording)
@@ -130,7 +131,7 @@ def test_figures_are_written_without_layout_faults(name, data, drawn, tmp_path):
     paths = _draw(name, data, tmp_path)
     assert all(Path(p).stat().st_size > 10_000 for p in paths.values())
     assert set(drawn) == set(paths)
-    faults = {figure: layout_faults(fig) for figure, fig in drawn.items()}
+    faults = {figure: layout_faults(fig, fig.written_cropped) for figure, fig in drawn.items()}
     assert not any(faults.values()), faults
 
 
@@ -291,17 +292,59 @@ def _faulty(kind: str) -> Figure:
         ax.plot(x, 1 - x, label="falling")
         ax.legend(loc="center")
         return fig
+    elif kind == "off canvas":
+        fig.text(0.9, 0.5, "a_word_past_the_right_edge")  # no break: cannot be made to fit
     ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1))
+    fig.set_layout_engine("constrained")  # the legend beside the axes kept on the canvas
     return fig
 
 
 @pytest.mark.parametrize("kind, message", [
     ("empty", "nothing drawn"), ("zero band", "nothing drawn"), ("hidden", "hidden under another"),
-    ("overlap", "texts overlap"), ("cut", "cut by the frame"), ("covered", "legend covers the curve")])
+    ("overlap", "texts overlap"), ("cut", "cut by the frame"), ("covered", "legend covers the curve"),
+    ("off canvas", "off the canvas")])
 def test_the_layout_checker_finds_each_fault(kind, message):
-    faults = layout_faults(_faulty(kind))
+    faults = layout_faults(_faulty(kind), cropped=False)
     assert any(message in f for f in faults), faults
-    assert layout_faults(_faulty("none")) == []
+    assert layout_faults(_faulty("none"), cropped=False) == []
+
+
+LONG = ("a pair of the user's own with a long name: 29/71 teeth, module 5 mm, helix 27.5°, face 42 mm — "
+        "what the figure shows, at some length, so that it cannot fit on one line of a small figure")
+
+
+def _png_size(path) -> tuple[int, int]:
+    from PIL import Image
+
+    with Image.open(path) as im:
+        return im.size
+
+
+def test_a_laid_out_figure_is_written_as_laid_out_with_its_titles_broken_onto_the_canvas(tmp_path):
+    fig, axes = subplots(1, 2, figsize=(5, 3), layout="constrained")
+    for ax in axes:
+        ax.plot([0, 1], [0, 1], label="curve")
+    axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1))  # beside the axes: the left one is off centre
+    fig.suptitle(LONG)
+    axes[0].set_title("a panel title much wider than its panel, which is narrower than the figure")
+    save(fig, tmp_path / "f.png")
+    assert _png_size(tmp_path / "f.png") == (5 * DPI, 3 * DPI)  # constrained layout's margins, not cropped
+    head, *rest = fig.texts[0].get_text().split("\n")
+    # broken where a dash separates when that line fits (the second), else at the next kind (a colon)
+    assert head.endswith(":") and rest[0].endswith(" —")
+    assert "\n" in axes[0].get_title()
+    assert layout_faults(fig, cropped=False) == []
+
+
+def test_a_figure_with_something_off_its_canvas_is_cropped_to_what_it_draws(tmp_path):
+    fig = _faulty("off canvas")  # constrained layout, a figure-level word past the edge
+    save(fig, tmp_path / "f.png")
+    assert _png_size(tmp_path / "f.png")[0] > 4 * DPI
+    assert layout_faults(fig) == []
+    plain, ax = subplots(figsize=(4, 3))  # no layout engine: cropped as before
+    ax.plot([0, 1], [0, 1])
+    save(plain, tmp_path / "g.png")
+    assert _png_size(tmp_path / "g.png") != (4 * DPI, 3 * DPI)
 
 
 @pytest.mark.workflow

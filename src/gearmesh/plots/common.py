@@ -4,13 +4,17 @@ numbers in labels, legends placed clear of the data."""
 from __future__ import annotations
 
 import json
+import re
 from pathlib import Path
-from typing import Any
+from typing import Any, Callable
 
 import numpy as np
 import xarray as xr
 from matplotlib import colormaps
+from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
+from matplotlib.layout_engine import ConstrainedLayoutEngine
+from matplotlib.text import Text
 from matplotlib.ticker import FuncFormatter
 
 from ..pairfile import example_pairs
@@ -19,8 +23,8 @@ from ..io import atomic_output, stamp_figure
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["MM", "UM", "Figure", "apart", "coinciding", "end_labels", "figure", "figure_legend", "legend_below", "number", "pair_label", "palette", "plain_axis", "plain_log_axis", "save", "subplots",
-           "text_line", "title"]
+__all__ = ["DPI", "MM", "UM", "Figure", "apart", "coinciding", "end_labels", "figure", "figure_legend", "laid_out", "legend_below", "number", "on_canvas", "pair_label", "palette", "plain_axis", "plain_log_axis", "save",
+           "subplots", "text_line", "title", "wrap_to_width"]
 
 
 def figure(figsize: tuple[float, float], layout: str | None = None) -> Figure:
@@ -87,16 +91,21 @@ def palette(n: int, name: str = "viridis", low: float = 0.1, high: float = 0.85)
 #: zlib level of the PNG files: 3 instead of Pillow's 6 encodes the study's figures in about 0.7 of
 #: the CPU (the same pixels) for about 5 % more bytes (issue 36; ``benchmarks/bench_figures.py``).
 PNG_COMPRESS_LEVEL = 3
+#: Resolution of the PNG files (dots per inch).
+DPI = 130
 
 
 def save(fig: Figure, path: str | Path) -> Path:
     """Write ``fig`` as PNG atomically (parent folders created), inside a workflow job with the
     provenance of the figure (:func:`gearmesh.io.stamp_figure`).
 
+    A figure with constrained layout is laid out once, at the file's resolution, and written as
+    laid out (:func:`laid_out`); any other figure is cropped to its tight bounding box.
+
     Parameters
     ----------
     fig : matplotlib.figure.Figure
-        The figure (130 dpi, tight bounding box, zlib level :data:`PNG_COMPRESS_LEVEL`).
+        The figure (:data:`DPI` dpi, zlib level :data:`PNG_COMPRESS_LEVEL`).
     path : str or Path
         The PNG file to write.
 
@@ -105,14 +114,143 @@ def save(fig: Figure, path: str | Path) -> Path:
     Path
         ``path``.
     """
+    tight = None if laid_out(fig) else "tight"
     with atomic_output(path) as tmp:
-        fig.savefig(tmp, dpi=130, bbox_inches="tight", format="png",
-                    pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
+        fig.savefig(tmp, dpi=DPI, bbox_inches=tight, format="png", pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
         png = tmp.read_bytes()
         stamped = stamp_figure(png, path)
         if stamped is not png:
             tmp.write_bytes(stamped)
     return Path(path)
+
+
+def laid_out(fig: Figure) -> bool:
+    """Lay out a figure with constrained layout once, at the file's resolution (:data:`DPI`), its
+    titles broken into lines that fit on its canvas (:func:`wrap_to_width`), and
+    fix it as laid out; True when everything then lies on the canvas, so that the figure is written
+    as it is, with constrained layout's margins.
+
+    Constrained layout keeps the axes, their tick labels, titles, labels and legends and the
+    figure's outside legends on the canvas, but not the width of an axes title or x label, the
+    height of a y label, or a figure-level text: :func:`on_canvas` checks those. Cropping to the
+    tight bounding box instead lays the figure out again and measures every artist once more:
+    about 15 % of the default study's figure CPU (issue 36; ``benchmarks/bench_figures.py``), and a
+    title wider than the figure made the file wider than its panels.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+
+    Returns
+    -------
+    bool
+        False for a figure without constrained layout (left as it is) or with something still off
+        the canvas (laid out all the same): to be cropped to its tight bounding box.
+    """
+    engine = fig.get_layout_engine()
+    if not isinstance(engine, ConstrainedLayoutEngine):
+        return False
+    fig.set_dpi(DPI)
+    renderer = FigureCanvasAgg(fig).get_renderer()  # the renderer the PNG is drawn with (cached per size)
+    engine.execute(fig)
+    if wrap_to_width(fig, renderer):  # a title's height changes the layout, its width does not
+        engine.execute(fig)
+    fig.set_layout_engine(None)  # laid out: not laid out again when written
+    return on_canvas(fig, renderer)
+
+
+#: Where a line of a title may be broken, the first kind that gives a fitting line first.
+BREAKS = (" — ", "; ", ": ", ", ", " ")
+
+
+def wrap_to_width(fig: Figure, renderer) -> bool:
+    """Break every line of the titles of ``fig`` (its figure-level texts and its axes' titles) that
+    would pass the canvas's edge into lines that do not: at the last break of the first kind of
+    :data:`BREAKS` that gives a fitting line (the separator kept at the end of the line), else at
+    the first break of any kind. A title centred on x fits within twice its distance from the
+    nearer edge; one aligned left (right) within its distance from the right (left) edge.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A laid-out figure.
+    renderer
+        The renderer the figure is drawn with.
+
+    Returns
+    -------
+    bool
+        Whether any title changed.
+    """
+    box = fig.bbox
+    changed = False
+    for text in [*fig.texts, *(ax.title for ax in fig.axes)]:
+        if not text.get_visible() or not text.get_text() or text.get_rotation() % 180:
+            continue
+        extent = text.get_window_extent(renderer)
+        align = text.get_horizontalalignment()
+        if align == "left":
+            room = box.x1 - extent.x0
+        elif align == "right":
+            room = extent.x1 - box.x0
+        else:
+            room = 2.0 * min(0.5 * (extent.x0 + extent.x1) - box.x0, box.x1 - 0.5 * (extent.x0 + extent.x1))
+        if extent.width <= room:
+            continue
+
+        def fits(line: str, text: Text = text, room: float = room) -> bool:
+            return renderer.get_text_width_height_descent(line, text.get_fontproperties(), ismath=False)[0] <= room
+
+        lines = [piece for line in text.get_text().split("\n") for piece in _broken(line, fits)]
+        if "\n".join(lines) != text.get_text():
+            text.set_text("\n".join(lines))
+            changed = True
+    return changed
+
+
+def _broken(line: str, fits: Callable[[str], bool]) -> list[str]:
+    """``line`` as lines that ``fits`` accepts, broken as :func:`wrap_to_width` says (a piece
+    without any break stays as it is)."""
+    out = []
+    while not fits(line):
+        cuts = {sep: [m.end() for m in re.finditer(re.escape(sep), line)] for sep in BREAKS}
+        every = sorted(c for found in cuts.values() for c in found if c < len(line))
+        if not every:
+            break
+        good = [max(fitting) for sep in BREAKS if (fitting := [c for c in cuts[sep] if fits(line[:c].rstrip())])]
+        cut = good[0] if good else every[0]
+        out.append(line[:cut].rstrip())
+        line = line[cut:]
+    return out + [line]
+
+
+def on_canvas(fig: Figure, renderer, pad: float = 0.5) -> bool:
+    """Whether the artists that constrained layout does not keep on the canvas lie on it: the
+    figure-level texts and legends, and each axes' title, x label and y label (``pad`` pixels
+    allowed).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A laid-out figure.
+    renderer
+        The renderer the figure is drawn with.
+    pad : float
+        Pixels an extent may pass the canvas's edge (rounding).
+
+    Returns
+    -------
+    bool
+    """
+    box = fig.bbox
+    artists = [*fig.texts, *fig.legends, *(t for ax in fig.axes for t in (ax.title, ax.xaxis.label, ax.yaxis.label))]
+    for artist in artists:
+        if not artist.get_visible() or (isinstance(artist, Text) and not artist.get_text()):
+            continue
+        extent = artist.get_window_extent(renderer)
+        if extent.x0 < box.x0 - pad or extent.y0 < box.y0 - pad or extent.x1 > box.x1 + pad or extent.y1 > box.y1 + pad:
+            return False
+    return True
 
 
 def pair_label(ds: xr.Dataset) -> str:
@@ -145,7 +283,7 @@ def pair_label(ds: xr.Dataset) -> str:
     return data if not name or name in example_pairs() else f"{name}: {data}"
 
 
-def title(ds: xr.Dataset, what: str) -> str:
+def title(ds: xr.Dataset, what: str, own_line: bool = False) -> str:
     """'PAIR — what', the pair as :func:`pair_label` names it.
 
     Parameters
@@ -154,12 +292,17 @@ def title(ds: xr.Dataset, what: str) -> str:
         The dataset the figure is drawn from (its pair attributes).
     what : str
         What the figure shows.
+    own_line : bool, default False
+        ``what`` on a line of its own (a title too long for one line of its figure).
 
     Returns
     -------
     str
     """
-    return f"{pair_label(ds)} — {what}".strip(" —")
+    pair = pair_label(ds)
+    if not pair or not what:
+        return pair or what
+    return f"{pair} —" + ("\n" if own_line else " ") + what
 
 
 def number(value: float, digits: int = 3) -> str:

@@ -150,7 +150,8 @@ def plot_rms_against_speed(ds: xr.Dataset, path: str | Path) -> Path:
         ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), ncol=1 if ax is axes[0] else 2,
                   title=None if ax is axes[0] else DIRECTIONS, title_fontsize=7)
     axes[-1].set_xlabel("pinion speed (rpm)")
-    axes[0].set_title(_title(ds, "steady-state vibration against speed (standard deviations over the period)")
+    axes[0].set_title(_title(ds, "steady-state vibration against speed (standard deviations over the period)",
+                             own_line=True)
                       + subtitle, fontsize=11 if not subtitle else 9)
     return _save(fig, path)
 
@@ -220,7 +221,8 @@ def plot_force_spectrum(ds: xr.Dataset, path: str | Path) -> Path:
             ax.text(0.5, 0.5, "no time series kept (dynamics.sample_speeds_rpm is empty)", ha="center",
                     va="center", transform=ax.transAxes, fontsize=9)
     at = f", {_torque_label(ds)}" if _torque_label(ds) else ""
-    fig.suptitle(_title(ds, f"dynamic mesh force normal to the flanks{at}: time series and spectrum (mean removed)"))
+    fig.suptitle(_title(ds, f"dynamic mesh force normal to the flanks{at}: time series and spectrum (mean removed)",
+                        own_line=True))
     return _save(fig, path)
 
 

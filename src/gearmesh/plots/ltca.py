@@ -211,7 +211,7 @@ def plot_tca(ds: xr.Dataset, path: str | Path) -> Path:
     ax2.set_ylabel("pinion roll length ρ1 (mm)")
     ax2.legend(fontsize=7, loc="best")
     ax2.set_title("first-contact points of each pair" + ("\n(where a whole line touches at once, as on perfect "
-                                                         "flanks, there is no single point: not drawn)"
+                                                         "flanks,\nthere is no single point: not drawn)"
                                                          if whole_line.any() else ""), fontsize=8)
     fig.suptitle(_title(ds, f"unloaded TCA, TE p-p {number(float(ds.te_peak_to_peak) * UM)} µm"))
     return _save(fig, path)

@@ -59,7 +59,7 @@ def plot_flash_temperature(ds: xr.Dataset, path: str | Path) -> Path:
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper center")
     speed = f" at n1 = {number(float(ds.attrs['speed_rpm']))} r/min" if "speed_rpm" in ds.attrs else ""
-    ax.set_title(_title(ds, f"flash temperature along the path of contact{speed} (Blok, LTCA load)"), fontsize=9)
+    ax.set_title(_title(ds, f"flash temperature along the path of contact{speed} (Blok, LTCA load)", own_line=True), fontsize=9)
     return _save(fig, path)
 
 

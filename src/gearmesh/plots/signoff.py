@@ -102,7 +102,7 @@ def plot_signoff(table: xr.Dataset, path: str | Path) -> Path:
         ax.set_ylabel(f"over {ref}'s", fontsize=10)
         ax.tick_params(labelsize=9)
         ax.grid(alpha=0.3, which="both")
-    basis_text = ("judged on the worst manufactured gear (the tolerance box's, searched), open markers: nominal gear"
+    basis_text = ("judged on the worst manufactured gear (the tolerance box's, searched);\nopen markers: nominal gear"
                   if basis == "population" else "judged on the nominal gear")
     title = f"sign-off against {ref}, {basis_text}"
     if "meets_worst_impact" in table:

@@ -90,7 +90,7 @@ def plot_mesh_stiffness(ds: xr.Dataset, path: str | Path) -> Path:
     ax.set_xlabel("pinion roll distance over one base pitch (mm)")
     model = TOOTH_MODEL_NAMES.get(ds.attrs.get("tooth_model", ""), ds.attrs.get("tooth_model", ""))
     ax.set_title(title(ds, f"mesh stiffness, {model}, {ds.attrs.get('slices', '')} slices; "
-                           f"εk = {100 * float(ds.fluctuation):.1f} %"), fontsize=10)
+                           f"εk = {100 * float(ds.fluctuation):.1f} %", own_line=True), fontsize=10)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     ax.grid(alpha=0.3)
     plain_axis(ax, ds["mesh_stiffness"].values * N_PER_UM, "N/µm", "K(φ)")
