@@ -336,10 +336,16 @@ def test_a_laid_out_figure_is_written_as_laid_out_with_its_titles_broken_onto_th
     assert layout_faults(fig, cropped=False) == []
 
 
-def test_a_figure_with_something_off_its_canvas_is_cropped_to_what_it_draws(tmp_path):
-    fig = _faulty("off canvas")  # constrained layout, a figure-level word past the edge
+@pytest.mark.parametrize("off", ["a figure-level word", "an x label", "a y label"])
+def test_a_figure_with_something_off_its_canvas_is_cropped_to_what_it_draws(off, tmp_path):
+    fig = _faulty("off canvas" if off == "a figure-level word" else "none")  # constrained layout
+    word = "an_x_label_of_one_word_far_wider_than_the_figure_it_is_drawn_in" * 2
+    if off == "an x label":
+        fig.axes[0].set_xlabel(word)
+    elif off == "a y label":
+        fig.axes[0].set_ylabel(word)
     save(fig, tmp_path / "f.png")
-    assert _png_size(tmp_path / "f.png")[0] > 4 * DPI
+    assert _png_size(tmp_path / "f.png") != (4 * DPI, 3 * DPI)  # cropped to what it draws
     assert layout_faults(fig) == []
     plain, ax = subplots(figsize=(4, 3))  # no layout engine: cropped as before
     ax.plot([0, 1], [0, 1])

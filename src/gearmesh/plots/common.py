@@ -225,9 +225,11 @@ def _broken(line: str, fits: Callable[[str], bool]) -> list[str]:
 
 
 def on_canvas(fig: Figure, renderer, pad: float = 0.5) -> bool:
-    """Whether the artists that constrained layout does not keep on the canvas lie on it: the
-    figure-level texts and legends, and each axes' title, x label and y label (``pad`` pixels
-    allowed).
+    """Whether what constrained layout does not keep on the canvas lies on it: the figure-level
+    texts and legends, the x extent of each axes' title and x label and the y extent of its y
+    label — what matplotlib's layout bounding box leaves out (``Axes.get_tightbbox``,
+    ``for_layout_only``), and the only extents of those labels that do not wait for the next draw
+    to follow the axes to where the layout put them.
 
     Parameters
     ----------
@@ -243,14 +245,22 @@ def on_canvas(fig: Figure, renderer, pad: float = 0.5) -> bool:
     bool
     """
     box = fig.bbox
-    artists = [*fig.texts, *fig.legends, *(t for ax in fig.axes for t in (ax.title, ax.xaxis.label, ax.yaxis.label))]
-    for artist in artists:
-        if not artist.get_visible() or (isinstance(artist, Text) and not artist.get_text()):
-            continue
+
+    def shown(artist) -> bool:
+        return artist.get_visible() and (not isinstance(artist, Text) or bool(artist.get_text()))
+
+    def across(artist) -> bool:
         extent = artist.get_window_extent(renderer)
-        if extent.x0 < box.x0 - pad or extent.y0 < box.y0 - pad or extent.x1 > box.x1 + pad or extent.y1 > box.y1 + pad:
-            return False
-    return True
+        return extent.x0 >= box.x0 - pad and extent.x1 <= box.x1 + pad
+
+    def along(artist) -> bool:
+        extent = artist.get_window_extent(renderer)
+        return extent.y0 >= box.y0 - pad and extent.y1 <= box.y1 + pad
+
+    whole = [a for a in (*fig.texts, *fig.legends) if shown(a)]
+    wide = [t for ax in fig.axes for t in (ax.title, ax.xaxis.label) if shown(t)]
+    tall = [ax.yaxis.label for ax in fig.axes if shown(ax.yaxis.label)]
+    return all(across(a) and along(a) for a in whole) and all(map(across, wide)) and all(map(along, tall))
 
 
 def pair_label(ds: xr.Dataset) -> str:
