@@ -24,7 +24,7 @@ from gearmesh.datasets import stiffness as st
 from gearmesh.datasets.fe import fe_compliance_dataset
 from gearmesh.pairfile import load_pair, variant_pair
 from gearmesh.plots import dynamics, fe, geometry, impact, ltca, optimise, stiffness
-from gearmesh.plots.common import DPI, coinciding, end_labels, number, pair_label, save, subplots, title
+from gearmesh.plots.common import DPI, coinciding, end_labels, laid_out, number, pair_label, save, subplots, title
 
 ROOT = Path(__file__).resolve().parents[1]
 COARSE_IMPACT = {"points": 15, "window_positions": 16, "face_samples": 65}
@@ -334,6 +334,21 @@ def test_a_laid_out_figure_is_written_as_laid_out_with_its_titles_broken_onto_th
     assert head.endswith(":") and rest[0].endswith(" —")
     assert "\n" in axes[0].get_title()
     assert layout_faults(fig, cropped=False) == []
+
+
+@pytest.mark.parametrize("rc", [{"figure.autolayout": True}, {"figure.constrained_layout.use": True}])
+def test_a_laid_out_figure_is_written_as_laid_out_under_a_matplotlibrc_that_asks_for_a_layout(rc, tmp_path):
+    import matplotlib
+
+    with matplotlib.rc_context(rc):
+        fig, axes = subplots(1, 2, figsize=(5, 3), layout="constrained")
+        for ax in axes:
+            ax.plot([0, 1], [0, 1], label="curve")
+        axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1))
+        assert laid_out(fig)
+        positions = [ax.get_position().bounds for ax in fig.axes]
+        fig.savefig(tmp_path / "f.png", dpi=DPI)  # as save writes it
+        assert [ax.get_position().bounds for ax in fig.axes] == positions
 
 
 @pytest.mark.parametrize("off", ["a figure-level word", "an x label", "a y label"])

@@ -155,7 +155,9 @@ def laid_out(fig: Figure) -> bool:
     engine.execute(fig)
     if wrap_to_width(fig, renderer):  # a title's height changes the layout, its width does not
         engine.execute(fig)
-    fig.set_layout_engine(None)  # laid out: not laid out again when written
+    fig.set_layout_engine(None)  # laid out: not laid out again when written (no layout engine, no draw to lay it out)
+    if fig.get_layout_engine() is not None:  # a matplotlibrc that asks every figure for a layout engine
+        fig.set_layout_engine("none")  # kept as laid out all the same
     return on_canvas(fig, renderer)
 
 
