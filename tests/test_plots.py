@@ -9,10 +9,12 @@ import subprocess
 import sys
 from pathlib import Path
 
+import matplotlib
 import numpy as np
 import pytest
 from matplotlib.collections import QuadMesh
 from matplotlib.figure import Figure
+from PIL import Image
 
 from figure_checks import layout_faults
 from gearmesh.datasets import dynamics as dy
@@ -24,7 +26,7 @@ from gearmesh.datasets import stiffness as st
 from gearmesh.datasets.fe import fe_compliance_dataset
 from gearmesh.pairfile import load_pair, variant_pair
 from gearmesh.plots import dynamics, fe, geometry, impact, ltca, optimise, stiffness
-from gearmesh.plots.common import DPI, coinciding, end_labels, laid_out, number, pair_label, save, subplots, title
+from gearmesh.plots.common import DPI, coinciding, end_labels, lay_out, number, pair_label, save, subplots, title
 
 ROOT = Path(__file__).resolve().parents[1]
 COARSE_IMPACT = {"points": 15, "window_positions": 16, "face_samples": 65}
@@ -314,8 +316,6 @@ LONG = ("a pair of the user's own with a long name: 29/71 teeth, module 5 mm, he
 
 
 def _png_size(path) -> tuple[int, int]:
-    from PIL import Image
-
     with Image.open(path) as im:
         return im.size
 
@@ -338,14 +338,12 @@ def test_a_laid_out_figure_is_written_as_laid_out_with_its_titles_broken_onto_th
 
 @pytest.mark.parametrize("rc", [{"figure.autolayout": True}, {"figure.constrained_layout.use": True}])
 def test_a_laid_out_figure_is_written_as_laid_out_under_a_matplotlibrc_that_asks_for_a_layout(rc, tmp_path):
-    import matplotlib
-
     with matplotlib.rc_context(rc):
         fig, axes = subplots(1, 2, figsize=(5, 3), layout="constrained")
         for ax in axes:
             ax.plot([0, 1], [0, 1], label="curve")
         axes[1].legend(loc="upper left", bbox_to_anchor=(1.02, 1))
-        assert laid_out(fig)
+        assert lay_out(fig)
         positions = [ax.get_position().bounds for ax in fig.axes]
         fig.savefig(tmp_path / "f.png", dpi=DPI)  # as save writes it
         assert [ax.get_position().bounds for ax in fig.axes] == positions

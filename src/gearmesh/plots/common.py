@@ -23,7 +23,7 @@ from ..io import atomic_output, stamp_figure
 MM = 1e3  # m -> mm
 UM = 1e6  # m -> µm
 
-__all__ = ["DPI", "MM", "UM", "Figure", "apart", "coinciding", "end_labels", "figure", "figure_legend", "laid_out", "legend_below", "number", "on_canvas", "pair_label", "palette", "plain_axis", "plain_log_axis", "save",
+__all__ = ["DPI", "MM", "UM", "Figure", "apart", "coinciding", "end_labels", "figure", "figure_legend", "lay_out", "legend_below", "number", "on_canvas", "pair_label", "palette", "plain_axis", "plain_log_axis", "save",
            "subplots", "text_line", "title", "wrap_to_width"]
 
 
@@ -100,7 +100,7 @@ def save(fig: Figure, path: str | Path) -> Path:
     provenance of the figure (:func:`gearmesh.io.stamp_figure`).
 
     A figure with constrained layout is laid out once, at the file's resolution, and written as
-    laid out (:func:`laid_out`); any other figure is cropped to its tight bounding box.
+    laid out (:func:`lay_out`); any other figure is cropped to its tight bounding box.
 
     Parameters
     ----------
@@ -114,7 +114,7 @@ def save(fig: Figure, path: str | Path) -> Path:
     Path
         ``path``.
     """
-    tight = None if laid_out(fig) else "tight"
+    tight = None if lay_out(fig) else "tight"
     with atomic_output(path) as tmp:
         fig.savefig(tmp, dpi=DPI, bbox_inches=tight, format="png", pil_kwargs={"compress_level": PNG_COMPRESS_LEVEL})
         png = tmp.read_bytes()
@@ -124,7 +124,7 @@ def save(fig: Figure, path: str | Path) -> Path:
     return Path(path)
 
 
-def laid_out(fig: Figure) -> bool:
+def lay_out(fig: Figure) -> bool:
     """Lay out a figure with constrained layout once, at the file's resolution (:data:`DPI`), its
     titles broken into lines that fit on its canvas (:func:`wrap_to_width`), and
     fix it as laid out; True when everything then lies on the canvas, so that the figure is written
@@ -235,10 +235,8 @@ def on_canvas(fig: Figure, renderer, pad: float = 0.5) -> bool:
 
     Parameters
     ----------
-    fig : matplotlib.figure.Figure
-        A laid-out figure.
-    renderer
-        The renderer the figure is drawn with.
+    fig, renderer
+        As :func:`wrap_to_width`.
     pad : float
         Pixels an extent may pass the canvas's edge (rounding).
 
@@ -248,21 +246,16 @@ def on_canvas(fig: Figure, renderer, pad: float = 0.5) -> bool:
     """
     box = fig.bbox
 
-    def shown(artist) -> bool:
-        return artist.get_visible() and (not isinstance(artist, Text) or bool(artist.get_text()))
+    def inside(artist, across: bool = True, along: bool = True) -> bool:
+        if not artist.get_visible() or (isinstance(artist, Text) and not artist.get_text()):
+            return True
+        e = artist.get_window_extent(renderer)
+        return ((not across or (e.x0 >= box.x0 - pad and e.x1 <= box.x1 + pad))
+                and (not along or (e.y0 >= box.y0 - pad and e.y1 <= box.y1 + pad)))
 
-    def across(artist) -> bool:
-        extent = artist.get_window_extent(renderer)
-        return extent.x0 >= box.x0 - pad and extent.x1 <= box.x1 + pad
-
-    def along(artist) -> bool:
-        extent = artist.get_window_extent(renderer)
-        return extent.y0 >= box.y0 - pad and extent.y1 <= box.y1 + pad
-
-    whole = [a for a in (*fig.texts, *fig.legends) if shown(a)]
-    wide = [t for ax in fig.axes for t in (ax.title, ax.xaxis.label) if shown(t)]
-    tall = [ax.yaxis.label for ax in fig.axes if shown(ax.yaxis.label)]
-    return all(across(a) and along(a) for a in whole) and all(map(across, wide)) and all(map(along, tall))
+    return (all(inside(a) for a in (*fig.texts, *fig.legends))
+            and all(inside(t, along=False) for ax in fig.axes for t in (ax.title, ax.xaxis.label))
+            and all(inside(ax.yaxis.label, across=False) for ax in fig.axes))
 
 
 def pair_label(ds: xr.Dataset) -> str:
